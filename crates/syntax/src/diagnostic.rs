@@ -1,0 +1,111 @@
+//! Diagnostics shared by every stage of the pipeline.
+
+use std::fmt;
+
+/// A byte range `start..end` into the program text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    /// First byte of the range.
+    pub start: u32,
+    /// One past the last byte of the range.
+    pub end: u32,
+}
+
+impl Span {
+    /// Makes a span from byte offsets (offsets past `u32::MAX` are clamped).
+    pub fn new(start: usize, end: usize) -> Self {
+        let clamp = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
+        Span {
+            start: clamp(start),
+            end: clamp(end.max(start)),
+        }
+    }
+
+    /// The span as a `usize` range, for slicing the text.
+    pub fn range(self) -> std::ops::Range<usize> {
+        self.start as usize..self.end as usize
+    }
+
+    /// Length in bytes.
+    pub fn len(self) -> usize {
+        (self.end - self.start) as usize
+    }
+
+    /// Whether the span covers no byte.
+    pub fn is_empty(self) -> bool {
+        self.end == self.start
+    }
+}
+
+/// How bad a diagnostic is: errors stop the affected block from running.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    /// Information for the programmer; nothing is wrong.
+    Note,
+    /// The program runs, but probably not as intended.
+    Warning,
+    /// The control would alarm or the block cannot be run.
+    Error,
+}
+
+impl Severity {
+    /// The lowercase name used in CLI output and the JS API.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Note => "note",
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        }
+    }
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// One problem found in a program, located by a byte span.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnostic {
+    /// Where the problem is.
+    pub span: Span,
+    /// How bad it is.
+    pub severity: Severity,
+    /// A stable code such as `E-SYNTAX-CHAR`.
+    pub code: &'static str,
+    /// A sentence for the programmer.
+    pub message: String,
+}
+
+impl Diagnostic {
+    /// An error diagnostic.
+    pub fn error(span: Span, code: &'static str, message: impl Into<String>) -> Self {
+        Diagnostic {
+            span,
+            severity: Severity::Error,
+            code,
+            message: message.into(),
+        }
+    }
+
+    /// A warning diagnostic.
+    pub fn warning(span: Span, code: &'static str, message: impl Into<String>) -> Self {
+        Diagnostic {
+            span,
+            severity: Severity::Warning,
+            code,
+            message: message.into(),
+        }
+    }
+
+    /// A note diagnostic.
+    pub fn note(span: Span, code: &'static str, message: impl Into<String>) -> Self {
+        Diagnostic {
+            span,
+            severity: Severity::Note,
+            code,
+            message: message.into(),
+        }
+    }
+}

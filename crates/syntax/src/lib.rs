@@ -1,0 +1,18 @@
+//! G-code text: decoding, the fault-tolerant parser, dialects and diagnostics.
+//!
+//! Parsing never fails: every problem becomes a [`Diagnostic`] with a byte [`Span`], and the
+//! newline is the recovery point, so the rest of the program still parses.
+
+mod ast;
+mod decode;
+mod diagnostic;
+mod dialect;
+mod line_index;
+mod parser;
+
+pub use ast::{Block, Program, Word};
+pub use decode::{Decoded, Encoding, decode};
+pub use diagnostic::{Diagnostic, Severity, Span};
+pub use dialect::{Dialect, UnknownDialect};
+pub use line_index::LineIndex;
+pub use parser::parse;

@@ -1,0 +1,56 @@
+//! Byte offset to line/column conversion, computed lazily from a table of line starts.
+
+/// The byte offset where each line starts, so diagnostics can be reported as line and column.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct LineIndex {
+    starts: Vec<u32>,
+}
+
+impl LineIndex {
+    /// Builds the table for `text` (a line ends at `\n`; `\r\n` counts as one ending).
+    pub fn new(text: &str) -> Self {
+        let mut starts = Vec::with_capacity(text.len() / 24 + 1);
+        starts.push(0);
+        for (i, b) in text.bytes().enumerate() {
+            if b == b'\n' {
+                starts.push(u32::try_from(i + 1).unwrap_or(u32::MAX));
+            }
+        }
+        LineIndex { starts }
+    }
+
+    /// Number of lines (an empty text has one empty line).
+    pub fn line_count(&self) -> usize {
+        self.starts.len()
+    }
+
+    /// The 0-based line that contains byte `offset`.
+    pub fn line_of(&self, offset: u32) -> usize {
+        match self.starts.binary_search(&offset) {
+            Ok(i) => i,
+            Err(i) => i.saturating_sub(1),
+        }
+    }
+
+    /// Byte offset where 0-based `line` starts (the text's end for lines past it).
+    pub fn line_start(&self, line: usize) -> u32 {
+        self.starts
+            .get(line)
+            .copied()
+            .unwrap_or_else(|| self.starts.last().copied().unwrap_or(0))
+    }
+
+    /// 1-based line and 1-based column (in characters) of byte `offset` in `text`.
+    pub fn line_col(&self, text: &str, offset: u32) -> (u32, u32) {
+        let line = self.line_of(offset);
+        let start = self.line_start(line) as usize;
+        let end = (offset as usize).min(text.len()).max(start);
+        let col = text
+            .get(start..end)
+            .map_or(end - start, |s| s.chars().count());
+        (
+            u32::try_from(line + 1).unwrap_or(u32::MAX),
+            u32::try_from(col + 1).unwrap_or(u32::MAX),
+        )
+    }
+}
