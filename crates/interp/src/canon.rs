@@ -1,0 +1,162 @@
+//! Canonical machine events: what the control does, independent of how it was programmed.
+
+use glam::DVec3;
+use serde_json::{Value, json};
+
+use crate::Sink;
+
+/// The block an event came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Source {
+    /// Index of the block in `Program::blocks`.
+    pub block: u32,
+    /// 1-based line of the block in the text.
+    pub line: u32,
+}
+
+/// A plane normal: the axis an arc turns around.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// G19 (YZ plane).
+    X,
+    /// G18 (ZX plane).
+    Y,
+    /// G17 (XY plane).
+    Z,
+}
+
+impl Axis {
+    /// Lowercase name as used in the canonical JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::X => "x",
+            Axis::Y => "y",
+            Axis::Z => "z",
+        }
+    }
+}
+
+/// One canonical event. Positions are millimetres in the machine frame, at the tool tip.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Canon {
+    /// Rapid positioning (G00) to `to`.
+    Rapid {
+        /// End point.
+        to: DVec3,
+    },
+    /// Straight cutting move to `to` at `feed_mm_per_min`.
+    Feed {
+        /// End point.
+        to: DVec3,
+        /// Feed rate in mm/min.
+        feed_mm_per_min: f64,
+    },
+    /// Circular or helical cutting move.
+    Arc {
+        /// End point.
+        to: DVec3,
+        /// Centre (its coordinate along `axis` is the start's).
+        center: DVec3,
+        /// Plane normal.
+        axis: Axis,
+        /// Counter-clockwise as seen from the positive end of `axis`.
+        ccw: bool,
+        /// Extra full turns beyond the first.
+        turns: u32,
+        /// Feed rate in mm/min.
+        feed_mm_per_min: f64,
+    },
+    /// A pause with the axes still.
+    Dwell {
+        /// Duration in seconds.
+        secs: f64,
+    },
+    /// Tool change to tool `tool` (M06 with the selected T).
+    ToolChange {
+        /// The tool number.
+        tool: u32,
+    },
+    /// Spindle on (clockwise or counter-clockwise) at `rpm`, or off.
+    Spindle {
+        /// `Some(true)` clockwise (M03), `Some(false)` counter-clockwise (M04), `None` stop (M05).
+        clockwise: Option<bool>,
+        /// Programmed speed.
+        rpm: f64,
+    },
+    /// Coolant on (M08) or off (M09).
+    Coolant {
+        /// Whether coolant flows after this event.
+        on: bool,
+    },
+    /// Program stop M00 (`optional` for M01).
+    Pause {
+        /// Whether it is an optional stop.
+        optional: bool,
+    },
+    /// End of program (M02/M30).
+    End,
+}
+
+impl Canon {
+    /// The end point for motion events.
+    pub fn end_point(&self) -> Option<DVec3> {
+        match self {
+            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc { to, .. } => Some(*to),
+            _ => None,
+        }
+    }
+
+    /// The event as one JSON object of the `swarf canon` stream.
+    pub fn to_json(&self, source: Source) -> Value {
+        let p = |v: DVec3| json!([round(v.x), round(v.y), round(v.z)]);
+        let line = source.line;
+        match self {
+            Canon::Rapid { to } => json!({"line": line, "kind": "rapid", "to": p(*to)}),
+            Canon::Feed {
+                to,
+                feed_mm_per_min,
+            } => json!({"line": line, "kind": "feed", "to": p(*to), "feed": round(*feed_mm_per_min)}),
+            Canon::Arc {
+                to,
+                center,
+                axis,
+                ccw,
+                turns,
+                feed_mm_per_min,
+            } => json!({
+                "line": line, "kind": "arc", "to": p(*to), "center": p(*center),
+                "axis": axis.name(), "dir": if *ccw { "ccw" } else { "cw" },
+                "turns": turns, "feed": round(*feed_mm_per_min),
+            }),
+            Canon::Dwell { secs } => json!({"line": line, "kind": "dwell", "secs": round(*secs)}),
+            Canon::ToolChange { tool } => json!({"line": line, "kind": "tool_change", "tool": tool}),
+            Canon::Spindle { clockwise, rpm } => json!({
+                "line": line, "kind": "spindle",
+                "dir": match clockwise { Some(true) => "cw", Some(false) => "ccw", None => "off" },
+                "rpm": round(*rpm),
+            }),
+            Canon::Coolant { on } => json!({"line": line, "kind": "coolant", "on": on}),
+            Canon::Pause { optional } => json!({"line": line, "kind": "pause", "optional": optional}),
+            Canon::End => json!({"line": line, "kind": "end"}),
+        }
+    }
+}
+
+/// Rounds to 6 decimals (a nanometre) so printed streams are stable across platforms.
+fn round(v: f64) -> f64 {
+    let r = (v * 1e6).round() / 1e6;
+    if r == 0.0 { 0.0 } else { r }
+}
+
+/// A sink that keeps every event, for tests and the CLI.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CanonRecorder {
+    /// The events in execution order.
+    pub events: Vec<(Source, Canon)>,
+}
+
+impl Sink for CanonRecorder {
+    fn emit(&mut self, source: Source, event: &Canon) {
+        self.events.push((source, event.clone()));
+    }
+}

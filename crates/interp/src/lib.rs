@@ -1,0 +1,16 @@
+//! The interpreter: runs a parsed program the way the selected control would and emits the
+//! canonical motion stream through a [`Sink`], each event tagged with its source block.
+
+mod canon;
+mod machine;
+mod setup;
+
+pub use canon::{Axis, Canon, CanonRecorder, Source};
+pub use machine::{Interpreter, Limits, Status, run};
+pub use setup::{Machine, Register, Setup, SetupError, Units};
+
+/// Receives the canonical events of a running program, in execution order.
+pub trait Sink {
+    /// One event caused by the block at `source`.
+    fn emit(&mut self, source: Source, event: &Canon);
+}

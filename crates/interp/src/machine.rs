@@ -1,0 +1,488 @@
+//! The modal machine: reads each block, checks it, and executes it in a fixed order.
+
+use glam::DVec3;
+use swarf_syntax::{Block, Diagnostic, Dialect, Program, Word};
+
+use crate::{Canon, Setup, Sink, Source};
+
+/// Whether a run has more blocks to execute.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// The budget ran out; call [`Interpreter::step`] again to go on.
+    Running,
+    /// The program ended (M02/M30, end of text, or a limit was hit).
+    Finished,
+}
+
+/// Resource limits that stop runaway programs with a diagnostic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Most blocks executed in one run.
+    pub max_blocks: u64,
+}
+
+/// The motion mode of modal group 01 that the interpreter can run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum MotionMode {
+    Rapid,
+    Linear,
+}
+
+/// What one G code does, for the codes the interpreter runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum GAction {
+    Motion(Option<MotionMode>),
+    Plane,
+    Absolute(bool),
+    Metric(bool),
+    WorkOffset(&'static str),
+    Dwell,
+    /// Cancels a mode the interpreter cannot enter yet, so it has nothing to do.
+    Cancel,
+    /// A code controls have that is not interpreted yet.
+    NotYet(&'static str),
+}
+
+/// Modal group numbers, for the two-codes-in-one-group check.
+fn group(action: GAction) -> Option<u8> {
+    match action {
+        GAction::Motion(_) => Some(1),
+        GAction::Plane => Some(2),
+        GAction::Absolute(_) => Some(3),
+        GAction::Metric(_) => Some(6),
+        GAction::WorkOffset(_) => Some(14),
+        GAction::Dwell | GAction::Cancel | GAction::NotYet(_) => None,
+    }
+}
+
+/// Looks up a G code given as ten times its number (`G54.1` is 541).
+fn g_action(dialect: Dialect, code10: i64) -> Option<GAction> {
+    let syntec = dialect == Dialect::Syntec;
+    Some(match code10 {
+        0 => GAction::Motion(Some(MotionMode::Rapid)),
+        10 => GAction::Motion(Some(MotionMode::Linear)),
+        800 => GAction::Motion(None),
+        40 => GAction::Dwell,
+        170 | 180 | 190 => GAction::Plane,
+        900 => GAction::Absolute(true),
+        910 => GAction::Absolute(false),
+        200 if !syntec => GAction::Metric(false),
+        210 if !syntec => GAction::Metric(true),
+        700 if syntec => GAction::Metric(false),
+        710 if syntec => GAction::Metric(true),
+        540 => GAction::WorkOffset("G54"),
+        550 => GAction::WorkOffset("G55"),
+        560 => GAction::WorkOffset("G56"),
+        570 => GAction::WorkOffset("G57"),
+        580 => GAction::WorkOffset("G58"),
+        590 => GAction::WorkOffset("G59"),
+        // Cancel codes of modes that cannot be active yet.
+        150 | 400 | 490 | 500 | 501 | 670 | 690 | 940 | 970 | 640 | 611 | 610 => GAction::Cancel,
+        20 | 30 => GAction::NotYet("circular interpolation"),
+        90 => GAction::NotYet("exact stop"),
+        100 => GAction::NotYet("programmable data input"),
+        160 => GAction::NotYet("polar coordinates"),
+        220 | 230 => GAction::NotYet("stroke limits"),
+        280 | 290 | 300 => GAction::NotYet("reference point return"),
+        310 => GAction::NotYet("skip"),
+        330 => GAction::NotYet("thread cutting"),
+        410 | 420 => GAction::NotYet("cutter radius compensation"),
+        430 | 440 => GAction::NotYet("tool length compensation"),
+        450..=480 => GAction::NotYet("tool position offset"),
+        510 | 511 => GAction::NotYet("scaling and mirroring"),
+        520 => GAction::NotYet("local coordinate system"),
+        530 => GAction::NotYet("machine coordinates"),
+        541 | 591..=599 => GAction::NotYet("extra work coordinate systems"),
+        650 | 660 => GAction::NotYet("macro calls"),
+        680 => GAction::NotYet("coordinate rotation"),
+        730 | 740 | 760 | 810..=890 => GAction::NotYet("canned cycles"),
+        920 | 921 => GAction::NotYet("coordinate system setting"),
+        930 | 950 | 960 => GAction::NotYet("feed and speed modes"),
+        _ => return None,
+    })
+}
+
+/// Interprets a parsed program in bounded steps.
+#[derive(Debug, Clone)]
+pub struct Interpreter {
+    setup: Setup,
+    dialect: Dialect,
+    next_block: usize,
+    executed: u64,
+    finished: bool,
+    /// Tool-tip position in the machine frame, millimetres.
+    position: DVec3,
+    motion: Option<MotionMode>,
+    absolute: bool,
+    metric: bool,
+    work_offset: DVec3,
+    feed_mm_per_min: f64,
+    spindle_rpm: f64,
+    tool: u32,
+    diagnostics: Vec<Diagnostic>,
+}
+
+impl Interpreter {
+    /// A machine at power-on for `dialect`, at the origin, with `setup`'s offsets.
+    pub fn new(setup: Setup, dialect: Dialect) -> Self {
+        let work_offset = setup.work_offset("G54");
+        Interpreter {
+            setup,
+            dialect,
+            next_block: 0,
+            executed: 0,
+            finished: false,
+            position: DVec3::ZERO,
+            motion: Some(MotionMode::Rapid),
+            absolute: true,
+            metric: true,
+            work_offset,
+            feed_mm_per_min: 0.0,
+            spindle_rpm: 0.0,
+            tool: 0,
+            diagnostics: Vec::new(),
+        }
+    }
+
+    /// The limits this run stops at.
+    pub fn limits(&self) -> Limits {
+        Limits {
+            max_blocks: self.setup.machine.max_blocks,
+        }
+    }
+
+    /// Diagnostics found while executing so far.
+    pub fn diagnostics(&self) -> &[Diagnostic] {
+        &self.diagnostics
+    }
+
+    /// Takes the diagnostics found so far, leaving none.
+    pub fn take_diagnostics(&mut self) -> Vec<Diagnostic> {
+        std::mem::take(&mut self.diagnostics)
+    }
+
+    /// The tool-tip position in the machine frame.
+    pub fn position(&self) -> DVec3 {
+        self.position
+    }
+
+    /// How many blocks have been executed.
+    pub fn executed_blocks(&self) -> u64 {
+        self.executed
+    }
+
+    /// Index of the next block to execute (progress through the program).
+    pub fn next_block(&self) -> usize {
+        self.next_block
+    }
+
+    /// Executes at most `budget` blocks of `program`, sending events to `sink`.
+    pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
+        for _ in 0..budget {
+            if self.finished {
+                return Status::Finished;
+            }
+            let Some(block) = program.blocks.get(self.next_block) else {
+                self.finished = true;
+                return Status::Finished;
+            };
+            if self.executed >= self.setup.machine.max_blocks {
+                self.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-RUNAWAY",
+                    format!(
+                        "execution stopped after {} blocks (the limit in [machine] max_blocks)",
+                        self.executed
+                    ),
+                ));
+                self.finished = true;
+                return Status::Finished;
+            }
+            let source = Source {
+                block: u32::try_from(self.next_block).unwrap_or(u32::MAX),
+                line: block.line.saturating_add(1),
+            };
+            self.next_block += 1;
+            self.executed += 1;
+            if !block.has_error {
+                self.execute(block, source, sink);
+            }
+        }
+        if self.finished || self.next_block >= program.blocks.len() {
+            self.finished = true;
+            Status::Finished
+        } else {
+            Status::Running
+        }
+    }
+
+    fn mm(&self, value: f64) -> f64 {
+        if self.metric { value } else { value * 25.4 }
+    }
+
+    /// Executes one block: check the words, then modes, feed/speed/tool, motion, then M codes.
+    fn execute(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) {
+        let mut actions: Vec<(GAction, &Word)> = Vec::new();
+        let mut axes: [Option<&Word>; 3] = [None; 3];
+        let mut runnable = true;
+        for word in &block.words {
+            match word.letter {
+                b'G' => match code10(word.value).and_then(|c| g_action(self.dialect, c)) {
+                    Some(GAction::NotYet(what)) => {
+                        self.diagnostics.push(Diagnostic::warning(
+                            word.span,
+                            "W-NOT-INTERPRETED",
+                            format!(
+                                "G{} ({what}) is not interpreted yet; this block is not run",
+                                fmt_code(word.value)
+                            ),
+                        ));
+                        runnable = false;
+                    }
+                    Some(action) => {
+                        if let Some(g) = group(action) {
+                            if let Some((_, other)) =
+                                actions.iter().find(|(a, _)| group(*a) == Some(g))
+                            {
+                                self.diagnostics.push(Diagnostic::error(
+                                    word.span,
+                                    "E-MODAL-CONFLICT",
+                                    format!(
+                                        "G{} and G{} are in the same modal group and cannot share a block",
+                                        fmt_code(other.value),
+                                        fmt_code(word.value)
+                                    ),
+                                ));
+                                runnable = false;
+                            }
+                        }
+                        actions.push((action, word));
+                    }
+                    None => {
+                        self.diagnostics.push(Diagnostic::error(
+                            word.span,
+                            "E-UNKNOWN-CODE",
+                            format!(
+                                "G{} is not a code of the {} dialect",
+                                fmt_code(word.value),
+                                self.dialect.label()
+                            ),
+                        ));
+                        runnable = false;
+                    }
+                },
+                b'X' | b'Y' | b'Z' => {
+                    let i = usize::from(word.letter - b'X');
+                    if axes[i].is_some() {
+                        self.duplicate(word);
+                        runnable = false;
+                    }
+                    axes[i] = Some(word);
+                }
+                b'F' | b'S' | b'T' | b'M' | b'O' | b'P' => {}
+                _ => self.diagnostics.push(Diagnostic::warning(
+                    word.span,
+                    "W-WORD-IGNORED",
+                    format!(
+                        "address `{}` is not interpreted yet and is ignored",
+                        word.letter()
+                    ),
+                )),
+            }
+        }
+        if !runnable {
+            return;
+        }
+        for (letter, action) in [(b'F', 0), (b'S', 1), (b'T', 2)] {
+            let found: Vec<&Word> = block.words.iter().filter(|w| w.letter == letter).collect();
+            if found.len() > 1 {
+                self.duplicate(found[1]);
+                return;
+            }
+            let Some(w) = found.first() else { continue };
+            if w.value < 0.0 {
+                self.diagnostics.push(Diagnostic::error(
+                    w.span,
+                    "E-NEGATIVE",
+                    format!("`{}` cannot be negative", w.letter()),
+                ));
+                return;
+            }
+            match action {
+                0 => self.feed_mm_per_min = w.value,
+                1 => self.spindle_rpm = w.value,
+                _ => self.tool = w.value.round() as u32,
+            }
+        }
+        // Units first: the feed and the axis words of this block are read in the new units.
+        let mut dwell = None;
+        let mut motion = self.motion;
+        for (action, word) in &actions {
+            match *action {
+                GAction::Metric(m) => self.metric = m,
+                GAction::Absolute(a) => self.absolute = a,
+                GAction::WorkOffset(name) => self.work_offset = self.setup.work_offset(name),
+                GAction::Motion(m) => motion = m,
+                GAction::Dwell => dwell = Some(*word),
+                GAction::Plane | GAction::Cancel | GAction::NotYet(_) => {}
+            }
+        }
+        if block.word(b'F').is_some() {
+            self.feed_mm_per_min = self.mm(self.feed_mm_per_min);
+        }
+        if let Some(g4) = dwell {
+            self.dwell(block, g4, source, sink);
+        }
+        self.motion = motion;
+        if axes.iter().any(Option::is_some) && dwell.is_none() {
+            self.move_to(block, axes, source, sink);
+        }
+        self.m_codes(block, source, sink);
+    }
+
+    fn duplicate(&mut self, word: &Word) {
+        self.diagnostics.push(Diagnostic::error(
+            word.span,
+            "E-WORD-TWICE",
+            format!("address `{}` appears twice in the block", word.letter()),
+        ));
+    }
+
+    fn dwell(&mut self, block: &Block, g4: &Word, source: Source, sink: &mut dyn Sink) {
+        let secs = if let Some(p) = block.word(b'P') {
+            match self.dialect {
+                Dialect::LinuxCnc | Dialect::Lnc => p.value,
+                _ => p.value.trunc() / 1000.0,
+            }
+        } else if let Some(x) = block.word(b'X') {
+            if self.dialect == Dialect::Syntec && !x.has_point {
+                x.value / 1000.0
+            } else {
+                x.value
+            }
+        } else {
+            self.diagnostics.push(Diagnostic::error(
+                g4.span,
+                "E-MISSING-WORD",
+                "G04 needs the dwell time in P or X",
+            ));
+            return;
+        };
+        if secs < 0.0 {
+            self.diagnostics.push(Diagnostic::error(
+                g4.span,
+                "E-NEGATIVE",
+                "a dwell time cannot be negative",
+            ));
+            return;
+        }
+        sink.emit(source, &Canon::Dwell { secs });
+    }
+
+    fn move_to(
+        &mut self,
+        block: &Block,
+        axes: [Option<&Word>; 3],
+        source: Source,
+        sink: &mut dyn Sink,
+    ) {
+        let Some(mode) = self.motion else {
+            let span = axes.iter().flatten().next().map_or(block.span, |w| w.span);
+            self.diagnostics.push(Diagnostic::error(
+                span,
+                "E-NO-MOTION-MODE",
+                "axis words with no motion mode active (after G80): add G00 or G01",
+            ));
+            return;
+        };
+        let work = self.position - self.work_offset;
+        let mut target = work;
+        for (i, word) in axes.iter().enumerate() {
+            if let Some(w) = word {
+                let v = self.mm(w.value);
+                target[i] = if self.absolute { v } else { work[i] + v };
+            }
+        }
+        let to = target + self.work_offset;
+        let event = match mode {
+            MotionMode::Rapid => Canon::Rapid { to },
+            MotionMode::Linear => {
+                if self.feed_mm_per_min <= 0.0 {
+                    self.diagnostics.push(Diagnostic::error(
+                        block.span,
+                        "E-NO-FEED",
+                        "G01 needs a feed rate: program F before or in this block",
+                    ));
+                }
+                Canon::Feed {
+                    to,
+                    feed_mm_per_min: self.feed_mm_per_min,
+                }
+            }
+        };
+        self.position = to;
+        sink.emit(source, &event);
+    }
+
+    fn m_codes(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) {
+        for word in block.words.iter().filter(|w| w.letter == b'M') {
+            let event = match code10(word.value) {
+                Some(0) => Canon::Pause { optional: false },
+                Some(10) => Canon::Pause { optional: true },
+                Some(20 | 300) => {
+                    self.finished = true;
+                    Canon::End
+                }
+                Some(30) => Canon::Spindle {
+                    clockwise: Some(true),
+                    rpm: self.spindle_rpm,
+                },
+                Some(40) => Canon::Spindle {
+                    clockwise: Some(false),
+                    rpm: self.spindle_rpm,
+                },
+                Some(50) => Canon::Spindle {
+                    clockwise: None,
+                    rpm: 0.0,
+                },
+                Some(60) => Canon::ToolChange { tool: self.tool },
+                Some(80) => Canon::Coolant { on: true },
+                Some(90) => Canon::Coolant { on: false },
+                _ => {
+                    self.diagnostics.push(Diagnostic::warning(
+                        word.span,
+                        "W-NOT-INTERPRETED",
+                        format!("M{} is not interpreted yet", fmt_code(word.value)),
+                    ));
+                    continue;
+                }
+            };
+            sink.emit(source, &event);
+        }
+    }
+}
+
+/// Ten times a code number when it has at most one decimal (`54.1` → 541).
+fn code10(value: f64) -> Option<i64> {
+    let scaled = value * 10.0;
+    let rounded = scaled.round();
+    ((scaled - rounded).abs() < 1e-6 && rounded.abs() < 1e9 && rounded >= 0.0)
+        .then_some(rounded as i64)
+}
+
+/// A code number as written in messages: `0` → `00`, `54.1` stays.
+fn fmt_code(value: f64) -> String {
+    if value.fract() == 0.0 && (0.0..10.0).contains(&value) {
+        format!("0{value}")
+    } else {
+        format!("{value}")
+    }
+}
+
+/// Runs a whole program with `setup` and returns the execution diagnostics.
+pub fn run(program: &Program, setup: Setup, sink: &mut dyn Sink) -> Vec<Diagnostic> {
+    let mut interp = Interpreter::new(setup, program.dialect);
+    while interp.step(program, sink, 4096) == Status::Running {}
+    interp.take_diagnostics()
+}
+

@@ -1,0 +1,197 @@
+//! The machine setup: offset registers, work offsets and machine parameters (`SETUP.toml`).
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+use serde::Deserialize;
+
+/// Length units of the values in a setup file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    /// Millimetres (the default).
+    #[default]
+    Mm,
+    /// Inches.
+    Inch,
+}
+
+impl Units {
+    /// Millimetres per unit.
+    pub fn mm(self) -> f64 {
+        match self {
+            Units::Mm => 1.0,
+            Units::Inch => 25.4,
+        }
+    }
+}
+
+/// One offset register (addressed by H for length and D for radius), in millimetres.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Register {
+    /// Tool length geometry.
+    #[serde(default)]
+    pub length: f64,
+    /// Tool radius geometry.
+    #[serde(default)]
+    pub radius: f64,
+    /// Tool length wear (added to the geometry).
+    #[serde(default)]
+    pub length_wear: f64,
+    /// Tool radius wear (added to the geometry).
+    #[serde(default)]
+    pub radius_wear: f64,
+}
+
+/// Machine parameters that change how programs run.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Machine {
+    /// Rapid traverse rate in mm/min, for the time estimate.
+    pub rapid_mm_per_min: f64,
+    /// Most blocks executed before a run is stopped as runaway.
+    pub max_blocks: u64,
+}
+
+impl Default for Machine {
+    fn default() -> Self {
+        Machine {
+            rapid_mm_per_min: 10_000.0,
+            max_blocks: 50_000_000,
+        }
+    }
+}
+
+/// Everything about the machine a program runs on that the program itself does not say.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Setup {
+    /// Offset registers by number.
+    pub registers: BTreeMap<u32, Register>,
+    /// Work offsets by canonical name (`G54`, `G54.1P7`, `G59.3`), in millimetres.
+    pub work_offsets: BTreeMap<String, DVec3>,
+    /// Machine parameters.
+    pub machine: Machine,
+}
+
+/// Why a setup file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum SetupError {
+    /// The TOML is malformed or has unknown keys.
+    #[error("{0}")]
+    Toml(#[from] toml::de::Error),
+    /// A work offset name that no control has.
+    #[error("unknown work offset `{0}` (expected G54…G59, G54.1P1…G54.1P48 or G59.1…G59.9)")]
+    WorkOffset(String),
+    /// A value that is not a finite number.
+    #[error("`{0}` must be a finite number")]
+    NotFinite(String),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SetupFile {
+    #[serde(default)]
+    units: Units,
+    #[serde(default)]
+    registers: BTreeMap<u32, Register>,
+    #[serde(default)]
+    work_offsets: BTreeMap<String, [f64; 3]>,
+    #[serde(default)]
+    machine: Machine,
+}
+
+impl Setup {
+    /// Reads a `SETUP.toml` text; lengths are converted to millimetres.
+    pub fn from_toml(text: &str) -> Result<Self, SetupError> {
+        let file: SetupFile = toml::from_str(text)?;
+        let k = file.units.mm();
+        let mut setup = Setup {
+            machine: file.machine,
+            ..Setup::default()
+        };
+        for (n, r) in file.registers {
+            for (name, v) in [
+                ("length", r.length),
+                ("radius", r.radius),
+                ("length_wear", r.length_wear),
+                ("radius_wear", r.radius_wear),
+            ] {
+                if !v.is_finite() {
+                    return Err(SetupError::NotFinite(format!("registers.{n}.{name}")));
+                }
+            }
+            setup.registers.insert(
+                n,
+                Register {
+                    length: r.length * k,
+                    radius: r.radius * k,
+                    length_wear: r.length_wear * k,
+                    radius_wear: r.radius_wear * k,
+                },
+            );
+        }
+        for (name, v) in file.work_offsets {
+            let canonical =
+                canonical_work_offset(&name).ok_or_else(|| SetupError::WorkOffset(name.clone()))?;
+            if v.iter().any(|c| !c.is_finite()) {
+                return Err(SetupError::NotFinite(format!("work_offsets.{name}")));
+            }
+            setup
+                .work_offsets
+                .insert(canonical, DVec3::from_array(v) * k);
+        }
+        if !(setup.machine.rapid_mm_per_min.is_finite() && setup.machine.rapid_mm_per_min > 0.0) {
+            return Err(SetupError::NotFinite("machine.rapid_mm_per_min".into()));
+        }
+        Ok(setup)
+    }
+
+    /// The offset of a work coordinate system by canonical name (zero when not set).
+    pub fn work_offset(&self, name: &str) -> DVec3 {
+        self.work_offsets.get(name).copied().unwrap_or(DVec3::ZERO)
+    }
+}
+
+/// Normalises a work offset name (`g54.1 p7` → `G54.1P7`); `None` for names no control has.
+pub(crate) fn canonical_work_offset(name: &str) -> Option<String> {
+    let compact: String = name
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_uppercase();
+    let ok = match compact.as_str() {
+        "G54" | "G55" | "G56" | "G57" | "G58" | "G59" => true,
+        s if s.starts_with("G54.1P") => s[6..].parse::<u32>().is_ok_and(|p| (1..=48).contains(&p)),
+        s if s.starts_with("G59.") => s[4..].parse::<u32>().is_ok_and(|p| (1..=9).contains(&p)),
+        _ => false,
+    };
+    ok.then_some(compact)
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn reads_registers_offsets_and_units() {
+        let s = Setup::from_toml(
+            "units = \"inch\"\n[registers.1]\nlength = 1.0\nradius = 0.25\n[work_offsets]\nG54 = [1, 2, 3]\n\"g54.1 p7\" = [0, 0, 1]\n[machine]\nrapid_mm_per_min = 5000\n",
+        )
+        .unwrap();
+        assert_eq!(s.registers[&1].length, 25.4);
+        assert_eq!(s.registers[&1].radius, 6.35);
+        assert!(s.work_offset("G54").abs_diff_eq(DVec3::new(25.4, 50.8, 76.2), 1e-9));
+        assert_eq!(s.work_offset("G54.1P7"), DVec3::new(0.0, 0.0, 25.4));
+        assert_eq!(s.machine.rapid_mm_per_min, 5000.0);
+    }
+
+    #[test]
+    fn rejects_unknown_keys_and_offsets() {
+        assert!(Setup::from_toml("[work_offsets]\nG60 = [0,0,0]\n").is_err());
+        assert!(Setup::from_toml("[work_offsets]\n\"G54.1P49\" = [0,0,0]\n").is_err());
+        assert!(Setup::from_toml("bogus = 1\n").is_err());
+        assert!(Setup::from_toml("[machine]\nrapid_mm_per_min = -1\n").is_err());
+    }
+}

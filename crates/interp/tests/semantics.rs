@@ -1,0 +1,103 @@
+//! Interpreter behaviour beyond the golden files: checks, limits and resumable stepping.
+#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+use glam::DVec3;
+use swarf_interp::{Canon, CanonRecorder, Interpreter, Setup, Status, run};
+use swarf_syntax::{Dialect, parse};
+
+fn run_text(text: &str, dialect: Dialect) -> (CanonRecorder, Vec<swarf_syntax::Diagnostic>) {
+    let program = parse(text, dialect);
+    let mut rec = CanonRecorder::default();
+    let diags = run(&program, Setup::default(), &mut rec);
+    (rec, diags)
+}
+
+fn codes(diags: &[swarf_syntax::Diagnostic]) -> Vec<&'static str> {
+    diags.iter().map(|d| d.code).collect()
+}
+
+#[test]
+fn modal_conflict_is_an_error_and_the_block_does_not_move() {
+    let (rec, diags) = run_text("G00 G01 X5\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-MODAL-CONFLICT"]);
+    assert!(rec.events.is_empty());
+}
+
+#[test]
+fn unsupported_codes_say_so() {
+    let (rec, diags) = run_text("G02 X10 Y0 R5 F100\nG01 X1 F100\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags)[0], "W-NOT-INTERPRETED");
+    assert_eq!(rec.events.len(), 1);
+}
+
+#[test]
+fn unknown_code_names_the_dialect() {
+    let (_, diags) = run_text("G321 X1\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-UNKNOWN-CODE"]);
+    assert!(diags[0].message.contains("Fanuc"));
+}
+
+#[test]
+fn feed_without_f_is_an_error() {
+    let (rec, diags) = run_text("G01 X10\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-NO-FEED"]);
+    assert_eq!(rec.events.len(), 1);
+}
+
+#[test]
+fn syntec_reads_g70_as_inch() {
+    let (rec, diags) = run_text("G70 G00 X1\n", Dialect::Syntec);
+    assert!(diags.is_empty(), "{diags:?}");
+    assert_eq!(rec.events[0].1, Canon::Rapid { to: DVec3::new(25.4, 0.0, 0.0) });
+    let (_, diags) = run_text("G70 G00 X1\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-UNKNOWN-CODE"]);
+}
+
+#[test]
+fn dwell_units_follow_the_dialect() {
+    let secs = |text: &str, d| match run_text(text, d).0.events[0].1 {
+        Canon::Dwell { secs } => secs,
+        ref other => panic!("{other:?}"),
+    };
+    assert_eq!(secs("G04 P2500\n", Dialect::Fanuc), 2.5);
+    assert_eq!(secs("G04 P2.5\n", Dialect::LinuxCnc), 2.5);
+    assert_eq!(secs("G04 X2500\n", Dialect::Syntec), 2.5);
+    assert_eq!(secs("G04 X2.5\n", Dialect::Syntec), 2.5);
+}
+
+#[test]
+fn stepping_in_small_budgets_gives_the_same_stream() {
+    let text = "G0 X1\nG1 X2 F100\nG91 X1\nX1\nX1\nM30\n";
+    let program = parse(text, Dialect::Fanuc);
+    let (whole, _) = run_text(text, Dialect::Fanuc);
+    let mut interp = Interpreter::new(Setup::default(), Dialect::Fanuc);
+    let mut rec = CanonRecorder::default();
+    let mut steps = 0;
+    while interp.step(&program, &mut rec, 1) == Status::Running {
+        steps += 1;
+        assert!(steps < 100);
+    }
+    assert_eq!(rec, whole);
+    assert_eq!(interp.position(), DVec3::new(5.0, 0.0, 0.0));
+}
+
+#[test]
+fn block_limit_stops_a_run_with_a_diagnostic() {
+    let program = parse(&"G91 G0 X1\n".repeat(50), Dialect::Fanuc);
+    let mut setup = Setup::default();
+    setup.machine.max_blocks = 10;
+    let mut rec = CanonRecorder::default();
+    let diags = run(&program, setup, &mut rec);
+    assert_eq!(rec.events.len(), 10);
+    assert_eq!(codes(&diags), ["E-RUNAWAY"]);
+}
+
+#[test]
+fn blocks_with_parse_errors_are_not_run() {
+    let (rec, diags) = run_text("G0 X$ \nG0 X3\n", Dialect::Fanuc);
+    assert!(diags.is_empty());
+    assert_eq!(rec.events.len(), 1);
+}
