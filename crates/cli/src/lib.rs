@@ -1,0 +1,308 @@
+//! The `swarf` command line: `check`, `canon` and `stats` over G-code files.
+//!
+//! Everything is in this library so it can be tested in-process; `main.rs` only forwards the
+//! process arguments and exit status.
+
+use std::ffi::OsString;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+use serde_json::json;
+use swarf_interp::{Canon, Interpreter, Setup, Sink, Source, Status};
+use swarf_syntax::{Diagnostic, Dialect, LineIndex, Program, Severity, decode, parse};
+use swarf_toolpath::Toolpath;
+
+/// Exit status: no error diagnostics.
+pub const EXIT_OK: i32 = 0;
+/// Exit status: the program has at least one error.
+pub const EXIT_ERRORS: i32 = 1;
+/// Exit status: bad usage or an I/O problem.
+pub const EXIT_USAGE: i32 = 2;
+
+#[derive(Parser, Debug)]
+#[command(name = "swarf", version, about = "Check, run and measure G-code programs the way the selected CNC control would")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(clap::Args, Debug)]
+struct RunOptions {
+    /// Controller dialect: fanuc, syntec, lnc, kt, gsk or linuxcnc.
+    #[arg(long, default_value = "fanuc", value_parser = parse_dialect)]
+    dialect: Dialect,
+    /// Machine setup (offset registers, work offsets, machine parameters) as TOML.
+    #[arg(long, value_name = "SETUP.toml")]
+    setup: Option<PathBuf>,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Parse and interpret programs; print one line per diagnostic.
+    Check {
+        /// Program files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        #[command(flatten)]
+        opts: RunOptions,
+    },
+    /// Print the canonical motion stream as JSON Lines.
+    Canon {
+        /// Program file.
+        file: PathBuf,
+        #[command(flatten)]
+        opts: RunOptions,
+    },
+    /// Print statistics: blocks, motions, bounds, lengths, time, tools.
+    Stats {
+        /// Program file.
+        file: PathBuf,
+        #[command(flatten)]
+        opts: RunOptions,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn parse_dialect(s: &str) -> Result<Dialect, String> {
+    s.parse::<Dialect>().map_err(|e| e.to_string())
+}
+
+/// Runs the CLI with `args` (including the program name), writing to `out` and `err`;
+/// returns the exit status.
+pub fn run<I, T>(args: I, out: &mut dyn Write, err: &mut dyn Write) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+            let text = e.render().to_string();
+            let _ = if e.use_stderr() {
+                err.write_all(text.as_bytes())
+            } else {
+                out.write_all(text.as_bytes())
+            };
+            return code;
+        }
+    };
+    let result = match cli.command {
+        Command::Check { files, opts } => check(&files, &opts, err),
+        Command::Canon { file, opts } => canon(&file, &opts, out, err),
+        Command::Stats { file, opts, json } => stats(&file, &opts, json, out, err),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            let _ = writeln!(err, "swarf: {e:#}");
+            EXIT_USAGE
+        }
+    }
+}
+
+/// A program file read, decoded and parsed.
+struct Loaded {
+    path: String,
+    text: String,
+    program: Program,
+    setup: Setup,
+    /// Decoding and parsing diagnostics.
+    diagnostics: Vec<Diagnostic>,
+}
+
+fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
+    let setup = match &opts.setup {
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .map_err(|e| anyhow::anyhow!("cannot read setup {}: {e}", p.display()))?;
+            Setup::from_toml(&text)
+                .map_err(|e| anyhow::anyhow!("invalid setup {}: {e}", p.display()))?
+        }
+        None => Setup::default(),
+    };
+    let bytes =
+        std::fs::read(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
+    let decoded = decode(&bytes);
+    let program = parse(&decoded.text, opts.dialect);
+    let mut diagnostics = decoded.diagnostics;
+    diagnostics.extend(program.diagnostics.iter().cloned());
+    Ok(Loaded {
+        path: path.display().to_string(),
+        text: decoded.text,
+        program,
+        setup,
+        diagnostics,
+    })
+}
+
+impl Loaded {
+    /// Interprets the program into `sink`; returns every diagnostic sorted by position.
+    fn interpret(&self, sink: &mut dyn Sink) -> Vec<Diagnostic> {
+        let mut interp = Interpreter::new(self.setup.clone(), self.program.dialect);
+        while interp.step(&self.program, sink, 65_536) == Status::Running {}
+        let mut all = self.diagnostics.clone();
+        all.extend(interp.take_diagnostics());
+        all.sort_by_key(|d| (d.span.start, d.span.end));
+        all
+    }
+
+    fn print(&self, diags: &[Diagnostic], err: &mut dyn Write) -> std::io::Result<i32> {
+        let index: &LineIndex = &self.program.lines;
+        let mut status = EXIT_OK;
+        for d in diags {
+            let (line, col) = index.line_col(&self.text, d.span.start);
+            writeln!(
+                err,
+                "{}:{line}:{col}: {}[{}]: {}",
+                self.path, d.severity, d.code, d.message
+            )?;
+            if d.severity == Severity::Error {
+                status = EXIT_ERRORS;
+            }
+        }
+        Ok(status)
+    }
+}
+
+fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::Result<i32> {
+    let mut status = EXIT_OK;
+    for file in files {
+        let loaded = match load(file, opts) {
+            Ok(l) => l,
+            Err(e) => {
+                writeln!(err, "swarf: {e:#}")?;
+                status = EXIT_USAGE;
+                continue;
+            }
+        };
+        let diags = loaded.interpret(&mut NullSink);
+        let s = loaded.print(&diags, err)?;
+        if status == EXIT_OK {
+            status = s;
+        }
+    }
+    Ok(status)
+}
+
+struct NullSink;
+
+impl Sink for NullSink {
+    fn emit(&mut self, _: Source, _: &Canon) {}
+}
+
+/// Writes each event as one JSON line; remembers the first write error and stops writing.
+struct JsonLines<'a> {
+    out: &'a mut dyn Write,
+    error: Option<std::io::Error>,
+}
+
+impl Sink for JsonLines<'_> {
+    fn emit(&mut self, source: Source, event: &Canon) {
+        if self.error.is_none() {
+            if let Err(e) = writeln!(self.out, "{}", event.to_json(source)) {
+                self.error = Some(e);
+            }
+        }
+    }
+}
+
+fn canon(
+    file: &Path,
+    opts: &RunOptions,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> anyhow::Result<i32> {
+    let loaded = load(file, opts)?;
+    let mut buffered = std::io::BufWriter::new(out);
+    let mut sink = JsonLines {
+        out: &mut buffered,
+        error: None,
+    };
+    let diags = loaded.interpret(&mut sink);
+    if let Some(e) = sink.error {
+        return Err(anyhow::anyhow!("cannot write output: {e}"));
+    }
+    buffered.flush()?;
+    Ok(loaded.print(&diags, err)?)
+}
+
+fn stats(
+    file: &Path,
+    opts: &RunOptions,
+    as_json: bool,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> anyhow::Result<i32> {
+    let loaded = load(file, opts)?;
+    let started = Instant::now();
+    let mut path = Toolpath::new(glam::DVec3::ZERO, loaded.setup.machine.rapid_mm_per_min);
+    let diags = loaded.interpret(&mut path);
+    let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
+    let errors = diags.iter().filter(|d| d.severity == Severity::Error).count();
+    let warnings = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Warning)
+        .count();
+    let bounds = path
+        .bounds()
+        .map(|b| json!({"min": b.min.to_array(), "max": b.max.to_array()}));
+    let report = json!({
+        "file": loaded.path,
+        "dialect": opts.dialect.name(),
+        "blocks": loaded.program.blocks.len(),
+        "motions": path.len(),
+        "bounds": bounds,
+        "rapid_mm": path.rapid_length_mm(),
+        "feed_mm": path.feed_length_mm(),
+        "estimated_secs": path.estimated_secs(),
+        "tools": path.tools(),
+        "diagnostics": {"errors": errors, "warnings": warnings, "total": diags.len()},
+        "interpretation_ms": interp_ms,
+    });
+    if as_json {
+        writeln!(out, "{report:#}")?;
+    } else {
+        writeln!(out, "file            {}", loaded.path)?;
+        writeln!(out, "dialect         {}", opts.dialect.name())?;
+        writeln!(out, "blocks          {}", loaded.program.blocks.len())?;
+        writeln!(out, "motions         {}", path.len())?;
+        match path.bounds() {
+            Some(b) => writeln!(
+                out,
+                "bounds          X {:.3}..{:.3}  Y {:.3}..{:.3}  Z {:.3}..{:.3} mm",
+                b.min.x, b.max.x, b.min.y, b.max.y, b.min.z, b.max.z
+            )?,
+            None => writeln!(out, "bounds          (no motion)")?,
+        }
+        writeln!(out, "rapid length    {:.3} mm", path.rapid_length_mm())?;
+        writeln!(out, "feed length     {:.3} mm", path.feed_length_mm())?;
+        writeln!(out, "estimated time  {}", format_secs(path.estimated_secs()))?;
+        let tools: Vec<String> = path.tools().iter().map(|t| format!("T{t}")).collect();
+        writeln!(
+            out,
+            "tools           {}",
+            if tools.is_empty() {
+                "(none)".to_string()
+            } else {
+                tools.join(" ")
+            }
+        )?;
+        writeln!(out, "diagnostics     {errors} errors, {warnings} warnings")?;
+        writeln!(out, "interpretation  {interp_ms:.1} ms")?;
+    }
+    Ok(loaded.print(&diags, err)?)
+}
+
+/// `h:mm:ss.s` for a duration in seconds.
+fn format_secs(secs: f64) -> String {
+    let total = secs.max(0.0);
+    let h = (total / 3600.0).floor();
+    let m = ((total - h * 3600.0) / 60.0).floor();
+    let s = total - h * 3600.0 - m * 60.0;
+    format!("{h:.0}:{m:02.0}:{s:04.1}")
+}

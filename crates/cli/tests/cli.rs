@@ -1,0 +1,113 @@
+//! The CLI contract: output formats, exit statuses and golden canonical streams.
+#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+
+use std::path::{Path, PathBuf};
+
+fn golden(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/golden").join(name)
+}
+
+fn swarf(args: &[&str]) -> (i32, String, String) {
+    let mut out = Vec::new();
+    let mut err = Vec::new();
+    let mut all = vec!["swarf"];
+    all.extend_from_slice(args);
+    let code = swarf_cli::run(all, &mut out, &mut err);
+    (code, String::from_utf8(out).unwrap(), String::from_utf8(err).unwrap())
+}
+
+fn temp_file(dir: &tempfile::TempDir, name: &str, bytes: &[u8]) -> String {
+    let p = dir.path().join(name);
+    std::fs::write(&p, bytes).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+#[test]
+fn canon_matches_the_golden_streams() {
+    for (name, setup) in [("incremental", None), ("offsets", Some("offsets.setup.toml"))] {
+        let nc = golden(&format!("{name}.nc"));
+        let mut args = vec!["canon".to_string(), nc.to_str().unwrap().to_string()];
+        if let Some(s) = setup {
+            args.push("--setup".into());
+            args.push(golden(s).to_str().unwrap().to_string());
+        }
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, out, err) = swarf(&args);
+        assert_eq!(code, 0, "{err}");
+        let expected = std::fs::read_to_string(golden(&format!("{name}.jsonl"))).unwrap();
+        assert_eq!(out, expected, "{name}");
+    }
+}
+
+#[test]
+fn check_prints_path_line_col_severity_code() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = temp_file(&dir, "bad.nc", b"G90\nG01 X10 Y$ F100\n");
+    let (code, out, err) = swarf(&["check", &f]);
+    assert_eq!(code, 1);
+    assert!(out.is_empty());
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 2, "{err}");
+    assert_eq!(
+        lines[0],
+        format!("{f}:2:9: error[E-WORD-VALUE]: address `Y` needs a number after it")
+    );
+    assert_eq!(lines[1], format!("{f}:2:10: error[E-SYNTAX-CHAR]: unexpected character `$`"));
+}
+
+#[test]
+fn check_clean_file_exits_zero_and_warnings_do_not_fail() {
+    let dir = tempfile::tempdir().unwrap();
+    let ok = temp_file(&dir, "ok.nc", b"G0 X1\n");
+    assert_eq!(swarf(&["check", &ok]), (0, String::new(), String::new()));
+    let warn = temp_file(&dir, "warn.nc", b"G0 X1 Q5\n");
+    let (code, _, err) = swarf(&["check", &warn, "--dialect", "syntec"]);
+    assert_eq!(code, 0);
+    assert!(err.contains("warning[W-WORD-IGNORED]"), "{err}");
+}
+
+#[test]
+fn usage_and_io_problems_exit_two() {
+    assert_eq!(swarf(&["check"]).0, 2);
+    assert_eq!(swarf(&["check", "/nonexistent/x.nc"]).0, 2);
+    let (code, _, err) = swarf(&["canon", "x.nc", "--dialect", "heidenhain"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("unknown dialect"), "{err}");
+    let dir = tempfile::tempdir().unwrap();
+    let f = temp_file(&dir, "a.nc", b"G0 X1\n");
+    let bad_setup = temp_file(&dir, "s.toml", b"[work_offsets]\nG99 = [0, 0, 0]\n");
+    let (code, _, err) = swarf(&["canon", &f, "--setup", &bad_setup]);
+    assert_eq!(code, 2);
+    assert!(err.contains("G99"), "{err}");
+    assert_eq!(swarf(&["--help"]).0, 0);
+}
+
+#[test]
+fn never_panics_on_hostile_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut bytes: Vec<u8> = (0..=255u8).cycle().take(4096).collect();
+    bytes.extend_from_slice(b"\n((((\n[[[[#1=\nG1 X1e999999\n\0\0\0");
+    let f = temp_file(&dir, "junk.nc", &bytes);
+    for cmd in ["check", "canon", "stats"] {
+        let (code, _, _) = swarf(&[cmd, &f]);
+        assert!(code == 0 || code == 1, "{cmd}: {code}");
+    }
+    let empty = temp_file(&dir, "empty.nc", b"");
+    assert_eq!(swarf(&["stats", &empty]).0, 0);
+}
+
+#[test]
+fn stats_reports_blocks_motions_bounds_and_time() {
+    let (code, out, err) = swarf(&["stats", golden("incremental.nc").to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["blocks"], 11);
+    assert_eq!(v["motions"], 7);
+    assert_eq!(v["bounds"]["min"], serde_json::json!([0.0, 0.0, -1.0]));
+    assert_eq!(v["bounds"]["max"], serde_json::json!([30.0, 30.0, 5.0]));
+    assert_eq!(v["feed_mm"], 86.0);
+    assert!(v["estimated_secs"].as_f64().unwrap() > 10.0);
+    let (code, text, _) = swarf(&["stats", golden("incremental.nc").to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(text.contains("motions         7"), "{text}");
+}
