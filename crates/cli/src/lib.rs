@@ -22,7 +22,11 @@ pub const EXIT_ERRORS: i32 = 1;
 pub const EXIT_USAGE: i32 = 2;
 
 #[derive(Parser, Debug)]
-#[command(name = "swarf", version, about = "Check, run and measure G-code programs the way the selected CNC control would")]
+#[command(
+    name = "swarf",
+    version,
+    about = "Check, run and measure G-code programs the way the selected CNC control would"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -203,10 +207,10 @@ struct JsonLines<'a> {
 
 impl Sink for JsonLines<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
-        if self.error.is_none() {
-            if let Err(e) = writeln!(self.out, "{}", event.to_json(source)) {
-                self.error = Some(e);
-            }
+        if self.error.is_none()
+            && let Err(e) = writeln!(self.out, "{}", event.to_json(source))
+        {
+            self.error = Some(e);
         }
     }
 }
@@ -243,7 +247,10 @@ fn stats(
     let mut path = Toolpath::new(glam::DVec3::ZERO, loaded.setup.machine.rapid_mm_per_min);
     let diags = loaded.interpret(&mut path);
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
-    let errors = diags.iter().filter(|d| d.severity == Severity::Error).count();
+    let errors = diags
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
     let warnings = diags
         .iter()
         .filter(|d| d.severity == Severity::Warning)
@@ -281,7 +288,11 @@ fn stats(
         }
         writeln!(out, "rapid length    {:.3} mm", path.rapid_length_mm())?;
         writeln!(out, "feed length     {:.3} mm", path.feed_length_mm())?;
-        writeln!(out, "estimated time  {}", format_secs(path.estimated_secs()))?;
+        writeln!(
+            out,
+            "estimated time  {}",
+            format_secs(path.estimated_secs())
+        )?;
         let tools: Vec<String> = path.tools().iter().map(|t| format!("T{t}")).collect();
         writeln!(
             out,

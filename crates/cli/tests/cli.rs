@@ -1,10 +1,12 @@
 //! The CLI contract: output formats, exit statuses and golden canonical streams.
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::path::{Path, PathBuf};
 
 fn golden(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/golden").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/golden")
+        .join(name)
 }
 
 fn swarf(args: &[&str]) -> (i32, String, String) {
@@ -13,7 +15,11 @@ fn swarf(args: &[&str]) -> (i32, String, String) {
     let mut all = vec!["swarf"];
     all.extend_from_slice(args);
     let code = swarf_cli::run(all, &mut out, &mut err);
-    (code, String::from_utf8(out).unwrap(), String::from_utf8(err).unwrap())
+    (
+        code,
+        String::from_utf8(out).unwrap(),
+        String::from_utf8(err).unwrap(),
+    )
 }
 
 fn temp_file(dir: &tempfile::TempDir, name: &str, bytes: &[u8]) -> String {
@@ -24,7 +30,10 @@ fn temp_file(dir: &tempfile::TempDir, name: &str, bytes: &[u8]) -> String {
 
 #[test]
 fn canon_matches_the_golden_streams() {
-    for (name, setup) in [("incremental", None), ("offsets", Some("offsets.setup.toml"))] {
+    for (name, setup) in [
+        ("incremental", None),
+        ("offsets", Some("offsets.setup.toml")),
+    ] {
         let nc = golden(&format!("{name}.nc"));
         let mut args = vec!["canon".to_string(), nc.to_str().unwrap().to_string()];
         if let Some(s) = setup {
@@ -52,7 +61,10 @@ fn check_prints_path_line_col_severity_code() {
         lines[0],
         format!("{f}:2:9: error[E-WORD-VALUE]: address `Y` needs a number after it")
     );
-    assert_eq!(lines[1], format!("{f}:2:10: error[E-SYNTAX-CHAR]: unexpected character `$`"));
+    assert_eq!(
+        lines[1],
+        format!("{f}:2:10: error[E-SYNTAX-CHAR]: unexpected character `$`")
+    );
 }
 
 #[test]
@@ -98,7 +110,11 @@ fn never_panics_on_hostile_bytes() {
 
 #[test]
 fn stats_reports_blocks_motions_bounds_and_time() {
-    let (code, out, err) = swarf(&["stats", golden("incremental.nc").to_str().unwrap(), "--json"]);
+    let (code, out, err) = swarf(&[
+        "stats",
+        golden("incremental.nc").to_str().unwrap(),
+        "--json",
+    ]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["blocks"], 11);

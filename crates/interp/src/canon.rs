@@ -115,7 +115,9 @@ impl Canon {
             Canon::Feed {
                 to,
                 feed_mm_per_min,
-            } => json!({"line": line, "kind": "feed", "to": p(*to), "feed": round(*feed_mm_per_min)}),
+            } => {
+                json!({"line": line, "kind": "feed", "to": p(*to), "feed": round(*feed_mm_per_min)})
+            }
             Canon::Arc {
                 to,
                 center,
@@ -129,14 +131,18 @@ impl Canon {
                 "turns": turns, "feed": round(*feed_mm_per_min),
             }),
             Canon::Dwell { secs } => json!({"line": line, "kind": "dwell", "secs": round(*secs)}),
-            Canon::ToolChange { tool } => json!({"line": line, "kind": "tool_change", "tool": tool}),
+            Canon::ToolChange { tool } => {
+                json!({"line": line, "kind": "tool_change", "tool": tool})
+            }
             Canon::Spindle { clockwise, rpm } => json!({
                 "line": line, "kind": "spindle",
                 "dir": match clockwise { Some(true) => "cw", Some(false) => "ccw", None => "off" },
                 "rpm": round(*rpm),
             }),
             Canon::Coolant { on } => json!({"line": line, "kind": "coolant", "on": on}),
-            Canon::Pause { optional } => json!({"line": line, "kind": "pause", "optional": optional}),
+            Canon::Pause { optional } => {
+                json!({"line": line, "kind": "pause", "optional": optional})
+            }
             Canon::End => json!({"line": line, "kind": "end"}),
         }
     }

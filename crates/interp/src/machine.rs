@@ -240,11 +240,11 @@ impl Interpreter {
                         runnable = false;
                     }
                     Some(action) => {
-                        if let Some(g) = group(action) {
-                            if let Some((_, other)) =
+                        if let Some(g) = group(action)
+                            && let Some((_, other)) =
                                 actions.iter().find(|(a, _)| group(*a) == Some(g))
-                            {
-                                self.diagnostics.push(Diagnostic::error(
+                        {
+                            self.diagnostics.push(Diagnostic::error(
                                     word.span,
                                     "E-MODAL-CONFLICT",
                                     format!(
@@ -253,8 +253,7 @@ impl Interpreter {
                                         fmt_code(word.value)
                                     ),
                                 ));
-                                runnable = false;
-                            }
+                            runnable = false;
                         }
                         actions.push((action, word));
                     }
@@ -485,4 +484,3 @@ pub fn run(program: &Program, setup: Setup, sink: &mut dyn Sink) -> Vec<Diagnost
     while interp.step(program, sink, 4096) == Status::Running {}
     interp.take_diagnostics()
 }
-

@@ -182,7 +182,10 @@ mod tests {
         .unwrap();
         assert_eq!(s.registers[&1].length, 25.4);
         assert_eq!(s.registers[&1].radius, 6.35);
-        assert!(s.work_offset("G54").abs_diff_eq(DVec3::new(25.4, 50.8, 76.2), 1e-9));
+        assert!(
+            s.work_offset("G54")
+                .abs_diff_eq(DVec3::new(25.4, 50.8, 76.2), 1e-9)
+        );
         assert_eq!(s.work_offset("G54.1P7"), DVec3::new(0.0, 0.0, 25.4));
         assert_eq!(s.machine.rapid_mm_per_min, 5000.0);
     }

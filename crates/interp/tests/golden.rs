@@ -1,5 +1,5 @@
 //! Golden programs under `tests/golden/`: the canonical stream must match exactly.
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -28,12 +28,22 @@ macro_rules! golden {
                 include_str!(concat!("../../../tests/golden/", stringify!($name), ".nc")),
                 $setup,
             );
-            let expected = include_str!(concat!("../../../tests/golden/", stringify!($name), ".jsonl"));
+            let expected = include_str!(concat!(
+                "../../../tests/golden/",
+                stringify!($name),
+                ".jsonl"
+            ));
             assert_eq!(out, expected);
-            assert!(diags.iter().all(|d| d.severity < Severity::Error), "{diags:?}");
+            assert!(
+                diags.iter().all(|d| d.severity < Severity::Error),
+                "{diags:?}"
+            );
         }
     };
 }
 
 golden!(incremental, "");
-golden!(offsets, include_str!("../../../tests/golden/offsets.setup.toml"));
+golden!(
+    offsets,
+    include_str!("../../../tests/golden/offsets.setup.toml")
+);

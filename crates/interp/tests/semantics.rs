@@ -1,5 +1,5 @@
 //! Interpreter behaviour beyond the golden files: checks, limits and resumable stepping.
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -51,7 +51,12 @@ fn feed_without_f_is_an_error() {
 fn syntec_reads_g70_as_inch() {
     let (rec, diags) = run_text("G70 G00 X1\n", Dialect::Syntec);
     assert!(diags.is_empty(), "{diags:?}");
-    assert_eq!(rec.events[0].1, Canon::Rapid { to: DVec3::new(25.4, 0.0, 0.0) });
+    assert_eq!(
+        rec.events[0].1,
+        Canon::Rapid {
+            to: DVec3::new(25.4, 0.0, 0.0)
+        }
+    );
     let (_, diags) = run_text("G70 G00 X1\n", Dialect::Fanuc);
     assert_eq!(codes(&diags), ["E-UNKNOWN-CODE"]);
 }

@@ -56,10 +56,10 @@ pub struct Decoded {
 /// Decodes a program file: UTF-8 when valid, otherwise GB18030 or Big5 when the bytes are valid
 /// in one of them, otherwise UTF-8 with each invalid byte replaced and reported.
 pub fn decode(bytes: &[u8]) -> Decoded {
-    if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]) {
-        if let Ok(text) = std::str::from_utf8(rest) {
-            return plain(text.to_string(), Encoding::Utf8Bom);
-        }
+    if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF])
+        && let Ok(text) = std::str::from_utf8(rest)
+    {
+        return plain(text.to_string(), Encoding::Utf8Bom);
     }
     if let Ok(text) = std::str::from_utf8(bytes) {
         return plain(text.to_string(), Encoding::Utf8);

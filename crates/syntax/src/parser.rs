@@ -42,7 +42,10 @@ fn number(input: &str) -> IResult<&str, &str> {
     let (rest, _) = (
         opt(one_of("+-")),
         take_while(is_blank),
-        alt(((digit1, opt(char('.')), digit0).map(|_| ()), (char('.'), digit1).map(|_| ()))),
+        alt((
+            (digit1, opt(char('.')), digit0).map(|_| ()),
+            (char('.'), digit1).map(|_| ()),
+        )),
     )
         .parse(input)?;
     Ok((rest, &input[..input.len() - rest.len()]))
@@ -72,10 +75,19 @@ impl LineReader<'_> {
         }
     }
 
-    fn error(&mut self, block: &mut Block, start: usize, end: usize, code: &'static str, msg: String) {
+    fn error(
+        &mut self,
+        block: &mut Block,
+        start: usize,
+        end: usize,
+        code: &'static str,
+        msg: String,
+    ) {
         block.has_error = true;
         let span = self.span(start, end);
-        self.program.diagnostics.push(Diagnostic::error(span, code, msg));
+        self.program
+            .diagnostics
+            .push(Diagnostic::error(span, code, msg));
     }
 
     fn finish(&mut self, block: Block, first: Option<usize>, last: usize) {

@@ -1,5 +1,5 @@
 //! Property: any text parses without panicking, and every span lies inside the text.
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 #![cfg(not(target_arch = "wasm32"))]
 
 use proptest::prelude::*;

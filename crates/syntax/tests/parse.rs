@@ -1,5 +1,5 @@
 //! Parser behaviour: words, comments, block ends, recovery and spans.
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -27,7 +27,10 @@ fn reads_words_without_spaces_and_in_lowercase() {
 
 #[test]
 fn sequence_numbers_comments_and_tape_marks() {
-    let p = parse("%\nO1000 (MAIN)\nN10 G90 G21 (metric)\n\nN20 G0 X1\n%\n", Dialect::Fanuc);
+    let p = parse(
+        "%\nO1000 (MAIN)\nN10 G90 G21 (metric)\n\nN20 G0 X1\n%\n",
+        Dialect::Fanuc,
+    );
     assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
     assert_eq!(p.blocks.len(), 3);
     assert_eq!(p.blocks[0].words[0].letter(), 'O');
@@ -78,7 +81,11 @@ fn unclosed_comment_and_missing_value() {
     let p = parse("G0 X1 (oops\nG1 X\n", Dialect::Fanuc);
     let codes: Vec<_> = p.diagnostics.iter().map(|d| d.code).collect();
     assert_eq!(codes, ["E-COMMENT-UNCLOSED", "E-WORD-VALUE"]);
-    assert_eq!(p.lines.line_col("G0 X1 (oops\nG1 X\n", p.diagnostics[1].span.start), (2, 4));
+    assert_eq!(
+        p.lines
+            .line_col("G0 X1 (oops\nG1 X\n", p.diagnostics[1].span.start),
+        (2, 4)
+    );
 }
 
 #[test]
@@ -92,7 +99,11 @@ fn macro_syntax_is_reported_not_ignored() {
 fn columns_count_characters_not_bytes() {
     let text = "(銑削) G0 X$\n";
     let p = parse(text, Dialect::Fanuc);
-    let d = p.diagnostics.iter().find(|d| d.code == "E-SYNTAX-CHAR").unwrap();
+    let d = p
+        .diagnostics
+        .iter()
+        .find(|d| d.code == "E-SYNTAX-CHAR")
+        .unwrap();
     assert_eq!(p.lines.line_col(text, d.span.start), (1, 10));
 }
 

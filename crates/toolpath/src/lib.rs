@@ -173,7 +173,10 @@ impl Toolpath {
                 }
             }
         }
-        let bounds = self.bounds.get_or_insert(Bounds { min: from, max: from });
+        let bounds = self.bounds.get_or_insert(Bounds {
+            min: from,
+            max: from,
+        });
         bounds.include(from);
         bounds.include(to);
         self.ends.push(to);

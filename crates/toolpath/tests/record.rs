@@ -1,5 +1,5 @@
 //! Recording canonical events into a toolpath: geometry, statistics and the line index.
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
@@ -19,7 +19,10 @@ fn records_segments_lengths_bounds_and_time() {
     let diags = run(&program, Setup::default(), &mut path);
     assert!(diags.is_empty(), "{diags:?}");
     assert_eq!(path.len(), 3);
-    assert_eq!(path.kinds(), [SegmentKind::Rapid, SegmentKind::Feed, SegmentKind::Feed]);
+    assert_eq!(
+        path.kinds(),
+        [SegmentKind::Rapid, SegmentKind::Feed, SegmentKind::Feed]
+    );
     assert_eq!(path.lines(), [1, 2, 3]);
     assert_eq!(path.segment_start(2), DVec3::new(10.0, 0.0, 0.0));
     let b = path.bounds().unwrap();
@@ -49,7 +52,14 @@ fn arcs_are_tessellated_within_tolerance_and_end_exactly() {
     let mut path = Toolpath::new(from, 10_000.0);
     path.emit(
         Source { block: 0, line: 7 },
-        &Canon::Arc { to: from, center: DVec3::ZERO, axis: Axis::Z, ccw: false, turns: 0, feed_mm_per_min: 100.0 },
+        &Canon::Arc {
+            to: from,
+            center: DVec3::ZERO,
+            axis: Axis::Z,
+            ccw: false,
+            turns: 0,
+            feed_mm_per_min: 100.0,
+        },
     );
     assert!(path.lines().iter().all(|&l| l == 7));
     assert!((path.feed_length_mm() - 20.0 * std::f64::consts::PI).abs() < 0.05);

@@ -1,0 +1,130 @@
+//! Swarf desktop: the G-code editor and backplot in a native window.
+//!
+//! `swarf-app [FILE] [--screenshot OUT.png]` — with `--screenshot` the app renders a few frames,
+//! saves a PNG of the window and exits (used by the desktop smoke test).
+
+#[cfg(not(target_arch = "wasm32"))]
+fn main() -> anyhow::Result<()> {
+    native::main()
+}
+
+#[cfg(target_arch = "wasm32")]
+fn main() {}
+
+#[cfg(not(target_arch = "wasm32"))]
+mod native {
+    use std::path::PathBuf;
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    use anyhow::{Context as _, bail};
+    use swarf_app::SwarfApp;
+
+    /// Frames drawn before the screenshot is taken, so layout and the backplot have settled.
+    const SCREENSHOT_AFTER_FRAMES: u64 = 8;
+
+    struct Args {
+        file: Option<PathBuf>,
+        screenshot: Option<PathBuf>,
+    }
+
+    fn parse_args() -> anyhow::Result<Args> {
+        let mut args = Args {
+            file: None,
+            screenshot: None,
+        };
+        let mut it = std::env::args_os().skip(1);
+        while let Some(a) = it.next() {
+            match a.to_str() {
+                Some("--screenshot") => {
+                    args.screenshot =
+                        Some(it.next().context("--screenshot needs a file name")?.into());
+                }
+                Some("--help" | "-h") => {
+                    println!("usage: swarf-app [FILE] [--screenshot OUT.png]");
+                    std::process::exit(0);
+                }
+                Some(s) if s.starts_with("--") => bail!("unknown option {s}"),
+                _ => args.file = Some(a.into()),
+            }
+        }
+        Ok(args)
+    }
+
+    pub fn main() -> anyhow::Result<()> {
+        let args = parse_args()?;
+        let text = match &args.file {
+            Some(p) => {
+                let bytes =
+                    std::fs::read(p).with_context(|| format!("cannot read {}", p.display()))?;
+                Some(swarf_syntax::decode(&bytes).text)
+            }
+            None => None,
+        };
+        let ok = Arc::new(AtomicBool::new(args.screenshot.is_none()));
+        let options = eframe::NativeOptions {
+            viewport: egui::ViewportBuilder::default()
+                .with_title("Swarf — G-code editor and backplot")
+                .with_inner_size([1280.0, 800.0]),
+            ..Default::default()
+        };
+        let screenshot = args.screenshot.clone();
+        let ok_in_app = ok.clone();
+        eframe::run_native(
+            "Swarf",
+            options,
+            Box::new(move |cc| {
+                let mut app = SwarfApp::new(cc);
+                if let Some(text) = text {
+                    app.set_text(text);
+                }
+                if let Some(out) = screenshot {
+                    install_screenshot(&mut app, out, ok_in_app);
+                }
+                Ok(Box::new(app))
+            }),
+        )
+        .map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))?;
+        if !ok.load(Ordering::SeqCst) {
+            bail!("the screenshot was not saved");
+        }
+        Ok(())
+    }
+
+    /// Takes a screenshot after a few frames, saves it and closes the window.
+    fn install_screenshot(app: &mut SwarfApp, out: PathBuf, ok: Arc<AtomicBool>) {
+        app.set_after_frame(move |ctx, frames| {
+            if frames == SCREENSHOT_AFTER_FRAMES {
+                let ctx2 = ctx.clone();
+                let out = out.clone();
+                let ok = ok.clone();
+                ctx.request_screenshot(move |image| {
+                    let [w, h] = image.size;
+                    let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+                    let saved = u32::try_from(w)
+                        .ok()
+                        .zip(u32::try_from(h).ok())
+                        .and_then(|(w, h)| image::RgbaImage::from_raw(w, h, rgba))
+                        .map(|img| img.save(&out));
+                    match saved {
+                        Some(Ok(())) => {
+                            eprintln!("saved {w}x{h} screenshot to {}", out.display());
+                            ok.store(true, Ordering::SeqCst);
+                        }
+                        Some(Err(e)) => eprintln!("cannot save {}: {e}", out.display()),
+                        None => eprintln!("screenshot has an invalid size {w}x{h}"),
+                    }
+                    ctx2.send_viewport_cmd(egui::ViewportCommand::Close);
+                    ctx2.request_repaint();
+                });
+            }
+            if frames < SCREENSHOT_AFTER_FRAMES + 2 {
+                ctx.request_repaint();
+            }
+            if frames > SCREENSHOT_AFTER_FRAMES + 600 {
+                eprintln!("no screenshot arrived; giving up");
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        });
+    }
+}

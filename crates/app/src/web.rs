@@ -1,0 +1,106 @@
+//! The web entry point and the page's JavaScript API (`window.swarf` is built on it in
+//! `web/swarf.js`).
+
+use serde_json::{Value, json};
+use wasm_bindgen::JsCast as _;
+use wasm_bindgen::prelude::*;
+
+use crate::SwarfApp;
+
+/// Handle to the running app, returned by [`start`]; its methods back `window.swarf`.
+#[wasm_bindgen]
+pub struct SwarfApi {
+    runner: eframe::WebRunner,
+}
+
+/// Starts Swarf on the canvas with id `canvas_id`; resolves once the app is created.
+#[wasm_bindgen]
+pub async fn start(canvas_id: String) -> Result<SwarfApi, JsValue> {
+    let _ = eframe::WebLogger::init(log::LevelFilter::Info);
+    let document = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or_else(|| JsValue::from_str("no document"))?;
+    let canvas = document
+        .get_element_by_id(&canvas_id)
+        .ok_or_else(|| JsValue::from_str(&format!("no element with id `{canvas_id}`")))?
+        .dyn_into::<web_sys::HtmlCanvasElement>()
+        .map_err(|_| JsValue::from_str(&format!("`{canvas_id}` is not a canvas")))?;
+    let runner = eframe::WebRunner::new();
+    runner
+        .start(
+            canvas,
+            eframe::WebOptions::default(),
+            Box::new(|cc| Ok(Box::new(SwarfApp::new(cc)))),
+        )
+        .await?;
+    Ok(SwarfApi { runner })
+}
+
+fn to_js(value: &Value) -> Result<JsValue, JsValue> {
+    js_sys::JSON::parse(&value.to_string())
+}
+
+#[wasm_bindgen]
+impl SwarfApi {
+    fn with_app<R>(&self, f: impl FnOnce(&mut SwarfApp) -> R) -> Result<R, JsValue> {
+        match self.runner.app_mut::<SwarfApp>() {
+            Some(mut app) => Ok(f(&mut app)),
+            None => Err(JsValue::from_str(
+                self.runner
+                    .panic_summary()
+                    .map(|p| p.message())
+                    .as_deref()
+                    .unwrap_or("Swarf is not running"),
+            )),
+        }
+    }
+
+    /// Replaces the program text; diagnostics and the backplot update at once.
+    pub fn set_text(&self, text: String) -> Result<(), JsValue> {
+        self.with_app(|app| app.set_text(text))
+    }
+
+    /// The program text.
+    pub fn get_text(&self) -> Result<String, JsValue> {
+        self.with_app(|app| app.workbench.text().to_string())
+    }
+
+    /// `[{line, col, severity, code, message}]` for the current text.
+    pub fn diagnostics(&self) -> Result<JsValue, JsValue> {
+        let list = self.with_app(|app| {
+            app.workbench
+                .problems()
+                .iter()
+                .map(|p| {
+                    json!({
+                        "line": p.line, "col": p.col, "severity": p.severity.as_str(),
+                        "code": p.code, "message": p.message,
+                    })
+                })
+                .collect::<Vec<_>>()
+        })?;
+        to_js(&Value::Array(list))
+    }
+
+    /// `{blocks, motions, bounds: {min, max} | null}` for the current text.
+    pub fn stats(&self) -> Result<JsValue, JsValue> {
+        let s = self.with_app(|app| app.workbench.stats())?;
+        let bounds = s
+            .bounds
+            .map(|(min, max)| json!({"min": min.to_array(), "max": max.to_array()}));
+        to_js(&json!({
+            "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
+            "estimated_secs": s.estimated_secs,
+        }))
+    }
+
+    /// Frames painted so far (the page waits for the first one before it is ready).
+    pub fn frames(&self) -> Result<f64, JsValue> {
+        self.with_app(|app| app.frames() as f64)
+    }
+
+    /// The message of a panic inside the app, if one happened.
+    pub fn panic_message(&self) -> Option<String> {
+        self.runner.panic_summary().map(|p| p.message())
+    }
+}

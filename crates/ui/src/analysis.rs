@@ -1,0 +1,179 @@
+//! Running the pipeline for the editor: parse, interpret, record, and prepare the scene.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use swarf_interp::{Interpreter, Setup, Status};
+use swarf_render::Vertex;
+use swarf_syntax::{Dialect, Program, Severity, parse};
+use swarf_toolpath::{SegmentKind, Toolpath};
+
+use crate::backplot::Scene;
+
+/// Colour of rapid moves in the backplot.
+pub const RAPID_COLOR: [u8; 4] = [235, 170, 40, 255];
+/// Colour of straight cutting moves.
+pub const FEED_COLOR: [u8; 4] = [80, 200, 255, 255];
+/// Colour of arc cutting moves.
+pub const ARC_COLOR: [u8; 4] = [120, 230, 140, 255];
+
+/// One diagnostic, located for display.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Problem {
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based column in characters.
+    pub col: u32,
+    /// How bad it is.
+    pub severity: Severity,
+    /// Stable code such as `E-SYNTAX-CHAR`.
+    pub code: &'static str,
+    /// The message.
+    pub message: String,
+    /// Character range in the text, for underlining and jumping.
+    pub chars: std::ops::Range<usize>,
+}
+
+/// Summary numbers of an analysed program.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stats {
+    /// Blocks parsed.
+    pub blocks: usize,
+    /// Motion segments recorded.
+    pub motions: usize,
+    /// Bounds of the path in millimetres (machine frame).
+    pub bounds: Option<(DVec3, DVec3)>,
+    /// Estimated run time in seconds.
+    pub estimated_secs: f64,
+}
+
+/// The result of running the pipeline over one text.
+#[derive(Debug, Clone)]
+pub struct Analysis {
+    /// The parsed program.
+    pub program: Program,
+    /// The recorded toolpath.
+    pub toolpath: Toolpath,
+    /// Every diagnostic, sorted by position.
+    pub problems: Vec<Problem>,
+    /// Geometry for the backplot.
+    pub scene: Scene,
+}
+
+impl Analysis {
+    /// Parses and interprets `text`; `generation` tags the scene so the GPU copy is refreshed.
+    pub fn run(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
+        let program = parse(text, dialect);
+        let mut toolpath = Toolpath::new(DVec3::ZERO, setup.machine.rapid_mm_per_min);
+        let mut interp = Interpreter::new(setup.clone(), dialect);
+        while interp.step(&program, &mut toolpath, 65_536) == Status::Running {}
+        let mut diags = program.diagnostics.clone();
+        diags.extend(interp.take_diagnostics());
+        diags.sort_by_key(|d| (d.span.start, d.span.end));
+        let problems = locate(text, &program, &diags);
+        let scene = scene_of(&toolpath, generation);
+        Analysis {
+            program,
+            toolpath,
+            problems,
+            scene,
+        }
+    }
+
+    /// Summary numbers for the status bar and the JS API.
+    pub fn stats(&self) -> Stats {
+        Stats {
+            blocks: self.program.blocks.len(),
+            motions: self.toolpath.len(),
+            bounds: self.toolpath.bounds().map(|b| (b.min, b.max)),
+            estimated_secs: self.toolpath.estimated_secs(),
+        }
+    }
+
+    /// Number of problems of `severity`.
+    pub fn count(&self, severity: Severity) -> usize {
+        self.problems
+            .iter()
+            .filter(|p| p.severity == severity)
+            .count()
+    }
+}
+
+/// Turns byte spans into lines, columns and character ranges in one pass over the text.
+fn locate(text: &str, program: &Program, diags: &[swarf_syntax::Diagnostic]) -> Vec<Problem> {
+    let mut offsets: Vec<usize> = diags
+        .iter()
+        .flat_map(|d| [d.span.start as usize, d.span.end as usize])
+        .collect();
+    offsets.sort_unstable();
+    offsets.dedup();
+    let mut char_of = std::collections::HashMap::with_capacity(offsets.len());
+    let mut next = offsets.iter().peekable();
+    let ends = text
+        .char_indices()
+        .chain(std::iter::once((text.len(), ' ')));
+    for (chars, (byte, _)) in ends.enumerate() {
+        while let Some(&&o) = next.peek() {
+            if o > byte {
+                break;
+            }
+            char_of.insert(o, chars);
+            next.next();
+        }
+    }
+    diags
+        .iter()
+        .map(|d| {
+            let (line, col) = program.lines.line_col(text, d.span.start);
+            let start = char_of.get(&(d.span.start as usize)).copied().unwrap_or(0);
+            let end = char_of
+                .get(&(d.span.end as usize))
+                .copied()
+                .unwrap_or(start);
+            Problem {
+                line,
+                col,
+                severity: d.severity,
+                code: d.code,
+                message: d.message.clone(),
+                chars: start..end.max(start),
+            }
+        })
+        .collect()
+}
+
+/// Line-list vertices of the toolpath relative to its bounds' centre ([`scene_origin`]).
+pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
+    let Some(bounds) = path.bounds() else {
+        return Scene {
+            generation,
+            vertices: Arc::new(Vec::new()),
+            bounds: None,
+        };
+    };
+    let origin = scene_origin(path);
+    let rel = |p: DVec3| (p - origin).as_vec3();
+    let mut vertices = Vec::with_capacity(path.len() * 2);
+    let mut from = rel(path.start());
+    for (end, kind) in path.ends().iter().zip(path.kinds()) {
+        let to = rel(*end);
+        let color = match kind {
+            SegmentKind::Rapid => RAPID_COLOR,
+            SegmentKind::Feed => FEED_COLOR,
+            SegmentKind::Arc => ARC_COLOR,
+        };
+        vertices.push(Vertex::new(from, color));
+        vertices.push(Vertex::new(to, color));
+        from = to;
+    }
+    Scene {
+        generation,
+        vertices: Arc::new(vertices),
+        bounds: Some((rel(bounds.min), rel(bounds.max))),
+    }
+}
+
+/// The machine point the scene's f32 vertices are relative to: the centre of the bounds.
+pub fn scene_origin(path: &Toolpath) -> DVec3 {
+    path.bounds().map_or(DVec3::ZERO, |b| b.center())
+}

@@ -1,0 +1,266 @@
+//! The code editor: G-code highlighting, a line-number gutter and diagnostic underlines.
+
+use std::sync::Arc;
+
+use egui::text::{CCursor, CCursorRange, LayoutJob};
+use egui::{Color32, FontId, Galley, Pos2, Stroke, TextFormat, Ui};
+use swarf_syntax::{Dialect, Severity};
+
+use crate::analysis::Problem;
+
+/// Colours of the token classes, for a dark background.
+mod palette {
+    use egui::Color32;
+    pub const TEXT: Color32 = Color32::from_rgb(220, 220, 220);
+    pub const G_CODE: Color32 = Color32::from_rgb(110, 170, 255);
+    pub const M_CODE: Color32 = Color32::from_rgb(200, 140, 255);
+    pub const AXIS: Color32 = Color32::from_rgb(230, 230, 230);
+    pub const FEED: Color32 = Color32::from_rgb(255, 190, 90);
+    pub const NUMBER: Color32 = Color32::from_rgb(120, 120, 120);
+    pub const COMMENT: Color32 = Color32::from_rgb(110, 170, 110);
+    pub const TOOL: Color32 = Color32::from_rgb(255, 120, 120);
+    pub const ERROR: Color32 = Color32::from_rgb(255, 80, 80);
+    pub const WARNING: Color32 = Color32::from_rgb(240, 200, 60);
+    pub const NOTE: Color32 = Color32::from_rgb(120, 180, 255);
+}
+
+/// The colour a diagnostic of `severity` is drawn in.
+pub fn severity_color(severity: Severity) -> Color32 {
+    match severity {
+        Severity::Error => palette::ERROR,
+        Severity::Warning => palette::WARNING,
+        Severity::Note => palette::NOTE,
+    }
+}
+
+/// Lays out `text` with G-code highlighting for `dialect`.
+pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
+    let mut job = LayoutJob::default();
+    let fmt = |color: Color32| TextFormat::simple(font.clone(), color);
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    let append = |job: &mut LayoutJob, from: usize, to: usize, color: Color32| {
+        if let Some(s) = text.get(from..to) {
+            job.append(s, 0.0, fmt(color));
+        }
+    };
+    while i < bytes.len() {
+        let c = bytes[i];
+        let start = i;
+        let color = match c {
+            b'(' => {
+                i = text[i..].find([')', '\n']).map_or(bytes.len(), |j| {
+                    if bytes[i + j] == b')' {
+                        i + j + 1
+                    } else {
+                        i + j
+                    }
+                });
+                palette::COMMENT
+            }
+            b';' if dialect.semicolon_is_comment() => {
+                i = text[i..].find('\n').map_or(bytes.len(), |j| i + j);
+                palette::COMMENT
+            }
+            b'/' if dialect == Dialect::Syntec && bytes.get(i + 1) == Some(&b'/') => {
+                i = text[i..].find('\n').map_or(bytes.len(), |j| i + j);
+                palette::COMMENT
+            }
+            c if c.is_ascii_alphabetic() => {
+                i += 1;
+                while i < bytes.len() && (bytes[i].is_ascii_digit() || b".+- ".contains(&bytes[i]))
+                {
+                    // Stop before the spaces that separate words.
+                    if bytes[i] == b' '
+                        && !bytes
+                            .get(i + 1)
+                            .is_some_and(|n| n.is_ascii_digit() || *n == b'.')
+                    {
+                        break;
+                    }
+                    i += 1;
+                }
+                match c.to_ascii_uppercase() {
+                    b'G' => palette::G_CODE,
+                    b'M' => palette::M_CODE,
+                    b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' | b'I' | b'J' | b'K' | b'R' => {
+                        palette::AXIS
+                    }
+                    b'F' | b'S' => palette::FEED,
+                    b'T' | b'D' | b'H' => palette::TOOL,
+                    b'N' | b'O' => palette::NUMBER,
+                    _ => palette::TEXT,
+                }
+            }
+            _ => {
+                // Any other run of characters up to the next interesting one.
+                let len = text[i..].chars().next().map_or(1, char::len_utf8);
+                i += len;
+                while i < bytes.len()
+                    && !bytes[i].is_ascii_alphabetic()
+                    && !b"(;/".contains(&bytes[i])
+                {
+                    i += text[i..].chars().next().map_or(1, char::len_utf8);
+                }
+                palette::TEXT
+            }
+        };
+        append(&mut job, start, i, color);
+    }
+    job
+}
+
+/// What happened in the editor this frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct EditorOutput {
+    /// The text was edited.
+    pub changed: bool,
+    /// 1-based line of the cursor, when the editor has one.
+    pub cursor_line: Option<u32>,
+}
+
+/// The G-code editor widget's state (the text itself is owned by the caller).
+#[derive(Debug, Clone)]
+pub struct CodeEditor {
+    id: egui::Id,
+    jump: Option<std::ops::Range<usize>>,
+}
+
+impl Default for CodeEditor {
+    fn default() -> Self {
+        Self::new("swarf-code-editor")
+    }
+}
+
+impl CodeEditor {
+    /// An editor whose state is stored under `id_salt`.
+    pub fn new(id_salt: &str) -> Self {
+        CodeEditor {
+            id: egui::Id::unique(id_salt),
+            jump: None,
+        }
+    }
+
+    /// Selects the character range on the next frame and scrolls to it.
+    pub fn jump_to(&mut self, chars: std::ops::Range<usize>) {
+        self.jump = Some(chars);
+    }
+
+    /// Shows the editor with a gutter, filling the available space.
+    pub fn show(
+        &mut self,
+        ui: &mut Ui,
+        text: &mut String,
+        dialect: Dialect,
+        problems: &[Problem],
+    ) -> EditorOutput {
+        let font = egui::TextStyle::Monospace.resolve(ui.style());
+        if let Some(range) = self.jump.take() {
+            if let Some(mut state) = egui::TextEdit::load_state(ui.ctx(), self.id) {
+                state.cursor.set_char_range(Some(CCursorRange::two(
+                    CCursor::new(range.start),
+                    CCursor::new(range.end),
+                )));
+                state.store(ui.ctx(), self.id);
+            }
+            ui.ctx().memory_mut(|m| m.request_focus(self.id));
+        }
+        let mut output = EditorOutput::default();
+        egui::ScrollArea::both()
+            .id_salt("swarf-editor-scroll")
+            .auto_shrink([false, false])
+            .show(ui, |ui| {
+                ui.horizontal_top(|ui| {
+                    let lines = text.bytes().filter(|&b| b == b'\n').count() + 1;
+                    gutter(ui, lines, problems, &font);
+                    let font_for_layout = font.clone();
+                    let mut layouter = |ui: &Ui, buf: &dyn egui::TextBuffer, _wrap: f32| {
+                        let job = highlight(buf.as_str(), dialect, &font_for_layout);
+                        ui.painter().layout_job(job)
+                    };
+                    let edit = egui::TextEdit::multiline(text)
+                        .id(self.id)
+                        .font(font.clone())
+                        .code_editor()
+                        .lock_focus(true)
+                        .desired_width(f32::INFINITY)
+                        .desired_rows(40)
+                        .layouter(&mut layouter)
+                        .show(ui);
+                    output.changed = edit.response.response.changed();
+                    output.cursor_line = edit
+                        .cursor_range
+                        .map(|r| edit.galley.pos_from_cursor(r.primary))
+                        .map(|rect| {
+                            let row = (rect.top() / font_row_height(ui, &font)).round();
+                            row.max(0.0) as u32 + 1
+                        });
+                    paint_squiggles(ui, &edit.galley, edit.galley_pos, problems);
+                });
+            });
+        output
+    }
+}
+
+fn font_row_height(ui: &Ui, font: &FontId) -> f32 {
+    ui.ctx().fonts_mut(|f| f.row_height(font)).max(1.0)
+}
+
+/// Line numbers, coloured by the worst diagnostic on each line.
+fn gutter(ui: &mut Ui, lines: usize, problems: &[Problem], font: &FontId) {
+    let mut worst: Vec<Option<Severity>> = vec![None; lines];
+    for p in problems {
+        if let Some(slot) = worst.get_mut((p.line as usize).saturating_sub(1)) {
+            *slot = Some(slot.map_or(p.severity, |s| s.max(p.severity)));
+        }
+    }
+    let digits = lines.to_string().len().max(3);
+    let mut job = LayoutJob::default();
+    for (i, w) in worst.iter().enumerate() {
+        let color = w.map_or(palette::NUMBER, severity_color);
+        let mark = if w.is_some() { '●' } else { ' ' };
+        job.append(
+            &format!("{mark}{:>digits$}\n", i + 1),
+            0.0,
+            TextFormat::simple(font.clone(), color),
+        );
+    }
+    let galley = ui.painter().layout_job(job);
+    // Align with the text edit's inner margin.
+    ui.add_space(0.0);
+    let (rect, _) = ui.allocate_exact_size(
+        egui::vec2(galley.size().x + 6.0, galley.size().y + 4.0),
+        egui::Sense::hover(),
+    );
+    ui.painter()
+        .galley(rect.min + egui::vec2(0.0, 2.0), galley, palette::NUMBER);
+}
+
+/// Wavy underlines under each diagnostic's characters.
+fn paint_squiggles(ui: &Ui, galley: &Arc<Galley>, origin: Pos2, problems: &[Problem]) {
+    let painter = ui.painter();
+    for p in problems {
+        let start = galley.pos_from_cursor(CCursor::new(p.chars.start));
+        let end = galley.pos_from_cursor(CCursor::new(p.chars.end));
+        let y = origin.y + start.bottom() - 1.0;
+        let x0 = origin.x + start.left();
+        let same_row = (end.top() - start.top()).abs() < 1.0;
+        let x1 = if same_row && end.left() > start.left() {
+            origin.x + end.left()
+        } else {
+            x0 + 8.0
+        };
+        let stroke = Stroke::new(1.2, severity_color(p.severity));
+        let mut points = Vec::new();
+        let mut x = x0;
+        let mut up = true;
+        while x <= x1 + 0.01 {
+            points.push(egui::pos2(x, if up { y - 1.5 } else { y + 1.0 }));
+            up = !up;
+            x += 2.5;
+        }
+        if points.len() >= 2 {
+            painter.add(egui::Shape::line(points, stroke));
+        }
+    }
+}

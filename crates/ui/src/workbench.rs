@@ -1,0 +1,226 @@
+//! The whole editing surface: editor, problems list and backplot, wired to the pipeline.
+
+use swarf_interp::Setup;
+use swarf_syntax::{Dialect, Severity};
+
+use crate::analysis::{Analysis, Problem, Stats};
+use crate::backplot::Backplot;
+use crate::editor::{CodeEditor, severity_color};
+
+/// The example program the editor starts with.
+pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.nc");
+
+/// Editor, problems and backplot over one program text; re-analyses on every edit.
+pub struct Workbench {
+    text: String,
+    dialect: Dialect,
+    setup: Setup,
+    generation: u64,
+    analysis: Analysis,
+    editor: CodeEditor,
+    backplot: Backplot,
+    cursor_line: Option<u32>,
+}
+
+impl Default for Workbench {
+    fn default() -> Self {
+        Workbench::new(EXAMPLE_PROGRAM.to_string())
+    }
+}
+
+impl Workbench {
+    /// A workbench showing `text`, read as Fanuc with a default setup.
+    pub fn new(text: String) -> Self {
+        let setup = Setup::default();
+        let dialect = Dialect::default();
+        let analysis = Analysis::run(&text, dialect, &setup, 1);
+        Workbench {
+            text,
+            dialect,
+            setup,
+            generation: 1,
+            analysis,
+            editor: CodeEditor::default(),
+            backplot: Backplot::new(),
+            cursor_line: None,
+        }
+    }
+
+    /// The program text.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// Replaces the text and re-analyses it.
+    pub fn set_text(&mut self, text: impl Into<String>) {
+        self.text = text.into();
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// The dialect programs are read as.
+    pub fn dialect(&self) -> Dialect {
+        self.dialect
+    }
+
+    /// Changes the dialect and re-analyses.
+    pub fn set_dialect(&mut self, dialect: Dialect) {
+        if dialect != self.dialect {
+            self.dialect = dialect;
+            self.reanalyse();
+        }
+    }
+
+    /// The latest analysis.
+    pub fn analysis(&self) -> &Analysis {
+        &self.analysis
+    }
+
+    /// Diagnostics of the current text, sorted by position.
+    pub fn problems(&self) -> &[Problem] {
+        &self.analysis.problems
+    }
+
+    /// Summary numbers of the current text.
+    pub fn stats(&self) -> Stats {
+        self.analysis.stats()
+    }
+
+    fn reanalyse(&mut self) {
+        self.generation += 1;
+        self.analysis = Analysis::run(&self.text, self.dialect, &self.setup, self.generation);
+    }
+
+    /// Shows the workbench filling `ui`.
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        egui::Panel::top("swarf-top").show(ui, |ui| self.top_bar(ui));
+        egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
+        egui::Panel::bottom("swarf-problems")
+            .resizable(true)
+            .default_size(140.0)
+            .show(ui, |ui| self.problems_list(ui));
+        egui::Panel::left("swarf-editor")
+            .resizable(true)
+            .default_size(460.0)
+            .show(ui, |ui| {
+                let out =
+                    self.editor
+                        .show(ui, &mut self.text, self.dialect, &self.analysis.problems);
+                if out.changed {
+                    self.reanalyse();
+                }
+                if out.cursor_line.is_some() {
+                    self.cursor_line = out.cursor_line;
+                }
+            });
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| {
+                self.backplot.show(ui, &self.analysis.scene);
+            });
+    }
+
+    fn top_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            ui.strong("Swarf");
+            ui.separator();
+            ui.label("Dialect");
+            let mut dialect = self.dialect;
+            egui::ComboBox::from_id_salt("swarf-dialect")
+                .selected_text(dialect.label())
+                .show_ui(ui, |ui| {
+                    for d in Dialect::ALL {
+                        ui.selectable_value(&mut dialect, d, d.label());
+                    }
+                });
+            self.set_dialect(dialect);
+            ui.separator();
+            if ui.button("Fit view").clicked() {
+                self.backplot.fit();
+            }
+        });
+    }
+
+    fn status_bar(&self, ui: &mut egui::Ui) {
+        let s = self.stats();
+        ui.horizontal(|ui| {
+            ui.label(format!("{} blocks", s.blocks));
+            ui.separator();
+            ui.label(format!("{} motions", s.motions));
+            ui.separator();
+            if let Some((min, max)) = s.bounds {
+                let size = max - min;
+                ui.label(format!(
+                    "extent {:.2} × {:.2} × {:.2} mm",
+                    size.x, size.y, size.z
+                ));
+                ui.separator();
+            }
+            ui.label(format!("≈ {}", format_duration(s.estimated_secs)));
+            ui.separator();
+            let errors = self.analysis.count(Severity::Error);
+            let warnings = self.analysis.count(Severity::Warning);
+            ui.colored_label(
+                if errors > 0 {
+                    severity_color(Severity::Error)
+                } else {
+                    ui.visuals().text_color()
+                },
+                format!("{errors} errors, {warnings} warnings"),
+            );
+            if let Some(line) = self.cursor_line {
+                ui.separator();
+                ui.label(format!("line {line}"));
+            }
+        });
+    }
+
+    fn problems_list(&mut self, ui: &mut egui::Ui) {
+        ui.strong(format!("Problems ({})", self.analysis.problems.len()));
+        egui::ScrollArea::vertical()
+            .id_salt("swarf-problems-scroll")
+            .auto_shrink([false, false])
+            .show(ui, |ui| {
+                let mut jump = None;
+                for p in &self.analysis.problems {
+                    let text = format!(
+                        "{}:{}  {}[{}]  {}",
+                        p.line, p.col, p.severity, p.code, p.message
+                    );
+                    let label = egui::RichText::new(text)
+                        .monospace()
+                        .color(severity_color(p.severity));
+                    if ui
+                        .add(egui::Label::new(label).sense(egui::Sense::click()))
+                        .on_hover_text("Go to this position")
+                        .clicked()
+                    {
+                        jump = Some(p.chars.clone());
+                    }
+                }
+                if let Some(chars) = jump {
+                    self.editor.jump_to(chars);
+                }
+            });
+    }
+}
+
+/// `1 h 02 min`, `3 min 04 s` or `12.5 s`.
+pub fn format_duration(secs: f64) -> String {
+    let secs = secs.max(0.0);
+    if secs >= 3600.0 {
+        format!(
+            "{:.0} h {:02.0} min",
+            (secs / 3600.0).floor(),
+            ((secs % 3600.0) / 60.0).floor()
+        )
+    } else if secs >= 60.0 {
+        format!(
+            "{:.0} min {:02.0} s",
+            (secs / 60.0).floor(),
+            (secs % 60.0).floor()
+        )
+    } else {
+        format!("{secs:.1} s")
+    }
+}
