@@ -24,7 +24,8 @@ impl SwarfApp {
         } else {
             log::warn!("no wgpu render state: the 3D view is unavailable");
         }
-        cc.egui_ctx.set_visuals(egui::Visuals::dark());
+        // The editor palette is made for a dark background, whatever the system theme.
+        cc.egui_ctx.set_theme(egui::Theme::Dark);
         SwarfApp {
             workbench: Workbench::default(),
             ctx: cc.egui_ctx.clone(),
