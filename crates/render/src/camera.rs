@@ -1,0 +1,589 @@
+//! Orbit camera for the backplot: Z-up, right-handed, wgpu depth range 0..1.
+//!
+//! The camera orbits a `target` point at `distance`, with `yaw` measured about +Z from +X and
+//! `pitch` the elevation above the XY plane. That is the CNC convention: Z is the spindle axis
+//! and points up on screen in every view except Top (which looks down −Z with +Y up on screen).
+
+use glam::camera::rh::proj::directx;
+use glam::camera::rh::view::look_to_mat4;
+use glam::{Mat4, Vec2, Vec3};
+
+/// Smallest allowed orbit distance, so zooming in can never collapse the view to a point.
+pub const MIN_DISTANCE: f32 = 1.0e-4;
+/// Largest allowed orbit distance, so zooming out stays well inside f32 range.
+pub const MAX_DISTANCE: f32 = 1.0e7;
+/// Default orbit distance (and scene radius) used before anything has been fitted.
+const DEFAULT_DISTANCE: f32 = 100.0;
+/// Radians of orbit per pixel of mouse drag.
+const ORBIT_RADIANS_PER_PX: f32 = 0.01;
+/// Fraction of the view left free around a fitted box (1.1 = 10 % margin).
+const FIT_MARGIN: f32 = 1.1;
+/// Perspective near plane as a fraction of the orbit distance.
+const NEAR_FRACTION: f32 = 1.0e-3;
+
+/// Perspective or parallel projection.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Projection {
+    /// Perspective projection with vertical field of view [`OrbitCamera::fov_y`].
+    Perspective,
+    /// Parallel projection; its scale matches the perspective view at the target's depth.
+    #[default]
+    Orthographic,
+}
+
+/// The standard machinist's views.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StandardView {
+    /// From front-right-above (eye towards +X, −Y, +Z): X runs right-down, Y right-up, Z up.
+    Iso,
+    /// Looking down −Z: +X right, +Y up.
+    Top,
+    /// Looking along +Y from the front: +X right, +Z up.
+    Front,
+    /// Looking along −X from the right: +Y right, +Z up.
+    Right,
+}
+
+impl StandardView {
+    /// `(yaw, pitch)` in radians for this view.
+    #[must_use]
+    pub fn angles(self) -> (f32, f32) {
+        use std::f32::consts::{FRAC_PI_2, FRAC_PI_4};
+        match self {
+            // Elevation of the cube diagonal (1, -1, 1): atan(1 / sqrt 2).
+            Self::Iso => (-FRAC_PI_4, std::f32::consts::FRAC_1_SQRT_2.atan()),
+            Self::Top => (-FRAC_PI_2, FRAC_PI_2),
+            Self::Front => (-FRAC_PI_2, 0.0),
+            Self::Right => (0.0, 0.0),
+        }
+    }
+}
+
+/// An orbit camera (f32, Z up) producing wgpu-ready view-projection matrices.
+///
+/// All fields are public for easy persistence; every method sanitises them, so even
+/// out-of-range values never produce NaN matrices.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrbitCamera {
+    /// Point orbited around and looked at.
+    pub target: Vec3,
+    /// Distance from the eye to `target`; also sets the orthographic scale.
+    pub distance: f32,
+    /// Azimuth of the eye around +Z, radians from +X (counter-clockwise seen from above).
+    pub yaw: f32,
+    /// Elevation of the eye above the XY plane, radians in `[-π/2, π/2]`.
+    pub pitch: f32,
+    /// Perspective or orthographic projection.
+    pub projection: Projection,
+    /// Vertical field of view in radians (for orthographic it sets the scale at `distance`).
+    pub fov_y: f32,
+    /// Radius of the last fitted scene, used to keep orthographic clipping planes generous.
+    pub scene_radius: f32,
+}
+
+impl Default for OrbitCamera {
+    fn default() -> Self {
+        let (yaw, pitch) = StandardView::Iso.angles();
+        Self {
+            target: Vec3::ZERO,
+            distance: DEFAULT_DISTANCE,
+            yaw,
+            pitch,
+            projection: Projection::default(),
+            fov_y: 30f32.to_radians(),
+            scene_radius: DEFAULT_DISTANCE,
+        }
+    }
+}
+
+/// Returns `value` if finite, else `fallback`.
+fn finite_or(value: f32, fallback: f32) -> f32 {
+    if value.is_finite() { value } else { fallback }
+}
+
+/// Sanitises an aspect ratio (width / height): positive and finite, else 1.
+fn sane_aspect(aspect: f32) -> f32 {
+    if aspect.is_finite() && aspect > 1.0e-6 {
+        aspect.min(1.0e6)
+    } else {
+        1.0
+    }
+}
+
+impl OrbitCamera {
+    /// A camera in the given standard view, orbiting the origin at the default distance.
+    #[must_use]
+    pub fn new(view: StandardView) -> Self {
+        let mut camera = Self::default();
+        camera.set_view(view);
+        camera
+    }
+
+    /// Sanitised distance (finite, clamped).
+    fn dist(&self) -> f32 {
+        finite_or(self.distance, DEFAULT_DISTANCE).clamp(MIN_DISTANCE, MAX_DISTANCE)
+    }
+
+    /// Sanitised vertical field of view, between 1° and 120°.
+    fn fov(&self) -> f32 {
+        finite_or(self.fov_y, 30f32.to_radians()).clamp(1f32.to_radians(), 120f32.to_radians())
+    }
+
+    /// Sanitised target.
+    fn tgt(&self) -> Vec3 {
+        if self.target.is_finite() {
+            self.target
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// Camera basis `(right, up, back)`: `back` points from the target towards the eye.
+    #[must_use]
+    pub fn basis(&self) -> (Vec3, Vec3, Vec3) {
+        let yaw = finite_or(self.yaw, 0.0);
+        let pitch = finite_or(self.pitch, 0.0)
+            .clamp(-std::f32::consts::FRAC_PI_2, std::f32::consts::FRAC_PI_2);
+        let (sy, cy) = yaw.sin_cos();
+        let (sp, cp) = pitch.sin_cos();
+        let back = Vec3::new(cp * cy, cp * sy, sp);
+        let right = Vec3::new(-sy, cy, 0.0);
+        let up = back.cross(right);
+        (right, up, back)
+    }
+
+    /// Unit vector the camera looks along (from the eye towards the target).
+    #[must_use]
+    pub fn forward(&self) -> Vec3 {
+        -self.basis().2
+    }
+
+    /// Eye position in world space.
+    #[must_use]
+    pub fn eye(&self) -> Vec3 {
+        self.tgt() + self.basis().2 * self.dist()
+    }
+
+    /// World units per screen pixel at the target's depth, for a viewport `height_px` tall.
+    #[must_use]
+    pub fn units_per_px(&self, height_px: f32) -> f32 {
+        let height_px = if height_px.is_finite() && height_px >= 1.0 {
+            height_px
+        } else {
+            1.0
+        };
+        2.0 * self.dist() * (self.fov() * 0.5).tan() / height_px
+    }
+
+    /// Jumps to one of the standard views, keeping target and distance.
+    pub fn set_view(&mut self, view: StandardView) {
+        let (yaw, pitch) = view.angles();
+        self.yaw = yaw;
+        self.pitch = pitch;
+    }
+
+    /// Frames the box `min..max` for a square viewport; see [`Self::fit_aspect`].
+    pub fn fit(&mut self, min: Vec3, max: Vec3) {
+        self.fit_aspect(min, max, 1.0);
+    }
+
+    /// Frames the box `min..max` for a viewport of the given aspect (width / height) so that
+    /// it is fully visible with a margin, keeping the current view direction.
+    ///
+    /// Empty (`min > max`) or non-finite boxes reset to the default framing of the origin;
+    /// zero-size boxes (a single point, a line seen end-on) get a small non-zero framing.
+    pub fn fit_aspect(&mut self, min: Vec3, max: Vec3, aspect: f32) {
+        if !min.is_finite() || !max.is_finite() || min.cmpgt(max).any() {
+            self.target = Vec3::ZERO;
+            self.distance = DEFAULT_DISTANCE;
+            self.scene_radius = DEFAULT_DISTANCE;
+            return;
+        }
+        let aspect = sane_aspect(aspect);
+        let center = (min + max) * 0.5;
+        let radius = (max - min).length() * 0.5;
+        let radius = if radius > 1.0e-6 { radius } else { 1.0 };
+        // Never frame less than a twentieth of the scene, so flat or end-on boxes stay sane.
+        let floor = radius * 0.05;
+        let (right, up, back) = self.basis();
+        let tan_y = (self.fov() * 0.5).tan();
+        let tan_x = tan_y * aspect;
+        let mut needed: f32 = 0.0;
+        for i in 0..8 {
+            let corner = Vec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            );
+            let offset = corner - center;
+            let x = offset.dot(right).abs().max(floor) * FIT_MARGIN;
+            let y = offset.dot(up).abs().max(floor) * FIT_MARGIN;
+            let d = match self.projection {
+                // The corner is `offset·back` nearer to the eye than the target is.
+                Projection::Perspective => offset.dot(back) + (x / tan_x).max(y / tan_y),
+                Projection::Orthographic => (x / tan_x).max(y / tan_y),
+            };
+            needed = needed.max(d);
+        }
+        self.target = center;
+        self.distance = finite_or(needed, DEFAULT_DISTANCE).clamp(MIN_DISTANCE, MAX_DISTANCE);
+        self.scene_radius = radius;
+    }
+
+    /// Orbits by a mouse drag: horizontal spins around Z, vertical tilts (drag down = look
+    /// more from above, as if grabbing the model's front face).
+    pub fn orbit(&mut self, delta_px: Vec2) {
+        if !delta_px.is_finite() {
+            return;
+        }
+        let yaw = finite_or(self.yaw, 0.0) - delta_px.x * ORBIT_RADIANS_PER_PX;
+        self.yaw = yaw.rem_euclid(std::f32::consts::TAU);
+        self.pitch = (finite_or(self.pitch, 0.0) + delta_px.y * ORBIT_RADIANS_PER_PX)
+            .clamp(-std::f32::consts::FRAC_PI_2, std::f32::consts::FRAC_PI_2);
+    }
+
+    /// Pans by a mouse drag of `delta_px` (screen pixels, y down) in a viewport of
+    /// `viewport_px`, so that the point under the cursor (at the target's depth) follows it.
+    pub fn pan(&mut self, delta_px: Vec2, viewport_px: Vec2) {
+        if !delta_px.is_finite() || !viewport_px.is_finite() || viewport_px.y < 1.0 {
+            return;
+        }
+        let upp = self.units_per_px(viewport_px.y);
+        let (right, up, _) = self.basis();
+        let target = self.tgt() - right * (delta_px.x * upp) + up * (delta_px.y * upp);
+        if target.is_finite() {
+            self.target = target;
+        }
+    }
+
+    /// Zooms by `factor` (> 1 zooms in), keeping the distance within limits.
+    pub fn zoom(&mut self, factor: f32) {
+        if factor.is_finite() && factor > 0.0 {
+            self.distance = (self.dist() / factor).clamp(MIN_DISTANCE, MAX_DISTANCE);
+        }
+    }
+
+    /// Zooms by `factor` (> 1 zooms in) keeping the point under `cursor_px` (relative to the
+    /// viewport's top-left corner, at the target's depth) fixed on screen.
+    pub fn zoom_at(&mut self, factor: f32, cursor_px: Vec2, viewport_px: Vec2) {
+        let valid = factor.is_finite()
+            && factor > 0.0
+            && cursor_px.is_finite()
+            && viewport_px.is_finite()
+            && viewport_px.y >= 1.0;
+        if !valid {
+            return;
+        }
+        let upp = self.units_per_px(viewport_px.y);
+        let (right, up, _) = self.basis();
+        let from_center = cursor_px - viewport_px * 0.5;
+        let offset = right * (from_center.x * upp) - up * (from_center.y * upp);
+        let before = self.dist();
+        let after = (before / factor).clamp(MIN_DISTANCE, MAX_DISTANCE);
+        let target = self.tgt() + offset * (1.0 - after / before);
+        if target.is_finite() {
+            self.target = target;
+        }
+        self.distance = after;
+    }
+
+    /// Right-handed view matrix (world to Y-up view space).
+    #[must_use]
+    pub fn view(&self) -> Mat4 {
+        let (_, up, back) = self.basis();
+        look_to_mat4(self.eye(), -back, up)
+    }
+
+    /// Projection matrix for a viewport of the given aspect (width / height), NDC depth 0..1.
+    #[must_use]
+    pub fn projection_matrix(&self, aspect: f32) -> Mat4 {
+        let aspect = sane_aspect(aspect);
+        let distance = self.dist();
+        match self.projection {
+            Projection::Perspective => {
+                directx::perspective_infinite(self.fov(), aspect, distance * NEAR_FRACTION)
+            }
+            Projection::Orthographic => {
+                let half_h = distance * (self.fov() * 0.5).tan();
+                let half_w = half_h * aspect;
+                // No depth buffer yet: keep the slab generous so nothing is clipped.
+                let radius = finite_or(self.scene_radius, DEFAULT_DISTANCE).abs();
+                let depth = 10.0 * (radius + distance) + 1.0;
+                directx::orthographic(
+                    -half_w,
+                    half_w,
+                    -half_h,
+                    half_h,
+                    distance - depth,
+                    distance + depth,
+                )
+            }
+        }
+    }
+
+    /// Combined view-projection matrix (right-handed, Z up, depth 0..1) for wgpu.
+    #[must_use]
+    pub fn view_proj(&self, aspect: f32) -> Mat4 {
+        self.projection_matrix(aspect) * self.view()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const VIEWS: [StandardView; 4] = [
+        StandardView::Iso,
+        StandardView::Top,
+        StandardView::Front,
+        StandardView::Right,
+    ];
+    const PROJECTIONS: [Projection; 2] = [Projection::Perspective, Projection::Orthographic];
+
+    fn corners(min: Vec3, max: Vec3) -> impl Iterator<Item = Vec3> {
+        (0..8).map(move |i| {
+            Vec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
+        })
+    }
+
+    fn assert_finite(m: Mat4) {
+        assert!(m.is_finite(), "matrix has NaN/inf: {m:?}");
+    }
+
+    fn assert_inside_ndc(camera: &OrbitCamera, min: Vec3, max: Vec3, aspect: f32) {
+        let vp = camera.view_proj(aspect);
+        assert_finite(vp);
+        for p in corners(min, max) {
+            let clip = vp * p.extend(1.0);
+            assert!(clip.w > 0.0, "corner {p} behind camera {camera:?}");
+            let ndc = clip.truncate() / clip.w;
+            assert!(
+                ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0 && (0.0..=1.0).contains(&ndc.z),
+                "corner {p} -> {ndc} outside NDC; camera {camera:?} aspect {aspect}"
+            );
+        }
+    }
+
+    #[test]
+    fn fit_frames_every_corner() {
+        let boxes = [
+            (Vec3::new(-10.0, -20.0, -5.0), Vec3::new(110.0, 40.0, 3.0)),
+            (Vec3::new(0.0, 0.0, 0.0), Vec3::new(100.0, 100.0, 0.0)),
+            (Vec3::new(5.0, 5.0, -50.0), Vec3::new(5.0, 5.0, 0.0)),
+            (
+                Vec3::new(1000.0, 2000.0, 3000.0),
+                Vec3::new(1000.5, 2000.1, 3000.0),
+            ),
+            (Vec3::splat(-0.01), Vec3::splat(0.01)),
+        ];
+        for (min, max) in boxes {
+            for view in VIEWS {
+                for projection in PROJECTIONS {
+                    for aspect in [0.3, 1.0, 2.5] {
+                        let mut camera = OrbitCamera::new(view);
+                        camera.projection = projection;
+                        camera.fit_aspect(min, max, aspect);
+                        assert_inside_ndc(&camera, min, max, aspect);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fit_uses_the_space() {
+        // A fitted box should fill a good part of the view, not be a speck.
+        let (min, max) = (Vec3::ZERO, Vec3::new(100.0, 50.0, 0.0));
+        let mut camera = OrbitCamera::new(StandardView::Top);
+        camera.fit_aspect(min, max, 2.0);
+        let vp = camera.view_proj(2.0);
+        let extent = corners(min, max)
+            .map(|p| vp.project_point3(p).x.abs())
+            .fold(0.0f32, f32::max);
+        assert!(extent > 0.8, "box only spans {extent} of the half-width");
+    }
+
+    #[test]
+    fn degenerate_boxes_never_nan() {
+        let cases = [
+            (Vec3::ZERO, Vec3::ZERO),
+            (Vec3::splat(7.0), Vec3::splat(7.0)),
+            (Vec3::ONE, Vec3::ZERO), // empty (min > max)
+            (Vec3::splat(f32::NAN), Vec3::ONE),
+            (Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY)),
+        ];
+        for (min, max) in cases {
+            for view in VIEWS {
+                for projection in PROJECTIONS {
+                    let mut camera = OrbitCamera::new(view);
+                    camera.projection = projection;
+                    camera.fit(min, max);
+                    assert_finite(camera.view_proj(1.5));
+                    assert!(camera.distance >= MIN_DISTANCE);
+                    if min.is_finite() && max.is_finite() && min.cmple(max).all() {
+                        assert_inside_ndc(&camera, min, max, 1.0);
+                    }
+                    camera.orbit(Vec2::new(13.0, -7.0));
+                    camera.pan(Vec2::new(3.0, 4.0), Vec2::new(800.0, 600.0));
+                    camera.zoom(1.5);
+                    camera.zoom_at(0.5, Vec2::new(10.0, 10.0), Vec2::new(800.0, 600.0));
+                    assert_finite(camera.view_proj(1.5));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn top_view_looks_down_negative_z() {
+        let camera = OrbitCamera::new(StandardView::Top);
+        assert!(camera.forward().abs_diff_eq(Vec3::NEG_Z, 1e-6));
+        let vp = camera.view_proj(1.0);
+        // +X is right and +Y is up on screen.
+        let x = vp.project_point3(Vec3::X * 10.0);
+        let y = vp.project_point3(Vec3::Y * 10.0);
+        assert!(x.x > 0.0 && x.y.abs() < 1e-5);
+        assert!(y.y > 0.0 && y.x.abs() < 1e-5);
+        // Higher Z is nearer the eye, so smaller depth.
+        let high = vp.project_point3(Vec3::Z * 5.0);
+        let low = vp.project_point3(Vec3::Z * -5.0);
+        assert!(high.z < low.z);
+    }
+
+    #[test]
+    fn standard_views_put_z_up() {
+        for view in [StandardView::Iso, StandardView::Front, StandardView::Right] {
+            for projection in PROJECTIONS {
+                let mut camera = OrbitCamera::new(view);
+                camera.projection = projection;
+                let vp = camera.view_proj(1.0);
+                let z = vp.project_point3(Vec3::Z * 10.0);
+                let o = vp.project_point3(Vec3::ZERO);
+                assert!(z.y > o.y, "{view:?}: +Z not up on screen");
+                assert!((z.x - o.x).abs() < 1e-5, "{view:?}: Z axis not vertical");
+            }
+        }
+        let front = OrbitCamera::new(StandardView::Front);
+        assert!(front.forward().abs_diff_eq(Vec3::Y, 1e-6));
+        let right = OrbitCamera::new(StandardView::Right);
+        assert!(right.forward().abs_diff_eq(Vec3::NEG_X, 1e-6));
+        // Iso: X goes right-down, Y goes right-up.
+        let iso = OrbitCamera::new(StandardView::Iso).view_proj(1.0);
+        let o = iso.project_point3(Vec3::ZERO);
+        let x = iso.project_point3(Vec3::X) - o;
+        let y = iso.project_point3(Vec3::Y) - o;
+        assert!(x.x > 0.0 && x.y < 0.0);
+        assert!(y.x > 0.0 && y.y > 0.0);
+    }
+
+    #[test]
+    fn pan_follows_the_cursor() {
+        for view in VIEWS {
+            for projection in PROJECTIONS {
+                let mut camera = OrbitCamera::new(view);
+                camera.projection = projection;
+                let viewport = Vec2::new(800.0, 600.0);
+                let aspect = viewport.x / viewport.y;
+                let point = camera.target;
+                let before = camera.view_proj(aspect).project_point3(point);
+                let delta = Vec2::new(40.0, -25.0);
+                camera.pan(delta, viewport);
+                let after = camera.view_proj(aspect).project_point3(point);
+                // NDC spans 2 units over the viewport; screen y is down, NDC y is up.
+                let moved_px = Vec2::new(
+                    (after.x - before.x) * viewport.x / 2.0,
+                    -(after.y - before.y) * viewport.y / 2.0,
+                );
+                assert!(
+                    moved_px.abs_diff_eq(delta, 1e-2),
+                    "{view:?} {projection:?}: moved {moved_px}, want {delta}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn zoom_is_clamped_and_monotonic() {
+        let mut camera = OrbitCamera::default();
+        let d0 = camera.distance;
+        camera.zoom(2.0);
+        assert!((camera.distance - d0 / 2.0).abs() < 1e-3);
+        camera.zoom(0.5);
+        assert!((camera.distance - d0).abs() < 1e-3);
+        for _ in 0..200 {
+            camera.zoom(10.0);
+        }
+        assert_eq!(camera.distance, MIN_DISTANCE);
+        assert_finite(camera.view_proj(1.0));
+        for _ in 0..200 {
+            camera.zoom(0.1);
+        }
+        assert_eq!(camera.distance, MAX_DISTANCE);
+        assert_finite(camera.view_proj(1.0));
+        for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+            camera.zoom(bad);
+            assert_eq!(camera.distance, MAX_DISTANCE);
+        }
+    }
+
+    #[test]
+    fn zoom_at_keeps_the_cursor_point_fixed() {
+        for projection in PROJECTIONS {
+            let mut camera = OrbitCamera::new(StandardView::Iso);
+            camera.projection = projection;
+            let viewport = Vec2::new(640.0, 480.0);
+            let cursor = Vec2::new(500.0, 100.0);
+            let upp = camera.units_per_px(viewport.y);
+            let (right, up, _) = camera.basis();
+            let from_center = cursor - viewport * 0.5;
+            let point = camera.target + right * from_center.x * upp - up * from_center.y * upp;
+            let aspect = viewport.x / viewport.y;
+            let before = camera.view_proj(aspect).project_point3(point);
+            camera.zoom_at(3.0, cursor, viewport);
+            let after = camera.view_proj(aspect).project_point3(point);
+            assert!(before.truncate().abs_diff_eq(after.truncate(), 1e-4));
+        }
+    }
+
+    #[test]
+    fn orbit_clamps_pitch() {
+        let mut camera = OrbitCamera::default();
+        camera.orbit(Vec2::new(0.0, 1.0e6));
+        assert!((camera.pitch - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+        assert_finite(camera.view_proj(1.0));
+        camera.orbit(Vec2::new(123.0, -1.0e6));
+        assert!((camera.pitch + std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+        assert_finite(camera.view_proj(1.0));
+        let before = camera;
+        camera.orbit(Vec2::new(f32::NAN, 1.0));
+        assert_eq!(camera, before);
+        // Dragging right spins the camera clockwise seen from above (yaw decreases).
+        let mut camera = OrbitCamera::new(StandardView::Front);
+        let yaw = camera.yaw;
+        camera.orbit(Vec2::new(10.0, 0.0));
+        let turned = (camera.yaw - yaw).rem_euclid(std::f32::consts::TAU);
+        assert!((turned - (std::f32::consts::TAU - 0.1)).abs() < 1e-4);
+    }
+
+    #[test]
+    fn garbage_fields_never_nan() {
+        let camera = OrbitCamera {
+            target: Vec3::splat(f32::NAN),
+            distance: f32::NAN,
+            yaw: f32::INFINITY,
+            pitch: f32::NAN,
+            projection: Projection::Perspective,
+            fov_y: -3.0,
+            scene_radius: f32::NAN,
+        };
+        assert_finite(camera.view_proj(f32::NAN));
+        let ortho = OrbitCamera {
+            projection: Projection::Orthographic,
+            ..camera
+        };
+        assert_finite(ortho.view_proj(0.0));
+    }
+}

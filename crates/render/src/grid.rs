@@ -1,0 +1,161 @@
+//! Reference geometry: a floor grid on the XY plane and the XYZ axis triad at the origin.
+
+use glam::{Vec2, Vec3};
+
+use crate::Vertex;
+
+/// Colour of ordinary grid lines (sRGB, unpremultiplied): grey, translucent so it reads on
+/// both light and dark themes.
+pub const GRID_COLOR: [u8; 4] = [128, 128, 128, 60];
+/// Colour of every tenth grid line.
+pub const GRID_MAJOR_COLOR: [u8; 4] = [128, 128, 128, 130];
+/// Colour of the X axis (red).
+pub const X_AXIS_COLOR: [u8; 4] = [230, 60, 60, 255];
+/// Colour of the Y axis (green).
+pub const Y_AXIS_COLOR: [u8; 4] = [60, 200, 60, 255];
+/// Colour of the Z axis (blue).
+pub const Z_AXIS_COLOR: [u8; 4] = [70, 110, 255, 255];
+
+/// At most this many grid cells per side, whatever the bounds.
+const MAX_CELLS: f32 = 200.0;
+
+/// Smallest "nice" step (1, 2 or 5 × 10ⁿ) that is at least `raw`.
+#[must_use]
+pub fn nice_step(raw: f32) -> f32 {
+    if !raw.is_finite() || raw <= 0.0 {
+        return 1.0;
+    }
+    let raw = raw.clamp(1.0e-6, 1.0e9);
+    let magnitude = 10f32.powf(raw.log10().floor());
+    for mantissa in [1.0, 2.0, 5.0, 10.0] {
+        let step = mantissa * magnitude;
+        // Tolerate rounding in powf/log10 (e.g. raw = 1000 giving 999.99994).
+        if step >= raw * (1.0 - 1.0e-5) {
+            return step;
+        }
+    }
+    10.0 * magnitude
+}
+
+/// Line-list vertices for a grid on the XY plane at z = 0 covering `min..max` (and the
+/// origin), with a 1/2/5×10ⁿ step giving roughly ten cells across, plus the red X, green Y
+/// and blue Z axes from the origin. Invalid or empty bounds give a 100-unit grid at the origin.
+#[must_use]
+pub fn grid_vertices(min: Vec3, max: Vec3) -> Vec<Vertex> {
+    let (lo, hi) = if min.is_finite() && max.is_finite() && min.cmple(max).all() {
+        (
+            min.truncate().min(Vec2::ZERO),
+            max.truncate().max(Vec2::ZERO),
+        )
+    } else {
+        (Vec2::splat(-50.0), Vec2::splat(50.0))
+    };
+    let size = (hi - lo).max_element();
+    let size = if size > 1.0e-6 { size } else { 10.0 };
+    let mut step = nice_step(size / 10.0);
+    // One cell of margin all round, snapped to the step.
+    let mut start = (lo / step).floor() - Vec2::ONE;
+    let mut end = (hi / step).ceil() + Vec2::ONE;
+    while (end - start).max_element() > MAX_CELLS {
+        step = nice_step(step * 1.5);
+        start = (lo / step).floor() - Vec2::ONE;
+        end = (hi / step).ceil() + Vec2::ONE;
+    }
+
+    let mut out = Vec::new();
+    let (x0, x1) = (start.x * step, end.x * step);
+    let (y0, y1) = (start.y * step, end.y * step);
+    // Grid lines are indexed by integer multiples of the step, so major lines line up.
+    let mut i = start.x;
+    while i <= end.x {
+        let color = if (i % 10.0) == 0.0 {
+            GRID_MAJOR_COLOR
+        } else {
+            GRID_COLOR
+        };
+        let x = i * step;
+        out.push(Vertex::new(Vec3::new(x, y0, 0.0), color));
+        out.push(Vertex::new(Vec3::new(x, y1, 0.0), color));
+        i += 1.0;
+    }
+    let mut j = start.y;
+    while j <= end.y {
+        let color = if (j % 10.0) == 0.0 {
+            GRID_MAJOR_COLOR
+        } else {
+            GRID_COLOR
+        };
+        let y = j * step;
+        out.push(Vertex::new(Vec3::new(x0, y, 0.0), color));
+        out.push(Vertex::new(Vec3::new(x1, y, 0.0), color));
+        j += 1.0;
+    }
+
+    let axis = (size * 0.15).max(step * 2.0);
+    for (dir, color) in [
+        (Vec3::X, X_AXIS_COLOR),
+        (Vec3::Y, Y_AXIS_COLOR),
+        (Vec3::Z, Z_AXIS_COLOR),
+    ] {
+        out.push(Vertex::new(Vec3::ZERO, color));
+        out.push(Vertex::new(dir * axis, color));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_steps() {
+        assert_eq!(nice_step(1.0), 1.0);
+        assert_eq!(nice_step(1.2), 2.0);
+        assert_eq!(nice_step(3.0), 5.0);
+        assert_eq!(nice_step(7.0), 10.0);
+        assert_eq!(nice_step(1000.0), 1000.0);
+        assert!((nice_step(0.03) - 0.05).abs() < 1e-7);
+        assert_eq!(nice_step(0.0), 1.0);
+        assert_eq!(nice_step(f32::NAN), 1.0);
+    }
+
+    #[test]
+    fn grid_covers_bounds_and_origin() {
+        let min = Vec3::new(20.0, 30.0, -5.0);
+        let max = Vec3::new(120.0, 80.0, 10.0);
+        let v = grid_vertices(min, max);
+        assert_eq!(v.len() % 2, 0);
+        let grid = &v[..v.len() - 6];
+        assert!(grid.iter().all(|v| v.position[2] == 0.0));
+        let gx0 = grid.iter().map(|v| v.position[0]).fold(f32::MAX, f32::min);
+        let gx1 = grid.iter().map(|v| v.position[0]).fold(f32::MIN, f32::max);
+        let gy0 = grid.iter().map(|v| v.position[1]).fold(f32::MAX, f32::min);
+        let gy1 = grid.iter().map(|v| v.position[1]).fold(f32::MIN, f32::max);
+        assert!(gx0 <= 0.0 && gx1 >= 120.0 && gy0 <= 0.0 && gy1 >= 80.0);
+        // Step 10 for a 120-unit part: 14 + 11 lines (with margins), not thousands.
+        assert!(grid.len() < 2 * 60, "{} grid vertices", grid.len());
+        // Axes last: red X, green Y, blue Z from the origin.
+        let axes = &v[v.len() - 6..];
+        assert_eq!(axes[0].color, X_AXIS_COLOR);
+        assert_eq!(axes[2].color, Y_AXIS_COLOR);
+        assert_eq!(axes[4].color, Z_AXIS_COLOR);
+        assert_eq!(axes[0].position, [0.0; 3]);
+        assert!(axes[5].position[2] > 0.0);
+    }
+
+    #[test]
+    fn grid_handles_degenerate_bounds() {
+        for (min, max) in [
+            (Vec3::ZERO, Vec3::ZERO),
+            (Vec3::ONE, Vec3::ZERO),
+            (Vec3::splat(f32::NAN), Vec3::ONE),
+            (Vec3::splat(-1.0e9), Vec3::splat(1.0e9)),
+            (Vec3::splat(0.001), Vec3::splat(0.002)),
+        ] {
+            let v = grid_vertices(min, max);
+            assert!(!v.is_empty());
+            assert!(v.len() < 2 * 2 * 210);
+            assert!(v.iter().all(|v| v.position.iter().all(|c| c.is_finite())));
+        }
+    }
+}

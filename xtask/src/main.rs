@@ -1,0 +1,169 @@
+//! Build tasks for Swarf, run as `cargo xtask <command>`.
+//!
+//! * `cargo xtask web [--dev] [--opt]` builds the web page into `target/web/`.
+//! * `cargo xtask serve [--port 8080] [--no-build] [--dev]` builds and serves it.
+//! * `cargo xtask test [--quick]` installs what the tests need and runs every test.
+
+mod desktop;
+mod serve;
+mod test;
+mod tools;
+mod util;
+mod web;
+
+use std::process::ExitCode;
+
+use anyhow::{Result, bail};
+
+const USAGE: &str = "\
+Swarf build tasks
+
+USAGE:
+    cargo xtask <COMMAND> [OPTIONS]
+
+COMMANDS:
+    web     Build the web page into target/web/
+              --dev         debug build of the wasm (faster to build, slower to run)
+              --opt         run wasm-opt -Oz (only an npm-installed binaryen is used)
+    serve   Build the web page and serve it on http://127.0.0.1:PORT/
+              --port PORT   port to listen on (default 8080)
+              --no-build    serve target/web/ as it is
+              --dev, --opt  as for `web`
+    test    Install what the tests need, then run every check and test
+              --quick       skip the browser and desktop steps
+              --only STEPS  run only these steps, e.g. `--only g` or `--only a,b,e`
+                            (a fmt, b clippy, c clippy wasm32, d tests, e wasm tests in
+                            Node, f wasm tests in Chromium, g architecture, h desktop,
+                            i web build + browser end-to-end test)
+    help    Show this message
+";
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            // One line with the whole cause chain and no backtrace (even with RUST_BACKTRACE
+            // set): the closing lines of `cargo xtask test` belong to the last test runner.
+            eprintln!("error: {error:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let Some((command, rest)) = args.split_first() else {
+        print!("{USAGE}");
+        return Ok(());
+    };
+    let mut opts = Options::parse(rest)?;
+    match command.as_str() {
+        "web" => {
+            opts.reject_unused(&["--dev", "--opt"])?;
+            web::build(&web::WebOptions {
+                dev: opts.dev,
+                opt: opts.opt,
+            })?;
+        }
+        "serve" => {
+            opts.reject_unused(&["--dev", "--opt", "--port", "--no-build"])?;
+            if !opts.no_build {
+                web::build(&web::WebOptions {
+                    dev: opts.dev,
+                    opt: opts.opt,
+                })?;
+            }
+            serve::serve(opts.port.take().unwrap_or(8080))?;
+        }
+        "test" => {
+            opts.reject_unused(&["--quick", "--only"])?;
+            test::run_all(opts.quick, opts.only.as_deref())?;
+        }
+        "help" | "--help" | "-h" => print!("{USAGE}"),
+        other => bail!("unknown command `{other}`\n\n{USAGE}"),
+    }
+    Ok(())
+}
+
+/// Command-line options shared by all commands; each command accepts a subset.
+#[derive(Debug, Default)]
+struct Options {
+    dev: bool,
+    opt: bool,
+    no_build: bool,
+    quick: bool,
+    port: Option<u16>,
+    only: Option<String>,
+    seen: Vec<&'static str>,
+}
+
+impl Options {
+    fn parse(args: &[String]) -> Result<Self> {
+        let mut opts = Options::default();
+        let mut iter = args.iter();
+        while let Some(arg) = iter.next() {
+            let (flag, inline_value) = match arg.split_once('=') {
+                Some((flag, value)) => (flag, Some(value.to_owned())),
+                None => (arg.as_str(), None),
+            };
+            let name: &'static str = match flag {
+                "--dev" => {
+                    opts.dev = true;
+                    "--dev"
+                }
+                "--opt" => {
+                    opts.opt = true;
+                    "--opt"
+                }
+                "--no-build" => {
+                    opts.no_build = true;
+                    "--no-build"
+                }
+                "--quick" => {
+                    opts.quick = true;
+                    "--quick"
+                }
+                "--only" => {
+                    let value = match inline_value.clone() {
+                        Some(value) => value,
+                        None => match iter.next() {
+                            Some(value) => value.clone(),
+                            None => bail!("--only needs step letters, e.g. --only a,g"),
+                        },
+                    };
+                    opts.only = Some(value);
+                    "--only"
+                }
+                "--port" => {
+                    let value = match inline_value.clone() {
+                        Some(value) => value,
+                        None => match iter.next() {
+                            Some(value) => value.clone(),
+                            None => bail!("--port needs a value, e.g. --port 8080"),
+                        },
+                    };
+                    let port = value
+                        .parse::<u16>()
+                        .map_err(|e| anyhow::anyhow!("invalid port `{value}`: {e}"))?;
+                    opts.port = Some(port);
+                    "--port"
+                }
+                other => bail!("unknown option `{other}`\n\n{USAGE}"),
+            };
+            if inline_value.is_some() && !matches!(name, "--port" | "--only") {
+                bail!("option `{name}` takes no value");
+            }
+            opts.seen.push(name);
+        }
+        Ok(opts)
+    }
+
+    fn reject_unused(&self, allowed: &[&str]) -> Result<()> {
+        for flag in &self.seen {
+            if !allowed.contains(flag) {
+                bail!("option `{flag}` does not apply to this command\n\n{USAGE}");
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,198 @@
+//! `cargo xtask serve`: a small static file server for `target/web/`.
+
+use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::{Context, Result, anyhow, bail};
+use tiny_http::{Header, Method, Request, Response, Server, StatusCode};
+
+use crate::web;
+
+/// Number of threads answering requests (the browser loads a few files at once).
+const WORKERS: usize = 4;
+
+/// Serves `target/web/` on `127.0.0.1:port` until the process is interrupted.
+pub fn serve(port: u16) -> Result<()> {
+    let root = web::site_dir();
+    if !root.join("index.html").exists() {
+        bail!(
+            "{} has no index.html; run `cargo xtask web` first (or drop --no-build)",
+            root.display()
+        );
+    }
+    let root = root
+        .canonicalize()
+        .with_context(|| format!("resolving {}", root.display()))?;
+    let address = format!("127.0.0.1:{port}");
+    let server = Server::http(&address)
+        .map_err(|e| anyhow!("cannot listen on {address}: {e}"))
+        .map(Arc::new)?;
+    println!("Swarf is running at http://{address}/");
+    println!("(serving {}; press Ctrl-C to stop)", root.display());
+
+    let workers: Vec<_> = (0..WORKERS)
+        .map(|_| {
+            let server = Arc::clone(&server);
+            let root = root.clone();
+            std::thread::spawn(move || {
+                while let Ok(request) = server.recv() {
+                    handle(&root, request);
+                }
+            })
+        })
+        .collect();
+    for worker in workers {
+        if worker.join().is_err() {
+            bail!("a server thread stopped unexpectedly");
+        }
+    }
+    Ok(())
+}
+
+fn handle(root: &Path, request: Request) {
+    // tiny_http leaves the body out of answers to HEAD itself.
+    if !matches!(request.method(), Method::Get | Method::Head) {
+        let _ = request.respond(text_response(405, "method not allowed"));
+        return;
+    }
+    let Some(path) = resolve(root, request.url()) else {
+        let _ = request.respond(text_response(404, "not found"));
+        return;
+    };
+    match std::fs::read(&path) {
+        Ok(body) => {
+            let mut response = Response::from_data(body);
+            for (name, value) in [
+                ("Content-Type", content_type(&path)),
+                ("Cache-Control", "no-cache"),
+            ] {
+                if let Ok(header) = Header::from_bytes(name.as_bytes(), value.as_bytes()) {
+                    response.add_header(header);
+                }
+            }
+            let _ = request.respond(response);
+        }
+        Err(_) => {
+            let _ = request.respond(text_response(404, "not found"));
+        }
+    }
+}
+
+fn text_response(status: u16, text: &str) -> Response<std::io::Cursor<Vec<u8>>> {
+    let mut response = Response::from_string(text).with_status_code(StatusCode(status));
+    if let Ok(header) = Header::from_bytes(&b"Content-Type"[..], &b"text/plain; charset=utf-8"[..])
+    {
+        response.add_header(header);
+    }
+    response
+}
+
+/// Maps a request URL to a file under `root`, or `None` (404) for anything outside it, any
+/// `..` component and anything that is not a regular file. `/` and directories map to their
+/// `index.html`.
+fn resolve(root: &Path, url: &str) -> Option<PathBuf> {
+    let path = url.split(['?', '#']).next().unwrap_or_default();
+    let decoded = percent_decode(path)?;
+    let mut file = root.to_path_buf();
+    for component in Path::new(&decoded).components() {
+        match component {
+            Component::Normal(part) => file.push(part),
+            Component::RootDir | Component::CurDir => {}
+            Component::ParentDir | Component::Prefix(_) => return None,
+        }
+    }
+    if file.is_dir() {
+        file.push("index.html");
+    }
+    // Links inside the site could still point elsewhere: compare the real paths.
+    let real = file.canonicalize().ok()?;
+    (real.starts_with(root) && real.is_file()).then_some(real)
+}
+
+/// Decodes `%XX` escapes; `None` for malformed escapes, non-UTF-8 results, NUL or backslash.
+fn percent_decode(input: &str) -> Option<String> {
+    let bytes = input.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    let text = String::from_utf8(out).ok()?;
+    (!text.contains(['\0', '\\'])).then_some(text)
+}
+
+/// The MIME type for a file, from its extension.
+fn content_type(path: &Path) -> &'static str {
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("html" | "htm") => "text/html; charset=utf-8",
+        Some("js" | "mjs") => "text/javascript; charset=utf-8",
+        Some("css") => "text/css; charset=utf-8",
+        Some("wasm") => "application/wasm",
+        Some("png") => "image/png",
+        Some("jpg" | "jpeg") => "image/jpeg",
+        Some("svg") => "image/svg+xml",
+        Some("ico") => "image/x-icon",
+        Some("json" | "map") => "application/json",
+        Some("txt" | "nc" | "ngc" | "gcode" | "tap" | "cnc" | "md") => "text/plain; charset=utf-8",
+        _ => "application/octet-stream",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn site() -> std::io::Result<PathBuf> {
+        let dir = std::env::temp_dir().join(format!("xtask-serve-test-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("assets"))?;
+        std::fs::write(dir.join("index.html"), "<html></html>")?;
+        std::fs::write(dir.join("swarf_app_bg.wasm"), [0u8, 97, 115, 109])?;
+        std::fs::write(dir.join("assets").join("a b.nc"), "G0 X0")?;
+        dir.canonicalize()
+    }
+
+    #[test]
+    fn resolves_files_and_rejects_traversal() -> std::io::Result<()> {
+        let root = site()?;
+        assert_eq!(resolve(&root, "/"), Some(root.join("index.html")));
+        assert_eq!(
+            resolve(&root, "/index.html?v=1"),
+            Some(root.join("index.html"))
+        );
+        assert_eq!(
+            resolve(&root, "/assets/a%20b.nc"),
+            Some(root.join("assets").join("a b.nc"))
+        );
+        assert_eq!(resolve(&root, "/missing.js"), None);
+        assert_eq!(resolve(&root, "/../Cargo.toml"), None);
+        assert_eq!(resolve(&root, "/assets/../../etc/passwd"), None);
+        assert_eq!(resolve(&root, "/%2e%2e/%2e%2e/etc/passwd"), None);
+        assert_eq!(resolve(&root, "/%2E%2E%2Fetc%2Fpasswd"), None);
+        assert_eq!(resolve(&root, "/..%5c..%5cetc"), None);
+        assert_eq!(resolve(&root, "/bad%zz"), None);
+        std::fs::remove_dir_all(&root)
+    }
+
+    #[test]
+    fn mime_types() {
+        assert_eq!(
+            content_type(Path::new("swarf_app_bg.wasm")),
+            "application/wasm"
+        );
+        assert!(content_type(Path::new("swarf.js")).starts_with("text/javascript"));
+        assert!(content_type(Path::new("index.html")).starts_with("text/html"));
+        assert!(content_type(Path::new("swarf.css")).starts_with("text/css"));
+        assert_eq!(content_type(Path::new("shot.PNG")), "image/png");
+    }
+}

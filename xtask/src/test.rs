@@ -1,0 +1,330 @@
+//! `cargo xtask test`: installs what the tests need, then runs every check and test in order,
+//! stopping at the first failure. The browser end-to-end test runs last, so the run's closing
+//! lines are the summary of Node's test runner.
+
+use std::process::Command;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+
+use crate::tools::{self, WASM_TARGET};
+use crate::util::{self, cargo, command, header, run};
+use crate::{desktop, web};
+
+/// Crates that are compiled and tested for wasm32 (the core has no UI and no GPU).
+const WASM_TEST_CRATES: &[&str] = &["swarf-syntax", "swarf-interp", "swarf-toolpath"];
+
+/// Crates that must compile for wasm32 without warnings.
+const WASM_CLIPPY_CRATES: &[&str] = &[
+    "swarf-syntax",
+    "swarf-interp",
+    "swarf-toolpath",
+    "swarf-render",
+    "swarf-ui",
+    "swarf-app",
+];
+
+/// The dependency rules of ARCHITECTURE.md: package → crates its normal dependency tree (for
+/// every target) must not contain. A rule also forbids the crate's family (`egui` forbids
+/// `egui-wgpu`, `egui_kittest`, …).
+const FORBIDDEN_DEPENDENCIES: &[(&str, &[&str])] = &[
+    ("swarf-cli", &["egui", "eframe", "wgpu", "winit"]),
+    ("swarf-syntax", &["egui", "eframe", "wgpu", "winit"]),
+    ("swarf-interp", &["egui", "eframe", "wgpu", "winit"]),
+    ("swarf-toolpath", &["egui", "eframe", "wgpu", "winit"]),
+    ("swarf-render", &["egui", "swarf-interp"]),
+];
+
+/// Path of the webdriver capabilities used by `wasm-bindgen-test-runner` in the browser step.
+const WEBDRIVER_JSON: &str = "webdriver.json";
+
+/// Chromium and its driver from Debian's `chromium` and `chromium-driver` packages.
+const CHROMIUM: &str = "/usr/bin/chromium";
+const CHROMEDRIVER: &str = "/usr/bin/chromedriver";
+
+struct Step {
+    id: char,
+    title: String,
+    action: Box<dyn Fn() -> Result<()>>,
+}
+
+impl Step {
+    fn new(id: char, title: impl Into<String>, action: impl Fn() -> Result<()> + 'static) -> Self {
+        Self {
+            id,
+            title: title.into(),
+            action: Box::new(action),
+        }
+    }
+}
+
+/// Runs every test step. `quick` skips the steps that need a browser or a display; `only`
+/// (step letters such as `"a,g"`) picks steps.
+pub fn run_all(quick: bool, only: Option<&str>) -> Result<()> {
+    let started = Instant::now();
+    let mut steps = steps(quick);
+    if let Some(only) = only {
+        let wanted: Vec<char> = only
+            .chars()
+            .filter(|c| c.is_ascii_alphabetic())
+            .map(|c| c.to_ascii_lowercase())
+            .collect();
+        if let Some(unknown) = wanted.iter().find(|c| !steps.iter().any(|s| s.id == **c)) {
+            bail!(
+                "--only: there is no step `{unknown}` (steps: a to i; f, h and i not with --quick)"
+            );
+        }
+        steps.retain(|step| wanted.contains(&step.id));
+    }
+    let needs = |ids: &str| steps.iter().any(|step| ids.contains(step.id));
+
+    header("setup: tools the tests need");
+    if needs("fhi") {
+        tools::ensure_apt_packages()?;
+    }
+    if needs("cefi") {
+        tools::ensure_wasm_target()?;
+    }
+    if needs("efi") {
+        tools::ensure_wasm_bindgen()?;
+    }
+    if needs("i") {
+        tools::ensure_node_modules()?;
+    }
+    println!("all tools present");
+
+    let count = steps.len();
+    for (index, step) in steps.iter().enumerate() {
+        header(&format!(
+            "[{}/{count}] {}. {}",
+            index + 1,
+            step.id,
+            step.title
+        ));
+        let step_started = Instant::now();
+        (step.action)().with_context(|| format!("step {}. `{}` failed", step.id, step.title))?;
+        let last = index + 1 == count;
+        if !last {
+            println!(
+                "-- {}. passed in {:.0} s (total {:.0} s)",
+                step.id,
+                step_started.elapsed().as_secs_f64(),
+                started.elapsed().as_secs_f64()
+            );
+        }
+    }
+    if quick {
+        println!("\nquick test run passed (browser and desktop steps skipped)");
+    }
+    Ok(())
+}
+
+fn steps(quick: bool) -> Vec<Step> {
+    let mut steps = vec![
+        Step::new('a', "format: cargo fmt --all -- --check", || {
+            run(cargo().args(["fmt", "--all", "--", "--check"]))
+        }),
+        Step::new(
+            'b',
+            "lint (native): cargo clippy --workspace --all-targets -- -D warnings",
+            || {
+                run(cargo().args([
+                    "clippy",
+                    "--workspace",
+                    "--all-targets",
+                    "--",
+                    "-D",
+                    "warnings",
+                ]))
+            },
+        ),
+        Step::new(
+            'c',
+            format!(
+                "lint (wasm32): cargo clippy --target {WASM_TARGET} {} -- -D warnings",
+                package_args(WASM_CLIPPY_CRATES).join(" ")
+            ),
+            || {
+                let mut cmd = cargo();
+                cmd.args(["clippy", "--target", WASM_TARGET])
+                    .args(package_args(WASM_CLIPPY_CRATES))
+                    .args(["--", "-D", "warnings"]);
+                run(&mut cmd)
+            },
+        ),
+        Step::new('d', "native tests: cargo test --workspace", || {
+            run(cargo().args(["test", "--workspace"]))
+        }),
+        Step::new(
+            'e',
+            format!(
+                "wasm tests in Node: cargo test --target {WASM_TARGET} {}",
+                package_args(WASM_TEST_CRATES).join(" ")
+            ),
+            || run(&mut wasm_test_command(false)),
+        ),
+    ];
+    if !quick {
+        steps.push(Step::new(
+            'f',
+            format!(
+                "wasm tests in headless Chromium: WASM_BINDGEN_USE_BROWSER=1 cargo test --target {WASM_TARGET} {}",
+                package_args(WASM_TEST_CRATES).join(" ")
+            ),
+            || run(&mut wasm_test_command(true)),
+        ));
+    }
+    steps.push(Step::new(
+        'g',
+        "architecture: forbidden dependencies (cargo tree -e normal --target all)",
+        check_architecture,
+    ));
+    if !quick {
+        steps.push(Step::new(
+            'h',
+            "desktop smoke test: swarf-app --screenshot under xvfb-run",
+            desktop::smoke_test,
+        ));
+        steps.push(Step::new(
+            'i',
+            "web build (release) and browser end-to-end test: node --test tests/e2e/",
+            || {
+                web::build(&web::WebOptions::default())?;
+                header("i. node --test tests/e2e/");
+                run(&mut node_test_command())
+            },
+        ));
+    }
+    steps
+}
+
+fn package_args(packages: &[&str]) -> Vec<String> {
+    packages
+        .iter()
+        .flat_map(|p| ["-p".to_owned(), (*p).to_owned()])
+        .collect()
+}
+
+/// `cargo test` for the core crates on wasm32. The target's runner (`.cargo/config.toml`) is
+/// `wasm-bindgen-test-runner`; it runs tests in Node unless `WASM_BINDGEN_USE_BROWSER` is set,
+/// in which case it starts `$CHROMEDRIVER` with the capabilities read from
+/// `$WASM_BINDGEN_TEST_WEBDRIVER_JSON` (it adds `headless`, `no-sandbox` and
+/// `disable-dev-shm-usage` to Chrome's arguments itself).
+fn wasm_test_command(browser: bool) -> Command {
+    let mut cmd = cargo();
+    cmd.args(["test", "--target", WASM_TARGET])
+        .args(package_args(WASM_TEST_CRATES));
+    // Start from a clean slate: a mode variable left in the caller's environment would
+    // silently move the Node run into a browser or the other way round.
+    for var in [
+        "WASM_BINDGEN_USE_BROWSER",
+        "WASM_BINDGEN_USE_NODE_EXPERIMENTAL",
+        "WASM_BINDGEN_USE_DENO",
+        "WASM_BINDGEN_USE_DEDICATED_WORKER",
+        "WASM_BINDGEN_USE_SHARED_WORKER",
+        "WASM_BINDGEN_USE_SERVICE_WORKER",
+        "WASM_BINDGEN_TEST_ONLY_NODE",
+        "WASM_BINDGEN_TEST_ONLY_WEB",
+        "NO_HEADLESS",
+        "GECKODRIVER",
+        "GECKODRIVER_REMOTE",
+        "CHROMEDRIVER_REMOTE",
+        "SAFARIDRIVER",
+        "SAFARIDRIVER_REMOTE",
+    ] {
+        cmd.env_remove(var);
+    }
+    // Debug wasm on a busy 2-core machine is slow; the default limit is 20 s per suite.
+    cmd.env("WASM_BINDGEN_TEST_TIMEOUT", "600");
+    if browser {
+        cmd.env("WASM_BINDGEN_USE_BROWSER", "1")
+            .env("CHROMEDRIVER", CHROMEDRIVER)
+            .env("WASM_BINDGEN_TEST_DRIVER_TIMEOUT", "60")
+            .env(
+                "WASM_BINDGEN_TEST_WEBDRIVER_JSON",
+                util::repo_root().join(WEBDRIVER_JSON),
+            );
+    }
+    cmd
+}
+
+fn node_test_command() -> Command {
+    let mut cmd = command("node");
+    cmd.args(["--test", "tests/e2e/"])
+        .env("SWARF_CHROMIUM", CHROMIUM)
+        .env("SWARF_WEB_DIR", web::site_dir());
+    cmd
+}
+
+/// Checks [`FORBIDDEN_DEPENDENCIES`] with `cargo tree`.
+fn check_architecture() -> Result<()> {
+    let mut violations = Vec::new();
+    for (package, forbidden) in FORBIDDEN_DEPENDENCIES {
+        let mut cmd = cargo();
+        cmd.args([
+            "tree", "-e", "normal", "--target", "all", "--prefix", "none", "--format", "{p}", "-p",
+            package,
+        ]);
+        let tree = util::output(&mut cmd)?;
+        let mut names: Vec<&str> = tree
+            .lines()
+            .filter_map(|line| line.split_whitespace().next())
+            .collect();
+        names.sort_unstable();
+        names.dedup();
+        let bad: Vec<&str> = names
+            .iter()
+            .copied()
+            .filter(|name| forbidden.iter().any(|f| in_family(name, f)))
+            .collect();
+        let verdict = if bad.is_empty() {
+            "ok".to_owned()
+        } else {
+            format!("FORBIDDEN: {}", bad.join(", "))
+        };
+        println!(
+            "{package:<15} {:>3} crates in its tree; must not contain {:<32} {verdict}",
+            names.len(),
+            forbidden.join(", "),
+        );
+        if !bad.is_empty() {
+            violations.push(format!(
+                "{package} depends on {} (see `cargo tree -e normal --target all -p {package} -i {}`)",
+                bad.join(", "),
+                bad.first().copied().unwrap_or_default()
+            ));
+        }
+    }
+    if violations.is_empty() {
+        Ok(())
+    } else {
+        bail!(
+            "dependency rules of ARCHITECTURE.md broken:\n  {}",
+            violations.join("\n  ")
+        )
+    }
+}
+
+/// `name` is `family` or a crate of that family (`egui-wgpu`, `egui_kittest`, `wgpu-core`).
+fn in_family(name: &str, family: &str) -> bool {
+    name == family
+        || name
+            .strip_prefix(family)
+            .is_some_and(|rest| rest.starts_with(['-', '_']))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crate_families() {
+        assert!(in_family("egui", "egui"));
+        assert!(in_family("egui-wgpu", "egui"));
+        assert!(in_family("egui_kittest", "egui"));
+        assert!(in_family("wgpu-core", "wgpu"));
+        assert!(!in_family("eguix", "egui"));
+        assert!(!in_family("swarf-interpolate", "swarf-interp"));
+        assert!(in_family("swarf-interp", "swarf-interp"));
+    }
+}

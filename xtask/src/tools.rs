@@ -1,0 +1,229 @@
+//! Installs the tools the build and the tests need. Every check is idempotent and fast when
+//! the tool is already there, so the commands can run on a fresh CI machine.
+
+use std::path::Path;
+use std::process::Command;
+
+use anyhow::{Context, Result, bail};
+
+use crate::util::{self, cargo, command, output, run};
+
+/// The wasm-bindgen version that must match the `wasm-bindgen` crate in `Cargo.lock`.
+pub const WASM_BINDGEN_VERSION: &str = "0.2.130";
+
+/// The wasm target used for the web build and the wasm tests.
+pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
+
+/// Makes sure the wasm32 target of the pinned toolchain is installed.
+pub fn ensure_wasm_target() -> Result<()> {
+    let installed =
+        output(command("rustup").args(["target", "list", "--installed"])).unwrap_or_default();
+    if installed.lines().any(|line| line.trim() == WASM_TARGET) {
+        return Ok(());
+    }
+    run(command("rustup").args(["target", "add", WASM_TARGET]))
+}
+
+fn tool_version(program: &str) -> Option<String> {
+    let path = util::which(program)?;
+    let out = Command::new(path).arg("--version").output().ok()?;
+    if !out.status.success() {
+        return None;
+    }
+    Some(String::from_utf8_lossy(&out.stdout).trim().to_owned())
+}
+
+/// Makes sure `wasm-bindgen` and `wasm-bindgen-test-runner` are exactly
+/// [`WASM_BINDGEN_VERSION`], installing `wasm-bindgen-cli` with cargo otherwise.
+pub fn ensure_wasm_bindgen() -> Result<()> {
+    let wanted = format!("wasm-bindgen {WASM_BINDGEN_VERSION}");
+    let bindgen = tool_version("wasm-bindgen");
+    let runner = tool_version("wasm-bindgen-test-runner");
+    let ok = |v: &Option<String>, expected: &str| v.as_deref() == Some(expected);
+    if ok(&bindgen, &wanted)
+        && ok(
+            &runner,
+            &format!("wasm-bindgen-test-runner {WASM_BINDGEN_VERSION}"),
+        )
+    {
+        return Ok(());
+    }
+    println!(
+        "wasm-bindgen-cli {WASM_BINDGEN_VERSION} is needed (found: {}); installing it (takes a few minutes)",
+        bindgen.as_deref().unwrap_or("none")
+    );
+    run(cargo().args([
+        "install",
+        "wasm-bindgen-cli",
+        "--version",
+        &format!("={WASM_BINDGEN_VERSION}"),
+    ]))?;
+    match tool_version("wasm-bindgen") {
+        Some(v) if v == wanted => Ok(()),
+        found => bail!(
+            "after installing, `wasm-bindgen --version` says {found:?}, expected `{wanted}`; \
+             is another wasm-bindgen earlier in PATH?"
+        ),
+    }
+}
+
+/// Files whose presence shows the apt packages the browser and desktop tests need are there.
+const APT_CHECKS: &[(&str, &str)] = &[
+    ("/usr/bin/chromium", "chromium"),
+    ("/usr/bin/chromedriver", "chromium-driver"),
+    ("xvfb-run", "xvfb"),
+    ("xauth", "xauth"),
+];
+
+/// Debian packages for the browser tests (Chromium, chromedriver) and the desktop smoke test
+/// (Xvfb, Mesa's lavapipe Vulkan driver, the X11 libraries winit loads).
+const APT_PACKAGES: &[&str] = &[
+    "chromium",
+    "chromium-driver",
+    "xvfb",
+    "xauth",
+    "mesa-vulkan-drivers",
+    "libvulkan1",
+    "libxkbcommon-x11-0",
+    "libxcursor1",
+    "libxrandr2",
+    "libxi6",
+    "libx11-xcb1",
+];
+
+fn has_lavapipe() -> bool {
+    let dirs = ["/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"];
+    dirs.iter().any(|dir| {
+        std::fs::read_dir(dir).is_ok_and(|entries| {
+            entries.flatten().any(|entry| {
+                let name = entry.file_name();
+                let name = name.to_string_lossy();
+                name.starts_with("lvp_icd") && name.ends_with(".json")
+            })
+        })
+    })
+}
+
+fn has_shared_library(name: &str) -> bool {
+    let dirs = [
+        "/usr/lib/x86_64-linux-gnu",
+        "/lib/x86_64-linux-gnu",
+        "/usr/lib/aarch64-linux-gnu",
+        "/lib/aarch64-linux-gnu",
+        "/usr/lib64",
+        "/usr/lib",
+    ];
+    dirs.iter().any(|dir| Path::new(dir).join(name).exists())
+}
+
+/// Installs Chromium, chromedriver, Xvfb and Mesa's Vulkan drivers with apt, but only when one
+/// of them is missing (`apt-get update` is slow).
+pub fn ensure_apt_packages() -> Result<()> {
+    let mut missing: Vec<&str> = APT_CHECKS
+        .iter()
+        .filter(|(file, _)| {
+            if file.starts_with('/') {
+                !Path::new(file).exists()
+            } else {
+                util::which(file).is_none()
+            }
+        })
+        .map(|(_, package)| *package)
+        .collect();
+    if !has_lavapipe() {
+        missing.push("mesa-vulkan-drivers");
+    }
+    if !has_shared_library("libvulkan.so.1") {
+        missing.push("libvulkan1");
+    }
+    if !has_shared_library("libxkbcommon-x11.so.0") {
+        missing.push("libxkbcommon-x11-0");
+    }
+    if missing.is_empty() {
+        return Ok(());
+    }
+    println!("missing system packages: {}", missing.join(", "));
+    if util::which("apt-get").is_none() {
+        bail!(
+            "these packages are needed and apt-get is not available; install them by hand: {}",
+            APT_PACKAGES.join(" ")
+        );
+    }
+    let sudo = if is_root() {
+        None
+    } else if util::which("sudo").is_some() {
+        Some("sudo")
+    } else {
+        bail!(
+            "not root and no sudo: install by hand with `apt-get install {}`",
+            APT_PACKAGES.join(" ")
+        );
+    };
+    let apt = |args: &[&str]| -> Result<()> {
+        let mut cmd = match sudo {
+            Some(sudo) => {
+                let mut cmd = command(sudo);
+                cmd.arg("apt-get");
+                cmd
+            }
+            None => command("apt-get"),
+        };
+        cmd.env("DEBIAN_FRONTEND", "noninteractive").args(args);
+        run(&mut cmd)
+    };
+    apt(&["update"])?;
+    let mut install = vec!["install", "-y"];
+    install.extend_from_slice(APT_PACKAGES);
+    apt(&install)
+}
+
+fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|out| String::from_utf8_lossy(&out.stdout).trim() == "0")
+}
+
+/// Makes sure `node` (20 or newer) and `npm` exist and that `tests/e2e/node_modules`
+/// holds the packages locked in `tests/e2e/package-lock.json`.
+pub fn ensure_node_modules() -> Result<()> {
+    let node_major = tool_version("node").and_then(|v| {
+        v.trim_start_matches('v')
+            .split('.')
+            .next()?
+            .parse::<u32>()
+            .ok()
+    });
+    match node_major {
+        Some(major) if major >= 20 => {}
+        Some(major) => bail!(
+            "node {major} is too old for the browser end-to-end test (playwright-core needs \
+             node 20 or newer); install a newer node from nodejs.org or NodeSource"
+        ),
+        None => bail!(
+            "node (20 or newer) and npm are needed for the browser end-to-end test; install \
+             them (Debian 12's own nodejs is too old: use NodeSource or nodejs.org)"
+        ),
+    }
+    if util::which("npm").is_none() {
+        bail!("npm is needed for the browser end-to-end test's packages; install it with node");
+    }
+    let e2e = util::repo_root().join("tests").join("e2e");
+    let modules = e2e.join("node_modules");
+    let complete = ["playwright-core", "pngjs"]
+        .iter()
+        .all(|name| modules.join(name).join("package.json").exists());
+    if complete {
+        return Ok(());
+    }
+    let verb = if e2e.join("package-lock.json").exists() {
+        "ci"
+    } else {
+        "install"
+    };
+    let mut npm = command("npm");
+    npm.current_dir(&e2e)
+        .args([verb, "--no-audit", "--no-fund"])
+        .env("PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD", "1");
+    run(&mut npm).context("installing the end-to-end test's npm packages")
+}

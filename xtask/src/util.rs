@@ -1,0 +1,156 @@
+//! Helpers: repository paths, finding programs, running commands.
+
+use std::ffi::{OsStr, OsString};
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitStatus};
+
+use anyhow::{Context, Result, bail};
+
+/// The repository root (the parent of the `xtask` crate).
+pub fn repo_root() -> PathBuf {
+    let manifest_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest_dir
+        .parent()
+        .map_or_else(|| manifest_dir.to_path_buf(), Path::to_path_buf)
+}
+
+/// The directory `cargo install` puts binaries in (`$CARGO_HOME/bin`, default `~/.cargo/bin`).
+pub fn cargo_bin_dir() -> Option<PathBuf> {
+    if let Some(home) = std::env::var_os("CARGO_HOME") {
+        return Some(PathBuf::from(home).join("bin"));
+    }
+    std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cargo").join("bin"))
+}
+
+/// `PATH` with the cargo bin directory added (at the front) when it is missing, so that
+/// freshly installed `wasm-bindgen` and `wasm-bindgen-test-runner` are found.
+pub fn search_path() -> OsString {
+    let current = std::env::var_os("PATH").unwrap_or_default();
+    let mut dirs: Vec<PathBuf> = std::env::split_paths(&current).collect();
+    if let Some(bin) = cargo_bin_dir()
+        && !dirs.contains(&bin)
+    {
+        dirs.insert(0, bin);
+    }
+    std::env::join_paths(dirs).unwrap_or(current)
+}
+
+/// Finds an executable in [`search_path`].
+pub fn which(program: &str) -> Option<PathBuf> {
+    std::env::split_paths(&search_path())
+        .map(|dir| dir.join(program))
+        .find(|candidate| is_executable(candidate))
+}
+
+fn is_executable(path: &Path) -> bool {
+    use std::os::unix::fs::PermissionsExt as _;
+    path.metadata()
+        .is_ok_and(|meta| meta.is_file() && meta.permissions().mode() & 0o111 != 0)
+}
+
+/// A command for `program` (looked up in [`search_path`]), run in the repository root, with
+/// that `PATH` in its environment, and a private `XDG_RUNTIME_DIR` when the caller has none.
+pub fn command(program: &str) -> Command {
+    let resolved = which(program).unwrap_or_else(|| PathBuf::from(program));
+    let mut cmd = Command::new(resolved);
+    cmd.current_dir(repo_root()).env("PATH", search_path());
+    if let Some(dir) = fallback_runtime_dir() {
+        cmd.env("XDG_RUNTIME_DIR", dir);
+    }
+    cmd
+}
+
+/// `target/xdg-runtime` (mode 0700) when `XDG_RUNTIME_DIR` is unset or unusable, as it is for
+/// root and in containers: Mesa and winit complain on every start without one (the tests that
+/// render through wgpu, the desktop smoke test).
+fn fallback_runtime_dir() -> Option<PathBuf> {
+    use std::os::unix::fs::PermissionsExt as _;
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|dir| Path::new(&dir).is_dir()) {
+        return None;
+    }
+    let dir = repo_root().join("target").join("xdg-runtime");
+    std::fs::create_dir_all(&dir).ok()?;
+    std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700)).ok()?;
+    Some(dir)
+}
+
+/// A `cargo` command (the rustup proxy, so `rust-toolchain.toml` is honoured).
+pub fn cargo() -> Command {
+    command("cargo")
+}
+
+/// Renders a command the way one would type it.
+pub fn display(cmd: &Command) -> String {
+    let program = cmd.get_program();
+    let name = Path::new(program)
+        .file_name()
+        .unwrap_or(program)
+        .to_string_lossy()
+        .into_owned();
+    let mut parts = vec![name];
+    parts.extend(cmd.get_args().map(quote));
+    parts.join(" ")
+}
+
+fn quote(arg: &OsStr) -> String {
+    let s = arg.to_string_lossy();
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_=./:,+@%".contains(c))
+    {
+        s.into_owned()
+    } else {
+        format!("'{}'", s.replace('\'', r"'\''"))
+    }
+}
+
+/// Runs a command to completion, echoing it first; fails on a non-zero exit.
+pub fn run(cmd: &mut Command) -> Result<()> {
+    println!("$ {}", display(cmd));
+    let status = cmd
+        .status()
+        .with_context(|| format!("could not start `{}`", display(cmd)))?;
+    check_status(cmd, status)
+}
+
+/// Fails with a readable message when `status` is not success.
+pub fn check_status(cmd: &Command, status: ExitStatus) -> Result<()> {
+    if status.success() {
+        Ok(())
+    } else {
+        bail!("`{}` failed ({status})", display(cmd))
+    }
+}
+
+/// Runs a command and returns its standard output (standard error goes to the terminal).
+pub fn output(cmd: &mut Command) -> Result<String> {
+    let out = cmd
+        .stderr(std::process::Stdio::inherit())
+        .output()
+        .with_context(|| format!("could not start `{}`", display(cmd)))?;
+    check_status(cmd, out.status)?;
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// Prints a step header that stands out in a long log.
+pub fn header(title: &str) {
+    let bar = "=".repeat(78);
+    println!("\n{bar}\n== {title}\n{bar}");
+}
+
+/// Copies a directory tree (files and sub-directories; links are followed).
+pub fn copy_dir(from: &Path, to: &Path) -> Result<()> {
+    std::fs::create_dir_all(to).with_context(|| format!("creating {}", to.display()))?;
+    for entry in std::fs::read_dir(from).with_context(|| format!("reading {}", from.display()))? {
+        let entry = entry?;
+        let src = entry.path();
+        let dst = to.join(entry.file_name());
+        if src.is_dir() {
+            copy_dir(&src, &dst)?;
+        } else {
+            std::fs::copy(&src, &dst)
+                .with_context(|| format!("copying {} to {}", src.display(), dst.display()))?;
+        }
+    }
+    Ok(())
+}
