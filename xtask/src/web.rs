@@ -131,7 +131,8 @@ fn optimize(wasm: &Path) -> Result<()> {
     let Some(wasm_opt) = candidates.iter().find(|path| path.exists()) else {
         println!(
             "--opt: no npm-installed binaryen found (looked for {}); skipping wasm-opt. \
-             Install it with `npm install --prefix tests/e2e binaryen`.",
+             Install it with `npm install --no-save binaryen` in the repository root \
+             (node_modules/ is ignored by git).",
             candidates
                 .iter()
                 .map(|p| p.display().to_string())
