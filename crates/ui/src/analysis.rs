@@ -149,6 +149,7 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
             generation,
             vertices: Arc::new(Vec::new()),
             bounds: None,
+            zero: glam::Vec3::ZERO,
         };
     };
     let origin = scene_origin(path);
@@ -170,6 +171,7 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         generation,
         vertices: Arc::new(vertices),
         bounds: Some((rel(bounds.min), rel(bounds.max))),
+        zero: rel(DVec3::ZERO),
     }
 }
 

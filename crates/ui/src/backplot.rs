@@ -33,6 +33,8 @@ pub struct Scene {
     pub vertices: Arc<Vec<Vertex>>,
     /// Axis-aligned bounds of the geometry, `None` when there is none.
     pub bounds: Option<(Vec3, Vec3)>,
+    /// Where machine zero lies in the scene's frame: the grid and the axes are drawn there.
+    pub zero: Vec3,
 }
 
 /// State of one backplot view: its camera and when to fit it to the scene.
@@ -111,9 +113,8 @@ impl Backplot {
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) -> egui::Response {
         let size = ui.available_size().max(egui::vec2(64.0, 64.0));
         let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
-        let visuals = ui.visuals().clone();
-        ui.painter()
-            .rect_filled(rect, 0.0, visuals.extreme_bg_color);
+        let background = ui.visuals().extreme_bg_color;
+        ui.painter().rect_filled(rect, 0.0, background);
 
         if !INSTALLED.load(Ordering::Acquire) {
             // A real label (not painter text) so screen readers and tests can find it.
@@ -147,6 +148,7 @@ impl Backplot {
             generation: scene.generation,
             vertices: Arc::clone(&scene.vertices),
             bounds: scene.bounds,
+            zero: scene.zero,
             rect,
             view_proj: self.camera.view_proj(aspect),
         };
@@ -266,6 +268,7 @@ struct BackplotCallback {
     generation: u64,
     vertices: Arc<Vec<Vertex>>,
     bounds: Option<(Vec3, Vec3)>,
+    zero: Vec3,
     rect: egui::Rect,
     view_proj: Mat4,
 }
@@ -294,10 +297,14 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         view.last_frame = self.frame;
         if view.generation != Some(self.generation) {
             view.renderer.set_lines(device, queue, &self.vertices);
-            let grid = match self.bounds {
-                Some((min, max)) => grid_vertices(min, max),
+            let zero = self.zero;
+            let mut grid = match self.bounds {
+                Some((min, max)) => grid_vertices(min - zero, max - zero),
                 None => grid_vertices(Vec3::ONE, Vec3::ZERO),
             };
+            for v in &mut grid {
+                v.position = (Vec3::from_array(v.position) + zero).to_array();
+            }
             view.renderer.set_grid(device, queue, &grid);
             view.generation = Some(self.generation);
         }
@@ -425,6 +432,7 @@ mod tests {
             generation: 1,
             vertices: Arc::new(vec![Vertex::default(); 2]),
             bounds: Some((Vec3::ZERO, Vec3::ONE)),
+            zero: Vec3::ZERO,
         };
         plot.track_scene(&scene);
         assert!(plot.fit_pending);

@@ -146,10 +146,12 @@ impl CodeEditor {
         self.jump = Some(chars);
     }
 
-    /// Shows the editor with a gutter, filling the available space.
+    /// Shows the editor with a gutter, filling the available space; `label` is the widget that
+    /// names it for screen readers.
     pub fn show(
         &mut self,
         ui: &mut Ui,
+        label: egui::Id,
         text: &mut String,
         dialect: Dialect,
         problems: &[Problem],
@@ -187,7 +189,8 @@ impl CodeEditor {
                         .desired_rows(40)
                         .layouter(&mut layouter)
                         .show(ui);
-                    output.changed = edit.response.response.changed();
+                    let response = edit.response.response.clone().labelled_by(label);
+                    output.changed = response.changed();
                     output.cursor_line = edit
                         .cursor_range
                         .map(|r| edit.galley.pos_from_cursor(r.primary))

@@ -103,9 +103,14 @@ impl Workbench {
             .resizable(true)
             .default_size(460.0)
             .show(ui, |ui| {
-                let out =
-                    self.editor
-                        .show(ui, &mut self.text, self.dialect, &self.analysis.problems);
+                let title = ui.strong("Program");
+                let out = self.editor.show(
+                    ui,
+                    title.id,
+                    &mut self.text,
+                    self.dialect,
+                    &self.analysis.problems,
+                );
                 if out.changed {
                     self.reanalyse();
                 }
@@ -124,7 +129,7 @@ impl Workbench {
         ui.horizontal(|ui| {
             ui.strong("Swarf");
             ui.separator();
-            ui.label("Dialect");
+            let label = ui.label("Dialect");
             let mut dialect = self.dialect;
             egui::ComboBox::from_id_salt("swarf-dialect")
                 .selected_text(dialect.label())
@@ -132,7 +137,9 @@ impl Workbench {
                     for d in Dialect::ALL {
                         ui.selectable_value(&mut dialect, d, d.label());
                     }
-                });
+                })
+                .response
+                .labelled_by(label.id);
             self.set_dialect(dialect);
             ui.separator();
             if ui.button("Fit view").clicked() {

@@ -33,6 +33,7 @@ fn scene() -> Scene {
         generation: 1,
         vertices: Arc::new(vertices),
         bounds: Some((Vec3::new(0.0, 0.0, -5.0), Vec3::new(100.0, 60.0, 0.0))),
+        zero: Vec3::ZERO,
     }
 }
 
@@ -54,50 +55,8 @@ fn render_state() -> Option<egui_wgpu::RenderState> {
     .ok()
 }
 
-/// egui in this workspace is built without `default_fonts`, and text layout panics with no
-/// font at all. Use the bundled fonts when present, else a system font; `false` if neither.
-fn setup_fonts(ctx: &egui::Context) -> bool {
-    let mut fonts = egui::FontDefinitions::default();
-    if !fonts.font_data.is_empty() {
-        return true;
-    }
-    let candidates = [
-        "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-        "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
-        "/usr/share/fonts/TTF/DejaVuSans.ttf",
-        "/System/Library/Fonts/Supplemental/Arial.ttf",
-        "C:\\Windows\\Fonts\\arial.ttf",
-    ];
-    let Some(bytes) = candidates.iter().find_map(|p| std::fs::read(p).ok()) else {
-        return false;
-    };
-    fonts.font_data.insert(
-        "test".to_owned(),
-        Arc::new(egui::FontData::from_owned(bytes)),
-    );
-    for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
-        fonts
-            .families
-            .entry(family)
-            .or_default()
-            .push("test".to_owned());
-    }
-    ctx.set_fonts(fonts);
-    true
-}
-
-fn harness_builder() -> Option<egui_kittest::HarnessBuilder<State>> {
-    let ctx = egui::Context::default();
-    if !setup_fonts(&ctx) {
-        return None;
-    }
-    Some(
-        Harness::builder()
-            .with_size(egui::vec2(320.0, 240.0))
-            .with_context_setup(|ctx| {
-                setup_fonts(ctx);
-            }),
-    )
+fn harness_builder() -> egui_kittest::HarnessBuilder<State> {
+    Harness::builder().with_size(egui::vec2(320.0, 240.0))
 }
 
 type State = (Backplot, Scene);
@@ -111,11 +70,7 @@ fn app(ui: &mut egui::Ui, state: &mut State) {
 #[test]
 fn backplot_paints_lines_or_says_unavailable() {
     // 1. Without `install`, the widget shows a notice and never panics.
-    let Some(builder) = harness_builder() else {
-        eprintln!("SKIPPED: no font for egui (enable egui's `default_fonts` for tests)");
-        return;
-    };
-    let mut harness = builder.build_ui_state(app, (Backplot::new(), scene()));
+    let mut harness = harness_builder().build_ui_state(app, (Backplot::new(), scene()));
     harness.run();
     harness.get_by_label("3D view unavailable");
 
@@ -126,10 +81,7 @@ fn backplot_paints_lines_or_says_unavailable() {
     };
     eprintln!("adapter: {:?}", render_state.adapter.get_info());
     Backplot::install(&render_state);
-    let Some(builder) = harness_builder() else {
-        return;
-    };
-    let mut harness = builder
+    let mut harness = harness_builder()
         .renderer(WgpuTestRenderer::from_render_state(render_state))
         .build_ui_state(app, (Backplot::new(), scene()));
     harness.run();
