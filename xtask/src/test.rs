@@ -187,10 +187,10 @@ fn steps(quick: bool) -> Vec<Step> {
         ));
         steps.push(Step::new(
             'i',
-            "web build (release) and browser end-to-end test: node --test tests/e2e/",
+            "web build (release) and browser end-to-end tests (WebGL2, WebGPU): xvfb-run -a node --test tests/e2e/",
             || {
                 web::build(&web::WebOptions::default())?;
-                header("i. node --test tests/e2e/");
+                header("i. xvfb-run -a node --test tests/e2e/");
                 run(&mut node_test_command())
             },
         ));
@@ -248,9 +248,15 @@ fn wasm_test_command(browser: bool) -> Command {
     cmd
 }
 
+/// `node --test tests/e2e/` under `xvfb-run -a`: the WebGL2 test runs headless Chromium, the
+/// WebGPU test needs a headed one (headless Chromium has no WebGPU canvas) and skips itself
+/// without a `DISPLAY`. `xvfb-run` exits with node's status and prints nothing of its own, so
+/// node's summary stays the last output.
 fn node_test_command() -> Command {
-    let mut cmd = command("node");
-    cmd.args(["--test", "tests/e2e/"])
+    let mut cmd = command("xvfb-run");
+    // Xvfb is an X server: keep Chromium off any Wayland compositor of the caller.
+    cmd.env_remove("WAYLAND_DISPLAY")
+        .args(["-a", "node", "--test", "tests/e2e/"])
         .env("SWARF_CHROMIUM", CHROMIUM)
         .env("SWARF_WEB_DIR", web::site_dir());
     cmd

@@ -1,0 +1,342 @@
+// Shared helpers of the browser end-to-end tests (`*.test.mjs` in this folder): a static server
+// for the web build, a Chromium session that records the page's console, and the checks that
+// every variant makes. Not a test file itself (`node --test` only runs `*.test.mjs` here).
+//
+// Environment: SWARF_WEB_DIR (default <repo>/target/web), SWARF_CHROMIUM (default
+// /usr/bin/chromium).
+
+import assert from "node:assert/strict";
+import { createServer } from "node:http";
+import { mkdtemp, mkdir, readFile, rm, stat, writeFile } from "node:fs/promises";
+import { existsSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+import { fileURLToPath } from "node:url";
+
+import { chromium } from "playwright-core";
+import { PNG } from "pngjs";
+
+const HERE = path.dirname(fileURLToPath(import.meta.url));
+const REPO = path.resolve(HERE, "..", "..");
+export const SITE = path.resolve(process.env.SWARF_WEB_DIR ?? path.join(REPO, "target", "web"));
+export const CHROMIUM = process.env.SWARF_CHROMIUM ?? "/usr/bin/chromium";
+export const ARTIFACTS = path.join(HERE, "artifacts");
+
+export const READY_TIMEOUT_MS = 120_000;
+export const TEST_TIMEOUT_MS = 180_000;
+
+/** Chromium flags of every variant: no sandbox (root in CI), nothing that phones home. */
+export const COMMON_CHROMIUM_ARGS = [
+  "--no-sandbox",
+  "--disable-quic",
+  "--no-first-run",
+  "--disable-background-networking",
+  "--disable-component-update",
+  "--disable-sync",
+];
+
+const MIME = {
+  ".html": "text/html; charset=utf-8",
+  ".js": "text/javascript; charset=utf-8",
+  ".mjs": "text/javascript; charset=utf-8",
+  ".css": "text/css; charset=utf-8",
+  ".wasm": "application/wasm",
+  ".png": "image/png",
+  ".svg": "image/svg+xml",
+  ".json": "application/json",
+  ".ico": "image/x-icon",
+};
+
+/** Throws a readable error when the web build or Chromium is missing. */
+export function checkPrerequisites() {
+  for (const file of ["index.html", "swarf.js", "swarf_app.js", "swarf_app_bg.wasm"]) {
+    if (!existsSync(path.join(SITE, file))) {
+      throw new Error(
+        `${path.join(SITE, file)} is missing: build the web page first with \`cargo xtask web\``,
+      );
+    }
+  }
+  if (!existsSync(CHROMIUM)) {
+    throw new Error(
+      `${CHROMIUM} not found: install Debian's chromium (cargo xtask test does) or set SWARF_CHROMIUM`,
+    );
+  }
+}
+
+/** A static file server for SITE; 404 for anything outside it. */
+function startServer() {
+  const root = SITE + path.sep;
+  const httpServer = createServer(async (request, response) => {
+    try {
+      const url = new URL(request.url ?? "/", "http://localhost");
+      let file = path.normalize(path.join(SITE, decodeURIComponent(url.pathname)));
+      if (!(file + path.sep).startsWith(root) && file !== SITE) {
+        throw new Error("outside the site");
+      }
+      if ((await stat(file)).isDirectory()) {
+        file = path.join(file, "index.html");
+      }
+      const body = await readFile(file);
+      response.writeHead(200, {
+        "Content-Type": MIME[path.extname(file).toLowerCase()] ?? "application/octet-stream",
+        "Cache-Control": "no-store",
+      });
+      response.end(request.method === "HEAD" ? undefined : body);
+    } catch {
+      response.writeHead(404, { "Content-Type": "text/plain" });
+      response.end("not found");
+    }
+  });
+  return new Promise((resolve, reject) => {
+    httpServer.once("error", reject);
+    httpServer.listen(0, "127.0.0.1", () => resolve(httpServer));
+  });
+}
+
+function withTimeout(promise, ms, what) {
+  let timer;
+  const timeout = new Promise((_, reject) => {
+    timer = setTimeout(() => reject(new Error(`${what}: timed out after ${ms / 1000} s`)), ms);
+  });
+  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
+}
+
+/**
+ * The web build served on 127.0.0.1 (a secure context, as WebGPU requires) and one Chromium
+ * page, with everything the page logs.
+ */
+export class BrowserSession {
+  /** Everything the page logged, in order, for failure messages. */
+  consoleLog = [];
+  /** Console errors and uncaught page errors: the page must produce none. */
+  pageErrors = [];
+
+  /**
+   * Starts the server and Chromium (`headless`: the old headless mode via `--headless` in
+   * `args`, or a headed window on $DISPLAY) with COMMON_CHROMIUM_ARGS plus `args`.
+   */
+  static async start({ headless, args }) {
+    const session = new BrowserSession();
+    try {
+      await session.#start(headless, args);
+    } catch (error) {
+      await session.close();
+      throw error;
+    }
+    return session;
+  }
+
+  async #start(headless, args) {
+    this.server = await startServer();
+    this.baseUrl = `http://127.0.0.1:${this.server.address().port}/`;
+
+    this.userDataDir = await mkdtemp(path.join(tmpdir(), "swarf-e2e-chromium-"));
+    this.context = await chromium.launchPersistentContext(this.userDataDir, {
+      executablePath: CHROMIUM,
+      headless,
+      args: [...COMMON_CHROMIUM_ARGS, ...args],
+      viewport: { width: 1280, height: 800 },
+      deviceScaleFactor: 1,
+      timeout: 60_000,
+    });
+    this.page = this.context.pages()[0] ?? (await this.context.newPage());
+    const { consoleLog, pageErrors } = this;
+    this.page.on("console", (message) => {
+      const location = message.location();
+      const where = location?.url ? ` (${location.url}:${location.lineNumber})` : "";
+      const line = `[${message.type()}] ${message.text()}${where}`;
+      consoleLog.push(line);
+      if (message.type() === "error") {
+        pageErrors.push(line);
+      }
+    });
+    this.page.on("pageerror", (error) => {
+      const line = `[pageerror] ${error.stack ?? error.message ?? String(error)}`;
+      consoleLog.push(line);
+      pageErrors.push(line);
+    });
+    this.page.on("requestfailed", (request) => {
+      consoleLog.push(
+        `[requestfailed] ${request.url()}: ${request.failure()?.errorText ?? "unknown error"}`,
+      );
+    });
+    this.page.on("crash", () => {
+      consoleLog.push("[crash] the page crashed");
+      pageErrors.push("[crash] the page crashed");
+    });
+  }
+
+  async close() {
+    await this.context?.close().catch(() => {});
+    await new Promise((resolve) => (this.server ? this.server.close(resolve) : resolve()));
+    if (this.userDataDir) {
+      await rm(this.userDataDir, { recursive: true, force: true }).catch(() => {});
+    }
+  }
+
+  logTail(lines = 60) {
+    if (this.consoleLog.length === 0) {
+      return "(the page logged nothing)";
+    }
+    const tail = this.consoleLog.slice(-lines);
+    const skipped = this.consoleLog.length - tail.length;
+    return (skipped > 0 ? `(… ${skipped} earlier lines)\n` : "") + tail.join("\n");
+  }
+
+  withLog(message) {
+    return `${message}\n--- browser console ---\n${this.logTail()}\n--- end of console ---`;
+  }
+
+  /** Polls `fn` in the page until `check(value)` holds; returns the value. */
+  async eventually(fn, arg, check, what, timeoutMs = 30_000) {
+    const deadline = Date.now() + timeoutMs;
+    let value;
+    for (;;) {
+      value = await this.page.evaluate(fn, arg);
+      if (check(value)) {
+        return value;
+      }
+      if (Date.now() > deadline) {
+        assert.fail(
+          this.withLog(
+            `${what} (waited ${timeoutMs / 1000} s); last value: ${JSON.stringify(value)}`,
+          ),
+        );
+      }
+      await new Promise((resolve) => setTimeout(resolve, 100));
+    }
+  }
+
+  async saveFailureScreenshot(name) {
+    try {
+      await mkdir(ARTIFACTS, { recursive: true });
+      await this.page.screenshot({ path: path.join(ARTIFACTS, name) });
+    } catch {
+      // Best effort only.
+    }
+  }
+
+  /**
+   * Loads the page and waits for `window.swarf.ready`; on failure saves `failureScreenshot`
+   * under ARTIFACTS and fails with the page's message and console.
+   */
+  async loadUntilReady(failureScreenshot) {
+    const { page, baseUrl } = this;
+    const response = await page.goto(baseUrl, { waitUntil: "load", timeout: 60_000 });
+    assert.equal(response?.status(), 200, `GET ${baseUrl} answered ${response?.status()}`);
+
+    await page
+      .waitForFunction(() => typeof window.swarf === "object" && window.swarf !== null, null, {
+        timeout: 30_000,
+      })
+      .catch(() =>
+        assert.fail(this.withLog("window.swarf was never defined: web/swarf.js did not run")),
+      );
+
+    const outcome = await withTimeout(
+      page.evaluate(async () => {
+        try {
+          await window.swarf.ready;
+          return { ok: true };
+        } catch (error) {
+          return { ok: false, error: String(error?.stack ?? error) };
+        }
+      }),
+      READY_TIMEOUT_MS,
+      "waiting for window.swarf.ready",
+    ).catch(async (error) => {
+      await this.saveFailureScreenshot(failureScreenshot);
+      assert.fail(this.withLog(error.message));
+    });
+    if (!outcome.ok) {
+      await this.saveFailureScreenshot(failureScreenshot);
+      const shown = await page.locator("#swarf-status").innerText().catch(() => "");
+      assert.fail(
+        this.withLog(`window.swarf.ready rejected: ${outcome.error}\npage shows: ${shown.trim()}`),
+      );
+    }
+
+    assert.equal(
+      await page.locator("#swarf-status").isVisible(),
+      false,
+      "the loading message is still visible after ready",
+    );
+  }
+
+  /**
+   * Checks that the canvas fills the window and, within 30 s, shows a drawing rather than one
+   * flat colour; saves its screenshot as ARTIFACTS/`artifact`.
+   */
+  async assertCanvasNotBlank(artifact) {
+    const canvas = this.page.locator("#swarf-canvas");
+    const box = await canvas.boundingBox();
+    assert.ok(
+      box && box.width >= 1200 && box.height >= 700,
+      `the canvas should fill the 1280x800 window, its box is ${JSON.stringify(box)}`,
+    );
+
+    // Give egui a few frames to lay out and the backplot to draw, then retry for a while.
+    const deadline = Date.now() + 30_000;
+    let result;
+    let png;
+    for (;;) {
+      await this.page.waitForTimeout(500);
+      png = await canvas.screenshot({ timeout: 30_000 });
+      result = analyse(PNG.sync.read(png));
+      if (result.differing >= 500 && result.distinct > 16) {
+        break;
+      }
+      if (Date.now() > deadline) {
+        break;
+      }
+    }
+    const file = path.join(ARTIFACTS, artifact);
+    await mkdir(ARTIFACTS, { recursive: true });
+    await writeFile(file, png);
+    assert.ok(
+      result.differing >= 500 && result.distinct > 16,
+      this.withLog(
+        `the canvas looks blank: ${result.differing} of ${result.total} pixels differ from the ` +
+          `dominant colour rgba(${result.dominant}), ${result.distinct} distinct colours ` +
+          `(expected >= 500 and > 16); see ${file}`,
+      ),
+    );
+  }
+
+  /** Fails with the page's errors, if it reported any. */
+  assertNoPageErrors() {
+    assert.deepEqual(
+      this.pageErrors,
+      [],
+      this.withLog(
+        `the page reported ${this.pageErrors.length} error(s):\n${this.pageErrors.join("\n")}`,
+      ),
+    );
+  }
+}
+
+/** Counts distinct colours and pixels that differ from the most common colour. */
+function analyse(image) {
+  const counts = new Map();
+  const { data } = image;
+  for (let i = 0; i < data.length; i += 4) {
+    const key = ((data[i] << 24) | (data[i + 1] << 16) | (data[i + 2] << 8) | data[i + 3]) >>> 0;
+    counts.set(key, (counts.get(key) ?? 0) + 1);
+  }
+  let dominantKey = 0;
+  let dominantCount = 0;
+  for (const [key, count] of counts) {
+    if (count > dominantCount) {
+      dominantKey = key;
+      dominantCount = count;
+    }
+  }
+  const total = data.length / 4;
+  const dominant = [24, 16, 8, 0].map((shift) => (dominantKey >>> shift) & 0xff).join(",");
+  return { total, distinct: counts.size, differing: total - dominantCount, dominant };
+}
+
+/** Whether a `window.swarf.diagnostics()` entry is an error (the severity in any case). */
+export function isError(diagnostic) {
+  return String(diagnostic.severity).toLowerCase() === "error";
+}
