@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use serde_json::json;
-use swarf_interp::{Canon, Interpreter, Setup, Sink, Source, Status};
+use swarf_interp::{Canon, Setup, Sink, Source};
 use swarf_syntax::{Diagnostic, Dialect, LineIndex, Program, Severity, decode, parse};
 use swarf_toolpath::Toolpath;
 
@@ -147,10 +147,8 @@ fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
 impl Loaded {
     /// Interprets the program into `sink`; returns every diagnostic sorted by position.
     fn interpret(&self, sink: &mut dyn Sink) -> Vec<Diagnostic> {
-        let mut interp = Interpreter::new(self.setup.clone(), self.program.dialect);
-        while interp.step(&self.program, sink, 65_536) == Status::Running {}
         let mut all = self.diagnostics.clone();
-        all.extend(interp.take_diagnostics());
+        all.extend(swarf_interp::run(&self.program, self.setup.clone(), sink));
         all.sort_by_key(|d| (d.span.start, d.span.end));
         all
     }

@@ -3,7 +3,7 @@
 use std::sync::Arc;
 
 use glam::DVec3;
-use swarf_interp::{Interpreter, Setup, Status};
+use swarf_interp::Setup;
 use swarf_render::Vertex;
 use swarf_syntax::{Dialect, Program, Severity, parse};
 use swarf_toolpath::{SegmentKind, Toolpath};
@@ -65,10 +65,8 @@ impl Analysis {
     pub fn run(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
         let program = parse(text, dialect);
         let mut toolpath = Toolpath::new(DVec3::ZERO, setup.machine.rapid_mm_per_min);
-        let mut interp = Interpreter::new(setup.clone(), dialect);
-        while interp.step(&program, &mut toolpath, 65_536) == Status::Running {}
         let mut diags = program.diagnostics.clone();
-        diags.extend(interp.take_diagnostics());
+        diags.extend(swarf_interp::run(&program, setup.clone(), &mut toolpath));
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         let problems = locate(text, &program, &diags);
         let scene = scene_of(&toolpath, generation);
