@@ -3,7 +3,7 @@
 use glam::DVec3;
 use swarf_syntax::{Block, Diagnostic, Dialect, Program, Word};
 
-use crate::{Canon, Setup, Sink, Source};
+use crate::{Axis, Canon, Setup, Sink, Source};
 
 /// Whether a run has more blocks to execute.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,13 +26,17 @@ pub struct Limits {
 enum MotionMode {
     Rapid,
     Linear,
+    /// G02 (clockwise) or G03 (counter-clockwise) seen from the plane normal's positive end.
+    Arc {
+        ccw: bool,
+    },
 }
 
 /// What one G code does, for the codes the interpreter runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum GAction {
     Motion(Option<MotionMode>),
-    Plane,
+    Plane(Axis),
     Absolute(bool),
     Metric(bool),
     WorkOffset(&'static str),
@@ -47,7 +51,7 @@ enum GAction {
 fn group(action: GAction) -> Option<u8> {
     match action {
         GAction::Motion(_) => Some(1),
-        GAction::Plane => Some(2),
+        GAction::Plane(_) => Some(2),
         GAction::Absolute(_) => Some(3),
         GAction::Metric(_) => Some(6),
         GAction::WorkOffset(_) => Some(14),
@@ -63,7 +67,11 @@ fn g_action(dialect: Dialect, code10: i64) -> Option<GAction> {
         10 => GAction::Motion(Some(MotionMode::Linear)),
         800 => GAction::Motion(None),
         40 => GAction::Dwell,
-        170 | 180 | 190 => GAction::Plane,
+        20 => GAction::Motion(Some(MotionMode::Arc { ccw: false })),
+        30 => GAction::Motion(Some(MotionMode::Arc { ccw: true })),
+        170 => GAction::Plane(Axis::Z),
+        180 => GAction::Plane(Axis::Y),
+        190 => GAction::Plane(Axis::X),
         900 => GAction::Absolute(true),
         910 => GAction::Absolute(false),
         200 if !syntec => GAction::Metric(false),
@@ -78,7 +86,6 @@ fn g_action(dialect: Dialect, code10: i64) -> Option<GAction> {
         590 => GAction::WorkOffset("G59"),
         // Cancel codes of modes that cannot be active yet.
         150 | 400 | 490 | 500 | 501 | 670 | 690 | 940 | 970 | 640 | 611 | 610 => GAction::Cancel,
-        20 | 30 => GAction::NotYet("circular interpolation"),
         90 => GAction::NotYet("exact stop"),
         100 => GAction::NotYet("programmable data input"),
         160 => GAction::NotYet("polar coordinates"),
@@ -113,6 +120,7 @@ pub struct Interpreter {
     /// Tool-tip position in the machine frame, millimetres.
     position: DVec3,
     motion: Option<MotionMode>,
+    plane: Axis,
     absolute: bool,
     metric: bool,
     work_offset: DVec3,
@@ -134,6 +142,7 @@ impl Interpreter {
             finished: false,
             position: DVec3::ZERO,
             motion: Some(MotionMode::Rapid),
+            plane: Axis::Z,
             absolute: true,
             metric: true,
             work_offset,
@@ -224,6 +233,8 @@ impl Interpreter {
     fn execute(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) {
         let mut actions: Vec<(GAction, &Word)> = Vec::new();
         let mut axes: [Option<&Word>; 3] = [None; 3];
+        let mut offsets: [Option<&Word>; 3] = [None; 3];
+        let mut radius: Option<&Word> = None;
         let mut runnable = true;
         for word in &block.words {
             match word.letter {
@@ -278,6 +289,21 @@ impl Interpreter {
                     }
                     axes[i] = Some(word);
                 }
+                b'I' | b'J' | b'K' => {
+                    let i = usize::from(word.letter - b'I');
+                    if offsets[i].is_some() {
+                        self.duplicate(word);
+                        runnable = false;
+                    }
+                    offsets[i] = Some(word);
+                }
+                b'R' => {
+                    if radius.is_some() {
+                        self.duplicate(word);
+                        runnable = false;
+                    }
+                    radius = Some(word);
+                }
                 b'F' | b'S' | b'T' | b'M' | b'O' | b'P' => {}
                 _ => self.diagnostics.push(Diagnostic::warning(
                     word.span,
@@ -323,7 +349,8 @@ impl Interpreter {
                 GAction::WorkOffset(name) => self.work_offset = self.setup.work_offset(name),
                 GAction::Motion(m) => motion = m,
                 GAction::Dwell => dwell = Some(*word),
-                GAction::Plane | GAction::Cancel | GAction::NotYet(_) => {}
+                GAction::Plane(p) => self.plane = p,
+                GAction::Cancel | GAction::NotYet(_) => {}
             }
         }
         if block.word(b'F').is_some() {
@@ -333,8 +360,29 @@ impl Interpreter {
             self.dwell(block, g4, source, sink);
         }
         self.motion = motion;
-        if axes.iter().any(Option::is_some) && dwell.is_none() {
-            self.move_to(block, axes, source, sink);
+        let arc = match motion {
+            Some(MotionMode::Arc { ccw }) => Some(ccw),
+            _ => None,
+        };
+        let has_center = offsets.iter().any(Option::is_some) || radius.is_some();
+        if arc.is_none() || dwell.is_some() {
+            for w in offsets.iter().flatten().chain(radius.iter()) {
+                self.diagnostics.push(Diagnostic::warning(
+                    w.span,
+                    "W-WORD-IGNORED",
+                    format!(
+                        "address `{}` is only used by G02/G03 here and is ignored",
+                        w.letter()
+                    ),
+                ));
+            }
+        }
+        if dwell.is_none() {
+            if let Some(ccw) = arc.filter(|_| has_center) {
+                self.arc_to(block, axes, offsets, radius, ccw, source, sink);
+            } else if axes.iter().any(Option::is_some) {
+                self.move_to(block, axes, source, sink);
+            }
         }
         self.m_codes(block, source, sink);
     }
@@ -394,17 +442,17 @@ impl Interpreter {
             ));
             return;
         };
-        let work = self.position - self.work_offset;
-        let mut target = work;
-        for (i, word) in axes.iter().enumerate() {
-            if let Some(w) = word {
-                let v = self.mm(w.value);
-                target[i] = if self.absolute { v } else { work[i] + v };
-            }
-        }
-        let to = target + self.work_offset;
+        let to = self.target(axes);
         let event = match mode {
             MotionMode::Rapid => Canon::Rapid { to },
+            MotionMode::Arc { .. } => {
+                self.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-ARC-CENTER",
+                    "G02/G03 needs the centre (I, J, K) or the radius (R)",
+                ));
+                return;
+            }
             MotionMode::Linear => {
                 if self.feed_mm_per_min <= 0.0 {
                     self.diagnostics.push(Diagnostic::error(
@@ -421,6 +469,137 @@ impl Interpreter {
         };
         self.position = to;
         sink.emit(source, &event);
+    }
+
+    /// The machine-frame end point of a move programmed with `axes`.
+    fn target(&self, axes: [Option<&Word>; 3]) -> DVec3 {
+        let work = self.position - self.work_offset;
+        let mut target = work;
+        for (i, word) in axes.iter().enumerate() {
+            if let Some(w) = word {
+                let v = self.mm(w.value);
+                target[i] = if self.absolute { v } else { work[i] + v };
+            }
+        }
+        target + self.work_offset
+    }
+
+    /// G02/G03: centre from I/J/K (incremental from the start) or from R (negative R for
+    /// more than half a circle); the axis words off the plane make it helical.
+    #[allow(clippy::too_many_arguments)]
+    fn arc_to(
+        &mut self,
+        block: &Block,
+        axes: [Option<&Word>; 3],
+        offsets: [Option<&Word>; 3],
+        radius: Option<&Word>,
+        ccw: bool,
+        source: Source,
+        sink: &mut dyn Sink,
+    ) {
+        let (u, v) = plane_axes(self.plane);
+        let from = self.position;
+        let to = self.target(axes);
+        let mut center = from;
+        if let Some(r) = radius.filter(|_| offsets.iter().all(Option::is_none)) {
+            let r_mm = self.mm(r.value);
+            let (du, dv) = (to[u] - from[u], to[v] - from[v]);
+            let chord = du.hypot(dv);
+            if chord < 1e-9 {
+                self.diagnostics.push(Diagnostic::error(
+                    r.span,
+                    "E-ARC-CENTER",
+                    "an arc programmed with R cannot end where it starts: use I/J/K for a full circle",
+                ));
+                return;
+            }
+            let half = chord / 2.0;
+            if r_mm.abs() + self.setup.machine.arc_tolerance_mm < half {
+                self.diagnostics.push(Diagnostic::error(
+                    r.span,
+                    "E-ARC-RADIUS",
+                    format!(
+                        "R{} is smaller than half the distance to the end point ({half:.4} mm)",
+                        r.value
+                    ),
+                ));
+                return;
+            }
+            let h = (r_mm * r_mm - half * half).max(0.0).sqrt();
+            // Left of the chord for a short counter-clockwise arc, right for a short clockwise one.
+            let side = if ccw == (r_mm > 0.0) { 1.0 } else { -1.0 };
+            center[u] = from[u] + du / 2.0 - side * h * dv / chord;
+            center[v] = from[v] + dv / 2.0 + side * h * du / chord;
+        } else {
+            for (i, w) in offsets.iter().enumerate() {
+                if let Some(w) = w {
+                    if i == u || i == v {
+                        center[i] = from[i] + self.mm(w.value);
+                    } else {
+                        self.diagnostics.push(Diagnostic::warning(
+                            w.span,
+                            "W-WORD-IGNORED",
+                            format!(
+                                "`{}` is not a centre offset in the selected plane and is ignored",
+                                w.letter()
+                            ),
+                        ));
+                    }
+                }
+            }
+            if let Some(r) = radius {
+                self.diagnostics.push(Diagnostic::warning(
+                    r.span,
+                    "W-WORD-IGNORED",
+                    "R is ignored when the centre is given with I/J/K",
+                ));
+            }
+            let r0 = (from[u] - center[u]).hypot(from[v] - center[v]);
+            let r1 = (to[u] - center[u]).hypot(to[v] - center[v]);
+            if r0 < 1e-9 {
+                self.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-ARC-CENTER",
+                    "the arc's centre is at its start point",
+                ));
+                return;
+            }
+            if (r0 - r1).abs() > self.setup.machine.arc_tolerance_mm {
+                let alarm = if self.dialect == Dialect::Syntec {
+                    " (alarm COR-006)"
+                } else {
+                    ""
+                };
+                self.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-ARC-RADIUS",
+                    format!(
+                        "the end point is {:.4} mm off the arc: start radius {r0:.4} mm, end radius {r1:.4} mm{alarm}",
+                        (r0 - r1).abs()
+                    ),
+                ));
+                return;
+            }
+        }
+        if self.feed_mm_per_min <= 0.0 {
+            self.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-NO-FEED",
+                "G02/G03 needs a feed rate: program F before or in this block",
+            ));
+        }
+        self.position = to;
+        sink.emit(
+            source,
+            &Canon::Arc {
+                to,
+                center,
+                axis: self.plane,
+                ccw,
+                turns: 0,
+                feed_mm_per_min: self.feed_mm_per_min,
+            },
+        );
     }
 
     fn m_codes(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) {
@@ -483,4 +662,14 @@ pub fn run(program: &Program, setup: Setup, sink: &mut dyn Sink) -> Vec<Diagnost
     let mut interp = Interpreter::new(setup, program.dialect);
     while interp.step(program, sink, 4096) == Status::Running {}
     interp.take_diagnostics()
+}
+
+/// Indices of the two in-plane axes (u, v) of a plane, ordered so that u × v points along the
+/// plane normal: X,Y for G17; Z,X for G18; Y,Z for G19.
+fn plane_axes(normal: Axis) -> (usize, usize) {
+    match normal {
+        Axis::Z => (0, 1),
+        Axis::Y => (2, 0),
+        Axis::X => (1, 2),
+    }
 }

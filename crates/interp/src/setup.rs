@@ -52,6 +52,8 @@ pub struct Machine {
     pub rapid_mm_per_min: f64,
     /// Most blocks executed before a run is stopped as runaway.
     pub max_blocks: u64,
+    /// Largest difference between an arc's start and end radius before it is an alarm (mm).
+    pub arc_tolerance_mm: f64,
 }
 
 impl Default for Machine {
@@ -59,6 +61,7 @@ impl Default for Machine {
         Machine {
             rapid_mm_per_min: 10_000.0,
             max_blocks: 50_000_000,
+            arc_tolerance_mm: 0.01,
         }
     }
 }

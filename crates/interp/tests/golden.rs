@@ -43,6 +43,7 @@ macro_rules! golden {
 }
 
 golden!(incremental, "");
+golden!(arcs, "");
 golden!(
     offsets,
     include_str!("../../../tests/golden/offsets.setup.toml")

@@ -28,7 +28,7 @@ fn modal_conflict_is_an_error_and_the_block_does_not_move() {
 
 #[test]
 fn unsupported_codes_say_so() {
-    let (rec, diags) = run_text("G02 X10 Y0 R5 F100\nG01 X1 F100\n", Dialect::Fanuc);
+    let (rec, diags) = run_text("G68 X0 Y0 R45\nG01 X1 F100\n", Dialect::Fanuc);
     assert_eq!(codes(&diags)[0], "W-NOT-INTERPRETED");
     assert_eq!(rec.events.len(), 1);
 }
@@ -105,4 +105,43 @@ fn blocks_with_parse_errors_are_not_run() {
     let (rec, diags) = run_text("G0 X$ \nG0 X3\n", Dialect::Fanuc);
     assert!(diags.is_empty());
     assert_eq!(rec.events.len(), 1);
+}
+
+#[test]
+fn arc_end_off_the_circle_is_an_alarm_that_names_syntec_cor_006() {
+    let (rec, diags) = run_text("G0 X10\nG02 X0 Y5 I-10 F100\n", Dialect::Syntec);
+    assert_eq!(codes(&diags), ["E-ARC-RADIUS"]);
+    assert!(diags[0].message.contains("COR-006"), "{}", diags[0].message);
+    assert_eq!(rec.events.len(), 1);
+}
+
+#[test]
+fn arc_radius_too_small_or_full_circle_with_r_is_an_error() {
+    let (_, diags) = run_text("G02 X30 Y0 R10 F100\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-ARC-RADIUS"]);
+    let (_, diags) = run_text("G0 X5\nG02 X5 Y0 R10 F100\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-ARC-CENTER"]);
+    let (_, diags) = run_text("G02 X5 Y5 F100\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-ARC-CENTER"]);
+}
+
+#[test]
+fn arc_words_outside_arcs_are_reported() {
+    let (_, diags) = run_text("G01 X5 I3 F100\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["W-WORD-IGNORED"]);
+}
+
+#[test]
+fn inch_arcs_convert_centre_offsets() {
+    let (rec, _) = run_text("G20 G0 X1\nG03 X-1 I-1 F10\n", Dialect::Fanuc);
+    match &rec.events[1].1 {
+        Canon::Arc {
+            to, center, ccw, ..
+        } => {
+            assert!(to.abs_diff_eq(DVec3::new(-25.4, 0.0, 0.0), 1e-9));
+            assert!(center.abs_diff_eq(DVec3::ZERO, 1e-9));
+            assert!(*ccw);
+        }
+        other => panic!("{other:?}"),
+    }
 }
