@@ -20,7 +20,7 @@ impl SwarfApp {
     /// Creates the app and registers the backplot's GPU resources with eframe's wgpu renderer.
     pub fn new(cc: &eframe::CreationContext<'_>) -> Self {
         if let Some(render_state) = cc.wgpu_render_state.as_ref() {
-            Backplot::install(render_state);
+            Backplot::install(&cc.egui_ctx, render_state);
         } else {
             log::warn!("no wgpu render state: the 3D view is unavailable");
         }

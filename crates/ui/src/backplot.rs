@@ -8,15 +8,16 @@
 
 use std::collections::HashMap;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 use egui::epaint::ViewportInPixels;
 use glam::{Mat4, Vec2, Vec3};
 use swarf_render::{LineRenderer, OrbitCamera, Projection, StandardView, Vertex, grid_vertices};
 
-/// Set once [`Backplot::install`] has run in this process; without it `show` draws a notice
-/// instead of a paint callback nobody would execute (e.g. on the glow backend).
-static INSTALLED: AtomicBool = AtomicBool::new(false);
+/// Key of the flag [`Backplot::install`] leaves in the egui context's memory; without it `show`
+/// draws a notice instead of a paint callback nobody would execute (e.g. on the glow backend).
+fn installed_key() -> egui::Id {
+    egui::Id::unique("swarf-backplot-installed")
+}
 
 /// GPU views not painted for this many frames release their buffers (re-created on demand).
 const STALE_FRAMES: u64 = 600;
@@ -72,13 +73,17 @@ impl Backplot {
     /// Assumes egui-wgpu's default render pass (as eframe configures it with the default
     /// `multisampling: 0`): one sample and no depth attachment. For other MSAA settings use
     /// [`Self::install_with_sample_count`].
-    pub fn install(render_state: &egui_wgpu::RenderState) {
-        Self::install_with_sample_count(render_state, 1);
+    pub fn install(ctx: &egui::Context, render_state: &egui_wgpu::RenderState) {
+        Self::install_with_sample_count(ctx, render_state, 1);
     }
 
     /// Like [`Self::install`] for an egui render pass with `sample_count` MSAA samples
     /// (eframe's `NativeOptions::multisampling`, 0 meaning 1).
-    pub fn install_with_sample_count(render_state: &egui_wgpu::RenderState, sample_count: u32) {
+    pub fn install_with_sample_count(
+        ctx: &egui::Context,
+        render_state: &egui_wgpu::RenderState,
+        sample_count: u32,
+    ) {
         let resources = BackplotResources {
             target_format: render_state.target_format,
             sample_count: sample_count.max(1),
@@ -89,7 +94,7 @@ impl Backplot {
             .write()
             .callback_resources
             .insert(resources);
-        INSTALLED.store(true, Ordering::Release);
+        ctx.data_mut(|d| d.insert_temp(installed_key(), true));
     }
 
     /// Fit to extents on the next frame.
@@ -116,7 +121,11 @@ impl Backplot {
         let background = ui.visuals().extreme_bg_color;
         ui.painter().rect_filled(rect, 0.0, background);
 
-        if !INSTALLED.load(Ordering::Acquire) {
+        if !ui
+            .ctx()
+            .data(|d| d.get_temp::<bool>(installed_key()))
+            .unwrap_or(false)
+        {
             // A real label (not painter text) so screen readers and tests can find it.
             ui.put(
                 rect,

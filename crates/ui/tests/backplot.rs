@@ -65,8 +65,6 @@ fn app(ui: &mut egui::Ui, state: &mut State) {
     state.0.show(ui, &state.1);
 }
 
-// One test function on purpose: `install` flips a process-wide flag, so the "unavailable"
-// check must run before it, in the same thread.
 #[test]
 fn backplot_paints_lines_or_says_unavailable() {
     // 1. Without `install`, the widget shows a notice and never panics.
@@ -80,10 +78,10 @@ fn backplot_paints_lines_or_says_unavailable() {
         return;
     };
     eprintln!("adapter: {:?}", render_state.adapter.get_info());
-    Backplot::install(&render_state);
     let mut harness = harness_builder()
-        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
         .build_ui_state(app, (Backplot::new(), scene()));
+    Backplot::install(&harness.ctx, &render_state);
     harness.run();
     let image = harness.render().expect("render");
     let lit = magenta_pixels(image.as_raw());
