@@ -127,3 +127,34 @@ fn stats_reports_blocks_motions_bounds_and_time() {
     assert_eq!(code, 0);
     assert!(text.contains("motions         7"), "{text}");
 }
+
+/// Every program of the shared peer corpus runs through `check` without a panic and with an
+/// exit status of 0 or 1 (skipped when `../shared` is not beside the repository).
+#[test]
+fn the_shared_corpus_checks_without_panics() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    if !root.is_dir() {
+        eprintln!("skipped: {} is not present", root.display());
+        return;
+    }
+    let mut stack = vec![root];
+    let mut checked = 0;
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+            if !["nc", "ngc", "gcode", "gc", "tap"].contains(&ext) {
+                continue;
+            }
+            let p = path.to_str().unwrap();
+            let (code, _, err) = swarf(&["check", p, "--dialect", "linuxcnc"]);
+            assert!(code == 0 || code == 1, "{p}: exit {code}\n{err}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 10, "only {checked} corpus programs found");
+}
