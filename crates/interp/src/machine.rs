@@ -235,6 +235,8 @@ impl Interpreter {
         let mut axes: [Option<&Word>; 3] = [None; 3];
         let mut offsets: [Option<&Word>; 3] = [None; 3];
         let mut radius: Option<&Word> = None;
+        // F, S and T, in that order.
+        let mut settings: [Option<&Word>; 3] = [None; 3];
         let mut runnable = true;
         for word in &block.words {
             match word.letter {
@@ -282,29 +284,16 @@ impl Interpreter {
                     }
                 },
                 b'X' | b'Y' | b'Z' => {
-                    let i = usize::from(word.letter - b'X');
-                    if axes[i].is_some() {
-                        self.duplicate(word);
-                        runnable = false;
-                    }
-                    axes[i] = Some(word);
+                    runnable &= self.store(&mut axes[usize::from(word.letter - b'X')], word);
                 }
                 b'I' | b'J' | b'K' => {
-                    let i = usize::from(word.letter - b'I');
-                    if offsets[i].is_some() {
-                        self.duplicate(word);
-                        runnable = false;
-                    }
-                    offsets[i] = Some(word);
+                    runnable &= self.store(&mut offsets[usize::from(word.letter - b'I')], word);
                 }
-                b'R' => {
-                    if radius.is_some() {
-                        self.duplicate(word);
-                        runnable = false;
-                    }
-                    radius = Some(word);
-                }
-                b'F' | b'S' | b'T' | b'M' | b'O' | b'P' => {}
+                b'R' => runnable &= self.store(&mut radius, word),
+                b'F' => runnable &= self.store(&mut settings[0], word),
+                b'S' => runnable &= self.store(&mut settings[1], word),
+                b'T' => runnable &= self.store(&mut settings[2], word),
+                b'M' | b'O' | b'P' => {}
                 _ => self.diagnostics.push(Diagnostic::warning(
                     word.span,
                     "W-WORD-IGNORED",
@@ -318,13 +307,8 @@ impl Interpreter {
         if !runnable {
             return;
         }
-        for (letter, action) in [(b'F', 0), (b'S', 1), (b'T', 2)] {
-            let found: Vec<&Word> = block.words.iter().filter(|w| w.letter == letter).collect();
-            if found.len() > 1 {
-                self.duplicate(found[1]);
-                return;
-            }
-            let Some(w) = found.first() else { continue };
+        for (action, w) in settings.iter().enumerate() {
+            let Some(w) = w else { continue };
             if w.value < 0.0 {
                 self.diagnostics.push(Diagnostic::error(
                     w.span,
@@ -353,7 +337,7 @@ impl Interpreter {
                 GAction::Cancel | GAction::NotYet(_) => {}
             }
         }
-        if block.word(b'F').is_some() {
+        if settings[0].is_some() {
             self.feed_mm_per_min = self.mm(self.feed_mm_per_min);
         }
         if let Some(g4) = dwell {
@@ -387,12 +371,18 @@ impl Interpreter {
         self.m_codes(block, source, sink);
     }
 
-    fn duplicate(&mut self, word: &Word) {
-        self.diagnostics.push(Diagnostic::error(
-            word.span,
-            "E-WORD-TWICE",
-            format!("address `{}` appears twice in the block", word.letter()),
-        ));
+    /// Puts `word` in its slot; a second word for the same slot is an error (`false`).
+    fn store<'w>(&mut self, slot: &mut Option<&'w Word>, word: &'w Word) -> bool {
+        if slot.is_some() {
+            self.diagnostics.push(Diagnostic::error(
+                word.span,
+                "E-WORD-TWICE",
+                format!("address `{}` appears twice in the block", word.letter()),
+            ));
+            return false;
+        }
+        *slot = Some(word);
+        true
     }
 
     fn dwell(&mut self, block: &Block, g4: &Word, source: Source, sink: &mut dyn Sink) {

@@ -145,3 +145,12 @@ fn inch_arcs_convert_centre_offsets() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn a_word_given_twice_stops_the_block() {
+    for text in ["G0 X1 X2\n", "G1 X1 F100 F200\n", "G2 X1 I1 I2 F100\n"] {
+        let (rec, diags) = run_text(text, Dialect::Fanuc);
+        assert_eq!(codes(&diags), ["E-WORD-TWICE"], "{text}");
+        assert!(rec.events.is_empty(), "{text}");
+    }
+}
