@@ -114,21 +114,21 @@ struct Loaded {
     path: String,
     text: String,
     program: Program,
-    setup: Setup,
     /// Decoding and parsing diagnostics.
     diagnostics: Vec<Diagnostic>,
 }
 
-fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
-    let setup = match &opts.setup {
-        Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .map_err(|e| anyhow::anyhow!("cannot read setup {}: {e}", p.display()))?;
-            Setup::from_toml(&text)
-                .map_err(|e| anyhow::anyhow!("invalid setup {}: {e}", p.display()))?
-        }
-        None => Setup::default(),
+/// The setup named by `--setup`, or the default one.
+fn read_setup(opts: &RunOptions) -> anyhow::Result<Setup> {
+    let Some(p) = &opts.setup else {
+        return Ok(Setup::default());
     };
+    let text = std::fs::read_to_string(p)
+        .map_err(|e| anyhow::anyhow!("cannot read setup {}: {e}", p.display()))?;
+    Setup::from_toml(&text).map_err(|e| anyhow::anyhow!("invalid setup {}: {e}", p.display()))
+}
+
+fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
     let bytes =
         std::fs::read(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
     let decoded = decode(&bytes);
@@ -139,16 +139,15 @@ fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
         path: path.display().to_string(),
         text: decoded.text,
         program,
-        setup,
         diagnostics,
     })
 }
 
 impl Loaded {
     /// Interprets the program into `sink`; returns every diagnostic sorted by position.
-    fn interpret(&self, sink: &mut dyn Sink) -> Vec<Diagnostic> {
+    fn interpret(&self, setup: &Setup, sink: &mut dyn Sink) -> Vec<Diagnostic> {
         let mut all = self.diagnostics.clone();
-        all.extend(swarf_interp::run(&self.program, self.setup.clone(), sink));
+        all.extend(swarf_interp::run(&self.program, setup.clone(), sink));
         all.sort_by_key(|d| (d.span.start, d.span.end));
         all
     }
@@ -172,6 +171,7 @@ impl Loaded {
 }
 
 fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::Result<i32> {
+    let setup = read_setup(opts)?;
     let mut status = EXIT_OK;
     for file in files {
         let loaded = match load(file, opts) {
@@ -182,7 +182,7 @@ fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::R
                 continue;
             }
         };
-        let diags = loaded.interpret(&mut NullSink);
+        let diags = loaded.interpret(&setup, &mut NullSink);
         let s = loaded.print(&diags, err)?;
         if status == EXIT_OK {
             status = s;
@@ -219,13 +219,14 @@ fn canon(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
+    let setup = read_setup(opts)?;
     let loaded = load(file, opts)?;
     let mut buffered = std::io::BufWriter::new(out);
     let mut sink = JsonLines {
         out: &mut buffered,
         error: None,
     };
-    let diags = loaded.interpret(&mut sink);
+    let diags = loaded.interpret(&setup, &mut sink);
     if let Some(e) = sink.error {
         return Err(anyhow::anyhow!("cannot write output: {e}"));
     }
@@ -240,10 +241,11 @@ fn stats(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
+    let setup = read_setup(opts)?;
     let loaded = load(file, opts)?;
     let started = Instant::now();
-    let mut path = Toolpath::new(glam::DVec3::ZERO, loaded.setup.machine.rapid_mm_per_min);
-    let diags = loaded.interpret(&mut path);
+    let mut path = Toolpath::new(glam::DVec3::ZERO, setup.machine.rapid_mm_per_min);
+    let diags = loaded.interpret(&setup, &mut path);
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
     let errors = diags
         .iter()
