@@ -1,7 +1,9 @@
-//! The `swarf` command line: `check`, `canon` and `stats` over G-code files.
+//! The `swarf` command line: `check`, `canon` and `stats` over G-code files, and `explain`.
 //!
 //! Everything is in this library so it can be tested in-process; `main.rs` only forwards the
 //! process arguments and exit status.
+
+mod explain;
 
 use std::ffi::OsString;
 use std::io::Write;
@@ -69,6 +71,20 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Explain a G/M code (G83, G54.1, M98) or an address letter (Q) as each control reads it.
+    Explain {
+        /// The code or address; omit with --list.
+        what: Option<String>,
+        /// Only this dialect (default: every dialect that has it).
+        #[arg(long, value_parser = parse_dialect)]
+        dialect: Option<Dialect>,
+        /// List every code of the dialect (fanuc unless --dialect is given).
+        #[arg(long)]
+        list: bool,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 fn parse_dialect(s: &str) -> Result<Dialect, String> {
@@ -99,6 +115,12 @@ where
         Command::Check { files, opts } => check(&files, &opts, err),
         Command::Canon { file, opts } => canon(&file, &opts, out, err),
         Command::Stats { file, opts, json } => stats(&file, &opts, json, out, err),
+        Command::Explain {
+            what,
+            dialect,
+            list,
+            json,
+        } => explain::explain(what.as_deref(), dialect, list, json, out, err),
     };
     match result {
         Ok(code) => code,

@@ -1,7 +1,8 @@
 //! The modal machine: reads each block, checks it, and executes it in a fixed order.
 
 use glam::DVec3;
-use swarf_syntax::{Block, Diagnostic, Dialect, Program, Word};
+use swarf_syntax::codes::{self, Code};
+use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm};
 
 use crate::{Axis, Canon, Setup, Sink, Source};
 
@@ -43,8 +44,6 @@ enum GAction {
     Dwell,
     /// Cancels a mode the interpreter cannot enter yet, so it has nothing to do.
     Cancel,
-    /// A code controls have that is not interpreted yet.
-    NotYet(&'static str),
 }
 
 /// Modal group numbers, for the two-codes-in-one-group check.
@@ -55,11 +54,12 @@ fn group(action: GAction) -> Option<u8> {
         GAction::Absolute(_) => Some(3),
         GAction::Metric(_) => Some(6),
         GAction::WorkOffset(_) => Some(14),
-        GAction::Dwell | GAction::Cancel | GAction::NotYet(_) => None,
+        GAction::Dwell | GAction::Cancel => None,
     }
 }
 
-/// Looks up a G code given as ten times its number (`G54.1` is 541).
+/// What the interpreter does for a G code given as ten times its number (`G54.1` is 541);
+/// `None` for the codes of the dialect's table that it does not run yet.
 fn g_action(dialect: Dialect, code10: i64) -> Option<GAction> {
     let syntec = dialect == Dialect::Syntec;
     Some(match code10 {
@@ -86,25 +86,6 @@ fn g_action(dialect: Dialect, code10: i64) -> Option<GAction> {
         590 => GAction::WorkOffset("G59"),
         // Cancel codes of modes that cannot be active yet.
         150 | 400 | 490 | 500 | 501 | 670 | 690 | 940 | 970 | 640 | 611 | 610 => GAction::Cancel,
-        90 => GAction::NotYet("exact stop"),
-        100 => GAction::NotYet("programmable data input"),
-        160 => GAction::NotYet("polar coordinates"),
-        220 | 230 => GAction::NotYet("stroke limits"),
-        280 | 290 | 300 => GAction::NotYet("reference point return"),
-        310 => GAction::NotYet("skip"),
-        330 => GAction::NotYet("thread cutting"),
-        410 | 420 => GAction::NotYet("cutter radius compensation"),
-        430 | 440 => GAction::NotYet("tool length compensation"),
-        450..=480 => GAction::NotYet("tool position offset"),
-        510 | 511 => GAction::NotYet("scaling and mirroring"),
-        520 => GAction::NotYet("local coordinate system"),
-        530 => GAction::NotYet("machine coordinates"),
-        541 | 591..=599 => GAction::NotYet("extra work coordinate systems"),
-        650 | 660 => GAction::NotYet("macro calls"),
-        680 => GAction::NotYet("coordinate rotation"),
-        730 | 740 | 760 | 810..=890 => GAction::NotYet("canned cycles"),
-        920 | 921 => GAction::NotYet("coordinate system setting"),
-        930 | 950 | 960 => GAction::NotYet("feed and speed modes"),
         _ => return None,
     })
 }
@@ -128,6 +109,8 @@ pub struct Interpreter {
     spindle_rpm: f64,
     tool: u32,
     diagnostics: Vec<Diagnostic>,
+    /// Whether the least-increment note has been given in this run.
+    noted_least_increment: bool,
 }
 
 impl Interpreter {
@@ -150,6 +133,7 @@ impl Interpreter {
             spindle_rpm: 0.0,
             tool: 0,
             diagnostics: Vec::new(),
+            noted_least_increment: false,
         }
     }
 
@@ -229,6 +213,55 @@ impl Interpreter {
         if self.metric { value } else { value * 25.4 }
     }
 
+    /// Whether numbers without a decimal point are read in mm (calculator-type input).
+    fn calculator(&self) -> bool {
+        self.setup
+            .machine
+            .calculator_input
+            .unwrap_or(self.dialect.rules().calculator_input)
+    }
+
+    /// A coordinate or distance word in millimetres, read with the dialect's decimal-point rule.
+    fn length(&self, word: &Word) -> f64 {
+        self.mm(self
+            .dialect
+            .read(word, Quantity::Length, self.calculator(), !self.metric))
+    }
+
+    /// Notes, once per run, that a length without a decimal point is read in least increments.
+    fn note_least_increment(&mut self, words: &[Option<&Word>]) {
+        if self.noted_least_increment || self.calculator() {
+            return;
+        }
+        let Some(w) = words
+            .iter()
+            .flatten()
+            .find(|w| !w.has_point && w.expr.is_none() && w.value != 0.0)
+        else {
+            return;
+        };
+        self.noted_least_increment = true;
+        let unit = if self.metric {
+            "0.001 mm"
+        } else {
+            "0.0001 inch"
+        };
+        let read = self.dialect.read(w, Quantity::Length, false, !self.metric);
+        self.diagnostics.push(Diagnostic::note(
+            w.span,
+            "N-LEAST-INCREMENT",
+            format!(
+                "`{}{}` has no decimal point: {} reads it in least input increments ({unit}), as {read}; write `{}{}.` for {} (or set `calculator_input = true` under [machine])",
+                w.letter(),
+                w.value,
+                self.dialect.label(),
+                w.letter(),
+                w.value,
+                w.value
+            ),
+        ));
+    }
+
     /// Executes one block: check the words, then modes, feed/speed/tool, motion, then M codes.
     fn execute(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) {
         let mut actions: Vec<(GAction, &Word)> = Vec::new();
@@ -238,62 +271,80 @@ impl Interpreter {
         // F, S and T, in that order.
         let mut settings: [Option<&Word>; 3] = [None; 3];
         let mut runnable = true;
+        if block.has_macro() {
+            self.diagnostics.push(Diagnostic::warning(
+                block.span,
+                "W-NOT-INTERPRETED",
+                "macro statements and variables are not executed yet; this block is not run",
+            ));
+            return;
+        }
         for word in &block.words {
-            match word.letter {
-                b'G' => match code10(word.value).and_then(|c| g_action(self.dialect, c)) {
-                    Some(GAction::NotYet(what)) => {
-                        self.diagnostics.push(Diagnostic::warning(
-                            word.span,
-                            "W-NOT-INTERPRETED",
-                            format!(
-                                "G{} ({what}) is not interpreted yet; this block is not run",
-                                fmt_code(word.value)
-                            ),
-                        ));
-                        runnable = false;
-                    }
-                    Some(action) => {
-                        if let Some(g) = group(action)
-                            && let Some((_, other)) =
-                                actions.iter().find(|(a, _)| group(*a) == Some(g))
-                        {
-                            self.diagnostics.push(Diagnostic::error(
-                                    word.span,
-                                    "E-MODAL-CONFLICT",
-                                    format!(
-                                        "G{} and G{} are in the same modal group and cannot share a block",
-                                        fmt_code(other.value),
-                                        fmt_code(word.value)
-                                    ),
-                                ));
+            match (word.letter, word.form) {
+                (_, WordForm::Comma) => self.diagnostics.push(Diagnostic::warning(
+                    word.span,
+                    "W-NOT-INTERPRETED",
+                    format!(
+                        "`,{}` (chamfer/corner rounding) is not drawn yet: the corner is drawn sharp",
+                        word.letter()
+                    ),
+                )),
+                (_, WordForm::Indexed(n)) => self.diagnostics.push(Diagnostic::warning(
+                    word.span,
+                    "W-NOT-INTERPRETED",
+                    format!("`{}{n}=` is not interpreted yet and is ignored", word.letter()),
+                )),
+                (b'G', _) => {
+                    let code = Code::from_value(b'G', word.value);
+                    let action = code.and_then(|c| g_action(self.dialect, i64::from(c.tenths)));
+                    match (action, code.and_then(|c| codes::lookup(self.dialect, c))) {
+                        (Some(action), _) => {
+                            // Two codes of one group: the last one wins (the parser has
+                            // already warned, or refused the block where the dialect alarms).
+                            if let Some(g) = group(action)
+                                && let Some(at) =
+                                    actions.iter().position(|(a, _)| group(*a) == Some(g))
+                            {
+                                actions.remove(at);
+                            }
+                            actions.push((action, word));
+                        }
+                        (None, Some(def)) => {
+                            self.diagnostics.push(Diagnostic::warning(
+                                word.span,
+                                "W-NOT-INTERPRETED",
+                                format!(
+                                    "{} ({}) is not interpreted yet; this block is not run",
+                                    def.code, def.name
+                                ),
+                            ));
                             runnable = false;
                         }
-                        actions.push((action, word));
+                        (None, None) => {
+                            self.diagnostics.push(Diagnostic::error(
+                                word.span,
+                                "E-UNKNOWN-CODE",
+                                format!(
+                                    "G{} is not a code of {}",
+                                    fmt_code(word.value),
+                                    self.dialect.label()
+                                ),
+                            ));
+                            runnable = false;
+                        }
                     }
-                    None => {
-                        self.diagnostics.push(Diagnostic::error(
-                            word.span,
-                            "E-UNKNOWN-CODE",
-                            format!(
-                                "G{} is not a code of the {} dialect",
-                                fmt_code(word.value),
-                                self.dialect.label()
-                            ),
-                        ));
-                        runnable = false;
-                    }
-                },
-                b'X' | b'Y' | b'Z' => {
+                }
+                (b'X' | b'Y' | b'Z', _) => {
                     runnable &= self.store(&mut axes[usize::from(word.letter - b'X')], word);
                 }
-                b'I' | b'J' | b'K' => {
+                (b'I' | b'J' | b'K', _) => {
                     runnable &= self.store(&mut offsets[usize::from(word.letter - b'I')], word);
                 }
-                b'R' => runnable &= self.store(&mut radius, word),
-                b'F' => runnable &= self.store(&mut settings[0], word),
-                b'S' => runnable &= self.store(&mut settings[1], word),
-                b'T' => runnable &= self.store(&mut settings[2], word),
-                b'M' | b'O' | b'P' => {}
+                (b'R', _) => runnable &= self.store(&mut radius, word),
+                (b'F', _) => runnable &= self.store(&mut settings[0], word),
+                (b'S', _) => runnable &= self.store(&mut settings[1], word),
+                (b'T', _) => runnable &= self.store(&mut settings[2], word),
+                (b'M' | b'P', _) => {}
                 _ => self.diagnostics.push(Diagnostic::warning(
                     word.span,
                     "W-WORD-IGNORED",
@@ -307,6 +358,13 @@ impl Interpreter {
         if !runnable {
             return;
         }
+        let lengths: Vec<Option<&Word>> = axes
+            .iter()
+            .chain(&offsets)
+            .chain([&radius])
+            .copied()
+            .collect();
+        self.note_least_increment(&lengths);
         for (action, w) in settings.iter().enumerate() {
             let Some(w) = w else { continue };
             if w.value < 0.0 {
@@ -334,7 +392,7 @@ impl Interpreter {
                 GAction::Motion(m) => motion = m,
                 GAction::Dwell => dwell = Some(*word),
                 GAction::Plane(p) => self.plane = p,
-                GAction::Cancel | GAction::NotYet(_) => {}
+                GAction::Cancel => {}
             }
         }
         if settings[0].is_some() {
@@ -387,16 +445,9 @@ impl Interpreter {
 
     fn dwell(&mut self, block: &Block, g4: &Word, source: Source, sink: &mut dyn Sink) {
         let secs = if let Some(p) = block.word(b'P') {
-            match self.dialect {
-                Dialect::LinuxCnc | Dialect::Lnc => p.value,
-                _ => p.value.trunc() / 1000.0,
-            }
-        } else if let Some(x) = block.word(b'X') {
-            if self.dialect == Dialect::Syntec && !x.has_point {
-                x.value / 1000.0
-            } else {
-                x.value
-            }
+            self.dialect.read(p, Quantity::DwellP, false, false)
+        } else if let Some(x) = block.word(b'X').or(block.word(b'U')) {
+            self.dialect.read(x, Quantity::DwellX, false, false)
         } else {
             self.diagnostics.push(Diagnostic::error(
                 g4.span,
@@ -467,7 +518,7 @@ impl Interpreter {
         let mut target = work;
         for (i, word) in axes.iter().enumerate() {
             if let Some(w) = word {
-                let v = self.mm(w.value);
+                let v = self.length(w);
                 target[i] = if self.absolute { v } else { work[i] + v };
             }
         }
@@ -492,7 +543,7 @@ impl Interpreter {
         let to = self.target(axes);
         let mut center = from;
         if let Some(r) = radius.filter(|_| offsets.iter().all(Option::is_none)) {
-            let r_mm = self.mm(r.value);
+            let r_mm = self.length(r);
             let (du, dv) = (to[u] - from[u], to[v] - from[v]);
             let chord = du.hypot(dv);
             if chord < 1e-9 {
@@ -524,7 +575,7 @@ impl Interpreter {
             for (i, w) in offsets.iter().enumerate() {
                 if let Some(w) = w {
                     if i == u || i == v {
-                        center[i] = from[i] + self.mm(w.value);
+                        center[i] = from[i] + self.length(w);
                     } else {
                         self.diagnostics.push(Diagnostic::warning(
                             w.span,
@@ -617,11 +668,16 @@ impl Interpreter {
                 Some(80) => Canon::Coolant { on: true },
                 Some(90) => Canon::Coolant { on: false },
                 _ => {
-                    self.diagnostics.push(Diagnostic::warning(
-                        word.span,
-                        "W-NOT-INTERPRETED",
-                        format!("M{} is not interpreted yet", fmt_code(word.value)),
-                    ));
+                    // Codes outside the dialect's list were reported by the parser.
+                    if let Some(def) = Code::from_value(b'M', word.value)
+                        .and_then(|c| codes::lookup(self.dialect, c))
+                    {
+                        self.diagnostics.push(Diagnostic::warning(
+                            word.span,
+                            "W-NOT-INTERPRETED",
+                            format!("{} ({}) is not interpreted yet", def.code, def.name),
+                        ));
+                    }
                     continue;
                 }
             };

@@ -54,6 +54,9 @@ pub struct Machine {
     pub max_blocks: u64,
     /// Largest difference between an arc's start and end radius before it is an alarm (mm).
     pub arc_tolerance_mm: f64,
+    /// Calculator-type input: numbers without a decimal point are mm (inch, degrees) instead of
+    /// least input increments. Unset: the dialect's manual default.
+    pub calculator_input: Option<bool>,
 }
 
 impl Default for Machine {
@@ -62,6 +65,7 @@ impl Default for Machine {
             rapid_mm_per_min: 10_000.0,
             max_blocks: 50_000_000,
             arc_tolerance_mm: 0.01,
+            calculator_input: None,
         }
     }
 }

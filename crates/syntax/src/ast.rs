@@ -1,18 +1,38 @@
-//! The parsed program: blocks of address words, with byte spans back into the text.
+//! The parsed program: blocks of address words and macro statements, with byte spans back into
+//! the text. Expressions live in one arena per program ([`Program::exprs`]) so that a word stays
+//! small and `Copy` and a million-line program is not a million boxes.
+
+use std::num::NonZeroU32;
 
 use crate::{Diagnostic, Dialect, LineIndex, Span};
 
-/// One address word such as `X-12.5`: a letter and its value.
+/// How a word was written besides its letter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum WordForm {
+    /// `X12.5`.
+    #[default]
+    Plain,
+    /// A comma word: `,C2.` chamfer, `,R5.` corner rounding (`,A` angle).
+    Comma,
+    /// An indexed word `F2=1000` (retract feed) or `S1=150` (spindle 1): the index.
+    Indexed(u8),
+}
+
+/// One address word such as `X-12.5`, `,R5.`, `F2=800` or `X#1`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Word {
     /// The address letter, uppercase ASCII.
     pub letter: u8,
-    /// The value as written.
+    /// The value as written (0 when the value is an expression: see `expr`).
     pub value: f64,
     /// Whether the value was written with a decimal point (controls read the two differently).
     pub has_point: bool,
     /// The whole word, letter included.
     pub span: Span,
+    /// Comma or indexed form.
+    pub form: WordForm,
+    /// The expression giving the value (`X#1`, `G#30`, `Z-[#2+1]`), evaluated when the block runs.
+    pub expr: Option<ExprId>,
 }
 
 impl Word {
@@ -20,6 +40,282 @@ impl Word {
     pub fn letter(&self) -> char {
         char::from(self.letter)
     }
+
+    /// Whether this is a plain word with a literal number (no comma, index or expression).
+    pub fn is_plain_number(&self) -> bool {
+        self.form == WordForm::Plain && self.expr.is_none()
+    }
+}
+
+/// Index of an expression node in [`Program::exprs`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ExprId(NonZeroU32);
+
+impl ExprId {
+    /// The node's position in [`Program::exprs`].
+    pub fn index(self) -> usize {
+        self.0.get() as usize - 1
+    }
+
+    pub(crate) fn from_index(index: usize) -> Option<ExprId> {
+        u32::try_from(index + 1)
+            .ok()
+            .and_then(NonZeroU32::new)
+            .map(ExprId)
+    }
+}
+
+/// A binary operator in an expression.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum BinOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `MOD` (remainder)
+    Mod,
+    /// `**` (LinuxCNC power)
+    Pow,
+    /// `AND` (bitwise on integers in the Fanuc family, logical in LinuxCNC)
+    And,
+    /// `OR`
+    Or,
+    /// `XOR`
+    Xor,
+    /// `EQ`
+    Eq,
+    /// `NE`
+    Ne,
+    /// `GT`
+    Gt,
+    /// `GE`
+    Ge,
+    /// `LT`
+    Lt,
+    /// `LE`
+    Le,
+}
+
+impl BinOp {
+    /// The operator as written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Mod => "MOD",
+            BinOp::Pow => "**",
+            BinOp::And => "AND",
+            BinOp::Or => "OR",
+            BinOp::Xor => "XOR",
+            BinOp::Eq => "EQ",
+            BinOp::Ne => "NE",
+            BinOp::Gt => "GT",
+            BinOp::Ge => "GE",
+            BinOp::Lt => "LT",
+            BinOp::Le => "LE",
+        }
+    }
+}
+
+/// A function applied to bracketed arguments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Func {
+    /// Sine of degrees.
+    Sin,
+    /// Cosine of degrees.
+    Cos,
+    /// Tangent of degrees.
+    Tan,
+    /// Arc sine, degrees.
+    Asin,
+    /// Arc cosine, degrees.
+    Acos,
+    /// Arc tangent, degrees; two arguments (`ATAN[a]/[b]` or `ATAN[a,b]`) give atan2.
+    Atan,
+    /// Square root.
+    Sqrt,
+    /// Absolute value.
+    Abs,
+    /// Round to the nearest integer.
+    Round,
+    /// Round towards zero (Fanuc FIX rounds down: towards −∞ for negatives in LinuxCNC).
+    Fix,
+    /// Round up (away from zero in the Fanuc family).
+    Fup,
+    /// Natural logarithm.
+    Ln,
+    /// e to the power.
+    Exp,
+    /// `POW[a,b]`.
+    Pow,
+    /// BCD → binary.
+    Bin,
+    /// Binary → BCD.
+    Bcd,
+    /// LinuxCNC `EXISTS[#<name>]`.
+    Exists,
+}
+
+impl Func {
+    /// Every function with the names the controls spell it with (longest first where one name
+    /// starts another).
+    pub const NAMES: [(&'static str, Func); 19] = [
+        ("ASIN", Func::Asin),
+        ("ACOS", Func::Acos),
+        ("ATAN", Func::Atan),
+        ("SIN", Func::Sin),
+        ("COS", Func::Cos),
+        ("TAN", Func::Tan),
+        ("SQRT", Func::Sqrt),
+        ("SQR", Func::Sqrt),
+        ("ABS", Func::Abs),
+        ("ROUND", Func::Round),
+        ("RND", Func::Round),
+        ("FIX", Func::Fix),
+        ("FUP", Func::Fup),
+        ("LN", Func::Ln),
+        ("EXP", Func::Exp),
+        ("POW", Func::Pow),
+        ("BIN", Func::Bin),
+        ("BCD", Func::Bcd),
+        ("EXISTS", Func::Exists),
+    ];
+
+    /// The function's usual name.
+    pub fn name(self) -> &'static str {
+        Func::NAMES
+            .iter()
+            .find(|(_, f)| *f == self)
+            .map_or("?", |(n, _)| n)
+    }
+}
+
+/// One expression node.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Expr {
+    /// A literal number.
+    Num(f64),
+    /// `#n`, `#[expr]`, `##n`: the variable whose number is the operand's value.
+    Var(ExprId),
+    /// LinuxCNC `#<name>` (stored lowercased, without blanks).
+    Named(Box<str>),
+    /// Unary minus.
+    Neg(ExprId),
+    /// A binary operation.
+    Binary(BinOp, ExprId, ExprId),
+    /// A function call (one argument, or two for ATAN/POW).
+    Call(Func, ExprId, Option<ExprId>),
+}
+
+/// An expression node and the text it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExprNode {
+    /// The node.
+    pub expr: Expr,
+    /// Its text.
+    pub span: Span,
+}
+
+/// A LinuxCNC O-word label: `o100` or `o<name>`.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum OLabel {
+    /// `o100`.
+    Number(u32),
+    /// `o<name>` (lowercased).
+    Name(Box<str>),
+}
+
+/// What a LinuxCNC O-word line does.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OWord {
+    /// `sub`
+    Sub,
+    /// `endsub [expr]`
+    EndSub(Option<ExprId>),
+    /// `call [a] [b] …`
+    Call(Vec<ExprId>),
+    /// `return [expr]`
+    Return(Option<ExprId>),
+    /// `if [cond]`
+    If(ExprId),
+    /// `elseif [cond]`
+    ElseIf(ExprId),
+    /// `else`
+    Else,
+    /// `endif`
+    EndIf,
+    /// `while [cond]` (a loop head, or the tail of a `do` loop)
+    While(ExprId),
+    /// `endwhile`
+    EndWhile,
+    /// `do`
+    Do,
+    /// `repeat [count]`
+    Repeat(ExprId),
+    /// `endrepeat`
+    EndRepeat,
+    /// `break`
+    Break,
+    /// `continue`
+    Continue,
+}
+
+/// A macro statement in a block.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Statement {
+    /// `#i = expr` (Syntec also `#i := expr`); `target` is a `Var` or `Named` node.
+    Assign {
+        /// The variable assigned.
+        target: ExprId,
+        /// The value.
+        value: ExprId,
+    },
+    /// `GOTO n`.
+    Goto {
+        /// The sequence number jumped to.
+        target: ExprId,
+    },
+    /// `IF [cond] GOTO n` or `IF [cond] THEN statement`.
+    If {
+        /// The condition.
+        cond: ExprId,
+        /// What runs when it holds (a `Goto` or an `Assign`).
+        then: Box<Statement>,
+    },
+    /// `WHILE [cond] DOm` (`cond` is `None` for a bare `DOm`, an endless loop).
+    While {
+        /// The condition.
+        cond: Option<ExprId>,
+        /// The loop number m (1–3 in the Fanuc family).
+        label: u8,
+    },
+    /// `ENDm`.
+    End {
+        /// The loop number m.
+        label: u8,
+    },
+    /// A LinuxCNC O-word line.
+    OWord {
+        /// Its label.
+        label: OLabel,
+        /// What it does.
+        kind: OWord,
+    },
+}
+
+/// A program number: `O1234`, `:1234`, or LinuxCNC `O<name>`.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum ProgramNumber {
+    /// `O1234` or `:1234`.
+    Number(u32),
+    /// `O<name>`.
+    Name(Box<str>),
 }
 
 /// One block (a line, or part of a line ended by `;` in the Fanuc family).
@@ -31,10 +327,14 @@ pub struct Block {
     pub line: u32,
     /// The `N` sequence number, if any.
     pub number: Option<u32>,
+    /// The program number when the block starts a program (`O1234`, `:1234`).
+    pub program: Option<ProgramNumber>,
     /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
     pub block_delete: Option<u8>,
-    /// The address words in the order written (without `N`).
+    /// The address words in the order written (without `N` and `O`).
     pub words: Vec<Word>,
+    /// Macro statements, in the order written.
+    pub statements: Vec<Statement>,
     /// Spans of the comments in the block.
     pub comments: Vec<Span>,
     /// Whether the parser found an error in this block (it is not executed).
@@ -42,14 +342,28 @@ pub struct Block {
 }
 
 impl Block {
-    /// The first word with address `letter` (uppercase).
+    /// The first plain word with address `letter` (uppercase).
     pub fn word(&self, letter: u8) -> Option<&Word> {
-        self.words.iter().find(|w| w.letter == letter)
+        self.words
+            .iter()
+            .find(|w| w.letter == letter && w.form == WordForm::Plain)
     }
 
-    /// Whether the block has neither words nor errors (blank, comment or tape mark).
+    /// The comma word `,letter` if given.
+    pub fn comma_word(&self, letter: u8) -> Option<&Word> {
+        self.words
+            .iter()
+            .find(|w| w.letter == letter && w.form == WordForm::Comma)
+    }
+
+    /// Whether the block has neither words nor statements (blank, comment or tape mark).
     pub fn is_empty(&self) -> bool {
-        self.words.is_empty()
+        self.words.is_empty() && self.statements.is_empty()
+    }
+
+    /// Whether the block needs the macro evaluator (statements or expression-valued words).
+    pub fn has_macro(&self) -> bool {
+        !self.statements.is_empty() || self.words.iter().any(|w| w.expr.is_some())
     }
 }
 
@@ -60,8 +374,19 @@ pub struct Program {
     pub dialect: Dialect,
     /// Every block, in text order (blank lines give no block).
     pub blocks: Vec<Block>,
+    /// The expression arena that `ExprId`s index.
+    pub exprs: Vec<ExprNode>,
     /// Problems found while reading, in text order.
     pub diagnostics: Vec<Diagnostic>,
     /// Line starts, for turning spans into line and column.
     pub lines: LineIndex,
+    /// Whether the text is a Syntec `%@MACRO` program.
+    pub syntec_macro: bool,
+}
+
+impl Program {
+    /// The expression node `id` refers to.
+    pub fn expr(&self, id: ExprId) -> Option<&ExprNode> {
+        self.exprs.get(id.index())
+    }
 }

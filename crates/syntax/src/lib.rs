@@ -4,15 +4,21 @@
 //! newline is the recovery point, so the rest of the program still parses.
 
 mod ast;
+mod checks;
+pub mod codes;
 mod decode;
 mod diagnostic;
 mod dialect;
 mod line_index;
 mod parser;
 
-pub use ast::{Block, Program, Word};
+pub use ast::{
+    BinOp, Block, Expr, ExprId, ExprNode, Func, OLabel, OWord, Program, ProgramNumber, Statement,
+    Word, WordForm,
+};
+pub use codes::{Code, CodeDef, DialectSet};
 pub use decode::{Decoded, Encoding, decode};
 pub use diagnostic::{Diagnostic, Severity, Span};
-pub use dialect::{Dialect, UnknownDialect};
+pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::LineIndex;
 pub use parser::parse;

@@ -1,30 +1,39 @@
 //! The fault-tolerant block parser.
 //!
 //! Each line is read on its own (the newline is the recovery point); a problem inside a line
-//! becomes a diagnostic, the offending characters are skipped, and reading goes on.
+//! becomes a diagnostic, the offending characters are skipped, and reading goes on. The lexical
+//! rules come from the dialect's [`Rules`](crate::Rules) table.
 
 use nom::branch::alt;
-use nom::bytes::complete::take_while;
-use nom::character::complete::{char, digit0, digit1, one_of};
+use nom::character::complete::{char, digit0, digit1};
 use nom::combinator::opt;
 use nom::{IResult, Parser};
 
-use crate::{Block, Diagnostic, Dialect, LineIndex, Program, Span, Word};
+use crate::ast::{BinOp, Expr, ExprId, ExprNode, Func, OLabel, OWord, ProgramNumber, Statement};
+use crate::{Block, Diagnostic, Dialect, LineIndex, Program, Rules, Span, Word, WordForm};
+
+/// Nesting depth at which the parser stops descending into an expression, whatever the dialect
+/// allows (so hostile input cannot exhaust the stack).
+const HARD_DEPTH: u32 = 64;
 
 /// Parses `text` as read by `dialect`. Never fails: problems are in `Program::diagnostics`.
 pub fn parse(text: &str, dialect: Dialect) -> Program {
     let mut program = Program {
         dialect,
         blocks: Vec::with_capacity(text.len() / 20 + 1),
+        exprs: Vec::new(),
         diagnostics: Vec::new(),
         lines: LineIndex::new(text),
+        syntec_macro: false,
     };
     let mut offset = 0usize;
     for (line_no, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         let mut reader = LineReader {
             dialect,
+            rules: dialect.rules(),
             line,
+            bytes: line.as_bytes(),
             base: offset,
             line_no: u32::try_from(line_no).unwrap_or(u32::MAX),
             program: &mut program,
@@ -32,22 +41,19 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
         reader.read();
         offset += raw.len() + 1;
     }
+    crate::checks::check_program(&mut program);
     program
 }
 
-/// Optional sign, then digits with an optional decimal point (`12`, `-1.5`, `.5`, `3.`).
-fn number(input: &str) -> IResult<&str, &str> {
+/// Digits with an optional decimal point (`12`, `1.5`, `.5`, `3.`), no sign.
+fn unsigned(input: &str) -> IResult<&str, &str> {
     // The consumed slice is computed from the remainder: nom 8.0's `recognize` drops the
     // trailing `digit0` of `1.5` (it runs the inner parsers in check mode).
-    let (rest, _) = (
-        opt(one_of("+-")),
-        take_while(is_blank),
-        alt((
-            (digit1, opt(char('.')), digit0).map(|_| ()),
-            (char('.'), digit1).map(|_| ()),
-        )),
-    )
-        .parse(input)?;
+    let (rest, _) = alt((
+        (digit1, opt(char('.')), digit0).map(|_| ()),
+        (char('.'), digit1).map(|_| ()),
+    ))
+    .parse(input)?;
     Ok((rest, &input[..input.len() - rest.len()]))
 }
 
@@ -55,13 +61,39 @@ fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
 }
 
+/// The macro keywords of the Fanuc family, and the LinuxCNC O-word keywords.
+const KEYWORDS: [&str; 6] = ["IF", "GOTO", "WHILE", "DO", "END", "THEN"];
+
 struct LineReader<'a> {
     dialect: Dialect,
+    rules: &'static Rules,
     line: &'a str,
+    bytes: &'a [u8],
     base: usize,
     line_no: u32,
     program: &'a mut Program,
 }
+
+/// A parse failure inside a word or statement: where, and what to say.
+struct Fail {
+    at: usize,
+    end: usize,
+    code: &'static str,
+    message: String,
+}
+
+impl Fail {
+    fn new(at: usize, end: usize, code: &'static str, message: impl Into<String>) -> Fail {
+        Fail {
+            at,
+            end,
+            code,
+            message: message.into(),
+        }
+    }
+}
+
+type PResult<T> = Result<(T, usize), Fail>;
 
 impl LineReader<'_> {
     fn span(&self, start: usize, end: usize) -> Span {
@@ -84,18 +116,30 @@ impl LineReader<'_> {
         msg: String,
     ) {
         block.has_error = true;
-        let span = self.span(start, end);
+        let span = self.span(start, end.max(start));
         self.program
             .diagnostics
             .push(Diagnostic::error(span, code, msg));
+    }
+
+    fn warn(&mut self, start: usize, end: usize, code: &'static str, msg: String) {
+        let span = self.span(start, end);
+        self.program
+            .diagnostics
+            .push(Diagnostic::warning(span, code, msg));
+    }
+
+    fn fail(&mut self, block: &mut Block, f: Fail) {
+        self.error(block, f.at, f.end, f.code, f.message);
     }
 
     fn finish(&mut self, block: Block, first: Option<usize>, last: usize) {
         if let Some(first) = first {
             let mut block = block;
             block.span = self.span(first, last);
-            if !block.words.is_empty()
+            if !block.is_empty()
                 || block.number.is_some()
+                || block.program.is_some()
                 || block.has_error
                 || block.block_delete.is_some()
             {
@@ -104,9 +148,34 @@ impl LineReader<'_> {
         }
     }
 
+    fn skip_blanks(&self, mut pos: usize) -> usize {
+        while pos < self.bytes.len() && matches!(self.bytes[pos], b' ' | b'\t') {
+            pos += 1;
+        }
+        pos
+    }
+
+    /// The run of ASCII letters starting at `pos`, uppercased.
+    fn alpha_run(&self, pos: usize) -> (String, usize) {
+        let mut end = pos;
+        while end < self.bytes.len() && self.bytes[end].is_ascii_alphabetic() {
+            end += 1;
+        }
+        (self.line[pos..end].to_ascii_uppercase(), end)
+    }
+
+    /// Whether everything from `pos` to the end of the block is blanks or comments.
+    fn only_trailing(&self, pos: usize) -> bool {
+        let rest = self.line[pos..].trim_start_matches(is_blank);
+        rest.is_empty()
+            || rest.starts_with(';')
+            || rest.starts_with('(')
+            || (self.rules.slash_comment && rest.starts_with("//"))
+    }
+
     fn read(&mut self) {
         let line = self.line;
-        let bytes = line.as_bytes();
+        let bytes = self.bytes;
         let mut block = self.new_block();
         // Byte offsets (within the line) of the block's first and last significant characters.
         let mut first: Option<usize> = None;
@@ -115,13 +184,20 @@ impl LineReader<'_> {
         while pos < bytes.len() {
             let c = bytes[pos];
             let start = pos;
+            let at_start = first.is_none();
             match c {
                 b' ' | b'\t' => {
                     pos += 1;
                     continue;
                 }
-                b'%' if first.is_none() && block.words.is_empty() => {
-                    // Tape start/end mark: the rest of the line belongs to it.
+                b'%' if at_start => {
+                    // Tape start/end mark (the rest of the line belongs to it); Syntec's
+                    // `%@MACRO` header marks a macro program.
+                    if self.dialect == Dialect::Syntec
+                        && line[pos..].to_ascii_uppercase().starts_with("%@MACRO")
+                    {
+                        self.program.syntec_macro = true;
+                    }
                     break;
                 }
                 b'(' => {
@@ -144,7 +220,7 @@ impl LineReader<'_> {
                     }
                     continue;
                 }
-                b';' if self.dialect.semicolon_is_comment() => {
+                b';' if self.rules.semicolon_comment => {
                     block.comments.push(self.span(pos, bytes.len()));
                     break;
                 }
@@ -155,11 +231,11 @@ impl LineReader<'_> {
                     pos += 1;
                     continue;
                 }
-                b'/' if bytes.get(pos + 1) == Some(&b'/') && self.dialect == Dialect::Syntec => {
+                b'/' if bytes.get(pos + 1) == Some(&b'/') && self.rules.slash_comment => {
                     block.comments.push(self.span(pos, bytes.len()));
                     break;
                 }
-                b'/' if first.is_none() => {
+                b'/' if at_start => {
                     pos += 1;
                     let level = match bytes.get(pos) {
                         Some(d @ b'1'..=b'9') => {
@@ -170,34 +246,38 @@ impl LineReader<'_> {
                     };
                     block.block_delete = Some(level);
                 }
-                b'#' | b'[' => {
-                    let end = self.block_end(pos);
-                    self.error(
-                        &mut block,
-                        pos,
-                        end,
-                        "E-MACRO-UNSUPPORTED",
-                        "macro statements and variables are not interpreted yet; this block is skipped"
-                            .into(),
-                    );
-                    pos = end;
+                b':' if at_start
+                    && self.rules.colon_program_number
+                    && bytes.get(pos + 1).is_some_and(u8::is_ascii_digit) =>
+                {
+                    pos = self.read_program_number(&mut block, pos, pos + 1);
                 }
-                b',' => {
-                    let end = self.word_end(pos + 1);
-                    self.error(
-                        &mut block,
+                b':' if self.only_trailing(pos + 1) && !block.is_empty() => {
+                    // OCR turns `;` into `:` in scanned manuals; read it as the end of the block.
+                    self.warn(
                         pos,
-                        end,
-                        "E-COMMA-UNSUPPORTED",
-                        format!(
-                            "comma word `{}` (chamfer/corner rounding) is not interpreted yet",
-                            &line[pos..end]
-                        ),
+                        pos + 1,
+                        "W-STRAY-COLON",
+                        "`:` at the end of a block is read as the end of the block (`;`)".into(),
                     );
-                    pos = end;
+                    pos += 1;
+                }
+                b'#' => match self.assignment(pos) {
+                    Ok((stmt, end)) => {
+                        block.statements.push(stmt);
+                        pos = end;
+                    }
+                    Err(f) => {
+                        // A broken statement: the rest of the block belongs to it.
+                        pos = self.recover(pos, self.block_end(f.end));
+                        self.fail(&mut block, f);
+                    }
+                },
+                b',' => {
+                    pos = self.read_comma_word(&mut block, pos);
                 }
                 c if c.is_ascii_alphabetic() => {
-                    pos = self.read_word(&mut block, pos);
+                    pos = self.read_letters(&mut block, pos);
                 }
                 _ => {
                     let ch = line[pos..].chars().next().unwrap_or('\u{FFFD}');
@@ -220,96 +300,890 @@ impl LineReader<'_> {
         self.finish(block, first, last);
     }
 
+    /// Where to resume after an error at `pos` that ended at `end`: at least one byte on, and
+    /// on a character boundary.
+    fn recover(&self, pos: usize, end: usize) -> usize {
+        let mut at = end.max(pos + 1).min(self.bytes.len());
+        while !self.line.is_char_boundary(at) {
+            at += 1;
+        }
+        at
+    }
+
+    /// Reads what starts with a letter: a word, a sequence or program number, a macro keyword
+    /// statement, or a LinuxCNC O-word line.
+    fn read_letters(&mut self, block: &mut Block, pos: usize) -> usize {
+        let (run, run_end) = self.alpha_run(pos);
+        let letter = self.bytes[pos].to_ascii_uppercase();
+        if run.len() >= 2 && self.rules.macro_b && KEYWORDS.contains(&run.as_str()) {
+            return match self.keyword_statement(&run, pos, run_end) {
+                Ok((stmt, end)) => {
+                    block.statements.push(stmt);
+                    end
+                }
+                Err(f) => {
+                    let end = self.recover(pos, self.block_end(f.end));
+                    self.fail(block, f);
+                    end
+                }
+            };
+        }
+        if letter == b'O' && block.words.is_empty() && block.statements.is_empty() {
+            if self.rules.o_words
+                && let Some(end) = self.try_o_word(block, pos)
+            {
+                return end;
+            }
+            return self.read_program_number(block, pos, pos + 1);
+        }
+        if letter == b'N' {
+            return self.read_sequence_number(block, pos);
+        }
+        match self.word(pos) {
+            Ok((word, end)) => {
+                block.words.push(word);
+                end
+            }
+            Err(f) => {
+                let end = self.recover(pos, f.end);
+                self.fail(block, f);
+                end
+            }
+        }
+    }
+
+    /// `N123` at the start of the block.
+    fn read_sequence_number(&mut self, block: &mut Block, pos: usize) -> usize {
+        let value_start = self.skip_blanks(pos + 1);
+        let Ok((rest, digits)) = unsigned(&self.line[value_start..]) else {
+            self.error(
+                block,
+                pos,
+                pos + 1,
+                "E-WORD-VALUE",
+                "address `N` needs a number after it".into(),
+            );
+            return pos + 1;
+        };
+        let end = self.line.len() - rest.len();
+        if !block.words.is_empty() || block.number.is_some() || !block.statements.is_empty() {
+            self.error(
+                block,
+                pos,
+                end,
+                "E-SEQUENCE-NUMBER",
+                "a sequence number `N` must come first in the block".into(),
+            );
+            return end;
+        }
+        match digits.parse::<u32>() {
+            Ok(n) => {
+                if n > self.rules.max_sequence_number {
+                    self.error(
+                        block,
+                        pos,
+                        end,
+                        "E-NUMBER-RANGE",
+                        format!(
+                            "sequence number `N{digits}` is above the largest this control accepts ({})",
+                            self.rules.max_sequence_number
+                        ),
+                    );
+                } else {
+                    block.number = Some(n);
+                }
+            }
+            Err(_) => self.error(
+                block,
+                pos,
+                end,
+                "E-SEQUENCE-NUMBER",
+                format!("sequence number `N{digits}` must be a whole number"),
+            ),
+        }
+        end
+    }
+
+    /// `O1234` (or `:1234`, value starting at `from`) at the start of the block; LinuxCNC also
+    /// `O<name>`.
+    fn read_program_number(&mut self, block: &mut Block, pos: usize, from: usize) -> usize {
+        let value_start = self.skip_blanks(from);
+        if self.rules.o_words && self.bytes.get(value_start) == Some(&b'<') {
+            return match self.angle_name(value_start) {
+                Ok((name, end)) => {
+                    block.program = Some(ProgramNumber::Name(name));
+                    end
+                }
+                Err(f) => {
+                    let end = self.recover(pos, f.end);
+                    self.fail(block, f);
+                    end
+                }
+            };
+        }
+        let rest = &self.line[value_start..];
+        let digits_len = rest.bytes().take_while(u8::is_ascii_digit).count();
+        let end = value_start + digits_len;
+        match rest[..digits_len].parse::<u32>() {
+            Ok(n) if digits_len <= 8 => block.program = Some(ProgramNumber::Number(n)),
+            _ => self.error(
+                block,
+                pos,
+                end.max(pos + 1),
+                "E-PROGRAM-NUMBER",
+                "a program number `O` needs up to 8 digits after it".into(),
+            ),
+        }
+        end.max(pos + 1)
+    }
+
+    /// `<name>` at `pos`: the name lowercased without blanks, as LinuxCNC reads it.
+    fn angle_name(&self, pos: usize) -> PResult<Box<str>> {
+        let Some(close) = self.line[pos..].find('>') else {
+            return Err(Fail::new(
+                pos,
+                self.line.len(),
+                "E-MACRO-SYNTAX",
+                "`<` starts a name that is not closed with `>`",
+            ));
+        };
+        let name: String = self.line[pos + 1..pos + close]
+            .chars()
+            .filter(|c| !c.is_whitespace())
+            .collect::<String>()
+            .to_ascii_lowercase();
+        if name.is_empty() {
+            return Err(Fail::new(
+                pos,
+                pos + close + 1,
+                "E-MACRO-SYNTAX",
+                "a name in `<>` must not be empty",
+            ));
+        }
+        Ok((name.into_boxed_str(), pos + close + 1))
+    }
+
+    /// A LinuxCNC O-word control line at `pos` (`o100 sub`, `o<x> call [1]`), if it is one.
+    fn try_o_word(&mut self, block: &mut Block, pos: usize) -> Option<usize> {
+        let label_start = self.skip_blanks(pos + 1);
+        let (label, after_label) = if self.bytes.get(label_start) == Some(&b'<') {
+            let (name, end) = self.angle_name(label_start).ok()?;
+            (OLabel::Name(name), end)
+        } else {
+            let rest = &self.line[label_start..];
+            let n = rest.bytes().take_while(u8::is_ascii_digit).count();
+            let number = rest[..n].parse::<u32>().ok()?;
+            (OLabel::Number(number), label_start + n)
+        };
+        let kw_start = self.skip_blanks(after_label);
+        let (kw, kw_end) = self.alpha_run(kw_start);
+        let kind = match kw.as_str() {
+            "SUB" => Some(OWord::Sub),
+            "ELSE" => Some(OWord::Else),
+            "ENDIF" => Some(OWord::EndIf),
+            "ENDWHILE" => Some(OWord::EndWhile),
+            "DO" => Some(OWord::Do),
+            "ENDREPEAT" => Some(OWord::EndRepeat),
+            "BREAK" => Some(OWord::Break),
+            "CONTINUE" => Some(OWord::Continue),
+            "" => return None,
+            _ => None,
+        };
+        let result: PResult<OWord> = match (kind, kw.as_str()) {
+            (Some(k), _) => Ok((k, kw_end)),
+            (None, "IF" | "ELSEIF" | "WHILE" | "REPEAT") => {
+                self.bracketed(kw_end, 0).map(|(e, end)| {
+                    let k = match kw.as_str() {
+                        "IF" => OWord::If(e),
+                        "ELSEIF" => OWord::ElseIf(e),
+                        "WHILE" => OWord::While(e),
+                        _ => OWord::Repeat(e),
+                    };
+                    (k, end)
+                })
+            }
+            (None, "ENDSUB" | "RETURN") => {
+                let at = self.skip_blanks(kw_end);
+                let value = if self.bytes.get(at) == Some(&b'[') {
+                    self.bracketed(at, 0).map(|(e, end)| (Some(e), end))
+                } else {
+                    Ok((None, kw_end))
+                };
+                value.map(|(e, end)| {
+                    let k = if kw == "ENDSUB" {
+                        OWord::EndSub(e)
+                    } else {
+                        OWord::Return(e)
+                    };
+                    (k, end)
+                })
+            }
+            (None, "CALL") => {
+                let mut args = Vec::new();
+                let mut at = self.skip_blanks(kw_end);
+                let mut outcome = Ok(());
+                while self.bytes.get(at) == Some(&b'[') {
+                    match self.bracketed(at, 0) {
+                        Ok((e, end)) => {
+                            args.push(e);
+                            at = self.skip_blanks(end);
+                        }
+                        Err(f) => {
+                            outcome = Err(f);
+                            break;
+                        }
+                    }
+                }
+                outcome.map(|()| (OWord::Call(args), at))
+            }
+            _ => Err(Fail::new(
+                kw_start,
+                kw_end,
+                "E-OWORD",
+                format!(
+                    "`{kw}` is not an O-word keyword (sub, endsub, call, return, if, elseif, else, endif, while, endwhile, do, repeat, endrepeat, break, continue)"
+                ),
+            )),
+        };
+        Some(match result {
+            Ok((kind, end)) => {
+                block.statements.push(Statement::OWord { label, kind });
+                end
+            }
+            Err(f) => {
+                let end = self.recover(pos, f.end);
+                self.fail(block, f);
+                end
+            }
+        })
+    }
+
+    /// `IF`, `GOTO`, `WHILE`, `DO`, `END` statements (Fanuc Macro B).
+    fn keyword_statement(&mut self, kw: &str, pos: usize, after: usize) -> PResult<Statement> {
+        match kw {
+            "GOTO" => {
+                let (target, end) = self.word_value(after, 0)?;
+                Ok((Statement::Goto { target }, end))
+            }
+            "IF" => {
+                let (cond, end) = self.bracketed(after, 0)?;
+                let at = self.skip_blanks(end);
+                let (next, next_end) = self.alpha_run(at);
+                match next.as_str() {
+                    "GOTO" => {
+                        let (target, end) = self.word_value(next_end, 0)?;
+                        Ok((
+                            Statement::If {
+                                cond,
+                                then: Box::new(Statement::Goto { target }),
+                            },
+                            end,
+                        ))
+                    }
+                    "THEN" => {
+                        let at = self.skip_blanks(next_end);
+                        if self.bytes.get(at) != Some(&b'#') {
+                            return Err(Fail::new(
+                                at,
+                                self.block_end(at),
+                                "E-MACRO-SYNTAX",
+                                "`THEN` must be followed by an assignment `#i=…`",
+                            ));
+                        }
+                        let (stmt, end) = self.assignment(at)?;
+                        Ok((
+                            Statement::If {
+                                cond,
+                                then: Box::new(stmt),
+                            },
+                            end,
+                        ))
+                    }
+                    _ => Err(Fail::new(
+                        at,
+                        next_end.max(at + 1),
+                        "E-MACRO-SYNTAX",
+                        "`IF […]` must be followed by `GOTO n` or `THEN #i=…`",
+                    )),
+                }
+            }
+            "WHILE" => {
+                let (cond, end) = self.bracketed(after, 0)?;
+                let at = self.skip_blanks(end);
+                let (next, next_end) = self.alpha_run(at);
+                if next != "DO" {
+                    return Err(Fail::new(
+                        at,
+                        next_end.max(at + 1),
+                        "E-MACRO-SYNTAX",
+                        "`WHILE […]` must be followed by `DOm`",
+                    ));
+                }
+                let (label, end) = self.loop_label(next_end)?;
+                Ok((
+                    Statement::While {
+                        cond: Some(cond),
+                        label,
+                    },
+                    end,
+                ))
+            }
+            "DO" => {
+                let (label, end) = self.loop_label(after)?;
+                Ok((Statement::While { cond: None, label }, end))
+            }
+            "END" => {
+                let (label, end) = self.loop_label(after)?;
+                Ok((Statement::End { label }, end))
+            }
+            _ => Err(Fail::new(
+                pos,
+                after,
+                "E-MACRO-SYNTAX",
+                format!("`{kw}` must follow `IF […]`"),
+            )),
+        }
+    }
+
+    /// The loop number after `DO`/`END` (1–3 in the Fanuc family).
+    fn loop_label(&self, at: usize) -> PResult<u8> {
+        let start = self.skip_blanks(at);
+        let rest = &self.line[start..];
+        let n = rest.bytes().take_while(u8::is_ascii_digit).count();
+        match rest[..n].parse::<u8>() {
+            Ok(label @ 1..=3) => Ok((label, start + n)),
+            _ => Err(Fail::new(
+                at.saturating_sub(2),
+                (start + n).max(at),
+                "E-LOOP-NUMBER",
+                "`DO` and `END` take a loop number from 1 to 3",
+            )),
+        }
+    }
+
+    /// `#i = expr` (Syntec also `:=`), starting at the `#`.
+    fn assignment(&mut self, pos: usize) -> PResult<Statement> {
+        let (target, after) = self.variable(pos, 0)?;
+        let at = self.skip_blanks(after);
+        let rest = &self.line[at..];
+        let value_at = if rest.starts_with(":=") && self.rules.colon_assign {
+            at + 2
+        } else if rest.starts_with('=') {
+            at + 1
+        } else {
+            return Err(Fail::new(
+                pos,
+                after,
+                "E-MACRO-SYNTAX",
+                format!(
+                    "variable `{}` must be followed by `=` to assign it",
+                    self.line[pos..after].trim()
+                ),
+            ));
+        };
+        let (value, end) = self.expression(value_at, 0)?;
+        Ok((Statement::Assign { target, value }, end))
+    }
+
+    /// A comma word `,C2.` / `,R5.` / `,A30.`.
+    fn read_comma_word(&mut self, block: &mut Block, pos: usize) -> usize {
+        let at = self.skip_blanks(pos + 1);
+        let letter = self.bytes.get(at).map(u8::to_ascii_uppercase);
+        let result = match letter {
+            Some(l @ (b'C' | b'R' | b'A')) => self.word_from(pos, at, l),
+            _ => Err(Fail::new(
+                pos,
+                at + 1,
+                "E-COMMA-WORD",
+                "a comma must be followed by `C` (chamfer), `R` (corner rounding) or `A` (angle)",
+            )),
+        };
+        match result {
+            Ok((mut word, end)) => {
+                word.form = WordForm::Comma;
+                if !self.rules.comma_words {
+                    self.error(
+                        block,
+                        pos,
+                        end,
+                        "E-COMMA-WORD",
+                        format!(
+                            "{} has no comma words (`,C` chamfer and `,R` corner rounding are LNC and Fanuc syntax)",
+                            self.dialect.label()
+                        ),
+                    );
+                }
+                block.words.push(word);
+                end
+            }
+            Err(f) => {
+                let end = self.recover(pos, f.end);
+                self.fail(block, f);
+                end
+            }
+        }
+    }
+
+    /// An address word at `pos` (a letter), including `F2=` indexed words.
+    fn word(&mut self, pos: usize) -> PResult<Word> {
+        let letter = self.bytes[pos].to_ascii_uppercase();
+        // `F2=1000`, `S1=150`: letter, digits, `=`, value.
+        let digits = self.line[pos + 1..]
+            .bytes()
+            .take_while(u8::is_ascii_digit)
+            .count();
+        if digits > 0 && digits <= 2 && self.bytes.get(pos + 1 + digits) == Some(&b'=') {
+            let index: u8 = self.line[pos + 1..pos + 1 + digits].parse().unwrap_or(0);
+            let (mut word, end) = self.word_from(pos, pos + digits + 1, letter)?;
+            word.form = WordForm::Indexed(index);
+            if !self.rules.indexed_words {
+                return Err(Fail::new(
+                    pos,
+                    end,
+                    "E-WORD-INDEXED",
+                    format!(
+                        "`{}` is Syntec syntax (`F2=` retract feed, `S1=` spindle speed); {} does not read it",
+                        &self.line[pos..end],
+                        self.dialect.label()
+                    ),
+                ));
+            }
+            return Ok((word, end));
+        }
+        self.word_from(pos, pos, letter)
+    }
+
+    /// Reads the value of a word whose text starts at `pos` and whose letter is at `letter_at`.
+    fn word_from(&mut self, pos: usize, letter_at: usize, letter: u8) -> PResult<Word> {
+        let value_start = self.skip_blanks(letter_at + 1);
+        // An indexed word's `=` sits between the letter's digits and the value.
+        let value_start = if self.bytes.get(value_start) == Some(&b'=') {
+            self.skip_blanks(value_start + 1)
+        } else {
+            value_start
+        };
+        let rest = &self.line[value_start..];
+        let sign_len = usize::from(rest.starts_with(['+', '-']));
+        let after_sign = self.skip_blanks(value_start + sign_len);
+        let next = self.bytes.get(after_sign).copied();
+        let is_expr = matches!(next, Some(b'#' | b'['))
+            || (next.is_some_and(|c| c.is_ascii_alphabetic()) && {
+                let (run, _) = self.alpha_run(after_sign);
+                Func::NAMES.iter().any(|(n, _)| *n == run)
+            });
+        if is_expr && (self.rules.macro_b || self.rules.o_words) {
+            let (expr, end) = self.word_value(value_start, 0)?;
+            return Ok((
+                Word {
+                    letter,
+                    value: 0.0,
+                    has_point: true,
+                    span: self.span(pos, end),
+                    form: WordForm::Plain,
+                    expr: Some(expr),
+                },
+                end,
+            ));
+        }
+        let Ok((remaining, digits)) = unsigned(&self.line[after_sign..]) else {
+            let shown = char::from(letter);
+            return Err(Fail::new(
+                pos,
+                letter_at + 1,
+                "E-WORD-VALUE",
+                format!("address `{shown}` needs a number after it"),
+            ));
+        };
+        let end = self.line.len() - remaining.len();
+        let negative = rest.starts_with('-');
+        let magnitude = digits.parse::<f64>().unwrap_or(f64::NAN);
+        let value = if negative { -magnitude } else { magnitude };
+        let significant = digits.bytes().filter(u8::is_ascii_digit).count();
+        let max = usize::from(self.rules.max_digits);
+        if !value.is_finite() || value.abs() > 1e15 || (max > 0 && significant > max) {
+            return Err(Fail::new(
+                pos,
+                end,
+                "E-NUMBER-RANGE",
+                if max > 0 && significant > max {
+                    format!(
+                        "`{}` has {significant} digits; {} accepts at most {max}",
+                        &self.line[pos..end],
+                        self.dialect.label()
+                    )
+                } else {
+                    format!("the number `{}` is out of range", &self.line[pos..end])
+                },
+            ));
+        }
+        Ok((
+            Word {
+                letter,
+                value,
+                has_point: digits.contains('.'),
+                span: self.span(pos, end),
+                form: WordForm::Plain,
+                expr: None,
+            },
+            end,
+        ))
+    }
+
+    // ---- expressions ----
+
+    fn push(&mut self, expr: Expr, start: usize, end: usize) -> Result<ExprId, Fail> {
+        let id = ExprId::from_index(self.program.exprs.len()).ok_or_else(|| {
+            Fail::new(
+                start,
+                end,
+                "E-TOO-LARGE",
+                "the program has too many expressions",
+            )
+        })?;
+        let span = self.span(start, end);
+        self.program.exprs.push(ExprNode { expr, span });
+        Ok(id)
+    }
+
+    fn depth_check(&self, pos: usize, depth: u32) -> Result<(), Fail> {
+        if depth >= HARD_DEPTH {
+            return Err(Fail::new(
+                pos,
+                self.block_end(pos),
+                "E-EXPR-DEPTH",
+                format!("expression nested more than {HARD_DEPTH} levels deep"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A word's value: an optionally signed number, variable, bracketed expression or function
+    /// call (no binary operators outside brackets, as the controls read words).
+    fn word_value(&mut self, pos: usize, depth: u32) -> PResult<ExprId> {
+        self.unary(pos, depth)
+    }
+
+    /// A full expression with binary operators.
+    fn expression(&mut self, pos: usize, depth: u32) -> PResult<ExprId> {
+        self.binary(pos, 0, depth)
+    }
+
+    fn precedence(&self, op: BinOp) -> u8 {
+        let fanuc = self.rules.fanuc_logic_precedence;
+        match op {
+            BinOp::Pow => 5,
+            BinOp::Mul | BinOp::Div | BinOp::Mod => 4,
+            BinOp::And if fanuc => 4,
+            BinOp::Add | BinOp::Sub => 3,
+            BinOp::Or | BinOp::Xor if fanuc => 3,
+            BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Ge | BinOp::Lt | BinOp::Le => 2,
+            BinOp::And | BinOp::Or | BinOp::Xor => 1,
+        }
+    }
+
+    /// The binary operator at `pos`, if any, and where it ends.
+    fn operator(&self, pos: usize) -> Option<(BinOp, usize)> {
+        let at = self.skip_blanks(pos);
+        let rest = &self.line[at..];
+        let symbol = if rest.starts_with("**") {
+            Some((BinOp::Pow, 2))
+        } else {
+            match rest.bytes().next() {
+                Some(b'+') => Some((BinOp::Add, 1)),
+                Some(b'-') => Some((BinOp::Sub, 1)),
+                Some(b'*') => Some((BinOp::Mul, 1)),
+                Some(b'/') if !rest.starts_with("//") || !self.rules.slash_comment => {
+                    Some((BinOp::Div, 1))
+                }
+                _ => None,
+            }
+        };
+        if let Some((op, len)) = symbol {
+            return Some((op, at + len));
+        }
+        let (run, end) = self.alpha_run(at);
+        let op = match run.as_str() {
+            "MOD" => BinOp::Mod,
+            "AND" => BinOp::And,
+            "OR" => BinOp::Or,
+            "XOR" => BinOp::Xor,
+            "EQ" => BinOp::Eq,
+            "NE" => BinOp::Ne,
+            "GT" => BinOp::Gt,
+            "GE" => BinOp::Ge,
+            "LT" => BinOp::Lt,
+            "LE" => BinOp::Le,
+            _ => return None,
+        };
+        Some((op, end))
+    }
+
+    fn binary(&mut self, pos: usize, min: u8, depth: u32) -> PResult<ExprId> {
+        self.depth_check(pos, depth)?;
+        let start = self.skip_blanks(pos);
+        let (mut lhs, mut end) = self.unary(start, depth + 1)?;
+        while let Some((op, op_end)) = self.operator(end) {
+            let prec = self.precedence(op);
+            if prec < min {
+                break;
+            }
+            // `**` is right-associative; everything else is left-associative.
+            let next_min = if op == BinOp::Pow { prec } else { prec + 1 };
+            let (rhs, rhs_end) = self.binary(op_end, next_min, depth + 1)?;
+            lhs = self.push(Expr::Binary(op, lhs, rhs), start, rhs_end)?;
+            end = rhs_end;
+        }
+        Ok((lhs, end))
+    }
+
+    fn unary(&mut self, pos: usize, depth: u32) -> PResult<ExprId> {
+        self.depth_check(pos, depth)?;
+        let start = self.skip_blanks(pos);
+        match self.bytes.get(start) {
+            Some(b'-') => {
+                let (inner, end) = self.unary(start + 1, depth + 1)?;
+                // Fold `-5` into a literal so plain negative numbers stay one node.
+                if let Some(ExprNode {
+                    expr: Expr::Num(v), ..
+                }) = self.program.expr(inner)
+                {
+                    let v = -*v;
+                    let span = self.span(start, end);
+                    if let Some(node) = self.program.exprs.get_mut(inner.index()) {
+                        node.expr = Expr::Num(v);
+                        node.span = span;
+                    }
+                    return Ok((inner, end));
+                }
+                let id = self.push(Expr::Neg(inner), start, end)?;
+                Ok((id, end))
+            }
+            Some(b'+') => self.unary(start + 1, depth + 1),
+            _ => self.primary(start, depth + 1),
+        }
+    }
+
+    fn primary(&mut self, start: usize, depth: u32) -> PResult<ExprId> {
+        self.depth_check(start, depth)?;
+        match self.bytes.get(start) {
+            Some(b'#') => self.variable(start, depth),
+            Some(b'[') => self.bracketed(start, depth),
+            Some(c) if c.is_ascii_digit() || *c == b'.' => {
+                let Ok((rest, digits)) = unsigned(&self.line[start..]) else {
+                    return Err(Fail::new(start, start + 1, "E-EXPR", "expected a number"));
+                };
+                let end = self.line.len() - rest.len();
+                let value = digits.parse::<f64>().unwrap_or(f64::NAN);
+                if !value.is_finite() || value > 1e15 {
+                    return Err(Fail::new(
+                        start,
+                        end,
+                        "E-NUMBER-RANGE",
+                        format!("the number `{digits}` is out of range"),
+                    ));
+                }
+                let id = self.push(Expr::Num(value), start, end)?;
+                Ok((id, end))
+            }
+            Some(c) if c.is_ascii_alphabetic() => self.call(start, depth),
+            _ => {
+                let end = self.line[start..]
+                    .chars()
+                    .next()
+                    .map_or(start + 1, |c| start + c.len_utf8());
+                Err(Fail::new(
+                    start,
+                    end.min(self.line.len()).max(start),
+                    "E-EXPR",
+                    if start >= self.line.len() {
+                        "expected a value, found the end of the line".to_string()
+                    } else {
+                        format!("expected a value, found `{}`", &self.line[start..end])
+                    },
+                ))
+            }
+        }
+    }
+
+    /// `#1`, `#[expr]`, `##1`, `#<name>`.
+    fn variable(&mut self, start: usize, depth: u32) -> PResult<ExprId> {
+        self.depth_check(start, depth)?;
+        let at = self.skip_blanks(start + 1);
+        if self.bytes.get(at) == Some(&b'<') {
+            if !self.rules.o_words {
+                return Err(Fail::new(
+                    start,
+                    at + 1,
+                    "E-MACRO-SYNTAX",
+                    format!(
+                        "named parameters `#<name>` are LinuxCNC syntax; {} numbers its variables",
+                        self.dialect.label()
+                    ),
+                ));
+            }
+            let (name, end) = self.angle_name(at)?;
+            let id = self.push(Expr::Named(name), start, end)?;
+            return Ok((id, end));
+        }
+        let (index, end) = match self.bytes.get(at) {
+            Some(b'#') => self.variable(at, depth + 1)?,
+            Some(b'[') => self.bracketed(at, depth + 1)?,
+            Some(c) if c.is_ascii_digit() => self.primary(at, depth + 1)?,
+            _ => {
+                return Err(Fail::new(
+                    start,
+                    at.max(start + 1),
+                    "E-MACRO-SYNTAX",
+                    "`#` must be followed by a variable number, `[expression]` or `#`",
+                ));
+            }
+        };
+        let id = self.push(Expr::Var(index), start, end)?;
+        Ok((id, end))
+    }
+
+    /// `[expr]` starting at (or after blanks before) `pos`.
+    fn bracketed(&mut self, pos: usize, depth: u32) -> PResult<ExprId> {
+        self.depth_check(pos, depth)?;
+        let start = self.skip_blanks(pos);
+        if self.bytes.get(start) != Some(&b'[') {
+            return Err(Fail::new(
+                start,
+                (start + 1).min(self.line.len()).max(start),
+                "E-EXPR",
+                "expected `[`",
+            ));
+        }
+        let nesting = self.nesting_at(start);
+        let max = u32::from(self.rules.max_bracket_depth);
+        if nesting > max {
+            return Err(Fail::new(
+                start,
+                self.block_end(start),
+                "E-EXPR-DEPTH",
+                format!(
+                    "brackets nested {nesting} deep; {} allows {max}",
+                    self.dialect.label()
+                ),
+            ));
+        }
+        let (inner, end) = self.expression(start + 1, depth + 1)?;
+        let close = self.skip_blanks(end);
+        if self.bytes.get(close) != Some(&b']') {
+            return Err(Fail::new(
+                start,
+                close.max(start + 1).min(self.line.len()),
+                "E-EXPR-BRACKET",
+                "`[` is not closed with `]`",
+            ));
+        }
+        Ok((inner, close + 1))
+    }
+
+    /// How many `[` are open at `pos` (including the one there), counting from the block start.
+    fn nesting_at(&self, pos: usize) -> u32 {
+        let mut depth: u32 = 0;
+        for &b in &self.bytes[..=pos.min(self.bytes.len().saturating_sub(1))] {
+            match b {
+                b'[' => depth += 1,
+                b']' => depth = depth.saturating_sub(1),
+                b';' if !self.rules.semicolon_comment => depth = 0,
+                _ => {}
+            }
+        }
+        depth
+    }
+
+    /// A function call `SIN[…]`, `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
+    fn call(&mut self, start: usize, depth: u32) -> PResult<ExprId> {
+        let (name, name_end) = self.alpha_run(start);
+        let Some((_, func)) = Func::NAMES.iter().find(|(n, _)| *n == name) else {
+            return Err(Fail::new(
+                start,
+                name_end,
+                "E-EXPR",
+                format!(
+                    "`{name}` is not a function (SIN, COS, TAN, ASIN, ACOS, ATAN, SQRT, ABS, ROUND, FIX, FUP, LN, EXP, POW, BIN, BCD)"
+                ),
+            ));
+        };
+        let func = *func;
+        let open = self.skip_blanks(name_end);
+        if self.bytes.get(open) != Some(&b'[') {
+            return Err(Fail::new(
+                start,
+                name_end,
+                "E-EXPR",
+                format!("`{name}` must be followed by `[`"),
+            ));
+        }
+        let two_args = matches!(func, Func::Atan | Func::Pow);
+        if func == Func::Exists {
+            let (arg, end) = self.bracketed(open, depth + 1)?;
+            let id = self.push(Expr::Call(func, arg, None), start, end)?;
+            return Ok((id, end));
+        }
+        // `[a,b]` form.
+        let (first, after_first) = self.expression(open + 1, depth + 1)?;
+        let at = self.skip_blanks(after_first);
+        let (second, end) = match self.bytes.get(at) {
+            Some(b',') if two_args => {
+                let (second, after) = self.expression(at + 1, depth + 1)?;
+                let close = self.skip_blanks(after);
+                if self.bytes.get(close) != Some(&b']') {
+                    return Err(Fail::new(
+                        open,
+                        close.min(self.line.len()),
+                        "E-EXPR-BRACKET",
+                        "`[` is not closed with `]`",
+                    ));
+                }
+                (Some(second), close + 1)
+            }
+            Some(b']') => {
+                let end = at + 1;
+                // `ATAN[a]/[b]`.
+                let slash = self.skip_blanks(end);
+                if func == Func::Atan
+                    && self.bytes.get(slash) == Some(&b'/')
+                    && self.bytes.get(self.skip_blanks(slash + 1)) == Some(&b'[')
+                {
+                    let (second, end) = self.bracketed(slash + 1, depth + 1)?;
+                    (Some(second), end)
+                } else {
+                    (None, end)
+                }
+            }
+            _ => {
+                return Err(Fail::new(
+                    open,
+                    at.min(self.line.len()),
+                    "E-EXPR-BRACKET",
+                    "`[` is not closed with `]`",
+                ));
+            }
+        };
+        if func == Func::Pow && second.is_none() {
+            return Err(Fail::new(
+                start,
+                end,
+                "E-EXPR",
+                "`POW` takes two arguments: `POW[base,exponent]`",
+            ));
+        }
+        let id = self.push(Expr::Call(func, first, second), start, end)?;
+        Ok((id, end))
+    }
+
     /// End of the current block: the next `;` (Fanuc family) or the end of the line.
     fn block_end(&self, from: usize) -> usize {
-        if self.dialect.semicolon_is_comment() {
+        let from = from.min(self.line.len());
+        if self.rules.semicolon_comment {
             return self.line.len();
         }
         self.line[from..]
             .find(';')
             .map_or(self.line.len(), |i| from + i)
-    }
-
-    /// End of a word's value characters starting at `from` (digits, sign, point, blanks).
-    fn word_end(&self, from: usize) -> usize {
-        let bytes = self.line.as_bytes();
-        let mut end = from;
-        while end < bytes.len()
-            && (bytes[end].is_ascii_alphanumeric() || b"+-. \t".contains(&bytes[end]))
-        {
-            if end > from && bytes[end].is_ascii_alphabetic() {
-                break;
-            }
-            end += 1;
-        }
-        end
-    }
-
-    /// Reads one address word at `pos` (a letter); returns the position after it.
-    fn read_word(&mut self, block: &mut Block, pos: usize) -> usize {
-        let line = self.line;
-        let letter = line.as_bytes()[pos].to_ascii_uppercase();
-        let after_letter = pos + 1;
-        let rest = &line[after_letter..];
-        let trimmed = rest.trim_start_matches(is_blank);
-        let value_start = after_letter + (rest.len() - trimmed.len());
-        let Ok((remaining, digits)) = number(trimmed) else {
-            let shown = char::from(letter);
-            self.error(
-                block,
-                pos,
-                after_letter,
-                "E-WORD-VALUE",
-                format!("address `{shown}` needs a number after it"),
-            );
-            return after_letter;
-        };
-        let end = value_start + (trimmed.len() - remaining.len());
-        let cleaned: String = digits.chars().filter(|c| !is_blank(*c)).collect();
-        let value = cleaned.parse::<f64>().unwrap_or(f64::NAN);
-        if !value.is_finite() || value.abs() > 1e15 {
-            self.error(
-                block,
-                pos,
-                end,
-                "E-NUMBER-RANGE",
-                format!("the number `{cleaned}` is out of range"),
-            );
-            return end;
-        }
-        let span = self.span(pos, end);
-        match letter {
-            b'N' if block.words.is_empty() && block.number.is_none() => {
-                if value < 0.0 || value.fract() != 0.0 || value > f64::from(u32::MAX) {
-                    self.error(
-                        block,
-                        pos,
-                        end,
-                        "E-SEQUENCE-NUMBER",
-                        format!("sequence number `N{cleaned}` must be a whole number"),
-                    );
-                } else {
-                    // The check above keeps the value in u32's range.
-                    block.number = Some(value as u32);
-                }
-            }
-            b'N' => {
-                self.error(
-                    block,
-                    pos,
-                    end,
-                    "E-SEQUENCE-NUMBER",
-                    "a sequence number `N` must come first in the block".into(),
-                );
-            }
-            _ => block.words.push(Word {
-                letter,
-                value,
-                has_point: cleaned.contains('.'),
-                span,
-            }),
-        }
-        end
     }
 }
 
@@ -319,12 +1193,11 @@ mod tests {
 
     #[test]
     fn number_forms() {
-        assert_eq!(number("12X"), Ok(("X", "12")));
-        assert_eq!(number("-1.5"), Ok(("", "-1.5")));
-        assert_eq!(number(".5"), Ok(("", ".5")));
-        assert_eq!(number("3."), Ok(("", "3.")));
-        assert_eq!(number("+ 7"), Ok(("", "+ 7")));
-        assert!(number("X").is_err());
-        assert!(number("-").is_err());
+        assert_eq!(unsigned("12X"), Ok(("X", "12")));
+        assert_eq!(unsigned("1.5"), Ok(("", "1.5")));
+        assert_eq!(unsigned(".5"), Ok(("", ".5")));
+        assert_eq!(unsigned("3."), Ok(("", "3.")));
+        assert!(unsigned("X").is_err());
+        assert!(unsigned("-").is_err());
     }
 }

@@ -4,7 +4,7 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-use swarf_syntax::{Dialect, Severity, decode, parse};
+use swarf_syntax::{Dialect, ProgramNumber, Severity, decode, parse};
 
 fn words(text: &str, dialect: Dialect) -> Vec<Vec<(char, f64)>> {
     parse(text, dialect)
@@ -33,7 +33,8 @@ fn sequence_numbers_comments_and_tape_marks() {
     );
     assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
     assert_eq!(p.blocks.len(), 3);
-    assert_eq!(p.blocks[0].words[0].letter(), 'O');
+    assert_eq!(p.blocks[0].program, Some(ProgramNumber::Number(1000)));
+    assert!(p.blocks[0].words.is_empty());
     assert_eq!(p.blocks[0].comments.len(), 1);
     assert_eq!(p.blocks[1].number, Some(10));
     assert_eq!(p.blocks[1].line, 2);
@@ -86,13 +87,6 @@ fn unclosed_comment_and_missing_value() {
             .line_col("G0 X1 (oops\nG1 X\n", p.diagnostics[1].span.start),
         (2, 4)
     );
-}
-
-#[test]
-fn macro_syntax_is_reported_not_ignored() {
-    let p = parse("#1=5\nG0 X1\n", Dialect::Fanuc);
-    assert_eq!(p.diagnostics[0].code, "E-MACRO-UNSUPPORTED");
-    assert_eq!(p.blocks.len(), 2);
 }
 
 #[test]

@@ -1,0 +1,180 @@
+//! `swarf explain`: what a code or address means, per dialect, from the language crate's tables.
+
+use std::io::Write;
+
+use serde_json::json;
+use swarf_syntax::codes::{self, CodeDef, Documented, Modality};
+use swarf_syntax::{Code, Dialect};
+
+use crate::{EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
+
+/// Explains `what` (a code such as `G83`, `g54.1`, `M98`, or an address letter such as `Q`) for
+/// `dialect`, or for every dialect when it is `None`; `list` prints every code of the dialect.
+pub(crate) fn explain(
+    what: Option<&str>,
+    dialect: Option<Dialect>,
+    list: bool,
+    json: bool,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> anyhow::Result<i32> {
+    if list {
+        let dialect = dialect.unwrap_or_default();
+        let defs: Vec<&CodeDef> = codes::codes_of(dialect).collect();
+        if json {
+            let items: Vec<_> = defs.iter().map(|d| def_json(d)).collect();
+            writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
+        } else {
+            for d in defs {
+                writeln!(out, "{:<8} {:<40} {}", d.code.to_string(), d.name, d.format)?;
+            }
+        }
+        return Ok(EXIT_OK);
+    }
+    let Some(what) = what else {
+        writeln!(
+            err,
+            "swarf explain: name a code (G83, M98) or an address letter (Q), or pass --list"
+        )?;
+        return Ok(EXIT_USAGE);
+    };
+    let trimmed = what.trim();
+    if trimmed.len() == 1 && trimmed.as_bytes()[0].is_ascii_alphabetic() {
+        return address(trimmed.as_bytes()[0], dialect, json, out);
+    }
+    let Some(code) = Code::parse(trimmed) else {
+        writeln!(
+            err,
+            "swarf explain: `{what}` is not a G or M code (such as G83, G54.1, M98) or an address letter"
+        )?;
+        return Ok(EXIT_USAGE);
+    };
+    let defs: Vec<&CodeDef> = match dialect {
+        Some(d) => codes::lookup(d, code).into_iter().collect(),
+        None => codes::meanings(code).collect(),
+    };
+    if json {
+        let items: Vec<_> = defs.iter().map(|d| def_json(d)).collect();
+        writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
+    } else {
+        for d in &defs {
+            print_def(d, out)?;
+        }
+    }
+    if defs.is_empty() {
+        let others: Vec<String> = codes::meanings(code)
+            .map(|d| format!("{} on {}", d.name, d.dialects.labels()))
+            .collect();
+        let name = dialect.map_or("any supported control", Dialect::label);
+        if others.is_empty() {
+            writeln!(err, "{code} is not a code of {name}")?;
+        } else {
+            writeln!(
+                err,
+                "{code} is not a code of {name}; it is {}",
+                others.join("; ")
+            )?;
+        }
+        return Ok(EXIT_ERRORS);
+    }
+    Ok(EXIT_OK)
+}
+
+fn print_def(d: &CodeDef, out: &mut dyn Write) -> anyhow::Result<()> {
+    writeln!(out, "{} — {}", d.code, d.name)?;
+    writeln!(out, "  dialects:  {}", d.dialects.labels())?;
+    writeln!(out, "  format:    {}", d.format)?;
+    let words: Vec<String> = d.words.chars().map(String::from).collect();
+    writeln!(out, "  words:     {}", words.join(" "))?;
+    let modal = match d.modality {
+        Modality::Modal => "modal",
+        Modality::OneShot => "one-shot",
+    };
+    writeln!(out, "  group:     {}, {modal}", d.group.name())?;
+    if !d.power_on.is_empty() {
+        writeln!(out, "  power-on:  {}", d.power_on.labels())?;
+    }
+    match d.documented {
+        Documented::Full => {}
+        Documented::ListOnly => writeln!(
+            out,
+            "  note:      only listed in the manual; no format is documented"
+        )?,
+        Documented::Mentioned => writeln!(out, "  note:      only mentioned in the manual")?,
+    }
+    writeln!(out, "  {}", d.summary)?;
+    if !d.section.is_empty() {
+        writeln!(out, "  reference: §{}", d.section)?;
+    }
+    writeln!(out)?;
+    Ok(())
+}
+
+fn def_json(d: &CodeDef) -> serde_json::Value {
+    json!({
+        "code": d.code.to_string(),
+        "name": d.name,
+        "dialects": d.dialects.iter().map(Dialect::name).collect::<Vec<_>>(),
+        "format": d.format,
+        "words": d.words,
+        "group": d.group.name(),
+        "modal": d.modality == Modality::Modal,
+        "power_on": d.power_on.iter().map(Dialect::name).collect::<Vec<_>>(),
+        "documented": match d.documented {
+            Documented::Full => "full",
+            Documented::ListOnly => "list",
+            Documented::Mentioned => "mentioned",
+        },
+        "summary": d.summary,
+        "section": d.section,
+    })
+}
+
+fn address(
+    letter: u8,
+    dialect: Option<Dialect>,
+    json: bool,
+    out: &mut dyn Write,
+) -> anyhow::Result<i32> {
+    let letter = letter.to_ascii_uppercase();
+    let dialects: Vec<Dialect> = match dialect {
+        Some(d) => vec![d],
+        None => Dialect::ALL.to_vec(),
+    };
+    let mut seen = Vec::new();
+    for d in dialects {
+        for a in codes::address(d, letter) {
+            if !seen.contains(&a) {
+                seen.push(a);
+            }
+        }
+    }
+    if json {
+        let items: Vec<_> = seen
+            .iter()
+            .map(|a| {
+                json!({
+                    "address": char::from(a.letter).to_string(),
+                    "dialects": a.dialects.iter().map(Dialect::name).collect::<Vec<_>>(),
+                    "meaning": a.meaning,
+                })
+            })
+            .collect();
+        writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
+    } else {
+        for a in &seen {
+            writeln!(
+                out,
+                "{} ({}): {}",
+                char::from(a.letter),
+                a.dialects.labels(),
+                a.meaning
+            )?;
+        }
+    }
+    Ok(if seen.is_empty() {
+        EXIT_ERRORS
+    } else {
+        EXIT_OK
+    })
+}

@@ -1,0 +1,531 @@
+//! Checks that need no execution: the same-block rules of each dialect, read from the code
+//! tables. An error marks the block so the interpreter does not run it; a warning does not.
+
+use crate::codes::{self, Code, CodeDef, DialectSet, Group};
+use crate::{Block, Diagnostic, Dialect, Program, Span, Word, WordForm};
+
+/// Letters any block may carry whatever its codes: they set modal values (feed, speed, tool,
+/// offset numbers) or are codes themselves.
+const ALWAYS: &[u8] = b"NOGMFSTDH";
+
+/// Two kinds of code that may not share a block in some dialects.
+struct Forbidden {
+    dialects: DialectSet,
+    first: &'static [u32],
+    second: &'static [u32],
+    why: &'static str,
+}
+
+const ARC: &[u32] = &[20, 30];
+const COMP: &[u32] = &[400, 410, 420];
+const LENGTH: &[u32] = &[430, 440, 490];
+const STROKE: &[u32] = &[220, 230];
+const COORD_CALC: &[u32] = &[360, 370, 380, 390];
+const LNC_MEASURE: &[u32] = &[1310, 1320, 1330, 1340, 1730, 1830];
+const CYCLES: &[u32] = &[
+    730, 740, 760, 770, 780, 810, 820, 830, 840, 850, 860, 870, 880, 890,
+];
+const LNC_ALL_MODAL: &[u32] = &[
+    0, 10, 20, 30, 220, 230, 400, 410, 420, 430, 440, 490, 680, 690, 1680, 730, 740, 760, 770, 780,
+    800, 810, 820, 830, 840, 850, 860, 870, 880, 890, 900, 910,
+];
+
+/// Same-block combinations the manuals forbid. LNC's come from its priority tables (§6 of the
+/// reference, the cells recovered as "(2) alarm"); KT's from its G43 rules; the start-up rule for
+/// cutter compensation is common to the Fanuc family.
+const FORBIDDEN: &[Forbidden] = &[
+    Forbidden {
+        dialects: DialectSet::FANUC_FAMILY,
+        first: ARC,
+        second: COMP,
+        why: "cutter compensation starts and ends only in a G00/G01 block",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: ARC,
+        second: LENGTH,
+        why: "LNC changes length compensation only in a G00/G01 block (priority table 1)",
+    },
+    Forbidden {
+        dialects: DialectSet::KT,
+        first: LENGTH,
+        second: &[20, 30, 40, 920, 310, 1420, 1430],
+        why: "KT does not allow G02, G03, G04, G92, G31, G142 or G143 in a length-compensation block",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: STROKE,
+        second: &[
+            40, 100, 280, 290, 300, 360, 370, 380, 390, 400, 410, 420, 430, 440, 490,
+        ],
+        why: "LNC priority table 1: G22/G23 may not share a block with this code",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: COMP,
+        second: &[40, 100, 280, 290, 300, 360, 370, 380, 390],
+        why: "LNC priority table 1: G40–G42 may not share a block with this code",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: LENGTH,
+        second: &[40, 100],
+        why: "LNC priority table 1: G43/G44/G49 may not share a block with this code",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: &[541],
+        second: &[40, 100, 280, 290, 300, 360, 370, 380, 390],
+        why: "LNC priority table 1: G54.1 may not share a block with this code",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: &[40],
+        second: &[100],
+        why: "LNC priority table 4: G04 and G10 may not share a block",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: COORD_CALC,
+        second: ARC,
+        why: "LNC priority table 1: the coordinate calculations G36–G39 are not allowed with G02/G03",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: &[650, 660, 670],
+        second: LNC_ALL_MODAL,
+        why: "LNC priority table 2: a macro call G65/G66/G67 must be alone in its block",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: &[680, 690, 1680],
+        second: CYCLES,
+        why: "LNC priority table 2: rotation and a canned cycle may not share a block",
+    },
+    Forbidden {
+        dialects: DialectSet::LNC,
+        first: LNC_MEASURE,
+        second: &[
+            40, 100, 220, 230, 400, 410, 420, 430, 440, 490, 650, 920, 1000, 1200, 1210, 1220,
+            1230, 1240, 1250, 1260, 1270, 1280, 1290,
+        ],
+        why: "LNC priority tables 3, 5 and 6: measuring feed, tap reversal and G173/G183 must not share a block with this code",
+    },
+];
+
+/// Runs every same-block check on every block of `program`.
+pub(crate) fn check_program(program: &mut Program) {
+    let dialect = program.dialect;
+    let mut out = Vec::new();
+    for block in &mut program.blocks {
+        let before = out.len();
+        check_block(dialect, block, &mut out);
+        if out[before..]
+            .iter()
+            .any(|d: &Diagnostic| d.severity == crate::Severity::Error)
+        {
+            block.has_error = true;
+        }
+    }
+    if !out.is_empty() {
+        program.diagnostics.extend(out);
+        program.diagnostics.sort_by_key(|d| d.span.start);
+    }
+}
+
+fn check_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>) {
+    let mut codes: Vec<(&'static CodeDef, &Word)> = Vec::new();
+    for word in &block.words {
+        if !(word.letter == b'G' || word.letter == b'M') || word.form != WordForm::Plain {
+            continue;
+        }
+        if word.expr.is_some() {
+            continue;
+        }
+        let Some(code) = Code::from_value(word.letter, word.value) else {
+            out.push(Diagnostic::error(
+                word.span,
+                "E-CODE-NUMBER",
+                format!(
+                    "`{}` is not a valid {} code number",
+                    word_text(word),
+                    word.letter()
+                ),
+            ));
+            continue;
+        };
+        match codes::lookup(dialect, code) {
+            Some(def) => codes.push((def, word)),
+            None => out.push(unknown_code(dialect, code, word.span)),
+        }
+    }
+    modal_conflicts(dialect, &codes, out);
+    forbidden_pairs(dialect, &codes, out);
+    words_twice(block, out);
+    words_used(dialect, block, &codes, out);
+    required_words(block, &codes, out);
+    arcs(dialect, block, &codes, out);
+    ranges(dialect, block, &codes, out);
+}
+
+fn word_text(word: &Word) -> String {
+    let v = word.value;
+    if word.has_point {
+        format!("{}{v:?}", word.letter())
+    } else {
+        format!("{}{v}", word.letter())
+    }
+}
+
+/// The diagnostic for a code the dialect does not have, naming the dialects that do.
+fn unknown_code(dialect: Dialect, code: Code, span: Span) -> Diagnostic {
+    let elsewhere: Vec<String> = codes::meanings(code)
+        .map(|d| format!("{} on {}", d.name, d.dialects.labels()))
+        .collect();
+    if code.letter == b'M' {
+        let also = if elsewhere.is_empty() {
+            String::new()
+        } else {
+            format!(" (it is {})", elsewhere.join("; "))
+        };
+        return Diagnostic::warning(
+            span,
+            "W-UNKNOWN-M",
+            format!(
+                "{code} is not in the {} code list: a machine-specific M code, not drawn{also}",
+                dialect.label()
+            ),
+        );
+    }
+    if elsewhere.is_empty() {
+        Diagnostic::error(
+            span,
+            "E-UNKNOWN-CODE",
+            format!(
+                "{code} is not a code of {} (nor of any other supported control)",
+                dialect.label()
+            ),
+        )
+    } else {
+        let hint = match (dialect.rules().calculator_input, code) {
+            _ if code == Code::g(200) || code == Code::g(210) => {
+                if dialect == Dialect::Syntec {
+                    " — Syntec selects inch/metric with G70/G71"
+                } else {
+                    ""
+                }
+            }
+            _ => "",
+        };
+        Diagnostic::error(
+            span,
+            "E-CODE-DIALECT",
+            format!(
+                "{code} is not a code of {}; it is {}{hint}",
+                dialect.label(),
+                elsewhere.join("; ")
+            ),
+        )
+    }
+}
+
+fn modal_conflicts(
+    dialect: Dialect,
+    codes: &[(&'static CodeDef, &Word)],
+    out: &mut Vec<Diagnostic>,
+) {
+    for (i, (def, word)) in codes.iter().enumerate() {
+        if !def.group.exclusive() {
+            continue;
+        }
+        // M codes: only the spindle group conflicts (LinuxCNC allows M7 with M8, say).
+        if def.code.letter == b'M' && def.group != Group::Spindle {
+            continue;
+        }
+        let Some((earlier, _)) = codes[..i]
+            .iter()
+            .rev()
+            .find(|(d, _)| d.group == def.group && d.code.letter == def.code.letter)
+        else {
+            continue;
+        };
+        if dialect == Dialect::LinuxCnc {
+            out.push(Diagnostic::error(
+                word.span,
+                "E-MODAL-CONFLICT",
+                format!(
+                    "{} and {} are both in the {} group and cannot share a block",
+                    earlier.code,
+                    def.code,
+                    def.group.name()
+                ),
+            ));
+        } else {
+            out.push(Diagnostic::warning(
+                word.span,
+                "W-MODAL-LAST",
+                format!(
+                    "{} and {} are both in the {} group: {}, the last one, is used",
+                    earlier.code,
+                    def.code,
+                    def.group.name(),
+                    def.code
+                ),
+            ));
+        }
+    }
+}
+
+fn forbidden_pairs(
+    dialect: Dialect,
+    codes: &[(&'static CodeDef, &Word)],
+    out: &mut Vec<Diagnostic>,
+) {
+    let g = |t: &[u32]| {
+        codes
+            .iter()
+            .find(|(d, _)| d.code.letter == b'G' && t.contains(&d.code.tenths))
+    };
+    for rule in FORBIDDEN {
+        if !rule.dialects.contains(dialect) {
+            continue;
+        }
+        let (Some((a, _)), Some((b, wb))) = (g(rule.first), g(rule.second)) else {
+            continue;
+        };
+        if a.code == b.code {
+            continue;
+        }
+        out.push(Diagnostic::error(
+            wb.span,
+            "E-SAME-BLOCK",
+            format!("{} and {} in one block: {}", a.code, b.code, rule.why),
+        ));
+    }
+}
+
+fn words_twice(block: &Block, out: &mut Vec<Diagnostic>) {
+    for (i, word) in block.words.iter().enumerate() {
+        if word.letter == b'G' || word.letter == b'M' {
+            continue;
+        }
+        if block.words[..i]
+            .iter()
+            .any(|w| w.letter == word.letter && w.form == word.form)
+        {
+            let shown = match word.form {
+                WordForm::Comma => format!(",{}", word.letter()),
+                WordForm::Indexed(n) => format!("{}{n}=", word.letter()),
+                WordForm::Plain => word.letter().to_string(),
+            };
+            out.push(Diagnostic::error(
+                word.span,
+                "E-WORD-TWICE",
+                format!("address `{shown}` appears twice in the block"),
+            ));
+        }
+    }
+}
+
+/// A word no code of the block uses, when the block's codes decide what the words mean.
+fn words_used(
+    dialect: Dialect,
+    block: &Block,
+    codes: &[(&'static CodeDef, &Word)],
+    out: &mut Vec<Diagnostic>,
+) {
+    // Without a motion, cycle or one-shot code, the words belong to the modal motion.
+    let decides = codes.iter().any(|(d, _)| {
+        d.code.letter == b'G' && matches!(d.group, Group::Motion | Group::Cycle | Group::NonModal)
+    });
+    if !decides {
+        return;
+    }
+    let takes = |letter: u8| {
+        ALWAYS.contains(&letter)
+            || codes
+                .iter()
+                .any(|(d, _)| d.words.as_bytes().contains(&letter))
+    };
+    for word in block.words.iter().filter(|w| w.form == WordForm::Plain) {
+        if takes(word.letter) {
+            continue;
+        }
+        let names: Vec<String> = codes
+            .iter()
+            .filter(|(d, _)| d.code.letter == b'G')
+            .map(|(d, _)| d.code.to_string())
+            .collect();
+        let code = if dialect == Dialect::LinuxCnc {
+            "E-WORD-UNUSED"
+        } else {
+            "W-WORD-UNUSED"
+        };
+        let message = format!(
+            "address `{}` is not used by {} and is ignored",
+            word.letter(),
+            names.join(" ")
+        );
+        out.push(if dialect == Dialect::LinuxCnc {
+            Diagnostic::error(word.span, code, message)
+        } else {
+            Diagnostic::warning(word.span, code, message)
+        });
+    }
+}
+
+fn has_any(block: &Block, letters: &str) -> bool {
+    block
+        .words
+        .iter()
+        .any(|w| w.form == WordForm::Plain && letters.as_bytes().contains(&w.letter))
+}
+
+fn required_words(block: &Block, codes: &[(&'static CodeDef, &Word)], out: &mut Vec<Diagnostic>) {
+    for (def, word) in codes {
+        for group in def.required {
+            if has_any(block, group) {
+                continue;
+            }
+            let letters: Vec<String> = group.chars().map(|c| format!("`{c}`")).collect();
+            out.push(Diagnostic::error(
+                word.span,
+                "E-WORD-MISSING",
+                format!("{} ({}) needs {}", def.code, def.name, letters.join(" or ")),
+            ));
+        }
+    }
+}
+
+fn arcs(
+    dialect: Dialect,
+    block: &Block,
+    codes: &[(&'static CodeDef, &Word)],
+    out: &mut Vec<Diagnostic>,
+) {
+    let Some((def, word)) = codes
+        .iter()
+        .find(|(d, _)| d.code == Code::g(20) || d.code == Code::g(30))
+    else {
+        return;
+    };
+    let has_r = has_any(block, "R");
+    let has_ijk = has_any(block, "IJK");
+    let has_end = has_any(block, "XYZ");
+    if has_r && has_ijk {
+        let r = block.word(b'R').map_or(word.span, |w| w.span);
+        if dialect == Dialect::LinuxCnc {
+            out.push(Diagnostic::error(
+                r,
+                "E-ARC-R-AND-IJK",
+                "an arc takes either R or I/J/K, not both",
+            ));
+        } else {
+            out.push(Diagnostic::warning(
+                r,
+                "W-ARC-R-AND-IJK",
+                "R and I/J/K in one arc: R takes precedence and I/J/K are ignored",
+            ));
+        }
+    }
+    if !has_r && !has_ijk {
+        if dialect == Dialect::Syntec {
+            out.push(Diagnostic::warning(
+                word.span,
+                "W-ARC-AS-LINE",
+                format!("{} with neither R nor I/J/K moves in a straight line (G01), as Syntec documents", def.code),
+            ));
+        } else {
+            out.push(Diagnostic::error(
+                word.span,
+                "E-ARC-CENTER",
+                format!("{} needs the centre (I, J, K) or the radius (R)", def.code),
+            ));
+        }
+    }
+    if has_r && !has_end {
+        out.push(Diagnostic::error(
+            word.span,
+            "E-ARC-NO-END",
+            format!(
+                "{} with R needs an end point (a full circle needs I/J/K)",
+                def.code
+            ),
+        ));
+    }
+}
+
+fn ranges(
+    dialect: Dialect,
+    block: &Block,
+    codes: &[(&'static CodeDef, &Word)],
+    out: &mut Vec<Diagnostic>,
+) {
+    let has = |t: u32| codes.iter().any(|(d, _)| d.code == Code::g(t));
+    for word in &block.words {
+        if word.expr.is_some() {
+            continue;
+        }
+        let v = word.value;
+        match (word.letter, word.form) {
+            (b'F', WordForm::Indexed(2)) if word.has_point && v.fract() != 0.0 => {
+                out.push(Diagnostic::error(
+                    word.span,
+                    "E-NUMBER-RANGE",
+                    "the retract feed `F2=` must be a whole number (alarm COR-045)",
+                ));
+            }
+            (b'F' | b'S', WordForm::Plain) if v < 0.0 => out.push(Diagnostic::error(
+                word.span,
+                "E-NUMBER-RANGE",
+                format!("`{}` cannot be negative", word.letter()),
+            )),
+            (b'T' | b'H' | b'D', WordForm::Plain) if v < 0.0 || v.fract() != 0.0 => {
+                out.push(Diagnostic::error(
+                    word.span,
+                    "E-NUMBER-RANGE",
+                    format!(
+                        "`{}` takes a whole number that is not negative",
+                        word_text(word)
+                    ),
+                ));
+            }
+            (b'P', WordForm::Plain) if has(541) => {
+                let max = match dialect {
+                    Dialect::Fanuc => 300.0,
+                    _ => 48.0,
+                };
+                if !(1.0..=max).contains(&v) || v.fract() != 0.0 {
+                    out.push(Diagnostic::error(
+                        word.span,
+                        "E-NUMBER-RANGE",
+                        format!("G54.1 takes P1 to P{max} (extended work coordinate systems)"),
+                    ));
+                }
+            }
+            (b'P', WordForm::Plain) if has(300) => {
+                let min = if dialect == Dialect::Syntec { 1.0 } else { 2.0 };
+                if !(min..=4.0).contains(&v) || v.fract() != 0.0 {
+                    out.push(Diagnostic::error(
+                        word.span,
+                        "E-NUMBER-RANGE",
+                        format!("G30 takes P{min} to P4 (the reference point number)"),
+                    ));
+                }
+            }
+            (b'E', WordForm::Plain)
+                if dialect == Dialect::Gsk
+                    && codes.iter().any(|(d, _)| d.group == Group::Cycle) =>
+            {
+                if v == 0.0 || v.abs() > 60.0 {
+                    out.push(Diagnostic::error(
+                        word.span,
+                        "E-NUMBER-RANGE",
+                        "the slant angle E must be between −60° and 60° and not 0",
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+}
