@@ -230,6 +230,19 @@ impl OrbitCamera {
         self.scene_radius = radius;
     }
 
+    /// Frames the box `min..max` (e.g. the selected block's segments, see
+    /// [`crate::segment_bounds`]) like [`Self::fit_aspect`], but keeps [`Self::scene_radius`]
+    /// at least what it was so the rest of the scene stays inside the orthographic depth
+    /// range. Invalid boxes leave the camera unchanged.
+    pub fn zoom_to_selection(&mut self, min: Vec3, max: Vec3, aspect: f32) {
+        if !min.is_finite() || !max.is_finite() || min.cmpgt(max).any() {
+            return;
+        }
+        let scene_radius = finite_or(self.scene_radius, DEFAULT_DISTANCE).abs();
+        self.fit_aspect(min, max, aspect);
+        self.scene_radius = self.scene_radius.max(scene_radius);
+    }
+
     /// Orbits by a mouse drag: horizontal spins around Z, vertical tilts (drag down = look
     /// more from above, as if grabbing the model's front face).
     pub fn orbit(&mut self, delta_px: Vec2) {
@@ -306,7 +319,7 @@ impl OrbitCamera {
             Projection::Orthographic => {
                 let half_h = distance * (self.fov() * 0.5).tan();
                 let half_w = half_h * aspect;
-                // No depth buffer yet: keep the slab generous so nothing is clipped.
+                // A generous slab so nothing is clipped; Depth32Float keeps enough precision.
                 let radius = finite_or(self.scene_radius, DEFAULT_DISTANCE).abs();
                 let depth = 10.0 * (radius + distance) + 1.0;
                 directx::orthographic(
@@ -389,6 +402,33 @@ mod tests {
                         camera.fit_aspect(min, max, aspect);
                         assert_inside_ndc(&camera, min, max, aspect);
                     }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn zoom_to_selection_frames_it_and_keeps_the_scene_depth() {
+        for projection in PROJECTIONS {
+            let mut camera = OrbitCamera::new(StandardView::Iso);
+            camera.projection = projection;
+            camera.fit_aspect(Vec3::splat(-500.0), Vec3::splat(500.0), 1.5);
+            let radius = camera.scene_radius;
+            let (min, max) = (Vec3::new(10.0, 10.0, -1.0), Vec3::new(12.0, 11.0, 0.0));
+            camera.zoom_to_selection(min, max, 1.5);
+            assert_inside_ndc(&camera, min, max, 1.5);
+            assert!(camera.distance < 50.0, "{camera:?}");
+            assert_eq!(camera.scene_radius, radius);
+            let before = camera;
+            camera.zoom_to_selection(Vec3::ONE, Vec3::ZERO, 1.5);
+            camera.zoom_to_selection(Vec3::NAN, Vec3::ONE, 1.5);
+            assert_eq!(camera, before);
+            if projection == Projection::Orthographic {
+                // The far corner of the whole scene is still inside the depth range.
+                let vp = camera.view_proj(1.5);
+                for p in [Vec3::splat(-500.0), Vec3::splat(500.0)] {
+                    let z = vp.project_point3(p).z;
+                    assert!((0.0..=1.0).contains(&z), "{p} depth {z}");
                 }
             }
         }

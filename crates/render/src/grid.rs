@@ -2,19 +2,7 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::Vertex;
-
-/// Colour of ordinary grid lines (sRGB, unpremultiplied): grey, translucent so it reads on
-/// both light and dark themes.
-pub const GRID_COLOR: [u8; 4] = [128, 128, 128, 60];
-/// Colour of every tenth grid line.
-pub const GRID_MAJOR_COLOR: [u8; 4] = [128, 128, 128, 130];
-/// Colour of the X axis (red).
-pub const X_AXIS_COLOR: [u8; 4] = [230, 60, 60, 255];
-/// Colour of the Y axis (green).
-pub const Y_AXIS_COLOR: [u8; 4] = [60, 200, 60, 255];
-/// Colour of the Z axis (blue).
-pub const Z_AXIS_COLOR: [u8; 4] = [70, 110, 255, 255];
+use crate::path::{Kind, PathPoint};
 
 /// At most this many grid cells per side, whatever the bounds.
 const MAX_CELLS: f32 = 200.0;
@@ -37,11 +25,12 @@ pub fn nice_step(raw: f32) -> f32 {
     10.0 * magnitude
 }
 
-/// Line-list vertices for a grid on the XY plane at z = 0 covering `min..max` (and the
-/// origin), with a 1/2/5×10ⁿ step giving roughly ten cells across, plus the red X, green Y
-/// and blue Z axes from the origin. Invalid or empty bounds give a 100-unit grid at the origin.
+/// Polylines (a pen-up point, then the end point) for a grid on the XY plane at z = 0
+/// covering `min..max` (and the origin), with a 1/2/5×10ⁿ step giving roughly ten cells
+/// across, then the X, Y and Z axes from the origin (kinds [`Kind::AxisX`], …). Invalid or
+/// empty bounds give a 100-unit grid at the origin.
 #[must_use]
-pub fn grid_vertices(min: Vec3, max: Vec3) -> Vec<Vertex> {
+pub fn grid_points(min: Vec3, max: Vec3) -> Vec<PathPoint> {
     let (lo, hi) = if min.is_finite() && max.is_finite() && min.cmple(max).all() {
         (
             min.truncate().min(Vec2::ZERO),
@@ -68,39 +57,38 @@ pub fn grid_vertices(min: Vec3, max: Vec3) -> Vec<Vertex> {
     // Grid lines are indexed by integer multiples of the step, so major lines line up.
     let mut i = start.x;
     while i <= end.x {
-        let color = if (i % 10.0) == 0.0 {
-            GRID_MAJOR_COLOR
-        } else {
-            GRID_COLOR
-        };
         let x = i * step;
-        out.push(Vertex::new(Vec3::new(x, y0, 0.0), color));
-        out.push(Vertex::new(Vec3::new(x, y1, 0.0), color));
+        out.push(PathPoint::pen_up(Vec3::new(x, y0, 0.0)));
+        out.push(PathPoint::new(Vec3::new(x, y1, 0.0), grid_kind(i)));
         i += 1.0;
     }
     let mut j = start.y;
     while j <= end.y {
-        let color = if (j % 10.0) == 0.0 {
-            GRID_MAJOR_COLOR
-        } else {
-            GRID_COLOR
-        };
         let y = j * step;
-        out.push(Vertex::new(Vec3::new(x0, y, 0.0), color));
-        out.push(Vertex::new(Vec3::new(x1, y, 0.0), color));
+        out.push(PathPoint::pen_up(Vec3::new(x0, y, 0.0)));
+        out.push(PathPoint::new(Vec3::new(x1, y, 0.0), grid_kind(j)));
         j += 1.0;
     }
 
     let axis = (size * 0.15).max(step * 2.0);
-    for (dir, color) in [
-        (Vec3::X, X_AXIS_COLOR),
-        (Vec3::Y, Y_AXIS_COLOR),
-        (Vec3::Z, Z_AXIS_COLOR),
+    for (dir, kind) in [
+        (Vec3::X, Kind::AxisX),
+        (Vec3::Y, Kind::AxisY),
+        (Vec3::Z, Kind::AxisZ),
     ] {
-        out.push(Vertex::new(Vec3::ZERO, color));
-        out.push(Vertex::new(dir * axis, color));
+        out.push(PathPoint::pen_up(Vec3::ZERO));
+        out.push(PathPoint::new(dir * axis, kind));
     }
     out
+}
+
+/// Every tenth grid line (counted from the origin) is a major one.
+fn grid_kind(index: f32) -> Kind {
+    if (index % 10.0) == 0.0 {
+        Kind::GridMajor
+    } else {
+        Kind::Grid
+    }
 }
 
 #[cfg(test)]
@@ -123,9 +111,20 @@ mod tests {
     fn grid_covers_bounds_and_origin() {
         let min = Vec3::new(20.0, 30.0, -5.0);
         let max = Vec3::new(120.0, 80.0, 10.0);
-        let v = grid_vertices(min, max);
+        let v = grid_points(min, max);
         assert_eq!(v.len() % 2, 0);
+        // Pairs: a pen-up start, then a drawn end.
+        assert!(
+            v.chunks_exact(2)
+                .all(|p| p[0].is_pen_up() && !p[1].is_pen_up())
+        );
         let grid = &v[..v.len() - 6];
+        assert!(
+            grid.iter()
+                .skip(1)
+                .step_by(2)
+                .all(|p| matches!(p.kind(), Some(Kind::Grid | Kind::GridMajor)))
+        );
         assert!(grid.iter().all(|v| v.position[2] == 0.0));
         let gx0 = grid.iter().map(|v| v.position[0]).fold(f32::MAX, f32::min);
         let gx1 = grid.iter().map(|v| v.position[0]).fold(f32::MIN, f32::max);
@@ -136,9 +135,9 @@ mod tests {
         assert!(grid.len() < 2 * 60, "{} grid vertices", grid.len());
         // Axes last: red X, green Y, blue Z from the origin.
         let axes = &v[v.len() - 6..];
-        assert_eq!(axes[0].color, X_AXIS_COLOR);
-        assert_eq!(axes[2].color, Y_AXIS_COLOR);
-        assert_eq!(axes[4].color, Z_AXIS_COLOR);
+        assert_eq!(axes[1].kind(), Some(Kind::AxisX));
+        assert_eq!(axes[3].kind(), Some(Kind::AxisY));
+        assert_eq!(axes[5].kind(), Some(Kind::AxisZ));
         assert_eq!(axes[0].position, [0.0; 3]);
         assert!(axes[5].position[2] > 0.0);
     }
@@ -152,7 +151,7 @@ mod tests {
             (Vec3::splat(-1.0e9), Vec3::splat(1.0e9)),
             (Vec3::splat(0.001), Vec3::splat(0.002)),
         ] {
-            let v = grid_vertices(min, max);
+            let v = grid_points(min, max);
             assert!(!v.is_empty());
             assert!(v.len() < 2 * 2 * 210);
             assert!(v.iter().all(|v| v.position.iter().all(|c| c.is_finite())));

@@ -1,17 +1,26 @@
-//! Swarf's wgpu renderer: line-list batches, an orbit camera, and grid/axes geometry.
+//! Swarf's wgpu renderer: instanced anti-aliased segments with depth, an orbit camera,
+//! grid/axes geometry, CPU picking, offscreen targets and a compositor for egui.
 //!
-//! It knows nothing of egui or the interpreter: callers hand it plain [`Vertex`] slices
-//! (positions as f32 relative to an origin they choose) and a view-projection matrix from
-//! [`OrbitCamera`]. Everything works on the WebGL2 fallback (uniform buffers and vertex
-//! attributes only, no storage buffers).
+//! It knows nothing of egui or the interpreter: callers hand it plain [`PathPoint`] slices
+//! (positions as f32 relative to an origin they choose, one point per path vertex) and a
+//! view-projection matrix from [`OrbitCamera`]. Everything works on the WebGL2 fallback
+//! (uniform buffers and vertex attributes only, no storage buffers).
 
 mod camera;
+mod composite;
 mod grid;
-mod lines;
+mod offscreen;
+mod path;
+mod pick;
 
 pub use camera::{MAX_DISTANCE, MIN_DISTANCE, OrbitCamera, Projection, StandardView};
-pub use grid::{
-    GRID_COLOR, GRID_MAJOR_COLOR, X_AXIS_COLOR, Y_AXIS_COLOR, Z_AXIS_COLOR, grid_vertices,
-    nice_step,
+pub use composite::{COMPOSITE_WGSL, Compositor};
+pub use grid::{grid_points, nice_step};
+pub use offscreen::{HeadlessGpu, RenderError, RenderTarget};
+pub use path::{
+    ARC_COLOR, BOUNDARY_COLOR, COMPENSATED_COLOR, CYCLE_COLOR, ColorMode, DEPTH_FORMAT, FEED_COLOR,
+    GRID_COLOR, GRID_MAJOR_COLOR, HIGHLIGHT_COLOR, HIGHLIGHT_SLOT, Kind, PATH_WGSL, PLUNGE_COLOR,
+    POINT_SIZE, PROGRAMMED_COLOR, Palette, PathPoint, PathRenderer, RAPID_COLOR, RETRACT_COLOR,
+    UNIFORMS_SIZE, ViewParams, X_AXIS_COLOR, Y_AXIS_COLOR, Z_AXIS_COLOR, srgba,
 };
-pub use lines::{LINES_WGSL, LineRenderer, Vertex};
+pub use pick::{Pick, pick_segment, segment_bounds};

@@ -1,182 +1,384 @@
-//! Renders lines offscreen when a wgpu adapter exists (e.g. Mesa lavapipe); skips otherwise.
+//! Renders paths offscreen when a wgpu adapter exists (e.g. Mesa lavapipe) and checks
+//! colours, widths, dashes, depth against the grid, highlight and playback dimming; skips
+//! (passing, with a note) otherwise.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
-use glam::Vec3;
-use swarf_render::{LineRenderer, OrbitCamera, StandardView, Vertex, grid_vertices};
+use glam::{Vec2, Vec3};
+use swarf_render::{
+    ARC_COLOR, Compositor, DEPTH_FORMAT, FEED_COLOR, GRID_MAJOR_COLOR, HIGHLIGHT_COLOR,
+    HeadlessGpu, Kind, OrbitCamera, PathPoint, PathRenderer, RAPID_COLOR, RenderTarget,
+    StandardView, ViewParams, grid_points,
+};
 
-const SIZE: u32 = 64;
+const W: u32 = 96;
+const H: u32 = 64;
 
-fn device() -> Option<(wgpu::Device, wgpu::Queue)> {
+fn gpu() -> Option<HeadlessGpu> {
     if wgpu::Instance::enabled_backend_features().is_empty() {
         return None;
     }
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::LowPower,
-        force_fallback_adapter: false,
-        compatible_surface: None,
-        apply_limit_buckets: false,
-    }))
-    .ok()?;
-    eprintln!("adapter: {:?}", adapter.get_info());
-    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("swarf-render test"),
-        required_limits:
-            wgpu::Limits::downlevel_webgl2_defaults().using_resolution(adapter.limits()),
-        ..Default::default()
-    }))
-    .ok()
+    match pollster::block_on(HeadlessGpu::new()) {
+        Ok(gpu) => {
+            eprintln!("adapter: {:?}", gpu.info);
+            Some(gpu)
+        }
+        Err(e) => {
+            eprintln!("SKIPPED: {e}");
+            None
+        }
+    }
 }
 
-/// Renders `vertices` (and optionally a grid) seen from the top and returns RGBA8 pixels.
-fn render(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    format: wgpu::TextureFormat,
-    vertices: &[Vertex],
-) -> Vec<[u8; 4]> {
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("target"),
-        size: wgpu::Extent3d {
-            width: SIZE,
-            height: SIZE,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
-    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+struct Image {
+    pixels: Vec<u8>,
+}
 
-    let mut renderer = LineRenderer::new(device, format, 1);
-    // Upload twice to exercise buffer reuse, and an empty grid.
-    renderer.set_lines(device, queue, &[]);
-    renderer.set_lines(device, queue, vertices);
-    renderer.set_grid(device, queue, &[]);
-    assert_eq!(renderer.line_vertex_count() as usize, vertices.len() & !1);
-
-    let mut camera = OrbitCamera::new(StandardView::Top);
-    camera.fit(Vec3::new(-10.0, -10.0, 0.0), Vec3::new(10.0, 10.0, 0.0));
-    renderer.prepare(queue, camera.view_proj(1.0));
-
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("lines"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            ..Default::default()
-        });
-        renderer.paint(&mut pass);
+impl Image {
+    fn at(&self, x: u32, y: u32) -> [u8; 4] {
+        let i = ((y * W + x) * 4) as usize;
+        [
+            self.pixels[i],
+            self.pixels[i + 1],
+            self.pixels[i + 2],
+            self.pixels[i + 3],
+        ]
     }
-    let row = (SIZE * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("readback"),
-        size: u64::from(row * SIZE),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    encoder.copy_texture_to_buffer(
-        texture.as_image_copy(),
-        wgpu::TexelCopyBufferInfo {
-            buffer: &readback,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(row),
-                rows_per_image: None,
-            },
-        },
-        wgpu::Extent3d {
-            width: SIZE,
-            height: SIZE,
-            depth_or_array_layers: 1,
-        },
+    fn count(&self, want: impl Fn([u8; 4]) -> bool) -> usize {
+        self.pixels
+            .chunks_exact(4)
+            .filter(|p| want([p[0], p[1], p[2], p[3]]))
+            .count()
+    }
+}
+
+fn close(a: [u8; 4], b: [u8; 4], tolerance: u8) -> bool {
+    a.iter()
+        .zip(&b)
+        .take(3)
+        .all(|(x, y)| x.abs_diff(*y) <= tolerance)
+}
+
+/// A top view of the box -40..40 × -25..25, so one unit is about one pixel.
+fn top_camera() -> OrbitCamera {
+    let mut camera = OrbitCamera::new(StandardView::Top);
+    camera.fit_aspect(
+        Vec3::new(-40.0, -25.0, -10.0),
+        Vec3::new(40.0, 25.0, 10.0),
+        W as f32 / H as f32,
     );
+    camera
+}
+
+fn render(
+    gpu: &HeadlessGpu,
+    format: wgpu::TextureFormat,
+    path: &[PathPoint],
+    grid: &[PathPoint],
+    tweak: impl FnOnce(&mut ViewParams),
+) -> Image {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let target = RenderTarget::new(device, W, H, format).unwrap();
+    let mut renderer = PathRenderer::new(device, format, Some(DEPTH_FORMAT), 1);
+    // Upload twice to exercise buffer reuse.
+    renderer.set_path(device, queue, &[]);
+    renderer.set_path(device, queue, path);
+    renderer.set_grid(device, queue, grid);
+    let expected = if path.len() >= 2 { path.len() - 1 } else { 0 };
+    assert_eq!(renderer.path_segment_count() as usize, expected);
+    let mut params = ViewParams {
+        view_proj: top_camera().view_proj(W as f32 / H as f32),
+        viewport_px: Vec2::new(W as f32, H as f32),
+        line_width_px: 3.0,
+        rapid_width_px: 3.0,
+        ..ViewParams::default()
+    };
+    tweak(&mut params);
+    renderer.prepare(queue, &params);
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    target.draw(&mut encoder, wgpu::Color::BLACK, &renderer);
     queue.submit([encoder.finish()]);
-    readback
-        .slice(..)
-        .map_async(wgpu::MapMode::Read, |r| r.unwrap());
-    device.poll(wgpu::PollType::wait_indefinitely()).unwrap();
-    let data = readback.slice(..).get_mapped_range().unwrap();
-    data.chunks_exact(row as usize)
-        .flat_map(|r| r[..(SIZE * 4) as usize].chunks_exact(4))
-        .map(|p| [p[0], p[1], p[2], p[3]])
-        .collect()
+    Image {
+        pixels: target.read_rgba8(device, queue).unwrap(),
+    }
+}
+
+/// Screen pixel of a world point in the top view.
+fn pixel(p: Vec3) -> (u32, u32) {
+    let ndc = top_camera()
+        .view_proj(W as f32 / H as f32)
+        .project_point3(p);
+    (
+        ((ndc.x + 1.0) * 0.5 * W as f32) as u32,
+        ((1.0 - ndc.y) * 0.5 * H as f32) as u32,
+    )
+}
+
+/// Feed along y = 10, then (pen up) a rapid along y = -10, then an arc chord along x = 0.
+fn kinds_path() -> Vec<PathPoint> {
+    vec![
+        PathPoint::pen_up(Vec3::new(-35.0, 10.0, 0.0)),
+        PathPoint::new(Vec3::new(35.0, 10.0, 0.0), Kind::Feed),
+        PathPoint::pen_up(Vec3::new(-35.0, -10.0, 0.0)),
+        PathPoint::new(Vec3::new(35.0, -10.0, 0.0), Kind::Rapid),
+        PathPoint::pen_up(Vec3::new(20.0, -20.0, 0.0)),
+        PathPoint::new(Vec3::new(20.0, 20.0, 0.0), Kind::Arc),
+    ]
 }
 
 #[test]
-fn draws_coloured_lines_offscreen() {
-    let Some((device, queue)) = device() else {
+fn colours_by_kind_with_pen_up_gaps_and_dashes() {
+    let Some(gpu) = gpu() else {
         eprintln!("SKIPPED: no wgpu adapter available");
         return;
     };
-    let red = [255, 0, 0, 255];
-    let green = [0, 255, 0, 255];
-    let lines = [
-        Vertex::new(Vec3::new(-8.0, 0.0, 0.0), red),
-        Vertex::new(Vec3::new(8.0, 0.0, 0.0), red),
-        Vertex::new(Vec3::new(0.0, -8.0, 0.0), green),
-        Vertex::new(Vec3::new(0.0, 8.0, 0.0), green),
-        Vertex::new(Vec3::ZERO, red), // odd trailing vertex is ignored
-    ];
     for format in [
         wgpu::TextureFormat::Rgba8Unorm,
         wgpu::TextureFormat::Rgba8UnormSrgb,
     ] {
-        let pixels = render(&device, &queue, format, &lines);
-        let reds = pixels.iter().filter(|p| p[0] > 200 && p[1] < 50).count();
-        let greens = pixels.iter().filter(|p| p[1] > 200 && p[0] < 50).count();
-        assert!(reds >= 20, "{format:?}: only {reds} red pixels");
-        assert!(greens >= 20, "{format:?}: only {greens} green pixels");
-        // Top view: the red X line is horizontal through the middle row.
-        let mid = (SIZE / 2) as usize;
-        let row_reds = (0..SIZE as usize)
-            .filter(|&x| {
-                let p = pixels[(mid - 1) * SIZE as usize + x];
-                let q = pixels[mid * SIZE as usize + x];
-                p[0] > 200 || q[0] > 200
-            })
+        let image = render(&gpu, format, &kinds_path(), &[], |_| {});
+        let feed = image.count(|p| close(p, FEED_COLOR, 8));
+        let rapid = image.count(|p| close(p, RAPID_COLOR, 8));
+        let arc = image.count(|p| close(p, ARC_COLOR, 8));
+        assert!(feed > 100, "{format:?}: {feed} feed pixels");
+        assert!(rapid > 40, "{format:?}: {rapid} rapid pixels");
+        assert!(arc > 60, "{format:?}: {arc} arc pixels");
+        // The feed line is where it should be.
+        let (x, y) = pixel(Vec3::new(-10.0, 10.0, 0.0));
+        assert!(close(image.at(x, y), FEED_COLOR, 8), "{:?}", image.at(x, y));
+        // Pen-up: nothing between the feed's end and the rapid's start (x = -35 side).
+        let (x, y) = pixel(Vec3::new(-35.0, 0.0, 0.0));
+        assert_eq!(&image.at(x, y)[..3], &[0, 0, 0], "pen-up gap drawn");
+        // The rapid is dashed: along its row some pixels are lit and some dark.
+        let (_, ry) = pixel(Vec3::new(0.0, -10.0, 0.0));
+        let (x0, _) = pixel(Vec3::new(-30.0, -10.0, 0.0));
+        let (x1, _) = pixel(Vec3::new(10.0, -10.0, 0.0));
+        let lit = (x0..x1)
+            .filter(|&x| close(image.at(x, ry), RAPID_COLOR, 60))
             .count();
+        let span = (x1 - x0) as usize;
         assert!(
-            row_reds >= 20,
-            "{format:?}: red line not horizontal ({row_reds})"
+            lit > span / 3 && lit < span * 9 / 10,
+            "{format:?}: rapid not dashed ({lit} of {span} lit)"
+        );
+        // Anti-aliased edges: partly covered pixels exist beside the feed line.
+        let (fx, fy) = pixel(Vec3::new(0.0, 10.0, 0.0));
+        let column: Vec<[u8; 4]> = (fy.saturating_sub(4)..fy + 5)
+            .map(|y| image.at(fx, y))
+            .collect();
+        assert!(
+            column
+                .iter()
+                .any(|p| p[2] > 20 && p[2] < FEED_COLOR[2] - 20),
+            "{format:?}: no anti-aliased edge in {column:?}"
         );
     }
 }
 
 #[test]
-fn draws_grid_and_axes_offscreen() {
-    let Some((device, queue)) = device() else {
+fn depth_decides_what_is_in_front_not_draw_order() {
+    let Some(gpu) = gpu() else {
         eprintln!("SKIPPED: no wgpu adapter available");
         return;
     };
     let format = wgpu::TextureFormat::Rgba8Unorm;
-    let mut renderer = LineRenderer::new(&device, format, 1);
-    let grid = grid_vertices(Vec3::splat(-10.0), Vec3::splat(10.0));
-    renderer.set_grid(&device, &queue, &grid);
-    assert_eq!(renderer.grid_vertex_count() as usize, grid.len());
-    // Growing past the first capacity reallocates without error.
-    let many: Vec<Vertex> = (0..5000)
-        .map(|i| Vertex::new(Vec3::new(i as f32, 0.0, 0.0), [255; 4]))
+    // A feed at z = +5 (near the top-view eye) and an arc at z = -5 crossing it.
+    let feed = [
+        PathPoint::pen_up(Vec3::new(-30.0, 0.0, 5.0)),
+        PathPoint::new(Vec3::new(30.0, 0.0, 5.0), Kind::Feed),
+    ];
+    let arc = [
+        PathPoint::pen_up(Vec3::new(0.0, -20.0, -5.0)),
+        PathPoint::new(Vec3::new(0.0, 20.0, -5.0), Kind::Arc),
+    ];
+    let crossing = pixel(Vec3::ZERO);
+    for order in [[&feed[..], &arc[..]], [&arc[..], &feed[..]]] {
+        let path: Vec<PathPoint> = order.concat();
+        let image = render(&gpu, format, &path, &[], |_| {});
+        let p = image.at(crossing.0, crossing.1);
+        assert!(
+            close(p, FEED_COLOR, 8),
+            "near feed hidden at the crossing: {p:?}"
+        );
+    }
+
+    // The grid (a major line along x = 0 at z = 0) is hidden by the path above it and drawn
+    // over the path below it.
+    let grid = [
+        PathPoint::pen_up(Vec3::new(0.0, -30.0, 0.0)),
+        PathPoint::new(Vec3::new(0.0, 30.0, 0.0), Kind::GridMajor),
+    ];
+    let reference = pixel(Vec3::new(-20.0, 0.0, 0.0));
+    for (z, grid_visible) in [(5.0, false), (-5.0, true)] {
+        let path = [
+            PathPoint::pen_up(Vec3::new(-30.0, 0.0, z)),
+            PathPoint::new(Vec3::new(30.0, 0.0, z), Kind::Feed),
+        ];
+        let image = render(&gpu, format, &path, &grid, |p| p.grid_width_px = 3.0);
+        let plain = image.at(reference.0, reference.1);
+        let at_grid = image.at(crossing.0, crossing.1);
+        assert!(close(plain, FEED_COLOR, 8), "{plain:?}");
+        assert_eq!(
+            !close(at_grid, plain, 4),
+            grid_visible,
+            "path at z = {z}: crossing {at_grid:?} vs plain {plain:?}"
+        );
+        // Elsewhere the grid line is drawn.
+        let (gx, gy) = pixel(Vec3::new(0.0, 20.0, 0.0));
+        let g = image.at(gx, gy);
+        assert!(
+            g[0] > 40 && g[0] <= GRID_MAJOR_COLOR[0],
+            "grid line missing: {g:?}"
+        );
+    }
+}
+
+#[test]
+fn highlight_dim_and_hidden_kinds() {
+    let Some(gpu) = gpu() else {
+        eprintln!("SKIPPED: no wgpu adapter available");
+        return;
+    };
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let path = kinds_path();
+    let feed_px = pixel(Vec3::new(-10.0, 10.0, 0.0));
+    let arc_px = pixel(Vec3::new(20.0, 0.0, 0.0));
+    let rapid_row = pixel(Vec3::new(0.0, -10.0, 0.0)).1;
+
+    // Highlight the arc (segment 4) by range, the feed (segment 0) by flag.
+    let mut flagged = path.clone();
+    flagged[1] = flagged[1].with_highlight(true);
+    let image = render(&gpu, format, &flagged, &[], |p| p.highlight = 4..5);
+    assert!(close(image.at(arc_px.0, arc_px.1), HIGHLIGHT_COLOR, 8));
+    assert!(close(image.at(feed_px.0, feed_px.1), HIGHLIGHT_COLOR, 8));
+
+    // Playback at segment 1: the feed (0) is executed, the arc (4) is the dimmed remainder.
+    let image = render(&gpu, format, &path, &[], |p| {
+        p.executed_segments = Some(1);
+        p.dim_alpha = 0.25;
+    });
+    assert!(close(image.at(feed_px.0, feed_px.1), FEED_COLOR, 8));
+    let dim = image.at(arc_px.0, arc_px.1);
+    let want = ARC_COLOR.map(|c| (f32::from(c) * 0.25) as u8);
+    assert!(
+        close(dim, want, 8),
+        "dimmed arc {dim:?}, want about {want:?}"
+    );
+
+    // Hidden kinds are not drawn.
+    let image = render(&gpu, format, &path, &[], |p| {
+        p.hidden_kinds = Kind::Rapid.mask()
+    });
+    assert_eq!(image.count(|p| close(p, RAPID_COLOR, 60)), 0);
+    assert!(close(image.at(feed_px.0, feed_px.1), FEED_COLOR, 8));
+    assert!((0..W).all(|x| image.at(x, rapid_row)[0] < 10 || x > W / 2));
+}
+
+#[test]
+fn grid_and_axes_draw_and_buffers_grow() {
+    let Some(gpu) = gpu() else {
+        eprintln!("SKIPPED: no wgpu adapter available");
+        return;
+    };
+    let grid = grid_points(Vec3::new(-40.0, -25.0, 0.0), Vec3::new(40.0, 25.0, 0.0));
+    let image = render(&gpu, wgpu::TextureFormat::Rgba8Unorm, &[], &grid, |_| {});
+    let lit = image.count(|p| p[0] > 20 || p[1] > 20 || p[2] > 20);
+    assert!(lit > 200, "grid drew only {lit} pixels");
+    // The red X axis runs right from the origin.
+    let (ox, oy) = pixel(Vec3::ZERO);
+    let red = (ox + 2..W).filter(|&x| image.at(x, oy)[0] > 150).count();
+    assert!(red > 5, "no X axis");
+
+    // Growing past the first capacity reallocates; huge counts keep their exact size.
+    let mut renderer = PathRenderer::new(
+        &gpu.device,
+        wgpu::TextureFormat::Rgba8Unorm,
+        Some(DEPTH_FORMAT),
+        1,
+    );
+    let many: Vec<PathPoint> = (0..100_000)
+        .map(|i| PathPoint::new(Vec3::new(i as f32, 0.0, 0.0), Kind::Feed))
         .collect();
-    renderer.set_lines(&device, &queue, &many);
-    assert_eq!(renderer.line_vertex_count(), 5000);
-    // And the grid really draws something via the same pipeline.
-    let pixels = render(&device, &queue, format, &grid);
-    let lit = pixels
-        .iter()
-        .filter(|p| p[0] > 20 || p[1] > 20 || p[2] > 20)
-        .count();
-    assert!(lit > 50, "grid drew only {lit} pixels");
+    renderer.set_path(&gpu.device, &gpu.queue, &many[..10]);
+    renderer.set_path(&gpu.device, &gpu.queue, &many);
+    assert_eq!(renderer.path_segment_count(), 99_999);
+    assert!(renderer.path_buffer_bytes() <= 16 * (100_000 + 4096));
+    // Partial updates stay inside what was uploaded.
+    renderer.update_path(&gpu.queue, 5, &many[..3]);
+    renderer.update_path(&gpu.queue, 99_999, &many[..3]);
+    renderer.set_path(&gpu.device, &gpu.queue, &many[..1]);
+    assert_eq!(renderer.path_segment_count(), 0);
+}
+
+#[test]
+fn composites_into_a_pass_without_depth() {
+    let Some(gpu) = gpu() else {
+        eprintln!("SKIPPED: no wgpu adapter available");
+        return;
+    };
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let source = RenderTarget::new(device, W, H, wgpu::TextureFormat::Rgba8Unorm).unwrap();
+    let mut renderer = PathRenderer::new(
+        device,
+        wgpu::TextureFormat::Rgba8Unorm,
+        Some(DEPTH_FORMAT),
+        1,
+    );
+    renderer.set_path(device, queue, &kinds_path());
+    renderer.prepare(
+        queue,
+        &ViewParams {
+            view_proj: top_camera().view_proj(W as f32 / H as f32),
+            viewport_px: Vec2::new(W as f32, H as f32),
+            line_width_px: 3.0,
+            ..ViewParams::default()
+        },
+    );
+    for format in [
+        wgpu::TextureFormat::Rgba8Unorm,
+        wgpu::TextureFormat::Rgba8UnormSrgb,
+    ] {
+        let dest = RenderTarget::new(device, W, H, format).unwrap();
+        let compositor = Compositor::new(device, format, 1);
+        let bind = compositor.bind(device, &source);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        // Transparent background: what is under the 3D view shows through.
+        source.draw(&mut encoder, wgpu::Color::TRANSPARENT, &renderer);
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("egui-like pass"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: dest.color_view(),
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color {
+                            r: 0.0,
+                            g: 0.0,
+                            b: 1.0,
+                            a: 1.0,
+                        }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                ..Default::default()
+            });
+            compositor.paint(&mut pass, &bind);
+        }
+        queue.submit([encoder.finish()]);
+        let image = Image {
+            pixels: dest.read_rgba8(device, queue).unwrap(),
+        };
+        let (x, y) = pixel(Vec3::new(-10.0, 10.0, 0.0));
+        assert!(
+            close(image.at(x, y), FEED_COLOR, 8),
+            "{format:?}: {:?}",
+            image.at(x, y)
+        );
+        let (x, y) = pixel(Vec3::new(-20.0, 0.0, 0.0));
+        assert_eq!(
+            image.at(x, y),
+            [0, 0, 255, 255],
+            "{format:?}: background covered"
+        );
+    }
 }

@@ -1,46 +1,60 @@
-//! Validates the line shader with naga (no GPU needed) and checks it matches `Vertex`.
+//! Validates the WGSL shaders with naga (no GPU needed) and checks they match the Rust side:
+//! uniform size, vertex inputs and no storage buffers (WebGL2 has none).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use swarf_render::{LINES_WGSL, Vertex};
+use swarf_render::{COMPOSITE_WGSL, PATH_WGSL, POINT_SIZE, PathPoint, UNIFORMS_SIZE};
 
-fn parse() -> naga::Module {
-    match naga::front::wgsl::parse_str(LINES_WGSL) {
+const SHADERS: [(&str, &str); 2] = [("path", PATH_WGSL), ("composite", COMPOSITE_WGSL)];
+
+fn parse(name: &str, source: &str) -> naga::Module {
+    match naga::front::wgsl::parse_str(source) {
         Ok(module) => module,
-        Err(err) => panic!("WGSL parse error:\n{}", err.emit_to_string(LINES_WGSL)),
+        Err(err) => panic!("{name}: WGSL parse error:\n{}", err.emit_to_string(source)),
     }
 }
 
 #[test]
 fn wgsl_validates_with_all_capabilities() {
-    let module = parse();
-    let mut validator = Validator::new(ValidationFlags::all(), Capabilities::all());
-    if let Err(err) = validator.validate(&module) {
-        panic!("WGSL validation error:\n{}", err.emit_to_string(LINES_WGSL));
+    for (name, source) in SHADERS {
+        let module = parse(name, source);
+        let mut validator = Validator::new(ValidationFlags::all(), Capabilities::all());
+        if let Err(err) = validator.validate(&module) {
+            panic!(
+                "{name}: WGSL validation error:\n{}",
+                err.emit_to_string(source)
+            );
+        }
     }
 }
 
 #[test]
 fn wgsl_needs_no_capabilities() {
     // Nothing beyond baseline WGSL, so the WebGL2 (GLES 3.0) backend can run it.
-    let module = parse();
-    let mut validator = Validator::new(ValidationFlags::all(), Capabilities::empty());
-    if let Err(err) = validator.validate(&module) {
-        panic!(
-            "shader needs extra capabilities:\n{}",
-            err.emit_to_string(LINES_WGSL)
-        );
+    for (name, source) in SHADERS {
+        let module = parse(name, source);
+        let mut validator = Validator::new(ValidationFlags::all(), Capabilities::empty());
+        if let Err(err) = validator.validate(&module) {
+            panic!(
+                "{name}: shader needs extra capabilities:\n{}",
+                err.emit_to_string(source)
+            );
+        }
     }
 }
 
-#[test]
-fn wgsl_entry_points_and_bindings() {
-    let module = parse();
-    let names: Vec<&str> = module
+fn entry_names(module: &naga::Module) -> Vec<&str> {
+    module
         .entry_points
         .iter()
         .map(|e| e.name.as_str())
-        .collect();
+        .collect()
+}
+
+#[test]
+fn path_shader_entry_points_bindings_and_inputs() {
+    let module = parse("path", PATH_WGSL);
+    let names = entry_names(&module);
     for want in [
         "vs_main",
         "fs_main_gamma_framebuffer",
@@ -51,27 +65,31 @@ fn wgsl_entry_points_and_bindings() {
             "missing entry point {want}: {names:?}"
         );
     }
-    // Exactly one uniform (no storage buffers: WebGL2 has none), 64 bytes = mat4x4<f32>.
+    // Exactly one uniform (no storage buffers), the size of the Rust `Uniforms`, padded to
+    // 16 bytes as std140 (WebGL2) requires.
     let globals: Vec<_> = module.global_variables.iter().map(|(_, g)| g).collect();
     assert_eq!(globals.len(), 1);
     assert_eq!(globals[0].space, naga::AddressSpace::Uniform);
     let size = module.types[globals[0].ty].inner.size(module.to_ctx());
-    assert_eq!(size, 64);
-    assert_eq!(
-        size % 16,
-        0,
-        "uniform size must be padded to 16 bytes for WebGL2"
-    );
-    // Vertex inputs at locations 0 (vec3 position) and 1 (vec4 colour), matching Vertex.
+    assert_eq!(u64::from(size), UNIFORMS_SIZE);
+    assert_eq!(size % 16, 0);
+    // The palette array starts at a 16-byte boundary (std140 arrays of vec4).
+    let naga::TypeInner::Struct { members, .. } = &module.types[globals[0].ty].inner else {
+        panic!("uniform is not a struct");
+    };
+    let palette = members
+        .iter()
+        .find(|m| m.name.as_deref() == Some("palette"));
+    assert_eq!(palette.map(|m| m.offset), Some(128));
+    // Instance inputs: location 0 start position, 1 end position, 2 end packed word,
+    // plus the vertex and instance index builtins; no other vertex data.
     let vs = module
         .entry_points
         .iter()
         .find(|e| e.name == "vs_main")
-        .map(|e| &e.function);
-    let Some(vs) = vs else {
-        panic!("no vs_main");
-    };
-    let locations: Vec<u32> = vs
+        .map(|e| &e.function)
+        .unwrap();
+    let mut locations: Vec<u32> = vs
         .arguments
         .iter()
         .filter_map(|a| match a.binding {
@@ -79,6 +97,69 @@ fn wgsl_entry_points_and_bindings() {
             _ => None,
         })
         .collect();
-    assert_eq!(locations, vec![0, 1]);
-    assert_eq!(size_of::<Vertex>(), 16);
+    locations.sort_unstable();
+    assert_eq!(locations, vec![0, 1, 2]);
+    let builtins = vs
+        .arguments
+        .iter()
+        .filter(|a| matches!(a.binding, Some(naga::Binding::BuiltIn(_))))
+        .count();
+    assert_eq!(builtins, 2);
+    assert_eq!(size_of::<PathPoint>() as u64, POINT_SIZE);
+    assert_eq!(POINT_SIZE, 16);
+}
+
+#[test]
+fn composite_shader_samples_one_texture() {
+    let module = parse("composite", COMPOSITE_WGSL);
+    let names = entry_names(&module);
+    assert!(names.contains(&"vs_main") && names.contains(&"fs_main_linear_framebuffer"));
+    assert!(
+        module
+            .global_variables
+            .iter()
+            .all(|(_, g)| g.space == naga::AddressSpace::Handle),
+        "only a texture and a sampler"
+    );
+}
+
+#[test]
+fn translates_to_webgl2_glsl_es_300() {
+    use naga::back::glsl;
+    for (name, source) in SHADERS {
+        let module = parse(name, source);
+        let mut validator = Validator::new(ValidationFlags::all(), Capabilities::empty());
+        let info = validator.validate(&module).unwrap();
+        let options = glsl::Options {
+            version: glsl::Version::Embedded {
+                version: 300,
+                is_webgl: true,
+            },
+            ..glsl::Options::default()
+        };
+        for entry in &module.entry_points {
+            let pipeline = glsl::PipelineOptions {
+                shader_stage: entry.stage,
+                entry_point: entry.name.clone(),
+                multiview: None,
+            };
+            let mut out = String::new();
+            let written = glsl::Writer::new(
+                &mut out,
+                &module,
+                &info,
+                &options,
+                &pipeline,
+                naga::proc::BoundsCheckPolicies::default(),
+            )
+            .and_then(|mut writer| writer.write());
+            if let Err(err) = written {
+                panic!(
+                    "{name}::{}: no GLSL ES 3.00 for WebGL2: {err:?}",
+                    entry.name
+                );
+            }
+            assert!(out.starts_with("#version 300 es"), "{name}: {out}");
+        }
+    }
 }

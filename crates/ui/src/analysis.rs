@@ -4,18 +4,11 @@ use std::sync::Arc;
 
 use glam::DVec3;
 use swarf_interp::Setup;
-use swarf_render::Vertex;
+use swarf_render::{Kind, PathPoint};
 use swarf_syntax::{Dialect, Program, Severity, parse};
 use swarf_toolpath::{SegmentKind, Toolpath};
 
-use crate::backplot::Scene;
-
-/// Colour of rapid moves in the backplot.
-pub const RAPID_COLOR: [u8; 4] = [235, 170, 40, 255];
-/// Colour of straight cutting moves.
-pub const FEED_COLOR: [u8; 4] = [80, 200, 255, 255];
-/// Colour of arc cutting moves.
-pub const ARC_COLOR: [u8; 4] = [120, 230, 140, 255];
+use crate::backplot::{Scene, SourceText};
 
 /// One diagnostic, located for display.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,7 +62,8 @@ impl Analysis {
         diags.extend(swarf_interp::run(&program, setup.clone(), &mut toolpath));
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         let problems = locate(text, &program, &diags);
-        let scene = scene_of(&toolpath, generation);
+        let mut scene = scene_of(&toolpath, generation);
+        scene.source = Some(Arc::new(SourceText::new(text)));
         Analysis {
             program,
             toolpath,
@@ -140,36 +134,37 @@ fn locate(text: &str, program: &Program, diags: &[swarf_syntax::Diagnostic]) -> 
         .collect()
 }
 
-/// Line-list vertices of the toolpath relative to its bounds' centre ([`scene_origin`]).
+/// The toolpath as one polyline stream relative to its bounds' centre ([`scene_origin`]):
+/// the start point (pen up), then one point per segment end carrying the segment's kind,
+/// plus each segment's source line and feed for picking.
 pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
     let Some(bounds) = path.bounds() else {
         return Scene {
             generation,
-            vertices: Arc::new(Vec::new()),
-            bounds: None,
-            zero: glam::Vec3::ZERO,
+            ..Scene::default()
         };
     };
     let origin = scene_origin(path);
     let rel = |p: DVec3| (p - origin).as_vec3();
-    let mut vertices = Vec::with_capacity(path.len() * 2);
-    let mut from = rel(path.start());
-    for (end, kind) in path.ends().iter().zip(path.kinds()) {
-        let to = rel(*end);
-        let color = match kind {
-            SegmentKind::Rapid => RAPID_COLOR,
-            SegmentKind::Feed => FEED_COLOR,
-            SegmentKind::Arc => ARC_COLOR,
+    let mut points = Vec::with_capacity(path.len() + 1);
+    points.push(PathPoint::pen_up(rel(path.start())));
+    points.extend(path.ends().iter().zip(path.kinds()).map(|(end, kind)| {
+        let kind = match kind {
+            SegmentKind::Rapid => Kind::Rapid,
+            SegmentKind::Feed => Kind::Feed,
+            SegmentKind::Arc => Kind::Arc,
         };
-        vertices.push(Vertex::new(from, color));
-        vertices.push(Vertex::new(to, color));
-        from = to;
-    }
+        PathPoint::new(rel(*end), kind)
+    }));
     Scene {
         generation,
-        vertices: Arc::new(vertices),
+        points: Arc::new(points),
+        lines: Arc::new(path.lines().to_vec()),
+        feeds: Arc::new(path.feeds().to_vec()),
         bounds: Some((rel(bounds.min), rel(bounds.max))),
         zero: rel(DVec3::ZERO),
+        origin,
+        source: None,
     }
 }
 

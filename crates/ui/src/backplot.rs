@@ -1,17 +1,24 @@
 //! The 3D backplot widget: an egui area painted by `swarf_render` through an `egui_wgpu`
-//! paint callback, with orbit/pan/zoom input and standard-view buttons.
+//! paint callback, with orbit/pan/zoom input, standard-view buttons, picking (click a
+//! segment to select its block, hover for its line, position and feed) and playback dimming.
 //!
 //! GPU side: [`Backplot::install`] puts a [`BackplotResources`] into egui-wgpu's
 //! `callback_resources` type map. Each frame [`Backplot::show`] adds a paint callback carrying
-//! the scene's `Arc` and the camera matrix; its `prepare` uploads vertices only when the
-//! scene's generation changed and writes the uniform, its `paint` records one draw per batch.
+//! the scene's `Arc` and the view parameters. Its `prepare` uploads the points only when the
+//! scene's generation changed, and draws the 3D view (with its own depth buffer) into an
+//! offscreen target only when something visible changed; its `paint` composites that target
+//! into egui's render pass, which has no depth buffer. So the app needs no depth setting.
 
 use std::collections::HashMap;
+use std::ops::Range;
 use std::sync::Arc;
 
 use egui::epaint::ViewportInPixels;
-use glam::{Mat4, Vec2, Vec3};
-use swarf_render::{LineRenderer, OrbitCamera, Projection, StandardView, Vertex, grid_vertices};
+use glam::{DVec3, Mat4, Vec2, Vec3};
+use swarf_render::{
+    ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathPoint, PathRenderer, Projection,
+    RenderTarget, StandardView, ViewParams, grid_points, pick_segment, segment_bounds,
+};
 
 /// Key of the flag [`Backplot::install`] leaves in the egui context's memory; without it `show`
 /// draws a notice instead of a paint callback nobody would execute (e.g. on the glow backend).
@@ -25,20 +32,127 @@ const STALE_FRAMES: u64 = 600;
 /// Scroll points per e-fold of zoom (≈ 1.16× per 100-point wheel notch).
 const SCROLL_ZOOM_POINTS: f32 = 667.0;
 
-/// Geometry to plot: line-list vertices relative to `origin`, bounds in the same frame.
+/// How far from a segment (in points) the cursor may be to pick it.
+pub const PICK_RADIUS: f32 = 6.0;
+
+/// Colour format of the offscreen target the 3D view is drawn into (gamma-encoded and
+/// premultiplied, like egui's own blending).
+const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// Longest block text shown in the hover tooltip, in characters.
+const TOOLTIP_TEXT_CHARS: usize = 120;
+
+/// The program text with its line starts, so tooltips can show a block's text.
+#[derive(Clone, Debug, Default)]
+pub struct SourceText {
+    text: String,
+    starts: Vec<usize>,
+}
+
+impl SourceText {
+    /// Indexes `text` (lines end at `\n`; a trailing `\r` is dropped from each line).
+    #[must_use]
+    pub fn new(text: &str) -> Self {
+        let mut starts = Vec::with_capacity(text.len() / 24 + 1);
+        starts.push(0);
+        starts.extend(
+            text.bytes()
+                .enumerate()
+                .filter(|&(_, b)| b == b'\n')
+                .map(|(i, _)| i + 1),
+        );
+        Self {
+            text: text.to_owned(),
+            starts,
+        }
+    }
+
+    /// The text of 1-based `line` without its line ending, if the text has that line.
+    #[must_use]
+    pub fn line(&self, line: u32) -> Option<&str> {
+        let index = usize::try_from(line).ok()?.checked_sub(1)?;
+        let start = *self.starts.get(index)?;
+        let end = self
+            .starts
+            .get(index + 1)
+            .map_or(self.text.len(), |next| next.saturating_sub(1));
+        let text = self.text.get(start..end.max(start))?;
+        Some(text.strip_suffix('\r').unwrap_or(text))
+    }
+}
+
+/// Geometry to plot: the toolpath as one polyline stream relative to `origin`, with the
+/// source line and feed of every segment for picking.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
-    /// Changes whenever `vertices` or `bounds` change; the GPU upload happens only then.
+    /// Changes whenever the geometry changes; the GPU upload happens only then.
     pub generation: u64,
-    /// Line-list vertices (two per segment), f32 relative to the caller's origin.
-    pub vertices: Arc<Vec<Vertex>>,
+    /// One point per path vertex: the start point (pen up), then the end of each segment,
+    /// so segment `i` runs from point `i` to point `i + 1` and carries point `i + 1`'s kind.
+    pub points: Arc<Vec<PathPoint>>,
+    /// 1-based source line of each segment.
+    pub lines: Arc<Vec<u32>>,
+    /// Feed of each segment in mm/min (0 for rapids).
+    pub feeds: Arc<Vec<f32>>,
     /// Axis-aligned bounds of the geometry, `None` when there is none.
     pub bounds: Option<(Vec3, Vec3)>,
     /// Where machine zero lies in the scene's frame: the grid and the axes are drawn there.
     pub zero: Vec3,
+    /// Machine coordinates (mm) of the scene's origin, to report positions.
+    pub origin: DVec3,
+    /// The program text, for the hover tooltip (`None` when not known).
+    pub source: Option<Arc<SourceText>>,
 }
 
-/// State of one backplot view: its camera and when to fit it to the scene.
+impl Scene {
+    /// Number of segments (one fewer than points).
+    #[must_use]
+    pub fn segment_count(&self) -> usize {
+        self.points.len().saturating_sub(1)
+    }
+
+    /// The segments caused by source `line`, from its first to its last (a block's segments
+    /// are consecutive); `None` when the line moved nothing.
+    #[must_use]
+    pub fn segments_of_line(&self, line: u32) -> Option<Range<usize>> {
+        let first = self.lines.iter().position(|&l| l == line)?;
+        let last = self.lines.iter().rposition(|&l| l == line)?;
+        Some(first..last + 1)
+    }
+
+    /// Machine coordinates (mm) of a point in the scene's frame.
+    #[must_use]
+    pub fn machine_position(&self, p: Vec3) -> DVec3 {
+        self.origin + p.as_dvec3()
+    }
+}
+
+/// What is under the cursor in the backplot (or was clicked).
+#[derive(Clone, Debug, PartialEq)]
+pub struct HoverInfo {
+    /// Segment index in the scene.
+    pub segment: usize,
+    /// 1-based source line of the block that made it.
+    pub line: u32,
+    /// Point of the segment nearest to the cursor, in machine coordinates (mm).
+    pub position: DVec3,
+    /// Feed in mm/min (0 for rapids).
+    pub feed: f32,
+    /// Kind of motion.
+    pub kind: Option<Kind>,
+}
+
+/// What a hover pick depended on, so it is not repeated while nothing changes.
+#[derive(Clone, Debug, PartialEq)]
+struct HoverKey {
+    generation: u64,
+    pointer: egui::Pos2,
+    rect: egui::Rect,
+    camera: OrbitCamera,
+    hidden_kinds: u32,
+}
+
+/// State of one backplot view: camera, selection, playback position and display options.
 #[derive(Clone, Debug)]
 pub struct Backplot {
     camera: OrbitCamera,
@@ -48,6 +162,25 @@ pub struct Backplot {
     had_geometry: bool,
     /// Fit to the scene's extents on the next frame.
     fit_pending: bool,
+    /// Fit to the selected block on the next frame.
+    zoom_to_selection_pending: bool,
+    /// The block whose segments are highlighted.
+    selected_line: Option<u32>,
+    /// A line clicked in the view and not yet taken by [`Self::take_picked_line`].
+    picked_line: Option<u32>,
+    /// Playback position: segments before it are executed, the rest drawn dimmed.
+    executed: Option<usize>,
+    /// Kinds not drawn (and not picked).
+    hidden_kinds: u32,
+    /// Colour by kind or by tool.
+    color_mode: ColorMode,
+    /// What the cursor is over.
+    hover: Option<HoverInfo>,
+    hover_key: Option<HoverKey>,
+    /// Highlighted segments cached per (generation, line).
+    selection: Option<(u64, u32, Option<Range<usize>>)>,
+    /// Where the view was last drawn, for [`Self::screen_pos`].
+    last_rect: Option<egui::Rect>,
 }
 
 impl Default for Backplot {
@@ -65,13 +198,24 @@ impl Backplot {
             last_generation: None,
             had_geometry: false,
             fit_pending: true,
+            zoom_to_selection_pending: false,
+            selected_line: None,
+            picked_line: None,
+            executed: None,
+            hidden_kinds: 0,
+            color_mode: ColorMode::ByKind,
+            hover: None,
+            hover_key: None,
+            selection: None,
+            last_rect: None,
         }
     }
 
     /// Registers the GPU resources; call once with eframe's `cc.wgpu_render_state`.
     ///
     /// Assumes egui-wgpu's default render pass (as eframe configures it with the default
-    /// `multisampling: 0`): one sample and no depth attachment. For other MSAA settings use
+    /// `multisampling: 0`): one sample. The 3D view brings its own depth buffer, so eframe's
+    /// `depth_buffer` may stay 0. For other MSAA settings use
     /// [`Self::install_with_sample_count`].
     pub fn install(ctx: &egui::Context, render_state: &egui_wgpu::RenderState) {
         Self::install_with_sample_count(ctx, render_state, 1);
@@ -85,8 +229,11 @@ impl Backplot {
         sample_count: u32,
     ) {
         let resources = BackplotResources {
-            target_format: render_state.target_format,
-            sample_count: sample_count.max(1),
+            compositor: Compositor::new(
+                &render_state.device,
+                render_state.target_format,
+                sample_count.max(1),
+            ),
             views: HashMap::new(),
         };
         render_state
@@ -102,6 +249,11 @@ impl Backplot {
         self.fit_pending = true;
     }
 
+    /// Fit to the selected block's segments on the next frame (nothing without a selection).
+    pub fn zoom_to_selection(&mut self) {
+        self.zoom_to_selection_pending = true;
+    }
+
     /// The camera, e.g. to persist it.
     #[must_use]
     pub fn camera(&self) -> &OrbitCamera {
@@ -113,8 +265,80 @@ impl Backplot {
         &mut self.camera
     }
 
-    /// Draws the scene filling the available space; handles input; re-uploads when
-    /// `scene.generation` changes; fits to extents the first time geometry appears.
+    /// The 1-based source line the user clicked in the view since the last call, if any:
+    /// the editor should move its cursor there.
+    pub fn take_picked_line(&mut self) -> Option<u32> {
+        self.picked_line.take()
+    }
+
+    /// The block (1-based source line) whose segments are highlighted.
+    #[must_use]
+    pub fn selected_line(&self) -> Option<u32> {
+        self.selected_line
+    }
+
+    /// Highlights the segments of 1-based source `line` (e.g. the editor's cursor line), or
+    /// nothing.
+    pub fn set_selected_line(&mut self, line: Option<u32>) {
+        self.selected_line = line;
+    }
+
+    /// Playback position in segments: the first `executed` segments are drawn normally, the
+    /// remainder dimmed; `None` draws everything normally.
+    pub fn set_playback(&mut self, executed: Option<usize>) {
+        self.executed = executed;
+    }
+
+    /// The playback position set by [`Self::set_playback`].
+    #[must_use]
+    pub fn playback(&self) -> Option<usize> {
+        self.executed
+    }
+
+    /// Shows or hides one kind of segment (e.g. rapids); hidden segments are not picked.
+    pub fn set_kind_visible(&mut self, kind: Kind, visible: bool) {
+        if visible {
+            self.hidden_kinds &= !kind.mask();
+        } else {
+            self.hidden_kinds |= kind.mask();
+        }
+    }
+
+    /// Whether segments of `kind` are drawn.
+    #[must_use]
+    pub fn kind_visible(&self, kind: Kind) -> bool {
+        self.hidden_kinds & kind.mask() == 0
+    }
+
+    /// Colours segments by kind or by their colour index (the tool).
+    pub fn set_color_mode(&mut self, mode: ColorMode) {
+        self.color_mode = mode;
+    }
+
+    /// What the cursor was over at the last frame.
+    #[must_use]
+    pub fn hovered(&self) -> Option<&HoverInfo> {
+        self.hover.as_ref()
+    }
+
+    /// Where a point of the scene (its frame, like [`Scene::points`]) appeared on screen at
+    /// the last frame; `None` before the first frame or behind the eye.
+    #[must_use]
+    pub fn screen_pos(&self, p: Vec3) -> Option<egui::Pos2> {
+        let rect = self.last_rect?;
+        let clip = self.camera.view_proj(rect.width() / rect.height()) * p.extend(1.0);
+        if clip.w <= 0.0 || clip.z < 0.0 {
+            return None;
+        }
+        let ndc = clip.truncate() / clip.w;
+        Some(egui::pos2(
+            rect.min.x + (ndc.x + 1.0) * 0.5 * rect.width(),
+            rect.min.y + (1.0 - ndc.y) * 0.5 * rect.height(),
+        ))
+    }
+
+    /// Draws the scene filling the available space; handles input and picking; re-uploads
+    /// when `scene.generation` changes; fits to extents the first time geometry appears.
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) -> egui::Response {
         let size = ui.available_size().max(egui::vec2(64.0, 64.0));
         let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
@@ -150,22 +374,47 @@ impl Backplot {
                 None => self.camera.fit_aspect(Vec3::ONE, Vec3::ZERO, aspect),
             }
         }
+        let selection = self.selection_range(scene);
+        if self.zoom_to_selection_pending {
+            self.zoom_to_selection_pending = false;
+            if let Some((min, max)) = selection
+                .clone()
+                .and_then(|s| segment_bounds(&scene.points, s))
+            {
+                self.camera.zoom_to_selection(min, max, aspect);
+            }
+        }
+        // Pick with the camera as it is drawn this frame.
+        self.handle_picking(&response, rect, scene);
+        self.last_rect = Some(rect);
 
+        let to_u32 = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        let params = ViewParams {
+            view_proj: self.camera.view_proj(aspect),
+            executed_segments: self.executed.map(to_u32),
+            highlight: selection.map_or(0..0, |s| to_u32(s.start)..to_u32(s.end)),
+            hidden_kinds: self.hidden_kinds,
+            color_mode: self.color_mode,
+            ..ViewParams::default()
+        };
         let callback = BackplotCallback {
             id: response.id,
             frame: ui.ctx().cumulative_frame_nr(),
             generation: scene.generation,
-            vertices: Arc::clone(&scene.vertices),
+            points: Arc::clone(&scene.points),
             bounds: scene.bounds,
             zero: scene.zero,
             rect,
-            view_proj: self.camera.view_proj(aspect),
+            params,
         };
         ui.painter().set(
             slot,
             egui_wgpu::Callback::new_paint_callback(rect, callback),
         );
-        response
+        match &self.hover {
+            Some(hover) => response.on_hover_ui_at_pointer(|ui| hover_tooltip(ui, hover, scene)),
+            None => response,
+        }
     }
 
     /// Notices new scene generations and schedules a fit when geometry first appears.
@@ -179,6 +428,80 @@ impl Backplot {
             self.fit_pending = true;
         }
         self.had_geometry = has_geometry;
+    }
+
+    /// The selected block's segments (cached per scene generation and line).
+    fn selection_range(&mut self, scene: &Scene) -> Option<Range<usize>> {
+        let line = self.selected_line?;
+        match &self.selection {
+            Some((generation, cached, range))
+                if *generation == scene.generation && *cached == line =>
+            {
+                range.clone()
+            }
+            _ => {
+                let range = scene.segments_of_line(line);
+                self.selection = Some((scene.generation, line, range.clone()));
+                range
+            }
+        }
+    }
+
+    /// The segment within [`PICK_RADIUS`] of `pointer` (screen position), if any.
+    fn pick(&self, scene: &Scene, rect: egui::Rect, pointer: egui::Pos2) -> Option<HoverInfo> {
+        let viewport = Vec2::new(rect.width(), rect.height());
+        let cursor = pointer - rect.min;
+        let hit = pick_segment(
+            &scene.points,
+            self.camera.view_proj(rect.width() / rect.height()),
+            viewport,
+            Vec2::new(cursor.x, cursor.y),
+            PICK_RADIUS,
+            self.hidden_kinds,
+        )?;
+        Some(HoverInfo {
+            segment: hit.segment,
+            line: *scene.lines.get(hit.segment)?,
+            position: scene.machine_position(hit.position(&scene.points)?),
+            feed: scene.feeds.get(hit.segment).copied().unwrap_or(0.0),
+            kind: scene.points.get(hit.segment + 1).and_then(PathPoint::kind),
+        })
+    }
+
+    /// A click selects the block under the cursor (or clears the selection on empty space)
+    /// and reports it through [`Self::take_picked_line`]; hovering finds what is under the
+    /// cursor for the tooltip, only when the pointer, camera or scene changed.
+    fn handle_picking(&mut self, response: &egui::Response, rect: egui::Rect, scene: &Scene) {
+        if response.clicked()
+            && let Some(pointer) = response.interact_pointer_pos()
+        {
+            let hit = self.pick(scene, rect, pointer);
+            self.selected_line = hit.as_ref().map(|h| h.line);
+            if let Some(hit) = hit {
+                self.picked_line = Some(hit.line);
+            }
+        }
+        let pointer = if response.dragged() {
+            None
+        } else {
+            response.hover_pos()
+        };
+        let Some(pointer) = pointer else {
+            self.hover = None;
+            self.hover_key = None;
+            return;
+        };
+        let key = HoverKey {
+            generation: scene.generation,
+            pointer,
+            rect,
+            camera: self.camera,
+            hidden_kinds: self.hidden_kinds,
+        };
+        if self.hover_key.as_ref() != Some(&key) {
+            self.hover = self.pick(scene, rect, pointer);
+            self.hover_key = Some(key);
+        }
     }
 
     /// Orbit (left drag), pan (right/middle or shift+left drag), zoom (scroll, pinch) and
@@ -215,7 +538,8 @@ impl Backplot {
         }
     }
 
-    /// Small buttons in the view's top-left corner: Fit, the standard views and the projection.
+    /// Small buttons in the view's top-left corner: Fit, the standard views, the projection,
+    /// rapids on/off and zoom to the selected block.
     fn overlay_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) {
         let mut child = ui.new_child(
             egui::UiBuilder::new()
@@ -253,20 +577,73 @@ impl Backplot {
                 Projection::Perspective
             };
         }
+        let rapids = self.kind_visible(Kind::Rapid);
+        if child
+            .selectable_label(rapids, "Rapids")
+            .on_hover_text("Show or hide rapid moves")
+            .clicked()
+        {
+            self.set_kind_visible(Kind::Rapid, !rapids);
+        }
+        if self.selected_line.is_some()
+            && child
+                .small_button("Zoom sel")
+                .on_hover_text("Zoom to the selected block")
+                .clicked()
+        {
+            self.zoom_to_selection();
+        }
+    }
+}
+
+/// Human name of a kind for the tooltip.
+fn kind_label(kind: Option<Kind>) -> &'static str {
+    match kind {
+        Some(Kind::Rapid) => "rapid",
+        Some(Kind::Feed) => "feed",
+        Some(Kind::Arc) => "arc",
+        Some(Kind::Plunge) => "plunge",
+        Some(Kind::Retract) => "retract",
+        Some(Kind::Cycle) => "cycle",
+        Some(Kind::Compensated) => "compensated",
+        Some(Kind::Programmed) => "programmed",
+        _ => "move",
+    }
+}
+
+/// The hover tooltip: line and block text, position, kind and feed.
+fn hover_tooltip(ui: &mut egui::Ui, hover: &HoverInfo, scene: &Scene) {
+    ui.strong(format!("Line {}", hover.line));
+    if let Some(text) = scene.source.as_ref().and_then(|s| s.line(hover.line)) {
+        let text = text.trim();
+        let shown: String = text.chars().take(TOOLTIP_TEXT_CHARS).collect();
+        let ellipsis = if shown.len() < text.len() { "…" } else { "" };
+        ui.monospace(format!("{shown}{ellipsis}"));
+    }
+    let p = hover.position;
+    ui.label(format!("X{:.3} Y{:.3} Z{:.3}", p.x, p.y, p.z));
+    let kind = kind_label(hover.kind);
+    if hover.kind == Some(Kind::Rapid) || hover.feed <= 0.0 {
+        ui.label(kind);
+    } else {
+        ui.label(format!("{kind} F{}", hover.feed));
     }
 }
 
 /// GPU state shared by all backplots, stored in egui-wgpu's `callback_resources`.
 pub struct BackplotResources {
-    target_format: wgpu::TextureFormat,
-    sample_count: u32,
+    compositor: Compositor,
     views: HashMap<egui::Id, GpuView>,
 }
 
-/// One backplot's renderer and what it last uploaded.
+/// One backplot's renderer, offscreen target and what it last drew.
 struct GpuView {
-    renderer: LineRenderer,
+    renderer: PathRenderer,
+    target: Option<RenderTarget>,
+    bind_group: Option<wgpu::BindGroup>,
     generation: Option<u64>,
+    /// Parameters of the image in `target`; drawing again is skipped while they hold.
+    drawn: Option<ViewParams>,
     last_frame: u64,
 }
 
@@ -275,11 +652,12 @@ struct BackplotCallback {
     id: egui::Id,
     frame: u64,
     generation: u64,
-    vertices: Arc<Vec<Vertex>>,
+    points: Arc<Vec<PathPoint>>,
     bounds: Option<(Vec3, Vec3)>,
     zero: Vec3,
     rect: egui::Rect,
-    view_proj: Mat4,
+    /// View parameters in points, for the whole rectangle.
+    params: ViewParams,
 }
 
 impl egui_wgpu::CallbackTrait for BackplotCallback {
@@ -288,43 +666,76 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         screen_descriptor: &egui_wgpu::ScreenDescriptor,
-        _egui_encoder: &mut wgpu::CommandEncoder,
+        egui_encoder: &mut wgpu::CommandEncoder,
         callback_resources: &mut egui_wgpu::CallbackResources,
     ) -> Vec<wgpu::CommandBuffer> {
-        let Some(resources) = callback_resources.get_mut::<BackplotResources>() else {
+        let Some(BackplotResources { compositor, views }) =
+            callback_resources.get_mut::<BackplotResources>()
+        else {
             return Vec::new();
         };
-        let (format, samples) = (resources.target_format, resources.sample_count);
-        resources
-            .views
-            .retain(|_, view| view.last_frame + STALE_FRAMES >= self.frame);
-        let view = resources.views.entry(self.id).or_insert_with(|| GpuView {
-            renderer: LineRenderer::new(device, format, samples),
+        views.retain(|_, view| view.last_frame + STALE_FRAMES >= self.frame);
+        let view = views.entry(self.id).or_insert_with(|| GpuView {
+            renderer: PathRenderer::new(device, OFFSCREEN_FORMAT, Some(DEPTH_FORMAT), 1),
+            target: None,
+            bind_group: None,
             generation: None,
+            drawn: None,
             last_frame: self.frame,
         });
         view.last_frame = self.frame;
         if view.generation != Some(self.generation) {
-            view.renderer.set_lines(device, queue, &self.vertices);
+            view.renderer.set_path(device, queue, &self.points);
             let zero = self.zero;
             let mut grid = match self.bounds {
-                Some((min, max)) => grid_vertices(min - zero, max - zero),
-                None => grid_vertices(Vec3::ONE, Vec3::ZERO),
+                Some((min, max)) => grid_points(min - zero, max - zero),
+                None => grid_points(Vec3::ONE, Vec3::ZERO),
             };
-            for v in &mut grid {
-                v.position = (Vec3::from_array(v.position) + zero).to_array();
+            for p in &mut grid {
+                p.position = (p.position() + zero).to_array();
             }
             view.renderer.set_grid(device, queue, &grid);
             view.generation = Some(self.generation);
+            view.drawn = None;
         }
-        let visible = ViewportInPixels::from_points(
-            &self.rect,
-            screen_descriptor.pixels_per_point,
-            screen_descriptor.size_in_pixels,
+
+        let ppp = screen_descriptor.pixels_per_point;
+        let visible =
+            ViewportInPixels::from_points(&self.rect, ppp, screen_descriptor.size_in_pixels);
+        let full = self.rect * ppp;
+        let Some(remap) = ndc_remap(full, &visible) else {
+            return Vec::new();
+        };
+        // `ndc_remap` checked both sides are positive.
+        let size = (
+            visible.width_px.unsigned_abs(),
+            visible.height_px.unsigned_abs(),
         );
-        let full = self.rect * screen_descriptor.pixels_per_point;
-        if let Some(remap) = ndc_remap(full, &visible) {
-            view.renderer.prepare(queue, remap * self.view_proj);
+        if view.target.as_ref().map(RenderTarget::size) != Some(size) {
+            view.drawn = None;
+            match RenderTarget::new(device, size.0, size.1, OFFSCREEN_FORMAT) {
+                Ok(target) => {
+                    view.bind_group = Some(compositor.bind(device, &target));
+                    view.target = Some(target);
+                }
+                Err(_) => {
+                    view.target = None;
+                    view.bind_group = None;
+                    return Vec::new();
+                }
+            }
+        }
+        let params = ViewParams {
+            view_proj: remap * self.params.view_proj,
+            viewport_px: Vec2::new(size.0 as f32, size.1 as f32),
+            ..self.params.clone().scaled(ppp)
+        };
+        if view.drawn.as_ref() != Some(&params)
+            && let Some(target) = &view.target
+        {
+            view.renderer.prepare(queue, &params);
+            target.draw(egui_encoder, wgpu::Color::TRANSPARENT, &view.renderer);
+            view.drawn = Some(params);
         }
         Vec::new()
     }
@@ -335,15 +746,19 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         render_pass: &mut wgpu::RenderPass<'static>,
         callback_resources: &egui_wgpu::CallbackResources,
     ) {
-        let Some(view) = callback_resources
-            .get::<BackplotResources>()
-            .and_then(|r| r.views.get(&self.id))
+        let Some(resources) = callback_resources.get::<BackplotResources>() else {
+            return;
+        };
+        let Some(bind_group) = resources
+            .views
+            .get(&self.id)
+            .and_then(|v| v.bind_group.as_ref())
         else {
             return;
         };
         // egui-wgpu has already set the scissor to the clip rect and the viewport to the
-        // callback rect clamped to the screen; set that viewport explicitly (prepare's matrix
-        // maps the full rect into it) so we do not depend on that courtesy.
+        // callback rect clamped to the screen (what `prepare` sized the target to); set that
+        // viewport explicitly so we do not depend on that courtesy.
         let vp = info.viewport_in_pixels();
         if vp.width_px <= 0 || vp.height_px <= 0 {
             return;
@@ -356,7 +771,7 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             0.0,
             1.0,
         );
-        view.renderer.paint(render_pass);
+        resources.compositor.paint(render_pass, bind_group);
     }
 }
 
@@ -439,9 +854,11 @@ mod tests {
         plot.fit_pending = false;
         let scene = Scene {
             generation: 1,
-            vertices: Arc::new(vec![Vertex::default(); 2]),
+            points: Arc::new(vec![PathPoint::default(); 2]),
+            lines: Arc::new(vec![1]),
+            feeds: Arc::new(vec![0.0]),
             bounds: Some((Vec3::ZERO, Vec3::ONE)),
-            zero: Vec3::ZERO,
+            ..Scene::default()
         };
         plot.track_scene(&scene);
         assert!(plot.fit_pending);
@@ -461,5 +878,25 @@ mod tests {
             ..scene
         });
         assert!(plot.fit_pending);
+    }
+
+    #[test]
+    fn source_lines_and_segments_of_a_line() {
+        let text = SourceText::new("G0 X1\r\nG1 X2\n\nM30");
+        assert_eq!(text.line(1), Some("G0 X1"));
+        assert_eq!(text.line(2), Some("G1 X2"));
+        assert_eq!(text.line(3), Some(""));
+        assert_eq!(text.line(4), Some("M30"));
+        assert_eq!(text.line(5), None);
+        assert_eq!(text.line(0), None);
+        let scene = Scene {
+            points: Arc::new(vec![PathPoint::default(); 5]),
+            lines: Arc::new(vec![2, 3, 3, 5]),
+            ..Scene::default()
+        };
+        assert_eq!(scene.segment_count(), 4);
+        assert_eq!(scene.segments_of_line(3), Some(1..3));
+        assert_eq!(scene.segments_of_line(5), Some(3..4));
+        assert_eq!(scene.segments_of_line(4), None);
     }
 }

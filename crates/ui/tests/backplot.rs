@@ -1,5 +1,6 @@
 //! The backplot widget really paints through the egui-wgpu callback (on any wgpu adapter,
-//! e.g. Mesa lavapipe), and degrades to a label when the GPU resources were never installed.
+//! e.g. Mesa lavapipe): colours by kind, depth against other segments, picking, highlight and
+//! playback dimming; and it degrades to a label when the GPU resources were never installed.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::panic::AssertUnwindSafe;
@@ -8,39 +9,50 @@ use std::sync::Arc;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
-use glam::Vec3;
-use swarf_render::Vertex;
-use swarf_ui::backplot::{Backplot, Scene};
+use glam::{DVec3, Vec3};
+use swarf_render::{ARC_COLOR, FEED_COLOR, HIGHLIGHT_COLOR, Kind, PathPoint, RAPID_COLOR};
+use swarf_ui::backplot::{Backplot, Scene, SourceText};
 
-/// A colour nothing else in the view uses (grid is grey, axes red/green/blue).
-const MAGENTA: [u8; 4] = [255, 0, 255, 255];
-
+/// A 100×60 rectangle at z = 0 (feed, feed, rapid, arc on lines 2–5), then a feed at z = +5
+/// (line 7) crossed by an arc at z = −5 drawn after it (line 8).
 fn scene() -> Scene {
-    let corners = [
-        Vec3::new(0.0, 0.0, 0.0),
-        Vec3::new(100.0, 0.0, 0.0),
-        Vec3::new(100.0, 60.0, -5.0),
-        Vec3::new(0.0, 60.0, -5.0),
+    let p = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
+    let points = vec![
+        PathPoint::pen_up(p(0.0, 0.0, 0.0)),
+        PathPoint::new(p(100.0, 0.0, 0.0), Kind::Feed),
+        PathPoint::new(p(100.0, 60.0, 0.0), Kind::Feed),
+        PathPoint::new(p(0.0, 60.0, 0.0), Kind::Rapid),
+        PathPoint::new(p(0.0, 0.0, 0.0), Kind::Arc),
+        PathPoint::pen_up(p(50.0, -10.0, 5.0)),
+        PathPoint::new(p(50.0, 70.0, 5.0), Kind::Feed),
+        PathPoint::pen_up(p(-10.0, 30.0, -5.0)),
+        PathPoint::new(p(110.0, 30.0, -5.0), Kind::Arc),
     ];
-    let mut vertices = Vec::new();
-    for i in 0..4 {
-        vertices.push(Vertex::new(corners[i], MAGENTA));
-        vertices.push(Vertex::new(corners[(i + 1) % 4], MAGENTA));
-    }
-    vertices.push(Vertex::new(corners[0], MAGENTA));
-    vertices.push(Vertex::new(corners[2], MAGENTA));
     Scene {
         generation: 1,
-        vertices: Arc::new(vertices),
-        bounds: Some((Vec3::new(0.0, 0.0, -5.0), Vec3::new(100.0, 60.0, 0.0))),
+        points: Arc::new(points),
+        lines: Arc::new(vec![2, 3, 4, 5, 6, 7, 8, 8]),
+        feeds: Arc::new(vec![300.0, 300.0, 0.0, 250.0, 0.0, 500.0, 0.0, 100.0]),
+        bounds: Some((p(-10.0, -10.0, -5.0), p(110.0, 70.0, 5.0))),
         zero: Vec3::ZERO,
+        origin: DVec3::new(1000.0, 0.0, 0.0),
+        source: Some(Arc::new(SourceText::new(
+            "%\nG1 X100 F300\nY60\nG0 X0\nG3 Y0 R30\n\nG1 Z5 Y70 F500\nG3 X110\n",
+        ))),
     }
 }
 
-/// Counts magenta pixels in tightly packed RGBA8 data.
-fn magenta_pixels(rgba: &[u8]) -> usize {
+fn close(p: [u8; 4], want: [u8; 4], tolerance: u8) -> bool {
+    p.iter()
+        .zip(&want)
+        .take(3)
+        .all(|(a, b)| a.abs_diff(*b) <= tolerance)
+}
+
+/// Pixels within `tolerance` of `want` in tightly packed RGBA8 data.
+fn count(rgba: &[u8], want: [u8; 4], tolerance: u8) -> usize {
     rgba.chunks_exact(4)
-        .filter(|p| p[0] > 200 && p[1] < 80 && p[2] > 200)
+        .filter(|p| close([p[0], p[1], p[2], p[3]], want, tolerance))
         .count()
 }
 
@@ -55,22 +67,69 @@ fn render_state() -> Option<egui_wgpu::RenderState> {
     .ok()
 }
 
-fn harness_builder() -> egui_kittest::HarnessBuilder<State> {
-    Harness::builder().with_size(egui::vec2(320.0, 240.0))
-}
-
 type State = (Backplot, Scene);
 
 fn app(ui: &mut egui::Ui, state: &mut State) {
     state.0.show(ui, &state.1);
 }
 
+fn harness(render_state: &egui_wgpu::RenderState) -> Harness<'static, State> {
+    let harness = Harness::builder()
+        .with_size(egui::vec2(320.0, 240.0))
+        .with_render_cursor(false)
+        .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
+        .build_ui_state(app, (Backplot::new(), scene()));
+    Backplot::install(&harness.ctx, render_state);
+    harness
+}
+
+/// The screen pixel where scene point `p` was drawn at the last frame.
+fn pixel_of(harness: &Harness<'_, State>, p: Vec3) -> (u32, u32) {
+    let pos = harness.state().0.screen_pos(p).expect("on screen");
+    let ppp = harness.ctx.pixels_per_point();
+    ((pos.x * ppp) as u32, (pos.y * ppp) as u32)
+}
+
+/// A rendered frame as tightly packed RGBA8.
+struct Shot {
+    width: u32,
+    height: u32,
+    rgba: Vec<u8>,
+}
+
+impl Shot {
+    fn as_raw(&self) -> &[u8] {
+        &self.rgba
+    }
+}
+
+fn shot(harness: &mut Harness<'_, State>) -> Shot {
+    let image = harness.render().expect("render");
+    Shot {
+        width: image.width(),
+        height: image.height(),
+        rgba: image.into_raw(),
+    }
+}
+
+fn at(image: &Shot, (x, y): (u32, u32)) -> [u8; 4] {
+    let i = ((y * image.width + x) * 4) as usize;
+    [
+        image.rgba[i],
+        image.rgba[i + 1],
+        image.rgba[i + 2],
+        image.rgba[i + 3],
+    ]
+}
+
 #[test]
 fn backplot_paints_lines_or_says_unavailable() {
     // 1. Without `install`, the widget shows a notice and never panics.
-    let mut harness = harness_builder().build_ui_state(app, (Backplot::new(), scene()));
-    harness.run();
-    harness.get_by_label("3D view unavailable");
+    let mut plain = Harness::builder()
+        .with_size(egui::vec2(320.0, 240.0))
+        .build_ui_state(app, (Backplot::new(), scene()));
+    plain.run();
+    plain.get_by_label("3D view unavailable");
 
     // 2. With a wgpu adapter, the paint callback draws the scene.
     let Some(render_state) = render_state() else {
@@ -78,26 +137,63 @@ fn backplot_paints_lines_or_says_unavailable() {
         return;
     };
     eprintln!("adapter: {:?}", render_state.adapter.get_info());
-    let mut harness = harness_builder()
-        .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
-        .build_ui_state(app, (Backplot::new(), scene()));
-    Backplot::install(&harness.ctx, &render_state);
+    let mut harness = harness(&render_state);
     harness.run();
-    let image = harness.render().expect("render");
-    let lit = magenta_pixels(image.as_raw());
+    let image = shot(&mut harness);
+    let feed = count(image.as_raw(), FEED_COLOR, 10);
+    let rapid = count(image.as_raw(), RAPID_COLOR, 10);
+    let arc = count(image.as_raw(), ARC_COLOR, 10);
     assert!(
-        lit > 100,
-        "only {lit} magenta pixels: the paint callback did not draw"
+        feed > 100,
+        "only {feed} feed pixels: the paint callback did not draw"
     );
-    let background = image.get_pixel(image.width() / 2, image.height() - 3).0;
-    assert_ne!(&background[..3], &MAGENTA[..3]);
+    assert!(rapid > 20, "only {rapid} rapid pixels");
+    assert!(arc > 50, "only {arc} arc pixels");
+    let background = at(&image, (image.width / 2, image.height - 3));
+    assert!(!close(background, FEED_COLOR, 40));
 
-    // The overlay buttons exist and work; the scene stays framed in the top view.
+    // The overlay buttons exist and work; the scene stays framed in the top view, with the
+    // rectangle's edges in their kinds' colours.
     harness.get_by_label("Top").click();
     harness.run();
-    let image = harness.render().expect("render");
-    let lit_top = magenta_pixels(image.as_raw());
-    assert!(lit_top > 100, "top view: only {lit_top} magenta pixels");
+    let image = shot(&mut harness);
+    let bottom = at(&image, pixel_of(&harness, Vec3::new(25.0, 0.0, 0.0)));
+    assert!(close(bottom, FEED_COLOR, 10), "feed edge is {bottom:?}");
+    let left = at(&image, pixel_of(&harness, Vec3::new(0.0, 15.0, 0.0)));
+    assert!(close(left, ARC_COLOR, 10), "arc edge is {left:?}");
+    // The thin rapid straddles pixel rows, so look for its amber hue around its row.
+    let amber = |p: [u8; 4]| p[0] > 90 && p[0] > p[1] && p[1] > p[2] + 30;
+    let rapids = (10..90)
+        .filter(|&x| {
+            let (px, py) = pixel_of(&harness, Vec3::new(x as f32, 60.0, 0.0));
+            (py - 1..=py + 1).any(|y| amber(at(&image, (px, y))))
+        })
+        .count();
+    assert!(
+        rapids > 20 && rapids < 70,
+        "rapid edge not dashed: {rapids} of 80 lit"
+    );
+
+    // Depth: the feed at z = +5 stays in front of the arc at z = −5 drawn after it. Take
+    // the feed's brightest column away from the crossing and walk it across the arc: it
+    // stays blue (an arc drawn over it would turn the crossing rows green).
+    let (fx, fy) = pixel_of(&harness, Vec3::new(50.0, 15.0, 0.0));
+    let column = (fx - 1..=fx + 1)
+        .max_by_key(|&x| at(&image, (x, fy))[2])
+        .unwrap();
+    let reference = at(&image, (column, fy));
+    assert!(
+        reference[2] > reference[1] + 30,
+        "feed column is {reference:?}"
+    );
+    let (_, cy) = pixel_of(&harness, Vec3::new(50.0, 30.0, 0.0));
+    for y in cy - 2..=cy + 2 {
+        let p = at(&image, (column, y));
+        assert!(
+            close(p, reference, 12),
+            "feed hidden by the arc behind it at row {y}: {p:?}, elsewhere {reference:?}"
+        );
+    }
 
     // A new generation with nothing in it clears the plot (upload on generation change).
     harness.state_mut().1 = Scene {
@@ -105,11 +201,11 @@ fn backplot_paints_lines_or_says_unavailable() {
         ..Scene::default()
     };
     harness.run();
-    let image = harness.render().expect("render");
+    let image = shot(&mut harness);
     assert_eq!(
-        magenta_pixels(image.as_raw()),
+        count(image.as_raw(), FEED_COLOR, 10),
         0,
-        "stale geometry still drawn"
+        "stale geometry drawn"
     );
 
     // Orbit, pan and zoom input never break the view.
@@ -121,9 +217,102 @@ fn backplot_paints_lines_or_says_unavailable() {
     harness.hover_at(center + egui::vec2(30.0, 10.0));
     harness.drop_at(center + egui::vec2(30.0, 10.0));
     harness.run();
-    let image = harness.render().expect("render");
+    let image = shot(&mut harness);
     assert!(
-        magenta_pixels(image.as_raw()) > 50,
+        count(image.as_raw(), FEED_COLOR, 10) > 50,
         "scene lost after an orbit drag"
     );
+}
+
+#[test]
+fn click_picks_a_block_hover_describes_it_and_playback_dims() {
+    let Some(render_state) = render_state() else {
+        eprintln!("SKIPPED: no wgpu adapter available for the backplot picking test");
+        return;
+    };
+    let mut harness = harness(&render_state);
+    harness.run();
+    harness.get_by_label("Top").click();
+    harness.run();
+
+    // Hover over the right edge (line 3, a feed at X100).
+    let right = harness
+        .state()
+        .0
+        .screen_pos(Vec3::new(100.0, 20.0, 0.0))
+        .unwrap();
+    harness.hover_at(right + egui::vec2(2.0, 0.0));
+    harness.run();
+    let hover = harness.state().0.hovered().cloned().expect("hover info");
+    assert_eq!(hover.line, 3);
+    assert_eq!(hover.segment, 1);
+    assert_eq!(hover.kind, Some(Kind::Feed));
+    assert_eq!(hover.feed, 300.0);
+    // Machine coordinates: the scene origin is at X1000.
+    assert!((hover.position.x - 1100.0).abs() < 0.01, "{hover:?}");
+    assert!((hover.position.y - 20.0).abs() < 1.5, "{hover:?}");
+
+    // Click: the line is reported once and its segments are highlighted.
+    harness.drag_at(right);
+    harness.run();
+    harness.drop_at(right);
+    harness.run();
+    assert_eq!(harness.state_mut().0.take_picked_line(), Some(3));
+    assert_eq!(harness.state_mut().0.take_picked_line(), None);
+    assert_eq!(harness.state().0.selected_line(), Some(3));
+    harness.get_by_label("Zoom sel");
+    let image = shot(&mut harness);
+    let edge = at(&image, pixel_of(&harness, Vec3::new(100.0, 20.0, 0.0)));
+    assert!(
+        close(edge, HIGHLIGHT_COLOR, 10),
+        "selected edge is {edge:?}"
+    );
+    let other = at(&image, pixel_of(&harness, Vec3::new(25.0, 0.0, 0.0)));
+    assert!(close(other, FEED_COLOR, 10), "unselected edge is {other:?}");
+
+    // Clicking empty space clears the selection and reports nothing.
+    let empty = harness
+        .state()
+        .0
+        .screen_pos(Vec3::new(25.0, 45.0, 0.0))
+        .unwrap();
+    harness.hover_at(empty);
+    harness.run();
+    assert!(harness.state().0.hovered().is_none());
+    harness.drag_at(empty);
+    harness.run();
+    harness.drop_at(empty);
+    harness.run();
+    assert_eq!(harness.state_mut().0.take_picked_line(), None);
+    assert_eq!(harness.state().0.selected_line(), None);
+
+    // Playback after the first segment: the rest of the path is drawn dimmed.
+    harness.state_mut().0.set_playback(Some(1));
+    harness.run();
+    let image = shot(&mut harness);
+    let executed = at(&image, pixel_of(&harness, Vec3::new(25.0, 0.0, 0.0)));
+    let remainder = at(&image, pixel_of(&harness, Vec3::new(100.0, 20.0, 0.0)));
+    assert!(close(executed, FEED_COLOR, 10), "executed is {executed:?}");
+    assert!(
+        u32::from(remainder[2]) * 2 < u32::from(FEED_COLOR[2]),
+        "remainder not dimmed: {remainder:?}"
+    );
+
+    // Zoom to a selected block frames it: its segment fills much of the view.
+    harness.state_mut().0.set_playback(None);
+    harness.state_mut().0.set_selected_line(Some(7));
+    harness.run();
+    harness.get_by_label("Zoom sel").click();
+    harness.run();
+    let a = harness
+        .state()
+        .0
+        .screen_pos(Vec3::new(50.0, -10.0, 5.0))
+        .unwrap();
+    let b = harness
+        .state()
+        .0
+        .screen_pos(Vec3::new(50.0, 70.0, 5.0))
+        .unwrap();
+    assert!((a - b).length() > 150.0, "{a:?} {b:?}");
 }

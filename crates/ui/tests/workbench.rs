@@ -13,7 +13,7 @@ fn example_program_runs_clean_and_draws() {
     let s = wb.stats();
     assert!(s.motions > 10);
     assert!(s.bounds.is_some());
-    assert_eq!(wb.analysis().scene.vertices.len(), s.motions * 2);
+    assert_eq!(wb.analysis().scene.segment_count(), s.motions);
 }
 
 #[test]

@@ -1,0 +1,272 @@
+//! Offscreen rendering: a colour + depth target, a headless device (e.g. Mesa lavapipe with
+//! no display) and read-back to RGBA8, for `swarf render`, golden-image tests and benchmarks.
+//! The backplot widget also draws into a [`RenderTarget`] and composites it into egui's pass,
+//! which has no depth buffer.
+
+use crate::path::{DEPTH_FORMAT, PathRenderer};
+
+/// Why an offscreen render failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// No GPU adapter (hardware or software such as Mesa lavapipe) is available.
+    #[error("no GPU adapter available ({0}); install Mesa's lavapipe (mesa-vulkan-drivers)")]
+    NoAdapter(String),
+    /// The adapter refused to open a device.
+    #[error("could not open the GPU device: {0}")]
+    Device(String),
+    /// The requested image size is zero or beyond the device's limit.
+    #[error("image size {width}×{height} is not supported (1 to {max} pixels per side)")]
+    Size {
+        /// Requested width.
+        width: u32,
+        /// Requested height.
+        height: u32,
+        /// Largest side the device supports.
+        max: u32,
+    },
+    /// Copying the image back from the GPU failed.
+    #[error("reading the image back from the GPU failed: {0}")]
+    Readback(String),
+}
+
+/// A device and queue with no window, for offscreen work.
+pub struct HeadlessGpu {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// Which adapter it runs on (name, backend, driver), for logs and reports.
+    pub info: wgpu::AdapterInfo,
+}
+
+impl HeadlessGpu {
+    /// Opens the first adapter wgpu offers without a surface (backends from `WGPU_BACKEND`,
+    /// power preference from `WGPU_POWER_PREF`), with limits no higher than WebGL2's except
+    /// for sizes, which follow the adapter so huge paths fit.
+    ///
+    /// # Errors
+    /// [`RenderError::NoAdapter`] when there is none, [`RenderError::Device`] when it fails.
+    pub async fn new() -> Result<Self, RenderError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::from_env()
+                    .unwrap_or(wgpu::PowerPreference::HighPerformance),
+                force_fallback_adapter: false,
+                compatible_surface: None,
+                apply_limit_buckets: false,
+            })
+            .await
+            .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let info = adapter.get_info();
+        let available = adapter.limits();
+        let required_limits = wgpu::Limits {
+            max_buffer_size: available.max_buffer_size,
+            ..wgpu::Limits::downlevel_webgl2_defaults().using_resolution(available)
+        };
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("swarf_headless"),
+                required_limits,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| RenderError::Device(e.to_string()))?;
+        Ok(Self {
+            device,
+            queue,
+            info,
+        })
+    }
+}
+
+/// A colour texture with a matching [`DEPTH_FORMAT`] depth buffer, one sample.
+pub struct RenderTarget {
+    color: wgpu::Texture,
+    color_view: wgpu::TextureView,
+    depth_view: wgpu::TextureView,
+    width: u32,
+    height: u32,
+}
+
+/// Bytes per pixel of the RGBA8 formats the targets use.
+#[cfg(not(target_arch = "wasm32"))]
+const BYTES_PER_PIXEL: u32 = 4;
+
+impl RenderTarget {
+    /// A `width`×`height` target of `format` (an 8-bit RGBA format for [`Self::read_rgba8`]).
+    ///
+    /// # Errors
+    /// [`RenderError::Size`] when a side is zero or larger than the device allows.
+    pub fn new(
+        device: &wgpu::Device,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+    ) -> Result<Self, RenderError> {
+        let max = device.limits().max_texture_dimension_2d;
+        if width == 0 || height == 0 || width > max || height > max {
+            return Err(RenderError::Size { width, height, max });
+        }
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
+        let color = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("swarf_target_color"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let depth = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("swarf_target_depth"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: DEPTH_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        let color_view = color.create_view(&wgpu::TextureViewDescriptor::default());
+        let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
+        Ok(Self {
+            color,
+            color_view,
+            depth_view,
+            width,
+            height,
+        })
+    }
+
+    /// Width and height in pixels.
+    #[must_use]
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Colour format.
+    #[must_use]
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.color.format()
+    }
+
+    /// The colour texture's view (e.g. to composite it, see [`crate::Compositor`]).
+    #[must_use]
+    pub fn color_view(&self) -> &wgpu::TextureView {
+        &self.color_view
+    }
+
+    /// Records a pass that clears colour to `background` (premultiplied, in the target's
+    /// encoding) and depth to 1, then paints `renderer` (made for this target's format,
+    /// [`DEPTH_FORMAT`] and one sample, with its uniforms already written).
+    pub fn draw(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        background: wgpu::Color,
+        renderer: &PathRenderer,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("swarf_offscreen_pass"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &self.color_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(background),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &self.depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            ..Default::default()
+        });
+        renderer.paint(&mut pass);
+    }
+
+    /// Copies the colour texture into tightly packed RGBA8 rows (top row first), waiting for
+    /// the GPU. BGRA targets are swizzled to RGBA.
+    ///
+    /// # Errors
+    /// [`RenderError::Readback`] when mapping the buffer fails or the device is lost.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn read_rgba8(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Vec<u8>, RenderError> {
+        let row =
+            (self.width * BYTES_PER_PIXEL).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("swarf_readback"),
+            size: u64::from(row) * u64::from(self.height),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("swarf_readback"),
+        });
+        encoder.copy_texture_to_buffer(
+            self.color.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &readback,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(row),
+                    rows_per_image: None,
+                },
+            },
+            self.color.size(),
+        );
+        queue.submit([encoder.finish()]);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        readback
+            .slice(..)
+            .map_async(wgpu::MapMode::Read, move |result| {
+                let _ = sender.send(result);
+            });
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        receiver
+            .recv()
+            .map_err(|e| RenderError::Readback(e.to_string()))?
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let bgra = matches!(
+            self.format(),
+            wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+        );
+        let width_bytes = (self.width * BYTES_PER_PIXEL) as usize;
+        let mut pixels = Vec::with_capacity(width_bytes * self.height as usize);
+        {
+            let data = readback
+                .slice(..)
+                .get_mapped_range()
+                .map_err(|e| RenderError::Readback(e.to_string()))?;
+            for line in data.chunks_exact(row as usize) {
+                pixels.extend_from_slice(&line[..width_bytes]);
+            }
+        }
+        readback.unmap();
+        if bgra {
+            for p in pixels.chunks_exact_mut(4) {
+                p.swap(0, 2);
+            }
+        }
+        Ok(pixels)
+    }
+}

@@ -1,0 +1,790 @@
+//! Instanced segment renderer: one 16-byte point per path vertex, one screen-space quad per
+//! segment, anti-aliased, depth-tested, coloured by kind.
+//!
+//! The point buffer is bound twice as per-instance attributes (slot A at offset 0, slot B at
+//! offset +16 bytes), so instance `i` draws the segment from point `i` to point `i + 1` and
+//! consecutive segments share their points: 16 GPU bytes per segment. A [`PathPoint::PEN_UP`]
+//! flag on a point means "no segment arrives here", so separate polylines (the grid's lines,
+//! several toolpaths) live in one buffer.
+
+use std::borrow::Cow;
+use std::ops::Range;
+
+use glam::{Mat4, Vec2, Vec3};
+
+/// WGSL source of the path shader (vertex `vs_main`, fragments `fs_main_gamma_framebuffer`
+/// and `fs_main_linear_framebuffer`); public so tests can validate it with naga.
+pub const PATH_WGSL: &str = include_str!("path.wgsl");
+
+/// Size of one [`PathPoint`] in bytes, which is also the GPU cost of one segment.
+pub const POINT_SIZE: u64 = size_of::<PathPoint>() as u64;
+
+/// Palette slot of the highlight colour (the selected block's segments).
+pub const HIGHLIGHT_SLOT: usize = 15;
+
+/// Depth format of the offscreen targets and the pipelines that draw into them: supported
+/// everywhere, WebGL2 included.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// What a segment is; selects its colour (palette slot), width and dash pattern.
+///
+/// Kinds the interpreter does not produce yet (cycles, compensation) are reserved so the
+/// shader and palette need no change when it does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum Kind {
+    /// Rapid positioning (G00): thin and dashed.
+    Rapid = 0,
+    /// Straight cutting move (G01).
+    Feed = 1,
+    /// Chord of a circular or helical cutting move (G02/G03).
+    Arc = 2,
+    /// Drilling plunge into the hole.
+    Plunge = 3,
+    /// Retract out of a hole.
+    Retract = 4,
+    /// Any other move of a canned cycle.
+    Cycle = 5,
+    /// Contour with cutter-radius compensation applied (where the tool centre goes).
+    Compensated = 6,
+    /// Contour as programmed (the overlay shown beside the compensated one).
+    Programmed = 7,
+    /// Ordinary grid line.
+    Grid = 8,
+    /// Every tenth grid line.
+    GridMajor = 9,
+    /// The X axis.
+    AxisX = 10,
+    /// The Y axis.
+    AxisY = 11,
+    /// The Z axis.
+    AxisZ = 12,
+    /// Machine travel box, soft limits and other reference outlines.
+    Boundary = 13,
+}
+
+impl Kind {
+    /// Every kind, in palette order.
+    pub const ALL: [Kind; 14] = [
+        Kind::Rapid,
+        Kind::Feed,
+        Kind::Arc,
+        Kind::Plunge,
+        Kind::Retract,
+        Kind::Cycle,
+        Kind::Compensated,
+        Kind::Programmed,
+        Kind::Grid,
+        Kind::GridMajor,
+        Kind::AxisX,
+        Kind::AxisY,
+        Kind::AxisZ,
+        Kind::Boundary,
+    ];
+
+    /// The kind stored as `bits`, if any.
+    #[must_use]
+    pub fn from_bits(bits: u8) -> Option<Kind> {
+        Kind::ALL.get(usize::from(bits)).copied()
+    }
+
+    /// This kind's bit in [`ViewParams::hidden_kinds`].
+    #[must_use]
+    pub fn mask(self) -> u32 {
+        1 << (self as u32)
+    }
+
+    /// Whether the kind is part of a toolpath (not grid, axes or outlines).
+    #[must_use]
+    pub fn is_motion(self) -> bool {
+        (self as u8) < (Kind::Grid as u8)
+    }
+}
+
+/// One point of the polyline stream: position relative to the scene origin and a packed word
+/// (bits 0–7 kind of the segment ending here, 8–15 flags, 16–31 colour index).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PathPoint {
+    /// Position in world units, relative to the scene origin (f32 keeps GPU maths cheap).
+    pub position: [f32; 3],
+    /// Kind, flags and colour index of the segment that ends at this point.
+    pub packed: u32,
+}
+
+const _: () = assert!(size_of::<PathPoint>() == 16);
+
+impl PathPoint {
+    /// Flag: no segment ends at this point (it starts a new polyline).
+    pub const PEN_UP: u32 = 1 << 8;
+    /// Flag: the segment ending here is highlighted.
+    pub const HIGHLIGHT: u32 = 1 << 9;
+
+    /// The end of a segment of `kind` at `position`.
+    #[must_use]
+    pub fn new(position: Vec3, kind: Kind) -> Self {
+        Self {
+            position: position.to_array(),
+            packed: kind as u32,
+        }
+    }
+
+    /// The first point of a polyline: no segment arrives here.
+    #[must_use]
+    pub fn pen_up(position: Vec3) -> Self {
+        Self {
+            position: position.to_array(),
+            packed: Self::PEN_UP,
+        }
+    }
+
+    /// The same point with colour index `index` (used with [`ColorMode::ByIndex`], e.g. the
+    /// tool number).
+    #[must_use]
+    pub fn with_color_index(self, index: u16) -> Self {
+        Self {
+            packed: (self.packed & 0xffff) | (u32::from(index) << 16),
+            ..self
+        }
+    }
+
+    /// The same point with the highlight flag set or cleared.
+    #[must_use]
+    pub fn with_highlight(self, on: bool) -> Self {
+        let packed = if on {
+            self.packed | Self::HIGHLIGHT
+        } else {
+            self.packed & !Self::HIGHLIGHT
+        };
+        Self { packed, ..self }
+    }
+
+    /// Position as a vector.
+    #[must_use]
+    pub fn position(&self) -> Vec3 {
+        Vec3::from_array(self.position)
+    }
+
+    /// Kind of the segment ending here (`None` for unknown bits).
+    #[must_use]
+    pub fn kind(&self) -> Option<Kind> {
+        Kind::from_bits((self.packed & 0xff) as u8)
+    }
+
+    /// Whether no segment ends here.
+    #[must_use]
+    pub fn is_pen_up(&self) -> bool {
+        self.packed & Self::PEN_UP != 0
+    }
+
+    /// Whether the segment ending here carries the highlight flag.
+    #[must_use]
+    pub fn is_highlighted(&self) -> bool {
+        self.packed & Self::HIGHLIGHT != 0
+    }
+
+    /// Colour index (bits 16–31).
+    #[must_use]
+    pub fn color_index(&self) -> u16 {
+        (self.packed >> 16) as u16
+    }
+}
+
+/// sRGB bytes with straight alpha to the shader's palette floats.
+#[must_use]
+pub fn srgba(color: [u8; 4]) -> [f32; 4] {
+    color.map(|c| f32::from(c) / 255.0)
+}
+
+/// Colours (sRGB with straight alpha, like egui's `Color32` / 255) by kind and by index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Palette {
+    /// Colour of each [`Kind`] (indexed by its value); slot [`HIGHLIGHT_SLOT`] is the
+    /// highlight colour.
+    pub kinds: [[f32; 4]; 16],
+    /// Colours for [`ColorMode::ByIndex`] (index modulo 16), e.g. one per tool.
+    pub indexed: [[f32; 4]; 16],
+}
+
+/// Default colour of rapid moves: amber.
+pub const RAPID_COLOR: [u8; 4] = [235, 170, 40, 255];
+/// Default colour of straight cutting moves: blue.
+pub const FEED_COLOR: [u8; 4] = [80, 200, 255, 255];
+/// Default colour of arc cutting moves: green.
+pub const ARC_COLOR: [u8; 4] = [120, 230, 140, 255];
+/// Default colour of drilling plunges: red.
+pub const PLUNGE_COLOR: [u8; 4] = [255, 90, 90, 255];
+/// Default colour of retracts out of a hole: pink.
+pub const RETRACT_COLOR: [u8; 4] = [255, 160, 210, 255];
+/// Default colour of other canned-cycle moves: violet.
+pub const CYCLE_COLOR: [u8; 4] = [190, 130, 255, 255];
+/// Default colour of the compensated contour: white.
+pub const COMPENSATED_COLOR: [u8; 4] = [240, 240, 240, 255];
+/// Default colour of the programmed contour overlay: translucent grey.
+pub const PROGRAMMED_COLOR: [u8; 4] = [170, 170, 170, 160];
+/// Colour of ordinary grid lines: grey, translucent so it reads on both themes.
+pub const GRID_COLOR: [u8; 4] = [128, 128, 128, 60];
+/// Colour of every tenth grid line.
+pub const GRID_MAJOR_COLOR: [u8; 4] = [128, 128, 128, 130];
+/// Colour of the X axis (red).
+pub const X_AXIS_COLOR: [u8; 4] = [230, 60, 60, 255];
+/// Colour of the Y axis (green).
+pub const Y_AXIS_COLOR: [u8; 4] = [60, 200, 60, 255];
+/// Colour of the Z axis (blue).
+pub const Z_AXIS_COLOR: [u8; 4] = [70, 110, 255, 255];
+/// Colour of outlines (travel box, limits).
+pub const BOUNDARY_COLOR: [u8; 4] = [200, 200, 200, 110];
+/// Colour of highlighted (selected) segments: white-yellow.
+pub const HIGHLIGHT_COLOR: [u8; 4] = [255, 250, 170, 255];
+
+impl Default for Palette {
+    fn default() -> Self {
+        let mut kinds = [srgba([255, 0, 255, 255]); 16];
+        for (kind, color) in [
+            (Kind::Rapid, RAPID_COLOR),
+            (Kind::Feed, FEED_COLOR),
+            (Kind::Arc, ARC_COLOR),
+            (Kind::Plunge, PLUNGE_COLOR),
+            (Kind::Retract, RETRACT_COLOR),
+            (Kind::Cycle, CYCLE_COLOR),
+            (Kind::Compensated, COMPENSATED_COLOR),
+            (Kind::Programmed, PROGRAMMED_COLOR),
+            (Kind::Grid, GRID_COLOR),
+            (Kind::GridMajor, GRID_MAJOR_COLOR),
+            (Kind::AxisX, X_AXIS_COLOR),
+            (Kind::AxisY, Y_AXIS_COLOR),
+            (Kind::AxisZ, Z_AXIS_COLOR),
+            (Kind::Boundary, BOUNDARY_COLOR),
+        ] {
+            kinds[kind as usize] = srgba(color);
+        }
+        kinds[HIGHLIGHT_SLOT] = srgba(HIGHLIGHT_COLOR);
+        // Distinct hues for colouring by tool.
+        let indexed = [
+            [80, 200, 255, 255],
+            [255, 150, 60, 255],
+            [120, 230, 140, 255],
+            [240, 100, 160, 255],
+            [200, 200, 90, 255],
+            [150, 120, 255, 255],
+            [60, 220, 210, 255],
+            [255, 110, 100, 255],
+            [170, 230, 60, 255],
+            [230, 150, 255, 255],
+            [100, 150, 255, 255],
+            [255, 210, 120, 255],
+            [140, 255, 200, 255],
+            [255, 130, 200, 255],
+            [180, 180, 180, 255],
+            [255, 255, 255, 255],
+        ]
+        .map(srgba);
+        Self { kinds, indexed }
+    }
+}
+
+/// How motion segments are coloured.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ColorMode {
+    /// By [`Kind`] (rapid, feed, arc, …).
+    #[default]
+    ByKind,
+    /// By each point's colour index (e.g. the tool), through [`Palette::indexed`].
+    ByIndex,
+}
+
+/// Everything the shader needs for one frame besides the points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ViewParams {
+    /// World (relative to the scene origin) to clip space, depth 0..1 (see
+    /// [`crate::OrbitCamera::view_proj`]).
+    pub view_proj: Mat4,
+    /// Size of the render target in physical pixels.
+    pub viewport_px: Vec2,
+    /// Width of cutting moves in pixels.
+    pub line_width_px: f32,
+    /// Width of rapids in pixels.
+    pub rapid_width_px: f32,
+    /// Width of grid lines in pixels.
+    pub grid_width_px: f32,
+    /// Extra width of highlighted segments in pixels.
+    pub highlight_extra_px: f32,
+    /// Rapid dash pattern: lit pixels, then dark pixels.
+    pub dash_px: Vec2,
+    /// Opacity of the remainder (segments after the playback position), 0..1.
+    pub dim_alpha: f32,
+    /// Seconds, for animations.
+    pub time_secs: f32,
+    /// Playback position: segments with an index at or after it are drawn dimmed; `None`
+    /// draws everything as executed.
+    pub executed_segments: Option<u32>,
+    /// Segment indices drawn highlighted (the selected block), besides flagged points.
+    pub highlight: Range<u32>,
+    /// Kinds not drawn: OR of [`Kind::mask`] (e.g. hide the programmed contour).
+    pub hidden_kinds: u32,
+    /// Colour by kind or by index.
+    pub color_mode: ColorMode,
+    /// The colours.
+    pub palette: Palette,
+}
+
+impl Default for ViewParams {
+    fn default() -> Self {
+        Self {
+            view_proj: Mat4::IDENTITY,
+            viewport_px: Vec2::new(1.0, 1.0),
+            line_width_px: 1.6,
+            rapid_width_px: 1.2,
+            grid_width_px: 1.0,
+            highlight_extra_px: 2.0,
+            dash_px: Vec2::new(6.0, 4.0),
+            dim_alpha: 0.25,
+            time_secs: 0.0,
+            executed_segments: None,
+            highlight: 0..0,
+            hidden_kinds: 0,
+            color_mode: ColorMode::ByKind,
+            palette: Palette::default(),
+        }
+    }
+}
+
+impl ViewParams {
+    /// Multiplies every width and the dash pattern by `scale` (pixels per point on HiDPI).
+    #[must_use]
+    pub fn scaled(self, scale: f32) -> Self {
+        let scale = if scale.is_finite() && scale > 0.0 {
+            scale
+        } else {
+            1.0
+        };
+        Self {
+            line_width_px: self.line_width_px * scale,
+            rapid_width_px: self.rapid_width_px * scale,
+            grid_width_px: self.grid_width_px * scale,
+            highlight_extra_px: self.highlight_extra_px * scale,
+            dash_px: self.dash_px * scale,
+            ..self
+        }
+    }
+}
+
+/// Contents of the uniform buffer, laid out like the WGSL `Uniforms` (std140-compatible: a
+/// multiple of 16 bytes, the palette array at a 16-byte boundary).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct Uniforms {
+    view_proj: [[f32; 4]; 4],
+    viewport: [f32; 2],
+    line_width: f32,
+    rapid_width: f32,
+    grid_width: f32,
+    highlight_extra: f32,
+    dash_on: f32,
+    dash_off: f32,
+    dim_alpha: f32,
+    time: f32,
+    executed_end: u32,
+    highlight_start: u32,
+    highlight_end: u32,
+    hidden_kinds: u32,
+    color_mode: u32,
+    _pad0: u32,
+    palette: [[f32; 4]; 32],
+}
+
+/// Size of the uniform buffer in bytes.
+pub const UNIFORMS_SIZE: u64 = size_of::<Uniforms>() as u64;
+
+const _: () = assert!(size_of::<Uniforms>() == 640);
+
+fn finite_or(value: f32, fallback: f32) -> f32 {
+    if value.is_finite() { value } else { fallback }
+}
+
+impl Uniforms {
+    fn new(params: &ViewParams) -> Self {
+        let mut palette = [[0.0; 4]; 32];
+        palette[..16].copy_from_slice(&params.palette.kinds);
+        palette[16..].copy_from_slice(&params.palette.indexed);
+        let view_proj = if params.view_proj.is_finite() {
+            params.view_proj
+        } else {
+            Mat4::ZERO
+        };
+        Self {
+            view_proj: view_proj.to_cols_array_2d(),
+            viewport: [
+                finite_or(params.viewport_px.x, 1.0).max(1.0),
+                finite_or(params.viewport_px.y, 1.0).max(1.0),
+            ],
+            line_width: finite_or(params.line_width_px, 1.0).clamp(0.0, 64.0),
+            rapid_width: finite_or(params.rapid_width_px, 1.0).clamp(0.0, 64.0),
+            grid_width: finite_or(params.grid_width_px, 1.0).clamp(0.0, 64.0),
+            highlight_extra: finite_or(params.highlight_extra_px, 0.0).clamp(0.0, 64.0),
+            dash_on: finite_or(params.dash_px.x, 6.0).max(0.0),
+            dash_off: finite_or(params.dash_px.y, 0.0).max(0.0),
+            dim_alpha: finite_or(params.dim_alpha, 1.0).clamp(0.0, 1.0),
+            time: finite_or(params.time_secs, 0.0),
+            executed_end: params.executed_segments.unwrap_or(u32::MAX),
+            highlight_start: params.highlight.start,
+            highlight_end: params.highlight.end,
+            hidden_kinds: params.hidden_kinds,
+            color_mode: match params.color_mode {
+                ColorMode::ByKind => 0,
+                ColorMode::ByIndex => 1,
+            },
+            _pad0: 0,
+            palette,
+        }
+    }
+}
+
+/// Slot A: the segment's start point (position only).
+const START_ATTRIBUTES: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x3];
+/// Slot B: the segment's end point (position and packed kind/flags/colour index).
+const END_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
+    wgpu::vertex_attr_array![1 => Float32x3, 2 => Uint32];
+
+/// Points a batch may hold on `device`: its largest buffer, at most `u32::MAX` points.
+fn max_points(device: &wgpu::Device) -> u64 {
+    (device.limits().max_buffer_size / POINT_SIZE).min(u64::from(u32::MAX))
+}
+
+/// A growable GPU vertex buffer holding one polyline stream.
+struct PointBatch {
+    label: &'static str,
+    buffer: Option<wgpu::Buffer>,
+    /// Capacity of `buffer` in points.
+    capacity: u64,
+    /// Points uploaded.
+    count: u32,
+}
+
+/// Buffers are sized in steps of this many points (64 KiB).
+const CAPACITY_STEP: u64 = 4096;
+
+impl PointBatch {
+    fn new(label: &'static str) -> Self {
+        Self {
+            label,
+            buffer: None,
+            capacity: 0,
+            count: 0,
+        }
+    }
+
+    /// Uploads `points`, reallocating when the buffer is too small or far too big. Points
+    /// beyond the device's largest buffer are dropped (the count says what was kept).
+    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
+        let max = max_points(device);
+        let wanted = (points.len() as u64).min(max);
+        if wanted < 2 {
+            self.count = 0;
+            return;
+        }
+        let too_small = self.capacity < wanted;
+        let too_big = self.capacity > 2 * wanted + CAPACITY_STEP;
+        if self.buffer.is_none() || too_small || too_big {
+            let capacity = wanted.next_multiple_of(CAPACITY_STEP).min(max);
+            self.buffer = Some(device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(self.label),
+                size: capacity * POINT_SIZE,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }));
+            self.capacity = capacity;
+        }
+        if let Some(buffer) = &self.buffer {
+            let kept = &points[..usize::try_from(wanted).unwrap_or(0)];
+            queue.write_buffer(buffer, 0, bytemuck::cast_slice(kept));
+            self.count = u32::try_from(wanted).unwrap_or(0);
+        }
+    }
+
+    /// Overwrites points `first..first + points.len()` (clipped to what was uploaded).
+    fn update(&self, queue: &wgpu::Queue, first: u32, points: &[PathPoint]) {
+        let Some(buffer) = &self.buffer else {
+            return;
+        };
+        let end = (u64::from(first) + points.len() as u64).min(u64::from(self.count));
+        let Some(n) = end.checked_sub(u64::from(first)).filter(|&n| n > 0) else {
+            return;
+        };
+        let kept = &points[..usize::try_from(n).unwrap_or(0)];
+        queue.write_buffer(
+            buffer,
+            u64::from(first) * POINT_SIZE,
+            bytemuck::cast_slice(kept),
+        );
+    }
+
+    fn segments(&self) -> u32 {
+        self.count.saturating_sub(1)
+    }
+
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let segments = self.segments();
+        if segments == 0 {
+            return;
+        }
+        if let Some(buffer) = &self.buffer {
+            let bytes = u64::from(self.count) * POINT_SIZE;
+            // The same buffer twice: instance i reads point i from slot 0, point i + 1 from
+            // slot 1.
+            pass.set_vertex_buffer(0, buffer.slice(..bytes - POINT_SIZE));
+            pass.set_vertex_buffer(1, buffer.slice(POINT_SIZE..bytes));
+            pass.draw(0..4, 0..segments);
+        }
+    }
+}
+
+/// Draws a toolpath and the grid/axes as instanced anti-aliased segments.
+///
+/// The path is drawn first with depth writes; the grid and axes follow with depth testing
+/// but no depth writes, so the translucent grid never punches holes into the path behind it
+/// yet stays hidden behind the path in front of it (and behind a path lying on it). Uniform buffer and vertex attributes
+/// only, so it works on WebGPU, native and WebGL2 alike.
+pub struct PathRenderer {
+    opaque: wgpu::RenderPipeline,
+    overlay: wgpu::RenderPipeline,
+    uniform_buffer: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    path: PointBatch,
+    grid: PointBatch,
+}
+
+impl PathRenderer {
+    /// Creates the pipelines for a colour target of `color_format`, a depth attachment of
+    /// `depth_format` (`None` when the render pass has none, e.g. egui's) and `sample_count`
+    /// MSAA samples; all three must match the render pass it will paint into.
+    #[must_use]
+    pub fn new(
+        device: &wgpu::Device,
+        color_format: wgpu::TextureFormat,
+        depth_format: Option<wgpu::TextureFormat>,
+        sample_count: u32,
+    ) -> Self {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("swarf_path_shader"),
+            source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(PATH_WGSL)),
+        });
+        let uniform_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("swarf_path_uniforms"),
+            size: UNIFORMS_SIZE,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        // Zero-initialised: a zero matrix draws nothing until `prepare`.
+        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("swarf_path_bind_group_layout"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(UNIFORMS_SIZE),
+                },
+                count: None,
+            }],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("swarf_path_bind_group"),
+            layout: &bind_group_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform_buffer.as_entire_binding(),
+            }],
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("swarf_path_pipeline_layout"),
+            bind_group_layouts: &[Some(&bind_group_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |label: &'static str, depth_write: bool| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    buffers: &[
+                        Some(wgpu::VertexBufferLayout {
+                            array_stride: POINT_SIZE,
+                            step_mode: wgpu::VertexStepMode::Instance,
+                            attributes: &START_ATTRIBUTES,
+                        }),
+                        Some(wgpu::VertexBufferLayout {
+                            array_stride: POINT_SIZE,
+                            step_mode: wgpu::VertexStepMode::Instance,
+                            attributes: &END_ATTRIBUTES,
+                        }),
+                    ],
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology: wgpu::PrimitiveTopology::TriangleStrip,
+                    strip_index_format: None,
+                    front_face: wgpu::FrontFace::default(),
+                    cull_mode: None,
+                    unclipped_depth: false,
+                    polygon_mode: wgpu::PolygonMode::Fill,
+                    conservative: false,
+                },
+                depth_stencil: depth_format.map(|format| wgpu::DepthStencilState {
+                    format,
+                    depth_write_enabled: Some(depth_write),
+                    // The grid and axes lose ties, so a path lying on them shows.
+                    depth_compare: Some(if depth_write {
+                        wgpu::CompareFunction::LessEqual
+                    } else {
+                        wgpu::CompareFunction::Less
+                    }),
+                    stencil: wgpu::StencilState::default(),
+                    bias: wgpu::DepthBiasState::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: sample_count.max(1),
+                    mask: !0,
+                    alpha_to_coverage_enabled: false,
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(if color_format.is_srgb() {
+                        "fs_main_linear_framebuffer"
+                    } else {
+                        "fs_main_gamma_framebuffer"
+                    }),
+                    compilation_options: wgpu::PipelineCompilationOptions::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: color_format,
+                        blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        Self {
+            opaque: pipeline("swarf_path_pipeline", true),
+            overlay: pipeline("swarf_overlay_pipeline", false),
+            uniform_buffer,
+            bind_group,
+            path: PointBatch::new("swarf_path_points"),
+            grid: PointBatch::new("swarf_grid_points"),
+        }
+    }
+
+    /// Replaces the toolpath points, reusing the buffer when its size fits. Fewer than two
+    /// points draw nothing.
+    pub fn set_path(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
+        self.path.upload(device, queue, points);
+    }
+
+    /// Overwrites part of the uploaded toolpath from point `first` on (e.g. to flag segments
+    /// or stream a long program in), without reallocating.
+    pub fn update_path(&self, queue: &wgpu::Queue, first: u32, points: &[PathPoint]) {
+        self.path.update(queue, first, points);
+    }
+
+    /// Replaces the grid, axes and outlines (see [`crate::grid_points`]), drawn after the path.
+    pub fn set_grid(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
+        self.grid.upload(device, queue, points);
+    }
+
+    /// Toolpath points uploaded (the device may cap huge inputs).
+    #[must_use]
+    pub fn path_point_count(&self) -> u32 {
+        self.path.count
+    }
+
+    /// Toolpath segments (instances) drawn per frame, pen-up ones included.
+    #[must_use]
+    pub fn path_segment_count(&self) -> u32 {
+        self.path.segments()
+    }
+
+    /// Grid/axes points uploaded.
+    #[must_use]
+    pub fn grid_point_count(&self) -> u32 {
+        self.grid.count
+    }
+
+    /// Bytes of GPU memory allocated for the toolpath points.
+    #[must_use]
+    pub fn path_buffer_bytes(&self) -> u64 {
+        self.path.capacity * POINT_SIZE
+    }
+
+    /// Writes the uniforms used by the next [`Self::paint`].
+    ///
+    /// There is one uniform buffer per renderer, so two views painted in the same frame share
+    /// the last parameters written; use one `PathRenderer` per simultaneously visible view.
+    pub fn prepare(&self, queue: &wgpu::Queue, params: &ViewParams) {
+        let uniforms = Uniforms::new(params);
+        queue.write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&uniforms));
+    }
+
+    /// Records the draws (path, then grid and axes) into `pass`; viewport and scissor are the
+    /// caller's.
+    pub fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.set_pipeline(&self.opaque);
+        self.path.draw(pass);
+        pass.set_pipeline(&self.overlay);
+        self.grid.draw(pass);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packing_round_trips() {
+        let p = PathPoint::new(Vec3::new(1.0, 2.0, 3.0), Kind::Arc)
+            .with_color_index(513)
+            .with_highlight(true);
+        assert_eq!(p.kind(), Some(Kind::Arc));
+        assert_eq!(p.color_index(), 513);
+        assert!(p.is_highlighted());
+        assert!(!p.is_pen_up());
+        assert_eq!(p.position(), Vec3::new(1.0, 2.0, 3.0));
+        let p = p.with_highlight(false).with_color_index(7);
+        assert!(!p.is_highlighted());
+        assert_eq!(p.color_index(), 7);
+        assert_eq!(p.kind(), Some(Kind::Arc));
+        assert!(PathPoint::pen_up(Vec3::ZERO).is_pen_up());
+        assert_eq!(Kind::from_bits(200), None);
+        for (i, kind) in Kind::ALL.iter().enumerate() {
+            assert_eq!(*kind as usize, i);
+            assert_eq!(Kind::from_bits(i as u8), Some(*kind));
+        }
+        assert!(Kind::Programmed.is_motion() && !Kind::Grid.is_motion());
+    }
+
+    #[test]
+    fn uniforms_are_sanitised() {
+        let params = ViewParams {
+            view_proj: Mat4::from_cols_array(&[f32::NAN; 16]),
+            viewport_px: Vec2::new(f32::NAN, 0.0),
+            line_width_px: f32::INFINITY,
+            executed_segments: Some(5),
+            highlight: 3..9,
+            ..ViewParams::default()
+        };
+        let u = Uniforms::new(&params);
+        assert!(u.view_proj.iter().flatten().all(|v| *v == 0.0));
+        assert_eq!(u.viewport, [1.0, 1.0]);
+        assert_eq!(u.line_width, 1.0);
+        assert_eq!(u.executed_end, 5);
+        assert_eq!((u.highlight_start, u.highlight_end), (3, 9));
+        assert_eq!(u.palette[HIGHLIGHT_SLOT], srgba(HIGHLIGHT_COLOR));
+        assert_eq!(Uniforms::new(&ViewParams::default()).executed_end, u32::MAX);
+        let scaled = ViewParams::default().scaled(2.0);
+        assert_eq!(scaled.line_width_px, 3.2);
+        assert_eq!(scaled.dash_px, Vec2::new(12.0, 8.0));
+    }
+}
