@@ -222,13 +222,15 @@ pub struct ExprNode {
     pub span: Span,
 }
 
-/// A LinuxCNC O-word label: `o100` or `o<name>`.
+/// A LinuxCNC O-word label: `o100`, `o<name>`, or a number computed when the line runs.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum OLabel {
     /// `o100`.
     Number(u32),
     /// `o<name>` (lowercased).
     Name(Box<str>),
+    /// `o[#2 * 10]` or `o#1`: the number is the expression's value.
+    Expr(ExprId),
 }
 
 /// What a LinuxCNC O-word line does.

@@ -207,15 +207,11 @@ fn unknown_code(dialect: Dialect, code: Code, span: Span) -> Diagnostic {
             ),
         )
     } else {
-        let hint = match (dialect.rules().calculator_input, code) {
-            _ if code == Code::g(200) || code == Code::g(210) => {
-                if dialect == Dialect::Syntec {
-                    " — Syntec selects inch/metric with G70/G71"
-                } else {
-                    ""
-                }
-            }
-            _ => "",
+        let inch_metric = code == Code::g(200) || code == Code::g(210);
+        let hint = if inch_metric && dialect == Dialect::Syntec {
+            " — Syntec selects inch/metric with G70/G71"
+        } else {
+            ""
         };
         Diagnostic::error(
             span,
@@ -227,6 +223,15 @@ fn unknown_code(dialect: Dialect, code: Code, span: Span) -> Diagnostic {
             ),
         )
     }
+}
+
+/// Whether `a` and `b` are G80 and another motion code in LinuxCNC, which rs274 accepts in one
+/// block (`G0 G17 G80 G90`): the other motion code is the one used.
+fn g80_with_motion(dialect: Dialect, a: &CodeDef, b: &CodeDef) -> bool {
+    dialect == Dialect::LinuxCnc
+        && a.group == Group::Motion
+        && b.group == Group::Motion
+        && (a.code == Code::g(800) || b.code == Code::g(800))
 }
 
 fn modal_conflicts(
@@ -242,11 +247,11 @@ fn modal_conflicts(
         if def.code.letter == b'M' && def.group != Group::Spindle {
             continue;
         }
-        let Some((earlier, _)) = codes[..i]
-            .iter()
-            .rev()
-            .find(|(d, _)| d.group == def.group && d.code.letter == def.code.letter)
-        else {
+        let Some((earlier, _)) = codes[..i].iter().rev().find(|(d, _)| {
+            d.group == def.group
+                && d.code.letter == def.code.letter
+                && !g80_with_motion(dialect, d, def)
+        }) else {
             continue;
         };
         if dialect == Dialect::LinuxCnc {
@@ -515,15 +520,14 @@ fn ranges(
             }
             (b'E', WordForm::Plain)
                 if dialect == Dialect::Gsk
-                    && codes.iter().any(|(d, _)| d.group == Group::Cycle) =>
+                    && codes.iter().any(|(d, _)| d.group == Group::Cycle)
+                    && (v == 0.0 || v.abs() > 60.0) =>
             {
-                if v == 0.0 || v.abs() > 60.0 {
-                    out.push(Diagnostic::error(
-                        word.span,
-                        "E-NUMBER-RANGE",
-                        "the slant angle E must be between −60° and 60° and not 0",
-                    ));
-                }
+                out.push(Diagnostic::error(
+                    word.span,
+                    "E-NUMBER-RANGE",
+                    "the slant angle E must be between −60° and 60° and not 0",
+                ));
             }
             _ => {}
         }

@@ -27,6 +27,10 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
         syntec_macro: false,
     };
     let mut offset = 0usize;
+    // A program that opens with a `%` line (the first line that is not blank) ends at the next
+    // `%` line: what follows the closing tape mark is not read (LinuxCNC ignores it; on the
+    // Fanuc family it is past the end of the tape).
+    let mut tape = Tape::Before;
     for (line_no, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         let mut reader = LineReader {
@@ -40,9 +44,47 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
         };
         reader.read();
         offset += raw.len() + 1;
+        let significant = line.trim_start_matches(is_blank);
+        tape = match (tape, significant.starts_with('%')) {
+            (_, false) if significant.is_empty() => tape,
+            (Tape::Before, true) => Tape::Open,
+            (Tape::Before | Tape::Plain, false) => Tape::Plain,
+            (Tape::Open, true) => {
+                ignore_after_tape_end(&mut program, text, offset);
+                break;
+            }
+            (other, _) => other,
+        };
     }
     crate::checks::check_program(&mut program);
     program
+}
+
+/// Where the reader is with respect to `%` tape marks.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Tape {
+    /// Only blank lines so far.
+    Before,
+    /// The program opened with a `%` line: the next one closes it.
+    Open,
+    /// The program did not open with `%`: a `%` line is only a mark.
+    Plain,
+}
+
+/// Notes that the text from `offset` on, after the closing `%`, is not read (if it is not blank).
+fn ignore_after_tape_end(program: &mut Program, text: &str, offset: usize) {
+    let rest = text.get(offset.min(text.len())..).unwrap_or_default();
+    let trimmed = rest.trim_start();
+    if trimmed.is_empty() {
+        return;
+    }
+    let start = text.len() - trimmed.len();
+    let end = start + trimmed.trim_end().len();
+    program.diagnostics.push(Diagnostic::note(
+        Span::new(start, end),
+        "N-AFTER-TAPE-END",
+        "the program ends at the closing `%`: the text after it is not read",
+    ));
 }
 
 /// Digits with an optional decimal point (`12`, `1.5`, `.5`, `3.`), no sign.
@@ -59,6 +101,15 @@ fn unsigned(input: &str) -> IResult<&str, &str> {
 
 fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
+}
+
+/// Whether `c` can only be a stray character where a block item should start: not a blank, a
+/// letter, or a character that starts something (comment, block end, slash, variable, comma
+/// word, colon, tape mark).
+fn is_stray(c: char) -> bool {
+    !(is_blank(c)
+        || c.is_ascii_alphabetic()
+        || matches!(c, '(' | ';' | '/' | '#' | ',' | ':' | '%'))
 }
 
 /// The macro keywords of the Fanuc family, and the LinuxCNC O-word keywords.
@@ -116,10 +167,26 @@ impl LineReader<'_> {
         msg: String,
     ) {
         block.has_error = true;
-        let span = self.span(start, end.max(start));
+        let (start, end) = self.char_range(start, end);
+        let span = self.span(start, end);
         self.program
             .diagnostics
             .push(Diagnostic::error(span, code, msg));
+    }
+
+    /// `start..end` kept inside the line and widened to whole characters, so that a span that
+    /// was computed a byte past a character's start still covers that character.
+    fn char_range(&self, start: usize, end: usize) -> (usize, usize) {
+        let len = self.line.len();
+        let mut start = start.min(len);
+        while !self.line.is_char_boundary(start) {
+            start -= 1;
+        }
+        let mut end = end.clamp(start, len);
+        while !self.line.is_char_boundary(end) {
+            end += 1;
+        }
+        (start, end)
     }
 
     fn warn(&mut self, start: usize, end: usize, code: &'static str, msg: String) {
@@ -280,15 +347,21 @@ impl LineReader<'_> {
                     pos = self.read_letters(&mut block, pos);
                 }
                 _ => {
-                    let ch = line[pos..].chars().next().unwrap_or('\u{FFFD}');
-                    let end = pos + ch.len_utf8();
-                    self.error(
-                        &mut block,
-                        pos,
-                        end,
-                        "E-SYNTAX-CHAR",
-                        format!("unexpected character `{}`", ch.escape_debug()),
-                    );
+                    // One diagnostic for a run of stray characters (`__`, `500`, a remark in
+                    // Chinese without a comment marker), not one per character.
+                    let end = pos
+                        + line[pos..]
+                            .find(|c| !is_stray(c))
+                            .unwrap_or(line.len() - pos);
+                    let end = self.recover(pos, end);
+                    let stray = &line[pos..end];
+                    let shown = stray.escape_debug();
+                    let message = if stray.chars().count() == 1 {
+                        format!("unexpected character `{shown}`")
+                    } else {
+                        format!("unexpected characters `{shown}`")
+                    };
+                    self.error(&mut block, pos, end, "E-SYNTAX-CHAR", message);
                     pos = end;
                 }
             }
@@ -466,17 +539,40 @@ impl LineReader<'_> {
     /// A LinuxCNC O-word control line at `pos` (`o100 sub`, `o<x> call [1]`), if it is one.
     fn try_o_word(&mut self, block: &mut Block, pos: usize) -> Option<usize> {
         let label_start = self.skip_blanks(pos + 1);
-        let (label, after_label) = if self.bytes.get(label_start) == Some(&b'<') {
-            let (name, end) = self.angle_name(label_start).ok()?;
-            (OLabel::Name(name), end)
-        } else {
-            let rest = &self.line[label_start..];
-            let n = rest.bytes().take_while(u8::is_ascii_digit).count();
-            let number = rest[..n].parse::<u32>().ok()?;
-            (OLabel::Number(number), label_start + n)
+        let (label, after_label) = match self.bytes.get(label_start) {
+            Some(b'<') => {
+                let (name, end) = self.angle_name(label_start).ok()?;
+                (OLabel::Name(name), end)
+            }
+            // A computed number: `o[#2 * 10] call`, `o#<sub> call`.
+            Some(b'[' | b'#') => match self.word_value(label_start, 0) {
+                Ok((expr, end)) => (OLabel::Expr(expr), end),
+                Err(f) => {
+                    let end = self.recover(pos, self.block_end(f.end));
+                    self.fail(block, f);
+                    return Some(end);
+                }
+            },
+            _ => {
+                let rest = &self.line[label_start..];
+                let n = rest.bytes().take_while(u8::is_ascii_digit).count();
+                let number = rest[..n].parse::<u32>().ok()?;
+                (OLabel::Number(number), label_start + n)
+            }
         };
         let kw_start = self.skip_blanks(after_label);
         let (kw, kw_end) = self.alpha_run(kw_start);
+        if kw.is_empty() && matches!(label, OLabel::Expr(_)) {
+            self.error(
+                block,
+                pos,
+                after_label,
+                "E-OWORD",
+                "an O-word with a computed number must be followed by a keyword such as `call`"
+                    .into(),
+            );
+            return Some(after_label);
+        }
         let kind = match kw.as_str() {
             "SUB" => Some(OWord::Sub),
             "ELSE" => Some(OWord::Else),
@@ -691,9 +787,10 @@ impl LineReader<'_> {
         let letter = self.bytes.get(at).map(u8::to_ascii_uppercase);
         let result = match letter {
             Some(l @ (b'C' | b'R' | b'A')) => self.word_from(pos, at, l),
+            // Only the comma is wrong: what follows it (`X10, F500`) is read on its own.
             _ => Err(Fail::new(
                 pos,
-                at + 1,
+                pos + 1,
                 "E-COMMA-WORD",
                 "a comma must be followed by `C` (chamfer), `R` (corner rounding) or `A` (angle)",
             )),
@@ -787,6 +884,19 @@ impl LineReader<'_> {
         }
         let Ok((remaining, digits)) = unsigned(&self.line[after_sign..]) else {
             let shown = char::from(letter);
+            // A run of three or more letters is text, not words: one diagnostic for all of it.
+            let (run, run_end) = self.alpha_run(pos);
+            if letter_at == pos && run.len() >= 3 {
+                return Err(Fail::new(
+                    pos,
+                    run_end,
+                    "E-WORD-VALUE",
+                    format!(
+                        "`{}` is not a word: address `{shown}` needs a number after it",
+                        &self.line[pos..run_end]
+                    ),
+                ));
+            }
             return Err(Fail::new(
                 pos,
                 letter_at + 1,
@@ -1177,12 +1287,14 @@ impl LineReader<'_> {
 
     /// End of the current block: the next `;` (Fanuc family) or the end of the line.
     fn block_end(&self, from: usize) -> usize {
-        let from = from.min(self.line.len());
         if self.rules.semicolon_comment {
             return self.line.len();
         }
-        self.line[from..]
-            .find(';')
+        // `;` is ASCII, so searching the bytes is safe from any offset.
+        let from = from.min(self.line.len());
+        self.bytes[from..]
+            .iter()
+            .position(|&b| b == b';')
             .map_or(self.line.len(), |i| from + i)
     }
 }

@@ -331,3 +331,117 @@ fn functions_and_operators_are_known() {
     }
     assert_eq!(BinOp::Mod.symbol(), "MOD");
 }
+
+#[test]
+fn text_after_the_closing_tape_mark_is_not_read() {
+    let text = "%\nG0 X1\n%\n(notes)\nO2 sub\nG0 Z3\n";
+    let p = parse(text, Dialect::LinuxCnc);
+    assert_eq!(p.blocks.len(), 1, "{:?}", p.blocks);
+    assert_eq!(codes(&p), ["N-AFTER-TAPE-END"]);
+    assert_eq!(p.diagnostics[0].severity, Severity::Note);
+    assert_eq!(
+        spanned(&p, text, "N-AFTER-TAPE-END"),
+        "(notes)\nO2 sub\nG0 Z3"
+    );
+    // A `%` that does not open the program is only a mark; a closing one with nothing after it
+    // says nothing.
+    let p = parse("G0 X1\n%\nG0 X2\n", Dialect::Fanuc);
+    assert_eq!(p.blocks.len(), 2);
+    assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
+    let p = parse("\n %\nO1\nG0 X1\n%\n\n", Dialect::Fanuc);
+    assert_eq!(p.blocks.len(), 2);
+    assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
+}
+
+#[test]
+fn linuxcnc_o_word_numbers_may_be_computed() {
+    let text = "#2 = 10\nO[#2 * 10] call\no#<sub> call [1]\nO[1]\n";
+    let p = parse(text, Dialect::LinuxCnc);
+    let labels: Vec<String> = p
+        .blocks
+        .iter()
+        .filter_map(|b| match b.statements.first() {
+            Some(Statement::OWord {
+                label: OLabel::Expr(e),
+                kind: OWord::Call(args),
+            }) => Some(format!("{} {}", show(&p, *e), args.len())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(labels, ["(#2 * 10) 0", "#<sub> 1"]);
+    assert_eq!(codes(&p), ["E-OWORD"]);
+    assert_eq!(spanned(&p, text, "E-OWORD"), "O[1]");
+}
+
+#[test]
+fn a_stray_comma_is_one_error_and_the_next_word_still_reads() {
+    let text = "G01 X10, F500\n";
+    let p = parse(text, Dialect::Syntec);
+    assert_eq!(codes(&p), ["E-COMMA-WORD"]);
+    assert_eq!(spanned(&p, text, "E-COMMA-WORD"), ",");
+    assert_eq!(p.blocks[0].word(b'F').unwrap().value, 500.0);
+}
+
+#[test]
+fn stray_characters_and_stray_text_are_one_error_per_run() {
+    let text = "T1 S__;\nN100;副程式代號\nN100;subprogram label\nG1 X$ Y1\n";
+    let p = parse(text, Dialect::Syntec);
+    let got: Vec<(&str, &str)> = p
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, &text[d.span.range()]))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("E-WORD-VALUE", "S"),
+            ("E-SYNTAX-CHAR", "__"),
+            ("E-SYNTAX-CHAR", "副程式代號"),
+            ("E-WORD-VALUE", "subprogram"),
+            ("E-WORD-VALUE", "label"),
+            ("E-WORD-VALUE", "X"),
+            ("E-SYNTAX-CHAR", "$"),
+        ]
+    );
+    assert!(p.diagnostics[1].message.contains("characters `__`"));
+    assert!(p.diagnostics[6].message.contains("character `$`"));
+    // A letter next to a letter is still reported on its own (`IO.` for `I0.`).
+    let p = parse("X0. IO.\n", Dialect::Syntec);
+    assert_eq!(codes(&p), ["E-WORD-VALUE", "E-WORD-VALUE", "E-SYNTAX-CHAR"]);
+}
+
+#[test]
+fn errors_next_to_multibyte_characters_do_not_split_them() {
+    for text in ["IF€", "iF€", "IF[1]€", "WHILE[1]€", "IF[1]", "If\u{FFFC}"] {
+        let p = parse(text, Dialect::Fanuc);
+        assert!(!p.diagnostics.is_empty(), "{text}");
+        for d in &p.diagnostics {
+            let (s, e) = (d.span.start as usize, d.span.end as usize);
+            assert!(
+                e <= text.len() && text.is_char_boundary(s) && text.is_char_boundary(e),
+                "{text}: {d:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn linuxcnc_takes_g80_with_another_motion_code() {
+    // rs274 accepts `G0 G80` (the cameo.nc header) and moves with G0; two real motions conflict.
+    let p = parse(
+        "G00 G17 G21 G40 G49 G80 G90\nG80 G1 X1 F10\n",
+        Dialect::LinuxCnc,
+    );
+    assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
+    let text = "G0 G80 G1 X1\nG81 G0 X1 Z-1 R1\n";
+    let p = parse(text, Dialect::LinuxCnc);
+    let got: Vec<(&str, &str)> = p
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, &text[d.span.range()]))
+        .collect();
+    assert_eq!(
+        got,
+        [("E-MODAL-CONFLICT", "G1"), ("E-MODAL-CONFLICT", "G0")]
+    );
+}
