@@ -4,6 +4,7 @@
 //! process arguments and exit status.
 
 mod explain;
+mod render;
 
 use std::ffi::OsString;
 use std::io::Write;
@@ -71,6 +72,8 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Draw the toolpath to a PNG image offscreen (no display needed).
+    Render(render::RenderArgs),
     /// Explain a G/M code (G83, G54.1, M98) or an address letter (Q) as each control reads it.
     Explain {
         /// The code or address; omit with --list.
@@ -115,6 +118,7 @@ where
         Command::Check { files, opts } => check(&files, &opts, err),
         Command::Canon { file, opts } => canon(&file, &opts, out, err),
         Command::Stats { file, opts, json } => stats(&file, &opts, json, out, err),
+        Command::Render(args) => render::render(&args, out, err),
         Command::Explain {
             what,
             dialect,

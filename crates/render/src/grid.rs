@@ -82,6 +82,17 @@ pub fn grid_points(min: Vec3, max: Vec3) -> Vec<PathPoint> {
     out
 }
 
+/// [`grid_points`] for a scene whose machine zero lies at `zero` (scene frame): the grid
+/// covers `min..max` and machine zero, and the axes start at `zero`.
+#[must_use]
+pub fn grid_points_at(zero: Vec3, min: Vec3, max: Vec3) -> Vec<PathPoint> {
+    let mut points = grid_points(min - zero, max - zero);
+    for p in &mut points {
+        p.position = (p.position() + zero).to_array();
+    }
+    points
+}
+
 /// Every tenth grid line (counted from the origin) is a major one.
 fn grid_kind(index: f32) -> Kind {
     if (index % 10.0) == 0.0 {

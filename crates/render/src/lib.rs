@@ -15,7 +15,7 @@ mod pick;
 
 pub use camera::{MAX_DISTANCE, MIN_DISTANCE, OrbitCamera, Projection, StandardView};
 pub use composite::{COMPOSITE_WGSL, Compositor};
-pub use grid::{grid_points, nice_step};
+pub use grid::{grid_points, grid_points_at, nice_step};
 pub use offscreen::{HeadlessGpu, RenderError, RenderTarget};
 pub use path::{
     ARC_COLOR, BOUNDARY_COLOR, COMPENSATED_COLOR, CYCLE_COLOR, ColorMode, DEPTH_FORMAT, FEED_COLOR,

@@ -3,7 +3,9 @@
 //! The backplot widget also draws into a [`RenderTarget`] and composites it into egui's pass,
 //! which has no depth buffer.
 
-use crate::path::{DEPTH_FORMAT, PathRenderer};
+use glam::Vec2;
+
+use crate::path::{DEPTH_FORMAT, PathPoint, PathRenderer, ViewParams};
 
 /// Why an offscreen render failed.
 #[derive(Debug, thiserror::Error)]
@@ -78,6 +80,48 @@ impl HeadlessGpu {
             queue,
             info,
         })
+    }
+}
+
+impl HeadlessGpu {
+    /// Draws `path` and `grid` with `params` (its viewport is set to the image size) into a
+    /// new `width`×`height` RGBA8 image over an opaque `background` (sRGB bytes), and returns
+    /// its pixels, top row first.
+    ///
+    /// # Errors
+    /// [`RenderError::Size`] for an unsupported size, [`RenderError::Readback`] when the
+    /// copy back fails.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub fn render_rgba8(
+        &self,
+        path: &[PathPoint],
+        grid: &[PathPoint],
+        params: &ViewParams,
+        (width, height): (u32, u32),
+        background: [u8; 4],
+    ) -> Result<Vec<u8>, RenderError> {
+        let format = wgpu::TextureFormat::Rgba8Unorm;
+        let target = RenderTarget::new(&self.device, width, height, format)?;
+        let mut renderer = PathRenderer::new(&self.device, format, Some(DEPTH_FORMAT), 1);
+        renderer.set_path(&self.device, &self.queue, path);
+        renderer.set_grid(&self.device, &self.queue, grid);
+        renderer.prepare(
+            &self.queue,
+            &ViewParams {
+                viewport_px: Vec2::new(width as f32, height as f32),
+                ..params.clone()
+            },
+        );
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("swarf_render_rgba8"),
+            });
+        // Gamma-space target: the clear colour is stored as given.
+        let [r, g, b, a] = background.map(|c| f64::from(c) / 255.0);
+        target.draw(&mut encoder, wgpu::Color { r, g, b, a }, &renderer);
+        self.queue.submit([encoder.finish()]);
+        target.read_rgba8(&self.device, &self.queue)
     }
 }
 

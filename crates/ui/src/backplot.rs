@@ -17,7 +17,7 @@ use egui::epaint::ViewportInPixels;
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use swarf_render::{
     ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathPoint, PathRenderer, Projection,
-    RenderTarget, StandardView, ViewParams, grid_points, pick_segment, segment_bounds,
+    RenderTarget, StandardView, ViewParams, grid_points_at, pick_segment, segment_bounds,
 };
 
 /// Key of the flag [`Backplot::install`] leaves in the egui context's memory; without it `show`
@@ -686,14 +686,8 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         view.last_frame = self.frame;
         if view.generation != Some(self.generation) {
             view.renderer.set_path(device, queue, &self.points);
-            let zero = self.zero;
-            let mut grid = match self.bounds {
-                Some((min, max)) => grid_points(min - zero, max - zero),
-                None => grid_points(Vec3::ONE, Vec3::ZERO),
-            };
-            for p in &mut grid {
-                p.position = (p.position() + zero).to_array();
-            }
+            let (min, max) = self.bounds.unwrap_or((Vec3::ONE, Vec3::ZERO));
+            let grid = grid_points_at(self.zero, min, max);
             view.renderer.set_grid(device, queue, &grid);
             view.generation = Some(self.generation);
             view.drawn = None;
