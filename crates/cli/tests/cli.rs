@@ -70,12 +70,12 @@ fn check_prints_path_line_col_severity_code() {
 #[test]
 fn check_clean_file_exits_zero_and_warnings_do_not_fail() {
     let dir = tempfile::tempdir().unwrap();
-    let ok = temp_file(&dir, "ok.nc", b"G0 X1\n");
+    let ok = temp_file(&dir, "ok.nc", b"G0 X1.\n");
     assert_eq!(swarf(&["check", &ok]), (0, String::new(), String::new()));
-    let warn = temp_file(&dir, "warn.nc", b"G0 X1 Q5\n");
+    let warn = temp_file(&dir, "warn.nc", b"G0 X1. Q5.\n");
     let (code, _, err) = swarf(&["check", &warn, "--dialect", "syntec"]);
     assert_eq!(code, 0);
-    assert!(err.contains("warning[W-WORD-IGNORED]"), "{err}");
+    assert!(err.contains("warning[W-WORD-UNUSED]"), "{err}");
 }
 
 #[test]

@@ -241,17 +241,17 @@ impl Interpreter {
             return;
         };
         self.noted_least_increment = true;
-        let unit = if self.metric {
-            "0.001 mm"
+        let (unit, units) = if self.metric {
+            ("0.001 mm", "mm")
         } else {
-            "0.0001 inch"
+            ("0.0001 inch", "inch")
         };
         let read = self.dialect.read(w, Quantity::Length, false, !self.metric);
         self.diagnostics.push(Diagnostic::note(
             w.span,
             "N-LEAST-INCREMENT",
             format!(
-                "`{}{}` has no decimal point: {} reads it in least input increments ({unit}), as {read}; write `{}{}.` for {} (or set `calculator_input = true` under [machine])",
+                "`{}{}` has no decimal point: {} reads it in least input increments ({unit}) as {read} {units}; write `{}{}.` for {} {units} (or set `calculator_input = true` under [machine])",
                 w.letter(),
                 w.value,
                 self.dialect.label(),
@@ -407,7 +407,12 @@ impl Interpreter {
             _ => None,
         };
         let has_center = offsets.iter().any(Option::is_some) || radius.is_some();
-        if arc.is_none() || dwell.is_some() {
+        // With a motion or one-shot code in the block the parser has already said which words
+        // are unused; this covers the words a modal motion does not take.
+        let checked = actions
+            .iter()
+            .any(|(a, _)| matches!(a, GAction::Motion(_) | GAction::Dwell));
+        if (arc.is_none() || dwell.is_some()) && !checked {
             for w in offsets.iter().flatten().chain(radius.iter()) {
                 self.diagnostics.push(Diagnostic::warning(
                     w.span,
@@ -486,6 +491,12 @@ impl Interpreter {
         let to = self.target(axes);
         let event = match mode {
             MotionMode::Rapid => Canon::Rapid { to },
+            // Syntec runs an arc block with neither R nor I/J/K as G01 (the parser has
+            // said so with W-ARC-AS-LINE).
+            MotionMode::Arc { .. } if self.dialect == Dialect::Syntec => Canon::Feed {
+                to,
+                feed_mm_per_min: self.feed_mm_per_min,
+            },
             MotionMode::Arc { .. } => {
                 self.diagnostics.push(Diagnostic::error(
                     block.span,

@@ -8,11 +8,31 @@ use glam::DVec3;
 use swarf_interp::{Canon, CanonRecorder, Interpreter, Setup, Status, run};
 use swarf_syntax::{Dialect, parse};
 
+/// Parses and runs `text` with calculator-type input (integers are millimetres, so these tests
+/// are about semantics, not the decimal-point rule); returns the parse and run diagnostics.
 fn run_text(text: &str, dialect: Dialect) -> (CanonRecorder, Vec<swarf_syntax::Diagnostic>) {
+    let mut setup = Setup::default();
+    setup.machine.calculator_input = Some(true);
+    run_with(text, dialect, setup)
+}
+
+fn run_with(
+    text: &str,
+    dialect: Dialect,
+    setup: Setup,
+) -> (CanonRecorder, Vec<swarf_syntax::Diagnostic>) {
     let program = parse(text, dialect);
     let mut rec = CanonRecorder::default();
-    let diags = run(&program, Setup::default(), &mut rec);
+    let mut diags = program.diagnostics.clone();
+    diags.extend(run(&program, setup, &mut rec));
     (rec, diags)
+}
+
+fn first_x(rec: &CanonRecorder) -> f64 {
+    match &rec.events[0].1 {
+        Canon::Rapid { to } | Canon::Feed { to, .. } => to.x,
+        other => panic!("{other:?}"),
+    }
 }
 
 fn codes(diags: &[swarf_syntax::Diagnostic]) -> Vec<&'static str> {
@@ -20,10 +40,40 @@ fn codes(diags: &[swarf_syntax::Diagnostic]) -> Vec<&'static str> {
 }
 
 #[test]
-fn modal_conflict_is_an_error_and_the_block_does_not_move() {
-    let (rec, diags) = run_text("G00 G01 X5\n", Dialect::Fanuc);
+fn two_codes_of_one_group_last_wins_in_the_fanuc_family_and_alarm_in_linuxcnc() {
+    let (rec, diags) = run_text("G00 G01 X5 F100\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["W-MODAL-LAST"]);
+    assert!(matches!(rec.events[0].1, Canon::Feed { .. }));
+    let (rec, diags) = run_text("G00 G01 X5 F100\n", Dialect::LinuxCnc);
     assert_eq!(codes(&diags), ["E-MODAL-CONFLICT"]);
     assert!(rec.events.is_empty());
+}
+
+#[test]
+fn numbers_without_a_point_follow_the_decimal_point_rule() {
+    // Fanuc, Syntec, KT, LNC: least input increment (0.001 mm), with a note once per run.
+    for dialect in [Dialect::Fanuc, Dialect::Syntec, Dialect::Kt, Dialect::Lnc] {
+        let (rec, diags) = run_with("G00 X5500\nG00 X10\n", dialect, Setup::default());
+        assert!((first_x(&rec) - 5.5).abs() < 1e-12, "{dialect}");
+        assert_eq!(codes(&diags), ["N-LEAST-INCREMENT"], "{dialect}");
+    }
+    // GSK's examples and LinuxCNC read them as millimetres.
+    for dialect in [Dialect::Gsk, Dialect::LinuxCnc] {
+        let (rec, diags) = run_with("G00 X55\n", dialect, Setup::default());
+        assert_eq!(first_x(&rec), 55.0, "{dialect}");
+        assert!(diags.is_empty(), "{dialect}: {diags:?}");
+    }
+    // A decimal point always means millimetres; calculator-type input is a setting.
+    let (rec, _) = run_with("G00 X55.\n", Dialect::Fanuc, Setup::default());
+    assert_eq!(first_x(&rec), 55.0);
+    let (rec, _) = run_text("G00 X55\n", Dialect::Fanuc);
+    assert_eq!(first_x(&rec), 55.0);
+    let setup = Setup::from_toml("[machine]\ncalculator_input = true\n").unwrap();
+    let (rec, _) = run_with("G00 X55\n", Dialect::Syntec, setup);
+    assert_eq!(first_x(&rec), 55.0);
+    // Inch: the least increment is 0.0001 inch.
+    let (rec, _) = run_with("G20 G00 X10000\n", Dialect::Fanuc, Setup::default());
+    assert!((first_x(&rec) - 25.4).abs() < 1e-9);
 }
 
 #[test]
@@ -38,6 +88,12 @@ fn unknown_code_names_the_dialect() {
     let (_, diags) = run_text("G321 X1\n", Dialect::Fanuc);
     assert_eq!(codes(&diags), ["E-UNKNOWN-CODE"]);
     assert!(diags[0].message.contains("Fanuc"));
+    // A code another dialect has names that dialect.
+    let (rec, diags) = run_text("G134 X0 Y0 I10 J0 K6\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["E-CODE-DIALECT"]);
+    assert!(diags[0].message.contains("Syntec"), "{}", diags[0].message);
+    assert!(diags[0].message.contains("LNC"), "{}", diags[0].message);
+    assert!(rec.events.is_empty());
 }
 
 #[test]
@@ -58,7 +114,11 @@ fn syntec_reads_g70_as_inch() {
         }
     );
     let (_, diags) = run_text("G70 G00 X1\n", Dialect::Fanuc);
-    assert_eq!(codes(&diags), ["E-UNKNOWN-CODE"]);
+    assert_eq!(codes(&diags), ["E-CODE-DIALECT"]);
+    assert!(diags[0].message.contains("Syntec"), "{}", diags[0].message);
+    let (_, diags) = run_text("G20 G00 X1\n", Dialect::Syntec);
+    assert_eq!(codes(&diags), ["E-CODE-DIALECT"]);
+    assert!(diags[0].message.contains("G70/G71"), "{}", diags[0].message);
 }
 
 #[test]
@@ -78,7 +138,9 @@ fn stepping_in_small_budgets_gives_the_same_stream() {
     let text = "G0 X1\nG1 X2 F100\nG91 X1\nX1\nX1\nM30\n";
     let program = parse(text, Dialect::Fanuc);
     let (whole, _) = run_text(text, Dialect::Fanuc);
-    let mut interp = Interpreter::new(Setup::default(), Dialect::Fanuc);
+    let mut setup = Setup::default();
+    setup.machine.calculator_input = Some(true);
+    let mut interp = Interpreter::new(setup, Dialect::Fanuc);
     let mut rec = CanonRecorder::default();
     let mut steps = 0;
     while interp.step(&program, &mut rec, 1) == Status::Running {
@@ -91,7 +153,7 @@ fn stepping_in_small_budgets_gives_the_same_stream() {
 
 #[test]
 fn block_limit_stops_a_run_with_a_diagnostic() {
-    let program = parse(&"G91 G0 X1\n".repeat(50), Dialect::Fanuc);
+    let program = parse(&"G91 G0 X1.\n".repeat(50), Dialect::Fanuc);
     let mut setup = Setup::default();
     setup.machine.max_blocks = 10;
     let mut rec = CanonRecorder::default();
@@ -103,7 +165,7 @@ fn block_limit_stops_a_run_with_a_diagnostic() {
 #[test]
 fn blocks_with_parse_errors_are_not_run() {
     let (rec, diags) = run_text("G0 X$ \nG0 X3\n", Dialect::Fanuc);
-    assert!(diags.is_empty());
+    assert_eq!(codes(&diags), ["E-WORD-VALUE", "E-SYNTAX-CHAR"]);
     assert_eq!(rec.events.len(), 1);
 }
 
@@ -123,11 +185,16 @@ fn arc_radius_too_small_or_full_circle_with_r_is_an_error() {
     assert_eq!(codes(&diags), ["E-ARC-CENTER"]);
     let (_, diags) = run_text("G02 X5 Y5 F100\n", Dialect::Fanuc);
     assert_eq!(codes(&diags), ["E-ARC-CENTER"]);
+    // Syntec documents an arc with neither R nor I/J/K as a straight line.
+    let (_, diags) = run_text("G02 X5 Y5 F100\n", Dialect::Syntec);
+    assert_eq!(codes(&diags), ["W-ARC-AS-LINE"]);
 }
 
 #[test]
 fn arc_words_outside_arcs_are_reported() {
     let (_, diags) = run_text("G01 X5 I3 F100\n", Dialect::Fanuc);
+    assert_eq!(codes(&diags), ["W-WORD-UNUSED"]);
+    let (_, diags) = run_text("G01 X5 F100\nX6 I3\n", Dialect::Fanuc);
     assert_eq!(codes(&diags), ["W-WORD-IGNORED"]);
 }
 

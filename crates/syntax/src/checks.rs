@@ -113,13 +113,17 @@ const FORBIDDEN: &[Forbidden] = &[
     },
 ];
 
+/// A code found in a block, and the span of its word.
+type Found = (&'static CodeDef, Span);
+
 /// Runs every same-block check on every block of `program`.
 pub(crate) fn check_program(program: &mut Program) {
     let dialect = program.dialect;
     let mut out = Vec::new();
+    let mut scratch = Vec::new();
     for block in &mut program.blocks {
         let before = out.len();
-        check_block(dialect, block, &mut out);
+        check_block(dialect, block, &mut scratch, &mut out);
         if out[before..]
             .iter()
             .any(|d: &Diagnostic| d.severity == crate::Severity::Error)
@@ -133,8 +137,15 @@ pub(crate) fn check_program(program: &mut Program) {
     }
 }
 
-fn check_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>) {
-    let mut codes: Vec<(&'static CodeDef, &Word)> = Vec::new();
+/// Checks one block; `scratch` is reused between blocks to hold its codes.
+fn check_block(
+    dialect: Dialect,
+    block: &Block,
+    scratch: &mut Vec<Found>,
+    out: &mut Vec<Diagnostic>,
+) {
+    scratch.clear();
+    let codes = scratch;
     for word in &block.words {
         if !(word.letter == b'G' || word.letter == b'M') || word.form != WordForm::Plain {
             continue;
@@ -155,17 +166,17 @@ fn check_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>) {
             continue;
         };
         match codes::lookup(dialect, code) {
-            Some(def) => codes.push((def, word)),
+            Some(def) => codes.push((def, word.span)),
             None => out.push(unknown_code(dialect, code, word.span)),
         }
     }
-    modal_conflicts(dialect, &codes, out);
-    forbidden_pairs(dialect, &codes, out);
+    modal_conflicts(dialect, codes, out);
+    forbidden_pairs(dialect, codes, out);
     words_twice(block, out);
-    words_used(dialect, block, &codes, out);
-    required_words(block, &codes, out);
-    arcs(dialect, block, &codes, out);
-    ranges(dialect, block, &codes, out);
+    words_used(dialect, block, codes, out);
+    required_words(block, codes, out);
+    arcs(dialect, block, codes, out);
+    ranges(dialect, block, codes, out);
 }
 
 fn word_text(word: &Word) -> String {
@@ -234,12 +245,8 @@ fn g80_with_motion(dialect: Dialect, a: &CodeDef, b: &CodeDef) -> bool {
         && (a.code == Code::g(800) || b.code == Code::g(800))
 }
 
-fn modal_conflicts(
-    dialect: Dialect,
-    codes: &[(&'static CodeDef, &Word)],
-    out: &mut Vec<Diagnostic>,
-) {
-    for (i, (def, word)) in codes.iter().enumerate() {
+fn modal_conflicts(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>) {
+    for (i, (def, span)) in codes.iter().enumerate() {
         if !def.group.exclusive() {
             continue;
         }
@@ -256,7 +263,7 @@ fn modal_conflicts(
         };
         if dialect == Dialect::LinuxCnc {
             out.push(Diagnostic::error(
-                word.span,
+                *span,
                 "E-MODAL-CONFLICT",
                 format!(
                     "{} and {} are both in the {} group and cannot share a block",
@@ -267,7 +274,7 @@ fn modal_conflicts(
             ));
         } else {
             out.push(Diagnostic::warning(
-                word.span,
+                *span,
                 "W-MODAL-LAST",
                 format!(
                     "{} and {} are both in the {} group: {}, the last one, is used",
@@ -281,11 +288,7 @@ fn modal_conflicts(
     }
 }
 
-fn forbidden_pairs(
-    dialect: Dialect,
-    codes: &[(&'static CodeDef, &Word)],
-    out: &mut Vec<Diagnostic>,
-) {
+fn forbidden_pairs(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>) {
     let g = |t: &[u32]| {
         codes
             .iter()
@@ -302,7 +305,7 @@ fn forbidden_pairs(
             continue;
         }
         out.push(Diagnostic::error(
-            wb.span,
+            *wb,
             "E-SAME-BLOCK",
             format!("{} and {} in one block: {}", a.code, b.code, rule.why),
         ));
@@ -333,12 +336,7 @@ fn words_twice(block: &Block, out: &mut Vec<Diagnostic>) {
 }
 
 /// A word no code of the block uses, when the block's codes decide what the words mean.
-fn words_used(
-    dialect: Dialect,
-    block: &Block,
-    codes: &[(&'static CodeDef, &Word)],
-    out: &mut Vec<Diagnostic>,
-) {
+fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
     // Without a motion, cycle or one-shot code, the words belong to the modal motion.
     let decides = codes.iter().any(|(d, _)| {
         d.code.letter == b'G' && matches!(d.group, Group::Motion | Group::Cycle | Group::NonModal)
@@ -386,15 +384,15 @@ fn has_any(block: &Block, letters: &str) -> bool {
         .any(|w| w.form == WordForm::Plain && letters.as_bytes().contains(&w.letter))
 }
 
-fn required_words(block: &Block, codes: &[(&'static CodeDef, &Word)], out: &mut Vec<Diagnostic>) {
-    for (def, word) in codes {
+fn required_words(block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
+    for (def, span) in codes {
         for group in def.required {
             if has_any(block, group) {
                 continue;
             }
             let letters: Vec<String> = group.chars().map(|c| format!("`{c}`")).collect();
             out.push(Diagnostic::error(
-                word.span,
+                *span,
                 "E-WORD-MISSING",
                 format!("{} ({}) needs {}", def.code, def.name, letters.join(" or ")),
             ));
@@ -402,23 +400,19 @@ fn required_words(block: &Block, codes: &[(&'static CodeDef, &Word)], out: &mut 
     }
 }
 
-fn arcs(
-    dialect: Dialect,
-    block: &Block,
-    codes: &[(&'static CodeDef, &Word)],
-    out: &mut Vec<Diagnostic>,
-) {
-    let Some((def, word)) = codes
+fn arcs(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
+    let Some((def, span)) = codes
         .iter()
         .find(|(d, _)| d.code == Code::g(20) || d.code == Code::g(30))
     else {
         return;
     };
+    let span = *span;
     let has_r = has_any(block, "R");
     let has_ijk = has_any(block, "IJK");
     let has_end = has_any(block, "XYZ");
     if has_r && has_ijk {
-        let r = block.word(b'R').map_or(word.span, |w| w.span);
+        let r = block.word(b'R').map_or(span, |w| w.span);
         if dialect == Dialect::LinuxCnc {
             out.push(Diagnostic::error(
                 r,
@@ -436,13 +430,13 @@ fn arcs(
     if !has_r && !has_ijk {
         if dialect == Dialect::Syntec {
             out.push(Diagnostic::warning(
-                word.span,
+                span,
                 "W-ARC-AS-LINE",
                 format!("{} with neither R nor I/J/K moves in a straight line (G01), as Syntec documents", def.code),
             ));
         } else {
             out.push(Diagnostic::error(
-                word.span,
+                span,
                 "E-ARC-CENTER",
                 format!("{} needs the centre (I, J, K) or the radius (R)", def.code),
             ));
@@ -450,7 +444,7 @@ fn arcs(
     }
     if has_r && !has_end {
         out.push(Diagnostic::error(
-            word.span,
+            span,
             "E-ARC-NO-END",
             format!(
                 "{} with R needs an end point (a full circle needs I/J/K)",
@@ -460,12 +454,7 @@ fn arcs(
     }
 }
 
-fn ranges(
-    dialect: Dialect,
-    block: &Block,
-    codes: &[(&'static CodeDef, &Word)],
-    out: &mut Vec<Diagnostic>,
-) {
+fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
     let has = |t: u32| codes.iter().any(|(d, _)| d.code == Code::g(t));
     for word in &block.words {
         if word.expr.is_some() {

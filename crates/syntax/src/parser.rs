@@ -99,6 +99,37 @@ fn unsigned(input: &str) -> IResult<&str, &str> {
     Ok((rest, &input[..input.len() - rest.len()]))
 }
 
+/// The value of a digit string with at most one decimal point, as `str::parse::<f64>` gives it.
+///
+/// Up to 15 significant digits the mantissa and the power of ten are exact f64s, so one
+/// correctly rounded division gives the correctly rounded value (Clinger's fast path); longer
+/// strings go to the standard library.
+fn decimal_value(digits: &str) -> f64 {
+    const POW10: [f64; 16] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+    ];
+    if digits.len() <= 16 {
+        let mut mantissa: u64 = 0;
+        let mut frac_digits = 0usize;
+        let mut after_point = false;
+        for b in digits.bytes() {
+            if b == b'.' {
+                after_point = true;
+            } else {
+                mantissa = mantissa * 10 + u64::from(b - b'0');
+                frac_digits += usize::from(after_point);
+            }
+        }
+        if let Some(scale) = POW10.get(frac_digits) {
+            // At most 16 digits with a point, or 15 without: below 2^53.
+            if mantissa < (1u64 << 53) {
+                return mantissa as f64 / scale;
+            }
+        }
+    }
+    digits.parse::<f64>().unwrap_or(f64::NAN)
+}
+
 fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
 }
@@ -386,9 +417,13 @@ impl LineReader<'_> {
     /// Reads what starts with a letter: a word, a sequence or program number, a macro keyword
     /// statement, or a LinuxCNC O-word line.
     fn read_letters(&mut self, block: &mut Block, pos: usize) -> usize {
-        let (run, run_end) = self.alpha_run(pos);
-        let letter = self.bytes[pos].to_ascii_uppercase();
-        if run.len() >= 2 && self.rules.macro_b && KEYWORDS.contains(&run.as_str()) {
+        // Keywords are runs of two or more letters; a word is one letter and a value.
+        let two_letters = self.bytes.get(pos + 1).is_some_and(u8::is_ascii_alphabetic);
+        if two_letters && self.rules.macro_b {
+            let (run, run_end) = self.alpha_run(pos);
+            if !KEYWORDS.contains(&run.as_str()) {
+                return self.read_word_at(block, pos);
+            }
             return match self.keyword_statement(&run, pos, run_end) {
                 Ok((stmt, end)) => {
                     block.statements.push(stmt);
@@ -401,6 +436,12 @@ impl LineReader<'_> {
                 }
             };
         }
+        self.read_word_at(block, pos)
+    }
+
+    /// A program or sequence number, an O-word line, or an address word at `pos`.
+    fn read_word_at(&mut self, block: &mut Block, pos: usize) -> usize {
+        let letter = self.bytes[pos].to_ascii_uppercase();
         if letter == b'O' && block.words.is_empty() && block.statements.is_empty() {
             if self.rules.o_words
                 && let Some(end) = self.try_o_word(block, pos)
@@ -824,12 +865,18 @@ impl LineReader<'_> {
     /// An address word at `pos` (a letter), including `F2=` indexed words.
     fn word(&mut self, pos: usize) -> PResult<Word> {
         let letter = self.bytes[pos].to_ascii_uppercase();
-        // `F2=1000`, `S1=150`: letter, digits, `=`, value.
-        let digits = self.line[pos + 1..]
-            .bytes()
-            .take_while(u8::is_ascii_digit)
-            .count();
-        if digits > 0 && digits <= 2 && self.bytes.get(pos + 1 + digits) == Some(&b'=') {
+        // `F2=1000`, `S1=150`: letter, one or two digits, `=`, value.
+        let digit = |i: usize| self.bytes.get(i).is_some_and(u8::is_ascii_digit);
+        let digits = if !digit(pos + 1) {
+            0
+        } else if self.bytes.get(pos + 2) == Some(&b'=') {
+            1
+        } else if digit(pos + 2) && self.bytes.get(pos + 3) == Some(&b'=') {
+            2
+        } else {
+            0
+        };
+        if digits > 0 {
             let index: u8 = self.line[pos + 1..pos + 1 + digits].parse().unwrap_or(0);
             let (mut word, end) = self.word_from(pos, pos + digits + 1, letter)?;
             word.form = WordForm::Indexed(index);
@@ -906,9 +953,10 @@ impl LineReader<'_> {
         };
         let end = self.line.len() - remaining.len();
         let negative = rest.starts_with('-');
-        let magnitude = digits.parse::<f64>().unwrap_or(f64::NAN);
+        let has_point = digits.contains('.');
+        let magnitude = decimal_value(digits);
         let value = if negative { -magnitude } else { magnitude };
-        let significant = digits.bytes().filter(u8::is_ascii_digit).count();
+        let significant = digits.len() - usize::from(has_point);
         let max = usize::from(self.rules.max_digits);
         if !value.is_finite() || value.abs() > 1e15 || (max > 0 && significant > max) {
             return Err(Fail::new(
@@ -930,7 +978,7 @@ impl LineReader<'_> {
             Word {
                 letter,
                 value,
-                has_point: digits.contains('.'),
+                has_point,
                 span: self.span(pos, end),
                 form: WordForm::Plain,
                 expr: None,
@@ -1311,5 +1359,28 @@ mod tests {
         assert_eq!(unsigned("3."), Ok(("", "3.")));
         assert!(unsigned("X").is_err());
         assert!(unsigned("-").is_err());
+    }
+
+    #[test]
+    fn fast_decimal_values_match_the_standard_parser() {
+        for text in [
+            "0",
+            "1",
+            "12.5",
+            ".5",
+            "3.",
+            "0.001",
+            "123456.789",
+            "99999999",
+            "0.1",
+            "0.3",
+            "2.675",
+            "1234567890.12345",
+            "12345678901234567890",
+            "0.000000000000001",
+        ] {
+            let expected: f64 = text.parse().unwrap();
+            assert_eq!(decimal_value(text), expected, "{text}");
+        }
     }
 }
