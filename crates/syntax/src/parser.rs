@@ -756,7 +756,7 @@ impl LineReader<'_> {
                         "`WHILE […]` must be followed by `DOm`",
                     ));
                 }
-                let (label, end) = self.loop_label(next_end)?;
+                let (label, end) = self.loop_label(at, next_end)?;
                 Ok((
                     Statement::While {
                         cond: Some(cond),
@@ -766,11 +766,11 @@ impl LineReader<'_> {
                 ))
             }
             "DO" => {
-                let (label, end) = self.loop_label(after)?;
+                let (label, end) = self.loop_label(pos, after)?;
                 Ok((Statement::While { cond: None, label }, end))
             }
             "END" => {
-                let (label, end) = self.loop_label(after)?;
+                let (label, end) = self.loop_label(pos, after)?;
                 Ok((Statement::End { label }, end))
             }
             _ => Err(Fail::new(
@@ -783,14 +783,14 @@ impl LineReader<'_> {
     }
 
     /// The loop number after `DO`/`END` (1–3 in the Fanuc family).
-    fn loop_label(&self, at: usize) -> PResult<u8> {
+    fn loop_label(&self, keyword: usize, at: usize) -> PResult<u8> {
         let start = self.skip_blanks(at);
         let rest = &self.line[start..];
         let n = rest.bytes().take_while(u8::is_ascii_digit).count();
         match rest[..n].parse::<u8>() {
             Ok(label @ 1..=3) => Ok((label, start + n)),
             _ => Err(Fail::new(
-                at.saturating_sub(2),
+                keyword,
                 (start + n).max(at),
                 "E-LOOP-NUMBER",
                 "`DO` and `END` take a loop number from 1 to 3",
