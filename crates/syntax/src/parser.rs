@@ -41,6 +41,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
             base: offset,
             line_no: u32::try_from(line_no).unwrap_or(u32::MAX),
             program: &mut program,
+            open_brackets: 0,
         };
         reader.read();
         offset += raw.len() + 1;
@@ -154,6 +155,8 @@ struct LineReader<'a> {
     base: usize,
     line_no: u32,
     program: &'a mut Program,
+    /// `[` opened and not yet closed in the expression being read.
+    open_brackets: u32,
 }
 
 /// A parse failure inside a word or statement: where, and what to say.
@@ -282,6 +285,7 @@ impl LineReader<'_> {
         while pos < bytes.len() {
             let c = bytes[pos];
             let start = pos;
+            self.open_brackets = 0;
             let at_start = first.is_none();
             match c {
                 b' ' | b'\t' => {
@@ -1212,20 +1216,9 @@ impl LineReader<'_> {
                 "expected `[`",
             ));
         }
-        let nesting = self.nesting_at(start);
-        let max = u32::from(self.rules.max_bracket_depth);
-        if nesting > max {
-            return Err(Fail::new(
-                start,
-                self.block_end(start),
-                "E-EXPR-DEPTH",
-                format!(
-                    "brackets nested {nesting} deep; {} allows {max}",
-                    self.dialect.label()
-                ),
-            ));
-        }
+        self.open_bracket(start)?;
         let (inner, end) = self.expression(start + 1, depth + 1)?;
+        self.open_brackets = self.open_brackets.saturating_sub(1);
         let close = self.skip_blanks(end);
         if self.bytes.get(close) != Some(&b']') {
             return Err(Fail::new(
@@ -1238,18 +1231,23 @@ impl LineReader<'_> {
         Ok((inner, close + 1))
     }
 
-    /// How many `[` are open at `pos` (including the one there), counting from the block start.
-    fn nesting_at(&self, pos: usize) -> u32 {
-        let mut depth: u32 = 0;
-        for &b in &self.bytes[..=pos.min(self.bytes.len().saturating_sub(1))] {
-            match b {
-                b'[' => depth += 1,
-                b']' => depth = depth.saturating_sub(1),
-                b';' if !self.rules.semicolon_comment => depth = 0,
-                _ => {}
-            }
+    /// Counts the `[` at `start` as open; more than the dialect allows is an error.
+    fn open_bracket(&mut self, start: usize) -> Result<(), Fail> {
+        self.open_brackets += 1;
+        let nesting = self.open_brackets;
+        let max = u32::from(self.rules.max_bracket_depth);
+        if nesting > max {
+            return Err(Fail::new(
+                start,
+                self.block_end(start),
+                "E-EXPR-DEPTH",
+                format!(
+                    "brackets nested {nesting} deep; {} allows {max}",
+                    self.dialect.label()
+                ),
+            ));
         }
-        depth
+        Ok(())
     }
 
     /// A function call `SIN[…]`, `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
@@ -1282,6 +1280,7 @@ impl LineReader<'_> {
             return Ok((id, end));
         }
         // `[a,b]` form.
+        self.open_bracket(open)?;
         let (first, after_first) = self.expression(open + 1, depth + 1)?;
         let at = self.skip_blanks(after_first);
         let (second, end) = match self.bytes.get(at) {
@@ -1296,9 +1295,11 @@ impl LineReader<'_> {
                         "`[` is not closed with `]`",
                     ));
                 }
+                self.open_brackets = self.open_brackets.saturating_sub(1);
                 (Some(second), close + 1)
             }
             Some(b']') => {
+                self.open_brackets = self.open_brackets.saturating_sub(1);
                 let end = at + 1;
                 // `ATAN[a]/[b]`.
                 let slash = self.skip_blanks(end);

@@ -445,3 +445,16 @@ fn linuxcnc_takes_g80_with_another_motion_code() {
         [("E-MODAL-CONFLICT", "G1"), ("E-MODAL-CONFLICT", "G0")]
     );
 }
+
+#[test]
+fn long_lines_of_brackets_and_words_parse_in_one_pass() {
+    // Many sibling brackets on one line: nesting is tracked as it goes, not rescanned.
+    let siblings = format!("#1={}1\n", "[1]+".repeat(200_000));
+    let p = parse(&siblings, Dialect::Fanuc);
+    assert!(p.diagnostics.is_empty(), "{:?}", &p.diagnostics[..1]);
+    // A million-word line.
+    let words = format!("G01{}\n", " X1.".repeat(1_000_000));
+    let p = parse(&words, Dialect::Fanuc);
+    assert_eq!(p.blocks[0].words.len(), 1_000_001);
+    assert!(p.diagnostics.iter().all(|d| d.code == "E-WORD-TWICE"));
+}
