@@ -374,6 +374,10 @@ impl Backplot {
                 None => self.camera.fit_aspect(Vec3::ONE, Vec3::ZERO, aspect),
             }
         }
+        // Pick with the camera as it is drawn this frame, before the highlight is chosen so
+        // a click shows its selection at once.
+        self.handle_picking(&response, rect, scene);
+        self.last_rect = Some(rect);
         let selection = self.selection_range(scene);
         if self.zoom_to_selection_pending {
             self.zoom_to_selection_pending = false;
@@ -384,9 +388,6 @@ impl Backplot {
                 self.camera.zoom_to_selection(min, max, aspect);
             }
         }
-        // Pick with the camera as it is drawn this frame.
-        self.handle_picking(&response, rect, scene);
-        self.last_rect = Some(rect);
 
         let to_u32 = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
         let params = ViewParams {
