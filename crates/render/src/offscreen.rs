@@ -3,9 +3,12 @@
 //! The backplot widget also draws into a [`RenderTarget`] and composites it into egui's pass,
 //! which has no depth buffer.
 
+#[cfg(not(target_arch = "wasm32"))]
 use glam::Vec2;
 
-use crate::path::{DEPTH_FORMAT, PathPoint, PathRenderer, ViewParams};
+use crate::path::{DEPTH_FORMAT, PathRenderer};
+#[cfg(not(target_arch = "wasm32"))]
+use crate::path::{PathPoint, ViewParams};
 
 /// Why an offscreen render failed.
 #[derive(Debug, thiserror::Error)]

@@ -32,6 +32,13 @@ const STALE_FRAMES: u64 = 600;
 /// Scroll points per e-fold of zoom (≈ 1.16× per 100-point wheel notch).
 const SCROLL_ZOOM_POINTS: f32 = 667.0;
 
+/// One arrow-key press orbits as much as a drag of this many points.
+const KEY_ORBIT_POINTS: f32 = 15.0;
+/// One Shift+arrow press pans by this many points.
+const KEY_PAN_POINTS: f32 = 40.0;
+/// One `+` press zooms in by this factor.
+const KEY_ZOOM: f32 = 1.25;
+
 /// How far from a segment (in points) the cursor may be to pick it.
 pub const PICK_RADIUS: f32 = 6.0;
 
@@ -505,14 +512,21 @@ impl Backplot {
         }
     }
 
-    /// Orbit (left drag), pan (right/middle or shift+left drag), zoom (scroll, pinch) and
-    /// fit (double click).
+    /// Orbit (left drag, one finger), pan (right/middle or shift+left drag, two fingers),
+    /// zoom (scroll, pinch), fit (double click) and the keyboard (see [`Self::handle_keys`]).
     fn handle_input(&mut self, ui: &egui::Ui, response: &egui::Response, rect: egui::Rect) {
         let viewport = Vec2::new(rect.width(), rect.height());
         let shift = ui.input(|i| i.modifiers.shift);
         let delta = response.drag_delta();
         let delta = Vec2::new(delta.x, delta.y);
-        if response.dragged_by(egui::PointerButton::Secondary)
+        let touch = ui
+            .input(|i| i.multi_touch())
+            .filter(|t| t.num_touches >= 2 && response.hovered());
+        if let Some(touch) = touch {
+            // Two fingers pan; their pinch zooms below (egui's zoom delta).
+            let moved = touch.translation_delta;
+            self.camera.pan(Vec2::new(moved.x, moved.y), viewport);
+        } else if response.dragged_by(egui::PointerButton::Secondary)
             || response.dragged_by(egui::PointerButton::Middle)
             || (shift && response.dragged_by(egui::PointerButton::Primary))
         {
@@ -536,6 +550,86 @@ impl Backplot {
 
         if response.double_clicked() {
             self.fit();
+        }
+        // Keys never go to the view while another widget (the editor) has keyboard focus.
+        let focus = ui.ctx().memory(|m| m.focused());
+        if response.hovered() && focus.is_none_or(|id| id == response.id) {
+            self.handle_keys(ui, viewport);
+        }
+    }
+
+    /// Keys while the pointer is over the view and no widget has keyboard focus: arrows orbit
+    /// (with Shift they pan), `+`/`-` zoom, `F` fits, `S` zooms to the selection, `1`–`4` pick
+    /// the iso, top, front and right views, `P` toggles perspective, `R` rapids, and Escape
+    /// clears the selection.
+    fn handle_keys(&mut self, ui: &egui::Ui, viewport: Vec2) {
+        use egui::Key;
+        let (shift, pressed) = ui.input(|i| {
+            let keys = [
+                Key::ArrowLeft,
+                Key::ArrowRight,
+                Key::ArrowUp,
+                Key::ArrowDown,
+                Key::Plus,
+                Key::Equals,
+                Key::Minus,
+                Key::F,
+                Key::S,
+                Key::Num1,
+                Key::Num2,
+                Key::Num3,
+                Key::Num4,
+                Key::P,
+                Key::R,
+                Key::Escape,
+            ];
+            let pressed: Vec<Key> = keys.into_iter().filter(|k| i.key_pressed(*k)).collect();
+            (i.modifiers.shift, pressed)
+        });
+        for key in pressed {
+            let step = match key {
+                Key::ArrowLeft => Some(Vec2::new(-1.0, 0.0)),
+                Key::ArrowRight => Some(Vec2::new(1.0, 0.0)),
+                Key::ArrowUp => Some(Vec2::new(0.0, -1.0)),
+                Key::ArrowDown => Some(Vec2::new(0.0, 1.0)),
+                _ => None,
+            };
+            if let Some(step) = step {
+                if shift {
+                    self.camera.pan(step * KEY_PAN_POINTS, viewport);
+                } else {
+                    self.camera.orbit(step * KEY_ORBIT_POINTS);
+                }
+                continue;
+            }
+            match key {
+                Key::Plus | Key::Equals => self.camera.zoom(KEY_ZOOM),
+                Key::Minus => self.camera.zoom(1.0 / KEY_ZOOM),
+                Key::F => self.fit(),
+                Key::S => self.zoom_to_selection(),
+                Key::Num1 | Key::Num2 | Key::Num3 | Key::Num4 => {
+                    let view = match key {
+                        Key::Num1 => StandardView::Iso,
+                        Key::Num2 => StandardView::Top,
+                        Key::Num3 => StandardView::Front,
+                        _ => StandardView::Right,
+                    };
+                    self.camera.set_view(view);
+                    self.fit();
+                }
+                Key::P => {
+                    self.camera.projection = match self.camera.projection {
+                        Projection::Perspective => Projection::Orthographic,
+                        Projection::Orthographic => Projection::Perspective,
+                    };
+                }
+                Key::R => {
+                    let visible = self.kind_visible(Kind::Rapid);
+                    self.set_kind_visible(Kind::Rapid, !visible);
+                }
+                Key::Escape => self.selected_line = None,
+                _ => {}
+            }
         }
     }
 

@@ -315,4 +315,29 @@ fn click_picks_a_block_hover_describes_it_and_playback_dims() {
         .screen_pos(Vec3::new(50.0, 70.0, 5.0))
         .unwrap();
     assert!((a - b).length() > 150.0, "{a:?} {b:?}");
+
+    // Keyboard over the view: arrows orbit, `2` is the top view, Escape clears the selection.
+    let centre = egui::pos2(160.0, 140.0);
+    harness.hover_at(centre);
+    harness.run();
+    let yaw = harness.state().0.camera().yaw;
+    harness.key_press(egui::Key::ArrowLeft);
+    harness.run();
+    assert_ne!(
+        harness.state().0.camera().yaw,
+        yaw,
+        "arrow key did not orbit"
+    );
+    harness.key_press(egui::Key::Num2);
+    harness.run();
+    let (top_yaw, top_pitch) = swarf_render::StandardView::Top.angles();
+    let camera = *harness.state().0.camera();
+    assert!((camera.yaw - top_yaw).abs() < 1e-6 && (camera.pitch - top_pitch).abs() < 1e-6);
+    assert_eq!(harness.state().0.selected_line(), Some(7));
+    harness.key_press(egui::Key::Escape);
+    harness.run();
+    assert_eq!(harness.state().0.selected_line(), None);
+    harness.key_press(egui::Key::R);
+    harness.run();
+    assert!(!harness.state().0.kind_visible(Kind::Rapid));
 }
