@@ -4,6 +4,8 @@
 
 use std::num::NonZeroU32;
 
+use smallvec::SmallVec;
+
 use crate::{Diagnostic, Dialect, LineIndex, Span};
 
 /// How a word was written besides its letter.
@@ -333,8 +335,9 @@ pub struct Block {
     pub program: Option<ProgramNumber>,
     /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
     pub block_delete: Option<u8>,
-    /// The address words in the order written (without `N` and `O`).
-    pub words: Vec<Word>,
+    /// The address words in the order written (without `N` and `O`); up to four are stored in
+    /// the block itself, so a typical CAM line needs no allocation of its own.
+    pub words: SmallVec<[Word; 4]>,
     /// Macro statements, in the order written.
     pub statements: Vec<Statement>,
     /// Spans of the comments in the block.

@@ -100,35 +100,68 @@ fn unsigned(input: &str) -> IResult<&str, &str> {
     Ok((rest, &input[..input.len() - rest.len()]))
 }
 
-/// The value of a digit string with at most one decimal point, as `str::parse::<f64>` gives it.
+/// A decimal number scanned from the text: `12`, `1.5`, `.5`, `3.` (no sign).
+struct Decimal {
+    /// Byte offset just after it.
+    end: usize,
+    /// Its value, as `str::parse::<f64>` gives it.
+    value: f64,
+    /// Whether it has a decimal point.
+    has_point: bool,
+    /// How many digits it has.
+    digits: usize,
+}
+
+/// Scans a decimal number at `pos` in one pass (the hot path of the parser: every word).
 ///
-/// Up to 15 significant digits the mantissa and the power of ten are exact f64s, so one
-/// correctly rounded division gives the correctly rounded value (Clinger's fast path); longer
-/// strings go to the standard library.
-fn decimal_value(digits: &str) -> f64 {
+/// Up to 15 digits the mantissa and the power of ten are exact f64s, so one correctly rounded
+/// division gives the correctly rounded value (Clinger's fast path); longer numbers go to the
+/// standard library.
+fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
     const POW10: [f64; 16] = [
         1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
     ];
-    if digits.len() <= 16 {
-        let mut mantissa: u64 = 0;
-        let mut frac_digits = 0usize;
-        let mut after_point = false;
-        for b in digits.bytes() {
-            if b == b'.' {
-                after_point = true;
-            } else {
-                mantissa = mantissa * 10 + u64::from(b - b'0');
-                frac_digits += usize::from(after_point);
-            }
-        }
-        if let Some(scale) = POW10.get(frac_digits) {
-            // At most 16 digits with a point, or 15 without: below 2^53.
-            if mantissa < (1u64 << 53) {
-                return mantissa as f64 / scale;
-            }
-        }
+    let n = bytes.len();
+    let mut end = pos;
+    // Wrapping arithmetic: past 19 digits the mantissa is unused (the slow path reads them).
+    let mut mantissa: u64 = 0;
+    while end < n && bytes[end].is_ascii_digit() {
+        mantissa = mantissa
+            .wrapping_mul(10)
+            .wrapping_add(u64::from(bytes[end] - b'0'));
+        end += 1;
     }
-    digits.parse::<f64>().unwrap_or(f64::NAN)
+    let int_digits = end - pos;
+    let has_point = end < n && bytes[end] == b'.';
+    let mut frac_digits = 0;
+    if has_point {
+        end += 1;
+        let frac_start = end;
+        while end < n && bytes[end].is_ascii_digit() {
+            mantissa = mantissa
+                .wrapping_mul(10)
+                .wrapping_add(u64::from(bytes[end] - b'0'));
+            end += 1;
+        }
+        frac_digits = end - frac_start;
+    }
+    let digits = int_digits + frac_digits;
+    if digits == 0 {
+        return None;
+    }
+    let value = match POW10.get(frac_digits) {
+        Some(scale) if digits <= 15 => mantissa as f64 / scale,
+        _ => std::str::from_utf8(&bytes[pos..end])
+            .ok()
+            .and_then(|t| t.parse::<f64>().ok())
+            .unwrap_or(f64::NAN),
+    };
+    Some(Decimal {
+        end,
+        value,
+        has_point,
+        digits,
+    })
 }
 
 fn is_blank(c: char) -> bool {
@@ -473,7 +506,7 @@ impl LineReader<'_> {
     /// `N123` at the start of the block.
     fn read_sequence_number(&mut self, block: &mut Block, pos: usize) -> usize {
         let value_start = self.skip_blanks(pos + 1);
-        let Ok((rest, digits)) = unsigned(&self.line[value_start..]) else {
+        let Some(number) = scan_decimal(self.bytes, value_start) else {
             self.error(
                 block,
                 pos,
@@ -483,7 +516,8 @@ impl LineReader<'_> {
             );
             return pos + 1;
         };
-        let end = self.line.len() - rest.len();
+        let end = number.end;
+        let digits = &self.line[value_start..end];
         if !block.words.is_empty() || block.number.is_some() || !block.statements.is_empty() {
             self.error(
                 block,
@@ -933,7 +967,7 @@ impl LineReader<'_> {
                 end,
             ));
         }
-        let Ok((remaining, digits)) = unsigned(&self.line[after_sign..]) else {
+        let Some(number) = scan_decimal(self.bytes, after_sign) else {
             let shown = char::from(letter);
             // A run of three or more letters is text, not words: one diagnostic for all of it.
             let (run, run_end) = self.alpha_run(pos);
@@ -955,12 +989,14 @@ impl LineReader<'_> {
                 format!("address `{shown}` needs a number after it"),
             ));
         };
-        let end = self.line.len() - remaining.len();
-        let negative = rest.starts_with('-');
-        let has_point = digits.contains('.');
-        let magnitude = decimal_value(digits);
-        let value = if negative { -magnitude } else { magnitude };
-        let significant = digits.len() - usize::from(has_point);
+        let end = number.end;
+        let has_point = number.has_point;
+        let value = if rest.starts_with('-') {
+            -number.value
+        } else {
+            number.value
+        };
+        let significant = number.digits;
         let max = usize::from(self.rules.max_digits);
         if !value.is_finite() || value.abs() > 1e15 || (max > 0 && significant > max) {
             return Err(Fail::new(
@@ -1379,9 +1415,17 @@ mod tests {
             "1234567890.12345",
             "12345678901234567890",
             "0.000000000000001",
+            "1234567890123456.5",
         ] {
             let expected: f64 = text.parse().unwrap();
-            assert_eq!(decimal_value(text), expected, "{text}");
+            let d = scan_decimal(text.as_bytes(), 0).unwrap();
+            assert_eq!(d.value, expected, "{text}");
+            assert_eq!(d.end, text.len());
+            assert_eq!(d.has_point, text.contains('.'));
         }
+        let d = scan_decimal(b"12.5.3X", 0).unwrap();
+        assert_eq!((d.end, d.value, d.digits), (4, 12.5, 3));
+        assert!(scan_decimal(b"X", 0).is_none());
+        assert!(scan_decimal(b".", 0).is_none());
     }
 }
