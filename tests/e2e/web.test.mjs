@@ -72,8 +72,9 @@ test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async (
   );
 
   // A square pocket outline: 2 feeds down/up and the 4 sides, all in mm.
+  // Fanuc reads a number without a decimal point in 0.001 mm, so the sizes carry one.
   const square =
-    "G90 G21 G17\nG00 X0 Y0 Z5\nG01 Z-1 F100\nG01 X30\nG01 Y20\nG01 X0\nG01 Y0\nG00 Z5\nM30\n";
+    "G90 G21 G17\nG00 X0 Y0 Z5.\nG01 Z-1. F100\nG01 X30.\nG01 Y20.\nG01 X0\nG01 Y0\nG00 Z5.\nM30\n";
   await page.evaluate((text) => window.swarf.setText(text), square);
   await session.eventually(
     () => window.swarf.diagnostics(),
@@ -92,7 +93,7 @@ test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async (
   assert.ok(near(stats.bounds.min[2], -1), `bounds.min Z should be -1: ${JSON.stringify(stats)}`);
 
   // A longer program must give more motions: stats follow every edit.
-  const twice = square.replace("M30\n", "G01 Z-2\nG01 X30\nG01 Y20\nG00 Z5\nM30\n");
+  const twice = square.replace("M30\n", "G01 Z-2.\nG01 X30.\nG01 Y20.\nG00 Z5.\nM30\n");
   await page.evaluate((text) => window.swarf.setText(text), twice);
   await session.eventually(
     () => window.swarf.stats(),

@@ -20,6 +20,8 @@ pub struct Workbench {
     editor: CodeEditor,
     backplot: Backplot,
     cursor_line: Option<u32>,
+    /// The cursor line last sent to the backplot as its selection.
+    synced_line: Option<u32>,
 }
 
 impl Default for Workbench {
@@ -43,6 +45,7 @@ impl Workbench {
             editor: CodeEditor::default(),
             backplot: Backplot::new(),
             cursor_line: None,
+            synced_line: None,
         }
     }
 
@@ -121,8 +124,29 @@ impl Workbench {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
+                // The editor's block is highlighted in the backplot (set only when the cursor
+                // moves, so a click in the backplot is not undone) …
+                if self.cursor_line != self.synced_line {
+                    self.backplot.set_selected_line(self.cursor_line);
+                    self.synced_line = self.cursor_line;
+                }
                 self.backplot.show(ui, &self.analysis.scene);
+                // … and a click on a segment moves the editor to its block.
+                if let Some(line) = self.backplot.take_picked_line() {
+                    self.jump_to_line(line);
+                }
             });
+    }
+
+    /// Puts the editor's cursor at the start of 1-based `line`.
+    fn jump_to_line(&mut self, line: u32) {
+        let lines = &self.analysis.program.lines;
+        let start = lines.line_start(line.saturating_sub(1) as usize) as usize;
+        let start = start.min(self.text.len());
+        let chars = self.text.get(..start).map_or(0, |t| t.chars().count());
+        self.editor.jump_to(chars..chars);
+        self.cursor_line = Some(line);
+        self.synced_line = Some(line);
     }
 
     fn top_bar(&mut self, ui: &mut egui::Ui) {

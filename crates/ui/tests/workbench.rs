@@ -60,10 +60,10 @@ fn typing_in_the_editor_re_plots_and_marks_errors() {
     harness.run();
     let editor = harness.get_by_role(egui::accesskit::Role::MultilineTextInput);
     editor.focus();
-    editor.type_text("G0 X5 Y7\nG1 X$ F100\n");
+    editor.type_text("G0 X5. Y7.\nG1 X$ F100\n");
     harness.run();
     let wb = harness.state();
-    assert_eq!(wb.text(), "G0 X5 Y7\nG1 X$ F100\n");
+    assert_eq!(wb.text(), "G0 X5. Y7.\nG1 X$ F100\n");
     assert_eq!(wb.stats().motions, 1);
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert_eq!(codes, [(2, "E-WORD-VALUE"), (2, "E-SYNTAX-CHAR")]);
