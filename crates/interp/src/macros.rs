@@ -1,0 +1,1701 @@
+//! Macro variables and expression evaluation: Fanuc Macro B (local, common and system
+//! variables, the vacant value) and LinuxCNC numbered and named parameters.
+//!
+//! Expressions are evaluated with an explicit stack, so a left-associative chain of any length
+//! (`#1=1+1+1+…`, which the parser nests on the left without a depth limit) cannot overflow the
+//! call stack.
+
+use std::borrow::Cow;
+use std::collections::HashMap;
+use std::fmt;
+
+use swarf_syntax::{BinOp, Diagnostic, Dialect, Expr, ExprId, ExprNode, Func, Program, Span};
+
+/// A macro value: `None` is Fanuc's vacant ("null", #0), distinct from 0.
+pub type Value = Option<f64>;
+
+/// Diagnostic code for a variable that does not exist, is read-only or is badly numbered.
+pub const CODE_VARIABLE: &str = "E-MACRO-VARIABLE";
+/// Diagnostic code for a division (or `MOD`) by zero.
+pub const CODE_DIVIDE: &str = "E-MACRO-DIVIDE";
+/// Diagnostic code for a function argument outside its domain (`SQRT[-1]`, `ASIN[2]`, `LN[0]`).
+pub const CODE_DOMAIN: &str = "E-MACRO-DOMAIN";
+/// Diagnostic code for any other value the control rejects (overflow, `BIN` of a non-BCD value).
+pub const CODE_VALUE: &str = "E-MACRO-VALUE";
+
+/// Why an expression could not be evaluated (becomes a diagnostic with the node's span).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EvalError {
+    /// The expression node (or assignment target) at fault.
+    pub span: Span,
+    /// One of the `E-MACRO-*` codes above.
+    pub code: &'static str,
+    /// A sentence for the programmer.
+    pub message: String,
+}
+
+impl EvalError {
+    /// An error at `span` with one of the `E-MACRO-*` codes.
+    pub fn new(span: Span, code: &'static str, message: impl Into<String>) -> Self {
+        EvalError {
+            span,
+            code,
+            message: message.into(),
+        }
+    }
+
+    /// The error as an error diagnostic, for the run's diagnostic list.
+    pub fn to_diagnostic(&self) -> Diagnostic {
+        Diagnostic::error(self.span, self.code, self.message.clone())
+    }
+}
+
+impl fmt::Display for EvalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.code, self.message)
+    }
+}
+
+impl std::error::Error for EvalError {}
+
+impl From<EvalError> for Diagnostic {
+    fn from(e: EvalError) -> Self {
+        Diagnostic::error(e.span, e.code, e.message)
+    }
+}
+
+/// What the machine exposes as system variables (#1000+, #2001…, #3000, #4001…, #5001…,
+/// #5221…); the machine implements it. The store asks it first for every number, so it can also
+/// claim numbers inside LinuxCNC's parameter range (#5221 G54 X, #5420 current X).
+pub trait SystemVariables {
+    /// `None` when `n` is not a system variable it knows (then the variable store decides),
+    /// `Some(value)` otherwise.
+    fn read(&self, n: u32) -> Option<Value>;
+
+    /// `Err(message)` for a read-only variable, `Ok(true)` when handled, `Ok(false)` when `n` is
+    /// not a system variable.
+    fn write(&mut self, n: u32, v: Value) -> Result<bool, String>;
+
+    /// LinuxCNC predefined named parameters (`#<_x>`, `#<_metric>`, …): `None` when `name`
+    /// (lowercase, without `#<>`) is not one, so the store decides.
+    fn read_named(&self, name: &str) -> Option<Value> {
+        let _ = name;
+        None
+    }
+
+    /// Writing a named parameter: `Err(message)` for a read-only predefined one, `Ok(true)` when
+    /// handled, `Ok(false)` to let the store keep it.
+    fn write_named(&mut self, name: &str, v: Value) -> Result<bool, String> {
+        let _ = (name, v);
+        Ok(false)
+    }
+}
+
+/// A machine without system variables: every number outside the store's ranges is an error.
+/// For evaluating expressions outside a run (and for tests).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoSystemVariables;
+
+impl SystemVariables for NoSystemVariables {
+    fn read(&self, _n: u32) -> Option<Value> {
+        None
+    }
+
+    fn write(&mut self, _n: u32, _v: Value) -> Result<bool, String> {
+        Ok(false)
+    }
+}
+
+/// Local variables per call level: #1–#33 in the Fanuc family (#1–#30 used in LinuxCNC), and
+/// LinuxCNC's local named parameters.
+#[derive(Debug, Clone, PartialEq)]
+struct Frame {
+    locals: [Value; FANUC_LOCALS],
+    named: HashMap<Box<str>, f64>,
+}
+
+impl Frame {
+    fn new(fill: Value) -> Self {
+        Frame {
+            locals: [fill; FANUC_LOCALS],
+            named: HashMap::new(),
+        }
+    }
+}
+
+/// Fanuc local variables #1–#33.
+const FANUC_LOCALS: usize = 33;
+/// LinuxCNC subroutine parameters #1–#30.
+const LINUXCNC_LOCALS: usize = 30;
+/// Fanuc common variables cleared at reset: #100–#199.
+const COMMON_CLEARED: std::ops::RangeInclusive<u32> = 100..=199;
+/// Fanuc common variables kept through reset and power-off: #500–#999.
+const COMMON_KEPT: std::ops::RangeInclusive<u32> = 500..=999;
+/// LinuxCNC numbered parameters are #1 up to `RS274NGC_MAX_PARAMETERS - 1`.
+const LINUXCNC_PARAMETERS: u32 = 5602;
+/// LinuxCNC compares `EQ`, `NE`, `LE`, `GE` with this tolerance (`TOLERANCE_EQUAL`).
+const LINUXCNC_EQUAL: f64 = 1e-6;
+
+/// The macro variable store: local variables (#1–#33, one frame per macro call level), common
+/// variables (#100–#199 cleared at reset, #500–#999 kept), and LinuxCNC's numbered parameters
+/// (#1–#5601, all global except #1–#30 which are local to an o-word call) and named parameters
+/// (`#<name>` local to the call level, `#<_name>` global). System variables are delegated to a
+/// [`SystemVariables`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variables {
+    dialect: Dialect,
+    /// The main program's level.
+    main: Frame,
+    /// The macro / o-word call levels entered, innermost last.
+    calls: Vec<Frame>,
+    /// Fanuc: #100–#199 then #500–#999. LinuxCNC: every numbered parameter by its number
+    /// (#1–#30 of the current level live in the frame instead).
+    store: Vec<Value>,
+    /// LinuxCNC global named parameters (`#<_name>`).
+    globals: HashMap<Box<str>, f64>,
+}
+
+impl Variables {
+    /// An empty store for `dialect`: Fanuc-family variables vacant, LinuxCNC parameters 0.
+    pub fn new(dialect: Dialect) -> Self {
+        let linuxcnc = is_linuxcnc(dialect);
+        let (fill, size) = if linuxcnc {
+            (Some(0.0), LINUXCNC_PARAMETERS as usize)
+        } else {
+            (
+                None,
+                COMMON_CLEARED.clone().count() + COMMON_KEPT.clone().count(),
+            )
+        };
+        Variables {
+            dialect,
+            main: Frame::new(fill),
+            calls: Vec::new(),
+            store: vec![fill; size],
+            globals: HashMap::new(),
+        }
+    }
+
+    /// The dialect whose rules the store follows.
+    pub fn dialect(&self) -> Dialect {
+        self.dialect
+    }
+
+    /// Enters a call level (G65/G66 macro call, LinuxCNC o-word call) with its arguments as
+    /// (local number, value) pairs: Fanuc locals #1–#33 start vacant, LinuxCNC #1–#30 start at
+    /// 0. Numbers outside the local range are ignored.
+    pub fn push_frame(&mut self, args: &[(u8, f64)]) {
+        let linuxcnc = is_linuxcnc(self.dialect);
+        let mut frame = Frame::new(if linuxcnc { Some(0.0) } else { None });
+        let count = if linuxcnc {
+            LINUXCNC_LOCALS
+        } else {
+            FANUC_LOCALS
+        };
+        for &(i, v) in args {
+            let i = usize::from(i);
+            if (1..=count).contains(&i)
+                && let Some(slot) = frame.locals.get_mut(i - 1)
+            {
+                *slot = Some(v);
+            }
+        }
+        self.calls.push(frame);
+    }
+
+    /// Leaves the current call level (M99, `endsub`, `return`); the main level is never left.
+    pub fn pop_frame(&mut self) {
+        self.calls.pop();
+    }
+
+    /// How many call levels are entered (0 in the main program).
+    pub fn depth(&self) -> usize {
+        self.calls.len()
+    }
+
+    /// Reset: back to the main level with its locals cleared, and in the Fanuc family #100–#199
+    /// vacant (parameter CCV = 0, the default); #500–#999 and LinuxCNC's numbered and global
+    /// parameters are kept.
+    pub fn reset(&mut self) {
+        let linuxcnc = is_linuxcnc(self.dialect);
+        self.calls.clear();
+        self.main = Frame::new(if linuxcnc { Some(0.0) } else { None });
+        if !linuxcnc {
+            let cleared = COMMON_CLEARED.clone().count();
+            for slot in self.store.iter_mut().take(cleared) {
+                *slot = None;
+            }
+        }
+    }
+
+    /// The value of variable `n` (as computed: it must be a whole number). System variables are
+    /// asked of `sys` first.
+    pub fn get(&self, n: f64, sys: &dyn SystemVariables) -> Result<Value, String> {
+        let n = self.number(n)?;
+        if let Some(v) = sys.read(n) {
+            return Ok(v);
+        }
+        if n == 0 && !is_linuxcnc(self.dialect) {
+            return Ok(None);
+        }
+        match self.slot(n) {
+            Some(Slot::Local(i)) => Ok(self.frame().locals.get(i).copied().flatten()),
+            Some(Slot::Store(i)) => Ok(self.store.get(i).copied().flatten()),
+            None => Err(self.missing(n)),
+        }
+    }
+
+    /// Sets variable `n` to `v`: `sys` handles system variables (and refuses read-only ones);
+    /// #0 cannot be assigned.
+    pub fn set(&mut self, n: f64, v: Value, sys: &mut dyn SystemVariables) -> Result<(), String> {
+        let n = self.number(n)?;
+        if n == 0 && !is_linuxcnc(self.dialect) {
+            return Err("#0 is always vacant and cannot be assigned".to_string());
+        }
+        if sys.write(n, v)? {
+            return Ok(());
+        }
+        let slot = match self.slot(n) {
+            Some(Slot::Local(i)) => self.frame_mut().locals.get_mut(i),
+            Some(Slot::Store(i)) => self.store.get_mut(i),
+            None => None,
+        };
+        match slot {
+            Some(slot) => {
+                *slot = v;
+                Ok(())
+            }
+            None => Err(self.missing(n)),
+        }
+    }
+
+    /// Whether variable `n` exists (LinuxCNC `EXISTS[#n]`; in the Fanuc family, whether it may
+    /// be read).
+    pub fn exists(&self, n: f64, sys: &dyn SystemVariables) -> bool {
+        self.get(n, sys).is_ok()
+    }
+
+    /// The named parameter `name` (`"abc"` for `#<abc>`, `"_abc"` for the global `#<_abc>`) from
+    /// the store only; `None` when it is not defined.
+    pub fn get_named(&self, name: &str) -> Value {
+        let name = lower(name);
+        if name.starts_with('_') {
+            self.globals.get(name.as_ref()).copied()
+        } else {
+            self.frame().named.get(name.as_ref()).copied()
+        }
+    }
+
+    /// Stores the named parameter `name`: global when it starts with `_`, else local to the
+    /// current call level. `None` removes it (LinuxCNC has no vacant value).
+    pub fn set_named(&mut self, name: &str, v: Value) {
+        let name = lower(name);
+        let map = if name.starts_with('_') {
+            &mut self.globals
+        } else {
+            &mut self.frame_mut().named
+        };
+        match v {
+            Some(v) => {
+                map.insert(name.into_owned().into_boxed_str(), v);
+            }
+            None => {
+                map.remove(name.as_ref());
+            }
+        }
+    }
+
+    /// Reads `#<name>` as the program does: predefined parameters from `sys`, then the store;
+    /// a name never assigned is an error.
+    pub fn read_named(&self, name: &str, sys: &dyn SystemVariables) -> Result<Value, String> {
+        let name = lower(name);
+        if let Some(v) = sys.read_named(&name) {
+            return Ok(v);
+        }
+        match self.get_named(&name) {
+            Some(v) => Ok(Some(v)),
+            None => Err(format!("named parameter #<{name}> is not defined")),
+        }
+    }
+
+    /// Assigns `#<name>` as the program does: `sys` may refuse a read-only predefined one.
+    pub fn write_named(
+        &mut self,
+        name: &str,
+        v: Value,
+        sys: &mut dyn SystemVariables,
+    ) -> Result<(), String> {
+        let name = lower(name);
+        if !sys.write_named(&name, v)? {
+            self.set_named(&name, v);
+        }
+        Ok(())
+    }
+
+    /// Whether `#<name>` is defined (LinuxCNC `EXISTS[#<name>]`).
+    pub fn named_exists(&self, name: &str, sys: &dyn SystemVariables) -> bool {
+        self.read_named(name, sys).is_ok()
+    }
+
+    fn frame(&self) -> &Frame {
+        self.calls.last().unwrap_or(&self.main)
+    }
+
+    fn frame_mut(&mut self) -> &mut Frame {
+        self.calls.last_mut().unwrap_or(&mut self.main)
+    }
+
+    /// Checks a computed variable number and makes it an integer.
+    fn number(&self, n: f64) -> Result<u32, String> {
+        let tolerance = if is_linuxcnc(self.dialect) {
+            1e-4
+        } else {
+            1e-6
+        };
+        if !n.is_finite() {
+            return Err(format!("variable number {n} is not a number"));
+        }
+        let r = n.round();
+        if (n - r).abs() > tolerance {
+            return Err(format!(
+                "variable number must be a whole number (#[{}])",
+                show(n)
+            ));
+        }
+        if r < 0.0 {
+            return Err(format!(
+                "variable number must not be negative (#[{}])",
+                show(n)
+            ));
+        }
+        if r > f64::from(u32::MAX) {
+            return Err(self.missing_text(&show(r)));
+        }
+        // In range and whole: the conversion is exact.
+        Ok(r as u32)
+    }
+
+    /// Where variable `n` lives in the store, if it is one of the store's.
+    fn slot(&self, n: u32) -> Option<Slot> {
+        let n_usize = n as usize;
+        if is_linuxcnc(self.dialect) {
+            return match n {
+                1..=30 => Some(Slot::Local(n_usize - 1)),
+                _ if (31..LINUXCNC_PARAMETERS).contains(&n) => Some(Slot::Store(n_usize)),
+                _ => None,
+            };
+        }
+        let cleared = COMMON_CLEARED.clone().count();
+        match n {
+            1..=33 => Some(Slot::Local(n_usize - 1)),
+            _ if COMMON_CLEARED.contains(&n) => {
+                Some(Slot::Store((n - COMMON_CLEARED.start()) as usize))
+            }
+            _ if COMMON_KEPT.contains(&n) => {
+                Some(Slot::Store(cleared + (n - COMMON_KEPT.start()) as usize))
+            }
+            _ => None,
+        }
+    }
+
+    fn missing(&self, n: u32) -> String {
+        self.missing_text(&n.to_string())
+    }
+
+    fn missing_text(&self, n: &str) -> String {
+        format!("variable #{n} does not exist on {}", self.dialect.label())
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Slot {
+    /// Index into the current frame's locals.
+    Local(usize),
+    /// Index into `store`.
+    Store(usize),
+}
+
+fn is_linuxcnc(dialect: Dialect) -> bool {
+    dialect == Dialect::LinuxCnc
+}
+
+fn lower(name: &str) -> Cow<'_, str> {
+    if name.bytes().any(|b| b.is_ascii_uppercase()) {
+        Cow::Owned(name.to_ascii_lowercase())
+    } else {
+        Cow::Borrowed(name)
+    }
+}
+
+/// A number as a message shows it: no trailing `.0`.
+fn show(v: f64) -> String {
+    format!("{v}")
+}
+
+/// Fanuc argument specification I: the local variable a G65/G66 address letter sets (A→#1,
+/// B→#2, C→#3, I→#4, J→#5, K→#6, D→#7, E→#8, F→#9, H→#11, M→#13, Q→#17, R→#18, S→#19, T→#20,
+/// U→#21, V→#22, W→#23, X→#24, Y→#25, Z→#26); G, L, N, O and P are not arguments.
+pub fn argument_variable(letter: u8) -> Option<u8> {
+    Some(match letter.to_ascii_uppercase() {
+        b'A' => 1,
+        b'B' => 2,
+        b'C' => 3,
+        b'I' => 4,
+        b'J' => 5,
+        b'K' => 6,
+        b'D' => 7,
+        b'E' => 8,
+        b'F' => 9,
+        b'H' => 11,
+        b'M' => 13,
+        b'Q' => 17,
+        b'R' => 18,
+        b'S' => 19,
+        b'T' => 20,
+        b'U' => 21,
+        b'V' => 22,
+        b'W' => 23,
+        b'X' => 24,
+        b'Y' => 25,
+        b'Z' => 26,
+        _ => return None,
+    })
+}
+
+/// Evaluates expression `id` of `program`: `Ok(None)` when it is a vacant variable read as it
+/// is (`#1=#0` keeps #1 vacant; a word `X#0` is left out of its block).
+pub fn eval(
+    program: &Program,
+    id: ExprId,
+    vars: &Variables,
+    sys: &dyn SystemVariables,
+) -> Result<Value, EvalError> {
+    Evaluator { program, vars, sys }.run(id)
+}
+
+/// Evaluates a condition (`IF […]`, `WHILE […]`, LinuxCNC `if`/`while`): nonzero is true, and
+/// vacant counts as false.
+pub fn eval_condition(
+    program: &Program,
+    id: ExprId,
+    vars: &Variables,
+    sys: &dyn SystemVariables,
+) -> Result<bool, EvalError> {
+    Ok(eval(program, id, vars, sys)?.is_some_and(|v| v != 0.0))
+}
+
+/// The variable an assignment writes, once its number is computed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// `#n` / `#[expr]`: the computed number (checked when the value is stored).
+    Number(f64),
+    /// LinuxCNC `#<name>` (lowercase).
+    Named(Box<str>),
+}
+
+/// An assignment whose target and value are evaluated but not yet stored. LinuxCNC sets every
+/// parameter of a line only after reading the whole line (`#1=1 #2=#1` gives #2 the old #1):
+/// prepare each assignment of the block, then [`apply`](Assignment::apply) them in order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Assignment {
+    /// Where the value goes.
+    pub target: Target,
+    /// The value (vacant stays vacant).
+    pub value: Value,
+    /// The target's text, for errors when storing.
+    pub span: Span,
+}
+
+impl Assignment {
+    /// Stores the value.
+    pub fn apply(
+        &self,
+        vars: &mut Variables,
+        sys: &mut dyn SystemVariables,
+    ) -> Result<(), EvalError> {
+        let result = match &self.target {
+            Target::Number(n) => vars.set(*n, self.value, sys),
+            Target::Named(name) => vars.write_named(name, self.value, sys),
+        };
+        result.map_err(|m| EvalError::new(self.span, CODE_VARIABLE, m))
+    }
+}
+
+/// Evaluates the target number and the value of `#target = value` without storing anything.
+pub fn prepare_assign(
+    program: &Program,
+    target: ExprId,
+    value: ExprId,
+    vars: &Variables,
+    sys: &dyn SystemVariables,
+) -> Result<Assignment, EvalError> {
+    let node = lookup(program, target)?;
+    let span = node.span;
+    let target = match &node.expr {
+        Expr::Var(index) => Target::Number(eval(program, *index, vars, sys)?.unwrap_or(0.0)),
+        Expr::Named(name) => Target::Named(name.clone()),
+        _ => {
+            return Err(EvalError::new(
+                span,
+                CODE_VARIABLE,
+                "only a variable can be assigned",
+            ));
+        }
+    };
+    let value = eval(program, value, vars, sys)?;
+    Ok(Assignment {
+        target,
+        value,
+        span,
+    })
+}
+
+/// Executes `Statement::Assign { target, value }`: `target` is a `Var` node (its index
+/// expression gives the number) or a `Named` node; the value keeps full precision.
+pub fn assign(
+    program: &Program,
+    target: ExprId,
+    value: ExprId,
+    vars: &mut Variables,
+    sys: &mut dyn SystemVariables,
+) -> Result<(), EvalError> {
+    prepare_assign(program, target, value, vars, sys)?.apply(vars, sys)
+}
+
+fn lookup(program: &Program, id: ExprId) -> Result<&ExprNode, EvalError> {
+    program.expr(id).ok_or_else(|| {
+        EvalError::new(
+            Span::default(),
+            CODE_VALUE,
+            "internal error: the expression is not in this program",
+        )
+    })
+}
+
+/// A failure inside one operation, before its span is known.
+struct Fault {
+    code: &'static str,
+    message: String,
+}
+
+impl Fault {
+    fn divide() -> Self {
+        Fault {
+            code: CODE_DIVIDE,
+            message: "division by zero".to_string(),
+        }
+    }
+
+    fn domain(message: impl Into<String>) -> Self {
+        Fault {
+            code: CODE_DOMAIN,
+            message: message.into(),
+        }
+    }
+
+    fn value(message: impl Into<String>) -> Self {
+        Fault {
+            code: CODE_VALUE,
+            message: message.into(),
+        }
+    }
+}
+
+/// One unit of work of the explicit-stack evaluation.
+#[derive(Debug, Clone, Copy)]
+enum Step {
+    /// Schedule a node's operands (or push a leaf's value).
+    Visit(ExprId),
+    /// Combine the node's operands, now on the value stack.
+    Apply(ExprId),
+}
+
+struct Evaluator<'a> {
+    program: &'a Program,
+    vars: &'a Variables,
+    sys: &'a dyn SystemVariables,
+}
+
+impl Evaluator<'_> {
+    fn run(&self, root: ExprId) -> Result<Value, EvalError> {
+        // The common cases (`X12.5` from a macro, `X#24`) need no stacks.
+        let node = lookup(self.program, root)?;
+        match &node.expr {
+            Expr::Num(v) => return Ok(Some(*v)),
+            Expr::Var(index) if let Expr::Num(n) = node_expr(self.program, *index)? => {
+                return self.variable(*n, node.span);
+            }
+            _ => {}
+        }
+        let mut steps = vec![Step::Visit(root)];
+        let mut values: Vec<Value> = Vec::new();
+        while let Some(step) = steps.pop() {
+            match step {
+                Step::Visit(id) => {
+                    let node = lookup(self.program, id)?;
+                    match &node.expr {
+                        Expr::Num(v) => values.push(Some(*v)),
+                        Expr::Named(name) => values.push(self.named(name, node.span)?),
+                        Expr::Call(Func::Exists, arg, _) => {
+                            let arg_node = lookup(self.program, *arg)?;
+                            match &arg_node.expr {
+                                Expr::Named(name) => {
+                                    values.push(Some(flag(self.vars.named_exists(name, self.sys))))
+                                }
+                                Expr::Var(index) => {
+                                    steps.push(Step::Apply(id));
+                                    steps.push(Step::Visit(*index));
+                                }
+                                _ => {
+                                    return Err(EvalError::new(
+                                        node.span,
+                                        CODE_VALUE,
+                                        "`EXISTS` takes a parameter: `EXISTS[#<name>]`",
+                                    ));
+                                }
+                            }
+                        }
+                        Expr::Var(a) | Expr::Neg(a) | Expr::Call(_, a, None) => {
+                            steps.push(Step::Apply(id));
+                            steps.push(Step::Visit(*a));
+                        }
+                        Expr::Binary(_, a, b) | Expr::Call(_, a, Some(b)) => {
+                            steps.push(Step::Apply(id));
+                            steps.push(Step::Visit(*b));
+                            steps.push(Step::Visit(*a));
+                        }
+                    }
+                }
+                Step::Apply(id) => {
+                    let node = lookup(self.program, id)?;
+                    let span = node.span;
+                    let value = match &node.expr {
+                        Expr::Var(_) => {
+                            let n = pop(&mut values, span)?;
+                            self.variable(n.unwrap_or(0.0), span)?
+                        }
+                        Expr::Neg(_) => Some(0.0 - num(pop(&mut values, span)?)),
+                        Expr::Binary(op, _, _) => {
+                            let b = pop(&mut values, span)?;
+                            let a = pop(&mut values, span)?;
+                            let r = binary(self.vars.dialect, *op, a, b)
+                                .map_err(|f| EvalError::new(span, f.code, f.message))?;
+                            Some(finite(r, span)?)
+                        }
+                        Expr::Call(Func::Exists, _, _) => {
+                            let n = pop(&mut values, span)?;
+                            Some(flag(self.vars.exists(n.unwrap_or(0.0), self.sys)))
+                        }
+                        Expr::Call(func, _, second) => {
+                            let b = match second {
+                                Some(_) => Some(pop(&mut values, span)?),
+                                None => None,
+                            };
+                            let a = pop(&mut values, span)?;
+                            let r = call(self.vars.dialect, *func, a, b)
+                                .map_err(|f| EvalError::new(span, f.code, f.message))?;
+                            Some(finite(r, span)?)
+                        }
+                        Expr::Num(_) | Expr::Named(_) => return Err(internal(span)),
+                    };
+                    values.push(value);
+                }
+            }
+        }
+        let result = values.pop().ok_or_else(|| internal(node.span))?;
+        if values.is_empty() {
+            Ok(result)
+        } else {
+            Err(internal(node.span))
+        }
+    }
+
+    fn variable(&self, n: f64, span: Span) -> Result<Value, EvalError> {
+        self.vars
+            .get(n, self.sys)
+            .map_err(|m| EvalError::new(span, CODE_VARIABLE, m))
+    }
+
+    fn named(&self, name: &str, span: Span) -> Result<Value, EvalError> {
+        self.vars
+            .read_named(name, self.sys)
+            .map_err(|m| EvalError::new(span, CODE_VARIABLE, m))
+    }
+}
+
+fn node_expr(program: &Program, id: ExprId) -> Result<&Expr, EvalError> {
+    lookup(program, id).map(|n| &n.expr)
+}
+
+fn pop(values: &mut Vec<Value>, span: Span) -> Result<Value, EvalError> {
+    values.pop().ok_or_else(|| internal(span))
+}
+
+fn internal(span: Span) -> EvalError {
+    EvalError::new(
+        span,
+        CODE_VALUE,
+        "internal error: malformed expression tree",
+    )
+}
+
+/// A vacant operand counts as 0 in arithmetic and functions.
+fn num(v: Value) -> f64 {
+    v.unwrap_or(0.0)
+}
+
+fn flag(b: bool) -> f64 {
+    if b { 1.0 } else { 0.0 }
+}
+
+fn finite(v: f64, span: Span) -> Result<f64, EvalError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(EvalError::new(
+            span,
+            CODE_VALUE,
+            "the result is too large (overflow)",
+        ))
+    }
+}
+
+/// A binary operation with the dialect's rules.
+fn binary(dialect: Dialect, op: BinOp, a: Value, b: Value) -> Result<f64, Fault> {
+    let linuxcnc = is_linuxcnc(dialect);
+    let (x, y) = (num(a), num(b));
+    Ok(match op {
+        BinOp::Add => x + y,
+        BinOp::Sub => x - y,
+        BinOp::Mul => x * y,
+        BinOp::Div => {
+            if y == 0.0 {
+                return Err(Fault::divide());
+            }
+            x / y
+        }
+        BinOp::Mod => {
+            if y == 0.0 {
+                return Err(Fault::divide());
+            }
+            let r = x % y;
+            if linuxcnc && r < 0.0 {
+                // LinuxCNC: `fmod`, then made non-negative.
+                r + y.abs()
+            } else {
+                r
+            }
+        }
+        BinOp::Pow => power(x, y)?,
+        BinOp::And | BinOp::Or | BinOp::Xor if linuxcnc => {
+            let (p, q) = (x != 0.0, y != 0.0);
+            flag(match op {
+                BinOp::And => p && q,
+                BinOp::Or => p || q,
+                _ => p != q,
+            })
+        }
+        BinOp::And | BinOp::Or | BinOp::Xor => {
+            // Fanuc: bit by bit on the values as integers.
+            let (p, q) = (bits(x, op)?, bits(y, op)?);
+            let r = match op {
+                BinOp::And => p & q,
+                BinOp::Or => p | q,
+                _ => p ^ q,
+            };
+            r as f64
+        }
+        BinOp::Eq | BinOp::Ne => {
+            let equal = if linuxcnc {
+                (x - y).abs() < LINUXCNC_EQUAL
+            } else {
+                // Fanuc: vacant equals only vacant (`#1 EQ #0` is not `#1 EQ 0`).
+                match (a, b) {
+                    (None, None) => true,
+                    (Some(p), Some(q)) => p == q,
+                    _ => false,
+                }
+            };
+            flag(equal == (op == BinOp::Eq))
+        }
+        BinOp::Gt => flag(x > y),
+        BinOp::Lt => flag(x < y),
+        BinOp::Ge => flag(x >= y || (linuxcnc && (x - y).abs() < LINUXCNC_EQUAL)),
+        BinOp::Le => flag(x <= y || (linuxcnc && (x - y).abs() < LINUXCNC_EQUAL)),
+    })
+}
+
+/// A value as the integer a Fanuc logical operation works on (rounded to the nearest).
+fn bits(x: f64, op: BinOp) -> Result<i64, Fault> {
+    const LIMIT: f64 = 9_007_199_254_740_992.0; // 2^53
+    let r = x.round();
+    if r.abs() > LIMIT {
+        return Err(Fault::value(format!(
+            "{} works on integers up to 2^53; {} is too large",
+            op.symbol(),
+            show(x)
+        )));
+    }
+    Ok(r as i64)
+}
+
+/// `a ** b` and `POW[a,b]`.
+fn power(x: f64, y: f64) -> Result<f64, Fault> {
+    if x < 0.0 && y.fract() != 0.0 {
+        return Err(Fault::domain(format!(
+            "a negative number ({}) cannot be raised to a fractional power ({})",
+            show(x),
+            show(y)
+        )));
+    }
+    if x == 0.0 && y < 0.0 {
+        return Err(Fault::divide());
+    }
+    Ok(x.powf(y))
+}
+
+/// Sine of `deg` degrees, exact at multiples of 90° (`COS[90]` is 0, not 6e-17).
+fn sin_deg(deg: f64) -> f64 {
+    let r = deg.rem_euclid(360.0);
+    if r == 0.0 || r == 180.0 {
+        0.0
+    } else if r == 90.0 {
+        1.0
+    } else if r == 270.0 {
+        -1.0
+    } else {
+        r.to_radians().sin()
+    }
+}
+
+fn cos_deg(deg: f64) -> f64 {
+    sin_deg(deg.rem_euclid(360.0) + 90.0)
+}
+
+/// An angle in 0°–360° (Fanuc parameter NAT = 0, the default).
+fn full_turn(deg: f64) -> f64 {
+    // `+ 0.0` turns -0 into 0.
+    if deg < 0.0 { deg + 360.0 } else { deg + 0.0 }
+}
+
+/// A function call with the dialect's rules.
+fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64, Fault> {
+    let linuxcnc = is_linuxcnc(dialect);
+    let x = num(a);
+    Ok(match func {
+        Func::Sin => sin_deg(x),
+        Func::Cos => cos_deg(x),
+        Func::Tan => {
+            let c = cos_deg(x);
+            if c == 0.0 {
+                return Err(Fault::domain(format!("TAN[{}] is infinite", show(x))));
+            }
+            sin_deg(x) / c
+        }
+        Func::Asin | Func::Acos => {
+            if !(-1.0..=1.0).contains(&x) {
+                return Err(Fault::domain(format!(
+                    "{}[{}] is undefined: the argument must be between -1 and 1",
+                    func.name(),
+                    show(x)
+                )));
+            }
+            if func == Func::Acos {
+                x.acos().to_degrees()
+            } else if linuxcnc {
+                x.asin().to_degrees()
+            } else {
+                // Fanuc (NAT = 0): 270°–90°.
+                full_turn(x.asin().to_degrees())
+            }
+        }
+        Func::Atan => {
+            let deg = match b {
+                Some(b) => x.atan2(num(b)).to_degrees(),
+                None => x.atan().to_degrees(),
+            };
+            if linuxcnc { deg } else { full_turn(deg) }
+        }
+        Func::Sqrt => {
+            if x < 0.0 {
+                return Err(Fault::domain(format!(
+                    "SQRT of a negative number ({})",
+                    show(x)
+                )));
+            }
+            x.sqrt()
+        }
+        Func::Abs => x.abs(),
+        // Half away from zero, in every dialect.
+        Func::Round => x.round(),
+        Func::Fix if linuxcnc => x.floor(),
+        Func::Fix => x.trunc(),
+        Func::Fup if linuxcnc => x.ceil(),
+        // Fanuc: away from zero (FUP[-1.2] = -2).
+        Func::Fup => {
+            let t = x.trunc();
+            if t == x { t } else { t + x.signum() }
+        }
+        Func::Ln => {
+            if x <= 0.0 {
+                return Err(Fault::domain(format!(
+                    "LN of zero or a negative number ({})",
+                    show(x)
+                )));
+            }
+            x.ln()
+        }
+        Func::Exp => x.exp(),
+        Func::Pow => power(x, num(b.flatten()))?,
+        Func::Bin => bin(x)?,
+        Func::Bcd => bcd(x)?,
+        // Handled by the evaluator (it needs the variable store).
+        Func::Exists => 0.0,
+    })
+}
+
+/// A non-negative whole number for BIN/BCD.
+fn whole(x: f64, func: &str, max: f64) -> Result<u64, Fault> {
+    let r = x.round();
+    if (x - r).abs() > 1e-6 || r < 0.0 || r > max {
+        return Err(Fault::value(format!(
+            "{func} needs a whole number from 0 to {max}, not {}",
+            show(x)
+        )));
+    }
+    Ok(r as u64)
+}
+
+/// BCD → binary: each 4-bit group is one decimal digit.
+fn bin(x: f64) -> Result<f64, Fault> {
+    let mut v = whole(x, "BIN", f64::from(u32::MAX))?;
+    let (mut out, mut scale) = (0u64, 1u64);
+    while v > 0 {
+        let digit = v & 0xF;
+        if digit > 9 {
+            return Err(Fault::value(format!(
+                "BIN[{}] is not a BCD value (a 4-bit group is over 9)",
+                show(x)
+            )));
+        }
+        out += digit * scale;
+        scale *= 10;
+        v >>= 4;
+    }
+    Ok(out as f64)
+}
+
+/// Binary → BCD: each decimal digit in 4 bits (up to 8 digits, a 32-bit signal).
+fn bcd(x: f64) -> Result<f64, Fault> {
+    let mut v = whole(x, "BCD", 99_999_999.0)?;
+    let (mut out, mut shift) = (0u64, 0u32);
+    while v > 0 {
+        out |= (v % 10) << shift;
+        shift += 4;
+        v /= 10;
+    }
+    Ok(out as f64)
+}
+
+#[cfg(test)]
+#[allow(clippy::unwrap_used)]
+mod tests {
+    use super::*;
+    use swarf_syntax::{Statement, parse};
+
+    /// System variables for tests: #1000–#1015 inputs (read-only), #2001 tool offset
+    /// (writable), #3000 alarm (write-only: refuses), #4001 modal G group 1, #5221 G54 X; and
+    /// LinuxCNC's `#<_metric>`.
+    #[derive(Default)]
+    struct TestSys {
+        values: HashMap<u32, Value>,
+    }
+
+    impl TestSys {
+        fn new() -> Self {
+            let mut values = HashMap::new();
+            values.insert(1000, Some(1.0));
+            values.insert(2001, Some(0.25));
+            values.insert(4001, Some(1.0));
+            values.insert(5221, Some(-100.0));
+            values.insert(3000, None);
+            TestSys { values }
+        }
+    }
+
+    impl SystemVariables for TestSys {
+        fn read(&self, n: u32) -> Option<Value> {
+            self.values.get(&n).copied()
+        }
+
+        fn write(&mut self, n: u32, v: Value) -> Result<bool, String> {
+            match n {
+                1000..=1015 | 4001 => Err(format!("#{n} is read-only")),
+                3000 => Err(format!("alarm {}", v.unwrap_or(0.0))),
+                2001 | 5221 => {
+                    self.values.insert(n, v);
+                    Ok(true)
+                }
+                _ => Ok(false),
+            }
+        }
+
+        fn read_named(&self, name: &str) -> Option<Value> {
+            (name == "_metric").then_some(Some(1.0))
+        }
+
+        fn write_named(&mut self, name: &str, _v: Value) -> Result<bool, String> {
+            if name == "_metric" {
+                Err("#<_metric> is read-only".to_string())
+            } else {
+                Ok(false)
+            }
+        }
+    }
+
+    /// Runs every assignment (also those after `IF … THEN`) of `text` in order; the first error
+    /// stops the run and is returned with the text its span covers.
+    fn exec(
+        text: &str,
+        dialect: Dialect,
+        vars: &mut Variables,
+        sys: &mut TestSys,
+    ) -> Result<(), (EvalError, String)> {
+        let program = parse(text, dialect);
+        assert!(
+            program.diagnostics.is_empty(),
+            "{text}: {:?}",
+            program.diagnostics
+        );
+        for block in &program.blocks {
+            for statement in &block.statements {
+                let r = match statement {
+                    Statement::Assign { target, value } => {
+                        assign(&program, *target, *value, vars, sys)
+                    }
+                    Statement::If { cond, then } => {
+                        match eval_condition(&program, *cond, vars, sys) {
+                            Ok(true) => match then.as_ref() {
+                                Statement::Assign { target, value } => {
+                                    assign(&program, *target, *value, vars, sys)
+                                }
+                                _ => Ok(()),
+                            },
+                            Ok(false) => Ok(()),
+                            Err(e) => Err(e),
+                        }
+                    }
+                    _ => Ok(()),
+                };
+                r.map_err(|e| {
+                    let shown = text[e.span.range()].to_string();
+                    (e, shown)
+                })?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Runs `text` on a fresh store and returns it.
+    fn run(text: &str, dialect: Dialect) -> Variables {
+        let mut vars = Variables::new(dialect);
+        exec(text, dialect, &mut vars, &mut TestSys::new()).unwrap();
+        vars
+    }
+
+    /// The value of `expr` (assigned to #1 in the Fanuc family, #31 in LinuxCNC).
+    fn value(expr: &str, dialect: Dialect) -> Value {
+        let text = if dialect == Dialect::LinuxCnc {
+            format!("#31 = [{expr}]")
+        } else {
+            format!("#1 = {expr}")
+        };
+        let vars = run(&text, dialect);
+        vars.get(
+            if dialect == Dialect::LinuxCnc {
+                31.0
+            } else {
+                1.0
+            },
+            &TestSys::new(),
+        )
+        .unwrap()
+    }
+
+    fn fanuc(expr: &str) -> f64 {
+        value(expr, Dialect::Fanuc).unwrap()
+    }
+
+    fn lcnc(expr: &str) -> f64 {
+        value(expr, Dialect::LinuxCnc).unwrap()
+    }
+
+    /// The error of running `text` on a fresh store: its code, message and the text it covers.
+    fn error(text: &str, dialect: Dialect) -> (&'static str, String, String) {
+        let mut vars = Variables::new(dialect);
+        let (e, shown) = exec(text, dialect, &mut vars, &mut TestSys::new()).unwrap_err();
+        (e.code, e.message, shown)
+    }
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() < 1e-9
+    }
+
+    #[test]
+    fn arithmetic_precedence() {
+        assert_eq!(fanuc("1 + 2 * 3"), 7.0);
+        assert_eq!(fanuc("[1 + 2] * 3"), 9.0);
+        assert_eq!(fanuc("10 - 4 - 3"), 3.0);
+        assert_eq!(fanuc("24 / 4 / 2"), 3.0);
+        assert_eq!(fanuc("-2 * 3"), -6.0);
+        assert_eq!(fanuc("1 + 2 EQ 3"), 1.0);
+        assert_eq!(lcnc("2 ** 3 ** 2"), 512.0);
+        assert_eq!(lcnc("1 + 2 ** 3 * 2"), 17.0);
+    }
+
+    #[test]
+    fn logical_precedence_per_dialect() {
+        // Fanuc: AND binds like `*`, OR/XOR like `+`.
+        assert_eq!(fanuc("2 + 3 AND 1"), 3.0);
+        assert_eq!(fanuc("5 OR 2 AND 3"), 7.0);
+        // LinuxCNC: logical operators bind loosest and give 1 or 0.
+        assert_eq!(lcnc("2 + 3 and 1"), 1.0);
+        assert_eq!(lcnc("1 eq 1 and 2 gt 3"), 0.0);
+        assert_eq!(lcnc("1 eq 1 or 2 gt 3"), 1.0);
+    }
+
+    #[test]
+    fn fanuc_logic_is_bitwise_linuxcnc_logic_is_boolean() {
+        assert_eq!(fanuc("12 AND 10"), 8.0);
+        assert_eq!(fanuc("12 OR 10"), 14.0);
+        assert_eq!(fanuc("12 XOR 10"), 6.0);
+        assert_eq!(lcnc("12 and 10"), 1.0);
+        assert_eq!(lcnc("12 or 0"), 1.0);
+        assert_eq!(lcnc("12 xor 10"), 0.0);
+        assert_eq!(lcnc("0 xor 10"), 1.0);
+        assert_eq!(lcnc("0 and 10"), 0.0);
+    }
+
+    #[test]
+    fn comparisons_give_one_or_zero() {
+        for (expr, want) in [
+            ("2 GT 1", 1.0),
+            ("1 GT 1", 0.0),
+            ("1 GE 1", 1.0),
+            ("1 LT 2", 1.0),
+            ("2 LE 1", 0.0),
+            ("3 NE 3", 0.0),
+            ("3 EQ 3", 1.0),
+        ] {
+            assert_eq!(fanuc(expr), want, "{expr}");
+            assert_eq!(lcnc(expr), want, "{expr}");
+        }
+        // LinuxCNC compares with a tolerance of 1e-6; Fanuc exactly.
+        assert_eq!(lcnc("1 eq 1.0000001"), 1.0);
+        assert_eq!(lcnc("1 ne 1.0000001"), 0.0);
+        assert_eq!(lcnc("1.0000001 le 1"), 1.0);
+        assert_eq!(fanuc("1 EQ 1.0000001"), 0.0);
+        assert_eq!(fanuc("1.0000001 LE 1"), 0.0);
+    }
+
+    #[test]
+    fn vacant_rules() {
+        let vars = run(
+            "#1 = #0 + 1\n#2 = #0\n#3 = #0 * 5\n#4 = -#0\n#6 = #5\n\
+             #10 = #5 EQ #0\n#11 = 0 EQ #0\n#12 = #5 NE 0\n#13 = #5 GE #0\n\
+             #14 = #5 GT 0\n#15 = #5 LT 1\n#16 = #5 EQ 0\n#17 = ABS[#0]\n#18 = [#0 + 0] EQ #0",
+            Dialect::Fanuc,
+        );
+        let sys = TestSys::new();
+        let get = |n: f64| vars.get(n, &sys).unwrap();
+        assert_eq!(get(1.0), Some(1.0));
+        assert_eq!(get(2.0), None, "`#2 = #0` keeps #2 vacant");
+        assert_eq!(get(3.0), Some(0.0));
+        assert_eq!(get(4.0), Some(0.0));
+        assert_eq!(get(6.0), None);
+        assert_eq!(get(10.0), Some(1.0), "vacant EQ #0");
+        assert_eq!(get(11.0), Some(0.0), "0 EQ #0");
+        assert_eq!(get(12.0), Some(1.0), "vacant NE 0");
+        assert_eq!(get(13.0), Some(1.0), "vacant GE #0");
+        assert_eq!(get(14.0), Some(0.0), "vacant GT 0");
+        assert_eq!(get(15.0), Some(1.0), "vacant LT 1 (as 0)");
+        assert_eq!(get(16.0), Some(0.0), "vacant EQ 0");
+        assert_eq!(get(17.0), Some(0.0));
+        assert_eq!(get(18.0), Some(0.0), "a sum is 0, not vacant");
+        assert_eq!(get(0.0), None);
+    }
+
+    #[test]
+    fn conditions_vacant_is_false() {
+        let text = "IF [#1] THEN #2 = 1\nIF [#0 EQ #0] THEN #3 = 1\nIF [0] THEN #4 = 1\n\
+                    IF [0.5] THEN #5 = 1";
+        let vars = run(text, Dialect::Fanuc);
+        let sys = TestSys::new();
+        assert_eq!(vars.get(2.0, &sys).unwrap(), None);
+        assert_eq!(vars.get(3.0, &sys).unwrap(), Some(1.0));
+        assert_eq!(vars.get(4.0, &sys).unwrap(), None);
+        assert_eq!(vars.get(5.0, &sys).unwrap(), Some(1.0));
+    }
+
+    #[test]
+    fn fix_fup_per_dialect() {
+        assert_eq!(fanuc("FIX[-1.2]"), -1.0);
+        assert_eq!(fanuc("FUP[-1.2]"), -2.0);
+        assert_eq!(fanuc("FIX[1.7]"), 1.0);
+        assert_eq!(fanuc("FUP[1.2]"), 2.0);
+        assert_eq!(fanuc("FUP[3]"), 3.0);
+        assert_eq!(fanuc("FUP[-3]"), -3.0);
+        assert_eq!(lcnc("fix[-1.2]"), -2.0);
+        assert_eq!(lcnc("fup[-1.2]"), -1.0);
+        assert_eq!(lcnc("fix[1.7]"), 1.0);
+        assert_eq!(lcnc("fup[1.2]"), 2.0);
+    }
+
+    #[test]
+    fn round_is_half_away_from_zero() {
+        assert_eq!(fanuc("ROUND[2.5]"), 3.0);
+        assert_eq!(fanuc("ROUND[-2.5]"), -3.0);
+        assert_eq!(fanuc("ROUND[2.4]"), 2.0);
+        assert_eq!(lcnc("round[-2.5]"), -3.0);
+        assert_eq!(lcnc("round[0.5]"), 1.0);
+    }
+
+    #[test]
+    fn atan_and_asin_ranges_per_dialect() {
+        assert_eq!(fanuc("ATAN[1]/[1]"), 45.0);
+        assert_eq!(fanuc("ATAN[1,1]"), 45.0);
+        assert_eq!(fanuc("ATAN[-1]/[-1]"), 225.0);
+        assert_eq!(fanuc("ATAN[-1]/[1]"), 315.0);
+        assert_eq!(fanuc("ATAN[0]/[-1]"), 180.0);
+        assert_eq!(lcnc("atan[-1]/[-1]"), -135.0);
+        assert_eq!(lcnc("atan[-1]/[1]"), -45.0);
+        assert_eq!(lcnc("atan[1]/[-1]"), 135.0);
+        assert!(close(fanuc("ATAN[1]"), 45.0));
+        assert_eq!(fanuc("ASIN[1]"), 90.0);
+        assert!(close(fanuc("ASIN[-0.5]"), 330.0));
+        assert!(close(lcnc("asin[-0.5]"), -30.0));
+        assert_eq!(fanuc("ACOS[-1]"), 180.0);
+        assert_eq!(fanuc("ACOS[1]"), 0.0);
+    }
+
+    #[test]
+    fn mod_per_dialect() {
+        assert_eq!(fanuc("-7 MOD 3"), -1.0);
+        assert_eq!(fanuc("7 MOD 3"), 1.0);
+        assert_eq!(fanuc("7 MOD -3"), 1.0);
+        assert_eq!(fanuc("7.5 MOD 2"), 1.5);
+        assert_eq!(lcnc("-7 mod 3"), 2.0);
+        assert_eq!(lcnc("7 mod -3"), 1.0);
+        assert_eq!(lcnc("-7 mod -3"), 2.0);
+        assert_eq!(lcnc("7 mod 3"), 1.0);
+    }
+
+    #[test]
+    fn trigonometry_in_degrees() {
+        assert!(close(fanuc("SIN[30]"), 0.5));
+        assert_eq!(fanuc("COS[90]"), 0.0);
+        assert_eq!(fanuc("SIN[180]"), 0.0);
+        assert_eq!(fanuc("SIN[-90]"), -1.0);
+        assert_eq!(fanuc("COS[360]"), 1.0);
+        assert_eq!(fanuc("COS[180]"), -1.0);
+        assert!(close(fanuc("COS[60]"), 0.5));
+        assert!(close(fanuc("TAN[45]"), 1.0));
+        assert!(close(lcnc("sin[30]"), 0.5));
+        assert_eq!(lcnc("cos[90]"), 0.0);
+    }
+
+    #[test]
+    fn other_functions() {
+        assert_eq!(fanuc("SQRT[16]"), 4.0);
+        assert_eq!(fanuc("SQR[9]"), 3.0);
+        assert_eq!(fanuc("ABS[-3.5]"), 3.5);
+        assert_eq!(fanuc("LN[1]"), 0.0);
+        assert_eq!(fanuc("EXP[0]"), 1.0);
+        assert!(close(fanuc("LN[EXP[2]]"), 2.0));
+        assert_eq!(fanuc("POW[2,10]"), 1024.0);
+        assert_eq!(fanuc("POW[-2,3]"), -8.0);
+        assert_eq!(fanuc("BCD[25]"), 37.0);
+        assert_eq!(fanuc("BIN[37]"), 25.0);
+        assert_eq!(fanuc("BIN[BCD[12345678]]"), 12_345_678.0);
+        assert_eq!(fanuc("BCD[0]"), 0.0);
+        assert_eq!(lcnc("sqrt[2] * sqrt[2] gt 1.999"), 1.0);
+    }
+
+    #[test]
+    fn assignment_keeps_full_precision() {
+        assert_eq!(fanuc("1 / 3"), 1.0 / 3.0);
+        assert_eq!(fanuc("0.1 + 0.2"), 0.1 + 0.2);
+    }
+
+    #[test]
+    fn errors_carry_the_node_span() {
+        let (code, message, shown) = error("#1 = 2 + 1 / [#2 - #2]", Dialect::Fanuc);
+        assert_eq!(code, CODE_DIVIDE);
+        assert_eq!(message, "division by zero");
+        assert_eq!(shown, "1 / [#2 - #2]");
+
+        let (code, _, shown) = error("#1 = 5 MOD 0", Dialect::Fanuc);
+        assert_eq!((code, shown.as_str()), (CODE_DIVIDE, "5 MOD 0"));
+
+        for (text, shown) in [
+            ("#1 = 1 + SQRT[-4]", "SQRT[-4]"),
+            ("#1 = ASIN[2]", "ASIN[2]"),
+            ("#1 = ACOS[-1.5]", "ACOS[-1.5]"),
+            ("#1 = LN[0]", "LN[0]"),
+            ("#1 = LN[-1]", "LN[-1]"),
+            ("#1 = TAN[90]", "TAN[90]"),
+            ("#1 = POW[-8, 0.5]", "POW[-8, 0.5]"),
+        ] {
+            let (code, _, got) = error(text, Dialect::Fanuc);
+            assert_eq!((code, got.as_str()), (CODE_DOMAIN, shown), "{text}");
+        }
+        let (code, _, shown) = error("#31 = [-8 ** 0.5]", Dialect::LinuxCnc);
+        assert_eq!((code, shown.as_str()), (CODE_DOMAIN, "-8 ** 0.5"));
+
+        for (text, shown) in [
+            ("#1 = BIN[10]", "BIN[10]"),
+            ("#1 = BCD[-1]", "BCD[-1]"),
+            ("#1 = BCD[1.5]", "BCD[1.5]"),
+            ("#1 = EXP[1000]", "EXP[1000]"),
+        ] {
+            let (code, _, got) = error(text, Dialect::Fanuc);
+            assert_eq!((code, got.as_str()), (CODE_VALUE, shown), "{text}");
+        }
+    }
+
+    #[test]
+    fn variable_errors() {
+        let (code, message, shown) = error("#1 = 2 * #50", Dialect::Fanuc);
+        assert_eq!(code, CODE_VARIABLE);
+        assert_eq!(message, "variable #50 does not exist on Fanuc 0i-M");
+        assert_eq!(shown, "#50");
+
+        let (_, message, shown) = error("#250 = 1", Dialect::Syntec);
+        assert_eq!(message, "variable #250 does not exist on Syntec 900M");
+        assert_eq!(shown, "#250");
+
+        let (code, message, shown) = error("#1 = #[1.5]", Dialect::Fanuc);
+        assert_eq!(code, CODE_VARIABLE);
+        assert!(message.contains("whole number"), "{message}");
+        assert_eq!(shown, "#[1.5]");
+
+        let (_, message, _) = error("#1 = #[0 - 1]", Dialect::Fanuc);
+        assert!(message.contains("negative"), "{message}");
+
+        let (code, message, shown) = error("#0 = 1", Dialect::Fanuc);
+        assert_eq!(code, CODE_VARIABLE);
+        assert!(message.contains("#0"), "{message}");
+        assert_eq!(shown, "#0");
+
+        // A system variable the machine does not know.
+        let (_, message, shown) = error("#1 = #1234", Dialect::Fanuc);
+        assert_eq!(message, "variable #1234 does not exist on Fanuc 0i-M");
+        assert_eq!(shown, "#1234");
+
+        // Within 1e-6 of a whole number is that number.
+        let vars = run("#[2.0000000001] = 4\n#3 = #[1 + 1]", Dialect::Fanuc);
+        assert_eq!(vars.get(3.0, &TestSys::new()).unwrap(), Some(4.0));
+
+        // `##n`: the number comes from a variable.
+        let vars = run("#1 = 100\n##1 = 7\n#2 = ##1", Dialect::Fanuc);
+        assert_eq!(vars.get(100.0, &TestSys::new()).unwrap(), Some(7.0));
+        assert_eq!(vars.get(2.0, &TestSys::new()).unwrap(), Some(7.0));
+    }
+
+    #[test]
+    fn fanuc_ranges() {
+        let vars = run(
+            "#33 = 1\n#100 = 2\n#199 = 3\n#500 = 4\n#999 = 5",
+            Dialect::Fanuc,
+        );
+        let sys = TestSys::new();
+        for (n, want) in [
+            (33.0, 1.0),
+            (100.0, 2.0),
+            (199.0, 3.0),
+            (500.0, 4.0),
+            (999.0, 5.0),
+        ] {
+            assert_eq!(vars.get(n, &sys).unwrap(), Some(want), "#{n}");
+        }
+        for n in [34.0, 99.0, 200.0, 499.0, 1001.0] {
+            assert!(vars.get(n, &sys).is_err(), "#{n}");
+        }
+        assert!(vars.exists(500.0, &sys));
+        assert!(!vars.exists(300.0, &sys));
+    }
+
+    #[test]
+    fn argument_specification_one() {
+        let expected = [
+            (b'A', 1),
+            (b'B', 2),
+            (b'C', 3),
+            (b'I', 4),
+            (b'J', 5),
+            (b'K', 6),
+            (b'D', 7),
+            (b'E', 8),
+            (b'F', 9),
+            (b'H', 11),
+            (b'M', 13),
+            (b'Q', 17),
+            (b'R', 18),
+            (b'S', 19),
+            (b'T', 20),
+            (b'U', 21),
+            (b'V', 22),
+            (b'W', 23),
+            (b'X', 24),
+            (b'Y', 25),
+            (b'Z', 26),
+        ];
+        for (letter, n) in expected {
+            assert_eq!(argument_variable(letter), Some(n), "{}", char::from(letter));
+        }
+        for letter in *b"GLNOP" {
+            assert_eq!(argument_variable(letter), None, "{}", char::from(letter));
+        }
+        assert_eq!(argument_variable(b'x'), Some(24));
+    }
+
+    #[test]
+    fn frames_keep_locals_per_level_and_share_commons() {
+        let mut sys = TestSys::new();
+        let mut vars = Variables::new(Dialect::Fanuc);
+        exec(
+            "#1 = 5\n#100 = 7\n#500 = 9",
+            Dialect::Fanuc,
+            &mut vars,
+            &mut sys,
+        )
+        .unwrap();
+        assert_eq!(vars.depth(), 0);
+
+        vars.push_frame(&[(1, 2.0), (24, 10.0), (40, 1.0)]);
+        assert_eq!(vars.depth(), 1);
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(2.0));
+        assert_eq!(vars.get(24.0, &sys).unwrap(), Some(10.0));
+        assert_eq!(vars.get(2.0, &sys).unwrap(), None, "locals start vacant");
+        assert_eq!(vars.get(100.0, &sys).unwrap(), Some(7.0));
+        exec(
+            "#1 = #1 + 1\n#100 = 8\n#2 = 3",
+            Dialect::Fanuc,
+            &mut vars,
+            &mut sys,
+        )
+        .unwrap();
+
+        vars.push_frame(&[]);
+        assert_eq!(vars.depth(), 2);
+        assert_eq!(vars.get(1.0, &sys).unwrap(), None);
+        vars.pop_frame();
+
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(3.0));
+        assert_eq!(vars.get(2.0, &sys).unwrap(), Some(3.0));
+        vars.pop_frame();
+        assert_eq!(vars.depth(), 0);
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(5.0));
+        assert_eq!(vars.get(2.0, &sys).unwrap(), None);
+        assert_eq!(vars.get(100.0, &sys).unwrap(), Some(8.0));
+        vars.pop_frame();
+        assert_eq!(vars.depth(), 0, "the main level is never left");
+
+        vars.push_frame(&[(1, 1.0)]);
+        vars.reset();
+        assert_eq!(vars.depth(), 0);
+        assert_eq!(vars.get(1.0, &sys).unwrap(), None);
+        assert_eq!(vars.get(100.0, &sys).unwrap(), None, "#100–#199 cleared");
+        assert_eq!(vars.get(500.0, &sys).unwrap(), Some(9.0), "#500– kept");
+    }
+
+    #[test]
+    fn system_variables_are_delegated() {
+        let mut sys = TestSys::new();
+        let mut vars = Variables::new(Dialect::Fanuc);
+        exec(
+            "#1 = #4001\n#2 = #1000 + #2001\n#2001 = 0.5\n#3 = #2001\n#4 = #3000",
+            Dialect::Fanuc,
+            &mut vars,
+            &mut sys,
+        )
+        .unwrap();
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(1.0));
+        assert_eq!(vars.get(2.0, &sys).unwrap(), Some(1.25));
+        assert_eq!(vars.get(3.0, &sys).unwrap(), Some(0.5));
+        assert_eq!(
+            vars.get(4.0, &sys).unwrap(),
+            None,
+            "a vacant system variable"
+        );
+        assert_eq!(sys.values.get(&2001), Some(&Some(0.5)));
+
+        let err = exec("#3000 = 12", Dialect::Fanuc, &mut vars, &mut sys).unwrap_err();
+        assert_eq!(err.0.code, CODE_VARIABLE);
+        assert_eq!(err.0.message, "alarm 12");
+        assert_eq!(err.1, "#3000");
+        let err = exec("#1000 = 1", Dialect::Fanuc, &mut vars, &mut sys).unwrap_err();
+        assert_eq!(err.0.message, "#1000 is read-only");
+        let err = exec("#1 = #[1000 + 16]", Dialect::Fanuc, &mut vars, &mut sys).unwrap_err();
+        assert_eq!(err.0.message, "variable #1016 does not exist on Fanuc 0i-M");
+        assert_eq!(err.1, "#[1000 + 16]");
+
+        // LinuxCNC: the machine's parameters come first, inside the numbered range too.
+        let mut vars = Variables::new(Dialect::LinuxCnc);
+        exec(
+            "#31 = #5221\n#5221 = 12\n#32 = #5221",
+            Dialect::LinuxCnc,
+            &mut vars,
+            &mut sys,
+        )
+        .unwrap();
+        assert_eq!(vars.get(31.0, &sys).unwrap(), Some(-100.0));
+        assert_eq!(vars.get(32.0, &sys).unwrap(), Some(12.0));
+    }
+
+    #[test]
+    fn linuxcnc_numbered_parameters() {
+        let mut sys = TestSys::new();
+        let mut vars = Variables::new(Dialect::LinuxCnc);
+        exec(
+            "#1 = [#200 + 1]\n#2 = #200\n#31 = 4\n#5601 = 2",
+            Dialect::LinuxCnc,
+            &mut vars,
+            &mut sys,
+        )
+        .unwrap();
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(1.0));
+        assert_eq!(
+            vars.get(2.0, &sys).unwrap(),
+            Some(0.0),
+            "parameters default to 0"
+        );
+        assert_eq!(vars.get(5601.0, &sys).unwrap(), Some(2.0));
+
+        // #1–#30 are local to an o-word call, #31 and up global.
+        vars.push_frame(&[(1, 10.0), (2, 20.0)]);
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(10.0));
+        assert_eq!(vars.get(3.0, &sys).unwrap(), Some(0.0));
+        assert_eq!(vars.get(31.0, &sys).unwrap(), Some(4.0));
+        exec("#1 = 99\n#31 = 5", Dialect::LinuxCnc, &mut vars, &mut sys).unwrap();
+        vars.pop_frame();
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(1.0));
+        assert_eq!(vars.get(31.0, &sys).unwrap(), Some(5.0));
+
+        let (code, message, shown) = error("#1 = #6000", Dialect::LinuxCnc);
+        assert_eq!(code, CODE_VARIABLE);
+        assert_eq!(message, "variable #6000 does not exist on LinuxCNC");
+        assert_eq!(shown, "#6000");
+        let (_, message, _) = error("#1 = #0", Dialect::LinuxCnc);
+        assert_eq!(message, "variable #0 does not exist on LinuxCNC");
+        // LinuxCNC accepts a number within 1e-4 of a whole one.
+        let vars = run("#[2.00001] = 3", Dialect::LinuxCnc);
+        assert_eq!(vars.get(2.0, &sys).unwrap(), Some(3.0));
+    }
+
+    #[test]
+    fn linuxcnc_named_parameters() {
+        let mut sys = TestSys::new();
+        let mut vars = Variables::new(Dialect::LinuxCnc);
+        exec(
+            "#<Depth> = 2\n#<_Safe> = 5\n#1 = [#<depth> + #<_safe>]\n#2 = #<_metric>\n\
+             #3 = EXISTS[#<depth>]\n#4 = EXISTS[#<nothing>]\n#5 = EXISTS[#<_metric>]\n\
+             #6 = EXISTS[#31]\n#7 = EXISTS[#6000]",
+            Dialect::LinuxCnc,
+            &mut vars,
+            &mut sys,
+        )
+        .unwrap();
+        let get = |vars: &Variables, n: f64| vars.get(n, &TestSys::new()).unwrap();
+        assert_eq!(get(&vars, 1.0), Some(7.0));
+        assert_eq!(get(&vars, 2.0), Some(1.0));
+        assert_eq!(get(&vars, 3.0), Some(1.0));
+        assert_eq!(get(&vars, 4.0), Some(0.0));
+        assert_eq!(get(&vars, 5.0), Some(1.0));
+        assert_eq!(get(&vars, 6.0), Some(1.0));
+        assert_eq!(get(&vars, 7.0), Some(0.0));
+        assert_eq!(vars.get_named("depth"), Some(2.0));
+        assert_eq!(vars.get_named("_SAFE"), Some(5.0));
+
+        // A call level sees the globals but not the caller's locals.
+        vars.push_frame(&[]);
+        let err = exec("#1 = #<depth>", Dialect::LinuxCnc, &mut vars, &mut sys).unwrap_err();
+        assert_eq!(err.0.code, CODE_VARIABLE);
+        assert_eq!(err.0.message, "named parameter #<depth> is not defined");
+        assert_eq!(err.1, "#<depth>");
+        exec(
+            "#<depth> = 8\n#<_safe> = 6\n#1 = [#<depth> + #<_safe>]",
+            Dialect::LinuxCnc,
+            &mut vars,
+            &mut sys,
+        )
+        .unwrap();
+        assert_eq!(get(&vars, 1.0), Some(14.0));
+        vars.pop_frame();
+        assert_eq!(vars.get_named("depth"), Some(2.0));
+        assert_eq!(vars.get_named("_safe"), Some(6.0));
+
+        let err = exec("#<_metric> = 0", Dialect::LinuxCnc, &mut vars, &mut sys).unwrap_err();
+        assert_eq!(err.0.message, "#<_metric> is read-only");
+        assert_eq!(err.1, "#<_metric>");
+
+        vars.set_named("_value", Some(3.0));
+        assert_eq!(vars.get_named("_value"), Some(3.0));
+        vars.set_named("_value", None);
+        assert_eq!(vars.get_named("_value"), None);
+    }
+
+    #[test]
+    fn prepared_assignments_see_the_old_values() {
+        let text = "#1 = 1\n#1 = 5 #2 = [#1 + 1]";
+        let program = parse(text, Dialect::LinuxCnc);
+        assert!(program.diagnostics.is_empty(), "{:?}", program.diagnostics);
+        let mut sys = TestSys::new();
+        let mut vars = Variables::new(Dialect::LinuxCnc);
+        for block in &program.blocks {
+            let prepared: Vec<Assignment> = block
+                .statements
+                .iter()
+                .filter_map(|s| match s {
+                    Statement::Assign { target, value } => {
+                        Some(prepare_assign(&program, *target, *value, &vars, &sys).unwrap())
+                    }
+                    _ => None,
+                })
+                .collect();
+            for a in &prepared {
+                a.apply(&mut vars, &mut sys).unwrap();
+            }
+        }
+        assert_eq!(vars.get(1.0, &sys).unwrap(), Some(5.0));
+        assert_eq!(vars.get(2.0, &sys).unwrap(), Some(2.0));
+    }
+
+    #[test]
+    fn long_chains_do_not_overflow_the_stack() {
+        let terms = 200_000;
+        let mut text = String::from("#1 = 1");
+        for _ in 1..terms {
+            text.push_str("+1");
+        }
+        assert_eq!(fanuc(&text[5..]), f64::from(terms));
+    }
+
+    #[test]
+    fn errors_become_diagnostics() {
+        let e = EvalError::new(Span::new(1, 3), CODE_DIVIDE, "division by zero");
+        let d = e.to_diagnostic();
+        assert_eq!(d.code, CODE_DIVIDE);
+        assert_eq!(d.span, Span::new(1, 3));
+        assert_eq!(Diagnostic::from(e.clone()), d);
+        assert_eq!(e.to_string(), "E-MACRO-DIVIDE: division by zero");
+        let program = parse("#1 = 1 / 0", Dialect::Fanuc);
+        let mut sys = NoSystemVariables;
+        let mut vars = Variables::new(Dialect::Fanuc);
+        let assigned = program.blocks[0].statements.iter().any(|s| {
+            matches!(s, Statement::Assign { target, value }
+                if assign(&program, *target, *value, &mut vars, &mut sys).is_err())
+        });
+        assert!(assigned, "the division by zero is reported");
+    }
+}
