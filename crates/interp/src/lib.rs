@@ -2,8 +2,12 @@
 //! canonical motion stream through a [`Sink`], each event tagged with its source block.
 
 mod canon;
+mod exec;
+mod flow;
 mod machine;
+pub mod macros;
 mod setup;
+mod state;
 
 pub use canon::{Axis, Canon, CanonRecorder, Source};
 pub use machine::{Interpreter, Limits, Status, run};

@@ -1,10 +1,19 @@
-//! The modal machine: reads each block, checks it, and executes it in a fixed order.
+//! The modal machine: runs blocks in bounded steps, follows the program's flow (subprograms,
+//! macro calls, Macro B jumps and loops, LinuxCNC O-words) and hands each block's words to
+//! [`exec`](crate::exec).
+
+use std::collections::HashMap;
 
 use glam::DVec3;
-use swarf_syntax::codes::{self, Code};
-use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm};
+use swarf_syntax::{
+    Block, Diagnostic, Dialect, ExprId, OLabel, OWord, Program, Span, Statement, Word, WordForm,
+    codes::Code,
+};
 
-use crate::{Axis, Canon, Setup, Sink, Source};
+use crate::flow::{Index, LabelKey, OKind};
+use crate::macros::{self, SystemVariables, Value, Variables};
+use crate::state::State;
+use crate::{Setup, Sink, Source};
 
 /// Whether a run has more blocks to execute.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -20,143 +29,98 @@ pub enum Status {
 pub struct Limits {
     /// Most blocks executed in one run.
     pub max_blocks: u64,
+    /// Deepest nesting of subprogram and macro calls.
+    pub max_call_depth: usize,
 }
 
-/// The motion mode of modal group 01 that the interpreter can run.
+/// Subprogram and macro nesting the controls allow (Fanuc 0i: 10 subprogram levels; a few
+/// more here so that macro calls inside them still fit), beyond which a run stops.
+const MAX_CALL_DEPTH: usize = 16;
+
+/// What a block asks the run to do next.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum MotionMode {
-    Rapid,
-    Linear,
-    /// G02 (clockwise) or G03 (counter-clockwise) seen from the plane normal's positive end.
-    Arc {
-        ccw: bool,
-    },
+pub(crate) enum Flow {
+    /// Go on with the next block.
+    Next,
+    /// Continue at this block.
+    Jump(usize),
+    /// Stop the run (M02/M30, an alarm).
+    Stop,
 }
 
-/// What one G code does, for the codes the interpreter runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum GAction {
-    Motion(Option<MotionMode>),
-    Plane(Axis),
-    Absolute(bool),
-    Metric(bool),
-    WorkOffset(&'static str),
-    Dwell,
-    /// Cancels a mode the interpreter cannot enter yet, so it has nothing to do.
-    Cancel,
+/// Why a call frame was pushed, which decides how it returns.
+#[derive(Debug, Clone, PartialEq)]
+enum CallKind {
+    /// `M98` (or Syntec `M98 H`): returns at `M99`; locals are shared.
+    Subprogram,
+    /// `G65`/`G66`: returns at `M99` with a new level of local variables.
+    Macro,
+    /// LinuxCNC `oN call`: returns at `oN endsub`/`oN return`, with its own #1–#30.
+    OWord(LabelKey),
 }
 
-/// Modal group numbers, for the two-codes-in-one-group check.
-fn group(action: GAction) -> Option<u8> {
-    match action {
-        GAction::Motion(_) => Some(1),
-        GAction::Plane(_) => Some(2),
-        GAction::Absolute(_) => Some(3),
-        GAction::Metric(_) => Some(6),
-        GAction::WorkOffset(_) => Some(14),
-        GAction::Dwell | GAction::Cancel => None,
-    }
-}
-
-/// What the interpreter does for a G code given as ten times its number (`G54.1` is 541);
-/// `None` for the codes of the dialect's table that it does not run yet.
-fn g_action(dialect: Dialect, code10: i64) -> Option<GAction> {
-    let syntec = dialect == Dialect::Syntec;
-    Some(match code10 {
-        0 => GAction::Motion(Some(MotionMode::Rapid)),
-        10 => GAction::Motion(Some(MotionMode::Linear)),
-        800 => GAction::Motion(None),
-        40 => GAction::Dwell,
-        20 => GAction::Motion(Some(MotionMode::Arc { ccw: false })),
-        30 => GAction::Motion(Some(MotionMode::Arc { ccw: true })),
-        170 => GAction::Plane(Axis::Z),
-        180 => GAction::Plane(Axis::Y),
-        190 => GAction::Plane(Axis::X),
-        900 => GAction::Absolute(true),
-        910 => GAction::Absolute(false),
-        200 if !syntec => GAction::Metric(false),
-        210 if !syntec => GAction::Metric(true),
-        700 if syntec => GAction::Metric(false),
-        710 if syntec => GAction::Metric(true),
-        540 => GAction::WorkOffset("G54"),
-        550 => GAction::WorkOffset("G55"),
-        560 => GAction::WorkOffset("G56"),
-        570 => GAction::WorkOffset("G57"),
-        580 => GAction::WorkOffset("G58"),
-        590 => GAction::WorkOffset("G59"),
-        // Cancel codes of modes that cannot be active yet.
-        150 | 400 | 490 | 500 | 501 | 670 | 690 | 940 | 970 | 640 | 611 | 610 => GAction::Cancel,
-        _ => return None,
-    })
+/// One level of the call stack.
+#[derive(Debug, Clone)]
+struct Frame {
+    kind: CallKind,
+    /// Block to continue at when the call returns.
+    return_to: usize,
+    /// Where the called code starts (for `M98 … L` repeats).
+    start: usize,
+    /// Further runs left (`M98 P… L3` runs three times).
+    repeats_left: u32,
 }
 
 /// Interprets a parsed program in bounded steps.
 #[derive(Debug, Clone)]
 pub struct Interpreter {
-    setup: Setup,
-    dialect: Dialect,
+    pub(crate) st: State,
+    pub(crate) vars: Variables,
+    index: Option<Index>,
     next_block: usize,
     executed: u64,
     finished: bool,
-    /// Tool-tip position in the machine frame, millimetres.
-    position: DVec3,
-    motion: Option<MotionMode>,
-    plane: Axis,
-    absolute: bool,
-    metric: bool,
-    work_offset: DVec3,
-    feed_mm_per_min: f64,
-    spindle_rpm: f64,
-    tool: u32,
-    diagnostics: Vec<Diagnostic>,
-    /// Whether the least-increment note has been given in this run.
-    noted_least_increment: bool,
+    calls: Vec<Frame>,
+    /// Remaining passes of LinuxCNC `repeat` loops, by the block of their `repeat` line.
+    repeats: HashMap<usize, u64>,
 }
 
 impl Interpreter {
     /// A machine at power-on for `dialect`, at the origin, with `setup`'s offsets.
     pub fn new(setup: Setup, dialect: Dialect) -> Self {
-        let work_offset = setup.work_offset("G54");
         Interpreter {
-            setup,
-            dialect,
+            st: State::new(setup, dialect),
+            vars: Variables::new(dialect),
+            index: None,
             next_block: 0,
             executed: 0,
             finished: false,
-            position: DVec3::ZERO,
-            motion: Some(MotionMode::Rapid),
-            plane: Axis::Z,
-            absolute: true,
-            metric: true,
-            work_offset,
-            feed_mm_per_min: 0.0,
-            spindle_rpm: 0.0,
-            tool: 0,
-            diagnostics: Vec::new(),
-            noted_least_increment: false,
+            calls: Vec::new(),
+            repeats: HashMap::new(),
         }
     }
 
     /// The limits this run stops at.
     pub fn limits(&self) -> Limits {
         Limits {
-            max_blocks: self.setup.machine.max_blocks,
+            max_blocks: self.st.setup.machine.max_blocks,
+            max_call_depth: MAX_CALL_DEPTH,
         }
     }
 
     /// Diagnostics found while executing so far.
     pub fn diagnostics(&self) -> &[Diagnostic] {
-        &self.diagnostics
+        &self.st.diagnostics
     }
 
     /// Takes the diagnostics found so far, leaving none.
     pub fn take_diagnostics(&mut self) -> Vec<Diagnostic> {
-        std::mem::take(&mut self.diagnostics)
+        std::mem::take(&mut self.st.diagnostics)
     }
 
     /// The tool-tip position in the machine frame.
     pub fn position(&self) -> DVec3 {
-        self.position
+        self.st.position
     }
 
     /// How many blocks have been executed.
@@ -169,22 +133,32 @@ impl Interpreter {
         self.next_block
     }
 
+    /// The active G codes, one per modal group, as text (`G01`, `G17`, `G90`, …), for a
+    /// "state at cursor" view.
+    pub fn active_codes(&self) -> Vec<String> {
+        self.st.active_codes()
+    }
+
     /// Executes at most `budget` blocks of `program`, sending events to `sink`.
     pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
+        if self.index.is_none() {
+            self.index = Some(Index::build(program, &mut self.st.diagnostics));
+        }
         for _ in 0..budget {
             if self.finished {
                 return Status::Finished;
             }
-            let Some(block) = program.blocks.get(self.next_block) else {
-                self.finished = true;
-                return Status::Finished;
+            let at = self.next_block;
+            let Some(block) = program.blocks.get(at) else {
+                self.end_of_text(program);
+                continue;
             };
-            if self.executed >= self.setup.machine.max_blocks {
-                self.diagnostics.push(Diagnostic::error(
+            if self.executed >= self.st.setup.machine.max_blocks {
+                self.st.diagnostics.push(Diagnostic::error(
                     block.span,
                     "E-RUNAWAY",
                     format!(
-                        "execution stopped after {} blocks (the limit in [machine] max_blocks)",
+                        "execution stopped after {} blocks (the limit in [machine] max_blocks): an endless loop?",
                         self.executed
                     ),
                 ));
@@ -192,525 +166,599 @@ impl Interpreter {
                 return Status::Finished;
             }
             let source = Source {
-                block: u32::try_from(self.next_block).unwrap_or(u32::MAX),
+                block: u32::try_from(at).unwrap_or(u32::MAX),
                 line: block.line.saturating_add(1),
             };
-            self.next_block += 1;
             self.executed += 1;
-            if !block.has_error {
-                self.execute(block, source, sink);
+            let flow = if block.has_error {
+                Flow::Next
+            } else {
+                self.run_block(program, at, block, source, sink)
+            };
+            match flow {
+                Flow::Next => self.next_block = at + 1,
+                Flow::Jump(to) => self.next_block = to,
+                Flow::Stop => self.finished = true,
             }
         }
-        if self.finished || self.next_block >= program.blocks.len() {
-            self.finished = true;
+        if self.finished {
             Status::Finished
         } else {
             Status::Running
         }
     }
 
-    fn mm(&self, value: f64) -> f64 {
-        if self.metric { value } else { value * 25.4 }
-    }
-
-    /// Whether numbers without a decimal point are read in mm (calculator-type input).
-    fn calculator(&self) -> bool {
-        self.setup
-            .machine
-            .calculator_input
-            .unwrap_or(self.dialect.rules().calculator_input)
-    }
-
-    /// A coordinate or distance word in millimetres, read with the dialect's decimal-point rule.
-    fn length(&self, word: &Word) -> f64 {
-        self.mm(self
-            .dialect
-            .read(word, Quantity::Length, self.calculator(), !self.metric))
-    }
-
-    /// Notes, once per run, that a length without a decimal point is read in least increments.
-    fn note_least_increment(&mut self, words: &[Option<&Word>]) {
-        if self.noted_least_increment || self.calculator() {
-            return;
+    /// The text ran out: inside a call that is an implicit return; otherwise the end.
+    fn end_of_text(&mut self, program: &Program) {
+        match self.calls.pop() {
+            Some(frame) => {
+                if let CallKind::Macro | CallKind::OWord(_) = frame.kind {
+                    self.vars.pop_frame();
+                }
+                self.next_block = frame.return_to;
+                let _ = program;
+            }
+            None => self.finished = true,
         }
-        let Some(w) = words
-            .iter()
-            .flatten()
-            .find(|w| !w.has_point && w.expr.is_none() && w.value != 0.0)
-        else {
-            return;
-        };
-        self.noted_least_increment = true;
-        let (unit, units) = if self.metric {
-            ("0.001 mm", "mm")
-        } else {
-            ("0.0001 inch", "inch")
-        };
-        let read = self.dialect.read(w, Quantity::Length, false, !self.metric);
-        self.diagnostics.push(Diagnostic::note(
-            w.span,
-            "N-LEAST-INCREMENT",
-            format!(
-                "`{}{}` has no decimal point: {} reads it in least input increments ({unit}) as {read} {units}; write `{}{}.` for {} {units} (or set `calculator_input = true` under [machine])",
-                w.letter(),
-                w.value,
-                self.dialect.label(),
-                w.letter(),
-                w.value,
-                w.value
-            ),
-        ));
     }
 
-    /// Executes one block: check the words, then modes, feed/speed/tool, motion, then M codes.
-    fn execute(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) {
-        let mut actions: Vec<(GAction, &Word)> = Vec::new();
-        let mut axes: [Option<&Word>; 3] = [None; 3];
-        let mut offsets: [Option<&Word>; 3] = [None; 3];
-        let mut radius: Option<&Word> = None;
-        // F, S and T, in that order.
-        let mut settings: [Option<&Word>; 3] = [None; 3];
-        let mut runnable = true;
-        if block.has_macro() {
-            self.diagnostics.push(Diagnostic::warning(
+    /// Runs one block: its words are read (expressions evaluated), its assignments made, its
+    /// codes executed, then its control statements decide where to go.
+    fn run_block(
+        &mut self,
+        program: &Program,
+        at: usize,
+        block: &Block,
+        source: Source,
+        sink: &mut dyn Sink,
+    ) -> Flow {
+        // Each `O` program is a program of its own: the main program running into the next
+        // one's `O` line has ended (it is only run when called).
+        if block.program.is_some()
+            && self.calls.is_empty()
+            && self
+                .index
+                .as_ref()
+                .is_some_and(|i| i.program_of(at) != i.program_of(0))
+        {
+            self.st.diagnostics.push(Diagnostic::note(
                 block.span,
-                "W-NOT-INTERPRETED",
-                "macro statements and variables are not executed yet; this block is not run",
+                "N-PROGRAM-END",
+                "the main program ends here, where the next program starts (it runs only when called)",
             ));
-            return;
+            return Flow::Stop;
         }
+        let words = match self.resolve_words(program, block) {
+            Ok(words) => words,
+            Err(e) => {
+                self.st.diagnostics.push(e);
+                return Flow::Next;
+            }
+        };
+        // Every assignment of the block reads the values from before the block (LinuxCNC's
+        // rule; the Fanuc family has one assignment per block).
+        let mut prepared = Vec::new();
+        for statement in &block.statements {
+            if let Statement::Assign { target, value } = statement {
+                match macros::prepare_assign(program, *target, *value, &self.vars, &self.st) {
+                    Ok(a) => prepared.push(a),
+                    Err(e) => {
+                        self.st.diagnostics.push(e.to_diagnostic());
+                        return Flow::Stop;
+                    }
+                }
+            }
+        }
+        for assignment in prepared {
+            if let Err(e) = assignment.apply(&mut self.vars, &mut self.st) {
+                self.st.diagnostics.push(e.to_diagnostic());
+                return Flow::Stop;
+            }
+        }
+        if let Some(alarm) = self.st.alarm.take() {
+            self.st.diagnostics.push(alarm);
+            return Flow::Stop;
+        }
+        let mut flow = Flow::Next;
+        if !words.is_empty() {
+            flow = crate::exec::execute(self, program, at, block, &words, source, sink);
+        }
+        if flow != Flow::Next {
+            return flow;
+        }
+        for statement in &block.statements {
+            match self.control(program, at, block, statement) {
+                Ok(Flow::Next) => {}
+                Ok(other) => return other,
+                Err(e) => {
+                    self.st.diagnostics.push(e);
+                    return Flow::Stop;
+                }
+            }
+        }
+        flow
+    }
+
+    /// Reads the block's words: expressions are evaluated, and a word whose variable is vacant
+    /// is left out, as the Fanuc family does.
+    fn resolve_words(&self, program: &Program, block: &Block) -> Result<Vec<Word>, Diagnostic> {
+        let mut out = Vec::with_capacity(block.words.len());
         for word in &block.words {
-            match (word.letter, word.form) {
-                (_, WordForm::Comma) => self.diagnostics.push(Diagnostic::warning(
-                    word.span,
-                    "W-NOT-INTERPRETED",
-                    format!(
-                        "`,{}` (chamfer/corner rounding) is not drawn yet: the corner is drawn sharp",
-                        word.letter()
-                    ),
-                )),
-                (_, WordForm::Indexed(n)) => self.diagnostics.push(Diagnostic::warning(
-                    word.span,
-                    "W-NOT-INTERPRETED",
-                    format!("`{}{n}=` is not interpreted yet and is ignored", word.letter()),
-                )),
-                (b'G', _) => {
-                    let code = Code::from_value(b'G', word.value);
-                    let action = code.and_then(|c| g_action(self.dialect, i64::from(c.tenths)));
-                    match (action, code.and_then(|c| codes::lookup(self.dialect, c))) {
-                        (Some(action), _) => {
-                            // Two codes of one group: the last one wins (the parser has
-                            // already warned, or refused the block where the dialect alarms).
-                            if let Some(g) = group(action)
-                                && let Some(at) =
-                                    actions.iter().position(|(a, _)| group(*a) == Some(g))
-                            {
-                                actions.remove(at);
-                            }
-                            actions.push((action, word));
-                        }
-                        (None, Some(def)) => {
-                            self.diagnostics.push(Diagnostic::warning(
-                                word.span,
-                                "W-NOT-INTERPRETED",
-                                format!(
-                                    "{} ({}) is not interpreted yet; this block is not run",
-                                    def.code, def.name
-                                ),
-                            ));
-                            runnable = false;
-                        }
-                        (None, None) => {
-                            self.diagnostics.push(Diagnostic::error(
+            let Some(expr) = word.expr else {
+                out.push(*word);
+                continue;
+            };
+            match macros::eval(program, expr, &self.vars, &self.st) {
+                Ok(Some(value)) => {
+                    let mut w = *word;
+                    w.value = value;
+                    if w.letter == b'G' || w.letter == b'M' {
+                        // A code from a variable is checked like a written one.
+                        let code = Code::from_value(w.letter, value);
+                        if code
+                            .and_then(|c| swarf_syntax::codes::lookup(self.st.dialect, c))
+                            .is_none()
+                        {
+                            return Err(Diagnostic::error(
                                 word.span,
                                 "E-UNKNOWN-CODE",
                                 format!(
-                                    "G{} is not a code of {}",
-                                    fmt_code(word.value),
-                                    self.dialect.label()
+                                    "{}{value} (from a variable) is not a code of {}",
+                                    w.letter(),
+                                    self.st.dialect.label()
                                 ),
                             ));
-                            runnable = false;
                         }
+                        // Codes are read as plain numbers from here on.
+                        w.expr = None;
                     }
+                    out.push(w);
                 }
-                (b'X' | b'Y' | b'Z', _) => {
-                    runnable &= self.store(&mut axes[usize::from(word.letter - b'X')], word);
-                }
-                (b'I' | b'J' | b'K', _) => {
-                    runnable &= self.store(&mut offsets[usize::from(word.letter - b'I')], word);
-                }
-                (b'R', _) => runnable &= self.store(&mut radius, word),
-                (b'F', _) => runnable &= self.store(&mut settings[0], word),
-                (b'S', _) => runnable &= self.store(&mut settings[1], word),
-                (b'T', _) => runnable &= self.store(&mut settings[2], word),
-                (b'M' | b'P', _) => {}
-                _ => self.diagnostics.push(Diagnostic::warning(
-                    word.span,
-                    "W-WORD-IGNORED",
-                    format!(
-                        "address `{}` is not interpreted yet and is ignored",
-                        word.letter()
-                    ),
-                )),
+                Ok(None) => {}
+                Err(e) => return Err(Diagnostic::error(e.span, e.code, e.message)),
             }
         }
-        if !runnable {
-            return;
-        }
-        let lengths: Vec<Option<&Word>> = axes
-            .iter()
-            .chain(&offsets)
-            .chain([&radius])
-            .copied()
-            .collect();
-        self.note_least_increment(&lengths);
-        for (action, w) in settings.iter().enumerate() {
-            let Some(w) = w else { continue };
-            if w.value < 0.0 {
-                self.diagnostics.push(Diagnostic::error(
-                    w.span,
-                    "E-NEGATIVE",
-                    format!("`{}` cannot be negative", w.letter()),
-                ));
-                return;
-            }
-            match action {
-                0 => self.feed_mm_per_min = w.value,
-                1 => self.spindle_rpm = w.value,
-                _ => self.tool = w.value.round() as u32,
-            }
-        }
-        // Units first: the feed and the axis words of this block are read in the new units.
-        let mut dwell = None;
-        let mut motion = self.motion;
-        for (action, word) in &actions {
-            match *action {
-                GAction::Metric(m) => self.metric = m,
-                GAction::Absolute(a) => self.absolute = a,
-                GAction::WorkOffset(name) => self.work_offset = self.setup.work_offset(name),
-                GAction::Motion(m) => motion = m,
-                GAction::Dwell => dwell = Some(*word),
-                GAction::Plane(p) => self.plane = p,
-                GAction::Cancel => {}
-            }
-        }
-        if settings[0].is_some() {
-            self.feed_mm_per_min = self.mm(self.feed_mm_per_min);
-        }
-        if let Some(g4) = dwell {
-            self.dwell(block, g4, source, sink);
-        }
-        self.motion = motion;
-        let arc = match motion {
-            Some(MotionMode::Arc { ccw }) => Some(ccw),
-            _ => None,
-        };
-        let has_center = offsets.iter().any(Option::is_some) || radius.is_some();
-        // With a motion or one-shot code in the block the parser has already said which words
-        // are unused; this covers the words a modal motion does not take.
-        let checked = actions
-            .iter()
-            .any(|(a, _)| matches!(a, GAction::Motion(_) | GAction::Dwell));
-        if (arc.is_none() || dwell.is_some()) && !checked {
-            for w in offsets.iter().flatten().chain(radius.iter()) {
-                self.diagnostics.push(Diagnostic::warning(
-                    w.span,
-                    "W-WORD-IGNORED",
-                    format!(
-                        "address `{}` is only used by G02/G03 here and is ignored",
-                        w.letter()
-                    ),
-                ));
-            }
-        }
-        if dwell.is_none() {
-            if let Some(ccw) = arc.filter(|_| has_center) {
-                self.arc_to(block, axes, offsets, radius, ccw, source, sink);
-            } else if axes.iter().any(Option::is_some) {
-                self.move_to(block, axes, source, sink);
-            }
-        }
-        self.m_codes(block, source, sink);
+        Ok(out)
     }
 
-    /// Puts `word` in its slot; a second word for the same slot is an error (`false`).
-    fn store<'w>(&mut self, slot: &mut Option<&'w Word>, word: &'w Word) -> bool {
-        if slot.is_some() {
-            self.diagnostics.push(Diagnostic::error(
-                word.span,
-                "E-WORD-TWICE",
-                format!("address `{}` appears twice in the block", word.letter()),
-            ));
-            return false;
-        }
-        *slot = Some(word);
-        true
+    fn eval(&self, program: &Program, id: ExprId) -> Result<Value, Diagnostic> {
+        macros::eval(program, id, &self.vars, &self.st)
+            .map_err(|e| Diagnostic::error(e.span, e.code, e.message))
     }
 
-    fn dwell(&mut self, block: &Block, g4: &Word, source: Source, sink: &mut dyn Sink) {
-        let secs = if let Some(p) = block.word(b'P') {
-            self.dialect.read(p, Quantity::DwellP, false, false)
-        } else if let Some(x) = block.word(b'X').or(block.word(b'U')) {
-            self.dialect.read(x, Quantity::DwellX, false, false)
-        } else {
-            self.diagnostics.push(Diagnostic::error(
-                g4.span,
-                "E-MISSING-WORD",
-                "G04 needs the dwell time in P or X",
-            ));
-            return;
-        };
-        if secs < 0.0 {
-            self.diagnostics.push(Diagnostic::error(
-                g4.span,
-                "E-NEGATIVE",
-                "a dwell time cannot be negative",
-            ));
-            return;
-        }
-        sink.emit(source, &Canon::Dwell { secs });
+    fn condition(&self, program: &Program, id: ExprId) -> Result<bool, Diagnostic> {
+        macros::eval_condition(program, id, &self.vars, &self.st)
+            .map_err(|e| Diagnostic::error(e.span, e.code, e.message))
     }
 
-    fn move_to(
+    /// The block a `GOTO n` (or `M99 Pn`) in block `at` goes to.
+    fn goto(&self, at: usize, n: f64, span: Span) -> Result<usize, Diagnostic> {
+        let label = (n >= 0.0 && n.fract() == 0.0 && n <= f64::from(u32::MAX)).then_some(n as u32);
+        label
+            .and_then(|n| self.index.as_ref().and_then(|i| i.label(at, n)))
+            .ok_or_else(|| {
+                Diagnostic::error(
+                    span,
+                    "E-MACRO-GOTO",
+                    format!("there is no block N{n} in this program to jump to"),
+                )
+            })
+    }
+
+    /// Macro B and O-word control statements.
+    fn control(
         &mut self,
+        program: &Program,
+        at: usize,
         block: &Block,
-        axes: [Option<&Word>; 3],
-        source: Source,
-        sink: &mut dyn Sink,
-    ) {
-        let Some(mode) = self.motion else {
-            let span = axes.iter().flatten().next().map_or(block.span, |w| w.span);
-            self.diagnostics.push(Diagnostic::error(
-                span,
-                "E-NO-MOTION-MODE",
-                "axis words with no motion mode active (after G80): add G00 or G01",
-            ));
-            return;
+        statement: &Statement,
+    ) -> Result<Flow, Diagnostic> {
+        let Some(index) = self.index.as_ref() else {
+            return Ok(Flow::Next);
         };
-        let to = self.target(axes);
-        let event = match mode {
-            MotionMode::Rapid => Canon::Rapid { to },
-            // Syntec runs an arc block with neither R nor I/J/K as G01 (the parser has
-            // said so with W-ARC-AS-LINE).
-            MotionMode::Arc { .. } if self.dialect == Dialect::Syntec => Canon::Feed {
-                to,
-                feed_mm_per_min: self.feed_mm_per_min,
-            },
-            MotionMode::Arc { .. } => {
-                self.diagnostics.push(Diagnostic::error(
-                    block.span,
-                    "E-ARC-CENTER",
-                    "G02/G03 needs the centre (I, J, K) or the radius (R)",
-                ));
-                return;
+        match statement {
+            Statement::Assign { .. } => Ok(Flow::Next),
+            Statement::Goto { target } => {
+                let n = self.eval(program, *target)?.unwrap_or(0.0);
+                self.goto(at, n, block.span).map(Flow::Jump)
             }
-            MotionMode::Linear => {
-                if self.feed_mm_per_min <= 0.0 {
-                    self.diagnostics.push(Diagnostic::error(
-                        block.span,
-                        "E-NO-FEED",
-                        "G01 needs a feed rate: program F before or in this block",
-                    ));
+            Statement::If { cond, then } => {
+                if !self.condition(program, *cond)? {
+                    return Ok(Flow::Next);
                 }
-                Canon::Feed {
-                    to,
-                    feed_mm_per_min: self.feed_mm_per_min,
-                }
-            }
-        };
-        self.position = to;
-        sink.emit(source, &event);
-    }
-
-    /// The machine-frame end point of a move programmed with `axes`.
-    fn target(&self, axes: [Option<&Word>; 3]) -> DVec3 {
-        let work = self.position - self.work_offset;
-        let mut target = work;
-        for (i, word) in axes.iter().enumerate() {
-            if let Some(w) = word {
-                let v = self.length(w);
-                target[i] = if self.absolute { v } else { work[i] + v };
-            }
-        }
-        target + self.work_offset
-    }
-
-    /// G02/G03: centre from I/J/K (incremental from the start) or from R (negative R for
-    /// more than half a circle); the axis words off the plane make it helical.
-    #[allow(clippy::too_many_arguments)]
-    fn arc_to(
-        &mut self,
-        block: &Block,
-        axes: [Option<&Word>; 3],
-        offsets: [Option<&Word>; 3],
-        radius: Option<&Word>,
-        ccw: bool,
-        source: Source,
-        sink: &mut dyn Sink,
-    ) {
-        let (u, v) = plane_axes(self.plane);
-        let from = self.position;
-        let to = self.target(axes);
-        let mut center = from;
-        if let Some(r) = radius.filter(|_| offsets.iter().all(Option::is_none)) {
-            let r_mm = self.length(r);
-            let (du, dv) = (to[u] - from[u], to[v] - from[v]);
-            let chord = du.hypot(dv);
-            if chord < 1e-9 {
-                self.diagnostics.push(Diagnostic::error(
-                    r.span,
-                    "E-ARC-CENTER",
-                    "an arc programmed with R cannot end where it starts: use I/J/K for a full circle",
-                ));
-                return;
-            }
-            let half = chord / 2.0;
-            if r_mm.abs() + self.setup.machine.arc_tolerance_mm < half {
-                self.diagnostics.push(Diagnostic::error(
-                    r.span,
-                    "E-ARC-RADIUS",
-                    format!(
-                        "R{} is smaller than half the distance to the end point ({half:.4} mm)",
-                        r.value
-                    ),
-                ));
-                return;
-            }
-            let h = (r_mm * r_mm - half * half).max(0.0).sqrt();
-            // Left of the chord for a short counter-clockwise arc, right for a short clockwise one.
-            let side = if ccw == (r_mm > 0.0) { 1.0 } else { -1.0 };
-            center[u] = from[u] + du / 2.0 - side * h * dv / chord;
-            center[v] = from[v] + dv / 2.0 + side * h * du / chord;
-        } else {
-            for (i, w) in offsets.iter().enumerate() {
-                if let Some(w) = w {
-                    if i == u || i == v {
-                        center[i] = from[i] + self.length(w);
-                    } else {
-                        self.diagnostics.push(Diagnostic::warning(
-                            w.span,
-                            "W-WORD-IGNORED",
-                            format!(
-                                "`{}` is not a centre offset in the selected plane and is ignored",
-                                w.letter()
-                            ),
-                        ));
+                match &**then {
+                    Statement::Goto { target } => {
+                        let n = self.eval(program, *target)?.unwrap_or(0.0);
+                        self.goto(at, n, block.span).map(Flow::Jump)
                     }
+                    Statement::Assign { target, value } => {
+                        macros::assign(program, *target, *value, &mut self.vars, &mut self.st)
+                            .map_err(|e| Diagnostic::error(e.span, e.code, e.message))?;
+                        Ok(Flow::Next)
+                    }
+                    _ => Ok(Flow::Next),
                 }
             }
-            if let Some(r) = radius {
-                self.diagnostics.push(Diagnostic::warning(
-                    r.span,
-                    "W-WORD-IGNORED",
-                    "R is ignored when the centre is given with I/J/K",
-                ));
-            }
-            let r0 = (from[u] - center[u]).hypot(from[v] - center[v]);
-            let r1 = (to[u] - center[u]).hypot(to[v] - center[v]);
-            if r0 < 1e-9 {
-                self.diagnostics.push(Diagnostic::error(
-                    block.span,
-                    "E-ARC-CENTER",
-                    "the arc's centre is at its start point",
-                ));
-                return;
-            }
-            if (r0 - r1).abs() > self.setup.machine.arc_tolerance_mm {
-                let alarm = if self.dialect == Dialect::Syntec {
-                    " (alarm COR-006)"
-                } else {
-                    ""
+            Statement::While { cond, .. } => {
+                let holds = match cond {
+                    Some(c) => self.condition(program, *c)?,
+                    None => true,
                 };
-                self.diagnostics.push(Diagnostic::error(
-                    block.span,
-                    "E-ARC-RADIUS",
-                    format!(
-                        "the end point is {:.4} mm off the arc: start radius {r0:.4} mm, end radius {r1:.4} mm{alarm}",
-                        (r0 - r1).abs()
-                    ),
-                ));
-                return;
+                if holds {
+                    return Ok(Flow::Next);
+                }
+                match index.loop_end(at) {
+                    Some(end) => Ok(Flow::Jump(end + 1)),
+                    None => Ok(Flow::Stop),
+                }
+            }
+            Statement::End { .. } => match index.loop_head(at) {
+                Some(head) => Ok(Flow::Jump(head)),
+                None => Ok(Flow::Stop),
+            },
+            Statement::OWord { label, kind } => self.oword(program, at, block, label, kind),
+        }
+    }
+
+    /// The key of an O-word label (computed labels are evaluated).
+    fn label_key(&self, program: &Program, label: &OLabel) -> Result<LabelKey, Diagnostic> {
+        match label {
+            OLabel::Number(n) => Ok(LabelKey::Number(*n)),
+            OLabel::Name(s) => Ok(LabelKey::Name(s.clone())),
+            OLabel::Expr(id) => {
+                let v = self.eval(program, *id)?.unwrap_or(0.0);
+                if v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
+                    Ok(LabelKey::Number(v as u32))
+                } else {
+                    Err(Diagnostic::error(
+                        program.expr(*id).map_or(Span::default(), |n| n.span),
+                        "E-OWORD",
+                        format!("O-word number {v} is not a whole number"),
+                    ))
+                }
             }
         }
-        if self.feed_mm_per_min <= 0.0 {
-            self.diagnostics.push(Diagnostic::error(
+    }
+
+    /// LinuxCNC O-word control lines.
+    fn oword(
+        &mut self,
+        program: &Program,
+        at: usize,
+        block: &Block,
+        label: &OLabel,
+        kind: &OWord,
+    ) -> Result<Flow, Diagnostic> {
+        let key = self.label_key(program, label)?;
+        let Some(index) = self.index.as_ref() else {
+            return Ok(Flow::Next);
+        };
+        let missing = |what: &str| {
+            Diagnostic::error(
                 block.span,
-                "E-NO-FEED",
-                "G02/G03 needs a feed rate: program F before or in this block",
+                "E-OWORD",
+                format!("{} has no matching `{what}`", show_label(&key)),
+            )
+        };
+        match kind {
+            OWord::Sub => {
+                // Reached in sequence: a definition is skipped, not run.
+                let end = index
+                    .next_oword(&key, at, &[OKind::EndSub])
+                    .ok_or_else(|| missing("endsub"))?;
+                Ok(Flow::Jump(end.0 + 1))
+            }
+            OWord::EndSub(value) | OWord::Return(value) => {
+                if let Some(v) = value {
+                    let result = self.eval(program, *v)?;
+                    self.vars.set_named("_value", result);
+                }
+                match self.calls.last() {
+                    Some(frame) if frame.kind == CallKind::OWord(key.clone()) => {
+                        let frame = self.calls.pop().map(|f| f.return_to).unwrap_or(at + 1);
+                        self.vars.pop_frame();
+                        Ok(Flow::Jump(frame))
+                    }
+                    _ if matches!(kind, OWord::EndSub(_)) => Ok(Flow::Next),
+                    _ => Err(Diagnostic::error(
+                        block.span,
+                        "E-OWORD",
+                        format!("`{} return` outside its subroutine", show_label(&key)),
+                    )),
+                }
+            }
+            OWord::Call(args) => {
+                let start = index
+                    .owords(&key)
+                    .iter()
+                    .find(|(_, k)| *k == OKind::Sub)
+                    .map(|(b, _)| *b)
+                    .ok_or_else(|| {
+                        Diagnostic::error(
+                            block.span,
+                            "E-OWORD",
+                            format!(
+                                "no `{} sub` in this file (subroutines in other files are not read yet)",
+                                show_label(&key)
+                            ),
+                        )
+                    })?;
+                let mut values = Vec::with_capacity(args.len());
+                for (i, arg) in args.iter().enumerate().take(30) {
+                    let v = self.eval(program, *arg)?.unwrap_or(0.0);
+                    values.push((u8::try_from(i + 1).unwrap_or(30), v));
+                }
+                self.push_call(block, CallKind::OWord(key), at + 1, start + 1, 1)?;
+                self.vars.push_frame(&values);
+                Ok(Flow::Jump(start + 1))
+            }
+            OWord::If(cond) | OWord::ElseIf(cond) => {
+                if self.condition(program, *cond)? {
+                    return Ok(Flow::Next);
+                }
+                let next = index
+                    .next_oword(&key, at, &[OKind::ElseIf, OKind::Else, OKind::EndIf])
+                    .ok_or_else(|| missing("endif"))?;
+                Ok(match next.1 {
+                    // The elseif line evaluates its own condition.
+                    OKind::ElseIf => Flow::Jump(next.0),
+                    _ => Flow::Jump(next.0 + 1),
+                })
+            }
+            OWord::Else => {
+                // Reached from a branch that ran: skip to the end.
+                let end = index
+                    .next_oword(&key, at, &[OKind::EndIf])
+                    .ok_or_else(|| missing("endif"))?;
+                Ok(Flow::Jump(end.0 + 1))
+            }
+            OWord::EndIf => Ok(Flow::Next),
+            OWord::While(cond) => {
+                // The tail of a `do … while` loop, or the head of a `while … endwhile` one.
+                let do_head = index
+                    .previous_oword(&key, at, &[OKind::Do, OKind::EndWhile, OKind::While])
+                    .filter(|(_, k)| *k == OKind::Do);
+                let holds = self.condition(program, *cond)?;
+                if let Some((head, _)) = do_head {
+                    return Ok(if holds {
+                        Flow::Jump(head + 1)
+                    } else {
+                        Flow::Next
+                    });
+                }
+                if holds {
+                    return Ok(Flow::Next);
+                }
+                let end = index
+                    .next_oword(&key, at, &[OKind::EndWhile])
+                    .ok_or_else(|| missing("endwhile"))?;
+                Ok(Flow::Jump(end.0 + 1))
+            }
+            OWord::EndWhile => {
+                let head = index
+                    .previous_oword(&key, at, &[OKind::While])
+                    .ok_or_else(|| missing("while"))?;
+                Ok(Flow::Jump(head.0))
+            }
+            OWord::Do => Ok(Flow::Next),
+            OWord::Repeat(count) => {
+                let remaining = match self.repeats.get(&at) {
+                    Some(n) => *n,
+                    None => {
+                        let n = self.eval(program, *count)?.unwrap_or(0.0).max(0.0).round();
+                        n as u64
+                    }
+                };
+                if remaining == 0 {
+                    self.repeats.remove(&at);
+                    let end = index
+                        .next_oword(&key, at, &[OKind::EndRepeat])
+                        .ok_or_else(|| missing("endrepeat"))?;
+                    return Ok(Flow::Jump(end.0 + 1));
+                }
+                self.repeats.insert(at, remaining - 1);
+                Ok(Flow::Next)
+            }
+            OWord::EndRepeat => {
+                let head = index
+                    .previous_oword(&key, at, &[OKind::Repeat])
+                    .ok_or_else(|| missing("repeat"))?;
+                Ok(Flow::Jump(head.0))
+            }
+            OWord::Break => {
+                let end = index
+                    .next_oword(&key, at, &[OKind::EndWhile, OKind::EndRepeat, OKind::While])
+                    .ok_or_else(|| missing("endwhile"))?;
+                if let Some((head, _)) = index.previous_oword(&key, at, &[OKind::Repeat]) {
+                    self.repeats.remove(&head);
+                }
+                Ok(Flow::Jump(end.0 + 1))
+            }
+            OWord::Continue => {
+                let head = index
+                    .previous_oword(&key, at, &[OKind::While, OKind::Repeat, OKind::Do])
+                    .ok_or_else(|| missing("while"))?;
+                Ok(match head.1 {
+                    OKind::Do => {
+                        let tail = index.next_oword(&key, at, &[OKind::While]);
+                        tail.map_or(Flow::Jump(head.0 + 1), |(t, _)| Flow::Jump(t))
+                    }
+                    _ => Flow::Jump(head.0),
+                })
+            }
+        }
+    }
+
+    fn push_call(
+        &mut self,
+        block: &Block,
+        kind: CallKind,
+        return_to: usize,
+        start: usize,
+        repeats: u32,
+    ) -> Result<(), Diagnostic> {
+        if self.calls.len() >= MAX_CALL_DEPTH {
+            return Err(Diagnostic::error(
+                block.span,
+                "E-NESTING",
+                format!(
+                    "calls nested more than {MAX_CALL_DEPTH} deep: a subprogram that calls itself?"
+                ),
             ));
         }
-        self.position = to;
-        sink.emit(
-            source,
-            &Canon::Arc {
-                to,
-                center,
-                axis: self.plane,
-                ccw,
-                turns: 0,
-                feed_mm_per_min: self.feed_mm_per_min,
-            },
-        );
+        self.calls.push(Frame {
+            kind,
+            return_to,
+            start,
+            repeats_left: repeats.saturating_sub(1),
+        });
+        Ok(())
     }
 
-    fn m_codes(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) {
-        for word in block.words.iter().filter(|w| w.letter == b'M') {
-            let event = match code10(word.value) {
-                Some(0) => Canon::Pause { optional: false },
-                Some(10) => Canon::Pause { optional: true },
-                Some(20 | 300) => {
-                    self.finished = true;
-                    Canon::End
-                }
-                Some(30) => Canon::Spindle {
-                    clockwise: Some(true),
-                    rpm: self.spindle_rpm,
-                },
-                Some(40) => Canon::Spindle {
-                    clockwise: Some(false),
-                    rpm: self.spindle_rpm,
-                },
-                Some(50) => Canon::Spindle {
-                    clockwise: None,
-                    rpm: 0.0,
-                },
-                Some(60) => Canon::ToolChange { tool: self.tool },
-                Some(80) => Canon::Coolant { on: true },
-                Some(90) => Canon::Coolant { on: false },
-                _ => {
-                    // Codes outside the dialect's list were reported by the parser.
-                    if let Some(def) = Code::from_value(b'M', word.value)
-                        .and_then(|c| codes::lookup(self.dialect, c))
-                    {
-                        self.diagnostics.push(Diagnostic::warning(
-                            word.span,
-                            "W-NOT-INTERPRETED",
-                            format!("{} ({}) is not interpreted yet", def.code, def.name),
-                        ));
-                    }
-                    continue;
-                }
+    /// `M98 P… L…` (or `M98 Pllllpppp`, or Syntec `M98 H…`): runs a subprogram.
+    pub(crate) fn call_subprogram(
+        &mut self,
+        at: usize,
+        block: &Block,
+        words: &[Word],
+    ) -> Result<Flow, Diagnostic> {
+        let p = find(words, b'P').map(|w| w.value);
+        let h = find(words, b'H').filter(|_| self.st.dialect == Dialect::Syntec);
+        let l = find(words, b'L')
+            .or_else(|| find(words, b'K'))
+            .map(|w| w.value);
+        let (number, mut count) = match (p, l) {
+            (Some(p), Some(l)) => (p, l),
+            // Fanuc: more than four digits in P are the repeat count then the program number.
+            (Some(p), None) if p >= 10_000.0 && self.st.dialect != Dialect::LinuxCnc => {
+                ((p % 10_000.0).round(), (p / 10_000.0).floor())
+            }
+            (Some(p), None) => (p, 1.0),
+            (None, l) => (f64::NAN, l.unwrap_or(1.0)),
+        };
+        if count < 1.0 {
+            count = 0.0;
+        }
+        let repeats = count.min(9999.0) as u32;
+        let index = self.index.as_ref().ok_or_else(|| no_index(block))?;
+        let start = if let Some(h) = h {
+            // Syntec `M98 H n`: the block N n of this program, as a local subprogram.
+            let n = h.value;
+            index
+                .label(at, n as u32)
+                .filter(|_| n >= 0.0 && n.fract() == 0.0)
+                .ok_or_else(|| {
+                    Diagnostic::error(
+                        h.span,
+                        "E-SUBPROGRAM",
+                        format!("there is no block N{n} in this program for M98 H{n}"),
+                    )
+                })?
+        } else {
+            if !number.is_finite() {
+                return Err(Diagnostic::error(
+                    block.span,
+                    "E-WORD-MISSING",
+                    "M98 needs the program number in P",
+                ));
+            }
+            index
+                .program_start(number as u32)
+                .map(|s| s + 1)
+                .ok_or_else(|| {
+                    Diagnostic::error(
+                        block.span,
+                        "E-SUBPROGRAM",
+                        format!(
+                            "program O{number:04} is not in this file (other files are not searched yet)"
+                        ),
+                    )
+                })?
+        };
+        if repeats == 0 {
+            return Ok(Flow::Next);
+        }
+        self.push_call(block, CallKind::Subprogram, at + 1, start, repeats)?;
+        Ok(Flow::Jump(start))
+    }
+
+    /// `G65 P… L… args`: a macro call with local variables from the arguments.
+    pub(crate) fn call_macro(
+        &mut self,
+        at: usize,
+        block: &Block,
+        number: f64,
+        repeats: u32,
+        args: &[(u8, f64)],
+    ) -> Result<Flow, Diagnostic> {
+        let index = self.index.as_ref().ok_or_else(|| no_index(block))?;
+        let start = index
+            .program_start(number as u32)
+            .filter(|_| number >= 0.0 && number.fract() == 0.0)
+            .map(|s| s + 1)
+            .ok_or_else(|| {
+                Diagnostic::error(
+                    block.span,
+                    "E-SUBPROGRAM",
+                    format!(
+                        "macro program O{number:04} is not in this file (other files are not searched yet)"
+                    ),
+                )
+            })?;
+        if repeats == 0 {
+            return Ok(Flow::Next);
+        }
+        self.push_call(block, CallKind::Macro, at + 1, start, repeats)?;
+        self.vars.push_frame(args);
+        Ok(Flow::Jump(start))
+    }
+
+    /// `M99` (and `M99 Pn`): returns from a subprogram or macro; in the main program it goes back
+    /// to the start (or to N n), as the controls do.
+    pub(crate) fn return_from(
+        &mut self,
+        at: usize,
+        block: &Block,
+        target: Option<&Word>,
+    ) -> Result<Flow, Diagnostic> {
+        let Some(frame) = self.calls.last_mut() else {
+            return match target {
+                Some(p) => self.goto(at, p.value, p.span).map(Flow::Jump),
+                None => Ok(Flow::Jump(0)),
             };
-            sink.emit(source, &event);
+        };
+        if frame.repeats_left > 0 {
+            frame.repeats_left -= 1;
+            return Ok(Flow::Jump(frame.start));
+        }
+        let frame = self.calls.pop().ok_or_else(|| no_index(block))?;
+        if let CallKind::Macro | CallKind::OWord(_) = frame.kind {
+            self.vars.pop_frame();
+        }
+        match target {
+            Some(p) => self
+                .goto(frame.return_to.saturating_sub(1), p.value, p.span)
+                .map(Flow::Jump),
+            None => Ok(Flow::Jump(frame.return_to)),
         }
     }
 }
 
-/// Ten times a code number when it has at most one decimal (`54.1` → 541).
-fn code10(value: f64) -> Option<i64> {
-    let scaled = value * 10.0;
-    let rounded = scaled.round();
-    ((scaled - rounded).abs() < 1e-6 && rounded.abs() < 1e9 && rounded >= 0.0)
-        .then_some(rounded as i64)
+fn no_index(block: &Block) -> Diagnostic {
+    Diagnostic::error(block.span, "E-INTERNAL", "the program index is missing")
 }
 
-/// A code number as written in messages: `0` → `00`, `54.1` stays.
-fn fmt_code(value: f64) -> String {
-    if value.fract() == 0.0 && (0.0..10.0).contains(&value) {
-        format!("0{value}")
-    } else {
-        format!("{value}")
+/// The first plain word with address `letter`.
+pub(crate) fn find(words: &[Word], letter: u8) -> Option<&Word> {
+    words
+        .iter()
+        .find(|w| w.letter == letter && w.form == WordForm::Plain)
+}
+
+fn show_label(key: &LabelKey) -> String {
+    match key {
+        LabelKey::Number(n) => format!("o{n}"),
+        LabelKey::Name(s) => format!("o<{s}>"),
     }
 }
 
@@ -721,12 +769,12 @@ pub fn run(program: &Program, setup: Setup, sink: &mut dyn Sink) -> Vec<Diagnost
     interp.take_diagnostics()
 }
 
-/// Indices of the two in-plane axes (u, v) of a plane, ordered so that u × v points along the
-/// plane normal: X,Y for G17; Z,X for G18; Y,Z for G19.
-fn plane_axes(normal: Axis) -> (usize, usize) {
-    match normal {
-        Axis::Z => (0, 1),
-        Axis::Y => (2, 0),
-        Axis::X => (1, 2),
+impl SystemVariables for State {
+    fn read(&self, n: u32) -> Option<Value> {
+        self.system_variable(n)
+    }
+
+    fn write(&mut self, n: u32, v: Value) -> Result<bool, String> {
+        self.set_system_variable(n, v)
     }
 }

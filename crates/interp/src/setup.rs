@@ -48,8 +48,18 @@ pub struct Register {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Machine {
-    /// Rapid traverse rate in mm/min, for the time estimate.
+    /// Rapid traverse rate in mm/min, for the time estimate: the speed along the path of a
+    /// G00 move (linear interpolated) unless `rapid_xyz_mm_per_min` limits an axis further.
     pub rapid_mm_per_min: f64,
+    /// Rapid traverse rate of each axis X, Y, Z in mm/min, for machines whose axes differ (often
+    /// a slower Z). A rapid move then runs as fast as its slowest participating axis allows.
+    /// Unset: every axis at `rapid_mm_per_min`.
+    pub rapid_xyz_mm_per_min: Option<[f64; 3]>,
+    /// Acceleration and deceleration along the path in mm/s², for the time estimate: each move
+    /// speeds up from its entry speed to its feed (or rapid rate) and slows down to its exit
+    /// speed with a trapezoidal velocity profile. Zero, negative or not finite: no acceleration
+    /// is modelled (every move runs at its feed from end to end).
+    pub acceleration_mm_per_s2: f64,
     /// Most blocks executed before a run is stopped as runaway.
     pub max_blocks: u64,
     /// Largest difference between an arc's start and end radius before it is an alarm (mm).
@@ -57,15 +67,21 @@ pub struct Machine {
     /// Calculator-type input: numbers without a decimal point are mm (inch, degrees) instead of
     /// least input increments. Unset: the dialect's manual default.
     pub calculator_input: Option<bool>,
+    /// Reference points in machine coordinates, mm: P1 (G28, the machine's reference position)
+    /// and P2–P4 (G30); missing ones are the machine origin.
+    pub reference_points: Vec<[f64; 3]>,
 }
 
 impl Default for Machine {
     fn default() -> Self {
         Machine {
             rapid_mm_per_min: 10_000.0,
+            rapid_xyz_mm_per_min: None,
+            acceleration_mm_per_s2: 1000.0,
             max_blocks: 50_000_000,
             arc_tolerance_mm: 0.01,
             calculator_input: None,
+            reference_points: Vec::new(),
         }
     }
 }
@@ -148,10 +164,26 @@ impl Setup {
                 .work_offsets
                 .insert(canonical, DVec3::from_array(v) * k);
         }
+        for point in &mut setup.machine.reference_points {
+            if point.iter().any(|c| !c.is_finite()) {
+                return Err(SetupError::NotFinite("machine.reference_points".into()));
+            }
+            for c in point.iter_mut() {
+                *c *= k;
+            }
+        }
         if !(setup.machine.rapid_mm_per_min.is_finite() && setup.machine.rapid_mm_per_min > 0.0) {
             return Err(SetupError::NotFinite("machine.rapid_mm_per_min".into()));
         }
         Ok(setup)
+    }
+
+    /// Reference point `n` (1 = the G28 reference position, 2–4 for G30) in machine
+    /// coordinates, mm; the machine origin when the setup does not give it.
+    pub fn reference_point(&self, n: usize) -> DVec3 {
+        n.checked_sub(1)
+            .and_then(|i| self.machine.reference_points.get(i))
+            .map_or(DVec3::ZERO, |p| DVec3::from_array(*p))
     }
 
     /// The offset of a work coordinate system by canonical name (zero when not set).

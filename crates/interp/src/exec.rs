@@ -1,0 +1,1150 @@
+//! Executing one block's words, in the controls' order: feed/speed/tool, then the modal codes
+//! (units first, so the block's numbers are read in the new unit), coordinate-system codes,
+//! one-shot codes, motion, then M codes.
+
+use glam::{DVec2, DVec3};
+use swarf_syntax::codes::{self, Code, Group};
+use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm};
+
+use crate::machine::{Flow, Interpreter, find};
+use crate::macros::argument_variable;
+use crate::state::{FeedMode, MotionMode, Polar, Rotation, Scaling, State, plane_axes};
+use crate::{Axis, Canon, Sink, Source};
+
+/// What one G code does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Action {
+    Motion(Option<MotionMode>),
+    Plane(Axis),
+    Absolute(bool),
+    Metric(bool),
+    WorkOffset,
+    Dwell,
+    ExactStop,
+    PathMode(u32),
+    FeedMode(FeedMode),
+    SpindleMode(bool),
+    ReturnLevel(bool),
+    Polar(bool),
+    Rotation(bool),
+    Scaling(bool),
+    Mirror(bool),
+    Local,
+    Machine,
+    SetPosition,
+    ResetShift,
+    Reference(u8),
+    FromReference,
+    DataInput,
+    LengthComp(Option<bool>),
+    CutterComp(u32),
+    MacroCall,
+    ModalMacro(bool),
+    /// G31 skip, G37 tool measurement: drawn as the full programmed move.
+    Probe,
+    StrokeLimit(bool),
+    /// A mode with nothing to draw (cancels, arc-centre mode, lathe diameter mode).
+    Nothing,
+}
+
+/// The action of a code in `dialect`, or `None` for the codes the interpreter does not run yet.
+fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
+    let syntec = dialect == Dialect::Syntec;
+    let linuxcnc = dialect == Dialect::LinuxCnc;
+    Some(match (group, tenths) {
+        (Group::Motion, 0) => Action::Motion(Some(MotionMode::Rapid)),
+        (Group::Motion, 10) => Action::Motion(Some(MotionMode::Linear)),
+        (Group::Motion, 20) => Action::Motion(Some(MotionMode::Arc { ccw: false })),
+        (Group::Motion, 30) => Action::Motion(Some(MotionMode::Arc { ccw: true })),
+        (Group::Motion, 330) => Action::Motion(Some(MotionMode::Thread)),
+        (Group::Motion | Group::Cycle, 800) => Action::Motion(None),
+        (_, 40) => Action::Dwell,
+        (_, 90) if !linuxcnc => Action::ExactStop,
+        (Group::Plane, 170) => Action::Plane(Axis::Z),
+        (Group::Plane, 180) => Action::Plane(Axis::Y),
+        (Group::Plane, 190) => Action::Plane(Axis::X),
+        (Group::Distance, 900) => Action::Absolute(true),
+        (Group::Distance, 910) => Action::Absolute(false),
+        (Group::Units, 200) if !syntec => Action::Metric(false),
+        (Group::Units, 210) if !syntec => Action::Metric(true),
+        (Group::Units, 700) if syntec => Action::Metric(false),
+        (Group::Units, 710) if syntec => Action::Metric(true),
+        (Group::WorkOffset, _) => Action::WorkOffset,
+        (Group::PathMode, t) => Action::PathMode(t),
+        (Group::FeedMode, 930) => Action::FeedMode(FeedMode::InverseTime),
+        (Group::FeedMode, 940) => Action::FeedMode(FeedMode::PerMinute),
+        (Group::FeedMode, 950) => Action::FeedMode(FeedMode::PerRevolution),
+        // GSK's examples use G98/G99 for feed per minute / per revolution.
+        (Group::FeedMode, 980) => Action::FeedMode(FeedMode::PerMinute),
+        (Group::FeedMode, 990) => Action::FeedMode(FeedMode::PerRevolution),
+        (Group::SpindleMode, 960) => Action::SpindleMode(true),
+        (Group::SpindleMode, 970) => Action::SpindleMode(false),
+        (Group::ReturnLevel, 980) => Action::ReturnLevel(true),
+        (Group::ReturnLevel, 990) => Action::ReturnLevel(false),
+        (Group::Polar, 150) => Action::Polar(false),
+        (Group::Polar, 160) => Action::Polar(true),
+        (Group::Rotation, 680) => Action::Rotation(true),
+        (Group::Rotation, 690) => Action::Rotation(false),
+        (Group::Scaling, 500) => Action::Scaling(false),
+        (Group::Scaling, 510) => Action::Scaling(true),
+        (Group::Mirror, 501) => Action::Mirror(false),
+        (Group::Mirror, 511) => Action::Mirror(true),
+        (Group::StrokeLimit, 220) => Action::StrokeLimit(true),
+        (Group::StrokeLimit, 230) => Action::StrokeLimit(false),
+        (Group::LengthComp, 430) => Action::LengthComp(Some(true)),
+        (Group::LengthComp, 440) => Action::LengthComp(Some(false)),
+        (Group::LengthComp, 490) => Action::LengthComp(None),
+        (Group::CutterComp, t) => Action::CutterComp(t),
+        (Group::MacroModal, 660) => Action::ModalMacro(true),
+        (Group::MacroModal, 670) => Action::ModalMacro(false),
+        (Group::ArcDistance | Group::LatheMode, _) => Action::Nothing,
+        (Group::NonModal, 520) => Action::Local,
+        (Group::NonModal, 530) => Action::Machine,
+        (Group::NonModal, 920) => Action::SetPosition,
+        (Group::NonModal, 921 | 922) if linuxcnc => Action::ResetShift,
+        (Group::NonModal, 280) => Action::Reference(1),
+        (Group::NonModal, 300) => Action::Reference(2),
+        (Group::NonModal, 290) => Action::FromReference,
+        (Group::NonModal, 100) => Action::DataInput,
+        (Group::NonModal, 650) => Action::MacroCall,
+        (Group::NonModal, 310) if !linuxcnc => Action::Probe,
+        (Group::NonModal, 370) if syntec => Action::Probe,
+        _ => return None,
+    })
+}
+
+/// The axis words of a block, in millimetres where given.
+type Axes<'w> = [Option<&'w Word>; 3];
+
+/// Executes `words` (the block's words with expressions evaluated).
+pub(crate) fn execute(
+    it: &mut Interpreter,
+    program: &Program,
+    at: usize,
+    block: &Block,
+    words: &[Word],
+    source: Source,
+    sink: &mut dyn Sink,
+) -> Flow {
+    let _ = program;
+    let dialect = it.st.dialect;
+    let mut actions: Vec<(Action, &Word)> = Vec::new();
+    let mut runnable = true;
+    for word in words
+        .iter()
+        .filter(|w| w.letter == b'G' && w.form == WordForm::Plain)
+    {
+        let Some(def) = Code::from_value(b'G', word.value).and_then(|c| codes::lookup(dialect, c))
+        else {
+            continue;
+        };
+        match action(dialect, def.group, def.code.tenths) {
+            Some(a) => {
+                // Two codes of one group: the last one wins (the parser has warned, or refused
+                // the block where the dialect alarms).
+                if def.group.exclusive()
+                    && let Some(i) = actions.iter().position(|(b, w)| {
+                        Code::from_value(b'G', w.value)
+                            .and_then(|c| codes::lookup(dialect, c))
+                            .is_some_and(|d| d.group == def.group)
+                            && *b != Action::Dwell
+                    })
+                {
+                    actions.remove(i);
+                }
+                actions.push((a, word));
+            }
+            None => {
+                it.st.diagnostics.push(Diagnostic::warning(
+                    word.span,
+                    "W-NOT-INTERPRETED",
+                    format!(
+                        "{} ({}) is not interpreted yet; this block is not run",
+                        def.code, def.name
+                    ),
+                ));
+                runnable = false;
+            }
+        }
+    }
+    for word in words {
+        match word.form {
+            WordForm::Comma => it.st.diagnostics.push(Diagnostic::warning(
+                word.span,
+                "W-NOT-INTERPRETED",
+                format!(
+                    "`,{}` (chamfer/corner rounding) is not drawn yet: the corner is drawn sharp",
+                    word.letter()
+                ),
+            )),
+            WordForm::Indexed(n) => it.st.diagnostics.push(Diagnostic::warning(
+                word.span,
+                "W-NOT-INTERPRETED",
+                format!(
+                    "`{}{n}=` is not interpreted yet and is ignored",
+                    word.letter()
+                ),
+            )),
+            WordForm::Plain => {}
+        }
+    }
+    if !runnable {
+        return Flow::Next;
+    }
+    let has = |a: fn(&Action) -> bool| actions.iter().any(|(x, _)| a(x));
+    // G65: a macro call takes the block's words as arguments.
+    if let Some((_, g65)) = actions.iter().find(|(a, _)| *a == Action::MacroCall) {
+        return macro_call(it, at, block, words, g65);
+    }
+    if let Some((_, g66)) = actions.iter().find(|(a, _)| *a == Action::ModalMacro(true)) {
+        let args = arguments(&it.st, words);
+        match find(words, b'P') {
+            Some(p) => it.st.modal_macro = Some((p.value, args)),
+            None => it.st.diagnostics.push(Diagnostic::error(
+                g66.span,
+                "E-WORD-MISSING",
+                "G66 needs the macro program number in P",
+            )),
+        }
+        return Flow::Next;
+    }
+    let st = &mut it.st;
+    settings(st, words);
+    // Units first: the block's numbers are read in the new unit.
+    for (a, _) in &actions {
+        match *a {
+            Action::Metric(m) => st.metric = m,
+            Action::Absolute(abs) => st.absolute = abs,
+            Action::Plane(p) => st.plane = p,
+            Action::FeedMode(m) => st.feed_mode = m,
+            Action::SpindleMode(css) => st.css = css,
+            Action::PathMode(t) => st.path_mode = t,
+            Action::ReturnLevel(initial) => st.return_initial = initial,
+            Action::StrokeLimit(on) => st.stroke_check = on,
+            Action::ModalMacro(false) => st.modal_macro = None,
+            _ => {}
+        }
+    }
+    if let Some(f) = find(words, b'F') {
+        st.feed_mm_per_min = match st.feed_mode {
+            FeedMode::PerMinute => st.mm(f.value),
+            // Per revolution and inverse time are kept as given (the time estimate reads them).
+            FeedMode::PerRevolution | FeedMode::InverseTime => f.value,
+        };
+    }
+    for (a, w) in &actions {
+        match *a {
+            Action::WorkOffset => work_offset(st, w, words),
+            Action::LengthComp(sign) => length_comp(st, w, words, sign),
+            Action::CutterComp(t) => {
+                if t != 400 {
+                    st.diagnostics.push(Diagnostic::warning(
+                        w.span,
+                        "W-NOT-INTERPRETED",
+                        "cutter radius compensation is not applied yet: the programmed path is drawn",
+                    ));
+                }
+                st.cutter_comp = t;
+            }
+            Action::Motion(m) => st.motion = m,
+            _ => {}
+        }
+    }
+    let axes = axis_words(words);
+    note_least_increment(st, words);
+    // Modes that take the block's axis words as their data.
+    let mut consumed = false;
+    for (a, w) in &actions {
+        let done = match *a {
+            Action::Polar(on) => {
+                polar(st, on);
+                false
+            }
+            Action::Rotation(on) => {
+                rotation(st, w, words, on);
+                on
+            }
+            Action::Scaling(on) => {
+                scaling(st, w, words, on);
+                on
+            }
+            Action::Mirror(on) => {
+                mirror(st, words, on);
+                true
+            }
+            Action::Local => {
+                local(st, &axes);
+                true
+            }
+            Action::SetPosition => {
+                set_position(st, &axes);
+                true
+            }
+            Action::ResetShift => {
+                st.shift = DVec3::ZERO;
+                st.resync();
+                true
+            }
+            Action::DataInput => {
+                data_input(st, w, words);
+                true
+            }
+            Action::Dwell => {
+                dwell(st, w, words, source, sink);
+                true
+            }
+            Action::Reference(n) => {
+                reference(st, words, &axes, n, source, sink);
+                true
+            }
+            Action::FromReference => {
+                from_reference(st, &axes, source, sink);
+                true
+            }
+            Action::Machine => {
+                machine_move(st, block, &axes, source, sink);
+                true
+            }
+            Action::ExactStop | Action::Nothing => false,
+            _ => false,
+        };
+        consumed |= done;
+    }
+    let probe = has(|a| *a == Action::Probe);
+    let mut moved = false;
+    if !consumed && (axes.iter().any(Option::is_some) || arc_full_circle(st, words)) {
+        if probe {
+            st.diagnostics.push(Diagnostic::note(
+                block.span,
+                "N-PROBE",
+                "a skip or measuring move is drawn as its full programmed move (where the signal stops it is not known)",
+            ));
+        }
+        moved = motion(st, block, words, &axes, probe, source, sink);
+    }
+    // Without G codes the parser cannot tell which words the modal motion uses.
+    if actions.is_empty() && !matches!(it.st.motion, Some(MotionMode::Arc { .. })) {
+        for w in words
+            .iter()
+            .filter(|w| w.form == WordForm::Plain && b"IJKR".contains(&w.letter))
+        {
+            it.st.diagnostics.push(Diagnostic::warning(
+                w.span,
+                "W-WORD-IGNORED",
+                format!(
+                    "address `{}` is only used by G02/G03 here and is ignored",
+                    w.letter()
+                ),
+            ));
+        }
+    }
+    let flow = m_codes(it, at, block, words, source, sink);
+    // G66: the modal macro is called after each move.
+    if moved
+        && flow == Flow::Next
+        && let Some((number, args)) = it.st.modal_macro.clone()
+    {
+        return match it.call_macro(at, block, number, 1, &args) {
+            Ok(flow) => flow,
+            Err(e) => {
+                it.st.diagnostics.push(e);
+                Flow::Stop
+            }
+        };
+    }
+    flow
+}
+
+/// S and T, D and H words.
+fn settings(st: &mut State, words: &[Word]) {
+    for w in words.iter().filter(|w| w.form == WordForm::Plain) {
+        match w.letter {
+            b'S' if w.value >= 0.0 => st.spindle_rpm = w.value,
+            b'T' if w.value >= 0.0 => st.tool = w.value.round() as u32,
+            b'D' if w.value >= 0.0 => st.d_word = w.value.round() as u32,
+            b'H' if w.value >= 0.0 && st.dialect != Dialect::Syntec => {
+                st.h_word = w.value.round() as u32;
+            }
+            _ => {}
+        }
+    }
+}
+
+fn axis_words(words: &[Word]) -> Axes<'_> {
+    let mut axes: Axes<'_> = [None; 3];
+    for w in words.iter().filter(|w| w.form == WordForm::Plain) {
+        if let b'X' | b'Y' | b'Z' = w.letter {
+            axes[usize::from(w.letter - b'X')] = Some(w);
+        }
+    }
+    axes
+}
+
+/// Notes, once per run, that a length without a decimal point is read in least increments.
+fn note_least_increment(st: &mut State, words: &[Word]) {
+    if st.noted_least_increment || st.calculator() {
+        return;
+    }
+    let Some(w) = words.iter().find(|w| {
+        b"XYZIJKRQ".contains(&w.letter)
+            && w.form == WordForm::Plain
+            && !w.has_point
+            && w.expr.is_none()
+            && w.value != 0.0
+    }) else {
+        return;
+    };
+    st.noted_least_increment = true;
+    let (unit, units) = if st.metric {
+        ("0.001 mm", "mm")
+    } else {
+        ("0.0001 inch", "inch")
+    };
+    let read = st.dialect.read(w, Quantity::Length, false, !st.metric);
+    st.diagnostics.push(Diagnostic::note(
+        w.span,
+        "N-LEAST-INCREMENT",
+        format!(
+            "`{}{}` has no decimal point: {} reads it in least input increments ({unit}) as {read} {units}; write `{}{}.` for {} {units} (or set `calculator_input = true` under [machine])",
+            w.letter(),
+            w.value,
+            st.dialect.label(),
+            w.letter(),
+            w.value,
+            w.value
+        ),
+    ));
+}
+
+/// The program-frame end point of a move programmed with `axes` (G90/G91, polar).
+fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
+    let mut p = st.program_pos;
+    if let Some(pole) = st.polar {
+        let (u, v) = plane_axes(st.plane);
+        let rel = DVec2::new(p[u] - pole.pole.x, p[v] - pole.pole.y);
+        let (mut r, mut a) = (rel.length(), rel.y.atan2(rel.x).to_degrees());
+        if let Some(w) = axes[u] {
+            let given = st.length(w);
+            r = if st.absolute { given.abs() } else { r + given };
+        }
+        if let Some(w) = axes[v] {
+            let given = st.angle(w);
+            a = if st.absolute { given } else { a + given };
+        }
+        let (sin, cos) = a.to_radians().sin_cos();
+        p[u] = pole.pole.x + r * cos;
+        p[v] = pole.pole.y + r * sin;
+        let normal = 3 - u - v;
+        if let Some(w) = axes[normal] {
+            let given = st.length(w);
+            p[normal] = if st.absolute {
+                given
+            } else {
+                p[normal] + given
+            };
+        }
+        return p;
+    }
+    for (i, w) in axes.iter().enumerate() {
+        if let Some(w) = w {
+            let v = st.length(w);
+            p[i] = if st.absolute { v } else { p[i] + v };
+        }
+    }
+    p
+}
+
+/// Whether an arc block has no end point but I/J/K (a full circle).
+fn arc_full_circle(st: &State, words: &[Word]) -> bool {
+    matches!(st.motion, Some(MotionMode::Arc { .. }))
+        && words
+            .iter()
+            .any(|w| w.form == WordForm::Plain && b"IJK".contains(&w.letter))
+}
+
+/// The block's move in the current motion mode; returns whether the tool moved.
+#[allow(clippy::too_many_arguments)]
+fn motion(
+    st: &mut State,
+    block: &Block,
+    words: &[Word],
+    axes: &Axes<'_>,
+    probe: bool,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> bool {
+    let Some(mode) = st.motion else {
+        let span = axes.iter().flatten().next().map_or(block.span, |w| w.span);
+        st.diagnostics.push(Diagnostic::error(
+            span,
+            "E-NO-MOTION-MODE",
+            "axis words with no motion mode active (after G80): add G00 or G01",
+        ));
+        return false;
+    };
+    let p = target(st, axes);
+    let to = st.to_machine(p);
+    let event = match mode {
+        MotionMode::Rapid if !probe => Canon::Rapid { to },
+        MotionMode::Arc { ccw } => {
+            let offsets: Axes<'_> = {
+                let mut o: Axes<'_> = [None; 3];
+                for w in words.iter().filter(|w| w.form == WordForm::Plain) {
+                    if let b'I' | b'J' | b'K' = w.letter {
+                        o[usize::from(w.letter - b'I')] = Some(w);
+                    }
+                }
+                o
+            };
+            let radius = find(words, b'R');
+            if offsets.iter().all(Option::is_none) && radius.is_none() {
+                if st.dialect == Dialect::Syntec {
+                    // Documented: no R and no I/J/K runs as G01 (the parser has said so).
+                    return feed_to(st, block, p, to, source, sink);
+                }
+                st.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-ARC-CENTER",
+                    "G02/G03 needs the centre (I, J, K) or the radius (R)",
+                ));
+                return false;
+            }
+            return arc(st, block, p, offsets, radius, ccw, source, sink);
+        }
+        MotionMode::Thread => {
+            let lead = find(words, b'F').map(|f| f.value);
+            let _ = lead;
+            return feed_to(st, block, p, to, source, sink);
+        }
+        MotionMode::Rapid | MotionMode::Linear => return feed_to(st, block, p, to, source, sink),
+    };
+    st.position = to;
+    st.program_pos = p;
+    sink.emit(source, &event);
+    true
+}
+
+fn feed_to(
+    st: &mut State,
+    block: &Block,
+    p: DVec3,
+    to: DVec3,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> bool {
+    if st.feed_mm_per_min <= 0.0 {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-NO-FEED",
+            "a cutting move needs a feed rate: program F before or in this block",
+        ));
+    }
+    st.position = to;
+    st.program_pos = p;
+    sink.emit(
+        source,
+        &Canon::Feed {
+            to,
+            feed_mm_per_min: st.feed_mm_per_min,
+        },
+    );
+    true
+}
+
+/// G02/G03 in the program frame (centre from I/J/K or from R), then through the transform.
+#[allow(clippy::too_many_arguments)]
+fn arc(
+    st: &mut State,
+    block: &Block,
+    p: DVec3,
+    offsets: Axes<'_>,
+    radius: Option<&Word>,
+    ccw: bool,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> bool {
+    let (u, v) = plane_axes(st.plane);
+    let from = st.program_pos;
+    let mut center = from;
+    if let Some(r) = radius.filter(|_| offsets.iter().all(Option::is_none)) {
+        let r_mm = st.length(r);
+        let (du, dv) = (p[u] - from[u], p[v] - from[v]);
+        let chord = du.hypot(dv);
+        if chord < 1e-9 {
+            st.diagnostics.push(Diagnostic::error(
+                r.span,
+                "E-ARC-CENTER",
+                "an arc programmed with R cannot end where it starts: use I/J/K for a full circle",
+            ));
+            return false;
+        }
+        let half = chord / 2.0;
+        if r_mm.abs() + st.setup.machine.arc_tolerance_mm < half {
+            st.diagnostics.push(Diagnostic::error(
+                r.span,
+                "E-ARC-RADIUS",
+                format!(
+                    "R{} is smaller than half the distance to the end point ({half:.4} mm)",
+                    r.value
+                ),
+            ));
+            return false;
+        }
+        let h = (r_mm * r_mm - half * half).max(0.0).sqrt();
+        // Left of the chord for a short counter-clockwise arc, right for a short clockwise one.
+        let side = if ccw == (r_mm > 0.0) { 1.0 } else { -1.0 };
+        center[u] = from[u] + du / 2.0 - side * h * dv / chord;
+        center[v] = from[v] + dv / 2.0 + side * h * du / chord;
+    } else {
+        for (i, w) in offsets.iter().enumerate() {
+            if let Some(w) = w {
+                if i == u || i == v {
+                    center[i] = from[i] + st.length(w);
+                } else {
+                    st.diagnostics.push(Diagnostic::warning(
+                        w.span,
+                        "W-WORD-IGNORED",
+                        format!(
+                            "`{}` is not a centre offset in the selected plane and is ignored",
+                            w.letter()
+                        ),
+                    ));
+                }
+            }
+        }
+        let r0 = (from[u] - center[u]).hypot(from[v] - center[v]);
+        let r1 = (p[u] - center[u]).hypot(p[v] - center[v]);
+        if r0 < 1e-9 {
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-ARC-CENTER",
+                "the arc's centre is at its start point",
+            ));
+            return false;
+        }
+        if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm {
+            let alarm = if st.dialect == Dialect::Syntec {
+                " (alarm COR-006)"
+            } else {
+                ""
+            };
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-ARC-RADIUS",
+                format!(
+                    "the end point is {:.4} mm off the arc: start radius {r0:.4} mm, end radius {r1:.4} mm{alarm}",
+                    (r0 - r1).abs()
+                ),
+            ));
+            return false;
+        }
+    }
+    if st.feed_mm_per_min <= 0.0 {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-NO-FEED",
+            "G02/G03 needs a feed rate: program F before or in this block",
+        ));
+    }
+    let to = st.to_machine(p);
+    let mut machine_center = st.to_machine(center);
+    let normal = 3 - u - v;
+    // The centre lies in the start's plane.
+    machine_center[normal] = st.position[normal];
+    let ccw = ccw != st.reverses_arcs();
+    st.position = to;
+    st.program_pos = p;
+    sink.emit(
+        source,
+        &Canon::Arc {
+            to,
+            center: machine_center,
+            axis: st.plane,
+            ccw,
+            turns: 0,
+            feed_mm_per_min: st.feed_mm_per_min,
+        },
+    );
+    true
+}
+
+fn dwell(st: &mut State, g4: &Word, words: &[Word], source: Source, sink: &mut dyn Sink) {
+    let secs = if let Some(p) = find(words, b'P') {
+        st.dialect.read(p, Quantity::DwellP, false, false)
+    } else if let Some(x) = find(words, b'X').or(find(words, b'U')) {
+        st.dialect.read(x, Quantity::DwellX, false, false)
+    } else {
+        st.diagnostics.push(Diagnostic::error(
+            g4.span,
+            "E-WORD-MISSING",
+            "G04 needs the dwell time in P or X",
+        ));
+        return;
+    };
+    if secs < 0.0 {
+        st.diagnostics.push(Diagnostic::error(
+            g4.span,
+            "E-NUMBER-RANGE",
+            "a dwell time cannot be negative",
+        ));
+        return;
+    }
+    sink.emit(source, &Canon::Dwell { secs });
+}
+
+/// G54–G59, G54.1 Pn, G59.n.
+fn work_offset(st: &mut State, w: &Word, words: &[Word]) {
+    let name = match Code::from_value(b'G', w.value).map(|c| c.tenths) {
+        Some(541) => {
+            let p = find(words, b'P').map_or(1.0, |p| p.value);
+            format!("G54.1P{}", p.round())
+        }
+        Some(t) if t % 10 == 0 => format!("G{}", t / 10),
+        Some(t) => format!("G{}.{}", t / 10, t % 10),
+        None => return,
+    };
+    st.wcs_offset = st.setup.work_offset(&name);
+    st.wcs = name;
+    st.resync();
+}
+
+/// G43/G44 H / G49: the tool tip still follows the programmed Z; the offset is recorded.
+fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option<bool>) {
+    let Some(plus) = sign else {
+        st.length_comp = None;
+        return;
+    };
+    let h = find(words, b'H')
+        .map(|h| h.value.round() as u32)
+        .unwrap_or(st.h_word);
+    if h == 0 {
+        // H00 cancels (KT).
+        st.length_comp = None;
+        return;
+    }
+    let length = st
+        .setup
+        .registers
+        .get(&h)
+        .map_or(0.0, |r| r.length + r.length_wear);
+    if !st.setup.registers.contains_key(&h) {
+        st.diagnostics.push(Diagnostic::note(
+            w.span,
+            "N-OFFSET-UNSET",
+            format!("offset register {h} is not in the setup: its length is taken as 0"),
+        ));
+    }
+    st.length_comp = Some((h, if plus { length } else { -length }));
+}
+
+fn polar(st: &mut State, on: bool) {
+    if !on {
+        st.polar = None;
+        return;
+    }
+    let (u, v) = plane_axes(st.plane);
+    // G90 G16: the pole is the work origin (with G52); G91 G16: the current position.
+    let pole = if st.absolute {
+        DVec2::ZERO
+    } else {
+        DVec2::new(st.program_pos[u], st.program_pos[v])
+    };
+    st.polar = Some(Polar { pole });
+}
+
+/// G68 X Y R (centre from the words, or the current position; angle absolute or, under G91,
+/// added to the active rotation).
+fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
+    if !on {
+        st.rotation = None;
+        return;
+    }
+    let (u, v) = plane_axes(st.plane);
+    let letters = [b'X', b'Y', b'Z'];
+    // The centre is absolute in either mode; without it, the current position.
+    let center_of = |i: usize| find(words, letters[i]).map_or(st.program_pos[i], |c| st.length(c));
+    let center = DVec2::new(center_of(u), center_of(v));
+    let Some(r) = find(words, b'R') else {
+        st.diagnostics.push(Diagnostic::warning(
+            w.span,
+            "W-WORD-MISSING",
+            "G68 without R rotates by 0° (the angle in the control's parameter is not known)",
+        ));
+        st.rotation = Some(Rotation {
+            plane: st.plane,
+            center,
+            degrees: 0.0,
+        });
+        return;
+    };
+    let angle = st.angle(r);
+    let degrees = match (st.absolute, st.rotation) {
+        (false, Some(prev)) => prev.degrees + angle,
+        _ => angle,
+    };
+    // The tool stays where it is: the new frame applies to the next move's end point.
+    st.rotation = Some(Rotation {
+        plane: st.plane,
+        center,
+        degrees,
+    });
+}
+
+/// G51 X Y Z P (or I J K per axis) / G50.
+fn scaling(st: &mut State, w: &Word, words: &[Word], on: bool) {
+    if !on {
+        st.scaling = None;
+        return;
+    }
+    let letters = [b'X', b'Y', b'Z'];
+    let mut center = st.program_pos;
+    for (i, l) in letters.iter().enumerate() {
+        if let Some(c) = find(words, *l) {
+            center[i] = st.length(c);
+        }
+    }
+    // Scale factors: P for all axes, or I/J/K per axis (read as written, e.g. P2.0 or P0.5).
+    let p = find(words, b'P').map(|p| p.value);
+    let mut factors = DVec3::splat(p.unwrap_or(1.0));
+    for (i, l) in [b'I', b'J', b'K'].iter().enumerate() {
+        if let Some(f) = find(words, *l) {
+            factors[i] = f.value;
+        }
+    }
+    if p.is_none() && [b'I', b'J', b'K'].iter().all(|l| find(words, *l).is_none()) {
+        st.diagnostics.push(Diagnostic::warning(
+            w.span,
+            "W-WORD-MISSING",
+            "G51 without P or I/J/K scales by 1",
+        ));
+    }
+    st.scaling = Some(Scaling { center, factors });
+}
+
+/// G51.1 X Y Z: mirror about the given axis positions / G50.1 X Y Z: cancel (all axes when none
+/// is given).
+fn mirror(st: &mut State, words: &[Word], on: bool) {
+    let letters = [b'X', b'Y', b'Z'];
+    let given: Vec<usize> = (0..3)
+        .filter(|i| find(words, letters[*i]).is_some())
+        .collect();
+    for (i, letter) in letters.iter().enumerate() {
+        if let Some(w) = find(words, *letter) {
+            if on {
+                st.mirror_center[i] = st.length(w);
+                st.mirror[i] = -1.0;
+            } else {
+                st.mirror[i] = 1.0;
+            }
+        } else if !on && given.is_empty() {
+            st.mirror[i] = 1.0;
+        }
+    }
+}
+
+/// G52 X Y Z: the local coordinate system (relative to the work system; `G52 X0 Y0 Z0` cancels).
+fn local(st: &mut State, axes: &Axes<'_>) {
+    for (i, w) in axes.iter().enumerate() {
+        if let Some(w) = w {
+            st.local[i] = st.length(w);
+        }
+    }
+    st.resync();
+}
+
+/// G92 X Y Z: the current position becomes the given coordinates.
+fn set_position(st: &mut State, axes: &Axes<'_>) {
+    for (i, w) in axes.iter().enumerate() {
+        if let Some(w) = w {
+            let wanted = st.length(w);
+            st.shift[i] += st.program_pos[i] - wanted;
+        }
+    }
+    st.resync();
+}
+
+/// G10 L2/L20 (work offsets) and L10–L13 / LinuxCNC L1 (offset registers).
+fn data_input(st: &mut State, w: &Word, words: &[Word]) {
+    let l = find(words, b'L').map(|l| l.value.round() as i64);
+    let p = find(words, b'P')
+        .map(|p| p.value.round() as i64)
+        .unwrap_or(0);
+    let absolute = st.absolute;
+    match l {
+        Some(2) | Some(20) => {
+            let name = if l == Some(20) {
+                format!("G54.1P{p}")
+            } else {
+                match (st.dialect, p) {
+                    (_, 0) => st.wcs.clone(),
+                    (Dialect::LinuxCnc, 7..=9) => format!("G59.{}", p - 6),
+                    (_, 1..=6) => format!("G{}", 53 + p),
+                    _ => {
+                        st.diagnostics.push(Diagnostic::error(
+                            w.span,
+                            "E-NUMBER-RANGE",
+                            format!("G10 L2 P{p} is not a work coordinate system"),
+                        ));
+                        return;
+                    }
+                }
+            };
+            let mut offset = st.setup.work_offset(&name);
+            for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
+                if let Some(v) = find(words, *letter) {
+                    let v = st.length(v);
+                    offset[i] = if absolute { v } else { offset[i] + v };
+                }
+            }
+            st.setup.work_offsets.insert(name.clone(), offset);
+            if name == st.wcs {
+                st.wcs_offset = offset;
+                st.resync();
+            }
+        }
+        Some(1 | 10 | 11 | 12 | 13) => {
+            let linuxcnc = st.dialect == Dialect::LinuxCnc;
+            let reg = st.setup.registers.entry(p.max(0) as u32).or_default();
+            let metric = st.metric;
+            let mm = |x: f64| if metric { x } else { x * 25.4 };
+            let r = find(words, b'R').map(|r| mm(r.value));
+            let z = find(words, b'Z').map(|z| mm(z.value));
+            let slot = match (linuxcnc, l) {
+                (true, _) => {
+                    if let Some(z) = z {
+                        reg.length = z;
+                    }
+                    if let Some(r) = r {
+                        reg.radius = r;
+                    }
+                    return;
+                }
+                (_, Some(10)) => &mut reg.length,
+                (_, Some(11)) => &mut reg.length_wear,
+                (_, Some(12)) => &mut reg.radius,
+                _ => &mut reg.radius_wear,
+            };
+            if let Some(r) = r {
+                *slot = if absolute { r } else { *slot + r };
+            }
+        }
+        _ => st.diagnostics.push(Diagnostic::warning(
+            w.span,
+            "W-NOT-INTERPRETED",
+            "this G10 data type is not interpreted yet and is ignored",
+        )),
+    }
+}
+
+/// G28 (n = 1) / G30 Pn: rapid to the intermediate point, then to the reference point, for the
+/// axes given.
+fn reference(
+    st: &mut State,
+    words: &[Word],
+    axes: &Axes<'_>,
+    n: u8,
+    source: Source,
+    sink: &mut dyn Sink,
+) {
+    let point = if n == 1 {
+        1
+    } else {
+        find(words, b'P').map_or(2, |p| p.value.round().clamp(1.0, 4.0) as usize)
+    };
+    let reference = st.setup.reference_point(point);
+    if axes.iter().all(Option::is_none) {
+        if st.dialect == Dialect::LinuxCnc {
+            // LinuxCNC: G28 with no axis word goes to the stored position for all axes.
+            rapid_to(st, reference, source, sink);
+        }
+        return;
+    }
+    let mid = target(st, axes);
+    for (i, w) in axes.iter().enumerate() {
+        if w.is_some() {
+            st.intermediate[i] = Some(mid[i]);
+        }
+    }
+    let mid_machine = st.to_machine(mid);
+    rapid_to(st, mid_machine, source, sink);
+    let mut end = st.position;
+    for (i, w) in axes.iter().enumerate() {
+        if w.is_some() {
+            end[i] = reference[i];
+        }
+    }
+    rapid_to(st, end, source, sink);
+}
+
+/// G29: from the reference point through the intermediate point to the programmed point.
+fn from_reference(st: &mut State, axes: &Axes<'_>, source: Source, sink: &mut dyn Sink) {
+    let mut mid = st.program_pos;
+    for i in 0..3 {
+        if axes[i].is_some()
+            && let Some(m) = st.intermediate[i]
+        {
+            mid[i] = m;
+        }
+    }
+    let mid_machine = st.to_machine(mid);
+    rapid_to(st, mid_machine, source, sink);
+    // G91: the target is relative to the intermediate point.
+    let end = target(st, axes);
+    let end_machine = st.to_machine(end);
+    rapid_to(st, end_machine, source, sink);
+}
+
+/// G53: a one-shot move in machine coordinates, in the block's motion mode (G00 or G01).
+fn machine_move(
+    st: &mut State,
+    block: &Block,
+    axes: &Axes<'_>,
+    source: Source,
+    sink: &mut dyn Sink,
+) {
+    if !st.absolute && st.dialect == Dialect::Syntec {
+        st.diagnostics.push(Diagnostic::warning(
+            block.span,
+            "W-G53-INCREMENTAL",
+            "Syntec runs G53 only in G90: the values are read as absolute machine coordinates",
+        ));
+    }
+    let mut to = st.position;
+    for (i, w) in axes.iter().enumerate() {
+        if let Some(w) = w {
+            to[i] = st.length(w);
+        }
+    }
+    match st.motion {
+        Some(MotionMode::Linear) => {
+            let p = st.to_program(to);
+            feed_to(st, block, p, to, source, sink);
+        }
+        _ => rapid_to(st, to, source, sink),
+    }
+}
+
+fn rapid_to(st: &mut State, to: DVec3, source: Source, sink: &mut dyn Sink) {
+    st.position = to;
+    st.program_pos = st.to_program(to);
+    sink.emit(source, &Canon::Rapid { to });
+}
+
+/// G65 P L args.
+fn macro_call(it: &mut Interpreter, at: usize, block: &Block, words: &[Word], g65: &Word) -> Flow {
+    let Some(p) = find(words, b'P') else {
+        it.st.diagnostics.push(Diagnostic::error(
+            g65.span,
+            "E-WORD-MISSING",
+            "G65 needs the macro program number in P",
+        ));
+        return Flow::Next;
+    };
+    let repeats = find(words, b'L')
+        .map_or(1.0, |l| l.value)
+        .clamp(0.0, 9999.0) as u32;
+    let args = arguments(&it.st, words);
+    match it.call_macro(at, block, p.value, repeats, &args) {
+        Ok(flow) => flow,
+        Err(e) => {
+            it.st.diagnostics.push(e);
+            Flow::Stop
+        }
+    }
+}
+
+/// Macro-call arguments (argument specification I): letter → local variable, value as read.
+fn arguments(st: &State, words: &[Word]) -> Vec<(u8, f64)> {
+    words
+        .iter()
+        .filter(|w| w.form == WordForm::Plain && !b"GLNOP".contains(&w.letter))
+        .filter_map(|w| {
+            let value = if b"XYZUVWIJKRQ".contains(&w.letter) {
+                st.dialect
+                    .read(w, Quantity::Length, st.calculator(), !st.metric)
+            } else {
+                w.value
+            };
+            argument_variable(w.letter).map(|n| (n, value))
+        })
+        .collect()
+}
+
+/// M codes, and the flow they ask for (subprogram calls and returns, program end).
+fn m_codes(
+    it: &mut Interpreter,
+    at: usize,
+    block: &Block,
+    words: &[Word],
+    source: Source,
+    sink: &mut dyn Sink,
+) -> Flow {
+    let mut flow = Flow::Next;
+    for word in words
+        .iter()
+        .filter(|w| w.letter == b'M' && w.form == WordForm::Plain)
+    {
+        let Some(code) = Code::from_value(b'M', word.value) else {
+            continue;
+        };
+        let st = &mut it.st;
+        let event = match code.tenths {
+            0 => Canon::Pause { optional: false },
+            10 => Canon::Pause { optional: true },
+            20 | 300 => {
+                flow = Flow::Stop;
+                Canon::End
+            }
+            600 if st.dialect == Dialect::LinuxCnc => Canon::Pause { optional: false },
+            30 => Canon::Spindle {
+                clockwise: Some(true),
+                rpm: st.spindle_rpm,
+            },
+            40 => Canon::Spindle {
+                clockwise: Some(false),
+                rpm: st.spindle_rpm,
+            },
+            50 => Canon::Spindle {
+                clockwise: None,
+                rpm: 0.0,
+            },
+            60 => Canon::ToolChange { tool: st.tool },
+            70 | 80 => Canon::Coolant { on: true },
+            90 => Canon::Coolant { on: false },
+            190 => continue,
+            980 => {
+                flow = match it.call_subprogram(at, block, words) {
+                    Ok(f) => f,
+                    Err(e) => {
+                        it.st.diagnostics.push(e);
+                        Flow::Stop
+                    }
+                };
+                continue;
+            }
+            990 => {
+                flow = match it.return_from(at, block, find(words, b'P')) {
+                    Ok(f) => f,
+                    Err(e) => {
+                        it.st.diagnostics.push(e);
+                        Flow::Stop
+                    }
+                };
+                continue;
+            }
+            _ => {
+                // Codes outside the dialect's list were reported by the parser.
+                if let Some(def) = codes::lookup(st.dialect, code) {
+                    st.diagnostics.push(Diagnostic::warning(
+                        word.span,
+                        "W-NOT-INTERPRETED",
+                        format!("{} ({}) is not interpreted yet", def.code, def.name),
+                    ));
+                }
+                continue;
+            }
+        };
+        sink.emit(source, &event);
+    }
+    flow
+}

@@ -1,0 +1,482 @@
+//! The machine's state between blocks: modal codes, positions, the coordinate-system chain and
+//! the system variables a macro program can read.
+//!
+//! A programmed point goes from the program frame through mirroring, scaling and rotation, then
+//! the G52 local offset, the G92 shift and the work offset (G54…) to the machine frame.
+//! `program_pos` keeps the current point in the program frame so that incremental moves (G91)
+//! add up there, as the controls do under rotation and scaling. Turning rotation, scaling or
+//! mirroring on or off does not move the tool: the new frame applies to the next end point.
+
+use glam::{DVec2, DVec3};
+use swarf_syntax::{Diagnostic, Dialect, Quantity, Word};
+
+use crate::Axis;
+use crate::Setup;
+use crate::macros::Value;
+
+/// The motion mode of modal group 01 that the interpreter runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum MotionMode {
+    Rapid,
+    Linear,
+    /// G02 (clockwise) or G03 (counter-clockwise) seen from the plane normal's positive end.
+    Arc {
+        ccw: bool,
+    },
+    /// G33 thread cutting: a feed along the programmed line at the lead per revolution.
+    Thread,
+}
+
+/// Feed-rate mode (group 05).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum FeedMode {
+    PerMinute,
+    PerRevolution,
+    InverseTime,
+}
+
+/// G68 rotation in the selected plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Rotation {
+    pub plane: Axis,
+    /// Centre in the program frame (plane coordinates).
+    pub center: DVec2,
+    /// Angle in degrees, counter-clockwise.
+    pub degrees: f64,
+}
+
+/// G51 scaling and G51.1 mirroring: per-axis factors about a centre (negative = mirrored).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Scaling {
+    pub center: DVec3,
+    pub factors: DVec3,
+}
+
+/// G16 polar coordinates: the pole in the program frame (plane coordinates).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Polar {
+    pub pole: DVec2,
+}
+
+/// Everything the machine remembers between blocks, apart from macro variables.
+#[derive(Debug, Clone)]
+pub(crate) struct State {
+    pub setup: Setup,
+    pub dialect: Dialect,
+    /// Tool-tip position in the machine frame, millimetres.
+    pub position: DVec3,
+    /// The current point in the program frame (work coordinates before rotation/scaling), mm.
+    pub program_pos: DVec3,
+    pub motion: Option<MotionMode>,
+    pub plane: Axis,
+    pub absolute: bool,
+    pub metric: bool,
+    /// The active work coordinate system by canonical name (`G54`, `G54.1P7`, `G59.3`).
+    pub wcs: String,
+    pub wcs_offset: DVec3,
+    /// G52 local coordinate system.
+    pub local: DVec3,
+    /// G92 shift.
+    pub shift: DVec3,
+    pub rotation: Option<Rotation>,
+    pub scaling: Option<Scaling>,
+    /// Mirror factors (±1 per axis) of G51.1, about `mirror_center`.
+    pub mirror: DVec3,
+    pub mirror_center: DVec3,
+    pub polar: Option<Polar>,
+    pub feed_mode: FeedMode,
+    pub feed_mm_per_min: f64,
+    pub spindle_rpm: f64,
+    pub css: bool,
+    pub tool: u32,
+    /// Active length compensation: register number and signed offset (mm).
+    pub length_comp: Option<(u32, f64)>,
+    /// Cutter compensation code in effect (400, 410, 420).
+    pub cutter_comp: u32,
+    /// Cutting mode G61–G64 (tenths).
+    pub path_mode: u32,
+    /// Canned-cycle return level: G98 (true) or G99.
+    pub return_initial: bool,
+    /// G22 on.
+    pub stroke_check: bool,
+    /// Modal macro call (G66): program number and arguments.
+    pub modal_macro: Option<(f64, Vec<(u8, f64)>)>,
+    /// G28/G30 intermediate point per axis, in the program frame.
+    pub intermediate: [Option<f64>; 3],
+    /// The last T, D and H words.
+    pub d_word: u32,
+    pub h_word: u32,
+    /// An alarm raised by writing #3000.
+    pub alarm: Option<Diagnostic>,
+    pub diagnostics: Vec<Diagnostic>,
+    /// Whether the least-increment note has been given in this run.
+    pub noted_least_increment: bool,
+}
+
+impl State {
+    /// Power-on state.
+    pub fn new(setup: Setup, dialect: Dialect) -> State {
+        let wcs_offset = setup.work_offset("G54");
+        let inch_default = false;
+        State {
+            setup,
+            dialect,
+            position: DVec3::ZERO,
+            program_pos: -wcs_offset,
+            // G00 at power-on in the Fanuc family; LinuxCNC starts in G80 (no motion mode).
+            motion: (dialect != Dialect::LinuxCnc).then_some(MotionMode::Rapid),
+            plane: Axis::Z,
+            absolute: true,
+            metric: !inch_default,
+            wcs: "G54".into(),
+            wcs_offset,
+            local: DVec3::ZERO,
+            shift: DVec3::ZERO,
+            rotation: None,
+            scaling: None,
+            mirror: DVec3::ONE,
+            mirror_center: DVec3::ZERO,
+            polar: None,
+            feed_mode: FeedMode::PerMinute,
+            feed_mm_per_min: 0.0,
+            spindle_rpm: 0.0,
+            css: false,
+            tool: 0,
+            length_comp: None,
+            cutter_comp: 400,
+            path_mode: 640,
+            return_initial: true,
+            stroke_check: false,
+            modal_macro: None,
+            intermediate: [None; 3],
+            d_word: 0,
+            h_word: 0,
+            alarm: None,
+            diagnostics: Vec::new(),
+            noted_least_increment: false,
+        }
+    }
+
+    /// Millimetres from a value in the active unit.
+    pub fn mm(&self, value: f64) -> f64 {
+        if self.metric { value } else { value * 25.4 }
+    }
+
+    /// Whether numbers without a decimal point are read in mm (calculator-type input).
+    pub fn calculator(&self) -> bool {
+        self.setup
+            .machine
+            .calculator_input
+            .unwrap_or(self.dialect.rules().calculator_input)
+    }
+
+    /// A coordinate or distance word in millimetres, read with the dialect's decimal-point rule.
+    pub fn length(&self, word: &Word) -> f64 {
+        self.mm(self
+            .dialect
+            .read(word, Quantity::Length, self.calculator(), !self.metric))
+    }
+
+    /// An angle word in degrees.
+    pub fn angle(&self, word: &Word) -> f64 {
+        self.dialect
+            .read(word, Quantity::Angle, self.calculator(), false)
+    }
+
+    /// The offset from the program frame (after rotation and scaling) to the machine frame.
+    pub fn base(&self) -> DVec3 {
+        self.wcs_offset + self.local + self.shift
+    }
+
+    /// Program frame → machine frame.
+    pub fn to_machine(&self, p: DVec3) -> DVec3 {
+        self.transform(p) + self.base()
+    }
+
+    /// Mirror, scaling and rotation of a program-frame point (no offsets).
+    pub fn transform(&self, p: DVec3) -> DVec3 {
+        let mut q = p;
+        if self.mirror != DVec3::ONE {
+            q = self.mirror_center + (q - self.mirror_center) * self.mirror;
+        }
+        if let Some(s) = self.scaling {
+            q = s.center + (q - s.center) * s.factors;
+        }
+        if let Some(r) = self.rotation {
+            let (u, v) = plane_axes(r.plane);
+            let (sin, cos) = r.degrees.to_radians().sin_cos();
+            let du = q[u] - r.center.x;
+            let dv = q[v] - r.center.y;
+            q[u] = r.center.x + du * cos - dv * sin;
+            q[v] = r.center.y + du * sin + dv * cos;
+        }
+        q
+    }
+
+    /// Machine frame → program frame (the inverse of [`State::to_machine`]).
+    pub fn to_program(&self, m: DVec3) -> DVec3 {
+        let mut q = m - self.base();
+        if let Some(r) = self.rotation {
+            let (u, v) = plane_axes(r.plane);
+            let (sin, cos) = (-r.degrees).to_radians().sin_cos();
+            let du = q[u] - r.center.x;
+            let dv = q[v] - r.center.y;
+            q[u] = r.center.x + du * cos - dv * sin;
+            q[v] = r.center.y + du * sin + dv * cos;
+        }
+        if let Some(s) = self.scaling {
+            let f = DVec3::select(s.factors.cmpeq(DVec3::ZERO), DVec3::ONE, s.factors);
+            q = s.center + (q - s.center) / f;
+        }
+        if self.mirror != DVec3::ONE {
+            q = self.mirror_center + (q - self.mirror_center) * self.mirror;
+        }
+        q
+    }
+
+    /// Re-reads the program-frame position after the frame changed (new offsets, rotation …).
+    pub fn resync(&mut self) {
+        self.program_pos = self.to_program(self.position);
+    }
+
+    /// Whether the transform reverses arc direction (an odd number of mirrored plane axes).
+    pub fn reverses_arcs(&self) -> bool {
+        let (u, v) = plane_axes(self.plane);
+        let mut f = self.mirror;
+        if let Some(s) = self.scaling {
+            f *= s.factors;
+        }
+        (f[u] < 0.0) != (f[v] < 0.0)
+    }
+
+    /// The active G codes, one per group, for a state view.
+    pub fn active_codes(&self) -> Vec<String> {
+        let motion = match self.motion {
+            Some(MotionMode::Rapid) => "G00",
+            Some(MotionMode::Linear) => "G01",
+            Some(MotionMode::Arc { ccw: false }) => "G02",
+            Some(MotionMode::Arc { ccw: true }) => "G03",
+            Some(MotionMode::Thread) => "G33",
+            None => "G80",
+        };
+        let plane = match self.plane {
+            Axis::Z => "G17",
+            Axis::Y => "G18",
+            Axis::X => "G19",
+        };
+        let units = match (self.dialect, self.metric) {
+            (Dialect::Syntec, true) => "G71",
+            (Dialect::Syntec, false) => "G70",
+            (_, true) => "G21",
+            (_, false) => "G20",
+        };
+        let feed = match self.feed_mode {
+            FeedMode::PerMinute => "G94",
+            FeedMode::PerRevolution => "G95",
+            FeedMode::InverseTime => "G93",
+        };
+        let mut out: Vec<String> = vec![
+            motion.into(),
+            plane.into(),
+            if self.absolute { "G90" } else { "G91" }.into(),
+            units.into(),
+            feed.into(),
+            format!("G{}", self.cutter_comp / 10),
+            match self.length_comp {
+                Some((_, o)) if o < 0.0 => "G44".into(),
+                Some(_) => "G43".into(),
+                None => "G49".into(),
+            },
+            self.wcs.clone(),
+            format!("G{}", self.path_mode / 10),
+            if self.return_initial { "G98" } else { "G99" }.into(),
+            if self.polar.is_some() { "G16" } else { "G15" }.into(),
+            if self.rotation.is_some() {
+                "G68"
+            } else {
+                "G69"
+            }
+            .into(),
+            if self.scaling.is_some() { "G51" } else { "G50" }.into(),
+            if self.mirror != DVec3::ONE {
+                "G51.1"
+            } else {
+                "G50.1"
+            }
+            .into(),
+            if self.css { "G96" } else { "G97" }.into(),
+        ];
+        out.dedup();
+        out
+    }
+
+    /// A system variable (Fanuc numbering; LinuxCNC's own where it differs), or `None` when
+    /// `n` is not one.
+    pub fn system_variable(&self, n: u32) -> Option<Value> {
+        let work = self.program_pos;
+        let unit = |mm: f64| if self.metric { mm } else { mm / 25.4 };
+        if self.dialect == Dialect::LinuxCnc {
+            return match n {
+                5220 => Some(Some(wcs_number(&self.wcs) as f64)),
+                5221..=5399 => {
+                    let k = (n - 5221) / 20;
+                    let axis = ((n - 5221) % 20) as usize;
+                    let name = linuxcnc_wcs_name(k as usize)?;
+                    let o = self.setup.work_offset(&name);
+                    Some(Some(if axis < 3 { unit(o[axis]) } else { 0.0 }))
+                }
+                5211..=5213 => Some(Some(unit(self.shift[(n - 5211) as usize]))),
+                5400 => Some(Some(f64::from(self.tool))),
+                5420..=5422 => Some(Some(unit(work[(n - 5420) as usize]))),
+                _ => None,
+            };
+        }
+        let wcs_axis = |name: &str, i: u32| unit(self.setup.work_offset(name)[i as usize]);
+        match n {
+            1000 if self.dialect == Dialect::Syntec => Some(Some(match self.motion {
+                Some(MotionMode::Linear) => 1.0,
+                Some(MotionMode::Arc { ccw: false }) => 2.0,
+                Some(MotionMode::Arc { ccw: true }) => 3.0,
+                _ => 0.0,
+            })),
+            1004 if self.dialect == Dialect::Syntec => {
+                Some(Some(if self.absolute { 90.0 } else { 91.0 }))
+            }
+            2001..=2400 => {
+                let r = self.setup.registers.get(&(n - 2000));
+                Some(Some(unit(r.map_or(0.0, |r| r.length + r.length_wear))))
+            }
+            3000 | 3006 => Some(None),
+            4001 => Some(Some(match self.motion {
+                Some(MotionMode::Rapid) => 0.0,
+                Some(MotionMode::Linear) => 1.0,
+                Some(MotionMode::Arc { ccw: false }) => 2.0,
+                Some(MotionMode::Arc { ccw: true }) => 3.0,
+                Some(MotionMode::Thread) => 33.0,
+                None => 80.0,
+            })),
+            4002 => Some(Some(match self.plane {
+                Axis::Z => 17.0,
+                Axis::Y => 18.0,
+                Axis::X => 19.0,
+            })),
+            4003 => Some(Some(if self.absolute { 90.0 } else { 91.0 })),
+            4005 => Some(Some(match self.feed_mode {
+                FeedMode::InverseTime => 93.0,
+                FeedMode::PerMinute => 94.0,
+                FeedMode::PerRevolution => 95.0,
+            })),
+            4006 => Some(Some(match (self.dialect, self.metric) {
+                (Dialect::Syntec, true) => 71.0,
+                (Dialect::Syntec, false) => 70.0,
+                (_, true) => 21.0,
+                (_, false) => 20.0,
+            })),
+            4007 => Some(Some(f64::from(self.cutter_comp / 10))),
+            4008 => Some(Some(match self.length_comp {
+                Some((_, o)) if o < 0.0 => 44.0,
+                Some(_) => 43.0,
+                None => 49.0,
+            })),
+            4010 => Some(Some(if self.return_initial { 98.0 } else { 99.0 })),
+            4014 => Some(Some(f64::from(wcs_number(&self.wcs)) + 53.0)),
+            4015 => Some(Some(f64::from(self.path_mode) / 10.0)),
+            4016 => Some(Some(if self.rotation.is_some() { 68.0 } else { 69.0 })),
+            4017 => Some(Some(if self.polar.is_some() { 16.0 } else { 15.0 })),
+            4107 => Some(Some(f64::from(self.d_word))),
+            4109 => Some(Some(unit(self.feed_mm_per_min))),
+            4111 => Some(Some(f64::from(self.h_word))),
+            4119 => Some(Some(self.spindle_rpm)),
+            4120 => Some(Some(f64::from(self.tool))),
+            5001..=5003 => Some(Some(unit(work[(n - 5001) as usize]))),
+            5021..=5023 => Some(Some(unit(self.position[(n - 5021) as usize]))),
+            5041..=5043 => Some(Some(unit(work[(n - 5041) as usize]))),
+            5201..=5203 => Some(Some(0.0)),
+            5221..=5343 => {
+                let k = (n - 5221) / 20;
+                let axis = (n - 5221) % 20;
+                (axis < 3).then(|| Some(wcs_axis(&format!("G{}", 54 + k), axis)))
+            }
+            7001..=7943 => {
+                let k = (n - 7001) / 20 + 1;
+                let axis = (n - 7001) % 20;
+                (axis < 3).then(|| Some(wcs_axis(&format!("G54.1P{k}"), axis)))
+            }
+            _ => None,
+        }
+    }
+
+    /// Writes a system variable: `Ok(false)` when `n` is not one, an error for read-only ones.
+    pub fn set_system_variable(&mut self, n: u32, v: Value) -> Result<bool, String> {
+        let mm = |x: f64| if self.metric { x } else { x * 25.4 };
+        match n {
+            3000 => {
+                let number = v.unwrap_or(0.0);
+                self.alarm = Some(Diagnostic::error(
+                    swarf_syntax::Span::default(),
+                    "E-MACRO-ALARM",
+                    format!("the program raised macro alarm {number} (#3000) and stops here"),
+                ));
+                Ok(true)
+            }
+            3006 => Ok(true),
+            2001..=2400 => {
+                let r = self.setup.registers.entry(n - 2000).or_default();
+                r.length = mm(v.unwrap_or(0.0));
+                r.length_wear = 0.0;
+                Ok(true)
+            }
+            5221..=5343 if self.dialect != Dialect::LinuxCnc => {
+                let k = (n - 5221) / 20;
+                let axis = ((n - 5221) % 20) as usize;
+                if axis >= 3 {
+                    return Ok(false);
+                }
+                let name = format!("G{}", 54 + k);
+                let mut o = self.setup.work_offset(&name);
+                o[axis] = mm(v.unwrap_or(0.0));
+                self.setup.work_offsets.insert(name.clone(), o);
+                if name == self.wcs {
+                    self.wcs_offset = o;
+                    self.resync();
+                }
+                Ok(true)
+            }
+            4001..=4130 | 5001..=5043 => Err(format!("#{n} is read-only")),
+            _ => Ok(false),
+        }
+    }
+}
+
+/// 1 for G54 … 6 for G59, 7+ for the extended systems (G59.1… / G54.1 Pn).
+fn wcs_number(name: &str) -> u32 {
+    match name {
+        "G54" => 1,
+        "G55" => 2,
+        "G56" => 3,
+        "G57" => 4,
+        "G58" => 5,
+        "G59" => 6,
+        "G59.1" => 7,
+        "G59.2" => 8,
+        "G59.3" => 9,
+        _ => 1,
+    }
+}
+
+/// LinuxCNC's coordinate systems 1–9 (G54 … G59.3) by index 0–8.
+fn linuxcnc_wcs_name(k: usize) -> Option<String> {
+    const NAMES: [&str; 9] = [
+        "G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3",
+    ];
+    NAMES.get(k).map(|s| (*s).to_string())
+}
+
+/// The two in-plane axes (first, second) of the plane with normal `normal`.
+pub(crate) fn plane_axes(normal: Axis) -> (usize, usize) {
+    match normal {
+        Axis::Z => (0, 1),
+        Axis::Y => (2, 0),
+        Axis::X => (1, 2),
+    }
+}
