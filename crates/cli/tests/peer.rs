@@ -5,13 +5,50 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Programs (relative to `shared/corpus/programs`) whose every motion must match rs274.
+/// Programs (relative to `shared/corpus`) whose every motion must match rs274. The others of
+/// `scripts/peer-compare.sh` differ for known reasons: canned cycles and LinuxCNC's `G10 L2 R`
+/// rotation are not run yet, rs274 stops at the first error where Swarf goes on, and rs274 moves to
+/// its tool-change position at M6.
 const AGREEING: &[&str] = &[
-    "cncjs/arc-xy-plane.nc",
-    "cncjs/arc-yz-plane.nc",
-    "cncjs/arc-zx-plane.nc",
-    "cncjs/circle.nc",
-    "cncjs/one-inch-circle.nc",
+    "linuxcnc-tests/interp/rotation/abs-pts/test.ngc",
+    "linuxcnc-tests/interp/unit-conversion/test.ngc",
+    "linuxcnc-tests/interp/machine-coord-params/test.ngc",
+    "linuxcnc-tests/interp/sequence-number/test.ngc",
+    "linuxcnc-tests/interp/m98m99/02-variables/test.ngc",
+    "linuxcnc-tests/interp/m98m99/03-error-M98-no-P-word/test.ngc",
+    "linuxcnc-tests/interp/m98m99/04-M98-but-no-sub/test.ngc",
+    "linuxcnc-tests/interp/m98m99/07-nested-subs/test.ngc",
+    "linuxcnc-tests/interp/m98m99/08-sub-follows-main/test.ngc",
+    "linuxcnc-tests/interp/m98m99/10-M98-P001/test.ngc",
+    "linuxcnc-tests/interp/m98m99/11-main-program-oword/test-illegal-end-main-with-eof.ngc",
+    "linuxcnc-tests/interp/m98m99/11-main-program-oword/test-illegal-no-m30-before-osub.ngc",
+    "linuxcnc-tests/interp/m98m99/11-main-program-oword/test-illegal-sub-after-percent.ngc",
+    "linuxcnc-tests/interp/m98m99/11-main-program-oword/test-legal-end-main-with-m02.ngc",
+    "linuxcnc-tests/interp/m98m99/11-main-program-oword/test-legal-end-main-with-m2.ngc",
+    "linuxcnc-tests/interp/m98m99/11-main-program-oword/test-legal-end-main-with-m30.ngc",
+    "linuxcnc-tests/interp/m98m99/11-main-program-oword/test-legal-end-main-with-percent.ngc",
+    "linuxcnc-tests/interp/m98m99/12-M99-endless-main-program/test.ngc",
+    "linuxcnc-tests/interp/m98m99/13-named-program/test-named.ngc",
+    "linuxcnc-tests/interp/m98m99/13-named-program/test-numbered.ngc",
+    "linuxcnc-tests/interp/m98m99/14-o-expression-call/test.ngc",
+    "programs/cncjs/arc-no-plane.nc",
+    "programs/cncjs/arc-xy-plane.nc",
+    "programs/cncjs/arc-yz-plane.nc",
+    "programs/cncjs/arc-zx-plane.nc",
+    "programs/cncjs/circle.nc",
+    "programs/cncjs/coordinate.nc",
+    "programs/cncjs/dwell.nc",
+    "programs/cncjs/feedrate.nc",
+    "programs/cncjs/g92offset.nc",
+    "programs/cncjs/linear.nc",
+    "programs/cncjs/one-inch-circle.nc",
+    "programs/cncjs/t2laser.nc",
+    "programs/cncjs/units.nc",
+    "programs/nist/example1.gcode",
+    "programs/camotics/tiger.nc",
+    "programs/camotics/la_peinture.gc",
+    "programs/linuxcnc/3D_Chips.ngc",
+    "programs/linuxcnc/stellabee1.ngc",
 ];
 
 fn shared() -> PathBuf {
@@ -35,18 +72,20 @@ fn canon_agrees_with_linuxcnc_rs274() {
     }
     let dir = tempfile::tempdir().unwrap();
     for rel in AGREEING {
-        let program = shared().join("corpus/programs").join(rel);
-        let reference = Command::new("bash")
-            .arg(tools.join("oracle.sh"))
-            .arg(&program)
-            .output()
-            .unwrap();
+        let program = shared().join("corpus").join(rel);
+        // The folder's tool table, when it has one (LinuxCNC's tests ship theirs).
+        let table = std::fs::read_dir(program.parent().unwrap())
+            .unwrap()
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .find(|p| p.extension().is_some_and(|x| x == "tbl"));
+        let mut oracle = Command::new("bash");
+        oracle.arg(tools.join("oracle.sh")).arg(&program);
+        if let Some(table) = table {
+            oracle.arg(table);
+        }
+        let reference = oracle.output().unwrap();
         // rs274 exits non-zero at the end of some programs; what counts is its canonical output.
-        let text = String::from_utf8_lossy(&reference.stdout);
-        assert!(
-            text.contains("STRAIGHT_") || text.contains("ARC_FEED"),
-            "rs274 printed no motion for {rel}"
-        );
         let ref_path = dir.path().join("ref.canon");
         std::fs::write(&ref_path, &reference.stdout).unwrap();
 
@@ -63,7 +102,8 @@ fn canon_agrees_with_linuxcnc_rs274() {
             &mut ours,
             &mut err,
         );
-        assert_eq!(code, 0, "{rel}: {}", String::from_utf8_lossy(&err));
+        // Programs with errors still agree on the motions before them.
+        assert!(code <= 1, "{rel}: {}", String::from_utf8_lossy(&err));
         let ours_path = dir.path().join("ours.jsonl");
         std::fs::write(&ours_path, &ours).unwrap();
 

@@ -35,8 +35,12 @@ enum Action {
     ResetShift,
     Reference(u8),
     FromReference,
+    /// LinuxCNC G28.1/G30.1: the current position becomes reference point n.
+    StoreReference(usize),
     DataInput,
     LengthComp(Option<bool>),
+    /// LinuxCNC G43.1/G43.2: a length offset given in the block's axis words.
+    DynamicLength,
     CutterComp(u32),
     MacroCall,
     ModalMacro(bool),
@@ -94,6 +98,7 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::LengthComp, 430) => Action::LengthComp(Some(true)),
         (Group::LengthComp, 440) => Action::LengthComp(Some(false)),
         (Group::LengthComp, 490) => Action::LengthComp(None),
+        (Group::LengthComp, 431 | 432) if linuxcnc => Action::DynamicLength,
         (Group::CutterComp, t) => Action::CutterComp(t),
         (Group::MacroModal, 660) => Action::ModalMacro(true),
         (Group::MacroModal, 670) => Action::ModalMacro(false),
@@ -105,6 +110,8 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::NonModal, 280) => Action::Reference(1),
         (Group::NonModal, 300) => Action::Reference(2),
         (Group::NonModal, 290) => Action::FromReference,
+        (Group::NonModal, 281) if linuxcnc => Action::StoreReference(1),
+        (Group::NonModal, 301) if linuxcnc => Action::StoreReference(2),
         (Group::NonModal, 100) => Action::DataInput,
         (Group::NonModal, 650) => Action::MacroCall,
         (Group::NonModal, 310) if !linuxcnc => Action::Probe,
@@ -301,8 +308,22 @@ pub(crate) fn execute(
                 from_reference(st, &axes, source, sink);
                 true
             }
+            Action::StoreReference(n) => {
+                let points = &mut st.setup.machine.reference_points;
+                if points.len() < n {
+                    points.resize(n, [0.0; 3]);
+                }
+                points[n - 1] = st.position.to_array();
+                true
+            }
             Action::Machine => {
                 machine_move(st, block, &axes, source, sink);
+                true
+            }
+            Action::DynamicLength => {
+                // The tool tip still follows the program; the offset is only recorded.
+                let z = axes[2].map_or(0.0, |z| st.length(z));
+                st.length_comp = Some((0, z));
                 true
             }
             Action::ExactStop | Action::Nothing => false,
@@ -312,7 +333,11 @@ pub(crate) fn execute(
     }
     let probe = has(|a| *a == Action::Probe);
     let mut moved = false;
-    if !consumed && (axes.iter().any(Option::is_some) || arc_full_circle(st, words)) {
+    // Rotary axis words alone still make a move (the rotary position itself is not drawn).
+    let rotary = words
+        .iter()
+        .any(|w| w.form == WordForm::Plain && b"ABC".contains(&w.letter));
+    if !consumed && (axes.iter().any(Option::is_some) || rotary || arc_full_circle(st, words)) {
         if probe {
             st.diagnostics.push(Diagnostic::note(
                 block.span,
@@ -704,6 +729,7 @@ fn work_offset(st: &mut State, w: &Word, words: &[Word]) {
         None => return,
     };
     st.wcs_offset = st.setup.work_offset(&name);
+    st.wcs_rotation = st.wcs_rotations.get(&name).copied().unwrap_or(0.0);
     st.wcs = name;
     st.resync();
 }
@@ -870,9 +896,10 @@ fn data_input(st: &mut State, w: &Word, words: &[Word]) {
         .map(|p| p.value.round() as i64)
         .unwrap_or(0);
     let absolute = st.absolute;
+    let linuxcnc = st.dialect == Dialect::LinuxCnc;
     match l {
         Some(2) | Some(20) => {
-            let name = if l == Some(20) {
+            let name = if l == Some(20) && !linuxcnc {
                 format!("G54.1P{p}")
             } else {
                 match (st.dialect, p) {
@@ -890,15 +917,46 @@ fn data_input(st: &mut State, w: &Word, words: &[Word]) {
                 }
             };
             let mut offset = st.setup.work_offset(&name);
-            for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
-                if let Some(v) = find(words, *letter) {
-                    let v = st.length(v);
-                    offset[i] = if absolute { v } else { offset[i] + v };
+            let mut rotation = st.wcs_rotations.get(&name).copied().unwrap_or(0.0);
+            if linuxcnc && let Some(r) = find(words, b'R') {
+                rotation = r.value;
+            }
+            if linuxcnc && l == Some(20) {
+                // LinuxCNC L20: the offset that makes the current position read the given
+                // coordinates.
+                let mut wanted = st.program_pos;
+                for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
+                    if let Some(v) = find(words, *letter) {
+                        wanted[i] = st.length(v);
+                    }
+                }
+                let full =
+                    st.position - crate::state::rotate_xy(wanted + st.local + st.shift, rotation);
+                let given = |l: u8| find(words, l).is_some();
+                // Under rotation X and Y are coupled: both are set when either is given.
+                let xy = given(b'X') || given(b'Y');
+                for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
+                    if given(*letter) || (i < 2 && xy && rotation != 0.0) {
+                        offset[i] = full[i];
+                    }
+                }
+            } else {
+                for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
+                    if let Some(v) = find(words, *letter) {
+                        let v = st.length(v);
+                        offset[i] = if absolute || linuxcnc {
+                            v
+                        } else {
+                            offset[i] + v
+                        };
+                    }
                 }
             }
             st.setup.work_offsets.insert(name.clone(), offset);
+            st.wcs_rotations.insert(name.clone(), rotation);
             if name == st.wcs {
                 st.wcs_offset = offset;
+                st.wcs_rotation = rotation;
                 st.resync();
             }
         }
@@ -951,7 +1009,7 @@ fn reference(
     } else {
         find(words, b'P').map_or(2, |p| p.value.round().clamp(1.0, 4.0) as usize)
     };
-    let reference = st.setup.reference_point(point);
+    let reference = st.setup.reference_point(point) - tool_tip_shift(st);
     if axes.iter().all(Option::is_none) {
         if st.dialect == Dialect::LinuxCnc {
             // LinuxCNC: G28 with no axis word goes to the stored position for all axes.
@@ -1010,9 +1068,12 @@ fn machine_move(
         ));
     }
     let mut to = st.position;
+    // Machine coordinates place the spindle's gauge line: the tool tip is the active length
+    // offset below it.
+    let tip = tool_tip_shift(st);
     for (i, w) in axes.iter().enumerate() {
         if let Some(w) = w {
-            to[i] = st.length(w);
+            to[i] = st.length(w) - tip[i];
         }
     }
     match st.motion {
@@ -1022,6 +1083,17 @@ fn machine_move(
         }
         _ => rapid_to(st, to, source, sink),
     }
+}
+
+/// Where the tool tip is relative to the gauge line under the active length offset (along the
+/// plane's normal axis).
+fn tool_tip_shift(st: &State) -> DVec3 {
+    let mut shift = DVec3::ZERO;
+    if let Some((_, offset)) = st.length_comp {
+        let (u, v) = plane_axes(st.plane);
+        shift[3 - u - v] = offset;
+    }
+    shift
 }
 
 fn rapid_to(st: &mut State, to: DVec3, source: Source, sink: &mut dyn Sink) {

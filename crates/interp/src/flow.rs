@@ -66,6 +66,8 @@ pub(crate) struct Index {
     loop_head: HashMap<usize, usize>,
     /// O-word label → its lines in text order.
     owords: HashMap<LabelKey, Vec<(usize, OKind)>>,
+    /// The first block with a program number: the main program's header.
+    first_program: Option<usize>,
 }
 
 impl Index {
@@ -77,6 +79,7 @@ impl Index {
         let mut open_loops: Vec<(u8, usize)> = Vec::new();
         for (i, block) in program.blocks.iter().enumerate() {
             if let Some(number) = &block.program {
+                index.first_program.get_or_insert(i);
                 if index.starts.last() != Some(&i) {
                     index.starts.push(i);
                 }
@@ -146,6 +149,12 @@ impl Index {
             Ok(i) => i,
             Err(i) => i.saturating_sub(1),
         }
+    }
+
+    /// Whether block `at` starts a program other than the main one (the first `O` line of the
+    /// text heads the main program; later ones start programs that run only when called).
+    pub(crate) fn starts_other_program(&self, at: usize) -> bool {
+        self.first_program.is_some_and(|first| first != at)
     }
 
     /// The first block of program `O number`.

@@ -219,7 +219,7 @@ impl Interpreter {
             && self
                 .index
                 .as_ref()
-                .is_some_and(|i| i.program_of(at) != i.program_of(0))
+                .is_some_and(|i| i.starts_other_program(at))
         {
             self.st.diagnostics.push(Diagnostic::note(
                 block.span,
@@ -722,6 +722,10 @@ impl Interpreter {
         target: Option<&Word>,
     ) -> Result<Flow, Diagnostic> {
         let Some(frame) = self.calls.last_mut() else {
+            if self.st.dialect == Dialect::LinuxCnc {
+                // LinuxCNC's standalone interpreter ends the program at a main-program M99.
+                return Ok(Flow::Stop);
+            }
             return match target {
                 Some(p) => self.goto(at, p.value, p.span).map(Flow::Jump),
                 None => Ok(Flow::Jump(0)),

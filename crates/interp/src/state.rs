@@ -74,6 +74,10 @@ pub(crate) struct State {
     /// The active work coordinate system by canonical name (`G54`, `G54.1P7`, `G59.3`).
     pub wcs: String,
     pub wcs_offset: DVec3,
+    /// LinuxCNC's XY rotation of the active coordinate system (`G10 L2 … R`), degrees.
+    pub wcs_rotation: f64,
+    /// The rotation of each coordinate system by name (LinuxCNC).
+    pub wcs_rotations: std::collections::HashMap<String, f64>,
     /// G52 local coordinate system.
     pub local: DVec3,
     /// G92 shift.
@@ -130,6 +134,8 @@ impl State {
             metric: !inch_default,
             wcs: "G54".into(),
             wcs_offset,
+            wcs_rotation: 0.0,
+            wcs_rotations: std::collections::HashMap::new(),
             local: DVec3::ZERO,
             shift: DVec3::ZERO,
             rotation: None,
@@ -190,6 +196,14 @@ impl State {
 
     /// Program frame → machine frame.
     pub fn to_machine(&self, p: DVec3) -> DVec3 {
+        if self.wcs_rotation != 0.0 {
+            // LinuxCNC rotates the coordinate system about its origin, after G52/G92.
+            let q = rotate_xy(
+                self.transform(p) + self.local + self.shift,
+                self.wcs_rotation,
+            );
+            return q + self.wcs_offset;
+        }
         self.transform(p) + self.base()
     }
 
@@ -215,7 +229,11 @@ impl State {
 
     /// Machine frame → program frame (the inverse of [`State::to_machine`]).
     pub fn to_program(&self, m: DVec3) -> DVec3 {
-        let mut q = m - self.base();
+        let mut q = if self.wcs_rotation != 0.0 {
+            rotate_xy(m - self.wcs_offset, -self.wcs_rotation) - self.local - self.shift
+        } else {
+            m - self.base()
+        };
         if let Some(r) = self.rotation {
             let (u, v) = plane_axes(r.plane);
             let (sin, cos) = (-r.degrees).to_radians().sin_cos();
@@ -446,6 +464,12 @@ impl State {
             _ => Ok(false),
         }
     }
+}
+
+/// `p` turned by `degrees` counter-clockwise about the Z axis.
+pub(crate) fn rotate_xy(p: DVec3, degrees: f64) -> DVec3 {
+    let (sin, cos) = degrees.to_radians().sin_cos();
+    DVec3::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos, p.z)
 }
 
 /// 1 for G54 … 6 for G59, 7+ for the extended systems (G59.1… / G54.1 Pn).
