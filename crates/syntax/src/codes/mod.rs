@@ -347,15 +347,48 @@ fn index() -> &'static [Vec<(Code, u16)>; 6] {
 }
 
 fn dialect_slot(dialect: Dialect) -> usize {
-    Dialect::ALL
-        .iter()
-        .position(|d| *d == dialect)
-        .unwrap_or_default()
+    match dialect {
+        Dialect::Fanuc => 0,
+        Dialect::Syntec => 1,
+        Dialect::Lnc => 2,
+        Dialect::Kt => 3,
+        Dialect::Gsk => 4,
+        Dialect::LinuxCnc => 5,
+    }
+}
+
+/// Codes below this number (in tenths) are found by direct indexing.
+const DENSE: usize = 2000;
+
+/// Per dialect and letter (G, M), the entry of each code below [`DENSE`] (`u16::MAX`: none):
+/// the lookup every G and M word of every block makes.
+fn dense() -> &'static [[Vec<u16>; 2]; 6] {
+    static DENSE_INDEX: OnceLock<[[Vec<u16>; 2]; 6]> = OnceLock::new();
+    DENSE_INDEX.get_or_init(|| {
+        let mut out: [[Vec<u16>; 2]; 6] = Default::default();
+        for (slots, sorted) in out.iter_mut().zip(index()) {
+            slots[0] = vec![u16::MAX; DENSE];
+            slots[1] = vec![u16::MAX; DENSE];
+            for (code, i) in sorted {
+                let letter = usize::from(code.letter == b'M');
+                if let Some(cell) = slots[letter].get_mut(code.tenths as usize) {
+                    *cell = *i;
+                }
+            }
+        }
+        out
+    })
 }
 
 /// The meaning of `code` in `dialect`, if the dialect has it.
 pub fn lookup(dialect: Dialect, code: Code) -> Option<&'static CodeDef> {
-    let slot = &index()[dialect_slot(dialect)];
+    let d = dialect_slot(dialect);
+    if (code.letter == b'G' || code.letter == b'M') && (code.tenths as usize) < DENSE {
+        let letter = usize::from(code.letter == b'M');
+        let i = *dense()[d][letter].get(code.tenths as usize)?;
+        return CODES.get(usize::from(i));
+    }
+    let slot = &index()[d];
     let at = slot.binary_search_by_key(&code, |(c, _)| *c).ok()?;
     CODES.get(usize::from(slot[at].1))
 }
