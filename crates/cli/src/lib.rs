@@ -270,7 +270,7 @@ fn stats(
     let setup = read_setup(opts)?;
     let loaded = load(file, opts)?;
     let started = Instant::now();
-    let mut path = Toolpath::new(glam::DVec3::ZERO, setup.machine.rapid_mm_per_min);
+    let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
     let diags = loaded.interpret(&setup, &mut path);
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
     let errors = diags

@@ -87,7 +87,7 @@ pub(crate) fn render(
 ) -> anyhow::Result<i32> {
     let setup = super::read_setup(&args.opts)?;
     let loaded = super::load(&args.file, &args.opts)?;
-    let mut path = Toolpath::new(DVec3::ZERO, setup.machine.rapid_mm_per_min);
+    let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
     let diags = loaded.interpret(&setup, &mut path);
     let status = loaded.print(&diags, err)?;
 

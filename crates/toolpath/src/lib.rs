@@ -1,10 +1,37 @@
-//! A compact, struct-of-arrays record of a program's motions for drawing, picking and statistics.
+//! A compact, struct-of-arrays record of a program's motions for drawing, picking, statistics
+//! and playback.
 //!
 //! Segment `i` runs from `end(i - 1)` (or the start point for `i == 0`) to `end(i)`. Arcs are kept
 //! as tessellated chords that share the arc's source line, so the renderer only sees lines.
+//!
+//! # Time model
+//!
+//! Every segment gets the time, in seconds from the program start, at which it ends
+//! ([`Timeline`]). Each move follows a trapezoidal velocity profile: it accelerates at the
+//! machine's acceleration from its entry speed towards its cruise speed (the programmed feed,
+//! or the rapid rate limited per axis) and decelerates to its exit speed. The speeds at the
+//! joins between moves are planned over the whole path (a forward pass from the start and a
+//! backward pass from the end, the speed at each join being the lower of the two), so a run
+//! of short moves speeds up and slows down across blocks the way a control with look-ahead
+//! does. Joins are kept simple:
+//!
+//! - the tool is at rest at the program start, at the end of the last move, and around every
+//!   dwell, tool change, spindle or coolant command, program stop and program end;
+//! - a rapid starts and ends at rest (the in-position check at the end of a G00 block);
+//! - between two cutting moves the tool keeps the lower of their cruise speeds when the
+//!   direction changes by at most [`CORNER_DEGREES`] (arcs use their tangent at the join) and
+//!   stops at any sharper corner;
+//! - the chords of one arc join smoothly, and an arc's speed is capped at `sqrt(a·r)` so that
+//!   its centripetal acceleration stays within the machine's acceleration `a`.
+//!
+//! The backward pass sees at least [`LOOKAHEAD_SEGMENTS`] segments ahead of a join (up to the
+//! next stop), like a control's look-ahead buffer, which keeps recording linear in the number
+//! of segments.
+
+use std::collections::VecDeque;
 
 use glam::DVec3;
-use swarf_interp::{Canon, Sink, Source};
+use swarf_interp::{Axis, Canon, Machine, Sink, Source};
 
 /// What a segment is, for colouring and statistics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -45,6 +72,209 @@ impl Bounds {
     }
 }
 
+/// Chord tolerance for arc tessellation, in millimetres.
+pub const CHORD_TOLERANCE_MM: f64 = 0.01;
+
+/// Joins between cutting moves whose direction changes by at most this many degrees are run
+/// through without stopping; the tool stops at sharper corners.
+pub const CORNER_DEGREES: f64 = 10.0;
+
+/// How many segments back the time planner revises the speeds at joins when a move is added.
+pub const LOOKAHEAD_SEGMENTS: usize = 4096;
+
+/// The machine's motion limits used by the time model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    /// Speed along the path of a rapid move, mm/s.
+    pub rapid_mm_per_s: f64,
+    /// Rapid rate of each axis X, Y, Z in mm/s (infinite where an axis sets no limit of its own).
+    pub rapid_axes_mm_per_s: DVec3,
+    /// Path acceleration and deceleration in mm/s² (infinite: none modelled).
+    pub acceleration_mm_per_s2: f64,
+}
+
+impl Default for Kinematics {
+    fn default() -> Self {
+        Kinematics::from_machine(&Machine::default())
+    }
+}
+
+impl Kinematics {
+    /// The limits given by a setup's `[machine]` section. A rate that is not a positive
+    /// finite number falls back to the path rapid rate (10 m/min when that is invalid too);
+    /// an acceleration that is not positive and finite means none is modelled.
+    pub fn from_machine(machine: &Machine) -> Self {
+        let rapid = positive(machine.rapid_mm_per_min).unwrap_or(10_000.0);
+        let axes = machine
+            .rapid_xyz_mm_per_min
+            .map_or([f64::INFINITY; 3], |rates| {
+                rates.map(|r| positive(r).unwrap_or(f64::INFINITY))
+            });
+        Kinematics {
+            rapid_mm_per_s: rapid / 60.0,
+            rapid_axes_mm_per_s: DVec3::from_array(axes) / 60.0,
+            acceleration_mm_per_s2: positive(machine.acceleration_mm_per_s2)
+                .unwrap_or(f64::INFINITY),
+        }
+    }
+
+    /// Speed along the path of a rapid in unit `direction`: the path rapid rate, lowered so
+    /// that no axis exceeds its own rate.
+    pub fn rapid_speed(&self, direction: DVec3) -> f64 {
+        (0..3).fold(self.rapid_mm_per_s, |v, k| {
+            let share = direction[k].abs();
+            if share > 1e-12 {
+                v.min(self.rapid_axes_mm_per_s[k] / share)
+            } else {
+                v
+            }
+        })
+    }
+
+    /// Seconds to run `length` mm with a trapezoidal velocity profile: from `entry` speed up
+    /// towards `cruise` and down to `exit` (mm/s) at this acceleration. A move too short to
+    /// reach `cruise` peaks where acceleration and deceleration meet. Zero for an empty move
+    /// and for a move without a feed (`cruise <= 0`).
+    pub fn move_secs(&self, length: f64, cruise: f64, entry: f64, exit: f64) -> f64 {
+        if length <= 0.0 || cruise.is_nan() || cruise <= 0.0 {
+            return 0.0;
+        }
+        let a = self.acceleration_mm_per_s2;
+        if a.is_infinite() {
+            return length / cruise;
+        }
+        let u = entry.clamp(0.0, cruise);
+        let w = exit.clamp(0.0, cruise);
+        let peak = cruise.min(((2.0 * a * length + u * u + w * w) / 2.0).sqrt());
+        let speed_up = ((peak * peak - u * u) / (2.0 * a)).max(0.0);
+        let slow_down = ((peak * peak - w * w) / (2.0 * a)).max(0.0);
+        let steady = (length - speed_up - slow_down).max(0.0);
+        (peak - u).max(0.0) / a + (peak - w).max(0.0) / a + steady / peak
+    }
+
+    /// The highest speed reachable after `length` mm starting at `speed`.
+    fn reach(&self, speed: f64, length: f64) -> f64 {
+        if length <= 0.0 {
+            speed
+        } else {
+            (speed * speed + 2.0 * self.acceleration_mm_per_s2 * length).sqrt()
+        }
+    }
+}
+
+fn positive(v: f64) -> Option<f64> {
+    (v.is_finite() && v > 0.0).then_some(v)
+}
+
+/// A dwell (G04) before a segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dwell {
+    /// The segment it comes before (the segment count when it follows the last segment).
+    pub segment: usize,
+    /// Seconds, all the dwells between the same two segments together.
+    pub secs: f64,
+}
+
+/// When each segment runs, in seconds from the program start.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Timeline {
+    end_times: Vec<f64>,
+    dwells: Vec<Dwell>,
+}
+
+impl Timeline {
+    /// The time each segment ends (non-decreasing).
+    pub fn end_times(&self) -> &[f64] {
+        &self.end_times
+    }
+
+    /// The dwells, in segment order.
+    pub fn dwells(&self) -> &[Dwell] {
+        &self.dwells
+    }
+
+    /// Number of segments.
+    pub fn len(&self) -> usize {
+        self.end_times.len()
+    }
+
+    /// Whether there is no segment.
+    pub fn is_empty(&self) -> bool {
+        self.end_times.is_empty()
+    }
+
+    /// Seconds of dwell just before segment `i`.
+    pub fn dwell_before(&self, i: usize) -> f64 {
+        let at = self.dwells.partition_point(|d| d.segment < i);
+        self.dwells
+            .get(at)
+            .filter(|d| d.segment == i)
+            .map_or(0.0, |d| d.secs)
+    }
+
+    /// When segment `i` starts and ends moving (`None` past the end).
+    pub fn span(&self, i: usize) -> Option<(f64, f64)> {
+        let end = *self.end_times.get(i)?;
+        let before = match i {
+            0 => 0.0,
+            _ => self.end_times.get(i - 1).copied().unwrap_or(0.0),
+        };
+        Some(((before + self.dwell_before(i)).min(end), end))
+    }
+
+    /// The whole run time: the end of the last segment plus any dwell after it.
+    pub fn total_secs(&self) -> f64 {
+        self.end_times.last().copied().unwrap_or(0.0) + self.dwell_before(self.len())
+    }
+
+    /// How many segments have finished at time `t`.
+    pub fn finished_at(&self, t: f64) -> usize {
+        self.end_times.partition_point(|&e| e <= t)
+    }
+
+    /// The segment running at time `t`: the first one that has not ended before `t` (so at
+    /// the very end of a segment, that segment), or the last one after the end. `None` when
+    /// there is no segment.
+    pub fn segment_at(&self, t: f64) -> Option<usize> {
+        let i = self.end_times.partition_point(|&e| e < t);
+        (!self.end_times.is_empty()).then(|| i.min(self.end_times.len() - 1))
+    }
+
+    /// How far along segment `i` the tool is at time `t`, from 0 (its start, also while
+    /// dwelling before it) to 1 (its end). Linear in time, a good enough place for a marker.
+    pub fn fraction_at(&self, i: usize, t: f64) -> f64 {
+        match self.span(i) {
+            Some((start, end)) if end > start => ((t - start) / (end - start)).clamp(0.0, 1.0),
+            Some((_, end)) => f64::from(u8::from(t >= end)),
+            None => 1.0,
+        }
+    }
+}
+
+/// The planner's view of one of the segments not settled yet (see the crate documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Plan {
+    length: f64,
+    /// Cruise speed, mm/s.
+    cruise: f64,
+    /// Highest speed allowed at the join where the segment starts.
+    limit: f64,
+    /// Highest entry speed reachable from the program start.
+    forward: f64,
+    /// Seconds of dwell before the segment.
+    dwell: f64,
+}
+
+/// How a new segment joins the previous one.
+#[derive(Debug, Clone, Copy)]
+enum Join {
+    /// The next chord of the same arc.
+    Continue,
+    /// A new move: stop or not by kind and angle, `entry` being its direction at the start
+    /// (`None` for an empty move).
+    Corner { entry: Option<DVec3> },
+}
+
 /// The recorded motions of a program.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Toolpath {
@@ -53,13 +283,21 @@ pub struct Toolpath {
     kinds: Vec<SegmentKind>,
     lines: Vec<u32>,
     feeds: Vec<f32>,
+    segment_tools: Vec<u32>,
+    /// The settled end times (a prefix of the segments) and every dwell.
+    settled: Timeline,
     bounds: Option<Bounds>,
     rapid_mm: f64,
     feed_mm: f64,
-    feed_secs: f64,
-    dwell_secs: f64,
     tools: Vec<u32>,
-    rapid_mm_per_min: f64,
+    tool: u32,
+    kinematics: Kinematics,
+    /// The segments after the settled ones, whose join speeds may still change.
+    window: VecDeque<Plan>,
+    /// Direction of motion at the end of the last non-empty segment.
+    last_direction: Option<DVec3>,
+    /// A non-motion event since the last segment: the next one starts at rest.
+    stop_pending: bool,
 }
 
 impl Default for Toolpath {
@@ -69,21 +307,40 @@ impl Default for Toolpath {
 }
 
 impl Toolpath {
-    /// An empty toolpath starting at `start`; `rapid_mm_per_min` is used for the time estimate.
+    /// An empty toolpath starting at `start`, timed with rapids at `rapid_mm_per_min` and the
+    /// default machine's other limits (see [`Machine`]).
     pub fn new(start: DVec3, rapid_mm_per_min: f64) -> Self {
+        let machine = Machine {
+            rapid_mm_per_min,
+            ..Machine::default()
+        };
+        Toolpath::with_kinematics(start, Kinematics::from_machine(&machine))
+    }
+
+    /// An empty toolpath starting at `start`, timed with the limits of a setup's `[machine]`.
+    pub fn for_machine(start: DVec3, machine: &Machine) -> Self {
+        Toolpath::with_kinematics(start, Kinematics::from_machine(machine))
+    }
+
+    /// An empty toolpath starting at `start`, timed with `kinematics`.
+    pub fn with_kinematics(start: DVec3, kinematics: Kinematics) -> Self {
         Toolpath {
             start,
             ends: Vec::new(),
             kinds: Vec::new(),
             lines: Vec::new(),
             feeds: Vec::new(),
+            segment_tools: Vec::new(),
+            settled: Timeline::default(),
             bounds: None,
             rapid_mm: 0.0,
             feed_mm: 0.0,
-            feed_secs: 0.0,
-            dwell_secs: 0.0,
             tools: Vec::new(),
-            rapid_mm_per_min: rapid_mm_per_min.max(1e-9),
+            tool: 0,
+            kinematics,
+            window: VecDeque::new(),
+            last_direction: None,
+            stop_pending: false,
         }
     }
 
@@ -131,6 +388,28 @@ impl Toolpath {
         &self.feeds
     }
 
+    /// The tool in the spindle during each segment (the last tool change's number; 0 before
+    /// the first).
+    pub fn segment_tools(&self) -> &[u32] {
+        &self.segment_tools
+    }
+
+    /// When each segment runs (see the crate documentation for the model). Built on each
+    /// call: the last segments' times are only settled when asked, since every new move may
+    /// still change them.
+    pub fn timeline(&self) -> Timeline {
+        let mut timeline = self.settled.clone();
+        timeline
+            .end_times
+            .extend(self.window_end_times(self.window.len()));
+        timeline
+    }
+
+    /// The limits the times are computed with.
+    pub fn kinematics(&self) -> Kinematics {
+        self.kinematics
+    }
+
     /// The box containing every point of the path (`None` when nothing moved).
     pub fn bounds(&self) -> Option<Bounds> {
         self.bounds
@@ -146,9 +425,15 @@ impl Toolpath {
         self.feed_mm
     }
 
-    /// Estimated run time in seconds (rapids at the rapid rate, cuts at their feed, dwells).
+    /// Estimated run time in seconds: every move with acceleration, plus the dwells.
     pub fn estimated_secs(&self) -> f64 {
-        self.rapid_mm / self.rapid_mm_per_min * 60.0 + self.feed_secs + self.dwell_secs
+        let last = self
+            .window_end_times(self.window.len())
+            .last()
+            .or(self.settled.end_times.last())
+            .copied()
+            .unwrap_or(0.0);
+        last + self.settled.dwell_before(self.ends.len())
     }
 
     /// Tools used, in order of first use.
@@ -161,17 +446,24 @@ impl Toolpath {
         self.lines.iter().position(|&l| l == line)
     }
 
-    fn push(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
+    /// Records a segment to `to`, `cruise` being its speed in mm/s (0 when it has no feed)
+    /// and `exit` its direction at the end (`None` for an empty move).
+    #[allow(clippy::too_many_arguments)]
+    fn push(
+        &mut self,
+        kind: SegmentKind,
+        to: DVec3,
+        line: u32,
+        feed_mm_per_min: f64,
+        cruise: f64,
+        join: Join,
+        exit: Option<DVec3>,
+    ) {
         let from = self.ends.last().copied().unwrap_or(self.start);
         let length = from.distance(to);
         match kind {
             SegmentKind::Rapid => self.rapid_mm += length,
-            SegmentKind::Feed | SegmentKind::Arc => {
-                self.feed_mm += length;
-                if feed_mm_per_min > 0.0 {
-                    self.feed_secs += length / feed_mm_per_min * 60.0;
-                }
-            }
+            SegmentKind::Feed | SegmentKind::Arc => self.feed_mm += length,
         }
         let bounds = self.bounds.get_or_insert(Bounds {
             min: from,
@@ -179,24 +471,183 @@ impl Toolpath {
         });
         bounds.include(from);
         bounds.include(to);
+        let previous_kind = self.kinds.last().copied();
         self.ends.push(to);
         self.kinds.push(kind);
         self.lines.push(line);
         self.feeds.push(feed_mm_per_min as f32);
+        self.segment_tools.push(self.tool);
+
+        let smooth = match join {
+            _ if self.stop_pending => false,
+            Join::Continue => true,
+            Join::Corner { .. }
+                if kind == SegmentKind::Rapid || previous_kind == Some(SegmentKind::Rapid) =>
+            {
+                false
+            }
+            Join::Corner { entry: None } => true,
+            Join::Corner { entry: Some(entry) } => self
+                .last_direction
+                .is_none_or(|last| last.dot(entry) >= CORNER_DEGREES.to_radians().cos() - 1e-12),
+        };
+        self.stop_pending = false;
+        if let Some(exit) = exit {
+            self.last_direction = Some(exit);
+        }
+        self.plan(length, cruise, smooth);
+    }
+
+    /// Adds the newest segment to the planner. Segments are settled (their end times
+    /// written) at every stop, and in batches of [`LOOKAHEAD_SEGMENTS`] when a long run
+    /// without stops fills twice that, so each segment is planned a bounded number of times.
+    fn plan(&mut self, length: f64, cruise: f64, smooth: bool) {
+        let k = self.kinematics;
+        let cruise = if cruise.is_nan() {
+            0.0
+        } else {
+            cruise.max(0.0)
+        };
+        let limit = match self.window.back() {
+            Some(previous) if smooth => previous.cruise.min(cruise),
+            _ => 0.0,
+        };
+        if limit <= 0.0 {
+            // Nothing before a stop changes any more.
+            self.settle(self.window.len());
+        }
+        let forward = self
+            .window
+            .back()
+            .map_or(0.0, |p| limit.min(k.reach(p.forward, p.length)));
+        let dwell = self.settled.dwell_before(self.ends.len() - 1);
+        self.window.push_back(Plan {
+            length,
+            cruise,
+            limit,
+            forward,
+            dwell,
+        });
+        if self.window.len() >= 2 * LOOKAHEAD_SEGMENTS {
+            self.settle(LOOKAHEAD_SEGMENTS);
+        }
+    }
+
+    /// End times of the first `count` segments not settled yet, the tool stopping at the end
+    /// of the last: a backward pass from there gives the highest speed at each join from which
+    /// the tool can still stop in time, and each join runs at the lower of that and the
+    /// forward speed.
+    fn window_end_times(&self, count: usize) -> Vec<f64> {
+        let k = self.kinematics;
+        let mut entries = vec![0.0; self.window.len() + 1];
+        let mut backward = 0.0;
+        for (entry, p) in entries.iter_mut().zip(&self.window).rev() {
+            backward = p.limit.min(k.reach(backward, p.length));
+            *entry = p.forward.min(backward);
+        }
+        let mut t = self.settled.end_times.last().copied().unwrap_or(0.0);
+        self.window
+            .iter()
+            .zip(entries.windows(2))
+            .take(count)
+            .map(|(p, speeds)| {
+                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
+                t
+            })
+            .collect()
+    }
+
+    /// Writes the end times of the first `count` unsettled segments and forgets their plans.
+    fn settle(&mut self, count: usize) {
+        let count = count.min(self.window.len());
+        if count == 0 {
+            return;
+        }
+        let times = self.window_end_times(count);
+        self.settled.end_times.extend_from_slice(&times);
+        self.window.drain(..count);
+    }
+
+    fn push_line(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
+        let from = self.ends.last().copied().unwrap_or(self.start);
+        let direction = (to - from).try_normalize();
+        let cruise = match kind {
+            SegmentKind::Rapid => direction.map_or(self.kinematics.rapid_mm_per_s, |d| {
+                self.kinematics.rapid_speed(d)
+            }),
+            SegmentKind::Feed | SegmentKind::Arc => feed_mm_per_min / 60.0,
+        };
+        self.push(
+            kind,
+            to,
+            line,
+            feed_mm_per_min,
+            cruise,
+            Join::Corner { entry: direction },
+            direction,
+        );
+    }
+
+    fn push_arc(&mut self, arc: &ArcEvent, line: u32) {
+        let from = self.ends.last().copied().unwrap_or(self.start);
+        let geometry = ArcGeometry::new(from, arc.to, arc.center, arc.axis, arc.ccw, arc.turns);
+        let radius = geometry
+            .radius
+            .min(geometry.end_radius)
+            .max(CHORD_TOLERANCE_MM);
+        let centripetal = (self.kinematics.acceleration_mm_per_s2 * radius).sqrt();
+        let cruise = (arc.feed_mm_per_min / 60.0).min(centripetal);
+        let points = geometry.points(from, arc.to);
+        let count = points.len();
+        for (k, p) in points.into_iter().enumerate() {
+            let join = if k == 0 {
+                Join::Corner {
+                    entry: geometry.tangent(from, arc.to, 0.0),
+                }
+            } else {
+                Join::Continue
+            };
+            let exit = if k + 1 == count {
+                geometry.tangent(from, arc.to, 1.0)
+            } else {
+                None
+            };
+            self.push(
+                SegmentKind::Arc,
+                p,
+                line,
+                arc.feed_mm_per_min,
+                cruise,
+                join,
+                exit,
+            );
+        }
+    }
+
+    /// A dwell, tool change or other non-motion command: the tool comes to rest.
+    fn stop(&mut self) {
+        self.stop_pending = true;
     }
 }
 
-/// Chord tolerance for arc tessellation, in millimetres.
-pub const CHORD_TOLERANCE_MM: f64 = 0.01;
+/// The fields of [`Canon::Arc`].
+struct ArcEvent {
+    to: DVec3,
+    center: DVec3,
+    axis: Axis,
+    ccw: bool,
+    turns: u32,
+    feed_mm_per_min: f64,
+}
 
 impl Sink for Toolpath {
     fn emit(&mut self, source: Source, event: &Canon) {
         match event {
-            Canon::Rapid { to } => self.push(SegmentKind::Rapid, *to, source.line, 0.0),
+            Canon::Rapid { to } => self.push_line(SegmentKind::Rapid, *to, source.line, 0.0),
             Canon::Feed {
                 to,
                 feed_mm_per_min,
-            } => self.push(SegmentKind::Feed, *to, source.line, *feed_mm_per_min),
+            } => self.push_line(SegmentKind::Feed, *to, source.line, *feed_mm_per_min),
             Canon::Arc {
                 to,
                 center,
@@ -205,19 +656,122 @@ impl Sink for Toolpath {
                 turns,
                 feed_mm_per_min,
             } => {
-                let from = self.ends.last().copied().unwrap_or(self.start);
-                for p in tessellate_arc(from, *to, *center, *axis, *ccw, *turns) {
-                    self.push(SegmentKind::Arc, p, source.line, *feed_mm_per_min);
+                let arc = ArcEvent {
+                    to: *to,
+                    center: *center,
+                    axis: *axis,
+                    ccw: *ccw,
+                    turns: *turns,
+                    feed_mm_per_min: *feed_mm_per_min,
+                };
+                self.push_arc(&arc, source.line);
+            }
+            Canon::Dwell { secs } => {
+                self.stop();
+                let secs = if secs.is_finite() { secs.max(0.0) } else { 0.0 };
+                let segment = self.ends.len();
+                match self.settled.dwells.last_mut() {
+                    Some(d) if d.segment == segment => d.secs += secs,
+                    _ => self.settled.dwells.push(Dwell { segment, secs }),
                 }
             }
-            Canon::Dwell { secs } => self.dwell_secs += secs,
             Canon::ToolChange { tool } => {
+                self.stop();
+                self.tool = *tool;
                 if !self.tools.contains(tool) {
                     self.tools.push(*tool);
                 }
             }
-            Canon::Spindle { .. } | Canon::Coolant { .. } | Canon::Pause { .. } | Canon::End => {}
+            Canon::Spindle { .. } | Canon::Coolant { .. } | Canon::Pause { .. } | Canon::End => {
+                self.stop();
+            }
         }
+    }
+}
+
+/// An arc in plane coordinates (u, v, w), w along the axis, right-handed; the points are
+/// parametrised by `t` in 0..=1 with the angle and the radius linear in `t`.
+struct ArcGeometry {
+    iu: usize,
+    iv: usize,
+    iw: usize,
+    center: DVec3,
+    radius: f64,
+    end_radius: f64,
+    a0: f64,
+    sweep: f64,
+}
+
+impl ArcGeometry {
+    fn new(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> Self {
+        let (iu, iv, iw) = match axis {
+            Axis::Z => (0, 1, 2),
+            Axis::Y => (2, 0, 1),
+            Axis::X => (1, 2, 0),
+        };
+        let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
+        let (su, sv) = rel(from);
+        let (eu, ev) = rel(to);
+        let a0 = sv.atan2(su);
+        let mut sweep = ev.atan2(eu) - a0;
+        let tau = std::f64::consts::TAU;
+        if ccw {
+            if sweep <= 1e-12 {
+                sweep += tau;
+            }
+        } else if sweep >= -1e-12 {
+            sweep -= tau;
+        }
+        sweep += f64::from(turns) * tau * sweep.signum();
+        ArcGeometry {
+            iu,
+            iv,
+            iw,
+            center,
+            radius: su.hypot(sv),
+            end_radius: eu.hypot(ev),
+            a0,
+            sweep,
+        }
+    }
+
+    /// Points along the arc (excluding `from`, ending exactly at `to`) within
+    /// [`CHORD_TOLERANCE_MM`].
+    fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
+        let tau = std::f64::consts::TAU;
+        let step = if self.radius > CHORD_TOLERANCE_MM {
+            2.0 * (1.0 - CHORD_TOLERANCE_MM / self.radius).acos()
+        } else {
+            tau / 4.0
+        };
+        let n = ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000);
+        (1..=n)
+            .map(|k| {
+                if k == n {
+                    return to;
+                }
+                let t = k as f64 / n as f64;
+                let a = self.a0 + self.sweep * t;
+                let r = self.radius + (self.end_radius - self.radius) * t;
+                let mut p = DVec3::ZERO;
+                p[self.iu] = self.center[self.iu] + r * a.cos();
+                p[self.iv] = self.center[self.iv] + r * a.sin();
+                p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
+                p
+            })
+            .collect()
+    }
+
+    /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
+    fn tangent(&self, from: DVec3, to: DVec3, t: f64) -> Option<DVec3> {
+        let a = self.a0 + self.sweep * t;
+        let r = self.radius + (self.end_radius - self.radius) * t;
+        let dr = self.end_radius - self.radius;
+        let mut d = DVec3::ZERO;
+        d[self.iu] = dr * a.cos() - r * a.sin() * self.sweep;
+        d[self.iv] = dr * a.sin() + r * a.cos() * self.sweep;
+        d[self.iw] = to[self.iw] - from[self.iw];
+        d.try_normalize()
     }
 }
 
@@ -226,52 +780,29 @@ pub fn tessellate_arc(
     from: DVec3,
     to: DVec3,
     center: DVec3,
-    axis: swarf_interp::Axis,
+    axis: Axis,
     ccw: bool,
     turns: u32,
 ) -> Vec<DVec3> {
-    use swarf_interp::Axis;
-    // Map into plane coordinates (u, v, w) where w is along the axis, right-handed.
-    let (iu, iv, iw) = match axis {
-        Axis::Z => (0, 1, 2),
-        Axis::Y => (2, 0, 1),
-        Axis::X => (1, 2, 0),
-    };
-    let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
-    let (su, sv) = rel(from);
-    let (eu, ev) = rel(to);
-    let radius = su.hypot(sv);
-    let a0 = sv.atan2(su);
-    let mut sweep = ev.atan2(eu) - a0;
-    let tau = std::f64::consts::TAU;
-    if ccw {
-        if sweep <= 1e-12 {
-            sweep += tau;
-        }
-    } else if sweep >= -1e-12 {
-        sweep -= tau;
+    ArcGeometry::new(from, to, center, axis, ccw, turns).points(from, to)
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn arc_tangents_follow_the_direction_of_travel() {
+        let from = DVec3::new(10.0, 0.0, 0.0);
+        let to = DVec3::new(0.0, 10.0, 0.0);
+        let ccw = ArcGeometry::new(from, to, DVec3::ZERO, Axis::Z, true, 0);
+        let start = ccw.tangent(from, to, 0.0).unwrap();
+        let end = ccw.tangent(from, to, 1.0).unwrap();
+        assert!(start.abs_diff_eq(DVec3::Y, 1e-12), "{start}");
+        assert!(end.abs_diff_eq(-DVec3::X, 1e-12), "{end}");
+        let cw = ArcGeometry::new(from, to, DVec3::ZERO, Axis::Z, false, 0);
+        let start = cw.tangent(from, to, 0.0).unwrap();
+        assert!(start.abs_diff_eq(-DVec3::Y, 1e-12), "{start}");
     }
-    sweep += f64::from(turns) * tau * sweep.signum();
-    let step = if radius > CHORD_TOLERANCE_MM {
-        2.0 * (1.0 - CHORD_TOLERANCE_MM / radius).acos()
-    } else {
-        tau / 4.0
-    };
-    let n = ((sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000);
-    let end_radius = eu.hypot(ev);
-    (1..=n)
-        .map(|k| {
-            if k == n {
-                return to;
-            }
-            let t = k as f64 / n as f64;
-            let a = a0 + sweep * t;
-            let r = radius + (end_radius - radius) * t;
-            let mut p = DVec3::ZERO;
-            p[iu] = center[iu] + r * a.cos();
-            p[iv] = center[iv] + r * a.sin();
-            p[iw] = from[iw] + (to[iw] - from[iw]) * t;
-            p
-        })
-        .collect()
 }

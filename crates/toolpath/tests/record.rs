@@ -5,14 +5,14 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, Setup, Sink, Source, run};
+use swarf_interp::{Axis, Canon, Machine, Setup, Sink, Source, run};
 use swarf_syntax::{Dialect, parse};
-use swarf_toolpath::{SegmentKind, Toolpath, tessellate_arc};
+use swarf_toolpath::{Kinematics, SegmentKind, Toolpath, tessellate_arc};
 
 #[test]
 fn records_segments_lengths_bounds_and_time() {
     let program = parse(
-        "G0 X10 Y0 Z5\nG1 Z0 F600\nG1 X40 F1200\nG4 P1000\nM6 T3\nM30\n",
+        "G0 X10. Y0 Z5.\nG1 Z0 F600.\nG1 X40. F1200.\nG4 P1000\nM6 T3\nM30\n",
         Dialect::Fanuc,
     );
     let mut path = Toolpath::new(DVec3::ZERO, 6000.0);
@@ -31,9 +31,16 @@ fn records_segments_lengths_bounds_and_time() {
     let rapid = (125.0f64).sqrt();
     assert!((path.rapid_length_mm() - rapid).abs() < 1e-9);
     assert!((path.feed_length_mm() - 35.0).abs() < 1e-9);
-    // 5 mm at 600 mm/min = 0.5 s, 30 mm at 1200 = 1.5 s, dwell 1 s, rapid at 6000 mm/min.
-    let expected = 0.5 + 1.5 + 1.0 + rapid / 100.0;
-    assert!((path.estimated_secs() - expected).abs() < 1e-9);
+    // With the default 1000 mm/s² every move now also pays for speeding up and slowing down
+    // (each starts and ends at rest: a rapid, then a 90° corner): a move long enough to reach
+    // its speed v takes d/v + v/a. Rapid at 6000 mm/min = 100 mm/s (+0.1 s), 5 mm at
+    // 600 mm/min = 0.5 s (+0.01 s), 30 mm at 1200 = 1.5 s (+0.02 s), then the 1 s dwell.
+    let expected = rapid / 100.0 + 0.1 + 0.5 + 0.01 + 1.5 + 0.02 + 1.0;
+    assert!(
+        (path.estimated_secs() - expected).abs() < 1e-9,
+        "{} s",
+        path.estimated_secs()
+    );
     assert_eq!(path.tools(), [3]);
     assert_eq!(path.first_segment_of_line(3), Some(2));
 }
@@ -63,4 +70,274 @@ fn arcs_are_tessellated_within_tolerance_and_end_exactly() {
     );
     assert!(path.lines().iter().all(|&l| l == 7));
     assert!((path.feed_length_mm() - 20.0 * std::f64::consts::PI).abs() < 0.05);
+}
+
+/// 1000 mm/s², rapids at 10 m/min, no per-axis limits.
+fn kinematics() -> Kinematics {
+    Kinematics::from_machine(&Machine::default())
+}
+
+fn feed(path: &mut Toolpath, line: u32, to: DVec3, feed_mm_per_min: f64) {
+    path.emit(
+        Source { block: line, line },
+        &Canon::Feed {
+            to,
+            feed_mm_per_min,
+        },
+    );
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-9
+}
+
+#[test]
+fn a_short_move_never_reaches_its_feed() {
+    // 1 mm at 100 mm/s would need 10 mm to reach the feed (v²/a): accelerate for half the
+    // distance and brake for the other half, t = 2·sqrt(d/a).
+    let mut path = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    feed(&mut path, 1, DVec3::X, 6000.0);
+    let expected = 2.0 * (1.0f64 / 1000.0).sqrt();
+    assert!(
+        close(path.estimated_secs(), expected),
+        "{}",
+        path.estimated_secs()
+    );
+    assert_eq!(path.timeline().end_times(), [path.estimated_secs()]);
+}
+
+#[test]
+fn a_long_move_cruises_at_its_feed() {
+    // t = d/v + v/a: 100 mm at 100 mm/s, plus 0.1 s lost speeding up and slowing down.
+    let mut path = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    feed(&mut path, 1, DVec3::new(0.0, 100.0, 0.0), 6000.0);
+    assert!(
+        close(path.estimated_secs(), 1.1),
+        "{}",
+        path.estimated_secs()
+    );
+}
+
+#[test]
+fn collinear_and_gently_bent_joins_keep_speed_sharp_corners_stop() {
+    // Two collinear 50 mm moves run like one 100 mm move; the first ends after 0.1 s of
+    // acceleration (5 mm) and 45 mm at full speed.
+    let mut straight = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    feed(&mut straight, 1, DVec3::new(50.0, 0.0, 0.0), 6000.0);
+    feed(&mut straight, 2, DVec3::new(100.0, 0.0, 0.0), 6000.0);
+    let timeline = straight.timeline();
+    let times = timeline.end_times();
+    assert!(close(times[0], 0.55) && close(times[1], 1.1), "{times:?}");
+
+    // A 5° bend is below the corner threshold: the same times (the second leg is 50 mm too).
+    let mut bent = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    feed(&mut bent, 1, DVec3::new(50.0, 0.0, 0.0), 6000.0);
+    let a = 5.0f64.to_radians();
+    feed(
+        &mut bent,
+        2,
+        DVec3::new(50.0 + 50.0 * a.cos(), 50.0 * a.sin(), 0.0),
+        6000.0,
+    );
+    let timeline = bent.timeline();
+    let times = timeline.end_times();
+    assert!(close(times[0], 0.55) && close(times[1], 1.1), "{times:?}");
+
+    // A 90° corner stops: each leg is 50/100 + 100/1000 s.
+    let mut corner = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    feed(&mut corner, 1, DVec3::new(50.0, 0.0, 0.0), 6000.0);
+    feed(&mut corner, 2, DVec3::new(50.0, 50.0, 0.0), 6000.0);
+    let timeline = corner.timeline();
+    let times = timeline.end_times();
+    assert!(close(times[0], 0.6) && close(times[1], 1.2), "{times:?}");
+}
+
+#[test]
+fn a_slower_next_move_is_entered_at_its_feed() {
+    // 50 mm at 100 mm/s then 50 mm at 50 mm/s in line: the first accelerates 0→100 (5 mm,
+    // 0.1 s), cruises 41.25 mm (0.4125 s) and brakes 100→50 (3.75 mm, 0.05 s); the second
+    // cruises 48.75 mm at 50 (0.975 s) and brakes to rest (1.25 mm, 0.05 s).
+    let mut path = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    feed(&mut path, 1, DVec3::new(50.0, 0.0, 0.0), 6000.0);
+    feed(&mut path, 2, DVec3::new(100.0, 0.0, 0.0), 3000.0);
+    let timeline = path.timeline();
+    let times = timeline.end_times();
+    assert!(close(times[0], 0.5625), "{times:?}");
+    assert!(close(times[1], 0.5625 + 1.025), "{times:?}");
+}
+
+#[test]
+fn many_tiny_moves_plan_across_blocks() {
+    // 10 000 collinear moves of 0.01 mm: one 100 mm move for the planner, 1.1 s.
+    let mut path = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    for k in 1..=10_000 {
+        feed(
+            &mut path,
+            k,
+            DVec3::new(f64::from(k) * 0.01, 0.0, 0.0),
+            6000.0,
+        );
+    }
+    assert!(
+        (path.estimated_secs() - 1.1).abs() < 1e-6,
+        "{}",
+        path.estimated_secs()
+    );
+    let timeline = path.timeline();
+    let times = timeline.end_times();
+    assert_eq!(times.len(), path.len());
+    assert!(times.windows(2).all(|w| w[0] <= w[1]));
+    // Halfway along the tool is cruising: 5 mm of acceleration in 0.1 s, then 45 mm.
+    assert!((times[4999] - 0.55).abs() < 1e-6, "{}", times[4999]);
+}
+
+#[test]
+fn rapids_honour_per_axis_rates_and_stop_at_their_ends() {
+    let setup = Setup::from_toml(
+        "[machine]\nrapid_mm_per_min = 12000\nrapid_xyz_mm_per_min = [12000, 12000, 2400]\nacceleration_mm_per_s2 = 500\n",
+    )
+    .unwrap();
+    assert_eq!(setup.machine.acceleration_mm_per_s2, 500.0);
+    let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+    // Down 100 mm in Z at 40 mm/s: 100/40 + 40/500 s.
+    path.emit(
+        Source::default(),
+        &Canon::Rapid {
+            to: DVec3::new(0.0, 0.0, -100.0),
+        },
+    );
+    // Then (30, 0, 40) mm, Z carrying 0.8 of the motion: 40/0.8 = 50 mm/s along the path,
+    // below X's 200/0.6; 50 mm at 50 mm/s + 50/500 s.
+    path.emit(
+        Source::default(),
+        &Canon::Rapid {
+            to: DVec3::new(30.0, 0.0, -60.0),
+        },
+    );
+    // Then 200 mm in X alone at the path rate 200 mm/s: 1 + 0.4 s.
+    path.emit(
+        Source::default(),
+        &Canon::Rapid {
+            to: DVec3::new(230.0, 0.0, -60.0),
+        },
+    );
+    let timeline = path.timeline();
+    let times = timeline.end_times();
+    let first = 2.5 + 0.08;
+    let second = first + 1.0 + 0.1;
+    assert!(
+        close(times[0], first) && close(times[1], second),
+        "{times:?}"
+    );
+    assert!(close(times[2], second + 1.4), "{times:?}");
+}
+
+#[test]
+fn without_acceleration_moves_take_length_over_feed() {
+    let machine = Machine {
+        acceleration_mm_per_s2: 0.0,
+        ..Machine::default()
+    };
+    let mut path = Toolpath::for_machine(DVec3::ZERO, &machine);
+    feed(&mut path, 1, DVec3::new(10.0, 0.0, 0.0), 600.0);
+    path.emit(
+        Source::default(),
+        &Canon::Rapid {
+            to: DVec3::new(10.0, 0.0, 100.0),
+        },
+    );
+    assert!(
+        close(path.estimated_secs(), 1.0 + 0.6),
+        "{}",
+        path.estimated_secs()
+    );
+}
+
+#[test]
+fn arcs_join_tangent_lines_smoothly_and_respect_centripetal_acceleration() {
+    // 50 mm along X at 100 mm/s into a tangent quarter circle of radius 10 (centripetal
+    // limit sqrt(1000·10) = 100 mm/s): the line never slows down, so it takes 0.1 s to reach
+    // speed plus 45 mm at 100 mm/s; the arc runs at 100 mm/s and brakes at its end.
+    let mut path = Toolpath::with_kinematics(DVec3::ZERO, kinematics());
+    feed(&mut path, 1, DVec3::new(50.0, 0.0, 0.0), 6000.0);
+    path.emit(
+        Source { block: 2, line: 2 },
+        &Canon::Arc {
+            to: DVec3::new(60.0, 10.0, 0.0),
+            center: DVec3::new(50.0, 10.0, 0.0),
+            axis: Axis::Z,
+            ccw: true,
+            turns: 0,
+            feed_mm_per_min: 6000.0,
+        },
+    );
+    let timeline = path.timeline();
+    let times = timeline.end_times();
+    assert!(close(times[0], 0.55), "{times:?}");
+    let arc_mm = path.feed_length_mm() - 50.0;
+    let expected = 0.55 + arc_mm / 100.0 + 100.0 / (2.0 * 1000.0);
+    assert!(
+        close(path.estimated_secs(), expected),
+        "{} vs {expected}",
+        path.estimated_secs()
+    );
+
+    // A full circle of radius 1 at F6000 is held to sqrt(1000·1) mm/s: L/v + v/a.
+    let mut small = Toolpath::with_kinematics(DVec3::new(1.0, 0.0, 0.0), kinematics());
+    small.emit(
+        Source::default(),
+        &Canon::Arc {
+            to: DVec3::new(1.0, 0.0, 0.0),
+            center: DVec3::ZERO,
+            axis: Axis::Z,
+            ccw: true,
+            turns: 0,
+            feed_mm_per_min: 6000.0,
+        },
+    );
+    let v = 1000.0f64.sqrt();
+    let expected = small.feed_length_mm() / v + v / 1000.0;
+    assert!(
+        close(small.estimated_secs(), expected),
+        "{}",
+        small.estimated_secs()
+    );
+}
+
+#[test]
+fn dwells_and_tool_changes_stop_the_tool_and_are_on_the_timeline() {
+    let program = parse(
+        "G1 X50. F6000.\nG4 P500\nX100.\nT2 M6\nX150.\nG4 P250\n",
+        Dialect::Fanuc,
+    );
+    let mut path = Toolpath::default();
+    let diags = run(&program, Setup::default(), &mut path);
+    assert!(diags.is_empty(), "{diags:?}");
+    // Each 50 mm leg starts and ends at rest: 0.6 s.
+    let timeline = path.timeline();
+    let times = timeline.end_times();
+    assert!(close(times[0], 0.6), "{times:?}");
+    assert!(close(times[1], 0.6 + 0.5 + 0.6), "{times:?}");
+    assert!(close(times[2], 1.7 + 0.6), "{times:?}");
+    assert!(close(path.estimated_secs(), 2.3 + 0.25));
+    assert!(close(timeline.dwell_before(1), 0.5) && close(timeline.dwell_before(3), 0.25));
+    let (start, end) = timeline.span(1).unwrap();
+    assert!(close(start, 1.1) && close(end, 1.7));
+    assert_eq!(path.segment_tools(), [0, 0, 2]);
+    assert_eq!(path.tools(), [2]);
+
+    // Where the tool is at a given time.
+    assert_eq!(timeline.segment_at(0.0), Some(0));
+    assert_eq!(timeline.segment_at(0.6), Some(0));
+    assert_eq!(timeline.segment_at(0.8), Some(1));
+    assert!(
+        close(timeline.fraction_at(1, 0.8), 0.0),
+        "dwelling before it"
+    );
+    assert!(close(timeline.fraction_at(1, 1.4), 0.5));
+    assert_eq!(timeline.segment_at(99.0), Some(2));
+    assert_eq!(timeline.finished_at(0.0), 0);
+    assert_eq!(timeline.finished_at(0.61), 1);
+    assert_eq!(timeline.finished_at(99.0), 3);
+    assert!(close(timeline.total_secs(), path.estimated_secs()));
 }
