@@ -22,6 +22,8 @@ mod palette {
     pub const ERROR: Color32 = Color32::from_rgb(255, 80, 80);
     pub const WARNING: Color32 = Color32::from_rgb(240, 200, 60);
     pub const NOTE: Color32 = Color32::from_rgb(120, 180, 255);
+    pub const KEYWORD: Color32 = Color32::from_rgb(230, 120, 200);
+    pub const VARIABLE: Color32 = Color32::from_rgb(100, 210, 210);
 }
 
 /// The colour a diagnostic of `severity` is drawn in.
@@ -66,6 +68,34 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
                 i = text[i..].find('\n').map_or(bytes.len(), |j| i + j);
                 palette::COMMENT
             }
+            b'#' => {
+                // A variable: `#12`, `#<name>` (the index of `#[…]` is coloured as it comes).
+                i += 1;
+                if bytes.get(i) == Some(&b'<') {
+                    i = text[i..].find(['>', '\n']).map_or(bytes.len(), |j| {
+                        if bytes[i + j] == b'>' {
+                            i + j + 1
+                        } else {
+                            i + j
+                        }
+                    });
+                } else {
+                    while i < bytes.len() && bytes[i].is_ascii_digit() {
+                        i += 1;
+                    }
+                }
+                palette::VARIABLE
+            }
+            c if c.is_ascii_alphabetic()
+                && bytes.get(i + 1).is_some_and(u8::is_ascii_alphabetic) =>
+            {
+                // A run of letters: a macro keyword, operator or function (IF, GOTO, WHILE,
+                // DO, END, EQ, AND, SIN, sub, call …).
+                while i < bytes.len() && bytes[i].is_ascii_alphabetic() {
+                    i += 1;
+                }
+                palette::KEYWORD
+            }
             c if c.is_ascii_alphabetic() => {
                 i += 1;
                 while i < bytes.len() && (bytes[i].is_ascii_digit() || b".+- ".contains(&bytes[i]))
@@ -98,7 +128,7 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
                 i += len;
                 while i < bytes.len()
                     && !bytes[i].is_ascii_alphabetic()
-                    && !b"(;/".contains(&bytes[i])
+                    && !b"(;/#".contains(&bytes[i])
                 {
                     i += text[i..].chars().next().map_or(1, char::len_utf8);
                 }
