@@ -57,13 +57,20 @@ impl Analysis {
     /// Parses and interprets `text`; `generation` tags the scene so the GPU copy is refreshed.
     pub fn run(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
         let program = parse(text, dialect);
-        let mut toolpath = Toolpath::new(DVec3::ZERO, setup.machine.rapid_mm_per_min);
+        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
         let mut diags = program.diagnostics.clone();
         diags.extend(swarf_interp::run(&program, setup.clone(), &mut toolpath));
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         let problems = locate(text, &program, &diags);
         let mut scene = scene_of(&toolpath, generation);
         scene.source = Some(Arc::new(SourceText::new(text)));
+        scene.tool_radii = Arc::new(
+            setup
+                .registers
+                .iter()
+                .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
+                .collect(),
+        );
         Analysis {
             program,
             toolpath,
@@ -136,7 +143,7 @@ fn locate(text: &str, program: &Program, diags: &[swarf_syntax::Diagnostic]) -> 
 
 /// The toolpath as one polyline stream relative to its bounds' centre ([`scene_origin`]):
 /// the start point (pen up), then one point per segment end carrying the segment's kind,
-/// plus each segment's source line and feed for picking.
+/// plus each segment's source line and feed for picking, and its times and tool for playback.
 pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
     let Some(bounds) = path.bounds() else {
         return Scene {
@@ -161,10 +168,12 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         points: Arc::new(points),
         lines: Arc::new(path.lines().to_vec()),
         feeds: Arc::new(path.feeds().to_vec()),
+        timeline: Arc::new(path.timeline()),
+        tools: Arc::new(path.segment_tools().to_vec()),
         bounds: Some((rel(bounds.min), rel(bounds.max))),
         zero: rel(DVec3::ZERO),
         origin,
-        source: None,
+        ..Scene::default()
     }
 }
 

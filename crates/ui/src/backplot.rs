@@ -9,7 +9,7 @@
 //! offscreen target only when something visible changed; its `paint` composites that target
 //! into egui's render pass, which has no depth buffer. So the app needs no depth setting.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
 use std::sync::Arc;
 
@@ -19,6 +19,10 @@ use swarf_render::{
     ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathPoint, PathRenderer, Projection,
     RenderTarget, StandardView, ViewParams, grid_points_at, pick_segment, segment_bounds,
 };
+use swarf_toolpath::Timeline;
+
+mod playback;
+pub use playback::{PLAYBACK_SPEEDS, Playback};
 
 /// Key of the flag [`Backplot::install`] leaves in the egui context's memory; without it `show`
 /// draws a notice instead of a paint callback nobody would execute (e.g. on the glow backend).
@@ -101,6 +105,13 @@ pub struct Scene {
     pub lines: Arc<Vec<u32>>,
     /// Feed of each segment in mm/min (0 for rapids).
     pub feeds: Arc<Vec<f32>>,
+    /// When each segment runs, for playback. When it does not cover every segment (e.g. a
+    /// scene built by hand), playback gives each segment one second.
+    pub timeline: Arc<Timeline>,
+    /// The tool in the spindle during each segment (may be empty).
+    pub tools: Arc<Vec<u32>>,
+    /// Radius in mm of the tools the setup knows, by number (the tool marker's size).
+    pub tool_radii: Arc<BTreeMap<u32, f32>>,
     /// Axis-aligned bounds of the geometry, `None` when there is none.
     pub bounds: Option<(Vec3, Vec3)>,
     /// Where machine zero lies in the scene's frame: the grid and the axes are drawn there.
@@ -131,6 +142,69 @@ impl Scene {
     #[must_use]
     pub fn machine_position(&self, p: Vec3) -> DVec3 {
         self.origin + p.as_dvec3()
+    }
+
+    /// Whether the timeline covers every segment (otherwise each takes one second).
+    fn timed(&self) -> bool {
+        self.timeline.len() == self.segment_count()
+    }
+
+    /// Seconds from the program start to the end of the last segment's move or dwell.
+    #[must_use]
+    pub fn total_secs(&self) -> f64 {
+        if self.timed() {
+            self.timeline.total_secs()
+        } else {
+            self.segment_count() as f64
+        }
+    }
+
+    /// When segment `i` starts and ends moving, in seconds from the program start.
+    #[must_use]
+    pub fn segment_span(&self, i: usize) -> Option<(f64, f64)> {
+        if self.timed() {
+            self.timeline.span(i)
+        } else {
+            (i < self.segment_count()).then_some((i as f64, i as f64 + 1.0))
+        }
+    }
+
+    /// How many segments have finished at time `t` (the executed part of the path).
+    #[must_use]
+    pub fn finished_at(&self, t: f64) -> usize {
+        if self.timed() {
+            self.timeline.finished_at(t)
+        } else {
+            (t.max(0.0).floor() as usize).min(self.segment_count())
+        }
+    }
+
+    /// The segment running at time `t` (at the very end of a segment, that segment; the last
+    /// after the end); `None` without segments.
+    #[must_use]
+    pub fn segment_at(&self, t: f64) -> Option<usize> {
+        let last = self.segment_count().checked_sub(1)?;
+        if self.timed() {
+            self.timeline.segment_at(t)
+        } else {
+            Some(((t.ceil() - 1.0).max(0.0) as usize).min(last))
+        }
+    }
+
+    /// Where the tool is at time `t`, in the scene's frame (moving linearly in time along
+    /// the running segment).
+    #[must_use]
+    pub fn position_at(&self, t: f64) -> Option<Vec3> {
+        let i = self.segment_at(t)?;
+        let (start, end) = self.segment_span(i)?;
+        let f = if end > start {
+            ((t - start) / (end - start)).clamp(0.0, 1.0)
+        } else {
+            f64::from(u8::from(t >= end))
+        };
+        let from = self.points.get(i)?.position();
+        let to = self.points.get(i + 1)?.position();
+        Some(from.lerp(to, f as f32))
     }
 }
 
@@ -175,8 +249,13 @@ pub struct Backplot {
     selected_line: Option<u32>,
     /// A line clicked in the view and not yet taken by [`Self::take_picked_line`].
     picked_line: Option<u32>,
-    /// Playback position: segments before it are executed, the rest drawn dimmed.
+    /// Playback position set from outside: segments before it are executed, the rest drawn
+    /// dimmed (the playback bar's own position takes precedence while it is on).
     executed: Option<usize>,
+    /// The playback bar's state.
+    playback: Playback,
+    /// A line playback moved to and not yet taken by [`Self::take_playback_line`].
+    playback_line: Option<u32>,
     /// Kinds not drawn (and not picked).
     hidden_kinds: u32,
     /// Colour by kind or by tool.
@@ -209,6 +288,8 @@ impl Backplot {
             selected_line: None,
             picked_line: None,
             executed: None,
+            playback: Playback::new(),
+            playback_line: None,
             hidden_kinds: 0,
             color_mode: ColorMode::ByKind,
             hover: None,
@@ -300,6 +381,41 @@ impl Backplot {
     #[must_use]
     pub fn playback(&self) -> Option<usize> {
         self.executed
+    }
+
+    /// The playback bar's state (time, speed, block).
+    #[must_use]
+    pub fn player(&self) -> &Playback {
+        &self.playback
+    }
+
+    /// Mutable access to the playback bar's state, e.g. to play or step from code.
+    pub fn player_mut(&mut self) -> &mut Playback {
+        &mut self.playback
+    }
+
+    /// The playback bar (show it under the view, before [`Self::show`] in the same frame):
+    /// play/pause, one block back or forward, stop, speed and sliders over time and blocks.
+    /// While playback is on, the executed part of the path is drawn normally and the rest
+    /// dimmed, a tool marker stands at the current position, and the current block is
+    /// highlighted and reported through [`Self::take_playback_line`].
+    pub fn playback_bar(&mut self, ui: &mut egui::Ui, scene: &Scene) {
+        self.playback.ui(ui, scene);
+        self.follow_playback();
+    }
+
+    /// The 1-based source line playback moved to since the last call, if any: the editor
+    /// should move its cursor there.
+    pub fn take_playback_line(&mut self) -> Option<u32> {
+        self.playback_line.take()
+    }
+
+    /// Highlights the block playback moved to and queues it for the editor.
+    fn follow_playback(&mut self) {
+        if let Some(line) = self.playback.take_line() {
+            self.selected_line = Some(line);
+            self.playback_line = Some(line);
+        }
     }
 
     /// Shows or hides one kind of segment (e.g. rapids); hidden segments are not picked.
@@ -399,7 +515,7 @@ impl Backplot {
         let to_u32 = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
         let params = ViewParams {
             view_proj: self.camera.view_proj(aspect),
-            executed_segments: self.executed.map(to_u32),
+            executed_segments: self.playback.executed(scene).or(self.executed).map(to_u32),
             highlight: selection.map_or(0..0, |s| to_u32(s.start)..to_u32(s.end)),
             hidden_kinds: self.hidden_kinds,
             color_mode: self.color_mode,
@@ -419,9 +535,42 @@ impl Backplot {
             slot,
             egui_wgpu::Callback::new_paint_callback(rect, callback),
         );
+        self.paint_tool(ui, rect, scene);
         match &self.hover {
             Some(hover) => response.on_hover_ui_at_pointer(|ui| hover_tooltip(ui, hover, scene)),
             None => response,
+        }
+    }
+
+    /// The tool marker at the playback position: a cylinder of the tool's radius when the
+    /// setup gives one, else a small cone with a shank, drawn as lines over the view.
+    fn paint_tool(&self, ui: &egui::Ui, rect: egui::Rect, scene: &Scene) {
+        let Some(tip) = self.playback.position(scene) else {
+            return;
+        };
+        let radius = self
+            .playback
+            .current_segment(scene)
+            .and_then(|i| scene.tools.get(i))
+            .and_then(|tool| scene.tool_radii.get(tool))
+            .copied()
+            .filter(|r| r.is_finite() && *r > 0.0);
+        let outline: Vec<(Vec3, Vec3)> = match radius {
+            Some(r) => tool_outline(tip, r, 0.0, 3.0 * r),
+            None => {
+                let r = self.camera.units_per_px(rect.height()) * TOOL_MARKER_POINTS;
+                tool_outline(tip, r, 2.0 * r, 2.0 * r)
+            }
+        };
+        let painter = ui.painter_at(rect);
+        let stroke = egui::Stroke::new(1.5, TOOL_MARKER_COLOR);
+        for (a, b) in outline {
+            if let (Some(a), Some(b)) = (self.screen_pos(a), self.screen_pos(b)) {
+                painter.line_segment([a, b], stroke);
+            }
+        }
+        if let Some(p) = self.screen_pos(tip) {
+            painter.circle_filled(p, 2.5, TOOL_MARKER_COLOR);
         }
     }
 
@@ -689,6 +838,41 @@ impl Backplot {
             self.zoom_to_selection();
         }
     }
+}
+
+/// Radius of the tool marker, in points, when the setup gives no tool radius.
+const TOOL_MARKER_POINTS: f32 = 7.0;
+
+/// Colour of the tool marker's lines.
+const TOOL_MARKER_COLOR: egui::Color32 = egui::Color32::from_rgb(250, 250, 250);
+
+/// Line segments of a tool standing on `tip` along +Z: a cone from the tip up to radius
+/// `radius` over `cone` (none when 0: a flat end), then a cylinder of that radius `shank` high.
+fn tool_outline(tip: Vec3, radius: f32, cone: f32, shank: f32) -> Vec<(Vec3, Vec3)> {
+    const SIDES: usize = 24;
+    let ring = |z: f32| -> Vec<Vec3> {
+        (0..SIDES)
+            .map(|k| {
+                let a = k as f32 / SIDES as f32 * std::f32::consts::TAU;
+                tip + Vec3::new(radius * a.cos(), radius * a.sin(), z)
+            })
+            .collect()
+    };
+    let low = ring(cone);
+    let high = ring(cone + shank);
+    let mut lines = Vec::with_capacity(SIDES * 2 + 12);
+    for k in 0..SIDES {
+        let next = (k + 1) % SIDES;
+        lines.push((low[k], low[next]));
+        lines.push((high[k], high[next]));
+    }
+    for k in (0..SIDES).step_by(SIDES / 4) {
+        lines.push((low[k], high[k]));
+        if cone > 0.0 {
+            lines.push((tip, low[k]));
+        }
+    }
+    lines
 }
 
 /// Human name of a kind for the tooltip.

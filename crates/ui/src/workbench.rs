@@ -130,12 +130,27 @@ impl Workbench {
                     self.backplot.set_selected_line(self.cursor_line);
                     self.synced_line = self.cursor_line;
                 }
+                egui::Panel::bottom("swarf-playback").show(ui, |ui| {
+                    self.backplot.playback_bar(ui, &self.analysis.scene)
+                });
                 self.backplot.show(ui, &self.analysis.scene);
-                // … and a click on a segment moves the editor to its block.
-                if let Some(line) = self.backplot.take_picked_line() {
+                // … a click on a segment moves the editor to its block, and so does playback
+                // (the backplot highlights the block itself).
+                let played = self.backplot.take_playback_line();
+                if let Some(line) = self.backplot.take_picked_line().or(played) {
                     self.jump_to_line(line);
                 }
             });
+    }
+
+    /// The backplot (camera, selection, playback).
+    pub fn backplot(&self) -> &Backplot {
+        &self.backplot
+    }
+
+    /// The 1-based line of the editor's cursor, as last reported or moved there.
+    pub fn cursor_line(&self) -> Option<u32> {
+        self.cursor_line
     }
 
     /// Puts the editor's cursor at the start of 1-based `line`.

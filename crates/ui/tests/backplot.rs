@@ -39,6 +39,7 @@ fn scene() -> Scene {
         source: Some(Arc::new(SourceText::new(
             "%\nG1 X100 F300\nY60\nG0 X0\nG3 Y0 R30\n\nG1 Z5 Y70 F500\nG3 X110\n",
         ))),
+        ..Scene::default()
     }
 }
 
@@ -340,4 +341,50 @@ fn click_picks_a_block_hover_describes_it_and_playback_dims() {
     harness.key_press(egui::Key::R);
     harness.run();
     assert!(!harness.state().0.kind_visible(Kind::Rapid));
+}
+
+#[test]
+fn playback_draws_a_tool_marker_and_dims_the_remainder() {
+    let Some(render_state) = render_state() else {
+        eprintln!("SKIPPED: no wgpu adapter available for the backplot playback test");
+        return;
+    };
+    let mut harness = harness(&render_state);
+    harness.run();
+    harness.get_by_label("Top").click();
+    harness.run();
+    let marker = |image: &Shot| count(image.as_raw(), [250, 250, 250, 255], 12);
+    let before = marker(&shot(&mut harness));
+
+    // Half-way along the first segment (this scene has no timeline: a second per segment).
+    let scene = harness.state().1.clone();
+    harness.state_mut().0.player_mut().seek(&scene, 0.5);
+    harness.run();
+    let image = shot(&mut harness);
+    let drawn = marker(&image);
+    assert!(
+        drawn > before + 30,
+        "tool marker not drawn: {drawn} vs {before}"
+    );
+    let (x, y) = pixel_of(&harness, Vec3::new(50.0, 0.0, 0.0));
+    let near_tip = (x - 4..=x + 4)
+        .flat_map(|x| (y - 4..=y + 4).map(move |y| (x, y)))
+        .filter(|&p| close(at(&image, p), [250, 250, 250, 255], 12))
+        .count();
+    assert!(near_tip > 5, "no marker at the tip: {near_tip}");
+    // The segment under way is not finished yet: the whole path after it is dimmed.
+    let remainder = at(&image, pixel_of(&harness, Vec3::new(100.0, 20.0, 0.0)));
+    assert!(
+        u32::from(remainder[2]) * 2 < u32::from(FEED_COLOR[2]),
+        "remainder not dimmed: {remainder:?}"
+    );
+    assert_eq!(harness.state().0.player().current_line(&scene), Some(2));
+
+    // Stop: no marker, nothing dimmed.
+    harness.state_mut().0.player_mut().stop();
+    harness.run();
+    let image = shot(&mut harness);
+    assert!(marker(&image) <= before + 5, "marker left behind");
+    let edge = at(&image, pixel_of(&harness, Vec3::new(100.0, 20.0, 0.0)));
+    assert!(close(edge, FEED_COLOR, 10), "edge is {edge:?}");
 }

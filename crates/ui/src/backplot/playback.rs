@@ -1,0 +1,496 @@
+//! Playback of a scene: a position in time along the program, played at a chosen speed or
+//! stepped one block at a time, and the bar of controls under the backplot.
+//!
+//! A block here is a run of consecutive segments with the same source line, in execution
+//! order, so a block run twice by a loop is stepped twice; blocks that move nothing (a dwell,
+//! a tool change) are not stops of their own.
+
+use std::sync::Arc;
+
+use glam::Vec3;
+
+use super::Scene;
+use crate::format_duration;
+
+/// The playback speeds offered, as multiples of real time.
+pub const PLAYBACK_SPEEDS: [f64; 7] = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0];
+
+/// Room left beside the two sliders for their labels, in points.
+const SLIDER_LABELS_POINTS: f32 = 100.0;
+
+/// Two times closer than this (seconds) are the same position.
+const SAME_TIME: f64 = 1e-9;
+
+/// Where playback is and how it runs.
+#[derive(Clone, Debug)]
+pub struct Playback {
+    /// Seconds from the program start; `None` while playback is off (the whole path drawn
+    /// as executed, no tool marker).
+    time: Option<f64>,
+    /// The block last stepped or slid to, at that time: blocks that take no time share an
+    /// end time with their neighbour, and this keeps stepping through them one by one.
+    pinned: Option<(f64, usize)>,
+    playing: bool,
+    speed: f64,
+    /// First segment of each block, for the scene generation it was built for.
+    blocks: Option<(u64, Arc<Vec<usize>>)>,
+    /// The scene generation last seen (an edit pauses playback).
+    generation: Option<u64>,
+    /// The current block's source line as last reported.
+    line: Option<u32>,
+    /// A line reached by playback and not yet taken by [`Self::take_line`].
+    moved_line: Option<u32>,
+}
+
+impl Default for Playback {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Playback {
+    /// Playback off, at real-time speed.
+    #[must_use]
+    pub fn new() -> Self {
+        Self {
+            time: None,
+            pinned: None,
+            playing: false,
+            speed: 1.0,
+            blocks: None,
+            generation: None,
+            line: None,
+            moved_line: None,
+        }
+    }
+
+    /// Seconds from the program start, `None` while playback is off.
+    #[must_use]
+    pub fn time(&self) -> Option<f64> {
+        self.time
+    }
+
+    /// Whether it is playing.
+    #[must_use]
+    pub fn is_playing(&self) -> bool {
+        self.playing
+    }
+
+    /// Speed as a multiple of real time.
+    #[must_use]
+    pub fn speed(&self) -> f64 {
+        self.speed
+    }
+
+    /// Sets the speed (a positive multiple of real time; anything else is ignored).
+    pub fn set_speed(&mut self, speed: f64) {
+        if speed.is_finite() && speed > 0.0 {
+            self.speed = speed;
+        }
+    }
+
+    /// Plays from the current position, or from the start when off or at the end.
+    pub fn play(&mut self, scene: &Scene) {
+        self.sync(scene);
+        let total = scene.total_secs();
+        if self.time.is_none_or(|t| t >= total - SAME_TIME) {
+            self.set_time(0.0);
+        }
+        self.playing = true;
+    }
+
+    /// Stops playing, keeping the position.
+    pub fn pause(&mut self) {
+        self.playing = false;
+    }
+
+    /// Turns playback off: the whole path is drawn as executed again.
+    pub fn stop(&mut self) {
+        self.time = None;
+        self.pinned = None;
+        self.playing = false;
+        self.line = None;
+        self.moved_line = None;
+    }
+
+    /// Moves to `t` seconds from the start (clamped to the program).
+    pub fn seek(&mut self, scene: &Scene, t: f64) {
+        self.sync(scene);
+        let t = if t.is_finite() { t } else { 0.0 };
+        self.set_time(t.clamp(0.0, scene.total_secs()));
+        self.report(scene);
+    }
+
+    /// Moves to the end of block `block` (0-based, clamped), as if it had just run.
+    pub fn seek_block(&mut self, scene: &Scene, block: usize) {
+        self.sync(scene);
+        let blocks = self.blocks(scene);
+        let Some(last) = blocks.len().checked_sub(1) else {
+            return;
+        };
+        let block = block.min(last);
+        let t = block_end(scene, &blocks, block);
+        self.set_time(t);
+        self.pinned = Some((t, block));
+        self.report(scene);
+    }
+
+    /// Pauses and moves to the end of the next block (the end of the current one when it is
+    /// under way; the first block when playback was off).
+    pub fn step_forward(&mut self, scene: &Scene) {
+        self.sync(scene);
+        self.playing = false;
+        let blocks = self.blocks(scene);
+        let (Some(t), Some(block)) = (self.time, self.current_block(scene)) else {
+            self.seek_block(scene, 0);
+            return;
+        };
+        let target = if t >= block_end(scene, &blocks, block) - SAME_TIME {
+            block + 1
+        } else {
+            block
+        };
+        self.seek_block(scene, target);
+    }
+
+    /// Pauses and moves to the end of the previous block (the start of the program from the
+    /// first block; the end of the last block but one when playback was off).
+    pub fn step_back(&mut self, scene: &Scene) {
+        self.sync(scene);
+        self.playing = false;
+        let count = self.blocks(scene).len();
+        let target = match self.time {
+            None => count.checked_sub(2),
+            Some(_) => self.current_block(scene).and_then(|b| b.checked_sub(1)),
+        };
+        match target {
+            Some(block) => self.seek_block(scene, block),
+            None => self.seek(scene, 0.0),
+        }
+    }
+
+    /// Advances by `dt` seconds of real time while playing (stopping at the end).
+    pub fn advance(&mut self, scene: &Scene, dt: f64) {
+        self.sync(scene);
+        if !self.playing {
+            return;
+        }
+        let total = scene.total_secs();
+        let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
+        let t = self.time.unwrap_or(0.0) + dt * self.speed;
+        if t >= total {
+            self.playing = false;
+        }
+        self.set_time(t.min(total));
+        self.report(scene);
+    }
+
+    /// Number of blocks of `scene` that move the tool.
+    pub fn block_count(&mut self, scene: &Scene) -> usize {
+        self.blocks(scene).len()
+    }
+
+    /// The segment under way (or just finished), `None` while off.
+    #[must_use]
+    pub fn current_segment(&self, scene: &Scene) -> Option<usize> {
+        let t = self.time?;
+        match (self.pinned, &self.blocks) {
+            (Some((at, block)), Some((generation, blocks)))
+                if at == t && *generation == scene.generation =>
+            {
+                let next = blocks
+                    .get(block + 1)
+                    .copied()
+                    .unwrap_or(scene.segment_count());
+                next.checked_sub(1)
+            }
+            _ => scene.segment_at(t),
+        }
+    }
+
+    /// The block under way (or just finished), 0-based, `None` while off.
+    pub fn current_block(&mut self, scene: &Scene) -> Option<usize> {
+        let segment = self.current_segment(scene)?;
+        let blocks = self.blocks(scene);
+        blocks
+            .partition_point(|&start| start <= segment)
+            .checked_sub(1)
+    }
+
+    /// The source line of the block under way, `None` while off.
+    #[must_use]
+    pub fn current_line(&self, scene: &Scene) -> Option<u32> {
+        scene.lines.get(self.current_segment(scene)?).copied()
+    }
+
+    /// How many segments are drawn as executed, `None` while off (everything is).
+    #[must_use]
+    pub fn executed(&self, scene: &Scene) -> Option<usize> {
+        let t = self.time?;
+        let finished = scene.finished_at(t);
+        // A block stepped to counts as run even when it takes no time.
+        Some(match self.current_segment(scene) {
+            Some(segment) if self.pinned.is_some() => finished.max(segment + 1),
+            _ => finished,
+        })
+    }
+
+    /// Where the tool is, in the scene's frame, `None` while off.
+    #[must_use]
+    pub fn position(&self, scene: &Scene) -> Option<Vec3> {
+        let t = self.time?;
+        if let Some(segment) = self.current_segment(scene)
+            && self.pinned.is_some()
+        {
+            return scene.points.get(segment + 1).map(|p| p.position());
+        }
+        scene.position_at(t)
+    }
+
+    /// The source line playback moved to since the last call, if any: the editor should
+    /// follow it.
+    pub fn take_line(&mut self) -> Option<u32> {
+        self.moved_line.take()
+    }
+
+    /// The bar of controls: play/pause, one block back and forward, stop, speed and the
+    /// position on a first row; sliders over the time and over the blocks on a second.
+    /// Advances the position while playing (and asks for the next frame).
+    pub fn ui(&mut self, ui: &mut egui::Ui, scene: &Scene) {
+        self.sync(scene);
+        if self.playing {
+            let dt = f64::from(ui.input(|i| i.stable_dt));
+            self.advance(scene, dt);
+            ui.ctx().request_repaint();
+        }
+        let total = scene.total_secs();
+        let count = self.block_count(scene);
+        let has_path = count > 0;
+        ui.horizontal(|ui| {
+            let (label, hint) = if self.playing {
+                ("Pause", "Pause playback")
+            } else {
+                (
+                    "Play",
+                    "Play the program from here (from the start at its end)",
+                )
+            };
+            if ui
+                .add_enabled(has_path, egui::Button::new(label))
+                .on_hover_text(hint)
+                .clicked()
+            {
+                if self.playing {
+                    self.pause();
+                } else {
+                    self.play(scene);
+                }
+            }
+            if ui
+                .add_enabled(has_path, egui::Button::new("« Block"))
+                .on_hover_text("Step one block back")
+                .clicked()
+            {
+                self.step_back(scene);
+            }
+            if ui
+                .add_enabled(has_path, egui::Button::new("Block »"))
+                .on_hover_text("Step one block forward")
+                .clicked()
+            {
+                self.step_forward(scene);
+            }
+            if ui
+                .add_enabled(self.time.is_some(), egui::Button::new("Stop"))
+                .on_hover_text("Stop playback and draw the whole program")
+                .clicked()
+            {
+                self.stop();
+            }
+            let speed_label = ui.label("Speed");
+            let mut speed = self.speed;
+            egui::ComboBox::from_id_salt("swarf-playback-speed")
+                .selected_text(format!("×{speed}"))
+                .width(56.0)
+                .show_ui(ui, |ui| {
+                    for s in PLAYBACK_SPEEDS {
+                        ui.selectable_value(&mut speed, s, format!("×{s}"));
+                    }
+                })
+                .response
+                .labelled_by(speed_label.id);
+            self.set_speed(speed);
+            ui.separator();
+            ui.label(format!(
+                "{} / {}",
+                format_duration(self.time.unwrap_or(total)),
+                format_duration(total)
+            ));
+            ui.separator();
+            let current = self.current_block(scene).map_or(count, |b| b + 1);
+            let line = self
+                .current_line(scene)
+                .map_or(String::new(), |l| format!(", line {l}"));
+            ui.label(format!("block {current} of {count}{line}"));
+        });
+        ui.horizontal(|ui| {
+            // The two sliders share the row.
+            ui.spacing_mut().slider_width =
+                ((ui.available_width() - SLIDER_LABELS_POINTS) / 2.0).max(40.0);
+            let time_label = ui.label("Time");
+            let mut t = self.time.unwrap_or(total);
+            let slider = ui
+                .add_enabled(
+                    has_path,
+                    egui::Slider::new(&mut t, 0.0..=total.max(SAME_TIME)).show_value(false),
+                )
+                .labelled_by(time_label.id);
+            if slider.changed() {
+                self.seek(scene, t);
+            }
+            ui.separator();
+            let block_label = ui.label("Block");
+            let current = self.current_block(scene).map_or(count, |b| b + 1);
+            let mut block = current;
+            let slider = ui
+                .add_enabled(
+                    has_path,
+                    egui::Slider::new(&mut block, 1..=count.max(1)).show_value(false),
+                )
+                .labelled_by(block_label.id);
+            if slider.changed() && block != current {
+                self.seek_block(scene, block.saturating_sub(1));
+            }
+        });
+    }
+
+    /// Notices a new scene: the position is kept within it, and an edit pauses playback.
+    fn sync(&mut self, scene: &Scene) {
+        if self.generation == Some(scene.generation) {
+            return;
+        }
+        if self.generation.is_some() {
+            self.playing = false;
+        }
+        self.generation = Some(scene.generation);
+        self.pinned = None;
+        if let Some(t) = self.time {
+            self.time = Some(t.min(scene.total_secs()));
+        }
+    }
+
+    fn set_time(&mut self, t: f64) {
+        self.time = Some(t);
+        self.pinned = None;
+    }
+
+    /// Queues the current line for [`Self::take_line`] when it changed.
+    fn report(&mut self, scene: &Scene) {
+        let line = self.current_line(scene);
+        if line.is_some() && line != self.line {
+            self.moved_line = line;
+        }
+        self.line = line;
+    }
+
+    /// The first segment of each block (cached per scene generation).
+    fn blocks(&mut self, scene: &Scene) -> Arc<Vec<usize>> {
+        if let Some((generation, blocks)) = &self.blocks
+            && *generation == scene.generation
+        {
+            return Arc::clone(blocks);
+        }
+        let lines = &scene.lines[..scene.lines.len().min(scene.segment_count())];
+        let starts: Vec<usize> = (0..lines.len())
+            .filter(|&i| i == 0 || lines[i] != lines[i - 1])
+            .collect();
+        let blocks = Arc::new(starts);
+        self.blocks = Some((scene.generation, Arc::clone(&blocks)));
+        blocks
+    }
+}
+
+/// When block `block` ends: the end of its last segment.
+fn block_end(scene: &Scene, blocks: &[usize], block: usize) -> f64 {
+    let next = blocks
+        .get(block + 1)
+        .copied()
+        .unwrap_or(scene.segment_count());
+    next.checked_sub(1)
+        .and_then(|last| scene.segment_span(last))
+        .map_or(0.0, |(_, end)| end)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_render::{Kind, PathPoint};
+
+    /// Five segments on lines 1, 2, 2, 3, 4 (one second each: no timeline).
+    fn scene() -> Scene {
+        let points = (0..6)
+            .map(|i| PathPoint::new(Vec3::new(i as f32, 0.0, 0.0), Kind::Feed))
+            .collect();
+        Scene {
+            generation: 1,
+            points: Arc::new(points),
+            lines: Arc::new(vec![1, 2, 2, 3, 4]),
+            ..Scene::default()
+        }
+    }
+
+    #[test]
+    fn steps_through_blocks_and_back() {
+        let scene = scene();
+        let mut p = Playback::new();
+        assert_eq!(p.block_count(&scene), 4);
+        assert_eq!(p.executed(&scene), None);
+        p.step_forward(&scene);
+        assert_eq!(p.current_block(&scene), Some(0));
+        assert_eq!(p.take_line(), Some(1));
+        p.step_forward(&scene);
+        assert_eq!((p.time(), p.current_line(&scene)), (Some(3.0), Some(2)));
+        assert_eq!(p.executed(&scene), Some(3));
+        assert_eq!(p.take_line(), Some(2));
+        assert_eq!(p.take_line(), None);
+        p.step_back(&scene);
+        assert_eq!(p.current_line(&scene), Some(1));
+        p.step_back(&scene);
+        assert_eq!((p.time(), p.current_block(&scene)), (Some(0.0), Some(0)));
+        // Half-way through line 2's second segment, stepping forward finishes the block.
+        p.seek(&scene, 2.5);
+        assert_eq!(p.current_line(&scene), Some(2));
+        assert_eq!(p.position(&scene), Some(Vec3::new(2.5, 0.0, 0.0)));
+        p.step_forward(&scene);
+        assert_eq!(p.time(), Some(3.0));
+        // Off, stepping back lands on the last block but one.
+        p.stop();
+        p.step_back(&scene);
+        assert_eq!(p.current_line(&scene), Some(3));
+    }
+
+    #[test]
+    fn plays_at_speed_and_stops_at_the_end() {
+        let scene = scene();
+        let mut p = Playback::new();
+        p.set_speed(2.0);
+        p.play(&scene);
+        p.advance(&scene, 0.75);
+        assert_eq!(p.time(), Some(1.5));
+        assert_eq!(p.current_line(&scene), Some(2));
+        assert_eq!(p.executed(&scene), Some(1));
+        p.advance(&scene, 10.0);
+        assert_eq!(p.time(), Some(5.0));
+        assert!(!p.is_playing());
+        // Play at the end starts over; an edit (new generation) pauses.
+        p.play(&scene);
+        assert_eq!(p.time(), Some(0.0));
+        let edited = Scene {
+            generation: 2,
+            ..scene
+        };
+        p.advance(&edited, 1.0);
+        assert!(!p.is_playing());
+        assert_eq!(p.time(), Some(0.0));
+    }
+}
