@@ -1,0 +1,166 @@
+//! `,C` chamfers and `,R` corner rounding: a G01 move that ends in a corner word is held back by
+//! one block (the interpreter's lookahead), and when the next block's move is known the corner
+//! is cut between them, as LNC documents (§4.2 of the reference): equal legs of length C from
+//! the corner for a chamfer, a tangent arc of radius R for rounding, the inserted move at the
+//! corner block's feed, and the extension of a move used when the leg is longer than the move.
+
+use glam::DVec3;
+use swarf_syntax::{Diagnostic, Span};
+
+use crate::state::{State, plane_axes};
+use crate::{Canon, Sink, Source};
+
+/// The corner asked for at the end of a G01 block.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Corner {
+    /// `,C`: chamfer legs of this length (mm) from the corner.
+    Chamfer(f64),
+    /// `,R`: rounding arc of this radius (mm).
+    Round(f64),
+}
+
+/// A G01 move held back until the next block says where the path goes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Pending {
+    /// Where the move starts and ends (machine frame).
+    pub from: DVec3,
+    pub to: DVec3,
+    pub feed_mm_per_min: f64,
+    pub source: Source,
+    pub corner: Corner,
+    /// The corner word, for diagnostics.
+    pub span: Span,
+}
+
+/// Sends `event` to `sink`, first cutting the corner of a held-back move.
+pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &Canon) {
+    let moves = matches!(
+        event,
+        Canon::Rapid { .. }
+            | Canon::Feed { .. }
+            | Canon::Arc { .. }
+            | Canon::Dwell { .. }
+            | Canon::End
+    );
+    if moves && let Some(pending) = st.pending.take() {
+        match event {
+            Canon::Feed { to, .. } => corner(st, sink, &pending, *to),
+            Canon::Arc { .. } => {
+                st.diagnostics.push(Diagnostic::warning(
+                    pending.span,
+                    "W-NOT-INTERPRETED",
+                    "a corner before an arc is not drawn yet: the corner is drawn sharp",
+                ));
+                sharp(sink, &pending);
+            }
+            _ => {
+                st.diagnostics.push(Diagnostic::error(
+                    pending.span,
+                    "E-CORNER-NEXT",
+                    "a `,C`/`,R` corner needs a cutting move (G01–G03) in the next block; the corner is drawn sharp",
+                ));
+                sharp(sink, &pending);
+            }
+        }
+    }
+    sink.emit(source, event);
+}
+
+/// Emits a held-back move at the end of the run.
+pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
+    if let Some(pending) = st.pending.take() {
+        st.diagnostics.push(Diagnostic::error(
+            pending.span,
+            "E-CORNER-NEXT",
+            "a `,C`/`,R` corner needs a cutting move in the next block; the program ends first",
+        ));
+        sharp(sink, &pending);
+    }
+}
+
+fn sharp(sink: &mut dyn Sink, p: &Pending) {
+    sink.emit(
+        p.source,
+        &Canon::Feed {
+            to: p.to,
+            feed_mm_per_min: p.feed_mm_per_min,
+        },
+    );
+}
+
+/// Cuts the corner between the held-back move and a feed to `next`.
+fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
+    let (u, v) = plane_axes(st.plane);
+    let d1 = p.to - p.from;
+    let d2 = next - p.to;
+    let (l1, l2) = (d1.length(), d2.length());
+    let in_plane = |d: DVec3| d[3 - u - v].abs() < 1e-9;
+    if l1 < 1e-9 || l2 < 1e-9 || !in_plane(d1) || !in_plane(d2) {
+        st.diagnostics.push(Diagnostic::warning(
+            p.span,
+            "W-CORNER-SKIPPED",
+            "a corner is cut only between two moves in the selected plane: drawn sharp",
+        ));
+        sharp(sink, p);
+        return;
+    }
+    let (a, b) = (d1 / l1, d2 / l2);
+    let cross = a[u] * b[v] - a[v] * b[u];
+    let cos = a.dot(b).clamp(-1.0, 1.0);
+    if cross.abs() < 1e-9 {
+        // Straight on (or straight back): there is no corner to cut.
+        sharp(sink, p);
+        return;
+    }
+    let feed = p.feed_mm_per_min;
+    match p.corner {
+        Corner::Chamfer(c) => {
+            let start = p.to - a * c;
+            let end = p.to + b * c;
+            sink.emit(
+                p.source,
+                &Canon::Feed {
+                    to: start,
+                    feed_mm_per_min: feed,
+                },
+            );
+            sink.emit(
+                p.source,
+                &Canon::Feed {
+                    to: end,
+                    feed_mm_per_min: feed,
+                },
+            );
+        }
+        Corner::Round(r) => {
+            // The turn angle between the moves; the tangent points are r·tan(θ/2) from the corner.
+            let turn = cos.acos();
+            let t = r * (turn / 2.0).tan();
+            let start = p.to - a * t;
+            let end = p.to + b * t;
+            let left = cross > 0.0;
+            let mut normal = DVec3::ZERO;
+            normal[u] = -a[v];
+            normal[v] = a[u];
+            let center = start + normal * if left { r } else { -r };
+            sink.emit(
+                p.source,
+                &Canon::Feed {
+                    to: start,
+                    feed_mm_per_min: feed,
+                },
+            );
+            sink.emit(
+                p.source,
+                &Canon::Arc {
+                    to: end,
+                    center,
+                    axis: st.plane,
+                    ccw: left,
+                    turns: 0,
+                    feed_mm_per_min: feed,
+                },
+            );
+        }
+    }
+}
