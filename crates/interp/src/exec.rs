@@ -8,7 +8,9 @@ use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm
 
 use crate::machine::{Flow, Interpreter, find};
 use crate::macros::argument_variable;
-use crate::state::{FeedMode, MotionMode, Polar, Rotation, Scaling, State, plane_axes};
+use crate::state::{
+    FeedMode, ModalMacro, MotionMode, Polar, Rotation, Scaling, State, StrokeZone, plane_axes,
+};
 use crate::{Axis, Canon, Sink, Source};
 
 /// What one G code does.
@@ -44,8 +46,14 @@ enum Action {
     CutterComp(u32),
     MacroCall,
     ModalMacro(bool),
-    /// G31 skip, G37 tool measurement: drawn as the full programmed move.
+    /// G31 skip: drawn as the full programmed move.
     Probe,
+    /// Syntec G37 (`false`, Z in program coordinates) and G37.1 (`true`, Z in machine
+    /// coordinates): tool-length measurement, drawn as the return to the reference point and
+    /// the full measuring move.
+    Measure(bool),
+    /// Syntec G92.1: the program zero preset at X Y Z from the work origin, the plane turned by R.
+    PresetZero,
     StrokeLimit(bool),
     /// A mode with nothing to draw (cancels, arc-centre mode, lathe diameter mode).
     Nothing,
@@ -115,7 +123,9 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::NonModal, 100) => Action::DataInput,
         (Group::NonModal, 650) => Action::MacroCall,
         (Group::NonModal, 310) if !linuxcnc => Action::Probe,
-        (Group::NonModal, 370) if syntec => Action::Probe,
+        (Group::NonModal, 370) if syntec => Action::Measure(false),
+        (Group::NonModal, 371) if syntec => Action::Measure(true),
+        (Group::NonModal, 921) if syntec => Action::PresetZero,
         _ => return None,
     })
 }
@@ -123,8 +133,133 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
 /// The axis words of a block, in millimetres where given.
 type Axes<'w> = [Option<&'w Word>; 3];
 
-/// Executes `words` (the block's words with expressions evaluated).
+/// Executes `words` (the block's words with expressions evaluated); with a G22 stroke limit
+/// active, every move of the block is checked against it.
 pub(crate) fn execute(
+    it: &mut Interpreter,
+    program: &Program,
+    at: usize,
+    block: &Block,
+    words: &[Word],
+    source: Source,
+    sink: &mut dyn Sink,
+) -> Flow {
+    let zone = it.st.stroke_zone.filter(|_| it.st.stroke_check);
+    let Some(zone) = zone else {
+        return execute_block(it, program, at, block, words, source, sink);
+    };
+    let mut guard = StrokeGuard {
+        inner: sink,
+        zone,
+        from: it.st.position + tool_tip_shift(&it.st),
+        gauge: tool_tip_shift(&it.st),
+        broken: false,
+    };
+    let flow = execute_block(it, program, at, block, words, source, &mut guard);
+    if guard.broken {
+        let what = if zone.inside_forbidden {
+            "enters the G22 protected zone"
+        } else {
+            "leaves the G22 stroke limits"
+        };
+        it.st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-STROKE-LIMIT",
+            format!(
+                "this move {what} (machine coordinates); the control stops with an overtravel alarm"
+            ),
+        ));
+    }
+    flow
+}
+
+/// Checks the moves of one block against the G22 stroke limit before passing them on.
+struct StrokeGuard<'s> {
+    inner: &'s mut dyn Sink,
+    zone: StrokeZone,
+    /// The machine position (gauge line) before the next move.
+    from: DVec3,
+    /// The gauge line's offset from the tool tip.
+    gauge: DVec3,
+    broken: bool,
+}
+
+impl Sink for StrokeGuard<'_> {
+    fn emit(&mut self, source: Source, event: &Canon) {
+        let points = match event {
+            Canon::Rapid { to } | Canon::Feed { to, .. } => vec![*to + self.gauge],
+            Canon::Arc {
+                to,
+                center,
+                axis,
+                ccw,
+                turns,
+                ..
+            } => arc_points(self.from - self.gauge, *to, *center, *axis, *ccw, *turns)
+                .into_iter()
+                .map(|p| p + self.gauge)
+                .collect(),
+            _ => Vec::new(),
+        };
+        for p in points {
+            self.broken |= self.zone.violated_by(self.from, p);
+            self.from = p;
+        }
+        self.inner.emit(source, event);
+    }
+}
+
+/// Points along an arc event from `from` (excluding it, ending at `to`), 64 per turn.
+fn arc_points(
+    from: DVec3,
+    to: DVec3,
+    center: DVec3,
+    axis: Axis,
+    ccw: bool,
+    turns: u32,
+) -> Vec<DVec3> {
+    let (u, v) = plane_axes(axis);
+    let w = 3 - u - v;
+    let sweep = arc_sweep(from, to, center, axis, ccw, turns);
+    let r0 = (from[u] - center[u]).hypot(from[v] - center[v]);
+    let r1 = (to[u] - center[u]).hypot(to[v] - center[v]);
+    let a0 = (from[v] - center[v]).atan2(from[u] - center[u]);
+    let n = ((sweep.abs() / std::f64::consts::TAU * 64.0).ceil() as usize).clamp(1, 100_000);
+    (1..=n)
+        .map(|k| {
+            if k == n {
+                return to;
+            }
+            let t = k as f64 / n as f64;
+            let (a, r) = (a0 + sweep * t, r0 + (r1 - r0) * t);
+            let mut p = DVec3::ZERO;
+            p[u] = center[u] + r * a.cos();
+            p[v] = center[v] + r * a.sin();
+            p[w] = from[w] + (to[w] - from[w]) * t;
+            p
+        })
+        .collect()
+}
+
+/// The signed angle (radians, positive counter-clockwise) an arc event turns through; the end
+/// at the start is a full turn, and each extra turn adds one.
+fn arc_sweep(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> f64 {
+    let (u, v) = plane_axes(axis);
+    let tau = std::f64::consts::TAU;
+    let a0 = (from[v] - center[v]).atan2(from[u] - center[u]);
+    let mut sweep = (to[v] - center[v]).atan2(to[u] - center[u]) - a0;
+    if ccw {
+        if sweep <= 1e-12 {
+            sweep += tau;
+        }
+    } else if sweep >= -1e-12 {
+        sweep -= tau;
+    }
+    sweep + f64::from(turns) * tau * sweep.signum()
+}
+
+/// Executes one block's words.
+fn execute_block(
     it: &mut Interpreter,
     program: &Program,
     at: usize,
@@ -205,8 +340,18 @@ pub(crate) fn execute(
     }
     if let Some((_, g66)) = actions.iter().find(|(a, _)| *a == Action::ModalMacro(true)) {
         let args = arguments(&it.st, words);
+        // L: how many times the macro runs after each move.
+        let repeats = find(words, b'L')
+            .map_or(1.0, |l| l.value)
+            .clamp(0.0, 9999.0) as u32;
         match find(words, b'P') {
-            Some(p) => it.st.modal_macro = Some((p.value, args)),
+            Some(p) => {
+                it.st.modal_macro = Some(ModalMacro {
+                    number: p.value,
+                    repeats,
+                    args,
+                });
+            }
             None => it.st.diagnostics.push(Diagnostic::error(
                 g66.span,
                 "E-WORD-MISSING",
@@ -217,6 +362,7 @@ pub(crate) fn execute(
     }
     let st = &mut it.st;
     settings(st, words);
+    let presets_spindle = has(|a| *a == Action::SetPosition);
     // Units first: the block's numbers are read in the new unit.
     for (a, _) in &actions {
         match *a {
@@ -227,15 +373,18 @@ pub(crate) fn execute(
             Action::SpindleMode(css) => st.css = css,
             Action::PathMode(t) => st.path_mode = t,
             Action::ReturnLevel(initial) => st.return_initial = initial,
-            Action::StrokeLimit(on) => st.stroke_check = on,
             Action::ModalMacro(false) => st.modal_macro = None,
             _ => {}
         }
     }
+    spindle_speed(st, words, presets_spindle);
+    st.block_has_feed = find(words, b'F').is_some();
     if let Some(f) = find(words, b'F') {
+        st.feed_word = f.value;
         st.feed_mm_per_min = match st.feed_mode {
             FeedMode::PerMinute => st.mm(f.value),
-            // Per revolution and inverse time are kept as given (the time estimate reads them).
+            // Per revolution and inverse time are kept as given; each move's feed in mm/min
+            // comes from them (`move_feed`).
             FeedMode::PerRevolution | FeedMode::InverseTime => f.value,
         };
     }
@@ -243,6 +392,7 @@ pub(crate) fn execute(
         match *a {
             Action::WorkOffset => work_offset(st, w, words),
             Action::LengthComp(sign) => length_comp(st, w, words, sign),
+            Action::StrokeLimit(on) => stroke_limit(st, w, words, on),
             Action::CutterComp(t) => {
                 if t != 400 {
                     st.diagnostics.push(Diagnostic::warning(
@@ -257,6 +407,7 @@ pub(crate) fn execute(
             _ => {}
         }
     }
+    new_length_register(st, words, has(|a| matches!(a, Action::LengthComp(_))));
     let axes = axis_words(words);
     note_least_increment(st, words);
     // Modes that take the block's axis words as their data.
@@ -285,6 +436,16 @@ pub(crate) fn execute(
             }
             Action::SetPosition => {
                 set_position(st, &axes);
+                true
+            }
+            Action::PresetZero => {
+                preset_zero(st, words);
+                true
+            }
+            // The words are the limits, not a move.
+            Action::StrokeLimit(_) => true,
+            Action::Measure(second) => {
+                measure(st, block, w, words, second, source, sink);
                 true
             }
             Action::ResetShift => {
@@ -316,14 +477,12 @@ pub(crate) fn execute(
                 points[n - 1] = st.position.to_array();
                 true
             }
-            Action::Machine => {
-                machine_move(st, block, &axes, source, sink);
-                true
-            }
+            Action::Machine => machine_move(st, block, w, &axes, source, sink),
             Action::DynamicLength => {
                 // The tool tip still follows the program; the offset is only recorded.
                 let z = axes[2].map_or(0.0, |z| st.length(z));
                 st.length_comp = Some((0, z));
+                st.length_plus = true;
                 true
             }
             Action::ExactStop | Action::Nothing => false,
@@ -367,9 +526,10 @@ pub(crate) fn execute(
     // G66: the modal macro is called after each move.
     if moved
         && flow == Flow::Next
-        && let Some((number, args)) = it.st.modal_macro.clone()
+        && !it.in_modal_macro()
+        && let Some(call) = it.st.modal_macro.clone()
     {
-        return match it.call_macro(at, block, number, 1, &args) {
+        return match it.call_modal_macro(at, block, call.number, call.repeats, &call.args) {
             Ok(flow) => flow,
             Err(e) => {
                 it.st.diagnostics.push(e);
@@ -384,7 +544,6 @@ pub(crate) fn execute(
 fn settings(st: &mut State, words: &[Word]) {
     for w in words.iter().filter(|w| w.form == WordForm::Plain) {
         match w.letter {
-            b'S' if w.value >= 0.0 => st.spindle_rpm = w.value,
             b'T' if w.value >= 0.0 => st.tool = w.value.round() as u32,
             b'D' if w.value >= 0.0 => st.d_word = w.value.round() as u32,
             b'H' if w.value >= 0.0 && st.dialect != Dialect::Syntec => {
@@ -393,6 +552,88 @@ fn settings(st: &mut State, words: &[Word]) {
             _ => {}
         }
     }
+}
+
+/// The S word: the spindle speed (rpm under G97, surface speed under G96), or with G92 the
+/// most rpm G96 may reach (the Fanuc family's `G92 S`).
+fn spindle_speed(st: &mut State, words: &[Word], g92: bool) {
+    let s = find(words, b'S').filter(|s| s.value >= 0.0);
+    if let Some(s) = s {
+        if g92 && st.dialect != Dialect::LinuxCnc {
+            st.spindle_clamp = Some(s.value);
+            return;
+        }
+        if st.css {
+            st.surface_speed = s.value;
+        } else {
+            st.spindle_rpm = s.value;
+            return;
+        }
+    } else if !st.css {
+        // G97 without S keeps the last speed (the one G96 reached).
+        return;
+    }
+    if st.dialect == Dialect::LinuxCnc {
+        // LinuxCNC's G96 follows the X position of a lathe; the speed is read as written.
+        st.spindle_rpm = st.surface_speed;
+        return;
+    }
+    // A milling cutter cuts at its diameter: the radius in the D register (or the tool's own
+    // register when no D has been given).
+    let register = if st.d_word > 0 { st.d_word } else { st.tool };
+    let radius = st
+        .setup
+        .registers
+        .get(&register)
+        .map_or(0.0, |r| r.radius + r.radius_wear);
+    if radius <= 0.0 {
+        if let Some(s) = s {
+            st.diagnostics.push(Diagnostic::note(
+                s.span,
+                "N-CSS-DIAMETER",
+                format!(
+                    "G96: the tool's diameter is not known (no radius in offset register {register}), so the spindle speed for S{} is not known",
+                    s.value
+                ),
+            ));
+        }
+        st.spindle_rpm = st.spindle_clamp.unwrap_or(0.0);
+        return;
+    }
+    let diameter = 2.0 * radius;
+    // V = pi D N / 1000 (m/min, mm) or pi D N / 12 (ft/min, inch).
+    let rpm = if st.metric {
+        1000.0 * st.surface_speed / (std::f64::consts::PI * diameter)
+    } else {
+        12.0 * st.surface_speed / (std::f64::consts::PI * diameter / 25.4)
+    };
+    st.spindle_rpm = st.spindle_clamp.map_or(rpm, |c| rpm.min(c));
+}
+
+/// An H word in a block without G43/G44/G49 while length compensation is on selects the new
+/// register at once (H00 cancels, as KT documents); Syntec's H names the tool to measure and
+/// LinuxCNC applies H only with G43.
+fn new_length_register(st: &mut State, words: &[Word], has_code: bool) {
+    if has_code
+        || st.length_comp.is_none()
+        || matches!(st.dialect, Dialect::Syntec | Dialect::LinuxCnc)
+    {
+        return;
+    }
+    let Some(h) = find(words, b'H') else {
+        return;
+    };
+    let n = h.value.round().max(0.0) as u32;
+    if n == 0 {
+        st.length_comp = None;
+        return;
+    }
+    let length = st
+        .setup
+        .registers
+        .get(&n)
+        .map_or(0.0, |r| r.length + r.length_wear);
+    st.length_comp = Some((n, if st.length_plus { length } else { -length }));
 }
 
 fn axis_words(words: &[Word]) -> Axes<'_> {
@@ -534,18 +775,51 @@ fn motion(
                 ));
                 return false;
             }
-            return arc(st, block, p, offsets, radius, ccw, source, sink);
+            // Syntec's L: the number of turns of a spiral (or of a multi-turn arc).
+            let turns = find(words, b'L').filter(|_| st.dialect == Dialect::Syntec);
+            return arc(st, block, p, (offsets, radius, turns), ccw, source, sink);
         }
-        MotionMode::Thread => {
-            let lead = find(words, b'F').map(|f| f.value);
-            let _ = lead;
-            return feed_to(st, block, p, to, source, sink);
-        }
+        MotionMode::Thread => return thread(st, block, words, p, to, source, sink),
         MotionMode::Rapid | MotionMode::Linear => return feed_to(st, block, p, to, source, sink),
     };
     st.position = to;
     st.program_pos = p;
     sink.emit(source, &event);
+    true
+}
+
+/// G33: a feed along the programmed line at the lead (F; LinuxCNC's K) per spindle revolution.
+fn thread(
+    st: &mut State,
+    block: &Block,
+    words: &[Word],
+    p: DVec3,
+    to: DVec3,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> bool {
+    let lead = if st.dialect == Dialect::LinuxCnc {
+        find(words, b'K').map_or(0.0, |k| st.length(k))
+    } else {
+        st.mm(st.feed_word)
+    };
+    let feed_mm_per_min = lead * st.spindle_rpm;
+    if feed_mm_per_min <= 0.0 {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-NO-FEED",
+            "G33 feeds the lead once per spindle revolution: it needs the lead and a spindle speed (S)",
+        ));
+    }
+    st.position = to;
+    st.program_pos = p;
+    sink.emit(
+        source,
+        &Canon::Feed {
+            to,
+            feed_mm_per_min: feed_mm_per_min.max(0.0),
+        },
+    );
     true
 }
 
@@ -557,38 +831,97 @@ fn feed_to(
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
-    if st.feed_mm_per_min <= 0.0 {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-NO-FEED",
-            "a cutting move needs a feed rate: program F before or in this block",
-        ));
-    }
+    let length = st.position.distance(to);
+    let feed_mm_per_min = move_feed(st, block, length, None);
     st.position = to;
     st.program_pos = p;
     sink.emit(
         source,
         &Canon::Feed {
             to,
-            feed_mm_per_min: st.feed_mm_per_min,
+            feed_mm_per_min,
         },
     );
     true
 }
 
+/// The feed of one cutting move in mm/min, from the feed mode: F per minute as programmed; F
+/// per revolution times the spindle speed; under G93 F times the move's length (LinuxCNC and
+/// Fanuc: the move takes 1/F minutes), or as Syntec's manual defines it, F times the length of
+/// a line and F times the radius of an arc (`radius`). Reports a move that cannot feed.
+fn move_feed(st: &mut State, block: &Block, length: f64, radius: Option<f64>) -> f64 {
+    let (feed, problem) = match st.feed_mode {
+        FeedMode::PerMinute => (
+            st.feed_mm_per_min,
+            "a cutting move needs a feed rate: program F before or in this block",
+        ),
+        FeedMode::PerRevolution => {
+            let per_rev = st.mm(st.feed_mm_per_min);
+            if per_rev > 0.0 && st.spindle_rpm <= 0.0 {
+                st.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-NO-FEED",
+                    "a feed per revolution (G95) needs a spindle speed: program S before or in this block",
+                ));
+                return 0.0;
+            }
+            (
+                per_rev * st.spindle_rpm,
+                "a cutting move needs a feed per revolution: program F before or in this block",
+            )
+        }
+        FeedMode::InverseTime => {
+            if !st.block_has_feed {
+                let alarm = if st.dialect == Dialect::Syntec {
+                    " (alarm Cor85)"
+                } else {
+                    ""
+                };
+                st.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-NO-FEED",
+                    format!(
+                        "in inverse-time mode (G93) every cutting block needs its own F{alarm}"
+                    ),
+                ));
+                return 0.0;
+            }
+            let f = st.feed_mm_per_min;
+            let feed = match radius {
+                Some(r) if st.dialect == Dialect::Syntec => f * r,
+                _ => f * length,
+            };
+            (feed, "F must be positive in inverse-time mode (G93)")
+        }
+    };
+    // A move of no length under G93 takes no time whatever its F.
+    let inverse_nothing = st.feed_mode == FeedMode::InverseTime && st.feed_mm_per_min > 0.0;
+    if feed <= 0.0 && !inverse_nothing {
+        st.diagnostics
+            .push(Diagnostic::error(block.span, "E-NO-FEED", problem));
+        return 0.0;
+    }
+    feed.max(0.0)
+}
+
+/// The words that shape an arc: centre offsets I/J/K, radius R and Syntec's turns L.
+type ArcWords<'w> = (Axes<'w>, Option<&'w Word>, Option<&'w Word>);
+
 /// G02/G03 in the program frame (centre from I/J/K or from R), then through the transform.
-#[allow(clippy::too_many_arguments)]
+/// With Syntec's L the arc is a spiral (or conical spiral) of L turns, a partial turn counting
+/// as one, and its end need not lie on the start's circle; LNC changes the radius progressively
+/// when the end is off the circle.
 fn arc(
     st: &mut State,
     block: &Block,
     p: DVec3,
-    offsets: Axes<'_>,
-    radius: Option<&Word>,
+    (offsets, radius, turns_word): ArcWords<'_>,
     ccw: bool,
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
     let (u, v) = plane_axes(st.plane);
+    let turns = turns_word.map_or(0, |l| (l.value.round().clamp(1.0, 9999.0) as u32) - 1);
     let from = st.program_pos;
     let mut center = from;
     if let Some(r) = radius.filter(|_| offsets.iter().all(Option::is_none)) {
@@ -647,7 +980,19 @@ fn arc(
             ));
             return false;
         }
-        if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm {
+        if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm && turns_word.is_some() {
+            // A spiral: the radius goes from the start's to the end's.
+        } else if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm && st.dialect == Dialect::Lnc
+        {
+            st.diagnostics.push(Diagnostic::warning(
+                block.span,
+                "W-ARC-SPIRAL",
+                format!(
+                    "the end point is {:.4} mm off the arc: LNC changes the radius progressively from {r0:.4} mm to {r1:.4} mm",
+                    (r0 - r1).abs()
+                ),
+            ));
+        } else if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm {
             let alarm = if st.dialect == Dialect::Syntec {
                 " (alarm COR-006)"
             } else {
@@ -664,19 +1009,24 @@ fn arc(
             return false;
         }
     }
-    if st.feed_mm_per_min <= 0.0 {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-NO-FEED",
-            "G02/G03 needs a feed rate: program F before or in this block",
-        ));
-    }
     let to = st.to_machine(p);
     let mut machine_center = st.to_machine(center);
     let normal = 3 - u - v;
     // The centre lies in the start's plane.
     machine_center[normal] = st.position[normal];
+    let program_ccw = ccw;
     let ccw = ccw != st.reverses_arcs();
+    if let Some(c) = unequal_scaling_center(st, from, p, center, program_ccw, turns_word.is_some())
+    {
+        machine_center = c;
+        machine_center[normal] = st.position[normal];
+    }
+    let from_machine = st.position;
+    let sweep = arc_sweep(from_machine, to, machine_center, st.plane, ccw, turns);
+    let r0 = (from_machine[u] - machine_center[u]).hypot(from_machine[v] - machine_center[v]);
+    let r1 = (to[u] - machine_center[u]).hypot(to[v] - machine_center[v]);
+    let length = (sweep.abs() * (r0 + r1) / 2.0).hypot(to[normal] - from_machine[normal]);
+    let feed_mm_per_min = move_feed(st, block, length, Some(r0));
     st.position = to;
     st.program_pos = p;
     sink.emit(
@@ -686,11 +1036,54 @@ fn arc(
             center: machine_center,
             axis: st.plane,
             ccw,
-            turns: 0,
-            feed_mm_per_min: st.feed_mm_per_min,
+            turns,
+            feed_mm_per_min,
         },
     );
     true
+}
+
+/// Syntec scales an arc's radius by the largest of the plane's two factors when G51 scales them
+/// unequally (`G51 I2. J1.` cuts arcs like `G51 P2.`): the machine centre for the scaled end
+/// points, on the same side as the programmed arc's. `None` when the scaling is equal.
+fn unequal_scaling_center(
+    st: &State,
+    from: DVec3,
+    to: DVec3,
+    center: DVec3,
+    ccw: bool,
+    spiral: bool,
+) -> Option<DVec3> {
+    let s = st.scaling?;
+    let (u, v) = plane_axes(st.plane);
+    let (fu, fv) = (s.factors[u].abs(), s.factors[v].abs());
+    if spiral || (fu - fv).abs() < 1e-12 {
+        return None;
+    }
+    let factor = fu.max(fv);
+    let (a, b) = (st.scaled(from), st.scaled(to));
+    let offset = DVec2::new(center[u] - from[u], center[v] - from[v]);
+    let r = offset.length() * factor;
+    let (du, dv) = (b[u] - a[u], b[v] - a[v]);
+    let chord = du.hypot(dv);
+    let mut c = a;
+    if chord < 1e-9 {
+        // A full circle: the centre offset, scaled by the largest factor (with the signs of
+        // the factors, so a mirrored one still points the right way).
+        c[u] = a[u] + offset.x * factor * s.factors[u].signum();
+        c[v] = a[v] + offset.y * factor * s.factors[v].signum();
+    } else {
+        // The programmed arc's sweep decides between the short and the long way round.
+        let sweep = arc_sweep(from, to, center, st.plane, ccw, 0).abs();
+        let long = sweep > std::f64::consts::PI;
+        let ccw_scaled = ccw != st.reverses_arcs();
+        let half = chord / 2.0;
+        let h = (r * r - half * half).max(0.0).sqrt();
+        let side = if ccw_scaled != long { 1.0 } else { -1.0 };
+        c[u] = a[u] + du / 2.0 - side * h * dv / chord;
+        c[v] = a[v] + dv / 2.0 + side * h * du / chord;
+    }
+    Some(st.place(c))
 }
 
 fn dwell(st: &mut State, g4: &Word, words: &[Word], source: Source, sink: &mut dyn Sink) {
@@ -761,6 +1154,7 @@ fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option<bool>) {
         ));
     }
     st.length_comp = Some((h, if plus { length } else { -length }));
+    st.length_plus = plus;
 }
 
 fn polar(st: &mut State, on: bool) {
@@ -791,6 +1185,14 @@ fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
     let center_of = |i: usize| find(words, letters[i]).map_or(st.program_pos[i], |c| st.length(c));
     let center = DVec2::new(center_of(u), center_of(v));
     let Some(r) = find(words, b'R') else {
+        if st.dialect == Dialect::Lnc {
+            st.diagnostics.push(Diagnostic::error(
+                w.span,
+                "E-WORD-MISSING",
+                "LNC alarms on G68 without the angle R: the rotation is not turned on",
+            ));
+            return;
+        }
         st.diagnostics.push(Diagnostic::warning(
             w.span,
             "W-WORD-MISSING",
@@ -880,6 +1282,20 @@ fn local(st: &mut State, axes: &Axes<'_>) {
 
 /// G92 X Y Z: the current position becomes the given coordinates.
 fn set_position(st: &mut State, axes: &Axes<'_>) {
+    if st.preset_rotation != 0.0 {
+        // Under Syntec's G92.1 rotation the offsets are in the machine's axes: the shift that
+        // puts the given program point (unrotated, unscaled) at the current position.
+        let mut wanted = st.program_pos;
+        for (i, w) in axes.iter().enumerate() {
+            if let Some(w) = w {
+                wanted[i] = st.length(w);
+            }
+        }
+        let q = crate::state::rotate_xy(st.scaled(wanted), st.preset_rotation);
+        st.shift = st.position - st.wcs_offset - st.local - q;
+        st.resync();
+        return;
+    }
     for (i, w) in axes.iter().enumerate() {
         if let Some(w) = w {
             let wanted = st.length(w);
@@ -1053,19 +1469,35 @@ fn from_reference(st: &mut State, axes: &Axes<'_>, source: Source, sink: &mut dy
 }
 
 /// G53: a one-shot move in machine coordinates, in the block's motion mode (G00 or G01).
+/// Returns whether the block's axis words were used (`false`: they are an ordinary move).
 fn machine_move(
     st: &mut State,
     block: &Block,
+    g53: &Word,
     axes: &Axes<'_>,
     source: Source,
     sink: &mut dyn Sink,
-) {
-    if !st.absolute && st.dialect == Dialect::Syntec {
+) -> bool {
+    if !st.absolute {
+        if st.dialect == Dialect::LinuxCnc {
+            st.diagnostics.push(Diagnostic::error(
+                g53.span,
+                "E-G53-INCREMENTAL",
+                "G53 cannot be used in G91: the block is not run",
+            ));
+            return true;
+        }
+        // Syntec: "only effective in G90; in G91 a plain incremental move"; LNC: "invalid in
+        // G91"; Fanuc ignores it there too.
         st.diagnostics.push(Diagnostic::warning(
-            block.span,
+            g53.span,
             "W-G53-INCREMENTAL",
-            "Syntec runs G53 only in G90: the values are read as absolute machine coordinates",
+            format!(
+                "{} ignores G53 in G91: the block is an ordinary incremental move",
+                st.dialect.label()
+            ),
         ));
+        return false;
     }
     let mut to = st.position;
     // Machine coordinates place the spindle's gauge line: the tool tip is the active length
@@ -1083,6 +1515,144 @@ fn machine_move(
         }
         _ => rapid_to(st, to, source, sink),
     }
+    true
+}
+
+/// G37 / G37.1 (Syntec): with P, the return to reference point P (G30 style, all axes); G37
+/// then rapids to R above Z when R is given; the measuring move is drawn in full to Z (a program
+/// coordinate for G37, a machine coordinate for G37.1), and G37.1 retracts Z to the safety point
+/// Q (machine coordinate) or the machine zero.
+#[allow(clippy::too_many_arguments)]
+fn measure(
+    st: &mut State,
+    block: &Block,
+    g37: &Word,
+    words: &[Word],
+    machine_z: bool,
+    source: Source,
+    sink: &mut dyn Sink,
+) {
+    let Some(z) = find(words, b'Z') else {
+        st.diagnostics.push(Diagnostic::error(
+            g37.span,
+            "E-WORD-MISSING",
+            "tool measurement needs the measuring position in Z (alarm MAR-330)",
+        ));
+        return;
+    };
+    let z = st.length(z);
+    st.diagnostics.push(Diagnostic::note(
+        block.span,
+        "N-PROBE",
+        "a measuring move is drawn as its full programmed move (where the signal stops it is not known)",
+    ));
+    let tip = tool_tip_shift(st);
+    if let Some(p) = find(words, b'P') {
+        let n = p.value.round();
+        if (1.0..=4.0).contains(&n) {
+            let point = st.setup.reference_point(n as usize) - tip;
+            rapid_to(st, point, source, sink);
+        }
+    }
+    let end = if machine_z {
+        let mut end = st.position;
+        end.z = z - tip.z;
+        end
+    } else {
+        let mut p = st.program_pos;
+        if let Some(r) = find(words, b'R') {
+            p.z = z + st.length(r);
+            let start = st.to_machine(p);
+            rapid_to(st, start, source, sink);
+        }
+        p.z = z;
+        st.to_machine(p)
+    };
+    let program = st.to_program(end);
+    feed_to(st, block, program, end, source, sink);
+    if machine_z {
+        let mut back = st.position;
+        back.z = find(words, b'Q').map_or(0.0, |q| st.length(q)) - tip.z;
+        rapid_to(st, back, source, sink);
+    }
+}
+
+/// G22 X Y Z I J K: the programmable stroke limit (machine coordinates) / G23: off. Syntec pairs
+/// X with I (either may be the larger), protects the zone between them and refuses an axis given
+/// without its pair (COR-109); an axis whose pair is equal is not protected. LNC keeps the tool
+/// inside the limits (X Y Z the + limits, I J K the − limits); an axis not given is not limited
+/// here (its user parameter is not in the setup).
+fn stroke_limit(st: &mut State, w: &Word, words: &[Word], on: bool) {
+    st.stroke_check = on;
+    if !on {
+        return;
+    }
+    let syntec = st.dialect == Dialect::Syntec;
+    let mut min = DVec3::NEG_INFINITY;
+    let mut max = DVec3::INFINITY;
+    let mut given = false;
+    for (i, (plus, minus)) in [(b'X', b'I'), (b'Y', b'J'), (b'Z', b'K')]
+        .iter()
+        .enumerate()
+    {
+        let hi = find(words, *plus).map(|x| st.length(x));
+        let lo = find(words, *minus).map(|x| st.length(x));
+        given |= hi.is_some() || lo.is_some();
+        match (hi, lo) {
+            (Some(a), Some(b)) if syntec => {
+                if (a - b).abs() > 1e-9 {
+                    min[i] = a.min(b);
+                    max[i] = a.max(b);
+                }
+            }
+            (None, None) => {}
+            _ if syntec => {
+                st.diagnostics.push(Diagnostic::error(
+                    w.span,
+                    "E-WORD-MISSING",
+                    format!(
+                        "G22 needs both limits of an axis ({} with {}): alarm COR-109, the protection is not activated",
+                        *plus as char, *minus as char
+                    ),
+                ));
+                st.stroke_check = false;
+                return;
+            }
+            (hi, lo) => {
+                if let Some(hi) = hi {
+                    max[i] = hi;
+                }
+                if let Some(lo) = lo {
+                    min[i] = lo;
+                }
+            }
+        }
+    }
+    // Without limits in the block the machine's parameters apply (not in the setup).
+    st.stroke_zone = given.then_some(StrokeZone {
+        min,
+        max,
+        inside_forbidden: syntec,
+    });
+    if syntec && (0..3).all(|i| min[i] == f64::NEG_INFINITY) {
+        // Every pair was equal: nothing is protected.
+        st.stroke_zone = None;
+    }
+}
+
+/// G92.1 X Y Z R (Syntec): the program zero is preset at X Y Z from the work origin (the G92
+/// offsets #1901…) and the program XY plane turned by R degrees about it (#1930). K is not
+/// explained by the manual and is not used.
+fn preset_zero(st: &mut State, words: &[Word]) {
+    for (i, l) in [b'X', b'Y', b'Z'].iter().enumerate() {
+        if let Some(w) = find(words, *l) {
+            st.shift[i] = st.length(w);
+        }
+    }
+    if let Some(r) = find(words, b'R') {
+        st.preset_rotation = st.angle(r);
+    }
+    st.resync();
 }
 
 /// Where the tool tip is relative to the gauge line under the active length offset (along the

@@ -69,6 +69,9 @@ struct Frame {
     start: usize,
     /// Further runs left (`M98 P… L3` runs three times).
     repeats_left: u32,
+    /// Whether this is the G66 modal macro, called after a move (its own moves do not call it
+    /// again).
+    modal: bool,
 }
 
 /// Interprets a parsed program in bounded steps.
@@ -611,6 +614,7 @@ impl Interpreter {
             return_to,
             start,
             repeats_left: repeats.saturating_sub(1),
+            modal: false,
         });
         Ok(())
     }
@@ -680,6 +684,29 @@ impl Interpreter {
         }
         self.push_call(block, CallKind::Subprogram, at + 1, start, repeats)?;
         Ok(Flow::Jump(start))
+    }
+
+    /// Whether the G66 modal macro is running (a move inside it does not call it again).
+    pub(crate) fn in_modal_macro(&self) -> bool {
+        self.calls.iter().any(|f| f.modal)
+    }
+
+    /// The G66 modal macro after a move: like G65, marked so that its own moves do not call it.
+    pub(crate) fn call_modal_macro(
+        &mut self,
+        at: usize,
+        block: &Block,
+        number: f64,
+        repeats: u32,
+        args: &[(u8, f64)],
+    ) -> Result<Flow, Diagnostic> {
+        let flow = self.call_macro(at, block, number, repeats, args)?;
+        if flow != Flow::Next
+            && let Some(frame) = self.calls.last_mut()
+        {
+            frame.modal = true;
+        }
+        Ok(flow)
     }
 
     /// `G65 P… L… args`: a macro call with local variables from the arguments.

@@ -52,6 +52,63 @@ pub(crate) struct Scaling {
     pub factors: DVec3,
 }
 
+/// The G22 programmable stroke limit: a box in machine coordinates over the axes it protects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct StrokeZone {
+    /// Lower limit per axis (negative infinity where the axis has none).
+    pub min: DVec3,
+    /// Upper limit per axis (infinity where the axis has none).
+    pub max: DVec3,
+    /// Whether the tool must stay out of the box (Syntec's protected zone) rather than inside
+    /// it (LNC's soft limit).
+    pub inside_forbidden: bool,
+}
+
+impl StrokeZone {
+    /// Whether the straight move from `a` to `b` (machine coordinates) breaks the limit.
+    pub fn violated_by(&self, a: DVec3, b: DVec3) -> bool {
+        if !self.inside_forbidden {
+            // The box is convex: a move stays inside exactly when both ends do.
+            let inside =
+                |p: DVec3| (0..3).all(|i| p[i] >= self.min[i] - 1e-9 && p[i] <= self.max[i] + 1e-9);
+            return !(inside(a) && inside(b));
+        }
+        // Slab test against the open box: touching its boundary is allowed.
+        let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+        for i in 0..3 {
+            let (lo, hi) = (self.min[i] + 1e-9, self.max[i] - 1e-9);
+            let d = b[i] - a[i];
+            if d.abs() < 1e-15 {
+                if a[i] <= lo || a[i] >= hi {
+                    return false;
+                }
+                continue;
+            }
+            let (mut ta, mut tb) = ((lo - a[i]) / d, (hi - a[i]) / d);
+            if ta > tb {
+                std::mem::swap(&mut ta, &mut tb);
+            }
+            t0 = t0.max(ta);
+            t1 = t1.min(tb);
+            if t0 >= t1 {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// The G66 modal macro call: called after each move until G67.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct ModalMacro {
+    /// Program number (P).
+    pub number: f64,
+    /// Calls after each move (L).
+    pub repeats: u32,
+    /// The arguments, as local variable number and value.
+    pub args: Vec<(u8, f64)>,
+}
+
 /// G16 polar coordinates: the pole in the program frame (plane coordinates).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Polar {
@@ -90,11 +147,22 @@ pub(crate) struct State {
     pub polar: Option<Polar>,
     pub feed_mode: FeedMode,
     pub feed_mm_per_min: f64,
+    /// The last F word as written (program units; the lead of G33).
+    pub feed_word: f64,
+    /// Whether the block being run has an F word (G93 needs one in every cutting block).
+    pub block_has_feed: bool,
+    /// The spindle speed in rpm (under G96 computed from the surface speed and the tool).
     pub spindle_rpm: f64,
     pub css: bool,
+    /// The surface speed of G96 (m/min, or ft/min in inch).
+    pub surface_speed: f64,
+    /// The spindle-speed clamp (`G92 S`) for G96.
+    pub spindle_clamp: Option<f64>,
     pub tool: u32,
     /// Active length compensation: register number and signed offset (mm).
     pub length_comp: Option<(u32, f64)>,
+    /// Whether the active length compensation is G43 (add) rather than G44 (subtract).
+    pub length_plus: bool,
     /// Cutter compensation code in effect (400, 410, 420).
     pub cutter_comp: u32,
     /// Cutting mode G61–G64 (tenths).
@@ -103,8 +171,13 @@ pub(crate) struct State {
     pub return_initial: bool,
     /// G22 on.
     pub stroke_check: bool,
-    /// Modal macro call (G66): program number and arguments.
-    pub modal_macro: Option<(f64, Vec<(u8, f64)>)>,
+    /// The limits given on the last G22 (`None`: the machine's parameters, which the setup does
+    /// not hold).
+    pub stroke_zone: Option<StrokeZone>,
+    /// Modal macro call (G66).
+    pub modal_macro: Option<ModalMacro>,
+    /// Syntec's G92.1 rotation of the program plane about the preset zero point, degrees.
+    pub preset_rotation: f64,
     /// G28/G30 intermediate point per axis, in the program frame.
     pub intermediate: [Option<f64>; 3],
     /// The last T, D and H words.
@@ -144,16 +217,32 @@ impl State {
             mirror_center: DVec3::ZERO,
             polar: None,
             feed_mode: FeedMode::PerMinute,
-            feed_mm_per_min: 0.0,
+            // Syntec cuts at 1000 mm/min until an F is programmed (§5.2).
+            feed_mm_per_min: if dialect == Dialect::Syntec {
+                1000.0
+            } else {
+                0.0
+            },
+            feed_word: if dialect == Dialect::Syntec {
+                1000.0
+            } else {
+                0.0
+            },
+            block_has_feed: false,
             spindle_rpm: 0.0,
             css: false,
+            surface_speed: 0.0,
+            spindle_clamp: None,
             tool: 0,
             length_comp: None,
+            length_plus: true,
             cutter_comp: 400,
             path_mode: 640,
             return_initial: true,
             stroke_check: false,
+            stroke_zone: None,
             modal_macro: None,
+            preset_rotation: 0.0,
             intermediate: [None; 3],
             d_word: 0,
             h_word: 0,
@@ -196,19 +285,11 @@ impl State {
 
     /// Program frame → machine frame.
     pub fn to_machine(&self, p: DVec3) -> DVec3 {
-        if self.wcs_rotation != 0.0 {
-            // LinuxCNC rotates the coordinate system about its origin, after G52/G92.
-            let q = rotate_xy(
-                self.transform(p) + self.local + self.shift,
-                self.wcs_rotation,
-            );
-            return q + self.wcs_offset;
-        }
-        self.transform(p) + self.base()
+        self.place(self.scaled(p))
     }
 
-    /// Mirror, scaling and rotation of a program-frame point (no offsets).
-    pub fn transform(&self, p: DVec3) -> DVec3 {
+    /// Mirror and scaling of a program-frame point (the first steps of the chain).
+    pub fn scaled(&self, p: DVec3) -> DVec3 {
         let mut q = p;
         if self.mirror != DVec3::ONE {
             q = self.mirror_center + (q - self.mirror_center) * self.mirror;
@@ -216,6 +297,23 @@ impl State {
         if let Some(s) = self.scaling {
             q = s.center + (q - s.center) * s.factors;
         }
+        q
+    }
+
+    /// A mirrored and scaled point → machine frame: G68 rotation, Syntec's G92.1 rotation, then
+    /// the offsets (and LinuxCNC's rotated coordinate systems).
+    pub fn place(&self, q: DVec3) -> DVec3 {
+        let q = self.rotated(q);
+        if self.wcs_rotation != 0.0 {
+            // LinuxCNC rotates the coordinate system about its origin, after G52/G92.
+            return rotate_xy(q + self.local + self.shift, self.wcs_rotation) + self.wcs_offset;
+        }
+        rotate_xy(q, self.preset_rotation) + self.base()
+    }
+
+    /// G68 rotation of a mirrored and scaled point.
+    fn rotated(&self, p: DVec3) -> DVec3 {
+        let mut q = p;
         if let Some(r) = self.rotation {
             let (u, v) = plane_axes(r.plane);
             let (sin, cos) = r.degrees.to_radians().sin_cos();
@@ -232,7 +330,7 @@ impl State {
         let mut q = if self.wcs_rotation != 0.0 {
             rotate_xy(m - self.wcs_offset, -self.wcs_rotation) - self.local - self.shift
         } else {
-            m - self.base()
+            rotate_xy(m - self.base(), -self.preset_rotation)
         };
         if let Some(r) = self.rotation {
             let (u, v) = plane_axes(r.plane);
@@ -301,7 +399,7 @@ impl State {
             feed.into(),
             format!("G{}", self.cutter_comp / 10),
             match self.length_comp {
-                Some((_, o)) if o < 0.0 => "G44".into(),
+                Some(_) if !self.length_plus => "G44".into(),
                 Some(_) => "G43".into(),
                 None => "G49".into(),
             },
@@ -360,6 +458,12 @@ impl State {
             1004 if self.dialect == Dialect::Syntec => {
                 Some(Some(if self.absolute { 90.0 } else { 91.0 }))
             }
+            // Syntec: the G92 offset of each axis, and the G92.1 rotation.
+            1901..=1916 if self.dialect == Dialect::Syntec => {
+                let i = (n - 1901) as usize;
+                Some(Some(if i < 3 { unit(self.shift[i]) } else { 0.0 }))
+            }
+            1930 if self.dialect == Dialect::Syntec => Some(Some(self.preset_rotation)),
             2001..=2400 => {
                 let r = self.setup.registers.get(&(n - 2000));
                 Some(Some(unit(r.map_or(0.0, |r| r.length + r.length_wear))))
@@ -392,7 +496,7 @@ impl State {
             })),
             4007 => Some(Some(f64::from(self.cutter_comp / 10))),
             4008 => Some(Some(match self.length_comp {
-                Some((_, o)) if o < 0.0 => 44.0,
+                Some(_) if !self.length_plus => 44.0,
                 Some(_) => 43.0,
                 None => 49.0,
             })),
