@@ -34,6 +34,13 @@ pub(crate) struct Pending {
 
 /// Sends `event` to `sink`, first cutting the corner of a held-back move.
 pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &Canon) {
+    resolve(st, sink, event);
+    sink.emit(source, event);
+}
+
+/// Cuts the corner of a held-back move against `event`, the next thing the machine does (or
+/// draws it sharp when that is not a cutting move), without sending `event` itself.
+pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
     let moves = matches!(
         event,
         Canon::Rapid { .. }
@@ -63,7 +70,6 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
             }
         }
     }
-    sink.emit(source, event);
 }
 
 /// Emits a held-back move at the end of the run.

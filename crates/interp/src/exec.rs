@@ -311,6 +311,7 @@ fn execute_block(
     }
     for word in words {
         match word.form {
+            WordForm::Comma if matches!(word.letter, b'C' | b'R') => {}
             WordForm::Comma => it.st.diagnostics.push(Diagnostic::warning(
                 word.span,
                 "W-NOT-INTERPRETED",
@@ -780,11 +781,39 @@ fn motion(
             return arc(st, block, p, (offsets, radius, turns), ccw, source, sink);
         }
         MotionMode::Thread => return thread(st, block, words, p, to, source, sink),
+        MotionMode::Linear if st.dialect.rules().comma_words => {
+            if let Some(corner) = corner_word(st, block) {
+                // Held back one block: the next move decides where the corner goes.
+                let from = st.position;
+                let feed = move_feed(st, block, from.distance(to), None);
+                // A corner held from the block before is cut against this move first.
+                crate::corners::resolve(
+                    st,
+                    sink,
+                    &Canon::Feed {
+                        to,
+                        feed_mm_per_min: feed,
+                    },
+                );
+                st.position = to;
+                st.program_pos = p;
+                st.pending = Some(crate::corners::Pending {
+                    from,
+                    to,
+                    feed_mm_per_min: feed,
+                    source,
+                    corner: corner.0,
+                    span: corner.1,
+                });
+                return true;
+            }
+            return feed_to(st, block, p, to, source, sink);
+        }
         MotionMode::Rapid | MotionMode::Linear => return feed_to(st, block, p, to, source, sink),
     };
     st.position = to;
     st.program_pos = p;
-    sink.emit(source, &event);
+    crate::corners::emit(st, sink, source, &event);
     true
 }
 
@@ -813,7 +842,9 @@ fn thread(
     }
     st.position = to;
     st.program_pos = p;
-    sink.emit(
+    crate::corners::emit(
+        st,
+        sink,
         source,
         &Canon::Feed {
             to,
@@ -821,6 +852,17 @@ fn thread(
         },
     );
     true
+}
+
+/// The block's `,C` or `,R` word as a corner in millimetres.
+fn corner_word(st: &State, block: &Block) -> Option<(crate::corners::Corner, swarf_syntax::Span)> {
+    let c = block.comma_word(b'C');
+    let r = block.comma_word(b'R');
+    match (c, r) {
+        (Some(c), _) => Some((crate::corners::Corner::Chamfer(st.length(c).abs()), c.span)),
+        (None, Some(r)) => Some((crate::corners::Corner::Round(st.length(r).abs()), r.span)),
+        _ => None,
+    }
 }
 
 fn feed_to(
@@ -835,7 +877,9 @@ fn feed_to(
     let feed_mm_per_min = move_feed(st, block, length, None);
     st.position = to;
     st.program_pos = p;
-    sink.emit(
+    crate::corners::emit(
+        st,
+        sink,
         source,
         &Canon::Feed {
             to,
@@ -1029,7 +1073,9 @@ fn arc(
     let feed_mm_per_min = move_feed(st, block, length, Some(r0));
     st.position = to;
     st.program_pos = p;
-    sink.emit(
+    crate::corners::emit(
+        st,
+        sink,
         source,
         &Canon::Arc {
             to,
@@ -1107,7 +1153,7 @@ fn dwell(st: &mut State, g4: &Word, words: &[Word], source: Source, sink: &mut d
         ));
         return;
     }
-    sink.emit(source, &Canon::Dwell { secs });
+    crate::corners::emit(st, sink, source, &Canon::Dwell { secs });
 }
 
 /// G54–G59, G54.1 Pn, G59.n.
@@ -1669,7 +1715,7 @@ fn tool_tip_shift(st: &State) -> DVec3 {
 fn rapid_to(st: &mut State, to: DVec3, source: Source, sink: &mut dyn Sink) {
     st.position = to;
     st.program_pos = st.to_program(to);
-    sink.emit(source, &Canon::Rapid { to });
+    crate::corners::emit(st, sink, source, &Canon::Rapid { to });
 }
 
 /// G65 P L args.
@@ -1786,7 +1832,7 @@ fn m_codes(
                 continue;
             }
         };
-        sink.emit(source, &event);
+        crate::corners::emit(st, sink, source, &event);
     }
     flow
 }

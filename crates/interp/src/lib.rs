@@ -2,16 +2,19 @@
 //! canonical motion stream through a [`Sink`], each event tagged with its source block.
 
 mod canon;
+mod corners;
 mod exec;
 mod flow;
 mod machine;
 pub mod macros;
 mod setup;
 mod state;
+mod states;
 
 pub use canon::{Axis, Canon, CanonRecorder, Source};
 pub use machine::{Interpreter, Limits, Status, run};
 pub use setup::{Machine, Register, Setup, SetupError, Units};
+pub use states::{BlockState, States, run_with_states};
 
 /// Receives the canonical events of a running program, in execution order.
 pub trait Sink {

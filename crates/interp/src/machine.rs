@@ -79,7 +79,7 @@ struct Frame {
 pub struct Interpreter {
     pub(crate) st: State,
     pub(crate) vars: Variables,
-    index: Option<Index>,
+    index: Option<std::sync::Arc<Index>>,
     next_block: usize,
     executed: u64,
     finished: bool,
@@ -136,6 +136,32 @@ impl Interpreter {
         self.next_block
     }
 
+    /// A copy of the interpreter without the diagnostics found so far (for [`States`]).
+    ///
+    /// [`States`]: crate::States
+    pub(crate) fn snapshot(&mut self) -> Interpreter {
+        let diagnostics = std::mem::take(&mut self.st.diagnostics);
+        let copy = self.clone();
+        self.st.diagnostics = diagnostics;
+        copy
+    }
+
+    /// The machine state before the next block, for a "state at cursor" view.
+    pub fn block_state(&self) -> crate::BlockState {
+        crate::BlockState {
+            codes: self.st.active_codes(),
+            machine: self.st.position,
+            work: self.st.program_pos,
+            work_offset_name: self.st.wcs.clone(),
+            work_offset: self.st.wcs_offset,
+            tool: self.st.tool,
+            length_offset: self.st.length_comp,
+            feed: self.st.feed_mm_per_min,
+            spindle_rpm: self.st.spindle_rpm,
+            executed: self.executed,
+        }
+    }
+
     /// The active G codes, one per modal group, as text (`G01`, `G17`, `G90`, …), for a
     /// "state at cursor" view.
     pub fn active_codes(&self) -> Vec<String> {
@@ -145,11 +171,14 @@ impl Interpreter {
     /// Executes at most `budget` blocks of `program`, sending events to `sink`.
     pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
         if self.index.is_none() {
-            self.index = Some(Index::build(program, &mut self.st.diagnostics));
+            self.index = Some(std::sync::Arc::new(Index::build(
+                program,
+                &mut self.st.diagnostics,
+            )));
         }
         for _ in 0..budget {
             if self.finished {
-                return Status::Finished;
+                break;
             }
             let at = self.next_block;
             let Some(block) = program.blocks.get(at) else {
@@ -166,7 +195,7 @@ impl Interpreter {
                     ),
                 ));
                 self.finished = true;
-                return Status::Finished;
+                break;
             }
             let source = Source {
                 block: u32::try_from(at).unwrap_or(u32::MAX),
@@ -185,6 +214,7 @@ impl Interpreter {
             }
         }
         if self.finished {
+            crate::corners::flush(&mut self.st, sink);
             Status::Finished
         } else {
             Status::Running

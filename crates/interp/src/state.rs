@@ -183,6 +183,8 @@ pub(crate) struct State {
     /// The last T, D and H words.
     pub d_word: u32,
     pub h_word: u32,
+    /// A G01 move held back for its `,C`/`,R` corner.
+    pub pending: Option<crate::corners::Pending>,
     /// An alarm raised by writing #3000.
     pub alarm: Option<Diagnostic>,
     pub diagnostics: Vec<Diagnostic>,
@@ -246,6 +248,7 @@ impl State {
             intermediate: [None; 3],
             d_word: 0,
             h_word: 0,
+            pending: None,
             alarm: None,
             diagnostics: Vec::new(),
             noted_least_increment: false,

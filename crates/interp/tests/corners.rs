@@ -72,3 +72,29 @@ fn a_corner_needs_a_cutting_move_next() {
     let (_, diags) = run_text("G01 X10. ,R2. F100\nM30\n", Dialect::Lnc);
     assert!(diags.iter().any(|d| d.code == "E-CORNER-NEXT"), "{diags:?}");
 }
+
+#[test]
+fn consecutive_corners_are_each_cut() {
+    // A square with a chamfer at two corners.
+    let text = "G90 G00 X0 Y0\nG01 X10. ,C1. F100\nY10. ,C1.\nX0\n";
+    let (events, diags) = run_text(text, Dialect::Lnc);
+    assert!(diags.is_empty(), "{diags:?}");
+    let ends: Vec<DVec3> = events
+        .iter()
+        .filter_map(|e| match e {
+            Canon::Feed { to, .. } => Some(*to),
+            _ => None,
+        })
+        .collect();
+    let expected = [
+        [9.0, 0.0, 0.0],
+        [10.0, 1.0, 0.0],
+        [10.0, 9.0, 0.0],
+        [9.0, 10.0, 0.0],
+        [0.0, 10.0, 0.0],
+    ];
+    assert_eq!(ends.len(), expected.len(), "{events:?}");
+    for (e, x) in ends.iter().zip(expected) {
+        assert!(near(*e, x), "{e} vs {x:?}");
+    }
+}

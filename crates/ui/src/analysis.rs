@@ -51,6 +51,8 @@ pub struct Analysis {
     pub problems: Vec<Problem>,
     /// Geometry for the backplot.
     pub scene: Scene,
+    /// The machine state at any block (for the state-at-cursor view).
+    pub states: swarf_interp::States,
 }
 
 impl Analysis {
@@ -59,7 +61,9 @@ impl Analysis {
         let program = parse(text, dialect);
         let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
         let mut diags = program.diagnostics.clone();
-        diags.extend(swarf_interp::run(&program, setup.clone(), &mut toolpath));
+        let (run_diags, states) =
+            swarf_interp::run_with_states(&program, setup.clone(), &mut toolpath);
+        diags.extend(run_diags);
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         let problems = locate(text, &program, &diags);
         let mut scene = scene_of(&toolpath, generation);
@@ -76,6 +80,7 @@ impl Analysis {
             toolpath,
             problems,
             scene,
+            states,
         }
     }
 

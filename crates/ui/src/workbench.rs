@@ -22,6 +22,8 @@ pub struct Workbench {
     cursor_line: Option<u32>,
     /// The cursor line last sent to the backplot as its selection.
     synced_line: Option<u32>,
+    /// The state shown for ((generation, line)), recomputed only when either changes.
+    state_cache: Option<((u64, u32), Option<swarf_interp::BlockState>)>,
 }
 
 impl Default for Workbench {
@@ -46,6 +48,7 @@ impl Workbench {
             backplot: Backplot::new(),
             cursor_line: None,
             synced_line: None,
+            state_cache: None,
         }
     }
 
@@ -102,6 +105,10 @@ impl Workbench {
             .resizable(true)
             .default_size(140.0)
             .show(ui, |ui| self.problems_list(ui));
+        egui::Panel::right("swarf-state")
+            .resizable(true)
+            .default_size(200.0)
+            .show(ui, |ui| self.state_view(ui));
         egui::Panel::left("swarf-editor")
             .resizable(true)
             .default_size(460.0)
@@ -140,6 +147,70 @@ impl Workbench {
                 if let Some(line) = self.backplot.take_picked_line().or(played) {
                     self.jump_to_line(line);
                 }
+            });
+    }
+
+    /// The machine state just before the block on 1-based `line` first runs (modal codes,
+    /// position, offsets, tool, feed, speed); `None` when no block there runs.
+    pub fn state_at_line(&self, line: u32) -> Option<swarf_interp::BlockState> {
+        let program = &self.analysis.program;
+        let row = line.checked_sub(1)?;
+        let block = program.blocks.iter().position(|b| b.line == row)?;
+        self.analysis.states.at(program, block)
+    }
+
+    /// The "state at cursor" panel.
+    fn state_view(&mut self, ui: &mut egui::Ui) {
+        ui.strong("State at cursor");
+        let Some(line) = self.cursor_line else {
+            ui.label("Put the cursor on a block.");
+            return;
+        };
+        let key = (self.generation, line);
+        if self.state_cache.as_ref().map(|(k, _)| *k) != Some(key) {
+            self.state_cache = Some((key, self.state_at_line(line)));
+        }
+        let Some((_, state)) = &self.state_cache else {
+            return;
+        };
+        let Some(s) = state else {
+            ui.label(format!("Line {line} does not run."));
+            return;
+        };
+        let mm = |v: glam::DVec3| format!("X{:.3} Y{:.3} Z{:.3}", v.x, v.y, v.z);
+        egui::Grid::new("swarf-state-grid")
+            .num_columns(2)
+            .show(ui, |ui| {
+                ui.label("line");
+                ui.label(line.to_string());
+                ui.end_row();
+                ui.label("modes");
+                ui.label(s.codes.join(" "));
+                ui.end_row();
+                ui.label("work");
+                ui.monospace(mm(s.work));
+                ui.end_row();
+                ui.label("machine");
+                ui.monospace(mm(s.machine));
+                ui.end_row();
+                ui.label(&s.work_offset_name);
+                ui.monospace(mm(s.work_offset));
+                ui.end_row();
+                ui.label("tool");
+                ui.label(match s.length_offset {
+                    Some((h, v)) => format!("T{} H{h} ({v:+.3} mm)", s.tool),
+                    None => format!("T{}", s.tool),
+                });
+                ui.end_row();
+                ui.label("feed");
+                ui.label(format!("F{}", s.feed));
+                ui.end_row();
+                ui.label("spindle");
+                ui.label(format!("S{}", s.spindle_rpm));
+                ui.end_row();
+                ui.label("blocks run");
+                ui.label(s.executed.to_string());
+                ui.end_row();
             });
     }
 

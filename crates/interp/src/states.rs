@@ -1,0 +1,106 @@
+//! The machine state at any block, for the editor's "state at cursor" view: a run records when
+//! each block first executes and keeps a copy of the interpreter every few thousand blocks, so
+//! the state before any block is a short re-run from the nearest copy, not a copy per block.
+
+use glam::DVec3;
+use swarf_syntax::{Diagnostic, Program};
+
+use crate::machine::{Interpreter, Status};
+use crate::{Canon, Setup, Sink, Source};
+
+/// Blocks between two kept copies of the interpreter.
+const CHECKPOINT_EVERY: u64 = 4096;
+
+/// What the machine is doing just before a block runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockState {
+    /// The active G codes, one per modal group (`G01`, `G17`, `G90`, `G21`, `G54` …).
+    pub codes: Vec<String>,
+    /// Tool-tip position in the machine frame, mm.
+    pub machine: DVec3,
+    /// The same point in the program's coordinates (work offset, G52/G92 and rotation undone), mm.
+    pub work: DVec3,
+    /// The active work coordinate system (`G54`, `G54.1P7`, `G59.3`).
+    pub work_offset_name: String,
+    /// Its offset, mm.
+    pub work_offset: DVec3,
+    /// The tool number last selected.
+    pub tool: u32,
+    /// The active length offset: register and signed value (mm).
+    pub length_offset: Option<(u32, f64)>,
+    /// Feed rate (mm/min in G94).
+    pub feed: f64,
+    /// Spindle speed.
+    pub spindle_rpm: f64,
+    /// Blocks executed before this one (loops and calls count every pass).
+    pub executed: u64,
+}
+
+/// Where each block first runs, and copies of the interpreter to re-run from.
+#[derive(Debug, Clone, Default)]
+pub struct States {
+    /// Per block: how many blocks had run when it first ran (`u32::MAX`: never ran).
+    first_run: Vec<u32>,
+    /// (blocks executed, interpreter before the next block), in run order.
+    checkpoints: Vec<(u64, Interpreter)>,
+}
+
+impl States {
+    /// The state just before block `block` first runs, or `None` when it never runs.
+    pub fn at(&self, program: &Program, block: usize) -> Option<BlockState> {
+        let target = u64::from(*self.first_run.get(block)?);
+        if target == u64::from(u32::MAX) {
+            return None;
+        }
+        let (_, from) = self.checkpoints.iter().rev().find(|(n, _)| *n <= target)?;
+        let mut interp = from.clone();
+        let mut discard = Discard;
+        while interp.executed_blocks() < target {
+            if interp.step(program, &mut discard, 1) == Status::Finished {
+                break;
+            }
+        }
+        Some(interp.block_state())
+    }
+
+    /// How many copies of the interpreter are kept.
+    pub fn checkpoints(&self) -> usize {
+        self.checkpoints.len()
+    }
+}
+
+/// A sink that drops everything (re-runs for a state only need the machine).
+struct Discard;
+
+impl Sink for Discard {
+    fn emit(&mut self, _source: Source, _event: &Canon) {}
+}
+
+/// Runs a whole program like [`run`](crate::run) and also records the [`States`] to ask the
+/// state at any block.
+pub fn run_with_states(
+    program: &Program,
+    setup: Setup,
+    sink: &mut dyn Sink,
+) -> (Vec<Diagnostic>, States) {
+    let mut interp = Interpreter::new(setup, program.dialect);
+    let mut states = States {
+        first_run: vec![u32::MAX; program.blocks.len()],
+        checkpoints: Vec::new(),
+    };
+    loop {
+        let executed = interp.executed_blocks();
+        if executed.is_multiple_of(CHECKPOINT_EVERY) {
+            states.checkpoints.push((executed, interp.snapshot()));
+        }
+        if let Some(first) = states.first_run.get_mut(interp.next_block())
+            && *first == u32::MAX
+        {
+            *first = u32::try_from(executed).unwrap_or(u32::MAX);
+        }
+        if interp.step(program, sink, 1) == Status::Finished {
+            break;
+        }
+    }
+    (interp.take_diagnostics(), states)
+}
