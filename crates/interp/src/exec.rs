@@ -37,6 +37,8 @@ enum Action {
     ResetShift,
     Reference(u8),
     FromReference,
+    /// LNC G168: rotation by a measured angle from the setup.
+    MeasuredRotation,
     /// LinuxCNC G28.1/G30.1: the current position becomes reference point n.
     StoreReference(usize),
     DataInput,
@@ -97,6 +99,7 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::Polar, 160) => Action::Polar(true),
         (Group::Rotation, 680) => Action::Rotation(true),
         (Group::Rotation, 690) => Action::Rotation(false),
+        (Group::Rotation, 1680) => Action::MeasuredRotation,
         (Group::Scaling, 500) => Action::Scaling(false),
         (Group::Scaling, 510) => Action::Scaling(true),
         (Group::Mirror, 501) => Action::Mirror(false),
@@ -418,6 +421,10 @@ fn execute_block(
             Action::Polar(on) => {
                 polar(st, on);
                 false
+            }
+            Action::MeasuredRotation => {
+                measured_rotation(st, w, words);
+                true
             }
             Action::Rotation(on) => {
                 rotation(st, w, words, on);
@@ -1220,6 +1227,40 @@ fn polar(st: &mut State, on: bool) {
 
 /// G68 X Y R (centre from the words, or the current position; angle absolute or, under G91,
 /// added to the active rotation).
+/// LNC G168 X Y Q: rotation about the centre (or the current point) by measurement result Q
+/// (1–4, default 1) from `[machine] measured_angles`.
+fn measured_rotation(st: &mut State, w: &Word, words: &[Word]) {
+    let q = find(words, b'Q').map_or(1.0, |q| q.value.round());
+    let Some(degrees) = (1.0..=4.0)
+        .contains(&q)
+        .then(|| {
+            st.setup
+                .machine
+                .measured_angles
+                .get(q as usize - 1)
+                .copied()
+        })
+        .flatten()
+    else {
+        st.diagnostics.push(Diagnostic::error(
+            w.span,
+            "E-MEASUREMENT",
+            format!(
+                "G168 Q{q} needs measurement result {q} in the setup (`[machine] measured_angles`)"
+            ),
+        ));
+        return;
+    };
+    let (u, v) = plane_axes(st.plane);
+    let letters = [b'X', b'Y', b'Z'];
+    let center_of = |i: usize| find(words, letters[i]).map_or(st.program_pos[i], |c| st.length(c));
+    st.rotation = Some(Rotation {
+        plane: st.plane,
+        center: DVec2::new(center_of(u), center_of(v)),
+        degrees,
+    });
+}
+
 fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
     if !on {
         st.rotation = None;

@@ -70,6 +70,8 @@ pub struct Machine {
     /// Reference points in machine coordinates, mm: P1 (G28, the machine's reference position)
     /// and P2–P4 (G30); missing ones are the machine origin.
     pub reference_points: Vec<[f64; 3]>,
+    /// Measured angles in degrees (LNC G168 Q1–Q4 rotates by them), from the machine's probing.
+    pub measured_angles: Vec<f64>,
 }
 
 impl Default for Machine {
@@ -82,6 +84,7 @@ impl Default for Machine {
             arc_tolerance_mm: 0.01,
             calculator_input: None,
             reference_points: Vec::new(),
+            measured_angles: Vec::new(),
         }
     }
 }

@@ -296,3 +296,15 @@ fn mirror_reverses_arcs_and_scaling_scales() {
     let (events, _) = run_text("G51 X0 Y0 P2.\nG00 X10 Y5\n", Dialect::Syntec);
     assert_eq!(ends(&events), [[20.0, 10.0, 0.0]]);
 }
+
+#[test]
+fn lnc_g168_rotates_by_a_measured_angle() {
+    let setup =
+        Setup::from_toml("[machine]\ncalculator_input = true\nmeasured_angles = [90.0, 45.0]\n")
+            .unwrap();
+    let (events, diags) = run_with("G168 X0 Y0 Q1\nG00 X10 Y0\n", Dialect::Lnc, setup);
+    assert!(errors(&diags).is_empty(), "{diags:?}");
+    assert_eq!(ends(&events), [[0.0, 10.0, 0.0]]);
+    let (_, diags) = run_text("G168 Q3\nG00 X1\n", Dialect::Lnc);
+    assert_eq!(errors(&diags), ["E-MEASUREMENT"]);
+}
