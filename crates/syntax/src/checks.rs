@@ -294,6 +294,9 @@ fn forbidden_pairs(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>)
             .iter()
             .find(|(d, _)| d.code.letter == b'G' && t.contains(&d.code.tenths))
     };
+    if codes.len() < 2 {
+        return;
+    }
     for rule in FORBIDDEN {
         if !rule.dialects.contains(dialect) {
             continue;
@@ -313,14 +316,23 @@ fn forbidden_pairs(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>)
 }
 
 fn words_twice(block: &Block, out: &mut Vec<Diagnostic>) {
+    let mut seen = 0u32;
     for (i, word) in block.words.iter().enumerate() {
         if word.letter == b'G' || word.letter == b'M' {
             continue;
         }
-        if block.words[..i]
-            .iter()
-            .any(|w| w.letter == word.letter && w.form == word.form)
-        {
+        let repeated = if word.form == WordForm::Plain {
+            // The common case: one bit per plain letter.
+            let bit = letter_bit(word.letter);
+            let again = seen & bit != 0;
+            seen |= bit;
+            again
+        } else {
+            block.words[..i]
+                .iter()
+                .any(|w| w.letter == word.letter && w.form == word.form)
+        };
+        if repeated {
             let shown = match word.form {
                 WordForm::Comma => format!(",{}", word.letter()),
                 WordForm::Indexed(n) => format!("{}{n}=", word.letter()),
@@ -344,14 +356,12 @@ fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Di
     if !decides {
         return;
     }
-    let takes = |letter: u8| {
-        ALWAYS.contains(&letter)
-            || codes
-                .iter()
-                .any(|(d, _)| d.words.as_bytes().contains(&letter))
-    };
+    // One bit per letter: what any block may carry and what the block's codes take.
+    let taken = codes.iter().fold(letter_mask(ALWAYS), |m, (d, _)| {
+        m | letter_mask(d.words.as_bytes())
+    });
     for word in block.words.iter().filter(|w| w.form == WordForm::Plain) {
-        if takes(word.letter) {
+        if taken & letter_bit(word.letter) != 0 {
             continue;
         }
         let names: Vec<String> = codes
@@ -378,10 +388,25 @@ fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Di
 }
 
 fn has_any(block: &Block, letters: &str) -> bool {
+    let mask = letter_mask(letters.as_bytes());
     block
         .words
         .iter()
-        .any(|w| w.form == WordForm::Plain && letters.as_bytes().contains(&w.letter))
+        .any(|w| w.form == WordForm::Plain && mask & letter_bit(w.letter) != 0)
+}
+
+/// The bit of an uppercase letter (0 for anything else).
+fn letter_bit(letter: u8) -> u32 {
+    if letter.is_ascii_uppercase() {
+        1 << (letter - b'A')
+    } else {
+        0
+    }
+}
+
+/// The bits of a set of letters.
+fn letter_mask(letters: &[u8]) -> u32 {
+    letters.iter().fold(0, |m, &l| m | letter_bit(l))
 }
 
 fn required_words(block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
