@@ -229,10 +229,65 @@ impl CodeEditor {
                             row.max(0.0) as u32 + 1
                         });
                     paint_squiggles(ui, &edit.galley, edit.galley_pos, problems);
+                    // Hover help: the diagnostics there and what the code under the pointer is.
+                    if let Some(pos) = response.hover_pos() {
+                        let at = edit.galley.cursor_from_pos(pos - edit.galley_pos);
+                        if let Some(help) = hover_text(text, dialect, at.index.0, problems) {
+                            response.on_hover_text_at_pointer(help);
+                        }
+                    }
                 });
             });
         output
     }
+}
+
+/// What hovering at character `at` of `text` explains: the diagnostics covering it, and the G or
+/// M code (or address letter) there, from the dialect's code table.
+pub fn hover_text(text: &str, dialect: Dialect, at: usize, problems: &[Problem]) -> Option<String> {
+    let mut lines: Vec<String> = problems
+        .iter()
+        .filter(|p| p.chars.start <= at && at < p.chars.end.max(p.chars.start + 1))
+        .map(|p| format!("{} [{}]: {}", p.severity.as_str(), p.code, p.message))
+        .collect();
+    let byte = text.char_indices().nth(at).map_or(text.len(), |(b, _)| b);
+    let bytes = text.as_bytes();
+    // Back to the word's letter: over the digits, point and sign of its value.
+    let mut start = byte.min(bytes.len());
+    while start > 0 && (bytes[start - 1].is_ascii_digit() || b".+-".contains(&bytes[start - 1])) {
+        start -= 1;
+    }
+    if start > 0 && !bytes.get(start).is_some_and(u8::is_ascii_alphabetic) {
+        start -= 1;
+    }
+    if let Some(&letter) = bytes.get(start).filter(|b| b.is_ascii_alphabetic()) {
+        let letter = letter.to_ascii_uppercase();
+        let value: String = text[start + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '.')
+            .collect();
+        let code = value
+            .parse::<f64>()
+            .ok()
+            .and_then(|v| swarf_syntax::Code::from_value(letter, v))
+            .filter(|_| letter == b'G' || letter == b'M');
+        match code {
+            Some(code) => match swarf_syntax::codes::lookup(dialect, code) {
+                Some(def) => lines.push(format!(
+                    "{} — {}\n{}\n{}",
+                    def.code, def.name, def.format, def.summary
+                )),
+                None => lines.push(format!("{code} is not a code of {}", dialect.label())),
+            },
+            None if !value.is_empty() => {
+                if let Some(a) = swarf_syntax::codes::address(dialect, letter).next() {
+                    lines.push(format!("{}: {}", char::from(letter), a.meaning));
+                }
+            }
+            None => {}
+        }
+    }
+    (!lines.is_empty()).then(|| lines.join("\n\n"))
 }
 
 fn font_row_height(ui: &Ui, font: &FontId) -> f32 {

@@ -32,3 +32,23 @@ fn macro_keywords_and_variables_have_their_own_colours() {
     assert_eq!(color_of(text, Dialect::Fanuc, "GT"), keyword);
     assert_eq!(color_of(text, Dialect::LinuxCnc, "#<depth>"), variable);
 }
+
+#[test]
+fn hover_explains_the_code_and_the_problem_under_the_pointer() {
+    use swarf_ui::editor::hover_text;
+    let text = "G90 G134 X0 Y0 I10. J0 K6\n";
+    // Over `G134` on Syntec: the bolt-hole circle.
+    let at = text.find("134").unwrap();
+    let help = hover_text(text, Dialect::Syntec, at, &[]).unwrap();
+    assert!(help.contains("Bolt-hole"), "{help}");
+    // On Fanuc the same code is not one of its codes; with the parser's problem shown too.
+    let analysis = swarf_ui::Analysis::run(text, Dialect::Fanuc, &Default::default(), 1);
+    let help = hover_text(text, Dialect::Fanuc, at, &analysis.problems).unwrap();
+    assert!(help.contains("E-CODE-DIALECT"), "{help}");
+    assert!(help.contains("not a code of Fanuc"), "{help}");
+    // Over an address word: what the letter means.
+    let help = hover_text(text, Dialect::Syntec, text.find("X0").unwrap() + 1, &[]).unwrap();
+    assert!(help.starts_with("X:"), "{help}");
+    // Over a comment: nothing.
+    assert!(hover_text("(note)\n", Dialect::Fanuc, 2, &[]).is_none());
+}
