@@ -8,6 +8,17 @@ use crate::{Block, Diagnostic, Dialect, Program, Span, Word, WordForm};
 /// offset numbers) or are codes themselves.
 const ALWAYS: &[u8] = b"NOGMFSTDH";
 
+/// [`ALWAYS`] as a bit set.
+const ALWAYS_MASK: u32 = {
+    let mut mask = 0u32;
+    let mut i = 0;
+    while i < ALWAYS.len() {
+        mask |= 1 << (ALWAYS[i] - b'A');
+        i += 1;
+    }
+    mask
+};
+
 /// Two kinds of code that may not share a block in some dialects.
 struct Forbidden {
     dialects: DialectSet,
@@ -357,9 +368,9 @@ fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Di
         return;
     }
     // One bit per letter: what any block may carry and what the block's codes take.
-    let taken = codes.iter().fold(letter_mask(ALWAYS), |m, (d, _)| {
-        m | letter_mask(d.words.as_bytes())
-    });
+    let taken = codes
+        .iter()
+        .fold(ALWAYS_MASK, |m, (d, _)| m | codes::words_mask(d));
     for word in block.words.iter().filter(|w| w.form == WordForm::Plain) {
         if taken & letter_bit(word.letter) != 0 {
             continue;

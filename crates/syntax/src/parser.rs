@@ -454,6 +454,10 @@ impl LineReader<'_> {
     /// Reads what starts with a letter: a word, a sequence or program number, a macro keyword
     /// statement, or a LinuxCNC O-word line.
     fn read_letters(&mut self, block: &mut Block, pos: usize) -> usize {
+        if let Some((word, end)) = self.plain_word(pos) {
+            block.words.push(word);
+            return end;
+        }
         // Keywords are runs of two or more letters; a word is one letter and a value.
         let two_letters = self.bytes.get(pos + 1).is_some_and(u8::is_ascii_alphabetic);
         if two_letters && self.rules.macro_b {
@@ -474,6 +478,49 @@ impl LineReader<'_> {
             };
         }
         self.read_word_at(block, pos)
+    }
+
+    /// The common case on the hot path: a letter (not N or O) directly followed by a signed
+    /// decimal number, as CAM output writes every word (`X12.5`, `Z-0.25`). Anything else —
+    /// blanks, expressions, indexed words, errors — is left to the general reader.
+    fn plain_word(&self, pos: usize) -> Option<(Word, usize)> {
+        let letter = self.bytes[pos].to_ascii_uppercase();
+        if letter == b'N' || letter == b'O' {
+            return None;
+        }
+        let mut at = pos + 1;
+        let negative = match self.bytes.get(at) {
+            Some(b'-') => {
+                at += 1;
+                true
+            }
+            Some(b'+') => {
+                at += 1;
+                false
+            }
+            _ => false,
+        };
+        let number = scan_decimal(self.bytes, at)?;
+        let end = number.end;
+        let max = usize::from(self.rules.max_digits);
+        if self.bytes.get(end) == Some(&b'=')
+            || number.value > 1e15
+            || !number.value.is_finite()
+            || (max > 0 && number.digits > max)
+        {
+            return None;
+        }
+        Some((
+            Word {
+                letter,
+                value: if negative { -number.value } else { number.value },
+                has_point: number.has_point,
+                span: self.span(pos, end),
+                form: WordForm::Plain,
+                expr: None,
+            },
+            end,
+        ))
     }
 
     /// A program or sequence number, an O-word line, or an address word at `pos`.

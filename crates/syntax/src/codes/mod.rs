@@ -357,6 +357,38 @@ fn dialect_slot(dialect: Dialect) -> usize {
     }
 }
 
+/// The letters `def` accepts as a bit set (bit 0 = A), for the same-block checks.
+pub fn words_mask(def: &CodeDef) -> u32 {
+    static MASKS: OnceLock<Vec<u32>> = OnceLock::new();
+    let masks = MASKS.get_or_init(|| {
+        CODES
+            .iter()
+            .map(|d| {
+                d.words.bytes().fold(0u32, |m, l| {
+                    if l.is_ascii_uppercase() {
+                        m | 1 << (l - b'A')
+                    } else {
+                        m
+                    }
+                })
+            })
+            .collect()
+    });
+    // `def` is an element of CODES when it came from a lookup; its position is its offset.
+    let offset = (def as *const CodeDef as usize).wrapping_sub(CODES.as_ptr() as usize);
+    let index = offset / std::mem::size_of::<CodeDef>().max(1);
+    match masks.get(index) {
+        Some(mask) if std::ptr::eq(&CODES[index], def) => *mask,
+        _ => def.words.bytes().fold(0u32, |m, l| {
+            if l.is_ascii_uppercase() {
+                m | 1 << (l - b'A')
+            } else {
+                m
+            }
+        }),
+    }
+}
+
 /// Codes below this number (in tenths) are found by direct indexing.
 const DENSE: usize = 2000;
 
