@@ -72,6 +72,9 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::Motion, 30) => Action::Motion(Some(MotionMode::Arc { ccw: true })),
         (Group::Motion, 330) => Action::Motion(Some(MotionMode::Thread)),
         (Group::Motion | Group::Cycle, 800) => Action::Motion(None),
+        (Group::Motion | Group::Cycle, t) if crate::cycles::runs(t) => {
+            Action::Motion(Some(MotionMode::Cycle(t)))
+        }
         (_, 40) => Action::Dwell,
         (_, 90) if !linuxcnc => Action::ExactStop,
         (Group::Plane, 170) => Action::Plane(Axis::Z),
@@ -407,7 +410,26 @@ fn execute_block(
                 }
                 st.cutter_comp = t;
             }
-            Action::Motion(m) => st.motion = m,
+            Action::Motion(m) => {
+                let was_cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
+                st.motion = match m {
+                    Some(MotionMode::Cycle(_)) => {
+                        if !was_cycle {
+                            crate::cycles::enter(st);
+                        }
+                        m
+                    }
+                    None if was_cycle => crate::cycles::cancel(st),
+                    // Fanuc family: G80 is group 09 and leaves the group-01 mode as it is.
+                    None if st.dialect != Dialect::LinuxCnc => st.motion,
+                    _ => {
+                        if was_cycle {
+                            crate::cycles::cancel(st);
+                        }
+                        m
+                    }
+                };
+            }
             _ => {}
         }
     }
@@ -504,7 +526,10 @@ fn execute_block(
     let rotary = words
         .iter()
         .any(|w| w.form == WordForm::Plain && b"ABC".contains(&w.letter));
-    if !consumed && (axes.iter().any(Option::is_some) || rotary || arc_full_circle(st, words)) {
+    let cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
+    if !consumed
+        && (axes.iter().any(Option::is_some) || rotary || cycle || arc_full_circle(st, words))
+    {
         if probe {
             st.diagnostics.push(Diagnostic::note(
                 block.span,
@@ -515,7 +540,12 @@ fn execute_block(
         moved = motion(st, block, words, &axes, probe, source, sink);
     }
     // Without G codes the parser cannot tell which words the modal motion uses.
-    if actions.is_empty() && !matches!(it.st.motion, Some(MotionMode::Arc { .. })) {
+    if actions.is_empty()
+        && !matches!(
+            it.st.motion,
+            Some(MotionMode::Arc { .. } | MotionMode::Cycle(_))
+        )
+    {
         for w in words
             .iter()
             .filter(|w| w.form == WordForm::Plain && b"IJKR".contains(&w.letter))
@@ -788,6 +818,17 @@ fn motion(
             return arc(st, block, p, (offsets, radius, turns), ccw, source, sink);
         }
         MotionMode::Thread => return thread(st, block, words, p, to, source, sink),
+        MotionMode::Cycle(t) => {
+            // The hole position: the block's in-plane words only (the normal word is the bottom).
+            let (u, v) = plane_axes(st.plane);
+            let mut plane_words: Axes<'_> = [None; 3];
+            plane_words[u] = axes[u];
+            plane_words[v] = axes[v];
+            let hole = move |st: &State| target(st, &plane_words);
+            let feed =
+                |st: &mut State, block: &Block, length: f64| move_feed(st, block, length, None);
+            return crate::cycles::run(st, block, words, t, &hole, &feed, source, sink);
+        }
         MotionMode::Linear if st.dialect.rules().comma_words => {
             if let Some(corner) = corner_word(st, block) {
                 // Held back one block: the next move decides where the corner goes.

@@ -3,6 +3,7 @@
 
 mod canon;
 mod corners;
+mod cycles;
 mod exec;
 mod flow;
 mod machine;

@@ -72,6 +72,9 @@ pub struct Machine {
     pub reference_points: Vec<[f64; 3]>,
     /// Measured angles in degrees (LNC G168 Q1–Q4 rotates by them), from the machine's probing.
     pub measured_angles: Vec<f64>,
+    /// The retract d between pecks of G73 and G83 in mm (KT data parameter P230, Syntec Pr4002;
+    /// the manuals' default 1.000 mm). LinuxCNC's rs274ngc retracts a fixed 0.010 inch instead.
+    pub peck_retract_mm: f64,
 }
 
 impl Default for Machine {
@@ -85,6 +88,7 @@ impl Default for Machine {
             calculator_input: None,
             reference_points: Vec::new(),
             measured_angles: Vec::new(),
+            peck_retract_mm: 1.0,
         }
     }
 }
@@ -177,6 +181,9 @@ impl Setup {
         }
         if !(setup.machine.rapid_mm_per_min.is_finite() && setup.machine.rapid_mm_per_min > 0.0) {
             return Err(SetupError::NotFinite("machine.rapid_mm_per_min".into()));
+        }
+        if !(setup.machine.peck_retract_mm.is_finite() && setup.machine.peck_retract_mm >= 0.0) {
+            return Err(SetupError::NotFinite("machine.peck_retract_mm".into()));
         }
         Ok(setup)
     }

@@ -25,6 +25,8 @@ pub(crate) enum MotionMode {
     },
     /// G33 thread cutting: a feed along the programmed line at the lead per revolution.
     Thread,
+    /// A canned cycle (G code in tenths: 810 for G81), expanded by `cycles`.
+    Cycle(u32),
 }
 
 /// Feed-rate mode (group 05).
@@ -176,6 +178,8 @@ pub(crate) struct State {
     pub stroke_zone: Option<StrokeZone>,
     /// Modal macro call (G66).
     pub modal_macro: Option<ModalMacro>,
+    /// The canned cycles' modal hole data.
+    pub cycle: crate::cycles::CycleData,
     /// Syntec's G92.1 rotation of the program plane about the preset zero point, degrees.
     pub preset_rotation: f64,
     /// G28/G30 intermediate point per axis, in the program frame.
@@ -244,6 +248,7 @@ impl State {
             stroke_check: false,
             stroke_zone: None,
             modal_macro: None,
+            cycle: crate::cycles::CycleData::default(),
             preset_rotation: 0.0,
             intermediate: [None; 3],
             d_word: 0,
@@ -376,6 +381,7 @@ impl State {
             Some(MotionMode::Arc { ccw: false }) => "G02",
             Some(MotionMode::Arc { ccw: true }) => "G03",
             Some(MotionMode::Thread) => "G33",
+            Some(MotionMode::Cycle(t)) => return_cycle_name(t),
             None => "G80",
         };
         let plane = match self.plane {
@@ -395,7 +401,7 @@ impl State {
             FeedMode::InverseTime => "G93",
         };
         let mut out: Vec<String> = vec![
-            motion.into(),
+            motion.to_string(),
             plane.into(),
             if self.absolute { "G90" } else { "G91" }.into(),
             units.into(),
@@ -478,6 +484,7 @@ impl State {
                 Some(MotionMode::Arc { ccw: false }) => 2.0,
                 Some(MotionMode::Arc { ccw: true }) => 3.0,
                 Some(MotionMode::Thread) => 33.0,
+                Some(MotionMode::Cycle(t)) => f64::from(t) / 10.0,
                 None => 80.0,
             })),
             4002 => Some(Some(match self.plane {
@@ -570,6 +577,25 @@ impl State {
             4001..=4130 | 5001..=5043 => Err(format!("#{n} is read-only")),
             _ => Ok(false),
         }
+    }
+}
+
+/// The name of a canned cycle code in tenths (`G81`).
+fn return_cycle_name(tenths: u32) -> &'static str {
+    match tenths {
+        730 => "G73",
+        740 => "G74",
+        760 => "G76",
+        810 => "G81",
+        820 => "G82",
+        830 => "G83",
+        840 => "G84",
+        850 => "G85",
+        860 => "G86",
+        870 => "G87",
+        880 => "G88",
+        890 => "G89",
+        _ => "G80",
     }
 }
 

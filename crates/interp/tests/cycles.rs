@@ -1,0 +1,332 @@
+//! Canned drilling cycles: hand-computed canonical motions per dialect.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
+
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
+use swarf_interp::{Canon, CanonRecorder, Setup, run};
+use swarf_syntax::{Dialect, parse};
+
+/// Runs `text` (calculator input: integers are mm) and returns the events as short strings:
+/// `R x y z` rapid, `F x y z` feed, `D s` dwell, `S dir` spindle, plus the diagnostic codes.
+fn events(text: &str, dialect: Dialect) -> (Vec<String>, Vec<&'static str>) {
+    let mut setup = Setup::default();
+    setup.machine.calculator_input = Some(true);
+    let program = parse(text, dialect);
+    let mut rec = CanonRecorder::default();
+    let mut diags = program.diagnostics.clone();
+    diags.extend(run(&program, setup, &mut rec));
+    let f = |v: f64| {
+        let r = (v * 1e6).round() / 1e6;
+        format!("{}", if r == 0.0 { 0.0 } else { r })
+    };
+    let out = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Rapid { to } => Some(format!("R {} {} {}", f(to.x), f(to.y), f(to.z))),
+            Canon::Feed { to, .. } => Some(format!("F {} {} {}", f(to.x), f(to.y), f(to.z))),
+            Canon::Dwell { secs } => Some(format!("D {}", f(*secs))),
+            Canon::Spindle { clockwise, .. } => Some(format!("S {clockwise:?}")),
+            _ => None,
+        })
+        .collect();
+    (out, diags.iter().map(|d| d.code).collect())
+}
+
+fn ev(text: &str, dialect: Dialect) -> Vec<String> {
+    let (out, diags) = events(text, dialect);
+    assert!(
+        diags
+            .iter()
+            .all(|c| !c.starts_with("E-") && *c != "W-NOT-INTERPRETED"),
+        "{diags:?}"
+    );
+    out
+}
+
+fn s(list: &[&str]) -> Vec<String> {
+    list.iter().map(|x| (*x).to_string()).collect()
+}
+
+#[test]
+fn g81_g98_returns_to_the_initial_level_and_g99_to_r() {
+    let out = ev(
+        "G0 X0 Y0 Z50\nG98 G81 X10 Y20 R5 Z-10 F100\nX30\nG80\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 50",
+            "R 10 20 50",
+            "R 10 20 5",
+            "F 10 20 -10",
+            "R 10 20 50",
+            "R 30 20 50",
+            "R 30 20 5",
+            "F 30 20 -10",
+            "R 30 20 50",
+        ])
+    );
+    let out = ev(
+        "G0 X0 Y0 Z50\nG99 G81 X10 Y20 R5 Z-10 F100\nX30\nG98 X40\nG80\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 50",
+            "R 10 20 50",
+            "R 10 20 5",
+            "F 10 20 -10",
+            "R 10 20 5",
+            // G99 keeps the initial level: the next hole starts at R.
+            "R 30 20 5",
+            "F 30 20 -10",
+            "R 30 20 5",
+            // G98 now: back to the initial level captured when the cycle started.
+            "R 40 20 5",
+            "F 40 20 -10",
+            "R 40 20 50",
+        ])
+    );
+}
+
+#[test]
+fn g82_dwells_at_the_bottom_and_g85_g89_feed_out_to_r() {
+    let out = ev("G0 Z20\nG99 G82 X5 R2 Z-4 P1000 F60\n", Dialect::Fanuc);
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 20", "R 5 0 20", "R 5 0 2", "F 5 0 -4", "D 1", "R 5 0 2"
+        ])
+    );
+    let out = ev("G0 Z20\nG98 G85 X5 R2 Z-4 F60\n", Dialect::Fanuc);
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 20", "R 5 0 20", "R 5 0 2", "F 5 0 -4", "F 5 0 2", "R 5 0 20"
+        ])
+    );
+    let out = ev("G0 Z20\nG99 G89 X5 R2 Z-4 P500 F60\n", Dialect::Fanuc);
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 20", "R 5 0 20", "R 5 0 2", "F 5 0 -4", "D 0.5", "F 5 0 2"
+        ])
+    );
+}
+
+#[test]
+fn g83_returns_to_r_between_pecks_and_g73_retracts_by_d() {
+    // Q3 from R2 to Z-6: pecks to -1, -4, then the bottom; d = 1 mm (the default).
+    let out = ev("G0 Z10\nG98 G83 X1 R2 Z-6 Q3 F50\n", Dialect::Fanuc);
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 10", "R 1 0 10", "R 1 0 2", "F 1 0 -1", "R 1 0 2", "R 1 0 0", "F 1 0 -4",
+            "R 1 0 2", "R 1 0 -3", "F 1 0 -6", "R 1 0 10",
+        ])
+    );
+    let out = ev("G0 Z10\nG99 G73 X1 R2 Z-6 Q3 F50\n", Dialect::Fanuc);
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 10", "R 1 0 10", "R 1 0 2", "F 1 0 -1", "R 1 0 0", "F 1 0 -4", "R 1 0 -3",
+            "F 1 0 -6", "R 1 0 2",
+        ])
+    );
+}
+
+#[test]
+fn g91_r_from_the_initial_level_z_from_r_and_k_repeats_by_the_increments() {
+    // Initial 10; R = 10 - 8 = 2; bottom = 2 - 5 = -3; three holes 10 apart in X.
+    let out = ev(
+        "G0 X0 Y0 Z10\nG91 G99 G81 X10 R-8 Z-5 K3 F100\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 10",
+            "R 10 0 10",
+            "R 10 0 2",
+            "F 10 0 -3",
+            "R 10 0 2",
+            "R 20 0 2",
+            "F 20 0 -3",
+            "R 20 0 2",
+            "R 30 0 2",
+            "F 30 0 -3",
+            "R 30 0 2",
+        ])
+    );
+}
+
+#[test]
+fn k0_stores_the_data_only_and_a_block_without_axis_words_does_not_drill() {
+    let out = ev(
+        "G0 Z10\nG98 G81 X5 R2 Z-3 K0 F100\nR1\nX6\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        out,
+        s(&["R 0 0 10", "R 6 0 10", "R 6 0 1", "F 6 0 -3", "R 6 0 10"])
+    );
+}
+
+#[test]
+fn the_drilling_axis_follows_the_plane() {
+    // G18: the drilling axis is Y; X and Z place the hole.
+    let out = ev(
+        "G0 X0 Y10 Z0\nG18 G98 G81 X3 Z4 R2 Y-5 F100\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        out,
+        s(&["R 0 10 0", "R 3 10 4", "R 3 2 4", "F 3 -5 4", "R 3 10 4"])
+    );
+    // G19: the drilling axis is X.
+    let out = ev("G0 X10\nG19 G99 G81 Y3 Z4 R2 X-5 F100\n", Dialect::Fanuc);
+    assert_eq!(
+        out,
+        s(&["R 10 0 0", "R 10 3 4", "R 2 3 4", "F -5 3 4", "R 2 3 4"])
+    );
+}
+
+#[test]
+fn g80_and_group_01_codes_cancel_the_cycle() {
+    let out = ev("G0 Z10\nG81 X1 R2 Z-1 F100\nG80 X5\n", Dialect::Fanuc);
+    assert_eq!(out.last().unwrap(), "R 5 0 10");
+    let out = ev("G0 Z10\nG81 X1 R2 Z-1 F100\nG01 X5\n", Dialect::Fanuc);
+    assert_eq!(out.last().unwrap(), "F 5 0 10");
+    // After the cancel the data are gone: a new cycle without R and Z cannot drill.
+    let (_, diags) = events("G0 Z10\nG81 X1 R2 Z-1 F100\nG80\nG81 X3\n", Dialect::Fanuc);
+    assert!(diags.contains(&"E-WORD-MISSING"), "{diags:?}");
+}
+
+#[test]
+fn linuxcnc_moves_up_to_r_first_and_l_repeats() {
+    // Current Z 2 below R 3: up to R at the current XY first (rs274ngc).
+    let out = ev(
+        "G0 X0 Y0 Z2\nG98 G81 X1 Y2 Z0.5 R3 F10\n",
+        Dialect::LinuxCnc,
+    );
+    assert_eq!(
+        out,
+        s(&["R 0 0 2", "R 0 0 3", "R 1 2 3", "F 1 2 0.5", "R 1 2 3"])
+    );
+    // G91: R from the current level, Z from R, L repeats by the increments.
+    let out = ev(
+        "G0 X0 Y0 Z5\nG91 G99 G81 X2 R-3 Z-4 L2 F10\n",
+        Dialect::LinuxCnc,
+    );
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 5", "R 2 0 5", "R 2 0 2", "F 2 0 -2", "R 2 0 2", "R 4 0 2", "F 4 0 -2",
+            "R 4 0 2",
+        ])
+    );
+}
+
+#[test]
+fn kt_l_spaces_holes_along_the_line_to_the_end_point() {
+    // From X0 to X30 with L3: holes at 10, 20, 30; the start point is not drilled.
+    let out = ev(
+        "G0 X0 Y0 Z10\nG90 G99 G81 X30 R2 Z-1 L3 F100\n",
+        Dialect::Kt,
+    );
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 10",
+            "R 10 0 10",
+            "R 10 0 2",
+            "F 10 0 -1",
+            "R 10 0 2",
+            "R 20 0 2",
+            "F 20 0 -1",
+            "R 20 0 2",
+            "R 30 0 2",
+            "F 30 0 -1",
+            "R 30 0 2",
+        ])
+    );
+}
+
+#[test]
+fn holes_go_through_the_work_offset_and_rotation() {
+    let out = ev(
+        "G0 X0 Y0 Z10\nG52 X100\nG68 X0 Y0 R90\nG98 G81 X10 R2 Z-1 F100\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        &out[out.len() - 4..],
+        s(&["R 100 10 10", "R 100 10 2", "F 100 10 -1", "R 100 10 10"])
+    );
+}
+
+const E53: &str = "N001 F1000. S500;\nN002 M03;\nN003 G90;\nN004 G00 X0. Y0. Z10.;\nN005 G17;\nN006 G90 G99;\nN007 G73 X5. Y5. Z-10. R-5. Q2.;\nN008 X15.;\nN009 Y15.;\nN010 G98 X5.;\nN011 X10. Y10. Z-20.;\nN012 G80;\nN013 M05;\nN014 M30;\n";
+
+#[test]
+fn syntec_e53_g73_pecks_at_the_manual_holes_and_returns_as_stated() {
+    let out = ev(E53, Dialect::Syntec);
+    // Hole 1: pecks end at Z-7, -9, -10 with a rapid retract of d = 1 mm (Pr4002) between.
+    let hole1 = s(&[
+        "R 5 5 10",
+        "R 5 5 -5",
+        "F 5 5 -7",
+        "R 5 5 -6",
+        "F 5 5 -9",
+        "R 5 5 -8",
+        "F 5 5 -10",
+        "R 5 5 -5",
+    ]);
+    let at = out.iter().position(|e| e == "R 5 5 10").unwrap();
+    assert_eq!(out[at..at + hole1.len()], hole1[..]);
+    // The bottom of each hole: holes 1–4 at Z-10, hole 5 at the new Z-20.
+    let bottoms: Vec<&String> = out
+        .iter()
+        .filter(|e| e.starts_with('F') && (e.ends_with(" -10") || e.ends_with(" -20")))
+        .collect();
+    assert_eq!(
+        bottoms,
+        [
+            "F 5 5 -10",
+            "F 15 5 -10",
+            "F 15 15 -10",
+            "F 5 15 -10",
+            "F 10 10 -20"
+        ]
+    );
+    // Holes 1–3 return to R (-5); from hole 4 (G98) to the initial point Z10, which stayed.
+    assert!(out.contains(&"R 15 15 -5".to_string()));
+    assert!(out.contains(&"R 5 15 10".to_string()));
+    let moves: Vec<&String> = out.iter().filter(|e| !e.starts_with('S')).collect();
+    assert_eq!(moves.last().unwrap().as_str(), "R 10 10 10");
+    // Hole 5 starts from the initial point.
+    assert!(out.contains(&"R 10 10 10".to_string()));
+}
+
+#[test]
+fn syntec_e58_g83_returns_to_r_between_pecks() {
+    let text = "N001 F1000. S500;\nN002 M03;\nN003 G90;\nN004 G00 X0. Y0. Z10.;\nN005 G17;\nN006 G90 G99;\nN007 G83 X5. Y5. Z-10. R-5. Q3.;\nN008 X15.;\nN009 Y15.;\nN010 G98 X5.;\nN011 G80;\nN012 M05;\nN013 M30;\n";
+    let out = ev(text, Dialect::Syntec);
+    // Pecks to Z-8 and then Z-10; between them rapid to R (-5) and down to d above -8.
+    let hole1 = s(&[
+        "R 5 5 10",
+        "R 5 5 -5",
+        "F 5 5 -8",
+        "R 5 5 -5",
+        "R 5 5 -7",
+        "F 5 5 -10",
+        "R 5 5 -5",
+        "R 15 5 -5",
+    ]);
+    let at = out.iter().position(|e| e == "R 5 5 10").unwrap();
+    assert_eq!(out[at..at + hole1.len()], hole1[..]);
+    let moves: Vec<&String> = out.iter().filter(|e| !e.starts_with('S')).collect();
+    assert_eq!(moves.last().unwrap().as_str(), "R 5 15 10");
+}
