@@ -26,6 +26,8 @@ const AGREEING: &[&str] = &[
     "linuxcnc-tests/interp/g81/g18/g99/g18-g99-g81.ngc",
     "linuxcnc-tests/interp/g81/g19/g98/g19-g98-g81.ngc",
     "linuxcnc-tests/interp/g81/g19/g99/g19-g99-g81.ngc",
+    "linuxcnc-tests/interp/g84/g17/g98/g17-g98-g84.ngc",
+    "linuxcnc-tests/interp/g84/g17/g99/g17-g99-g84.ngc",
     "linuxcnc-tests/interp/m98m99/01-basics/test.ngc",
     "linuxcnc-tests/interp/m98m99/02-variables/test.ngc",
     "linuxcnc-tests/interp/m98m99/03-error-M98-no-P-word/test.ngc",

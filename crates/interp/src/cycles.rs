@@ -44,7 +44,10 @@ pub(crate) struct CycleData {
 
 /// Whether a G code (tenths) is a canned cycle the interpreter expands.
 pub(crate) fn runs(tenths: u32) -> bool {
-    matches!(tenths, 730 | 810 | 820 | 830 | 850 | 890)
+    matches!(
+        tenths,
+        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 880 | 890
+    )
 }
 
 /// Forgets the hole data and the initial level (G80 and group-01 codes in the Fanuc family);
@@ -186,10 +189,32 @@ pub(crate) fn run(
     } else {
         st.setup.machine.peck_retract_mm.max(0.0)
     };
+    if matches!(tenths, 740 | 840 | 860 | 880) && st.spindle_dir.is_none() {
+        st.diagnostics.push(Diagnostic::warning(
+            block.span,
+            "W-SPINDLE-STOPPED",
+            format!(
+                "G{} needs the spindle turning (M03/M04 before the cycle); the control alarms here",
+                tenths / 10
+            ),
+        ));
+    }
+    // Tapping feed: KT's F is the pitch, Syntec's E the threads per inch (F wins when given);
+    // under G94 the feed is the pitch times the spindle speed.
+    let per_minute = st.feed_mode == crate::state::FeedMode::PerMinute;
+    let pitch = match (tenths, st.dialect) {
+        (740 | 840, Dialect::Kt) => Some(st.mm(st.feed_word)),
+        (740 | 840, Dialect::Syntec) if !st.block_has_feed => plain(b'E')
+            .filter(|e| e.value > 0.0)
+            .map(|e| 25.4 / e.value),
+        _ => None,
+    };
+    let tap_feed = pitch.filter(|_| per_minute).map(|p| p * st.spindle_rpm);
     let mut d = Drill {
         st,
         block,
         feed,
+        tap_feed,
         source,
         sink,
         n,
@@ -229,6 +254,8 @@ struct Drill<'a, 's> {
     st: &'a mut State,
     block: &'a Block,
     feed: &'a dyn Fn(&mut State, &Block, f64) -> f64,
+    /// The tapping feed in mm/min where the dialect gives the pitch rather than the feed.
+    tap_feed: Option<f64>,
     source: Source,
     sink: &'s mut dyn Sink,
     /// The drilling axis.
@@ -246,7 +273,10 @@ impl Drill<'_, '_> {
     fn feed_to(&mut self, p: DVec3) {
         let to = self.st.to_machine(p);
         let length = self.st.position.distance(to);
-        let feed_mm_per_min = (self.feed)(self.st, self.block, length);
+        let feed_mm_per_min = match self.tap_feed {
+            Some(f) => f,
+            None => (self.feed)(self.st, self.block, length),
+        };
         self.st.position = to;
         self.st.program_pos = p;
         crate::corners::emit(
@@ -264,6 +294,21 @@ impl Drill<'_, '_> {
         let mut p = hole;
         p[self.n] = level;
         p
+    }
+
+    fn spindle(&mut self, clockwise: Option<bool>) {
+        self.st.spindle_dir = clockwise;
+        let rpm = if clockwise.is_some() {
+            self.st.spindle_rpm
+        } else {
+            0.0
+        };
+        crate::corners::emit(
+            self.st,
+            self.sink,
+            self.source,
+            &Canon::Spindle { clockwise, rpm },
+        );
     }
 
     fn dwell(&mut self) {
@@ -304,10 +349,76 @@ impl Drill<'_, '_> {
                 if tenths == 890 {
                     self.dwell();
                 }
+                if tenths == 890 && self.st.dialect == Dialect::LinuxCnc {
+                    // rs274ngc feeds G89 straight out to the clear level.
+                    self.feed_to(self.level(hole, clear));
+                    return;
+                }
                 self.feed_to(self.level(hole, r));
                 if clear != r {
                     self.rapid(self.level(hole, clear));
                 }
+            }
+            740 | 840 => {
+                // Tapping: in with the spindle forward (G84 clockwise, G74 counter-clockwise),
+                // stop, dwell, reverse and feed out, stop, (dwell,) forward again.
+                let forward = tenths == 840;
+                let linuxcnc = self.st.dialect == Dialect::LinuxCnc;
+                self.feed_to(self.level(hole, bottom));
+                self.spindle(None);
+                if !linuxcnc {
+                    self.dwell();
+                }
+                self.spindle(Some(!forward));
+                if linuxcnc {
+                    self.dwell();
+                    self.feed_to(self.level(hole, clear));
+                    self.spindle(None);
+                    self.spindle(Some(forward));
+                    return;
+                }
+                self.feed_to(self.level(hole, r));
+                self.spindle(None);
+                self.dwell();
+                self.spindle(Some(forward));
+                if clear != r {
+                    self.rapid(self.level(hole, clear));
+                }
+            }
+            860 => {
+                // Boring with spindle stop: out at rapid, the spindle restarted as it was.
+                let dir = self.st.spindle_dir;
+                self.feed_to(self.level(hole, bottom));
+                if self.st.dialect == Dialect::LinuxCnc {
+                    self.dwell();
+                }
+                self.spindle(None);
+                self.rapid(self.level(hole, clear));
+                self.spindle(dir.or(Some(true)));
+            }
+            880 => {
+                // Manual return: dwell, spindle stop, a program stop where the operator
+                // retracts; the tool is drawn back at the return level before the spindle
+                // restarts (rs274ngc leaves it at the bottom).
+                let dir = self.st.spindle_dir;
+                self.feed_to(self.level(hole, bottom));
+                self.dwell();
+                self.spindle(None);
+                crate::corners::emit(
+                    self.st,
+                    self.sink,
+                    self.source,
+                    &Canon::Pause { optional: false },
+                );
+                let out = self.level(hole, clear);
+                if self.st.dialect == Dialect::LinuxCnc {
+                    // rs274ngc draws no return but carries on from the clear level.
+                    self.st.position = self.st.to_machine(out);
+                    self.st.program_pos = out;
+                } else {
+                    self.rapid(out);
+                }
+                self.spindle(dir.or(Some(true)));
             }
             _ => {
                 // G81, G82.

@@ -1914,6 +1914,9 @@ fn m_codes(
                 continue;
             }
         };
+        if let Canon::Spindle { clockwise, .. } = event {
+            st.spindle_dir = clockwise;
+        }
         crate::corners::emit(st, sink, source, &event);
     }
     flow

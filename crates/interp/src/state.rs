@@ -155,6 +155,9 @@ pub(crate) struct State {
     pub block_has_feed: bool,
     /// The spindle speed in rpm (under G96 computed from the surface speed and the tool).
     pub spindle_rpm: f64,
+    /// The spindle's direction: `Some(true)` clockwise (M03), `Some(false)` counter-clockwise
+    /// (M04), `None` stopped.
+    pub spindle_dir: Option<bool>,
     pub css: bool,
     /// The surface speed of G96 (m/min, or ft/min in inch).
     pub surface_speed: f64,
@@ -236,6 +239,7 @@ impl State {
             },
             block_has_feed: false,
             spindle_rpm: 0.0,
+            spindle_dir: None,
             css: false,
             surface_speed: 0.0,
             spindle_clamp: None,

@@ -330,3 +330,91 @@ fn syntec_e58_g83_returns_to_r_between_pecks() {
     let moves: Vec<&String> = out.iter().filter(|e| !e.starts_with('S')).collect();
     assert_eq!(moves.last().unwrap().as_str(), "R 5 15 10");
 }
+
+#[test]
+fn g84_taps_in_reverses_at_the_bottom_and_restarts_forward_at_r() {
+    let out = ev(
+        "G0 Z10 S500 M03\nG98 G84 X1 R2 Z-5 P1000 F1\n",
+        Dialect::Fanuc,
+    );
+    assert_eq!(
+        out,
+        s(&[
+            "R 0 0 10",
+            "S Some(true)",
+            "R 1 0 10",
+            "R 1 0 2",
+            "F 1 0 -5",
+            "S None",
+            "D 1",
+            "S Some(false)",
+            "F 1 0 2",
+            "S None",
+            "D 1",
+            "S Some(true)",
+            "R 1 0 10",
+        ])
+    );
+    // G74: the other way round.
+    let out = ev("G0 Z10 S500 M04\nG99 G74 X1 R2 Z-5 F1\n", Dialect::Fanuc);
+    assert_eq!(
+        out[4..],
+        s(&[
+            "F 1 0 -5",
+            "S None",
+            "S Some(true)",
+            "F 1 0 2",
+            "S None",
+            "S Some(false)"
+        ])[..]
+    );
+}
+
+#[test]
+fn kt_tapping_f_is_the_pitch() {
+    let program = parse("G0 Z10 S600 M03\nG99 G84 X1 R2 Z-5 F1.5\n", Dialect::Kt);
+    let mut setup = Setup::default();
+    setup.machine.calculator_input = Some(true);
+    let mut rec = CanonRecorder::default();
+    run(&program, setup, &mut rec);
+    let feeds: Vec<f64> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Feed {
+                feed_mm_per_min, ..
+            } => Some(*feed_mm_per_min),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds, [900.0, 900.0]);
+}
+
+#[test]
+fn g86_stops_the_spindle_and_g88_pauses_for_the_manual_return() {
+    let out = ev("G0 Z10 S500 M03\nG99 G86 X1 R2 Z-5 F100\n", Dialect::Fanuc);
+    assert_eq!(
+        out[4..],
+        s(&["F 1 0 -5", "S None", "R 1 0 2", "S Some(true)"])[..]
+    );
+    let program = parse(
+        "G0 Z10 S500 M03\nG98 G88 X1 R2 Z-5 P500 F100\n",
+        Dialect::Fanuc,
+    );
+    let mut setup = Setup::default();
+    setup.machine.calculator_input = Some(true);
+    let mut rec = CanonRecorder::default();
+    run(&program, setup, &mut rec);
+    let kinds: Vec<&Canon> = rec.events.iter().map(|(_, e)| e).skip(4).collect();
+    assert!(matches!(kinds[0], Canon::Feed { .. }));
+    assert!(matches!(kinds[1], Canon::Dwell { .. }));
+    assert!(matches!(
+        kinds[2],
+        Canon::Spindle {
+            clockwise: None,
+            ..
+        }
+    ));
+    assert!(matches!(kinds[3], Canon::Pause { optional: false }));
+    assert!(matches!(kinds[4], Canon::Rapid { to } if to.z == 10.0));
+}
