@@ -368,6 +368,7 @@ fn execute_block(
         return Flow::Next;
     }
     let st = &mut it.st;
+    let length_before = st.length_comp.map_or(0.0, |(_, o)| o);
     settings(st, words);
     let presets_spindle = has(|a| *a == Action::SetPosition);
     // Units first: the block's numbers are read in the new unit.
@@ -519,6 +520,16 @@ fn execute_block(
             _ => false,
         };
         consumed |= done;
+    }
+    // LinuxCNC: a new length offset does not move the machine, but the point it controls is
+    // now the tip, that much further from the gauge line, so the current coordinate changes at
+    // once (a G91 move in the block starts from it). The Fanuc family adds the offset to the
+    // block's move instead (`G91 G43 Z-32. H1` ends 32 below the old coordinate).
+    let length_after = st.length_comp.map_or(0.0, |(_, o)| o);
+    if length_after != length_before && st.dialect == Dialect::LinuxCnc {
+        let (u, v) = plane_axes(st.plane);
+        st.position[3 - u - v] -= length_after - length_before;
+        st.resync();
     }
     let probe = has(|a| *a == Action::Probe);
     let mut moved = false;
@@ -1266,8 +1277,6 @@ fn polar(st: &mut State, on: bool) {
     st.polar = Some(Polar { pole });
 }
 
-/// G68 X Y R (centre from the words, or the current position; angle absolute or, under G91,
-/// added to the active rotation).
 /// LNC G168 X Y Q: rotation about the centre (or the current point) by measurement result Q
 /// (1–4, default 1) from `[machine] measured_angles`.
 fn measured_rotation(st: &mut State, w: &Word, words: &[Word]) {
@@ -1302,6 +1311,8 @@ fn measured_rotation(st: &mut State, w: &Word, words: &[Word]) {
     });
 }
 
+/// G68 X Y R (centre from the words, or the current position; angle absolute or, under G91,
+/// added to the active rotation).
 fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
     if !on {
         st.rotation = None;
