@@ -127,24 +127,33 @@ const FORBIDDEN: &[Forbidden] = &[
 /// A code found in a block, and the span of its word.
 type Found = (&'static CodeDef, Span);
 
-/// Runs every same-block check on every block of `program`.
-pub(crate) fn check_program(program: &mut Program) {
-    let dialect = program.dialect;
-    let mut out = Vec::new();
-    let mut scratch = Vec::new();
-    for block in &mut program.blocks {
-        let before = out.len();
-        check_block(dialect, block, &mut scratch, &mut out);
-        if out[before..]
+/// Runs the same-block checks on each block as the parser finishes it (while the block is still
+/// in cache), collecting their diagnostics to merge into the program's at the end.
+#[derive(Debug, Default)]
+pub(crate) struct Checker {
+    scratch: Vec<Found>,
+    out: Vec<Diagnostic>,
+}
+
+impl Checker {
+    /// Checks `block`; an error marks it so the interpreter does not run it.
+    pub(crate) fn check(&mut self, dialect: Dialect, block: &mut Block) {
+        let before = self.out.len();
+        check_block(dialect, block, &mut self.scratch, &mut self.out);
+        if self.out[before..]
             .iter()
-            .any(|d: &Diagnostic| d.severity == crate::Severity::Error)
+            .any(|d| d.severity == crate::Severity::Error)
         {
             block.has_error = true;
         }
     }
-    if !out.is_empty() {
-        program.diagnostics.extend(out);
-        program.diagnostics.sort_by_key(|d| d.span.start);
+
+    /// Merges the diagnostics found into `program`'s, in text order.
+    pub(crate) fn finish(self, program: &mut Program) {
+        if !self.out.is_empty() {
+            program.diagnostics.extend(self.out);
+            program.diagnostics.sort_by_key(|d| d.span.start);
+        }
     }
 }
 

@@ -31,7 +31,17 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
     // `%` line: what follows the closing tape mark is not read (LinuxCNC ignores it; on the
     // Fanuc family it is past the end of the tape).
     let mut tape = Tape::Before;
-    for (line_no, raw) in text.split('\n').enumerate() {
+    let mut checker = crate::checks::Checker::default();
+    // The line index has found every newline already (with SIMD): the lines come from it.
+    let line_count = program.lines.line_count();
+    for line_no in 0..line_count {
+        let start = program.lines.line_start(line_no) as usize;
+        let end = if line_no + 1 < line_count {
+            (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
+        } else {
+            text.len()
+        };
+        let raw = text.get(start..end).unwrap_or_default();
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         let mut reader = LineReader {
             dialect,
@@ -41,6 +51,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
             base: offset,
             line_no: u32::try_from(line_no).unwrap_or(u32::MAX),
             program: &mut program,
+            checker: &mut checker,
             open_brackets: 0,
         };
         reader.read();
@@ -57,7 +68,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
             (other, _) => other,
         };
     }
-    crate::checks::check_program(&mut program);
+    checker.finish(&mut program);
     program
 }
 
@@ -188,6 +199,8 @@ struct LineReader<'a> {
     base: usize,
     line_no: u32,
     program: &'a mut Program,
+    /// The same-block checks, run on each finished block.
+    checker: &'a mut crate::checks::Checker,
     /// `[` opened and not yet closed in the expression being read.
     open_brackets: u32,
 }
@@ -277,6 +290,7 @@ impl LineReader<'_> {
                 || block.has_error
                 || block.block_delete.is_some()
             {
+                self.checker.check(self.dialect, &mut block);
                 self.program.blocks.push(block);
             }
         }
@@ -513,7 +527,11 @@ impl LineReader<'_> {
         Some((
             Word {
                 letter,
-                value: if negative { -number.value } else { number.value },
+                value: if negative {
+                    -number.value
+                } else {
+                    number.value
+                },
                 has_point: number.has_point,
                 span: self.span(pos, end),
                 form: WordForm::Plain,
