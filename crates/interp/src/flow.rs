@@ -78,7 +78,7 @@ impl Index {
         index.starts.push(0);
         let mut open_loops: Vec<(u8, usize)> = Vec::new();
         for (i, block) in program.blocks.iter().enumerate() {
-            if let Some(number) = &block.program {
+            if let Some(number) = block.program.as_deref() {
                 index.first_program.get_or_insert(i);
                 if index.starts.last() != Some(&i) {
                     index.starts.push(i);

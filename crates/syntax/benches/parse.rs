@@ -31,13 +31,13 @@ mod native {
             let text = decode(&bytes).text;
             group.throughput(Throughput::Bytes(text.len() as u64));
             group.bench_function(name, |b| {
-                b.iter_with_large_drop(|| parse(black_box(&text), Dialect::LinuxCnc));
+                b.iter(|| parse(black_box(&text), Dialect::LinuxCnc));
             });
         }
         let generated = surfacing::surfacing_program(4 << 20);
         group.throughput(Throughput::Bytes(generated.len() as u64));
         group.bench_function("generated-4MB-fanuc", |b| {
-            b.iter_with_large_drop(|| parse(black_box(&generated), Dialect::Fanuc));
+            b.iter(|| parse(black_box(&generated), Dialect::Fanuc));
         });
         group.finish();
     }

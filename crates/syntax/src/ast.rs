@@ -331,17 +331,18 @@ pub struct Block {
     pub line: u32,
     /// The `N` sequence number, if any.
     pub number: Option<u32>,
-    /// The program number when the block starts a program (`O1234`, `:1234`).
-    pub program: Option<ProgramNumber>,
+    /// The program number when the block starts a program (`O1234`, `:1234`); boxed, as few
+    /// blocks have one and every block pays for the field.
+    pub program: Option<Box<ProgramNumber>>,
     /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
     pub block_delete: Option<u8>,
     /// The address words in the order written (without `N` and `O`); up to four are stored in
     /// the block itself, so a typical CAM line needs no allocation of its own.
     pub words: SmallVec<[Word; 4]>,
-    /// Macro statements, in the order written.
-    pub statements: Vec<Statement>,
+    /// Macro statements, in the order written (a boxed slice: most blocks have none).
+    pub statements: Box<[Statement]>,
     /// Spans of the comments in the block.
-    pub comments: Vec<Span>,
+    pub comments: Box<[Span]>,
     /// Whether the parser found an error in this block (it is not executed).
     pub has_error: bool,
 }

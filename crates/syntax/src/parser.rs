@@ -20,7 +20,7 @@ const HARD_DEPTH: u32 = 64;
 pub fn parse(text: &str, dialect: Dialect) -> Program {
     let mut program = Program {
         dialect,
-        blocks: Vec::with_capacity(text.len() / 20 + 1),
+        blocks: Vec::new(),
         exprs: Vec::new(),
         diagnostics: Vec::new(),
         lines: LineIndex::new(text),
@@ -34,6 +34,8 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
     let mut checker = crate::checks::Checker::default();
     // The line index has found every newline already (with SIMD): the lines come from it.
     let line_count = program.lines.line_count();
+    // Most lines are one block: reserving for them spares the copies of a growing array.
+    program.blocks.reserve_exact(line_count);
     for line_no in 0..line_count {
         let start = program.lines.line_start(line_no) as usize;
         let end = if line_no + 1 < line_count {
@@ -53,6 +55,8 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
             program: &mut program,
             checker: &mut checker,
             open_brackets: 0,
+            statements: Vec::new(),
+            comments: Vec::new(),
         };
         reader.read();
         offset += raw.len() + 1;
@@ -203,6 +207,10 @@ struct LineReader<'a> {
     checker: &'a mut crate::checks::Checker,
     /// `[` opened and not yet closed in the expression being read.
     open_brackets: u32,
+    /// The statements of the block being read (moved into it when it is finished).
+    statements: Vec<Statement>,
+    /// The comments of the block being read.
+    comments: Vec<Span>,
 }
 
 /// A parse failure inside a word or statement: where, and what to say.
@@ -280,10 +288,19 @@ impl LineReader<'_> {
         self.error(block, f.at, f.end, f.code, f.message);
     }
 
+    #[inline]
     fn finish(&mut self, block: Block, first: Option<usize>, last: usize) {
+        let statements = std::mem::take(&mut self.statements);
+        let comments = std::mem::take(&mut self.comments);
         if let Some(first) = first {
             let mut block = block;
             block.span = self.span(first, last);
+            if !statements.is_empty() {
+                block.statements = statements.into_boxed_slice();
+            }
+            if !comments.is_empty() {
+                block.comments = comments.into_boxed_slice();
+            }
             if !block.is_empty()
                 || block.number.is_some()
                 || block.program.is_some()
@@ -352,11 +369,11 @@ impl LineReader<'_> {
                 b'(' => {
                     match line[pos..].find(')') {
                         Some(close) => {
-                            block.comments.push(self.span(pos, pos + close + 1));
+                            self.comments.push(self.span(pos, pos + close + 1));
                             pos += close + 1;
                         }
                         None => {
-                            block.comments.push(self.span(pos, bytes.len()));
+                            self.comments.push(self.span(pos, bytes.len()));
                             self.error(
                                 &mut block,
                                 pos,
@@ -370,7 +387,7 @@ impl LineReader<'_> {
                     continue;
                 }
                 b';' if self.rules.semicolon_comment => {
-                    block.comments.push(self.span(pos, bytes.len()));
+                    self.comments.push(self.span(pos, bytes.len()));
                     break;
                 }
                 b';' => {
@@ -381,7 +398,7 @@ impl LineReader<'_> {
                     continue;
                 }
                 b'/' if bytes.get(pos + 1) == Some(&b'/') && self.rules.slash_comment => {
-                    block.comments.push(self.span(pos, bytes.len()));
+                    self.comments.push(self.span(pos, bytes.len()));
                     break;
                 }
                 b'/' if at_start => {
@@ -401,7 +418,9 @@ impl LineReader<'_> {
                 {
                     pos = self.read_program_number(&mut block, pos, pos + 1);
                 }
-                b':' if self.only_trailing(pos + 1) && !block.is_empty() => {
+                b':' if self.only_trailing(pos + 1)
+                    && !(block.words.is_empty() && self.statements.is_empty()) =>
+                {
                     // OCR turns `;` into `:` in scanned manuals; read it as the end of the block.
                     self.warn(
                         pos,
@@ -413,7 +432,7 @@ impl LineReader<'_> {
                 }
                 b'#' => match self.assignment(pos) {
                     Ok((stmt, end)) => {
-                        block.statements.push(stmt);
+                        self.statements.push(stmt);
                         pos = end;
                     }
                     Err(f) => {
@@ -481,7 +500,7 @@ impl LineReader<'_> {
             }
             return match self.keyword_statement(&run, pos, run_end) {
                 Ok((stmt, end)) => {
-                    block.statements.push(stmt);
+                    self.statements.push(stmt);
                     end
                 }
                 Err(f) => {
@@ -544,7 +563,7 @@ impl LineReader<'_> {
     /// A program or sequence number, an O-word line, or an address word at `pos`.
     fn read_word_at(&mut self, block: &mut Block, pos: usize) -> usize {
         let letter = self.bytes[pos].to_ascii_uppercase();
-        if letter == b'O' && block.words.is_empty() && block.statements.is_empty() {
+        if letter == b'O' && block.words.is_empty() && self.statements.is_empty() {
             if self.rules.o_words
                 && let Some(end) = self.try_o_word(block, pos)
             {
@@ -583,7 +602,7 @@ impl LineReader<'_> {
         };
         let end = number.end;
         let digits = &self.line[value_start..end];
-        if !block.words.is_empty() || block.number.is_some() || !block.statements.is_empty() {
+        if !block.words.is_empty() || block.number.is_some() || !self.statements.is_empty() {
             self.error(
                 block,
                 pos,
@@ -628,7 +647,7 @@ impl LineReader<'_> {
         if self.rules.o_words && self.bytes.get(value_start) == Some(&b'<') {
             return match self.angle_name(value_start) {
                 Ok((name, end)) => {
-                    block.program = Some(ProgramNumber::Name(name));
+                    block.program = Some(Box::new(ProgramNumber::Name(name)));
                     end
                 }
                 Err(f) => {
@@ -642,7 +661,7 @@ impl LineReader<'_> {
         let digits_len = rest.bytes().take_while(u8::is_ascii_digit).count();
         let end = value_start + digits_len;
         match rest[..digits_len].parse::<u32>() {
-            Ok(n) if digits_len <= 8 => block.program = Some(ProgramNumber::Number(n)),
+            Ok(n) if digits_len <= 8 => block.program = Some(Box::new(ProgramNumber::Number(n))),
             _ => self.error(
                 block,
                 pos,
@@ -787,7 +806,7 @@ impl LineReader<'_> {
         };
         Some(match result {
             Ok((kind, end)) => {
-                block.statements.push(Statement::OWord { label, kind });
+                self.statements.push(Statement::OWord { label, kind });
                 end
             }
             Err(f) => {

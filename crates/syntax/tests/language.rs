@@ -212,13 +212,19 @@ fn bad_o_word_keyword() {
 #[test]
 fn program_numbers() {
     let p = parse("O0012\n:0034\nO<part> \n", Dialect::Fanuc);
-    assert_eq!(p.blocks[0].program, Some(ProgramNumber::Number(12)));
-    assert_eq!(p.blocks[1].program, Some(ProgramNumber::Number(34)));
+    assert_eq!(
+        p.blocks[0].program.as_deref(),
+        Some(&ProgramNumber::Number(12))
+    );
+    assert_eq!(
+        p.blocks[1].program.as_deref(),
+        Some(&ProgramNumber::Number(34))
+    );
     assert!(p.blocks[2].has_error);
     let l = parse("O<part>\n", Dialect::LinuxCnc);
     assert_eq!(
-        l.blocks[0].program,
-        Some(ProgramNumber::Name("part".into()))
+        l.blocks[0].program.as_deref(),
+        Some(&ProgramNumber::Name("part".into()))
     );
 }
 

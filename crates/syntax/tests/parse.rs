@@ -33,7 +33,10 @@ fn sequence_numbers_comments_and_tape_marks() {
     );
     assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
     assert_eq!(p.blocks.len(), 3);
-    assert_eq!(p.blocks[0].program, Some(ProgramNumber::Number(1000)));
+    assert_eq!(
+        p.blocks[0].program.as_deref(),
+        Some(&ProgramNumber::Number(1000))
+    );
     assert!(p.blocks[0].words.is_empty());
     assert_eq!(p.blocks[0].comments.len(), 1);
     assert_eq!(p.blocks[1].number, Some(10));

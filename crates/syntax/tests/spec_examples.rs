@@ -225,7 +225,7 @@ fn block_line(p: &Program, text: &str, block: &Block) -> String {
     if let Some(level) = block.block_delete {
         let _ = write!(out, "/{level} ");
     }
-    match &block.program {
+    match block.program.as_deref() {
         Some(ProgramNumber::Number(n)) => {
             let _ = write!(out, "O{n} ");
         }
