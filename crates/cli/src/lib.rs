@@ -294,6 +294,12 @@ fn stats(
         "feed_mm": path.feed_length_mm(),
         "estimated_secs": path.estimated_secs(),
         "tools": path.tools(),
+        "holes": path.holes().len(),
+        "holes_per_tool": path
+            .holes_per_tool()
+            .iter()
+            .map(|(tool, n)| json!({"tool": tool, "holes": n}))
+            .collect::<Vec<_>>(),
         "diagnostics": {"errors": errors, "warnings": warnings, "total": diags.len()},
         "interpretation_ms": interp_ms,
     });
@@ -329,6 +335,19 @@ fn stats(
                 tools.join(" ")
             }
         )?;
+        let holes: Vec<String> = path
+            .holes_per_tool()
+            .iter()
+            .map(|(tool, n)| format!("T{tool}: {n}"))
+            .collect();
+        if !holes.is_empty() {
+            writeln!(
+                out,
+                "holes           {} ({})",
+                path.holes().len(),
+                holes.join(", ")
+            )?;
+        }
         writeln!(out, "diagnostics     {errors} errors, {warnings} warnings")?;
         writeln!(out, "interpretation  {interp_ms:.1} ms")?;
     }

@@ -128,6 +128,27 @@ fn stats_reports_blocks_motions_bounds_and_time() {
     assert!(text.contains("motions         7"), "{text}");
 }
 
+#[test]
+fn stats_counts_the_holes_of_each_tool() {
+    let dir = tempfile::tempdir().unwrap();
+    let nc = temp_file(
+        &dir,
+        "holes.nc",
+        b"T1 M06\nG0 X0 Y0 Z20.\nG99 G81 X10. Y10. R2. Z-5. F100\nX20.\nX30.\nG80\n\
+          T2 M06\nG83 X10. Y30. R2. Z-12. Q4. F80\nG80\nM30\n",
+    );
+    let (code, out, err) = swarf(&["stats", &nc, "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["holes"], 4);
+    assert_eq!(
+        v["holes_per_tool"],
+        serde_json::json!([{"tool": 1, "holes": 3}, {"tool": 2, "holes": 1}])
+    );
+    let (_, text, _) = swarf(&["stats", &nc]);
+    assert!(text.contains("holes           4 (T1: 3, T2: 1)"), "{text}");
+}
+
 /// Every program of the shared peer corpus runs through `check` without a panic and with an
 /// exit status of 0 or 1 (skipped when `../shared` is not beside the repository).
 #[test]

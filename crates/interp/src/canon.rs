@@ -83,6 +83,21 @@ pub enum Canon {
         /// Programmed speed.
         rpm: f64,
     },
+    /// Oriented spindle stop (the boring cycles G76 and G87): the spindle stands at its fixed
+    /// angle so the boring bar can shift away from the wall.
+    Orient,
+    /// The start of one hole of a canned cycle: the motions that follow, up to the next `Hole`
+    /// or the next block, drill it. For hole markers and the hole count.
+    Hole {
+        /// The cycle's G code in tenths (810 for G81, 831 for G83.1).
+        cycle: u32,
+        /// The hole's number in the run, from 1.
+        index: u32,
+        /// Where the hole starts: the R point (machine frame).
+        top: DVec3,
+        /// The hole's bottom (machine frame).
+        bottom: DVec3,
+    },
     /// Coolant on (M08) or off (M09).
     Coolant {
         /// Whether coolant flows after this event.
@@ -140,11 +155,30 @@ impl Canon {
                 "rpm": round(*rpm),
             }),
             Canon::Coolant { on } => json!({"line": line, "kind": "coolant", "on": on}),
+            Canon::Orient => json!({"line": line, "kind": "orient"}),
+            Canon::Hole {
+                cycle,
+                index,
+                top,
+                bottom,
+            } => json!({
+                "line": line, "kind": "hole", "cycle": code_name(*cycle), "index": index,
+                "top": p(*top), "bottom": p(*bottom),
+            }),
             Canon::Pause { optional } => {
                 json!({"line": line, "kind": "pause", "optional": optional})
             }
             Canon::End => json!({"line": line, "kind": "end"}),
         }
+    }
+}
+
+/// `G81`, `G83.1` from a G code in tenths.
+fn code_name(tenths: u32) -> String {
+    if tenths.is_multiple_of(10) {
+        format!("G{}", tenths / 10)
+    } else {
+        format!("G{}.{}", tenths / 10, tenths % 10)
     }
 }
 

@@ -1,4 +1,4 @@
-//! Canned drilling cycles (G73, G81–G83, G85, G89 and their relatives): the modal hole data and
+//! Canned drilling cycles (G73, G74, G76, G81–G89) and Syntec's hole patterns (G134–G137.1): the modal hole data and
 //! the expansion of one cycle block into canonical motions, as the reference documents them
 //! (§4.37–§4.51 and §4.59 of the G-code reference; LinuxCNC as rs274ngc runs them).
 //!
@@ -40,14 +40,18 @@ pub(crate) struct CycleData {
     pub initial: Option<f64>,
     /// The group-01 motion before the cycle (the Fanuc family keeps it: G80 returns to it).
     pub before: Option<MotionMode>,
+    /// Syntec's `F2=` retract feed of G81 (mm/min as programmed).
+    pub retract_feed: Option<f64>,
 }
 
-/// Whether a G code (tenths) is a canned cycle the interpreter expands.
-pub(crate) fn runs(tenths: u32) -> bool {
-    matches!(
-        tenths,
-        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 880 | 890
-    )
+/// Whether a G code (tenths) is a canned cycle the interpreter expands in `dialect` (LinuxCNC's
+/// G76 is the lathe threading cycle, not fine boring).
+pub(crate) fn runs(dialect: Dialect, tenths: u32) -> bool {
+    match tenths {
+        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => true,
+        760 => dialect != Dialect::LinuxCnc,
+        _ => false,
+    }
 }
 
 /// Forgets the hole data and the initial level (G80 and group-01 codes in the Fanuc family);
@@ -85,14 +89,9 @@ pub(crate) fn run(
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
-    let linuxcnc = st.dialect == Dialect::LinuxCnc;
     let (u, v) = plane_axes(st.plane);
     let n = 3 - u - v;
-    let plain = |letter: u8| {
-        words
-            .iter()
-            .find(|w| w.form == WordForm::Plain && w.letter == letter)
-    };
+    let plain = |letter: u8| find(words, letter);
     let axis_letter = |i: usize| b"XYZ"[i];
     let drills = [u, v, n].iter().any(|&i| plain(axis_letter(i)).is_some());
     // The hole data of the block (Syntec: Q and R only from blocks that drill).
@@ -107,7 +106,17 @@ pub(crate) fn run(
         st.cycle.q = Some(st.length(w).abs());
     }
     if let Some(w) = plain(b'P') {
-        st.cycle.p = Some(st.dialect.read(w, Quantity::DwellP, false, false).max(0.0));
+        st.cycle.p = Some(
+            st.dialect
+                .read(w, Quantity::CycleDwellP, false, false)
+                .max(0.0),
+        );
+    }
+    if let Some(w) = words
+        .iter()
+        .find(|w| w.letter == b'F' && w.form == WordForm::Indexed(2))
+    {
+        st.cycle.retract_feed = Some(w.value);
     }
     if st.cycle.initial.is_none() {
         st.cycle.initial = Some(st.program_pos[n]);
@@ -135,89 +144,439 @@ pub(crate) fn run(
     if !drills || repeats == 0 {
         return false;
     }
-    let Some((z_word, z_inc)) = st.cycle.z else {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-WORD-MISSING",
-            format!(
-                "a canned cycle needs the hole bottom ({}) before it drills",
-                char::from(axis_letter(n))
-            ),
-        ));
-        return false;
-    };
-    let Some((r_word, r_inc)) = st.cycle.r else {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-WORD-MISSING",
-            "a canned cycle needs the R level before it drills",
-        ));
+    let Some(plan) = Plan::new(st, block, words, tenths) else {
         return false;
     };
     let start = st.program_pos;
-    let mut current = start[n];
-    // The initial level: captured when the cycle mode was entered (rs274ngc's `cycle_il`).
-    let mut initial = st.cycle.initial.unwrap_or(current);
-    let r = if r_inc { initial + r_word } else { r_word };
-    let bottom = if z_inc { r + z_word } else { z_word };
-    if bottom > r + 1e-9 {
+    // KT's L: L holes equally spaced from the start point to the programmed point.
+    let line = (st.dialect == Dialect::Kt).then(|| target(st) - start);
+    let mut next = |st: &State, i: u32| match line {
+        Some(step) => start + step * f64::from(i) / f64::from(repeats),
+        None => target(st),
+    };
+    drill(st, block, &plan, repeats, &mut next, feed, source, sink);
+    true
+}
+
+/// Most holes one pattern block may drill (a runaway guard: G137.1 allows 9999 × 9999).
+const MAX_PATTERN_HOLES: usize = 100_000;
+
+/// Syntec's hole patterns (§4.63): the canned cycle stored with K0 runs at each point. G134: K
+/// holes on a circle of radius I about the point, the first at angle J (a negative K goes
+/// clockwise); G135: K holes from the point at spacing I along the angle J; G136: K holes on an
+/// arc of radius I from angle J at pitch P (P without a decimal point in 0.001°); G137.1: P
+/// holes at spacing I along the first plane axis times K rows at spacing J along the second,
+/// row after row and each row back the way the last one came (the manual does not give the
+/// order; this one travels least). `origin` is the block's point (centre or start, G90/G91
+/// applied) in the program frame.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn pattern(
+    st: &mut State,
+    block: &Block,
+    code: &Word,
+    words: &[Word],
+    tenths: u32,
+    origin: DVec3,
+    feed: &dyn Fn(&mut State, &Block, f64) -> f64,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> bool {
+    let Some(MotionMode::Cycle(cycle)) = st.motion else {
         st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-CYCLE-LEVELS",
-            "the hole bottom is above the R level: a canned cycle drills towards the bottom",
+            code.span,
+            "E-PATTERN-NO-CYCLE",
+            "a hole pattern runs the stored canned cycle: give the cycle first (e.g. `G81 Z_ R_ F_ K0`)",
         ));
         return false;
-    }
-
-    let peck = match tenths {
-        730 | 830 => {
-            let q = st.cycle.q.filter(|q| *q > 0.0);
-            if linuxcnc && q.is_none() {
+    };
+    let (u, v) = plane_axes(st.plane);
+    let n = 3 - u - v;
+    let mut origin = origin;
+    origin[n] = st.program_pos[n];
+    let length = |st: &State, letter: u8| find(words, letter).map(|w| st.length(w));
+    let angle = |letter: u8| find(words, letter).map_or(0.0, |w| w.value);
+    // A count word: a whole number from 1 to 9999 (sign kept for G134's direction).
+    let count = |st: &mut State, letter: u8| -> Option<i64> {
+        let Some(w) = find(words, letter) else {
+            st.diagnostics.push(Diagnostic::error(
+                code.span,
+                "E-WORD-MISSING",
+                format!(
+                    "this hole pattern needs the number of holes `{}`",
+                    char::from(letter)
+                ),
+            ));
+            return None;
+        };
+        let k = w.value;
+        if k.fract() != 0.0 || k == 0.0 || k.abs() > 9999.0 {
+            st.diagnostics.push(Diagnostic::error(
+                w.span,
+                "E-NUMBER-RANGE",
+                format!(
+                    "the number of holes `{}` must be a whole number from 1 to 9999",
+                    w.letter()
+                ),
+            ));
+            return None;
+        }
+        Some(k as i64)
+    };
+    let at = |r: f64, degrees: f64| {
+        let mut p = origin;
+        let a = degrees.to_radians();
+        p[u] += r * a.cos();
+        p[v] += r * a.sin();
+        p
+    };
+    let radius = |st: &mut State| -> Option<f64> {
+        match length(st, b'I') {
+            Some(r) if r > 0.0 => Some(r),
+            _ => {
                 st.diagnostics.push(Diagnostic::error(
-                    block.span,
+                    code.span,
                     "E-WORD-MISSING",
-                    "G73/G83 need a positive peck depth Q",
+                    "this hole pattern needs a positive radius `I`",
+                ));
+                None
+            }
+        }
+    };
+    let points: Vec<DVec3> = match tenths {
+        1340 => {
+            let (Some(r), Some(k)) = (radius(st), count(st, b'K')) else {
+                return false;
+            };
+            let step = 360.0 / k as f64;
+            (0..k.abs())
+                .map(|i| at(r, angle(b'J') + step * i as f64))
+                .collect()
+        }
+        1350 => {
+            let Some(k) = count(st, b'K') else {
+                return false;
+            };
+            let spacing = length(st, b'I').unwrap_or(0.0);
+            (0..k.abs())
+                .map(|i| at(spacing * i as f64, angle(b'J')))
+                .collect()
+        }
+        1360 => {
+            let (Some(r), Some(k)) = (radius(st), count(st, b'K')) else {
+                return false;
+            };
+            let pitch = find(words, b'P').map_or(0.0, |w| {
+                if w.has_point {
+                    w.value
+                } else {
+                    w.value / 1000.0
+                }
+            });
+            (0..k.abs())
+                .map(|i| at(r, angle(b'J') + pitch * i as f64))
+                .collect()
+        }
+        _ => {
+            let (Some(nx), Some(ny)) = (count(st, b'P'), count(st, b'K')) else {
+                return false;
+            };
+            let (nx, ny) = (nx.unsigned_abs() as usize, ny.unsigned_abs() as usize);
+            if nx.saturating_mul(ny) > MAX_PATTERN_HOLES {
+                st.diagnostics.push(Diagnostic::error(
+                    code.span,
+                    "E-PATTERN-SIZE",
+                    format!(
+                        "this grid has {} holes; more than {MAX_PATTERN_HOLES} are not drawn",
+                        nx * ny
+                    ),
                 ));
                 return false;
             }
-            q.or(Some(DEFAULT_Q_MM))
+            let (di, dj) = (
+                length(st, b'I').unwrap_or(0.0),
+                length(st, b'J').unwrap_or(0.0),
+            );
+            let mut points = Vec::with_capacity(nx * ny);
+            for j in 0..ny {
+                for step in 0..nx {
+                    let i = if j % 2 == 0 { step } else { nx - 1 - step };
+                    let mut p = origin;
+                    p[u] += di * i as f64;
+                    p[v] += dj * j as f64;
+                    points.push(p);
+                }
+            }
+            points
         }
-        _ => None,
     };
-    let retract = if linuxcnc {
-        LINUXCNC_PECK_RETRACT_MM
-    } else {
-        st.setup.machine.peck_retract_mm.max(0.0)
+    let Some(plan) = Plan::new(st, block, words, cycle) else {
+        return false;
     };
-    if matches!(tenths, 740 | 840 | 860 | 880) && st.spindle_dir.is_none() {
-        st.diagnostics.push(Diagnostic::warning(
+    let Ok(count) = u32::try_from(points.len()) else {
+        return false;
+    };
+    let mut next = |_: &State, i: u32| {
+        points
+            .get(i.saturating_sub(1) as usize)
+            .copied()
+            .unwrap_or(origin)
+    };
+    drill(st, block, &plan, count, &mut next, feed, source, sink);
+    true
+}
+
+/// The first plain word `letter` of a block.
+fn find(words: &[Word], letter: u8) -> Option<&Word> {
+    words
+        .iter()
+        .find(|w| w.form == WordForm::Plain && w.letter == letter)
+}
+
+/// Everything about the holes of one cycle block that does not change from hole to hole.
+struct Plan {
+    tenths: u32,
+    /// The drilling axis (program frame).
+    n: usize,
+    r: f64,
+    bottom: f64,
+    initial: f64,
+    peck: Option<f64>,
+    retract: f64,
+    /// The tapping feed in mm/min where the dialect gives the pitch rather than the feed.
+    tap_feed: Option<f64>,
+    /// The feed of G81's retract (Syntec `F2=`), mm/min.
+    retract_feed: Option<f64>,
+    /// The shift of G76/G87 at the oriented stop (machine frame).
+    shift: DVec3,
+    /// LinuxCNC's G87: the in-plane offset I/J/K of the entry (program frame) and the level the
+    /// back bore starts from.
+    back: Option<(DVec3, f64)>,
+}
+
+impl Plan {
+    /// The plan of a cycle block, or `None` (with a diagnostic) when its data are incomplete.
+    fn new(st: &mut State, block: &Block, words: &[Word], tenths: u32) -> Option<Plan> {
+        let linuxcnc = st.dialect == Dialect::LinuxCnc;
+        let (u, v) = plane_axes(st.plane);
+        let n = 3 - u - v;
+        let axis_letter = |i: usize| char::from(b"XYZ"[i]);
+        let Some((z_word, z_inc)) = st.cycle.z else {
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-WORD-MISSING",
+                format!(
+                    "a canned cycle needs the hole bottom ({}) before it drills",
+                    axis_letter(n)
+                ),
+            ));
+            return None;
+        };
+        let Some((r_word, r_inc)) = st.cycle.r else {
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-WORD-MISSING",
+                "a canned cycle needs the R level before it drills",
+            ));
+            return None;
+        };
+        // rs274ngc keeps the numbers of R and Z and reads them in the distance mode in effect
+        // (a Z given under G90 is from R once G91 is on).
+        let (r_inc, z_inc) = if linuxcnc {
+            (!st.absolute, !st.absolute)
+        } else {
+            (r_inc, z_inc)
+        };
+        // The initial level: captured when the cycle mode was entered (rs274ngc's `cycle_il`).
+        let initial = st.cycle.initial.unwrap_or(st.program_pos[n]);
+        let r = if r_inc { initial + r_word } else { r_word };
+        let bottom = if z_inc { r + z_word } else { z_word };
+        let back_boring = tenths == 870 && !linuxcnc;
+        if back_boring && bottom < r - 1e-9 {
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-CYCLE-LEVELS",
+                "G87 bores upwards from R: the end level Z must be above the R level",
+            ));
+            return None;
+        }
+        if !back_boring && bottom > r + 1e-9 {
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-CYCLE-LEVELS",
+                "the hole bottom is above the R level: a canned cycle drills towards the bottom",
+            ));
+            return None;
+        }
+        let peck = match tenths {
+            730 | 830 => {
+                let q = st.cycle.q.filter(|q| *q > 0.0);
+                if linuxcnc && q.is_none() {
+                    st.diagnostics.push(Diagnostic::error(
+                        block.span,
+                        "E-WORD-MISSING",
+                        "G73/G83 need a positive peck depth Q",
+                    ));
+                    return None;
+                }
+                q.or(Some(DEFAULT_Q_MM))
+            }
+            _ => None,
+        };
+        let retract = if linuxcnc {
+            LINUXCNC_PECK_RETRACT_MM
+        } else {
+            st.setup.machine.peck_retract_mm.max(0.0)
+        };
+        if matches!(tenths, 740 | 760 | 840 | 860 | 870 | 880) && st.spindle_dir.is_none() {
+            st.diagnostics.push(Diagnostic::warning(
+                block.span,
+                "W-SPINDLE-STOPPED",
+                format!(
+                    "G{} needs the spindle turning (M03/M04 before the cycle); the control alarms here",
+                    tenths / 10
+                ),
+            ));
+        }
+        // Tapping feed: KT's F is the pitch, Syntec's E the threads per inch (F wins when given);
+        // under G94 the feed is the pitch times the spindle speed.
+        let per_minute = st.feed_mode == crate::state::FeedMode::PerMinute;
+        let pitch = match (tenths, st.dialect) {
+            (740 | 840, Dialect::Kt) => Some(st.mm(st.feed_word)),
+            (740 | 840, Dialect::Syntec) if !st.block_has_feed => find(words, b'E')
+                .filter(|e| e.value > 0.0)
+                .map(|e| 25.4 / e.value),
+            _ => None,
+        };
+        let tap_feed = pitch.filter(|_| per_minute).map(|p| p * st.spindle_rpm);
+        let retract_feed = match (tenths, st.cycle.retract_feed) {
+            (810, Some(f)) if st.dialect == Dialect::Syntec && f > 0.0 => {
+                if st.setup.machine.fast_drilling {
+                    Some(st.mm(f))
+                } else {
+                    st.diagnostics.push(Diagnostic::note(
+                        block.span,
+                        "N-F2-IGNORED",
+                        "`F2=` has no effect in normal drilling (Pr4008 = 0, the setup's `fast_drilling = false`): the tool retracts at rapid",
+                    ));
+                    None
+                }
+            }
+            _ => None,
+        };
+        let shift = if matches!(tenths, 760 | 870) && !linuxcnc {
+            shift_vector(st, block, n)
+        } else {
+            DVec3::ZERO
+        };
+        let back = if tenths == 870 && linuxcnc {
+            Some(linuxcnc_back(st, block, words, n, bottom)?)
+        } else {
+            None
+        };
+        Some(Plan {
+            tenths,
+            n,
+            r,
+            bottom,
+            initial,
+            peck,
+            retract,
+            tap_feed,
+            retract_feed,
+            shift,
+            back,
+        })
+    }
+}
+
+/// The G76/G87 shift at the oriented spindle stop (machine frame): Q (KT: 0.1 mm when Q is
+/// absent or zero) along the setup's shift direction.
+fn shift_vector(st: &mut State, block: &Block, n: usize) -> DVec3 {
+    let q = match st.cycle.q.filter(|q| *q > 0.0) {
+        Some(q) => q,
+        None if st.dialect == Dialect::Kt => DEFAULT_Q_MM,
+        None => 0.0,
+    };
+    let direction = st.setup.machine.shift_direction;
+    let along = direction.vector();
+    if q > 0.0 && along[n].abs() > 0.5 {
+        st.diagnostics.push(Diagnostic::error(
             block.span,
-            "W-SPINDLE-STOPPED",
+            "E-SHIFT-DIRECTION",
+            "the G76/G87 shift direction of the setup (`shift_direction`) lies along the drilling axis: no shift is made",
+        ));
+        return DVec3::ZERO;
+    }
+    if q > 0.0 && st.dialect == Dialect::Kt && along.z != 0.0 {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-SHIFT-DIRECTION",
+            "KT shifts G76/G87 along ±X or ±Y only (status parameter P018 bits 4–5): no shift is made",
+        ));
+        return DVec3::ZERO;
+    }
+    along * q
+}
+
+/// LinuxCNC's G87 words: the in-plane entry offset (I, J, K for X, Y, Z; always incremental)
+/// and the level the back bore starts from (the drilling axis's I/J/K word: absolute in G90,
+/// from the bottom in G91).
+fn linuxcnc_back(
+    st: &mut State,
+    block: &Block,
+    words: &[Word],
+    n: usize,
+    bottom: f64,
+) -> Option<(DVec3, f64)> {
+    let offset_letter = |i: usize| b"IJK"[i];
+    let mut offset = DVec3::ZERO;
+    for i in 0..3 {
+        if i != n
+            && let Some(w) = find(words, offset_letter(i))
+        {
+            offset[i] = st.length(w);
+        }
+    }
+    let Some(level) = find(words, offset_letter(n)) else {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-WORD-MISSING",
             format!(
-                "G{} needs the spindle turning (M03/M04 before the cycle); the control alarms here",
-                tenths / 10
+                "G87 needs `{}`, the level the back bore starts from",
+                char::from(offset_letter(n))
             ),
         ));
-    }
-    // Tapping feed: KT's F is the pitch, Syntec's E the threads per inch (F wins when given);
-    // under G94 the feed is the pitch times the spindle speed.
-    let per_minute = st.feed_mode == crate::state::FeedMode::PerMinute;
-    let pitch = match (tenths, st.dialect) {
-        (740 | 840, Dialect::Kt) => Some(st.mm(st.feed_word)),
-        (740 | 840, Dialect::Syntec) if !st.block_has_feed => plain(b'E')
-            .filter(|e| e.value > 0.0)
-            .map(|e| 25.4 / e.value),
-        _ => None,
+        return None;
     };
-    let tap_feed = pitch.filter(|_| per_minute).map(|p| p * st.spindle_rpm);
+    let level = st.length(level);
+    Some((offset, if st.absolute { level } else { bottom + level }))
+}
+
+/// Drills `count` holes, the i-th (from 1) at `next(st, i)` (its in-plane coordinates; program
+/// frame), from the current position.
+#[allow(clippy::too_many_arguments)]
+fn drill(
+    st: &mut State,
+    block: &Block,
+    plan: &Plan,
+    count: u32,
+    next: &mut dyn FnMut(&State, u32) -> DVec3,
+    feed: &dyn Fn(&mut State, &Block, f64) -> f64,
+    source: Source,
+    sink: &mut dyn Sink,
+) {
+    let linuxcnc = st.dialect == Dialect::LinuxCnc;
+    let n = plan.n;
+    let r = plan.r;
+    let mut current = st.program_pos[n];
+    let mut initial = plan.initial;
     let mut d = Drill {
         st,
         block,
         feed,
-        tap_feed,
+        plan,
         source,
         sink,
-        n,
     };
     if linuxcnc && initial < r {
         // rs274ngc: below the R level, straight up to it first.
@@ -227,26 +586,30 @@ pub(crate) fn run(
         initial = r;
         current = r;
     }
-    let clear = if d.st.return_initial { initial } else { r };
-    // KT's L: L holes equally spaced from the start point to the programmed point.
-    let line = (d.st.dialect == Dialect::Kt).then(|| target(d.st) - start);
-    for i in 1..=repeats {
-        let hole = match line {
-            Some(step) => start + step * f64::from(i) / f64::from(repeats),
-            None => target(d.st),
-        };
+    // G87 of the Fanuc family always returns to the initial level (G99 is ignored).
+    let clear = if d.st.return_initial || (plan.tenths == 870 && !linuxcnc) {
+        initial
+    } else {
+        r
+    };
+    for i in 1..=count {
+        let hole = next(d.st, i);
         if linuxcnc && !(i == 1 && current > r) {
             // Later holes (and a first one from at or below R) move over at the clear level.
             current = clear;
         }
+        d.mark(hole);
         d.rapid(d.level(hole, current));
-        if current != r && (!linuxcnc || current > r) {
-            d.rapid(d.level(hole, r));
+        if plan.tenths == 870 && !linuxcnc {
+            d.back_bore(hole, current, clear);
+        } else {
+            if current != r && (!linuxcnc || current > r) {
+                d.rapid(d.level(hole, r));
+            }
+            d.hole(hole, clear);
         }
-        d.hole(tenths, hole, r, bottom, clear, peck, retract);
         current = clear;
     }
-    true
 }
 
 /// Emits the moves of one hole.
@@ -254,46 +617,65 @@ struct Drill<'a, 's> {
     st: &'a mut State,
     block: &'a Block,
     feed: &'a dyn Fn(&mut State, &Block, f64) -> f64,
-    /// The tapping feed in mm/min where the dialect gives the pitch rather than the feed.
-    tap_feed: Option<f64>,
+    plan: &'a Plan,
     source: Source,
     sink: &'s mut dyn Sink,
-    /// The drilling axis.
-    n: usize,
 }
 
 impl Drill<'_, '_> {
+    fn emit(&mut self, event: &Canon) {
+        crate::corners::emit(self.st, self.sink, self.source, event);
+    }
+
     fn rapid(&mut self, p: DVec3) {
         let to = self.st.to_machine(p);
         self.st.position = to;
         self.st.program_pos = p;
-        crate::corners::emit(self.st, self.sink, self.source, &Canon::Rapid { to });
+        self.emit(&Canon::Rapid { to });
+    }
+
+    /// A rapid to `p` moved by the G76/G87 shift (the position is the shifted point; the next
+    /// unshifted move brings it back).
+    fn rapid_shifted(&mut self, p: DVec3) {
+        let to = self.st.to_machine(p) + self.plan.shift;
+        self.st.position = to;
+        self.st.program_pos = p;
+        self.emit(&Canon::Rapid { to });
     }
 
     fn feed_to(&mut self, p: DVec3) {
         let to = self.st.to_machine(p);
         let length = self.st.position.distance(to);
-        let feed_mm_per_min = match self.tap_feed {
+        let feed_mm_per_min = match self.plan.tap_feed {
             Some(f) => f,
             None => (self.feed)(self.st, self.block, length),
         };
         self.st.position = to;
         self.st.program_pos = p;
-        crate::corners::emit(
-            self.st,
-            self.sink,
-            self.source,
-            &Canon::Feed {
-                to,
-                feed_mm_per_min,
-            },
-        );
+        self.emit(&Canon::Feed {
+            to,
+            feed_mm_per_min,
+        });
     }
 
     fn level(&self, hole: DVec3, level: f64) -> DVec3 {
         let mut p = hole;
-        p[self.n] = level;
+        p[self.plan.n] = level;
         p
+    }
+
+    /// Tags the motions that follow as the next hole.
+    fn mark(&mut self, hole: DVec3) {
+        self.st.holes = self.st.holes.saturating_add(1);
+        let top = self.st.to_machine(self.level(hole, self.plan.r));
+        let bottom = self.st.to_machine(self.level(hole, self.plan.bottom));
+        let index = self.st.holes;
+        self.emit(&Canon::Hole {
+            cycle: self.plan.tenths,
+            index,
+            top,
+            bottom,
+        });
     }
 
     fn spindle(&mut self, clockwise: Option<bool>) {
@@ -303,42 +685,72 @@ impl Drill<'_, '_> {
         } else {
             0.0
         };
-        crate::corners::emit(
-            self.st,
-            self.sink,
-            self.source,
-            &Canon::Spindle { clockwise, rpm },
-        );
+        self.emit(&Canon::Spindle { clockwise, rpm });
+    }
+
+    /// Spindle stop at the fixed angle.
+    fn orient(&mut self) {
+        self.spindle(None);
+        self.emit(&Canon::Orient);
     }
 
     fn dwell(&mut self) {
         if let Some(secs) = self.st.cycle.p.filter(|s| *s > 0.0) {
-            crate::corners::emit(self.st, self.sink, self.source, &Canon::Dwell { secs });
+            self.emit(&Canon::Dwell { secs });
         }
     }
 
+    /// Out of the hole to `clear`: at the `F2=` feed where one applies, else at rapid.
+    fn retract(&mut self, p: DVec3) {
+        match self.plan.retract_feed {
+            Some(f) => {
+                let to = self.st.to_machine(p);
+                self.st.position = to;
+                self.st.program_pos = p;
+                self.emit(&Canon::Feed {
+                    to,
+                    feed_mm_per_min: f,
+                });
+            }
+            None => self.rapid(p),
+        }
+    }
+
+    /// The Fanuc family's G87 back boring, from the initial level over the hole: oriented stop,
+    /// shift away, down to R (below the part) at rapid, shift back, spindle forward, bore up to
+    /// Z, dwell, oriented stop, shift away, up to the initial level, shift back, spindle on.
+    fn back_bore(&mut self, hole: DVec3, current: f64, clear: f64) {
+        let (r, bottom) = (self.plan.r, self.plan.bottom);
+        let dir = self.st.spindle_dir;
+        self.orient();
+        self.rapid_shifted(self.level(hole, current));
+        self.rapid_shifted(self.level(hole, r));
+        self.rapid(self.level(hole, r));
+        self.spindle(Some(true));
+        self.feed_to(self.level(hole, bottom));
+        self.dwell();
+        self.orient();
+        self.rapid_shifted(self.level(hole, bottom));
+        self.rapid_shifted(self.level(hole, clear));
+        self.rapid(self.level(hole, clear));
+        self.spindle(dir.or(Some(true)));
+    }
+
     /// From R down to the bottom and out to `clear`.
-    #[allow(clippy::too_many_arguments)]
-    fn hole(
-        &mut self,
-        tenths: u32,
-        hole: DVec3,
-        r: f64,
-        bottom: f64,
-        clear: f64,
-        peck: Option<f64>,
-        retract: f64,
-    ) {
-        match tenths {
+    fn hole(&mut self, hole: DVec3, clear: f64) {
+        let (r, bottom) = (self.plan.r, self.plan.bottom);
+        let linuxcnc = self.st.dialect == Dialect::LinuxCnc;
+        match self.plan.tenths {
             730 | 830 => {
-                let q = peck.unwrap_or(DEFAULT_Q_MM);
+                let q = self.plan.peck.unwrap_or(DEFAULT_Q_MM);
+                let full_out = self.plan.tenths == 830;
                 let mut depth = r - q;
                 while depth > bottom + 1e-9 {
                     self.feed_to(self.level(hole, depth));
-                    if tenths == 830 {
+                    if full_out {
                         self.rapid(self.level(hole, r));
                     }
-                    self.rapid(self.level(hole, (depth + retract).min(r)));
+                    self.rapid(self.level(hole, (depth + self.plan.retract).min(r)));
                     depth -= q;
                 }
                 self.feed_to(self.level(hole, bottom));
@@ -346,10 +758,10 @@ impl Drill<'_, '_> {
             }
             850 | 890 => {
                 self.feed_to(self.level(hole, bottom));
-                if tenths == 890 {
+                if self.plan.tenths == 890 {
                     self.dwell();
                 }
-                if tenths == 890 && self.st.dialect == Dialect::LinuxCnc {
+                if self.plan.tenths == 890 && linuxcnc {
                     // rs274ngc feeds G89 straight out to the clear level.
                     self.feed_to(self.level(hole, clear));
                     return;
@@ -362,8 +774,7 @@ impl Drill<'_, '_> {
             740 | 840 => {
                 // Tapping: in with the spindle forward (G84 clockwise, G74 counter-clockwise),
                 // stop, dwell, reverse and feed out, stop, (dwell,) forward again.
-                let forward = tenths == 840;
-                let linuxcnc = self.st.dialect == Dialect::LinuxCnc;
+                let forward = self.plan.tenths == 840;
                 self.feed_to(self.level(hole, bottom));
                 self.spindle(None);
                 if !linuxcnc {
@@ -385,17 +796,30 @@ impl Drill<'_, '_> {
                     self.rapid(self.level(hole, clear));
                 }
             }
+            760 => {
+                // Fine boring: bore, dwell, oriented stop, shift away from the wall, out at
+                // rapid, shift back, spindle on as before.
+                let dir = self.st.spindle_dir;
+                self.feed_to(self.level(hole, bottom));
+                self.dwell();
+                self.orient();
+                self.rapid_shifted(self.level(hole, bottom));
+                self.rapid_shifted(self.level(hole, clear));
+                self.rapid(self.level(hole, clear));
+                self.spindle(dir.or(Some(true)));
+            }
             860 => {
                 // Boring with spindle stop: out at rapid, the spindle restarted as it was.
                 let dir = self.st.spindle_dir;
                 self.feed_to(self.level(hole, bottom));
-                if self.st.dialect == Dialect::LinuxCnc {
+                if linuxcnc {
                     self.dwell();
                 }
                 self.spindle(None);
                 self.rapid(self.level(hole, clear));
                 self.spindle(dir.or(Some(true)));
             }
+            870 => self.linuxcnc_back_bore(hole, clear),
             880 => {
                 // Manual return: dwell, spindle stop, a program stop where the operator
                 // retracts; the tool is drawn back at the return level before the spindle
@@ -404,14 +828,9 @@ impl Drill<'_, '_> {
                 self.feed_to(self.level(hole, bottom));
                 self.dwell();
                 self.spindle(None);
-                crate::corners::emit(
-                    self.st,
-                    self.sink,
-                    self.source,
-                    &Canon::Pause { optional: false },
-                );
+                self.emit(&Canon::Pause { optional: false });
                 let out = self.level(hole, clear);
-                if self.st.dialect == Dialect::LinuxCnc {
+                if linuxcnc {
                     // rs274ngc draws no return but carries on from the clear level.
                     self.st.position = self.st.to_machine(out);
                     self.st.program_pos = out;
@@ -423,11 +842,36 @@ impl Drill<'_, '_> {
             _ => {
                 // G81, G82.
                 self.feed_to(self.level(hole, bottom));
-                if tenths == 820 {
+                if self.plan.tenths == 820 {
                     self.dwell();
                 }
-                self.rapid(self.level(hole, clear));
+                self.retract(self.level(hole, clear));
             }
         }
+    }
+
+    /// LinuxCNC's G87 as rs274ngc runs it (from R over the hole): over to the offset entry,
+    /// oriented stop, down to Z, over the hole, spindle on, bore to the back-bore level and
+    /// back to Z, oriented stop, over to the entry, up to the clear level, back over the hole,
+    /// spindle on.
+    fn linuxcnc_back_bore(&mut self, hole: DVec3, clear: f64) {
+        let Some((offset, level)) = self.plan.back else {
+            return;
+        };
+        let (r, bottom) = (self.plan.r, self.plan.bottom);
+        let dir = self.st.spindle_dir;
+        let entry = hole + offset;
+        self.rapid(self.level(entry, r));
+        self.orient();
+        self.rapid(self.level(entry, bottom));
+        self.rapid(self.level(hole, bottom));
+        self.spindle(dir.or(Some(true)));
+        self.feed_to(self.level(hole, level));
+        self.feed_to(self.level(hole, bottom));
+        self.orient();
+        self.rapid(self.level(entry, bottom));
+        self.rapid(self.level(entry, clear));
+        self.rapid(self.level(hole, clear));
+        self.spindle(dir.or(Some(true)));
     }
 }

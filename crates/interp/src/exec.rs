@@ -56,6 +56,8 @@ enum Action {
     Measure(bool),
     /// Syntec G92.1: the program zero preset at X Y Z from the work origin, the plane turned by R.
     PresetZero,
+    /// Syntec G134, G135, G136, G137.1: the stored canned cycle at each point of a hole pattern.
+    Pattern(u32),
     StrokeLimit(bool),
     /// A mode with nothing to draw (cancels, arc-centre mode, lathe diameter mode).
     Nothing,
@@ -72,7 +74,7 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::Motion, 30) => Action::Motion(Some(MotionMode::Arc { ccw: true })),
         (Group::Motion, 330) => Action::Motion(Some(MotionMode::Thread)),
         (Group::Motion | Group::Cycle, 800) => Action::Motion(None),
-        (Group::Motion | Group::Cycle, t) if crate::cycles::runs(t) => {
+        (Group::Motion | Group::Cycle, t) if crate::cycles::runs(dialect, t) => {
             Action::Motion(Some(MotionMode::Cycle(t)))
         }
         (_, 40) => Action::Dwell,
@@ -132,6 +134,7 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::NonModal, 370) if syntec => Action::Measure(false),
         (Group::NonModal, 371) if syntec => Action::Measure(true),
         (Group::NonModal, 921) if syntec => Action::PresetZero,
+        (Group::NonModal, t @ (1340 | 1350 | 1360 | 1371)) if syntec => Action::Pattern(t),
         _ => return None,
     })
 }
@@ -471,6 +474,17 @@ fn execute_block(
             }
             Action::PresetZero => {
                 preset_zero(st, words);
+                true
+            }
+            Action::Pattern(t) => {
+                let (u, v) = plane_axes(st.plane);
+                let mut plane_words: Axes<'_> = [None; 3];
+                plane_words[u] = axes[u];
+                plane_words[v] = axes[v];
+                let origin = target(st, &plane_words);
+                let feed =
+                    |st: &mut State, block: &Block, length: f64| move_feed(st, block, length, None);
+                crate::cycles::pattern(st, block, w, words, t, origin, &feed, source, sink);
                 true
             }
             // The words are the limits, not a move.

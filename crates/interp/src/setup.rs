@@ -75,6 +75,51 @@ pub struct Machine {
     /// The retract d between pecks of G73 and G83 in mm (KT data parameter P230, Syntec Pr4002;
     /// the manuals' default 1.000 mm). LinuxCNC's rs274ngc retracts a fixed 0.010 inch instead.
     pub peck_retract_mm: f64,
+    /// The direction the boring bar shifts away from the wall at the oriented spindle stop of
+    /// G76 and G87 (Syntec Pr4020: 0 +X, 1 −X, 2 +Y, 3 −Y, 4 +Z, 5 −Z; KT P018 bits 4–5, ±X or
+    /// ±Y only). Written `"+X"`, `"-Y"` …
+    pub shift_direction: ShiftDirection,
+    /// Syntec Pr4008 = 1 (fast drilling, TYPE II): G81 retracts at the `F2=` feed when one is
+    /// given. Pr4008 = 0 (normal drilling) ignores `F2=` and retracts at rapid.
+    pub fast_drilling: bool,
+}
+
+/// An axis direction for the G76/G87 shift.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+pub enum ShiftDirection {
+    /// +X (Syntec Pr4020 = 0, the default).
+    #[default]
+    #[serde(rename = "+X")]
+    PlusX,
+    /// −X.
+    #[serde(rename = "-X")]
+    MinusX,
+    /// +Y.
+    #[serde(rename = "+Y")]
+    PlusY,
+    /// −Y.
+    #[serde(rename = "-Y")]
+    MinusY,
+    /// +Z.
+    #[serde(rename = "+Z")]
+    PlusZ,
+    /// −Z.
+    #[serde(rename = "-Z")]
+    MinusZ,
+}
+
+impl ShiftDirection {
+    /// The unit vector of the direction (machine axes).
+    pub fn vector(self) -> DVec3 {
+        match self {
+            ShiftDirection::PlusX => DVec3::X,
+            ShiftDirection::MinusX => DVec3::NEG_X,
+            ShiftDirection::PlusY => DVec3::Y,
+            ShiftDirection::MinusY => DVec3::NEG_Y,
+            ShiftDirection::PlusZ => DVec3::Z,
+            ShiftDirection::MinusZ => DVec3::NEG_Z,
+        }
+    }
 }
 
 impl Default for Machine {
@@ -89,6 +134,8 @@ impl Default for Machine {
             reference_points: Vec::new(),
             measured_angles: Vec::new(),
             peck_retract_mm: 1.0,
+            shift_direction: ShiftDirection::PlusX,
+            fast_drilling: true,
         }
     }
 }

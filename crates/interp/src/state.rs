@@ -183,6 +183,8 @@ pub(crate) struct State {
     pub modal_macro: Option<ModalMacro>,
     /// The canned cycles' modal hole data.
     pub cycle: crate::cycles::CycleData,
+    /// Holes drilled so far in the run (the next hole's number is one more).
+    pub holes: u32,
     /// Syntec's G92.1 rotation of the program plane about the preset zero point, degrees.
     pub preset_rotation: f64,
     /// G28/G30 intermediate point per axis, in the program frame.
@@ -253,6 +255,7 @@ impl State {
             stroke_zone: None,
             modal_macro: None,
             cycle: crate::cycles::CycleData::default(),
+            holes: 0,
             preset_rotation: 0.0,
             intermediate: [None; 3],
             d_word: 0,

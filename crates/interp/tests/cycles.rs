@@ -4,7 +4,8 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-use swarf_interp::{Canon, CanonRecorder, Setup, run};
+use glam::DVec3;
+use swarf_interp::{Canon, CanonRecorder, Setup, ShiftDirection, run};
 use swarf_syntax::{Dialect, parse};
 
 /// Runs `text` (calculator input: integers are mm) and returns the events as short strings:
@@ -28,6 +29,7 @@ fn events(text: &str, dialect: Dialect) -> (Vec<String>, Vec<&'static str>) {
             Canon::Feed { to, .. } => Some(format!("F {} {} {}", f(to.x), f(to.y), f(to.z))),
             Canon::Dwell { secs } => Some(format!("D {}", f(*secs))),
             Canon::Spindle { clockwise, .. } => Some(format!("S {clockwise:?}")),
+            Canon::Orient => Some("O".to_string()),
             _ => None,
         })
         .collect();
@@ -405,7 +407,13 @@ fn g86_stops_the_spindle_and_g88_pauses_for_the_manual_return() {
     setup.machine.calculator_input = Some(true);
     let mut rec = CanonRecorder::default();
     run(&program, setup, &mut rec);
-    let kinds: Vec<&Canon> = rec.events.iter().map(|(_, e)| e).skip(4).collect();
+    let kinds: Vec<&Canon> = rec
+        .events
+        .iter()
+        .map(|(_, e)| e)
+        .filter(|e| !matches!(e, Canon::Hole { .. }))
+        .skip(4)
+        .collect();
     assert!(matches!(kinds[0], Canon::Feed { .. }));
     assert!(matches!(kinds[1], Canon::Dwell { .. }));
     assert!(matches!(
@@ -417,4 +425,318 @@ fn g86_stops_the_spindle_and_g88_pauses_for_the_manual_return() {
     ));
     assert!(matches!(kinds[3], Canon::Pause { optional: false }));
     assert!(matches!(kinds[4], Canon::Rapid { to } if to.z == 10.0));
+}
+
+/// A hole event: cycle, index, top, bottom.
+type HoleEvent = (u32, u32, DVec3, DVec3);
+
+/// The hole events of a run, plus the diagnostic codes.
+fn holes(text: &str, dialect: Dialect) -> (Vec<HoleEvent>, Vec<&'static str>) {
+    let program = parse(text, dialect);
+    let mut rec = CanonRecorder::default();
+    let mut diags = program.diagnostics.clone();
+    diags.extend(run(&program, Setup::default(), &mut rec));
+    let out = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Hole {
+                cycle,
+                index,
+                top,
+                bottom,
+            } => Some((*cycle, *index, *top, *bottom)),
+            _ => None,
+        })
+        .collect();
+    (out, diags.iter().map(|d| d.code).collect())
+}
+
+fn close(a: DVec3, b: DVec3) -> bool {
+    a.distance(b) < 1e-6
+}
+
+#[test]
+fn syntec_e55_g76_shifts_away_from_the_wall_at_the_oriented_stop() {
+    let text = "F1000. S500;\nM03;\nG90;\nG00 X0. Y0. Z10.;\nG17;\nG90 G99;\n\
+                G76 X5. Y5. Z-10. R-5. Q2. P5.;\nG98 X15.;\nG80;\n";
+    let out = ev(text, Dialect::Syntec);
+    assert_eq!(
+        out,
+        s(&[
+            "S Some(true)",
+            "R 0 0 10",
+            "R 5 5 10",
+            "R 5 5 -5",
+            "F 5 5 -10",
+            "D 5",
+            "S None",
+            "O",
+            "R 7 5 -10",
+            "R 7 5 -5",
+            "R 5 5 -5",
+            "S Some(true)",
+            // Hole 2 under G98: back to the initial level, shifted.
+            "R 15 5 -5",
+            "F 15 5 -10",
+            "D 5",
+            "S None",
+            "O",
+            "R 17 5 -10",
+            "R 17 5 10",
+            "R 15 5 10",
+            "S Some(true)",
+        ])
+    );
+    // The shift direction comes from the setup (Syntec Pr4020).
+    let mut setup = Setup::default();
+    setup.machine.shift_direction = ShiftDirection::MinusY;
+    let program = parse(text, Dialect::Syntec);
+    let mut rec = CanonRecorder::default();
+    run(&program, setup, &mut rec);
+    assert!(rec.events.iter().any(|(_, e)| matches!(e,
+        Canon::Rapid { to } if close(*to, DVec3::new(5.0, 3.0, -10.0)))));
+}
+
+#[test]
+fn kt_g76_shifts_by_the_default_q_and_rejects_a_z_shift() {
+    let out = ev(
+        "G0 X0 Y0 Z10 S500 M03\nG99 G76 X5 R2 Z-5 F100\n",
+        Dialect::Kt,
+    );
+    assert!(out.contains(&"R 5.1 0 -5".to_string()), "{out:?}");
+    let mut setup = Setup::default();
+    setup.machine.calculator_input = Some(true);
+    setup.machine.shift_direction = ShiftDirection::PlusZ;
+    let program = parse(
+        "G0 X0 Y0 Z10 S500 M03\nG99 G76 X5 R2 Z-5 F100\n",
+        Dialect::Kt,
+    );
+    let mut rec = CanonRecorder::default();
+    let diags = run(&program, setup, &mut rec);
+    assert!(
+        diags.iter().any(|d| d.code == "E-SHIFT-DIRECTION"),
+        "{diags:?}"
+    );
+}
+
+#[test]
+fn syntec_e62_g87_bores_upwards_from_r_and_returns_to_the_initial_level() {
+    let text = "F1000. S500;\nG90;\nG00 X0. Y0. Z10.;\nG17;\nG90;\nM03;\n\
+                G99 G87 X5. Y5. Z10. R-30. Q5. P4.;\nX15.;\nG80;\n";
+    let out = ev(text, Dialect::Syntec);
+    assert_eq!(
+        out[..16],
+        s(&[
+            "R 0 0 10",
+            "S Some(true)",
+            "R 5 5 10",
+            "S None",
+            "O",
+            "R 10 5 10",
+            "R 10 5 -30",
+            "R 5 5 -30",
+            "S Some(true)",
+            "F 5 5 10",
+            "D 4",
+            "S None",
+            "O",
+            "R 10 5 10",
+            "R 10 5 10",
+            "R 5 5 10",
+        ])[..]
+    );
+    // G99 is ignored: the second hole starts from the initial level too.
+    assert!(out[16..].starts_with(&s(&["S Some(true)", "R 15 5 10", "S None", "O"])));
+    // Z below R is an alarm for G87.
+    let (_, diags) = events(
+        "G0 X0 Y0 Z10 S500 M03\nG87 X5 R-30 Z-40 Q1 F100\n",
+        Dialect::Fanuc,
+    );
+    assert!(diags.contains(&"E-CYCLE-LEVELS"), "{diags:?}");
+}
+
+#[test]
+fn linuxcnc_g87_enters_at_the_offset_and_bores_back_as_rs274_does() {
+    let out = ev(
+        "G21 G0 X0 Y0 Z5 M3 S1000\nG98 G87 X10 Y20 R2 Z-5 I3 J0 K-20 F100\n",
+        Dialect::LinuxCnc,
+    );
+    let motions: Vec<&String> = out
+        .iter()
+        .filter(|e| e.starts_with('R') || e.starts_with('F') || *e == "O")
+        .collect();
+    assert_eq!(
+        motions,
+        [
+            "R 0 0 5",
+            "R 10 20 5",
+            "R 10 20 2",
+            "R 13 20 2",
+            "O",
+            "R 13 20 -5",
+            "R 10 20 -5",
+            "F 10 20 -20",
+            "F 10 20 -5",
+            "O",
+            "R 13 20 -5",
+            "R 13 20 5",
+            "R 10 20 5",
+        ]
+    );
+    let (_, diags) = events(
+        "G21 G0 X0 Y0 Z5 M3 S1000\nG98 G87 X10 Y20 R2 Z-5 I3 F100\n",
+        Dialect::LinuxCnc,
+    );
+    assert!(diags.contains(&"E-WORD-MISSING"), "{diags:?}");
+}
+
+#[test]
+fn syntec_e56_f2_retracts_at_the_retract_feed_unless_normal_drilling() {
+    let text = "F1000. S500;\nG90;\nG00 X0. Y0. Z10.;\nG17;\nG90 G99;\n\
+                G81 X5. Y5. Z-10. R-5. F2=1000;\nX15.;\nG80;\n";
+    let program = parse(text, Dialect::Syntec);
+    let mut rec = CanonRecorder::default();
+    run(&program, Setup::default(), &mut rec);
+    let after_bottom: Vec<&Canon> = rec
+        .events
+        .iter()
+        .map(|(_, e)| e)
+        .skip_while(|e| !matches!(e, Canon::Feed { to, .. } if to.z == -10.0))
+        .skip(1)
+        .take(1)
+        .collect();
+    assert!(
+        matches!(after_bottom[0], Canon::Feed { to, feed_mm_per_min } if to.z == -5.0 && *feed_mm_per_min == 1000.0),
+        "{after_bottom:?}"
+    );
+    let mut setup = Setup::default();
+    setup.machine.fast_drilling = false;
+    let mut rec = CanonRecorder::default();
+    let diags = run(&program, setup, &mut rec);
+    assert!(diags.iter().any(|d| d.code == "N-F2-IGNORED"));
+    assert!(
+        rec.events
+            .iter()
+            .all(|(_, e)| !matches!(e, Canon::Feed { to, .. } if to.z == -5.0))
+    );
+}
+
+#[test]
+fn every_hole_is_tagged_with_its_cycle_number_and_levels() {
+    let (h, diags) = holes(
+        "G0 X0 Y0 Z50.\nG99 G81 X10. Y20. R5. Z-10. F100\nX30.\nG83 X40. Q3. Z-12.\nG80\n",
+        Dialect::Fanuc,
+    );
+    assert!(
+        diags
+            .iter()
+            .all(|c| !c.starts_with("E-") && !c.starts_with("W-")),
+        "{diags:?}"
+    );
+    assert_eq!(h.len(), 3);
+    assert_eq!(
+        h.iter().map(|x| (x.0, x.1)).collect::<Vec<_>>(),
+        [(810, 1), (810, 2), (830, 3)]
+    );
+    assert!(close(h[1].2, DVec3::new(30.0, 20.0, 5.0)));
+    assert!(close(h[2].3, DVec3::new(40.0, 20.0, -12.0)));
+}
+
+fn hole_points(text: &str) -> Vec<(f64, f64)> {
+    let (h, diags) = holes(text, Dialect::Syntec);
+    assert!(diags.iter().all(|c| !c.starts_with("E-")), "{diags:?}");
+    h.iter()
+        .map(|x| ((x.2.x * 1e3).round() / 1e3, (x.2.y * 1e3).round() / 1e3))
+        .collect()
+}
+
+#[test]
+fn syntec_e70_g134_drills_a_bolt_circle_about_the_incremental_centre() {
+    let p = hole_points(
+        "G92 X500.0 Y100.0;\nG91 G81 Z-10.0 R5.0 K0 F200;\nG134 X200.0 Y100.0 I100.0 J20.0 K6;\nG80;\n",
+    );
+    // Centre (700, 200) in the G92 frame, (200, 100) on the machine: the manual's offsets 100·(cos θ, sin θ) for θ = 20°, 80° … 320°.
+    let expected = [
+        (93.969, 34.202),
+        (17.365, 98.481),
+        (-76.604, 64.279),
+        (-93.969, -34.202),
+        (-17.365, -98.481),
+        (76.604, -64.279),
+    ];
+    assert_eq!(p.len(), 6);
+    for (got, (dx, dy)) in p.iter().zip(expected) {
+        assert!(
+            (got.0 - (200.0 + dx)).abs() < 1e-3 && (got.1 - (100.0 + dy)).abs() < 1e-3,
+            "{p:?}"
+        );
+    }
+}
+
+#[test]
+fn syntec_e71_e72_e73_line_arc_and_grid_patterns() {
+    let line = hole_points("G91;\nG81 Z-10.0 R5.0 K0 F100;\nG135 X200.0 Y100.0 I100.0 J30.0 K5;\n");
+    assert_eq!(
+        line,
+        [
+            (200.0, 100.0),
+            (286.603, 150.0),
+            (373.205, 200.0),
+            (459.808, 250.0),
+            (546.41, 300.0)
+        ]
+    );
+    let arc =
+        hole_points("G91;\nG81 Z-10.0 R5.0 K0 F100;\nG136 X300.0 Y100.0 I300.0 J10.0 P15000 K6;\n");
+    let offsets = [
+        (295.442, 52.094),
+        (271.892, 126.785),
+        (229.813, 192.836),
+        (172.073, 245.746),
+        (102.606, 281.908),
+        (26.147, 298.858),
+    ];
+    assert_eq!(arc.len(), 6);
+    for (got, (dx, dy)) in arc.iter().zip(offsets) {
+        assert!(
+            (got.0 - (300.0 + dx)).abs() < 2e-3 && (got.1 - (100.0 + dy)).abs() < 2e-3,
+            "{arc:?}"
+        );
+    }
+    let grid =
+        hole_points("G91;\nG81 Z-10.0 R5.0 K0 F20;\nG137.1 X300.0 Y-100.0 I50.0 P10 J100.0 K8;\n");
+    assert_eq!(grid.len(), 80);
+    let mut sorted = grid.clone();
+    sorted.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    sorted.dedup();
+    assert_eq!(sorted.len(), 80);
+    for (x, y) in &grid {
+        let (i, j) = ((x - 300.0) / 50.0, (y + 100.0) / 100.0);
+        assert!(
+            i.fract() == 0.0
+                && (0.0..10.0).contains(&i)
+                && j.fract() == 0.0
+                && (0.0..8.0).contains(&j)
+        );
+    }
+    // Row after row, each the way back of the one before.
+    assert_eq!(grid[9], (750.0, -100.0));
+    assert_eq!(grid[10], (750.0, 0.0));
+}
+
+#[test]
+fn a_pattern_without_a_stored_cycle_or_with_a_bad_count_is_an_alarm() {
+    let (_, diags) = holes("G134 X0 Y0 I10. J0 K6;\n", Dialect::Syntec);
+    assert!(diags.contains(&"E-PATTERN-NO-CYCLE"), "{diags:?}");
+    let (_, diags) = holes(
+        "G91 G81 Z-10. R5. K0 F100;\nG134 X0 Y0 I10. J0 K2.5;\n",
+        Dialect::Syntec,
+    );
+    assert!(diags.contains(&"E-NUMBER-RANGE"), "{diags:?}");
+    let (_, diags) = holes(
+        "G91 G81 Z-10. R5. K0 F100;\nG137.1 X0 Y0 I1. P9999 J1. K9999;\n",
+        Dialect::Syntec,
+    );
+    assert!(diags.contains(&"E-PATTERN-SIZE"), "{diags:?}");
 }

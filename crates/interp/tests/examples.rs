@@ -1420,8 +1420,8 @@ fn e52_syntec_ring_of_eight_and_mirrored_small_flowers() {
     // E52: eight passes of N100 rotated 45° apart close the ring; N200 draws four R10
     // semicircles around (−80, 0), and mirrored about Y = −40 (commanded while N200's G91 is
     // active; the axis is absolute) around (−80, −80). `G50:` is read as G50.1, the mirror
-    // cancel the manual means (`:` is OCR for `;`). The holes (G81 with G134/G137.1) are canned
-    // cycles and not checked here.
+    // cancel the manual means (`:` is OCR for `;`). The holes: six on the R75 circle from 30°
+    // (G134), then a 3 × 3 grid from (60, −60) at 20 and −20 (G137.1).
     let text = "G54 X0 Y0 F3000.;
 G16;                        // polar syntax on
 G90 G00 X50. Y9.207 R8.;    // to the start point
@@ -1524,8 +1524,40 @@ M99;                        // small-flower subprogram return
         let d = (c.x - middle[0]).hypot(c.y - middle[1]);
         assert!((d - 10.0).abs() < 1e-9, "{k}: {c:?}");
     }
-    // The drilling blocks are reported, not silently skipped.
-    assert!(r.codes().contains(&"W-NOT-INTERPRETED"));
+    let holes: Vec<[f64; 2]> = r
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Hole { top, bottom, .. } => {
+                assert!((top.z - 2.0).abs() < 1e-9 && (bottom.z + 20.0).abs() < 1e-9);
+                Some([top.x, top.y])
+            }
+            _ => None,
+        })
+        .collect();
+    assert_eq!(holes.len(), 15);
+    for (k, h) in holes[..6].iter().enumerate() {
+        let a = (30.0 + 60.0 * k as f64).to_radians();
+        assert_xy(
+            DVec3::new(h[0], h[1], 0.0),
+            [75.0 * a.cos(), 75.0 * a.sin()],
+            1e-9,
+        );
+    }
+    let mut grid: Vec<[f64; 2]> = holes[6..].to_vec();
+    grid.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let mut expected = Vec::new();
+    for x in [60.0, 80.0, 100.0] {
+        for y in [-100.0, -80.0, -60.0] {
+            expected.push([x, y]);
+        }
+    }
+    for (g, e) in grid.iter().zip(&expected) {
+        assert!(
+            (g[0] - e[0]).abs() < 1e-9 && (g[1] - e[1]).abs() < 1e-9,
+            "{grid:?}"
+        );
+    }
 }
 
 #[test]

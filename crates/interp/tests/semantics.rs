@@ -78,7 +78,11 @@ fn numbers_without_a_point_follow_the_decimal_point_rule() {
 
 #[test]
 fn unsupported_codes_say_so() {
-    let (rec, diags) = run_text("G76 X0 Y0 Z-5 R1 F100\nG01 X1 F100\n", Dialect::Fanuc);
+    // LinuxCNC's G76 is the lathe threading cycle.
+    let (rec, diags) = run_text(
+        "G76 P1.25 Z-10 I-1 J0.5 K1\nG01 X1 F100\n",
+        Dialect::LinuxCnc,
+    );
     assert_eq!(codes(&diags)[0], "W-NOT-INTERPRETED");
     assert_eq!(rec.events.len(), 1);
 }

@@ -175,6 +175,26 @@ pub struct Dwell {
     pub secs: f64,
 }
 
+/// One hole of a canned cycle, for hole markers and hole counts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hole {
+    /// The cycle's G code in tenths (810 for G81).
+    pub cycle: u32,
+    /// The hole's number in the run, from 1.
+    pub index: u32,
+    /// The R point the hole starts at (machine frame, mm).
+    pub top: DVec3,
+    /// The hole's bottom (machine frame, mm).
+    pub bottom: DVec3,
+    /// The tool that drills it.
+    pub tool: u32,
+    /// The 1-based line of the cycle block.
+    pub line: u32,
+    /// The first segment of its motions: they run up to the next hole's first segment or the
+    /// next segment of another line.
+    pub first_segment: usize,
+}
+
 /// When each segment runs, in seconds from the program start.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Timeline {
@@ -298,6 +318,8 @@ pub struct Toolpath {
     last_direction: Option<DVec3>,
     /// A non-motion event since the last segment: the next one starts at rest.
     stop_pending: bool,
+    /// The holes drilled by canned cycles, in order.
+    holes: Vec<Hole>,
 }
 
 impl Default for Toolpath {
@@ -341,6 +363,7 @@ impl Toolpath {
             window: VecDeque::new(),
             last_direction: None,
             stop_pending: false,
+            holes: Vec::new(),
         }
     }
 
@@ -439,6 +462,34 @@ impl Toolpath {
     /// Tools used, in order of first use.
     pub fn tools(&self) -> &[u32] {
         &self.tools
+    }
+
+    /// The holes drilled by canned cycles, in order.
+    pub fn holes(&self) -> &[Hole] {
+        &self.holes
+    }
+
+    /// The number of holes each tool drills, by tool number in order of first use.
+    pub fn holes_per_tool(&self) -> Vec<(u32, usize)> {
+        let mut counts: Vec<(u32, usize)> = Vec::new();
+        for hole in &self.holes {
+            match counts.iter_mut().find(|(t, _)| *t == hole.tool) {
+                Some((_, n)) => *n += 1,
+                None => counts.push((hole.tool, 1)),
+            }
+        }
+        counts
+    }
+
+    /// The hole a segment drills (an index into [`Toolpath::holes`]), if it is one of a
+    /// canned cycle's motions.
+    pub fn hole_of_segment(&self, segment: usize) -> Option<usize> {
+        let i = self
+            .holes
+            .partition_point(|h| h.first_segment <= segment)
+            .checked_sub(1)?;
+        let hole = self.holes.get(i)?;
+        (self.lines.get(segment) == Some(&hole.line)).then_some(i)
     }
 
     /// The first segment caused by source `line` (1-based), for jumping from code to path.
@@ -682,7 +733,25 @@ impl Sink for Toolpath {
                     self.tools.push(*tool);
                 }
             }
-            Canon::Spindle { .. } | Canon::Coolant { .. } | Canon::Pause { .. } | Canon::End => {
+            Canon::Hole {
+                cycle,
+                index,
+                top,
+                bottom,
+            } => self.holes.push(Hole {
+                cycle: *cycle,
+                index: *index,
+                top: *top,
+                bottom: *bottom,
+                tool: self.tool,
+                line: source.line,
+                first_segment: self.ends.len(),
+            }),
+            Canon::Spindle { .. }
+            | Canon::Coolant { .. }
+            | Canon::Pause { .. }
+            | Canon::Orient
+            | Canon::End => {
                 self.stop();
             }
         }

@@ -341,3 +341,29 @@ fn dwells_and_tool_changes_stop_the_tool_and_are_on_the_timeline() {
     assert_eq!(timeline.finished_at(99.0), 3);
     assert!(close(timeline.total_secs(), path.estimated_secs()));
 }
+
+#[test]
+fn keeps_each_hole_with_its_tool_and_its_motions() {
+    let program = parse(
+        "T4 M06\nG0 X0 Y0 Z20.\nG99 G81 X10. Y10. R2. Z-5. F100\nX20.\nG80\nG0 X50.\n",
+        Dialect::Fanuc,
+    );
+    let mut path = Toolpath::default();
+    run(&program, Setup::default(), &mut path);
+    let holes = path.holes();
+    assert_eq!(holes.len(), 2);
+    assert_eq!((holes[0].cycle, holes[0].index, holes[0].tool), (810, 1, 4));
+    assert_eq!(holes[1].top, DVec3::new(20.0, 10.0, 2.0));
+    assert_eq!(holes[1].bottom, DVec3::new(20.0, 10.0, -5.0));
+    assert_eq!(path.holes_per_tool(), [(4, 2)]);
+    // The segments of the cycle blocks belong to their holes, the later move to none.
+    for segment in 0..path.len() {
+        let line = path.lines()[segment];
+        let hole = path.hole_of_segment(segment);
+        match line {
+            3 => assert_eq!(hole, Some(0), "segment {segment}"),
+            4 => assert_eq!(hole, Some(1), "segment {segment}"),
+            _ => assert_eq!(hole, None, "segment {segment}"),
+        }
+    }
+}
