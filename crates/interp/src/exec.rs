@@ -305,6 +305,21 @@ fn execute_block(
                 }
                 actions.push((a, word));
             }
+            None if def.documented != codes::Documented::Full => {
+                // LNC's two-stage cycles, G36–G39, G77/G78 …: the manual lists the code but
+                // not its format, so nothing can be drawn from it.
+                it.st.diagnostics.push(Diagnostic::warning(
+                    word.span,
+                    "W-NOT-DOCUMENTED",
+                    format!(
+                        "{} ({}) is only listed in the {} manual, which does not document its format or motion; this block is not run",
+                        def.code,
+                        def.name,
+                        dialect.label()
+                    ),
+                ));
+                runnable = false;
+            }
             None => {
                 it.st.diagnostics.push(Diagnostic::warning(
                     word.span,
@@ -329,6 +344,8 @@ fn execute_block(
                     word.letter()
                 ),
             )),
+            // Syntec's `F2=`: the retract feed of G81 (read by the cycle).
+            WordForm::Indexed(2) if word.letter == b'F' && dialect == Dialect::Syntec => {}
             WordForm::Indexed(n) => it.st.diagnostics.push(Diagnostic::warning(
                 word.span,
                 "W-NOT-INTERPRETED",

@@ -740,3 +740,22 @@ fn a_pattern_without_a_stored_cycle_or_with_a_bad_count_is_an_alarm() {
     );
     assert!(diags.contains(&"E-PATTERN-SIZE"), "{diags:?}");
 }
+
+#[test]
+fn lnc_list_only_cycles_say_the_manual_does_not_document_them() {
+    for code in ["G181", "G173", "G77", "G36"] {
+        let (out, diags) = events(
+            &format!("G0 X0 Y0 Z10\n{code} X5 Y5 Z-5 R2 F100\nG0 X1\n"),
+            Dialect::Lnc,
+        );
+        assert!(diags.contains(&"W-NOT-DOCUMENTED"), "{code}: {diags:?}");
+        // The block is not run; the next one is.
+        assert_eq!(out, s(&["R 0 0 10", "R 1 0 10"]), "{code}");
+    }
+    // Syntec's F2= is read by G81, not reported as ignored.
+    let (_, diags) = events(
+        "G0 Z10.\nG99 G81 X5. Y5. Z-10. R-5. F100 F2=1000\nG80\n",
+        Dialect::Syntec,
+    );
+    assert!(diags.is_empty(), "{diags:?}");
+}
