@@ -42,6 +42,11 @@ pub(crate) struct CycleData {
     pub before: Option<MotionMode>,
     /// Syntec's `F2=` retract feed of G81 (mm/min as programmed).
     pub retract_feed: Option<f64>,
+    /// GSK's slant angle E (degrees) and the drilling axis it was given for.
+    pub slant: Option<(f64, usize)>,
+    /// The program position when the cycle mode was entered (the slanted cycles' initial plane
+    /// lies across their own drilling axis, not the plane's).
+    pub entry: Option<DVec3>,
 }
 
 /// Whether a G code (tenths) is a canned cycle the interpreter expands in `dialect` (LinuxCNC's
@@ -50,6 +55,7 @@ pub(crate) fn runs(dialect: Dialect, tenths: u32) -> bool {
     match tenths {
         730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => true,
         760 => dialect != Dialect::LinuxCnc,
+        831 | 841 | 851 | 871 | 881 | 891 => dialect == Dialect::Gsk,
         _ => false,
     }
 }
@@ -73,6 +79,7 @@ pub(crate) fn cancel(st: &mut State) -> Option<MotionMode> {
 pub(crate) fn enter(st: &mut State) {
     let (u, v) = plane_axes(st.plane);
     st.cycle.initial = Some(st.program_pos[3 - u - v]);
+    st.cycle.entry = Some(st.program_pos);
     st.cycle.before = st.motion;
 }
 
@@ -89,6 +96,9 @@ pub(crate) fn run(
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
+    if tenths % 10 == 1 {
+        return slanted(st, block, words, tenths, feed, source, sink);
+    }
     let (u, v) = plane_axes(st.plane);
     let n = 3 - u - v;
     let plain = |letter: u8| find(words, letter);
@@ -322,6 +332,219 @@ pub(crate) fn pattern(
             .unwrap_or(origin)
     };
     drill(st, block, &plan, count, &mut next, feed, source, sink);
+    true
+}
+
+/// GSK's slanted-hole cycles (§4.52): G83.1 (drilling), G84.1 (tapping) and G85.1 (boring)
+/// into the end face along Z, G87.1, G88.1 and G89.1 into the side along X. The tool leans by
+/// E from the drilling axis towards the associated axis (X for the end face, Z for the side);
+/// E > 0 moves the associated axis the same way as the drilling axis.
+///
+/// The manual does not give the geometry; Swarf reads R (from the initial plane) and the depth
+/// word (from R) as distances along the tilted tool, so a point at distance d from the initial
+/// point is d·(cos E along the drilling axis + sin E along the associated axis). The return is
+/// always to the initial plane (as the manual requires for slanted holes). Q pecks (in least
+/// input increments without a decimal point) go back to R between pecks (parameter RTR = 1, as
+/// the manual's example) — the C-axis position of the holes is not drawn.
+#[allow(clippy::too_many_arguments)]
+fn slanted(
+    st: &mut State,
+    block: &Block,
+    words: &[Word],
+    tenths: u32,
+    feed: &dyn Fn(&mut State, &Block, f64) -> f64,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> bool {
+    let end_face = matches!(tenths, 831 | 841 | 851);
+    let (drill_axis, assoc, pos_letters, depth_letters) = if end_face {
+        (2, 0, (b'X', b'U'), (b'Z', b'W'))
+    } else {
+        (0, 2, (b'Z', b'W'), (b'X', b'U'))
+    };
+    let position = find(words, pos_letters.0)
+        .map(|w| (w, false))
+        .or_else(|| find(words, pos_letters.1).map(|w| (w, true)));
+    let depth = find(words, depth_letters.0).or_else(|| find(words, depth_letters.1));
+    let c_word = find(words, b'C').or_else(|| find(words, b'H'));
+    if let Some(w) = depth {
+        st.cycle.z = Some((st.length(w), true));
+    }
+    if let Some(w) = find(words, b'R') {
+        st.cycle.r = Some((st.length(w), true));
+    }
+    if let Some(w) = find(words, b'Q') {
+        // Q is in least input increments (0.001 mm) unless written with a decimal point.
+        let q = if w.has_point {
+            w.value
+        } else {
+            w.value / 1000.0
+        };
+        st.cycle.q = Some(st.mm(q).abs());
+    }
+    if let Some(w) = find(words, b'P') {
+        st.cycle.p = Some(
+            st.dialect
+                .read(w, Quantity::CycleDwellP, false, false)
+                .max(0.0),
+        );
+    }
+    if let Some(w) = find(words, b'E') {
+        st.cycle.slant = Some((w.value, drill_axis));
+    }
+    let entry = *st.cycle.entry.get_or_insert(st.program_pos);
+    let repeats = match find(words, b'K') {
+        Some(w) if w.value >= 0.0 && w.value <= 9999.0 && w.value.fract() == 0.0 => w.value as u32,
+        Some(w) => {
+            st.diagnostics.push(Diagnostic::error(
+                w.span,
+                "E-NUMBER-RANGE",
+                "the repeat count K must be 0 or a whole number up to 9999",
+            ));
+            return false;
+        }
+        None => 1,
+    };
+    let drills = position.is_some() || depth.is_some() || c_word.is_some();
+    if !drills || repeats == 0 {
+        return false;
+    }
+    let name = if tenths % 10 == 0 {
+        format!("G{}", tenths / 10)
+    } else {
+        format!("G{}.{}", tenths / 10, tenths % 10)
+    };
+    let angle = match st.cycle.slant {
+        Some((e, axis)) if axis == drill_axis => e,
+        Some(_) => {
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-SLANT-ANGLE",
+                format!("{name} drills along another axis than the slant angle E was given for: give E again"),
+            ));
+            return false;
+        }
+        None => 0.0,
+    };
+    if angle == 0.0 || angle.abs() > 60.0 {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-SLANT-ANGLE",
+            if angle == 0.0 {
+                format!("{name} needs the slant angle E (E0 is an alarm: use the straight cycle for a straight hole)")
+            } else {
+                format!("the slant angle E{angle} is out of range: −60° ≤ E ≤ 60°")
+            },
+        ));
+        return false;
+    }
+    let (Some((r_dist, _)), Some((depth_dist, _))) = (st.cycle.r, st.cycle.z) else {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-WORD-MISSING",
+            format!(
+                "{name} needs R and the depth `{}` before it drills",
+                char::from(depth_letters.0)
+            ),
+        ));
+        return false;
+    };
+    if c_word.is_some() {
+        st.diagnostics.push(Diagnostic::note(
+            c_word.map_or(block.span, |w| w.span),
+            "N-C-AXIS",
+            "the C-axis angle of the hole is not drawn: the backplot shows X, Y and Z only",
+        ));
+    }
+    let mut along = DVec3::ZERO;
+    along[drill_axis] = angle.to_radians().cos();
+    along[assoc] = angle.to_radians().sin();
+    let initial = entry[drill_axis];
+    let peck = st
+        .cycle
+        .q
+        .filter(|q| *q > 0.0 && matches!(tenths, 831 | 871));
+    let plan = Plan {
+        tenths,
+        n: drill_axis,
+        r: initial,
+        bottom: initial,
+        initial,
+        peck,
+        retract: st.setup.machine.peck_retract_mm.max(0.0),
+        tap_feed: None,
+        retract_feed: None,
+        shift: DVec3::ZERO,
+        back: None,
+    };
+    let mut d = Drill {
+        st,
+        block,
+        feed,
+        plan: &plan,
+        source,
+        sink,
+    };
+    for _ in 0..repeats {
+        let mut start = d.st.program_pos;
+        start[drill_axis] = initial;
+        if let Some((w, incremental)) = position {
+            let v = d.st.length(w);
+            start[assoc] = if incremental || !d.st.absolute {
+                d.st.program_pos[assoc] + v
+            } else {
+                v
+            };
+        }
+        let at = |dist: f64| start + along * dist;
+        let (r_point, bottom_point) = (at(r_dist), at(r_dist + depth_dist));
+        d.st.holes = d.st.holes.saturating_add(1);
+        let (top, bottom) = (d.st.to_machine(r_point), d.st.to_machine(bottom_point));
+        let index = d.st.holes;
+        d.emit(&Canon::Hole {
+            cycle: tenths,
+            index,
+            top,
+            bottom,
+        });
+        d.rapid(start);
+        d.rapid(r_point);
+        match tenths {
+            841 | 881 => {
+                let dir = d.st.spindle_dir;
+                let forward = dir.unwrap_or(true);
+                d.feed_to(bottom_point);
+                d.spindle(None);
+                d.dwell();
+                d.spindle(Some(!forward));
+                d.feed_to(r_point);
+                d.spindle(None);
+                d.spindle(Some(forward));
+            }
+            851 | 891 => {
+                d.feed_to(bottom_point);
+                d.dwell();
+                d.feed_to(r_point);
+            }
+            _ => {
+                if let Some(q) = peck {
+                    let mut dist = q;
+                    while dist < depth_dist.abs() - 1e-9 {
+                        d.feed_to(at(r_dist + dist * depth_dist.signum()));
+                        d.rapid(r_point);
+                        d.rapid(at(
+                            r_dist + (dist - d.plan.retract).max(0.0) * depth_dist.signum()
+                        ));
+                        dist += q;
+                    }
+                }
+                d.feed_to(bottom_point);
+                d.dwell();
+                d.rapid(r_point);
+            }
+        }
+        d.rapid(start);
+    }
     true
 }
 

@@ -759,3 +759,63 @@ fn lnc_list_only_cycles_say_the_manual_does_not_document_them() {
     );
     assert!(diags.is_empty(), "{diags:?}");
 }
+
+#[test]
+fn gsk_e15_slanted_end_face_drilling_leans_by_e_and_pecks_back_to_r() {
+    let text = "G98;\nM3 S1500;\nG0 X50 C0 Z0;\nG83.1 X100 Z-30 R-10 Q5000 P3000 F200 E30;\nC120;\nG80 M05;\n";
+    let (out, diags) = events(text, Dialect::Gsk);
+    assert!(diags.iter().all(|c| !c.starts_with("E-")), "{diags:?}");
+    assert!(diags.contains(&"N-C-AXIS"), "{diags:?}");
+    let (s30, c30) = (0.5, 3f64.sqrt() / 2.0);
+    let at = |d: f64| {
+        let f = |v: f64| ((v * 1e6).round() / 1e6).to_string();
+        (f(100.0 + d * s30), f(d * c30))
+    };
+    let (rx, rz) = at(-10.0);
+    let (bx, bz) = at(-40.0);
+    // To the hole on the initial plane, down the tilted axis to R.
+    assert_eq!(out[..2], s(&["S Some(true)", "R 50 0 0"])[..]);
+    assert_eq!(out[2], "R 100 0 0");
+    assert_eq!(out[3], format!("R {rx} 0 {rz}"));
+    // The first peck cuts 5 along the tilted axis, then back to R.
+    let (px, pz) = at(-15.0);
+    assert_eq!(out[4], format!("F {px} 0 {pz}"));
+    assert_eq!(out[5], format!("R {rx} 0 {rz}"));
+    // The last feed reaches the bottom 30 from R, dwells 3 s, and the tool returns.
+    let bottom = out
+        .iter()
+        .position(|e| *e == format!("F {bx} 0 {bz}"))
+        .unwrap();
+    assert_eq!(out[bottom + 1], "D 3");
+    assert_eq!(out[bottom + 2], format!("R {rx} 0 {rz}"));
+    assert_eq!(out[bottom + 3], "R 100 0 0");
+    // Two holes (C0 and C120, drawn at the same X and Z).
+    let (holes, _) = holes(text, Dialect::Gsk);
+    assert_eq!(holes.len(), 2);
+    assert_eq!(holes[0].0, 831);
+}
+
+#[test]
+fn gsk_slant_angle_zero_or_past_60_degrees_is_an_alarm() {
+    for e in ["E0", "E61", ""] {
+        let (out, diags) = events(
+            &format!("G0 X50 Z0\nG85.1 X100 Z-30 R-10 F200 {e}\n"),
+            Dialect::Gsk,
+        );
+        // The parser already refuses E0 and E61 (out of the manual's range).
+        assert!(
+            diags.contains(&"E-SLANT-ANGLE") || diags.contains(&"E-NUMBER-RANGE"),
+            "{e}: {diags:?}"
+        );
+        assert_eq!(out.len(), 1, "{e}: {out:?}");
+    }
+    // The side cycles drill along X, leaning towards Z.
+    let (out, diags) = events("G0 X50 Z0\nG89.1 Z-20 X-10 R-5 F200 E-45\n", Dialect::Gsk);
+    assert!(diags.iter().all(|c| !c.starts_with("E-")), "{diags:?}");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let f = |v: f64| ((v * 1e6).round() / 1e6).to_string();
+    assert_eq!(
+        out[2],
+        format!("R {} 0 {}", f(50.0 - 5.0 * h), f(-20.0 + 5.0 * h))
+    );
+}
