@@ -409,11 +409,7 @@ fn slanted(
     if !drills || repeats == 0 {
         return false;
     }
-    let name = if tenths % 10 == 0 {
-        format!("G{}", tenths / 10)
-    } else {
-        format!("G{}.{}", tenths / 10, tenths % 10)
-    };
+    let name = format!("G{}.{}", tenths / 10, tenths % 10);
     let angle = match st.cycle.slant {
         Some((e, axis)) if axis == drill_axis => e,
         Some(_) => {
