@@ -819,3 +819,74 @@ fn gsk_slant_angle_zero_or_past_60_degrees_is_an_alarm() {
         format!("R {} 0 {}", f(50.0 - 5.0 * h), f(-20.0 + 5.0 * h))
     );
 }
+
+/// The manual's five-hole template (E53–E61, E63, E64): holes 1–3 under G99 come back to R,
+/// hole 4 sets G98 and comes back to the initial level, hole 5 sets a new bottom.
+#[test]
+fn manual_cycle_examples_drill_the_stated_holes_and_return_as_stated() {
+    let cases = [
+        (73, "Q2."),
+        (74, "P2."),
+        (76, "Q2. P5."),
+        (81, ""),
+        (82, "P2."),
+        (83, "Q3."),
+        (84, ""),
+        (85, ""),
+        (86, ""),
+        (88, "P3."),
+        (89, "P2."),
+    ];
+    let tops = [
+        (5.0, 5.0),
+        (15.0, 5.0),
+        (15.0, 15.0),
+        (5.0, 15.0),
+        (10.0, 10.0),
+    ];
+    for dialect in [Dialect::Syntec, Dialect::Fanuc, Dialect::Kt] {
+        for (code, extra) in cases {
+            let spindle = if code == 74 { "M04" } else { "M03" };
+            let text = format!(
+                "F1000. S500;\n{spindle};\nG90;\nG00 X0. Y0. Z10.;\nG17;\nG90 G99;\n\
+                 G{code} X5. Y5. Z-10. R-5. {extra};\nX15.;\nY15.;\nG98 X5.;\n\
+                 X10. Y10. Z-20.;\nG80;\nM05;\nM30;\n"
+            );
+            let program = parse(&text, dialect);
+            let mut rec = CanonRecorder::default();
+            let mut diags = program.diagnostics.clone();
+            diags.extend(run(&program, Setup::default(), &mut rec));
+            assert!(
+                diags
+                    .iter()
+                    .all(|d| d.severity < swarf_syntax::Severity::Error),
+                "{dialect} G{code}: {diags:?}"
+            );
+            let mut holes = Vec::new();
+            let mut last_z = Vec::new();
+            let mut z = 10.0;
+            for (_, e) in &rec.events {
+                match e {
+                    Canon::Hole { top, bottom, .. } => {
+                        if !holes.is_empty() {
+                            last_z.push(z);
+                        }
+                        holes.push((*top, *bottom));
+                    }
+                    Canon::Rapid { to } | Canon::Feed { to, .. } => z = to.z,
+                    _ => {}
+                }
+            }
+            last_z.push(z);
+            assert_eq!(holes.len(), 5, "{dialect} G{code}");
+            for (i, ((top, bottom), (x, y))) in holes.iter().zip(tops).enumerate() {
+                let depth = if i == 4 { -20.0 } else { -10.0 };
+                assert!(
+                    close(*top, DVec3::new(x, y, -5.0)) && close(*bottom, DVec3::new(x, y, depth)),
+                    "{dialect} G{code} hole {i}: {top} {bottom}"
+                );
+            }
+            assert_eq!(last_z, [-5.0, -5.0, -5.0, 10.0, 10.0], "{dialect} G{code}");
+        }
+    }
+}
