@@ -8,7 +8,7 @@ use glam::{DVec3, Vec3};
 use swarf_render::{
     HeadlessGpu, Kind, OrbitCamera, PathPoint, Projection, StandardView, ViewParams, grid_points_at,
 };
-use swarf_toolpath::{SegmentKind, Toolpath};
+use swarf_toolpath::{CycleMove, SegmentKind, Toolpath};
 
 /// Background of the image: the app's dark backplot (sRGB).
 const BACKGROUND: [u8; 4] = [16, 16, 18, 255];
@@ -74,7 +74,21 @@ fn path_points(path: &Toolpath, origin: DVec3) -> Vec<PathPoint> {
         };
         PathPoint::new(rel(*end), kind)
     }));
+    for (segment, role) in path.cycle_moves() {
+        if let Some(p) = points.get_mut(segment + 1) {
+            *p = PathPoint::new(p.position(), cycle_kind(role));
+        }
+    }
     points
+}
+
+/// The renderer's kind for a canned-cycle move.
+fn cycle_kind(role: CycleMove) -> Kind {
+    match role {
+        CycleMove::Plunge => Kind::Plunge,
+        CycleMove::Retract => Kind::Retract,
+        CycleMove::Other => Kind::Cycle,
+    }
 }
 
 /// Runs `swarf render`: interprets the program (diagnostics to `err` as with `check`), draws

@@ -195,6 +195,17 @@ pub struct Hole {
     pub first_segment: usize,
 }
 
+/// What a segment of a canned cycle does in its hole, for colouring plunges and retracts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CycleMove {
+    /// Into the hole along its axis at feed (drilling, boring, tapping in).
+    Plunge,
+    /// Out of the hole along its axis (feed or rapid).
+    Retract,
+    /// Any other move of the cycle (positioning, shifts).
+    Other,
+}
+
 /// When each segment runs, in seconds from the program start.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Timeline {
@@ -479,6 +490,35 @@ impl Toolpath {
             }
         }
         counts
+    }
+
+    /// Every segment of a canned cycle with what it does in its hole, in segment order.
+    pub fn cycle_moves(&self) -> Vec<(usize, CycleMove)> {
+        let mut out = Vec::new();
+        for (i, hole) in self.holes.iter().enumerate() {
+            let end = self
+                .holes
+                .get(i + 1)
+                .map_or(self.ends.len(), |h| h.first_segment)
+                .min(self.ends.len());
+            let axis = (hole.bottom - hole.top).normalize_or_zero();
+            for s in hole.first_segment..end {
+                if self.lines.get(s) != Some(&hole.line) {
+                    break;
+                }
+                let d = self.ends[s] - self.segment_start(s);
+                let along = d.dot(axis);
+                let lateral = (d - axis * along).length();
+                let on_axis = lateral <= 1e-6 * (1.0 + along.abs()) && along.abs() > 1e-9;
+                let role = match self.kinds.get(s) {
+                    Some(SegmentKind::Feed) if on_axis && along > 0.0 => CycleMove::Plunge,
+                    _ if on_axis && along < 0.0 => CycleMove::Retract,
+                    _ => CycleMove::Other,
+                };
+                out.push((s, role));
+            }
+        }
+        out
     }
 
     /// The hole a segment drills (an index into [`Toolpath::holes`]), if it is one of a

@@ -367,3 +367,24 @@ fn keeps_each_hole_with_its_tool_and_its_motions() {
         }
     }
 }
+
+#[test]
+fn cycle_moves_tell_plunges_from_retracts_and_positioning() {
+    use swarf_toolpath::CycleMove;
+    let program = parse(
+        "G0 X0 Y0 Z20.\nG98 G83 X10. Y10. R2. Z-5. Q3. F100\nG80\n",
+        Dialect::Fanuc,
+    );
+    let mut path = Toolpath::default();
+    run(&program, Setup::default(), &mut path);
+    let roles: Vec<CycleMove> = path.cycle_moves().iter().map(|m| m.1).collect();
+    // Over the hole, down to R, peck to −1, out to R, back down to 1 above the cut, peck to
+    // −4, out, back down, to the bottom, out.
+    use CycleMove::{Other, Plunge, Retract};
+    assert_eq!(
+        roles,
+        [
+            Other, Other, Plunge, Retract, Other, Plunge, Retract, Other, Plunge, Retract
+        ]
+    );
+}

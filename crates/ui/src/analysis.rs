@@ -6,7 +6,7 @@ use glam::DVec3;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
 use swarf_syntax::{Dialect, Program, Severity, parse};
-use swarf_toolpath::{SegmentKind, Toolpath};
+use swarf_toolpath::{CycleMove, SegmentKind, Toolpath};
 
 use crate::backplot::{Scene, SourceText};
 
@@ -168,6 +168,7 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         };
         PathPoint::new(rel(*end), kind)
     }));
+    mark_cycle_moves(path, &mut points);
     Scene {
         generation,
         points: Arc::new(points),
@@ -179,6 +180,21 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         zero: rel(DVec3::ZERO),
         origin,
         ..Scene::default()
+    }
+}
+
+/// Gives the segments of canned cycles their kinds (plunge, retract, other cycle move), so the
+/// backplot colours holes apart from the contour. `points[0]` is the start point.
+fn mark_cycle_moves(path: &Toolpath, points: &mut [PathPoint]) {
+    for (segment, role) in path.cycle_moves() {
+        if let Some(p) = points.get_mut(segment + 1) {
+            let kind = match role {
+                CycleMove::Plunge => Kind::Plunge,
+                CycleMove::Retract => Kind::Retract,
+                CycleMove::Other => Kind::Cycle,
+            };
+            *p = PathPoint::new(p.position(), kind);
+        }
     }
 }
 

@@ -388,3 +388,26 @@ fn playback_draws_a_tool_marker_and_dims_the_remainder() {
     let edge = at(&image, pixel_of(&harness, Vec3::new(100.0, 20.0, 0.0)));
     assert!(close(edge, FEED_COLOR, 10), "edge is {edge:?}");
 }
+
+#[test]
+fn scene_of_colours_drilling_plunges_and_retracts() {
+    let program = swarf_syntax::parse(
+        "G0 X0 Y0 Z20.\nG98 G81 X10. Y10. R2. Z-5. F100\nG80\nG1 X30. F200\n",
+        swarf_syntax::Dialect::Fanuc,
+    );
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
+    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let kinds: Vec<Option<Kind>> = scene.points.iter().skip(1).map(PathPoint::kind).collect();
+    assert_eq!(
+        kinds,
+        [
+            Some(Kind::Rapid),
+            Some(Kind::Cycle),
+            Some(Kind::Cycle),
+            Some(Kind::Plunge),
+            Some(Kind::Retract),
+            Some(Kind::Feed),
+        ]
+    );
+}
