@@ -180,9 +180,10 @@ impl Loaded {
 
     fn print(&self, diags: &[Diagnostic], err: &mut dyn Write) -> std::io::Result<i32> {
         let index: &LineIndex = &self.program.lines;
+        let mut cols = index.cursor(&self.text);
         let mut status = EXIT_OK;
         for d in diags {
-            let (line, col) = index.line_col(&self.text, d.span.start);
+            let (line, col) = cols.line_col(d.span.start);
             writeln!(
                 err,
                 "{}:{line}:{col}: {}[{}]: {}",

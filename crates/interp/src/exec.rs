@@ -142,6 +142,33 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
 /// The axis words of a block, in millimetres where given.
 type Axes<'w> = [Option<&'w Word>; 3];
 
+/// The largest repeat or turn count a word may give (the manuals' 9999).
+pub(crate) const MAX_COUNT: f64 = 9999.0;
+
+/// The diagnostic for a count word out of 1–9999 (the count is clamped into the range).
+pub(crate) fn count_range(w: &Word, what: &str) -> Diagnostic {
+    Diagnostic::error(
+        w.span,
+        "E-NUMBER-RANGE",
+        format!(
+            "`{}{}` is out of range: the number of {what} is 1 to 9999 (it is clamped)",
+            w.letter(),
+            w.value
+        ),
+    )
+}
+
+/// A macro call's repeat count L (1 when absent), clamped to 0–9999 with a diagnostic.
+fn repeat_count(st: &mut State, l: Option<&Word>) -> u32 {
+    let Some(l) = l else {
+        return 1;
+    };
+    if !(0.0..=MAX_COUNT).contains(&l.value) {
+        st.diagnostics.push(count_range(l, "repeats"));
+    }
+    l.value.clamp(0.0, MAX_COUNT) as u32
+}
+
 /// Executes `words` (the block's words with expressions evaluated); with a G22 stroke limit
 /// active, every move of the block is checked against it.
 pub(crate) fn execute(
@@ -368,9 +395,7 @@ fn execute_block(
     if let Some((_, g66)) = actions.iter().find(|(a, _)| *a == Action::ModalMacro(true)) {
         let args = arguments(&it.st, words);
         // L: how many times the macro runs after each move.
-        let repeats = find(words, b'L')
-            .map_or(1.0, |l| l.value)
-            .clamp(0.0, 9999.0) as u32;
+        let repeats = repeat_count(&mut it.st, find(words, b'L'));
         match find(words, b'P') {
             Some(p) => {
                 it.st.modal_macro = Some(ModalMacro {
@@ -855,8 +880,13 @@ fn motion(
                 ));
                 return false;
             }
-            // Syntec's L: the number of turns of a spiral (or of a multi-turn arc).
-            let turns = find(words, b'L').filter(|_| st.dialect == Dialect::Syntec);
+            // Syntec's L: the number of turns of a spiral (or of a multi-turn arc); LinuxCNC's
+            // P: the number of turns of a multi-turn arc or helix.
+            let turns = match st.dialect {
+                Dialect::Syntec => find(words, b'L'),
+                Dialect::LinuxCnc => find(words, b'P'),
+                _ => None,
+            };
             return arc(st, block, p, (offsets, radius, turns), ccw, source, sink);
         }
         MotionMode::Thread => return thread(st, block, words, p, to, source, sink),
@@ -1055,7 +1085,13 @@ fn arc(
     sink: &mut dyn Sink,
 ) -> bool {
     let (u, v) = plane_axes(st.plane);
-    let turns = turns_word.map_or(0, |l| (l.value.round().clamp(1.0, 9999.0) as u32) - 1);
+    let turns = turns_word.map_or(0, |l| {
+        let n = l.value.round();
+        if !(1.0..=MAX_COUNT).contains(&n) {
+            st.diagnostics.push(count_range(l, "turns"));
+        }
+        n.clamp(1.0, MAX_COUNT) as u32 - 1
+    });
     let from = st.program_pos;
     let mut center = from;
     if let Some(r) = radius.filter(|_| offsets.iter().all(Option::is_none)) {
@@ -1852,9 +1888,7 @@ fn macro_call(it: &mut Interpreter, at: usize, block: &Block, words: &[Word], g6
         ));
         return Flow::Next;
     };
-    let repeats = find(words, b'L')
-        .map_or(1.0, |l| l.value)
-        .clamp(0.0, 9999.0) as u32;
+    let repeats = repeat_count(&mut it.st, find(words, b'L'));
     let args = arguments(&it.st, words);
     match it.call_macro(at, block, p.value, repeats, &args) {
         Ok(flow) => flow,

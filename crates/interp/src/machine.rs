@@ -658,9 +658,13 @@ impl Interpreter {
     ) -> Result<Flow, Diagnostic> {
         let p = find(words, b'P').map(|w| w.value);
         let h = find(words, b'H').filter(|_| self.st.dialect == Dialect::Syntec);
-        let l = find(words, b'L')
-            .or_else(|| find(words, b'K'))
-            .map(|w| w.value);
+        let l_word = find(words, b'L').or_else(|| find(words, b'K'));
+        if let Some(w) = l_word.filter(|w| w.value > crate::exec::MAX_COUNT) {
+            self.st
+                .diagnostics
+                .push(crate::exec::count_range(w, "repeats"));
+        }
+        let l = l_word.map(|w| w.value);
         let (number, mut count) = match (p, l) {
             (Some(p), Some(l)) => (p, l),
             // Fanuc: more than four digits in P are the repeat count then the program number.

@@ -225,3 +225,16 @@ fn a_word_given_twice_stops_the_block() {
         assert!(rec.events.is_empty(), "{text}");
     }
 }
+
+#[test]
+fn linuxcnc_p_gives_the_turns_of_an_arc_and_counts_stay_in_range() {
+    let (rec, diags) = run_text("G17 G2 X0 Y0 I1 P3 F100\n", Dialect::LinuxCnc);
+    assert!(diags.is_empty(), "{diags:?}");
+    assert!(
+        rec.events
+            .iter()
+            .any(|(_, e)| matches!(e, Canon::Arc { turns: 2, .. }))
+    );
+    let (_, diags) = run_text("G17 G2 X0 Y0 I1 P0 F100\n", Dialect::LinuxCnc);
+    assert_eq!(codes(&diags), ["E-NUMBER-RANGE"]);
+}

@@ -20,5 +20,5 @@ pub use codes::{Code, CodeDef, DialectSet};
 pub use decode::{Decoded, Encoding, decode};
 pub use diagnostic::{Diagnostic, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
-pub use line_index::LineIndex;
+pub use line_index::{LineCols, LineIndex};
 pub use parser::parse;

@@ -52,4 +52,48 @@ impl LineIndex {
             u32::try_from(col + 1).unwrap_or(u32::MAX),
         )
     }
+
+    /// A cursor that turns many offsets into line and column: in increasing order each costs
+    /// only the characters since the last one, so a million diagnostics on one long line stay
+    /// linear.
+    pub fn cursor<'a>(&'a self, text: &'a str) -> LineCols<'a> {
+        LineCols {
+            index: self,
+            text,
+            last: None,
+        }
+    }
+}
+
+/// Line and column lookups that remember the last answer (see [`LineIndex::cursor`]).
+#[derive(Debug, Clone)]
+pub struct LineCols<'a> {
+    index: &'a LineIndex,
+    text: &'a str,
+    /// The last (0-based line, byte offset, 0-based column in characters).
+    last: Option<(usize, usize, usize)>,
+}
+
+impl LineCols<'_> {
+    /// 1-based line and 1-based column (in characters) of byte `offset`, as
+    /// [`LineIndex::line_col`].
+    pub fn line_col(&mut self, offset: u32) -> (u32, u32) {
+        let line = self.index.line_of(offset);
+        let start = self.index.line_start(line) as usize;
+        let end = (offset as usize).min(self.text.len()).max(start);
+        let (from, col0) = match self.last {
+            Some((l, o, c)) if l == line && o <= end => (o, c),
+            _ => (start, 0),
+        };
+        let col = col0
+            + self
+                .text
+                .get(from..end)
+                .map_or(end - from, |s| s.chars().count());
+        self.last = Some((line, end, col));
+        (
+            u32::try_from(line + 1).unwrap_or(u32::MAX),
+            u32::try_from(col + 1).unwrap_or(u32::MAX),
+        )
+    }
 }

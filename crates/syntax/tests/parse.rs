@@ -137,3 +137,16 @@ fn invalid_bytes_become_diagnostics() {
     assert!(!d.diagnostics.is_empty());
     assert!(d.text.starts_with("G0"));
 }
+
+#[test]
+fn the_line_cursor_agrees_with_line_col_in_any_order() {
+    let text = "G0 X1 (é)\nG1 Xé Y2\n\nG2 X1 R\n";
+    let p = parse(text, Dialect::Fanuc);
+    let mut cursor = p.lines.cursor(text);
+    let offsets: Vec<u32> = (0..text.len() as u32)
+        .filter(|o| text.is_char_boundary(*o as usize))
+        .collect();
+    for &o in offsets.iter().chain(offsets.iter().rev()) {
+        assert_eq!(cursor.line_col(o), p.lines.line_col(text, o), "offset {o}");
+    }
+}

@@ -125,10 +125,11 @@ fn locate(text: &str, program: &Program, diags: &[swarf_syntax::Diagnostic]) -> 
             next.next();
         }
     }
+    let mut cols = program.lines.cursor(text);
     diags
         .iter()
         .map(|d| {
-            let (line, col) = program.lines.line_col(text, d.span.start);
+            let (line, col) = cols.line_col(d.span.start);
             let start = char_of.get(&(d.span.start as usize)).copied().unwrap_or(0);
             let end = char_of
                 .get(&(d.span.end as usize))

@@ -1,0 +1,96 @@
+//! Hostile inputs: every one finishes with diagnostics and exit status 0 or 1, never a panic,
+//! a hang or a usage error.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
+
+/// Runs `swarf ARGS` in-process; returns the exit status and standard error.
+fn swarf(args: &[&str]) -> (i32, String) {
+    let mut out = Vec::new();
+    let mut err = Vec::new();
+    let mut all = vec!["swarf"];
+    all.extend_from_slice(args);
+    let code = swarf_cli::run(all, &mut out, &mut err);
+    (code, String::from_utf8_lossy(&err).into_owned())
+}
+
+/// The start of a long text, for failure messages.
+fn head(text: &str) -> String {
+    text.chars().take(2000).collect()
+}
+
+/// A deterministic byte soup (xorshift), so a failure can be reproduced.
+fn random_bytes(n: usize, mut seed: u64) -> Vec<u8> {
+    (0..n)
+        .map(|_| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 24) as u8
+        })
+        .collect()
+}
+
+#[test]
+fn hostile_inputs_end_with_diagnostics_not_panics() {
+    let cases: Vec<(&str, Vec<u8>, &str, Option<&str>)> = vec![
+        ("random bytes", random_bytes(256 << 10, 0x9E37_79B9_7F4A_7C15), "fanuc", None),
+        ("nul bytes", b"G1 X1\0\0 Y2\n".repeat(1000), "fanuc", Some("E-")),
+        ("unclosed comments", b"G1 X1 (never closed\n".repeat(1000), "fanuc", Some("E-COMMENT-UNCLOSED")),
+        (
+            "absurd numbers",
+            b"G1 X1e308 Y99999999999999999999999999999999 Z-1e400 F1e300\nG2 X1 Y0 R0.0000000001\nG1 X.\nG4 P99999999999999\nS1e300 M3\n".to_vec(),
+            "fanuc",
+            Some("E-"),
+        ),
+        (
+            "100k-deep brackets",
+            format!("#1={}1{}\nG1 X#1\n", "[".repeat(100_000), "]".repeat(100_000)).into_bytes(),
+            "fanuc",
+            Some("E-"),
+        ),
+        ("endless WHILE", b"#1=0\nWHILE[1EQ1]DO1\n#1=#1+1\nEND1\nM30\n".to_vec(), "fanuc", Some("E-RUNAWAY")),
+        ("endless M99 main", b"G1 X1. F100\nM99\n".to_vec(), "fanuc", Some("E-RUNAWAY")),
+        ("self-calling subprogram", b"O1\nM98 P1\nM99\n".to_vec(), "fanuc", Some("E-NESTING")),
+        ("self-calling o-word", b"o100 sub\no100 call\no100 endsub\no100 call\nM2\n".to_vec(), "linuxcnc", Some("E-NESTING")),
+        ("a million words on a line", format!("G1{}\n", " X1".repeat(1_000_000)).into_bytes(), "fanuc", Some("E-WORD-TWICE")),
+        ("a 20 MB comment", format!("({})\nG0 X1\n", "x".repeat(20_000_000)).into_bytes(), "fanuc", None),
+        ("empty file", Vec::new(), "fanuc", None),
+        ("only newlines", b"\n".repeat(100_000), "fanuc", None),
+        ("a billion arc turns", b"G2 X0 Y0 I1 P1000000000 F100\n".to_vec(), "linuxcnc", Some("E-NUMBER-RANGE")),
+        ("a billion spiral turns", b"G2 X0 Y0 I1. L100000000 F100\n".to_vec(), "syntec", Some("E-NUMBER-RANGE")),
+        ("a billion subprogram repeats", b"M98 P100 L999999999\nM30\nO100\nG1 X1. F100\nM99\n".to_vec(), "fanuc", Some("E-NUMBER-RANGE")),
+        ("a billion holes", b"G0 Z10.\nG99 G81 X1. R1. Z-1. K4000000000 F10\n".to_vec(), "syntec", Some("E-NUMBER-RANGE")),
+        ("a huge hole grid", b"G91 G81 Z-10. R5. K0 F100\nG137.1 X0 Y0 I1. P9999 J1. K9999\n".to_vec(), "syntec", Some("E-PATTERN-SIZE")),
+        ("invalid UTF-8 and GBK mix", b"G1 X1 (\xd6\xd0\xce\xc4)\n\xff\xfe G0 X2\n".to_vec(), "fanuc", None),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let setup = dir.path().join("SETUP.toml");
+    // A smaller block budget keeps the endless programs quick; the limit is the same mechanism.
+    std::fs::write(&setup, "[machine]\nmax_blocks = 200000\n").unwrap();
+    for (name, bytes, dialect, expect) in cases {
+        let file = dir.path().join("hostile.nc");
+        std::fs::write(&file, &bytes).unwrap();
+        let file = file.to_str().unwrap();
+        for command in ["check", "stats"] {
+            let (code, err) = swarf(&[
+                command,
+                file,
+                "--dialect",
+                dialect,
+                "--setup",
+                setup.to_str().unwrap(),
+            ]);
+            assert!(
+                code == 0 || code == 1,
+                "{name} ({command}): exit {code}\n{}",
+                head(&err)
+            );
+            if let Some(code_prefix) = expect {
+                assert!(
+                    err.contains(&format!("[{code_prefix}")),
+                    "{name} ({command}): no {code_prefix} diagnostic in\n{}",
+                    head(&err)
+                );
+            }
+        }
+    }
+}
