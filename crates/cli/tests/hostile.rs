@@ -48,7 +48,12 @@ fn hostile_inputs_end_with_diagnostics_not_panics() {
             Some("E-"),
         ),
         ("endless WHILE", b"#1=0\nWHILE[1EQ1]DO1\n#1=#1+1\nEND1\nM30\n".to_vec(), "fanuc", Some("E-RUNAWAY")),
-        ("endless M99 main", b"G1 X1. F100\nM99\n".to_vec(), "fanuc", Some("E-RUNAWAY")),
+        (
+            "endless M99 main with moves",
+            b"G1 X1. F100\nX0\nM99\n".to_vec(),
+            "fanuc",
+            Some("E-MOTION-LIMIT"),
+        ),
         ("self-calling subprogram", b"O1\nM98 P1\nM99\n".to_vec(), "fanuc", Some("E-NESTING")),
         ("self-calling o-word", b"o100 sub\no100 call\no100 endsub\no100 call\nM2\n".to_vec(), "linuxcnc", Some("E-NESTING")),
         ("a million words on a line", format!("G1{}\n", " X1".repeat(1_000_000)).into_bytes(), "fanuc", Some("E-WORD-TWICE")),
@@ -64,8 +69,12 @@ fn hostile_inputs_end_with_diagnostics_not_panics() {
     ];
     let dir = tempfile::tempdir().unwrap();
     let setup = dir.path().join("SETUP.toml");
-    // A smaller block budget keeps the endless programs quick; the limit is the same mechanism.
-    std::fs::write(&setup, "[machine]\nmax_blocks = 200000\n").unwrap();
+    // Smaller budgets keep the endless programs quick; the limits are the same mechanism.
+    std::fs::write(
+        &setup,
+        "[machine]\nmax_blocks = 200000\nmax_motions = 50000\n",
+    )
+    .unwrap();
     for (name, bytes, dialect, expect) in cases {
         let file = dir.path().join("hostile.nc");
         std::fs::write(&file, &bytes).unwrap();

@@ -13,7 +13,7 @@ use swarf_syntax::{
 use crate::flow::{Index, LabelKey, OKind};
 use crate::macros::{self, SystemVariables, Value, Variables};
 use crate::state::State;
-use crate::{Setup, Sink, Source};
+use crate::{Canon, Setup, Sink, Source};
 
 /// Whether a run has more blocks to execute.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,6 +22,24 @@ pub enum Status {
     Running,
     /// The program ended (M02/M30, end of text, or a limit was hit).
     Finished,
+}
+
+/// Passes events on and counts the motions among them (for `[machine] max_motions`).
+struct MotionCounter<'s> {
+    inner: &'s mut dyn Sink,
+    motions: u64,
+}
+
+impl Sink for MotionCounter<'_> {
+    fn emit(&mut self, source: Source, event: &Canon) {
+        if matches!(
+            event,
+            Canon::Rapid { .. } | Canon::Feed { .. } | Canon::Arc { .. }
+        ) {
+            self.motions += 1;
+        }
+        self.inner.emit(source, event);
+    }
 }
 
 /// Resource limits that stop runaway programs with a diagnostic.
@@ -82,6 +100,8 @@ pub struct Interpreter {
     index: Option<std::sync::Arc<Index>>,
     next_block: usize,
     executed: u64,
+    /// Motion events produced so far.
+    motions: u64,
     finished: bool,
     calls: Vec<Frame>,
     /// Remaining passes of LinuxCNC `repeat` loops, by the block of their `repeat` line.
@@ -97,6 +117,7 @@ impl Interpreter {
             index: None,
             next_block: 0,
             executed: 0,
+            motions: 0,
             finished: false,
             calls: Vec::new(),
             repeats: HashMap::new(),
@@ -176,6 +197,10 @@ impl Interpreter {
                 &mut self.st.diagnostics,
             )));
         }
+        let mut counted = MotionCounter {
+            inner: sink,
+            motions: self.motions,
+        };
         for _ in 0..budget {
             if self.finished {
                 break;
@@ -197,6 +222,18 @@ impl Interpreter {
                 self.finished = true;
                 break;
             }
+            if counted.motions >= self.st.setup.machine.max_motions {
+                self.st.diagnostics.push(Diagnostic::error(
+                    block.span,
+                    "E-MOTION-LIMIT",
+                    format!(
+                        "execution stopped after {} moves (the limit in [machine] max_motions): the toolpath would not fit in memory",
+                        counted.motions
+                    ),
+                ));
+                self.finished = true;
+                break;
+            }
             let source = Source {
                 block: u32::try_from(at).unwrap_or(u32::MAX),
                 line: block.line.saturating_add(1),
@@ -205,7 +242,7 @@ impl Interpreter {
             let flow = if block.has_error {
                 Flow::Next
             } else {
-                self.run_block(program, at, block, source, sink)
+                self.run_block(program, at, block, source, &mut counted)
             };
             match flow {
                 Flow::Next => self.next_block = at + 1,
@@ -213,6 +250,7 @@ impl Interpreter {
                 Flow::Stop => self.finished = true,
             }
         }
+        self.motions = counted.motions;
         if self.finished {
             crate::corners::flush(&mut self.st, sink);
             Status::Finished

@@ -62,6 +62,10 @@ pub struct Machine {
     pub acceleration_mm_per_s2: f64,
     /// Most blocks executed before a run is stopped as runaway.
     pub max_blocks: u64,
+    /// Most motion events (moves and arcs) a run may produce before it is stopped: a bound on
+    /// the toolpath's memory (about 50 bytes a segment), so a runaway program cannot exhaust a
+    /// browser tab.
+    pub max_motions: u64,
     /// Largest difference between an arc's start and end radius before it is an alarm (mm).
     pub arc_tolerance_mm: f64,
     /// Calculator-type input: numbers without a decimal point are mm (inch, degrees) instead of
@@ -129,6 +133,7 @@ impl Default for Machine {
             rapid_xyz_mm_per_min: None,
             acceleration_mm_per_s2: 1000.0,
             max_blocks: 50_000_000,
+            max_motions: 20_000_000,
             arc_tolerance_mm: 0.01,
             calculator_input: None,
             reference_points: Vec::new(),

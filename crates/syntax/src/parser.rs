@@ -44,7 +44,23 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
             text.len()
         };
         let raw = text.get(start..end).unwrap_or_default();
-        let line = raw.strip_suffix('\r').unwrap_or(raw);
+        let mut line = raw.strip_suffix('\r').unwrap_or(raw);
+        if line.len() > MAX_LINE_BYTES {
+            // A runaway line (a binary file, a generator gone wrong): read its start only.
+            let mut cut = MAX_LINE_BYTES;
+            while !line.is_char_boundary(cut) {
+                cut -= 1;
+            }
+            program.diagnostics.push(Diagnostic::error(
+                Span::new(offset + cut, offset + line.len()),
+                "E-LINE-LENGTH",
+                format!(
+                    "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
+                    line.len()
+                ),
+            ));
+            line = &line[..cut];
+        }
         let mut reader = LineReader {
             dialect,
             rules: dialect.rules(),
@@ -182,6 +198,9 @@ fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
 fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
 }
+
+/// The longest line read in full (1 MiB); the rest of a longer line is reported and skipped.
+const MAX_LINE_BYTES: usize = 1 << 20;
 
 /// Whether `c` can only be a stray character where a block item should start: not a blank, a
 /// letter, or a character that starts something (comment, block end, slash, variable, comma

@@ -121,3 +121,18 @@ fn invalid_bytes_are_an_encoding_diagnostic() {
     assert_eq!(d.diagnostics[0].code, "E-ENCODING");
     assert_eq!(d.diagnostics[0].severity, Severity::Error);
 }
+
+#[test]
+fn a_line_past_one_mebibyte_is_read_up_to_the_limit() {
+    let text = format!("G1 X1. ({})\nG0 X2.\n", "é".repeat(700_000));
+    let p = parse(&text, Dialect::Fanuc);
+    let d = p
+        .diagnostics
+        .iter()
+        .find(|d| d.code == "E-LINE-LENGTH")
+        .expect("a line-length diagnostic");
+    assert_eq!(d.span.start, 1 << 20);
+    assert_eq!(d.span.end as usize, text.find('\n').unwrap());
+    // The next line is read as usual.
+    assert_eq!(p.blocks.last().unwrap().words[1].value, 2.0);
+}
