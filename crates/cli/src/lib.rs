@@ -272,6 +272,7 @@ fn stats(
     let loaded = load(file, opts)?;
     let started = Instant::now();
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+    path.reserve(loaded.program.blocks.len());
     let diags = loaded.interpret(&setup, &mut path);
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
     let errors = diags

@@ -102,6 +102,7 @@ pub(crate) fn render(
     let setup = super::read_setup(&args.opts)?;
     let loaded = super::load(&args.file, &args.opts)?;
     let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+    path.reserve(loaded.program.blocks.len());
     let diags = loaded.interpret(&setup, &mut path);
     let status = loaded.print(&diags, err)?;
 

@@ -608,6 +608,10 @@ fn return_cycle_name(tenths: u32) -> &'static str {
 
 /// `p` turned by `degrees` counter-clockwise about the Z axis.
 pub(crate) fn rotate_xy(p: DVec3, degrees: f64) -> DVec3 {
+    if degrees == 0.0 {
+        // The usual case: no rotation, no trigonometry on every move.
+        return p;
+    }
     let (sin, cos) = degrees.to_radians().sin_cos();
     DVec3::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos, p.z)
 }

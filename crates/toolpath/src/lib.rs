@@ -355,6 +355,17 @@ impl Toolpath {
         Toolpath::with_kinematics(start, Kinematics::from_machine(machine))
     }
 
+    /// Makes room for `segments` more segments at once (e.g. one per block of the program),
+    /// sparing the copies of arrays that grow while a big program is recorded.
+    pub fn reserve(&mut self, segments: usize) {
+        self.ends.reserve(segments);
+        self.kinds.reserve(segments);
+        self.lines.reserve(segments);
+        self.feeds.reserve(segments);
+        self.segment_tools.reserve(segments);
+        self.settled.end_times.reserve(segments);
+    }
+
     /// An empty toolpath starting at `start`, timed with `kinematics`.
     pub fn with_kinematics(start: DVec3, kinematics: Kinematics) -> Self {
         Toolpath {

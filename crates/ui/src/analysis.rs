@@ -60,6 +60,7 @@ impl Analysis {
     pub fn run(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
         let program = parse(text, dialect);
         let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+        toolpath.reserve(program.blocks.len());
         let mut diags = program.diagnostics.clone();
         let (run_diags, states) =
             swarf_interp::run_with_states(&program, setup.clone(), &mut toolpath);
