@@ -105,6 +105,7 @@ enum Action {
     New,
     Example(usize),
     Host(HostRequest),
+    Load(Box<(String, String, Encoding)>),
 }
 
 /// What a match count was computed for: (text generation, pattern, options).
@@ -188,6 +189,12 @@ impl Workbench {
         self.message = None;
         self.reanalyse();
         self.backplot.fit();
+    }
+
+    /// Opens a program read from a file (dropped on the window, picked on the web page) once
+    /// unsaved changes are saved or discarded.
+    pub fn open_guarded(&mut self, name: &str, text: String, encoding: Encoding) {
+        self.guarded(Action::Load(Box::new((name.to_string(), text, encoding))));
     }
 
     /// Replaces the program with unsaved `text` recovered after a crash: shown as a change to
@@ -697,6 +704,10 @@ impl Workbench {
                 }
             }
             Action::Host(request) => self.requests.push(request),
+            Action::Load(file) => {
+                let (name, text, encoding) = *file;
+                self.open_document(&name, text, encoding);
+            }
         }
     }
 
