@@ -56,6 +56,13 @@ pub fn settings_ui(
     request
 }
 
+/// Gives `response` an accessible name (for screen readers) where no label widget names it.
+fn named(ui: &egui::Ui, response: egui::Response, name: &str) -> egui::Response {
+    ui.ctx()
+        .accesskit_node_builder(response.id, |node| node.set_label(name));
+    response
+}
+
 fn length(value: &mut f64) -> egui::DragValue<'_> {
     egui::DragValue::new(value).speed(0.01).max_decimals(4)
 }
@@ -72,11 +79,18 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             ui.end_row();
             for (n, r) in setup.registers.iter_mut() {
                 ui.label(n.to_string());
-                ui.add(length(&mut r.length));
-                ui.add(length(&mut r.length_wear));
-                ui.add(length(&mut r.radius));
-                ui.add(length(&mut r.radius_wear));
-                if ui.small_button("×").on_hover_text("Remove").clicked() {
+                let fields = [
+                    (&mut r.length, "length"),
+                    (&mut r.length_wear, "length wear"),
+                    (&mut r.radius, "radius"),
+                    (&mut r.radius_wear, "radius wear"),
+                ];
+                for (value, what) in fields {
+                    let response = ui.add(length(value));
+                    named(ui, response, &format!("Register {n} {what}"));
+                }
+                let remove_button = ui.small_button("×").on_hover_text("Remove");
+                if named(ui, remove_button, &format!("Remove register {n}")).clicked() {
                     remove = Some(*n);
                 }
                 ui.end_row();
@@ -110,8 +124,9 @@ fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String
                 let mut v = setup.work_offset(&name).to_array();
                 ui.label(&name);
                 let mut changed = false;
-                for c in &mut v {
-                    changed |= ui.add(length(c)).changed();
+                for (c, axis) in v.iter_mut().zip(["X", "Y", "Z"]) {
+                    let response = ui.add(length(c));
+                    changed |= named(ui, response, &format!("{name} {axis}")).changed();
                 }
                 if changed {
                     setup.work_offsets.insert(name, DVec3::from_array(v));
@@ -153,12 +168,13 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             .labelled_by(label.id);
             ui.end_row();
             let mut per_axis = m.rapid_xyz_mm_per_min.is_some();
-            ui.checkbox(&mut per_axis, "Rapid rate per axis X Y Z");
+            let per_axis_label = ui.checkbox(&mut per_axis, "Rapid rate per axis X Y Z").id;
             let mut xyz = m.rapid_xyz_mm_per_min.unwrap_or([m.rapid_mm_per_min; 3]);
             ui.horizontal(|ui| {
                 ui.add_enabled_ui(per_axis, |ui| {
                     for v in &mut xyz {
-                        ui.add(egui::DragValue::new(v).range(1.0..=1_000_000.0).speed(10.0));
+                        ui.add(egui::DragValue::new(v).range(1.0..=1_000_000.0).speed(10.0))
+                            .labelled_by(per_axis_label);
                     }
                 });
             });
@@ -209,12 +225,12 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 .iter()
                 .enumerate()
             {
-                ui.label(*name);
+                let label = ui.label(*name).id;
                 let mut p = m.reference_points.get(i).copied().unwrap_or_default();
                 let mut changed = false;
                 ui.horizontal(|ui| {
                     for c in &mut p {
-                        changed |= ui.add(length(c)).changed();
+                        changed |= ui.add(length(c)).labelled_by(label).changed();
                     }
                 });
                 if changed {
