@@ -16,8 +16,6 @@ const PROGRAM_EXTENSIONS: &[&str] = &["nc", "ngc", "tap", "gcode", "cnc", "txt",
 /// Desktop file state: the open file's path, the recent files and where recovery goes.
 #[derive(Debug, Default)]
 pub struct Host {
-    /// The open program's file, once opened or saved.
-    pub path: Option<PathBuf>,
     /// Recent files, newest first (full paths).
     pub recent: Vec<String>,
     /// The recovery file (none when the platform has no data folder).
@@ -63,7 +61,7 @@ impl Host {
             return false;
         };
         wb.recover(&r.name, r.text, r.encoding);
-        self.path = (!r.path.is_empty()).then(|| PathBuf::from(r.path));
+        wb.set_path((!r.path.is_empty()).then_some(r.path));
         self.autosaved = wb.analysis().scene.generation;
         true
     }
@@ -90,7 +88,7 @@ impl Host {
             Ok(bytes) => {
                 let decoded = swarf_syntax::decode(&bytes);
                 wb.open_document(&file_name(path), decoded.text, decoded.encoding);
-                self.path = Some(path.to_path_buf());
+                wb.set_path(Some(path.display().to_string()));
                 files::push_recent(&mut self.recent, path.display().to_string());
                 wb.set_recent(self.recent.clone());
                 self.clear_recovery();
@@ -105,10 +103,15 @@ impl Host {
         match file.bytes() {
             Ok(bytes) => {
                 let decoded = swarf_syntax::decode(&bytes);
-                self.path = Some(path.clone());
-                files::push_recent(&mut self.recent, path.display().to_string());
+                let full = path.display().to_string();
+                files::push_recent(&mut self.recent, full.clone());
                 wb.set_recent(self.recent.clone());
-                wb.open_guarded(&file_name(&path), decoded.text, decoded.encoding);
+                wb.open_guarded(
+                    &file_name(&path),
+                    decoded.text,
+                    decoded.encoding,
+                    Some(full),
+                );
             }
             Err(e) => wb.set_message(format!("Cannot open {}: {e}", path.display())),
         }
@@ -144,8 +147,8 @@ impl Host {
                 }
             }
             HostRequest::OpenRecent(name) => self.open_path(wb, Path::new(&name)),
-            HostRequest::Save => match self.path.clone() {
-                Some(path) => return self.save_to(wb, &path),
+            HostRequest::Save => match wb.document().path.clone() {
+                Some(path) => return self.save_to(wb, Path::new(&path)),
                 None => return self.save_as(wb),
             },
             HostRequest::SaveAs => return self.save_as(wb),
@@ -193,7 +196,12 @@ impl Host {
         let mut dialog = rfd::FileDialog::new()
             .set_file_name(&wb.document().name)
             .add_filter("G-code programs", PROGRAM_EXTENSIONS);
-        if let Some(dir) = self.path.as_ref().and_then(|p| p.parent()) {
+        if let Some(dir) = wb
+            .document()
+            .path
+            .as_ref()
+            .and_then(|p| Path::new(p).parent())
+        {
             dialog = dialog.set_directory(dir);
         }
         match dialog.save_file() {
@@ -207,12 +215,13 @@ impl Host {
         let (bytes, used) = files::encode(wb.text(), wb.document().encoding);
         match atomic_write(path, &bytes) {
             Ok(()) => {
-                self.path = Some(path.to_path_buf());
                 files::push_recent(&mut self.recent, path.display().to_string());
                 wb.set_recent(self.recent.clone());
+                wb.set_path(Some(path.display().to_string()));
                 if used != wb.document().encoding {
                     let text = wb.text().to_string();
                     wb.open_document(&file_name(path), text, used);
+                    wb.set_path(Some(path.display().to_string()));
                     wb.set_message(format!(
                         "Saved as UTF-8: the text has characters {} cannot hold",
                         wb.document().encoding.name()
@@ -256,16 +265,13 @@ impl Host {
         let Some(file) = &self.recovery else {
             return;
         };
-        if !wb.is_dirty() {
+        // Quitting with the changes discarded (or saved): nothing to recover.
+        if !wb.is_dirty() || self.quitting {
             return;
         }
         let record = Recovery {
             name: wb.document().name.clone(),
-            path: self
-                .path
-                .as_ref()
-                .map(|p| p.display().to_string())
-                .unwrap_or_default(),
+            path: wb.document().path.clone().unwrap_or_default(),
             encoding: wb.document().encoding,
             text: wb.text().to_string(),
         };

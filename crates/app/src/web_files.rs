@@ -104,7 +104,7 @@ impl Host {
                 }
                 Purpose::Dropped => {
                     let decoded = swarf_syntax::decode(&bytes);
-                    wb.open_guarded(&name, decoded.text, decoded.encoding);
+                    wb.open_guarded(&name, decoded.text, decoded.encoding, None);
                 }
                 Purpose::Setup => {
                     let text = String::from_utf8_lossy(&bytes);

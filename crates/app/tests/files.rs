@@ -32,6 +32,7 @@ fn a_gb18030_program_is_saved_back_byte_for_byte_and_edits_keep_the_encoding() {
     host.open_path(&mut wb, &path);
     assert_eq!(wb.document().encoding, Encoding::Gb18030);
     assert_eq!(wb.document().name, "零件.nc");
+    assert_eq!(wb.document().path, Some(path.display().to_string()));
     assert!(!wb.is_dirty());
     assert!(host.save_to(&mut wb, &path));
     assert_eq!(std::fs::read(&path).unwrap(), original);
@@ -84,6 +85,7 @@ fn unsaved_edits_are_recovered_after_a_crash_and_cleared_by_saving() {
     assert_eq!(wb2.text(), "G0 X1\nG1 X5 F100\n");
     assert!(wb2.is_dirty());
     assert_eq!(wb2.document().name, "part.nc");
+    assert_eq!(wb2.document().path, Some(path.display().to_string()));
     assert!(host2.save_to(&mut wb2, &path));
     assert!(!recovery.exists());
     assert_eq!(

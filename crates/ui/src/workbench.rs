@@ -61,6 +61,9 @@ pub struct Workbench {
 pub struct Document {
     /// The file name shown in the title and status bar (`untitled.nc` before the first save).
     pub name: String,
+    /// Where the file is, as the host names it (a full path on the desktop); `None` before the
+    /// first save and on the web page, which cannot write back to a file.
+    pub path: Option<String>,
     /// The encoding the file was read with; saving writes it back the same way.
     pub encoding: Encoding,
     /// The text as last opened or saved.
@@ -72,6 +75,7 @@ impl Document {
     fn new(name: &str, text: &str, encoding: Encoding) -> Self {
         Document {
             name: name.to_string(),
+            path: None,
             encoding,
             saved: text.to_string(),
             dirty: false,
@@ -105,7 +109,7 @@ enum Action {
     New,
     Example(usize),
     Host(HostRequest),
-    Load(Box<(String, String, Encoding)>),
+    Load(Box<(String, String, Encoding, Option<String>)>),
 }
 
 /// What a match count was computed for: (text generation, pattern, options).
@@ -191,10 +195,26 @@ impl Workbench {
         self.backplot.fit();
     }
 
-    /// Opens a program read from a file (dropped on the window, picked on the web page) once
-    /// unsaved changes are saved or discarded.
-    pub fn open_guarded(&mut self, name: &str, text: String, encoding: Encoding) {
-        self.guarded(Action::Load(Box::new((name.to_string(), text, encoding))));
+    /// Opens a program read from a file (dropped on the window or the page) once unsaved
+    /// changes are saved or discarded; `path` is where it came from, when the host knows.
+    pub fn open_guarded(
+        &mut self,
+        name: &str,
+        text: String,
+        encoding: Encoding,
+        path: Option<String>,
+    ) {
+        self.guarded(Action::Load(Box::new((
+            name.to_string(),
+            text,
+            encoding,
+            path,
+        ))));
+    }
+
+    /// Records where the open document's file is (after opening or saving it).
+    pub fn set_path(&mut self, path: Option<String>) {
+        self.document.path = path;
     }
 
     /// Replaces the program with unsaved `text` recovered after a crash: shown as a change to
@@ -705,8 +725,9 @@ impl Workbench {
             }
             Action::Host(request) => self.requests.push(request),
             Action::Load(file) => {
-                let (name, text, encoding) = *file;
+                let (name, text, encoding, path) = *file;
                 self.open_document(&name, text, encoding);
+                self.document.path = path;
             }
         }
     }
@@ -728,7 +749,9 @@ impl Workbench {
         let cmd = Modifiers::COMMAND;
         let cmd_shift = Modifiers::COMMAND | Modifiers::SHIFT;
         // Undo belongs to the program unless another text field has the keyboard.
-        let others_typing = ctx.memory(|m| m.focused().is_some_and(|f| f != self.editor.id()));
+        let others_typing = ctx
+            .memory(|m| m.focused())
+            .is_some_and(|f| f != self.editor.id() && egui::TextEdit::load_state(ctx, f).is_some());
         let (redo, undo) = if others_typing {
             (false, false)
         } else {

@@ -223,6 +223,37 @@ fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     harness.run();
     assert_eq!(harness.state().text(), "");
     assert_eq!(harness.state().document().name, "untitled.nc");
+    // A dropped file waits for the answer, and Cancel keeps the program and its file.
+    harness.state_mut().set_path(Some("/work/a.nc".into()));
+    harness.state_mut().set_text("G0 X4\n");
+    harness.state_mut().open_guarded(
+        "b.nc",
+        "G0 X9\n".into(),
+        swarf_syntax::Encoding::Utf8,
+        Some("/work/b.nc".into()),
+    );
+    harness.run();
+    harness.get_by_label("Cancel").click();
+    harness.run();
+    assert_eq!(harness.state().text(), "G0 X4\n");
+    assert_eq!(
+        harness.state().document().path.as_deref(),
+        Some("/work/a.nc")
+    );
+    harness.state_mut().open_guarded(
+        "b.nc",
+        "G0 X9\n".into(),
+        swarf_syntax::Encoding::Utf8,
+        Some("/work/b.nc".into()),
+    );
+    harness.run();
+    harness.get_by_label("Discard changes").click();
+    harness.run();
+    assert_eq!(harness.state().text(), "G0 X9\n");
+    assert_eq!(
+        harness.state().document().path.as_deref(),
+        Some("/work/b.nc")
+    );
     // Discard.
     harness.state_mut().set_text("G0 X3\n");
     click_menu(&mut harness, "File", "Open… Ctrl+O");
