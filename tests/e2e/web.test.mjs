@@ -142,6 +142,26 @@ test("open, select and selection", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(refused, "select(0) should throw a RangeError");
 });
 
+test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  const edited = "G90 G21\nG00 X0 Y0 Z5.\nG01 X42. F100\nM30\n";
+  await page.evaluate((text) => window.swarf.setText(text), edited);
+  // Kept in localStorage a moment after the edit.
+  await session.eventually(
+    () => window.localStorage.getItem("swarf.recovery"),
+    null,
+    (record) => typeof record === "string" && record.includes("X42."),
+    "the unsaved program should be kept in localStorage",
+  );
+  await session.loadUntilReady("reload-not-ready.png");
+  assert.equal(
+    await page.evaluate(() => window.swarf.getText()),
+    edited,
+    "the reloaded page should show the unsaved program",
+  );
+});
+
 test("no console errors or page errors", () => {
   session.assertNoPageErrors();
 });
