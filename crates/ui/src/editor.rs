@@ -174,6 +174,10 @@ pub struct CodeEditor {
     id: egui::Id,
     jump: Option<std::ops::Range<usize>>,
     popup: Option<Popup>,
+    /// Where the completion list was drawn last frame.
+    popup_rect: Option<egui::Rect>,
+    /// The list's top-left corner: under the caret.
+    popup_pos: Pos2,
 }
 
 impl Default for CodeEditor {
@@ -189,6 +193,8 @@ impl CodeEditor {
             id: egui::Id::unique(id_salt),
             jump: None,
             popup: None,
+            popup_rect: None,
+            popup_pos: Pos2::ZERO,
         }
     }
 
@@ -284,12 +290,16 @@ impl CodeEditor {
                             .and_then(|b| text.get(..b))
                             .is_some_and(|t| t.ends_with('\n'));
                         self.popup = cursor_byte.and_then(|b| popup_at(text, b, dialect));
-                    } else if self
-                        .popup
-                        .as_ref()
-                        .is_some_and(|p| Some(p.range.end) != cursor_byte)
-                    {
-                        self.popup = None;
+                    } else if let Some(p) = &self.popup {
+                        // The cursor moved away, or the keyboard went elsewhere (a click on the
+                        // list itself takes the focus for a moment, so the pointer keeps it).
+                        let moved = cursor_byte.is_some_and(|b| b != p.range.end);
+                        let over_list = ui.ctx().pointer_hover_pos().is_some_and(|pos| {
+                            self.popup_rect.is_some_and(|r| r.expand(4.0).contains(pos))
+                        });
+                        if moved || (!response.has_focus() && !over_list) {
+                            self.popup = None;
+                        }
                     }
                     paint_squiggles(ui, &edit.galley, edit.galley_pos, problems);
                     // Hover help: the diagnostics there and what the code under the pointer is.
@@ -299,11 +309,13 @@ impl CodeEditor {
                             response.on_hover_text_at_pointer(help);
                         }
                     }
+                    // Under the caret; where it was while a click on the list has the focus.
                     if let Some(r) = edit.cursor_range {
                         let caret = edit.galley.pos_from_cursor(r.primary);
-                        let at = edit.galley_pos + caret.left_bottom().to_vec2();
-                        self.show_popup(ui, at, text, &mut output);
+                        self.popup_pos = edit.galley_pos + caret.left_bottom().to_vec2();
                     }
+                    let at = self.popup_pos;
+                    self.show_popup(ui, at, text, &mut output);
                 });
             });
         output
@@ -358,10 +370,11 @@ impl CodeEditor {
 
     fn show_popup(&mut self, ui: &Ui, at: Pos2, text: &mut String, output: &mut EditorOutput) {
         let Some(popup) = &self.popup else {
+            self.popup_rect = None;
             return;
         };
         let mut clicked = None;
-        egui::Area::new(self.id.with("completions"))
+        let area = egui::Area::new(self.id.with("completions"))
             .order(egui::Order::Foreground)
             .fixed_pos(at)
             .show(ui.ctx(), |ui| {
@@ -375,6 +388,7 @@ impl CodeEditor {
                     }
                 });
             });
+        self.popup_rect = Some(area.response.rect);
         if let Some(i) = clicked {
             self.accept(text, i, output);
         }

@@ -261,3 +261,29 @@ fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     harness.run();
     assert_eq!(harness.state_mut().take_requests(), [HostRequest::Open]);
 }
+
+#[test]
+fn clicking_a_completion_inserts_it_and_leaving_the_editor_closes_the_list() {
+    let mut harness = harness("");
+    let editor = harness.get_by_role(Role::MultilineTextInput);
+    editor.focus();
+    editor.type_text("M0");
+    harness.run();
+    harness.get_by_label_contains("M03  ").click();
+    harness.run();
+    assert_eq!(harness.state().text(), "M03");
+    assert!(harness.query_by_label_contains("M05  ").is_none());
+    // Typing again opens it; moving the keyboard to the find field closes it.
+    let editor = harness.get_by_role(Role::MultilineTextInput);
+    editor.type_text(" G4");
+    harness.run();
+    harness.get_by_label_contains("G43  ");
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::F);
+    harness.hover_at(egui::pos2(900.0, 400.0));
+    harness.run();
+    assert!(
+        harness.query_by_label_contains("G43  ").is_none(),
+        "the list closes"
+    );
+    assert_eq!(harness.state().text(), "M03 G4");
+}
