@@ -130,8 +130,11 @@ struct FindBar {
 }
 
 impl Default for Workbench {
+    /// The example program, named as its file in `assets/examples/`.
     fn default() -> Self {
-        Workbench::new(EXAMPLE_PROGRAM.to_string())
+        let mut wb = Workbench::new(EXAMPLE_PROGRAM.to_string());
+        wb.document.name = "pocket.nc".to_string();
+        wb
     }
 }
 
@@ -1002,6 +1005,7 @@ impl Workbench {
             let mut go = false;
             egui::Window::new("Go to line")
                 .open(&mut open)
+                .default_pos([240.0, 80.0])
                 .collapsible(false)
                 .resizable(false)
                 .show(ctx, |ui| {
@@ -1031,6 +1035,7 @@ impl Workbench {
             let mut run = false;
             egui::Window::new("Renumber blocks")
                 .open(&mut open)
+                .default_pos([240.0, 80.0])
                 .collapsible(false)
                 .resizable(false)
                 .show(ctx, |ui| {
@@ -1062,7 +1067,9 @@ impl Workbench {
             let mut request = None;
             egui::Window::new("Settings")
                 .open(&mut open)
-                .default_width(460.0)
+                .default_pos([240.0, 60.0])
+                .default_width(480.0)
+                .default_height(600.0)
                 .vscroll(true)
                 .show(ctx, |ui| {
                     request = crate::settings::settings_ui(
