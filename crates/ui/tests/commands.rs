@@ -140,3 +140,44 @@ fn lines_and_alarms() {
     assert_eq!(alarm_in("machine alarm 12."), Some("alarm 12"));
     assert_eq!(alarm_in("nothing here"), None);
 }
+
+mod never_panic {
+    use proptest::prelude::*;
+    use swarf_syntax::Dialect;
+    use swarf_ui::commands::*;
+
+    /// Program-like text: G-code letters, digits, comments, `;`, `/`, `%`, line ends and
+    /// some multi-byte characters.
+    fn gcode() -> impl Strategy<Value = String> {
+        proptest::string::string_regex("[GMNOXYZPFgmno0-9 .;/%()\\n\\r\\t#銑é-]{0,80}").unwrap()
+    }
+
+    proptest! {
+        #[test]
+        fn commands_accept_any_text(text in gcode(), a in 0u32..12, b in 0u32..12, at in 0usize..100) {
+            for dialect in [Dialect::Fanuc, Dialect::Syntec, Dialect::LinuxCnc] {
+                let (first, last) = (a.min(b), a.max(b));
+                let once = toggle_comment(&text, first..=last, dialect);
+                let _ = toggle_comment(&once, first..=last, dialect);
+                let all = RenumberOptions { start: 1, step: 1, all_blocks: true };
+                let out = renumber(&text, all, dialect);
+                prop_assert_eq!(out.text.lines().count(), text.lines().count());
+                let _ = renumber(&text, RenumberOptions::default(), dialect);
+            }
+            let byte = byte_of_char(&text, at);
+            prop_assert!(text.is_char_boundary(byte));
+            prop_assert_eq!(char_of_byte(&text, byte), at.min(text.chars().count()));
+            if let Some((range, prefix)) = completion_prefix(&text, byte) {
+                prop_assert_eq!(text[range].to_ascii_uppercase(), prefix.clone());
+                let _ = completions(Dialect::Fanuc, &prefix, 5);
+            }
+            let line = line_of_byte(&text, byte);
+            prop_assert!(line_start(&text, line) <= byte);
+            let _ = alarm_in(&text);
+            let _ = parse_line_number(&text, &text);
+            if let Ok(f) = Finder::new(&text, FindOptions { regex: true, match_case: false }) {
+                let _ = f.replace_all(&text, "$1x", FindOptions { regex: true, match_case: false });
+            }
+        }
+    }
+}
