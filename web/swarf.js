@@ -6,6 +6,9 @@
 //   await window.swarf.ready;          // the app runs and has painted its first frame
 //   window.swarf.setText("G0 X1\n");   // replace the program in the editor
 //   window.swarf.getText();            // the program text
+//   window.swarf.open("part.nc", text); // open a program as a file (nothing unsaved)
+//   window.swarf.select(12);           // select line 12 in the editor
+//   window.swarf.selection();          // {start, end, text, start_line, end_line}
 //   window.swarf.diagnostics();        // [{line, col, severity, code, message}, ...]
 //   window.swarf.stats();              // {blocks, motions, bounds: {min, max} | null}
 //
@@ -64,6 +67,19 @@ window.swarf = Object.freeze({
   },
   getText() {
     return requireApi().get_text();
+  },
+  open(name, text) {
+    requireApi().open(String(name), String(text));
+  },
+  select(line) {
+    const n = Number(line);
+    if (!Number.isInteger(n) || n < 1) {
+      throw new RangeError(`select: line must be a positive integer, not ${line}`);
+    }
+    requireApi().select(Math.min(n, 4294967295));
+  },
+  selection() {
+    return plain(requireApi().selection());
   },
   diagnostics() {
     return plain(requireApi().diagnostics());

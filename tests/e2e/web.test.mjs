@@ -103,6 +103,65 @@ test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async (
   );
 });
 
+test("open, select and selection", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  const program = "G90 G21\nG00 X0 Y0 Z5.\nG01 X10. F100\nM30\n";
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["part.nc", program]);
+  assert.equal(await page.evaluate(() => window.swarf.getText()), program, "getText() after open()");
+  await session.eventually(
+    () => document.title,
+    null,
+    (title) => typeof title === "string" && title.startsWith("part.nc"),
+    "the page title should name the opened file",
+  );
+
+  await page.evaluate(() => window.swarf.select(3));
+  const expected = { start: 22, end: 35, text: "G01 X10. F100", start_line: 3, end_line: 3 };
+  assert.deepEqual(await page.evaluate(() => window.swarf.selection()), expected);
+  // The editor shows the selection and keeps it over the next frames.
+  await session.eventually(
+    () => window.swarf.selection(),
+    null,
+    (s) => s && s.text === expected.text && s.start_line === 3,
+    "selection() should still be line 3 after the editor repainted",
+  );
+  // A line past the end selects the last line; nonsense is refused.
+  await page.evaluate(() => window.swarf.select(999));
+  const last = await page.evaluate(() => window.swarf.selection());
+  assert.equal(last.start_line, 4, `select(999): ${JSON.stringify(last)}`);
+  assert.equal(last.text, "M30", `select(999): ${JSON.stringify(last)}`);
+  const refused = await page.evaluate(() => {
+    try {
+      window.swarf.select(0);
+      return false;
+    } catch (e) {
+      return e instanceof RangeError;
+    }
+  });
+  assert.ok(refused, "select(0) should throw a RangeError");
+});
+
+test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  const edited = "G90 G21\nG00 X0 Y0 Z5.\nG01 X42. F100\nM30\n";
+  await page.evaluate((text) => window.swarf.setText(text), edited);
+  // Kept in localStorage a moment after the edit.
+  await session.eventually(
+    () => window.localStorage.getItem("swarf.recovery"),
+    null,
+    (record) => typeof record === "string" && record.includes("X42."),
+    "the unsaved program should be kept in localStorage",
+  );
+  await session.loadUntilReady("reload-not-ready.png");
+  assert.equal(
+    await page.evaluate(() => window.swarf.getText()),
+    edited,
+    "the reloaded page should show the unsaved program",
+  );
+});
+
 test("no console errors or page errors", () => {
   session.assertNoPageErrors();
 });

@@ -1,7 +1,15 @@
-//! The eframe application: one workbench filling the window.
+//! The eframe application: one workbench filling the window, plus the host's file handling and
+//! the settings kept between runs.
 
 use swarf_ui::Workbench;
 use swarf_ui::backplot::Backplot;
+
+use crate::files;
+
+#[cfg(not(target_arch = "wasm32"))]
+use crate::desktop::Host;
+#[cfg(target_arch = "wasm32")]
+use crate::web_files::Host;
 
 /// A hook run after each frame with the number of frames shown so far.
 type FrameHook = Box<dyn FnMut(&egui::Context, u64)>;
@@ -10,14 +18,19 @@ type FrameHook = Box<dyn FnMut(&egui::Context, u64)>;
 pub struct SwarfApp {
     /// The editor, problems list and backplot.
     pub workbench: Workbench,
+    /// Files: dialogs, the open file, recent files and crash recovery.
+    pub host: Host,
     ctx: egui::Context,
     frames: u64,
     /// Hook called after each painted frame (the desktop screenshot mode uses it).
     after_frame: Option<FrameHook>,
+    /// The window title last set.
+    title: String,
 }
 
 impl SwarfApp {
-    /// Creates the app and registers the backplot's GPU resources with eframe's wgpu renderer.
+    /// Creates the app, registers the backplot's GPU resources with eframe's wgpu renderer,
+    /// restores the settings of the last run and any unsaved program a crash left behind.
     pub fn new(cc: &eframe::CreationContext<'_>) -> Self {
         if let Some(render_state) = cc.wgpu_render_state.as_ref() {
             Backplot::install(&cc.egui_ctx, render_state);
@@ -26,12 +39,24 @@ impl SwarfApp {
         }
         // The editor palette is made for a dark background, whatever the system theme.
         cc.egui_ctx.set_theme(egui::Theme::Dark);
-        SwarfApp {
+        let mut app = SwarfApp {
             workbench: Workbench::default(),
+            host: Host::new(),
             ctx: cc.egui_ctx.clone(),
             frames: 0,
             after_frame: None,
+            title: String::new(),
+        };
+        if let Some(storage) = cc.storage {
+            app.load_settings(storage);
         }
+        app.host.recover(&mut app.workbench);
+        app
+    }
+
+    /// Restores the dialect, machine setup and recent files saved by [`eframe::App::save`].
+    pub fn load_settings(&mut self, storage: &dyn eframe::Storage) {
+        self.host.recent = files::restore_settings(storage, &mut self.workbench);
     }
 
     /// Runs `hook` after every frame with the number of frames shown so far.
@@ -44,20 +69,79 @@ impl SwarfApp {
         self.frames
     }
 
-    /// Replaces the program text and schedules a repaint (for the JS API and file loading).
+    /// Replaces the program text and schedules a repaint (for the JS API).
     pub fn set_text(&mut self, text: impl Into<String>) {
         self.workbench.set_text(text);
         self.ctx.request_repaint();
+    }
+
+    /// Shows `text` as the program file `name` (no unsaved changes) and schedules a repaint.
+    pub fn open(&mut self, name: &str, text: impl Into<String>) {
+        self.workbench
+            .open_document(name, text, swarf_syntax::Encoding::Utf8);
+        self.ctx.request_repaint();
+    }
+
+    /// Selects 1-based `line` in the editor and schedules a repaint.
+    pub fn select_line(&mut self, line: u32) {
+        self.workbench.select_line(line);
+        self.ctx.request_repaint();
+    }
+
+    fn update_title(&mut self, ctx: &egui::Context) {
+        let doc = self.workbench.document();
+        let dirty = if self.workbench.is_dirty() { "*" } else { "" };
+        let title = format!("{}{dirty} — Swarf", doc.name);
+        if title != self.title {
+            #[cfg(not(target_arch = "wasm32"))]
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            #[cfg(target_arch = "wasm32")]
+            crate::web_files::set_document_title(&title);
+            let _ = ctx;
+            self.title = title;
+        }
     }
 }
 
 impl eframe::App for SwarfApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        // The window's close button: held back while there are unsaved changes.
+        #[cfg(not(target_arch = "wasm32"))]
+        if ctx.input(|i| i.viewport().close_requested())
+            && self.workbench.is_dirty()
+            && !self.host.quitting
+        {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.workbench.request_quit();
+        }
+        let dropped = ctx.input(|i| i.raw.dropped_files.first().cloned());
+        if let Some(file) = dropped {
+            self.host.open_dropped(&mut self.workbench, &file);
+        }
+        self.host.poll(&mut self.workbench);
         self.workbench.ui(ui);
+        self.host.handle(&mut self.workbench, &ctx);
+        let now = ctx.input(|i| i.time);
+        self.host.autosave(&self.workbench, now);
+        if self.workbench.is_dirty() {
+            // Wake up for the delayed autosave even when nothing else happens.
+            ctx.request_repaint_after(std::time::Duration::from_millis(1200));
+        }
+        self.update_title(&ctx);
         self.frames += 1;
         if let Some(hook) = self.after_frame.as_mut() {
-            hook(ui.ctx(), self.frames);
+            hook(&ctx, self.frames);
         }
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        files::store_settings(storage, &self.workbench, &self.host.recent);
+        self.host.write_recovery(&self.workbench);
+    }
+
+    fn persist_egui_memory(&self) -> bool {
+        false
     }
 
     #[cfg(target_arch = "wasm32")]

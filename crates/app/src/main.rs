@@ -53,14 +53,10 @@ mod native {
 
     pub fn main() -> anyhow::Result<()> {
         let args = parse_args()?;
-        let text = match &args.file {
-            Some(p) => {
-                let bytes =
-                    std::fs::read(p).with_context(|| format!("cannot read {}", p.display()))?;
-                Some(swarf_syntax::decode(&bytes).text)
-            }
-            None => None,
-        };
+        if let Some(p) = &args.file {
+            std::fs::metadata(p).with_context(|| format!("cannot read {}", p.display()))?;
+        }
+        let file = args.file.clone();
         let ok = Arc::new(AtomicBool::new(args.screenshot.is_none()));
         let options = eframe::NativeOptions {
             viewport: egui::ViewportBuilder::default()
@@ -71,12 +67,16 @@ mod native {
         let screenshot = args.screenshot.clone();
         let ok_in_app = ok.clone();
         eframe::run_native(
-            "Swarf",
+            swarf_app::desktop::APP_ID,
             options,
             Box::new(move |cc| {
                 let mut app = SwarfApp::new(cc);
-                if let Some(text) = text {
-                    app.set_text(text);
+                if let Some(path) = file {
+                    // A program the last run left unsaved is kept aside, not replaced.
+                    if app.workbench.is_dirty() {
+                        app.host.set_recovery_aside();
+                    }
+                    app.host.open_path(&mut app.workbench, &path);
                 }
                 if let Some(out) = screenshot {
                     install_screenshot(&mut app, out, ok_in_app);

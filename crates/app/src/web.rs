@@ -60,6 +60,32 @@ impl SwarfApi {
         self.with_app(|app| app.set_text(text))
     }
 
+    /// Shows `text` as the program file `name` (a fresh undo history, nothing unsaved).
+    pub fn open(&self, name: String, text: String) -> Result<(), JsValue> {
+        self.with_app(|app| app.open(&name, text))
+    }
+
+    /// Selects the whole of 1-based `line` in the editor (clamped to the program) and scrolls
+    /// to it.
+    pub fn select(&self, line: u32) -> Result<(), JsValue> {
+        self.with_app(|app| app.select_line(line))
+    }
+
+    /// `{start, end, text, start_line, end_line}`: the editor's selection in characters, the
+    /// selected text and the 1-based lines it covers.
+    pub fn selection(&self) -> Result<JsValue, JsValue> {
+        let value = self.with_app(|app| {
+            let wb = &app.workbench;
+            let range = wb.selection();
+            let lines = wb.selected_lines();
+            json!({
+                "start": range.start, "end": range.end, "text": wb.selected_text(),
+                "start_line": lines.start(), "end_line": lines.end(),
+            })
+        })?;
+        to_js(&value)
+    }
+
     /// The program text.
     pub fn get_text(&self) -> Result<String, JsValue> {
         self.with_app(|app| app.workbench.text().to_string())

@@ -3,10 +3,10 @@
 use std::collections::BTreeMap;
 
 use glam::DVec3;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Length units of the values in a setup file.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     /// Millimetres (the default).
@@ -27,7 +27,7 @@ impl Units {
 }
 
 /// One offset register (addressed by H for length and D for radius), in millimetres.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Register {
     /// Tool length geometry.
@@ -45,7 +45,7 @@ pub struct Register {
 }
 
 /// Machine parameters that change how programs run.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Machine {
     /// Rapid traverse rate in mm/min, for the time estimate: the speed along the path of a
@@ -54,6 +54,7 @@ pub struct Machine {
     /// Rapid traverse rate of each axis X, Y, Z in mm/min, for machines whose axes differ (often
     /// a slower Z). A rapid move then runs as fast as its slowest participating axis allows.
     /// Unset: every axis at `rapid_mm_per_min`.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rapid_xyz_mm_per_min: Option<[f64; 3]>,
     /// Acceleration and deceleration along the path in mm/s², for the time estimate: each move
     /// speeds up from its entry speed to its feed (or rapid rate) and slows down to its exit
@@ -70,6 +71,7 @@ pub struct Machine {
     pub arc_tolerance_mm: f64,
     /// Calculator-type input: numbers without a decimal point are mm (inch, degrees) instead of
     /// least input increments. Unset: the dialect's manual default.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub calculator_input: Option<bool>,
     /// Reference points in machine coordinates, mm: P1 (G28, the machine's reference position)
     /// and P2–P4 (G30); missing ones are the machine origin.
@@ -89,7 +91,7 @@ pub struct Machine {
 }
 
 /// An axis direction for the G76/G87 shift.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
 pub enum ShiftDirection {
     /// +X (Syntec Pr4020 = 0, the default).
     #[default]
@@ -165,12 +167,15 @@ pub enum SetupError {
     /// A work offset name that no control has.
     #[error("unknown work offset `{0}` (expected G54…G59, G54.1P1…G54.1P48 or G59.1…G59.9)")]
     WorkOffset(String),
+    /// The setup could not be written as TOML (a number TOML cannot hold).
+    #[error("{0}")]
+    Write(#[from] toml::ser::Error),
     /// A value that is not a finite number.
     #[error("`{0}` must be a finite number")]
     NotFinite(String),
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct SetupFile {
     #[serde(default)]
@@ -240,6 +245,22 @@ impl Setup {
         Ok(setup)
     }
 
+    /// Writes the setup as a `SETUP.toml` text in millimetres, which [`Setup::from_toml`] reads
+    /// back to an equal setup (the settings window's export and the app's saved settings).
+    pub fn to_toml(&self) -> Result<String, SetupError> {
+        let file = SetupFile {
+            units: Units::Mm,
+            registers: self.registers.clone(),
+            work_offsets: self
+                .work_offsets
+                .iter()
+                .map(|(k, v)| (k.clone(), v.to_array()))
+                .collect(),
+            machine: self.machine.clone(),
+        };
+        Ok(toml::to_string(&file)?)
+    }
+
     /// Reference point `n` (1 = the G28 reference position, 2–4 for G30) in machine
     /// coordinates, mm; the machine origin when the setup does not give it.
     pub fn reference_point(&self, n: usize) -> DVec3 {
@@ -289,6 +310,21 @@ mod tests {
         );
         assert_eq!(s.work_offset("G54.1P7"), DVec3::new(0.0, 0.0, 25.4));
         assert_eq!(s.machine.rapid_mm_per_min, 5000.0);
+    }
+
+    #[test]
+    fn writes_toml_that_reads_back_equal() {
+        let mut s = Setup::from_toml(
+            "[registers.3]\nlength = 101.5\nradius_wear = -0.02\n[work_offsets]\n\"G54.1P7\" = [1, 2, 3]\n[machine]\nrapid_xyz_mm_per_min = [1, 2, 3]\nreference_points = [[0, 0, 100]]\n",
+        )
+        .unwrap();
+        s.machine.calculator_input = Some(true);
+        let text = s.to_toml().unwrap();
+        assert_eq!(Setup::from_toml(&text).unwrap(), s, "{text}");
+        assert_eq!(
+            Setup::from_toml(&Setup::default().to_toml().unwrap()).unwrap(),
+            Setup::default()
+        );
     }
 
     #[test]

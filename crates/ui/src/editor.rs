@@ -7,6 +7,7 @@ use egui::{Color32, FontId, Galley, Pos2, Stroke, TextFormat, Ui};
 use swarf_syntax::{Dialect, Severity};
 
 use crate::analysis::Problem;
+use crate::commands::{self, Completion};
 
 /// Colours of the token classes, for a dark background.
 mod palette {
@@ -141,19 +142,42 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
 }
 
 /// What happened in the editor this frame.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct EditorOutput {
-    /// The text was edited.
+    /// The text was edited by typing.
     pub changed: bool,
+    /// The text was changed by accepting a completion (an undo step of its own).
+    pub completed: bool,
+    /// The edit ended a line (a typed line break), which closes a run of typing for undo.
+    pub ends_line: bool,
     /// 1-based line of the cursor, when the editor has one.
     pub cursor_line: Option<u32>,
+    /// The selection in characters (start ≤ end), when the editor has one.
+    pub selection: Option<std::ops::Range<usize>>,
 }
+
+/// The completion popup: the word being typed and the codes it can become.
+#[derive(Debug, Clone)]
+struct Popup {
+    /// Byte range of the typed prefix (`G8`).
+    range: std::ops::Range<usize>,
+    items: Vec<Completion>,
+    selected: usize,
+}
+
+/// Most completions listed at once.
+const COMPLETIONS_SHOWN: usize = 12;
 
 /// The G-code editor widget's state (the text itself is owned by the caller).
 #[derive(Debug, Clone)]
 pub struct CodeEditor {
     id: egui::Id,
     jump: Option<std::ops::Range<usize>>,
+    popup: Option<Popup>,
+    /// Where the completion list was drawn last frame.
+    popup_rect: Option<egui::Rect>,
+    /// The list's top-left corner: under the caret.
+    popup_pos: Pos2,
 }
 
 impl Default for CodeEditor {
@@ -168,12 +192,35 @@ impl CodeEditor {
         CodeEditor {
             id: egui::Id::unique(id_salt),
             jump: None,
+            popup: None,
+            popup_rect: None,
+            popup_pos: Pos2::ZERO,
         }
     }
 
     /// Selects the character range on the next frame and scrolls to it.
     pub fn jump_to(&mut self, chars: std::ops::Range<usize>) {
         self.jump = Some(chars);
+    }
+
+    /// The text edit's widget id (for focus checks).
+    pub fn id(&self) -> egui::Id {
+        self.id
+    }
+
+    /// Whether the text has keyboard focus.
+    pub fn has_focus(&self, ctx: &egui::Context) -> bool {
+        ctx.memory(|m| m.has_focus(self.id))
+    }
+
+    /// The completions on offer (code and meaning), while the popup is open.
+    pub fn completions(&self) -> Option<&[Completion]> {
+        self.popup.as_ref().map(|p| p.items.as_slice())
+    }
+
+    /// Closes the completion popup.
+    pub fn close_completions(&mut self) {
+        self.popup = None;
     }
 
     /// Shows the editor with a gutter, filling the available space; `label` is the widget that
@@ -187,6 +234,10 @@ impl CodeEditor {
         problems: &[Problem],
     ) -> EditorOutput {
         let font = egui::TextStyle::Monospace.resolve(ui.style());
+        let mut output = EditorOutput::default();
+        if self.popup.is_some() && self.has_focus(ui.ctx()) {
+            self.popup_keys(ui.ctx(), text, &mut output);
+        }
         if let Some(range) = self.jump.take() {
             if let Some(mut state) = egui::TextEdit::load_state(ui.ctx(), self.id) {
                 state.cursor.set_char_range(Some(CCursorRange::two(
@@ -197,7 +248,6 @@ impl CodeEditor {
             }
             ui.ctx().memory_mut(|m| m.request_focus(self.id));
         }
-        let mut output = EditorOutput::default();
         egui::ScrollArea::both()
             .id_salt("swarf-editor-scroll")
             .auto_shrink([false, false])
@@ -228,6 +278,29 @@ impl CodeEditor {
                             let row = (rect.top() / font_row_height(ui, &font)).round();
                             row.max(0.0) as u32 + 1
                         });
+                    output.selection = edit.cursor_range.map(|r| {
+                        let (a, b) = (r.primary.index.0, r.secondary.index.0);
+                        a.min(b)..a.max(b)
+                    });
+                    let cursor_byte = edit
+                        .cursor_range
+                        .map(|r| commands::byte_of_char(text, r.primary.index.0));
+                    if output.changed {
+                        output.ends_line = cursor_byte
+                            .and_then(|b| text.get(..b))
+                            .is_some_and(|t| t.ends_with('\n'));
+                        self.popup = cursor_byte.and_then(|b| popup_at(text, b, dialect));
+                    } else if let Some(p) = &self.popup {
+                        // The cursor moved away, or the keyboard went elsewhere (a click on the
+                        // list itself takes the focus for a moment, so the pointer keeps it).
+                        let moved = cursor_byte.is_some_and(|b| b != p.range.end);
+                        let over_list = ui.ctx().pointer_hover_pos().is_some_and(|pos| {
+                            self.popup_rect.is_some_and(|r| r.expand(4.0).contains(pos))
+                        });
+                        if moved || (!response.has_focus() && !over_list) {
+                            self.popup = None;
+                        }
+                    }
                     paint_squiggles(ui, &edit.galley, edit.galley_pos, problems);
                     // Hover help: the diagnostics there and what the code under the pointer is.
                     if let Some(pos) = response.hover_pos() {
@@ -236,10 +309,121 @@ impl CodeEditor {
                             response.on_hover_text_at_pointer(help);
                         }
                     }
+                    // Under the caret; where it was while a click on the list has the focus.
+                    if let Some(r) = edit.cursor_range {
+                        let caret = edit.galley.pos_from_cursor(r.primary);
+                        self.popup_pos = edit.galley_pos + caret.left_bottom().to_vec2();
+                    }
+                    let at = self.popup_pos;
+                    self.show_popup(ui, at, text, &mut output);
                 });
             });
         output
     }
+
+    /// Up/Down choose a completion, Tab or Enter takes it, Escape closes the list; the keys are
+    /// taken before the text edit sees them.
+    fn popup_keys(&mut self, ctx: &egui::Context, text: &mut String, output: &mut EditorOutput) {
+        let Some(popup) = self.popup.as_mut() else {
+            return;
+        };
+        let none = egui::Modifiers::NONE;
+        let (down, up, accept, close) = ctx.input_mut(|i| {
+            (
+                i.consume_key(none, egui::Key::ArrowDown),
+                i.consume_key(none, egui::Key::ArrowUp),
+                i.consume_key(none, egui::Key::Tab) || i.consume_key(none, egui::Key::Enter),
+                i.consume_key(none, egui::Key::Escape),
+            )
+        });
+        let n = popup.items.len().max(1);
+        if down {
+            popup.selected = (popup.selected + 1) % n;
+        }
+        if up {
+            popup.selected = (popup.selected + n - 1) % n;
+        }
+        if close {
+            self.popup = None;
+        } else if accept {
+            let chosen = popup.selected;
+            self.accept(text, chosen, output);
+        }
+    }
+
+    /// Replaces the typed prefix with completion `index` and puts the cursor after it.
+    fn accept(&mut self, text: &mut String, index: usize, output: &mut EditorOutput) {
+        let Some(popup) = self.popup.take() else {
+            return;
+        };
+        let Some(item) = popup.items.get(index) else {
+            return;
+        };
+        if text.get(popup.range.clone()).is_none() {
+            return;
+        }
+        text.replace_range(popup.range.clone(), &item.code);
+        let end = commands::char_of_byte(text, popup.range.start + item.code.len());
+        self.jump = Some(end..end);
+        output.completed = true;
+    }
+
+    fn show_popup(&mut self, ui: &Ui, at: Pos2, text: &mut String, output: &mut EditorOutput) {
+        let Some(popup) = &self.popup else {
+            self.popup_rect = None;
+            return;
+        };
+        let mut clicked = None;
+        let area = egui::Area::new(self.id.with("completions"))
+            .order(egui::Order::Foreground)
+            .fixed_pos(at)
+            .show(ui.ctx(), |ui| {
+                egui::Frame::popup(ui.style()).show(ui, |ui| {
+                    for (i, item) in popup.items.iter().enumerate() {
+                        let row = egui::RichText::new(format!("{}  {}", item.code, item.name))
+                            .monospace();
+                        if ui.selectable_label(i == popup.selected, row).clicked() {
+                            clicked = Some(i);
+                        }
+                    }
+                });
+            });
+        self.popup_rect = Some(area.response.rect);
+        if let Some(i) = clicked {
+            self.accept(text, i, output);
+        }
+    }
+}
+
+/// The completion popup for the word before byte `cursor`, if it is a G or M code prefix with
+/// matches.
+fn popup_at(text: &str, cursor: usize, dialect: Dialect) -> Option<Popup> {
+    let (range, prefix) = commands::completion_prefix(text, cursor)?;
+    let items = commands::completions(dialect, &prefix, COMPLETIONS_SHOWN);
+    // A code typed in full with nothing longer to offer needs no list.
+    let exact = items.len() == 1 && items[0].code.eq_ignore_ascii_case(&prefix);
+    (!items.is_empty() && !exact).then_some(Popup {
+        range,
+        items,
+        selected: 0,
+    })
+}
+
+/// The tooltip of the gutter marker on 1-based `line`: each diagnostic there with its code,
+/// and the alarm the control's manual names for it.
+pub fn gutter_tooltip(problems: &[Problem], line: u32) -> Option<String> {
+    let lines: Vec<String> = problems
+        .iter()
+        .filter(|p| p.line == line)
+        .map(|p| {
+            let mut s = format!("{} [{}]: {}", p.severity.as_str(), p.code, p.message);
+            if let Some(alarm) = commands::alarm_in(&p.message) {
+                s.push_str(&format!("\nControl alarm: {alarm}"));
+            }
+            s
+        })
+        .collect();
+    (!lines.is_empty()).then(|| lines.join("\n\n"))
 }
 
 /// What hovering at character `at` of `text` explains: the diagnostics covering it, and the G or
@@ -316,12 +500,20 @@ fn gutter(ui: &mut Ui, lines: usize, problems: &[Problem], font: &FontId) {
     let galley = ui.painter().layout_job(job);
     // Align with the text edit's inner margin.
     ui.add_space(0.0);
-    let (rect, _) = ui.allocate_exact_size(
+    let (rect, response) = ui.allocate_exact_size(
         egui::vec2(galley.size().x + 6.0, galley.size().y + 4.0),
         egui::Sense::hover(),
     );
     ui.painter()
         .galley(rect.min + egui::vec2(0.0, 2.0), galley, palette::NUMBER);
+    // A marker's tooltip: what is wrong on that line.
+    if let Some(pos) = response.hover_pos() {
+        let row = ((pos.y - rect.top() - 2.0) / font_row_height(ui, font)).floor();
+        let line = row.max(0.0) as u32 + 1;
+        if let Some(tip) = gutter_tooltip(problems, line) {
+            response.on_hover_text_at_pointer(tip);
+        }
+    }
 }
 
 /// Wavy underlines under each diagnostic's characters.

@@ -3,8 +3,12 @@
 
 pub mod analysis;
 pub mod backplot;
+pub mod commands;
 pub mod editor;
+pub mod examples;
+pub mod history;
+mod settings;
 mod workbench;
 
 pub use analysis::{Analysis, Problem, Stats};
-pub use workbench::{EXAMPLE_PROGRAM, Workbench, format_duration};
+pub use workbench::{Document, EXAMPLE_PROGRAM, HostRequest, Workbench, format_duration};

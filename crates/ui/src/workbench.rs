@@ -1,11 +1,16 @@
 //! The whole editing surface: editor, problems list and backplot, wired to the pipeline.
 
+use std::ops::Range;
+
 use swarf_interp::Setup;
-use swarf_syntax::{Dialect, Severity};
+use swarf_syntax::{Dialect, Encoding, Severity};
 
 use crate::analysis::{Analysis, Problem, Stats};
 use crate::backplot::Backplot;
+use crate::commands::{self, FindOptions, Finder, RenumberOptions};
 use crate::editor::{CodeEditor, severity_color};
+use crate::examples::EXAMPLES;
+use crate::history::{EditKind, History, Snapshot};
 
 /// The example program the editor starts with.
 pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.nc");
@@ -24,11 +29,112 @@ pub struct Workbench {
     synced_line: Option<u32>,
     /// The state shown for ((generation, line)), recomputed only when either changes.
     state_cache: Option<((u64, u32), Option<swarf_interp::BlockState>)>,
+    /// Undo and redo over typing and commands.
+    history: History,
+    /// The text as last recorded in the history (the "before" of the next typed change).
+    shadow: String,
+    /// The editor's selection in characters, as last reported or set.
+    selection: Range<usize>,
+    /// egui time of the current frame, for merging typing into undo steps.
+    now: f64,
+    find: FindBar,
+    /// The go-to-line dialog's input, while it is open.
+    goto: Option<String>,
+    /// The renumber dialog's options, while it is open.
+    renumber: Option<RenumberOptions>,
+    settings_open: bool,
+    /// A new work offset's name typed in the settings window.
+    new_offset: String,
+    document: Document,
+    requests: Vec<HostRequest>,
+    /// An action waiting for the answer to "discard unsaved changes?".
+    confirm: Option<Action>,
+    /// The action to run once the host reports the program saved.
+    after_save: Option<Action>,
+    recent: Vec<String>,
+    /// A short message for the status bar (a command's result, an error).
+    message: Option<String>,
+}
+
+/// The open program as a file: its name, encoding and whether it has unsaved changes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Document {
+    /// The file name shown in the title and status bar (`untitled.nc` before the first save).
+    pub name: String,
+    /// Where the file is, as the host names it (a full path on the desktop); `None` before the
+    /// first save and on the web page, which cannot write back to a file.
+    pub path: Option<String>,
+    /// The encoding the file was read with; saving writes it back the same way.
+    pub encoding: Encoding,
+    /// The text as last opened or saved.
+    saved: String,
+    dirty: bool,
+}
+
+impl Document {
+    fn new(name: &str, text: &str, encoding: Encoding) -> Self {
+        Document {
+            name: name.to_string(),
+            path: None,
+            encoding,
+            saved: text.to_string(),
+            dirty: false,
+        }
+    }
+}
+
+/// Something the workbench asks its host to do: file dialogs, reading and writing files, which
+/// differ between the desktop and the web page.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum HostRequest {
+    /// Show an open dialog and [`Workbench::open_document`] the chosen file.
+    Open,
+    /// Open the recent file with this name (as given to [`Workbench::set_recent`]).
+    OpenRecent(String),
+    /// Save to the current file (or ask for one), then call [`Workbench::mark_saved`].
+    Save,
+    /// Ask for a file name, save there, then call [`Workbench::mark_saved`].
+    SaveAs,
+    /// Ask for a `SETUP.toml` and pass its text to [`Workbench::import_setup`].
+    ImportSetup,
+    /// Ask for a file name and write [`Workbench::setup_toml`] there.
+    ExportSetup,
+    /// Close the application (unsaved changes were saved or discarded).
+    Quit,
+}
+
+/// An action that replaces the program, held while unsaved changes are confirmed.
+#[derive(Debug, Clone, PartialEq, Eq)]
+enum Action {
+    New,
+    Example(usize),
+    Host(HostRequest),
+    Load(Box<(String, String, Encoding, Option<String>)>),
+}
+
+/// What a match count was computed for: (text generation, pattern, options).
+type MatchKey = (u64, String, FindOptions);
+
+/// The find/replace bar's state.
+#[derive(Debug, Clone, Default)]
+struct FindBar {
+    open: bool,
+    replace: bool,
+    query: String,
+    replacement: String,
+    options: FindOptions,
+    /// Ask for focus on the find field next frame.
+    focus: bool,
+    /// Match count (or the pattern's error) for (generation, query, options).
+    count: Option<(MatchKey, Result<usize, String>)>,
 }
 
 impl Default for Workbench {
+    /// The example program, named as its file in `assets/examples/`.
     fn default() -> Self {
-        Workbench::new(EXAMPLE_PROGRAM.to_string())
+        let mut wb = Workbench::new(EXAMPLE_PROGRAM.to_string());
+        wb.document.name = "pocket.nc".to_string();
+        wb
     }
 }
 
@@ -38,6 +144,7 @@ impl Workbench {
         let setup = Setup::default();
         let dialect = Dialect::default();
         let analysis = Analysis::run(&text, dialect, &setup, 1);
+        let text_for_shadow = text.clone();
         Workbench {
             text,
             dialect,
@@ -49,6 +156,21 @@ impl Workbench {
             cursor_line: None,
             synced_line: None,
             state_cache: None,
+            history: History::default(),
+            shadow: text_for_shadow.clone(),
+            selection: 0..0,
+            now: 0.0,
+            find: FindBar::default(),
+            goto: None,
+            renumber: None,
+            settings_open: false,
+            new_offset: String::new(),
+            document: Document::new("untitled.nc", &text_for_shadow, Encoding::Utf8),
+            requests: Vec::new(),
+            confirm: None,
+            after_save: None,
+            recent: Vec::new(),
+            message: None,
         }
     }
 
@@ -57,11 +179,210 @@ impl Workbench {
         &self.text
     }
 
-    /// Replaces the text and re-analyses it.
+    /// Replaces the text and re-analyses it (one undo step; the document stays the same file).
     pub fn set_text(&mut self, text: impl Into<String>) {
+        self.apply(text.into(), 0..0);
+        self.backplot.fit();
+    }
+
+    /// Shows a program read from a file: a fresh undo history, no unsaved changes.
+    pub fn open_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
         self.text = text.into();
+        self.shadow = self.text.clone();
+        self.history.clear();
+        self.document = Document::new(name, &self.text, encoding);
+        self.selection = 0..0;
+        self.editor.jump_to(0..0);
+        self.message = None;
         self.reanalyse();
         self.backplot.fit();
+    }
+
+    /// Opens a program read from a file (dropped on the window or the page) once unsaved
+    /// changes are saved or discarded; `path` is where it came from, when the host knows.
+    pub fn open_guarded(
+        &mut self,
+        name: &str,
+        text: String,
+        encoding: Encoding,
+        path: Option<String>,
+    ) {
+        self.guarded(Action::Load(Box::new((
+            name.to_string(),
+            text,
+            encoding,
+            path,
+        ))));
+    }
+
+    /// Records where the open document's file is (after opening or saving it).
+    pub fn set_path(&mut self, path: Option<String>) {
+        self.document.path = path;
+    }
+
+    /// Replaces the program with unsaved `text` recovered after a crash: shown as a change to
+    /// `name` that still needs saving.
+    pub fn recover(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
+        self.open_document(name, String::new(), encoding);
+        self.text = text.into();
+        self.shadow = self.text.clone();
+        self.document.dirty = true;
+        self.message = Some("Recovered unsaved changes".to_string());
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// The open document (name, encoding).
+    pub fn document(&self) -> &Document {
+        &self.document
+    }
+
+    /// Whether the text differs from what was last opened or saved.
+    pub fn is_dirty(&self) -> bool {
+        self.document.dirty
+    }
+
+    /// Records that the text was saved as `name`; runs an action that waited for the save.
+    pub fn mark_saved(&mut self, name: &str) {
+        self.document.name = name.to_string();
+        self.document.saved = self.text.clone();
+        self.document.dirty = false;
+        self.message = Some(format!("Saved {name}"));
+        if let Some(action) = self.after_save.take() {
+            self.run_action(action);
+        }
+    }
+
+    /// The file requests made since the last call, in order.
+    pub fn take_requests(&mut self) -> Vec<HostRequest> {
+        std::mem::take(&mut self.requests)
+    }
+
+    /// The recent files offered in the File menu, newest first.
+    pub fn set_recent(&mut self, names: Vec<String>) {
+        self.recent = names;
+    }
+
+    /// Shows `message` in the status bar (a failed save, an unreadable file).
+    pub fn set_message(&mut self, message: impl Into<String>) {
+        self.message = Some(message.into());
+    }
+
+    /// The machine setup programs run with.
+    pub fn setup(&self) -> &Setup {
+        &self.setup
+    }
+
+    /// Replaces the machine setup and re-analyses.
+    pub fn set_setup(&mut self, setup: Setup) {
+        if setup != self.setup {
+            self.setup = setup;
+            self.reanalyse();
+        }
+    }
+
+    /// The setup as a `SETUP.toml` text (the CLI's format).
+    pub fn setup_toml(&self) -> Result<String, String> {
+        self.setup.to_toml().map_err(|e| e.to_string())
+    }
+
+    /// Reads a `SETUP.toml` text into the setup; on error the setup is unchanged.
+    pub fn import_setup(&mut self, toml: &str) -> Result<(), String> {
+        let setup = Setup::from_toml(toml).map_err(|e| format!("SETUP.toml: {e}"))?;
+        self.set_setup(setup);
+        Ok(())
+    }
+
+    /// Selects the whole of 1-based `line` in the editor (clamped to the text) and scrolls to it.
+    pub fn select_line(&mut self, line: u32) {
+        let line = line.clamp(1, commands::line_count(&self.text));
+        let start = commands::line_start(&self.text, line);
+        let end = self.text[start..]
+            .find('\n')
+            .map_or(self.text.len(), |j| start + j);
+        let chars =
+            commands::char_of_byte(&self.text, start)..commands::char_of_byte(&self.text, end);
+        self.select_chars(chars);
+        self.cursor_line = Some(line);
+    }
+
+    /// The editor's selection in characters.
+    pub fn selection(&self) -> Range<usize> {
+        self.selection.clone()
+    }
+
+    /// The selected text.
+    pub fn selected_text(&self) -> &str {
+        let a = commands::byte_of_char(&self.text, self.selection.start);
+        let b = commands::byte_of_char(&self.text, self.selection.end);
+        self.text.get(a..b).unwrap_or_default()
+    }
+
+    /// The 1-based lines the selection covers (a selection ending at a line's start does not
+    /// take that line).
+    pub fn selected_lines(&self) -> std::ops::RangeInclusive<u32> {
+        let a = commands::byte_of_char(&self.text, self.selection.start);
+        let mut b = commands::byte_of_char(&self.text, self.selection.end);
+        if b > a && self.text[..b].ends_with('\n') {
+            b -= 1;
+        }
+        commands::line_of_byte(&self.text, a)..=commands::line_of_byte(&self.text, b)
+    }
+
+    fn select_chars(&mut self, chars: Range<usize>) {
+        self.selection = chars.clone();
+        self.editor.jump_to(chars);
+    }
+
+    /// Undoes the last change (typing run or command).
+    pub fn undo(&mut self) {
+        let current = self.snapshot();
+        if let Some(back) = self.history.undo(current) {
+            self.restore(back);
+        }
+    }
+
+    /// Redoes the last undone change.
+    pub fn redo(&mut self) {
+        let current = self.snapshot();
+        if let Some(forward) = self.history.redo(current) {
+            self.restore(forward);
+        }
+    }
+
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            text: self.text.clone(),
+            selection: self.selection.clone(),
+        }
+    }
+
+    fn restore(&mut self, to: Snapshot) {
+        self.text = to.text;
+        self.shadow = self.text.clone();
+        self.select_chars(to.selection);
+        self.text_changed();
+    }
+
+    /// Replaces the text as one undoable command and selects `selection` (characters).
+    fn apply(&mut self, text: String, selection: Range<usize>) {
+        if text == self.text {
+            return;
+        }
+        let before = Snapshot {
+            text: std::mem::replace(&mut self.text, text),
+            selection: self.selection.clone(),
+        };
+        self.history
+            .record(before, EditKind::Command, true, self.now);
+        self.shadow = self.text.clone();
+        self.select_chars(selection);
+        self.text_changed();
+    }
+
+    fn text_changed(&mut self) {
+        self.document.dirty = self.text != self.document.saved;
+        self.reanalyse();
     }
 
     /// The dialect programs are read as.
@@ -99,6 +420,8 @@ impl Workbench {
 
     /// Shows the workbench filling `ui`.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
+        self.now = ui.input(|i| i.time);
+        self.shortcuts(ui.ctx());
         egui::Panel::top("swarf-top").show(ui, |ui| self.top_bar(ui));
         egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
         egui::Panel::bottom("swarf-problems")
@@ -113,21 +436,46 @@ impl Workbench {
             .resizable(true)
             .default_size(460.0)
             .show(ui, |ui| {
-                let title = ui.strong("Program");
+                let title = ui.horizontal(|ui| {
+                    let title = ui.strong("Program");
+                    let dirty = if self.document.dirty { " *" } else { "" };
+                    ui.label(format!("{}{dirty}", self.document.name));
+                    title
+                });
+                if self.find.open {
+                    self.find_bar(ui);
+                }
                 let out = self.editor.show(
                     ui,
-                    title.id,
+                    title.inner.id,
                     &mut self.text,
                     self.dialect,
                     &self.analysis.problems,
                 );
-                if out.changed {
-                    self.reanalyse();
+                if out.changed || out.completed {
+                    let before = Snapshot {
+                        text: std::mem::replace(&mut self.shadow, self.text.clone()),
+                        selection: self.selection.clone(),
+                    };
+                    let kind = if out.completed {
+                        EditKind::Command
+                    } else {
+                        EditKind::Typing
+                    };
+                    self.history.record(before, kind, out.ends_line, self.now);
+                    self.text_changed();
+                }
+                if let Some(selection) = out.selection {
+                    if selection != self.selection && !out.changed {
+                        self.history.break_run();
+                    }
+                    self.selection = selection;
                 }
                 if out.cursor_line.is_some() {
                     self.cursor_line = out.cursor_line;
                 }
             });
+        self.dialogs(ui.ctx());
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
@@ -230,14 +578,20 @@ impl Workbench {
         let start = lines.line_start(line.saturating_sub(1) as usize) as usize;
         let start = start.min(self.text.len());
         let chars = self.text.get(..start).map_or(0, |t| t.chars().count());
-        self.editor.jump_to(chars..chars);
+        self.select_chars(chars..chars);
         self.cursor_line = Some(line);
         self.synced_line = Some(line);
     }
 
     fn top_bar(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
+        egui::MenuBar::new().ui(ui, |ui| {
             ui.strong("Swarf");
+            ui.separator();
+            ui.menu_button("File", |ui| self.file_menu(ui));
+            ui.menu_button("Edit", |ui| self.edit_menu(ui));
+            if ui.button("Settings…").clicked() {
+                self.settings_open = true;
+            }
             ui.separator();
             let label = ui.label("Dialect");
             let mut dialect = self.dialect;
@@ -256,6 +610,516 @@ impl Workbench {
                 self.backplot.fit();
             }
         });
+    }
+
+    fn file_menu(&mut self, ui: &mut egui::Ui) {
+        let cmd = |ui: &egui::Ui, key| ui.ctx().format_shortcut(&shortcut(key));
+        if ui
+            .add(egui::Button::new("New").shortcut_text(cmd(ui, egui::Key::N)))
+            .clicked()
+        {
+            self.guarded(Action::New);
+        }
+        if ui
+            .add(egui::Button::new("Open…").shortcut_text(cmd(ui, egui::Key::O)))
+            .clicked()
+        {
+            self.guarded(Action::Host(HostRequest::Open));
+        }
+        ui.add_enabled_ui(!self.recent.is_empty(), |ui| {
+            ui.menu_button("Open recent", |ui| {
+                for name in self.recent.clone() {
+                    if ui.button(&name).clicked() {
+                        self.guarded(Action::Host(HostRequest::OpenRecent(name)));
+                    }
+                }
+            });
+        });
+        ui.menu_button("Examples", |ui| {
+            for (i, ex) in EXAMPLES.iter().enumerate() {
+                let text = format!("{}  ({})", ex.name, ex.dialect.label());
+                if ui.button(text).clicked() {
+                    self.guarded(Action::Example(i));
+                }
+            }
+        });
+        ui.separator();
+        if ui
+            .add(egui::Button::new("Save").shortcut_text(cmd(ui, egui::Key::S)))
+            .clicked()
+        {
+            self.requests.push(HostRequest::Save);
+        }
+        if ui.button("Save as…").clicked() {
+            self.requests.push(HostRequest::SaveAs);
+        }
+        ui.separator();
+        if ui.button("Import setup…").clicked() {
+            self.requests.push(HostRequest::ImportSetup);
+        }
+        if ui.button("Export setup…").clicked() {
+            self.requests.push(HostRequest::ExportSetup);
+        }
+    }
+
+    fn edit_menu(&mut self, ui: &mut egui::Ui) {
+        let cmd = |ui: &egui::Ui, key| ui.ctx().format_shortcut(&shortcut(key));
+        let undo = egui::Button::new("Undo").shortcut_text(cmd(ui, egui::Key::Z));
+        if ui.add_enabled(self.history.can_undo(), undo).clicked() {
+            self.undo();
+        }
+        let redo = egui::Button::new("Redo").shortcut_text(cmd(ui, egui::Key::Y));
+        if ui.add_enabled(self.history.can_redo(), redo).clicked() {
+            self.redo();
+        }
+        ui.separator();
+        if ui
+            .add(egui::Button::new("Find…").shortcut_text(cmd(ui, egui::Key::F)))
+            .clicked()
+        {
+            self.open_find(false);
+        }
+        if ui
+            .add(egui::Button::new("Replace…").shortcut_text(cmd(ui, egui::Key::H)))
+            .clicked()
+        {
+            self.open_find(true);
+        }
+        if ui
+            .add(egui::Button::new("Go to line…").shortcut_text(cmd(ui, egui::Key::G)))
+            .clicked()
+        {
+            self.goto = Some(String::new());
+        }
+        ui.separator();
+        if ui
+            .add(egui::Button::new("Toggle comment").shortcut_text(cmd(ui, egui::Key::Slash)))
+            .clicked()
+        {
+            self.toggle_comment();
+        }
+        if ui.button("Renumber blocks…").clicked() {
+            self.renumber = Some(RenumberOptions::default());
+        }
+    }
+
+    /// Runs `action` now, or asks first when it would drop unsaved changes.
+    fn guarded(&mut self, action: Action) {
+        if self.document.dirty {
+            self.confirm = Some(action);
+        } else {
+            self.run_action(action);
+        }
+    }
+
+    /// Asks to close the application: at once when nothing is unsaved (the host gets
+    /// [`HostRequest::Quit`]), otherwise after the user saves or discards the changes.
+    pub fn request_quit(&mut self) {
+        self.guarded(Action::Host(HostRequest::Quit));
+    }
+
+    fn run_action(&mut self, action: Action) {
+        match action {
+            Action::New => self.open_document("untitled.nc", String::new(), Encoding::Utf8),
+            Action::Example(i) => {
+                if let Some(ex) = EXAMPLES.get(i) {
+                    self.open_example(ex.name);
+                }
+            }
+            Action::Host(request) => self.requests.push(request),
+            Action::Load(file) => {
+                let (name, text, encoding, path) = *file;
+                self.open_document(&name, text, encoding);
+                self.document.path = path;
+            }
+        }
+    }
+
+    /// Opens the built-in example `name` (see [`EXAMPLES`]) in its dialect; false when there is
+    /// no such example.
+    pub fn open_example(&mut self, name: &str) -> bool {
+        let Some(ex) = EXAMPLES.iter().find(|e| e.name == name) else {
+            return false;
+        };
+        self.dialect = ex.dialect;
+        self.open_document(ex.name, ex.text, Encoding::Utf8);
+        true
+    }
+
+    /// Keyboard shortcuts of the editor commands, taken before the widgets see them.
+    fn shortcuts(&mut self, ctx: &egui::Context) {
+        use egui::{Key, Modifiers};
+        let cmd = Modifiers::COMMAND;
+        let cmd_shift = Modifiers::COMMAND | Modifiers::SHIFT;
+        // Undo belongs to the program unless another text field has the keyboard.
+        let others_typing = ctx
+            .memory(|m| m.focused())
+            .is_some_and(|f| f != self.editor.id() && egui::TextEdit::load_state(ctx, f).is_some());
+        let (redo, undo) = if others_typing {
+            (false, false)
+        } else {
+            ctx.input_mut(|i| {
+                let redo = i.consume_key(cmd_shift, Key::Z) || i.consume_key(cmd, Key::Y);
+                (redo, i.consume_key(cmd, Key::Z))
+            })
+        };
+        let (find, replace, goto, comment, save_as, save, open, new) = ctx.input_mut(|i| {
+            (
+                i.consume_key(cmd, Key::F),
+                i.consume_key(cmd, Key::H),
+                i.consume_key(cmd, Key::G),
+                i.consume_key(cmd, Key::Slash),
+                i.consume_key(cmd_shift, Key::S),
+                i.consume_key(cmd, Key::S),
+                i.consume_key(cmd, Key::O),
+                i.consume_key(cmd, Key::N),
+            )
+        });
+        if redo {
+            self.redo();
+        }
+        if undo {
+            self.undo();
+        }
+        if find || replace {
+            self.open_find(replace);
+        }
+        if goto {
+            self.goto = Some(String::new());
+        }
+        if comment {
+            self.toggle_comment();
+        }
+        if save_as {
+            self.requests.push(HostRequest::SaveAs);
+        } else if save {
+            self.requests.push(HostRequest::Save);
+        }
+        if open {
+            self.guarded(Action::Host(HostRequest::Open));
+        }
+        if new {
+            self.guarded(Action::New);
+        }
+    }
+
+    /// Comments out the selected lines in the dialect's form, or uncomments them.
+    pub fn toggle_comment(&mut self) {
+        let lines = self.selected_lines();
+        let (first, last) = (*lines.start(), *lines.end());
+        let text = commands::toggle_comment(&self.text, lines, self.dialect);
+        let start = commands::line_start(&text, first);
+        let end_line_start = commands::line_start(&text, last);
+        let end = text[end_line_start..]
+            .find('\n')
+            .map_or(text.len(), |j| end_line_start + j);
+        let chars = commands::char_of_byte(&text, start)..commands::char_of_byte(&text, end);
+        self.apply(text, chars);
+    }
+
+    /// Renumbers the program's N numbers (see [`commands::renumber`]).
+    pub fn renumber(&mut self, options: RenumberOptions) {
+        let out = commands::renumber(&self.text, options, self.dialect);
+        self.message = Some(format!(
+            "Renumbered {} blocks, {} jump targets",
+            out.numbered, out.targets
+        ));
+        let keep = self.selection.start.min(out.text.chars().count());
+        self.apply(out.text, keep..keep);
+    }
+
+    /// Moves the cursor to the start of 1-based `line` (clamped to the text).
+    pub fn go_to_line(&mut self, line: u32) {
+        let line = line.clamp(1, commands::line_count(&self.text));
+        let start = commands::line_start(&self.text, line);
+        let chars = commands::char_of_byte(&self.text, start);
+        self.select_chars(chars..chars);
+        self.cursor_line = Some(line);
+    }
+
+    fn open_find(&mut self, replace: bool) {
+        self.find.open = true;
+        self.find.replace |= replace;
+        self.find.focus = true;
+        let selected = self.selected_text();
+        if !selected.is_empty() && !selected.contains('\n') {
+            self.find.query = selected.to_string();
+        }
+    }
+
+    fn finder(&self) -> Option<Finder> {
+        if self.find.query.is_empty() {
+            return None;
+        }
+        Finder::new(&self.find.query, self.find.options).ok()
+    }
+
+    /// Selects the next match of the find field after the selection (wrapping).
+    pub fn find_next(&mut self) -> bool {
+        let Some(finder) = self.finder() else {
+            return false;
+        };
+        let from = commands::byte_of_char(&self.text, self.selection.end);
+        let Some(m) = finder.next(&self.text, from) else {
+            return false;
+        };
+        self.select_bytes(m);
+        true
+    }
+
+    /// Selects the previous match of the find field before the selection (wrapping).
+    pub fn find_previous(&mut self) -> bool {
+        let Some(finder) = self.finder() else {
+            return false;
+        };
+        let before = commands::byte_of_char(&self.text, self.selection.start);
+        let Some(m) = finder.previous(&self.text, before) else {
+            return false;
+        };
+        self.select_bytes(m);
+        true
+    }
+
+    fn select_bytes(&mut self, bytes: Range<usize>) {
+        let chars = commands::char_of_byte(&self.text, bytes.start)
+            ..commands::char_of_byte(&self.text, bytes.end);
+        self.cursor_line = Some(commands::line_of_byte(&self.text, bytes.start));
+        self.select_chars(chars);
+    }
+
+    /// Replaces the selected match with the replacement field and selects the next match; when
+    /// the selection is no match, finds the next one first.
+    pub fn replace_one(&mut self) {
+        let Some(finder) = self.finder() else {
+            return;
+        };
+        let a = commands::byte_of_char(&self.text, self.selection.start);
+        let b = commands::byte_of_char(&self.text, self.selection.end);
+        let with =
+            finder.replacement_at(&self.text, a..b, &self.find.replacement, self.find.options);
+        let Some(with) = with else {
+            self.find_next();
+            return;
+        };
+        let mut text = self.text.clone();
+        text.replace_range(a..b, &with);
+        let after = commands::char_of_byte(&text, a + with.len());
+        self.apply(text, after..after);
+        self.find_next();
+    }
+
+    /// Replaces every match of the find field; the number replaced.
+    pub fn replace_all(&mut self) -> usize {
+        let Some(finder) = self.finder() else {
+            return 0;
+        };
+        let (text, n) = finder.replace_all(&self.text, &self.find.replacement, self.find.options);
+        if n > 0 {
+            let keep = self.selection.start.min(text.chars().count());
+            self.apply(text, keep..keep);
+        }
+        self.message = Some(format!("Replaced {n} matches"));
+        n
+    }
+
+    fn find_bar(&mut self, ui: &mut egui::Ui) {
+        let mut next = false;
+        let mut previous = false;
+        let mut replace = false;
+        let mut replace_all = false;
+        ui.horizontal(|ui| {
+            let label = ui.label("Find");
+            let field = ui.add(
+                egui::TextEdit::singleline(&mut self.find.query)
+                    .desired_width(160.0)
+                    .hint_text(if self.find.options.regex {
+                        "regular expression"
+                    } else {
+                        "text"
+                    }),
+            );
+            let field = field.labelled_by(label.id);
+            if std::mem::take(&mut self.find.focus) {
+                field.request_focus();
+            }
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+                next = true;
+                field.request_focus();
+            }
+            ui.checkbox(&mut self.find.options.regex, "Regex");
+            ui.checkbox(&mut self.find.options.match_case, "Match case");
+            previous = ui.button("Previous").clicked();
+            next |= ui.button("Next").clicked();
+            let key = (self.generation, self.find.query.clone(), self.find.options);
+            if self.find.count.as_ref().map(|(k, _)| k) != Some(&key) {
+                let count = if self.find.query.is_empty() {
+                    Ok(0)
+                } else {
+                    Finder::new(&self.find.query, self.find.options)
+                        .map(|f| f.find_all(&self.text).len())
+                };
+                self.find.count = Some((key, count));
+            }
+            match self.find.count.as_ref().map(|(_, c)| c) {
+                Some(Ok(n)) => {
+                    ui.label(format!("{n} matches"));
+                }
+                Some(Err(e)) => {
+                    let first = e.lines().last().unwrap_or_default().to_string();
+                    ui.colored_label(severity_color(Severity::Error), "invalid pattern")
+                        .on_hover_text(first);
+                }
+                None => {}
+            }
+            if ui.button("×").on_hover_text("Close").clicked() {
+                self.find.open = false;
+            }
+        });
+        if self.find.replace {
+            ui.horizontal(|ui| {
+                let label = ui.label("Replace");
+                ui.add(egui::TextEdit::singleline(&mut self.find.replacement).desired_width(160.0))
+                    .labelled_by(label.id);
+                replace = ui.button("Replace").clicked();
+                replace_all = ui.button("Replace all").clicked();
+            });
+        }
+        if next {
+            self.find_next();
+        }
+        if previous {
+            self.find_previous();
+        }
+        if replace {
+            self.replace_one();
+        }
+        if replace_all {
+            self.replace_all();
+        }
+    }
+
+    /// The go-to-line, renumber, settings and unsaved-changes windows.
+    fn dialogs(&mut self, ctx: &egui::Context) {
+        if let Some(mut input) = self.goto.take() {
+            let mut open = true;
+            let mut go = false;
+            egui::Window::new("Go to line")
+                .open(&mut open)
+                .default_pos([240.0, 80.0])
+                .collapsible(false)
+                .resizable(false)
+                .show(ctx, |ui| {
+                    ui.horizontal(|ui| {
+                        let label = ui.label("Line number");
+                        let field = ui
+                            .add(egui::TextEdit::singleline(&mut input).desired_width(80.0))
+                            .labelled_by(label.id);
+                        if !field.has_focus() && !field.lost_focus() && input.is_empty() {
+                            field.request_focus();
+                        }
+                        go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                        go |= ui.button("Go").clicked();
+                    });
+                    ui.label(format!("1 – {}", commands::line_count(&self.text)));
+                });
+            match commands::parse_line_number(&input, &self.text) {
+                Some(line) if go => self.go_to_line(line),
+                _ if open && !(go || ctx.input(|i| i.key_pressed(egui::Key::Escape))) => {
+                    self.goto = Some(input);
+                }
+                _ => {}
+            }
+        }
+        if let Some(mut options) = self.renumber.take() {
+            let mut open = true;
+            let mut run = false;
+            egui::Window::new("Renumber blocks")
+                .open(&mut open)
+                .default_pos([240.0, 80.0])
+                .collapsible(false)
+                .resizable(false)
+                .show(ctx, |ui| {
+                    egui::Grid::new("swarf-renumber")
+                        .num_columns(2)
+                        .show(ui, |ui| {
+                            let label = ui.label("Start");
+                            ui.add(egui::DragValue::new(&mut options.start).range(0..=99_999_999))
+                                .labelled_by(label.id);
+                            ui.end_row();
+                            let label = ui.label("Step");
+                            ui.add(egui::DragValue::new(&mut options.step).range(1..=10_000))
+                                .labelled_by(label.id);
+                            ui.end_row();
+                        });
+                    ui.checkbox(&mut options.all_blocks, "Number every block");
+                    run = ui.button("Renumber").clicked();
+                });
+            if run {
+                self.renumber(options);
+            } else if open {
+                self.renumber = Some(options);
+            }
+        }
+        if self.settings_open {
+            let mut open = true;
+            let mut setup = self.setup.clone();
+            let mut dialect = self.dialect;
+            let mut request = None;
+            egui::Window::new("Settings")
+                .open(&mut open)
+                .default_pos([240.0, 60.0])
+                .default_width(480.0)
+                .default_height(600.0)
+                .vscroll(true)
+                .show(ctx, |ui| {
+                    request = crate::settings::settings_ui(
+                        ui,
+                        &mut dialect,
+                        &mut setup,
+                        &mut self.new_offset,
+                    );
+                });
+            self.settings_open = open;
+            self.set_dialect(dialect);
+            self.set_setup(setup);
+            if let Some(r) = request {
+                self.requests.push(r);
+            }
+        }
+        if let Some(action) = self.confirm.clone() {
+            let mut answer = None;
+            egui::Modal::new(egui::Id::unique("swarf-unsaved")).show(ctx, |ui| {
+                ui.heading("Unsaved changes");
+                ui.label(format!(
+                    "{} has changes that are not saved.",
+                    self.document.name
+                ));
+                ui.horizontal(|ui| {
+                    if ui.button("Save").clicked() {
+                        answer = Some(0);
+                    }
+                    if ui.button("Discard changes").clicked() {
+                        answer = Some(1);
+                    }
+                    if ui.button("Cancel").clicked() {
+                        answer = Some(2);
+                    }
+                });
+            });
+            match answer {
+                Some(0) => {
+                    self.confirm = None;
+                    self.after_save = Some(action);
+                    self.requests.push(HostRequest::Save);
+                }
+                Some(1) => {
+                    self.confirm = None;
+                    self.run_action(action);
+                }
+                Some(_) => self.confirm = None,
+                None => {}
+            }
+        }
     }
 
     fn status_bar(&self, ui: &mut egui::Ui) {
@@ -289,6 +1153,12 @@ impl Workbench {
                 ui.separator();
                 ui.label(format!("line {line}"));
             }
+            ui.separator();
+            ui.label(self.document.encoding.name());
+            if let Some(message) = &self.message {
+                ui.separator();
+                ui.label(message);
+            }
         });
     }
 
@@ -316,10 +1186,15 @@ impl Workbench {
                     }
                 }
                 if let Some(chars) = jump {
-                    self.editor.jump_to(chars);
+                    self.select_chars(chars);
                 }
             });
     }
+}
+
+/// The shortcut of an editor command: Ctrl (Cmd on macOS) and `key`.
+fn shortcut(key: egui::Key) -> egui::KeyboardShortcut {
+    egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, key)
 }
 
 /// `1 h 02 min`, `3 min 04 s` or `12.5 s`.

@@ -1,0 +1,331 @@
+//! Files on the desktop: native open and save dialogs (rfd), atomic writes in the file's own
+//! encoding, recent files, and a recovery file in the platform data folder.
+
+use std::path::{Path, PathBuf};
+
+use swarf_ui::{HostRequest, Workbench};
+
+use crate::files::{self, Recovery};
+
+/// The application id: names the data folder (`~/.local/share/swarf` on Linux).
+pub const APP_ID: &str = "Swarf";
+
+/// File name extensions offered in the program dialogs.
+const PROGRAM_EXTENSIONS: &[&str] = &["nc", "ngc", "tap", "gcode", "cnc", "txt", "ptp", "mpf"];
+
+/// Desktop file state: the open file's path, the recent files and where recovery goes.
+#[derive(Debug, Default)]
+pub struct Host {
+    /// Recent files, newest first (full paths).
+    pub recent: Vec<String>,
+    /// The recovery file (none when the platform has no data folder).
+    recovery: Option<PathBuf>,
+    /// The analysis generation last written to the recovery file.
+    autosaved: u64,
+    /// When the text was first seen changed since the last autosave (egui time).
+    changed_at: Option<f64>,
+    /// Set once the user chose to quit, so the close is no longer held back.
+    pub quitting: bool,
+}
+
+/// Seconds an edit waits before it is written to the recovery file.
+const AUTOSAVE_DELAY: f64 = 1.0;
+
+impl Host {
+    /// A host whose recovery file is in the platform's data folder for Swarf.
+    pub fn new() -> Host {
+        Host {
+            recovery: eframe::storage_dir(APP_ID).map(|d| d.join("recovery.nc")),
+            ..Host::default()
+        }
+    }
+
+    /// A host with its recovery file at `path` (tests).
+    pub fn with_recovery_file(path: PathBuf) -> Host {
+        Host {
+            recovery: Some(path),
+            ..Host::default()
+        }
+    }
+
+    /// Shows the program left unsaved by a previous run, if there is one.
+    pub fn recover(&mut self, wb: &mut Workbench) -> bool {
+        let Some(record) = self
+            .recovery
+            .as_ref()
+            .and_then(|p| std::fs::read_to_string(p).ok())
+        else {
+            return false;
+        };
+        let Some(r) = Recovery::from_record(&record) else {
+            return false;
+        };
+        wb.recover(&r.name, r.text, r.encoding);
+        wb.set_path((!r.path.is_empty()).then_some(r.path));
+        self.autosaved = wb.analysis().scene.generation;
+        true
+    }
+
+    /// Moves the recovery file to a name of its own (`recovery-SECONDS.nc`) so that opening
+    /// another program does not overwrite it; the new name, if it was moved.
+    pub fn set_recovery_aside(&mut self) -> Option<PathBuf> {
+        let file = self.recovery.as_ref()?;
+        let secs = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs());
+        let aside = file.with_file_name(format!("recovery-{secs}.nc"));
+        std::fs::rename(file, &aside).ok()?;
+        log::warn!(
+            "unsaved changes of the last run are kept in {}",
+            aside.display()
+        );
+        Some(aside)
+    }
+
+    /// Opens the program file at `path`.
+    pub fn open_path(&mut self, wb: &mut Workbench, path: &Path) {
+        match std::fs::read(path) {
+            Ok(bytes) => {
+                let decoded = swarf_syntax::decode(&bytes);
+                wb.open_document(&file_name(path), decoded.text, decoded.encoding);
+                wb.set_path(Some(path.display().to_string()));
+                files::push_recent(&mut self.recent, path.display().to_string());
+                wb.set_recent(self.recent.clone());
+                self.clear_recovery();
+            }
+            Err(e) => wb.set_message(format!("Cannot open {}: {e}", path.display())),
+        }
+    }
+
+    /// Reads a dropped file and opens it once unsaved changes are settled.
+    pub fn open_dropped(&mut self, wb: &mut Workbench, file: &egui::DroppedFileHandle) {
+        let path = file.path().to_path_buf();
+        match file.bytes() {
+            Ok(bytes) => {
+                let decoded = swarf_syntax::decode(&bytes);
+                let full = path.display().to_string();
+                files::push_recent(&mut self.recent, full.clone());
+                wb.set_recent(self.recent.clone());
+                wb.open_guarded(
+                    &file_name(&path),
+                    decoded.text,
+                    decoded.encoding,
+                    Some(full),
+                );
+            }
+            Err(e) => wb.set_message(format!("Cannot open {}: {e}", path.display())),
+        }
+    }
+
+    /// Nothing arrives later on the desktop (dialogs answer at once); the web host reads picked
+    /// files here.
+    pub fn poll(&mut self, _wb: &mut Workbench) {}
+
+    /// Carries out the workbench's file requests; stops at one the user cancels.
+    pub fn handle(&mut self, wb: &mut Workbench, ctx: &egui::Context) {
+        for request in wb.take_requests() {
+            if !self.handle_one(wb, ctx, request) {
+                break;
+            }
+        }
+    }
+
+    fn handle_one(
+        &mut self,
+        wb: &mut Workbench,
+        ctx: &egui::Context,
+        request: HostRequest,
+    ) -> bool {
+        match request {
+            HostRequest::Open => {
+                let dialog = rfd::FileDialog::new()
+                    .add_filter("G-code programs", PROGRAM_EXTENSIONS)
+                    .add_filter("All files", &["*"]);
+                match dialog.pick_file() {
+                    Some(path) => self.open_path(wb, &path),
+                    None => return false,
+                }
+            }
+            HostRequest::OpenRecent(name) => self.open_path(wb, Path::new(&name)),
+            HostRequest::Save => match wb.document().path.clone() {
+                Some(path) => return self.save_to(wb, Path::new(&path)),
+                None => return self.save_as(wb),
+            },
+            HostRequest::SaveAs => return self.save_as(wb),
+            HostRequest::ImportSetup => {
+                let Some(path) = rfd::FileDialog::new()
+                    .add_filter("Setup", &["toml"])
+                    .pick_file()
+                else {
+                    return false;
+                };
+                let result = std::fs::read_to_string(&path)
+                    .map_err(|e| e.to_string())
+                    .and_then(|text| wb.import_setup(&text));
+                wb.set_message(match result {
+                    Ok(()) => format!("Setup read from {}", path.display()),
+                    Err(e) => format!("Cannot import {}: {e}", path.display()),
+                });
+            }
+            HostRequest::ExportSetup => {
+                let Some(path) = rfd::FileDialog::new()
+                    .set_file_name("SETUP.toml")
+                    .add_filter("Setup", &["toml"])
+                    .save_file()
+                else {
+                    return false;
+                };
+                let result = wb
+                    .setup_toml()
+                    .and_then(|t| atomic_write(&path, t.as_bytes()).map_err(|e| e.to_string()));
+                wb.set_message(match result {
+                    Ok(()) => format!("Setup written to {}", path.display()),
+                    Err(e) => format!("Cannot write {}: {e}", path.display()),
+                });
+            }
+            HostRequest::Quit => {
+                self.quitting = true;
+                self.clear_recovery();
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
+        true
+    }
+
+    fn save_as(&mut self, wb: &mut Workbench) -> bool {
+        let mut dialog = rfd::FileDialog::new()
+            .set_file_name(&wb.document().name)
+            .add_filter("G-code programs", PROGRAM_EXTENSIONS);
+        if let Some(dir) = wb
+            .document()
+            .path
+            .as_ref()
+            .and_then(|p| Path::new(p).parent())
+        {
+            dialog = dialog.set_directory(dir);
+        }
+        match dialog.save_file() {
+            Some(path) => self.save_to(wb, &path),
+            None => false,
+        }
+    }
+
+    /// Writes the program to `path` in its encoding (atomically); false when it failed.
+    pub fn save_to(&mut self, wb: &mut Workbench, path: &Path) -> bool {
+        let (bytes, used) = files::encode(wb.text(), wb.document().encoding);
+        match atomic_write(path, &bytes) {
+            Ok(()) => {
+                files::push_recent(&mut self.recent, path.display().to_string());
+                wb.set_recent(self.recent.clone());
+                wb.set_path(Some(path.display().to_string()));
+                if used != wb.document().encoding {
+                    let text = wb.text().to_string();
+                    wb.open_document(&file_name(path), text, used);
+                    wb.set_path(Some(path.display().to_string()));
+                    wb.set_message(format!(
+                        "Saved as UTF-8: the text has characters {} cannot hold",
+                        wb.document().encoding.name()
+                    ));
+                } else {
+                    wb.mark_saved(&file_name(path));
+                }
+                self.clear_recovery();
+                true
+            }
+            Err(e) => {
+                wb.set_message(format!("Cannot save {}: {e}", path.display()));
+                false
+            }
+        }
+    }
+
+    /// Writes unsaved changes to the recovery file a moment after they are made, and removes
+    /// it once nothing is unsaved.
+    pub fn autosave(&mut self, wb: &Workbench, now: f64) {
+        let generation = wb.analysis().scene.generation;
+        if generation == self.autosaved {
+            return;
+        }
+        if !wb.is_dirty() {
+            self.clear_recovery();
+            self.autosaved = generation;
+            return;
+        }
+        let since = *self.changed_at.get_or_insert(now);
+        if now - since < AUTOSAVE_DELAY {
+            return;
+        }
+        self.write_recovery(wb);
+        self.autosaved = generation;
+    }
+
+    /// Writes the recovery file now (also on exit with unsaved changes).
+    pub fn write_recovery(&mut self, wb: &Workbench) {
+        self.changed_at = None;
+        let Some(file) = &self.recovery else {
+            return;
+        };
+        // Quitting with the changes discarded (or saved): nothing to recover.
+        if !wb.is_dirty() || self.quitting {
+            return;
+        }
+        let record = Recovery {
+            name: wb.document().name.clone(),
+            path: wb.document().path.clone().unwrap_or_default(),
+            encoding: wb.document().encoding,
+            text: wb.text().to_string(),
+        };
+        if let Some(dir) = file.parent() {
+            let _ = std::fs::create_dir_all(dir);
+        }
+        if let Err(e) = atomic_write(file, record.to_record().as_bytes()) {
+            log::warn!("cannot write the recovery file {}: {e}", file.display());
+        }
+    }
+
+    fn clear_recovery(&mut self) {
+        self.changed_at = None;
+        if let Some(file) = &self.recovery
+            && file.exists()
+            && let Err(e) = std::fs::remove_file(file)
+        {
+            log::warn!("cannot remove the recovery file {}: {e}", file.display());
+        }
+    }
+}
+
+/// The last component of `path` for titles and the status bar.
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
+/// crash or a full disk never leaves a half-written program in place of the old one.
+pub fn atomic_write(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::io::Write as _;
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::other("no file name"))?;
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(name);
+    tmp_name.push(format!(".{}.tmp", std::process::id()));
+    let tmp = dir.join(tmp_name);
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        drop(f);
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}

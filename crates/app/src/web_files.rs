@@ -1,0 +1,257 @@
+//! Files on the web page: an `<input type=file>` picker, dropped files, downloads for saving,
+//! and crash recovery in the browser's localStorage.
+
+use std::cell::RefCell;
+use std::rc::Rc;
+
+use wasm_bindgen::JsCast as _;
+use wasm_bindgen::prelude::*;
+
+use swarf_ui::{HostRequest, Workbench};
+
+use crate::files::Recovery;
+
+/// localStorage key of the unsaved program.
+const RECOVERY_KEY: &str = "swarf.recovery";
+/// Seconds an edit waits before it is written to localStorage.
+const AUTOSAVE_DELAY: f64 = 1.0;
+
+/// What a picked file is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Purpose {
+    Program,
+    Dropped,
+    Setup,
+}
+
+/// A file read by the browser, waiting for the next frame.
+type Inbox = Rc<RefCell<Vec<(Purpose, String, Vec<u8>)>>>;
+
+/// Web file state: files read asynchronously, and the autosave bookkeeping.
+#[derive(Default)]
+pub struct Host {
+    /// Recent files (none on the web: the page cannot reopen a file by name).
+    pub recent: Vec<String>,
+    inbox: Inbox,
+    autosaved: u64,
+    changed_at: Option<f64>,
+    ctx: Option<egui::Context>,
+}
+
+fn local_storage() -> Option<web_sys::Storage> {
+    web_sys::window().and_then(|w| w.local_storage().ok().flatten())
+}
+
+/// Sets the page's title (the document name and whether it has unsaved changes).
+pub fn set_document_title(title: &str) {
+    if let Some(doc) = web_sys::window().and_then(|w| w.document()) {
+        doc.set_title(title);
+    }
+}
+
+impl Host {
+    /// A web host.
+    pub fn new() -> Host {
+        Host::default()
+    }
+
+    /// Shows the program left unsaved in this browser, if there is one.
+    pub fn recover(&mut self, wb: &mut Workbench) -> bool {
+        let Some(record) = local_storage().and_then(|s| s.get_item(RECOVERY_KEY).ok().flatten())
+        else {
+            return false;
+        };
+        let Some(r) = Recovery::from_record(&record) else {
+            return false;
+        };
+        wb.recover(&r.name, r.text, r.encoding);
+        self.autosaved = wb.analysis().scene.generation;
+        true
+    }
+
+    /// Reads a file dropped on the page; it opens (once unsaved changes are settled) when the
+    /// browser has read it.
+    pub fn open_dropped(&mut self, _wb: &mut Workbench, file: &egui::DroppedFileHandle) {
+        let file = file.clone();
+        let inbox = self.inbox.clone();
+        let ctx = self.ctx.clone();
+        wasm_bindgen_futures::spawn_local(async move {
+            let name = file.path().file_name().map_or_else(
+                || "dropped.nc".to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            match file.bytes_async().await {
+                Ok(bytes) => {
+                    inbox.borrow_mut().push((Purpose::Dropped, name, bytes));
+                    if let Some(ctx) = ctx {
+                        ctx.request_repaint();
+                    }
+                }
+                Err(e) => log::warn!("cannot read {name}: {e}"),
+            }
+        });
+    }
+
+    /// Hands files the browser has finished reading to the workbench.
+    pub fn poll(&mut self, wb: &mut Workbench) {
+        let arrived: Vec<_> = self.inbox.borrow_mut().drain(..).collect();
+        for (purpose, name, bytes) in arrived {
+            match purpose {
+                Purpose::Program => {
+                    let decoded = swarf_syntax::decode(&bytes);
+                    wb.open_document(&name, decoded.text, decoded.encoding);
+                    clear_recovery();
+                }
+                Purpose::Dropped => {
+                    let decoded = swarf_syntax::decode(&bytes);
+                    wb.open_guarded(&name, decoded.text, decoded.encoding, None);
+                }
+                Purpose::Setup => {
+                    let text = String::from_utf8_lossy(&bytes);
+                    match wb.import_setup(&text) {
+                        Ok(()) => wb.set_message(format!("Setup read from {name}")),
+                        Err(e) => wb.set_message(format!("Cannot import {name}: {e}")),
+                    }
+                }
+            }
+        }
+    }
+
+    /// Carries out the workbench's file requests: pickers and downloads.
+    pub fn handle(&mut self, wb: &mut Workbench, ctx: &egui::Context) {
+        self.ctx = Some(ctx.clone());
+        for request in wb.take_requests() {
+            match request {
+                HostRequest::Open | HostRequest::OpenRecent(_) => {
+                    self.pick(Purpose::Program, ".nc,.ngc,.tap,.gcode,.cnc,.txt,.ptp,.mpf")
+                }
+                HostRequest::ImportSetup => self.pick(Purpose::Setup, ".toml"),
+                HostRequest::Save | HostRequest::SaveAs => {
+                    let name = wb.document().name.clone();
+                    let (bytes, _) = crate::files::encode(wb.text(), wb.document().encoding);
+                    match download(&name, &bytes) {
+                        Ok(()) => {
+                            wb.mark_saved(&name);
+                            clear_recovery();
+                        }
+                        Err(e) => wb.set_message(format!("Cannot download {name}: {e:?}")),
+                    }
+                }
+                HostRequest::ExportSetup => {
+                    let result = wb.setup_toml().and_then(|t| {
+                        download("SETUP.toml", t.as_bytes()).map_err(|e| format!("{e:?}"))
+                    });
+                    if let Err(e) = result {
+                        wb.set_message(format!("Cannot export the setup: {e}"));
+                    }
+                }
+                HostRequest::Quit => {}
+            }
+        }
+    }
+
+    /// Opens the browser's file picker; the chosen file arrives through [`Host::poll`].
+    fn pick(&self, purpose: Purpose, accept: &str) {
+        let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
+            return;
+        };
+        let Some(input) = doc
+            .create_element("input")
+            .ok()
+            .and_then(|e| e.dyn_into::<web_sys::HtmlInputElement>().ok())
+        else {
+            return;
+        };
+        input.set_type("file");
+        input.set_accept(accept);
+        let inbox = self.inbox.clone();
+        let ctx = self.ctx.clone();
+        let target = input.clone();
+        let on_change = Closure::once_into_js(move |_event: web_sys::Event| {
+            let Some(file) = target.files().and_then(|f| f.get(0)) else {
+                return;
+            };
+            wasm_bindgen_futures::spawn_local(async move {
+                let name = file.name();
+                match wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await {
+                    Ok(buffer) => {
+                        let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
+                        inbox.borrow_mut().push((purpose, name, bytes));
+                        if let Some(ctx) = ctx {
+                            ctx.request_repaint();
+                        }
+                    }
+                    Err(e) => log::warn!("cannot read {name}: {e:?}"),
+                }
+            });
+        });
+        input.set_onchange(Some(on_change.unchecked_ref()));
+        input.click();
+    }
+
+    /// Keeps unsaved changes in localStorage a moment after they are made.
+    pub fn autosave(&mut self, wb: &Workbench, now: f64) {
+        let generation = wb.analysis().scene.generation;
+        if generation == self.autosaved {
+            return;
+        }
+        if !wb.is_dirty() {
+            clear_recovery();
+            self.autosaved = generation;
+            return;
+        }
+        let since = *self.changed_at.get_or_insert(now);
+        if now - since < AUTOSAVE_DELAY {
+            return;
+        }
+        self.write_recovery(wb);
+        self.autosaved = generation;
+    }
+
+    /// Writes the unsaved program to localStorage now.
+    pub fn write_recovery(&mut self, wb: &Workbench) {
+        self.changed_at = None;
+        if !wb.is_dirty() {
+            return;
+        }
+        let record = Recovery {
+            name: wb.document().name.clone(),
+            path: String::new(),
+            encoding: wb.document().encoding,
+            text: wb.text().to_string(),
+        };
+        if let Some(storage) = local_storage()
+            && let Err(e) = storage.set_item(RECOVERY_KEY, &record.to_record())
+        {
+            log::warn!("cannot keep the unsaved program in localStorage: {e:?}");
+        }
+    }
+}
+
+fn clear_recovery() {
+    if let Some(storage) = local_storage() {
+        let _ = storage.remove_item(RECOVERY_KEY);
+    }
+}
+
+/// Offers `bytes` as a download named `name`.
+fn download(name: &str, bytes: &[u8]) -> Result<(), JsValue> {
+    let doc = web_sys::window()
+        .and_then(|w| w.document())
+        .ok_or_else(|| JsValue::from_str("no document"))?;
+    let parts = js_sys::Array::new();
+    parts.push(&js_sys::Uint8Array::from(bytes));
+    let options = web_sys::BlobPropertyBag::new();
+    options.set_type("application/octet-stream");
+    let blob = web_sys::Blob::new_with_u8_array_sequence_and_options(&parts, &options)?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob)?;
+    let anchor = doc
+        .create_element("a")?
+        .dyn_into::<web_sys::HtmlAnchorElement>()
+        .map_err(|_| JsValue::from_str("no anchor"))?;
+    anchor.set_href(&url);
+    anchor.set_download(name);
+    anchor.click();
+    web_sys::Url::revoke_object_url(&url)?;
+    Ok(())
+}

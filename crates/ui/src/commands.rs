@@ -1,0 +1,553 @@
+//! Editor commands as pure text transformations: find and replace, go to line, comment toggling,
+//! block renumbering and code completion. The workbench applies them and records them for undo;
+//! keeping them free of UI makes each one testable on plain strings.
+
+use std::ops::Range;
+
+use swarf_syntax::Dialect;
+
+/// How a find or replace pattern is matched.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FindOptions {
+    /// The pattern is a regular expression (`regex` crate syntax) rather than literal text.
+    pub regex: bool,
+    /// Letters must match in case (G-code is case-insensitive, so the default is not to).
+    pub match_case: bool,
+}
+
+/// A compiled find pattern.
+#[derive(Debug, Clone)]
+pub struct Finder {
+    re: regex::Regex,
+}
+
+impl Finder {
+    /// Compiles `pattern`; the error is the regex parser's message, for showing beside the field.
+    pub fn new(pattern: &str, options: FindOptions) -> Result<Finder, String> {
+        let source = if options.regex {
+            pattern.to_string()
+        } else {
+            regex::escape(pattern)
+        };
+        regex::RegexBuilder::new(&source)
+            .case_insensitive(!options.match_case)
+            .multi_line(true)
+            .size_limit(1 << 22)
+            .build()
+            .map(|re| Finder { re })
+            .map_err(|e| e.to_string())
+    }
+
+    /// Byte ranges of every non-empty match in `text`, in order.
+    pub fn find_all(&self, text: &str) -> Vec<Range<usize>> {
+        self.re
+            .find_iter(text)
+            .filter(|m| !m.is_empty())
+            .map(|m| m.range())
+            .collect()
+    }
+
+    /// The first non-empty match starting at or after byte `from`, wrapping to the start.
+    pub fn next(&self, text: &str, from: usize) -> Option<Range<usize>> {
+        let all = self.find_all(text);
+        all.iter()
+            .find(|r| r.start >= from)
+            .or_else(|| all.first())
+            .cloned()
+    }
+
+    /// The last non-empty match ending at or before byte `before`, wrapping to the end.
+    pub fn previous(&self, text: &str, before: usize) -> Option<Range<usize>> {
+        let all = self.find_all(text);
+        all.iter()
+            .rev()
+            .find(|r| r.end <= before)
+            .or_else(|| all.last())
+            .cloned()
+    }
+
+    /// `text` with every match replaced (`$1`, `${name}` expand groups in regex mode), and the
+    /// number of replacements.
+    pub fn replace_all(
+        &self,
+        text: &str,
+        replacement: &str,
+        options: FindOptions,
+    ) -> (String, usize) {
+        let count = self.find_all(text).len();
+        if count == 0 {
+            return (text.to_string(), 0);
+        }
+        let out = if options.regex {
+            self.re.replace_all(text, replacement)
+        } else {
+            self.re.replace_all(text, regex::NoExpand(replacement))
+        };
+        (out.into_owned(), count)
+    }
+
+    /// The replacement for the match at exactly `range` (group references expanded in regex
+    /// mode); `None` when no match is there.
+    pub fn replacement_at(
+        &self,
+        text: &str,
+        range: Range<usize>,
+        replacement: &str,
+        options: FindOptions,
+    ) -> Option<String> {
+        let caps = self
+            .re
+            .captures_iter(text)
+            .find(|c| c.get(0).is_some_and(|m| m.range() == range))?;
+        if options.regex {
+            let mut out = String::new();
+            caps.expand(replacement, &mut out);
+            Some(out)
+        } else {
+            Some(replacement.to_string())
+        }
+    }
+}
+
+/// Converts a character index into a byte offset of `text` (clamped to its end).
+pub fn byte_of_char(text: &str, chars: usize) -> usize {
+    text.char_indices()
+        .nth(chars)
+        .map_or(text.len(), |(b, _)| b)
+}
+
+/// Converts a byte offset into a character index of `text` (clamped to its end).
+pub fn char_of_byte(text: &str, byte: usize) -> usize {
+    let mut byte = byte.min(text.len());
+    while !text.is_char_boundary(byte) {
+        byte -= 1;
+    }
+    text[..byte].chars().count()
+}
+
+/// The byte offset where 1-based `line` starts (the end of the text past the last line).
+pub fn line_start(text: &str, line: u32) -> usize {
+    if line <= 1 {
+        return 0;
+    }
+    text.match_indices('\n')
+        .nth(line as usize - 2)
+        .map_or(text.len(), |(i, _)| i + 1)
+}
+
+/// The 1-based line holding byte `byte`.
+pub fn line_of_byte(text: &str, byte: usize) -> u32 {
+    let end = byte.min(text.len());
+    let newlines = text.as_bytes()[..end]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count();
+    u32::try_from(newlines).unwrap_or(u32::MAX - 1) + 1
+}
+
+/// Number of lines of `text` (a final newline ends the last line rather than starting one, but
+/// an empty text still has one line).
+pub fn line_count(text: &str) -> u32 {
+    let n = text.bytes().filter(|&b| b == b'\n').count();
+    let n = if text.ends_with('\n') || n == 0 {
+        n.max(1)
+    } else {
+        n + 1
+    };
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
+/// Parses the go-to-line field: a positive line number, clamped to the text's lines.
+pub fn parse_line_number(input: &str, text: &str) -> Option<u32> {
+    let n: u32 = input.trim().parse().ok()?;
+    (n >= 1).then(|| n.min(line_count(text)))
+}
+
+/// Comments out the 1-based lines `lines` (inclusive) in the dialect's comment form or, when
+/// every non-blank one is already commented, uncomments them. Fanuc-family controls take
+/// `( … )` (a trailing comment stays after the wrapped code: `G01 X1 (cut)` becomes
+/// `(G01 X1) (cut)`); LinuxCNC takes `; `. Lines that hold only a comment are left as they are
+/// when commenting.
+pub fn toggle_comment(
+    text: &str,
+    lines: std::ops::RangeInclusive<u32>,
+    dialect: Dialect,
+) -> String {
+    let semicolon = dialect.semicolon_is_comment();
+    let (first, last) = (*lines.start(), *lines.end());
+    let mut parts: Vec<&str> = text.split('\n').collect();
+    let selected = |i: usize| {
+        let n = i as u32 + 1;
+        n >= first && n <= last
+    };
+    let commented = |l: &str| {
+        let t = l.trim_start();
+        if semicolon {
+            t.starts_with(';')
+        } else {
+            t.starts_with('(')
+        }
+    };
+    let uncomment_all = parts
+        .iter()
+        .enumerate()
+        .filter(|(i, l)| selected(*i) && !l.trim().is_empty())
+        .all(|(_, l)| commented(l));
+    let mut out: Vec<String> = Vec::with_capacity(parts.len());
+    for (i, line) in parts.drain(..).enumerate() {
+        let keep = !selected(i) || line.trim().is_empty();
+        let new = if keep {
+            line.to_string()
+        } else if uncomment_all {
+            uncomment_line(line, semicolon)
+        } else if commented(line) {
+            line.to_string()
+        } else {
+            comment_line(line, semicolon)
+        };
+        out.push(new);
+    }
+    out.join("\n")
+}
+
+fn comment_line(line: &str, semicolon: bool) -> String {
+    let body = line.strip_suffix('\r').unwrap_or(line);
+    let cr = if body.len() < line.len() { "\r" } else { "" };
+    let indent_len = body.len() - body.trim_start().len();
+    let (indent, rest) = body.split_at(indent_len);
+    if semicolon {
+        return format!("{indent}; {rest}{cr}");
+    }
+    // The code before the first comment is wrapped; Fanuc comments do not nest, so what follows
+    // (a comment, perhaps more code) has its code pieces wrapped the same way.
+    let mut out = String::from(indent);
+    let mut rest = rest;
+    while !rest.is_empty() {
+        match rest.find('(') {
+            Some(0) => {
+                let end = rest.find(')').map_or(rest.len(), |j| j + 1);
+                out.push_str(&rest[..end]);
+                rest = &rest[end..];
+            }
+            found => {
+                let end = found.unwrap_or(rest.len());
+                let code = &rest[..end];
+                let trimmed = code.trim_end();
+                if trimmed.trim().is_empty() {
+                    out.push_str(code);
+                } else {
+                    out.push('(');
+                    out.push_str(trimmed);
+                    out.push(')');
+                    out.push_str(&code[trimmed.len()..]);
+                }
+                rest = &rest[end..];
+            }
+        }
+    }
+    out.push_str(cr);
+    out
+}
+
+fn uncomment_line(line: &str, semicolon: bool) -> String {
+    let indent_len = line.len() - line.trim_start().len();
+    let (indent, rest) = line.split_at(indent_len);
+    if semicolon {
+        let rest = rest.strip_prefix(';').unwrap_or(rest);
+        let rest = rest.strip_prefix(' ').unwrap_or(rest);
+        return format!("{indent}{rest}");
+    }
+    // Unwrap the first comment: `(G01 X1) (cut)` → `G01 X1 (cut)`.
+    let Some(inner) = rest.strip_prefix('(') else {
+        return line.to_string();
+    };
+    match inner.find(')') {
+        Some(j) => format!("{indent}{}{}", &inner[..j], &inner[j + 1..]),
+        None => format!("{indent}{inner}"),
+    }
+}
+
+/// How [`renumber`] numbers blocks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RenumberOptions {
+    /// The first N number.
+    pub start: u32,
+    /// The increment between blocks.
+    pub step: u32,
+    /// Number every block, not only those that already have an N number.
+    pub all_blocks: bool,
+}
+
+impl Default for RenumberOptions {
+    fn default() -> Self {
+        RenumberOptions {
+            start: 10,
+            step: 10,
+            all_blocks: false,
+        }
+    }
+}
+
+/// The outcome of [`renumber`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Renumbered {
+    /// The renumbered text.
+    pub text: String,
+    /// Blocks that got a new or changed N number.
+    pub numbered: usize,
+    /// `GOTO n` and `M99 Pn` targets rewritten to the new numbers.
+    pub targets: usize,
+}
+
+/// Renumbers N words: blocks that have one get `start`, `start + step`, … in text order (with
+/// `all_blocks`, every block gets one, after a block delete `/`). Lines that are not blocks —
+/// blank, comment-only, `%`, program numbers `O…`/`:…` and LinuxCNC O-words — are skipped.
+/// Literal `GOTO n` and `M99 Pn` targets follow their block's new number.
+pub fn renumber(text: &str, options: RenumberOptions, dialect: Dialect) -> Renumbered {
+    let step = options.step.max(1);
+    let mut next = options.start;
+    let mut map = std::collections::HashMap::new();
+    let mut numbered = 0;
+    let mut lines: Vec<String> = Vec::new();
+    for line in text.split('\n') {
+        let Some(at) = block_start(line, dialect) else {
+            lines.push(line.to_string());
+            continue;
+        };
+        let (head, body) = line.split_at(at);
+        let digits = n_word(body);
+        let new_line = match digits {
+            Some((len, old)) => {
+                if let Some(old) = old {
+                    map.entry(old).or_insert(next);
+                }
+                let rest = &body[len..];
+                let sep = if rest.starts_with([' ', '\t']) || rest.is_empty() {
+                    ""
+                } else {
+                    " "
+                };
+                format!("{head}N{next}{sep}{rest}")
+            }
+            None if options.all_blocks => {
+                let sep = if body.starts_with([' ', '\t', '\r']) {
+                    ""
+                } else {
+                    " "
+                };
+                format!("{head}N{next}{sep}{body}")
+            }
+            None => {
+                lines.push(line.to_string());
+                continue;
+            }
+        };
+        numbered += 1;
+        next = next.saturating_add(step);
+        lines.push(new_line);
+    }
+    let mut targets = 0;
+    for line in &mut lines {
+        if let Some((new, n)) = retarget(line, &map, dialect) {
+            *line = new;
+            targets += n;
+        }
+    }
+    Renumbered {
+        text: lines.join("\n"),
+        numbered,
+        targets,
+    }
+}
+
+/// Where the block's words start on `line` (after indentation and a block delete `/`, `/1`–`/9`),
+/// or `None` when the line is no block.
+fn block_start(line: &str, dialect: Dialect) -> Option<usize> {
+    let bytes = line.as_bytes();
+    let mut i = 0;
+    let skip_space = |i: &mut usize| {
+        while bytes.get(*i).is_some_and(|b| *b == b' ' || *b == b'\t') {
+            *i += 1;
+        }
+    };
+    skip_space(&mut i);
+    if bytes.get(i) == Some(&b'/') {
+        i += 1;
+        if bytes.get(i).is_some_and(u8::is_ascii_digit) {
+            i += 1;
+        }
+        skip_space(&mut i);
+    }
+    let first = *bytes.get(i)?;
+    let no_block = match first {
+        b'\r' | b'%' | b'(' | b':' => true,
+        b';' => true,
+        b'/' if dialect == Dialect::Syntec => bytes.get(i + 1) == Some(&b'/'),
+        b'O' | b'o' => {
+            // `O1234` program numbers and LinuxCNC `o100 sub` lines; not `OR`-less macros.
+            bytes
+                .get(i + 1)
+                .is_some_and(|b| b.is_ascii_digit() || *b == b'<')
+        }
+        _ => false,
+    };
+    (!no_block).then_some(i)
+}
+
+/// The length of an `N` word at the start of `body` and its integer value, if it has one.
+fn n_word(body: &str) -> Option<(usize, Option<u64>)> {
+    let bytes = body.as_bytes();
+    if !matches!(bytes.first(), Some(b'N' | b'n')) {
+        return None;
+    }
+    let mut i = 1;
+    while bytes.get(i) == Some(&b' ') {
+        i += 1;
+    }
+    let digits_start = i;
+    while bytes.get(i).is_some_and(u8::is_ascii_digit) {
+        i += 1;
+    }
+    if i == digits_start {
+        return None;
+    }
+    let value = body[digits_start..i].parse().ok();
+    Some((i, value))
+}
+
+/// Rewrites literal `GOTO n` and `M99 Pn` targets of one line through `map` (old → new).
+fn retarget(
+    line: &str,
+    map: &std::collections::HashMap<u64, u32>,
+    dialect: Dialect,
+) -> Option<(String, usize)> {
+    if map.is_empty() || dialect == Dialect::LinuxCnc {
+        return None;
+    }
+    let upper = line.to_ascii_uppercase();
+    let code_end = upper.find('(').unwrap_or(upper.len());
+    let mut edits: Vec<(Range<usize>, u32)> = Vec::new();
+    let mut target_after = |key_end: usize| {
+        let bytes = upper.as_bytes();
+        let mut i = key_end;
+        while bytes.get(i) == Some(&b' ') {
+            i += 1;
+        }
+        let start = i;
+        while bytes.get(i).is_some_and(u8::is_ascii_digit) {
+            i += 1;
+        }
+        if i > start && i <= code_end {
+            let old: Option<u64> = upper[start..i].parse().ok();
+            if let Some(new) = old.and_then(|o| map.get(&o)) {
+                edits.push((start..i, *new));
+            }
+        }
+    };
+    for (at, _) in upper[..code_end].match_indices("GOTO") {
+        target_after(at + 4);
+    }
+    let has_m99 = upper[..code_end]
+        .match_indices('M')
+        .any(|(at, _)| upper[at + 1..].trim_start_matches('0').starts_with("99"));
+    if has_m99 {
+        for (at, _) in upper[..code_end].match_indices('P') {
+            target_after(at + 1);
+        }
+    }
+    if edits.is_empty() {
+        return None;
+    }
+    let mut out = line.to_string();
+    let count = edits.len();
+    edits.sort_by_key(|(r, _)| std::cmp::Reverse(r.start));
+    for (range, new) in edits {
+        out.replace_range(range, &new.to_string());
+    }
+    Some((out, count))
+}
+
+/// One completion offered for a partly typed code.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Completion {
+    /// The code as it is inserted (`G01`, `G54.1`).
+    pub code: String,
+    /// Its one-line meaning in the dialect.
+    pub name: &'static str,
+}
+
+/// The G or M word being typed just before byte `cursor`: its byte range and text (`G8`), when
+/// the cursor follows a letter G/M and digits at the start of a word.
+pub fn completion_prefix(text: &str, cursor: usize) -> Option<(Range<usize>, String)> {
+    let cursor = cursor.min(text.len());
+    let bytes = text.as_bytes();
+    let mut i = cursor;
+    while i > 0 && (bytes[i - 1].is_ascii_digit() || bytes[i - 1] == b'.') {
+        i -= 1;
+    }
+    let letter_at = i.checked_sub(1)?;
+    let letter = bytes[letter_at].to_ascii_uppercase();
+    if letter != b'G' && letter != b'M' {
+        return None;
+    }
+    // The letter starts a word: not the middle of `GOTO`, `MOD` or a name.
+    if letter_at > 0 && bytes[letter_at - 1].is_ascii_alphabetic() {
+        return None;
+    }
+    if bytes.get(cursor).is_some_and(|b| b.is_ascii_alphanumeric()) {
+        return None;
+    }
+    // Not inside a comment on this line.
+    let line_start = text[..letter_at].rfind('\n').map_or(0, |j| j + 1);
+    let before = &text[line_start..letter_at];
+    if before.rfind('(') > before.rfind(')') || before.contains(';') {
+        return None;
+    }
+    Some((
+        letter_at..cursor,
+        text[letter_at..cursor].to_ascii_uppercase(),
+    ))
+}
+
+/// The codes of `dialect` that `prefix` (`G`, `G8`, `M0`, `G54.`) can start, at most `limit`.
+/// Digits match with or without the leading zero: `G1` offers `G01` and `G10`–`G19`.
+pub fn completions(dialect: Dialect, prefix: &str, limit: usize) -> Vec<Completion> {
+    let prefix = prefix.to_ascii_uppercase();
+    let Some(letter) = prefix.bytes().next() else {
+        return Vec::new();
+    };
+    let typed = &prefix[1..];
+    swarf_syntax::codes::codes_of(dialect)
+        .filter(|def| def.code.letter == letter)
+        .filter(|def| {
+            let padded = def.code.to_string();
+            let plain = padded[1..].trim_start_matches('0');
+            padded[1..].starts_with(typed) || plain.starts_with(typed.trim_start_matches('0'))
+        })
+        .take(limit)
+        .map(|def| Completion {
+            code: def.code.to_string(),
+            name: def.name,
+        })
+        .collect()
+}
+
+/// The alarm a control manual names in a diagnostic message (`COR-006`, `alarm 12`), if any.
+pub fn alarm_in(message: &str) -> Option<&str> {
+    if let Some(at) = message.find("COR-") {
+        let end = message[at + 4..]
+            .find(|c: char| !c.is_ascii_digit())
+            .map_or(message.len(), |j| at + 4 + j);
+        return (end > at + 4).then(|| &message[at..end]);
+    }
+    let lower = message.to_ascii_lowercase();
+    let at = lower.find("alarm ")?;
+    let start = at + 6;
+    let end = message[start..]
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '-' || c == '.'))
+        .map_or(message.len(), |j| start + j);
+    let name = message[start..end].trim_end_matches('.');
+    name.bytes()
+        .any(|b| b.is_ascii_digit())
+        .then(|| &message[at..start + name.len()])
+}

@@ -1,0 +1,165 @@
+//! Undo and redo over the whole program text, shared by typing and the editor commands.
+//!
+//! egui's `TextEdit` keeps its own undo list inside the widget, which knows nothing of text
+//! replaced from outside (replace all, renumbering, comment toggling). The workbench takes the
+//! undo keys away from the widget and keeps this history instead: each entry is the text and the
+//! selection before a change. Consecutive typing is merged into one entry until a line break,
+//! a pause or a command ends it.
+
+use std::ops::Range;
+
+/// What caused a change, for merging runs of typing into one undo step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EditKind {
+    /// Keyboard input in the editor.
+    Typing,
+    /// A command (replace, renumber, comment, completion, open …): always its own step.
+    Command,
+}
+
+/// A text and its selection (character indices).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Snapshot {
+    /// The whole program text.
+    pub text: String,
+    /// The selection to restore, in characters.
+    pub selection: Range<usize>,
+}
+
+/// The undo and redo stacks.
+#[derive(Debug, Clone, Default)]
+pub struct History {
+    undo: Vec<Snapshot>,
+    redo: Vec<Snapshot>,
+    /// Whether the newest undo entry is a typing run that further typing may join.
+    typing_open: bool,
+    /// When the open typing run last grew (seconds, egui time).
+    last_typing: f64,
+}
+
+/// The most undo steps kept (each is a copy of the text).
+const LIMIT: usize = 200;
+/// The most bytes of text the undo steps keep together (the newest step is always kept), so a
+/// long session on a large program does not grow without bound.
+const BYTES_LIMIT: usize = 64 << 20;
+/// A pause in typing this long (seconds) starts a new undo step.
+const PAUSE: f64 = 1.5;
+
+impl History {
+    /// Records that the text is about to change from `before`; `now` is the time in seconds.
+    /// Typing that continues an open run adds nothing, so it is undone in one step.
+    pub fn record(&mut self, before: Snapshot, kind: EditKind, ends_line: bool, now: f64) {
+        self.redo.clear();
+        let joins = kind == EditKind::Typing && self.typing_open && now - self.last_typing < PAUSE;
+        if !joins {
+            self.undo.push(before);
+            self.trim();
+        }
+        self.typing_open = kind == EditKind::Typing && !ends_line;
+        self.last_typing = now;
+    }
+
+    /// Drops the oldest undo steps past [`LIMIT`] steps or [`BYTES_LIMIT`] bytes.
+    fn trim(&mut self) {
+        let mut bytes: usize = self.undo.iter().map(|s| s.text.len()).sum();
+        let mut drop = 0;
+        while self.undo.len() - drop > 1 && (self.undo.len() - drop > LIMIT || bytes > BYTES_LIMIT)
+        {
+            bytes -= self.undo[drop].text.len();
+            drop += 1;
+        }
+        self.undo.drain(..drop);
+    }
+
+    /// Number of undo steps kept.
+    pub fn undo_len(&self) -> usize {
+        self.undo.len()
+    }
+
+    /// Takes the state to go back to, given the `current` one (which becomes redoable).
+    pub fn undo(&mut self, current: Snapshot) -> Option<Snapshot> {
+        let back = self.undo.pop()?;
+        self.redo.push(current);
+        self.typing_open = false;
+        Some(back)
+    }
+
+    /// Takes the state to go forward to, given the `current` one (which becomes undoable).
+    pub fn redo(&mut self, current: Snapshot) -> Option<Snapshot> {
+        let forward = self.redo.pop()?;
+        self.undo.push(current);
+        self.trim();
+        self.typing_open = false;
+        Some(forward)
+    }
+
+    /// Whether there is something to undo.
+    pub fn can_undo(&self) -> bool {
+        !self.undo.is_empty()
+    }
+
+    /// Whether there is something to redo.
+    pub fn can_redo(&self) -> bool {
+        !self.redo.is_empty()
+    }
+
+    /// Ends the current typing run, so the next keystroke starts a new undo step.
+    pub fn break_run(&mut self) {
+        self.typing_open = false;
+    }
+
+    /// Forgets everything (a new document).
+    pub fn clear(&mut self) {
+        *self = History::default();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn snap(text: &str) -> Snapshot {
+        Snapshot {
+            text: text.to_string(),
+            selection: 0..0,
+        }
+    }
+
+    #[test]
+    fn typing_runs_merge_until_a_line_break_a_pause_or_a_command() {
+        let mut h = History::default();
+        h.record(snap(""), EditKind::Typing, false, 0.0);
+        h.record(snap("G"), EditKind::Typing, false, 0.2);
+        h.record(snap("G0"), EditKind::Typing, true, 0.4);
+        assert_eq!(h.undo_len(), 1);
+        h.record(snap("G0\n"), EditKind::Typing, false, 0.5);
+        h.record(snap("G0\nX"), EditKind::Typing, false, 5.0);
+        h.record(snap("G0\nX1"), EditKind::Command, true, 5.1);
+        assert_eq!(h.undo_len(), 4);
+        assert_eq!(
+            h.undo(snap("now")).map(|s| s.text),
+            Some("G0\nX1".to_string())
+        );
+        assert!(h.can_redo());
+        h.record(snap("other"), EditKind::Command, true, 6.0);
+        assert!(!h.can_redo(), "a new change drops the redo steps");
+    }
+
+    #[test]
+    fn old_steps_go_when_the_history_grows_too_large() {
+        let mut h = History::default();
+        for i in 0..(LIMIT + 10) {
+            h.record(snap(&i.to_string()), EditKind::Command, true, i as f64);
+        }
+        assert_eq!(h.undo_len(), LIMIT);
+        let big = "x".repeat(BYTES_LIMIT / 2 + 1);
+        for _ in 0..3 {
+            h.record(snap(&big), EditKind::Command, true, 0.0);
+        }
+        assert_eq!(
+            h.undo_len(),
+            1,
+            "two copies of the big text would pass the byte limit"
+        );
+    }
+}

@@ -1,0 +1,245 @@
+//! The settings window's contents: dialect, offset registers, work offsets and machine
+//! parameters — everything `SETUP.toml` holds, edited in place.
+
+use glam::DVec3;
+use swarf_interp::{Register, Setup};
+use swarf_syntax::Dialect;
+
+use crate::workbench::HostRequest;
+
+/// The fixed work offsets always listed (extended ones are added by name).
+const STANDARD_OFFSETS: [&str; 6] = ["G54", "G55", "G56", "G57", "G58", "G59"];
+
+/// Shows the settings for `dialect` and `setup`, editing them in place; `new_offset` holds the
+/// name typed for an extra work offset. Returns an import or export request when one of those
+/// buttons was pressed.
+pub fn settings_ui(
+    ui: &mut egui::Ui,
+    dialect: &mut Dialect,
+    setup: &mut Setup,
+    new_offset: &mut String,
+) -> Option<HostRequest> {
+    let mut request = None;
+    ui.horizontal(|ui| {
+        let label = ui.label("Dialect");
+        egui::ComboBox::from_id_salt("swarf-settings-dialect")
+            .selected_text(dialect.label())
+            .show_ui(ui, |ui| {
+                for d in Dialect::ALL {
+                    ui.selectable_value(dialect, d, d.label());
+                }
+            })
+            .response
+            .labelled_by(label.id);
+    });
+    ui.horizontal(|ui| {
+        if ui.button("Import SETUP.toml…").clicked() {
+            request = Some(HostRequest::ImportSetup);
+        }
+        if ui.button("Export SETUP.toml…").clicked() {
+            request = Some(HostRequest::ExportSetup);
+        }
+        if ui.button("Reset to defaults").clicked() {
+            *setup = Setup::default();
+        }
+    });
+    ui.label("Values in millimetres; they are kept between runs.");
+    egui::CollapsingHeader::new("Offset registers (H length, D radius)")
+        .default_open(true)
+        .show(ui, |ui| registers_ui(ui, setup));
+    egui::CollapsingHeader::new("Work offsets")
+        .default_open(true)
+        .show(ui, |ui| work_offsets_ui(ui, setup, new_offset));
+    egui::CollapsingHeader::new("Machine")
+        .default_open(true)
+        .show(ui, |ui| machine_ui(ui, setup));
+    request
+}
+
+/// Gives `response` an accessible name (for screen readers) where no label widget names it.
+fn named(ui: &egui::Ui, response: egui::Response, name: &str) -> egui::Response {
+    ui.ctx()
+        .accesskit_node_builder(response.id, |node| node.set_label(name));
+    response
+}
+
+fn length(value: &mut f64) -> egui::DragValue<'_> {
+    egui::DragValue::new(value).speed(0.01).max_decimals(4)
+}
+
+fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
+    let mut remove = None;
+    egui::Grid::new("swarf-registers")
+        .num_columns(6)
+        .striped(true)
+        .show(ui, |ui| {
+            for head in ["No.", "Length", "Length wear", "Radius", "Radius wear", ""] {
+                ui.strong(head);
+            }
+            ui.end_row();
+            for (n, r) in setup.registers.iter_mut() {
+                ui.label(n.to_string());
+                let fields = [
+                    (&mut r.length, "length"),
+                    (&mut r.length_wear, "length wear"),
+                    (&mut r.radius, "radius"),
+                    (&mut r.radius_wear, "radius wear"),
+                ];
+                for (value, what) in fields {
+                    let response = ui.add(length(value));
+                    named(ui, response, &format!("Register {n} {what}"));
+                }
+                let remove_button = ui.small_button("×").on_hover_text("Remove");
+                if named(ui, remove_button, &format!("Remove register {n}")).clicked() {
+                    remove = Some(*n);
+                }
+                ui.end_row();
+            }
+        });
+    if let Some(n) = remove {
+        setup.registers.remove(&n);
+    }
+    if ui.button("Add register").clicked() {
+        let next = setup.registers.keys().next_back().map_or(1, |n| n + 1);
+        setup.registers.insert(next, Register::default());
+    }
+}
+
+fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String) {
+    let mut names: Vec<String> = STANDARD_OFFSETS.iter().map(|s| s.to_string()).collect();
+    for name in setup.work_offsets.keys() {
+        if !names.contains(name) {
+            names.push(name.clone());
+        }
+    }
+    egui::Grid::new("swarf-work-offsets")
+        .num_columns(4)
+        .striped(true)
+        .show(ui, |ui| {
+            for head in ["", "X", "Y", "Z"] {
+                ui.strong(head);
+            }
+            ui.end_row();
+            for name in names {
+                let mut v = setup.work_offset(&name).to_array();
+                ui.label(&name);
+                let mut changed = false;
+                for (c, axis) in v.iter_mut().zip(["X", "Y", "Z"]) {
+                    let response = ui.add(length(c));
+                    changed |= named(ui, response, &format!("{name} {axis}")).changed();
+                }
+                if changed {
+                    setup.work_offsets.insert(name, DVec3::from_array(v));
+                }
+                ui.end_row();
+            }
+        });
+    ui.horizontal(|ui| {
+        let label = ui.label("Add offset");
+        ui.add(
+            egui::TextEdit::singleline(new_offset)
+                .desired_width(90.0)
+                .hint_text("G54.1P1"),
+        )
+        .labelled_by(label.id);
+        if ui.button("Add").clicked() {
+            let toml = format!("[work_offsets]\n{:?} = [0, 0, 0]\n", new_offset.trim());
+            if let Ok(parsed) = Setup::from_toml(&toml) {
+                for name in parsed.work_offsets.into_keys() {
+                    setup.work_offsets.entry(name).or_insert(DVec3::ZERO);
+                }
+                new_offset.clear();
+            }
+        }
+    });
+}
+
+fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
+    let m = &mut setup.machine;
+    egui::Grid::new("swarf-machine")
+        .num_columns(2)
+        .show(ui, |ui| {
+            let label = ui.label("Rapid rate (mm/min)");
+            ui.add(
+                egui::DragValue::new(&mut m.rapid_mm_per_min)
+                    .range(1.0..=1_000_000.0)
+                    .speed(10.0),
+            )
+            .labelled_by(label.id);
+            ui.end_row();
+            let mut per_axis = m.rapid_xyz_mm_per_min.is_some();
+            let per_axis_label = ui.checkbox(&mut per_axis, "Rapid rate per axis X Y Z").id;
+            let mut xyz = m.rapid_xyz_mm_per_min.unwrap_or([m.rapid_mm_per_min; 3]);
+            ui.horizontal(|ui| {
+                ui.add_enabled_ui(per_axis, |ui| {
+                    for v in &mut xyz {
+                        ui.add(egui::DragValue::new(v).range(1.0..=1_000_000.0).speed(10.0))
+                            .labelled_by(per_axis_label);
+                    }
+                });
+            });
+            m.rapid_xyz_mm_per_min = per_axis.then_some(xyz);
+            ui.end_row();
+            let label = ui.label("Acceleration (mm/s²)");
+            ui.add(egui::DragValue::new(&mut m.acceleration_mm_per_s2).range(0.0..=100_000.0))
+                .labelled_by(label.id);
+            ui.end_row();
+            let label = ui.label("Peck retract (mm)");
+            ui.add(
+                egui::DragValue::new(&mut m.peck_retract_mm)
+                    .range(0.0..=100.0)
+                    .speed(0.01),
+            )
+            .labelled_by(label.id);
+            ui.end_row();
+            let label = ui.label("Arc tolerance (mm)");
+            ui.add(
+                egui::DragValue::new(&mut m.arc_tolerance_mm)
+                    .range(0.0..=10.0)
+                    .speed(0.001)
+                    .max_decimals(4),
+            )
+            .labelled_by(label.id);
+            ui.end_row();
+            let label = ui.label("Runaway limit (blocks)");
+            ui.add(egui::DragValue::new(&mut m.max_blocks).range(1..=1_000_000_000_u64))
+                .labelled_by(label.id);
+            ui.end_row();
+            let label = ui.label("Integers without a point");
+            let text = |c: Option<bool>| match c {
+                None => "as the dialect's manual says",
+                Some(true) => "millimetres (calculator input)",
+                Some(false) => "least input increments",
+            };
+            egui::ComboBox::from_id_salt("swarf-calculator")
+                .selected_text(text(m.calculator_input))
+                .show_ui(ui, |ui| {
+                    for c in [None, Some(true), Some(false)] {
+                        ui.selectable_value(&mut m.calculator_input, c, text(c));
+                    }
+                })
+                .response
+                .labelled_by(label.id);
+            ui.end_row();
+            for (i, name) in ["G28 reference point", "G30 P2 reference point"]
+                .iter()
+                .enumerate()
+            {
+                let label = ui.label(*name).id;
+                let mut p = m.reference_points.get(i).copied().unwrap_or_default();
+                let mut changed = false;
+                ui.horizontal(|ui| {
+                    for c in &mut p {
+                        changed |= ui.add(length(c)).labelled_by(label).changed();
+                    }
+                });
+                if changed {
+                    if m.reference_points.len() <= i {
+                        m.reference_points.resize(i + 1, [0.0; 3]);
+                    }
+                    m.reference_points[i] = p;
+                }
+                ui.end_row();
+            }
+        });
+}

@@ -1,0 +1,63 @@
+//! The settings window: offset registers, work offsets and machine parameters edit the setup
+//! programs run with, and the setup goes out and in as SETUP.toml.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable as _;
+use swarf_ui::{HostRequest, Workbench};
+
+#[test]
+fn the_settings_window_edits_the_setup_and_re_runs_the_program() {
+    let mut wb = Workbench::default();
+    wb.open_document(
+        "t.nc",
+        "G90 G21 G55\nG00 X0 Y0 Z0\nM30\n",
+        swarf_syntax::Encoding::Utf8,
+    );
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1400.0, 900.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.run();
+    harness.get_by_label("Settings…").click();
+    harness.run();
+    harness.get_by_label("Offset registers (H length, D radius)");
+    harness.get_by_label("Add register").click();
+    harness.run();
+    assert_eq!(harness.state().setup().registers.len(), 1);
+    // An extended work offset by name.
+    let field = harness.get_by_role_and_label(Role::TextInput, "Add offset");
+    field.focus();
+    field.type_text("g54.1 p3");
+    harness.run();
+    harness.get_by_label("Add").click();
+    harness.run();
+    assert!(harness.state().setup().work_offsets.contains_key("G54.1P3"));
+    harness.get_by_label("G54.1P3");
+    // Import moves G55, and the program's rapid follows it.
+    let before = harness.state().analysis().scene.generation;
+    harness
+        .state_mut()
+        .import_setup("[work_offsets]\nG55 = [100, 50, -20]\n")
+        .unwrap();
+    harness.run();
+    assert!(harness.state().analysis().scene.generation > before);
+    let bounds = harness.state().stats().bounds.unwrap();
+    assert_eq!(bounds.1.x, 100.0);
+    // Export asks the host, with the setup as SETUP.toml.
+    harness.get_by_label("Export SETUP.toml…").click();
+    harness.run();
+    assert_eq!(
+        harness.state_mut().take_requests(),
+        [HostRequest::ExportSetup]
+    );
+    let toml = harness.state().setup_toml().unwrap();
+    assert!(toml.contains("G55 = [100.0, 50.0, -20.0]"), "{toml}");
+    assert!(
+        harness
+            .state_mut()
+            .import_setup("[work_offsets]\nG60 = [0, 0, 0]\n")
+            .is_err()
+    );
+    assert!(harness.state().setup().work_offsets.contains_key("G55"));
+}
