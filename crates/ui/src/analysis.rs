@@ -171,6 +171,7 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         PathPoint::new(rel(*end), kind)
     }));
     mark_cycle_moves(path, &mut points);
+    let marks = hole_marks(path, rel, (bounds.max - bounds.min).length());
     Scene {
         generation,
         points: Arc::new(points),
@@ -181,8 +182,32 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         bounds: Some((rel(bounds.min), rel(bounds.max))),
         zero: rel(DVec3::ZERO),
         origin,
+        marks: Arc::new(marks),
         ..Scene::default()
     }
+}
+
+/// A ring at the top of every hole, across the hole's axis, sized to the scene (1/150 of its
+/// diagonal, 0.5 to 5 mm), so holes stand out where plunges are seen end-on (a top view).
+fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> glam::Vec3, diagonal: f64) -> Vec<PathPoint> {
+    const SIDES: usize = 12;
+    let radius = (diagonal / 150.0).clamp(0.5, 5.0);
+    let mut marks = Vec::with_capacity(path.holes().len() * (SIDES + 1));
+    for hole in path.holes() {
+        let axis = (hole.bottom - hole.top).normalize_or(DVec3::NEG_Z);
+        let u = axis.any_orthonormal_vector();
+        let v = axis.cross(u);
+        for k in 0..=SIDES {
+            let a = std::f64::consts::TAU * k as f64 / SIDES as f64;
+            let p = rel(hole.top + (u * a.cos() + v * a.sin()) * radius);
+            marks.push(if k == 0 {
+                PathPoint::pen_up(p)
+            } else {
+                PathPoint::new(p, Kind::Cycle)
+            });
+        }
+    }
+    marks
 }
 
 /// Gives the segments of canned cycles their kinds (plunge, retract, other cycle move), so the

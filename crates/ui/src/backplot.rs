@@ -120,6 +120,9 @@ pub struct Scene {
     pub origin: DVec3,
     /// The program text, for the hover tooltip (`None` when not known).
     pub source: Option<Arc<SourceText>>,
+    /// Reference marks drawn with the grid (not picked, not played back): a ring at each hole
+    /// of a canned cycle. Pen-up points separate the marks.
+    pub marks: Arc<Vec<PathPoint>>,
 }
 
 impl Scene {
@@ -528,6 +531,7 @@ impl Backplot {
             points: Arc::clone(&scene.points),
             bounds: scene.bounds,
             zero: scene.zero,
+            marks: Arc::clone(&scene.marks),
             rect,
             params,
         };
@@ -934,6 +938,7 @@ struct BackplotCallback {
     points: Arc<Vec<PathPoint>>,
     bounds: Option<(Vec3, Vec3)>,
     zero: Vec3,
+    marks: Arc<Vec<PathPoint>>,
     rect: egui::Rect,
     /// View parameters in points, for the whole rectangle.
     params: ViewParams,
@@ -966,7 +971,8 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         if view.generation != Some(self.generation) {
             view.renderer.set_path(device, queue, &self.points);
             let (min, max) = self.bounds.unwrap_or((Vec3::ONE, Vec3::ZERO));
-            let grid = grid_points_at(self.zero, min, max);
+            let mut grid = grid_points_at(self.zero, min, max);
+            grid.extend_from_slice(&self.marks);
             view.renderer.set_grid(device, queue, &grid);
             view.generation = Some(self.generation);
             view.drawn = None;
