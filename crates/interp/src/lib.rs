@@ -21,4 +21,9 @@ pub use states::{BlockState, States, run_with_states};
 pub trait Sink {
     /// One event caused by the block at `source`.
     fn emit(&mut self, source: Source, event: &Canon);
+
+    /// The program zero (work offset with its G52/G92 shifts, machine frame) that the moves
+    /// just emitted were programmed from; told once per change, for the backplot's origin
+    /// marks. Not part of the canonical stream: sinks that do not draw may ignore it.
+    fn origin(&mut self, _at: glam::DVec3) {}
 }

@@ -102,6 +102,8 @@ pub struct Interpreter {
     executed: u64,
     /// Motion events produced so far.
     motions: u64,
+    /// The program zero last reported with `Canon::Origin`.
+    origin: Option<DVec3>,
     finished: bool,
     calls: Vec<Frame>,
     /// Remaining passes of LinuxCNC `repeat` loops, by the block of their `repeat` line.
@@ -118,6 +120,7 @@ impl Interpreter {
             next_block: 0,
             executed: 0,
             motions: 0,
+            origin: None,
             finished: false,
             calls: Vec::new(),
             repeats: HashMap::new(),
@@ -239,11 +242,20 @@ impl Interpreter {
                 line: block.line.saturating_add(1),
             };
             self.executed += 1;
+            let before = counted.motions;
             let flow = if block.has_error {
                 Flow::Next
             } else {
                 self.run_block(program, at, block, source, &mut counted)
             };
+            if counted.motions != before {
+                // Moves from a program zero not reported yet: report it for the origin marks.
+                let origin = self.st.to_machine(DVec3::ZERO);
+                if self.origin != Some(origin) && origin.is_finite() {
+                    self.origin = Some(origin);
+                    counted.inner.origin(origin);
+                }
+            }
             match flow {
                 Flow::Next => self.next_block = at + 1,
                 Flow::Jump(to) => self.next_block = to,

@@ -331,6 +331,8 @@ pub struct Toolpath {
     stop_pending: bool,
     /// The holes drilled by canned cycles, in order.
     holes: Vec<Hole>,
+    /// The program zeros the moves were programmed from, each once, in order of first use.
+    origins: Vec<DVec3>,
 }
 
 impl Default for Toolpath {
@@ -386,6 +388,7 @@ impl Toolpath {
             last_direction: None,
             stop_pending: false,
             holes: Vec::new(),
+            origins: Vec::new(),
         }
     }
 
@@ -484,6 +487,12 @@ impl Toolpath {
     /// Tools used, in order of first use.
     pub fn tools(&self) -> &[u32] {
         &self.tools
+    }
+
+    /// The program zeros (work offsets with their shifts, machine frame) the moves were
+    /// programmed from, each once, in order of first use.
+    pub fn origins(&self) -> &[DVec3] {
+        &self.origins
     }
 
     /// The holes drilled by canned cycles, in order.
@@ -743,6 +752,12 @@ struct ArcEvent {
 }
 
 impl Sink for Toolpath {
+    fn origin(&mut self, at: DVec3) {
+        if !self.origins.contains(&at) {
+            self.origins.push(at);
+        }
+    }
+
     fn emit(&mut self, source: Source, event: &Canon) {
         match event {
             Canon::Rapid { to } => self.push_line(SegmentKind::Rapid, *to, source.line, 0.0),

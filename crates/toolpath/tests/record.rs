@@ -388,3 +388,25 @@ fn cycle_moves_tell_plunges_from_retracts_and_positioning() {
         ]
     );
 }
+
+#[test]
+fn keeps_each_program_zero_the_moves_came_from() {
+    let setup = Setup::from_toml(
+        "[work_offsets]\nG54 = [100.0, 50.0, -20.0]\nG55 = [200.0, 50.0, -20.0]\n",
+    )
+    .unwrap();
+    let program = parse(
+        "G54 G0 X0 Y0\nG55 X1.\nG54 X2.\nG52 X5.\nG1 X0 F100.\nG55\nM30\n",
+        Dialect::Fanuc,
+    );
+    let mut path = Toolpath::default();
+    run(&program, setup, &mut path);
+    assert_eq!(
+        path.origins(),
+        [
+            DVec3::new(100.0, 50.0, -20.0),
+            DVec3::new(200.0, 50.0, -20.0),
+            DVec3::new(105.0, 50.0, -20.0),
+        ]
+    );
+}

@@ -171,7 +171,9 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         PathPoint::new(rel(*end), kind)
     }));
     mark_cycle_moves(path, &mut points);
-    let marks = hole_marks(path, rel, (bounds.max - bounds.min).length());
+    let diagonal = (bounds.max - bounds.min).length();
+    let mut marks = hole_marks(path, rel, diagonal);
+    marks.extend(origin_marks(path, rel, diagonal));
     Scene {
         generation,
         points: Arc::new(points),
@@ -185,6 +187,28 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         marks: Arc::new(marks),
         ..Scene::default()
     }
+}
+
+/// An X/Y/Z axis cross at every program zero the moves were programmed from (G54…, with
+/// G52/G92 shifts), 1/20 of the scene's diagonal long (2 to 50 mm).
+fn origin_marks(
+    path: &Toolpath,
+    rel: impl Fn(DVec3) -> glam::Vec3,
+    diagonal: f64,
+) -> Vec<PathPoint> {
+    let length = (diagonal / 20.0).clamp(2.0, 50.0);
+    let mut marks = Vec::with_capacity(path.origins().len() * 6);
+    for &at in path.origins() {
+        for (axis, kind) in [
+            (DVec3::X, Kind::AxisX),
+            (DVec3::Y, Kind::AxisY),
+            (DVec3::Z, Kind::AxisZ),
+        ] {
+            marks.push(PathPoint::pen_up(rel(at)));
+            marks.push(PathPoint::new(rel(at + axis * length), kind));
+        }
+    }
+    marks
 }
 
 /// A ring at the top of every hole, across the hole's axis, sized to the scene (1/150 of its

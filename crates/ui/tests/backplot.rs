@@ -398,27 +398,23 @@ fn scene_of_colours_drilling_plunges_and_retracts() {
     let mut path = swarf_toolpath::Toolpath::default();
     swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
     let scene = swarf_ui::analysis::scene_of(&path, 1);
-    // One ring of 12 sides around the hole's top (R, 2 mm) across its axis.
-    assert_eq!(scene.marks.len(), 13);
+    // One ring of 12 sides around the hole's top (R, 2 mm) across its axis, then the axis
+    // cross at the program zero.
+    assert_eq!(scene.marks.len(), 13 + 6);
     assert!(scene.marks[0].is_pen_up());
     let top = (DVec3::new(10.0, 10.0, 2.0) - scene.origin).as_vec3();
-    let radii: Vec<f32> = scene
-        .marks
-        .iter()
-        .map(|p| (p.position() - top).length())
-        .collect();
+    let zero = (DVec3::ZERO - scene.origin).as_vec3();
+    assert_eq!(scene.marks[13].position(), zero);
+    assert_eq!(scene.marks[14].kind(), Some(Kind::AxisX));
+    let ring = &scene.marks[..13];
+    let radii: Vec<f32> = ring.iter().map(|p| (p.position() - top).length()).collect();
     assert!(
         radii
             .iter()
             .all(|r| (r - radii[0]).abs() < 1e-4 && *r >= 0.499),
         "{radii:?}"
     );
-    assert!(
-        scene
-            .marks
-            .iter()
-            .all(|p| (p.position().z - top.z).abs() < 1e-4)
-    );
+    assert!(ring.iter().all(|p| (p.position().z - top.z).abs() < 1e-4));
     let kinds: Vec<Option<Kind>> = scene.points.iter().skip(1).map(PathPoint::kind).collect();
     assert_eq!(
         kinds,
