@@ -180,20 +180,25 @@ pub(crate) fn execute(
     source: Source,
     sink: &mut dyn Sink,
 ) -> Flow {
-    let zone = it.st.stroke_zone.filter(|_| it.st.stroke_check);
-    let Some(zone) = zone else {
+    let stroke = it.st.stroke_zone.filter(|_| it.st.stroke_check);
+    let travel = it.st.setup.machine.travel_mm.map(|[min, max]| StrokeZone {
+        min: DVec3::from_array(min),
+        max: DVec3::from_array(max),
+        inside_forbidden: false,
+    });
+    if stroke.is_none() && travel.is_none() {
         return execute_block(it, program, at, block, words, source, sink);
-    };
+    }
     let mut guard = StrokeGuard {
         inner: sink,
-        zone,
+        zones: [stroke, travel],
         from: it.st.position + tool_tip_shift(&it.st),
         gauge: tool_tip_shift(&it.st),
-        broken: false,
+        broken: [false; 2],
     };
     let flow = execute_block(it, program, at, block, words, source, &mut guard);
-    if guard.broken {
-        let what = if zone.inside_forbidden {
+    if guard.broken[0] {
+        let what = if stroke.is_some_and(|z| z.inside_forbidden) {
             "enters the G22 protected zone"
         } else {
             "leaves the G22 stroke limits"
@@ -206,18 +211,28 @@ pub(crate) fn execute(
             ),
         ));
     }
+    if guard.broken[1] {
+        it.st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-OVERTRAVEL",
+            "this move leaves the machine's travel (the setup's `travel_mm`); the machine stops with an overtravel alarm",
+        ));
+    }
     flow
 }
 
-/// Checks the moves of one block against the G22 stroke limit before passing them on.
+/// Checks the moves of one block against the G22 stroke limit and the machine's travel before
+/// passing them on.
 struct StrokeGuard<'s> {
     inner: &'s mut dyn Sink,
-    zone: StrokeZone,
+    /// The G22 zone and the machine's travel, where they apply.
+    zones: [Option<StrokeZone>; 2],
     /// The machine position (gauge line) before the next move.
     from: DVec3,
     /// The gauge line's offset from the tool tip.
     gauge: DVec3,
-    broken: bool,
+    /// Which of `zones` a move broke.
+    broken: [bool; 2],
 }
 
 impl Sink for StrokeGuard<'_> {
@@ -238,10 +253,18 @@ impl Sink for StrokeGuard<'_> {
             _ => Vec::new(),
         };
         for p in points {
-            self.broken |= self.zone.violated_by(self.from, p);
+            for (zone, broken) in self.zones.iter().zip(&mut self.broken) {
+                if let Some(zone) = zone {
+                    *broken |= zone.violated_by(self.from, p);
+                }
+            }
             self.from = p;
         }
         self.inner.emit(source, event);
+    }
+
+    fn origin(&mut self, at: DVec3) {
+        self.inner.origin(at);
     }
 }
 

@@ -63,6 +63,10 @@ pub struct Machine {
     pub acceleration_mm_per_s2: f64,
     /// Most blocks executed before a run is stopped as runaway.
     pub max_blocks: u64,
+    /// The machine's travel in machine coordinates, mm: the lowest and highest X, Y, Z the axes
+    /// reach (the gauge line, as the machine's own limits). A move past it is an overtravel
+    /// alarm (`E-OVERTRAVEL`), and the backplot draws the box. Unset: not checked.
+    pub travel_mm: Option<[[f64; 3]; 2]>,
     /// Most motion events (moves and arcs) a run may produce before it is stopped: a bound on
     /// the toolpath's memory (about 50 bytes a segment), so a runaway program cannot exhaust a
     /// browser tab.
@@ -136,6 +140,7 @@ impl Default for Machine {
             acceleration_mm_per_s2: 1000.0,
             max_blocks: 50_000_000,
             max_motions: 20_000_000,
+            travel_mm: None,
             arc_tolerance_mm: 0.01,
             calculator_input: None,
             reference_points: Vec::new(),
@@ -227,6 +232,19 @@ impl Setup {
             setup
                 .work_offsets
                 .insert(canonical, DVec3::from_array(v) * k);
+        }
+        if let Some(travel) = &mut setup.machine.travel_mm {
+            if travel.iter().flatten().any(|c| !c.is_finite()) {
+                return Err(SetupError::NotFinite("machine.travel_mm".into()));
+            }
+            for c in travel.iter_mut().flatten() {
+                *c *= k;
+            }
+            let [lo, hi] = *travel;
+            *travel = [
+                std::array::from_fn(|i| lo[i].min(hi[i])),
+                std::array::from_fn(|i| lo[i].max(hi[i])),
+            ];
         }
         for point in &mut setup.machine.reference_points {
             if point.iter().any(|c| !c.is_finite()) {

@@ -238,3 +238,35 @@ fn linuxcnc_p_gives_the_turns_of_an_arc_and_counts_stay_in_range() {
     let (_, diags) = run_text("G17 G2 X0 Y0 I1 P0 F100\n", Dialect::LinuxCnc);
     assert_eq!(codes(&diags), ["E-NUMBER-RANGE"]);
 }
+
+#[test]
+fn a_move_past_the_machine_travel_is_an_overtravel_alarm() {
+    let setup =
+        Setup::from_toml("[machine]\ntravel_mm = [[-500.0, -300.0, -400.0], [0.0, 0.0, 0.0]]\n")
+            .unwrap();
+    let (_, diags) = run_with(
+        "G0 X-100. Y-100.\nG1 Z-50. F100.\n",
+        Dialect::Fanuc,
+        setup.clone(),
+    );
+    assert!(diags.is_empty(), "{diags:?}");
+    let (rec, diags) = run_with(
+        "G0 X-100. Y-100.\nG1 X-600. F100.\n",
+        Dialect::Fanuc,
+        setup.clone(),
+    );
+    assert_eq!(codes(&diags), ["E-OVERTRAVEL"]);
+    // The move is still drawn where the program sends it.
+    assert!(
+        rec.events
+            .iter()
+            .any(|(_, e)| e.end_point().is_some_and(|p| p.x == -600.0))
+    );
+    // An arc that bulges past the travel is caught too.
+    let (_, diags) = run_with(
+        "G0 X-10. Y-100.\nG3 X-10. Y-60. R20. F100.\n",
+        Dialect::Fanuc,
+        setup,
+    );
+    assert_eq!(codes(&diags), ["E-OVERTRAVEL"]);
+}

@@ -68,6 +68,11 @@ impl Analysis {
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         let problems = locate(text, &program, &diags);
         let mut scene = scene_of(&toolpath, generation);
+        if let Some(travel) = setup.machine.travel_mm {
+            let mut marks = scene.marks.as_ref().clone();
+            marks.extend(box_marks(travel, scene.origin));
+            scene.marks = Arc::new(marks);
+        }
         scene.source = Some(Arc::new(SourceText::new(text)));
         scene.tool_radii = Arc::new(
             setup
@@ -187,6 +192,32 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         marks: Arc::new(marks),
         ..Scene::default()
     }
+}
+
+/// The twelve edges of the machine's travel box (machine coordinates, mm) relative to the
+/// scene's `origin`.
+pub fn box_marks([min, max]: [[f64; 3]; 2], origin: DVec3) -> Vec<PathPoint> {
+    let corner = |i: usize| {
+        let pick = |axis: usize| {
+            if i >> axis & 1 == 1 {
+                max[axis]
+            } else {
+                min[axis]
+            }
+        };
+        (DVec3::new(pick(0), pick(1), pick(2)) - origin).as_vec3()
+    };
+    let mut marks = Vec::with_capacity(24);
+    for a in 0..8usize {
+        for axis in 0..3 {
+            let b = a | 1 << axis;
+            if b != a {
+                marks.push(PathPoint::pen_up(corner(a)));
+                marks.push(PathPoint::new(corner(b), Kind::Boundary));
+            }
+        }
+    }
+    marks
 }
 
 /// An X/Y/Z axis cross at every program zero the moves were programmed from (G54…, with

@@ -428,3 +428,26 @@ fn scene_of_colours_drilling_plunges_and_retracts() {
         ]
     );
 }
+
+#[test]
+fn the_travel_box_has_twelve_edges_on_its_corners() {
+    let marks = swarf_ui::analysis::box_marks(
+        [[-500.0, -300.0, -400.0], [0.0, 0.0, 0.0]],
+        DVec3::new(-250.0, 0.0, 0.0),
+    );
+    assert_eq!(marks.len(), 24);
+    for pair in marks.chunks(2) {
+        assert!(pair[0].is_pen_up());
+        assert_eq!(pair[1].kind(), Some(Kind::Boundary));
+        let d = pair[1].position() - pair[0].position();
+        // Each edge runs along one axis, the whole length of the box on it.
+        let along: Vec<f32> = [d.x, d.y, d.z].into_iter().filter(|c| *c != 0.0).collect();
+        assert_eq!(along.len(), 1, "{d}");
+        assert!([500.0, 300.0, 400.0].contains(&along[0].abs()));
+    }
+    assert!(
+        marks
+            .iter()
+            .any(|p| p.position() == Vec3::new(-250.0, -300.0, -400.0))
+    );
+}
