@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# Throughput and peak memory of Swarf against the interpreters a user could pick instead, in one
+# run on one machine, on the corpus's large programs and a generated 1M-line surfacing program:
+#   Swarf   `swarf stats` (release: read, decode, parse, interpret, record the toolpath)
+#   rs274   LinuxCNC's reference interpreter (../shared/tools/rs274), canonical calls to /dev/null
+#   gcode-toolpath  npm, cncjs's interpreter (Node.js), moves counted
+#   pygcode PyPI, its Machine over every line (Python), moves counted
+# Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
+# TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's.
+#   scripts/bench-peers.sh            (RUNS=3, TIMEOUT=600; needs ../shared for the corpus files)
+# The peers are installed once under target/peers (npm and pip; nothing is committed).
+set -uo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+shared=${SWARF_SHARED:-$root/../shared}
+runs=${RUNS:-3}
+limit=${TIMEOUT:-600}
+target=${CARGO_TARGET_DIR:-$root/target}
+peers=$target/peers
+
+cargo build -q --release -p swarf-cli -p swarf-syntax --example surfacing || exit 2
+swarf=$target/release/swarf
+generated=$peers/surfacing-1M.nc
+mkdir -p "$peers"
+[[ -s "$generated" ]] || "$target/release/examples/surfacing" 1000000 > "$generated"
+if [[ ! -d "$peers/node/node_modules/gcode-toolpath" ]]; then
+  npm install --silent --no-audit --no-fund --prefix "$peers/node" gcode-toolpath@3.0.0 > /dev/null 2>&1 \
+    || echo "bench-peers: npm could not install gcode-toolpath; its column stays empty" >&2
+fi
+if [[ ! -d "$peers/py/pygcode" ]]; then
+  python3 -m pip install -q --target "$peers/py" pygcode==0.2.1 > /dev/null 2>&1 \
+    || echo "bench-peers: pip could not install pygcode; its column stays empty" >&2
+fi
+rs274=$(bash "$shared/tools/rs274/setup.sh" 2>/dev/null) || rs274=""
+tbl=$shared/tools/rs274/default.tbl
+
+programs=(
+  "$shared/corpus/programs/camotics/la_peinture.gc"
+  "$shared/corpus/programs/linuxcnc/stellabee1.ngc"
+  "$shared/corpus/programs/camotics/tiger.nc"
+  "$generated"
+)
+tmp=$(mktemp)
+trap 'rm -f "$tmp"' EXIT
+
+# "secs kb" for a command: best of $runs runs (one when a run is slower than 10 s), or
+# "timeout 0" when it does not finish within $limit seconds. A non-zero exit status still
+# counts (rs274 ends some programs with one); "fail 0" when nothing was measured.
+measure() {
+  local best="" kb=0 out n=0 rc
+  while ((n < runs)); do
+    n=$((n + 1))
+    : > "$tmp"
+    timeout "$limit" /usr/bin/time -o "$tmp" -f "%e %M" "$@" > /dev/null 2> /dev/null < /dev/null
+    rc=$?
+    if ((rc == 124)); then
+      echo "timeout 0"
+      return
+    fi
+    out=$(tail -1 "$tmp")
+    if [[ ! "$out" =~ ^[0-9.]+\ [0-9]+$ ]]; then
+      echo "fail 0"
+      return
+    fi
+    local t=${out% *} m=${out#* }
+    if [[ -z "$best" ]] || awk "BEGIN{exit !($t < $best)}"; then best=$t; fi
+    ((m > kb)) && kb=$m
+    awk "BEGIN{exit !($t > 10)}" && break
+  done
+  echo "$best $kb"
+}
+
+# One table cell: "1.23 s, 45 MB/s, 67 MB (12.3×)" against Swarf's time $2 for $3 bytes.
+cell() {
+  local t=$1 kb=$2 swarf_t=$3 bytes=$4
+  case $t in
+    timeout) echo "> ${limit} s" ;;
+    fail) echo "fails" ;;
+    "") echo "—" ;;
+    *) awk "BEGIN{printf \"%.2f s, %.1f MB/s, %d MB (%.0f×)\", $t, $bytes/1e6/$t, $kb/1024, $t/$swarf_t}" ;;
+  esac
+}
+
+echo "| program | size | lines | Swarf | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
+echo "|---|---|---|---|---|---|---|"
+for prog in "${programs[@]}"; do
+  [[ -f "$prog" ]] || continue
+  bytes=$(stat -c %s "$prog")
+  lines=$(wc -l < "$prog")
+  read -r st sk < <(measure "$swarf" stats "$prog" --dialect linuxcnc)
+  r=("" 0) g=("" 0) p=("" 0)
+  if [[ -n "$rs274" ]]; then
+    read -r -a r < <(cd "$(dirname "$prog")" && measure "$rs274" -t "$tbl" -g "$(basename "$prog")")
+  fi
+  if [[ -d "$peers/node/node_modules/gcode-toolpath" ]]; then
+    read -r -a g < <(NODE_PATH=$peers/node/node_modules measure node "$root/scripts/peers/gcode_toolpath.js" "$prog")
+  fi
+  if [[ -d "$peers/py/pygcode" ]]; then
+    read -r -a p < <(PYTHONPATH=$peers/py measure python3 "$root/scripts/peers/pygcode_run.py" "$prog")
+  fi
+  swarf_cell=$(awk "BEGIN{printf \"%.3f s, %.0f MB/s, %d MB\", $st, $bytes/1e6/$st, $sk/1024}")
+  printf "| %s | %.1f MB | %d | %s | %s | %s | %s |\n" "$(basename "$prog")" \
+    "$(awk "BEGIN{print $bytes/1e6}")" "$lines" "$swarf_cell" \
+    "$(cell "${r[0]}" "${r[1]}" "$st" "$bytes")" "$(cell "${g[0]}" "${g[1]}" "$st" "$bytes")" \
+    "$(cell "${p[0]}" "${p[1]}" "$st" "$bytes")"
+done
