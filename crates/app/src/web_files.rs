@@ -13,6 +13,8 @@ use crate::files::Recovery;
 
 /// localStorage key of the unsaved program.
 const RECOVERY_KEY: &str = "swarf.recovery";
+/// Element id of the hidden file input.
+const PICKER_ID: &str = "swarf-file-picker";
 /// Seconds an edit waits before it is written to localStorage.
 const AUTOSAVE_DELAY: f64 = 1.0;
 
@@ -186,6 +188,16 @@ impl Host {
             });
         });
         input.set_onchange(Some(on_change.unchecked_ref()));
+        // Attached (hidden) while it is in use: some browsers open no picker for a detached
+        // input. The next Open replaces it.
+        if let Some(previous) = doc.get_element_by_id(PICKER_ID) {
+            previous.remove();
+        }
+        input.set_id(PICKER_ID);
+        let _ = input.set_attribute("style", "display: none");
+        if let Some(body) = doc.body() {
+            let _ = body.append_child(&input);
+        }
         input.click();
     }
 
