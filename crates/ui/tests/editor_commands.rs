@@ -287,3 +287,18 @@ fn clicking_a_completion_inserts_it_and_leaving_the_editor_closes_the_list() {
     );
     assert_eq!(harness.state().text(), "M03 G4");
 }
+
+#[test]
+fn quitting_with_unsaved_changes_asks_first() {
+    let mut harness = harness("G0 X1\n");
+    harness.state_mut().request_quit();
+    harness.run();
+    assert_eq!(harness.state_mut().take_requests(), [HostRequest::Quit]);
+    harness.state_mut().set_text("G0 X2\n");
+    harness.state_mut().request_quit();
+    harness.run();
+    assert!(harness.state_mut().take_requests().is_empty());
+    harness.get_by_label("Discard changes").click();
+    harness.run();
+    assert_eq!(harness.state_mut().take_requests(), [HostRequest::Quit]);
+}
