@@ -235,9 +235,13 @@ impl CodeEditor {
     ) -> EditorOutput {
         let font = egui::TextStyle::Monospace.resolve(ui.style());
         let mut output = EditorOutput::default();
-        if self.popup.is_some() && self.has_focus(ui.ctx()) {
+        let focused = self.has_focus(ui.ctx());
+        if self.popup.is_some() && focused {
             self.popup_keys(ui.ctx(), text, &mut output);
         }
+        // Ctrl+Space asks for the list where the cursor is.
+        let ask =
+            focused && ui.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::Space));
         if let Some(range) = self.jump.take() {
             if let Some(mut state) = egui::TextEdit::load_state(ui.ctx(), self.id) {
                 state.cursor.set_char_range(Some(CCursorRange::two(
@@ -264,7 +268,13 @@ impl CodeEditor {
                         .id(self.id)
                         .font(font.clone())
                         .code_editor()
-                        .lock_focus(true)
+                        // Tab indents; Escape closes the completion list rather than leaving.
+                        .event_filter(egui::EventFilter {
+                            tab: true,
+                            horizontal_arrows: true,
+                            vertical_arrows: true,
+                            escape: self.popup.is_some(),
+                        })
                         .desired_width(f32::INFINITY)
                         .desired_rows(40)
                         .layouter(&mut layouter)
@@ -285,7 +295,9 @@ impl CodeEditor {
                     let cursor_byte = edit
                         .cursor_range
                         .map(|r| commands::byte_of_char(text, r.primary.index.0));
-                    if output.changed {
+                    if ask && !output.changed {
+                        self.popup = cursor_byte.and_then(|b| popup_at(text, b, dialect));
+                    } else if output.changed {
                         output.ends_line = cursor_byte
                             .and_then(|b| text.get(..b))
                             .is_some_and(|t| t.ends_with('\n'));

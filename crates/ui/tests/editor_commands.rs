@@ -302,3 +302,20 @@ fn quitting_with_unsaved_changes_asks_first() {
     harness.run();
     assert_eq!(harness.state_mut().take_requests(), [HostRequest::Quit]);
 }
+
+#[test]
+fn ctrl_space_asks_for_the_list_after_escape_closed_it() {
+    let mut harness = harness("");
+    let editor = harness.get_by_role(Role::MultilineTextInput);
+    editor.focus();
+    editor.type_text("M");
+    harness.run();
+    harness.get_by_label_contains("M03  ");
+    harness.key_press(Key::Escape);
+    harness.run();
+    assert!(harness.query_by_label_contains("M03  ").is_none());
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::Space);
+    harness.run();
+    harness.get_by_label_contains("M03  ");
+    assert_eq!(harness.state().text(), "M");
+}
