@@ -165,6 +165,9 @@ struct Popup {
     selected: usize,
 }
 
+/// Most find matches marked in the text at once.
+pub const HIGHLIGHTS_SHOWN: usize = 5000;
+
 /// Most completions listed at once.
 const COMPLETIONS_SHOWN: usize = 12;
 
@@ -178,6 +181,8 @@ pub struct CodeEditor {
     popup_rect: Option<egui::Rect>,
     /// The list's top-left corner: under the caret.
     popup_pos: Pos2,
+    /// Character ranges marked in the text (the find bar's matches).
+    highlights: Vec<std::ops::Range<usize>>,
 }
 
 impl Default for CodeEditor {
@@ -195,12 +200,20 @@ impl CodeEditor {
             popup: None,
             popup_rect: None,
             popup_pos: Pos2::ZERO,
+            highlights: Vec::new(),
         }
     }
 
     /// Selects the character range on the next frame and scrolls to it.
     pub fn jump_to(&mut self, chars: std::ops::Range<usize>) {
         self.jump = Some(chars);
+    }
+
+    /// Marks these character ranges in the text (at most [`HIGHLIGHTS_SHOWN`] are drawn).
+    pub fn set_highlights(&mut self, ranges: &[std::ops::Range<usize>]) {
+        if self.highlights != ranges {
+            self.highlights = ranges.iter().take(HIGHLIGHTS_SHOWN).cloned().collect();
+        }
     }
 
     /// The text edit's widget id (for focus checks).
@@ -314,6 +327,7 @@ impl CodeEditor {
                         }
                     }
                     paint_squiggles(ui, &edit.galley, edit.galley_pos, problems);
+                    paint_highlights(ui, &edit.galley, edit.galley_pos, &self.highlights);
                     // Hover help: the diagnostics there and what the code under the pointer is.
                     if let Some(pos) = response.hover_pos() {
                         let at = edit.galley.cursor_from_pos(pos - edit.galley_pos);
@@ -524,6 +538,30 @@ fn gutter(ui: &mut Ui, lines: usize, problems: &[Problem], font: &FontId) {
         let line = row.max(0.0) as u32 + 1;
         if let Some(tip) = gutter_tooltip(problems, line) {
             response.on_hover_text_at_pointer(tip);
+        }
+    }
+}
+
+/// A translucent box over each highlighted range (one per row it spans).
+fn paint_highlights(
+    ui: &Ui,
+    galley: &Arc<Galley>,
+    origin: Pos2,
+    ranges: &[std::ops::Range<usize>],
+) {
+    let fill = Color32::from_rgba_unmultiplied(255, 210, 80, 70);
+    let clip = ui.clip_rect();
+    for r in ranges {
+        let start = galley.pos_from_cursor(CCursor::new(r.start));
+        let end = galley.pos_from_cursor(CCursor::new(r.end));
+        if (end.top() - start.top()).abs() < 1.0 {
+            let rect = egui::Rect::from_min_max(
+                origin + start.left_top().to_vec2(),
+                origin + end.right_bottom().to_vec2(),
+            );
+            if rect.intersects(clip) {
+                ui.painter().rect_filled(rect, 2.0, fill);
+            }
         }
     }
 }
