@@ -935,6 +935,7 @@ impl Workbench {
         let mut previous = false;
         let mut replace = false;
         let mut replace_all = false;
+        let mut close = false;
         ui.horizontal(|ui| {
             let label = ui.label("Find");
             let field = ui.add(
@@ -953,6 +954,9 @@ impl Workbench {
             if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
                 next = true;
                 field.request_focus();
+            }
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
+                close = true;
             }
             ui.checkbox(&mut self.find.options.regex, "Regex");
             ui.checkbox(&mut self.find.options.match_case, "Match case");
@@ -979,9 +983,7 @@ impl Workbench {
                 }
                 None => {}
             }
-            if ui.button("×").on_hover_text("Close").clicked() {
-                self.find.open = false;
-            }
+            close |= ui.button("×").on_hover_text("Close").clicked();
         });
         if self.find.replace {
             ui.horizontal(|ui| {
@@ -991,6 +993,11 @@ impl Workbench {
                 replace = ui.button("Replace").clicked();
                 replace_all = ui.button("Replace all").clicked();
             });
+        }
+        if close {
+            // Back to the program, the selection kept.
+            self.find.open = false;
+            self.select_chars(self.selection.clone());
         }
         if next {
             self.find_next();

@@ -68,6 +68,11 @@ fn an_invalid_pattern_is_reported_not_applied() {
     harness.get_by_label("invalid pattern");
     harness.state_mut().replace_all();
     assert_eq!(harness.state().text(), "G01 X1\n");
+    // Escape closes the bar and gives the program the keyboard back.
+    harness.key_press(Key::Escape);
+    harness.run();
+    assert!(harness.query_by_label("invalid pattern").is_none());
+    assert!(harness.get_by_role(Role::MultilineTextInput).is_focused());
 }
 
 #[test]
