@@ -124,9 +124,7 @@ impl Host {
         self.ctx = Some(ctx.clone());
         for request in wb.take_requests() {
             match request {
-                HostRequest::Open | HostRequest::OpenRecent(_) => {
-                    self.pick(Purpose::Program, ".nc,.ngc,.tap,.gcode,.cnc,.txt,.ptp,.mpf")
-                }
+                HostRequest::Open | HostRequest::OpenRecent(_) => self.pick_program(),
                 HostRequest::ImportSetup => self.pick(Purpose::Setup, ".toml"),
                 HostRequest::Save | HostRequest::SaveAs => {
                     let name = wb.document().name.clone();
@@ -150,6 +148,13 @@ impl Host {
                 HostRequest::Quit => {}
             }
         }
+    }
+
+    /// Opens the browser's file picker for a program; the chosen file arrives through
+    /// [`Host::poll`]. Browsers show it only shortly after a user's action (transient
+    /// activation), so the page also calls this straight from the Ctrl+O key event.
+    pub fn pick_program(&self) {
+        self.pick(Purpose::Program, ".nc,.ngc,.tap,.gcode,.cnc,.txt,.ptp,.mpf");
     }
 
     /// Opens the browser's file picker; the chosen file arrives through [`Host::poll`].
