@@ -256,13 +256,14 @@ impl CodeEditor {
         let ask =
             focused && ui.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::Space));
         if let Some(range) = self.jump.take() {
-            if let Some(mut state) = egui::TextEdit::load_state(ui.ctx(), self.id) {
-                state.cursor.set_char_range(Some(CCursorRange::two(
-                    CCursor::new(range.start),
-                    CCursor::new(range.end),
-                )));
-                state.store(ui.ctx(), self.id);
-            }
+            // Before the first frame there is no state yet: make one, so a program opened at
+            // start-up shows its first line rather than the text edit's default (the end).
+            let mut state = egui::TextEdit::load_state(ui.ctx(), self.id).unwrap_or_default();
+            state.cursor.set_char_range(Some(CCursorRange::two(
+                CCursor::new(range.start),
+                CCursor::new(range.end),
+            )));
+            state.store(ui.ctx(), self.id);
             ui.ctx().memory_mut(|m| m.request_focus(self.id));
         }
         egui::ScrollArea::both()

@@ -324,3 +324,15 @@ fn ctrl_space_asks_for_the_list_after_escape_closed_it() {
     harness.get_by_label_contains("M03  ");
     assert_eq!(harness.state().text(), "M");
 }
+
+#[test]
+fn a_program_opened_before_the_first_frame_starts_at_its_first_line() {
+    let mut wb = Workbench::default();
+    wb.open_document("a.nc", "G90\nG0 X1\nM30\n", swarf_syntax::Encoding::Utf8);
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.run();
+    assert_eq!(harness.state().cursor_line(), Some(1));
+    assert_eq!(harness.state().selection(), 0..0);
+}
