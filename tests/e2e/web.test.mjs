@@ -10,6 +10,7 @@
 
 import { after, before, test } from "node:test";
 import assert from "node:assert/strict";
+import { readFile } from "node:fs/promises";
 
 import { BrowserSession, TEST_TIMEOUT_MS, checkPrerequisites, isError } from "./harness.mjs";
 
@@ -140,6 +141,63 @@ test("open, select and selection", { timeout: TEST_TIMEOUT_MS }, async () => {
     }
   });
   assert.ok(refused, "select(0) should throw a RangeError");
+});
+
+test("a file dropped on the page opens, in its encoding", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  // "(銑) G0 X7." in GB18030: the page decodes it as the desktop does.
+  const bytes = [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x37, 0x2e, 0x0a];
+  await page.evaluate((data) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([new Uint8Array(data)], "dropped.nc"));
+    const canvas = document.getElementById("swarf-canvas");
+    for (const type of ["dragenter", "dragover", "drop"]) {
+      canvas.dispatchEvent(
+        new DragEvent(type, { dataTransfer: transfer, bubbles: true, cancelable: true }),
+      );
+    }
+  }, bytes);
+  await session.eventually(
+    () => window.swarf.getText(),
+    null,
+    (text) => text === "(銑) G0 X7.\n",
+    "getText() should become the dropped file's text",
+  );
+  await session.eventually(
+    () => document.title,
+    null,
+    (title) => typeof title === "string" && title.startsWith("dropped.nc"),
+    "the page title should name the dropped file",
+  );
+});
+
+test("Ctrl+S downloads the program in its encoding, Ctrl+O opens a picked file", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+  assert.equal(await page.evaluate(() => window.swarf.getText()), "(銑) G0 X7.\n", "after the drop test");
+
+  // Listening from the start: the browser's file chooser is intercepted only once a listener is.
+  const chooserOpened = page.waitForEvent("filechooser", { timeout: 60_000 });
+  // Keyboard shortcuts reach the app once the editor has the focus.
+  await page.mouse.click(200, 300);
+  const downloading = page.waitForEvent("download", { timeout: 30_000 });
+  await page.keyboard.press("Control+S");
+  const download = await downloading;
+  assert.equal(download.suggestedFilename(), "dropped.nc");
+  const saved = await readFile(await download.path());
+  assert.deepEqual([...saved], [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x37, 0x2e, 0x0a]);
+
+  await page.mouse.click(200, 300);
+  await page.keyboard.press("Control+O");
+  const chooser = await chooserOpened;
+  const picked = "G90 G21\nG00 X0 Y0 Z5.\nG01 X12. F100\nM30\n";
+  await chooser.setFiles({ name: "picked.nc", mimeType: "text/plain", buffer: Buffer.from(picked) });
+  await session.eventually(
+    () => window.swarf.getText(),
+    null,
+    (text) => text === picked,
+    "getText() should become the picked file's text",
+  );
 });
 
 test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS }, async () => {

@@ -146,7 +146,14 @@ impl Host {
                     None => return false,
                 }
             }
-            HostRequest::OpenRecent(name) => self.open_path(wb, Path::new(&name)),
+            HostRequest::OpenRecent(name) => {
+                if !Path::new(&name).exists() {
+                    // Gone since: say so and forget it.
+                    self.recent.retain(|r| *r != name);
+                    wb.set_recent(self.recent.clone());
+                }
+                self.open_path(wb, Path::new(&name));
+            }
             HostRequest::Save => match wb.document().path.clone() {
                 Some(path) => return self.save_to(wb, Path::new(&path)),
                 None => return self.save_as(wb),
@@ -303,9 +310,13 @@ fn file_name(path: &Path) -> String {
 }
 
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
-/// crash or a full disk never leaves a half-written program in place of the old one.
+/// crash or a full disk never leaves a half-written program in place of the old one. A file
+/// that exists keeps its permissions, and a symbolic link keeps pointing at the file written.
 pub fn atomic_write(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     use std::io::Write as _;
+    let resolved = std::fs::canonicalize(path).ok();
+    let path = resolved.as_deref().unwrap_or(path);
+    let permissions = std::fs::metadata(path).ok().map(|m| m.permissions());
     let dir = path
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
@@ -322,6 +333,9 @@ pub fn atomic_write(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         f.write_all(bytes)?;
         f.sync_all()?;
         drop(f);
+        if let Some(p) = permissions {
+            std::fs::set_permissions(&tmp, p)?;
+        }
         std::fs::rename(&tmp, path)
     })();
     if result.is_err() {

@@ -73,10 +73,18 @@ mod native {
                 let mut app = SwarfApp::new(cc);
                 if let Some(path) = file {
                     // A program the last run left unsaved is kept aside, not replaced.
-                    if app.workbench.is_dirty() {
-                        app.host.set_recovery_aside();
-                    }
+                    let aside = if app.workbench.is_dirty() {
+                        app.host.set_recovery_aside()
+                    } else {
+                        None
+                    };
                     app.host.open_path(&mut app.workbench, &path);
+                    if let Some(aside) = aside {
+                        app.workbench.set_message(format!(
+                            "Unsaved changes of the last run are kept in {}",
+                            aside.display()
+                        ));
+                    }
                 }
                 if let Some(out) = screenshot {
                     install_screenshot(&mut app, out, ok_in_app);

@@ -33,7 +33,42 @@ pub async fn start(canvas_id: String) -> Result<SwarfApi, JsValue> {
             Box::new(|cc| Ok(Box::new(SwarfApp::new(cc)))),
         )
         .await?;
+    install_open_shortcut(&runner)?;
     Ok(SwarfApi { runner })
+}
+
+/// Ctrl+O (Cmd+O) opens the file picker inside the key event itself: browsers show a picker
+/// only during the user's action, and the app's frame that would otherwise handle the key may
+/// come too late on a busy machine. With unsaved changes the key goes on to the app, which asks
+/// first.
+fn install_open_shortcut(runner: &eframe::WebRunner) -> Result<(), JsValue> {
+    let window = web_sys::window().ok_or_else(|| JsValue::from_str("no window"))?;
+    let runner = runner.clone();
+    let on_key =
+        Closure::<dyn FnMut(web_sys::KeyboardEvent)>::new(move |event: web_sys::KeyboardEvent| {
+            let shortcut = (event.ctrl_key() || event.meta_key())
+                && !event.shift_key()
+                && !event.alt_key()
+                && event.key().eq_ignore_ascii_case("o");
+            if !shortcut {
+                return;
+            }
+            if let Some(app) = runner.app_mut::<SwarfApp>()
+                && !app.workbench.is_dirty()
+            {
+                event.prevent_default();
+                event.stop_immediate_propagation();
+                app.host.pick_program();
+            }
+        });
+    window.add_event_listener_with_callback_and_bool(
+        "keydown",
+        on_key.as_ref().unchecked_ref(),
+        true,
+    )?;
+    // The listener lives as long as the page.
+    on_key.forget();
+    Ok(())
 }
 
 fn to_js(value: &Value) -> Result<JsValue, JsValue> {

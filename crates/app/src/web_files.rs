@@ -13,6 +13,8 @@ use crate::files::Recovery;
 
 /// localStorage key of the unsaved program.
 const RECOVERY_KEY: &str = "swarf.recovery";
+/// Element id of the hidden file input.
+const PICKER_ID: &str = "swarf-file-picker";
 /// Seconds an edit waits before it is written to localStorage.
 const AUTOSAVE_DELAY: f64 = 1.0;
 
@@ -122,9 +124,7 @@ impl Host {
         self.ctx = Some(ctx.clone());
         for request in wb.take_requests() {
             match request {
-                HostRequest::Open | HostRequest::OpenRecent(_) => {
-                    self.pick(Purpose::Program, ".nc,.ngc,.tap,.gcode,.cnc,.txt,.ptp,.mpf")
-                }
+                HostRequest::Open | HostRequest::OpenRecent(_) => self.pick_program(),
                 HostRequest::ImportSetup => self.pick(Purpose::Setup, ".toml"),
                 HostRequest::Save | HostRequest::SaveAs => {
                     let name = wb.document().name.clone();
@@ -148,6 +148,13 @@ impl Host {
                 HostRequest::Quit => {}
             }
         }
+    }
+
+    /// Opens the browser's file picker for a program; the chosen file arrives through
+    /// [`Host::poll`]. Browsers show it only shortly after a user's action (transient
+    /// activation), so the page also calls this straight from the Ctrl+O key event.
+    pub fn pick_program(&self) {
+        self.pick(Purpose::Program, ".nc,.ngc,.tap,.gcode,.cnc,.txt,.ptp,.mpf");
     }
 
     /// Opens the browser's file picker; the chosen file arrives through [`Host::poll`].
@@ -186,6 +193,16 @@ impl Host {
             });
         });
         input.set_onchange(Some(on_change.unchecked_ref()));
+        // Attached (hidden) while it is in use: some browsers open no picker for a detached
+        // input. The next Open replaces it.
+        if let Some(previous) = doc.get_element_by_id(PICKER_ID) {
+            previous.remove();
+        }
+        input.set_id(PICKER_ID);
+        let _ = input.set_attribute("style", "display: none");
+        if let Some(body) = doc.body() {
+            let _ = body.append_child(&input);
+        }
         input.click();
     }
 

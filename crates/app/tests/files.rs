@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 use std::path::PathBuf;
 
+use egui_kittest::kittest::Queryable as _;
 use swarf_app::desktop::{Host, atomic_write};
 use swarf_app::files;
 use swarf_syntax::{Dialect, Encoding};
@@ -62,6 +63,57 @@ fn atomic_write_replaces_the_file_and_fails_cleanly() {
     assert_eq!(std::fs::read(&path).unwrap(), b"G0 X2\n");
     assert!(atomic_write(&dir.join("missing").join("b.nc"), b"x").is_err());
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+}
+
+#[cfg(unix)]
+#[test]
+fn atomic_write_keeps_permissions_and_symbolic_links() {
+    use std::os::unix::fs::PermissionsExt as _;
+    let dir = scratch("links");
+    let real = dir.join("real.nc");
+    std::fs::write(&real, "G0 X1\n").unwrap();
+    std::fs::set_permissions(&real, std::fs::Permissions::from_mode(0o640)).unwrap();
+    let link = dir.join("link.nc");
+    std::os::unix::fs::symlink(&real, &link).unwrap();
+    atomic_write(&link, b"G0 X2\n").unwrap();
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(std::fs::read(&real).unwrap(), b"G0 X2\n");
+    let mode = std::fs::metadata(&real).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode, 0o640);
+}
+
+#[test]
+fn a_recent_file_that_is_gone_is_reported_and_forgotten() {
+    let dir = scratch("gone");
+    let path = dir.join("gone.nc");
+    std::fs::write(&path, "G0 X1\n").unwrap();
+    let mut host = Host::with_recovery_file(dir.join("recovery.nc"));
+    let mut wb = Workbench::default();
+    host.open_path(&mut wb, &path);
+    std::fs::remove_file(&path).unwrap();
+    wb.open_document("other.nc", "G0 X5\n", Encoding::Utf8);
+    wb.set_recent(host.recent.clone());
+    // The File menu's entry asks the host to open it.
+    let ctx = egui::Context::default();
+    let mut harness = egui_kittest::Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.run();
+    harness.get_by_label("File").click();
+    harness.run();
+    harness.get_by_label("Open recent").click();
+    harness.run();
+    harness.get_by_label(&path.display().to_string()).click();
+    harness.run();
+    let mut wb = harness.into_state();
+    host.handle(&mut wb, &ctx);
+    assert!(host.recent.is_empty(), "{:?}", host.recent);
+    assert_eq!(wb.text(), "G0 X5\n");
 }
 
 #[test]

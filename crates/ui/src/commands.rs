@@ -116,6 +116,27 @@ pub fn byte_of_char(text: &str, chars: usize) -> usize {
         .map_or(text.len(), |(b, _)| b)
 }
 
+/// Converts sorted, non-overlapping byte ranges into character ranges in one pass over `text`.
+pub fn char_ranges(text: &str, bytes: &[Range<usize>]) -> Vec<Range<usize>> {
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut chars = 0;
+    let mut at = 0;
+    let advance = |to: usize, at: &mut usize, chars: &mut usize| {
+        let to = to.min(text.len());
+        if to > *at {
+            *chars += text.get(*at..to).map_or(0, |t| t.chars().count());
+            *at = to;
+        }
+        *chars
+    };
+    for r in bytes {
+        let start = advance(r.start, &mut at, &mut chars);
+        let end = advance(r.end, &mut at, &mut chars);
+        out.push(start..end);
+    }
+    out
+}
+
 /// Converts a byte offset into a character index of `text` (clamped to its end).
 pub fn char_of_byte(text: &str, byte: usize) -> usize {
     let mut byte = byte.min(text.len());

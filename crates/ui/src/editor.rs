@@ -165,6 +165,9 @@ struct Popup {
     selected: usize,
 }
 
+/// Most find matches marked in the text at once.
+pub const HIGHLIGHTS_SHOWN: usize = 5000;
+
 /// Most completions listed at once.
 const COMPLETIONS_SHOWN: usize = 12;
 
@@ -178,6 +181,8 @@ pub struct CodeEditor {
     popup_rect: Option<egui::Rect>,
     /// The list's top-left corner: under the caret.
     popup_pos: Pos2,
+    /// Character ranges marked in the text (the find bar's matches).
+    highlights: Vec<std::ops::Range<usize>>,
 }
 
 impl Default for CodeEditor {
@@ -195,12 +200,20 @@ impl CodeEditor {
             popup: None,
             popup_rect: None,
             popup_pos: Pos2::ZERO,
+            highlights: Vec::new(),
         }
     }
 
     /// Selects the character range on the next frame and scrolls to it.
     pub fn jump_to(&mut self, chars: std::ops::Range<usize>) {
         self.jump = Some(chars);
+    }
+
+    /// Marks these character ranges in the text (at most [`HIGHLIGHTS_SHOWN`] are drawn).
+    pub fn set_highlights(&mut self, ranges: &[std::ops::Range<usize>]) {
+        if self.highlights != ranges {
+            self.highlights = ranges.iter().take(HIGHLIGHTS_SHOWN).cloned().collect();
+        }
     }
 
     /// The text edit's widget id (for focus checks).
@@ -235,17 +248,22 @@ impl CodeEditor {
     ) -> EditorOutput {
         let font = egui::TextStyle::Monospace.resolve(ui.style());
         let mut output = EditorOutput::default();
-        if self.popup.is_some() && self.has_focus(ui.ctx()) {
+        let focused = self.has_focus(ui.ctx());
+        if self.popup.is_some() && focused {
             self.popup_keys(ui.ctx(), text, &mut output);
         }
+        // Ctrl+Space asks for the list where the cursor is.
+        let ask =
+            focused && ui.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::Space));
         if let Some(range) = self.jump.take() {
-            if let Some(mut state) = egui::TextEdit::load_state(ui.ctx(), self.id) {
-                state.cursor.set_char_range(Some(CCursorRange::two(
-                    CCursor::new(range.start),
-                    CCursor::new(range.end),
-                )));
-                state.store(ui.ctx(), self.id);
-            }
+            // Before the first frame there is no state yet: make one, so a program opened at
+            // start-up shows its first line rather than the text edit's default (the end).
+            let mut state = egui::TextEdit::load_state(ui.ctx(), self.id).unwrap_or_default();
+            state.cursor.set_char_range(Some(CCursorRange::two(
+                CCursor::new(range.start),
+                CCursor::new(range.end),
+            )));
+            state.store(ui.ctx(), self.id);
             ui.ctx().memory_mut(|m| m.request_focus(self.id));
         }
         egui::ScrollArea::both()
@@ -264,7 +282,13 @@ impl CodeEditor {
                         .id(self.id)
                         .font(font.clone())
                         .code_editor()
-                        .lock_focus(true)
+                        // Tab indents; Escape closes the completion list rather than leaving.
+                        .event_filter(egui::EventFilter {
+                            tab: true,
+                            horizontal_arrows: true,
+                            vertical_arrows: true,
+                            escape: self.popup.is_some(),
+                        })
                         .desired_width(f32::INFINITY)
                         .desired_rows(40)
                         .layouter(&mut layouter)
@@ -285,7 +309,9 @@ impl CodeEditor {
                     let cursor_byte = edit
                         .cursor_range
                         .map(|r| commands::byte_of_char(text, r.primary.index.0));
-                    if output.changed {
+                    if ask && !output.changed {
+                        self.popup = cursor_byte.and_then(|b| popup_at(text, b, dialect));
+                    } else if output.changed {
                         output.ends_line = cursor_byte
                             .and_then(|b| text.get(..b))
                             .is_some_and(|t| t.ends_with('\n'));
@@ -302,6 +328,7 @@ impl CodeEditor {
                         }
                     }
                     paint_squiggles(ui, &edit.galley, edit.galley_pos, problems);
+                    paint_highlights(ui, &edit.galley, edit.galley_pos, &self.highlights);
                     // Hover help: the diagnostics there and what the code under the pointer is.
                     if let Some(pos) = response.hover_pos() {
                         let at = edit.galley.cursor_from_pos(pos - edit.galley_pos);
@@ -512,6 +539,30 @@ fn gutter(ui: &mut Ui, lines: usize, problems: &[Problem], font: &FontId) {
         let line = row.max(0.0) as u32 + 1;
         if let Some(tip) = gutter_tooltip(problems, line) {
             response.on_hover_text_at_pointer(tip);
+        }
+    }
+}
+
+/// A translucent box over each highlighted range (one per row it spans).
+fn paint_highlights(
+    ui: &Ui,
+    galley: &Arc<Galley>,
+    origin: Pos2,
+    ranges: &[std::ops::Range<usize>],
+) {
+    let fill = Color32::from_rgba_unmultiplied(255, 210, 80, 70);
+    let clip = ui.clip_rect();
+    for r in ranges {
+        let start = galley.pos_from_cursor(CCursor::new(r.start));
+        let end = galley.pos_from_cursor(CCursor::new(r.end));
+        if (end.top() - start.top()).abs() < 1.0 {
+            let rect = egui::Rect::from_min_max(
+                origin + start.left_top().to_vec2(),
+                origin + end.right_bottom().to_vec2(),
+            );
+            if rect.intersects(clip) {
+                ui.painter().rect_filled(rect, 2.0, fill);
+            }
         }
     }
 }

@@ -115,6 +115,9 @@ enum Action {
 /// What a match count was computed for: (text generation, pattern, options).
 type MatchKey = (u64, String, FindOptions);
 
+/// Matches in characters, or why the pattern is invalid.
+type Matches = Result<Vec<Range<usize>>, String>;
+
 /// The find/replace bar's state.
 #[derive(Debug, Clone, Default)]
 struct FindBar {
@@ -125,8 +128,8 @@ struct FindBar {
     options: FindOptions,
     /// Ask for focus on the find field next frame.
     focus: bool,
-    /// Match count (or the pattern's error) for (generation, query, options).
-    count: Option<(MatchKey, Result<usize, String>)>,
+    /// The matches in characters (or the pattern's error) for (generation, query, options).
+    count: Option<(MatchKey, Matches)>,
 }
 
 impl Default for Workbench {
@@ -445,6 +448,11 @@ impl Workbench {
                 if self.find.open {
                     self.find_bar(ui);
                 }
+                let matches = match &self.find.count {
+                    Some((_, Ok(m))) if self.find.open => m.as_slice(),
+                    _ => &[],
+                };
+                self.editor.set_highlights(matches);
                 let out = self.editor.show(
                     ui,
                     title.inner.id,
@@ -927,6 +935,7 @@ impl Workbench {
         let mut previous = false;
         let mut replace = false;
         let mut replace_all = false;
+        let mut close = false;
         ui.horizontal(|ui| {
             let label = ui.label("Find");
             let field = ui.add(
@@ -946,6 +955,9 @@ impl Workbench {
                 next = true;
                 field.request_focus();
             }
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
+                close = true;
+            }
             ui.checkbox(&mut self.find.options.regex, "Regex");
             ui.checkbox(&mut self.find.options.match_case, "Match case");
             previous = ui.button("Previous").clicked();
@@ -953,16 +965,16 @@ impl Workbench {
             let key = (self.generation, self.find.query.clone(), self.find.options);
             if self.find.count.as_ref().map(|(k, _)| k) != Some(&key) {
                 let count = if self.find.query.is_empty() {
-                    Ok(0)
+                    Ok(Vec::new())
                 } else {
                     Finder::new(&self.find.query, self.find.options)
-                        .map(|f| f.find_all(&self.text).len())
+                        .map(|f| commands::char_ranges(&self.text, &f.find_all(&self.text)))
                 };
                 self.find.count = Some((key, count));
             }
             match self.find.count.as_ref().map(|(_, c)| c) {
-                Some(Ok(n)) => {
-                    ui.label(format!("{n} matches"));
+                Some(Ok(matches)) => {
+                    ui.label(format!("{} matches", matches.len()));
                 }
                 Some(Err(e)) => {
                     let first = e.lines().last().unwrap_or_default().to_string();
@@ -971,9 +983,7 @@ impl Workbench {
                 }
                 None => {}
             }
-            if ui.button("×").on_hover_text("Close").clicked() {
-                self.find.open = false;
-            }
+            close |= ui.button("×").on_hover_text("Close").clicked();
         });
         if self.find.replace {
             ui.horizontal(|ui| {
@@ -983,6 +993,11 @@ impl Workbench {
                 replace = ui.button("Replace").clicked();
                 replace_all = ui.button("Replace all").clicked();
             });
+        }
+        if close {
+            // Back to the program, the selection kept.
+            self.find.open = false;
+            self.select_chars(self.selection.clone());
         }
         if next {
             self.find_next();

@@ -132,6 +132,7 @@ fn lines_and_alarms() {
     assert_eq!(parse_line_number("0", text), None);
     assert_eq!(parse_line_number("x", text), None);
     assert_eq!(char_of_byte("銑a", 3), 1);
+    assert_eq!(char_ranges("銑G1 銑G1", &[3..5, 9..11]), [1..3, 5..7]);
     assert_eq!(byte_of_char("銑a", 1), 3);
     assert_eq!(
         alarm_in("arc end point is off the circle (alarm COR-006)"),

@@ -68,6 +68,11 @@ fn an_invalid_pattern_is_reported_not_applied() {
     harness.get_by_label("invalid pattern");
     harness.state_mut().replace_all();
     assert_eq!(harness.state().text(), "G01 X1\n");
+    // Escape closes the bar and gives the program the keyboard back.
+    harness.key_press(Key::Escape);
+    harness.run();
+    assert!(harness.query_by_label("invalid pattern").is_none());
+    assert!(harness.get_by_role(Role::MultilineTextInput).is_focused());
 }
 
 #[test]
@@ -286,4 +291,48 @@ fn clicking_a_completion_inserts_it_and_leaving_the_editor_closes_the_list() {
         "the list closes"
     );
     assert_eq!(harness.state().text(), "M03 G4");
+}
+
+#[test]
+fn quitting_with_unsaved_changes_asks_first() {
+    let mut harness = harness("G0 X1\n");
+    harness.state_mut().request_quit();
+    harness.run();
+    assert_eq!(harness.state_mut().take_requests(), [HostRequest::Quit]);
+    harness.state_mut().set_text("G0 X2\n");
+    harness.state_mut().request_quit();
+    harness.run();
+    assert!(harness.state_mut().take_requests().is_empty());
+    harness.get_by_label("Discard changes").click();
+    harness.run();
+    assert_eq!(harness.state_mut().take_requests(), [HostRequest::Quit]);
+}
+
+#[test]
+fn ctrl_space_asks_for_the_list_after_escape_closed_it() {
+    let mut harness = harness("");
+    let editor = harness.get_by_role(Role::MultilineTextInput);
+    editor.focus();
+    editor.type_text("M");
+    harness.run();
+    harness.get_by_label_contains("M03  ");
+    harness.key_press(Key::Escape);
+    harness.run();
+    assert!(harness.query_by_label_contains("M03  ").is_none());
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::Space);
+    harness.run();
+    harness.get_by_label_contains("M03  ");
+    assert_eq!(harness.state().text(), "M");
+}
+
+#[test]
+fn a_program_opened_before_the_first_frame_starts_at_its_first_line() {
+    let mut wb = Workbench::default();
+    wb.open_document("a.nc", "G90\nG0 X1\nM30\n", swarf_syntax::Encoding::Utf8);
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.run();
+    assert_eq!(harness.state().cursor_line(), Some(1));
+    assert_eq!(harness.state().selection(), 0..0);
 }
