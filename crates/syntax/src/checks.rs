@@ -133,13 +133,21 @@ type Found = (&'static CodeDef, Span);
 pub(crate) struct Checker {
     scratch: Vec<Found>,
     out: Vec<Diagnostic>,
+    /// Codes already noted as read the Fanuc way (the note is given once per code).
+    noted: Vec<Code>,
 }
 
 impl Checker {
     /// Checks `block`; an error marks it so the interpreter does not run it.
     pub(crate) fn check(&mut self, dialect: Dialect, block: &mut Block) {
         let before = self.out.len();
-        check_block(dialect, block, &mut self.scratch, &mut self.out);
+        check_block(
+            dialect,
+            block,
+            &mut self.scratch,
+            &mut self.noted,
+            &mut self.out,
+        );
         if self.out[before..]
             .iter()
             .any(|d| d.severity == crate::Severity::Error)
@@ -162,6 +170,7 @@ fn check_block(
     dialect: Dialect,
     block: &Block,
     scratch: &mut Vec<Found>,
+    noted: &mut Vec<Code>,
     out: &mut Vec<Diagnostic>,
 ) {
     scratch.clear();
@@ -186,7 +195,21 @@ fn check_block(
             continue;
         };
         match codes::lookup(dialect, code) {
-            Some(def) => codes.push((def, word.span)),
+            Some(def) => {
+                if codes::is_fanuc_reading(dialect, def) && !noted.contains(&code) {
+                    noted.push(code);
+                    out.push(Diagnostic::note(
+                        word.span,
+                        "N-FANUC-READING",
+                        format!(
+                            "{code} is not in the {} manual; it is read as on Fanuc: {}",
+                            dialect.label(),
+                            def.name
+                        ),
+                    ));
+                }
+                codes.push((def, word.span));
+            }
             None => out.push(unknown_code(dialect, code, word.span)),
         }
     }

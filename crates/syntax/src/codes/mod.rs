@@ -340,10 +340,92 @@ fn index() -> &'static [Vec<(Code, u16)>; 6] {
                     slot.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
                 }
             }
+            // The standard codes a dialect's manual leaves out are read as Fanuc reads them.
+            if FANUC_READING.contains(&dialect) {
+                for (i, def) in CODES.iter().enumerate() {
+                    let standard = FANUC_STANDARD.contains(&def.code);
+                    let seen = slot.iter().any(|(c, _)| *c == def.code);
+                    if standard && def.dialects.contains(Dialect::Fanuc) && !seen {
+                        slot.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
+                    }
+                }
+            }
             slot.sort_by_key(|(c, _)| *c);
         }
         out
     })
+}
+
+/// The dialects whose manuals (as the reference recovers them) leave out codes every Fanuc-family
+/// control has: LNC's manual covers only the G codes, KT's and GSK's name a handful of M codes
+/// and no inch/metric codes. A machinist writing M03 or G21 for them means what Fanuc means.
+const FANUC_READING: [Dialect; 3] = [Dialect::Lnc, Dialect::Kt, Dialect::Gsk];
+
+/// The codes read as on Fanuc where a [`FANUC_READING`] dialect's manual does not give them:
+/// G20/G21, M00–M06, M08, M09, M30, M98, M99.
+const FANUC_STANDARD: [Code; 14] = [
+    Code {
+        letter: b'G',
+        tenths: 200,
+    },
+    Code {
+        letter: b'G',
+        tenths: 210,
+    },
+    Code {
+        letter: b'M',
+        tenths: 0,
+    },
+    Code {
+        letter: b'M',
+        tenths: 10,
+    },
+    Code {
+        letter: b'M',
+        tenths: 20,
+    },
+    Code {
+        letter: b'M',
+        tenths: 30,
+    },
+    Code {
+        letter: b'M',
+        tenths: 40,
+    },
+    Code {
+        letter: b'M',
+        tenths: 50,
+    },
+    Code {
+        letter: b'M',
+        tenths: 60,
+    },
+    Code {
+        letter: b'M',
+        tenths: 80,
+    },
+    Code {
+        letter: b'M',
+        tenths: 90,
+    },
+    Code {
+        letter: b'M',
+        tenths: 300,
+    },
+    Code {
+        letter: b'M',
+        tenths: 980,
+    },
+    Code {
+        letter: b'M',
+        tenths: 990,
+    },
+];
+
+/// Whether `def` is in `dialect`'s table only as the Fanuc reading of a standard code its manual
+/// does not give (see `FANUC_READING`).
+pub fn is_fanuc_reading(dialect: Dialect, def: &CodeDef) -> bool {
+    !def.dialects.contains(dialect) && FANUC_READING.contains(&dialect)
 }
 
 fn dialect_slot(dialect: Dialect) -> usize {

@@ -4365,9 +4365,32 @@ mod tests {
             ),
         ];
         for (dialect, list) in expected {
-            let have: Vec<String> = codes_of(dialect).map(|d| d.code.to_string()).collect();
+            // The manual's own codes (not the standard ones read as on Fanuc).
+            let have: Vec<String> = codes_of(dialect)
+                .filter(|d| !super::super::is_fanuc_reading(dialect, d))
+                .map(|d| d.code.to_string())
+                .collect();
             assert_eq!(have.join(" "), list, "{dialect}");
         }
+    }
+
+    #[test]
+    fn standard_codes_missing_from_a_manual_are_read_as_on_fanuc() {
+        for dialect in [Dialect::Lnc, Dialect::Kt, Dialect::Gsk] {
+            for c in ["G21", "M03", "M05", "M30", "M98", "M99"] {
+                assert!(lookup(dialect, code(c)).is_some(), "{dialect} {c}");
+            }
+        }
+        let g21 = lookup(Dialect::Lnc, code("G21")).unwrap();
+        assert!(g21.dialects.contains(Dialect::Fanuc));
+        assert!(super::super::is_fanuc_reading(Dialect::Lnc, g21));
+        // KT's own M03 stays KT's; Syntec's units stay G70/G71.
+        assert!(!super::super::is_fanuc_reading(
+            Dialect::Kt,
+            lookup(Dialect::Kt, code("M03")).unwrap()
+        ));
+        assert!(lookup(Dialect::Syntec, code("G21")).is_none());
+        assert!(lookup(Dialect::Lnc, code("M19")).is_none());
     }
 
     #[test]
