@@ -12,8 +12,8 @@ fn main() {
         .nth(1)
         .and_then(|n| n.parse().ok())
         .unwrap_or(1_000_000);
-    // The generator's lines are about 33 bytes.
-    let text = surfacing::surfacing_program(lines.saturating_mul(33));
+    // The generator's lines are about 37 bytes.
+    let text = surfacing::surfacing_program(lines.saturating_mul(37));
     if std::io::stdout().write_all(text.as_bytes()).is_err() {
         eprintln!("surfacing: cannot write the program");
     }
