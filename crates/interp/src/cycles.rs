@@ -639,6 +639,8 @@ impl Plan {
                 }
                 q.or(Some(DEFAULT_Q_MM))
             }
+            // Syntec's peck tapping: Q given (TYPE II or III by Pr4001).
+            740 | 840 if st.dialect == Dialect::Syntec => st.cycle.q.filter(|q| *q > 0.0),
             _ => None,
         };
         let retract = if linuxcnc {
@@ -660,7 +662,11 @@ impl Plan {
         // under G94 the feed is the pitch times the spindle speed.
         let per_minute = st.feed_mode == crate::state::FeedMode::PerMinute;
         let pitch = match (tenths, st.dialect) {
-            (740 | 840, Dialect::Kt) => Some(st.mm(st.feed_word)),
+            // KT: F is the pitch in mm, or I the threads per inch.
+            (740 | 840, Dialect::Kt) => match find(words, b'I').filter(|i| i.value > 0.0) {
+                Some(i) => Some(25.4 / i.value),
+                None => Some(st.mm(st.feed_word)),
+            },
             (740 | 840, Dialect::Syntec) if !st.block_has_feed => find(words, b'E')
                 .filter(|e| e.value > 0.0)
                 .map(|e| 25.4 / e.value),
@@ -994,6 +1000,29 @@ impl Drill<'_, '_> {
                 // Tapping: in with the spindle forward (G84 clockwise, G74 counter-clockwise),
                 // stop, dwell, reverse and feed out, stop, (dwell,) forward again.
                 let forward = self.plan.tenths == 840;
+                if let Some(q) = self.plan.peck {
+                    // Syntec's peck tapping: down a Q at a time, reversing out by d (TYPE II,
+                    // Pr4001 = 1) or to R (TYPE III) between pecks, a dwell at each reversal.
+                    let out = |depth: f64, d: &Self| {
+                        if d.st.setup.machine.high_speed_peck_tapping {
+                            (depth + d.plan.retract).min(r)
+                        } else {
+                            r
+                        }
+                    };
+                    let mut depth = r - q;
+                    while depth > bottom + 1e-9 {
+                        self.feed_to(self.level(hole, depth));
+                        self.spindle(None);
+                        self.dwell();
+                        self.spindle(Some(!forward));
+                        self.feed_to(self.level(hole, out(depth, self)));
+                        self.spindle(None);
+                        self.dwell();
+                        self.spindle(Some(forward));
+                        depth -= q;
+                    }
+                }
                 self.feed_to(self.level(hole, bottom));
                 self.spindle(None);
                 if !linuxcnc {

@@ -89,6 +89,9 @@ pub struct Machine {
     /// G76 and G87 (Syntec Pr4020: 0 +X, 1 −X, 2 +Y, 3 −Y, 4 +Z, 5 −Z; KT P018 bits 4–5, ±X or
     /// ±Y only). Written `"+X"`, `"-Y"` …
     pub shift_direction: ShiftDirection,
+    /// Syntec Pr4001 = 1: peck tapping (G74/G84 with Q) backs out by `peck_retract_mm` between
+    /// pecks (high-speed, TYPE II); Pr4001 = 0 (the default here) backs out to R (TYPE III).
+    pub high_speed_peck_tapping: bool,
     /// Syntec Pr4008 = 1 (fast drilling, TYPE II): G81 retracts at the `F2=` feed when one is
     /// given. Pr4008 = 0 (normal drilling) ignores `F2=` and retracts at rapid.
     pub fast_drilling: bool,
@@ -148,6 +151,7 @@ impl Default for Machine {
             peck_retract_mm: 1.0,
             shift_direction: ShiftDirection::PlusX,
             fast_drilling: true,
+            high_speed_peck_tapping: false,
         }
     }
 }

@@ -890,3 +890,65 @@ fn manual_cycle_examples_drill_the_stated_holes_and_return_as_stated() {
         }
     }
 }
+
+#[test]
+fn syntec_peck_tapping_backs_out_to_r_or_by_d_between_pecks() {
+    let text = "G0 X0 Y0 Z10.\nS500 M03\nG99 G84 X5. R-5. Z-12. Q3. F1000.\n";
+    let (out, diags) = events(text, Dialect::Syntec);
+    assert!(diags.iter().all(|c| !c.starts_with("E-")), "{diags:?}");
+    let feeds: Vec<&String> = out.iter().filter(|e| e.starts_with('F')).collect();
+    // TYPE III (Pr4001 = 0): every peck backs out to R, the spindle reversed.
+    assert_eq!(
+        feeds,
+        [
+            "F 5 0 -8",
+            "F 5 0 -5",
+            "F 5 0 -11",
+            "F 5 0 -5",
+            "F 5 0 -12",
+            "F 5 0 -5"
+        ]
+    );
+    let reversals = out.iter().filter(|e| *e == "S Some(false)").count();
+    assert_eq!(reversals, 3);
+    // TYPE II (Pr4001 = 1): backs out by d (1 mm).
+    let mut setup = Setup::default();
+    setup.machine.high_speed_peck_tapping = true;
+    let program = parse(text, Dialect::Syntec);
+    let mut rec = CanonRecorder::default();
+    run(&program, setup, &mut rec);
+    let zs: Vec<f64> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Feed { to, .. } => Some(to.z),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(zs, [-8.0, -7.0, -11.0, -10.0, -12.0, -5.0]);
+}
+
+#[test]
+fn kt_tapping_i_gives_threads_per_inch() {
+    let program = parse("G0 Z10 S600 M03\nG99 G84 X1 R2 Z-5 I20\n", Dialect::Kt);
+    let mut setup = Setup::default();
+    setup.machine.calculator_input = Some(true);
+    let mut rec = CanonRecorder::default();
+    run(&program, setup, &mut rec);
+    let feeds: Vec<f64> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Feed {
+                feed_mm_per_min, ..
+            } => Some(*feed_mm_per_min),
+            _ => None,
+        })
+        .collect();
+    // 20 threads per inch: a 1.27 mm pitch at 600 rpm.
+    assert_eq!(feeds.len(), 2);
+    assert!(
+        feeds.iter().all(|f| (f - 1.27 * 600.0).abs() < 1e-9),
+        "{feeds:?}"
+    );
+}
