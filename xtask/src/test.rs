@@ -36,6 +36,48 @@ const FORBIDDEN_DEPENDENCIES: &[(&str, &[&str])] = &[
     ("swarf-render", &["egui", "swarf-interp"]),
 ];
 
+/// How long each fuzz target runs in the test run.
+const FUZZ_SECONDS: u32 = 20;
+
+/// Runs the cargo-fuzz targets briefly from a seed corpus of the repository's own programs,
+/// the corpus and any crash kept under `target/` (not in the tree).
+fn fuzz() -> Result<()> {
+    tools::ensure_cargo_fuzz()?;
+    let root = util::repo_root();
+    for target in ["parse", "interpret"] {
+        let corpus = root.join("target/fuzz-corpus").join(target);
+        let artifacts = root.join("target/fuzz-artifacts").join(target);
+        std::fs::create_dir_all(&corpus)?;
+        std::fs::create_dir_all(&artifacts)?;
+        for dir in ["assets/examples", "tests/golden"] {
+            for entry in std::fs::read_dir(root.join(dir))?.flatten() {
+                let path = entry.path();
+                let program = path
+                    .extension()
+                    .is_some_and(|e| e == "nc" || e == "ngc");
+                if program && let Some(name) = path.file_name() {
+                    std::fs::copy(&path, corpus.join(name))?;
+                }
+            }
+        }
+        let mut cmd = cargo();
+        cmd.current_dir(&root)
+            // cargo-fuzz passes unstable compiler flags (sanitizer coverage); the toolchain is
+            // stable, so they are enabled for this build only.
+            .env("RUSTC_BOOTSTRAP", "1")
+            .args(["fuzz", "run", "--target-dir"])
+            .arg(root.join("target/fuzz"))
+            .arg(target)
+            .arg(&corpus)
+            .arg("--")
+            .arg(format!("-max_total_time={FUZZ_SECONDS}"))
+            .arg("-rss_limit_mb=2048")
+            .arg(format!("-artifact_prefix={}/", artifacts.display()));
+        run(&mut cmd)?;
+    }
+    Ok(())
+}
+
 /// Path of the webdriver capabilities used by `wasm-bindgen-test-runner` in the browser step.
 const WEBDRIVER_JSON: &str = "webdriver.json";
 
@@ -72,7 +114,7 @@ pub fn run_all(quick: bool, only: Option<&str>) -> Result<()> {
             .collect();
         if let Some(unknown) = wanted.iter().find(|c| !steps.iter().any(|s| s.id == **c)) {
             bail!(
-                "--only: there is no step `{unknown}` (steps: a to i; f, h and i not with --quick)"
+                "--only: there is no step `{unknown}` (steps: a to j; f, h, i and j not with --quick)"
             );
         }
         steps.retain(|step| wanted.contains(&step.id));
@@ -185,6 +227,13 @@ fn steps(quick: bool) -> Vec<Step> {
             'h',
             "desktop smoke test: swarf-app --screenshot under xvfb-run",
             desktop::smoke_test,
+        ));
+        steps.push(Step::new(
+            'j',
+            format!(
+                "fuzzing: cargo fuzz run parse / interpret, {FUZZ_SECONDS} s each (seeds: the examples and golden programs)"
+            ),
+            fuzz,
         ));
         steps.push(Step::new(
             'i',

@@ -67,6 +67,30 @@ pub fn ensure_wasm_bindgen() -> Result<()> {
     }
 }
 
+/// The cargo-fuzz version the fuzz step installs when it is missing.
+const CARGO_FUZZ_VERSION: &str = "0.13.2";
+
+/// Installs cargo-fuzz (pinned) when `cargo fuzz` is not available.
+pub fn ensure_cargo_fuzz() -> Result<()> {
+    let found = util::cargo()
+        .args(["fuzz", "--version"])
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
+    if found.as_deref() == Some(&format!("cargo-fuzz {CARGO_FUZZ_VERSION}")) {
+        return Ok(());
+    }
+    println!("cargo-fuzz {CARGO_FUZZ_VERSION} is needed; installing it (takes a few minutes)");
+    run(util::cargo().args([
+        "install",
+        "cargo-fuzz",
+        "--locked",
+        "--version",
+        &format!("={CARGO_FUZZ_VERSION}"),
+    ]))
+}
+
 /// Files whose presence shows the apt packages the browser and desktop tests need are there.
 const APT_CHECKS: &[(&str, &str)] = &[
     ("/usr/bin/chromium", "chromium"),
