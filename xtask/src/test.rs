@@ -52,9 +52,7 @@ fn fuzz() -> Result<()> {
         for dir in ["assets/examples", "tests/golden"] {
             for entry in std::fs::read_dir(root.join(dir))?.flatten() {
                 let path = entry.path();
-                let program = path
-                    .extension()
-                    .is_some_and(|e| e == "nc" || e == "ngc");
+                let program = path.extension().is_some_and(|e| e == "nc" || e == "ngc");
                 if program && let Some(name) = path.file_name() {
                     std::fs::copy(&path, corpus.join(name))?;
                 }
