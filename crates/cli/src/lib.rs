@@ -84,6 +84,9 @@ enum Command {
         /// List every code of the dialect (fanuc unless --dialect is given).
         #[arg(long)]
         list: bool,
+        /// Print the Markdown table of every code group per dialect (the README's feature table).
+        #[arg(long)]
+        table: bool,
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
@@ -123,8 +126,17 @@ where
             what,
             dialect,
             list,
+            table,
             json,
-        } => explain::explain(what.as_deref(), dialect, list, json, out, err),
+        } => {
+            if table {
+                write!(out, "{}", swarf_syntax::codes::markdown_table())
+                    .map(|()| EXIT_OK)
+                    .map_err(anyhow::Error::from)
+            } else {
+                explain::explain(what.as_deref(), dialect, list, json, out, err)
+            }
+        }
     };
     match result {
         Ok(code) => code,

@@ -179,3 +179,21 @@ fn the_shared_corpus_checks_without_panics() {
     }
     assert!(checked > 10, "only {checked} corpus programs found");
 }
+
+/// The README's code table is the one `swarf explain --table` prints from the code tables.
+#[test]
+fn the_readme_code_table_is_generated_from_the_code_tables() {
+    let (code, out, _) = swarf(&["explain", "--table"]);
+    assert_eq!(code, 0);
+    assert!(out.starts_with("| group | fanuc | syntec | lnc | kt | gsk | linuxcnc |"));
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../README.md"))
+            .unwrap();
+    let start = readme.find("<!-- code-table:begin -->\n").unwrap() + 26;
+    let end = readme.find("<!-- code-table:end -->").unwrap();
+    assert_eq!(
+        readme[start..end],
+        out,
+        "README.md's code table is stale: replace it with `swarf explain --table`"
+    );
+}

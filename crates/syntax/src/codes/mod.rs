@@ -4,7 +4,10 @@
 //! dialects that read it that way. Parsing, the same-block checks, the interpreter, hover help and
 //! `swarf explain` all read this table, so a dialect difference is an entry, not an `if`.
 
+mod matrix;
 mod table;
+
+pub use matrix::markdown_table;
 
 use std::fmt;
 use std::sync::OnceLock;
