@@ -112,7 +112,7 @@ pub fn run_all(quick: bool, only: Option<&str>) -> Result<()> {
             .collect();
         if let Some(unknown) = wanted.iter().find(|c| !steps.iter().any(|s| s.id == **c)) {
             bail!(
-                "--only: there is no step `{unknown}` (steps: a to j; f, h, i and j not with --quick)"
+                "--only: there is no step `{unknown}` (steps: a to k; f, h, i and j not with --quick)"
             );
         }
         steps.retain(|step| wanted.contains(&step.id));
@@ -219,6 +219,14 @@ fn steps(quick: bool) -> Vec<Step> {
         'g',
         "architecture: forbidden dependencies (cargo tree -e normal --target all)",
         check_architecture,
+    ));
+    steps.push(Step::new(
+        'k',
+        "dependencies: cargo deny check bans licenses sources (deny.toml)",
+        || {
+            tools::ensure_cargo_deny()?;
+            run(cargo().args(["deny", "--offline", "check", "bans", "licenses", "sources"]))
+        },
     ));
     if !quick {
         steps.push(Step::new(

@@ -67,27 +67,41 @@ pub fn ensure_wasm_bindgen() -> Result<()> {
     }
 }
 
+/// The cargo-deny version the dependency check installs when it is missing.
+const CARGO_DENY_VERSION: &str = "0.18.9";
+
 /// The cargo-fuzz version the fuzz step installs when it is missing.
 const CARGO_FUZZ_VERSION: &str = "0.13.2";
 
+/// Installs cargo-deny (pinned) when `cargo deny` is not available.
+pub fn ensure_cargo_deny() -> Result<()> {
+    ensure_cargo_tool("deny", "cargo-deny", CARGO_DENY_VERSION)
+}
+
 /// Installs cargo-fuzz (pinned) when `cargo fuzz` is not available.
 pub fn ensure_cargo_fuzz() -> Result<()> {
+    ensure_cargo_tool("fuzz", "cargo-fuzz", CARGO_FUZZ_VERSION)
+}
+
+/// Installs the crate `package` at exactly `version` unless `cargo SUBCOMMAND --version` already
+/// reports it.
+fn ensure_cargo_tool(subcommand: &str, package: &str, version: &str) -> Result<()> {
     let found = util::cargo()
-        .args(["fuzz", "--version"])
+        .args([subcommand, "--version"])
         .output()
         .ok()
         .filter(|o| o.status.success())
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
-    if found.as_deref() == Some(&format!("cargo-fuzz {CARGO_FUZZ_VERSION}")) {
+    if found.as_deref() == Some(&format!("{package} {version}")) {
         return Ok(());
     }
-    println!("cargo-fuzz {CARGO_FUZZ_VERSION} is needed; installing it (takes a few minutes)");
+    println!("{package} {version} is needed; installing it (takes a few minutes)");
     run(util::cargo().args([
         "install",
-        "cargo-fuzz",
+        package,
         "--locked",
         "--version",
-        &format!("={CARGO_FUZZ_VERSION}"),
+        &format!("={version}"),
     ]))
 }
 
