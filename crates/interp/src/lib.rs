@@ -2,6 +2,7 @@
 //! canonical motion stream through a [`Sink`], each event tagged with its source block.
 
 mod canon;
+mod comp;
 mod corners;
 mod cycles;
 mod exec;
@@ -14,11 +15,18 @@ mod states;
 
 pub use canon::{Axis, Canon, CanonRecorder, Source};
 pub use machine::{Interpreter, Limits, Status, run};
-pub use setup::{Machine, Register, Setup, SetupError, Units};
+pub use setup::{CornerMode, Machine, Register, Setup, SetupError, Units};
 pub use states::{BlockState, States, run_with_states};
 
 /// Receives the canonical events of a running program, in execution order.
 pub trait Sink {
     /// One event caused by the block at `source`.
     fn emit(&mut self, source: Source, event: &Canon);
+
+    /// The programmed motion of a block run under cutter radius compensation, before its
+    /// compensated events are emitted: the contour the part program describes, so a backplot
+    /// can draw it next to the tool centre's path. Ignored unless a sink wants it.
+    fn programmed(&mut self, source: Source, event: &Canon) {
+        let _ = (source, event);
+    }
 }

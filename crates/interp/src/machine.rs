@@ -202,6 +202,8 @@ impl Interpreter {
                 line: block.line.saturating_add(1),
             };
             self.executed += 1;
+            self.st.blocks_run = self.executed;
+            self.st.block_span = block.span;
             let flow = if block.has_error {
                 Flow::Next
             } else {

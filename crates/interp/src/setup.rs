@@ -44,6 +44,17 @@ pub struct Register {
     pub radius_wear: f64,
 }
 
+/// How cutter radius compensation goes round an outside corner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CornerMode {
+    /// An arc of the tool radius about the programmed corner (LinuxCNC).
+    Arc,
+    /// The intersection of the offset paths, with two extra vectors of the radius when the
+    /// corner is sharper than 90° (the Fanuc family).
+    Intersection,
+}
+
 /// Machine parameters that change how programs run.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -75,6 +86,12 @@ pub struct Machine {
     /// The retract d between pecks of G73 and G83 in mm (KT data parameter P230, Syntec Pr4002;
     /// the manuals' default 1.000 mm). LinuxCNC's rs274ngc retracts a fixed 0.010 inch instead.
     pub peck_retract_mm: f64,
+    /// How cutter radius compensation cuts outside corners. Unset: `arc` for LinuxCNC,
+    /// `intersection` for the Fanuc family.
+    pub corner_mode: Option<CornerMode>,
+    /// Gouges under cutter radius compensation stop the run with an alarm (Syntec parameter
+    /// 3819, the overcut check) instead of a warning. LinuxCNC always alarms.
+    pub overcut_alarm: bool,
 }
 
 impl Default for Machine {
@@ -89,6 +106,8 @@ impl Default for Machine {
             reference_points: Vec::new(),
             measured_angles: Vec::new(),
             peck_retract_mm: 1.0,
+            corner_mode: None,
+            overcut_alarm: false,
         }
     }
 }
