@@ -159,8 +159,9 @@ impl Elem {
     fn offset_curve(&self, s: f64, plane: (usize, usize)) -> Option<Curve> {
         match self.arc {
             Some((c, ccw, _)) => {
-                let r0 = (uv(self.from, plane) - c).length();
-                let r = if ccw { r0 - s } else { r0 + s };
+                // The end's radius (LinuxCNC's choice, where the two differ within tolerance).
+                let r1 = (uv(self.to, plane) - c).length();
+                let r = if ccw { r1 - s } else { r1 + s };
                 (r > EPS).then_some(Curve::Circle { c, r })
             }
             None => Some(Curve::Line {
