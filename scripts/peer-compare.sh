@@ -26,8 +26,34 @@ if (($# == 0)); then
     "$corpus"/programs/cncjs/*.nc \
     "$corpus"/programs/nist/example1.gcode \
     "$corpus"/programs/camotics/*.nc "$corpus"/programs/camotics/*.gc \
-    "$corpus"/programs/linuxcnc/*.ngc
+    "$corpus"/programs/linuxcnc/*.ngc \
+    "$corpus"/linuxcnc-tests/ccomp/mill-*/test.ngc \
+    "$corpus"/linuxcnc-tests/interp/inside-corners/test.ngc \
+    "$corpus"/linuxcnc-tests/interp/cam-nisley/cam.ngc \
+    "$corpus"/linuxcnc-tests/interp/crazy-paths/test.ngc \
+    "$corpus"/linuxcnc-tests/interp/inverse-time-with-comp/inverse.ngc \
+    "$corpus"/programs/autodesk/test.fanuc.nc
 fi
+# rs274's tool table as the setup's registers: tool N's Z is register N's length, half its
+# diameter D the radius (standalone rs274 reads both in inches).
+table_setup() {
+  python3 - "$1" <<'PY'
+import re, sys
+print('units = "inch"')
+for line in open(sys.argv[1], encoding="utf-8", errors="replace"):
+    line = line.split(";")[0]
+    t = re.search(r"\bT(\d+)", line)
+    if not t:
+        continue
+    print(f"[registers.{t.group(1)}]")
+    z = re.search(r"\bZ([-+.\d]+)", line)
+    d = re.search(r"\bD([-+.\d]+)", line)
+    if z:
+        print(f"length = {float(z.group(1))}")
+    if d:
+        print(f"radius = {float(d.group(1)) / 2}")
+PY
+}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pass=0
@@ -37,7 +63,8 @@ for prog in "$@"; do
   name=${prog#"$corpus"/}
   tbl=$(ls "$(dirname "$prog")"/*.tbl 2>/dev/null | head -1)
   bash "$tools/oracle.sh" "$prog" ${tbl:+"$tbl"} > "$work/ref.canon" 2>/dev/null
-  "$swarf" canon "$prog" --dialect linuxcnc > "$work/ours.jsonl" 2> "$work/ours.err"
+  table_setup "${tbl:-$tools/default.tbl}" > "$work/setup.toml"
+  "$swarf" canon "$prog" --dialect linuxcnc --setup "$work/setup.toml" > "$work/ours.jsonl" 2> "$work/ours.err"
   if python3 "$tools/compare.py" "$work/ours.jsonl" "$work/ref.canon" > "$work/cmp.txt" 2>&1; then
     echo "agree     $name"
     pass=$((pass + 1))

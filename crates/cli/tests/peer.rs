@@ -5,11 +5,11 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Programs (relative to `shared/corpus`) whose every motion must match rs274. The others of
-/// `scripts/peer-compare.sh` differ for known reasons: G76/G87 and `G10 L11` are not run yet,
-/// G84 outside the XY plane, moves of a rotary axis alone are not compared, rs274 stops at the
-/// first error where Swarf goes on, rs274 moves to its tool-change position at M6, and rs274's
-/// tool table is not read into the setup (NIST example 3's G43 H1).
+/// Programs (relative to `shared/corpus`) whose every motion must match rs274, with rs274's tool
+/// table as the setup's offset registers. The others of `scripts/peer-compare.sh` differ for
+/// known reasons: G76/G87 and `G10 L11` are not run yet, G84 outside the XY plane, moves of a
+/// rotary axis alone are not compared, rs274 stops at the first error where Swarf goes on, rs274
+/// moves to its tool-change position at M6, lathe tool orientations in cutter compensation.
 const AGREEING: &[&str] = &[
     "linuxcnc-tests/interp/g10/g10-l1-l10/test.ngc",
     "linuxcnc-tests/interp/g10/g10-l2-while-active/test.ngc",
@@ -68,10 +68,48 @@ const AGREEING: &[&str] = &[
     "programs/camotics/la_peinture.gc",
     "programs/linuxcnc/3D_Chips.ngc",
     "programs/linuxcnc/stellabee1.ngc",
+    "linuxcnc-tests/ccomp/mill-g90g91g92/test.ngc",
+    "linuxcnc-tests/ccomp/mill-line-arc-entry/test.ngc",
+    "linuxcnc-tests/ccomp/mill-zchanges/test.ngc",
+    "linuxcnc-tests/interp/inside-corners/test.ngc",
+    "linuxcnc-tests/interp/cam-nisley/cam.ngc",
+    "linuxcnc-tests/interp/crazy-paths/test.ngc",
+    "linuxcnc-tests/interp/inverse-time-with-comp/inverse.ngc",
 ];
+
+/// A LinuxCNC tool table (`T3 P3 Z0.5 D0.25`) as a setup: tool N's Z is register N's length and
+/// half its diameter D the radius, in inches as standalone rs274 reads them.
+fn table_setup(table: &str) -> String {
+    let mut out = String::from("units = \"inch\"\n");
+    for line in table.lines() {
+        let line = line.split(';').next().unwrap_or("");
+        let word = |letter: char| {
+            line.split_whitespace()
+                .find_map(|w| w.strip_prefix(letter).and_then(|v| v.parse::<f64>().ok()))
+        };
+        let Some(t) = word('T') else { continue };
+        out.push_str(&format!("[registers.{}]\n", t as u32));
+        if let Some(z) = word('Z') {
+            out.push_str(&format!("length = {z:?}\n"));
+        }
+        if let Some(d) = word('D') {
+            out.push_str(&format!("radius = {:?}\n", d / 2.0));
+        }
+    }
+    out
+}
 
 fn shared() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared")
+}
+
+#[test]
+fn tool_tables_become_registers() {
+    let setup = table_setup("T1 P1 Z0.511 D0.125 ;1/8 end mill\nT4 P4 Z0.7 D1.0 ;\n");
+    let setup = swarf_interp::Setup::from_toml(&setup).unwrap();
+    assert!((setup.registers[&1].radius - 0.0625 * 25.4).abs() < 1e-9);
+    assert!((setup.registers[&1].length - 0.511 * 25.4).abs() < 1e-9);
+    assert!((setup.registers[&4].radius - 12.7).abs() < 1e-9);
 }
 
 #[test]
@@ -100,9 +138,16 @@ fn canon_agrees_with_linuxcnc_rs274() {
             .find(|p| p.extension().is_some_and(|x| x == "tbl"));
         let mut oracle = Command::new("bash");
         oracle.arg(tools.join("oracle.sh")).arg(&program);
-        if let Some(table) = table {
+        if let Some(table) = &table {
             oracle.arg(table);
         }
+        let table = table.unwrap_or_else(|| tools.join("default.tbl"));
+        let setup_path = dir.path().join("setup.toml");
+        std::fs::write(
+            &setup_path,
+            table_setup(&std::fs::read_to_string(&table).unwrap()),
+        )
+        .unwrap();
         let reference = oracle.output().unwrap();
         // rs274 exits non-zero at the end of some programs; what counts is its canonical output.
         let ref_path = dir.path().join("ref.canon");
@@ -117,6 +162,8 @@ fn canon_agrees_with_linuxcnc_rs274() {
                 program.to_str().unwrap(),
                 "--dialect",
                 "linuxcnc",
+                "--setup",
+                setup_path.to_str().unwrap(),
             ],
             &mut ours,
             &mut err,

@@ -35,7 +35,7 @@ pub(crate) struct Pending {
 /// Sends `event` to `sink`, first cutting the corner of a held-back move.
 pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &Canon) {
     resolve(st, sink, event);
-    sink.emit(source, event);
+    crate::comp::emit(st, sink, source, event);
 }
 
 /// Cuts the corner of a held-back move against `event`, the next thing the machine does (or
@@ -58,7 +58,7 @@ pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
                     "W-NOT-INTERPRETED",
                     "a corner before an arc is not drawn yet: the corner is drawn sharp",
                 ));
-                sharp(sink, &pending);
+                sharp(st, sink, &pending);
             }
             _ => {
                 st.diagnostics.push(Diagnostic::error(
@@ -66,7 +66,7 @@ pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
                     "E-CORNER-NEXT",
                     "a `,C`/`,R` corner needs a cutting move (G01–G03) in the next block; the corner is drawn sharp",
                 ));
-                sharp(sink, &pending);
+                sharp(st, sink, &pending);
             }
         }
     }
@@ -80,12 +80,15 @@ pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
             "E-CORNER-NEXT",
             "a `,C`/`,R` corner needs a cutting move in the next block; the program ends first",
         ));
-        sharp(sink, &pending);
+        sharp(st, sink, &pending);
     }
+    crate::comp::flush(st, sink);
 }
 
-fn sharp(sink: &mut dyn Sink, p: &Pending) {
-    sink.emit(
+fn sharp(st: &mut State, sink: &mut dyn Sink, p: &Pending) {
+    crate::comp::emit(
+        st,
+        sink,
         p.source,
         &Canon::Feed {
             to: p.to,
@@ -107,7 +110,7 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
             "W-CORNER-SKIPPED",
             "a corner is cut only between two moves in the selected plane: drawn sharp",
         ));
-        sharp(sink, p);
+        sharp(st, sink, p);
         return;
     }
     let (a, b) = (d1 / l1, d2 / l2);
@@ -115,7 +118,7 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
     let cos = a.dot(b).clamp(-1.0, 1.0);
     if cross.abs() < 1e-9 {
         // Straight on (or straight back): there is no corner to cut.
-        sharp(sink, p);
+        sharp(st, sink, p);
         return;
     }
     let feed = p.feed_mm_per_min;
@@ -123,14 +126,18 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
         Corner::Chamfer(c) => {
             let start = p.to - a * c;
             let end = p.to + b * c;
-            sink.emit(
+            crate::comp::emit(
+                st,
+                sink,
                 p.source,
                 &Canon::Feed {
                     to: start,
                     feed_mm_per_min: feed,
                 },
             );
-            sink.emit(
+            crate::comp::emit(
+                st,
+                sink,
                 p.source,
                 &Canon::Feed {
                     to: end,
@@ -149,14 +156,18 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
             normal[u] = -a[v];
             normal[v] = a[u];
             let center = start + normal * if left { r } else { -r };
-            sink.emit(
+            crate::comp::emit(
+                st,
+                sink,
                 p.source,
                 &Canon::Feed {
                     to: start,
                     feed_mm_per_min: feed,
                 },
             );
-            sink.emit(
+            crate::comp::emit(
+                st,
+                sink,
                 p.source,
                 &Canon::Arc {
                     to: end,

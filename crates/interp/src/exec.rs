@@ -266,6 +266,10 @@ impl Sink for StrokeGuard<'_> {
     fn origin(&mut self, at: DVec3) {
         self.inner.origin(at);
     }
+
+    fn programmed(&mut self, source: Source, event: &Canon) {
+        self.inner.programmed(source, event);
+    }
 }
 
 /// Points along an arc event from `from` (excluding it, ending at `to`), 64 per turn.
@@ -470,14 +474,9 @@ fn execute_block(
             Action::LengthComp(sign) => length_comp(st, w, words, sign),
             Action::StrokeLimit(on) => stroke_limit(st, w, words, on),
             Action::CutterComp(t) => {
-                if t != 400 {
-                    st.diagnostics.push(Diagnostic::warning(
-                        w.span,
-                        "W-NOT-INTERPRETED",
-                        "cutter radius compensation is not applied yet: the programmed path is drawn",
-                    ));
+                if !cutter_comp(st, w, words, t) {
+                    return Flow::Stop;
                 }
-                st.cutter_comp = t;
             }
             Action::Motion(m) => {
                 let was_cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
@@ -503,6 +502,27 @@ fn execute_block(
         }
     }
     new_length_register(st, words, has(|a| matches!(a, Action::LengthComp(_))));
+    let comp_code = actions
+        .iter()
+        .find(|(a, _)| matches!(a, Action::CutterComp(_)));
+    if comp_code.is_none() {
+        new_radius_register(st, words);
+    }
+    if let Some((_, w)) = comp_code
+        && dialect != Dialect::LinuxCnc
+        && matches!(st.motion, Some(MotionMode::Arc { .. }))
+        && axis_words(words).iter().any(Option::is_some)
+    {
+        st.diagnostics.push(Diagnostic::error(
+            w.span,
+            "E-COMP-ARC",
+            format!(
+                "{} starts or cancels cutter compensation only in a G00/G01 block, not with G02/G03: the control alarms and stops",
+                Code::from_value(b'G', w.value).map_or_else(|| "G40–G42".to_string(), |c| c.to_string())
+            ),
+        ));
+        return Flow::Stop;
+    }
     let axes = axis_words(words);
     note_least_increment(st, words);
     // Modes that take the block's axis words as their data.
@@ -736,6 +756,79 @@ fn spindle_speed(st: &mut State, words: &[Word], g92: bool) {
         12.0 * st.surface_speed / (std::f64::consts::PI * diameter / 25.4)
     };
     st.spindle_rpm = st.spindle_clamp.map_or(rpm, |c| rpm.min(c));
+}
+
+/// G40/G41/G42 (LinuxCNC also G41.1/G42.1): the side, and the radius from the D register
+/// (geometry plus wear; LinuxCNC: the tool table's radius of tool D, or of the tool in the
+/// spindle, and for G41.1/G42.1 half the diameter D). Returns `false` when the control alarms.
+fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
+    let linuxcnc = st.dialect == Dialect::LinuxCnc;
+    if tenths == 400 {
+        st.cutter_comp = 400;
+        return true;
+    }
+    if linuxcnc {
+        if st.cutter_comp != 400 {
+            st.diagnostics.push(Diagnostic::error(
+                w.span,
+                "E-COMP-ON",
+                "cutter radius compensation cannot be turned on when it is already on",
+            ));
+            return false;
+        }
+        if st.plane == Axis::X {
+            st.diagnostics.push(Diagnostic::error(
+                w.span,
+                "E-COMP-PLANE",
+                "LinuxCNC has cutter radius compensation in the XY and XZ planes only",
+            ));
+            return false;
+        }
+    }
+    let d = find(words, b'D');
+    st.cutter_comp = if tenths == 420 || tenths == 421 {
+        420
+    } else {
+        410
+    };
+    if tenths == 411 || tenths == 421 {
+        st.comp_radius = d.map_or(0.0, |d| st.mm(d.value)) / 2.0;
+        return true;
+    }
+    let n = match d {
+        Some(d) => d.value.round().max(0.0) as u32,
+        None if linuxcnc => st.tool,
+        None => st.d_word,
+    };
+    match st.setup.registers.get(&n) {
+        Some(r) => st.comp_radius = r.radius + r.radius_wear,
+        None => {
+            st.comp_radius = 0.0;
+            if n != 0 {
+                st.diagnostics.push(Diagnostic::note(
+                    d.map_or(w.span, |d| d.span),
+                    "N-OFFSET-UNSET",
+                    format!("offset register {n} is not in the setup: its radius is taken as 0"),
+                ));
+            }
+        }
+    }
+    true
+}
+
+/// A D word while cutter compensation is on selects the new radius (the Fanuc family).
+fn new_radius_register(st: &mut State, words: &[Word]) {
+    if st.cutter_comp == 400 || st.dialect == Dialect::LinuxCnc {
+        return;
+    }
+    if let Some(d) = find(words, b'D') {
+        let n = d.value.round().max(0.0) as u32;
+        st.comp_radius = st
+            .setup
+            .registers
+            .get(&n)
+            .map_or(0.0, |r| r.radius + r.radius_wear);
+    }
 }
 
 /// An H word in a block without G43/G44/G49 while length compensation is on selects the new

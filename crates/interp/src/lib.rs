@@ -2,6 +2,7 @@
 //! canonical motion stream through a [`Sink`], each event tagged with its source block.
 
 mod canon;
+mod comp;
 mod corners;
 mod cycles;
 mod exec;
@@ -14,7 +15,9 @@ mod states;
 
 pub use canon::{Axis, Canon, CanonRecorder, Source};
 pub use machine::{Interpreter, Limits, Status, run};
-pub use setup::{Machine, Register, Setup, SetupError, ShiftDirection, Units};
+pub use setup::{
+    CornerMode, Machine, Register, Setup, SetupError, ShiftDirection, Units,
+};
 pub use states::{BlockState, States, run_with_states};
 
 /// Receives the canonical events of a running program, in execution order.
@@ -26,4 +29,11 @@ pub trait Sink {
     /// just emitted were programmed from; told once per change, for the backplot's origin
     /// marks. Not part of the canonical stream: sinks that do not draw may ignore it.
     fn origin(&mut self, _at: glam::DVec3) {}
+
+    /// The programmed motion of a block run under cutter radius compensation, before its
+    /// compensated events are emitted: the contour the part program describes, so a backplot
+    /// can draw it next to the tool centre's path. Ignored unless a sink wants it.
+    fn programmed(&mut self, source: Source, event: &Canon) {
+        let _ = (source, event);
+    }
 }

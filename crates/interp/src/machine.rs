@@ -40,6 +40,14 @@ impl Sink for MotionCounter<'_> {
         }
         self.inner.emit(source, event);
     }
+
+    fn origin(&mut self, at: DVec3) {
+        self.inner.origin(at);
+    }
+
+    fn programmed(&mut self, source: Source, event: &Canon) {
+        self.inner.programmed(source, event);
+    }
 }
 
 /// Resource limits that stop runaway programs with a diagnostic.
@@ -242,6 +250,8 @@ impl Interpreter {
                 line: block.line.saturating_add(1),
             };
             self.executed += 1;
+            self.st.blocks_run = self.executed;
+            self.st.block_span = block.span;
             let before = counted.motions;
             let flow = if block.has_error {
                 Flow::Next

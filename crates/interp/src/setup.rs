@@ -44,6 +44,17 @@ pub struct Register {
     pub radius_wear: f64,
 }
 
+/// How cutter radius compensation goes round an outside corner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CornerMode {
+    /// An arc of the tool radius about the programmed corner (LinuxCNC).
+    Arc,
+    /// The intersection of the offset paths, with two extra vectors of the radius when the
+    /// corner is sharper than 90° (the Fanuc family).
+    Intersection,
+}
+
 /// Machine parameters that change how programs run.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
@@ -95,6 +106,12 @@ pub struct Machine {
     /// Syntec Pr4008 = 1 (fast drilling, TYPE II): G81 retracts at the `F2=` feed when one is
     /// given. Pr4008 = 0 (normal drilling) ignores `F2=` and retracts at rapid.
     pub fast_drilling: bool,
+    /// How cutter radius compensation cuts outside corners. Unset: `arc` for LinuxCNC,
+    /// `intersection` for the Fanuc family.
+    pub corner_mode: Option<CornerMode>,
+    /// Gouges under cutter radius compensation stop the run with an alarm (Syntec parameter
+    /// 3819, the overcut check) instead of a warning. LinuxCNC always alarms.
+    pub overcut_alarm: bool,
 }
 
 /// An axis direction for the G76/G87 shift.
@@ -152,6 +169,8 @@ impl Default for Machine {
             shift_direction: ShiftDirection::PlusX,
             fast_drilling: true,
             high_speed_peck_tapping: false,
+            corner_mode: None,
+            overcut_alarm: false,
         }
     }
 }

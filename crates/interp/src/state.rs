@@ -170,6 +170,14 @@ pub(crate) struct State {
     pub length_plus: bool,
     /// Cutter compensation code in effect (400, 410, 420).
     pub cutter_comp: u32,
+    /// The compensation radius from the D register (mm; negative swaps the side).
+    pub comp_radius: f64,
+    /// The compensation filter's state between events.
+    pub comp: crate::comp::Comp,
+    /// The span of the block being run (for diagnostics raised by later blocks' moves).
+    pub block_span: swarf_syntax::Span,
+    /// How many blocks have run, this one included.
+    pub blocks_run: u64,
     /// Cutting mode G61–G64 (tenths).
     pub path_mode: u32,
     /// Canned-cycle return level: G98 (true) or G99.
@@ -249,6 +257,10 @@ impl State {
             length_comp: None,
             length_plus: true,
             cutter_comp: 400,
+            comp_radius: 0.0,
+            comp: crate::comp::Comp::default(),
+            block_span: swarf_syntax::Span::default(),
+            blocks_run: 0,
             path_mode: 640,
             return_initial: true,
             stroke_check: false,

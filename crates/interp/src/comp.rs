@@ -1,0 +1,897 @@
+//! Cutter radius compensation (G41/G42/G40): a filter on the motion events, after `,C`/`,R`
+//! corners (which shape the programmed path). Each move in the selected plane is held back
+//! until the next one is known, then its compensated end is decided by the corner between them:
+//! inside corners end at the intersection of the two offset paths; outside corners get an arc
+//! about the programmed corner (LinuxCNC, and the `arc` corner mode) or the intersection of the
+//! offset paths, with two extra vectors when the corner is sharper than 90° (Fanuc's way, the
+//! `intersection` mode). Moves without plane motion and other events wait behind the held move
+//! (LinuxCNC any number of blocks, the Fanuc family one). Geometry is done in the machine frame,
+//! so compensation follows G68 rotation, G16 polar input and scaling; a mirror of one plane axis
+//! reverses the side (the controls' rule). Gouges (a groove narrower than the tool, a step
+//! smaller than the radius, an inside arc smaller than the tool) show as a compensated move
+//! that runs backwards or an intersection that does not exist, and are reported naming both
+//! blocks; the drawn path stays what the control computes.
+
+use glam::{DVec2, DVec3};
+use swarf_syntax::{Diagnostic, Dialect, Span};
+
+use crate::state::{MotionMode, State, plane_axes};
+use crate::{Canon, CornerMode, Sink, Source};
+
+/// LinuxCNC's angle below which a corner is taken as straight (TOLERANCE_CONCAVE_CORNER).
+const LINUXCNC_SMALL: f64 = 0.05;
+/// The angle below which a corner is straight in the other dialects (exact geometry).
+const EXACT_SMALL: f64 = 1e-9;
+/// Lengths below this (mm) are zero.
+const EPS: f64 = 1e-9;
+
+/// Compensation kept between motion events.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Comp {
+    /// The programmed position (machine frame) at the end of the last motion event.
+    pub prog: DVec3,
+    /// Where the tool is (the end of the last event sent on), when it is off the programmed
+    /// position.
+    pub tool: Option<DVec3>,
+    /// The move held back until the next move in the plane decides its end.
+    held: Option<Held>,
+    /// Events after the held move, sent on when it is.
+    behind: Vec<(Source, Canon)>,
+    /// The number of the block (in execution order) of the held move.
+    held_run: u64,
+}
+
+/// The shape of a compensated move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Shape {
+    Line,
+    Arc {
+        center: DVec2,
+        ccw: bool,
+        turns: u32,
+    },
+}
+
+/// A compensated move held back: its start is fixed, its end in the plane still moves.
+#[derive(Debug, Clone)]
+struct Held {
+    source: Source,
+    span: Span,
+    rapid: bool,
+    feed: f64,
+    start: DVec3,
+    end: DVec3,
+    shape: Shape,
+    /// The programmed corner at the end (plane coordinates).
+    corner: DVec2,
+    /// The direction of travel at the end, used for the corner (unit).
+    tangent: DVec2,
+    /// The signed offset (positive: the tool left of the path).
+    offset: f64,
+    /// The programmed direction of a line (unit), or the programmed sweep of an arc (radians),
+    /// for the reversal check.
+    prog_dir: DVec2,
+    prog_sweep: f64,
+    /// Whether the end was moved past the programmed one (intersection mode, outside corners).
+    extended: bool,
+    /// The line of the move before, whose corner decided the start.
+    prev_line: u32,
+    /// A Fanuc type-A start-up move: its end goes to the next move's start vector on an
+    /// outside corner.
+    startup: bool,
+}
+
+/// A programmed move in the plane.
+#[derive(Debug, Clone, Copy)]
+struct Elem {
+    source: Source,
+    span: Span,
+    rapid: bool,
+    feed: f64,
+    from: DVec3,
+    to: DVec3,
+    /// Centre (plane coordinates), direction and extra turns of an arc.
+    arc: Option<(DVec2, bool, u32)>,
+}
+
+/// A curve of a compensated path, for intersections.
+#[derive(Debug, Clone, Copy)]
+enum Curve {
+    Line { p: DVec2, d: DVec2 },
+    Circle { c: DVec2, r: f64 },
+}
+
+fn left(t: DVec2) -> DVec2 {
+    DVec2::new(-t.y, t.x)
+}
+
+fn cross(a: DVec2, b: DVec2) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+fn uv(p: DVec3, (u, v): (usize, usize)) -> DVec2 {
+    DVec2::new(p[u], p[v])
+}
+
+fn with_uv(mut p: DVec3, q: DVec2, (u, v): (usize, usize)) -> DVec3 {
+    p[u] = q.x;
+    p[v] = q.y;
+    p
+}
+
+/// The angle from `a` to `b` about `c` in the arc's direction, in [0, 2π).
+fn sweep(a: DVec2, b: DVec2, c: DVec2, ccw: bool) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let (pa, pb) = (a - c, b - c);
+    let mut s = pb.y.atan2(pb.x) - pa.y.atan2(pa.x);
+    if !ccw {
+        s = -s;
+    }
+    s = s.rem_euclid(tau);
+    if s >= tau - 1e-12 { 0.0 } else { s }
+}
+
+impl Elem {
+    fn tangent_at(&self, p: DVec2, plane: (usize, usize)) -> DVec2 {
+        match self.arc {
+            Some((c, ccw, _)) => {
+                let r = p - c;
+                let t = left(r).normalize_or_zero();
+                if ccw { t } else { -t }
+            }
+            None => (uv(self.to, plane) - uv(self.from, plane)).normalize_or_zero(),
+        }
+    }
+    fn start_tangent(&self, plane: (usize, usize)) -> DVec2 {
+        self.tangent_at(uv(self.from, plane), plane)
+    }
+    fn end_tangent(&self, plane: (usize, usize)) -> DVec2 {
+        self.tangent_at(uv(self.to, plane), plane)
+    }
+    /// The start of the path offset by `s`.
+    fn offset_start(&self, s: f64, plane: (usize, usize)) -> DVec2 {
+        uv(self.from, plane) + left(self.start_tangent(plane)) * s
+    }
+    fn offset_end(&self, s: f64, plane: (usize, usize)) -> DVec2 {
+        uv(self.to, plane) + left(self.end_tangent(plane)) * s
+    }
+    /// The offset path as a curve (`None`: an arc the tool does not fit in).
+    fn offset_curve(&self, s: f64, plane: (usize, usize)) -> Option<Curve> {
+        match self.arc {
+            Some((c, ccw, _)) => {
+                // The end's radius (LinuxCNC's choice, where the two differ within tolerance).
+                let r1 = (uv(self.to, plane) - c).length();
+                let r = if ccw { r1 - s } else { r1 + s };
+                (r > EPS).then_some(Curve::Circle { c, r })
+            }
+            None => Some(Curve::Line {
+                p: self.offset_start(s, plane),
+                d: self.start_tangent(plane),
+            }),
+        }
+    }
+    /// The programmed sweep of an arc (full turns included), or 0 for a line.
+    fn prog_sweep(&self, plane: (usize, usize)) -> f64 {
+        match self.arc {
+            Some((c, ccw, turns)) => {
+                let s = sweep(uv(self.from, plane), uv(self.to, plane), c, ccw);
+                let s = if s < 1e-12 { std::f64::consts::TAU } else { s };
+                s + f64::from(turns) * std::f64::consts::TAU
+            }
+            None => 0.0,
+        }
+    }
+}
+
+impl Held {
+    fn curve(&self, plane: (usize, usize)) -> Curve {
+        match self.shape {
+            Shape::Line => Curve::Line {
+                p: uv(self.end, plane),
+                d: self.tangent,
+            },
+            Shape::Arc { center, .. } => Curve::Circle {
+                c: center,
+                r: (uv(self.end, plane) - center).length(),
+            },
+        }
+    }
+}
+
+/// The intersections of two curves.
+fn intersect(a: Curve, b: Curve) -> Vec<DVec2> {
+    match (a, b) {
+        (Curve::Line { p: p1, d: d1 }, Curve::Line { p: p2, d: d2 }) => {
+            let den = cross(d1, d2);
+            if den.abs() < 1e-12 {
+                return Vec::new();
+            }
+            let t = cross(p2 - p1, d2) / den;
+            vec![p1 + d1 * t]
+        }
+        (Curve::Line { p, d }, Curve::Circle { c, r })
+        | (Curve::Circle { c, r }, Curve::Line { p, d }) => {
+            let f = p - c;
+            let b = f.dot(d);
+            let disc = b * b - (f.length_squared() - r * r);
+            if disc < -1e-9 * r.max(1.0) {
+                return Vec::new();
+            }
+            let q = disc.max(0.0).sqrt();
+            vec![p + d * (-b - q), p + d * (-b + q)]
+        }
+        (Curve::Circle { c: c1, r: r1 }, Curve::Circle { c: c2, r: r2 }) => {
+            let dv = c2 - c1;
+            let d = dv.length();
+            if d < EPS {
+                return Vec::new();
+            }
+            let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+            let h2 = r1 * r1 - a * a;
+            if h2 < -1e-9 * r1.max(1.0) {
+                return Vec::new();
+            }
+            let h = h2.max(0.0).sqrt();
+            let e = dv / d;
+            let base = c1 + e * a;
+            vec![base + left(e) * h, base - left(e) * h]
+        }
+    }
+}
+
+/// Whether a point lies on a curve.
+fn on_curve(p: DVec2, c: Curve) -> bool {
+    match c {
+        Curve::Line { p: q, d } => cross(p - q, d).abs() < 1e-7,
+        Curve::Circle { c, r } => ((p - c).length() - r).abs() < 1e-7,
+    }
+}
+
+/// The signed offset compensation asks for now: positive to the left of the path in the
+/// machine frame, `None` when off (or inside a canned cycle, which ignores it).
+fn wanted(st: &State) -> Option<f64> {
+    if matches!(st.motion, Some(MotionMode::Cycle(_))) || st.cutter_comp == 400 {
+        return None;
+    }
+    let side = if st.cutter_comp == 420 { -1.0 } else { 1.0 };
+    let mirror = if st.reverses_arcs() { -1.0 } else { 1.0 };
+    let s = st.comp_radius * side * mirror;
+    (s.abs() > EPS).then_some(s)
+}
+
+/// The corner mode in effect.
+fn corner_mode(st: &State) -> CornerMode {
+    st.setup
+        .machine
+        .corner_mode
+        .unwrap_or(if st.dialect == Dialect::LinuxCnc {
+            CornerMode::Arc
+        } else {
+            CornerMode::Intersection
+        })
+}
+
+/// Sends `event` on through cutter compensation.
+pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &Canon) {
+    let from = st.comp.prog;
+    match event {
+        Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc { to, .. } => {
+            st.comp.prog = *to;
+            motion(st, sink, source, from, event);
+        }
+        Canon::End => {
+            flush(st, sink);
+            sink.emit(source, event);
+        }
+        _ if st.comp.held.is_some() => st.comp.behind.push((source, event.clone())),
+        _ => sink.emit(source, event),
+    }
+}
+
+/// Sends on the held move at the end of the run.
+pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
+    close(st, sink, None);
+}
+
+fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, event: &Canon) {
+    let plane = plane_axes(st.plane);
+    let want = wanted(st);
+    let held_offset = st.comp.held.as_ref().map(|h| h.offset);
+    if want.is_some() || held_offset.is_some() {
+        sink.programmed(source, event);
+    }
+    let (to, rapid, feed, arc) = match *event {
+        Canon::Rapid { to } => (to, true, 0.0, None),
+        Canon::Feed {
+            to,
+            feed_mm_per_min,
+        } => (to, false, feed_mm_per_min, None),
+        Canon::Arc {
+            to,
+            center,
+            ccw,
+            turns,
+            feed_mm_per_min,
+            ..
+        } => (
+            to,
+            false,
+            feed_mm_per_min,
+            Some((uv(center, plane), ccw, turns)),
+        ),
+        _ => return,
+    };
+    let elem = Elem {
+        source,
+        span: st.block_span,
+        rapid,
+        feed,
+        from,
+        to,
+        arc,
+    };
+    let in_plane = arc.is_some() || (uv(to, plane) - uv(from, plane)).length() > EPS;
+    let linuxcnc = st.dialect == Dialect::LinuxCnc;
+    let Some(s) = want else {
+        if held_offset.is_some() {
+            // Cancel: the first move after G40.
+            if arc.is_some() {
+                let message = if linuxcnc {
+                    "the move just after G40 must be straight, not an arc"
+                } else {
+                    "G40 is cancelled only in a G00/G01 move, not in G02/G03"
+                };
+                alarm(st, elem.span, "E-COMP-CANCEL", message.into());
+            }
+            if in_plane && arc.is_none() && !linuxcnc {
+                // Fanuc type A: an inside corner ends the last move at the intersection with
+                // the cancel move's offset; the cancel move goes to the programmed point.
+                close(st, sink, Some((&elem, f64::NAN)));
+            } else {
+                close(st, sink, None);
+            }
+        }
+        st.comp.tool = None;
+        sink.emit(source, event);
+        return;
+    };
+    if !in_plane {
+        if st.comp.held.is_some() {
+            st.comp.behind.push((source, event.clone()));
+        } else {
+            let tool = st.comp.tool.unwrap_or(from);
+            let moved = with_uv(to, uv(tool, plane), plane);
+            st.comp.tool = Some(moved);
+            sink.emit(source, &with_end(event, moved, plane));
+        }
+        return;
+    }
+    let tolerated = if linuxcnc { u64::MAX } else { 1 };
+    if let Some(h) = &st.comp.held {
+        let between = st.blocks_run.saturating_sub(st.comp.held_run + 1);
+        if between > tolerated {
+            let message = format!(
+                "{between} blocks without motion in the plane between line {} and line {}: the control cannot look ahead that far, so the compensated path of line {} ends square to it and line {} starts from there (an overcut or undercut is possible)",
+                h.source.line, source.line, h.source.line, source.line
+            );
+            st.diagnostics
+                .push(Diagnostic::warning(elem.span, "W-COMP-LOOKAHEAD", message));
+            let prev_line = h.source.line;
+            let end = close(st, sink, None);
+            start_from(st, elem, s, end, prev_line);
+            return;
+        }
+    }
+    if st.comp.held.is_none() {
+        startup(st, sink, elem, s);
+        return;
+    }
+    let prev_line = st.comp.held.as_ref().map_or(source.line, |h| h.source.line);
+    let start = close(st, sink, Some((&elem, s)));
+    start_from(st, elem, s, start, prev_line);
+}
+
+/// The first move after G41/G42: from where the tool is to the compensated end.
+fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
+    let plane = plane_axes(st.plane);
+    let tool = st.comp.tool.unwrap_or(elem.from);
+    let t = uv(tool, plane);
+    let p = uv(elem.to, plane);
+    let linuxcnc = st.dialect == Dialect::LinuxCnc;
+    if let Some((c, ccw, turns)) = elem.arc {
+        if !linuxcnc {
+            alarm(
+                st,
+                elem.span,
+                "E-COMP-START",
+                "G41/G42 starts only in a G00/G01 move, not in G02/G03".into(),
+            );
+            st.comp.tool = None;
+            sink.emit(elem.source, &as_event(&elem, elem.to, plane));
+            return;
+        }
+        // LinuxCNC: an arc through the compensated end, tangent to the tool where it is.
+        if (p - t).length() <= s.abs() {
+            alarm(
+                st,
+                elem.span,
+                "E-COMP-START",
+                "the radius of the compensation entry arc is not greater than the tool radius"
+                    .into(),
+            );
+        }
+        let end = elem.offset_end(s, plane);
+        let u = (c - end).normalize_or_zero();
+        let den = 2.0 * u.dot(t - end);
+        if den.abs() < EPS {
+            alarm(
+                st,
+                elem.span,
+                "E-COMP-START",
+                "the tool radius is not less than the entry arc's radius".into(),
+            );
+            st.comp.tool = None;
+            sink.emit(elem.source, &as_event(&elem, elem.to, plane));
+            return;
+        }
+        let center = end + u * ((t - end).length_squared() / den);
+        st.comp.held = Some(Held {
+            source: elem.source,
+            span: elem.span,
+            rapid: false,
+            feed: elem.feed,
+            start: tool,
+            end: with_uv(elem.to, end, plane),
+            shape: Shape::Arc { center, ccw, turns },
+            corner: p,
+            tangent: elem.end_tangent(plane),
+            offset: s,
+            prog_dir: DVec2::ZERO,
+            prog_sweep: f64::INFINITY,
+            extended: false,
+            prev_line: elem.source.line,
+            startup: false,
+        });
+        st.comp.held_run = st.blocks_run;
+        return;
+    }
+    let (dir, startup) = if linuxcnc {
+        let d = p - t;
+        if d.length() <= s.abs() {
+            alarm(
+                st,
+                elem.span,
+                "E-COMP-START",
+                "the compensation entry move is not longer than the tool radius".into(),
+            );
+        }
+        (d.normalize_or_zero(), false)
+    } else {
+        let d = p - uv(elem.from, plane);
+        let d = if d.length() > EPS { d } else { p - t };
+        (d.normalize_or_zero(), true)
+    };
+    if dir == DVec2::ZERO {
+        sink.emit(elem.source, &as_event(&elem, elem.to, plane));
+        return;
+    }
+    let end = p + left(dir) * s;
+    st.comp.held = Some(Held {
+        source: elem.source,
+        span: elem.span,
+        rapid: elem.rapid,
+        feed: elem.feed,
+        start: tool,
+        end: with_uv(elem.to, end, plane),
+        shape: Shape::Line,
+        corner: p,
+        tangent: dir,
+        offset: s,
+        prog_dir: (end - t).normalize_or_zero(),
+        prog_sweep: 0.0,
+        extended: false,
+        prev_line: elem.source.line,
+        startup,
+    });
+    st.comp.held_run = st.blocks_run;
+}
+
+/// Holds `elem` compensated by `s`, starting at `start` (plane coordinates) after the move of
+/// line `prev_line`.
+fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_line: u32) {
+    let plane = plane_axes(st.plane);
+    let tool = st.comp.tool.unwrap_or(elem.from);
+    let start = start.unwrap_or_else(|| elem.offset_start(s, plane));
+    let end = elem.offset_end(s, plane);
+    if elem.arc.is_some() && elem.offset_curve(s, plane).is_none() {
+        gouge(
+            st,
+            elem.span,
+            format!(
+                "the arc of line {} has a smaller radius than the tool: the tool cannot cut inside it",
+                elem.source.line
+            ),
+        );
+    }
+    let shape = match elem.arc {
+        Some((center, ccw, turns)) => Shape::Arc { center, ccw, turns },
+        None => Shape::Line,
+    };
+    st.comp.held = Some(Held {
+        source: elem.source,
+        span: elem.span,
+        rapid: elem.rapid,
+        feed: elem.feed,
+        start: with_uv(tool, start, plane),
+        end: with_uv(elem.to, end, plane),
+        shape,
+        corner: uv(elem.to, plane),
+        tangent: elem.end_tangent(plane),
+        offset: s,
+        prog_dir: (uv(elem.to, plane) - uv(elem.from, plane)).normalize_or_zero(),
+        prog_sweep: elem.prog_sweep(plane),
+        extended: false,
+        prev_line,
+        startup: false,
+    });
+    st.comp.held_run = st.blocks_run;
+}
+
+/// Ends the held move against the next move in the plane (`next`, with its offset; a NaN
+/// offset is the G40 cancel move), sends it on with the events behind it and the moves that go
+/// round the corner, and returns where the next move starts (plane coordinates).
+fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Option<DVec2> {
+    let Some(mut h) = st.comp.held.take() else {
+        return None;
+    };
+    let plane = plane_axes(st.plane);
+    let mode = corner_mode(st);
+    let linuxcnc = st.dialect == Dialect::LinuxCnc;
+    let small = if linuxcnc {
+        LINUXCNC_SMALL
+    } else {
+        EXACT_SMALL
+    };
+    // Moves round the corner: (point, arc centre when it is an arc about the corner).
+    let mut links: Vec<(DVec2, Option<(DVec2, bool)>)> = Vec::new();
+    let mut start = None;
+    if let Some((n, s2)) = next {
+        let cancel = s2.is_nan();
+        let s = h.offset;
+        let e1 = uv(h.end, plane);
+        let t2 = n.start_tangent(plane);
+        let t1 = h.tangent;
+        let turn = cross(t1, t2).atan2(t1.dot(t2));
+        // Straight back: an inside corner only where the tool is outside an arc on either side
+        // (LinuxCNC's "h" and "m" shapes); otherwise the tool goes round the end.
+        let reversal = turn.abs() > std::f64::consts::PI - small.max(1e-9);
+        let outside_arc = |ccw: bool| (s > 0.0) != ccw;
+        let inside = if reversal {
+            match (h.shape, n.arc) {
+                (Shape::Arc { ccw, .. }, None) => outside_arc(ccw),
+                (_, Some((_, ccw, _))) => outside_arc(ccw),
+                _ => false,
+            }
+        } else {
+            turn * s > 0.0 && turn.abs() > small
+        };
+        let straight = turn.abs() <= small;
+        let s2v = if cancel { s } else { s2 };
+        let s2p = n.offset_start(s2v, plane);
+        if cancel {
+            if inside
+                && let Some(x) = nearest(
+                    intersect(h.curve(plane), Curve::Line { p: s2p, d: t2 }),
+                    e1,
+                    s2p,
+                )
+            {
+                h.end = with_uv(h.end, x, plane);
+            }
+        } else if (s - s2).abs() > EPS {
+            // The side or the radius changes: straight across to the new offset.
+            links.push((s2p, None));
+            start = Some(s2p);
+        } else if straight {
+            // LinuxCNC starts the next move where the last one ended.
+            start = Some(if linuxcnc { e1 } else { s2p });
+        } else if h.startup && !inside {
+            // Fanuc type A start-up: to the next move's start vector.
+            h.end = with_uv(h.end, s2p, plane);
+            start = Some(s2p);
+        } else if inside {
+            let found = n
+                .offset_curve(s, plane)
+                .and_then(|c| first_met(intersect(h.curve(plane), c), &h, n, s, plane));
+            match found {
+                Some(x) => {
+                    h.end = with_uv(h.end, x, plane);
+                    start = Some(x);
+                }
+                None => {
+                    gouge(
+                        st,
+                        n.span,
+                        format!(
+                            "the tool does not fit in the inside corner between line {} and line {}: their offset paths do not meet",
+                            h.source.line, n.source.line
+                        ),
+                    );
+                    links.push((s2p, None));
+                    start = Some(s2p);
+                }
+            }
+        } else {
+            match mode {
+                CornerMode::Arc => {
+                    if n.rapid {
+                        links.push((s2p, None));
+                    } else {
+                        links.push((s2p, Some((h.corner, s < 0.0))));
+                    }
+                    start = Some(s2p);
+                }
+                CornerMode::Intersection => {
+                    let r = s.abs();
+                    if t1.dot(t2) >= -1e-12 {
+                        // 90° or wider: the offset paths meet (extended where needed).
+                        let c2 = n.offset_curve(s, plane);
+                        let x = c2
+                            .and_then(|c| {
+                                nearest(intersect(h.curve(plane), c), e1, s2p)
+                                    .filter(|x| (*x - h.corner).length() < 2.0 * r + EPS)
+                            })
+                            .unwrap_or_else(|| {
+                                h.corner + (left(t1) + left(t2)) * (s / (1.0 + t1.dot(t2)))
+                            });
+                        if on_curve(x, h.curve(plane)) {
+                            h.end = with_uv(h.end, x, plane);
+                            h.extended = true;
+                        } else {
+                            links.push((x, None));
+                        }
+                        if c2.is_some_and(|c| on_curve(x, c)) {
+                            start = Some(x);
+                        } else {
+                            links.push((s2p, None));
+                            start = Some(s2p);
+                        }
+                    } else {
+                        // Sharper than 90°: two extra vectors of the radius along the moves.
+                        let v1 = e1 + t1 * r;
+                        let v2 = s2p - t2 * r;
+                        if h.shape == Shape::Line {
+                            h.end = with_uv(h.end, v1, plane);
+                            h.extended = true;
+                        } else {
+                            links.push((v1, None));
+                        }
+                        links.push((v2, None));
+                        if n.arc.is_none() {
+                            start = Some(v2);
+                        } else {
+                            links.push((s2p, None));
+                            start = Some(s2p);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    send(st, sink, &h, next.map(|(n, _)| n.source.line));
+    let end = h.end;
+    let behind = std::mem::take(&mut st.comp.behind);
+    let mut at = end;
+    for (source, event) in behind {
+        match event.end_point() {
+            Some(to) => {
+                at = with_uv(to, uv(end, plane), plane);
+                sink.emit(source, &with_end(&event, at, plane));
+            }
+            None => sink.emit(source, &event),
+        }
+    }
+    if let Some((n, _)) = next {
+        let w = 3 - plane.0 - plane.1;
+        for (p, arc) in links {
+            let to = with_uv(at, p, plane);
+            let event = match arc {
+                Some((c, ccw)) => {
+                    let mut center = with_uv(at, c, plane);
+                    center[w] = at[w];
+                    Canon::Arc {
+                        to,
+                        center,
+                        axis: st.plane,
+                        ccw,
+                        turns: 0,
+                        feed_mm_per_min: n.feed,
+                    }
+                }
+                None if n.rapid => Canon::Rapid { to },
+                None => Canon::Feed {
+                    to,
+                    feed_mm_per_min: n.feed,
+                },
+            };
+            sink.emit(n.source, &event);
+            at = to;
+        }
+    }
+    st.comp.tool = Some(at);
+    start.or(Some(uv(at, plane)))
+}
+
+/// The intersection where the tool leaves the held move for the next one at an inside corner:
+/// the first one met going back along the held move from its end and forward along the next
+/// move from its start.
+fn first_met(
+    points: Vec<DVec2>,
+    h: &Held,
+    n: &Elem,
+    s: f64,
+    plane: (usize, usize),
+) -> Option<DVec2> {
+    let e1 = uv(h.end, plane);
+    let s2 = n.offset_start(s, plane);
+    let back = |x: DVec2| match h.shape {
+        Shape::Line => (e1 - x).dot(h.tangent).abs(),
+        Shape::Arc { center, ccw, .. } => (x - center).length() * sweep(x, e1, center, ccw),
+    };
+    let forward = |x: DVec2| match n.arc {
+        None => (x - s2).dot(n.start_tangent(plane)).abs(),
+        Some((c, ccw, _)) => (x - c).length() * sweep(s2, x, c, ccw),
+    };
+    points
+        .into_iter()
+        .filter(|p| p.is_finite())
+        .min_by(|p, q| (back(*p) + forward(*p)).total_cmp(&(back(*q) + forward(*q))))
+}
+
+/// The intersection nearest both ends of a corner.
+fn nearest(points: Vec<DVec2>, a: DVec2, b: DVec2) -> Option<DVec2> {
+    points.into_iter().filter(|p| p.is_finite()).min_by(|p, q| {
+        let dp = (*p - a).length() + (*p - b).length();
+        let dq = (*q - a).length() + (*q - b).length();
+        dp.total_cmp(&dq)
+    })
+}
+
+/// Sends the held move on, after checking its direction against the programmed one (`next`:
+/// the line of the move that decided its end).
+fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
+    let plane = plane_axes(st.plane);
+    let (a, b) = (uv(h.start, plane), uv(h.end, plane));
+    let reversed = match h.shape {
+        Shape::Line => h.prog_dir != DVec2::ZERO && (b - a).dot(h.prog_dir) < -1e-7,
+        Shape::Arc { center, ccw, turns } => {
+            let s = sweep(a, b, center, ccw) + f64::from(turns) * std::f64::consts::TAU;
+            // Trimming shortens an arc; one that crossed itself wraps round to nearly a turn.
+            // (Near-tangent corners may leave a start a little before the programmed one.)
+            let limit = if h.extended {
+                h.prog_sweep + std::f64::consts::PI
+            } else {
+                h.prog_sweep + 0.1
+            };
+            (a - b).length() > 1e-7 && s > limit
+        }
+    };
+    if reversed {
+        let message = format!(
+            "the compensated move of line {} runs backwards against its programmed direction between the corners with line {} and line {}: the tool cuts into the part (a groove or pocket narrower than the tool, or a step smaller than the radius)",
+            h.source.line,
+            h.prev_line,
+            next.unwrap_or(h.source.line)
+        );
+        gouge(st, h.span, message);
+    }
+    let event = match h.shape {
+        Shape::Line if h.rapid => Canon::Rapid { to: h.end },
+        Shape::Line => Canon::Feed {
+            to: h.end,
+            feed_mm_per_min: h.feed,
+        },
+        Shape::Arc { center, ccw, turns } => {
+            let full = h.prog_sweep >= std::f64::consts::TAU - 1e-9;
+            if (a - b).length() < 1e-9 && !full && turns == 0 {
+                Canon::Feed {
+                    to: h.end,
+                    feed_mm_per_min: h.feed,
+                }
+            } else {
+                let w = 3 - plane.0 - plane.1;
+                let mut c = with_uv(h.start, center, plane);
+                c[w] = h.start[w];
+                Canon::Arc {
+                    to: h.end,
+                    center: c,
+                    axis: st.plane,
+                    ccw,
+                    turns,
+                    feed_mm_per_min: h.feed,
+                }
+            }
+        }
+    };
+    sink.emit(h.source, &event);
+}
+
+/// A gouge: a warning, or an alarm that stops the run where the control alarms (LinuxCNC,
+/// Syntec with parameter 3819).
+fn gouge(st: &mut State, span: Span, message: String) {
+    let alarms = st.dialect == Dialect::LinuxCnc || st.setup.machine.overcut_alarm;
+    if alarms {
+        alarm(st, span, "E-COMP-GOUGE", message);
+    } else {
+        st.diagnostics
+            .push(Diagnostic::warning(span, "W-COMP-GOUGE", message));
+    }
+}
+
+/// An alarm: the run stops before the next block.
+fn alarm(st: &mut State, span: Span, code: &'static str, message: String) {
+    let d = Diagnostic::error(span, code, message);
+    if st.alarm.is_none() {
+        st.alarm = Some(d);
+    } else {
+        st.diagnostics.push(d);
+    }
+}
+
+/// `event` with its end point moved to `to`.
+fn with_end(event: &Canon, to: DVec3, _plane: (usize, usize)) -> Canon {
+    match event.clone() {
+        Canon::Rapid { .. } => Canon::Rapid { to },
+        Canon::Feed {
+            feed_mm_per_min, ..
+        } => Canon::Feed {
+            to,
+            feed_mm_per_min,
+        },
+        Canon::Arc {
+            center,
+            axis,
+            ccw,
+            turns,
+            feed_mm_per_min,
+            ..
+        } => Canon::Arc {
+            to,
+            center,
+            axis,
+            ccw,
+            turns,
+            feed_mm_per_min,
+        },
+        other => other,
+    }
+}
+
+/// The programmed move as an event.
+fn as_event(e: &Elem, to: DVec3, plane: (usize, usize)) -> Canon {
+    match e.arc {
+        Some((c, ccw, turns)) => {
+            let w = 3 - plane.0 - plane.1;
+            let mut center = with_uv(e.from, c, plane);
+            center[w] = e.from[w];
+            let axis = match w {
+                0 => crate::Axis::X,
+                1 => crate::Axis::Y,
+                _ => crate::Axis::Z,
+            };
+            Canon::Arc {
+                to,
+                center,
+                axis,
+                ccw,
+                turns,
+                feed_mm_per_min: e.feed,
+            }
+        }
+        None if e.rapid => Canon::Rapid { to },
+        None => Canon::Feed {
+            to,
+            feed_mm_per_min: e.feed,
+        },
+    }
+}
