@@ -820,7 +820,7 @@ fn gsk_slant_angle_zero_or_past_60_degrees_is_an_alarm() {
     );
 }
 
-/// The manual's five-hole template (E53–E61, E63, E64): holes 1–3 under G99 come back to R,
+/// The manual's five-hole template (E53–E61, E63, E64), in every dialect with these cycles: holes 1–3 under G99 come back to R,
 /// hole 4 sets G98 and comes back to the initial level, hole 5 sets a new bottom.
 #[test]
 fn manual_cycle_examples_drill_the_stated_holes_and_return_as_stated() {
@@ -844,8 +844,12 @@ fn manual_cycle_examples_drill_the_stated_holes_and_return_as_stated() {
         (5.0, 15.0),
         (10.0, 10.0),
     ];
-    for dialect in [Dialect::Syntec, Dialect::Fanuc, Dialect::Kt] {
+    for dialect in [Dialect::Syntec, Dialect::Fanuc, Dialect::Kt, Dialect::Lnc] {
         for (code, extra) in cases {
+            // LNC's list has no G88.
+            if dialect == Dialect::Lnc && code == 88 {
+                continue;
+            }
             let spindle = if code == 74 { "M04" } else { "M03" };
             let text = format!(
                 "F1000. S500;\n{spindle};\nG90;\nG00 X0. Y0. Z10.;\nG17;\nG90 G99;\n\
@@ -950,5 +954,32 @@ fn kt_tapping_i_gives_threads_per_inch() {
     assert!(
         feeds.iter().all(|f| (f - 1.27 * 600.0).abs() < 1e-9),
         "{feeds:?}"
+    );
+}
+
+#[test]
+fn gsk_e17_slanted_flexible_tapping_reverses_at_the_bottom() {
+    let text = "G98;\nG0 X0 Z200;\nM3 S800;\nG84.1 Z-30 R-10 P1000 F1600 E30;\nG80;\nM30;\n";
+    let (out, diags) = events(text, Dialect::Gsk);
+    assert!(diags.iter().all(|c| !c.starts_with("E-")), "{diags:?}");
+    let (s30, c30) = (0.5, 3f64.sqrt() / 2.0);
+    let f = |v: f64| ((v * 1e6).round() / 1e6).to_string();
+    let r = format!("R {} 0 {}", f(-10.0 * s30), f(200.0 - 10.0 * c30));
+    let bottom = format!("F {} 0 {}", f(-40.0 * s30), f(200.0 - 40.0 * c30));
+    let back = format!("F {} 0 {}", f(-10.0 * s30), f(200.0 - 10.0 * c30));
+    // In along the tilted axis, stop, dwell 1 s, reverse, out to R, stop, forward, back up.
+    let at = out.iter().position(|e| *e == r).unwrap();
+    assert_eq!(
+        out[at + 1..at + 9],
+        s(&[
+            &bottom,
+            "S None",
+            "D 1",
+            "S Some(false)",
+            &back,
+            "S None",
+            "S Some(true)",
+            "R 0 0 200",
+        ])[..]
     );
 }

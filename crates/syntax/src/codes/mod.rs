@@ -365,8 +365,24 @@ fn index() -> &'static [Vec<(Code, u16)>; 6] {
 const FANUC_READING: [Dialect; 3] = [Dialect::Lnc, Dialect::Kt, Dialect::Gsk];
 
 /// The codes read as on Fanuc where a [`FANUC_READING`] dialect's manual does not give them:
-/// G20/G21, M00–M06, M08, M09, M30, M98, M99.
-const FANUC_STANDARD: [Code; 14] = [
+/// the planes G17–G19, G20/G21, G40, M00–M06, M08, M09, M30, M98, M99.
+const FANUC_STANDARD: [Code; 18] = [
+    Code {
+        letter: b'G',
+        tenths: 170,
+    },
+    Code {
+        letter: b'G',
+        tenths: 180,
+    },
+    Code {
+        letter: b'G',
+        tenths: 190,
+    },
+    Code {
+        letter: b'G',
+        tenths: 400,
+    },
     Code {
         letter: b'G',
         tenths: 200,
