@@ -8,6 +8,7 @@
 # Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
 # TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's.
 #   scripts/bench-peers.sh            (RUNS=3, TIMEOUT=600; needs ../shared for the corpus files)
+# It ends with the wasm32 build's figure on the generated program (Node, in-process).
 # The peers are installed once under target/peers (npm and pip; nothing is committed).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -103,3 +104,10 @@ for prog in "${programs[@]}"; do
     "$(cell "${r[0]}" "${r[1]}" "$st" "$bytes")" "$(cell "${g[0]}" "${g[1]}" "$st" "$bytes")" \
     "$(cell "${p[0]}" "${p[1]}" "$st" "$bytes")"
 done
+
+# Swarf's wasm build on the generated program (in Node, in-process: no file reading or process
+# start), from the on-demand test in crates/toolpath.
+wasm=$(cd "$root" && cargo test -p swarf-toolpath --release --target wasm32-unknown-unknown \
+  --test wasm_throughput -- --include-ignored --nocapture 2>&1 | grep -o "wasm32 stats: .*")
+echo
+echo "Swarf wasm32 in Node (generated 1M-line program, parse + interpret + record): ${wasm#wasm32 stats: }"
