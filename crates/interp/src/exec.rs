@@ -116,6 +116,12 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         (Group::LengthComp, 490) => Action::LengthComp(None),
         (Group::LengthComp, 431 | 432) if linuxcnc => Action::DynamicLength,
         (Group::CutterComp, t) => Action::CutterComp(t),
+        // G45–G48 change the block's move (`position::offset_line`, `offset_arc`).
+        (Group::NonModal, 450 | 460 | 470 | 480)
+            if matches!(dialect, Dialect::Fanuc | Dialect::Syntec) =>
+        {
+            Action::Nothing
+        }
         (Group::MacroModal, 660) => Action::ModalMacro(true),
         (Group::MacroModal, 670) => Action::ModalMacro(false),
         (Group::ArcDistance | Group::LatheMode, _) => Action::Nothing,
@@ -969,7 +975,11 @@ fn motion(
         ));
         return false;
     };
-    let p = target(st, axes);
+    let mut p = target(st, axes);
+    if matches!(mode, MotionMode::Rapid | MotionMode::Linear) {
+        // G45–G48: the travel of each moving axis changes by the offset.
+        p = crate::position::offset_line(st, block, words, axes, p);
+    }
     let to = st.to_machine(p);
     let event = match mode {
         MotionMode::Rapid if !probe => Canon::Rapid { to },
@@ -1295,6 +1305,13 @@ fn arc(
             return false;
         }
     }
+    // G45–G48 on an arc: the centre stays, the end moves along its radius by the offset.
+    let by_radius = radius.is_some() && offsets.iter().all(Option::is_none);
+    let p = match crate::position::offset_arc(st, block, &block.words, by_radius, center, p, ccw) {
+        Some(Some(q)) => q,
+        Some(None) => p,
+        None => return false,
+    };
     let to = st.to_machine(p);
     let mut machine_center = st.to_machine(center);
     let normal = 3 - u - v;

@@ -9,6 +9,7 @@ mod exec;
 mod flow;
 mod machine;
 pub mod macros;
+mod position;
 mod setup;
 mod state;
 mod states;
