@@ -176,6 +176,7 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         PathPoint::new(rel(*end), kind)
     }));
     mark_cycle_moves(path, &mut points);
+    color_by_tool(path, &mut points);
     let diagonal = (bounds.max - bounds.min).length();
     let mut marks = hole_marks(path, rel, diagonal);
     marks.extend(origin_marks(path, rel, diagonal));
@@ -263,6 +264,16 @@ fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> glam::Vec3, diagonal: f64)
         }
     }
     marks
+}
+
+/// Gives every point the number of its segment's tool in order of first use, so the backplot can
+/// colour the path by tool (`ColorMode::ByIndex`). `points[0]` is the start point.
+fn color_by_tool(path: &Toolpath, points: &mut [PathPoint]) {
+    let tools = path.tools();
+    for (point, tool) in points.iter_mut().skip(1).zip(path.segment_tools()) {
+        let index = tools.iter().position(|t| t == tool).unwrap_or(0);
+        *point = point.with_color_index(u16::try_from(index).unwrap_or(u16::MAX));
+    }
 }
 
 /// Gives the segments of canned cycles their kinds (plunge, retract, other cycle move), so the

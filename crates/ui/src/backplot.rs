@@ -441,6 +441,20 @@ impl Backplot {
         self.color_mode = mode;
     }
 
+    /// The colouring in use: by kind of move or by tool.
+    #[must_use]
+    pub fn color_mode(&self) -> ColorMode {
+        self.color_mode
+    }
+
+    /// Switches between colours by kind of move and by tool.
+    pub fn toggle_color_by_tool(&mut self) {
+        self.color_mode = match self.color_mode {
+            ColorMode::ByKind => ColorMode::ByIndex,
+            ColorMode::ByIndex => ColorMode::ByKind,
+        };
+    }
+
     /// What the cursor was over at the last frame.
     #[must_use]
     pub fn hovered(&self) -> Option<&HoverInfo> {
@@ -780,6 +794,7 @@ impl Backplot {
                     let visible = self.kind_visible(Kind::Rapid);
                     self.set_kind_visible(Kind::Rapid, !visible);
                 }
+                Key::T => self.toggle_color_by_tool(),
                 Key::Escape => self.selected_line = None,
                 _ => {}
             }
@@ -824,6 +839,14 @@ impl Backplot {
             } else {
                 Projection::Perspective
             };
+        }
+        let by_tool = self.color_mode == ColorMode::ByIndex;
+        if child
+            .selectable_label(by_tool, "By tool")
+            .on_hover_text("Colour the path by tool instead of by kind of move (T)")
+            .clicked()
+        {
+            self.toggle_color_by_tool();
         }
         let rapids = self.kind_visible(Kind::Rapid);
         if child

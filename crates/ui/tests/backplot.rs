@@ -451,3 +451,27 @@ fn the_travel_box_has_twelve_edges_on_its_corners() {
             .any(|p| p.position() == Vec3::new(-250.0, -300.0, -400.0))
     );
 }
+
+#[test]
+fn scene_points_carry_their_tool_for_colouring_by_tool() {
+    let program = swarf_syntax::parse(
+        "T3 M06\nG0 X0 Y0 Z5.\nG1 X10. F100\nT7 M06\nG1 Y10.\nT3 M06\nG1 X0\n",
+        swarf_syntax::Dialect::Fanuc,
+    );
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
+    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let indices: Vec<u16> = scene
+        .points
+        .iter()
+        .skip(1)
+        .map(PathPoint::color_index)
+        .collect();
+    // T3 is the first tool used (0), T7 the second (1).
+    assert_eq!(indices, [0, 0, 1, 0]);
+    assert_eq!(scene.points[2].kind(), Some(Kind::Feed));
+    let mut plot = Backplot::new();
+    assert_eq!(plot.color_mode(), swarf_render::ColorMode::ByKind);
+    plot.toggle_color_by_tool();
+    assert_eq!(plot.color_mode(), swarf_render::ColorMode::ByIndex);
+}
