@@ -952,10 +952,16 @@ impl Drill<'_, '_> {
         self.rapid_shifted(self.level(hole, r));
         self.rapid(self.level(hole, r));
         self.spindle(Some(true));
-        self.feed_to(self.level(hole, bottom));
+        self.bore_out_shifted(hole, bottom, clear, dir);
+    }
+
+    /// Bores to `end`, dwells, stops oriented, shifts away from the wall, leaves at rapid to
+    /// `clear`, shifts back and restarts the spindle as it was (`dir`): the end of G76 and G87.
+    fn bore_out_shifted(&mut self, hole: DVec3, end: f64, clear: f64, dir: Option<bool>) {
+        self.feed_to(self.level(hole, end));
         self.dwell();
         self.orient();
-        self.rapid_shifted(self.level(hole, bottom));
+        self.rapid_shifted(self.level(hole, end));
         self.rapid_shifted(self.level(hole, clear));
         self.rapid(self.level(hole, clear));
         self.spindle(dir.or(Some(true)));
@@ -1048,13 +1054,7 @@ impl Drill<'_, '_> {
                 // Fine boring: bore, dwell, oriented stop, shift away from the wall, out at
                 // rapid, shift back, spindle on as before.
                 let dir = self.st.spindle_dir;
-                self.feed_to(self.level(hole, bottom));
-                self.dwell();
-                self.orient();
-                self.rapid_shifted(self.level(hole, bottom));
-                self.rapid_shifted(self.level(hole, clear));
-                self.rapid(self.level(hole, clear));
-                self.spindle(dir.or(Some(true)));
+                self.bore_out_shifted(hole, bottom, clear, dir);
             }
             860 => {
                 // Boring with spindle stop: out at rapid, the spindle restarted as it was.
