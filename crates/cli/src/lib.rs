@@ -14,7 +14,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
-use swarf_syntax::{Diagnostic, Dialect, LineIndex, Program, Severity, decode, parse};
+use swarf_syntax::{Diagnostic, Dialect, LineIndex, Missing, Program, Severity, decode, parse};
 use swarf_toolpath::Toolpath;
 
 /// Exit status: no error diagnostics.
@@ -154,6 +154,92 @@ struct Loaded {
     program: Program,
     /// Decoding and parsing diagnostics.
     diagnostics: Vec<Diagnostic>,
+    /// The files linked for the program's calls, in the order of `program.linked`.
+    linked: Vec<LinkedText>,
+}
+
+/// A file linked to the program (a subprogram it calls), kept to report its diagnostics.
+struct LinkedText {
+    path: String,
+    text: String,
+    lines: LineIndex,
+    first_byte: u32,
+}
+
+/// Most files linked to one program (a bound on runaway chains of calls).
+const MAX_LINKED: usize = 64;
+
+/// The files in `dir` that may hold a called program: `O1234`, `O1234.nc`, `1234.nc` … for a
+/// number, `name.ngc` (LinuxCNC's subroutine files) or `name.nc` for a name.
+fn candidates(dir: &Path, missing: &Missing) -> Vec<PathBuf> {
+    let stems: Vec<String> = match missing {
+        Missing::Number(n) => vec![
+            format!("O{n:04}"),
+            format!("O{n}"),
+            format!("o{n:04}"),
+            format!("o{n}"),
+            format!("{n:04}"),
+            format!("{n}"),
+        ],
+        Missing::Name(name) => vec![name.clone()],
+    };
+    let extensions = ["", ".nc", ".NC", ".ngc", ".tap", ".txt", ".gcode", ".cnc"];
+    stems
+        .iter()
+        .flat_map(|stem| {
+            extensions
+                .iter()
+                .map(move |e| dir.join(format!("{stem}{e}")))
+        })
+        .collect()
+}
+
+/// Links the programs the program calls and does not hold from files beside it, until nothing
+/// more can be found; returns the linked files' texts.
+fn link_external(
+    program: &mut Program,
+    path: &Path,
+    main_len: usize,
+    dialect: Dialect,
+) -> Vec<LinkedText> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mut linked: Vec<LinkedText> = Vec::new();
+    loop {
+        let mut progress = false;
+        for missing in program.missing_calls() {
+            if linked.len() >= MAX_LINKED {
+                return linked;
+            }
+            let Some(file) = candidates(dir, &missing)
+                .into_iter()
+                .find(|c| c.is_file() && c.as_path() != path)
+            else {
+                continue;
+            };
+            let name = file.display().to_string();
+            if linked.iter().any(|l| l.path == name) {
+                continue;
+            }
+            let Ok(bytes) = std::fs::read(&file) else {
+                continue;
+            };
+            let decoded = decode(&bytes);
+            let sub = parse(&decoded.text, dialect);
+            let lines = sub.lines.clone();
+            program.link(sub, &name, main_len, decoded.text.len());
+            let first_byte = program.linked.last().map_or(0, |l| l.first_byte);
+            linked.push(LinkedText {
+                path: name,
+                text: decoded.text,
+                lines,
+                first_byte,
+            });
+            progress = true;
+        }
+        if !progress {
+            return linked;
+        }
+    }
 }
 
 /// The setup named by `--setup`, or the default one.
@@ -170,7 +256,8 @@ fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
     let bytes =
         std::fs::read(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
     let decoded = decode(&bytes);
-    let program = parse(&decoded.text, opts.dialect);
+    let mut program = parse(&decoded.text, opts.dialect);
+    let linked = link_external(&mut program, path, decoded.text.len(), opts.dialect);
     let mut diagnostics = decoded.diagnostics;
     diagnostics.extend(program.diagnostics.iter().cloned());
     Ok(Loaded {
@@ -178,6 +265,7 @@ fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
         text: decoded.text,
         program,
         diagnostics,
+        linked,
     })
 }
 
@@ -195,11 +283,23 @@ impl Loaded {
         let mut cols = index.cursor(&self.text);
         let mut status = EXIT_OK;
         for d in diags {
-            let (line, col) = cols.line_col(d.span.start);
+            // A diagnostic in a linked file is reported at its place in that file.
+            let (path, (line, col)) = match self
+                .linked
+                .iter()
+                .rev()
+                .find(|l| d.span.start >= l.first_byte)
+            {
+                Some(l) => (
+                    l.path.as_str(),
+                    l.lines.line_col(&l.text, d.span.start - l.first_byte),
+                ),
+                None => (self.path.as_str(), cols.line_col(d.span.start)),
+            };
             writeln!(
                 err,
-                "{}:{line}:{col}: {}[{}]: {}",
-                self.path, d.severity, d.code, d.message
+                "{path}:{line}:{col}: {}[{}]: {}",
+                d.severity, d.code, d.message
             )?;
             if d.severity == Severity::Error {
                 status = EXIT_ERRORS;

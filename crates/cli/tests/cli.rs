@@ -197,3 +197,57 @@ fn the_readme_code_table_is_generated_from_the_code_tables() {
         "README.md's code table is stale: replace it with `swarf explain --table`"
     );
 }
+
+/// Subprograms in files beside the program are linked: `M98`/`M198 P1234` finds `O1234.nc`,
+/// LinuxCNC's `o<name> call` finds `name.ngc`, and their diagnostics name their own file.
+#[test]
+fn calls_reach_programs_in_files_beside_the_program() {
+    let dir = tempfile::tempdir().unwrap();
+    let main = temp_file(
+        &dir,
+        "main.nc",
+        b"G90 G0 X0 Y0\nM98 P1234\nM198 P1234\nM98 P2000\nM30\n",
+    );
+    temp_file(
+        &dir,
+        "O1234.nc",
+        b"%\nO1234 (STEP)\nG91 G1 X10. F100\nY$\nG90\nM99\n%\n",
+    );
+    let (code, out, err) = swarf(&["canon", &main]);
+    assert_eq!(code, 1, "{err}");
+    let feeds: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|v| v["kind"] == "feed")
+        .collect();
+    // Called twice (M98 and M198), 10 mm further each time.
+    assert_eq!(feeds.len(), 2, "{out}");
+    assert_eq!(feeds[1]["to"], serde_json::json!([20.0, 0.0, 0.0]));
+    // The linked file's error is reported in that file; the missing program in the main one.
+    assert!(err.contains("O1234.nc:4:1: error[E-WORD-VALUE]"), "{err}");
+    assert!(err.contains("main.nc:4:1: error[E-SUBPROGRAM]"), "{err}");
+
+    let main = temp_file(&dir, "main.ngc", b"o<square> call [10]\nM2\n");
+    temp_file(
+        &dir,
+        "square.ngc",
+        b"o<square> sub\nG1 X#1 F100\nY#1\no<side> call\no<square> endsub\n",
+    );
+    temp_file(&dir, "side.ngc", b"o<side> sub\nG1 Z-1\no<side> endsub\n");
+    let (code, out, err) = swarf(&["canon", &main, "--dialect", "linuxcnc"]);
+    assert_eq!(code, 0, "{err}");
+    let ends: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|v| v["kind"] == "feed")
+        .map(|v| v["to"].clone())
+        .collect();
+    assert_eq!(
+        ends,
+        [
+            serde_json::json!([10.0, 0.0, 0.0]),
+            serde_json::json!([10.0, 10.0, 0.0]),
+            serde_json::json!([10.0, 10.0, -1.0]),
+        ]
+    );
+}

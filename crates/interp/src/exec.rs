@@ -2089,7 +2089,9 @@ fn m_codes(
             70 | 80 => Canon::Coolant { on: true },
             90 => Canon::Coolant { on: false },
             190 => continue,
-            980 => {
+            // M198: a program from outside the control's memory (the files linked to the
+            // program), called as M98 calls one.
+            980 | 1980 => {
                 flow = match it.call_subprogram(at, block, words) {
                     Ok(f) => f,
                     Err(e) => {

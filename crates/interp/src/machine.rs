@@ -571,7 +571,7 @@ impl Interpreter {
                             block.span,
                             "E-OWORD",
                             format!(
-                                "no `{} sub` in this file (subroutines in other files are not read yet)",
+                                "no `{} sub` in this program nor in a file beside it (name.ngc)",
                                 show_label(&key)
                             ),
                         )
@@ -768,7 +768,7 @@ impl Interpreter {
                         block.span,
                         "E-SUBPROGRAM",
                         format!(
-                            "program O{number:04} is not in this file (other files are not searched yet)"
+                            "program O{number:04} is neither in this program nor in a file beside it (O{number:04}, O{number:04}.nc, {number}.nc …)"
                         ),
                     )
                 })?
@@ -822,7 +822,7 @@ impl Interpreter {
                     block.span,
                     "E-SUBPROGRAM",
                     format!(
-                        "macro program O{number:04} is not in this file (other files are not searched yet)"
+                        "macro program O{number:04} is neither in this program nor in a file beside it (O{number:04}, O{number:04}.nc, {number}.nc …)"
                     ),
                 )
             })?;

@@ -388,6 +388,8 @@ pub struct Program {
     pub lines: LineIndex,
     /// Whether the text is a Syntec `%@MACRO` program.
     pub syntec_macro: bool,
+    /// The files linked after the program's own text (see [`Program::link`]).
+    pub linked: Vec<crate::link::LinkedFile>,
 }
 
 impl Program {

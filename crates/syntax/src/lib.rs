@@ -10,6 +10,7 @@ mod decode;
 mod diagnostic;
 mod dialect;
 mod line_index;
+mod link;
 mod parser;
 
 pub use ast::{
@@ -21,4 +22,5 @@ pub use decode::{Decoded, Encoding, decode};
 pub use diagnostic::{Diagnostic, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
+pub use link::{LinkedFile, Missing};
 pub use parser::parse;

@@ -25,6 +25,7 @@ pub fn parse(text: &str, dialect: Dialect) -> Program {
         diagnostics: Vec::new(),
         lines: LineIndex::new(text),
         syntec_macro: false,
+        linked: Vec::new(),
     };
     let mut offset = 0usize;
     // A program that opens with a `%` line (the first line that is not blank) ends at the next

@@ -4,7 +4,7 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-use swarf_syntax::{Dialect, ProgramNumber, Severity, decode, parse};
+use swarf_syntax::{Dialect, Expr, ProgramNumber, Severity, Statement, decode, parse};
 
 fn words(text: &str, dialect: Dialect) -> Vec<Vec<(char, f64)>> {
     parse(text, dialect)
@@ -149,4 +149,49 @@ fn the_line_cursor_agrees_with_line_col_in_any_order() {
     for &o in offsets.iter().chain(offsets.iter().rev()) {
         assert_eq!(cursor.line_col(o), p.lines.line_col(text, o), "offset {o}");
     }
+}
+
+#[test]
+fn a_linked_program_keeps_its_meaning_past_the_main_text() {
+    let main = "#1=2\nM98 P1234\no<sq> call [#1+1]\nM30\n";
+    let mut p = parse(main, Dialect::Fanuc);
+    assert_eq!(
+        p.missing_calls(),
+        [swarf_syntax::Missing::Number(1234)],
+        "o-word calls are LinuxCNC's"
+    );
+    let sub_text = "O1234\n#2=[#1*3]\nG1 X#2\nM99\n";
+    let sub = parse(sub_text, Dialect::Fanuc);
+    let exprs_before = p.exprs.len();
+    p.link(sub, "O1234.nc", main.len(), sub_text.len());
+    assert!(p.missing_calls().is_empty());
+    let l = &p.linked[0];
+    assert_eq!((l.first_byte as usize, l.first_line), (main.len() + 1, 5));
+    let first = &p.blocks[4];
+    assert_eq!(first.line, 5);
+    assert_eq!(first.span.start as usize, main.len() + 1);
+    // The linked expressions are renumbered after the main program's: `#2=[#1*3]` still reads
+    // `#1 * 3`.
+    let Statement::Assign { value, .. } = &p.blocks[5].statements[0] else {
+        panic!("{:?}", p.blocks[5]);
+    };
+    assert!(value.index() >= exprs_before);
+    let Expr::Binary(_, a, b) = &p.expr(*value).unwrap().expr else {
+        panic!()
+    };
+    assert!(matches!(p.expr(*b).unwrap().expr, Expr::Num(n) if n == 3.0));
+    assert!(matches!(p.expr(*a).unwrap().expr, Expr::Var(_)));
+    assert!(p.blocks[6].words[1].expr.unwrap().index() >= exprs_before);
+    assert_eq!(
+        p.linked_file_at(Some(first.span.start), None)
+            .map(|l| l.name.as_str()),
+        Some("O1234.nc")
+    );
+    assert!(p.linked_file_at(Some(3), None).is_none());
+    // LinuxCNC: named subroutines.
+    let l = parse("o<sq> call [1]\nM2\n", Dialect::LinuxCnc);
+    assert_eq!(
+        l.missing_calls(),
+        [swarf_syntax::Missing::Name("sq".into())]
+    );
 }

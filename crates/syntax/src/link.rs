@@ -1,0 +1,213 @@
+//! Programs from other files appended to a program, so its subprogram and macro calls (`M98 P`,
+//! `M198 P`, `G65 P`, LinuxCNC `o<name> call`) reach programs kept in files of their own, as a
+//! control reaches the programs in its memory.
+//!
+//! A linked program's blocks, expressions and diagnostics keep their meaning; their byte spans
+//! and lines are moved past everything before them (as if the texts followed each other), and
+//! [`Program::linked`] tells which file a span or a line belongs to.
+
+use crate::ast::{Expr, ExprId, OLabel, OWord, Statement};
+use crate::{Program, ProgramNumber, Span};
+
+/// A file linked into a program: where its text lies among the program's byte offsets and lines.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LinkedFile {
+    /// The file's name (as the caller gave it, e.g. its path).
+    pub name: String,
+    /// The offset its first byte has in the linked program's spans.
+    pub first_byte: u32,
+    /// The 0-based line its first line has in the linked program's blocks.
+    pub first_line: u32,
+    /// Its length in bytes.
+    pub len: u32,
+    /// Its number of lines.
+    pub lines: u32,
+}
+
+/// A call target a program uses and does not define.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum Missing {
+    /// `M98 P1234` (`M198`, `G65`, `G66`) with no `O1234` in the program.
+    Number(u32),
+    /// LinuxCNC `o<name> call` with no `o<name> sub`.
+    Name(String),
+}
+
+impl Program {
+    /// Appends `other` (parsed from the file `name`, `len` bytes long) after this program, with
+    /// its spans moved past `self_len` bytes of this program's own text and everything linked
+    /// before, its lines past all lines before, and its expressions after this program's.
+    pub fn link(&mut self, other: Program, name: &str, self_len: usize, len: usize) {
+        let main_lines = u32::try_from(self.lines.line_count()).unwrap_or(u32::MAX);
+        let (first_byte, first_line) = match self.linked.last() {
+            Some(l) => (
+                l.first_byte.saturating_add(l.len).saturating_add(1),
+                l.first_line.saturating_add(l.lines),
+            ),
+            None => (
+                u32::try_from(self_len)
+                    .unwrap_or(u32::MAX)
+                    .saturating_add(1),
+                main_lines,
+            ),
+        };
+        let shift = |s: Span| Span {
+            start: s.start.saturating_add(first_byte),
+            end: s.end.saturating_add(first_byte),
+        };
+        let base = self.exprs.len();
+        let id = |e: ExprId| ExprId::from_index(e.index() + base).unwrap_or(e);
+        for mut node in other.exprs {
+            node.span = shift(node.span);
+            node.expr = match node.expr {
+                Expr::Var(a) => Expr::Var(id(a)),
+                Expr::Neg(a) => Expr::Neg(id(a)),
+                Expr::Binary(op, a, b) => Expr::Binary(op, id(a), id(b)),
+                Expr::Call(f, a, b) => Expr::Call(f, id(a), b.map(id)),
+                other @ (Expr::Num(_) | Expr::Named(_)) => other,
+            };
+            self.exprs.push(node);
+        }
+        for mut block in other.blocks {
+            block.span = shift(block.span);
+            block.line = block.line.saturating_add(first_line);
+            for w in block.words.iter_mut() {
+                w.span = shift(w.span);
+                w.expr = w.expr.map(id);
+            }
+            for c in block.comments.iter_mut() {
+                *c = shift(*c);
+            }
+            for s in block.statements.iter_mut() {
+                rebase_statement(s, &id);
+            }
+            self.blocks.push(block);
+        }
+        for mut d in other.diagnostics {
+            d.span = shift(d.span);
+            self.diagnostics.push(d);
+        }
+        self.linked.push(LinkedFile {
+            name: name.to_string(),
+            first_byte,
+            first_line,
+            len: u32::try_from(len).unwrap_or(u32::MAX),
+            lines: u32::try_from(other.lines.line_count()).unwrap_or(u32::MAX),
+        });
+    }
+
+    /// The linked file a byte offset or a 0-based line of this program lies in (`None`: the
+    /// program's own text).
+    pub fn linked_file_at(&self, offset: Option<u32>, line: Option<u32>) -> Option<&LinkedFile> {
+        self.linked.iter().rev().find(|l| {
+            offset.is_some_and(|o| o >= l.first_byte) || line.is_some_and(|n| n >= l.first_line)
+        })
+    }
+
+    /// The subprogram numbers and O-word names this program calls with literal targets but
+    /// does not define (in the order first called).
+    pub fn missing_calls(&self) -> Vec<Missing> {
+        let mut numbers = Vec::new();
+        let mut names = Vec::new();
+        for block in &self.blocks {
+            if let Some(p) = block.program.as_deref() {
+                match p {
+                    ProgramNumber::Number(n) => numbers.push(*n),
+                    ProgramNumber::Name(n) => names.push(n.to_string()),
+                }
+            }
+            for s in block.statements.iter() {
+                if let Statement::OWord {
+                    label: OLabel::Name(n),
+                    kind: OWord::Sub,
+                } = s
+                {
+                    names.push(n.to_string());
+                }
+            }
+        }
+        let mut missing: Vec<Missing> = Vec::new();
+        let mut add = |m: Missing| {
+            let defined = match &m {
+                Missing::Number(n) => numbers.contains(n),
+                Missing::Name(n) => names.contains(n),
+            };
+            if !defined && !missing.contains(&m) {
+                missing.push(m);
+            }
+        };
+        for block in &self.blocks {
+            let code = |letter: u8, v: f64| {
+                block
+                    .words
+                    .iter()
+                    .any(|w| w.letter == letter && w.expr.is_none() && w.value == v)
+            };
+            let calls =
+                code(b'M', 98.0) || code(b'M', 198.0) || code(b'G', 65.0) || code(b'G', 66.0);
+            if calls
+                && let Some(p) = block.word(b'P').filter(|p| p.expr.is_none())
+                && p.value >= 0.0
+                && p.value.fract() == 0.0
+            {
+                // Fanuc: more than four digits in P are the repeat count then the number.
+                let number = if p.value >= 10_000.0 && block.word(b'L').is_none() {
+                    p.value % 10_000.0
+                } else {
+                    p.value
+                };
+                add(Missing::Number(number as u32));
+            }
+            for s in block.statements.iter() {
+                if let Statement::OWord {
+                    label: OLabel::Name(n),
+                    kind: OWord::Call(_),
+                } = s
+                {
+                    add(Missing::Name(n.to_string()));
+                }
+            }
+        }
+        missing
+    }
+}
+
+fn rebase_statement(s: &mut Statement, id: &impl Fn(ExprId) -> ExprId) {
+    match s {
+        Statement::Assign { target, value } => {
+            *target = id(*target);
+            *value = id(*value);
+        }
+        Statement::Goto { target } => *target = id(*target),
+        Statement::If { cond, then } => {
+            *cond = id(*cond);
+            rebase_statement(then, id);
+        }
+        Statement::While { cond, .. } => *cond = cond.map(id),
+        Statement::End { .. } => {}
+        Statement::OWord { label, kind } => {
+            if let OLabel::Expr(e) = label {
+                *e = id(*e);
+            }
+            match kind {
+                OWord::EndSub(e) | OWord::Return(e) => *e = e.map(id),
+                OWord::Call(args) => {
+                    for a in args.iter_mut() {
+                        *a = id(*a);
+                    }
+                }
+                OWord::If(e) | OWord::ElseIf(e) | OWord::While(e) | OWord::Repeat(e) => {
+                    *e = id(*e);
+                }
+                OWord::Sub
+                | OWord::Else
+                | OWord::EndIf
+                | OWord::EndWhile
+                | OWord::Do
+                | OWord::EndRepeat
+                | OWord::Break
+                | OWord::Continue => {}
+            }
+        }
+    }
+}
