@@ -2,7 +2,7 @@
 //! parameters — everything `SETUP.toml` holds, edited in place.
 
 use glam::DVec3;
-use swarf_interp::{Register, Setup};
+use swarf_interp::{CornerMode, Register, Setup, ShiftDirection};
 use swarf_syntax::Dialect;
 
 use crate::workbench::HostRequest;
@@ -205,6 +205,76 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             ui.add(egui::DragValue::new(&mut m.max_blocks).range(1..=1_000_000_000_u64))
                 .labelled_by(label.id);
             ui.end_row();
+            let label = ui.label("Move limit (moves)");
+            ui.add(egui::DragValue::new(&mut m.max_motions).range(1..=1_000_000_000_u64))
+                .labelled_by(label.id);
+            ui.end_row();
+            let mut travel = m.travel_mm.is_some();
+            let travel_label = ui
+                .checkbox(&mut travel, "Machine travel min / max X Y Z")
+                .id;
+            let mut bounds = m
+                .travel_mm
+                .unwrap_or([[-500.0, -400.0, -400.0], [0.0, 0.0, 0.0]]);
+            ui.vertical(|ui| {
+                ui.add_enabled_ui(travel, |ui| {
+                    for corner in &mut bounds {
+                        ui.horizontal(|ui| {
+                            for c in corner.iter_mut() {
+                                ui.add(length(c)).labelled_by(travel_label);
+                            }
+                        });
+                    }
+                });
+            });
+            m.travel_mm = travel.then_some(bounds);
+            ui.end_row();
+            let label = ui.label("G76/G87 shift direction");
+            egui::ComboBox::from_id_salt("swarf-shift")
+                .selected_text(shift_name(m.shift_direction))
+                .show_ui(ui, |ui| {
+                    for d in [
+                        ShiftDirection::PlusX,
+                        ShiftDirection::MinusX,
+                        ShiftDirection::PlusY,
+                        ShiftDirection::MinusY,
+                        ShiftDirection::PlusZ,
+                        ShiftDirection::MinusZ,
+                    ] {
+                        ui.selectable_value(&mut m.shift_direction, d, shift_name(d));
+                    }
+                })
+                .response
+                .labelled_by(label.id);
+            ui.end_row();
+            ui.label("Syntec drilling");
+            ui.vertical(|ui| {
+                ui.checkbox(&mut m.fast_drilling, "G81 retracts at F2= (Pr4008 = 1)");
+                ui.checkbox(
+                    &mut m.high_speed_peck_tapping,
+                    "Peck tapping backs out by the peck retract (Pr4001 = 1)",
+                );
+            });
+            ui.end_row();
+            let label = ui.label("Cutter compensation corners");
+            let corner = |c: Option<CornerMode>| match c {
+                None => "as the dialect does",
+                Some(CornerMode::Arc) => "arc (LinuxCNC)",
+                Some(CornerMode::Intersection) => "intersection (Fanuc family)",
+            };
+            egui::ComboBox::from_id_salt("swarf-corner")
+                .selected_text(corner(m.corner_mode))
+                .show_ui(ui, |ui| {
+                    for c in [None, Some(CornerMode::Arc), Some(CornerMode::Intersection)] {
+                        ui.selectable_value(&mut m.corner_mode, c, corner(c));
+                    }
+                })
+                .response
+                .labelled_by(label.id);
+            ui.end_row();
+            ui.label("Gouges");
+            ui.checkbox(&mut m.overcut_alarm, "stop with an alarm (Syntec 3819)");
+            ui.end_row();
             let label = ui.label("Integers without a point");
             let text = |c: Option<bool>| match c {
                 None => "as the dialect's manual says",
@@ -242,4 +312,16 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 ui.end_row();
             }
         });
+}
+
+/// The shift direction as the setup writes it.
+fn shift_name(d: ShiftDirection) -> &'static str {
+    match d {
+        ShiftDirection::PlusX => "+X",
+        ShiftDirection::MinusX => "-X",
+        ShiftDirection::PlusY => "+Y",
+        ShiftDirection::MinusY => "-Y",
+        ShiftDirection::PlusZ => "+Z",
+        ShiftDirection::MinusZ => "-Z",
+    }
 }

@@ -61,3 +61,26 @@ fn the_settings_window_edits_the_setup_and_re_runs_the_program() {
     );
     assert!(harness.state().setup().work_offsets.contains_key("G55"));
 }
+
+#[test]
+fn the_machine_travel_and_drilling_parameters_are_settings_too() {
+    let wb = Workbench::default();
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1400.0, 1400.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.run();
+    harness.get_by_label("Settings…").click();
+    harness.run();
+    assert!(harness.state().setup().machine.travel_mm.is_none());
+    harness
+        .get_by_role_and_label(Role::CheckBox, "Machine travel min / max X Y Z")
+        .click();
+    harness.run();
+    assert!(harness.state().setup().machine.travel_mm.is_some());
+    // The drilling and compensation parameters are there too.
+    harness.get_by_label("G81 retracts at F2= (Pr4008 = 1)");
+    harness.get_by_label("Peck tapping backs out by the peck retract (Pr4001 = 1)");
+    harness.get_by_label("stop with an alarm (Syntec 3819)");
+    let toml = harness.state().setup_toml().unwrap();
+    assert!(toml.contains("travel_mm"), "{toml}");
+}
