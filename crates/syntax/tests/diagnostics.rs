@@ -82,6 +82,7 @@ const CASES: &[(Dialect, &str, &str, &str)] = &[
         "E-NUMBER-RANGE",
         "F2=10.5",
     ),
+    (Lnc, "G0 X1. M03 S500\n", "N-FANUC-READING", "M03"),
 ];
 
 #[test]
