@@ -183,7 +183,23 @@ pub struct CodeEditor {
     popup_pos: Pos2,
     /// Character ranges marked in the text (the find bar's matches).
     highlights: Vec<std::ops::Range<usize>>,
+    /// Line starts of a large text, with the text's address and length they were found for.
+    large: Option<LargeText>,
 }
+
+/// What the large-text view keeps between frames.
+#[derive(Debug, Clone)]
+struct LargeText {
+    key: (usize, usize),
+    starts: Vec<usize>,
+    /// The 1-based line the viewer last put the cursor on.
+    cursor_line: Option<u32>,
+}
+
+/// Texts longer than this are shown read-only, a line laid out only while it is on screen:
+/// egui's text editor lays out (and keeps) the whole text, which a million-line program does
+/// not fit in a browser tab's memory.
+pub const LARGE_TEXT_BYTES: usize = 2 << 20;
 
 impl Default for CodeEditor {
     fn default() -> Self {
@@ -201,6 +217,7 @@ impl CodeEditor {
             popup_rect: None,
             popup_pos: Pos2::ZERO,
             highlights: Vec::new(),
+            large: None,
         }
     }
 
@@ -247,6 +264,10 @@ impl CodeEditor {
         problems: &[Problem],
     ) -> EditorOutput {
         let font = egui::TextStyle::Monospace.resolve(ui.style());
+        if text.len() > LARGE_TEXT_BYTES {
+            return self.show_large(ui, label, text, dialect, problems, &font);
+        }
+        self.large = None;
         let mut output = EditorOutput::default();
         let focused = self.has_focus(ui.ctx());
         if self.popup.is_some() && focused {
@@ -345,6 +366,106 @@ impl CodeEditor {
                     self.show_popup(ui, at, text, &mut output);
                 });
             });
+        output
+    }
+
+    /// A large text, read-only: a notice, then the lines in a scroll area that lays out only the
+    /// rows on screen (highlighted, numbered, marked by their worst diagnostic); a click on a
+    /// line puts the cursor there (for the backplot and the state panel).
+    fn show_large(
+        &mut self,
+        ui: &mut Ui,
+        label: egui::Id,
+        text: &str,
+        dialect: Dialect,
+        problems: &[Problem],
+        font: &FontId,
+    ) -> EditorOutput {
+        let mut output = EditorOutput::default();
+        let key = (text.as_ptr() as usize, text.len());
+        if self.large.as_ref().is_none_or(|l| l.key != key) {
+            let mut starts = vec![0];
+            starts.extend(memchr::memchr_iter(b'\n', text.as_bytes()).map(|i| i + 1));
+            self.large = Some(LargeText {
+                key,
+                starts,
+                cursor_line: None,
+            });
+        }
+        let Some(large) = self.large.as_mut() else {
+            return output;
+        };
+        let lines = large.starts.len();
+        ui.label(
+            egui::RichText::new(format!(
+                "{lines} lines, {:.1} MB: shown read-only (programs up to {} MB are edited here)",
+                text.len() as f64 / 1e6,
+                LARGE_TEXT_BYTES >> 20
+            ))
+            .italics(),
+        )
+        .labelled_by(label);
+        let row_height = font_row_height(ui, font);
+        let mut worst: std::collections::HashMap<u32, Severity> = std::collections::HashMap::new();
+        for p in problems {
+            let slot = worst.entry(p.line).or_insert(p.severity);
+            *slot = (*slot).max(p.severity);
+        }
+        let mut area = egui::ScrollArea::both()
+            .id_salt("swarf-editor-large")
+            .auto_shrink([false, false]);
+        if let Some(range) = self.jump.take() {
+            let byte = commands::byte_of_char(text, range.start);
+            let line = large
+                .starts
+                .partition_point(|&s| s <= byte)
+                .saturating_sub(1);
+            area = area.vertical_scroll_offset(line as f32 * row_height);
+            large.cursor_line = u32::try_from(line + 1).ok();
+        }
+        let digits = lines.to_string().len().max(3);
+        let mut clicked = None;
+        area.show_rows(ui, row_height, lines, |ui, rows| {
+            for i in rows {
+                let start = large.starts[i];
+                let end = large.starts.get(i + 1).map_or(text.len(), |e| e - 1);
+                let line_text = text.get(start..end).unwrap_or_default();
+                let number = u32::try_from(i + 1).unwrap_or(u32::MAX);
+                let mark = worst.get(&number);
+                let current = large.cursor_line == Some(number);
+                ui.horizontal(|ui| {
+                    ui.label(
+                        egui::RichText::new(format!(
+                            "{}{:>digits$}",
+                            if mark.is_some() { '●' } else { ' ' },
+                            number
+                        ))
+                        .font(font.clone())
+                        .color(mark.map_or(palette::NUMBER, |s| severity_color(*s))),
+                    );
+                    let job = highlight(line_text, dialect, font);
+                    let response = ui.add(egui::Label::new(job).sense(egui::Sense::click()));
+                    if current {
+                        ui.painter().rect_stroke(
+                            response.rect.expand(1.0),
+                            2.0,
+                            Stroke::new(1.0, palette::NOTE),
+                            egui::StrokeKind::Outside,
+                        );
+                    }
+                    if response.clicked() {
+                        clicked = Some((number, start, end));
+                    }
+                });
+            }
+        });
+        if let Some((number, start, end)) = clicked {
+            large.cursor_line = Some(number);
+            let from = commands::char_of_byte(text, start);
+            let to = from + text.get(start..end).map_or(0, |t| t.chars().count());
+            output.selection = Some(from..to);
+        }
+        output.cursor_line = large.cursor_line;
         output
     }
 
