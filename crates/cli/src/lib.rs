@@ -340,12 +340,20 @@ impl Sink for NullSink {
 struct JsonLines<'a> {
     out: &'a mut dyn Write,
     error: Option<std::io::Error>,
+    /// The files linked to the program: an event from one names it, with its line there.
+    linked: &'a [swarf_syntax::LinkedFile],
 }
 
 impl Sink for JsonLines<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
+        let mut value = event.to_json(source);
+        let line0 = source.line.saturating_sub(1);
+        if let Some(file) = self.linked.iter().rev().find(|l| line0 >= l.first_line) {
+            value["file"] = json!(file.name);
+            value["line"] = json!(line0 - file.first_line + 1);
+        }
         if self.error.is_none()
-            && let Err(e) = writeln!(self.out, "{}", event.to_json(source))
+            && let Err(e) = writeln!(self.out, "{value}")
         {
             self.error = Some(e);
         }
@@ -362,6 +370,7 @@ fn canon(
     let loaded = load(file, opts)?;
     let mut buffered = std::io::BufWriter::new(out);
     let mut sink = JsonLines {
+        linked: &loaded.program.linked,
         out: &mut buffered,
         error: None,
     };

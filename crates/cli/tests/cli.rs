@@ -223,6 +223,9 @@ fn calls_reach_programs_in_files_beside_the_program() {
     // Called twice (M98 and M198), 10 mm further each time.
     assert_eq!(feeds.len(), 2, "{out}");
     assert_eq!(feeds[1]["to"], serde_json::json!([20.0, 0.0, 0.0]));
+    // Events from the linked file name it, with their line there.
+    assert!(feeds[0]["file"].as_str().unwrap().ends_with("O1234.nc"));
+    assert_eq!(feeds[0]["line"], 3);
     // The linked file's error is reported in that file; the missing program in the main one.
     assert!(err.contains("O1234.nc:4:1: error[E-WORD-VALUE]"), "{err}");
     assert!(err.contains("main.nc:4:1: error[E-SUBPROGRAM]"), "{err}");
