@@ -479,6 +479,13 @@ impl Workbench {
         }
     }
 
+    /// Runs one frame's budget of an unfinished analysis without drawing (what a frame does
+    /// first; for measuring and for hosts that analyse without a window).
+    pub fn run_frame_budget(&mut self) {
+        self.budget = FRAME_BUDGET;
+        self.pump();
+    }
+
     /// A number bumped by every change of the text, dialect or setup (the analysis shown
     /// carries it in its scene once it has caught up).
     pub fn generation(&self) -> u64 {
