@@ -18,15 +18,39 @@ const PAGE_FILES = [
   "./swarf_app_bg.wasm",
 ];
 
+// Keeps a successful same-origin response. The body is read whole into memory first: when the
+// disk is nearly full Chromium refuses large blobs, so putting the wasm's streamed body (about
+// 12 MB) into the cache fails with a "network error", while the same bytes from memory are
+// stored.
+async function store(cache, request, response) {
+  if (!response.ok || response.type !== "basic") {
+    return;
+  }
+  const body = await response.arrayBuffer();
+  await cache.put(
+    request,
+    new Response(body, {
+      status: response.status,
+      statusText: response.statusText,
+      headers: response.headers,
+    }),
+  );
+}
+
 self.addEventListener("install", (event) => {
   event.waitUntil(
     (async () => {
       const cache = await caches.open(CACHE);
-      // One by one, so that a file missing from a build does not keep the others out.
+      // Each on its own, so that a file missing from a build does not keep the others out.
       await Promise.all(
-        PAGE_FILES.map((file) =>
-          cache.add(new Request(file, { cache: "reload" })).catch(() => undefined),
-        ),
+        PAGE_FILES.map(async (file) => {
+          try {
+            const response = await fetch(new Request(file, { cache: "reload" }));
+            await store(cache, file, response);
+          } catch {
+            // Not cached: that file will not be there offline.
+          }
+        }),
       );
       await self.skipWaiting();
     })(),
@@ -57,9 +81,7 @@ self.addEventListener("fetch", (event) => {
       const cache = await caches.open(CACHE);
       try {
         const response = await fetch(request);
-        if (response.ok && response.type === "basic") {
-          await cache.put(request, response.clone()).catch(() => undefined);
-        }
+        await store(cache, request, response.clone()).catch(() => undefined);
         return response;
       } catch (error) {
         const cached =
