@@ -62,7 +62,7 @@ impl Host {
         };
         wb.recover(&r.name, r.text, r.encoding);
         wb.set_path((!r.path.is_empty()).then_some(r.path));
-        self.autosaved = wb.analysis().scene.generation;
+        self.autosaved = wb.generation();
         true
     }
 
@@ -249,7 +249,7 @@ impl Host {
     /// Writes unsaved changes to the recovery file a moment after they are made, and removes
     /// it once nothing is unsaved.
     pub fn autosave(&mut self, wb: &Workbench, now: f64) {
-        let generation = wb.analysis().scene.generation;
+        let generation = wb.generation();
         if generation == self.autosaved {
             return;
         }

@@ -129,6 +129,7 @@ impl SwarfApi {
     /// `[{line, col, severity, code, message}]` for the current text.
     pub fn diagnostics(&self) -> Result<JsValue, JsValue> {
         let list = self.with_app(|app| {
+            app.workbench.finish_analysis();
             app.workbench
                 .problems()
                 .iter()
@@ -145,7 +146,10 @@ impl SwarfApi {
 
     /// `{blocks, motions, bounds: {min, max} | null}` for the current text.
     pub fn stats(&self) -> Result<JsValue, JsValue> {
-        let s = self.with_app(|app| app.workbench.stats())?;
+        let s = self.with_app(|app| {
+            app.workbench.finish_analysis();
+            app.workbench.stats()
+        })?;
         let bounds = s
             .bounds
             .map(|(min, max)| json!({"min": min.to_array(), "max": max.to_array()}));

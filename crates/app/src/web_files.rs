@@ -67,7 +67,7 @@ impl Host {
             return false;
         };
         wb.recover(&r.name, r.text, r.encoding);
-        self.autosaved = wb.analysis().scene.generation;
+        self.autosaved = wb.generation();
         true
     }
 
@@ -208,7 +208,7 @@ impl Host {
 
     /// Keeps unsaved changes in localStorage a moment after they are made.
     pub fn autosave(&mut self, wb: &Workbench, now: f64) {
-        let generation = wb.analysis().scene.generation;
+        let generation = wb.generation();
         if generation == self.autosaved {
             return;
         }

@@ -17,7 +17,7 @@ mod states;
 pub use canon::{Axis, Canon, CanonRecorder, Source};
 pub use machine::{Interpreter, Limits, Status, run};
 pub use setup::{CornerMode, Machine, Register, Setup, SetupError, ShiftDirection, Units};
-pub use states::{BlockState, States, run_with_states};
+pub use states::{BlockState, States, StatesRun, run_with_states};
 
 /// Receives the canonical events of a running program, in execution order.
 pub trait Sink {

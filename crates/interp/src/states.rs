@@ -83,24 +83,80 @@ pub fn run_with_states(
     setup: Setup,
     sink: &mut dyn Sink,
 ) -> (Vec<Diagnostic>, States) {
-    let mut interp = Interpreter::new(setup, program.dialect);
-    let mut states = States {
-        first_run: vec![u32::MAX; program.blocks.len()],
-        checkpoints: Vec::new(),
-    };
-    loop {
-        let executed = interp.executed_blocks();
-        if executed.is_multiple_of(CHECKPOINT_EVERY) {
-            states.checkpoints.push((executed, interp.snapshot()));
-        }
-        if let Some(first) = states.first_run.get_mut(interp.next_block())
-            && *first == u32::MAX
-        {
-            *first = u32::try_from(executed).unwrap_or(u32::MAX);
-        }
-        if interp.step(program, sink, 1) == Status::Finished {
-            break;
+    let mut run = StatesRun::new(program, setup);
+    while run.step(program, sink, usize::MAX) == Status::Running {}
+    run.finish()
+}
+
+/// A run that records [`States`] in bounded steps, so an editor can spread a long program over
+/// several frames (what [`run_with_states`] does in one call).
+#[derive(Debug, Clone)]
+pub struct StatesRun {
+    interp: Interpreter,
+    states: States,
+    /// Distinct blocks reached so far (for progress).
+    reached: usize,
+    finished: bool,
+}
+
+impl StatesRun {
+    /// A run of `program` from power-on with `setup`; nothing executed yet.
+    pub fn new(program: &Program, setup: Setup) -> Self {
+        StatesRun {
+            interp: Interpreter::new(setup, program.dialect),
+            states: States {
+                first_run: vec![u32::MAX; program.blocks.len()],
+                checkpoints: Vec::new(),
+            },
+            reached: 0,
+            finished: false,
         }
     }
-    (interp.take_diagnostics(), states)
+
+    /// Executes at most `budget` blocks of `program` (the one given to [`StatesRun::new`]),
+    /// sending events to `sink`.
+    pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
+        for _ in 0..budget {
+            if self.finished {
+                break;
+            }
+            let executed = self.interp.executed_blocks();
+            if executed.is_multiple_of(CHECKPOINT_EVERY) {
+                self.states
+                    .checkpoints
+                    .push((executed, self.interp.snapshot()));
+            }
+            if let Some(first) = self.states.first_run.get_mut(self.interp.next_block())
+                && *first == u32::MAX
+            {
+                *first = u32::try_from(executed).unwrap_or(u32::MAX);
+                self.reached += 1;
+            }
+            if self.interp.step(program, sink, 1) == Status::Finished {
+                self.finished = true;
+            }
+        }
+        if self.finished {
+            Status::Finished
+        } else {
+            Status::Running
+        }
+    }
+
+    /// How many different blocks have run so far (at most the program's block count; loops
+    /// count each block once), for a progress bar.
+    pub fn blocks_reached(&self) -> usize {
+        self.reached
+    }
+
+    /// How many blocks have been executed (every pass of a loop counts).
+    pub fn executed_blocks(&self) -> u64 {
+        self.interp.executed_blocks()
+    }
+
+    /// The diagnostics found while executing and the recorded states; call once the run is
+    /// finished (earlier, they cover the blocks run so far).
+    pub fn finish(mut self) -> (Vec<Diagnostic>, States) {
+        (self.interp.take_diagnostics(), self.states)
+    }
 }

@@ -53,3 +53,35 @@ fn states_deep_into_a_long_run_come_from_the_nearest_copy() {
         assert_eq!(s.executed, block as u64);
     }
 }
+
+#[test]
+fn a_run_in_small_steps_records_the_same_as_one_call() {
+    use swarf_interp::{StatesRun, Status};
+    let mut text =
+        String::from("G90 G21 G17\n#1=0\nWHILE[#1LT40]DO1\nG01 X#1 F100.\n#1=#1+1\nEND1\n");
+    for i in 0..5000 {
+        text.push_str(&format!("G01 X{}. Y{}.\n", i % 50, i % 7));
+    }
+    text.push_str("G01 X1 Y\nM30\n");
+    let program = parse(&text, Dialect::Fanuc);
+    let mut whole = CanonRecorder::default();
+    let (diags, states) = run_with_states(&program, Setup::default(), &mut whole);
+
+    let mut stepped = CanonRecorder::default();
+    let mut run = StatesRun::new(&program, Setup::default());
+    let mut steps = 0;
+    while run.step(&program, &mut stepped, 7) == Status::Running {
+        steps += 1;
+        assert!(run.blocks_reached() <= program.blocks.len());
+    }
+    assert!(steps > 100, "{steps} steps");
+    assert_eq!(run.blocks_reached(), program.blocks.len());
+    assert!(run.executed_blocks() > program.blocks.len() as u64);
+    let (diags2, states2) = run.finish();
+    assert_eq!(diags, diags2);
+    assert_eq!(whole.events, stepped.events);
+    assert_eq!(states.checkpoints(), states2.checkpoints());
+    for block in [0, 3, 100, 4000, program.blocks.len() - 1] {
+        assert_eq!(states.at(&program, block), states2.at(&program, block));
+    }
+}

@@ -56,38 +56,12 @@ pub struct Analysis {
 }
 
 impl Analysis {
-    /// Parses and interprets `text`; `generation` tags the scene so the GPU copy is refreshed.
+    /// Parses and interprets `text` in one call; `generation` tags the scene so the GPU copy is
+    /// refreshed. The editor spreads long programs over frames with [`PendingAnalysis`].
     pub fn run(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
-        let program = parse(text, dialect);
-        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
-        toolpath.reserve(program.blocks.len());
-        let mut diags = program.diagnostics.clone();
-        let (run_diags, states) =
-            swarf_interp::run_with_states(&program, setup.clone(), &mut toolpath);
-        diags.extend(run_diags);
-        diags.sort_by_key(|d| (d.span.start, d.span.end));
-        let problems = locate(text, &program, &diags);
-        let mut scene = scene_of(&toolpath, generation);
-        if let Some(travel) = setup.machine.travel_mm {
-            let mut marks = scene.marks.as_ref().clone();
-            marks.extend(box_marks(travel, scene.origin));
-            scene.marks = Arc::new(marks);
-        }
-        scene.source = Some(Arc::new(SourceText::new(text)));
-        scene.tool_radii = Arc::new(
-            setup
-                .registers
-                .iter()
-                .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
-                .collect(),
-        );
-        Analysis {
-            program,
-            toolpath,
-            problems,
-            scene,
-            states,
-        }
+        let mut pending = PendingAnalysis::start(text, dialect, setup, generation);
+        while !pending.step(usize::MAX) {}
+        pending.finish()
     }
 
     /// Summary numbers for the status bar and the JS API.
@@ -106,6 +80,109 @@ impl Analysis {
             .iter()
             .filter(|p| p.severity == severity)
             .count()
+    }
+}
+
+/// An analysis under way: the text is parsed, and the interpreter runs it a bounded number of
+/// blocks per [`step`](PendingAnalysis::step), so a long program never holds up a frame for
+/// long. Dropping it cancels the run.
+#[derive(Debug)]
+pub struct PendingAnalysis {
+    text: String,
+    program: Program,
+    toolpath: Toolpath,
+    run: swarf_interp::StatesRun,
+    setup: Setup,
+    generation: u64,
+    finished: bool,
+}
+
+impl PendingAnalysis {
+    /// Parses `text` and prepares its run (nothing executed yet).
+    pub fn start(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
+        let program = parse(text, dialect);
+        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+        toolpath.reserve(program.blocks.len());
+        let run = swarf_interp::StatesRun::new(&program, setup.clone());
+        PendingAnalysis {
+            text: text.to_string(),
+            program,
+            toolpath,
+            run,
+            setup: setup.clone(),
+            generation,
+            finished: false,
+        }
+    }
+
+    /// Executes at most `budget` more blocks; whether the run is finished.
+    pub fn step(&mut self, budget: usize) -> bool {
+        if !self.finished {
+            self.finished = self.run.step(&self.program, &mut self.toolpath, budget)
+                == swarf_interp::Status::Finished;
+        }
+        self.finished
+    }
+
+    /// Whether the run is finished, so [`finish`](PendingAnalysis::finish) gives the result.
+    pub fn is_finished(&self) -> bool {
+        self.finished
+    }
+
+    /// Progress as (different blocks run, blocks in the program). A program that stops early
+    /// (M30 before its end) finishes short of the total.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.run.blocks_reached(), self.program.blocks.len())
+    }
+
+    /// Blocks executed so far (every pass of a loop counts), against the frame budget.
+    pub fn executed_blocks(&self) -> u64 {
+        self.run.executed_blocks()
+    }
+
+    /// The generation the result will carry.
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// The finished analysis: problems located, scene prepared. Called before the run is
+    /// finished, it covers the blocks run so far.
+    pub fn finish(self) -> Analysis {
+        let PendingAnalysis {
+            text,
+            program,
+            toolpath,
+            run,
+            setup,
+            generation,
+            ..
+        } = self;
+        let mut diags = program.diagnostics.clone();
+        let (run_diags, states) = run.finish();
+        diags.extend(run_diags);
+        diags.sort_by_key(|d| (d.span.start, d.span.end));
+        let problems = locate(&text, &program, &diags);
+        let mut scene = scene_of(&toolpath, generation);
+        if let Some(travel) = setup.machine.travel_mm {
+            let mut marks = scene.marks.as_ref().clone();
+            marks.extend(box_marks(travel, scene.origin));
+            scene.marks = Arc::new(marks);
+        }
+        scene.source = Some(Arc::new(SourceText::new(&text)));
+        scene.tool_radii = Arc::new(
+            setup
+                .registers
+                .iter()
+                .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
+                .collect(),
+        );
+        Analysis {
+            program,
+            toolpath,
+            problems,
+            scene,
+            states,
+        }
     }
 }
 

@@ -10,5 +10,7 @@ pub mod history;
 mod settings;
 mod workbench;
 
-pub use analysis::{Analysis, Problem, Stats};
-pub use workbench::{Document, EXAMPLE_PROGRAM, HostRequest, Workbench, format_duration};
+pub use analysis::{Analysis, PendingAnalysis, Problem, Stats};
+pub use workbench::{
+    Document, EXAMPLE_PROGRAM, FRAME_BUDGET, HostRequest, Workbench, format_duration,
+};

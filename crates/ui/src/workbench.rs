@@ -5,7 +5,7 @@ use std::ops::Range;
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, Encoding, Severity};
 
-use crate::analysis::{Analysis, Problem, Stats};
+use crate::analysis::{Analysis, PendingAnalysis, Problem, Stats};
 use crate::backplot::Backplot;
 use crate::commands::{self, FindOptions, Finder, RenumberOptions};
 use crate::editor::{CodeEditor, severity_color};
@@ -15,13 +15,27 @@ use crate::history::{EditKind, History, Snapshot};
 /// The example program the editor starts with.
 pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.nc");
 
+/// Blocks the interpreter runs per frame: a 10,000-line program (without loops) finishes in
+/// the frame of the edit, a longer one goes on over the next frames behind a progress bar.
+pub const FRAME_BUDGET: usize = 20_000;
+
 /// Editor, problems and backplot over one program text; re-analyses on every edit.
+///
+/// The analysis runs a bounded number of blocks per frame ([`FRAME_BUDGET`]); until a new one
+/// is finished, the last finished analysis (markers, problems, backplot) stays on screen, and
+/// an edit made meanwhile cancels the unfinished run and starts over.
 pub struct Workbench {
     text: String,
     dialect: Dialect,
     setup: Setup,
     generation: u64,
     analysis: Analysis,
+    /// The analysis of the current text while it is still running.
+    pending: Option<PendingAnalysis>,
+    /// Blocks the analysis may still run in this frame.
+    budget: usize,
+    /// Whether [`Workbench::ui`] is running (outside it, every change gets a full budget).
+    in_frame: bool,
     editor: CodeEditor,
     backplot: Backplot,
     cursor_line: Option<u32>,
@@ -154,6 +168,9 @@ impl Workbench {
             setup,
             generation: 1,
             analysis,
+            pending: None,
+            budget: FRAME_BUDGET,
+            in_frame: false,
             editor: CodeEditor::default(),
             backplot: Backplot::new(),
             cursor_line: None,
@@ -416,14 +433,70 @@ impl Workbench {
         self.analysis.stats()
     }
 
+    /// Starts analysing the current text (cancelling an unfinished run) and runs what is
+    /// left of this frame's budget of it.
     fn reanalyse(&mut self) {
         self.generation += 1;
-        self.analysis = Analysis::run(&self.text, self.dialect, &self.setup, self.generation);
+        self.pending = Some(PendingAnalysis::start(
+            &self.text,
+            self.dialect,
+            &self.setup,
+            self.generation,
+        ));
+        self.pump();
+    }
+
+    /// Runs the unfinished analysis for the rest of this frame's budget; installs it when done.
+    fn pump(&mut self) {
+        if !self.in_frame {
+            self.budget = FRAME_BUDGET;
+        }
+        let Some(pending) = &mut self.pending else {
+            return;
+        };
+        let executed = pending.executed_blocks();
+        let done = pending.step(self.budget);
+        let used = usize::try_from(pending.executed_blocks().saturating_sub(executed))
+            .unwrap_or(usize::MAX);
+        self.budget = self.budget.saturating_sub(used);
+        if done && let Some(pending) = self.pending.take() {
+            self.analysis = pending.finish();
+        }
+    }
+
+    /// Progress of an unfinished analysis as (different blocks run, blocks in the program);
+    /// `None` when the analysis shown is of the current text.
+    pub fn analysis_progress(&self) -> Option<(usize, usize)> {
+        self.pending.as_ref().map(PendingAnalysis::progress)
+    }
+
+    /// Runs an unfinished analysis to its end now (for scripts and the JS API, which want the
+    /// current text's results rather than the last finished ones).
+    pub fn finish_analysis(&mut self) {
+        if let Some(mut pending) = self.pending.take() {
+            while !pending.step(FRAME_BUDGET) {}
+            self.analysis = pending.finish();
+        }
+    }
+
+    /// Runs one frame's budget of an unfinished analysis without drawing (what a frame does
+    /// first; for measuring and for hosts that analyse without a window).
+    pub fn run_frame_budget(&mut self) {
+        self.budget = FRAME_BUDGET;
+        self.pump();
+    }
+
+    /// A number bumped by every change of the text, dialect or setup (the analysis shown
+    /// carries it in its scene once it has caught up).
+    pub fn generation(&self) -> u64 {
+        self.generation
     }
 
     /// Shows the workbench filling `ui`.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
+        self.budget = FRAME_BUDGET;
+        self.in_frame = true;
         self.shortcuts(ui.ctx());
         egui::Panel::top("swarf-top").show(ui, |ui| self.top_bar(ui));
         egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
@@ -504,6 +577,13 @@ impl Workbench {
                     self.jump_to_line(line);
                 }
             });
+        // What is left of the frame's budget goes on with an unfinished analysis; the next
+        // frame comes at once while one runs.
+        self.pump();
+        if self.pending.is_some() {
+            ui.ctx().request_repaint();
+        }
+        self.in_frame = false;
     }
 
     /// The machine state just before the block on 1-based `line` first runs (modal codes,
@@ -522,7 +602,7 @@ impl Workbench {
             ui.label("Put the cursor on a block.");
             return;
         };
-        let key = (self.generation, line);
+        let key = (self.analysis.scene.generation, line);
         if self.state_cache.as_ref().map(|(k, _)| *k) != Some(key) {
             self.state_cache = Some((key, self.state_at_line(line)));
         }
@@ -1170,6 +1250,20 @@ impl Workbench {
             }
             ui.separator();
             ui.label(self.document.encoding.name());
+            if let Some((done, total)) = self.analysis_progress() {
+                ui.separator();
+                ui.label("Analysing");
+                let fraction = if total == 0 {
+                    1.0
+                } else {
+                    done as f32 / total as f32
+                };
+                ui.add(
+                    egui::ProgressBar::new(fraction)
+                        .desired_width(180.0)
+                        .text(format!("{done} / {total} blocks")),
+                );
+            }
             if let Some(message) = &self.message {
                 ui.separator();
                 ui.label(message);
