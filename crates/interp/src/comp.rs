@@ -545,9 +545,7 @@ fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_lin
 /// offset is the G40 cancel move), sends it on with the events behind it and the moves that go
 /// round the corner, and returns where the next move starts (plane coordinates).
 fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Option<DVec2> {
-    let Some(mut h) = st.comp.held.take() else {
-        return None;
-    };
+    let mut h = st.comp.held.take()?;
     let plane = plane_axes(st.plane);
     let mode = corner_mode(st);
     let linuxcnc = st.dialect == Dialect::LinuxCnc;

@@ -401,11 +401,7 @@ fn execute_block(
             Action::WorkOffset => work_offset(st, w, words),
             Action::LengthComp(sign) => length_comp(st, w, words, sign),
             Action::StrokeLimit(on) => stroke_limit(st, w, words, on),
-            Action::CutterComp(t) => {
-                if !cutter_comp(st, w, words, t) {
-                    return Flow::Stop;
-                }
-            }
+            Action::CutterComp(t) if !cutter_comp(st, w, words, t) => return Flow::Stop,
             Action::Motion(m) => {
                 let was_cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
                 st.motion = match m {
