@@ -298,6 +298,8 @@ pub struct Toolpath {
     last_direction: Option<DVec3>,
     /// A non-motion event since the last segment: the next one starts at rest.
     stop_pending: bool,
+    /// The programmed motions of blocks cut under cutter radius compensation.
+    programmed: Vec<(u32, Canon)>,
 }
 
 impl Default for Toolpath {
@@ -341,7 +343,21 @@ impl Toolpath {
             window: VecDeque::new(),
             last_direction: None,
             stop_pending: false,
+            programmed: Vec::new(),
         }
+    }
+
+    /// The programmed contour of the blocks cut under cutter radius compensation, as (line,
+    /// programmed motion) in order: the segments hold the tool centre's compensated path, this
+    /// the part's outline, so a backplot can draw both.
+    pub fn programmed(&self) -> &[(u32, Canon)] {
+        &self.programmed
+    }
+
+    /// Whether the segments of `line` were compensated (their programmed motion differs from
+    /// the drawn one and is in [`Toolpath::programmed`]).
+    pub fn is_compensated_line(&self, line: u32) -> bool {
+        self.programmed.iter().any(|(l, _)| *l == line)
     }
 
     /// Number of segments.
@@ -686,6 +702,10 @@ impl Sink for Toolpath {
                 self.stop();
             }
         }
+    }
+
+    fn programmed(&mut self, source: Source, event: &Canon) {
+        self.programmed.push((source.line, event.clone()));
     }
 }
 
