@@ -6,8 +6,10 @@
 //! offset paths, with two extra vectors when the corner is sharper than 90° (Fanuc's way, the
 //! `intersection` mode). Moves without plane motion and other events wait behind the held move
 //! (LinuxCNC any number of blocks, the Fanuc family one). Geometry is done in the machine frame,
-//! so compensation follows G68 rotation, G16 polar input and scaling; a mirror of one plane axis
-//! reverses the side (the controls' rule). Gouges (a groove narrower than the tool, a step
+//! so compensation follows G68 rotation, G16 polar input and scaling. A mirror of one plane axis
+//! reverses the direction of the path, and with it the side the material is on: programs swap
+//! G41 and G42 for such a pass (Syntec's mirrored flower, §1.29), and the side is taken as
+//! written, relative to the mirrored path the machine follows. Gouges (a groove narrower than the tool, a step
 //! smaller than the radius, an inside arc smaller than the tool) show as a compensated move
 //! that runs backwards or an intersection that does not exist, and are reported naming both
 //! blocks; the drawn path stays what the control computes.
@@ -39,6 +41,9 @@ pub(crate) struct Comp {
     behind: Vec<(Source, Canon)>,
     /// The number of the block (in execution order) of the held move.
     held_run: u64,
+    /// Whether the corner before the next move moved its start back along it (intersection
+    /// mode, outside corners).
+    start_extended: bool,
 }
 
 /// The shape of a compensated move.
@@ -254,8 +259,7 @@ fn wanted(st: &State) -> Option<f64> {
         return None;
     }
     let side = if st.cutter_comp == 420 { -1.0 } else { 1.0 };
-    let mirror = if st.reverses_arcs() { -1.0 } else { 1.0 };
-    let s = st.comp_radius * side * mirror;
+    let s = st.comp_radius * side;
     (s.abs() > EPS).then_some(s)
 }
 
@@ -530,7 +534,7 @@ fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_lin
         offset: s,
         prog_dir: (uv(elem.to, plane) - uv(elem.from, plane)).normalize_or_zero(),
         prog_sweep: elem.prog_sweep(plane),
-        extended: false,
+        extended: std::mem::take(&mut st.comp.start_extended),
         prev_line,
         startup: false,
     });
@@ -578,10 +582,12 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
         let s2p = n.offset_start(s2v, plane);
         if cancel {
             if inside
-                && let Some(x) = nearest(
+                && let Some(x) = first_met(
                     intersect(h.curve(plane), Curve::Line { p: s2p, d: t2 }),
-                    e1,
-                    s2p,
+                    &h,
+                    n,
+                    s,
+                    plane,
                 )
             {
                 h.end = with_uv(h.end, x, plane);
@@ -631,7 +637,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                 }
                 CornerMode::Intersection => {
                     let r = s.abs();
-                    if t1.dot(t2) >= -1e-12 {
+                    if t1.dot(t2) >= -1e-9 {
                         // 90° or wider: the offset paths meet (extended where needed).
                         let c2 = n.offset_curve(s, plane);
                         let x = c2
@@ -650,6 +656,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                         }
                         if c2.is_some_and(|c| on_curve(x, c)) {
                             start = Some(x);
+                            st.comp.start_extended = true;
                         } else {
                             links.push((s2p, None));
                             start = Some(s2p);
@@ -667,6 +674,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                         links.push((v2, None));
                         if n.arc.is_none() {
                             start = Some(v2);
+                            st.comp.start_extended = true;
                         } else {
                             links.push((s2p, None));
                             start = Some(s2p);
@@ -692,6 +700,9 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
     if let Some((n, _)) = next {
         let w = 3 - plane.0 - plane.1;
         for (p, arc) in links {
+            if (p - uv(at, plane)).length() < 1e-6 {
+                continue;
+            }
             let to = with_uv(at, p, plane);
             let event = match arc {
                 Some((c, ccw)) => {

@@ -333,6 +333,8 @@ pub struct Toolpath {
     holes: Vec<Hole>,
     /// The program zeros the moves were programmed from, each once, in order of first use.
     origins: Vec<DVec3>,
+    /// The programmed motions of blocks cut under cutter radius compensation.
+    programmed: Vec<(u32, Canon)>,
 }
 
 impl Default for Toolpath {
@@ -389,7 +391,21 @@ impl Toolpath {
             stop_pending: false,
             holes: Vec::new(),
             origins: Vec::new(),
+            programmed: Vec::new(),
         }
+    }
+
+    /// The programmed contour of the blocks cut under cutter radius compensation, as (line,
+    /// programmed motion) in order: the segments hold the tool centre's compensated path, this
+    /// the part's outline, so a backplot can draw both.
+    pub fn programmed(&self) -> &[(u32, Canon)] {
+        &self.programmed
+    }
+
+    /// Whether the segments of `line` were compensated (their programmed motion differs from
+    /// the drawn one and is in [`Toolpath::programmed`]).
+    pub fn is_compensated_line(&self, line: u32) -> bool {
+        self.programmed.iter().any(|(l, _)| *l == line)
     }
 
     /// Number of segments.
@@ -821,6 +837,10 @@ impl Sink for Toolpath {
                 self.stop();
             }
         }
+    }
+
+    fn programmed(&mut self, source: Source, event: &Canon) {
+        self.programmed.push((source.line, event.clone()));
     }
 }
 

@@ -410,3 +410,40 @@ fn keeps_each_program_zero_the_moves_came_from() {
         ]
     );
 }
+
+#[test]
+fn keeps_the_programmed_contour_of_compensated_blocks() {
+    let program = parse(
+        "G90 G00 X0 Y-10.\nG41 D1 G01 X0 Y0 F100.\nY20.\nX20.\nG40 G00 X30.\nM30\n",
+        Dialect::Fanuc,
+    );
+    let mut setup = Setup::default();
+    setup.registers.insert(
+        1,
+        swarf_interp::Register {
+            radius: 2.0,
+            ..Default::default()
+        },
+    );
+    let mut path = Toolpath::new(DVec3::ZERO, 6000.0);
+    run(&program, setup, &mut path);
+    // The segments are the tool centre, 2 mm left of the contour: up X−2, along Y22.
+    assert!(path.ends().contains(&DVec3::new(-2.0, 22.0, 0.0)));
+    // The programmed contour is kept beside it, line by line.
+    let programmed: Vec<(u32, DVec3)> = path
+        .programmed()
+        .iter()
+        .map(|(l, e)| (*l, e.end_point().unwrap()))
+        .collect();
+    assert_eq!(
+        programmed,
+        [
+            (2, DVec3::new(0.0, 0.0, 0.0)),
+            (3, DVec3::new(0.0, 20.0, 0.0)),
+            (4, DVec3::new(20.0, 20.0, 0.0)),
+            (5, DVec3::new(30.0, 20.0, 0.0)),
+        ]
+    );
+    assert!(path.is_compensated_line(3));
+    assert!(!path.is_compensated_line(1));
+}
