@@ -253,9 +253,11 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         PathPoint::new(rel(*end), kind)
     }));
     mark_cycle_moves(path, &mut points);
+    mark_compensated(path, &mut points);
     color_by_tool(path, &mut points);
     let diagonal = (bounds.max - bounds.min).length();
     let mut marks = hole_marks(path, rel, diagonal);
+    marks.extend(programmed_marks(path, rel));
     marks.extend(origin_marks(path, rel, diagonal));
     Scene {
         generation,
@@ -339,6 +341,60 @@ fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> glam::Vec3, diagonal: f64)
                 PathPoint::new(p, Kind::Cycle)
             });
         }
+    }
+    marks
+}
+
+/// The segments of blocks cut under cutter radius compensation are the tool centre's path:
+/// they are drawn as compensated (the programmed contour goes beside them as a mark).
+fn mark_compensated(path: &Toolpath, points: &mut [PathPoint]) {
+    if path.programmed().is_empty() {
+        return;
+    }
+    let lines: std::collections::HashSet<u32> = path.programmed().iter().map(|(l, _)| *l).collect();
+    for (point, (line, kind)) in points
+        .iter_mut()
+        .skip(1)
+        .zip(path.lines().iter().zip(path.kinds()))
+    {
+        if lines.contains(line) && *kind != SegmentKind::Rapid {
+            *point = PathPoint::new(point.position(), Kind::Compensated);
+        }
+    }
+}
+
+/// The programmed contour of the compensated blocks (the part as drawn, beside the tool centre's
+/// path), as marks: each move from the end of the one before, arcs as chords.
+fn programmed_marks(path: &Toolpath, rel: impl Fn(DVec3) -> glam::Vec3) -> Vec<PathPoint> {
+    let mut marks = Vec::new();
+    let mut last: Option<(u32, DVec3)> = None;
+    for (line, event) in path.programmed() {
+        let Some(end) = event.end_point() else {
+            continue;
+        };
+        // A move right after the one before continues it; otherwise the contour starts here.
+        let from = last.filter(|(l, _)| *l <= *line).map(|(_, p)| p);
+        match from {
+            None => marks.push(PathPoint::pen_up(rel(end))),
+            Some(from) => {
+                if let swarf_interp::Canon::Arc {
+                    center,
+                    axis,
+                    ccw,
+                    turns,
+                    ..
+                } = event
+                {
+                    for p in swarf_toolpath::tessellate_arc(from, end, *center, *axis, *ccw, *turns)
+                    {
+                        marks.push(PathPoint::new(rel(p), Kind::Programmed));
+                    }
+                } else {
+                    marks.push(PathPoint::new(rel(end), Kind::Programmed));
+                }
+            }
+        }
+        last = Some((*line, end));
     }
     marks
 }

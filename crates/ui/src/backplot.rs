@@ -848,6 +848,16 @@ impl Backplot {
         {
             self.toggle_color_by_tool();
         }
+        let contour = self.kind_visible(Kind::Programmed);
+        if child
+            .selectable_label(contour, "Contour")
+            .on_hover_text(
+                "Show the programmed contour beside the tool centre's path under cutter compensation",
+            )
+            .clicked()
+        {
+            self.set_kind_visible(Kind::Programmed, !contour);
+        }
         let rapids = self.kind_visible(Kind::Rapid);
         if child
             .selectable_label(rapids, "Rapids")

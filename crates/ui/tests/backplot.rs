@@ -475,3 +475,42 @@ fn scene_points_carry_their_tool_for_colouring_by_tool() {
     plot.toggle_color_by_tool();
     assert_eq!(plot.color_mode(), swarf_render::ColorMode::ByIndex);
 }
+
+#[test]
+fn compensated_blocks_are_drawn_as_such_with_the_programmed_contour_beside() {
+    let program = swarf_syntax::parse(
+        "G90 G00 X0 Y-10.\nG41 D1 G01 X0 Y0 F100.\nY20.\nG02 X20. Y20. I10. J0\nG40 G00 X30.\nM30\n",
+        swarf_syntax::Dialect::Fanuc,
+    );
+    let setup = swarf_interp::Setup::from_toml("[registers.1]\nradius = 2.0\n").unwrap();
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, setup, &mut path);
+    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    assert!(
+        scene
+            .points
+            .iter()
+            .any(|p| p.kind() == Some(Kind::Compensated))
+    );
+    // The contour as programmed: the line up Y to 20 and the arc over to X20, as marks.
+    let contour: Vec<Vec3> = scene
+        .marks
+        .iter()
+        .filter(|p| p.kind() == Some(Kind::Programmed))
+        .map(PathPoint::position)
+        .collect();
+    let at = |x: f64, y: f64| (DVec3::new(x, y, 0.0) - scene.origin).as_vec3();
+    assert!(contour.iter().any(|p| (*p - at(0.0, 20.0)).length() < 1e-4));
+    assert!(
+        contour
+            .iter()
+            .any(|p| (*p - at(20.0, 20.0)).length() < 1e-4)
+    );
+    // The arc's chords stay on its R10 circle about (10, 20).
+    let centre = at(10.0, 20.0);
+    let on_arc = contour
+        .iter()
+        .filter(|p| p.y > centre.y + 0.5)
+        .all(|p| ((*p - centre).length() - 10.0).abs() < 1e-3);
+    assert!(on_arc, "{contour:?}");
+}
