@@ -29,6 +29,11 @@ const AGREEING: &[&str] = &[
     "linuxcnc-tests/interp/g81/g19/g99/g19-g99-g81.ngc",
     "linuxcnc-tests/interp/g84/g17/g98/g17-g98-g84.ngc",
     "linuxcnc-tests/interp/g84/g17/g99/g17-g99-g84.ngc",
+    "linuxcnc-tests/interp/g84/g18/g98/g18-g98-g84.ngc",
+    "linuxcnc-tests/interp/g84/g18/g99/g18-g99-g84.ngc",
+    "linuxcnc-tests/interp/g84/g19/g98/g19-g98-g84.ngc",
+    "linuxcnc-tests/interp/g84/g19/g99/g19-g99-g84.ngc",
+    "programs/nist/example3.gcode",
     "linuxcnc-tests/interp/m98m99/01-basics/test.ngc",
     "linuxcnc-tests/interp/m98m99/02-variables/test.ngc",
     "linuxcnc-tests/interp/m98m99/03-error-M98-no-P-word/test.ngc",
@@ -76,14 +81,6 @@ const AGREEING: &[&str] = &[
     "linuxcnc-tests/interp/crazy-paths/test.ngc",
     "linuxcnc-tests/interp/inverse-time-with-comp/inverse.ngc",
 ];
-
-/// Corpus programs that agree with rs274 without the blocks starting with the given words, and
-/// why those blocks are left out.
-const AGREEING_WITHOUT: &[(&str, &[&str], &str)] = &[(
-    "programs/nist/example3.gcode",
-    &["n0300 g84", "n0500 g84"],
-    "rs274 emits G84's moves with the axes swapped in the XZ and YZ planes",
-)];
 
 /// A LinuxCNC tool table (`T3 P3 Z0.5 D0.25`) as a setup: tool N's Z is register N's length and
 /// half its diameter D the radius, in inches as standalone rs274 reads them.
@@ -140,26 +137,6 @@ fn canon_agrees_with_linuxcnc_rs274() {
         let program = shared().join("corpus").join(rel);
         if let Err(diff) = agree(&tools, dir.path(), &program) {
             panic!("{rel} differs from rs274:\n{diff}");
-        }
-    }
-    // Programs that agree once the blocks where rs274 itself goes wrong are left out (the
-    // copy is made in a temporary folder at test time).
-    for (rel, drop, why) in AGREEING_WITHOUT {
-        let program = shared().join("corpus").join(rel);
-        let text = std::fs::read_to_string(&program).unwrap();
-        let kept: String = text
-            .lines()
-            .filter(|l| !drop.iter().any(|d| l.trim_start().starts_with(d)))
-            .map(|l| format!("{l}\n"))
-            .collect();
-        assert!(
-            kept.lines().count() < text.lines().count(),
-            "{rel}: nothing dropped"
-        );
-        let copy = dir.path().join(program.file_name().unwrap());
-        std::fs::write(&copy, kept).unwrap();
-        if let Err(diff) = agree(&tools, dir.path(), &copy) {
-            panic!("{rel} (without {drop:?}: {why}) differs from rs274:\n{diff}");
         }
     }
 }

@@ -1029,19 +1029,43 @@ impl Drill<'_, '_> {
                         depth -= q;
                     }
                 }
-                self.feed_to(self.level(hole, bottom));
-                self.spindle(None);
-                if !linuxcnc {
-                    self.dwell();
-                }
-                self.spindle(Some(!forward));
                 if linuxcnc {
+                    // LinuxCNC's G84 outside the XY plane feeds to points with their axes
+                    // rotated — (Y, Z, X) in G18, (Z, X, Y) in G19 — as rs274ngc does and
+                    // LinuxCNC's own test suite expects: drawn where the machine will go, with
+                    // a warning.
+                    let plane = self.st.plane;
+                    let swap = plane != crate::Axis::Z && self.plan.tenths == 840;
+                    let out = |p: DVec3| match plane {
+                        _ if !swap => p,
+                        crate::Axis::Y => DVec3::new(p.y, p.z, p.x),
+                        _ => DVec3::new(p.z, p.x, p.y),
+                    };
+                    if swap {
+                        self.st.diagnostics.push(Diagnostic::warning(
+                            self.block.span,
+                            "W-LINUXCNC-G84-PLANE",
+                            "LinuxCNC runs G84 outside the XY plane with the axes of its feed moves rotated; they are drawn where the machine will go",
+                        ));
+                    }
+                    let (down, up) = (self.level(hole, bottom), self.level(hole, clear));
+                    self.feed_to(out(down));
+                    self.spindle(None);
+                    self.spindle(Some(!forward));
                     self.dwell();
-                    self.feed_to(self.level(hole, clear));
+                    self.feed_to(out(up));
+                    // rs274ngc only emits the points rotated: it goes on from where it meant to
+                    // be.
+                    self.st.program_pos = up;
+                    self.st.position = self.st.to_machine(up);
                     self.spindle(None);
                     self.spindle(Some(forward));
                     return;
                 }
+                self.feed_to(self.level(hole, bottom));
+                self.spindle(None);
+                self.dwell();
+                self.spindle(Some(!forward));
                 self.feed_to(self.level(hole, r));
                 self.spindle(None);
                 self.dwell();

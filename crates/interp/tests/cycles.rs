@@ -983,3 +983,46 @@ fn gsk_e17_slanted_flexible_tapping_reverses_at_the_bottom() {
         ])[..]
     );
 }
+
+#[test]
+fn linuxcnc_g84_outside_xy_feeds_with_its_axes_rotated_as_linuxcnc_does() {
+    // LinuxCNC's test interp/g84/g18: in G18 the feed to (X1, Y-1, Z1) is emitted at
+    // (-1, 1, 1) and the way out to (1, 2, 1) at (2, 1, 1); the next hole starts from where
+    // rs274ngc meant to be.
+    let (out, diags) = events(
+        "G21 G18 G0 X0 Y2 Z0 M3 S100\nG98 G84 X1 Z1 Y-1 R1 F10\nG84 X1 Z2 Y0.5 R3\n",
+        Dialect::LinuxCnc,
+    );
+    assert!(diags.contains(&"W-LINUXCNC-G84-PLANE"), "{diags:?}");
+    let motions: Vec<&String> = out
+        .iter()
+        .filter(|e| e.starts_with('R') || e.starts_with('F'))
+        .collect();
+    assert_eq!(
+        motions,
+        [
+            "R 0 2 0",
+            "R 1 2 1",
+            "R 1 1 1",
+            "F -1 1 1",
+            "F 2 1 1",
+            "R 1 3 1",
+            "R 1 3 2",
+            "F 0.5 2 1",
+            "F 3 2 1",
+        ]
+    );
+    // G19: (Z, X, Y).
+    let (out, _) = events(
+        "G21 G19 G0 X2 Y0 Z0 M3 S100\nG98 G84 Y1 Z1 X-1 R1 F10\n",
+        Dialect::LinuxCnc,
+    );
+    assert!(out.contains(&"F 1 -1 1".to_string()), "{out:?}");
+    // The Fanuc family taps along the drilling axis.
+    let (out, diags) = events(
+        "G18 G0 X0 Y2 Z0 S100 M3\nG98 G84 X1 Z1 Y-1 R1 F10\n",
+        Dialect::Fanuc,
+    );
+    assert!(!diags.contains(&"W-LINUXCNC-G84-PLANE"));
+    assert!(out.contains(&"F 1 -1 1".to_string()), "{out:?}");
+}
