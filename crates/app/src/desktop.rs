@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use swarf_ui::{HostRequest, Workbench};
 
-use crate::files::{self, Recovery};
+use crate::files::{self, Autosave, AutosaveClock, Recovery};
 
 /// The application id: names the data folder (`~/.local/share/swarf` on Linux).
 pub const APP_ID: &str = "Swarf";
@@ -20,16 +20,11 @@ pub struct Host {
     pub recent: Vec<String>,
     /// The recovery file (none when the platform has no data folder).
     recovery: Option<PathBuf>,
-    /// The analysis generation last written to the recovery file.
-    autosaved: u64,
-    /// When the text was first seen changed since the last autosave (egui time).
-    changed_at: Option<f64>,
+    /// When the recovery file is written or removed.
+    clock: AutosaveClock,
     /// Set once the user chose to quit, so the close is no longer held back.
     pub quitting: bool,
 }
-
-/// Seconds an edit waits before it is written to the recovery file.
-const AUTOSAVE_DELAY: f64 = 1.0;
 
 impl Host {
     /// A host whose recovery file is in the platform's data folder for Swarf.
@@ -62,7 +57,7 @@ impl Host {
         };
         wb.recover(&r.name, r.text, r.encoding);
         wb.set_path((!r.path.is_empty()).then_some(r.path));
-        self.autosaved = wb.generation();
+        self.clock.settled(wb.generation());
         true
     }
 
@@ -249,26 +244,16 @@ impl Host {
     /// Writes unsaved changes to the recovery file a moment after they are made, and removes
     /// it once nothing is unsaved.
     pub fn autosave(&mut self, wb: &Workbench, now: f64) {
-        let generation = wb.generation();
-        if generation == self.autosaved {
-            return;
+        match self.clock.step(wb.generation(), wb.is_dirty(), now) {
+            Autosave::Wait => {}
+            Autosave::Clear => self.clear_recovery(),
+            Autosave::Write => self.write_recovery(wb),
         }
-        if !wb.is_dirty() {
-            self.clear_recovery();
-            self.autosaved = generation;
-            return;
-        }
-        let since = *self.changed_at.get_or_insert(now);
-        if now - since < AUTOSAVE_DELAY {
-            return;
-        }
-        self.write_recovery(wb);
-        self.autosaved = generation;
     }
 
     /// Writes the recovery file now (also on exit with unsaved changes).
     pub fn write_recovery(&mut self, wb: &Workbench) {
-        self.changed_at = None;
+        self.clock.restart();
         let Some(file) = &self.recovery else {
             return;
         };
@@ -291,7 +276,7 @@ impl Host {
     }
 
     fn clear_recovery(&mut self) {
-        self.changed_at = None;
+        self.clock.restart();
         if let Some(file) = &self.recovery
             && file.exists()
             && let Err(e) = std::fs::remove_file(file)

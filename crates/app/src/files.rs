@@ -70,6 +70,59 @@ pub fn encode(text: &str, encoding: Encoding) -> (Vec<u8>, Encoding) {
     }
 }
 
+/// Seconds an edit waits before it is written to the recovery copy.
+pub const AUTOSAVE_DELAY: f64 = 1.0;
+
+/// When the recovery copy of unsaved changes is written or cleared, the same on the desktop
+/// (a file) and the web (localStorage): a moment after an edit, once per text generation.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct AutosaveClock {
+    /// The text generation last written (or cleared).
+    autosaved: u64,
+    /// When the text was first seen changed since the last autosave (egui time).
+    changed_at: Option<f64>,
+}
+
+/// What the recovery copy needs now.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Autosave {
+    /// Nothing (no change, or the edit is too recent).
+    Wait,
+    /// Remove it: nothing is unsaved.
+    Clear,
+    /// Write it.
+    Write,
+}
+
+impl AutosaveClock {
+    /// What to do for text `generation` (`dirty`: it has unsaved changes) at time `now`.
+    pub fn step(&mut self, generation: u64, dirty: bool, now: f64) -> Autosave {
+        if generation == self.autosaved {
+            return Autosave::Wait;
+        }
+        if !dirty {
+            self.autosaved = generation;
+            return Autosave::Clear;
+        }
+        let since = *self.changed_at.get_or_insert(now);
+        if now - since < AUTOSAVE_DELAY {
+            return Autosave::Wait;
+        }
+        self.autosaved = generation;
+        Autosave::Write
+    }
+
+    /// Generation `generation` is already safe (e.g. just recovered).
+    pub fn settled(&mut self, generation: u64) {
+        self.autosaved = generation;
+    }
+
+    /// The copy was written or removed: the next edit waits its delay again.
+    pub fn restart(&mut self) {
+        self.changed_at = None;
+    }
+}
+
 /// An unsaved program kept for crash recovery: which file it belongs to and its text.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Recovery {

@@ -9,14 +9,12 @@ use wasm_bindgen::prelude::*;
 
 use swarf_ui::{HostRequest, Workbench};
 
-use crate::files::Recovery;
+use crate::files::{Autosave, AutosaveClock, Recovery};
 
 /// localStorage key of the unsaved program.
 const RECOVERY_KEY: &str = "swarf.recovery";
 /// Element id of the hidden file input.
 const PICKER_ID: &str = "swarf-file-picker";
-/// Seconds an edit waits before it is written to localStorage.
-const AUTOSAVE_DELAY: f64 = 1.0;
 
 /// What a picked file is for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,8 +33,7 @@ pub struct Host {
     /// Recent files (none on the web: the page cannot reopen a file by name).
     pub recent: Vec<String>,
     inbox: Inbox,
-    autosaved: u64,
-    changed_at: Option<f64>,
+    clock: AutosaveClock,
     ctx: Option<egui::Context>,
 }
 
@@ -67,7 +64,7 @@ impl Host {
             return false;
         };
         wb.recover(&r.name, r.text, r.encoding);
-        self.autosaved = wb.generation();
+        self.clock.settled(wb.generation());
         true
     }
 
@@ -208,26 +205,16 @@ impl Host {
 
     /// Keeps unsaved changes in localStorage a moment after they are made.
     pub fn autosave(&mut self, wb: &Workbench, now: f64) {
-        let generation = wb.generation();
-        if generation == self.autosaved {
-            return;
+        match self.clock.step(wb.generation(), wb.is_dirty(), now) {
+            Autosave::Wait => {}
+            Autosave::Clear => clear_recovery(),
+            Autosave::Write => self.write_recovery(wb),
         }
-        if !wb.is_dirty() {
-            clear_recovery();
-            self.autosaved = generation;
-            return;
-        }
-        let since = *self.changed_at.get_or_insert(now);
-        if now - since < AUTOSAVE_DELAY {
-            return;
-        }
-        self.write_recovery(wb);
-        self.autosaved = generation;
     }
 
     /// Writes the unsaved program to localStorage now.
     pub fn write_recovery(&mut self, wb: &Workbench) {
-        self.changed_at = None;
+        self.clock.restart();
         if !wb.is_dirty() {
             return;
         }
