@@ -221,27 +221,31 @@ impl Interpreter {
                 self.end_of_text(program);
                 continue;
             };
-            if self.executed >= self.st.setup.machine.max_blocks {
-                self.st.diagnostics.push(Diagnostic::error(
-                    block.span,
+            // The runaway limits: blocks run, and moves made (the toolpath's memory).
+            let machine = &self.st.setup.machine;
+            let limit = if self.executed >= machine.max_blocks {
+                Some((
                     "E-RUNAWAY",
                     format!(
                         "execution stopped after {} blocks (the limit in [machine] max_blocks): an endless loop?",
                         self.executed
                     ),
-                ));
-                self.finished = true;
-                break;
-            }
-            if counted.motions >= self.st.setup.machine.max_motions {
-                self.st.diagnostics.push(Diagnostic::error(
-                    block.span,
+                ))
+            } else if counted.motions >= machine.max_motions {
+                Some((
                     "E-MOTION-LIMIT",
                     format!(
                         "execution stopped after {} moves (the limit in [machine] max_motions): the toolpath would not fit in memory",
                         counted.motions
                     ),
-                ));
+                ))
+            } else {
+                None
+            };
+            if let Some((code, message)) = limit {
+                self.st
+                    .diagnostics
+                    .push(Diagnostic::error(block.span, code, message));
                 self.finished = true;
                 break;
             }
