@@ -366,7 +366,7 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
             let tool = st.comp.tool.unwrap_or(from);
             let moved = with_uv(to, uv(tool, plane), plane);
             st.comp.tool = Some(moved);
-            sink.emit(source, &with_end(event, moved, plane));
+            sink.emit(source, &with_end(event, moved));
         }
         return;
     }
@@ -692,7 +692,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
         match event.end_point() {
             Some(to) => {
                 at = with_uv(to, uv(end, plane), plane);
-                sink.emit(source, &with_end(&event, at, plane));
+                sink.emit(source, &with_end(&event, at));
             }
             None => sink.emit(source, &event),
         }
@@ -848,7 +848,7 @@ fn alarm(st: &mut State, span: Span, code: &'static str, message: String) {
 }
 
 /// `event` with its end point moved to `to`.
-fn with_end(event: &Canon, to: DVec3, _plane: (usize, usize)) -> Canon {
+fn with_end(event: &Canon, to: DVec3) -> Canon {
     match event.clone() {
         Canon::Rapid { .. } => Canon::Rapid { to },
         Canon::Feed {
