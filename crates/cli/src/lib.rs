@@ -158,12 +158,12 @@ struct Loaded {
     linked: Vec<LinkedText>,
 }
 
-/// A file linked to the program (a subprogram it calls), kept to report its diagnostics.
+/// A file linked to the program (a subprogram it calls), kept to report its diagnostics; the
+/// `i`-th is the program's `linked[i]`.
 struct LinkedText {
     path: String,
     text: String,
     lines: LineIndex,
-    first_byte: u32,
 }
 
 /// Most files linked to one program (a bound on runaway chains of calls).
@@ -227,12 +227,10 @@ fn link_external(
             let sub = parse(&decoded.text, dialect);
             let lines = sub.lines.clone();
             program.link(sub, &name, main_len, decoded.text.len());
-            let first_byte = program.linked.last().map_or(0, |l| l.first_byte);
             linked.push(LinkedText {
                 path: name,
                 text: decoded.text,
                 lines,
-                first_byte,
             });
             progress = true;
         }
@@ -284,15 +282,14 @@ impl Loaded {
         let mut status = EXIT_OK;
         for d in diags {
             // A diagnostic in a linked file is reported at its place in that file.
-            let (path, (line, col)) = match self
-                .linked
-                .iter()
-                .rev()
-                .find(|l| d.span.start >= l.first_byte)
-            {
-                Some(l) => (
+            let linked = self
+                .program
+                .linked_at_offset(d.span.start)
+                .and_then(|i| Some((self.program.linked.get(i)?, self.linked.get(i)?)));
+            let (path, (line, col)) = match linked {
+                Some((at, l)) => (
                     l.path.as_str(),
-                    l.lines.line_col(&l.text, d.span.start - l.first_byte),
+                    l.lines.line_col(&l.text, d.span.start - at.first_byte),
                 ),
                 None => (self.path.as_str(), cols.line_col(d.span.start)),
             };
@@ -340,15 +337,19 @@ impl Sink for NullSink {
 struct JsonLines<'a> {
     out: &'a mut dyn Write,
     error: Option<std::io::Error>,
-    /// The files linked to the program: an event from one names it, with its line there.
-    linked: &'a [swarf_syntax::LinkedFile],
+    /// The program: an event from a file linked to it names that file, with its line there.
+    program: &'a Program,
 }
 
 impl Sink for JsonLines<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
         let mut value = event.to_json(source);
         let line0 = source.line.saturating_sub(1);
-        if let Some(file) = self.linked.iter().rev().find(|l| line0 >= l.first_line) {
+        if let Some(file) = self
+            .program
+            .linked_at_line(line0)
+            .and_then(|i| self.program.linked.get(i))
+        {
             value["file"] = json!(file.name);
             value["line"] = json!(line0 - file.first_line + 1);
         }
@@ -370,7 +371,7 @@ fn canon(
     let loaded = load(file, opts)?;
     let mut buffered = std::io::BufWriter::new(out);
     let mut sink = JsonLines {
-        linked: &loaded.program.linked,
+        program: &loaded.program,
         out: &mut buffered,
         error: None,
     };

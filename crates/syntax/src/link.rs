@@ -96,12 +96,16 @@ impl Program {
         });
     }
 
-    /// The linked file a byte offset or a 0-based line of this program lies in (`None`: the
-    /// program's own text).
-    pub fn linked_file_at(&self, offset: Option<u32>, line: Option<u32>) -> Option<&LinkedFile> {
-        self.linked.iter().rev().find(|l| {
-            offset.is_some_and(|o| o >= l.first_byte) || line.is_some_and(|n| n >= l.first_line)
-        })
+    /// The index in [`Program::linked`] of the file byte `offset` of this program lies in
+    /// (`None`: the program's own text).
+    pub fn linked_at_offset(&self, offset: u32) -> Option<usize> {
+        self.linked.iter().rposition(|l| offset >= l.first_byte)
+    }
+
+    /// The index in [`Program::linked`] of the file the 0-based `line` of this program's
+    /// blocks lies in (`None`: the program's own text).
+    pub fn linked_at_line(&self, line: u32) -> Option<usize> {
+        self.linked.iter().rposition(|l| line >= l.first_line)
     }
 
     /// The subprogram numbers and O-word names this program calls with literal targets but

@@ -183,11 +183,13 @@ fn a_linked_program_keeps_its_meaning_past_the_main_text() {
     assert!(matches!(p.expr(*a).unwrap().expr, Expr::Var(_)));
     assert!(p.blocks[6].words[1].expr.unwrap().index() >= exprs_before);
     assert_eq!(
-        p.linked_file_at(Some(first.span.start), None)
-            .map(|l| l.name.as_str()),
+        p.linked_at_offset(first.span.start)
+            .map(|i| p.linked[i].name.as_str()),
         Some("O1234.nc")
     );
-    assert!(p.linked_file_at(Some(3), None).is_none());
+    assert!(p.linked_at_offset(3).is_none());
+    assert_eq!(p.linked_at_line(first.line), Some(0));
+    assert!(p.linked_at_line(4).is_none());
     // LinuxCNC: named subroutines.
     let l = parse("o<sq> call [1]\nM2\n", Dialect::LinuxCnc);
     assert_eq!(
