@@ -372,15 +372,13 @@ fn g84_taps_in_reverses_at_the_bottom_and_restarts_forward_at_r() {
     );
 }
 
-#[test]
-fn kt_tapping_f_is_the_pitch() {
-    let program = parse("G0 Z10 S600 M03\nG99 G84 X1 R2 Z-5 F1.5\n", Dialect::Kt);
+/// The feed rates of a KT program's cutting moves (calculator input: integers are mm).
+fn kt_feeds(text: &str) -> Vec<f64> {
     let mut setup = Setup::default();
     setup.machine.calculator_input = Some(true);
     let mut rec = CanonRecorder::default();
-    run(&program, setup, &mut rec);
-    let feeds: Vec<f64> = rec
-        .events
+    run(&parse(text, Dialect::Kt), setup, &mut rec);
+    rec.events
         .iter()
         .filter_map(|(_, e)| match e {
             Canon::Feed {
@@ -388,7 +386,12 @@ fn kt_tapping_f_is_the_pitch() {
             } => Some(*feed_mm_per_min),
             _ => None,
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn kt_tapping_f_is_the_pitch() {
+    let feeds = kt_feeds("G0 Z10 S600 M03\nG99 G84 X1 R2 Z-5 F1.5\n");
     assert_eq!(feeds, [900.0, 900.0]);
 }
 
@@ -934,21 +937,7 @@ fn syntec_peck_tapping_backs_out_to_r_or_by_d_between_pecks() {
 
 #[test]
 fn kt_tapping_i_gives_threads_per_inch() {
-    let program = parse("G0 Z10 S600 M03\nG99 G84 X1 R2 Z-5 I20\n", Dialect::Kt);
-    let mut setup = Setup::default();
-    setup.machine.calculator_input = Some(true);
-    let mut rec = CanonRecorder::default();
-    run(&program, setup, &mut rec);
-    let feeds: Vec<f64> = rec
-        .events
-        .iter()
-        .filter_map(|(_, e)| match e {
-            Canon::Feed {
-                feed_mm_per_min, ..
-            } => Some(*feed_mm_per_min),
-            _ => None,
-        })
-        .collect();
+    let feeds = kt_feeds("G0 Z10 S600 M03\nG99 G84 X1 R2 Z-5 I20\n");
     // 20 threads per inch: a 1.27 mm pitch at 600 rpm.
     assert_eq!(feeds.len(), 2);
     assert!(
