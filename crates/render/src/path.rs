@@ -5,7 +5,9 @@
 //! offset +16 bytes), so instance `i` draws the segment from point `i` to point `i + 1` and
 //! consecutive segments share their points: 16 GPU bytes per segment. A [`PathPoint::PEN_UP`]
 //! flag on a point means "no segment arrives here", so separate polylines (the grid's lines,
-//! several toolpaths) live in one buffer.
+//! several toolpaths) live in one buffer. A path longer than the device's largest buffer
+//! (16.7M points at wgpu's default 256 MiB) is split over several buffers sharing one point at
+//! each seam, one draw call each.
 
 use std::borrow::Cow;
 use std::ops::Range;
@@ -59,13 +61,15 @@ pub enum Kind {
     AxisY = 11,
     /// The Z axis.
     AxisZ = 12,
-    /// Machine travel box, soft limits and other reference outlines.
+    /// Machine travel box and other reference outlines.
     Boundary = 13,
+    /// A programmable stroke limit (G22): protected zone or soft limits.
+    Zone = 14,
 }
 
 impl Kind {
     /// Every kind, in palette order.
-    pub const ALL: [Kind; 14] = [
+    pub const ALL: [Kind; 15] = [
         Kind::Rapid,
         Kind::Feed,
         Kind::Arc,
@@ -80,6 +84,7 @@ impl Kind {
         Kind::AxisY,
         Kind::AxisZ,
         Kind::Boundary,
+        Kind::Zone,
     ];
 
     /// The kind stored as `bits`, if any.
@@ -234,6 +239,8 @@ pub const Y_AXIS_COLOR: [u8; 4] = [60, 200, 60, 255];
 pub const Z_AXIS_COLOR: [u8; 4] = [70, 110, 255, 255];
 /// Colour of outlines (travel box, limits).
 pub const BOUNDARY_COLOR: [u8; 4] = [200, 200, 200, 110];
+/// Colour of G22 stroke limits (protected zones, soft limits).
+pub const ZONE_COLOR: [u8; 4] = [255, 90, 70, 200];
 /// Colour of highlighted (selected) segments: white-yellow.
 pub const HIGHLIGHT_COLOR: [u8; 4] = [255, 250, 170, 255];
 
@@ -255,6 +262,7 @@ impl Default for Palette {
             (Kind::AxisY, Y_AXIS_COLOR),
             (Kind::AxisZ, Z_AXIS_COLOR),
             (Kind::Boundary, BOUNDARY_COLOR),
+            (Kind::Zone, ZONE_COLOR),
         ] {
             kinds[kind as usize] = srgba(color);
         }
@@ -446,19 +454,50 @@ const START_ATTRIBUTES: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 
 const END_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
     wgpu::vertex_attr_array![1 => Float32x3, 2 => Uint32];
 
-/// Points a batch may hold on `device`: its largest buffer, at most `u32::MAX` points.
+/// Points one buffer may hold on `device`: its largest buffer, at most `u32::MAX` points.
 fn max_points(device: &wgpu::Device) -> u64 {
     (device.limits().max_buffer_size / POINT_SIZE).min(u64::from(u32::MAX))
 }
 
-/// A growable GPU vertex buffer holding one polyline stream.
-struct PointBatch {
-    label: &'static str,
-    buffer: Option<wgpu::Buffer>,
+/// One GPU vertex buffer of a [`PointBatch`], holding points `first..first + count`.
+struct Chunk {
+    buffer: wgpu::Buffer,
     /// Capacity of `buffer` in points.
     capacity: u64,
+    /// Index in the whole stream of the chunk's first point.
+    first: u64,
     /// Points uploaded.
-    count: u32,
+    count: u64,
+}
+
+impl Chunk {
+    fn segments(&self) -> u32 {
+        u32::try_from(self.count.saturating_sub(1)).unwrap_or(u32::MAX)
+    }
+
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        let segments = self.segments();
+        if segments == 0 {
+            return;
+        }
+        let bytes = self.count * POINT_SIZE;
+        // The same buffer twice: instance i reads point i from slot 0, point i + 1 from slot 1.
+        pass.set_vertex_buffer(0, self.buffer.slice(..bytes - POINT_SIZE));
+        pass.set_vertex_buffer(1, self.buffer.slice(POINT_SIZE..bytes));
+        pass.draw(0..4, 0..segments);
+    }
+}
+
+/// A growable polyline stream on the GPU. A stream longer than the device's largest buffer is
+/// split into several buffers that overlap by one point, so no segment is lost at a seam and a
+/// path of any length (tens of millions of points) stays resident, one draw call per buffer.
+struct PointBatch {
+    label: &'static str,
+    chunks: Vec<Chunk>,
+    /// Points uploaded in all.
+    count: u64,
+    /// Largest points per buffer, when lower than the device's (tests use a small one).
+    chunk_limit: Option<u64>,
 }
 
 /// Buffers are sized in steps of this many points (64 KiB).
@@ -468,73 +507,100 @@ impl PointBatch {
     fn new(label: &'static str) -> Self {
         Self {
             label,
-            buffer: None,
-            capacity: 0,
+            chunks: Vec::new(),
             count: 0,
+            chunk_limit: None,
         }
     }
 
-    /// Uploads `points`, reallocating when the buffer is too small or far too big. Points
-    /// beyond the device's largest buffer are dropped (the count says what was kept).
-    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
+    /// Points per buffer on `device` (at least two, so every buffer holds a segment).
+    fn points_per_buffer(&self, device: &wgpu::Device) -> u64 {
         let max = max_points(device);
-        let wanted = (points.len() as u64).min(max);
-        if wanted < 2 {
+        self.chunk_limit.map_or(max, |l| l.min(max)).max(2)
+    }
+
+    /// Uploads `points`, reusing each buffer whose size fits and reallocating those too small
+    /// or far too big.
+    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
+        let total = points.len() as u64;
+        if total < 2 {
             self.count = 0;
+            self.chunks.clear();
             return;
         }
-        let too_small = self.capacity < wanted;
-        let too_big = self.capacity > 2 * wanted + CAPACITY_STEP;
-        if self.buffer.is_none() || too_small || too_big {
-            let capacity = wanted.next_multiple_of(CAPACITY_STEP).min(max);
-            self.buffer = Some(device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(self.label),
-                size: capacity * POINT_SIZE,
-                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }));
-            self.capacity = capacity;
+        let per = self.points_per_buffer(device);
+        // Chunk k holds points k·(per − 1) .. k·(per − 1) + per: one point shared at each seam.
+        let stride = per - 1;
+        let n_chunks = (total - 1).div_ceil(stride);
+        let mut old = std::mem::take(&mut self.chunks).into_iter();
+        for k in 0..n_chunks {
+            let first = k * stride;
+            let count = (total - first).min(per);
+            let reuse = old
+                .next()
+                .filter(|c| c.capacity >= count && c.capacity <= 2 * count + CAPACITY_STEP);
+            let chunk = match reuse {
+                Some(c) => Chunk { first, count, ..c },
+                None => {
+                    let capacity = count.next_multiple_of(CAPACITY_STEP).min(per);
+                    Chunk {
+                        buffer: device.create_buffer(&wgpu::BufferDescriptor {
+                            label: Some(self.label),
+                            size: capacity * POINT_SIZE,
+                            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                            mapped_at_creation: false,
+                        }),
+                        capacity,
+                        first,
+                        count,
+                    }
+                }
+            };
+            let range = usize::try_from(first).unwrap_or(usize::MAX)
+                ..usize::try_from(first + count).unwrap_or(usize::MAX);
+            if let Some(slice) = points.get(range) {
+                queue.write_buffer(&chunk.buffer, 0, bytemuck::cast_slice(slice));
+            }
+            self.chunks.push(chunk);
         }
-        if let Some(buffer) = &self.buffer {
-            let kept = &points[..usize::try_from(wanted).unwrap_or(0)];
-            queue.write_buffer(buffer, 0, bytemuck::cast_slice(kept));
-            self.count = u32::try_from(wanted).unwrap_or(0);
+        self.count = total;
+    }
+
+    /// Overwrites points `first..first + points.len()` (clipped to what was uploaded), in
+    /// every buffer that holds them.
+    fn update(&self, queue: &wgpu::Queue, first: u64, points: &[PathPoint]) {
+        let end = (first + points.len() as u64).min(self.count);
+        for chunk in &self.chunks {
+            let lo = first.max(chunk.first);
+            let hi = end.min(chunk.first + chunk.count);
+            if lo >= hi {
+                continue;
+            }
+            let src = usize::try_from(lo - first).unwrap_or(usize::MAX)
+                ..usize::try_from(hi - first).unwrap_or(usize::MAX);
+            if let Some(slice) = points.get(src) {
+                queue.write_buffer(
+                    &chunk.buffer,
+                    (lo - chunk.first) * POINT_SIZE,
+                    bytemuck::cast_slice(slice),
+                );
+            }
         }
     }
 
-    /// Overwrites points `first..first + points.len()` (clipped to what was uploaded).
-    fn update(&self, queue: &wgpu::Queue, first: u32, points: &[PathPoint]) {
-        let Some(buffer) = &self.buffer else {
-            return;
-        };
-        let end = (u64::from(first) + points.len() as u64).min(u64::from(self.count));
-        let Some(n) = end.checked_sub(u64::from(first)).filter(|&n| n > 0) else {
-            return;
-        };
-        let kept = &points[..usize::try_from(n).unwrap_or(0)];
-        queue.write_buffer(
-            buffer,
-            u64::from(first) * POINT_SIZE,
-            bytemuck::cast_slice(kept),
-        );
-    }
-
-    fn segments(&self) -> u32 {
+    /// Segments drawn (pen-up ones included): one fewer than the points.
+    fn segments(&self) -> u64 {
         self.count.saturating_sub(1)
     }
 
+    /// Bytes of GPU memory allocated.
+    fn allocated_bytes(&self) -> u64 {
+        self.chunks.iter().map(|c| c.capacity * POINT_SIZE).sum()
+    }
+
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let segments = self.segments();
-        if segments == 0 {
-            return;
-        }
-        if let Some(buffer) = &self.buffer {
-            let bytes = u64::from(self.count) * POINT_SIZE;
-            // The same buffer twice: instance i reads point i from slot 0, point i + 1 from
-            // slot 1.
-            pass.set_vertex_buffer(0, buffer.slice(..bytes - POINT_SIZE));
-            pass.set_vertex_buffer(1, buffer.slice(POINT_SIZE..bytes));
-            pass.draw(0..4, 0..segments);
+        for chunk in &self.chunks {
+            chunk.draw(pass);
         }
     }
 }
@@ -677,8 +743,8 @@ impl PathRenderer {
         }
     }
 
-    /// Replaces the toolpath points, reusing the buffer when its size fits. Fewer than two
-    /// points draw nothing.
+    /// Replaces the toolpath points, reusing the buffers whose size fits. Fewer than two
+    /// points draw nothing; any number more is kept (split over several buffers if needed).
     pub fn set_path(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
         self.path.upload(device, queue, points);
     }
@@ -686,7 +752,7 @@ impl PathRenderer {
     /// Overwrites part of the uploaded toolpath from point `first` on (e.g. to flag segments
     /// or stream a long program in), without reallocating.
     pub fn update_path(&self, queue: &wgpu::Queue, first: u32, points: &[PathPoint]) {
-        self.path.update(queue, first, points);
+        self.path.update(queue, u64::from(first), points);
     }
 
     /// Replaces the grid, axes and outlines (see [`crate::grid_points`]), drawn after the path.
@@ -694,28 +760,44 @@ impl PathRenderer {
         self.grid.upload(device, queue, points);
     }
 
-    /// Toolpath points uploaded (the device may cap huge inputs).
-    #[must_use]
-    pub fn path_point_count(&self) -> u32 {
-        self.path.count
+    /// Caps the points one GPU buffer holds below the device's largest buffer, so a long path
+    /// is split into several buffers sooner (for tests of the splitting; takes effect at the
+    /// next upload). `None` goes back to the device's limit.
+    pub fn set_points_per_buffer(&mut self, limit: Option<u64>) {
+        self.path.chunk_limit = limit;
+        self.grid.chunk_limit = limit;
     }
 
-    /// Toolpath segments (instances) drawn per frame, pen-up ones included.
+    /// Toolpath points uploaded (saturating at `u32::MAX`).
+    #[must_use]
+    pub fn path_point_count(&self) -> u32 {
+        u32::try_from(self.path.count).unwrap_or(u32::MAX)
+    }
+
+    /// Toolpath segments (instances) drawn per frame, pen-up ones included (saturating at
+    /// `u32::MAX`).
     #[must_use]
     pub fn path_segment_count(&self) -> u32 {
-        self.path.segments()
+        u32::try_from(self.path.segments()).unwrap_or(u32::MAX)
+    }
+
+    /// GPU buffers the toolpath is split into (one unless it exceeds the device's largest
+    /// buffer).
+    #[must_use]
+    pub fn path_buffer_count(&self) -> usize {
+        self.path.chunks.len()
     }
 
     /// Grid/axes points uploaded.
     #[must_use]
     pub fn grid_point_count(&self) -> u32 {
-        self.grid.count
+        u32::try_from(self.grid.count).unwrap_or(u32::MAX)
     }
 
     /// Bytes of GPU memory allocated for the toolpath points.
     #[must_use]
     pub fn path_buffer_bytes(&self) -> u64 {
-        self.path.capacity * POINT_SIZE
+        self.path.allocated_bytes()
     }
 
     /// Writes the uniforms used by the next [`Self::paint`].

@@ -382,3 +382,87 @@ fn composites_into_a_pass_without_depth() {
         );
     }
 }
+
+/// Draws `path` (with the points `highlight` re-uploaded highlighted) into a fresh target with at
+/// most `per_buffer` points in one GPU buffer.
+fn render_split(
+    gpu: &HeadlessGpu,
+    path: &[PathPoint],
+    per_buffer: Option<u64>,
+    highlight: std::ops::Range<usize>,
+) -> (Image, usize) {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let target = RenderTarget::new(device, W, H, format).unwrap();
+    let mut renderer = PathRenderer::new(device, format, Some(DEPTH_FORMAT), 1);
+    renderer.set_points_per_buffer(per_buffer);
+    renderer.set_path(device, queue, path);
+    assert_eq!(renderer.path_segment_count() as usize, path.len() - 1);
+    assert_eq!(renderer.path_point_count() as usize, path.len());
+    let lit: Vec<PathPoint> = path[highlight.clone()]
+        .iter()
+        .map(|p| p.with_highlight(true))
+        .collect();
+    renderer.update_path(queue, highlight.start as u32, &lit);
+    renderer.prepare(
+        queue,
+        &ViewParams {
+            view_proj: top_camera().view_proj(W as f32 / H as f32),
+            viewport_px: Vec2::new(W as f32, H as f32),
+            line_width_px: 2.0,
+            rapid_width_px: 2.0,
+            ..ViewParams::default()
+        },
+    );
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    target.draw(&mut encoder, wgpu::Color::BLACK, &renderer);
+    queue.submit([encoder.finish()]);
+    let buffers = renderer.path_buffer_count();
+    (
+        Image {
+            pixels: target.read_rgba8(device, queue).unwrap(),
+        },
+        buffers,
+    )
+}
+
+#[test]
+fn a_path_split_over_several_buffers_draws_like_one() {
+    let Some(gpu) = gpu() else {
+        eprintln!("SKIPPED: no wgpu adapter available");
+        return;
+    };
+    // A spiral of 1000 chords with a rapid (pen up) now and then.
+    let path: Vec<PathPoint> = (0..1000)
+        .map(|i| {
+            let t = i as f32 * 0.05;
+            let r = 2.0 + t * 1.2;
+            let p = Vec3::new(r * t.cos(), 0.8 * r * t.sin(), 0.0);
+            if i % 97 == 0 {
+                PathPoint::pen_up(p)
+            } else if i % 50 < 25 {
+                PathPoint::new(p, Kind::Feed)
+            } else {
+                PathPoint::new(p, Kind::Arc)
+            }
+        })
+        .collect();
+    // The highlight crosses seams of the small buffers (every 6 points).
+    let (whole, one) = render_split(&gpu, &path, None, 400..530);
+    assert_eq!(one, 1);
+    let (split, many) = render_split(&gpu, &path, Some(7), 400..530);
+    assert_eq!(many, (1000 - 1usize).div_ceil(6));
+    let lit = whole.count(|p| p[0] > 20 || p[1] > 20 || p[2] > 20);
+    assert!(lit > 500, "the spiral drew only {lit} pixels");
+    let highlighted = whole.count(|p| close(p, HIGHLIGHT_COLOR, 40));
+    assert!(highlighted > 20, "no highlighted segment");
+    assert_eq!(
+        whole.pixels, split.pixels,
+        "a path split over {many} buffers draws differently"
+    );
+    // Two points per buffer is the smallest split: one segment each.
+    let (tiny, n) = render_split(&gpu, &path[..50], Some(1), 0..0);
+    assert_eq!(n, 49);
+    let (single, _) = render_split(&gpu, &path[..50], None, 0..0);
+    assert_eq!(tiny.pixels, single.pixels);
+}
