@@ -1,5 +1,6 @@
 //! `swarf render`: draws a program's toolpath offscreen with the backplot's renderer (wgpu;
-//! Mesa lavapipe works with no display) and writes it as a PNG.
+//! Mesa lavapipe works with no display) and writes it as a PNG, with the machine's travel box and
+//! the G22 stroke limits as outlines.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -8,7 +9,7 @@ use glam::{DVec3, Vec3};
 use swarf_render::{
     HeadlessGpu, Kind, OrbitCamera, PathPoint, Projection, StandardView, ViewParams, grid_points_at,
 };
-use swarf_toolpath::{CycleMove, SegmentKind, Toolpath};
+use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
 /// Background of the image: the app's dark backplot (sRGB).
 const BACKGROUND: [u8; 4] = [16, 16, 18, 255];
@@ -108,11 +109,31 @@ pub(crate) fn render(
 
     let origin = path.bounds().map_or(DVec3::ZERO, |b| b.center());
     let points = path_points(&path, origin);
+    let zones = path.zone_boxes();
+    // The view takes in the path and the stroke limits it set.
     let (min, max) = path.bounds().map_or((Vec3::ONE, Vec3::ZERO), |b| {
-        ((b.min - origin).as_vec3(), (b.max - origin).as_vec3())
+        let (lo, hi) = zones
+            .iter()
+            .fold((b.min, b.max), |(lo, hi), z| (lo.min(z.0), hi.max(z.1)));
+        ((lo - origin).as_vec3(), (hi - origin).as_vec3())
     });
     let zero = (DVec3::ZERO - origin).as_vec3();
-    let grid = grid_points_at(zero, min, max);
+    let mut grid = grid_points_at(zero, min, max);
+    // Outlines: the machine's travel and every G22 stroke limit the program set.
+    let travel = setup
+        .machine
+        .travel_mm
+        .map(|[lo, hi]| (DVec3::from_array(lo), DVec3::from_array(hi)));
+    let outlines = travel
+        .into_iter()
+        .map(|b| (b, Kind::Boundary))
+        .chain(zones.into_iter().map(|b| (b, Kind::Zone)));
+    for ((lo, hi), kind) in outlines {
+        for (a, b) in box_edges(lo, hi) {
+            grid.push(PathPoint::pen_up((a - origin).as_vec3()));
+            grid.push(PathPoint::new((b - origin).as_vec3(), kind));
+        }
+    }
 
     let (width, height) = args.size;
     let aspect = width as f32 / height as f32;

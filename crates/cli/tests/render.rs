@@ -1,6 +1,7 @@
 //! `swarf render`: writes a PNG of the toolpath offscreen; checked for size, path colours and
-//! against a golden image with a tolerance. Skips (passing, with a note) when no wgpu adapter
-//! is available. Set `SWARF_UPDATE_GOLDEN=1` to rewrite the golden image.
+//! against golden images (a pocket, drilling cycles with a G22 zone, a compensated contour)
+//! with a tolerance. Skips (passing, with a note) when no wgpu adapter is available. Set
+//! `SWARF_UPDATE_GOLDEN=1` to rewrite the golden images.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::path::{Path, PathBuf};
@@ -39,9 +40,50 @@ fn swarf(args: &[&str]) -> (i32, String, String) {
     )
 }
 
-fn golden_png() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/render_iso.png")
+fn golden_png(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/{name}"))
 }
+
+/// Drilling (Syntec): a G81 row under G99, a G83 peck row under G98, and a G22 protected zone
+/// below the holes between two columns, seen from above.
+const DRILLING: &str = "%
+O2000 (golden: cycles and a G22 zone)
+G71 G90 G17 G54
+G22 X35. I45. Y-5. J50. Z-20. K-50.
+G00 X0. Y0. Z20.
+G99 G81 X10. Y10. Z-5. R2. F300.
+X30.
+X50.
+G98 G83 X10. Y30. Z-12. R2. Q4. F250.
+X30.
+X50.
+G80
+G00 Z20.
+M30
+%
+";
+
+/// Cutter radius compensation (Fanuc): the tool centre's path around a square with a rounded
+/// corner, cut on the left of the contour with D1 = 5 mm.
+const COMPENSATED: &str = "%
+O3000 (golden: G41 around a square)
+G21 G90 G17 G54
+G00 X-20. Y-20. Z5.
+G01 Z-3. F200.
+G41 D1 X0. Y0. F500.
+G01 Y40.
+G01 X30.
+G02 X40. Y30. R10.
+G01 Y0.
+G01 X0.
+G40 G01 X-20. Y-20.
+G00 Z5.
+M30
+%
+";
+
+/// The setup of [`COMPENSATED`]: D1 is a 5 mm radius.
+const COMPENSATED_SETUP: &str = "[registers.1]\nradius = 5.0\n";
 
 struct Png {
     width: u32,
@@ -102,8 +144,19 @@ fn count(image: &Png, want: Hue) -> usize {
 /// Renders `PROGRAM` with `extra` arguments into a temporary PNG; `None` when there is no
 /// GPU adapter (the test then skips).
 fn render(dir: &tempfile::TempDir, name: &str, extra: &[&str]) -> Option<(Png, String)> {
+    render_program(dir, PROGRAM, name, extra)
+}
+
+/// Renders `program` with `extra` arguments into a temporary PNG; `None` when there is no GPU
+/// adapter.
+fn render_program(
+    dir: &tempfile::TempDir,
+    program: &str,
+    name: &str,
+    extra: &[&str],
+) -> Option<(Png, String)> {
     let nc = dir.path().join("part.nc");
-    std::fs::write(&nc, PROGRAM).unwrap();
+    std::fs::write(&nc, program).unwrap();
     let png = dir.path().join(name);
     let mut args = vec!["render", nc.to_str().unwrap(), "-o", png.to_str().unwrap()];
     args.extend_from_slice(extra);
@@ -162,15 +215,18 @@ fn renders_a_png_with_path_colours_in_each_view() {
     assert!(count(&image, Hue::Feed) > 20);
 }
 
-#[test]
-fn iso_view_matches_the_golden_image() {
+/// Renders `program` and compares it with `tests/golden/{name}` with a tolerance (or rewrites
+/// the golden image when `SWARF_UPDATE_GOLDEN` is set).
+fn check_golden(program: &str, name: &str, extra: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
-    let Some((image, _)) = render(&dir, "golden.png", &["--size", "256x192"]) else {
+    let mut args = vec!["--size", "256x192"];
+    args.extend_from_slice(extra);
+    let Some((image, _)) = render_program(&dir, program, name, &args) else {
         return;
     };
-    let golden = golden_png();
+    let golden = golden_png(name);
     if std::env::var_os("SWARF_UPDATE_GOLDEN").is_some() {
-        std::fs::copy(dir.path().join("golden.png"), &golden).unwrap();
+        std::fs::copy(dir.path().join(name), &golden).unwrap();
         eprintln!("updated {}", golden.display());
         return;
     }
@@ -190,6 +246,52 @@ fn iso_view_matches_the_golden_image() {
          rerun with SWARF_UPDATE_GOLDEN=1 if the change is intended",
         golden.display()
     );
+}
+
+#[test]
+fn iso_view_matches_the_golden_image() {
+    check_golden(PROGRAM, "render_iso.png", &[]);
+}
+
+#[test]
+fn drilling_with_a_stroke_limit_matches_the_golden_image() {
+    check_golden(
+        DRILLING,
+        "render_drilling_top.png",
+        &["--view", "top", "--dialect", "syntec"],
+    );
+}
+
+#[test]
+fn a_compensated_contour_matches_the_golden_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let setup = dir.path().join("setup.toml");
+    std::fs::write(&setup, COMPENSATED_SETUP).unwrap();
+    check_golden(
+        COMPENSATED,
+        "render_compensated_top.png",
+        &["--view", "top", "--setup", setup.to_str().unwrap()],
+    );
+}
+
+#[test]
+fn the_stroke_limit_is_outlined_in_its_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    let Some((image, _)) = render_program(
+        &dir,
+        DRILLING,
+        "zone.png",
+        &["--view", "top", "--dialect", "syntec", "--size", "320x200"],
+    ) else {
+        return;
+    };
+    // The zone's outline: red clearly above green and blue (ZONE_COLOR is (255, 90, 70)).
+    let red = image
+        .rgba
+        .chunks_exact(4)
+        .filter(|p| p[0] > 120 && f32::from(p[0]) > 1.8 * f32::from(p[1]) && p[1] >= p[2])
+        .count();
+    assert!(red > 40, "{red} zone pixels");
 }
 
 #[test]

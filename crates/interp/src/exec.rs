@@ -8,10 +8,8 @@ use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm
 
 use crate::machine::{Flow, Interpreter, find};
 use crate::macros::argument_variable;
-use crate::state::{
-    FeedMode, ModalMacro, MotionMode, Polar, Rotation, Scaling, State, StrokeZone, plane_axes,
-};
-use crate::{Axis, Canon, Sink, Source};
+use crate::state::{FeedMode, ModalMacro, MotionMode, Polar, Rotation, Scaling, State, plane_axes};
+use crate::{Axis, Canon, Sink, Source, StrokeZone};
 
 /// What one G code does.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -276,6 +274,10 @@ impl Sink for StrokeGuard<'_> {
     fn programmed(&mut self, source: Source, event: &Canon) {
         self.inner.programmed(source, event);
     }
+
+    fn stroke_zone(&mut self, source: Source, zone: Option<&StrokeZone>) {
+        self.inner.stroke_zone(source, zone);
+    }
 }
 
 /// Points along an arc event from `from` (excluding it, ending at `to`), 64 per turn.
@@ -478,7 +480,11 @@ fn execute_block(
         match *a {
             Action::WorkOffset => work_offset(st, w, words),
             Action::LengthComp(sign) => length_comp(st, w, words, sign),
-            Action::StrokeLimit(on) => stroke_limit(st, w, words, on),
+            Action::StrokeLimit(on) => {
+                stroke_limit(st, w, words, on);
+                let zone = st.stroke_zone.filter(|_| st.stroke_check);
+                sink.stroke_zone(source, zone.as_ref());
+            }
             Action::CutterComp(t) if !cutter_comp(st, w, words, t) => {
                 return Flow::Stop;
             }

@@ -35,4 +35,23 @@ pub trait Sink {
     fn programmed(&mut self, source: Source, event: &Canon) {
         let _ = (source, event);
     }
+
+    /// A G22 stroke limit switched on (`Some`, as the block at `source` set it) or off by G23
+    /// (`None`), so a backplot can draw the zone. Not part of the canonical stream.
+    fn stroke_zone(&mut self, source: Source, zone: Option<&StrokeZone>) {
+        let _ = (source, zone);
+    }
+}
+
+/// A programmable stroke limit (G22) in machine coordinates (mm): the box the tool must stay
+/// inside (LNC's soft limits) or out of (Syntec's protected zone). An axis without a limit
+/// spans from negative to positive infinity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StrokeZone {
+    /// Lower limit per axis (negative infinity where the axis has none).
+    pub min: glam::DVec3,
+    /// Upper limit per axis (infinity where the axis has none).
+    pub max: glam::DVec3,
+    /// Whether the tool must stay out of the box rather than inside it.
+    pub inside_forbidden: bool,
 }

@@ -48,6 +48,10 @@ impl Sink for MotionCounter<'_> {
     fn programmed(&mut self, source: Source, event: &Canon) {
         self.inner.programmed(source, event);
     }
+
+    fn stroke_zone(&mut self, source: Source, zone: Option<&crate::StrokeZone>) {
+        self.inner.stroke_zone(source, zone);
+    }
 }
 
 /// Resource limits that stop runaway programs with a diagnostic.

@@ -10,9 +10,9 @@
 use glam::{DVec2, DVec3};
 use swarf_syntax::{Diagnostic, Dialect, Quantity, Word};
 
-use crate::Axis;
 use crate::Setup;
 use crate::macros::Value;
+use crate::{Axis, StrokeZone};
 
 /// The motion mode of modal group 01 that the interpreter runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -54,21 +54,9 @@ pub(crate) struct Scaling {
     pub factors: DVec3,
 }
 
-/// The G22 programmable stroke limit: a box in machine coordinates over the axes it protects.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct StrokeZone {
-    /// Lower limit per axis (negative infinity where the axis has none).
-    pub min: DVec3,
-    /// Upper limit per axis (infinity where the axis has none).
-    pub max: DVec3,
-    /// Whether the tool must stay out of the box (Syntec's protected zone) rather than inside
-    /// it (LNC's soft limit).
-    pub inside_forbidden: bool,
-}
-
 impl StrokeZone {
     /// Whether the straight move from `a` to `b` (machine coordinates) breaks the limit.
-    pub fn violated_by(&self, a: DVec3, b: DVec3) -> bool {
+    pub(crate) fn violated_by(&self, a: DVec3, b: DVec3) -> bool {
         if !self.inside_forbidden {
             // The box is convex: a move stays inside exactly when both ends do.
             let inside =

@@ -31,7 +31,7 @@
 use std::collections::VecDeque;
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, Machine, Sink, Source};
+use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone};
 
 /// What a segment is, for colouring and statistics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -43,6 +43,28 @@ pub enum SegmentKind {
     Feed,
     /// A chord of a circular or helical cutting move.
     Arc,
+}
+
+/// The twelve edges of the axis-aligned box between `min` and `max`, as (from, to) pairs: the
+/// outline drawn for a machine's travel or a stroke limit.
+pub fn box_edges(min: DVec3, max: DVec3) -> Vec<(DVec3, DVec3)> {
+    let corner = |i: usize| {
+        DVec3::new(
+            if i & 1 == 1 { max.x } else { min.x },
+            if i & 2 == 2 { max.y } else { min.y },
+            if i & 4 == 4 { max.z } else { min.z },
+        )
+    };
+    let mut edges = Vec::with_capacity(12);
+    for a in 0..8usize {
+        for axis in 0..3 {
+            let b = a | 1 << axis;
+            if b != a {
+                edges.push((corner(a), corner(b)));
+            }
+        }
+    }
+    edges
 }
 
 /// An axis-aligned box in millimetres.
@@ -335,6 +357,8 @@ pub struct Toolpath {
     origins: Vec<DVec3>,
     /// The programmed motions of blocks cut under cutter radius compensation.
     programmed: Vec<(u32, Canon)>,
+    /// The G22 stroke limits the program switched on, each once, in order.
+    zones: Vec<StrokeZone>,
 }
 
 impl Default for Toolpath {
@@ -392,6 +416,7 @@ impl Toolpath {
             holes: Vec::new(),
             origins: Vec::new(),
             programmed: Vec::new(),
+            zones: Vec::new(),
         }
     }
 
@@ -509,6 +534,35 @@ impl Toolpath {
     /// programmed from, each once, in order of first use.
     pub fn origins(&self) -> &[DVec3] {
         &self.origins
+    }
+
+    /// The G22 stroke limits (machine coordinates) the program switched on, each once, in
+    /// order: for drawing the protected zones and soft limits.
+    pub fn zones(&self) -> &[StrokeZone] {
+        &self.zones
+    }
+
+    /// The corners (min, max; machine coordinates) of the boxes to draw for [`Self::zones`]:
+    /// an axis a limit leaves open reaches a tenth of the toolpath's diagonal (at least 1 mm)
+    /// past its bounds on that side.
+    pub fn zone_boxes(&self) -> Vec<(DVec3, DVec3)> {
+        let bounds = self.bounds.unwrap_or(Bounds {
+            min: self.start,
+            max: self.start,
+        });
+        let margin = ((bounds.max - bounds.min).length() * 0.1).max(1.0);
+        let or = |limit: f64, open: f64| if limit.is_finite() { limit } else { open };
+        self.zones
+            .iter()
+            .map(|z| {
+                let (mut min, mut max) = (DVec3::ZERO, DVec3::ZERO);
+                for axis in 0..3 {
+                    min[axis] = or(z.min[axis], bounds.min[axis].min(z.max[axis]) - margin);
+                    max[axis] = or(z.max[axis], bounds.max[axis].max(z.min[axis]) + margin);
+                }
+                (min, max)
+            })
+            .collect()
     }
 
     /// The holes drilled by canned cycles, in order.
@@ -771,6 +825,14 @@ impl Sink for Toolpath {
     fn origin(&mut self, at: DVec3) {
         if !self.origins.contains(&at) {
             self.origins.push(at);
+        }
+    }
+
+    fn stroke_zone(&mut self, _source: Source, zone: Option<&StrokeZone>) {
+        if let Some(zone) = zone
+            && !self.zones.contains(zone)
+        {
+            self.zones.push(*zone);
         }
     }
 

@@ -447,3 +447,66 @@ fn keeps_the_programmed_contour_of_compensated_blocks() {
     assert!(path.is_compensated_line(3));
     assert!(!path.is_compensated_line(1));
 }
+
+#[test]
+fn keeps_the_stroke_limits_the_program_sets() {
+    // LNC soft limits on X and Y (Z left open), then a Syntec-style zone set twice (kept once).
+    let program = parse(
+        "G22 X100. Y50. I-100. J-50.;\nG00 X90. Y40. Z10.;\nG01 X-20. Y-30. Z-5. F500.;\nG23;\nG22 X100. Y50. I-100. J-50.;\nM30;\n",
+        Dialect::Lnc,
+    );
+    let mut path = Toolpath::default();
+    let diags = run(&program, Setup::default(), &mut path);
+    assert!(
+        diags
+            .iter()
+            .all(|d| d.severity != swarf_syntax::Severity::Error),
+        "{diags:?}"
+    );
+    assert_eq!(path.zones().len(), 1);
+    let zone = path.zones()[0];
+    assert_eq!(zone.min.truncate(), glam::DVec2::new(-100.0, -50.0));
+    assert_eq!(zone.max.truncate(), glam::DVec2::new(100.0, 50.0));
+    assert!(zone.min.z.is_infinite() && zone.max.z.is_infinite());
+    assert!(!zone.inside_forbidden);
+    // The open Z axis is drawn a tenth of the path's diagonal past its bounds (Z -5 … 10).
+    let boxes = path.zone_boxes();
+    assert_eq!(boxes.len(), 1);
+    let (min, max) = boxes[0];
+    let b = path.bounds().unwrap();
+    let margin = (b.max - b.min).length() * 0.1;
+    assert_eq!((min.x, min.y, max.x, max.y), (-100.0, -50.0, 100.0, 50.0));
+    assert!((min.z - (-5.0 - margin)).abs() < 1e-9, "{min}");
+    assert!((max.z - (10.0 + margin)).abs() < 1e-9, "{max}");
+    // Twelve edges, each parallel to one axis.
+    let edges = swarf_toolpath::box_edges(min, max);
+    assert_eq!(edges.len(), 12);
+    for (a, b) in edges {
+        let d = b - a;
+        assert_eq!([d.x, d.y, d.z].iter().filter(|c| **c != 0.0).count(), 1);
+    }
+}
+
+#[test]
+fn a_syntec_protected_zone_is_told_to_the_sink_and_g23_turns_it_off() {
+    struct Zones(Vec<Option<swarf_interp::StrokeZone>>);
+    impl Sink for Zones {
+        fn emit(&mut self, _: Source, _: &Canon) {}
+        fn stroke_zone(&mut self, _: Source, zone: Option<&swarf_interp::StrokeZone>) {
+            self.0.push(zone.copied());
+        }
+    }
+    let program = parse(
+        "G22 X10. I0. Y20. J-5.\nG00 X-20.\nG23\nG22 X5. I5.\n",
+        Dialect::Syntec,
+    );
+    let mut sink = Zones(Vec::new());
+    run(&program, Setup::default(), &mut sink);
+    // The last G22's only pair is equal: nothing is protected, so no zone.
+    assert_eq!(sink.0.len(), 3, "{:?}", sink.0);
+    let z = sink.0[0].unwrap();
+    assert!(z.inside_forbidden);
+    assert_eq!(z.min.truncate(), glam::DVec2::new(0.0, -5.0));
+    assert_eq!(z.max.truncate(), glam::DVec2::new(10.0, 20.0));
+    assert_eq!(sink.0[1..], [None, None]);
+}

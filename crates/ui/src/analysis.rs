@@ -6,7 +6,7 @@ use glam::DVec3;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
 use swarf_syntax::{Dialect, Program, Severity, parse};
-use swarf_toolpath::{CycleMove, SegmentKind, Toolpath};
+use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
 use crate::backplot::{Scene, SourceText};
 
@@ -259,6 +259,9 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
     let mut marks = hole_marks(path, rel, diagonal);
     marks.extend(programmed_marks(path, rel));
     marks.extend(origin_marks(path, rel, diagonal));
+    for (min, max) in path.zone_boxes() {
+        marks.extend(edge_marks(&box_edges(min, max), origin, Kind::Zone));
+    }
     Scene {
         generation,
         points: Arc::new(points),
@@ -277,27 +280,20 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
 /// The twelve edges of the machine's travel box (machine coordinates, mm) relative to the
 /// scene's `origin`.
 pub fn box_marks([min, max]: [[f64; 3]; 2], origin: DVec3) -> Vec<PathPoint> {
-    let corner = |i: usize| {
-        let pick = |axis: usize| {
-            if i >> axis & 1 == 1 {
-                max[axis]
-            } else {
-                min[axis]
-            }
-        };
-        (DVec3::new(pick(0), pick(1), pick(2)) - origin).as_vec3()
-    };
-    let mut marks = Vec::with_capacity(24);
-    for a in 0..8usize {
-        for axis in 0..3 {
-            let b = a | 1 << axis;
-            if b != a {
-                marks.push(PathPoint::pen_up(corner(a)));
-                marks.push(PathPoint::new(corner(b), Kind::Boundary));
-            }
-        }
-    }
-    marks
+    edge_marks(
+        &box_edges(DVec3::from_array(min), DVec3::from_array(max)),
+        origin,
+        Kind::Boundary,
+    )
+}
+
+/// Line segments (machine coordinates) as `kind` marks relative to `origin`.
+pub fn edge_marks(edges: &[(DVec3, DVec3)], origin: DVec3, kind: Kind) -> Vec<PathPoint> {
+    let rel = |p: DVec3| (p - origin).as_vec3();
+    edges
+        .iter()
+        .flat_map(|&(a, b)| [PathPoint::pen_up(rel(a)), PathPoint::new(rel(b), kind)])
+        .collect()
 }
 
 /// An X/Y/Z axis cross at every program zero the moves were programmed from (G54…, with

@@ -453,6 +453,29 @@ fn the_travel_box_has_twelve_edges_on_its_corners() {
 }
 
 #[test]
+fn a_g22_zone_is_outlined_in_the_scene() {
+    let program = swarf_syntax::parse(
+        "G22 X10. I0. Y20. J-5. Z1. K-1.\nG00 X-20. Y0 Z5.\nG01 X-20. Y40. F100.\n",
+        swarf_syntax::Dialect::Syntec,
+    );
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
+    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let zone: Vec<&PathPoint> = scene
+        .marks
+        .iter()
+        .filter(|p| p.kind() == Some(Kind::Zone))
+        .collect();
+    assert_eq!(zone.len(), 12);
+    // The zone's corner (10, 20, 1) in machine coordinates, relative to the scene's origin.
+    let corner = (DVec3::new(10.0, 20.0, 1.0) - scene.origin).as_vec3();
+    assert!(
+        zone.iter().any(|p| (p.position() - corner).length() < 1e-4),
+        "{corner}"
+    );
+}
+
+#[test]
 fn scene_points_carry_their_tool_for_colouring_by_tool() {
     let program = swarf_syntax::parse(
         "T3 M06\nG0 X0 Y0 Z5.\nG1 X10. F100\nT7 M06\nG1 Y10.\nT3 M06\nG1 X0\n",
