@@ -286,7 +286,7 @@ fn wanted(st: &State) -> Option<f64> {
 
 /// Whether a mirror of one plane axis swaps G41 and G42: Fanuc's programmable mirror image
 /// does; Syntec's §1.29 example swaps them in the program, so there the side is as written.
-pub(crate) fn mirror_swaps_side(st: &State) -> bool {
+fn mirror_swaps_side(st: &State) -> bool {
     st.setup
         .machine
         .mirror_swaps_comp_side
