@@ -27,7 +27,7 @@ if (($# == 0)); then
     "$corpus"/programs/nist/example1.gcode \
     "$corpus"/programs/camotics/*.nc "$corpus"/programs/camotics/*.gc \
     "$corpus"/programs/linuxcnc/*.ngc \
-    "$corpus"/linuxcnc-tests/ccomp/mill-*/test.ngc \
+    "$corpus"/linuxcnc-tests/ccomp/*/test.ngc \
     "$corpus"/linuxcnc-tests/interp/inside-corners/test.ngc \
     "$corpus"/linuxcnc-tests/interp/cam-nisley/cam.ngc \
     "$corpus"/linuxcnc-tests/interp/crazy-paths/test.ngc \
@@ -35,7 +35,7 @@ if (($# == 0)); then
     "$corpus"/programs/autodesk/test.fanuc.nc
 fi
 # rs274's tool table as the setup's registers: tool N's Z is register N's length, half its
-# diameter D the radius (standalone rs274 reads both in inches).
+# diameter D the radius (standalone rs274 reads both in inches), Q the lathe tool orientation.
 table_setup() {
   python3 - "$1" <<'PY'
 import re, sys
@@ -52,6 +52,9 @@ for line in open(sys.argv[1], encoding="utf-8", errors="replace"):
         print(f"length = {float(z.group(1))}")
     if d:
         print(f"radius = {float(d.group(1)) / 2}")
+    q = re.search(r"\bQ(\d+)", line)
+    if q and int(q.group(1)) > 0:
+        print(f"orientation = {int(q.group(1))}")
 PY
 }
 work=$(mktemp -d)
@@ -62,7 +65,9 @@ for prog in "$@"; do
   [[ -f "$prog" ]] || continue
   name=${prog#"$corpus"/}
   tbl=$(ls "$(dirname "$prog")"/*.tbl 2>/dev/null | head -1)
-  bash "$tools/oracle.sh" "$prog" ${tbl:+"$tbl"} > "$work/ref.canon" 2>/dev/null
+  # A machine's position after a tool change, not rs274's stand-in canon's (see the script).
+  bash "$tools/oracle.sh" "$prog" ${tbl:+"$tbl"} 2>/dev/null |
+    python3 "$root/scripts/rs274-machine-canon.py" > "$work/ref.canon"
   table_setup "${tbl:-$tools/default.tbl}" > "$work/setup.toml"
   "$swarf" canon "$prog" --dialect linuxcnc --setup "$work/setup.toml" > "$work/ours.jsonl" 2> "$work/ours.err"
   if python3 "$tools/compare.py" "$work/ours.jsonl" "$work/ref.canon" > "$work/cmp.txt" 2>&1; then

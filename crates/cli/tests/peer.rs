@@ -2,14 +2,17 @@
 //! Swarf already runs completely. Skipped when `../shared` is absent or rs274 cannot be set up.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Programs (relative to `shared/corpus`) whose every motion must match rs274, with rs274's tool
-/// table as the setup's offset registers. The others of `scripts/peer-compare.sh` differ for
-/// known reasons: G76/G87 and `G10 L11` are not run yet, G84 outside the XY plane, moves of a
-/// rotary axis alone are not compared, rs274 stops at the first error where Swarf goes on, rs274
-/// moves to its tool-change position at M6, lathe tool orientations in cutter compensation.
+/// table as the setup's offset registers (lathe tool orientations included) and the position a
+/// tool change re-reads taken as a machine's (`scripts/rs274-machine-canon.py`). The others of
+/// `scripts/peer-compare.sh` differ for known reasons: G76/G87 and `G10 L11` are not run yet,
+/// G84 outside the XY plane, moves of a rotary axis alone are not compared, rs274 stops at the
+/// first error (a tool not in its table, say) where Swarf goes on. Of `ccomp/`, `early-exit`
+/// runs in a full LinuxCNC, not rs274: the interpreter's compensation tests cover it.
 const AGREEING: &[&str] = &[
     "linuxcnc-tests/interp/g10/g10-l1-l10/test.ngc",
     "linuxcnc-tests/interp/g10/g10-l2-while-active/test.ngc",
@@ -73,6 +76,7 @@ const AGREEING: &[&str] = &[
     "programs/camotics/la_peinture.gc",
     "programs/linuxcnc/3D_Chips.ngc",
     "programs/linuxcnc/stellabee1.ngc",
+    "linuxcnc-tests/ccomp/lathe-comp/test.ngc",
     "linuxcnc-tests/ccomp/mill-g90g91g92/test.ngc",
     "linuxcnc-tests/ccomp/mill-line-arc-entry/test.ngc",
     "linuxcnc-tests/ccomp/mill-zchanges/test.ngc",
@@ -80,10 +84,12 @@ const AGREEING: &[&str] = &[
     "linuxcnc-tests/interp/cam-nisley/cam.ngc",
     "linuxcnc-tests/interp/crazy-paths/test.ngc",
     "linuxcnc-tests/interp/inverse-time-with-comp/inverse.ngc",
+    "programs/autodesk/test.fanuc.nc",
 ];
 
-/// A LinuxCNC tool table (`T3 P3 Z0.5 D0.25`) as a setup: tool N's Z is register N's length and
-/// half its diameter D the radius, in inches as standalone rs274 reads them.
+/// A LinuxCNC tool table (`T3 P3 Z0.5 D0.25 Q2`) as a setup: tool N's Z is register N's length,
+/// half its diameter D the radius (in inches as standalone rs274 reads them) and Q its lathe
+/// tool orientation.
 fn table_setup(table: &str) -> String {
     let mut out = String::from("units = \"inch\"\n");
     for line in table.lines() {
@@ -100,6 +106,9 @@ fn table_setup(table: &str) -> String {
         if let Some(d) = word('D') {
             out.push_str(&format!("radius = {:?}\n", d / 2.0));
         }
+        if let Some(q) = word('Q').filter(|q| *q > 0.0) {
+            out.push_str(&format!("orientation = {}\n", q as u8));
+        }
     }
     out
 }
@@ -110,11 +119,15 @@ fn shared() -> PathBuf {
 
 #[test]
 fn tool_tables_become_registers() {
-    let setup = table_setup("T1 P1 Z0.511 D0.125 ;1/8 end mill\nT4 P4 Z0.7 D1.0 ;\n");
+    let setup = table_setup(
+        "T1 P1 Z0.511 D0.125 ;1/8 end mill\nT4 P4 Z0.7 D1.0 ;\nT7 P7 Z0.0 X0.0 D0.1 I-30.0 J30.0 Q7;\n",
+    );
     let setup = swarf_interp::Setup::from_toml(&setup).unwrap();
     assert!((setup.registers[&1].radius - 0.0625 * 25.4).abs() < 1e-9);
     assert!((setup.registers[&1].length - 0.511 * 25.4).abs() < 1e-9);
     assert!((setup.registers[&4].radius - 12.7).abs() < 1e-9);
+    assert_eq!(setup.registers[&4].orientation, 0);
+    assert_eq!(setup.registers[&7].orientation, 7);
 }
 
 #[test]
@@ -163,9 +176,25 @@ fn agree(tools: &Path, dir: &Path, program: &Path) -> Result<(), String> {
     )
     .unwrap();
     let reference = oracle.output().unwrap();
-    // rs274 exits non-zero at the end of some programs; what counts is its canonical output.
+    // rs274 exits non-zero at the end of some programs; what counts is its canonical output,
+    // with the position a tool change re-reads from its stand-in canon layer as a machine's
+    // (scripts/rs274-machine-canon.py says why).
+    let machine = Command::new("python3")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/rs274-machine-canon.py"))
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    machine
+        .stdin
+        .as_ref()
+        .unwrap()
+        .write_all(&reference.stdout)
+        .unwrap();
+    let machine = machine.wait_with_output().unwrap();
+    assert!(machine.status.success());
     let ref_path = dir.join("ref.canon");
-    std::fs::write(&ref_path, &reference.stdout).unwrap();
+    std::fs::write(&ref_path, &machine.stdout).unwrap();
 
     let mut ours = Vec::new();
     let mut err = Vec::new();

@@ -6,19 +6,33 @@
 //! offset paths, with two extra vectors when the corner is sharper than 90° (Fanuc's way, the
 //! `intersection` mode). Moves without plane motion and other events wait behind the held move
 //! (LinuxCNC any number of blocks, the Fanuc family one). Geometry is done in the machine frame,
-//! so compensation follows G68 rotation, G16 polar input and scaling. A mirror of one plane axis
-//! reverses the direction of the path, and with it the side the material is on: programs swap
-//! G41 and G42 for such a pass (Syntec's mirrored flower, §1.29), and the side is taken as
-//! written, relative to the mirrored path the machine follows. Gouges (a groove narrower than the tool, a step
-//! smaller than the radius, an inside arc smaller than the tool) show as a compensated move
-//! that runs backwards or an intersection that does not exist, and are reported naming both
-//! blocks; the drawn path stays what the control computes.
+//! so compensation follows G68 rotation, G16 polar input and scaling.
+//!
+//! Changes while compensating (the Fanuc family; LinuxCNC refuses both, see `exec.rs`): a new
+//! side (G41 <-> G42) ends the held move where its offset path meets the next move's on the new
+//! side, or, where they do not meet, square to its end with a move across to the next move's
+//! start vector; a new radius (a D word) counts from the end of the block that gives it, so the
+//! corner before it keeps the old radius and the block runs from the old offset to the new.
+//!
+//! A mirror of one plane axis reverses the direction of the path, and with it the side the
+//! material is on. Fanuc's control swaps G41 and G42 itself; Syntec's mirrored flower (§1.29)
+//! swaps them in the program, so there the side is taken as written (`[machine]
+//! mirror_swaps_comp_side`).
+//!
+//! A lathe tool (a register's `orientation` 1–8, in G18) is compensated as LinuxCNC does: the
+//! offset path is the nose centre's, and every compensated position is then reported at the
+//! imaginary tip, off the centre by the radius in X and Z.
+//!
+//! Gouges (a groove narrower than the tool, a step smaller than the radius, an inside arc
+//! smaller than the tool) show as a compensated move that runs backwards or an intersection that
+//! does not exist, and are reported naming both blocks; the drawn path stays what the control
+//! computes.
 
 use glam::{DVec2, DVec3};
 use swarf_syntax::{Diagnostic, Dialect, Span};
 
 use crate::state::{MotionMode, State, plane_axes};
-use crate::{Canon, CornerMode, Sink, Source};
+use crate::{Axis, Canon, CornerMode, Sink, Source};
 
 /// LinuxCNC's angle below which a corner is taken as straight (TOLERANCE_CONCAVE_CORNER).
 const LINUXCNC_SMALL: f64 = 0.05;
@@ -44,6 +58,9 @@ pub(crate) struct Comp {
     /// Whether the corner before the next move moved its start back along it (intersection
     /// mode, outside corners).
     start_extended: bool,
+    /// The tip direction of the lathe tool compensating (0: a mill; see
+    /// [`crate::Register::orientation`]).
+    pub orientation: u8,
 }
 
 /// The shape of a compensated move.
@@ -253,14 +270,87 @@ fn on_curve(p: DVec2, c: Curve) -> bool {
 }
 
 /// The signed offset compensation asks for now: positive to the left of the path in the
-/// machine frame, `None` when off (or inside a canned cycle, which ignores it).
+/// machine frame, `None` when off (or inside a canned cycle, which ignores it). Under a mirror
+/// of one plane axis the side is swapped where the control does so (`mirror_swaps_comp_side`).
 fn wanted(st: &State) -> Option<f64> {
     if matches!(st.motion, Some(MotionMode::Cycle(_))) || st.cutter_comp == 400 {
         return None;
     }
-    let side = if st.cutter_comp == 420 { -1.0 } else { 1.0 };
+    let mut side = if st.cutter_comp == 420 { -1.0 } else { 1.0 };
+    if mirror_swaps_side(st) && st.reverses_arcs() {
+        side = -side;
+    }
     let s = st.comp_radius * side;
     (s.abs() > EPS).then_some(s)
+}
+
+/// Whether a mirror of one plane axis swaps G41 and G42: Fanuc's programmable mirror image
+/// does; Syntec's §1.29 example swaps them in the program, so there the side is as written.
+fn mirror_swaps_side(st: &State) -> bool {
+    st.setup
+        .machine
+        .mirror_swaps_comp_side
+        .unwrap_or(!matches!(st.dialect, Dialect::Syntec | Dialect::LinuxCnc))
+}
+
+/// Where the controlled point of a lathe tool is from the centre of its nose, in the machine
+/// frame: compensation moves the nose centre along the offset path, and the position reported
+/// is the imaginary tip, off the centre by the radius in X and Z as the tool's orientation
+/// says (LinuxCNC's tool table `Q`). Zero for mills (0), orientation 9, and outside G18.
+fn tip_shift(st: &State) -> DVec3 {
+    let r = st.comp_radius.abs();
+    if st.plane != Axis::Y || r < EPS {
+        return DVec3::ZERO;
+    }
+    let o = st.comp.orientation;
+    let x = match o {
+        1 | 2 | 6 => -r,
+        3 | 4 | 8 => r,
+        _ => 0.0,
+    };
+    let z = match o {
+        2 | 3 | 7 => -r,
+        1 | 4 | 5 => r,
+        _ => 0.0,
+    };
+    DVec3::new(x, 0.0, z)
+}
+
+/// Sends a compensated event on: a lathe tool's moves (and arc centres) go to its imaginary
+/// tip.
+fn put(st: &State, sink: &mut dyn Sink, source: Source, event: &Canon) {
+    let d = tip_shift(st);
+    if d == DVec3::ZERO {
+        sink.emit(source, event);
+        return;
+    }
+    let shifted = match event.clone() {
+        Canon::Rapid { to } => Canon::Rapid { to: to + d },
+        Canon::Feed {
+            to,
+            feed_mm_per_min,
+        } => Canon::Feed {
+            to: to + d,
+            feed_mm_per_min,
+        },
+        Canon::Arc {
+            to,
+            center,
+            axis,
+            ccw,
+            turns,
+            feed_mm_per_min,
+        } => Canon::Arc {
+            to: to + d,
+            center: center + d,
+            axis,
+            ccw,
+            turns,
+            feed_mm_per_min,
+        },
+        other => other,
+    };
+    sink.emit(source, &shifted);
 }
 
 /// The corner mode in effect.
@@ -366,7 +456,7 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
             let tool = st.comp.tool.unwrap_or(from);
             let moved = with_uv(to, uv(tool, plane), plane);
             st.comp.tool = Some(moved);
-            sink.emit(source, &with_end(event, moved));
+            put(st, sink, source, &with_end(event, moved));
         }
         return;
     }
@@ -578,7 +668,12 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
             turn * s > 0.0 && turn.abs() > small
         };
         let straight = turn.abs() <= small;
-        let s2v = if cancel { s } else { s2 };
+        // A new side (G41 <-> G42, or a register of the other sign) offsets the next move to
+        // its side from its start. A new radius on the same side (a D word, the Fanuc family)
+        // counts from the end of the next move: the corner is still the old radius's, and the
+        // next move runs from the old offset to the new one.
+        let side_change = !cancel && s * s2 < 0.0;
+        let s2v = if side_change { s2 } else { s };
         let s2p = n.offset_start(s2v, plane);
         if cancel {
             if inside
@@ -592,10 +687,27 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
             {
                 h.end = with_uv(h.end, x, plane);
             }
-        } else if (s - s2).abs() > EPS {
-            // The side or the radius changes: straight across to the new offset.
-            links.push((s2p, None));
-            start = Some(s2p);
+        } else if side_change || (linuxcnc && (s - s2).abs() > EPS) {
+            // The Fanuc family: the tool goes to where the held move's offset path meets the
+            // next move's on the new side; where they do not meet, the held move ends square
+            // to its end and the tool crosses to the next move's start vector.
+            let crossing = if linuxcnc {
+                None
+            } else {
+                side_change_point(&h, n, s2, plane)
+            };
+            match crossing {
+                Some(x) => {
+                    h.end = with_uv(h.end, x, plane);
+                    h.extended = true;
+                    st.comp.start_extended = true;
+                    start = Some(x);
+                }
+                None => {
+                    links.push((s2p, None));
+                    start = Some(s2p);
+                }
+            }
         } else if straight {
             // LinuxCNC starts the next move where the last one ended.
             start = Some(if linuxcnc { e1 } else { s2p });
@@ -692,7 +804,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
         match event.end_point() {
             Some(to) => {
                 at = with_uv(to, uv(end, plane), plane);
-                sink.emit(source, &with_end(&event, at));
+                put(st, sink, source, &with_end(&event, at));
             }
             None => sink.emit(source, &event),
         }
@@ -723,7 +835,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                     feed_mm_per_min: n.feed,
                 },
             };
-            sink.emit(n.source, &event);
+            put(st, sink, n.source, &event);
             at = to;
         }
     }
@@ -755,6 +867,23 @@ fn first_met(
         .into_iter()
         .filter(|p| p.is_finite())
         .min_by(|p, q| (back(*p) + forward(*p)).total_cmp(&(back(*q) + forward(*q))))
+}
+
+/// Where the held move's offset path (offset `h.offset`) meets the next move's on the other
+/// side (offset `s2`), when the held move reaches it going forwards and the next move leaves it
+/// towards its end; `None` when the paths do not meet so (parallel lines, say).
+fn side_change_point(h: &Held, n: &Elem, s2: f64, plane: (usize, usize)) -> Option<DVec2> {
+    let c2 = n.offset_curve(s2, plane)?;
+    let x = first_met(intersect(h.curve(plane), c2), h, n, s2, plane)?;
+    let held_forward = match h.shape {
+        Shape::Line => (x - uv(h.start, plane)).dot(h.tangent) > EPS,
+        Shape::Arc { .. } => true,
+    };
+    let next_forward = match n.arc {
+        None => (n.offset_end(s2, plane) - x).dot(n.start_tangent(plane)) > EPS,
+        Some(_) => true,
+    };
+    (held_forward && next_forward).then_some(x)
 }
 
 /// The intersection nearest both ends of a corner.
@@ -822,7 +951,7 @@ fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
             }
         }
     };
-    sink.emit(h.source, &event);
+    put(st, sink, h.source, &event);
 }
 
 /// A gouge: a warning, or an alarm that stops the run where the control alarms (LinuxCNC,

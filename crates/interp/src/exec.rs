@@ -515,8 +515,10 @@ fn execute_block(
     let comp_code = actions
         .iter()
         .find(|(a, _)| matches!(a, Action::CutterComp(_)));
-    if comp_code.is_none() {
-        new_radius_register(st, words);
+    if comp_code.is_none()
+        && !new_radius_register(st, words, has(|a| *a == Action::SpindleMode(true)))
+    {
+        return Flow::Stop;
     }
     if let Some((_, w)) = comp_code
         && dialect != Dialect::LinuxCnc
@@ -796,13 +798,34 @@ fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
         }
     }
     let d = find(words, b'D');
-    st.cutter_comp = if tenths == 420 || tenths == 421 {
-        420
-    } else {
-        410
-    };
     if tenths == 411 || tenths == 421 {
+        // LinuxCNC: G41.1/G42.1 D<diameter> [L<orientation>], L only in G18.
+        let orientation = match find(words, b'L') {
+            Some(l) if st.plane != Axis::Y => {
+                st.diagnostics.push(Diagnostic::error(
+                    l.span,
+                    "E-COMP-PLANE",
+                    format!(
+                        "G{}.1 with an L word (a lathe tool orientation) needs the XZ plane (G18)",
+                        tenths / 10
+                    ),
+                ));
+                return false;
+            }
+            Some(l) if !(0.0..=9.0).contains(&l.value.round()) => {
+                st.diagnostics.push(Diagnostic::error(
+                    l.span,
+                    "E-COMP-ORIENTATION",
+                    "a lathe tool orientation is 0 to 9",
+                ));
+                return false;
+            }
+            Some(l) => l.value.round() as u8,
+            None => 0,
+        };
+        st.cutter_comp = if tenths == 421 { 420 } else { 410 };
         st.comp_radius = d.map_or(0.0, |d| st.mm(d.value)) / 2.0;
+        st.comp.orientation = orientation;
         return true;
     }
     let n = match d {
@@ -810,6 +833,20 @@ fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
         None if linuxcnc => st.tool,
         None => st.d_word,
     };
+    let orientation = st.setup.registers.get(&n).map_or(0, |r| r.orientation);
+    if linuxcnc && st.plane != Axis::Y && !matches!(orientation, 0 | 9) {
+        st.diagnostics.push(Diagnostic::error(
+            d.map_or(w.span, |d| d.span),
+            "E-COMP-PLANE",
+            format!(
+                "G{} with a lathe tool (orientation {orientation}) needs the XZ plane (G18)",
+                tenths / 10
+            ),
+        ));
+        return false;
+    }
+    st.cutter_comp = if tenths == 420 { 420 } else { 410 };
+    st.comp.orientation = orientation;
     match st.setup.registers.get(&n) {
         Some(r) => st.comp_radius = r.radius + r.radius_wear,
         None => {
@@ -826,19 +863,32 @@ fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
     true
 }
 
-/// A D word while cutter compensation is on selects the new radius (the Fanuc family).
-fn new_radius_register(st: &mut State, words: &[Word]) {
-    if st.cutter_comp == 400 || st.dialect == Dialect::LinuxCnc {
-        return;
+/// A D word in a block without G41/G42: while cutter compensation is on, the Fanuc family
+/// takes the new register's radius (from the end of this block's move); LinuxCNC has no use for
+/// it outside G41/G42 and G96 and stops with an error. Returns `false` when the run stops.
+fn new_radius_register(st: &mut State, words: &[Word], css: bool) -> bool {
+    let Some(d) = find(words, b'D') else {
+        return true;
+    };
+    if st.dialect == Dialect::LinuxCnc {
+        if css {
+            return true;
+        }
+        st.diagnostics.push(Diagnostic::error(
+            d.span,
+            "E-WORD-UNUSED",
+            "a D word without G41, G41.1, G42, G42.1 or G96 to use it (LinuxCNC changes the radius only with G40 and a new G41/G42)",
+        ));
+        return false;
     }
-    if let Some(d) = find(words, b'D') {
-        let n = d.value.round().max(0.0) as u32;
-        st.comp_radius = st
-            .setup
-            .registers
-            .get(&n)
-            .map_or(0.0, |r| r.radius + r.radius_wear);
+    if st.cutter_comp == 400 {
+        return true;
     }
+    let n = d.value.round().max(0.0) as u32;
+    let r = st.setup.registers.get(&n).copied().unwrap_or_default();
+    st.comp_radius = r.radius + r.radius_wear;
+    st.comp.orientation = r.orientation;
+    true
 }
 
 /// An H word in a block without G43/G44/G49 while length compensation is on selects the new

@@ -42,6 +42,15 @@ pub struct Register {
     /// Tool radius wear (added to the geometry).
     #[serde(default)]
     pub radius_wear: f64,
+    /// The tip direction of a lathe tool (LinuxCNC's tool table `Q`, Fanuc's imaginary tool
+    /// nose number): 1–8 put the controlled point on the nose circle, off its centre, so that
+    /// compensation in G18 reports that imaginary tip; 0 (a mill) and 9 control the centre.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub orientation: u8,
+}
+
+fn is_zero(v: &u8) -> bool {
+    *v == 0
 }
 
 /// How cutter radius compensation goes round an outside corner.
@@ -112,6 +121,13 @@ pub struct Machine {
     /// Gouges under cutter radius compensation stop the run with an alarm (Syntec parameter
     /// 3819, the overcut check) instead of a warning. LinuxCNC always alarms.
     pub overcut_alarm: bool,
+    /// Under a mirror of one plane axis (G51.1, or G51 with a negative factor) the control
+    /// swaps G41 and G42 itself, so the mirrored pass is cut on the mirrored side (Fanuc's
+    /// programmable mirror image). `false`: the side is taken as written (Syntec's §1.29
+    /// example swaps G41/G42 in the program). Unset: `false` for Syntec and LinuxCNC, `true`
+    /// for the others.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mirror_swaps_comp_side: Option<bool>,
 }
 
 /// An axis direction for the G76/G87 shift.
@@ -171,6 +187,7 @@ impl Default for Machine {
             high_speed_peck_tapping: false,
             corner_mode: None,
             overcut_alarm: false,
+            mirror_swaps_comp_side: None,
         }
     }
 }
@@ -201,6 +218,9 @@ pub enum SetupError {
     /// A value that is not a finite number.
     #[error("`{0}` must be a finite number")]
     NotFinite(String),
+    /// A tool orientation outside 0–9.
+    #[error("`registers.{0}.orientation` must be 0 to 9")]
+    Orientation(u32),
 }
 
 #[derive(Deserialize, Serialize)]
@@ -236,6 +256,9 @@ impl Setup {
                     return Err(SetupError::NotFinite(format!("registers.{n}.{name}")));
                 }
             }
+            if r.orientation > 9 {
+                return Err(SetupError::Orientation(n));
+            }
             setup.registers.insert(
                 n,
                 Register {
@@ -243,6 +266,7 @@ impl Setup {
                     radius: r.radius * k,
                     length_wear: r.length_wear * k,
                     radius_wear: r.radius_wear * k,
+                    orientation: r.orientation,
                 },
             );
         }
@@ -366,6 +390,20 @@ mod tests {
             Setup::from_toml(&Setup::default().to_toml().unwrap()).unwrap(),
             Setup::default()
         );
+    }
+
+    #[test]
+    fn reads_lathe_orientations_and_the_mirror_side_key() {
+        let s = Setup::from_toml(
+            "[registers.7]\nradius = 0.4\norientation = 7\n[machine]\nmirror_swaps_comp_side = false\n",
+        )
+        .unwrap();
+        assert_eq!(s.registers[&7].orientation, 7);
+        assert_eq!(s.machine.mirror_swaps_comp_side, Some(false));
+        assert_eq!(Setup::from_toml(&s.to_toml().unwrap()).unwrap(), s);
+        assert_eq!(Setup::default().machine.mirror_swaps_comp_side, None);
+        let e = Setup::from_toml("[registers.2]\norientation = 10\n").unwrap_err();
+        assert!(e.to_string().contains("registers.2.orientation"), "{e}");
     }
 
     #[test]

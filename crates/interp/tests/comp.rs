@@ -634,6 +634,284 @@ M99;
     }
 }
 
+/// The square of `square_under` under a mirror of X about 0, in `dialect`, with `code` on
+/// the square and the setup's `mirror_swaps_comp_side`.
+fn mirrored_square(dialect: Dialect, code: &str, swaps: Option<bool>) -> Vec<DVec3> {
+    let text = format!(
+        "G51.1 X0\nG90 G00 X0 Y-10.\n{code} D1 G01 X0 Y0 F100.\nY20.\nX20.\nY0\nX0\nG40 G00 X-10.\nG50.1\nM30\n"
+    );
+    let mut setup = setup_with(2.0, None);
+    setup.machine.mirror_swaps_comp_side = swaps;
+    let r = run_in(&text, dialect, setup);
+    assert!(r.errors().is_empty(), "{:?}", r.diags);
+    r.ends()
+}
+
+fn is_mirror_image(plain: &[DVec3], mirrored: &[DVec3]) -> bool {
+    plain.len() == mirrored.len()
+        && plain
+            .iter()
+            .zip(mirrored)
+            .all(|(p, q)| q.abs_diff_eq(DVec3::new(-p.x, p.y, p.z), 1e-9))
+}
+
+#[test]
+fn fanuc_swaps_g41_and_g42_under_a_mirror() {
+    let plain = square_under("", "");
+    // Fanuc's programmable mirror image swaps the side itself: the same G41 cuts the mirror
+    // image of the unmirrored square.
+    let mirrored = mirrored_square(Dialect::Fanuc, "G41", None);
+    assert!(is_mirror_image(&plain, &mirrored), "{mirrored:?}");
+    // Taken as written instead, G41 cuts the other side of the mirrored path.
+    let as_written = mirrored_square(Dialect::Fanuc, "G41", Some(false));
+    assert!(!is_mirror_image(&plain, &as_written));
+    assert!(is_mirror_image(
+        &plain,
+        &mirrored_square(Dialect::Fanuc, "G42", Some(false))
+    ));
+}
+
+#[test]
+fn syntec_takes_the_side_as_written_under_a_mirror() {
+    // §1.29's flower swaps G41/G42 in the program for the single-axis mirrors.
+    let plain = square_under("", "");
+    assert!(is_mirror_image(
+        &plain,
+        &mirrored_square(Dialect::Syntec, "G42", None)
+    ));
+    assert!(!is_mirror_image(
+        &plain,
+        &mirrored_square(Dialect::Syntec, "G41", None)
+    ));
+    // The setup's key makes it swap like Fanuc.
+    assert!(is_mirror_image(
+        &plain,
+        &mirrored_square(Dialect::Syntec, "G41", Some(true))
+    ));
+}
+
+#[test]
+fn a_point_mirror_keeps_the_side() {
+    // Both plane axes mirrored: the path keeps its turning direction, nothing is swapped.
+    let text = "G51.1 X0 Y0\nG90 G00 X0 Y-10.\nG41 D1 G01 X0 Y0 F100.\nY20.\nX20.\nY0\nX0\nG40 G00 X-10.\nG50.1\nM30\n";
+    let plain = square_under("", "");
+    let r = run_in(text, Dialect::Fanuc, setup_with(2.0, None));
+    assert!(r.errors().is_empty(), "{:?}", r.diags);
+    for (p, q) in plain.iter().zip(r.ends().iter()) {
+        assert_at(*q, [-p.x, -p.y, p.z], 1e-9);
+    }
+}
+
+#[test]
+fn fanuc_changes_side_at_the_intersection_of_the_two_offset_paths() {
+    // Up the Y axis with G41 (2 left: X−2), then G42 along X (2 right: Y18). The paths meet
+    // at (−2, 18): the first move ends there and the second starts there.
+    let text = "G90 G00 X0 Y-10.\nG41 D1 G01 X0 Y0 F100.\nY20.\nG42 X20.\nG40 G01 X20. Y30.\nM30\n";
+    for dialect in [Dialect::Fanuc, Dialect::Syntec, Dialect::Lnc] {
+        let r = run_in(text, dialect, setup_with(2.0, None));
+        assert!(r.errors().is_empty(), "{:?}", r.diags);
+        let ends = r.ends();
+        assert_at(ends[2], [-2.0, 18.0, 0.0], 1e-9);
+        assert_at(ends[3], [20.0, 18.0, 0.0], 1e-9);
+        assert_at(ends[4], [20.0, 30.0, 0.0], 1e-9);
+        assert_eq!(ends.len(), 5, "no move across: {ends:?}");
+        assert!(!r.codes().contains(&"W-COMP-GOUGE"), "{:?}", r.diags);
+    }
+    // Where the paths do not meet (straight on), the first move ends square to its end and
+    // the tool crosses to the second's start vector.
+    let text =
+        "G90 G00 X0 Y-10.\nG41 D1 G01 X0 Y0 F100.\nY20.\nG42 Y40.\nG40 G01 X-10. Y40.\nM30\n";
+    let r = run_in(text, Dialect::Fanuc, setup_with(2.0, None));
+    assert!(r.errors().is_empty(), "{:?}", r.diags);
+    let ends = r.ends();
+    assert_at(ends[2], [-2.0, 20.0, 0.0], 1e-9);
+    assert_at(ends[3], [2.0, 20.0, 0.0], 1e-9);
+    assert_at(ends[4], [2.0, 40.0, 0.0], 1e-9);
+    // A line into an arc: G42 up X0 to (0, 20) runs at X2; G41, then G02 over the top about
+    // (10, 20) cuts outside, radius 12. The line meets that circle first at
+    // (2, 20 + √80), ahead of both: the line runs on to it and the arc starts there.
+    let text = "G90 G00 X0 Y-10.\nG42 D1 G01 X0 Y0 F100.\nY20.\nG41\nG02 X20. Y20. I10.\nG40 G01 X20. Y0\nM30\n";
+    let r = run_in(text, Dialect::Fanuc, setup_with(2.0, None));
+    assert!(r.errors().is_empty(), "{:?}", r.diags);
+    let moves = r.moves();
+    assert_at(
+        moves[2].1.end_point().unwrap(),
+        [2.0, 20.0 + 80f64.sqrt(), 0.0],
+        1e-9,
+    );
+    match &moves[3].1 {
+        Canon::Arc {
+            to, center, ccw, ..
+        } => {
+            assert_at(*center, [10.0, 20.0, 0.0], 1e-9);
+            assert_at(*to, [22.0, 20.0, 0.0], 1e-9);
+            assert!(!ccw);
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn fanuc_applies_a_new_radius_from_the_end_of_its_block() {
+    // D1 = 2, D2 = 4. The corner before the block with D2 is still the old radius's
+    // (the intersection (−2, 22)); the block ends at the new offset (Y24) and runs slanted.
+    let text = "G90 G00 X0 Y-10.\nG41 D1 G01 X0 Y0 F100.\nY20.\nD2 X20.\nG40 G01 X20. Y0\nM30\n";
+    let mut setup = setup_with(2.0, None);
+    setup.registers.insert(
+        2,
+        Register {
+            radius: 4.0,
+            ..Register::default()
+        },
+    );
+    for dialect in [Dialect::Fanuc, Dialect::Syntec] {
+        let r = run_in(text, dialect, setup.clone());
+        assert!(r.errors().is_empty(), "{:?}", r.diags);
+        let ends = r.ends();
+        assert_at(ends[2], [-2.0, 22.0, 0.0], 1e-9);
+        assert_at(ends[3], [20.0, 24.0, 0.0], 1e-9);
+    }
+    // Straight on, the new radius also comes in over the block.
+    let text = "G90 G00 X0 Y-10.\nG41 D1 G01 X0 Y0 F100.\nY20.\nD2 Y40.\nG40 G01 X10. Y40.\nM30\n";
+    let r = run_in(text, Dialect::Fanuc, setup);
+    let ends = r.ends();
+    assert_at(ends[2], [-2.0, 20.0, 0.0], 1e-9);
+    assert_at(ends[3], [-4.0, 40.0, 0.0], 1e-9);
+}
+
+#[test]
+fn linuxcnc_changes_side_or_radius_only_through_g40() {
+    // rs274: "Cannot turn cutter radius comp on when on", and a D word alone has no use.
+    let text = "G21 G90 G00 X0 Y-10\nG41 D1 G01 X0 Y0 F100\nY20\nG42 X20\nY0\nG40 G00 X-10\nM2\n";
+    let r = run_in(text, Dialect::LinuxCnc, setup_with(2.0, None));
+    assert!(r.codes().contains(&"E-COMP-ON"), "{:?}", r.diags);
+    assert!(
+        !r.ends()
+            .iter()
+            .any(|p| p.abs_diff_eq(DVec3::new(-10.0, 0.0, 0.0), 1e-9)),
+        "the run stops at the error"
+    );
+    let text = "G21 G90 G00 X0 Y-10\nG41 D1 G01 X0 Y0 F100\nY20\nD2 X20\nY0\nG40 G00 X-10\nM2\n";
+    let r = run_in(text, Dialect::LinuxCnc, setup_with(2.0, None));
+    let e = r
+        .diags
+        .iter()
+        .find(|d| d.code == "E-WORD-UNUSED")
+        .unwrap_or_else(|| panic!("{:?}", r.diags));
+    assert_eq!(e.severity, Severity::Error);
+    // The run stops there; the held move is sent on square to its end.
+    let ends = r.ends();
+    assert_eq!(ends.len(), 3, "{ends:?}");
+    assert_at(ends[2], [-2.0, 20.0, 0.0], 1e-9);
+    // With G96, D is the spindle speed limit.
+    let text = "G21 G90 G96 D2000 S100 G00 X10 Y0\nM2\n";
+    let r = run_in(text, Dialect::LinuxCnc, setup_with(2.0, None));
+    assert!(!r.codes().contains(&"E-WORD-UNUSED"), "{:?}", r.diags);
+}
+
+/// The events of a G18 turning pass with compensation by register 1 (radius 0.5) of
+/// orientation `o`.
+fn turning_pass(dialect: Dialect, o: u8) -> Vec<(u32, Canon)> {
+    let text = "G18 G90 G00 X20. Z5.\nG42 D1 G01 X10. Z0 F100.\nZ-10.\nG02 X14. Z-14. R4.\nG01 X20.\nG40 G00 X30. Z5.\nM30\n";
+    let mut setup = Setup::default();
+    setup.registers.insert(
+        1,
+        Register {
+            radius: 0.5,
+            orientation: o,
+            ..Register::default()
+        },
+    );
+    let r = run_in(text, dialect, setup);
+    assert!(r.errors().is_empty(), "{:?}", r.diags);
+    r.moves()
+}
+
+#[test]
+fn a_lathe_tool_reports_its_imaginary_tip() {
+    // LinuxCNC's table: orientation → where the tip is from the nose centre (X, Z), in radii.
+    let tip = [
+        (1, [-1.0, 1.0]),
+        (2, [-1.0, -1.0]),
+        (3, [1.0, -1.0]),
+        (4, [1.0, 1.0]),
+        (5, [0.0, 1.0]),
+        (6, [-1.0, 0.0]),
+        (7, [0.0, -1.0]),
+        (8, [1.0, 0.0]),
+        (9, [0.0, 0.0]),
+    ];
+    for dialect in [Dialect::LinuxCnc, Dialect::Fanuc] {
+        let centre = turning_pass(dialect, 0);
+        for (o, [dx, dz]) in tip {
+            let moves = turning_pass(dialect, o);
+            assert_eq!(moves.len(), centre.len());
+            let d = DVec3::new(dx * 0.5, 0.0, dz * 0.5);
+            for ((line, a), (_, b)) in centre.iter().zip(&moves) {
+                // The rapid before compensation and the cancel move are not shifted.
+                let shift = if (2..=5).contains(line) {
+                    d
+                } else {
+                    DVec3::ZERO
+                };
+                assert_at(
+                    b.end_point().unwrap(),
+                    (a.end_point().unwrap() + shift).to_array(),
+                    1e-9,
+                );
+                if let (Canon::Arc { center: ca, .. }, Canon::Arc { center: cb, .. }) = (a, b) {
+                    assert_at(*cb, (*ca + shift).to_array(), 1e-9);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn linuxcnc_lathe_tools_compensate_in_g18_only() {
+    let mut setup = Setup::default();
+    setup.registers.insert(
+        1,
+        Register {
+            radius: 0.5,
+            orientation: 2,
+            ..Register::default()
+        },
+    );
+    let text = "G17 G21 G90 G00 X20 Y5\nG42 D1 G01 X10 Y0 F100\nM2\n";
+    let r = run_in(text, Dialect::LinuxCnc, setup);
+    assert!(r.codes().contains(&"E-COMP-PLANE"), "{:?}", r.diags);
+    // G41.1/G42.1 take the orientation in L, in G18 only.
+    let text = "G17 G21 G90 G00 X20 Y5\nG42.1 D1 L2 G01 X10 Y0 F100\nM2\n";
+    let r = run_in(text, Dialect::LinuxCnc, Setup::default());
+    assert!(r.codes().contains(&"E-COMP-PLANE"), "{:?}", r.diags);
+    let with_l = "G18 G21 G90 G00 X20 Z5\nG42.1 D1 L3 G01 X10 Z0 F100\nZ-10\nG40 G00 X30\nM2\n";
+    let without = "G18 G21 G90 G00 X20 Z5\nG42.1 D1 G01 X10 Z0 F100\nZ-10\nG40 G00 X30\nM2\n";
+    let a = run_in(with_l, Dialect::LinuxCnc, Setup::default());
+    let b = run_in(without, Dialect::LinuxCnc, Setup::default());
+    assert!(a.errors().is_empty(), "{:?}", a.diags);
+    // Orientation 3: the tip is +X −Z of the nose centre.
+    assert_at(
+        a.ends()[2],
+        (b.ends()[2] + DVec3::new(0.5, 0.0, -0.5)).to_array(),
+        1e-9,
+    );
+}
+
+#[test]
+fn linuxcnc_comp_turned_on_and_off_without_a_move_leaves_the_tool_alone() {
+    // LinuxCNC's ccomp/early-exit: G41.1 then G40 with no move between; the next rapid moves
+    // X only (LinuxCNC 2.6.12 and 2.7.7 sent Y and Z to 0).
+    let text = "G20 G90 G0 X0.1 Y0.2 Z0.3\nG41.1 D0.1\nG40\nG0 X0.9\nM2\n";
+    let r = run_in(text, Dialect::LinuxCnc, Setup::default());
+    assert!(r.errors().is_empty(), "{:?}", r.diags);
+    assert_at(
+        *r.ends().last().unwrap(),
+        [0.9 * 25.4, 0.2 * 25.4, 0.3 * 25.4],
+        1e-9,
+    );
+}
+
 #[cfg(not(target_arch = "wasm32"))]
 mod properties {
     use super::*;

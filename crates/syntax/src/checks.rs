@@ -542,6 +542,8 @@ fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagno
                 "E-NUMBER-RANGE",
                 format!("`{}` cannot be negative", word.letter()),
             )),
+            // LinuxCNC's G41.1/G42.1 D is the tool's diameter, and G96 D a speed limit.
+            (b'D', WordForm::Plain) if has(411) || has(421) || has(960) => {}
             (b'T' | b'H' | b'D', WordForm::Plain) if v < 0.0 || v.fract() != 0.0 => {
                 out.push(Diagnostic::error(
                     word.span,

@@ -70,10 +70,18 @@ fn length(value: &mut f64) -> egui::DragValue<'_> {
 fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     let mut remove = None;
     egui::Grid::new("swarf-registers")
-        .num_columns(6)
+        .num_columns(7)
         .striped(true)
         .show(ui, |ui| {
-            for head in ["No.", "Length", "Length wear", "Radius", "Radius wear", ""] {
+            for head in [
+                "No.",
+                "Length",
+                "Length wear",
+                "Radius",
+                "Radius wear",
+                "Tip (lathe)",
+                "",
+            ] {
                 ui.strong(head);
             }
             ui.end_row();
@@ -89,6 +97,12 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                     let response = ui.add(length(value));
                     named(ui, response, &format!("Register {n} {what}"));
                 }
+                let response = ui
+                    .add(egui::DragValue::new(&mut r.orientation).range(0..=9))
+                    .on_hover_text(
+                        "Lathe tool tip direction 1-8 (LinuxCNC's Q): compensation in G18 reports the imaginary tip; 0 a mill, 9 the nose centre",
+                    );
+                named(ui, response, &format!("Register {n} tool orientation"));
                 let remove_button = ui.small_button("×").on_hover_text("Remove");
                 if named(ui, remove_button, &format!("Remove register {n}")).clicked() {
                     remove = Some(*n);
@@ -274,6 +288,22 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             ui.end_row();
             ui.label("Gouges");
             ui.checkbox(&mut m.overcut_alarm, "stop with an alarm (Syntec 3819)");
+            ui.end_row();
+            let label = ui.label("G41/G42 under a mirror");
+            let side = |c: Option<bool>| match c {
+                None => "the dialect's default",
+                Some(true) => "swapped by the control (Fanuc)",
+                Some(false) => "as written (Syntec's example)",
+            };
+            egui::ComboBox::from_id_salt("swarf-mirror-side")
+                .selected_text(side(m.mirror_swaps_comp_side))
+                .show_ui(ui, |ui| {
+                    for c in [None, Some(true), Some(false)] {
+                        ui.selectable_value(&mut m.mirror_swaps_comp_side, c, side(c));
+                    }
+                })
+                .response
+                .labelled_by(label.id);
             ui.end_row();
             let label = ui.label("Integers without a point");
             let text = |c: Option<bool>| match c {

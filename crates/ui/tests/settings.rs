@@ -83,4 +83,35 @@ fn the_machine_travel_and_drilling_parameters_are_settings_too() {
     harness.get_by_label("stop with an alarm (Syntec 3819)");
     let toml = harness.state().setup_toml().unwrap();
     assert!(toml.contains("travel_mm"), "{toml}");
+    // Whether a mirror swaps G41/G42: the dialect's default until chosen.
+    assert_eq!(harness.state().setup().machine.mirror_swaps_comp_side, None);
+    harness.get_by_role_and_label(Role::ComboBox, "G41/G42 under a mirror");
+    harness
+        .state_mut()
+        .import_setup("[machine]\nmirror_swaps_comp_side = false\n")
+        .unwrap();
+    harness.run();
+    assert_eq!(
+        harness.state().setup().machine.mirror_swaps_comp_side,
+        Some(false)
+    );
+    let toml = harness.state().setup_toml().unwrap();
+    assert!(toml.contains("mirror_swaps_comp_side = false"), "{toml}");
+}
+
+#[test]
+fn a_register_holds_a_lathe_tool_orientation() {
+    let mut wb = Workbench::default();
+    wb.import_setup("[registers.2]\nradius = 0.4\norientation = 3\n")
+        .unwrap();
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1400.0, 900.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.run();
+    harness.get_by_label("Settings…").click();
+    harness.run();
+    harness.get_by_label("Register 2 tool orientation");
+    assert_eq!(harness.state().setup().registers[&2].orientation, 3);
+    let toml = harness.state().setup_toml().unwrap();
+    assert!(toml.contains("orientation = 3"), "{toml}");
 }
