@@ -18,7 +18,7 @@ limit=${TIMEOUT:-600}
 target=${CARGO_TARGET_DIR:-$root/target}
 peers=$target/peers
 
-cargo build -q --release -p swarf-cli -p swarf-syntax --example surfacing || exit 2
+cargo build -q --release -p swarf-cli --bin swarf -p swarf-syntax --example surfacing || exit 2
 swarf=$target/release/swarf
 generated=$peers/surfacing-1M.nc
 mkdir -p "$peers"

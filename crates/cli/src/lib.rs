@@ -14,7 +14,9 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
-use swarf_syntax::{Diagnostic, Dialect, LineIndex, Missing, Program, Severity, decode, parse};
+use swarf_syntax::{
+    Diagnostic, Dialect, LineIndex, Missing, Program, Severity, decode_owned, parse,
+};
 use swarf_toolpath::Toolpath;
 
 /// Exit status: no error diagnostics.
@@ -223,7 +225,7 @@ fn link_external(
             let Ok(bytes) = std::fs::read(&file) else {
                 continue;
             };
-            let decoded = decode(&bytes);
+            let decoded = decode_owned(bytes);
             let sub = parse(&decoded.text, dialect);
             let lines = sub.lines.clone();
             program.link(sub, &name, main_len, decoded.text.len());
@@ -253,7 +255,7 @@ fn read_setup(opts: &RunOptions) -> anyhow::Result<Setup> {
 fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
     let bytes =
         std::fs::read(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
-    let decoded = decode(&bytes);
+    let decoded = decode_owned(bytes);
     let mut program = parse(&decoded.text, opts.dialect);
     let linked = link_external(&mut program, path, decoded.text.len(), opts.dialect);
     let mut diagnostics = decoded.diagnostics;

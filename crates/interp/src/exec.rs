@@ -3,6 +3,7 @@
 //! one-shot codes, motion, then M codes.
 
 use glam::{DVec2, DVec3};
+use smallvec::SmallVec;
 use swarf_syntax::codes::{self, Code, Group};
 use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm};
 
@@ -341,7 +342,7 @@ fn execute_block(
 ) -> Flow {
     let _ = program;
     let dialect = it.st.dialect;
-    let mut actions: Vec<(Action, &Word)> = Vec::new();
+    let mut actions: SmallVec<[(Action, &Word); 4]> = SmallVec::new();
     let mut runnable = true;
     for word in words
         .iter()
@@ -424,10 +425,13 @@ fn execute_block(
     }
     let has = |a: fn(&Action) -> bool| actions.iter().any(|(x, _)| a(x));
     // G65: a macro call takes the block's words as arguments.
-    if let Some((_, g65)) = actions.iter().find(|(a, _)| *a == Action::MacroCall) {
+    if let Some((_, g65)) = actions.iter().find(|(a, _)| matches!(a, Action::MacroCall)) {
         return macro_call(it, at, block, words, g65);
     }
-    if let Some((_, g66)) = actions.iter().find(|(a, _)| *a == Action::ModalMacro(true)) {
+    if let Some((_, g66)) = actions
+        .iter()
+        .find(|(a, _)| matches!(a, Action::ModalMacro(true)))
+    {
         let args = arguments(&it.st, words);
         // L: how many times the macro runs after each move.
         let repeats = repeat_count(&mut it.st, find(words, b'L'));
@@ -450,7 +454,7 @@ fn execute_block(
     let st = &mut it.st;
     let length_before = st.length_comp.map_or(0.0, |(_, o)| o);
     settings(st, words);
-    let presets_spindle = has(|a| *a == Action::SetPosition);
+    let presets_spindle = has(|a| matches!(a, Action::SetPosition));
     // Units first: the block's numbers are read in the new unit.
     for (a, _) in &actions {
         match *a {
@@ -466,8 +470,9 @@ fn execute_block(
         }
     }
     spindle_speed(st, words, presets_spindle);
-    st.block_has_feed = find(words, b'F').is_some();
-    if let Some(f) = find(words, b'F') {
+    let f_word = find(words, b'F');
+    st.block_has_feed = f_word.is_some();
+    if let Some(f) = f_word {
         st.feed_word = f.value;
         st.feed_mm_per_min = match st.feed_mode {
             FeedMode::PerMinute => st.mm(f.value),
@@ -642,12 +647,12 @@ fn execute_block(
         st.position[3 - u - v] -= length_after - length_before;
         st.resync();
     }
-    let probe = has(|a| *a == Action::Probe);
+    let probe = has(|a| matches!(a, Action::Probe));
     let mut moved = false;
     // Rotary axis words alone still make a move (the rotary position itself is not drawn).
     let rotary = words
         .iter()
-        .any(|w| w.form == WordForm::Plain && b"ABC".contains(&w.letter));
+        .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'A' | b'B' | b'C'));
     let cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
     if !consumed
         && (axes.iter().any(Option::is_some) || rotary || cycle || arc_full_circle(st, words))
@@ -670,7 +675,7 @@ fn execute_block(
     {
         for w in words
             .iter()
-            .filter(|w| w.form == WordForm::Plain && b"IJKR".contains(&w.letter))
+            .filter(|w| w.form == WordForm::Plain && matches!(w.letter, b'I' | b'J' | b'K' | b'R'))
         {
             it.st.diagnostics.push(Diagnostic::warning(
                 w.span,
@@ -933,8 +938,10 @@ fn note_least_increment(st: &mut State, words: &[Word]) {
         return;
     }
     let Some(w) = words.iter().find(|w| {
-        b"XYZIJKRQ".contains(&w.letter)
-            && w.form == WordForm::Plain
+        matches!(
+            w.letter,
+            b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R' | b'Q'
+        ) && w.form == WordForm::Plain
             && !w.has_point
             && w.expr.is_none()
             && w.value != 0.0
@@ -1006,7 +1013,7 @@ fn arc_full_circle(st: &State, words: &[Word]) -> bool {
     matches!(st.motion, Some(MotionMode::Arc { .. }))
         && words
             .iter()
-            .any(|w| w.form == WordForm::Plain && b"IJK".contains(&w.letter))
+            .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'I' | b'J' | b'K'))
 }
 
 /// The block's move in the current motion mode; returns whether the tool moved.

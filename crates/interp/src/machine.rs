@@ -2,6 +2,7 @@
 //! macro calls, Macro B jumps and loops, LinuxCNC O-words) and hands each block's words to
 //! [`exec`](crate::exec).
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 
 use glam::DVec3;
@@ -382,7 +383,15 @@ impl Interpreter {
 
     /// Reads the block's words: expressions are evaluated, and a word whose variable is vacant
     /// is left out, as the Fanuc family does.
-    fn resolve_words(&self, program: &Program, block: &Block) -> Result<Vec<Word>, Diagnostic> {
+    fn resolve_words<'b>(
+        &self,
+        program: &Program,
+        block: &'b Block,
+    ) -> Result<Cow<'b, [Word]>, Diagnostic> {
+        // Most blocks have literal words only: they are used as they are, without a copy.
+        if block.words.iter().all(|w| w.expr.is_none()) {
+            return Ok(Cow::Borrowed(&block.words));
+        }
         let mut out = Vec::with_capacity(block.words.len());
         for word in &block.words {
             let Some(expr) = word.expr else {
@@ -419,7 +428,7 @@ impl Interpreter {
                 Err(e) => return Err(Diagnostic::error(e.span, e.code, e.message)),
             }
         }
-        Ok(out)
+        Ok(Cow::Owned(out))
     }
 
     fn eval(&self, program: &Program, id: ExprId) -> Result<Value, Diagnostic> {

@@ -75,6 +75,18 @@ pub fn decode(bytes: &[u8]) -> Decoded {
     lossy_utf8(bytes)
 }
 
+/// [`decode`] for bytes the caller owns: valid UTF-8 without a byte-order mark (the usual
+/// file) becomes the text without being copied.
+pub fn decode_owned(bytes: Vec<u8>) -> Decoded {
+    if bytes.starts_with(&[0xEF, 0xBB, 0xBF]) {
+        return decode(&bytes);
+    }
+    match String::from_utf8(bytes) {
+        Ok(text) => plain(text, Encoding::Utf8),
+        Err(e) => decode(e.as_bytes()),
+    }
+}
+
 fn plain(text: String, encoding: Encoding) -> Decoded {
     Decoded {
         text,

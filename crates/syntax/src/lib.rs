@@ -18,7 +18,7 @@ pub use ast::{
     Word, WordForm,
 };
 pub use codes::{Code, CodeDef, DialectSet};
-pub use decode::{Decoded, Encoding, decode};
+pub use decode::{Decoded, Encoding, decode, decode_owned};
 pub use diagnostic::{Diagnostic, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};

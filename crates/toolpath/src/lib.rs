@@ -719,23 +719,10 @@ impl Toolpath {
     /// the tool can still stop in time, and each join runs at the lower of that and the
     /// forward speed.
     fn window_end_times(&self, count: usize) -> Vec<f64> {
-        let k = self.kinematics;
-        let mut entries = vec![0.0; self.window.len() + 1];
-        let mut backward = 0.0;
-        for (entry, p) in entries.iter_mut().zip(&self.window).rev() {
-            backward = p.limit.min(k.reach(backward, p.length));
-            *entry = p.forward.min(backward);
-        }
-        let mut t = self.settled.end_times.last().copied().unwrap_or(0.0);
-        self.window
-            .iter()
-            .zip(entries.windows(2))
-            .take(count)
-            .map(|(p, speeds)| {
-                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
-                t
-            })
-            .collect()
+        let mut times = Vec::with_capacity(count.min(self.window.len()));
+        let start = self.settled.end_times.last().copied().unwrap_or(0.0);
+        window_end_times(&self.window, self.kinematics, start, count, &mut times);
+        times
     }
 
     /// Writes the end times of the first `count` unsettled segments and forgets their plans.
@@ -744,8 +731,14 @@ impl Toolpath {
         if count == 0 {
             return;
         }
-        let times = self.window_end_times(count);
-        self.settled.end_times.extend_from_slice(&times);
+        let start = self.settled.end_times.last().copied().unwrap_or(0.0);
+        window_end_times(
+            &self.window,
+            self.kinematics,
+            start,
+            count,
+            &mut self.settled.end_times,
+        );
         self.window.drain(..count);
     }
 
@@ -809,6 +802,42 @@ impl Toolpath {
     fn stop(&mut self) {
         self.stop_pending = true;
     }
+}
+
+/// Appends to `out` the end times of the first `count` segments of `window`, the first
+/// starting at `start` seconds (see [`Toolpath::window_end_times`]). The join speeds of a short
+/// window stay on the stack: a program with a stop every few moves settles it that often.
+fn window_end_times(
+    window: &VecDeque<Plan>,
+    k: Kinematics,
+    start: f64,
+    count: usize,
+    out: &mut Vec<f64>,
+) {
+    let mut short = [0.0; 64];
+    let mut long = Vec::new();
+    let entries: &mut [f64] = if window.len() < short.len() {
+        &mut short[..=window.len()]
+    } else {
+        long.resize(window.len() + 1, 0.0);
+        &mut long
+    };
+    let mut backward = 0.0;
+    for (entry, p) in entries.iter_mut().zip(window).rev() {
+        backward = p.limit.min(k.reach(backward, p.length));
+        *entry = p.forward.min(backward);
+    }
+    let mut t = start;
+    out.extend(
+        window
+            .iter()
+            .zip(entries.windows(2))
+            .take(count)
+            .map(|(p, speeds)| {
+                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
+                t
+            }),
+    );
 }
 
 /// The fields of [`Canon::Arc`].

@@ -50,16 +50,21 @@ impl Code {
     }
 
     /// The code for `letter` and a numeric value, if the value is a valid code number.
+    #[inline]
     pub fn from_value(letter: u8, value: f64) -> Option<Code> {
-        let tenths = (value * 10.0).round();
-        if !(0.0..100_000.0).contains(&tenths) || (value * 10.0 - tenths).abs() > 1e-6 {
+        let scaled = value * 10.0;
+        // Tenths rounded to nearest (half away from zero) must lie in 0..100000: `scaled` in
+        // (-0.5, 99999.5), NaN excluded. There `scaled + 0.5` is positive and truncating it
+        // rounds without a libm call on every G and M word; next to a half, where the sum may
+        // round differently, the value is far from a whole tenth and refused below anyway.
+        if !(scaled > -0.5 && scaled < 99_999.5) {
             return None;
         }
-        // The range check above keeps `tenths` a small non-negative integer.
-        Some(Code {
-            letter,
-            tenths: tenths as u32,
-        })
+        let tenths = (scaled + 0.5) as u32;
+        if (scaled - f64::from(tenths)).abs() > 1e-6 {
+            return None;
+        }
+        Some(Code { letter, tenths })
     }
 
     /// Parses `G83.1`, `g0`, `M98` (case-insensitive, leading zeros optional).
@@ -514,6 +519,7 @@ fn dense() -> &'static [[Vec<u16>; 2]; 6] {
 }
 
 /// The meaning of `code` in `dialect`, if the dialect has it.
+#[inline]
 pub fn lookup(dialect: Dialect, code: Code) -> Option<&'static CodeDef> {
     let d = dialect_slot(dialect);
     if (code.letter == b'G' || code.letter == b'M') && (code.tenths as usize) < DENSE {
