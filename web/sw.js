@@ -4,7 +4,9 @@
 // Network first: while online every request goes to the server (so a new build is picked up
 // at once) and the answer replaces the cached copy; offline, the cached copy answers. The
 // files of the page are cached when the worker installs, on the first visit, so a reload
-// works offline even before the page asked for them a second time.
+// works offline even before the page asked for them a second time. Files the page fetches
+// later, such as the CJK font when a Chinese interface language is chosen, are cached the
+// first time they are fetched.
 
 const CACHE = "swarf-offline-v1";
 

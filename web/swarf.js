@@ -11,6 +11,10 @@
 //   window.swarf.selection();          // {start, end, text, start_line, end_line}
 //   window.swarf.diagnostics();        // [{line, col, severity, code, message}, ...]
 //   window.swarf.stats();              // {blocks, motions, bounds: {min, max} | null}
+//   window.swarf.setLanguage("zh-Hans"); // interface language: "en", "zh-Hans" or "zh-Hant"
+//   window.swarf.language();           // {language, cjk_font}: the tag, whether the font is in
+//
+// The program calls act on the active tab; open() opens a tab of its own.
 //
 // `ready` rejects, and the page shows the error instead of a blank canvas, when loading fails.
 
@@ -86,6 +90,14 @@ window.swarf = Object.freeze({
   },
   stats() {
     return plain(requireApi().stats());
+  },
+  setLanguage(code) {
+    if (!requireApi().set_language(String(code))) {
+      throw new RangeError(`setLanguage: unknown language ${code} (use en, zh-Hans or zh-Hant)`);
+    }
+  },
+  language() {
+    return plain(requireApi().language());
   },
 });
 

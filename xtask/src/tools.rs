@@ -187,6 +187,17 @@ pub fn ensure_apt_packages() -> Result<()> {
             APT_PACKAGES.join(" ")
         );
     }
+    apt_install(APT_PACKAGES)
+}
+
+/// `apt-get update` then `apt-get install -y packages` (through sudo when not root).
+fn apt_install(packages: &[&str]) -> Result<()> {
+    if util::which("apt-get").is_none() {
+        bail!(
+            "apt-get is not available; install by hand: {}",
+            packages.join(" ")
+        );
+    }
     let sudo = if is_root() {
         None
     } else if util::which("sudo").is_some() {
@@ -194,7 +205,7 @@ pub fn ensure_apt_packages() -> Result<()> {
     } else {
         bail!(
             "not root and no sudo: install by hand with `apt-get install {}`",
-            APT_PACKAGES.join(" ")
+            packages.join(" ")
         );
     };
     let apt = |args: &[&str]| -> Result<()> {
@@ -211,8 +222,24 @@ pub fn ensure_apt_packages() -> Result<()> {
     };
     apt(&["update"])?;
     let mut install = vec!["install", "-y"];
-    install.extend_from_slice(APT_PACKAGES);
+    install.extend_from_slice(packages);
     apt(&install)
+}
+
+/// The CJK font the web page offers for its Chinese languages: WenQuanYi Micro Hei from
+/// Debian's `fonts-wqy-microhei` (Apache 2.0 or GPLv3 with the font exception), and its
+/// copyright file.
+pub const CJK_FONT: &str = "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc";
+/// The font package's copyright file.
+pub const CJK_FONT_COPYRIGHT: &str = "/usr/share/doc/fonts-wqy-microhei/copyright";
+
+/// Installs `fonts-wqy-microhei` with apt when [`CJK_FONT`] is missing.
+pub fn ensure_cjk_font() -> Result<()> {
+    if Path::new(CJK_FONT).exists() {
+        return Ok(());
+    }
+    println!("missing system package: fonts-wqy-microhei");
+    apt_install(&["fonts-wqy-microhei"])
 }
 
 fn is_root() -> bool {

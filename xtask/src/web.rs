@@ -90,6 +90,7 @@ pub fn build(options: &WebOptions) -> Result<()> {
     }
 
     copy_static_files(&site)?;
+    copy_cjk_font(&site)?;
 
     let size = std::fs::metadata(&bg_wasm)
         .with_context(|| format!("wasm-bindgen did not write {}", bg_wasm.display()))?
@@ -116,6 +117,28 @@ fn copy_static_files(site: &Path) -> Result<()> {
     let assets = root.join("assets");
     if assets.is_dir() {
         util::copy_dir(&assets, &site.join("assets"))?;
+    }
+    Ok(())
+}
+
+/// Copies the CJK font (and its copyright file) into `fonts/` of the site; the page fetches it
+/// only when a Chinese interface language is chosen. Without apt the page is built without
+/// it (and says so when Chinese is chosen).
+fn copy_cjk_font(site: &Path) -> Result<()> {
+    if let Err(e) = tools::ensure_cjk_font() {
+        println!("warning: no CJK font for the page ({e:#}); Chinese will show no glyphs");
+        return Ok(());
+    }
+    let fonts = site.join("fonts");
+    std::fs::create_dir_all(&fonts).with_context(|| format!("creating {}", fonts.display()))?;
+    std::fs::copy(tools::CJK_FONT, fonts.join("wqy-microhei.ttc"))
+        .with_context(|| format!("copying {}", tools::CJK_FONT))?;
+    if Path::new(tools::CJK_FONT_COPYRIGHT).exists() {
+        std::fs::copy(
+            tools::CJK_FONT_COPYRIGHT,
+            fonts.join("wqy-microhei.copyright.txt"),
+        )
+        .with_context(|| format!("copying {}", tools::CJK_FONT_COPYRIGHT))?;
     }
     Ok(())
 }

@@ -75,10 +75,18 @@ impl SwarfApp {
         self.ctx.request_repaint();
     }
 
-    /// Shows `text` as the program file `name` (no unsaved changes) and schedules a repaint.
+    /// Opens `text` as the program file `name` in a tab (no unsaved changes) and schedules a
+    /// repaint.
     pub fn open(&mut self, name: &str, text: impl Into<String>) {
         self.workbench
             .open_document(name, text, swarf_syntax::Encoding::Utf8);
+        self.ctx.request_repaint();
+    }
+
+    /// Switches the interface language (a Chinese one fetches or reads its font) and
+    /// schedules a repaint.
+    pub fn set_language(&mut self, lang: swarf_ui::i18n::Lang) {
+        self.workbench.set_language(lang);
         self.ctx.request_repaint();
     }
 
@@ -109,7 +117,7 @@ impl eframe::App for SwarfApp {
         // The window's close button: held back while there are unsaved changes.
         #[cfg(not(target_arch = "wasm32"))]
         if ctx.input(|i| i.viewport().close_requested())
-            && self.workbench.is_dirty()
+            && self.workbench.any_dirty()
             && !self.host.quitting
         {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
@@ -124,7 +132,7 @@ impl eframe::App for SwarfApp {
         self.host.handle(&mut self.workbench, &ctx);
         let now = ctx.input(|i| i.time);
         self.host.autosave(&self.workbench, now);
-        if self.workbench.is_dirty() {
+        if self.workbench.any_dirty() {
             // Wake up for the delayed autosave even when nothing else happens.
             ctx.request_repaint_after(std::time::Duration::from_millis(1200));
         }

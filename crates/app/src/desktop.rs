@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use swarf_ui::{HostRequest, Workbench};
 
-use crate::files::{self, Autosave, AutosaveClock, Recovery};
+use crate::files::{self, Autosave, AutosaveClock, Session};
 
 /// The application id: names the data folder (`~/.local/share/swarf` on Linux).
 pub const APP_ID: &str = "Swarf";
@@ -43,7 +43,8 @@ impl Host {
         }
     }
 
-    /// Shows the program left unsaved by a previous run, if there is one.
+    /// Shows the tabs a previous run left with unsaved changes, if it did: unsaved texts as
+    /// changes still to save, the other files read again from disk where they still are.
     pub fn recover(&mut self, wb: &mut Workbench) -> bool {
         let Some(record) = self
             .recovery
@@ -52,29 +53,19 @@ impl Host {
         else {
             return false;
         };
-        let Some(r) = Recovery::from_record(&record) else {
+        let Some(mut session) = Session::from_record(&record) else {
             return false;
         };
-        wb.recover(&r.name, r.text, r.encoding);
-        wb.set_path((!r.path.is_empty()).then_some(r.path));
+        for tab in session.tabs.iter_mut().filter(|t| !t.dirty) {
+            if let Some(bytes) = tab.path.as_ref().and_then(|p| std::fs::read(p).ok()) {
+                let decoded = swarf_syntax::decode(&bytes);
+                tab.text = decoded.text;
+                tab.encoding = decoded.encoding;
+            }
+        }
+        wb.restore_tabs(session.tabs, session.active);
         self.clock.settled(wb.generation());
         true
-    }
-
-    /// Moves the recovery file to a name of its own (`recovery-SECONDS.nc`) so that opening
-    /// another program does not overwrite it; the new name, if it was moved.
-    pub fn set_recovery_aside(&mut self) -> Option<PathBuf> {
-        let file = self.recovery.as_ref()?;
-        let secs = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map_or(0, |d| d.as_secs());
-        let aside = file.with_file_name(format!("recovery-{secs}.nc"));
-        std::fs::rename(file, &aside).ok()?;
-        log::warn!(
-            "unsaved changes of the last run are kept in {}",
-            aside.display()
-        );
-        Some(aside)
     }
 
     /// Opens the program file at `path`.
@@ -82,17 +73,20 @@ impl Host {
         match std::fs::read(path) {
             Ok(bytes) => {
                 let decoded = swarf_syntax::decode(&bytes);
-                wb.open_document(&file_name(path), decoded.text, decoded.encoding);
-                wb.set_path(Some(path.display().to_string()));
+                wb.open_file(
+                    &file_name(path),
+                    decoded.text,
+                    decoded.encoding,
+                    Some(path.display().to_string()),
+                );
                 files::push_recent(&mut self.recent, path.display().to_string());
                 wb.set_recent(self.recent.clone());
-                self.clear_recovery();
             }
             Err(e) => wb.set_message(format!("Cannot open {}: {e}", path.display())),
         }
     }
 
-    /// Reads a dropped file and opens it once unsaved changes are settled.
+    /// Reads a dropped file and opens it in a tab.
     pub fn open_dropped(&mut self, wb: &mut Workbench, file: &egui::DroppedFileHandle) {
         let path = file.path().to_path_buf();
         match file.bytes() {
@@ -185,6 +179,12 @@ impl Host {
                     Err(e) => format!("Cannot write {}: {e}", path.display()),
                 });
             }
+            HostRequest::LoadCjkFont => match find_cjk_font() {
+                Some(bytes) => {
+                    wb.add_cjk_font(ctx, bytes);
+                }
+                None => wb.cjk_font_missing(),
+            },
             HostRequest::Quit => {
                 self.quitting = true;
                 self.clear_recovery();
@@ -222,8 +222,7 @@ impl Host {
                 wb.set_path(Some(path.display().to_string()));
                 if used != wb.document().encoding {
                     let text = wb.text().to_string();
-                    wb.open_document(&file_name(path), text, used);
-                    wb.set_path(Some(path.display().to_string()));
+                    wb.reload_document(&file_name(path), text, used);
                     wb.set_message(format!(
                         "Saved as UTF-8: the text has characters {} cannot hold",
                         wb.document().encoding.name()
@@ -231,7 +230,7 @@ impl Host {
                 } else {
                     wb.mark_saved(&file_name(path));
                 }
-                self.clear_recovery();
+                self.sync_recovery(wb);
                 true
             }
             Err(e) => {
@@ -244,29 +243,33 @@ impl Host {
     /// Writes unsaved changes to the recovery file a moment after they are made, and removes
     /// it once nothing is unsaved.
     pub fn autosave(&mut self, wb: &Workbench, now: f64) {
-        match self.clock.step(wb.generation(), wb.is_dirty(), now) {
+        match self.clock.step(wb.generation(), wb.any_dirty(), now) {
             Autosave::Wait => {}
             Autosave::Clear => self.clear_recovery(),
             Autosave::Write => self.write_recovery(wb),
         }
     }
 
-    /// Writes the recovery file now (also on exit with unsaved changes).
+    /// Writes the recovery file now when a tab has unsaved changes, removes it otherwise.
+    fn sync_recovery(&mut self, wb: &Workbench) {
+        if wb.any_dirty() {
+            self.write_recovery(wb);
+        } else {
+            self.clear_recovery();
+        }
+    }
+
+    /// Writes the recovery file (every tab) now, also on exit with unsaved changes.
     pub fn write_recovery(&mut self, wb: &Workbench) {
         self.clock.restart();
         let Some(file) = &self.recovery else {
             return;
         };
         // Quitting with the changes discarded (or saved): nothing to recover.
-        if !wb.is_dirty() || self.quitting {
+        if !wb.any_dirty() || self.quitting {
             return;
         }
-        let record = Recovery {
-            name: wb.document().name.clone(),
-            path: wb.document().path.clone().unwrap_or_default(),
-            encoding: wb.document().encoding,
-            text: wb.text().to_string(),
-        };
+        let record = Session::of(wb);
         if let Some(dir) = file.parent() {
             let _ = std::fs::create_dir_all(dir);
         }
@@ -284,6 +287,39 @@ impl Host {
             log::warn!("cannot remove the recovery file {}: {e}", file.display());
         }
     }
+}
+
+/// Environment variable naming a CJK font file to use for the Chinese interface languages.
+pub const CJK_FONT_VARIABLE: &str = "SWARF_CJK_FONT";
+
+/// Where the systems keep CJK fonts egui can read (TrueType or OpenType, collections too), in
+/// the order they are tried: WenQuanYi Micro Hei and Noto Sans CJK on Linux, Microsoft YaHei
+/// and JhengHei on Windows, PingFang and Heiti on macOS.
+const CJK_FONT_FILES: &[&str] = &[
+    "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc",
+    "/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc",
+    "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc",
+    "/usr/share/fonts/noto-cjk/NotoSansCJK-Regular.ttc",
+    "/usr/share/fonts/google-noto-cjk/NotoSansCJK-Regular.ttc",
+    "/usr/share/fonts/wenquanyi/wqy-microhei/wqy-microhei.ttc",
+    "/usr/share/fonts/truetype/droid/DroidSansFallbackFull.ttf",
+    "C:\\Windows\\Fonts\\msyh.ttc",
+    "C:\\Windows\\Fonts\\msjh.ttc",
+    "C:\\Windows\\Fonts\\simsun.ttc",
+    "/System/Library/Fonts/PingFang.ttc",
+    "/System/Library/Fonts/STHeiti Medium.ttc",
+    "/System/Library/Fonts/Hiragino Sans GB.ttc",
+    "/Library/Fonts/Arial Unicode.ttf",
+];
+
+/// The bytes of a CJK font: the file named by [`CJK_FONT_VARIABLE`], else the first of the
+/// system's that can be read.
+pub fn find_cjk_font() -> Option<Vec<u8>> {
+    let named = std::env::var_os(CJK_FONT_VARIABLE).map(PathBuf::from);
+    named
+        .into_iter()
+        .chain(CJK_FONT_FILES.iter().map(PathBuf::from))
+        .find_map(|p| std::fs::read(p).ok())
 }
 
 /// The last component of `path` for titles and the status bar.

@@ -2,7 +2,8 @@
 //! and saving in the file's own encoding.
 
 use swarf_syntax::{Dialect, Encoding};
-use swarf_ui::Workbench;
+use swarf_ui::i18n::Lang;
+use swarf_ui::{TabRecord, Workbench};
 
 /// Most recent files remembered.
 pub const RECENT_MAX: usize = 10;
@@ -13,6 +14,8 @@ pub const KEY_RECENT: &str = "swarf.recent";
 pub const KEY_DIALECT: &str = "swarf.dialect";
 /// Storage key of the machine setup, as `SETUP.toml` text.
 pub const KEY_SETUP: &str = "swarf.setup";
+/// Storage key of the interface language (`en`, `zh-Hans`, `zh-Hant`).
+pub const KEY_LANGUAGE: &str = "swarf.language";
 
 /// Puts `item` first in `list`, without duplicates, keeping at most [`RECENT_MAX`].
 pub fn push_recent(list: &mut Vec<String>, item: String) {
@@ -21,9 +24,11 @@ pub fn push_recent(list: &mut Vec<String>, item: String) {
     list.truncate(RECENT_MAX);
 }
 
-/// Keeps the dialect, the machine setup (as `SETUP.toml`) and the recent files in `storage`.
+/// Keeps the dialect, the machine setup (as `SETUP.toml`), the interface language and the
+/// recent files in `storage`.
 pub fn store_settings(storage: &mut dyn eframe::Storage, wb: &Workbench, recent: &[String]) {
     storage.set_string(KEY_DIALECT, wb.dialect().name().to_string());
+    storage.set_string(KEY_LANGUAGE, wb.language().code().to_string());
     match wb.setup_toml() {
         Ok(toml) => storage.set_string(KEY_SETUP, toml),
         Err(e) => log::warn!("cannot keep the setup: {e}"),
@@ -39,6 +44,12 @@ pub fn restore_settings(storage: &dyn eframe::Storage, wb: &mut Workbench) -> Ve
         .and_then(|d| d.parse::<Dialect>().ok())
     {
         wb.set_dialect(dialect);
+    }
+    if let Some(lang) = storage
+        .get_string(KEY_LANGUAGE)
+        .and_then(|l| Lang::from_code(&l))
+    {
+        wb.set_language(lang);
     }
     if let Some(setup) = storage.get_string(KEY_SETUP)
         && let Err(e) = wb.import_setup(&setup)
@@ -170,6 +181,90 @@ impl Recovery {
     }
 }
 
+const SESSION_MAGIC: &str = "swarf-recovery 2";
+
+/// Every open tab kept for crash recovery (written while any has unsaved changes): each tab's
+/// file and text, and which one is active.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Session {
+    /// The tabs, in order.
+    pub tabs: Vec<TabRecord>,
+    /// The index of the active tab.
+    pub active: usize,
+}
+
+impl Session {
+    /// The workbench's tabs.
+    pub fn of(wb: &Workbench) -> Session {
+        let (tabs, active) = wb.tab_records();
+        Session { tabs, active }
+    }
+
+    /// The record as one string: a header line, then for each tab a tab-separated line
+    /// (encoding, name, path, 1 when unsaved, length of the text in bytes) and the text.
+    pub fn to_record(&self) -> String {
+        let clean = |s: &str| s.replace(['\t', '\n', '\r'], " ");
+        let mut out = format!("{SESSION_MAGIC}\t{}\t{}\n", self.tabs.len(), self.active);
+        for t in &self.tabs {
+            out.push_str(&format!(
+                "{}\t{}\t{}\t{}\t{}\n",
+                encoding_name(t.encoding),
+                clean(&t.name),
+                clean(t.path.as_deref().unwrap_or_default()),
+                u8::from(t.dirty),
+                t.text.len()
+            ));
+            out.push_str(&t.text);
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Reads a record written by [`Session::to_record`], or a single unsaved program written
+    /// by [`Recovery::to_record`]; `None` for anything else.
+    pub fn from_record(record: &str) -> Option<Session> {
+        if let Some(r) = Recovery::from_record(record) {
+            return Some(Session {
+                tabs: vec![TabRecord {
+                    name: r.name,
+                    path: (!r.path.is_empty()).then_some(r.path),
+                    encoding: r.encoding,
+                    text: r.text,
+                    dirty: true,
+                }],
+                active: 0,
+            });
+        }
+        let (head, mut rest) = record.split_once('\n')?;
+        let mut fields = head.split('\t');
+        if fields.next()? != SESSION_MAGIC {
+            return None;
+        }
+        let count: usize = fields.next()?.parse().ok()?;
+        let active: usize = fields.next()?.parse().ok()?;
+        let mut tabs = Vec::new();
+        for _ in 0..count {
+            let (line, after) = rest.split_once('\n')?;
+            let mut f = line.split('\t');
+            let encoding = encoding_of(f.next()?)?;
+            let name = f.next()?.to_string();
+            let path = f.next()?.to_string();
+            let dirty = f.next()? == "1";
+            let len: usize = f.next()?.parse().ok()?;
+            let text = after.get(..len)?.to_string();
+            rest = after.get(len..)?.strip_prefix('\n')?;
+            tabs.push(TabRecord {
+                name,
+                path: (!path.is_empty()).then_some(path),
+                encoding,
+                text,
+                dirty,
+            });
+        }
+        (!tabs.is_empty() && active < tabs.len()).then_some(Session { tabs, active })
+    }
+}
+
 fn encoding_name(e: Encoding) -> &'static str {
     match e {
         Encoding::Utf8 => "utf8",
@@ -234,5 +329,44 @@ mod tests {
         assert_eq!(Recovery::from_record(&r.to_record()), Some(r));
         assert_eq!(Recovery::from_record("G0 X1\n"), None);
         assert_eq!(Recovery::from_record(""), None);
+    }
+
+    #[test]
+    fn sessions_read_back_and_old_records_are_one_unsaved_tab() {
+        let tab = |name: &str, text: &str, dirty: bool| TabRecord {
+            name: name.into(),
+            path: dirty.then(|| format!("/home/me/{name}")),
+            encoding: Encoding::Utf8,
+            text: text.into(),
+            dirty,
+        };
+        let s = Session {
+            tabs: vec![
+                tab("a.nc", "G0 X1\n\nM30\n", false),
+                tab("O1234.nc", "O1234\n\tG1 X2 (多)\nM99", true),
+                tab("untitled.nc", "", false),
+            ],
+            active: 1,
+        };
+        assert_eq!(Session::from_record(&s.to_record()), Some(s.clone()));
+        // Cut short or out of range: nothing.
+        let record = s.to_record();
+        assert_eq!(Session::from_record(&record[..record.len() - 20]), None);
+        assert_eq!(
+            Session::from_record(&record.replacen("\t3\t1\n", "\t3\t7\n", 1)),
+            None
+        );
+        let old = Recovery {
+            name: "part.nc".into(),
+            path: String::new(),
+            encoding: Encoding::Big5,
+            text: "G0 X1\n".into(),
+        };
+        let read = Session::from_record(&old.to_record()).unwrap();
+        assert_eq!(read.active, 0);
+        assert_eq!(read.tabs.len(), 1);
+        assert!(read.tabs[0].dirty);
+        assert_eq!(read.tabs[0].path, None);
+        assert_eq!(read.tabs[0].text, "G0 X1\n");
     }
 }

@@ -72,19 +72,8 @@ mod native {
             Box::new(move |cc| {
                 let mut app = SwarfApp::new(cc);
                 if let Some(path) = file {
-                    // A program the last run left unsaved is kept aside, not replaced.
-                    let aside = if app.workbench.is_dirty() {
-                        app.host.set_recovery_aside()
-                    } else {
-                        None
-                    };
+                    // Opens in a tab of its own beside what the last run left unsaved.
                     app.host.open_path(&mut app.workbench, &path);
-                    if let Some(aside) = aside {
-                        app.workbench.set_message(format!(
-                            "Unsaved changes of the last run are kept in {}",
-                            aside.display()
-                        ));
-                    }
                 }
                 if let Some(out) = screenshot {
                     install_screenshot(&mut app, out, ok_in_app);

@@ -39,8 +39,7 @@ pub async fn start(canvas_id: String) -> Result<SwarfApi, JsValue> {
 
 /// Ctrl+O (Cmd+O) opens the file picker inside the key event itself: browsers show a picker
 /// only during the user's action, and the app's frame that would otherwise handle the key may
-/// come too late on a busy machine. With unsaved changes the key goes on to the app, which asks
-/// first.
+/// come too late on a busy machine. The file opens in a tab of its own.
 fn install_open_shortcut(runner: &eframe::WebRunner) -> Result<(), JsValue> {
     let window = web_sys::window().ok_or_else(|| JsValue::from_str("no window"))?;
     let runner = runner.clone();
@@ -53,9 +52,7 @@ fn install_open_shortcut(runner: &eframe::WebRunner) -> Result<(), JsValue> {
             if !shortcut {
                 return;
             }
-            if let Some(app) = runner.app_mut::<SwarfApp>()
-                && !app.workbench.is_dirty()
-            {
+            if let Some(app) = runner.app_mut::<SwarfApp>() {
                 event.prevent_default();
                 event.stop_immediate_propagation();
                 app.host.pick_program();
@@ -95,7 +92,8 @@ impl SwarfApi {
         self.with_app(|app| app.set_text(text))
     }
 
-    /// Shows `text` as the program file `name` (a fresh undo history, nothing unsaved).
+    /// Opens `text` as the program file `name` in a tab (a fresh undo history, nothing
+    /// unsaved); the other API calls act on the active tab.
     pub fn open(&self, name: String, text: String) -> Result<(), JsValue> {
         self.with_app(|app| app.open(&name, text))
     }
@@ -157,6 +155,27 @@ impl SwarfApi {
             "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
             "estimated_secs": s.estimated_secs,
         }))
+    }
+
+    /// Switches the interface language to the tag `code` (`en`, `zh-Hans`, `zh-Hant`); a
+    /// Chinese one fetches the CJK font the first time. False for an unknown tag.
+    pub fn set_language(&self, code: String) -> Result<bool, JsValue> {
+        let Some(lang) = swarf_ui::i18n::Lang::from_code(&code) else {
+            return Ok(false);
+        };
+        self.with_app(|app| app.set_language(lang))?;
+        Ok(true)
+    }
+
+    /// `{language, cjk_font}`: the interface language's tag and whether the CJK font is in.
+    pub fn language(&self) -> Result<JsValue, JsValue> {
+        let value = self.with_app(|app| {
+            json!({
+                "language": app.workbench.language().code(),
+                "cjk_font": app.workbench.has_cjk_font(),
+            })
+        })?;
+        to_js(&value)
     }
 
     /// Frames painted so far (the page waits for the first one before it is ready).

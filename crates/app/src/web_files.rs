@@ -9,10 +9,13 @@ use wasm_bindgen::prelude::*;
 
 use swarf_ui::{HostRequest, Workbench};
 
-use crate::files::{Autosave, AutosaveClock, Recovery};
+use crate::files::{Autosave, AutosaveClock, Session};
 
-/// localStorage key of the unsaved program.
+/// localStorage key of the open tabs while any has unsaved changes.
 const RECOVERY_KEY: &str = "swarf.recovery";
+/// Where the page's CJK font is, relative to the page (`cargo xtask web` puts it there). It is
+/// fetched only when a Chinese language is chosen; the service worker keeps it once fetched.
+pub const CJK_FONT_URL: &str = "./fonts/wqy-microhei.ttc";
 /// Element id of the hidden file input.
 const PICKER_ID: &str = "swarf-file-picker";
 
@@ -35,6 +38,8 @@ pub struct Host {
     inbox: Inbox,
     clock: AutosaveClock,
     ctx: Option<egui::Context>,
+    /// The CJK font once fetched (or why it was not).
+    font: Rc<RefCell<Option<Result<Vec<u8>, String>>>>,
 }
 
 fn local_storage() -> Option<web_sys::Storage> {
@@ -54,22 +59,21 @@ impl Host {
         Host::default()
     }
 
-    /// Shows the program left unsaved in this browser, if there is one.
+    /// Shows the tabs left with unsaved changes in this browser, if there are.
     pub fn recover(&mut self, wb: &mut Workbench) -> bool {
         let Some(record) = local_storage().and_then(|s| s.get_item(RECOVERY_KEY).ok().flatten())
         else {
             return false;
         };
-        let Some(r) = Recovery::from_record(&record) else {
+        let Some(session) = Session::from_record(&record) else {
             return false;
         };
-        wb.recover(&r.name, r.text, r.encoding);
+        wb.restore_tabs(session.tabs, session.active);
         self.clock.settled(wb.generation());
         true
     }
 
-    /// Reads a file dropped on the page; it opens (once unsaved changes are settled) when the
-    /// browser has read it.
+    /// Reads a file dropped on the page; it opens in a tab when the browser has read it.
     pub fn open_dropped(&mut self, _wb: &mut Workbench, file: &egui::DroppedFileHandle) {
         let file = file.clone();
         let inbox = self.inbox.clone();
@@ -93,13 +97,21 @@ impl Host {
 
     /// Hands files the browser has finished reading to the workbench.
     pub fn poll(&mut self, wb: &mut Workbench) {
+        let font = self.font.borrow_mut().take();
+        match (font, &self.ctx) {
+            (Some(Ok(bytes)), Some(ctx)) => {
+                wb.add_cjk_font(ctx, bytes);
+            }
+            (Some(Ok(_)), None) => wb.cjk_font_failed("no context"),
+            (Some(Err(e)), _) => wb.cjk_font_failed(&e),
+            (None, _) => {}
+        }
         let arrived: Vec<_> = self.inbox.borrow_mut().drain(..).collect();
         for (purpose, name, bytes) in arrived {
             match purpose {
                 Purpose::Program => {
                     let decoded = swarf_syntax::decode(&bytes);
                     wb.open_document(&name, decoded.text, decoded.encoding);
-                    clear_recovery();
                 }
                 Purpose::Dropped => {
                     let decoded = swarf_syntax::decode(&bytes);
@@ -129,7 +141,11 @@ impl Host {
                     match download(&name, &bytes) {
                         Ok(()) => {
                             wb.mark_saved(&name);
-                            clear_recovery();
+                            if wb.any_dirty() {
+                                self.write_recovery(wb);
+                            } else {
+                                clear_recovery();
+                            }
                         }
                         Err(e) => wb.set_message(format!("Cannot download {name}: {e:?}")),
                     }
@@ -142,9 +158,26 @@ impl Host {
                         wb.set_message(format!("Cannot export the setup: {e}"));
                     }
                 }
+                HostRequest::LoadCjkFont => self.fetch_cjk_font(),
                 HostRequest::Quit => {}
             }
         }
+    }
+
+    /// Fetches the CJK font; it is handed to the workbench by [`Host::poll`].
+    fn fetch_cjk_font(&self) {
+        let slot = self.font.clone();
+        let ctx = self.ctx.clone();
+        wasm_bindgen_futures::spawn_local(async move {
+            let result = fetch_bytes(CJK_FONT_URL).await;
+            if let Err(e) = &result {
+                log::warn!("cannot load {CJK_FONT_URL}: {e}");
+            }
+            *slot.borrow_mut() = Some(result);
+            if let Some(ctx) = ctx {
+                ctx.request_repaint();
+            }
+        });
     }
 
     /// Opens the browser's file picker for a program; the chosen file arrives through
@@ -205,25 +238,20 @@ impl Host {
 
     /// Keeps unsaved changes in localStorage a moment after they are made.
     pub fn autosave(&mut self, wb: &Workbench, now: f64) {
-        match self.clock.step(wb.generation(), wb.is_dirty(), now) {
+        match self.clock.step(wb.generation(), wb.any_dirty(), now) {
             Autosave::Wait => {}
             Autosave::Clear => clear_recovery(),
             Autosave::Write => self.write_recovery(wb),
         }
     }
 
-    /// Writes the unsaved program to localStorage now.
+    /// Writes the open tabs to localStorage now, when any has unsaved changes.
     pub fn write_recovery(&mut self, wb: &Workbench) {
         self.clock.restart();
-        if !wb.is_dirty() {
+        if !wb.any_dirty() {
             return;
         }
-        let record = Recovery {
-            name: wb.document().name.clone(),
-            path: String::new(),
-            encoding: wb.document().encoding,
-            text: wb.text().to_string(),
-        };
+        let record = Session::of(wb);
         if let Some(storage) = local_storage()
             && let Err(e) = storage.set_item(RECOVERY_KEY, &record.to_record())
         {
@@ -236,6 +264,24 @@ fn clear_recovery() {
     if let Some(storage) = local_storage() {
         let _ = storage.remove_item(RECOVERY_KEY);
     }
+}
+
+/// The body of `url`, fetched.
+async fn fetch_bytes(url: &str) -> Result<Vec<u8>, String> {
+    let window = web_sys::window().ok_or("no window")?;
+    let response = wasm_bindgen_futures::JsFuture::from(window.fetch_with_str(url))
+        .await
+        .map_err(|e| format!("{e:?}"))?
+        .dyn_into::<web_sys::Response>()
+        .map_err(|_| "no response".to_string())?;
+    if !response.ok() {
+        return Err(format!("HTTP {}", response.status()));
+    }
+    let buffer = response.array_buffer().map_err(|e| format!("{e:?}"))?;
+    let buffer = wasm_bindgen_futures::JsFuture::from(buffer)
+        .await
+        .map_err(|e| format!("{e:?}"))?;
+    Ok(js_sys::Uint8Array::new(&buffer).to_vec())
 }
 
 /// Offers `bytes` as a download named `name`.

@@ -147,6 +147,47 @@ fn unsaved_edits_are_recovered_after_a_crash_and_cleared_by_saving() {
     assert!(!Host::with_recovery_file(recovery).recover(&mut Workbench::default()));
 }
 
+#[test]
+fn every_tab_comes_back_after_a_crash_with_clean_files_read_again() {
+    let dir = scratch("tabs");
+    let recovery = dir.join("recovery.nc");
+    let a = dir.join("a.nc");
+    let sub = dir.join("O1234.nc");
+    std::fs::write(&a, "G0 X1\n").unwrap();
+    std::fs::write(&sub, "O1234\nG1 X5 F100\nM99\n").unwrap();
+    let mut host = Host::with_recovery_file(recovery.clone());
+    let mut wb = Workbench::default();
+    host.open_path(&mut wb, &sub);
+    host.open_path(&mut wb, &a);
+    wb.set_text("G0 X1\nM98 P1234\nM30\n");
+    host.autosave(&wb, 1.0);
+    host.autosave(&wb, 2.5);
+    assert!(recovery.exists());
+    // Saving another tab keeps the record: a.nc still has changes.
+    wb.switch_tab(1);
+    assert!(host.save_to(&mut wb, &sub));
+    assert!(recovery.exists());
+    // The sub changed on disk since: the clean tab is read again.
+    std::fs::write(&sub, "O1234\nG1 X7 F100\nM99\n").unwrap();
+    let mut next = Workbench::default();
+    assert!(Host::with_recovery_file(recovery.clone()).recover(&mut next));
+    assert_eq!(next.tab_count(), 3);
+    assert_eq!(next.document().name, "a.nc");
+    assert_eq!(next.text(), "G0 X1\nM98 P1234\nM30\n");
+    assert!(next.is_dirty());
+    next.finish_analysis();
+    // The call reaches the sub's tab: its move ends at X7.
+    let bounds = next.stats().bounds.unwrap();
+    assert!((bounds.1.x - 7.0).abs() < 1e-9, "{bounds:?}");
+    next.switch_tab(1);
+    assert_eq!(next.text(), "O1234\nG1 X7 F100\nM99\n");
+    assert!(!next.is_dirty());
+    // Saving the last changed tab removes the record.
+    next.switch_tab(2);
+    assert!(Host::with_recovery_file(recovery.clone()).save_to(&mut next, &a));
+    assert!(!recovery.exists());
+}
+
 #[derive(Default)]
 struct MemoryStorage(HashMap<String, String>);
 
@@ -167,6 +208,7 @@ impl eframe::Storage for MemoryStorage {
 fn dialect_setup_and_recent_files_are_kept_between_runs() {
     let mut wb = Workbench::default();
     wb.set_dialect(Dialect::Syntec);
+    wb.set_language(swarf_ui::i18n::Lang::ZhHant);
     wb.import_setup("[registers.2]\nlength = 75.5\n[work_offsets]\nG55 = [10, 20, -30]\n")
         .unwrap();
     let mut storage = MemoryStorage::default();
@@ -178,6 +220,9 @@ fn dialect_setup_and_recent_files_are_kept_between_runs() {
     let mut next = Workbench::default();
     let recent = files::restore_settings(&storage, &mut next);
     assert_eq!(next.dialect(), Dialect::Syntec);
+    assert_eq!(next.language(), swarf_ui::i18n::Lang::ZhHant);
+    // The Chinese language asks the host for its font at once.
+    assert_eq!(next.take_requests(), [swarf_ui::HostRequest::LoadCjkFont]);
     assert_eq!(next.setup(), wb.setup());
     assert_eq!(recent, ["/a.nc", "/b.nc"]);
     // A broken value is skipped, not fatal.

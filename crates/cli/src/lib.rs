@@ -171,28 +171,12 @@ struct LinkedText {
 /// Most files linked to one program (a bound on runaway chains of calls).
 const MAX_LINKED: usize = 64;
 
-/// The files in `dir` that may hold a called program: `O1234`, `O1234.nc`, `1234.nc` … for a
-/// number, `name.ngc` (LinuxCNC's subroutine files) or `name.nc` for a name.
+/// The files in `dir` that may hold a called program (see [`Missing::file_names`]).
 fn candidates(dir: &Path, missing: &Missing) -> Vec<PathBuf> {
-    let stems: Vec<String> = match missing {
-        Missing::Number(n) => vec![
-            format!("O{n:04}"),
-            format!("O{n}"),
-            format!("o{n:04}"),
-            format!("o{n}"),
-            format!("{n:04}"),
-            format!("{n}"),
-        ],
-        Missing::Name(name) => vec![name.clone()],
-    };
-    let extensions = ["", ".nc", ".NC", ".ngc", ".tap", ".txt", ".gcode", ".cnc"];
-    stems
+    missing
+        .file_names()
         .iter()
-        .flat_map(|stem| {
-            extensions
-                .iter()
-                .map(move |e| dir.join(format!("{stem}{e}")))
-        })
+        .map(|name| dir.join(name))
         .collect()
 }
 

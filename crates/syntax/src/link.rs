@@ -33,6 +33,40 @@ pub enum Missing {
     Name(String),
 }
 
+/// File name extensions a called program's file may have, in the order they are tried.
+pub const CALLED_FILE_EXTENSIONS: [&str; 8] =
+    ["", ".nc", ".NC", ".ngc", ".tap", ".txt", ".gcode", ".cnc"];
+
+impl Missing {
+    /// The file names that may hold this called program, in the order they are tried:
+    /// `O1234`, `O1234.nc`, `1234.nc` … for a number, `name.ngc` (LinuxCNC's subroutine files)
+    /// or `name.nc` for a name. The CLI looks for them beside the caller, the editor among its
+    /// open files.
+    pub fn file_names(&self) -> Vec<String> {
+        let stems: Vec<String> = match self {
+            Missing::Number(n) => vec![
+                format!("O{n:04}"),
+                format!("O{n}"),
+                format!("o{n:04}"),
+                format!("o{n}"),
+                format!("{n:04}"),
+                format!("{n}"),
+            ],
+            Missing::Name(name) => vec![name.clone()],
+        };
+        let mut names: Vec<String> = Vec::with_capacity(stems.len() * CALLED_FILE_EXTENSIONS.len());
+        for stem in &stems {
+            for e in CALLED_FILE_EXTENSIONS {
+                let name = format!("{stem}{e}");
+                if !names.contains(&name) {
+                    names.push(name);
+                }
+            }
+        }
+        names
+    }
+}
+
 impl Program {
     /// Appends `other` (parsed from the file `name`, `len` bytes long) after this program, with
     /// its spans moved past `self_len` bytes of this program's own text and everything linked

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
-use swarf_syntax::{Dialect, Program, Severity, parse};
+use swarf_syntax::{Diagnostic, Dialect, LineIndex, Program, Severity, parse};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
 use crate::backplot::{Scene, SourceText};
@@ -25,6 +25,38 @@ pub struct Problem {
     pub message: String,
     /// Character range in the text, for underlining and jumping.
     pub chars: std::ops::Range<usize>,
+}
+
+/// A diagnostic in another open file that the program called (a subprogram's error), located
+/// in that file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkedProblem {
+    /// The name of the file (tab) it is in.
+    pub file: String,
+    /// The diagnostic, located in that file's text.
+    pub problem: Problem,
+}
+
+/// Another open file whose programs a program's calls may reach: it is linked when its name is
+/// one the CLI looks for beside a program (`O1234.nc`, `1234.nc`, `name.ngc` …, see
+/// [`swarf_syntax::Missing::file_names`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OpenFile<'a> {
+    /// The file's name, as shown on its tab.
+    pub name: &'a str,
+    /// Its text.
+    pub text: &'a str,
+}
+
+/// Most files linked to one program (a bound on runaway chains of calls).
+const MAX_LINKED: usize = 64;
+
+/// A file linked to the program: the `i`-th is the program's `linked[i]`.
+#[derive(Debug, Clone)]
+struct LinkedText {
+    name: String,
+    text: String,
+    lines: LineIndex,
 }
 
 /// Summary numbers of an analysed program.
@@ -47,8 +79,10 @@ pub struct Analysis {
     pub program: Program,
     /// The recorded toolpath.
     pub toolpath: Toolpath,
-    /// Every diagnostic, sorted by position.
+    /// Every diagnostic in the program's own text, sorted by position.
     pub problems: Vec<Problem>,
+    /// Diagnostics in the other open files its calls reached, by file then position.
+    pub elsewhere: Vec<LinkedProblem>,
     /// Geometry for the backplot.
     pub scene: Scene,
     /// The machine state at any block (for the state-at-cursor view).
@@ -74,12 +108,21 @@ impl Analysis {
         }
     }
 
-    /// Number of problems of `severity`.
+    /// Number of problems of `severity`, in the program's own text and in the files it called.
     pub fn count(&self, severity: Severity) -> usize {
         self.problems
             .iter()
+            .chain(self.elsewhere.iter().map(|l| &l.problem))
             .filter(|p| p.severity == severity)
             .count()
+    }
+
+    /// The name of the other open file a 0-based block `line` of the program lies in (`None`:
+    /// the program's own text), with the line's 1-based number in that file.
+    pub fn linked_line(&self, line: u32) -> Option<(&str, u32)> {
+        let i = self.program.linked_at_line(line)?;
+        let file = self.program.linked.get(i)?;
+        Some((file.name.as_str(), line - file.first_line + 1))
     }
 }
 
@@ -95,12 +138,43 @@ pub struct PendingAnalysis {
     setup: Setup,
     generation: u64,
     finished: bool,
+    /// The other open files linked for the program's calls.
+    linked: Vec<LinkedText>,
+    /// Whether calls were looked for among open files (rather than files beside the program).
+    among_open_files: bool,
 }
 
 impl PendingAnalysis {
     /// Parses `text` and prepares its run (nothing executed yet).
     pub fn start(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
-        let program = parse(text, dialect);
+        Self::start_linked(text, dialect, setup, generation, None)
+    }
+
+    /// Like [`start`](PendingAnalysis::start), for a program open beside `others`: the
+    /// programs it calls and does not hold are linked from those files (named as the CLI
+    /// looks for them beside a program), and a call found in none says so.
+    pub fn start_among(
+        text: &str,
+        dialect: Dialect,
+        setup: &Setup,
+        generation: u64,
+        others: &[OpenFile<'_>],
+    ) -> Self {
+        Self::start_linked(text, dialect, setup, generation, Some(others))
+    }
+
+    fn start_linked(
+        text: &str,
+        dialect: Dialect,
+        setup: &Setup,
+        generation: u64,
+        others: Option<&[OpenFile<'_>]>,
+    ) -> Self {
+        let mut program = parse(text, dialect);
+        let linked = match others {
+            Some(others) => link_open_files(&mut program, text.len(), dialect, others),
+            None => Vec::new(),
+        };
         let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
         toolpath.reserve(program.blocks.len());
         let run = swarf_interp::StatesRun::new(&program, setup.clone());
@@ -112,6 +186,8 @@ impl PendingAnalysis {
             setup: setup.clone(),
             generation,
             finished: false,
+            linked,
+            among_open_files: others.is_some(),
         }
     }
 
@@ -155,13 +231,47 @@ impl PendingAnalysis {
             run,
             setup,
             generation,
+            linked,
+            among_open_files,
             ..
         } = self;
         let mut diags = program.diagnostics.clone();
         let (run_diags, states) = run.finish();
         diags.extend(run_diags);
         diags.sort_by_key(|d| (d.span.start, d.span.end));
-        let problems = locate(&text, &program, &diags);
+        // Diagnostics past the program's own text belong to the files linked after it.
+        let own_end = program.linked.first().map_or(u32::MAX, |l| l.first_byte);
+        let split = diags.partition_point(|d| d.span.start < own_end);
+        let others = diags.split_off(split);
+        if among_open_files {
+            for d in &mut diags {
+                if matches!(d.code, "E-SUBPROGRAM" | "E-OWORD") {
+                    d.message = d.message.replace("a file beside it", "an open tab");
+                }
+            }
+        }
+        let problems = locate(&text, &program.lines, &diags);
+        let mut elsewhere = Vec::new();
+        for (i, (at, file)) in program.linked.iter().zip(&linked).enumerate() {
+            let here: Vec<Diagnostic> = others
+                .iter()
+                .filter(|d| program.linked_at_offset(d.span.start) == Some(i))
+                .map(|d| {
+                    let mut d = d.clone();
+                    d.span.start = d.span.start.saturating_sub(at.first_byte);
+                    d.span.end = d.span.end.saturating_sub(at.first_byte);
+                    d
+                })
+                .collect();
+            elsewhere.extend(
+                locate(&file.text, &file.lines, &here)
+                    .into_iter()
+                    .map(|problem| LinkedProblem {
+                        file: file.name.clone(),
+                        problem,
+                    }),
+            );
+        }
         let mut scene = scene_of(&toolpath, generation);
         if let Some(travel) = setup.machine.travel_mm {
             let mut marks = scene.marks.as_ref().clone();
@@ -180,14 +290,56 @@ impl PendingAnalysis {
             program,
             toolpath,
             problems,
+            elsewhere,
             scene,
             states,
         }
     }
 }
 
+/// Links the programs `program` calls and does not hold from the open files named as the CLI
+/// looks for them beside a program, until nothing more is found; the linked files' texts.
+fn link_open_files(
+    program: &mut Program,
+    main_len: usize,
+    dialect: Dialect,
+    others: &[OpenFile<'_>],
+) -> Vec<LinkedText> {
+    let mut linked: Vec<LinkedText> = Vec::new();
+    loop {
+        let mut progress = false;
+        for missing in program.missing_calls() {
+            if linked.len() >= MAX_LINKED {
+                return linked;
+            }
+            let names = missing.file_names();
+            let Some(file) = names
+                .iter()
+                .find_map(|n| others.iter().find(|o| o.name == n))
+            else {
+                continue;
+            };
+            if linked.iter().any(|l| l.name == file.name) {
+                continue;
+            }
+            let sub = parse(file.text, dialect);
+            let lines = sub.lines.clone();
+            program.link(sub, file.name, main_len, file.text.len());
+            linked.push(LinkedText {
+                name: file.name.to_string(),
+                text: file.text.to_string(),
+                lines,
+            });
+            progress = true;
+        }
+        if !progress {
+            return linked;
+        }
+    }
+}
+
 /// Turns byte spans into lines, columns and character ranges in one pass over the text.
-fn locate(text: &str, program: &Program, diags: &[swarf_syntax::Diagnostic]) -> Vec<Problem> {
+fn locate(text: &str, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
     let mut offsets: Vec<usize> = diags
         .iter()
         .flat_map(|d| [d.span.start as usize, d.span.end as usize])
@@ -208,7 +360,7 @@ fn locate(text: &str, program: &Program, diags: &[swarf_syntax::Diagnostic]) -> 
             next.next();
         }
     }
-    let mut cols = program.lines.cursor(text);
+    let mut cols = lines.cursor(text);
     diags
         .iter()
         .map(|d| {

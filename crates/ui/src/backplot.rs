@@ -21,6 +21,8 @@ use swarf_render::{
 };
 use swarf_toolpath::Timeline;
 
+use crate::i18n::{tr, trf};
+
 mod playback;
 pub use playback::{PLAYBACK_SPEEDS, Playback};
 
@@ -493,7 +495,7 @@ impl Backplot {
             // A real label (not painter text) so screen readers and tests can find it.
             ui.put(
                 rect,
-                egui::Label::new(egui::RichText::new("3D view unavailable").weak()),
+                egui::Label::new(egui::RichText::new(tr("3D view unavailable")).weak()),
             );
             return response;
         }
@@ -811,8 +813,8 @@ impl Backplot {
                 .layout(egui::Layout::left_to_right(egui::Align::Min)),
         );
         if child
-            .small_button("Fit")
-            .on_hover_text("Fit to extents (double-click)")
+            .small_button(tr("Fit"))
+            .on_hover_text(tr("Fit to extents (double-click)"))
             .clicked()
         {
             self.fit();
@@ -823,15 +825,15 @@ impl Backplot {
             ("Front", StandardView::Front),
             ("Right", StandardView::Right),
         ] {
-            if child.small_button(label).clicked() {
+            if child.small_button(tr(label)).clicked() {
                 self.camera.set_view(view);
                 self.fit();
             }
         }
         let perspective = self.camera.projection == Projection::Perspective;
         if child
-            .selectable_label(perspective, "Persp")
-            .on_hover_text("Perspective / orthographic projection")
+            .selectable_label(perspective, tr("Persp"))
+            .on_hover_text(tr("Perspective / orthographic projection"))
             .clicked()
         {
             self.camera.projection = if perspective {
@@ -842,34 +844,34 @@ impl Backplot {
         }
         let by_tool = self.color_mode == ColorMode::ByIndex;
         if child
-            .selectable_label(by_tool, "By tool")
-            .on_hover_text("Colour the path by tool instead of by kind of move (T)")
+            .selectable_label(by_tool, tr("By tool"))
+            .on_hover_text(tr("Colour the path by tool instead of by kind of move (T)"))
             .clicked()
         {
             self.toggle_color_by_tool();
         }
         let contour = self.kind_visible(Kind::Programmed);
         if child
-            .selectable_label(contour, "Contour")
-            .on_hover_text(
+            .selectable_label(contour, tr("Contour"))
+            .on_hover_text(tr(
                 "Show the programmed contour beside the tool centre's path under cutter compensation",
-            )
+            ))
             .clicked()
         {
             self.set_kind_visible(Kind::Programmed, !contour);
         }
         let rapids = self.kind_visible(Kind::Rapid);
         if child
-            .selectable_label(rapids, "Rapids")
-            .on_hover_text("Show or hide rapid moves")
+            .selectable_label(rapids, tr("Rapids"))
+            .on_hover_text(tr("Show or hide rapid moves"))
             .clicked()
         {
             self.set_kind_visible(Kind::Rapid, !rapids);
         }
         if self.selected_line.is_some()
             && child
-                .small_button("Zoom sel")
-                .on_hover_text("Zoom to the selected block")
+                .small_button(tr("Zoom sel"))
+                .on_hover_text(tr("Zoom to the selected block"))
                 .clicked()
         {
             self.zoom_to_selection();
@@ -914,7 +916,7 @@ fn tool_outline(tip: Vec3, radius: f32, cone: f32, shank: f32) -> Vec<(Vec3, Vec
 
 /// Human name of a kind for the tooltip.
 fn kind_label(kind: Option<Kind>) -> &'static str {
-    match kind {
+    tr(match kind {
         Some(Kind::Rapid) => "rapid",
         Some(Kind::Feed) => "feed",
         Some(Kind::Arc) => "arc",
@@ -924,12 +926,12 @@ fn kind_label(kind: Option<Kind>) -> &'static str {
         Some(Kind::Compensated) => "compensated",
         Some(Kind::Programmed) => "programmed",
         _ => "move",
-    }
+    })
 }
 
 /// The hover tooltip: line and block text, position, kind and feed.
 fn hover_tooltip(ui: &mut egui::Ui, hover: &HoverInfo, scene: &Scene) {
-    ui.strong(format!("Line {}", hover.line));
+    ui.strong(trf("Line {}", &[&hover.line]));
     if let Some(text) = scene.source.as_ref().and_then(|s| s.line(hover.line)) {
         let text = text.trim();
         let shown: String = text.chars().take(TOOLTIP_TEXT_CHARS).collect();

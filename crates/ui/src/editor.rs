@@ -397,10 +397,13 @@ impl CodeEditor {
         };
         let lines = large.starts.len();
         ui.label(
-            egui::RichText::new(format!(
-                "{lines} lines, {:.1} MB: shown read-only (programs up to {} MB are edited here)",
-                text.len() as f64 / 1e6,
-                LARGE_TEXT_BYTES >> 20
+            egui::RichText::new(crate::i18n::trf(
+                "{} lines, {} MB: shown read-only (programs up to {} MB are edited here)",
+                &[
+                    &lines,
+                    &format!("{:.1}", text.len() as f64 / 1e6),
+                    &(LARGE_TEXT_BYTES >> 20),
+                ],
             ))
             .italics(),
         )
@@ -566,7 +569,10 @@ pub fn gutter_tooltip(problems: &[Problem], line: u32) -> Option<String> {
         .map(|p| {
             let mut s = format!("{} [{}]: {}", p.severity.as_str(), p.code, p.message);
             if let Some(alarm) = commands::alarm_in(&p.message) {
-                s.push_str(&format!("\nControl alarm: {alarm}"));
+                s.push_str(&format!(
+                    "\n{}",
+                    crate::i18n::trf("Control alarm: {}", &[&alarm])
+                ));
             }
             s
         })
@@ -609,7 +615,10 @@ pub fn hover_text(text: &str, dialect: Dialect, at: usize, problems: &[Problem])
                     "{} — {}\n{}\n{}",
                     def.code, def.name, def.format, def.summary
                 )),
-                None => lines.push(format!("{code} is not a code of {}", dialect.label())),
+                None => lines.push(crate::i18n::trf(
+                    "{} is not a code of {}",
+                    &[&code, &dialect.label()],
+                )),
             },
             None if !value.is_empty() => {
                 if let Some(a) = swarf_syntax::codes::address(dialect, letter).next() {

@@ -7,10 +7,11 @@ pub mod commands;
 pub mod editor;
 pub mod examples;
 pub mod history;
+pub mod i18n;
 mod settings;
 mod workbench;
 
-pub use analysis::{Analysis, PendingAnalysis, Problem, Stats};
+pub use analysis::{Analysis, LinkedProblem, OpenFile, PendingAnalysis, Problem, Stats};
 pub use workbench::{
-    Document, EXAMPLE_PROGRAM, FRAME_BUDGET, HostRequest, Workbench, format_duration,
+    Document, EXAMPLE_PROGRAM, FRAME_BUDGET, HostRequest, TabRecord, Workbench, format_duration,
 };

@@ -5,6 +5,7 @@ use glam::DVec3;
 use swarf_interp::{CornerMode, Register, Setup, ShiftDirection};
 use swarf_syntax::Dialect;
 
+use crate::i18n::tr;
 use crate::workbench::HostRequest;
 
 /// The fixed work offsets always listed (extended ones are added by name).
@@ -21,7 +22,7 @@ pub fn settings_ui(
 ) -> Option<HostRequest> {
     let mut request = None;
     ui.horizontal(|ui| {
-        let label = ui.label("Dialect");
+        let label = ui.label(tr("Dialect"));
         egui::ComboBox::from_id_salt("swarf-settings-dialect")
             .selected_text(dialect.label())
             .show_ui(ui, |ui| {
@@ -33,24 +34,24 @@ pub fn settings_ui(
             .labelled_by(label.id);
     });
     ui.horizontal(|ui| {
-        if ui.button("Import SETUP.toml…").clicked() {
+        if ui.button(tr("Import SETUP.toml…")).clicked() {
             request = Some(HostRequest::ImportSetup);
         }
-        if ui.button("Export SETUP.toml…").clicked() {
+        if ui.button(tr("Export SETUP.toml…")).clicked() {
             request = Some(HostRequest::ExportSetup);
         }
-        if ui.button("Reset to defaults").clicked() {
+        if ui.button(tr("Reset to defaults")).clicked() {
             *setup = Setup::default();
         }
     });
-    ui.label("Values in millimetres; they are kept between runs.");
-    egui::CollapsingHeader::new("Offset registers (H length, D radius)")
+    ui.label(tr("Values in millimetres; they are kept between runs."));
+    egui::CollapsingHeader::new(tr("Offset registers (H length, D radius)"))
         .default_open(true)
         .show(ui, |ui| registers_ui(ui, setup));
-    egui::CollapsingHeader::new("Work offsets")
+    egui::CollapsingHeader::new(tr("Work offsets"))
         .default_open(true)
         .show(ui, |ui| work_offsets_ui(ui, setup, new_offset));
-    egui::CollapsingHeader::new("Machine")
+    egui::CollapsingHeader::new(tr("Machine"))
         .default_open(true)
         .show(ui, |ui| machine_ui(ui, setup));
     request
@@ -80,10 +81,10 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 "Radius",
                 "Radius wear",
                 "Tip (lathe)",
-                "",
             ] {
-                ui.strong(head);
+                ui.strong(tr(head));
             }
+            ui.strong("");
             ui.end_row();
             for (n, r) in setup.registers.iter_mut() {
                 ui.label(n.to_string());
@@ -99,11 +100,11 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 }
                 let response = ui
                     .add(egui::DragValue::new(&mut r.orientation).range(0..=9))
-                    .on_hover_text(
+                    .on_hover_text(tr(
                         "Lathe tool tip direction 1-8 (LinuxCNC's Q): compensation in G18 reports the imaginary tip; 0 a mill, 9 the nose centre",
-                    );
+                    ));
                 named(ui, response, &format!("Register {n} tool orientation"));
-                let remove_button = ui.small_button("×").on_hover_text("Remove");
+                let remove_button = ui.small_button("×").on_hover_text(tr("Remove"));
                 if named(ui, remove_button, &format!("Remove register {n}")).clicked() {
                     remove = Some(*n);
                 }
@@ -113,7 +114,7 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     if let Some(n) = remove {
         setup.registers.remove(&n);
     }
-    if ui.button("Add register").clicked() {
+    if ui.button(tr("Add register")).clicked() {
         let next = setup.registers.keys().next_back().map_or(1, |n| n + 1);
         setup.registers.insert(next, Register::default());
     }
@@ -149,14 +150,14 @@ fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String
             }
         });
     ui.horizontal(|ui| {
-        let label = ui.label("Add offset");
+        let label = ui.label(tr("Add offset"));
         ui.add(
             egui::TextEdit::singleline(new_offset)
                 .desired_width(90.0)
                 .hint_text("G54.1P1"),
         )
         .labelled_by(label.id);
-        if ui.button("Add").clicked() {
+        if ui.button(tr("Add")).clicked() {
             let toml = format!("[work_offsets]\n{:?} = [0, 0, 0]\n", new_offset.trim());
             if let Ok(parsed) = Setup::from_toml(&toml) {
                 for name in parsed.work_offsets.into_keys() {
@@ -173,7 +174,7 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     egui::Grid::new("swarf-machine")
         .num_columns(2)
         .show(ui, |ui| {
-            let label = ui.label("Rapid rate (mm/min)");
+            let label = ui.label(tr("Rapid rate (mm/min)"));
             ui.add(
                 egui::DragValue::new(&mut m.rapid_mm_per_min)
                     .range(1.0..=1_000_000.0)
@@ -182,7 +183,9 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             .labelled_by(label.id);
             ui.end_row();
             let mut per_axis = m.rapid_xyz_mm_per_min.is_some();
-            let per_axis_label = ui.checkbox(&mut per_axis, "Rapid rate per axis X Y Z").id;
+            let per_axis_label = ui
+                .checkbox(&mut per_axis, tr("Rapid rate per axis X Y Z"))
+                .id;
             let mut xyz = m.rapid_xyz_mm_per_min.unwrap_or([m.rapid_mm_per_min; 3]);
             ui.horizontal(|ui| {
                 ui.add_enabled_ui(per_axis, |ui| {
@@ -194,11 +197,11 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             });
             m.rapid_xyz_mm_per_min = per_axis.then_some(xyz);
             ui.end_row();
-            let label = ui.label("Acceleration (mm/s²)");
+            let label = ui.label(tr("Acceleration (mm/s²)"));
             ui.add(egui::DragValue::new(&mut m.acceleration_mm_per_s2).range(0.0..=100_000.0))
                 .labelled_by(label.id);
             ui.end_row();
-            let label = ui.label("Peck retract (mm)");
+            let label = ui.label(tr("Peck retract (mm)"));
             ui.add(
                 egui::DragValue::new(&mut m.peck_retract_mm)
                     .range(0.0..=100.0)
@@ -206,7 +209,7 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             )
             .labelled_by(label.id);
             ui.end_row();
-            let label = ui.label("Arc tolerance (mm)");
+            let label = ui.label(tr("Arc tolerance (mm)"));
             ui.add(
                 egui::DragValue::new(&mut m.arc_tolerance_mm)
                     .range(0.0..=10.0)
@@ -215,17 +218,17 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             )
             .labelled_by(label.id);
             ui.end_row();
-            let label = ui.label("Runaway limit (blocks)");
+            let label = ui.label(tr("Runaway limit (blocks)"));
             ui.add(egui::DragValue::new(&mut m.max_blocks).range(1..=1_000_000_000_u64))
                 .labelled_by(label.id);
             ui.end_row();
-            let label = ui.label("Move limit (moves)");
+            let label = ui.label(tr("Move limit (moves)"));
             ui.add(egui::DragValue::new(&mut m.max_motions).range(1..=1_000_000_000_u64))
                 .labelled_by(label.id);
             ui.end_row();
             let mut travel = m.travel_mm.is_some();
             let travel_label = ui
-                .checkbox(&mut travel, "Machine travel min / max X Y Z")
+                .checkbox(&mut travel, tr("Machine travel min / max X Y Z"))
                 .id;
             let mut bounds = m
                 .travel_mm
@@ -243,7 +246,7 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             });
             m.travel_mm = travel.then_some(bounds);
             ui.end_row();
-            let label = ui.label("G76/G87 shift direction");
+            let label = ui.label(tr("G76/G87 shift direction"));
             egui::ComboBox::from_id_salt("swarf-shift")
                 .selected_text(shift_name(m.shift_direction))
                 .show_ui(ui, |ui| {
@@ -261,20 +264,20 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 .response
                 .labelled_by(label.id);
             ui.end_row();
-            ui.label("Syntec drilling");
+            ui.label(tr("Syntec drilling"));
             ui.vertical(|ui| {
-                ui.checkbox(&mut m.fast_drilling, "G81 retracts at F2= (Pr4008 = 1)");
+                ui.checkbox(&mut m.fast_drilling, tr("G81 retracts at F2= (Pr4008 = 1)"));
                 ui.checkbox(
                     &mut m.high_speed_peck_tapping,
-                    "Peck tapping backs out by the peck retract (Pr4001 = 1)",
+                    tr("Peck tapping backs out by the peck retract (Pr4001 = 1)"),
                 );
             });
             ui.end_row();
-            let label = ui.label("Cutter compensation corners");
+            let label = ui.label(tr("Cutter compensation corners"));
             let corner = |c: Option<CornerMode>| match c {
-                None => "as the dialect does",
-                Some(CornerMode::Arc) => "arc (LinuxCNC)",
-                Some(CornerMode::Intersection) => "intersection (Fanuc family)",
+                None => tr("as the dialect does"),
+                Some(CornerMode::Arc) => tr("arc (LinuxCNC)"),
+                Some(CornerMode::Intersection) => tr("intersection (Fanuc family)"),
             };
             egui::ComboBox::from_id_salt("swarf-corner")
                 .selected_text(corner(m.corner_mode))
@@ -286,14 +289,14 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 .response
                 .labelled_by(label.id);
             ui.end_row();
-            ui.label("Gouges");
-            ui.checkbox(&mut m.overcut_alarm, "stop with an alarm (Syntec 3819)");
+            ui.label(tr("Gouges"));
+            ui.checkbox(&mut m.overcut_alarm, tr("stop with an alarm (Syntec 3819)"));
             ui.end_row();
-            let label = ui.label("G41/G42 under a mirror");
+            let label = ui.label(tr("G41/G42 under a mirror"));
             let side = |c: Option<bool>| match c {
-                None => "the dialect's default",
-                Some(true) => "swapped by the control (Fanuc)",
-                Some(false) => "as written (Syntec's example)",
+                None => tr("the dialect's default"),
+                Some(true) => tr("swapped by the control (Fanuc)"),
+                Some(false) => tr("as written (Syntec's example)"),
             };
             egui::ComboBox::from_id_salt("swarf-mirror-side")
                 .selected_text(side(m.mirror_swaps_comp_side))
@@ -305,11 +308,11 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 .response
                 .labelled_by(label.id);
             ui.end_row();
-            let label = ui.label("Integers without a point");
+            let label = ui.label(tr("Integers without a point"));
             let text = |c: Option<bool>| match c {
-                None => "as the dialect's manual says",
-                Some(true) => "millimetres (calculator input)",
-                Some(false) => "least input increments",
+                None => tr("as the dialect's manual says"),
+                Some(true) => tr("millimetres (calculator input)"),
+                Some(false) => tr("least input increments"),
             };
             egui::ComboBox::from_id_salt("swarf-calculator")
                 .selected_text(text(m.calculator_input))
@@ -325,7 +328,7 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 .iter()
                 .enumerate()
             {
-                let label = ui.label(*name).id;
+                let label = ui.label(tr(*name)).id;
                 let mut p = m.reference_points.get(i).copied().unwrap_or_default();
                 let mut changed = false;
                 ui.horizontal(|ui| {

@@ -5,12 +5,13 @@ use std::ops::Range;
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, Encoding, Severity};
 
-use crate::analysis::{Analysis, PendingAnalysis, Problem, Stats};
+use crate::analysis::{Analysis, OpenFile, PendingAnalysis, Problem, Stats};
 use crate::backplot::Backplot;
 use crate::commands::{self, FindOptions, Finder, RenumberOptions};
 use crate::editor::{CodeEditor, severity_color};
 use crate::examples::EXAMPLES;
 use crate::history::{EditKind, History, Snapshot};
+use crate::i18n::{Lang, tr, trf};
 
 /// The example program the editor starts with.
 pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.nc");
@@ -19,7 +20,10 @@ pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.
 /// the frame of the edit, a longer one goes on over the next frames behind a progress bar.
 pub const FRAME_BUDGET: usize = 20_000;
 
-/// Editor, problems and backplot over one program text; re-analyses on every edit.
+/// Editor, problems and backplot over the program of the active tab; re-analyses on every edit.
+///
+/// Each tab holds one file (a [`Document`] with its text, undo history and cursor). The active
+/// tab's program is analysed with the other tabs as the files its subprogram calls may reach.
 ///
 /// The analysis runs a bounded number of blocks per frame ([`FRAME_BUDGET`]); until a new one
 /// is finished, the last finished analysis (markers, problems, backplot) stays on screen, and
@@ -60,6 +64,11 @@ pub struct Workbench {
     /// A new work offset's name typed in the settings window.
     new_offset: String,
     document: Document,
+    /// Every open tab, in order; the active one's entry is empty while its content lives in
+    /// the fields above.
+    tabs: Vec<Tab>,
+    /// Index of the active tab in `tabs`.
+    active: usize,
     requests: Vec<HostRequest>,
     /// An action waiting for the answer to "discard unsaved changes?".
     confirm: Option<Action>,
@@ -68,6 +77,18 @@ pub struct Workbench {
     recent: Vec<String>,
     /// A short message for the status bar (a command's result, an error).
     message: Option<String>,
+    /// The interface language.
+    lang: Lang,
+    /// Whether the CJK font the Chinese languages need is added, asked for, or neither.
+    cjk_font: FontState,
+}
+
+/// Where the CJK font stands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum FontState {
+    Absent,
+    Requested,
+    Ready,
 }
 
 /// The open program as a file: its name, encoding and whether it has unsaved changes.
@@ -83,6 +104,39 @@ pub struct Document {
     /// The text as last opened or saved.
     saved: String,
     dirty: bool,
+}
+
+impl Default for Document {
+    /// An empty untitled program.
+    fn default() -> Self {
+        Document::new("untitled.nc", "", Encoding::Utf8)
+    }
+}
+
+/// What a tab holds while another one is active.
+#[derive(Debug, Clone, Default)]
+struct Tab {
+    text: String,
+    document: Document,
+    history: History,
+    shadow: String,
+    selection: Range<usize>,
+    cursor_line: Option<u32>,
+}
+
+/// One open tab's file and text, for keeping unsaved work over a crash or a reload.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TabRecord {
+    /// The document's name.
+    pub name: String,
+    /// Its file, when the host knows it.
+    pub path: Option<String>,
+    /// The file's encoding.
+    pub encoding: Encoding,
+    /// The text (with its unsaved changes).
+    pub text: String,
+    /// Whether the text has changes that are not saved.
+    pub dirty: bool,
 }
 
 impl Document {
@@ -115,15 +169,18 @@ pub enum HostRequest {
     ExportSetup,
     /// Close the application (unsaved changes were saved or discarded).
     Quit,
+    /// Get a CJK font for the Chinese interface languages and hand its bytes to
+    /// [`Workbench::add_cjk_font`] (or say why not with [`Workbench::cjk_font_failed`]).
+    LoadCjkFont,
 }
 
-/// An action that replaces the program, held while unsaved changes are confirmed.
+/// An action that drops unsaved changes, held while they are confirmed.
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Action {
-    New,
-    Example(usize),
-    Host(HostRequest),
-    Load(Box<(String, String, Encoding, Option<String>)>),
+    /// Close the active tab.
+    Close,
+    /// Quit once the tabs from this index on are saved or discarded.
+    Quit(usize),
 }
 
 /// What a match count was computed for: (text generation, pattern, options).
@@ -186,11 +243,15 @@ impl Workbench {
             settings_open: false,
             new_offset: String::new(),
             document: Document::new("untitled.nc", &text_for_shadow, Encoding::Utf8),
+            tabs: vec![Tab::default()],
+            active: 0,
             requests: Vec::new(),
             confirm: None,
             after_save: None,
             recent: Vec::new(),
             message: None,
+            lang: Lang::En,
+            cjk_font: FontState::Absent,
         }
     }
 
@@ -205,21 +266,48 @@ impl Workbench {
         self.backplot.fit();
     }
 
-    /// Shows a program read from a file: a fresh undo history, no unsaved changes.
+    /// Opens a program read from a file in a new tab (or in the active one when that is
+    /// empty, untitled and unchanged): a fresh undo history, no unsaved changes.
     pub fn open_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
-        self.text = text.into();
-        self.shadow = self.text.clone();
-        self.history.clear();
-        self.document = Document::new(name, &self.text, encoding);
-        self.selection = 0..0;
-        self.editor.jump_to(0..0);
-        self.message = None;
-        self.reanalyse();
-        self.backplot.fit();
+        self.open_file(name, text.into(), encoding, None);
     }
 
-    /// Opens a program read from a file (dropped on the window or the page) once unsaved
-    /// changes are saved or discarded; `path` is where it came from, when the host knows.
+    /// Opens a program read from a file in a tab, as [`Workbench::open_document`]; `path` is
+    /// where it came from, when the host knows. A file already open from the same path gets
+    /// its tab back (re-read when it has no unsaved changes).
+    pub fn open_file(
+        &mut self,
+        name: &str,
+        text: String,
+        encoding: Encoding,
+        path: Option<String>,
+    ) {
+        let open_at = path.as_ref().and_then(|p| {
+            (0..self.tabs.len()).find(|&i| self.tab_document(i).path.as_ref() == Some(p))
+        });
+        match open_at {
+            Some(i) => {
+                self.switch_tab(i);
+                if self.document.dirty {
+                    self.message = Some(trf("{} is open here with unsaved changes", &[&name]));
+                    return;
+                }
+            }
+            None if self.is_blank() => {}
+            None => {
+                let current = self.park();
+                if let Some(slot) = self.tabs.get_mut(self.active) {
+                    *slot = current;
+                }
+                self.tabs.push(Tab::default());
+                self.active = self.tabs.len() - 1;
+            }
+        }
+        self.load(name, text, encoding);
+        self.document.path = path;
+    }
+
+    /// Opens a file dropped on the window or the page in a tab (see [`Workbench::open_file`]).
     pub fn open_guarded(
         &mut self,
         name: &str,
@@ -227,12 +315,35 @@ impl Workbench {
         encoding: Encoding,
         path: Option<String>,
     ) {
-        self.guarded(Action::Load(Box::new((
-            name.to_string(),
-            text,
-            encoding,
-            path,
-        ))));
+        self.open_file(name, text, encoding, path);
+    }
+
+    /// Replaces the active tab's program with a file's text (no unsaved changes), as after
+    /// saving it in another encoding.
+    pub fn reload_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
+        let path = self.document.path.take();
+        self.load(name, text.into(), encoding);
+        self.document.path = path;
+    }
+
+    /// Shows `text` as the active tab's file `name`: a fresh undo history, no unsaved changes.
+    fn load(&mut self, name: &str, text: String, encoding: Encoding) {
+        self.text = text;
+        self.shadow = self.text.clone();
+        self.history.clear();
+        self.document = Document::new(name, &self.text, encoding);
+        self.selection = 0..0;
+        self.cursor_line = None;
+        self.synced_line = None;
+        self.editor.jump_to(0..0);
+        self.message = None;
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// Whether the active tab is empty, untitled and unchanged (a file opened replaces it).
+    fn is_blank(&self) -> bool {
+        self.text.is_empty() && !self.document.dirty && self.document.path.is_none()
     }
 
     /// Records where the open document's file is (after opening or saving it).
@@ -240,16 +351,203 @@ impl Workbench {
         self.document.path = path;
     }
 
-    /// Replaces the program with unsaved `text` recovered after a crash: shown as a change to
-    /// `name` that still needs saving.
+    /// Replaces the active tab's program with unsaved `text` recovered after a crash: shown as
+    /// a change to `name` that still needs saving.
     pub fn recover(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
-        self.open_document(name, String::new(), encoding);
+        self.load(name, String::new(), encoding);
         self.text = text.into();
         self.shadow = self.text.clone();
         self.document.dirty = true;
-        self.message = Some("Recovered unsaved changes".to_string());
+        self.message = Some(tr("Recovered unsaved changes").to_string());
         self.reanalyse();
         self.backplot.fit();
+    }
+
+    /// Every tab's file and text, in order, with the index of the active one.
+    pub fn tab_records(&self) -> (Vec<TabRecord>, usize) {
+        let records = (0..self.tabs.len())
+            .map(|i| {
+                let (doc, text) = if i == self.active {
+                    (&self.document, self.text.as_str())
+                } else {
+                    let tab = &self.tabs[i];
+                    (&tab.document, tab.text.as_str())
+                };
+                TabRecord {
+                    name: doc.name.clone(),
+                    path: doc.path.clone(),
+                    encoding: doc.encoding,
+                    text: text.to_string(),
+                    dirty: doc.dirty,
+                }
+            })
+            .collect();
+        (records, self.active)
+    }
+
+    /// Replaces every tab with `records` (kept by [`Workbench::tab_records`]) and activates
+    /// the `active`-th; unsaved texts come back as changes that still need saving. Nothing
+    /// happens for an empty list.
+    pub fn restore_tabs(&mut self, records: Vec<TabRecord>, active: usize) {
+        if records.is_empty() {
+            return;
+        }
+        let active = active.min(records.len() - 1);
+        let mut tabs = Vec::with_capacity(records.len());
+        for r in records {
+            let mut document =
+                Document::new(&r.name, if r.dirty { "" } else { &r.text }, r.encoding);
+            document.path = r.path;
+            document.dirty = r.dirty;
+            tabs.push(Tab {
+                shadow: r.text.clone(),
+                text: r.text,
+                document,
+                ..Tab::default()
+            });
+        }
+        let first = std::mem::take(&mut tabs[active]);
+        self.tabs = tabs;
+        self.active = active;
+        self.unpark(first);
+        if self.tabs.iter().any(|t| t.document.dirty) || self.document.dirty {
+            self.message = Some(tr("Recovered unsaved changes").to_string());
+        }
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// Takes the active tab's content out of the workbench's fields.
+    fn park(&mut self) -> Tab {
+        Tab {
+            text: std::mem::take(&mut self.text),
+            document: std::mem::take(&mut self.document),
+            history: std::mem::take(&mut self.history),
+            shadow: std::mem::take(&mut self.shadow),
+            selection: std::mem::take(&mut self.selection),
+            cursor_line: self.cursor_line.take(),
+        }
+    }
+
+    /// Puts a tab's content into the workbench's fields.
+    fn unpark(&mut self, tab: Tab) {
+        self.text = tab.text;
+        self.document = tab.document;
+        self.history = tab.history;
+        self.shadow = tab.shadow;
+        self.cursor_line = tab.cursor_line;
+        self.synced_line = None;
+        self.state_cache = None;
+        self.select_chars(tab.selection);
+    }
+
+    /// The document of tab `i` (which may be the active one).
+    fn tab_document(&self, i: usize) -> &Document {
+        if i == self.active {
+            &self.document
+        } else {
+            &self.tabs[i].document
+        }
+    }
+
+    /// Number of open tabs.
+    pub fn tab_count(&self) -> usize {
+        self.tabs.len()
+    }
+
+    /// Index of the active tab.
+    pub fn active_tab(&self) -> usize {
+        self.active
+    }
+
+    /// The open tabs' documents, in order.
+    pub fn tab_documents(&self) -> Vec<&Document> {
+        (0..self.tabs.len()).map(|i| self.tab_document(i)).collect()
+    }
+
+    /// Makes tab `i` the active one (its program goes to the editor and the backplot).
+    pub fn switch_tab(&mut self, i: usize) {
+        if i == self.active || i >= self.tabs.len() {
+            return;
+        }
+        let current = self.park();
+        self.tabs[self.active] = current;
+        let next = std::mem::take(&mut self.tabs[i]);
+        self.active = i;
+        self.unpark(next);
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// Closes tab `i`, after asking to save or discard its unsaved changes (the tab is made
+    /// active for the question). The last tab closed leaves an empty untitled one.
+    pub fn close_tab(&mut self, i: usize) {
+        if i >= self.tabs.len() {
+            return;
+        }
+        if self.tab_document(i).dirty {
+            self.switch_tab(i);
+            self.confirm = Some(Action::Close);
+        } else if i == self.active {
+            self.remove_active_tab();
+        } else {
+            self.tabs.remove(i);
+            if i < self.active {
+                self.active -= 1;
+            }
+            // The active program's calls may have reached the tab closed.
+            self.reanalyse();
+        }
+    }
+
+    /// Drops the active tab, unsaved changes and all.
+    fn remove_active_tab(&mut self) {
+        if self.tabs.len() <= 1 {
+            self.load("untitled.nc", String::new(), Encoding::Utf8);
+            return;
+        }
+        self.tabs.remove(self.active);
+        self.active = self.active.min(self.tabs.len() - 1);
+        let next = std::mem::take(&mut self.tabs[self.active]);
+        self.unpark(next);
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// `untitled.nc`, or `untitled-2.nc` … when another tab has that name.
+    fn untitled_name(&self) -> String {
+        let taken = |name: &str| {
+            (0..self.tabs.len()).any(|i| i != self.active && self.tab_document(i).name == name)
+        };
+        let mut name = "untitled.nc".to_string();
+        let mut n = 1;
+        while taken(&name) {
+            n += 1;
+            name = format!("untitled-{n}.nc");
+        }
+        name
+    }
+
+    /// Opens a new tab with an empty untitled program.
+    pub fn new_tab(&mut self) {
+        let current = self.park();
+        if let Some(slot) = self.tabs.get_mut(self.active) {
+            *slot = current;
+        }
+        self.tabs.push(Tab::default());
+        self.active = self.tabs.len() - 1;
+        let name = self.untitled_name();
+        self.load(&name, String::new(), Encoding::Utf8);
+    }
+
+    /// Whether any tab has unsaved changes.
+    pub fn any_dirty(&self) -> bool {
+        self.document.dirty
+            || self
+                .tabs
+                .iter()
+                .enumerate()
+                .any(|(i, t)| i != self.active && t.document.dirty)
     }
 
     /// The open document (name, encoding).
@@ -262,15 +560,70 @@ impl Workbench {
         self.document.dirty
     }
 
-    /// Records that the text was saved as `name`; runs an action that waited for the save.
+    /// Records that the active tab's text was saved as `name`; runs an action that waited for
+    /// the save.
     pub fn mark_saved(&mut self, name: &str) {
         self.document.name = name.to_string();
         self.document.saved = self.text.clone();
         self.document.dirty = false;
-        self.message = Some(format!("Saved {name}"));
+        self.message = Some(trf("Saved {}", &[&name]));
         if let Some(action) = self.after_save.take() {
             self.run_action(action);
         }
+    }
+
+    /// The interface language.
+    pub fn language(&self) -> Lang {
+        self.lang
+    }
+
+    /// Switches the interface language (at once); a Chinese one asks the host for the CJK
+    /// font the first time.
+    pub fn set_language(&mut self, lang: Lang) {
+        self.lang = lang;
+        crate::i18n::set_current(lang);
+        if lang.needs_cjk_font() && self.cjk_font == FontState::Absent {
+            self.cjk_font = FontState::Requested;
+            self.requests.push(HostRequest::LoadCjkFont);
+            self.message = Some(tr("Loading the Chinese font…").to_string());
+        }
+    }
+
+    /// Adds the CJK font's bytes (a `.ttf`, `.otf` or `.ttc` file) to the interface's fonts;
+    /// `false` (with a message) when they are no font.
+    pub fn add_cjk_font(&mut self, ctx: &egui::Context, bytes: Vec<u8>) -> bool {
+        if crate::i18n::add_cjk_font(ctx, bytes) {
+            self.cjk_font = FontState::Ready;
+            if self.message.as_deref() == Some(tr("Loading the Chinese font…")) {
+                self.message = None;
+            }
+            true
+        } else {
+            self.cjk_font_failed("not a font file");
+            false
+        }
+    }
+
+    /// Says that the CJK font could not be had (`why`); choosing a Chinese language again
+    /// asks for it again.
+    pub fn cjk_font_failed(&mut self, why: &str) {
+        self.cjk_font = FontState::Absent;
+        self.message = Some(trf("The Chinese font could not be loaded: {}", &[&why]));
+    }
+
+    /// Says that no CJK font is to be had here (the desktop found none among the system's
+    /// fonts), with what to install.
+    pub fn cjk_font_missing(&mut self) {
+        self.cjk_font = FontState::Absent;
+        self.message = Some(
+            tr("No Chinese font found: install fonts-wqy-microhei or fonts-noto-cjk, or set SWARF_CJK_FONT to a font file")
+                .to_string(),
+        );
+    }
+
+    /// Whether the CJK font has been added.
+    pub fn has_cjk_font(&self) -> bool {
+        self.cjk_font == FontState::Ready
     }
 
     /// The file requests made since the last call, in order.
@@ -437,11 +790,22 @@ impl Workbench {
     /// left of this frame's budget of it.
     fn reanalyse(&mut self) {
         self.generation += 1;
-        self.pending = Some(PendingAnalysis::start(
+        let others: Vec<OpenFile<'_>> = self
+            .tabs
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != self.active)
+            .map(|(_, t)| OpenFile {
+                name: &t.document.name,
+                text: &t.text,
+            })
+            .collect();
+        self.pending = Some(PendingAnalysis::start_among(
             &self.text,
             self.dialect,
             &self.setup,
             self.generation,
+            &others,
         ));
         self.pump();
     }
@@ -495,6 +859,7 @@ impl Workbench {
     /// Shows the workbench filling `ui`.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
+        crate::i18n::set_current(self.lang);
         self.budget = FRAME_BUDGET;
         self.in_frame = true;
         self.shortcuts(ui.ctx());
@@ -512,8 +877,9 @@ impl Workbench {
             .resizable(true)
             .default_size(460.0)
             .show(ui, |ui| {
+                self.tab_strip(ui);
                 let title = ui.horizontal(|ui| {
-                    let title = ui.strong("Program");
+                    let title = ui.strong(tr("Program"));
                     let dirty = if self.document.dirty { " *" } else { "" };
                     ui.label(format!("{}{dirty}", self.document.name));
                     title
@@ -574,7 +940,13 @@ impl Workbench {
                 // (the backplot highlights the block itself).
                 let played = self.backplot.take_playback_line();
                 if let Some(line) = self.backplot.take_picked_line().or(played) {
-                    self.jump_to_line(line);
+                    // A move of a subprogram in another tab is named, not jumped to.
+                    match self.analysis.linked_line(line.saturating_sub(1)) {
+                        Some((file, at)) => {
+                            self.message = Some(trf("{}, line {}", &[&file, &at]));
+                        }
+                        None => self.jump_to_line(line),
+                    }
                 }
             });
         // What is left of the frame's budget goes on with an unfinished analysis; the next
@@ -597,9 +969,9 @@ impl Workbench {
 
     /// The "state at cursor" panel.
     fn state_view(&mut self, ui: &mut egui::Ui) {
-        ui.strong("State at cursor");
+        ui.strong(tr("State at cursor"));
         let Some(line) = self.cursor_line else {
-            ui.label("Put the cursor on a block.");
+            ui.label(tr("Put the cursor on a block."));
             return;
         };
         let key = (self.analysis.scene.generation, line);
@@ -610,41 +982,41 @@ impl Workbench {
             return;
         };
         let Some(s) = state else {
-            ui.label(format!("Line {line} does not run."));
+            ui.label(trf("Line {} does not run.", &[&line]));
             return;
         };
         let mm = |v: glam::DVec3| format!("X{:.3} Y{:.3} Z{:.3}", v.x, v.y, v.z);
         egui::Grid::new("swarf-state-grid")
             .num_columns(2)
             .show(ui, |ui| {
-                ui.label("line");
+                ui.label(tr("line"));
                 ui.label(line.to_string());
                 ui.end_row();
-                ui.label("modes");
+                ui.label(tr("modes"));
                 ui.label(s.codes.join(" "));
                 ui.end_row();
-                ui.label("work");
+                ui.label(tr("work"));
                 ui.monospace(mm(s.work));
                 ui.end_row();
-                ui.label("machine");
+                ui.label(tr("machine"));
                 ui.monospace(mm(s.machine));
                 ui.end_row();
                 ui.label(&s.work_offset_name);
                 ui.monospace(mm(s.work_offset));
                 ui.end_row();
-                ui.label("tool");
+                ui.label(tr("tool"));
                 ui.label(match s.length_offset {
                     Some((h, v)) => format!("T{} H{h} ({v:+.3} mm)", s.tool),
                     None => format!("T{}", s.tool),
                 });
                 ui.end_row();
-                ui.label("feed");
+                ui.label(tr("feed"));
                 ui.label(format!("F{}", s.feed));
                 ui.end_row();
-                ui.label("spindle");
+                ui.label(tr("spindle"));
                 ui.label(format!("S{}", s.spindle_rpm));
                 ui.end_row();
-                ui.label("blocks run");
+                ui.label(tr("blocks run"));
                 ui.label(s.executed.to_string());
                 ui.end_row();
             });
@@ -675,13 +1047,14 @@ impl Workbench {
         egui::MenuBar::new().ui(ui, |ui| {
             ui.strong("Swarf");
             ui.separator();
-            ui.menu_button("File", |ui| self.file_menu(ui));
-            ui.menu_button("Edit", |ui| self.edit_menu(ui));
-            if ui.button("Settings…").clicked() {
+            ui.menu_button(tr("File"), |ui| self.file_menu(ui));
+            ui.menu_button(tr("Edit"), |ui| self.edit_menu(ui));
+            ui.menu_button(tr("View"), |ui| self.view_menu(ui));
+            if ui.button(tr("Settings…")).clicked() {
                 self.settings_open = true;
             }
             ui.separator();
-            let label = ui.label("Dialect");
+            let label = ui.label(tr("Dialect"));
             let mut dialect = self.dialect;
             egui::ComboBox::from_id_salt("swarf-dialect")
                 .selected_text(dialect.label())
@@ -694,7 +1067,7 @@ impl Workbench {
                 .labelled_by(label.id);
             self.set_dialect(dialect);
             ui.separator();
-            if ui.button("Fit view").clicked() {
+            if ui.button(tr("Fit view")).clicked() {
                 self.backplot.fit();
             }
         });
@@ -703,122 +1076,130 @@ impl Workbench {
     fn file_menu(&mut self, ui: &mut egui::Ui) {
         let cmd = |ui: &egui::Ui, key| ui.ctx().format_shortcut(&shortcut(key));
         if ui
-            .add(egui::Button::new("New").shortcut_text(cmd(ui, egui::Key::N)))
+            .add(egui::Button::new(tr("New")).shortcut_text(cmd(ui, egui::Key::N)))
             .clicked()
         {
-            self.guarded(Action::New);
+            self.new_tab();
         }
         if ui
-            .add(egui::Button::new("Open…").shortcut_text(cmd(ui, egui::Key::O)))
+            .add(egui::Button::new(tr("Open…")).shortcut_text(cmd(ui, egui::Key::O)))
             .clicked()
         {
-            self.guarded(Action::Host(HostRequest::Open));
+            self.requests.push(HostRequest::Open);
         }
         ui.add_enabled_ui(!self.recent.is_empty(), |ui| {
-            ui.menu_button("Open recent", |ui| {
+            ui.menu_button(tr("Open recent"), |ui| {
                 for name in self.recent.clone() {
                     if ui.button(&name).clicked() {
-                        self.guarded(Action::Host(HostRequest::OpenRecent(name)));
+                        self.requests.push(HostRequest::OpenRecent(name));
                     }
                 }
             });
         });
-        ui.menu_button("Examples", |ui| {
-            for (i, ex) in EXAMPLES.iter().enumerate() {
+        ui.menu_button(tr("Examples"), |ui| {
+            for ex in EXAMPLES {
                 let text = format!("{}  ({})", ex.name, ex.dialect.label());
                 if ui.button(text).clicked() {
-                    self.guarded(Action::Example(i));
+                    self.open_example(ex.name);
                 }
             }
         });
         ui.separator();
         if ui
-            .add(egui::Button::new("Save").shortcut_text(cmd(ui, egui::Key::S)))
+            .add(egui::Button::new(tr("Save")).shortcut_text(cmd(ui, egui::Key::S)))
             .clicked()
         {
             self.requests.push(HostRequest::Save);
         }
-        if ui.button("Save as…").clicked() {
+        if ui.button(tr("Save as…")).clicked() {
             self.requests.push(HostRequest::SaveAs);
         }
+        if ui.button(tr("Close tab")).clicked() {
+            self.close_tab(self.active);
+        }
         ui.separator();
-        if ui.button("Import setup…").clicked() {
+        if ui.button(tr("Import setup…")).clicked() {
             self.requests.push(HostRequest::ImportSetup);
         }
-        if ui.button("Export setup…").clicked() {
+        if ui.button(tr("Export setup…")).clicked() {
             self.requests.push(HostRequest::ExportSetup);
         }
     }
 
+    fn view_menu(&mut self, ui: &mut egui::Ui) {
+        ui.menu_button(tr("Language"), |ui| {
+            for lang in Lang::ALL {
+                if ui
+                    .selectable_label(self.lang == lang, lang.native_name())
+                    .clicked()
+                {
+                    self.set_language(lang);
+                    ui.close();
+                }
+            }
+        });
+    }
+
     fn edit_menu(&mut self, ui: &mut egui::Ui) {
         let cmd = |ui: &egui::Ui, key| ui.ctx().format_shortcut(&shortcut(key));
-        let undo = egui::Button::new("Undo").shortcut_text(cmd(ui, egui::Key::Z));
+        let undo = egui::Button::new(tr("Undo")).shortcut_text(cmd(ui, egui::Key::Z));
         if ui.add_enabled(self.history.can_undo(), undo).clicked() {
             self.undo();
         }
-        let redo = egui::Button::new("Redo").shortcut_text(cmd(ui, egui::Key::Y));
+        let redo = egui::Button::new(tr("Redo")).shortcut_text(cmd(ui, egui::Key::Y));
         if ui.add_enabled(self.history.can_redo(), redo).clicked() {
             self.redo();
         }
         ui.separator();
         if ui
-            .add(egui::Button::new("Find…").shortcut_text(cmd(ui, egui::Key::F)))
+            .add(egui::Button::new(tr("Find…")).shortcut_text(cmd(ui, egui::Key::F)))
             .clicked()
         {
             self.open_find(false);
         }
         if ui
-            .add(egui::Button::new("Replace…").shortcut_text(cmd(ui, egui::Key::H)))
+            .add(egui::Button::new(tr("Replace…")).shortcut_text(cmd(ui, egui::Key::H)))
             .clicked()
         {
             self.open_find(true);
         }
         if ui
-            .add(egui::Button::new("Go to line…").shortcut_text(cmd(ui, egui::Key::G)))
+            .add(egui::Button::new(tr("Go to line…")).shortcut_text(cmd(ui, egui::Key::G)))
             .clicked()
         {
             self.goto = Some(String::new());
         }
         ui.separator();
         if ui
-            .add(egui::Button::new("Toggle comment").shortcut_text(cmd(ui, egui::Key::Slash)))
+            .add(egui::Button::new(tr("Toggle comment")).shortcut_text(cmd(ui, egui::Key::Slash)))
             .clicked()
         {
             self.toggle_comment();
         }
-        if ui.button("Renumber blocks…").clicked() {
+        if ui.button(tr("Renumber blocks…")).clicked() {
             self.renumber = Some(RenumberOptions::default());
         }
     }
 
-    /// Runs `action` now, or asks first when it would drop unsaved changes.
-    fn guarded(&mut self, action: Action) {
-        if self.document.dirty {
-            self.confirm = Some(action);
-        } else {
-            self.run_action(action);
-        }
-    }
-
     /// Asks to close the application: at once when nothing is unsaved (the host gets
-    /// [`HostRequest::Quit`]), otherwise after the user saves or discards the changes.
+    /// [`HostRequest::Quit`]), otherwise after the user saves or discards the changes of each
+    /// tab that has some.
     pub fn request_quit(&mut self) {
-        self.guarded(Action::Host(HostRequest::Quit));
+        self.run_action(Action::Quit(0));
     }
 
     fn run_action(&mut self, action: Action) {
         match action {
-            Action::New => self.open_document("untitled.nc", String::new(), Encoding::Utf8),
-            Action::Example(i) => {
-                if let Some(ex) = EXAMPLES.get(i) {
-                    self.open_example(ex.name);
+            Action::Close => self.remove_active_tab(),
+            Action::Quit(from) => {
+                let dirty = (from..self.tabs.len()).find(|&i| self.tab_document(i).dirty);
+                match dirty {
+                    Some(i) => {
+                        self.switch_tab(i);
+                        self.confirm = Some(Action::Quit(i + 1));
+                    }
+                    None => self.requests.push(HostRequest::Quit),
                 }
-            }
-            Action::Host(request) => self.requests.push(request),
-            Action::Load(file) => {
-                let (name, text, encoding, path) = *file;
-                self.open_document(&name, text, encoding);
-                self.document.path = path;
             }
         }
     }
@@ -884,10 +1265,10 @@ impl Workbench {
             self.requests.push(HostRequest::Save);
         }
         if open {
-            self.guarded(Action::Host(HostRequest::Open));
+            self.requests.push(HostRequest::Open);
         }
         if new {
-            self.guarded(Action::New);
+            self.new_tab();
         }
     }
 
@@ -908,9 +1289,9 @@ impl Workbench {
     /// Renumbers the program's N numbers (see [`commands::renumber`]).
     pub fn renumber(&mut self, options: RenumberOptions) {
         let out = commands::renumber(&self.text, options, self.dialect);
-        self.message = Some(format!(
+        self.message = Some(trf(
             "Renumbered {} blocks, {} jump targets",
-            out.numbered, out.targets
+            &[&out.numbered, &out.targets],
         ));
         let keep = self.selection.start.min(out.text.chars().count());
         self.apply(out.text, keep..keep);
@@ -1006,7 +1387,7 @@ impl Workbench {
             let keep = self.selection.start.min(text.chars().count());
             self.apply(text, keep..keep);
         }
-        self.message = Some(format!("Replaced {n} matches"));
+        self.message = Some(trf("Replaced {} matches", &[&n]));
         n
     }
 
@@ -1017,14 +1398,14 @@ impl Workbench {
         let mut replace_all = false;
         let mut close = false;
         ui.horizontal(|ui| {
-            let label = ui.label("Find");
+            let label = ui.label(tr("Find"));
             let field = ui.add(
                 egui::TextEdit::singleline(&mut self.find.query)
                     .desired_width(160.0)
                     .hint_text(if self.find.options.regex {
-                        "regular expression"
+                        tr("regular expression")
                     } else {
-                        "text"
+                        tr("text")
                     }),
             );
             let field = field.labelled_by(label.id);
@@ -1038,10 +1419,10 @@ impl Workbench {
             if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
                 close = true;
             }
-            ui.checkbox(&mut self.find.options.regex, "Regex");
-            ui.checkbox(&mut self.find.options.match_case, "Match case");
-            previous = ui.button("Previous").clicked();
-            next |= ui.button("Next").clicked();
+            ui.checkbox(&mut self.find.options.regex, tr("Regex"));
+            ui.checkbox(&mut self.find.options.match_case, tr("Match case"));
+            previous = ui.button(tr("Previous")).clicked();
+            next |= ui.button(tr("Next")).clicked();
             let key = (self.generation, self.find.query.clone(), self.find.options);
             if self.find.count.as_ref().map(|(k, _)| k) != Some(&key) {
                 let count = if self.find.query.is_empty() {
@@ -1054,24 +1435,24 @@ impl Workbench {
             }
             match self.find.count.as_ref().map(|(_, c)| c) {
                 Some(Ok(matches)) => {
-                    ui.label(format!("{} matches", matches.len()));
+                    ui.label(trf("{} matches", &[&matches.len()]));
                 }
                 Some(Err(e)) => {
                     let first = e.lines().last().unwrap_or_default().to_string();
-                    ui.colored_label(severity_color(Severity::Error), "invalid pattern")
+                    ui.colored_label(severity_color(Severity::Error), tr("invalid pattern"))
                         .on_hover_text(first);
                 }
                 None => {}
             }
-            close |= ui.button("×").on_hover_text("Close").clicked();
+            close |= ui.button("×").on_hover_text(tr("Close")).clicked();
         });
         if self.find.replace {
             ui.horizontal(|ui| {
-                let label = ui.label("Replace");
+                let label = ui.label(tr("Replace"));
                 ui.add(egui::TextEdit::singleline(&mut self.find.replacement).desired_width(160.0))
                     .labelled_by(label.id);
-                replace = ui.button("Replace").clicked();
-                replace_all = ui.button("Replace all").clicked();
+                replace = ui.button(tr("Replace")).clicked();
+                replace_all = ui.button(tr("Replace all")).clicked();
             });
         }
         if close {
@@ -1098,14 +1479,14 @@ impl Workbench {
         if let Some(mut input) = self.goto.take() {
             let mut open = true;
             let mut go = false;
-            egui::Window::new("Go to line")
+            egui::Window::new(tr("Go to line"))
                 .open(&mut open)
                 .default_pos([240.0, 80.0])
                 .collapsible(false)
                 .resizable(false)
                 .show(ctx, |ui| {
                     ui.horizontal(|ui| {
-                        let label = ui.label("Line number");
+                        let label = ui.label(tr("Line number"));
                         let field = ui
                             .add(egui::TextEdit::singleline(&mut input).desired_width(80.0))
                             .labelled_by(label.id);
@@ -1113,7 +1494,7 @@ impl Workbench {
                             field.request_focus();
                         }
                         go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                        go |= ui.button("Go").clicked();
+                        go |= ui.button(tr("Go")).clicked();
                     });
                     ui.label(format!("1 – {}", commands::line_count(&self.text)));
                 });
@@ -1128,7 +1509,7 @@ impl Workbench {
         if let Some(mut options) = self.renumber.take() {
             let mut open = true;
             let mut run = false;
-            egui::Window::new("Renumber blocks")
+            egui::Window::new(tr("Renumber blocks"))
                 .open(&mut open)
                 .default_pos([240.0, 80.0])
                 .collapsible(false)
@@ -1137,17 +1518,17 @@ impl Workbench {
                     egui::Grid::new("swarf-renumber")
                         .num_columns(2)
                         .show(ui, |ui| {
-                            let label = ui.label("Start");
+                            let label = ui.label(tr("Start"));
                             ui.add(egui::DragValue::new(&mut options.start).range(0..=99_999_999))
                                 .labelled_by(label.id);
                             ui.end_row();
-                            let label = ui.label("Step");
+                            let label = ui.label(tr("Step"));
                             ui.add(egui::DragValue::new(&mut options.step).range(1..=10_000))
                                 .labelled_by(label.id);
                             ui.end_row();
                         });
-                    ui.checkbox(&mut options.all_blocks, "Number every block");
-                    run = ui.button("Renumber").clicked();
+                    ui.checkbox(&mut options.all_blocks, tr("Number every block"));
+                    run = ui.button(tr("Renumber")).clicked();
                 });
             if run {
                 self.renumber(options);
@@ -1160,7 +1541,7 @@ impl Workbench {
             let mut setup = self.setup.clone();
             let mut dialect = self.dialect;
             let mut request = None;
-            egui::Window::new("Settings")
+            egui::Window::new(tr("Settings"))
                 .open(&mut open)
                 .default_pos([240.0, 60.0])
                 .default_width(480.0)
@@ -1184,19 +1565,19 @@ impl Workbench {
         if let Some(action) = self.confirm.clone() {
             let mut answer = None;
             egui::Modal::new(egui::Id::unique("swarf-unsaved")).show(ctx, |ui| {
-                ui.heading("Unsaved changes");
-                ui.label(format!(
+                ui.heading(tr("Unsaved changes"));
+                ui.label(trf(
                     "{} has changes that are not saved.",
-                    self.document.name
+                    &[&self.document.name],
                 ));
                 ui.horizontal(|ui| {
-                    if ui.button("Save").clicked() {
+                    if ui.button(tr("Save")).clicked() {
                         answer = Some(0);
                     }
-                    if ui.button("Discard changes").clicked() {
+                    if ui.button(tr("Discard changes")).clicked() {
                         answer = Some(1);
                     }
-                    if ui.button("Cancel").clicked() {
+                    if ui.button(tr("Cancel")).clicked() {
                         answer = Some(2);
                     }
                 });
@@ -1220,15 +1601,19 @@ impl Workbench {
     fn status_bar(&self, ui: &mut egui::Ui) {
         let s = self.stats();
         ui.horizontal(|ui| {
-            ui.label(format!("{} blocks", s.blocks));
+            ui.label(trf("{} blocks", &[&s.blocks]));
             ui.separator();
-            ui.label(format!("{} motions", s.motions));
+            ui.label(trf("{} motions", &[&s.motions]));
             ui.separator();
             if let Some((min, max)) = s.bounds {
                 let size = max - min;
-                ui.label(format!(
-                    "extent {:.2} × {:.2} × {:.2} mm",
-                    size.x, size.y, size.z
+                ui.label(trf(
+                    "extent {} × {} × {} mm",
+                    &[
+                        &format!("{:.2}", size.x),
+                        &format!("{:.2}", size.y),
+                        &format!("{:.2}", size.z),
+                    ],
                 ));
                 ui.separator();
             }
@@ -1242,17 +1627,17 @@ impl Workbench {
                 } else {
                     ui.visuals().text_color()
                 },
-                format!("{errors} errors, {warnings} warnings"),
+                trf("{} errors, {} warnings", &[&errors, &warnings]),
             );
             if let Some(line) = self.cursor_line {
                 ui.separator();
-                ui.label(format!("line {line}"));
+                ui.label(trf("line {}", &[&line]));
             }
             ui.separator();
             ui.label(self.document.encoding.name());
             if let Some((done, total)) = self.analysis_progress() {
                 ui.separator();
-                ui.label("Analysing");
+                ui.label(tr("Analysing"));
                 let fraction = if total == 0 {
                     1.0
                 } else {
@@ -1261,7 +1646,7 @@ impl Workbench {
                 ui.add(
                     egui::ProgressBar::new(fraction)
                         .desired_width(180.0)
-                        .text(format!("{done} / {total} blocks")),
+                        .text(trf("{} / {} blocks", &[&done, &total])),
                 );
             }
             if let Some(message) = &self.message {
@@ -1271,8 +1656,69 @@ impl Workbench {
         });
     }
 
+    /// The tabs over the editor: one per open file (click to switch, × to close) and + for a
+    /// new one.
+    fn tab_strip(&mut self, ui: &mut egui::Ui) {
+        let mut switch = None;
+        let mut close = None;
+        let mut new = false;
+        egui::ScrollArea::horizontal()
+            .id_salt("swarf-tabs")
+            .show(ui, |ui| {
+                ui.horizontal(|ui| {
+                    for i in 0..self.tabs.len() {
+                        let doc = self.tab_document(i);
+                        let dirty = if doc.dirty { " *" } else { "" };
+                        let label = format!("{}{dirty}", doc.name);
+                        let hover = doc.path.clone().unwrap_or_else(|| doc.name.clone());
+                        if ui
+                            .selectable_label(i == self.active, label)
+                            .on_hover_text(hover)
+                            .clicked()
+                        {
+                            switch = Some(i);
+                        }
+                        let close_label = trf("Close {}", &[&doc.name]);
+                        let button = ui.small_button("×");
+                        button.widget_info(|| {
+                            egui::WidgetInfo::labeled(
+                                egui::accesskit::Role::Button,
+                                true,
+                                &close_label,
+                            )
+                        });
+                        if button.on_hover_text(&close_label).clicked() {
+                            close = Some(i);
+                        }
+                        ui.separator();
+                    }
+                    let button = ui.small_button("+");
+                    button.widget_info(|| {
+                        egui::WidgetInfo::labeled(
+                            egui::accesskit::Role::Button,
+                            true,
+                            tr("New tab"),
+                        )
+                    });
+                    new = button.on_hover_text(tr("New tab")).clicked();
+                });
+            });
+        if let Some(i) = switch {
+            self.switch_tab(i);
+        }
+        if let Some(i) = close {
+            self.close_tab(i);
+        }
+        if new {
+            self.new_tab();
+        }
+    }
+
     fn problems_list(&mut self, ui: &mut egui::Ui) {
-        ui.strong(format!("Problems ({})", self.analysis.problems.len()));
+        ui.strong(trf(
+            "Problems ({})",
+            &[&(self.analysis.problems.len() + self.analysis.elsewhere.len())],
+        ));
         egui::ScrollArea::vertical()
             .id_salt("swarf-problems-scroll")
             .auto_shrink([false, false])
@@ -1288,13 +1734,38 @@ impl Workbench {
                         .color(severity_color(p.severity));
                     if ui
                         .add(egui::Label::new(label).sense(egui::Sense::click()))
-                        .on_hover_text("Go to this position")
+                        .on_hover_text(tr("Go to this position"))
                         .clicked()
                     {
                         jump = Some(p.chars.clone());
                     }
                 }
+                let mut jump_elsewhere = None;
+                for l in &self.analysis.elsewhere {
+                    let p = &l.problem;
+                    let text = format!(
+                        "{}:{}:{}  {}[{}]  {}",
+                        l.file, p.line, p.col, p.severity, p.code, p.message
+                    );
+                    let label = egui::RichText::new(text)
+                        .monospace()
+                        .color(severity_color(p.severity));
+                    if ui
+                        .add(egui::Label::new(label).sense(egui::Sense::click()))
+                        .on_hover_text(trf("Go to this position in {}", &[&l.file]))
+                        .clicked()
+                    {
+                        jump_elsewhere = Some((l.file.clone(), p.chars.clone()));
+                    }
+                }
                 if let Some(chars) = jump {
+                    self.select_chars(chars);
+                }
+                if let Some((file, chars)) = jump_elsewhere
+                    && let Some(i) =
+                        (0..self.tabs.len()).find(|&i| self.tab_document(i).name == file)
+                {
+                    self.switch_tab(i);
                     self.select_chars(chars);
                 }
             });

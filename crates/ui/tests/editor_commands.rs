@@ -210,60 +210,55 @@ fn gutter_markers_explain_the_problem_on_hover() {
 }
 
 #[test]
-fn unsaved_changes_are_confirmed_before_they_are_dropped() {
+fn unsaved_changes_are_confirmed_before_their_tab_closes() {
     let mut harness = harness("G0 X1\n");
     harness.state_mut().set_text("G0 X2\n");
     assert!(harness.state().is_dirty());
+    // New and Open leave the program where it is: a tab of their own.
     click_menu(&mut harness, "File", "New Ctrl+N");
+    assert_eq!(harness.state().text(), "");
+    assert_eq!(harness.state().document().name, "untitled.nc");
+    harness.get_by_label("test.nc *").click();
+    harness.run();
+    assert_eq!(harness.state().text(), "G0 X2\n");
+    click_menu(&mut harness, "File", "Close tab");
     harness.get_by_label("Unsaved changes");
     harness.get_by_label("Cancel").click();
     harness.run();
     assert_eq!(harness.state().text(), "G0 X2\n");
-    // Save first: the host is asked to save, and New runs once it reports the save.
-    click_menu(&mut harness, "File", "New Ctrl+N");
+    let tabs = harness.state().tab_count();
+    // Save first: the host is asked to save, and the tab closes once it reports the save.
+    click_menu(&mut harness, "File", "Close tab");
     harness.get_by_label("Save").click();
     harness.run();
     assert_eq!(harness.state_mut().take_requests(), [HostRequest::Save]);
+    assert_eq!(harness.state().tab_count(), tabs);
     harness.state_mut().mark_saved("test.nc");
     harness.run();
-    assert_eq!(harness.state().text(), "");
-    assert_eq!(harness.state().document().name, "untitled.nc");
-    // A dropped file waits for the answer, and Cancel keeps the program and its file.
-    harness.state_mut().set_path(Some("/work/a.nc".into()));
-    harness.state_mut().set_text("G0 X4\n");
-    harness.state_mut().open_guarded(
-        "b.nc",
-        "G0 X9\n".into(),
-        swarf_syntax::Encoding::Utf8,
-        Some("/work/b.nc".into()),
+    assert_eq!(harness.state().tab_count(), tabs - 1);
+    assert!(
+        harness
+            .state()
+            .tab_documents()
+            .iter()
+            .all(|d| d.name != "test.nc")
     );
-    harness.run();
-    harness.get_by_label("Cancel").click();
-    harness.run();
-    assert_eq!(harness.state().text(), "G0 X4\n");
-    assert_eq!(
-        harness.state().document().path.as_deref(),
-        Some("/work/a.nc")
-    );
-    harness.state_mut().open_guarded(
-        "b.nc",
-        "G0 X9\n".into(),
-        swarf_syntax::Encoding::Utf8,
-        Some("/work/b.nc".into()),
-    );
-    harness.run();
-    harness.get_by_label("Discard changes").click();
-    harness.run();
-    assert_eq!(harness.state().text(), "G0 X9\n");
-    assert_eq!(
-        harness.state().document().path.as_deref(),
-        Some("/work/b.nc")
-    );
-    // Discard.
+    // Discard drops the changes with the tab.
     harness.state_mut().set_text("G0 X3\n");
-    click_menu(&mut harness, "File", "Open… Ctrl+O");
+    let name = harness.state().document().name.clone();
+    click_menu(&mut harness, "File", "Close tab");
     harness.get_by_label("Discard changes").click();
     harness.run();
+    assert_eq!(harness.state().tab_count(), tabs - 2);
+    assert!(
+        harness
+            .state()
+            .tab_documents()
+            .iter()
+            .all(|d| d.name != name)
+    );
+    // Open asks the host at once.
+    click_menu(&mut harness, "File", "Open… Ctrl+O");
     assert_eq!(harness.state_mut().take_requests(), [HostRequest::Open]);
 }
 

@@ -11,6 +11,7 @@ use glam::Vec3;
 
 use super::Scene;
 use crate::format_duration;
+use crate::i18n::{tr, trf};
 
 /// The playback speeds offered, as multiples of real time.
 pub const PLAYBACK_SPEEDS: [f64; 7] = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0];
@@ -276,8 +277,8 @@ impl Playback {
                 )
             };
             if ui
-                .add_enabled(has_path, egui::Button::new(label))
-                .on_hover_text(hint)
+                .add_enabled(has_path, egui::Button::new(tr(label)))
+                .on_hover_text(tr(hint))
                 .clicked()
             {
                 if self.playing {
@@ -287,27 +288,27 @@ impl Playback {
                 }
             }
             if ui
-                .add_enabled(has_path, egui::Button::new("« Block"))
-                .on_hover_text("Step one block back")
+                .add_enabled(has_path, egui::Button::new(tr("« Block")))
+                .on_hover_text(tr("Step one block back"))
                 .clicked()
             {
                 self.step_back(scene);
             }
             if ui
-                .add_enabled(has_path, egui::Button::new("Block »"))
-                .on_hover_text("Step one block forward")
+                .add_enabled(has_path, egui::Button::new(tr("Block »")))
+                .on_hover_text(tr("Step one block forward"))
                 .clicked()
             {
                 self.step_forward(scene);
             }
             if ui
-                .add_enabled(self.time.is_some(), egui::Button::new("Stop"))
-                .on_hover_text("Stop playback and draw the whole program")
+                .add_enabled(self.time.is_some(), egui::Button::new(tr("Stop")))
+                .on_hover_text(tr("Stop playback and draw the whole program"))
                 .clicked()
             {
                 self.stop();
             }
-            let speed_label = ui.label("Speed");
+            let speed_label = ui.label(tr("Speed"));
             let mut speed = self.speed;
             egui::ComboBox::from_id_salt("swarf-playback-speed")
                 .selected_text(format!("×{speed}"))
@@ -330,14 +331,14 @@ impl Playback {
             let current = self.current_block(scene).map_or(count, |b| b + 1);
             let line = self
                 .current_line(scene)
-                .map_or(String::new(), |l| format!(", line {l}"));
-            ui.label(format!("block {current} of {count}{line}"));
+                .map_or(String::new(), |l| trf(", line {}", &[&l]));
+            ui.label(trf("block {} of {}{}", &[&current, &count, &line]));
         });
         ui.horizontal(|ui| {
             // The two sliders share the row.
             ui.spacing_mut().slider_width =
                 ((ui.available_width() - SLIDER_LABELS_POINTS) / 2.0).max(40.0);
-            let time_label = ui.label("Time");
+            let time_label = ui.label(tr("Time"));
             let mut t = self.time.unwrap_or(total);
             let slider = ui
                 .add_enabled(
@@ -349,7 +350,7 @@ impl Playback {
                 self.seek(scene, t);
             }
             ui.separator();
-            let block_label = ui.label("Block");
+            let block_label = ui.label(tr("Block"));
             let current = self.current_block(scene).map_or(count, |b| b + 1);
             let mut block = current;
             let slider = ui
