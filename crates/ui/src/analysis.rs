@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
-use swarf_syntax::{Dialect, Program, Severity, parse};
+use swarf_syntax::{Dialect, ParseRun, Program, Severity};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath};
 
 use crate::backplot::{Scene, SourceText};
@@ -83,43 +83,87 @@ impl Analysis {
     }
 }
 
-/// An analysis under way: the text is parsed, and the interpreter runs it a bounded number of
-/// blocks per [`step`](PendingAnalysis::step), so a long program never holds up a frame for
+/// Lines the parser reads for one block of budget: reading a line costs about half of running
+/// a block.
+pub const PARSE_LINES_PER_BLOCK: usize = 2;
+
+/// An analysis under way: the text is parsed and then run by the interpreter, a bounded amount
+/// of each per [`step`](PendingAnalysis::step), so a long program never holds up a frame for
 /// long. Dropping it cancels the run.
 #[derive(Debug)]
 pub struct PendingAnalysis {
-    text: String,
+    text: Arc<String>,
+    /// The parse, until the whole text is read.
+    parse: Option<ParseRun>,
     program: Program,
     toolpath: Toolpath,
-    run: swarf_interp::StatesRun,
+    /// The interpreter's run, once the text is parsed.
+    run: Option<swarf_interp::StatesRun>,
     setup: Setup,
     generation: u64,
     finished: bool,
+    /// Lines read plus blocks executed so far (what the budget is spent on).
+    work: u64,
 }
 
 impl PendingAnalysis {
-    /// Parses `text` and prepares its run (nothing executed yet).
+    /// Prepares the analysis of `text` (nothing read or executed yet).
     pub fn start(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
-        let program = parse(text, dialect);
-        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
-        toolpath.reserve(program.blocks.len());
-        let run = swarf_interp::StatesRun::new(&program, setup.clone());
+        Self::start_shared(Arc::new(text.to_string()), dialect, setup, generation)
+    }
+
+    /// [`PendingAnalysis::start`] for a text already held in an `Arc` (not copied).
+    pub fn start_shared(
+        text: Arc<String>,
+        dialect: Dialect,
+        setup: &Setup,
+        generation: u64,
+    ) -> Self {
+        let parse = ParseRun::new(&text, dialect);
         PendingAnalysis {
-            text: text.to_string(),
-            program,
-            toolpath,
-            run,
+            text,
+            parse: Some(parse),
+            program: Program::default(),
+            toolpath: Toolpath::for_machine(DVec3::ZERO, &setup.machine),
+            run: None,
             setup: setup.clone(),
             generation,
             finished: false,
+            work: 0,
         }
     }
 
-    /// Executes at most `budget` more blocks; whether the run is finished.
+    /// Reads lines and then executes blocks for at most `budget` blocks' worth of work (a block
+    /// buys [`PARSE_LINES_PER_BLOCK`] lines); whether the analysis is finished.
     pub fn step(&mut self, budget: usize) -> bool {
-        if !self.finished {
-            self.finished = self.run.step(&self.program, &mut self.toolpath, budget)
+        let mut budget = budget;
+        if let Some(parse) = &mut self.parse {
+            let (before, _) = parse.progress();
+            let done = parse.step(&self.text, budget.saturating_mul(PARSE_LINES_PER_BLOCK));
+            let (after, _) = parse.progress();
+            let read = after - before;
+            self.work += read as u64;
+            budget = budget.saturating_sub(read.div_ceil(PARSE_LINES_PER_BLOCK));
+            if !done {
+                return false;
+            }
+            if let Some(parse) = self.parse.take() {
+                self.program = parse.finish();
+                self.toolpath.reserve(self.program.blocks.len());
+                self.run = Some(swarf_interp::StatesRun::new(
+                    &self.program,
+                    self.setup.clone(),
+                ));
+            }
+        }
+        if !self.finished
+            && budget > 0
+            && let Some(run) = &mut self.run
+        {
+            let before = run.executed_blocks();
+            self.finished = run.step(&self.program, &mut self.toolpath, budget)
                 == swarf_interp::Status::Finished;
+            self.work += run.executed_blocks() - before;
         }
         self.finished
     }
@@ -129,15 +173,33 @@ impl PendingAnalysis {
         self.finished
     }
 
-    /// Progress as (different blocks run, blocks in the program). A program that stops early
-    /// (M30 before its end) finishes short of the total.
-    pub fn progress(&self) -> (usize, usize) {
-        (self.run.blocks_reached(), self.program.blocks.len())
+    /// While the text is being read: (lines read, lines in the text).
+    pub fn parse_progress(&self) -> Option<(usize, usize)> {
+        self.parse.as_ref().map(ParseRun::progress)
     }
 
-    /// Blocks executed so far (every pass of a loop counts), against the frame budget.
+    /// Progress of the run as (different blocks run, blocks in the program); (0, 0) while the
+    /// text is still being read. A program that stops early (M30 before its end) finishes short
+    /// of the total.
+    pub fn progress(&self) -> (usize, usize) {
+        match &self.run {
+            Some(run) => (run.blocks_reached(), self.program.blocks.len()),
+            None => (0, 0),
+        }
+    }
+
+    /// Blocks executed so far (every pass of a loop counts).
     pub fn executed_blocks(&self) -> u64 {
-        self.run.executed_blocks()
+        self.run
+            .as_ref()
+            .map_or(0, swarf_interp::StatesRun::executed_blocks)
+    }
+
+    /// The work done so far against the frame budget: lines read (a block's worth per
+    /// [`PARSE_LINES_PER_BLOCK`]) plus blocks executed.
+    pub fn work_done(&self) -> u64 {
+        let lines = self.work - self.executed_blocks();
+        lines.div_ceil(PARSE_LINES_PER_BLOCK as u64) + self.executed_blocks()
     }
 
     /// The generation the result will carry.
@@ -146,10 +208,11 @@ impl PendingAnalysis {
     }
 
     /// The finished analysis: problems located, scene prepared. Called before the run is
-    /// finished, it covers the blocks run so far.
+    /// finished, it covers the lines read and the blocks run so far.
     pub fn finish(self) -> Analysis {
         let PendingAnalysis {
             text,
+            parse,
             program,
             toolpath,
             run,
@@ -157,9 +220,23 @@ impl PendingAnalysis {
             generation,
             ..
         } = self;
+        let program = match parse {
+            Some(parse) => parse.finish(),
+            None => program,
+        };
         let mut diags = program.diagnostics.clone();
-        let (run_diags, states) = run.finish();
-        diags.extend(run_diags);
+        let states = match run {
+            Some(run) => {
+                let (run_diags, states) = run.finish();
+                diags.extend(run_diags);
+                states
+            }
+            None => {
+                swarf_interp::StatesRun::new(&program, setup.clone())
+                    .finish()
+                    .1
+            }
+        };
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         let problems = locate(&text, &program, &diags);
         let mut scene = scene_of(&toolpath, generation);
@@ -168,7 +245,7 @@ impl PendingAnalysis {
             marks.extend(box_marks(travel, scene.origin));
             scene.marks = Arc::new(marks);
         }
-        scene.source = Some(Arc::new(SourceText::new(&text)));
+        scene.source = Some(Arc::new(SourceText::shared(text)));
         scene.tool_radii = Arc::new(
             setup
                 .registers
@@ -200,6 +277,10 @@ fn locate(text: &str, program: &Program, diags: &[swarf_syntax::Diagnostic]) -> 
         .char_indices()
         .chain(std::iter::once((text.len(), ' ')));
     for (chars, (byte, _)) in ends.enumerate() {
+        // Past the last offset the rest of the text need not be counted.
+        if next.peek().is_none() {
+            break;
+        }
         while let Some(&&o) = next.peek() {
             if o > byte {
                 break;

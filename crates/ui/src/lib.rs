@@ -3,10 +3,12 @@
 
 pub mod analysis;
 pub mod backplot;
+pub mod buffer;
 pub mod commands;
 pub mod editor;
 pub mod examples;
 pub mod history;
+pub mod rows;
 mod settings;
 mod workbench;
 
