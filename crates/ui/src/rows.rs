@@ -351,14 +351,21 @@ impl RowEditor {
                 let cursor = galley.cursor_from_pos(egui::vec2(pos.x - text_left, 0.0));
                 start + cursor.index.0.min(len)
             };
-            if let Some(pos) = response.interact_pointer_pos() {
+            let pointer = response
+                .interact_pointer_pos()
+                .or_else(|| response.hover_pos());
+            if response.double_clicked()
+                && let Some(pos) = pointer
+            {
+                // The word under the pointer (an address word, a number, a name).
+                let at = char_at(ui, pos);
+                self.anchor = word_boundary(text, (at + 1).min(len), false);
+                self.caret = word_boundary(text, at, true);
+                self.column = None;
+            } else if let Some(pos) = response.interact_pointer_pos() {
                 let (pressed, extend) =
                     ui.input(|i| (i.pointer.primary_pressed(), i.modifiers.shift));
-                if response.double_clicked() {
-                    let at = char_at(ui, pos);
-                    self.anchor = word_boundary(text, (at + 1).min(len), false);
-                    self.caret = word_boundary(text, at, true);
-                } else if pressed {
+                if pressed {
                     self.move_to(char_at(ui, pos), extend);
                     self.column = None;
                     self.reveal = false;
