@@ -51,19 +51,11 @@ fn program(lines: usize) -> String {
 
 /// One egui frame of the workbench at 1280 × 800 with these input events.
 fn frame(ctx: &egui::Context, wb: &mut Workbench, events: Vec<egui::Event>) -> Duration {
-    let modifiers = events
-        .iter()
-        .find_map(|e| match e {
-            egui::Event::Key { modifiers, .. } => Some(*modifiers),
-            _ => None,
-        })
-        .unwrap_or_default();
     let input = egui::RawInput {
         screen_rect: Some(egui::Rect::from_min_size(
             egui::Pos2::ZERO,
             egui::vec2(1280.0, 800.0),
         )),
-        modifiers,
         events,
         ..Default::default()
     };
