@@ -23,4 +23,4 @@ pub use diagnostic::{Diagnostic, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
 pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, Missing};
-pub use parser::parse;
+pub use parser::{ParseRun, parse};

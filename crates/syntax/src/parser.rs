@@ -18,83 +18,144 @@ const HARD_DEPTH: u32 = 64;
 
 /// Parses `text` as read by `dialect`. Never fails: problems are in `Program::diagnostics`.
 pub fn parse(text: &str, dialect: Dialect) -> Program {
-    let mut program = Program {
-        dialect,
-        blocks: Vec::new(),
-        exprs: Vec::new(),
-        diagnostics: Vec::new(),
-        lines: LineIndex::new(text),
-        syntec_macro: false,
-        linked: Vec::new(),
-    };
-    let mut offset = 0usize;
-    // A program that opens with a `%` line (the first line that is not blank) ends at the next
-    // `%` line: what follows the closing tape mark is not read (LinuxCNC ignores it; on the
-    // Fanuc family it is past the end of the tape).
-    let mut tape = Tape::Before;
-    let mut checker = crate::checks::Checker::default();
-    // The line index has found every newline already (with SIMD): the lines come from it.
-    let line_count = program.lines.line_count();
-    // Most lines are one block: reserving for them spares the copies of a growing array.
-    program.blocks.reserve_exact(line_count);
-    for line_no in 0..line_count {
-        let start = program.lines.line_start(line_no) as usize;
-        let end = if line_no + 1 < line_count {
-            (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
-        } else {
-            text.len()
-        };
-        let raw = text.get(start..end).unwrap_or_default();
-        let mut line = raw.strip_suffix('\r').unwrap_or(raw);
-        if line.len() > MAX_LINE_BYTES {
-            // A runaway line (a binary file, a generator gone wrong): read its start only.
-            let mut cut = MAX_LINE_BYTES;
-            while !line.is_char_boundary(cut) {
-                cut -= 1;
-            }
-            program.diagnostics.push(Diagnostic::error(
-                Span::new(offset + cut, offset + line.len()),
-                "E-LINE-LENGTH",
-                format!(
-                    "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
-                    line.len()
-                ),
-            ));
-            line = &line[..cut];
-        }
-        let mut reader = LineReader {
+    let mut run = ParseRun::new(text, dialect);
+    while !run.step(text, usize::MAX) {}
+    run.finish()
+}
+
+/// A parse that reads a bounded number of lines per [`step`](ParseRun::step), so an editor can
+/// spread the parse of a long program over frames. Stepped to its end it gives the same
+/// [`Program`] as [`parse`].
+#[derive(Debug)]
+pub struct ParseRun {
+    program: Program,
+    checker: crate::checks::Checker,
+    tape: Tape,
+    /// Byte offset of the next line.
+    offset: usize,
+    /// 0-based number of the next line.
+    line_no: usize,
+    done: bool,
+}
+
+impl ParseRun {
+    /// Indexes the lines of `text` (every later step must be given the same text); nothing is
+    /// read yet.
+    pub fn new(text: &str, dialect: Dialect) -> Self {
+        let mut program = Program {
             dialect,
-            rules: dialect.rules(),
-            line,
-            bytes: line.as_bytes(),
-            base: offset,
-            line_no: u32::try_from(line_no).unwrap_or(u32::MAX),
-            program: &mut program,
-            checker: &mut checker,
-            open_brackets: 0,
-            statements: Vec::new(),
-            comments: Vec::new(),
+            blocks: Vec::new(),
+            exprs: Vec::new(),
+            diagnostics: Vec::new(),
+            lines: LineIndex::new(text),
+            syntec_macro: false,
+            linked: Vec::new(),
         };
-        reader.read();
-        offset += raw.len() + 1;
-        let significant = line.trim_start_matches(is_blank);
-        tape = match (tape, significant.starts_with('%')) {
-            (_, false) if significant.is_empty() => tape,
-            (Tape::Before, true) => Tape::Open,
-            (Tape::Before | Tape::Plain, false) => Tape::Plain,
-            (Tape::Open, true) => {
-                ignore_after_tape_end(&mut program, text, offset);
-                break;
-            }
-            (other, _) => other,
-        };
+        // Most lines are one block: reserving for them spares the copies of a growing array.
+        program.blocks.reserve_exact(program.lines.line_count());
+        ParseRun {
+            program,
+            checker: crate::checks::Checker::default(),
+            // A program that opens with a `%` line (the first line that is not blank) ends at
+            // the next `%` line: what follows the closing tape mark is not read (LinuxCNC
+            // ignores it; on the Fanuc family it is past the end of the tape).
+            tape: Tape::Before,
+            offset: 0,
+            line_no: 0,
+            done: false,
+        }
     }
-    checker.finish(&mut program);
-    program
+
+    /// Lines read so far and lines in the text.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.line_no, self.program.lines.line_count())
+    }
+
+    /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
+    /// whether the whole text is read.
+    pub fn step(&mut self, text: &str, lines: usize) -> bool {
+        let program = &mut self.program;
+        let dialect = program.dialect;
+        // The line index has found every newline already (with SIMD): the lines come from it.
+        let line_count = program.lines.line_count();
+        let stop = self.line_no.saturating_add(lines).min(line_count);
+        while !self.done && self.line_no < stop {
+            let line_no = self.line_no;
+            let offset = self.offset;
+            let start = program.lines.line_start(line_no) as usize;
+            let end = if line_no + 1 < line_count {
+                (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
+            } else {
+                text.len()
+            };
+            let raw = text.get(start..end).unwrap_or_default();
+            let mut line = raw.strip_suffix('\r').unwrap_or(raw);
+            if line.len() > MAX_LINE_BYTES {
+                // A runaway line (a binary file, a generator gone wrong): read its start only.
+                let mut cut = MAX_LINE_BYTES;
+                while !line.is_char_boundary(cut) {
+                    cut -= 1;
+                }
+                program.diagnostics.push(Diagnostic::error(
+                    Span::new(offset + cut, offset + line.len()),
+                    "E-LINE-LENGTH",
+                    format!(
+                        "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
+                        line.len()
+                    ),
+                ));
+                line = &line[..cut];
+            }
+            let mut reader = LineReader {
+                dialect,
+                rules: dialect.rules(),
+                line,
+                bytes: line.as_bytes(),
+                base: offset,
+                line_no: u32::try_from(line_no).unwrap_or(u32::MAX),
+                program,
+                checker: &mut self.checker,
+                open_brackets: 0,
+                statements: Vec::new(),
+                comments: Vec::new(),
+            };
+            reader.read();
+            self.offset += raw.len() + 1;
+            self.line_no += 1;
+            let significant = line.trim_start_matches(is_blank);
+            self.tape = match (self.tape, significant.starts_with('%')) {
+                (_, false) if significant.is_empty() => self.tape,
+                (Tape::Before, true) => Tape::Open,
+                (Tape::Before | Tape::Plain, false) => Tape::Plain,
+                (Tape::Open, true) => {
+                    ignore_after_tape_end(program, text, self.offset);
+                    self.done = true;
+                    self.tape
+                }
+                (other, _) => other,
+            };
+        }
+        if self.line_no >= line_count {
+            self.done = true;
+        }
+        self.done
+    }
+
+    /// Whether the whole text is read.
+    pub fn is_done(&self) -> bool {
+        self.done
+    }
+
+    /// The parsed program (the lines read so far, if the run is not done).
+    pub fn finish(self) -> Program {
+        let mut program = self.program;
+        self.checker.finish(&mut program);
+        program
+    }
 }
 
 /// Where the reader is with respect to `%` tape marks.
-#[derive(Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Tape {
     /// Only blank lines so far.
     Before,

@@ -1,16 +1,16 @@
-//! Keystroke-to-markers latency of the editor: the time from an edit of the program to the
+//! Keystroke-to-markers latency of the editor: the time from a keystroke in the editor to the
 //! diagnostics of the new text being on screen, for a generated 10,000-line program (ready in
-//! the frame of the edit) and a 1,000,000-line one (run over frames behind a progress bar), and
-//! the resident memory the analysed program takes per line.
+//! the frame of the edit) and a 1,000,000-line one (read and run over frames behind a progress
+//! bar), and the resident memory the open program takes per line.
 //!
-//! For the 10,000-line program each frame is a real egui frame of the whole workbench (editor
-//! with its markers, problems, state panel, status bar; no GPU upload, there is no GPU context).
-//! For the 1,000,000-line program only the analysis is measured (the edit's parse and one
-//! budget of blocks per frame until done), since laying out a million-line text in egui's
-//! text editor takes far longer than the analysis and is not what is measured here.
+//! Every frame is a real egui frame of the whole workbench (editor with its markers, problems,
+//! state panel, status bar; no GPU upload, there is no GPU context). The edit is a real one
+//! through the editor: a `Text` event typed at the start of the first line (an error in), then
+//! Ctrl+Z (the error out again). The 10,000-line program is edited in egui's `TextEdit`, the
+//! million-line one in the row editor, which lays out only the rows on screen.
 //!
 //! Run: `cargo bench -p swarf-ui --bench latency` (add `-- --quick` for fewer repetitions).
-//! Prints a Markdown table for the README. Memory figures are read from `/proc/self/status`
+//! Prints Markdown tables for the README. Memory figures are read from `/proc/self/status`
 //! (Linux only; elsewhere they are left out).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
@@ -49,13 +49,14 @@ fn program(lines: usize) -> String {
     text
 }
 
-/// One egui frame of the workbench at 1280 × 800.
-fn frame(ctx: &egui::Context, wb: &mut Workbench) -> Duration {
+/// One egui frame of the workbench at 1280 × 800 with these input events.
+fn frame(ctx: &egui::Context, wb: &mut Workbench, events: Vec<egui::Event>) -> Duration {
     let input = egui::RawInput {
         screen_rect: Some(egui::Rect::from_min_size(
             egui::Pos2::ZERO,
             egui::vec2(1280.0, 800.0),
         )),
+        events,
         ..Default::default()
     };
     let t = Instant::now();
@@ -76,7 +77,6 @@ fn memory() -> Option<(u64, u64)> {
 
 struct Measured {
     lines: usize,
-    ui: bool,
     /// Edit to new diagnostics, per repetition.
     latency: Vec<Duration>,
     frames: usize,
@@ -86,17 +86,17 @@ struct Measured {
     retained_per_line: Option<f64>,
 }
 
-/// Edits the first line of a `lines`-line program `reps` times (alternating an error in and
-/// out) and measures each edit until its diagnostics are shown.
-fn measure(lines: usize, reps: usize, ui: bool) -> Measured {
+/// Types an error at the start of a `lines`-line program and undoes it, `reps` times in all,
+/// and measures each keystroke until its diagnostics are shown.
+fn measure(lines: usize, reps: usize) -> Measured {
     let before = memory();
     let text = program(lines);
     let ctx = egui::Context::default();
-    let mut wb = Workbench::new(text.clone());
-    if ui {
-        frame(&ctx, &mut wb);
-        frame(&ctx, &mut wb);
-    }
+    let mut wb = Workbench::new(text);
+    // The cursor to the start; the editor takes the keyboard.
+    wb.go_to_line(1);
+    frame(&ctx, &mut wb, Vec::new());
+    frame(&ctx, &mut wb, Vec::new());
     let retained_per_line = match (before, memory()) {
         (Some((a, _)), Some((b, _))) => Some(b.saturating_sub(a) as f64 / lines as f64),
         _ => None,
@@ -106,31 +106,24 @@ fn measure(lines: usize, reps: usize, ui: bool) -> Measured {
     let mut longest_frame = Duration::ZERO;
     let mut parse = Duration::ZERO;
     for rep in 0..reps {
-        let edited = if rep % 2 == 0 {
-            format!("G01 X$ {text}")
+        let event = if rep % 2 == 0 {
+            egui::Event::Text("G01 X$ ".to_string())
         } else {
-            text.clone()
+            egui::Event::Key {
+                key: egui::Key::Z,
+                physical_key: None,
+                pressed: true,
+                repeat: false,
+                modifiers: egui::Modifiers::COMMAND,
+            }
         };
         let t = Instant::now();
-        // The edit as the editor makes it: the text changes, the analysis starts and runs
-        // this frame's budget, then the frame is drawn.
-        wb.set_text(edited);
-        let edit = t.elapsed();
-        let mut first = if ui {
-            edit + frame(&ctx, &mut wb)
-        } else {
-            edit
-        };
+        // The frame of the keystroke: the editor edits the text, the analysis starts and runs
+        // this frame's budget; then frames until it is done.
+        let mut first = frame(&ctx, &mut wb, vec![event]);
         frames = 1;
         while wb.analysis_progress().is_some() {
-            let f = if ui {
-                frame(&ctx, &mut wb)
-            } else {
-                let t = Instant::now();
-                wb.run_frame_budget();
-                t.elapsed()
-            };
-            first = first.max(f);
+            first = first.max(frame(&ctx, &mut wb, Vec::new()));
             frames += 1;
         }
         latency.push(t.elapsed());
@@ -139,13 +132,13 @@ fn measure(lines: usize, reps: usize, ui: bool) -> Measured {
             wb.problems().iter().any(|p| p.code == "E-SYNTAX-CHAR"),
             rep % 2 == 0
         );
+        assert_eq!(wb.text().starts_with("G01 X$ "), rep % 2 == 0);
         let t = Instant::now();
         let _ = swarf_syntax::parse(wb.text(), swarf_syntax::Dialect::Fanuc);
         parse = parse.max(t.elapsed());
     }
     Measured {
         lines,
-        ui,
         latency,
         frames,
         longest_frame,
@@ -158,12 +151,33 @@ fn ms(d: Duration) -> String {
     format!("{:.1} ms", d.as_secs_f64() * 1e3)
 }
 
+/// The text buffer alone on a `lines`-line program: an insertion in the middle, and the flat
+/// copy the analysis reads after it, each the median of `reps`.
+fn buffer_costs(lines: usize, reps: usize) -> (Duration, Duration) {
+    let mut buffer = swarf_ui::buffer::Buffer::from(program(lines));
+    let middle = buffer.len_chars() / 2;
+    let mut edits = Vec::new();
+    let mut copies = Vec::new();
+    for _ in 0..reps {
+        let t = Instant::now();
+        buffer.insert(middle, "X");
+        edits.push(t.elapsed());
+        let t = Instant::now();
+        assert!(buffer.as_str().len() > lines);
+        copies.push(t.elapsed());
+        buffer.remove(middle..middle + 1);
+    }
+    edits.sort();
+    copies.sort();
+    (edits[reps / 2], copies[reps / 2])
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
-    let small = measure(10_000, if quick { 5 } else { 21 }, true);
-    let large = measure(1_000_000, if quick { 2 } else { 5 }, false);
+    let small = measure(10_000, if quick { 5 } else { 21 });
+    let large = measure(1_000_000, if quick { 4 } else { 6 });
     println!(
-        "| program | edit → diagnostics shown (median) | worst | frames | longest frame | of which parsing | resident memory per line |"
+        "| program | keystroke → diagnostics shown (median) | worst | frames | longest frame | whole parse (not in one frame) | resident memory per line |"
     );
     println!("|---|---|---|---|---|---|---|");
     for m in [small, large] {
@@ -172,13 +186,8 @@ fn main() {
         let median = sorted[sorted.len() / 2];
         let worst = sorted[sorted.len() - 1];
         println!(
-            "| {} lines{} | {} | {} | {} | {} | {} | {} |",
+            "| {} lines | {} | {} | {} | {} | {} | {} |",
             m.lines,
-            if m.ui {
-                ", whole frames"
-            } else {
-                ", analysis only"
-            },
             ms(median),
             ms(worst),
             m.frames,
@@ -188,4 +197,13 @@ fn main() {
                 .map_or("–".to_string(), |b| format!("{b:.0} B")),
         );
     }
+    let (edit, copy) = buffer_costs(1_000_000, if quick { 11 } else { 101 });
+    println!();
+    println!("| 1,000,000 lines | insert a character | flat copy of the text after it |");
+    println!("|---|---|---|");
+    println!(
+        "| buffer | {:.1} µs | {} |",
+        edit.as_secs_f64() * 1e6,
+        ms(copy)
+    );
 }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
-use swarf_syntax::{Diagnostic, Dialect, LineIndex, Program, Severity, parse};
+use swarf_syntax::{Diagnostic, Dialect, LineIndex, ParseRun, Program, Severity, parse};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
 use crate::backplot::{Scene, SourceText};
@@ -126,28 +126,52 @@ impl Analysis {
     }
 }
 
-/// An analysis under way: the text is parsed, and the interpreter runs it a bounded number of
-/// blocks per [`step`](PendingAnalysis::step), so a long program never holds up a frame for
+/// Lines the parser reads for one block of budget: reading a line costs about half of running
+/// a block.
+pub const PARSE_LINES_PER_BLOCK: usize = 2;
+
+/// An analysis under way: the text is parsed and then run by the interpreter, a bounded amount
+/// of each per [`step`](PendingAnalysis::step), so a long program never holds up a frame for
 /// long. Dropping it cancels the run.
 #[derive(Debug)]
 pub struct PendingAnalysis {
-    text: String,
+    text: Arc<String>,
+    /// The parse, until the whole text is read.
+    parse: Option<ParseRun>,
     program: Program,
     toolpath: Toolpath,
-    run: swarf_interp::StatesRun,
+    /// The interpreter's run, once the text is parsed.
+    run: Option<swarf_interp::StatesRun>,
     setup: Setup,
     generation: u64,
     finished: bool,
     /// The other open files linked for the program's calls.
     linked: Vec<LinkedText>,
+    /// The other open files (name, text) to link the program's calls from once it is read;
+    /// `None` when calls are not looked for among open files.
+    others: Option<Vec<(String, String)>>,
     /// Whether calls were looked for among open files (rather than files beside the program).
     among_open_files: bool,
+    /// The dialect the text is read in (for the linked files).
+    dialect: Dialect,
+    /// Lines read plus blocks executed so far (what the budget is spent on).
+    work: u64,
 }
 
 impl PendingAnalysis {
-    /// Parses `text` and prepares its run (nothing executed yet).
+    /// Prepares the analysis of `text` (nothing read or executed yet).
     pub fn start(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
-        Self::start_linked(text, dialect, setup, generation, None)
+        Self::start_with(Arc::new(text.to_string()), dialect, setup, generation, None)
+    }
+
+    /// [`PendingAnalysis::start`] for a text already held in an `Arc` (not copied).
+    pub fn start_shared(
+        text: Arc<String>,
+        dialect: Dialect,
+        setup: &Setup,
+        generation: u64,
+    ) -> Self {
+        Self::start_with(text, dialect, setup, generation, None)
     }
 
     /// Like [`start`](PendingAnalysis::start), for a program open beside `others`: the
@@ -160,42 +184,93 @@ impl PendingAnalysis {
         generation: u64,
         others: &[OpenFile<'_>],
     ) -> Self {
-        Self::start_linked(text, dialect, setup, generation, Some(others))
+        let text = Arc::new(text.to_string());
+        Self::start_with(text, dialect, setup, generation, Some(others))
     }
 
-    fn start_linked(
-        text: &str,
+    /// [`PendingAnalysis::start_among`] for a text already held in an `Arc` (not copied).
+    pub fn start_shared_among(
+        text: Arc<String>,
+        dialect: Dialect,
+        setup: &Setup,
+        generation: u64,
+        others: &[OpenFile<'_>],
+    ) -> Self {
+        Self::start_with(text, dialect, setup, generation, Some(others))
+    }
+
+    fn start_with(
+        text: Arc<String>,
         dialect: Dialect,
         setup: &Setup,
         generation: u64,
         others: Option<&[OpenFile<'_>]>,
     ) -> Self {
-        let mut program = parse(text, dialect);
-        let linked = match others {
-            Some(others) => link_open_files(&mut program, text.len(), dialect, others),
-            None => Vec::new(),
-        };
-        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
-        toolpath.reserve(program.blocks.len());
-        let run = swarf_interp::StatesRun::new(&program, setup.clone());
+        let parse = ParseRun::new(&text, dialect);
         PendingAnalysis {
-            text: text.to_string(),
-            program,
-            toolpath,
-            run,
+            text,
+            parse: Some(parse),
+            program: Program::default(),
+            toolpath: Toolpath::for_machine(DVec3::ZERO, &setup.machine),
+            run: None,
             setup: setup.clone(),
             generation,
             finished: false,
-            linked,
+            linked: Vec::new(),
+            others: others.map(|o| {
+                o.iter()
+                    .map(|f| (f.name.to_string(), f.text.to_string()))
+                    .collect()
+            }),
             among_open_files: others.is_some(),
+            dialect,
+            work: 0,
         }
     }
 
-    /// Executes at most `budget` more blocks; whether the run is finished.
+    /// Reads lines and then executes blocks for at most `budget` blocks' worth of work (a block
+    /// buys [`PARSE_LINES_PER_BLOCK`] lines); whether the analysis is finished.
     pub fn step(&mut self, budget: usize) -> bool {
-        if !self.finished {
-            self.finished = self.run.step(&self.program, &mut self.toolpath, budget)
+        let mut budget = budget;
+        if let Some(parse) = &mut self.parse {
+            let (before, _) = parse.progress();
+            let done = parse.step(&self.text, budget.saturating_mul(PARSE_LINES_PER_BLOCK));
+            let (after, _) = parse.progress();
+            let read = after - before;
+            self.work += read as u64;
+            budget = budget.saturating_sub(read.div_ceil(PARSE_LINES_PER_BLOCK));
+            if !done {
+                return false;
+            }
+            if let Some(parse) = self.parse.take() {
+                self.program = parse.finish();
+                if let Some(others) = self.others.take() {
+                    let others: Vec<OpenFile<'_>> = others
+                        .iter()
+                        .map(|(name, text)| OpenFile { name, text })
+                        .collect();
+                    self.linked = link_open_files(
+                        &mut self.program,
+                        self.text.len(),
+                        self.dialect,
+                        &others,
+                    );
+                }
+                self.toolpath.reserve(self.program.blocks.len());
+                self.run = Some(swarf_interp::StatesRun::new(
+                    &self.program,
+                    self.setup.clone(),
+                ));
+            }
+        }
+        if !self.finished
+            && budget > 0
+            && let Some(run) = &mut self.run
+        {
+            let before = run.executed_blocks();
+            self.finished = run.step(&self.program, &mut self.toolpath, budget)
                 == swarf_interp::Status::Finished;
+            self.work += run.executed_blocks() - before;
         }
         self.finished
     }
@@ -205,15 +280,33 @@ impl PendingAnalysis {
         self.finished
     }
 
-    /// Progress as (different blocks run, blocks in the program). A program that stops early
-    /// (M30 before its end) finishes short of the total.
-    pub fn progress(&self) -> (usize, usize) {
-        (self.run.blocks_reached(), self.program.blocks.len())
+    /// While the text is being read: (lines read, lines in the text).
+    pub fn parse_progress(&self) -> Option<(usize, usize)> {
+        self.parse.as_ref().map(ParseRun::progress)
     }
 
-    /// Blocks executed so far (every pass of a loop counts), against the frame budget.
+    /// Progress of the run as (different blocks run, blocks in the program); (0, 0) while the
+    /// text is still being read. A program that stops early (M30 before its end) finishes short
+    /// of the total.
+    pub fn progress(&self) -> (usize, usize) {
+        match &self.run {
+            Some(run) => (run.blocks_reached(), self.program.blocks.len()),
+            None => (0, 0),
+        }
+    }
+
+    /// Blocks executed so far (every pass of a loop counts).
     pub fn executed_blocks(&self) -> u64 {
-        self.run.executed_blocks()
+        self.run
+            .as_ref()
+            .map_or(0, swarf_interp::StatesRun::executed_blocks)
+    }
+
+    /// The work done so far against the frame budget: lines read (a block's worth per
+    /// [`PARSE_LINES_PER_BLOCK`]) plus blocks executed.
+    pub fn work_done(&self) -> u64 {
+        let lines = self.work - self.executed_blocks();
+        lines.div_ceil(PARSE_LINES_PER_BLOCK as u64) + self.executed_blocks()
     }
 
     /// The generation the result will carry.
@@ -222,10 +315,11 @@ impl PendingAnalysis {
     }
 
     /// The finished analysis: problems located, scene prepared. Called before the run is
-    /// finished, it covers the blocks run so far.
+    /// finished, it covers the lines read and the blocks run so far.
     pub fn finish(self) -> Analysis {
         let PendingAnalysis {
             text,
+            parse,
             program,
             toolpath,
             run,
@@ -235,9 +329,23 @@ impl PendingAnalysis {
             among_open_files,
             ..
         } = self;
+        let program = match parse {
+            Some(parse) => parse.finish(),
+            None => program,
+        };
         let mut diags = program.diagnostics.clone();
-        let (run_diags, states) = run.finish();
-        diags.extend(run_diags);
+        let states = match run {
+            Some(run) => {
+                let (run_diags, states) = run.finish();
+                diags.extend(run_diags);
+                states
+            }
+            None => {
+                swarf_interp::StatesRun::new(&program, setup.clone())
+                    .finish()
+                    .1
+            }
+        };
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         // Diagnostics past the program's own text belong to the files linked after it.
         let own_end = program.linked.first().map_or(u32::MAX, |l| l.first_byte);
@@ -278,7 +386,7 @@ impl PendingAnalysis {
             marks.extend(box_marks(travel, scene.origin));
             scene.marks = Arc::new(marks);
         }
-        scene.source = Some(Arc::new(SourceText::new(&text)));
+        scene.source = Some(Arc::new(SourceText::shared(text)));
         scene.tool_radii = Arc::new(
             setup
                 .registers
@@ -352,6 +460,10 @@ fn locate(text: &str, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
         .char_indices()
         .chain(std::iter::once((text.len(), ' ')));
     for (chars, (byte, _)) in ends.enumerate() {
+        // Past the last offset the rest of the text need not be counted.
+        if next.peek().is_none() {
+            break;
+        }
         while let Some(&&o) = next.peek() {
             if o > byte {
                 break;

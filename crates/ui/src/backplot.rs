@@ -58,7 +58,7 @@ const TOOLTIP_TEXT_CHARS: usize = 120;
 /// The program text with its line starts, so tooltips can show a block's text.
 #[derive(Clone, Debug, Default)]
 pub struct SourceText {
-    text: String,
+    text: Arc<String>,
     starts: Vec<usize>,
 }
 
@@ -66,18 +66,16 @@ impl SourceText {
     /// Indexes `text` (lines end at `\n`; a trailing `\r` is dropped from each line).
     #[must_use]
     pub fn new(text: &str) -> Self {
+        Self::shared(Arc::new(text.to_owned()))
+    }
+
+    /// Indexes a text already held in an `Arc` (not copied).
+    #[must_use]
+    pub fn shared(text: Arc<String>) -> Self {
         let mut starts = Vec::with_capacity(text.len() / 24 + 1);
         starts.push(0);
-        starts.extend(
-            text.bytes()
-                .enumerate()
-                .filter(|&(_, b)| b == b'\n')
-                .map(|(i, _)| i + 1),
-        );
-        Self {
-            text: text.to_owned(),
-            starts,
-        }
+        starts.extend(memchr::memchr_iter(b'\n', text.as_bytes()).map(|i| i + 1));
+        Self { text, starts }
     }
 
     /// The text of 1-based `line` without its line ending, if the text has that line.

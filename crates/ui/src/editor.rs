@@ -7,7 +7,9 @@ use egui::{Color32, FontId, Galley, Pos2, Stroke, TextFormat, Ui};
 use swarf_syntax::{Dialect, Severity};
 
 use crate::analysis::Problem;
+use crate::buffer::Buffer;
 use crate::commands::{self, Completion};
+use crate::rows::{RowEditor, RowInput};
 
 /// Colours of the token classes, for a dark background.
 mod palette {
@@ -26,6 +28,11 @@ mod palette {
     pub const KEYWORD: Color32 = Color32::from_rgb(230, 120, 200);
     pub const VARIABLE: Color32 = Color32::from_rgb(100, 210, 210);
 }
+
+/// The colour of plain text.
+pub(crate) const TEXT_COLOR: Color32 = palette::TEXT;
+/// The colour of line numbers.
+pub(crate) const NUMBER_COLOR: Color32 = palette::NUMBER;
 
 /// The colour a diagnostic of `severity` is drawn in.
 pub fn severity_color(severity: Severity) -> Color32 {
@@ -183,22 +190,13 @@ pub struct CodeEditor {
     popup_pos: Pos2,
     /// Character ranges marked in the text (the find bar's matches).
     highlights: Vec<std::ops::Range<usize>>,
-    /// Line starts of a large text, with the text's address and length they were found for.
-    large: Option<LargeText>,
+    /// The caret and view of a text edited row by row (see [`LARGE_TEXT_BYTES`]).
+    rows: RowEditor,
 }
 
-/// What the large-text view keeps between frames.
-#[derive(Debug, Clone)]
-struct LargeText {
-    key: (usize, usize),
-    starts: Vec<usize>,
-    /// The 1-based line the viewer last put the cursor on.
-    cursor_line: Option<u32>,
-}
-
-/// Texts longer than this are shown read-only, a line laid out only while it is on screen:
-/// egui's text editor lays out (and keeps) the whole text, which a million-line program does
-/// not fit in a browser tab's memory.
+/// Texts longer than this are edited by the row editor ([`RowEditor`]), which lays out only the
+/// rows on screen: egui's text editor lays out (and keeps) the whole text every frame, which a
+/// million-line program does not fit in a frame or in a browser tab's memory.
 pub const LARGE_TEXT_BYTES: usize = 2 << 20;
 
 impl Default for CodeEditor {
@@ -217,7 +215,7 @@ impl CodeEditor {
             popup_rect: None,
             popup_pos: Pos2::ZERO,
             highlights: Vec::new(),
-            large: None,
+            rows: RowEditor::default(),
         }
     }
 
@@ -259,15 +257,24 @@ impl CodeEditor {
         &mut self,
         ui: &mut Ui,
         label: egui::Id,
-        text: &mut String,
+        text: &mut Buffer,
         dialect: Dialect,
         problems: &[Problem],
     ) -> EditorOutput {
         let font = egui::TextStyle::Monospace.resolve(ui.style());
-        if text.len() > LARGE_TEXT_BYTES {
-            return self.show_large(ui, label, text, dialect, problems, &font);
+        if text.len_bytes() > LARGE_TEXT_BYTES {
+            self.popup = None;
+            let input = RowInput {
+                id: self.id,
+                label,
+                dialect,
+                problems,
+                highlights: &self.highlights,
+                jump: self.jump.take(),
+                font,
+            };
+            return self.rows.show(ui, text, input);
         }
-        self.large = None;
         let mut output = EditorOutput::default();
         let focused = self.has_focus(ui.ctx());
         if self.popup.is_some() && focused {
@@ -292,7 +299,7 @@ impl CodeEditor {
             .auto_shrink([false, false])
             .show(ui, |ui| {
                 ui.horizontal_top(|ui| {
-                    let lines = text.bytes().filter(|&b| b == b'\n').count() + 1;
+                    let lines = text.len_lines();
                     gutter(ui, lines, problems, &font);
                     let font_for_layout = font.clone();
                     let mut layouter = |ui: &Ui, buf: &dyn egui::TextBuffer, _wrap: f32| {
@@ -369,112 +376,9 @@ impl CodeEditor {
         output
     }
 
-    /// A large text, read-only: a notice, then the lines in a scroll area that lays out only the
-    /// rows on screen (highlighted, numbered, marked by their worst diagnostic); a click on a
-    /// line puts the cursor there (for the backplot and the state panel).
-    fn show_large(
-        &mut self,
-        ui: &mut Ui,
-        label: egui::Id,
-        text: &str,
-        dialect: Dialect,
-        problems: &[Problem],
-        font: &FontId,
-    ) -> EditorOutput {
-        let mut output = EditorOutput::default();
-        let key = (text.as_ptr() as usize, text.len());
-        if self.large.as_ref().is_none_or(|l| l.key != key) {
-            let mut starts = vec![0];
-            starts.extend(memchr::memchr_iter(b'\n', text.as_bytes()).map(|i| i + 1));
-            self.large = Some(LargeText {
-                key,
-                starts,
-                cursor_line: None,
-            });
-        }
-        let Some(large) = self.large.as_mut() else {
-            return output;
-        };
-        let lines = large.starts.len();
-        ui.label(
-            egui::RichText::new(crate::i18n::trf(
-                "{} lines, {} MB: shown read-only (programs up to {} MB are edited here)",
-                &[
-                    &lines,
-                    &format!("{:.1}", text.len() as f64 / 1e6),
-                    &(LARGE_TEXT_BYTES >> 20),
-                ],
-            ))
-            .italics(),
-        )
-        .labelled_by(label);
-        let row_height = font_row_height(ui, font);
-        let mut worst: std::collections::HashMap<u32, Severity> = std::collections::HashMap::new();
-        for p in problems {
-            let slot = worst.entry(p.line).or_insert(p.severity);
-            *slot = (*slot).max(p.severity);
-        }
-        let mut area = egui::ScrollArea::both()
-            .id_salt("swarf-editor-large")
-            .auto_shrink([false, false]);
-        if let Some(range) = self.jump.take() {
-            let byte = commands::byte_of_char(text, range.start);
-            let line = large
-                .starts
-                .partition_point(|&s| s <= byte)
-                .saturating_sub(1);
-            area = area.vertical_scroll_offset(line as f32 * row_height);
-            large.cursor_line = u32::try_from(line + 1).ok();
-        }
-        let digits = lines.to_string().len().max(3);
-        let mut clicked = None;
-        area.show_rows(ui, row_height, lines, |ui, rows| {
-            for i in rows {
-                let start = large.starts[i];
-                let end = large.starts.get(i + 1).map_or(text.len(), |e| e - 1);
-                let line_text = text.get(start..end).unwrap_or_default();
-                let number = u32::try_from(i + 1).unwrap_or(u32::MAX);
-                let mark = worst.get(&number);
-                let current = large.cursor_line == Some(number);
-                ui.horizontal(|ui| {
-                    ui.label(
-                        egui::RichText::new(format!(
-                            "{}{:>digits$}",
-                            if mark.is_some() { '●' } else { ' ' },
-                            number
-                        ))
-                        .font(font.clone())
-                        .color(mark.map_or(palette::NUMBER, |s| severity_color(*s))),
-                    );
-                    let job = highlight(line_text, dialect, font);
-                    let response = ui.add(egui::Label::new(job).sense(egui::Sense::click()));
-                    if current {
-                        ui.painter().rect_stroke(
-                            response.rect.expand(1.0),
-                            2.0,
-                            Stroke::new(1.0, palette::NOTE),
-                            egui::StrokeKind::Outside,
-                        );
-                    }
-                    if response.clicked() {
-                        clicked = Some((number, start, end));
-                    }
-                });
-            }
-        });
-        if let Some((number, start, end)) = clicked {
-            large.cursor_line = Some(number);
-            let from = commands::char_of_byte(text, start);
-            let to = from + text.get(start..end).map_or(0, |t| t.chars().count());
-            output.selection = Some(from..to);
-        }
-        output.cursor_line = large.cursor_line;
-        output
-    }
-
     /// Up/Down choose a completion, Tab or Enter takes it, Escape closes the list; the keys are
     /// taken before the text edit sees them.
-    fn popup_keys(&mut self, ctx: &egui::Context, text: &mut String, output: &mut EditorOutput) {
+    fn popup_keys(&mut self, ctx: &egui::Context, text: &mut Buffer, output: &mut EditorOutput) {
         let Some(popup) = self.popup.as_mut() else {
             return;
         };
@@ -503,7 +407,7 @@ impl CodeEditor {
     }
 
     /// Replaces the typed prefix with completion `index` and puts the cursor after it.
-    fn accept(&mut self, text: &mut String, index: usize, output: &mut EditorOutput) {
+    fn accept(&mut self, text: &mut Buffer, index: usize, output: &mut EditorOutput) {
         let Some(popup) = self.popup.take() else {
             return;
         };
@@ -513,13 +417,13 @@ impl CodeEditor {
         if text.get(popup.range.clone()).is_none() {
             return;
         }
-        text.replace_range(popup.range.clone(), &item.code);
-        let end = commands::char_of_byte(text, popup.range.start + item.code.len());
+        let chars = text.byte_to_char(popup.range.start)..text.byte_to_char(popup.range.end);
+        let end = text.replace(chars, &item.code);
         self.jump = Some(end..end);
         output.completed = true;
     }
 
-    fn show_popup(&mut self, ui: &Ui, at: Pos2, text: &mut String, output: &mut EditorOutput) {
+    fn show_popup(&mut self, ui: &Ui, at: Pos2, text: &mut Buffer, output: &mut EditorOutput) {
         let Some(popup) = &self.popup else {
             self.popup_rect = None;
             return;

@@ -4,9 +4,12 @@
 //! replaced from outside (replace all, renumbering, comment toggling). The workbench takes the
 //! undo keys away from the widget and keeps this history instead: each entry is the text and the
 //! selection before a change. Consecutive typing is merged into one entry until a line break,
-//! a pause or a command ends it.
+//! a pause or a command ends it. The text is kept as a rope, so a step of typing shares all but
+//! the few chunks it changed with the steps beside it.
 
 use std::ops::Range;
+
+use ropey::Rope;
 
 /// What caused a change, for merging runs of typing into one undo step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,7 +24,7 @@ pub enum EditKind {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Snapshot {
     /// The whole program text.
-    pub text: String,
+    pub text: Rope,
     /// The selection to restore, in characters.
     pub selection: Range<usize>,
 }
@@ -29,19 +32,24 @@ pub struct Snapshot {
 /// The undo and redo stacks.
 #[derive(Debug, Clone, Default)]
 pub struct History {
-    undo: Vec<Snapshot>,
-    redo: Vec<Snapshot>,
+    /// The steps and the bytes each is reckoned to keep alive.
+    undo: Vec<(Snapshot, usize)>,
+    redo: Vec<(Snapshot, usize)>,
     /// Whether the newest undo entry is a typing run that further typing may join.
     typing_open: bool,
     /// When the open typing run last grew (seconds, egui time).
     last_typing: f64,
 }
 
-/// The most undo steps kept (each is a copy of the text).
+/// The most undo steps kept.
 const LIMIT: usize = 200;
 /// The most bytes of text the undo steps keep together (the newest step is always kept), so a
 /// long session on a large program does not grow without bound.
 const BYTES_LIMIT: usize = 64 << 20;
+/// What a step of typing is reckoned to keep alive: the rope chunks along the edited path (the
+/// rest is shared with the text after it). A command may replace the whole text, so its step is
+/// reckoned at the text's size.
+const TYPING_BYTES: usize = 16 << 10;
 /// A pause in typing this long (seconds) starts a new undo step.
 const PAUSE: f64 = 1.5;
 
@@ -52,7 +60,11 @@ impl History {
         self.redo.clear();
         let joins = kind == EditKind::Typing && self.typing_open && now - self.last_typing < PAUSE;
         if !joins {
-            self.undo.push(before);
+            let bytes = match kind {
+                EditKind::Typing => TYPING_BYTES.min(before.text.len_bytes()),
+                EditKind::Command => before.text.len_bytes(),
+            };
+            self.undo.push((before, bytes));
             self.trim();
         }
         self.typing_open = kind == EditKind::Typing && !ends_line;
@@ -61,11 +73,11 @@ impl History {
 
     /// Drops the oldest undo steps past [`LIMIT`] steps or [`BYTES_LIMIT`] bytes.
     fn trim(&mut self) {
-        let mut bytes: usize = self.undo.iter().map(|s| s.text.len()).sum();
+        let mut bytes: usize = self.undo.iter().map(|(_, b)| b).sum();
         let mut drop = 0;
         while self.undo.len() - drop > 1 && (self.undo.len() - drop > LIMIT || bytes > BYTES_LIMIT)
         {
-            bytes -= self.undo[drop].text.len();
+            bytes -= self.undo[drop].1;
             drop += 1;
         }
         self.undo.drain(..drop);
@@ -78,16 +90,16 @@ impl History {
 
     /// Takes the state to go back to, given the `current` one (which becomes redoable).
     pub fn undo(&mut self, current: Snapshot) -> Option<Snapshot> {
-        let back = self.undo.pop()?;
-        self.redo.push(current);
+        let (back, bytes) = self.undo.pop()?;
+        self.redo.push((current, bytes));
         self.typing_open = false;
         Some(back)
     }
 
     /// Takes the state to go forward to, given the `current` one (which becomes undoable).
     pub fn redo(&mut self, current: Snapshot) -> Option<Snapshot> {
-        let forward = self.redo.pop()?;
-        self.undo.push(current);
+        let (forward, bytes) = self.redo.pop()?;
+        self.undo.push((current, bytes));
         self.trim();
         self.typing_open = false;
         Some(forward)
@@ -120,7 +132,7 @@ mod tests {
 
     fn snap(text: &str) -> Snapshot {
         Snapshot {
-            text: text.to_string(),
+            text: Rope::from_str(text),
             selection: 0..0,
         }
     }
@@ -137,7 +149,7 @@ mod tests {
         h.record(snap("G0\nX1"), EditKind::Command, true, 5.1);
         assert_eq!(h.undo_len(), 4);
         assert_eq!(
-            h.undo(snap("now")).map(|s| s.text),
+            h.undo(snap("now")).map(|s| s.text.to_string()),
             Some("G0\nX1".to_string())
         );
         assert!(h.can_redo());
@@ -161,5 +173,12 @@ mod tests {
             1,
             "two copies of the big text would pass the byte limit"
         );
+        // Typing in a big text keeps a step per run: its rope shares the text's chunks.
+        let mut h = History::default();
+        let big = snap(&big);
+        for i in 0..LIMIT {
+            h.record(big.clone(), EditKind::Typing, true, i as f64);
+        }
+        assert_eq!(h.undo_len(), LIMIT);
     }
 }

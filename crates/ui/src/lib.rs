@@ -3,11 +3,13 @@
 
 pub mod analysis;
 pub mod backplot;
+pub mod buffer;
 pub mod commands;
 pub mod editor;
 pub mod examples;
 pub mod history;
 pub mod i18n;
+pub mod rows;
 mod settings;
 mod workbench;
 

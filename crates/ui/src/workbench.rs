@@ -1,12 +1,16 @@
 //! The whole editing surface: editor, problems list and backplot, wired to the pipeline.
 
 use std::ops::Range;
+use std::sync::Arc;
+
+use ropey::Rope;
 
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, Encoding, Severity};
 
 use crate::analysis::{Analysis, OpenFile, PendingAnalysis, Problem, Stats};
 use crate::backplot::Backplot;
+use crate::buffer::Buffer;
 use crate::commands::{self, FindOptions, Finder, RenumberOptions};
 use crate::editor::{CodeEditor, severity_color};
 use crate::examples::EXAMPLES;
@@ -29,7 +33,7 @@ pub const FRAME_BUDGET: usize = 20_000;
 /// is finished, the last finished analysis (markers, problems, backplot) stays on screen, and
 /// an edit made meanwhile cancels the unfinished run and starts over.
 pub struct Workbench {
-    text: String,
+    text: Buffer,
     dialect: Dialect,
     setup: Setup,
     generation: u64,
@@ -50,7 +54,7 @@ pub struct Workbench {
     /// Undo and redo over typing and commands.
     history: History,
     /// The text as last recorded in the history (the "before" of the next typed change).
-    shadow: String,
+    shadow: Rope,
     /// The editor's selection in characters, as last reported or set.
     selection: Range<usize>,
     /// egui time of the current frame, for merging typing into undo steps.
@@ -102,24 +106,24 @@ pub struct Document {
     /// The encoding the file was read with; saving writes it back the same way.
     pub encoding: Encoding,
     /// The text as last opened or saved.
-    saved: String,
+    saved: Rope,
     dirty: bool,
 }
 
 impl Default for Document {
     /// An empty untitled program.
     fn default() -> Self {
-        Document::new("untitled.nc", "", Encoding::Utf8)
+        Document::new("untitled.nc", &Rope::new(), Encoding::Utf8)
     }
 }
 
 /// What a tab holds while another one is active.
 #[derive(Debug, Clone, Default)]
 struct Tab {
-    text: String,
+    text: Buffer,
     document: Document,
     history: History,
-    shadow: String,
+    shadow: Rope,
     selection: Range<usize>,
     cursor_line: Option<u32>,
 }
@@ -140,12 +144,12 @@ pub struct TabRecord {
 }
 
 impl Document {
-    fn new(name: &str, text: &str, encoding: Encoding) -> Self {
+    fn new(name: &str, text: &Rope, encoding: Encoding) -> Self {
         Document {
             name: name.to_string(),
             path: None,
             encoding,
-            saved: text.to_string(),
+            saved: text.clone(),
             dirty: false,
         }
     }
@@ -218,7 +222,8 @@ impl Workbench {
         let setup = Setup::default();
         let dialect = Dialect::default();
         let analysis = Analysis::run(&text, dialect, &setup, 1);
-        let text_for_shadow = text.clone();
+        let text = Buffer::from(text);
+        let rope = text.rope().clone();
         Workbench {
             text,
             dialect,
@@ -234,7 +239,7 @@ impl Workbench {
             synced_line: None,
             state_cache: None,
             history: History::default(),
-            shadow: text_for_shadow.clone(),
+            shadow: rope.clone(),
             selection: 0..0,
             now: 0.0,
             find: FindBar::default(),
@@ -242,7 +247,7 @@ impl Workbench {
             renumber: None,
             settings_open: false,
             new_offset: String::new(),
-            document: Document::new("untitled.nc", &text_for_shadow, Encoding::Utf8),
+            document: Document::new("untitled.nc", &rope, Encoding::Utf8),
             tabs: vec![Tab::default()],
             active: 0,
             requests: Vec::new(),
@@ -257,7 +262,7 @@ impl Workbench {
 
     /// The program text.
     pub fn text(&self) -> &str {
-        &self.text
+        self.text.as_str()
     }
 
     /// Replaces the text and re-analyses it (one undo step; the document stays the same file).
@@ -328,10 +333,10 @@ impl Workbench {
 
     /// Shows `text` as the active tab's file `name`: a fresh undo history, no unsaved changes.
     fn load(&mut self, name: &str, text: String, encoding: Encoding) {
-        self.text = text;
-        self.shadow = self.text.clone();
+        self.text = Buffer::from(text);
+        self.shadow = self.text.rope().clone();
         self.history.clear();
-        self.document = Document::new(name, &self.text, encoding);
+        self.document = Document::new(name, self.text.rope(), encoding);
         self.selection = 0..0;
         self.cursor_line = None;
         self.synced_line = None;
@@ -355,8 +360,8 @@ impl Workbench {
     /// a change to `name` that still needs saving.
     pub fn recover(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
         self.load(name, String::new(), encoding);
-        self.text = text.into();
-        self.shadow = self.text.clone();
+        self.text = Buffer::from(text.into());
+        self.shadow = self.text.rope().clone();
         self.document.dirty = true;
         self.message = Some(tr("Recovered unsaved changes").to_string());
         self.reanalyse();
@@ -395,13 +400,18 @@ impl Workbench {
         let active = active.min(records.len() - 1);
         let mut tabs = Vec::with_capacity(records.len());
         for r in records {
-            let mut document =
-                Document::new(&r.name, if r.dirty { "" } else { &r.text }, r.encoding);
+            let text = Buffer::from(r.text);
+            let saved = if r.dirty {
+                Rope::new()
+            } else {
+                text.rope().clone()
+            };
+            let mut document = Document::new(&r.name, &saved, r.encoding);
             document.path = r.path;
             document.dirty = r.dirty;
             tabs.push(Tab {
-                shadow: r.text.clone(),
-                text: r.text,
+                shadow: text.rope().clone(),
+                text,
                 document,
                 ..Tab::default()
             });
@@ -564,7 +574,7 @@ impl Workbench {
     /// the save.
     pub fn mark_saved(&mut self, name: &str) {
         self.document.name = name.to_string();
-        self.document.saved = self.text.clone();
+        self.document.saved = self.text.rope().clone();
         self.document.dirty = false;
         self.message = Some(trf("Saved {}", &[&name]));
         if let Some(action) = self.after_save.take() {
@@ -725,36 +735,38 @@ impl Workbench {
 
     fn snapshot(&self) -> Snapshot {
         Snapshot {
-            text: self.text.clone(),
+            text: self.text.rope().clone(),
             selection: self.selection.clone(),
         }
     }
 
     fn restore(&mut self, to: Snapshot) {
-        self.text = to.text;
-        self.shadow = self.text.clone();
+        self.text = Buffer::from(to.text);
+        self.shadow = self.text.rope().clone();
         self.select_chars(to.selection);
         self.text_changed();
     }
 
     /// Replaces the text as one undoable command and selects `selection` (characters).
     fn apply(&mut self, text: String, selection: Range<usize>) {
-        if text == self.text {
+        if text == self.text.as_str() {
             return;
         }
         let before = Snapshot {
-            text: std::mem::replace(&mut self.text, text),
+            text: std::mem::replace(&mut self.text, Buffer::from(text))
+                .rope()
+                .clone(),
             selection: self.selection.clone(),
         };
         self.history
             .record(before, EditKind::Command, true, self.now);
-        self.shadow = self.text.clone();
+        self.shadow = self.text.rope().clone();
         self.select_chars(selection);
         self.text_changed();
     }
 
     fn text_changed(&mut self) {
-        self.document.dirty = self.text != self.document.saved;
+        self.document.dirty = self.text.rope() != &self.document.saved;
         self.reanalyse();
     }
 
@@ -797,11 +809,11 @@ impl Workbench {
             .filter(|(i, _)| *i != self.active)
             .map(|(_, t)| OpenFile {
                 name: &t.document.name,
-                text: &t.text,
+                text: t.text.as_str(),
             })
             .collect();
-        self.pending = Some(PendingAnalysis::start_among(
-            &self.text,
+        self.pending = Some(PendingAnalysis::start_shared_among(
+            Arc::clone(self.text.shared()),
             self.dialect,
             &self.setup,
             self.generation,
@@ -818,10 +830,9 @@ impl Workbench {
         let Some(pending) = &mut self.pending else {
             return;
         };
-        let executed = pending.executed_blocks();
+        let work = pending.work_done();
         let done = pending.step(self.budget);
-        let used = usize::try_from(pending.executed_blocks().saturating_sub(executed))
-            .unwrap_or(usize::MAX);
+        let used = usize::try_from(pending.work_done().saturating_sub(work)).unwrap_or(usize::MAX);
         self.budget = self.budget.saturating_sub(used);
         if done && let Some(pending) = self.pending.take() {
             self.analysis = pending.finish();
@@ -901,7 +912,7 @@ impl Workbench {
                 );
                 if out.changed || out.completed {
                     let before = Snapshot {
-                        text: std::mem::replace(&mut self.shadow, self.text.clone()),
+                        text: std::mem::replace(&mut self.shadow, self.text.rope().clone()),
                         selection: self.selection.clone(),
                     };
                     let kind = if out.completed {
@@ -1036,8 +1047,7 @@ impl Workbench {
     fn jump_to_line(&mut self, line: u32) {
         let lines = &self.analysis.program.lines;
         let start = lines.line_start(line.saturating_sub(1) as usize) as usize;
-        let start = start.min(self.text.len());
-        let chars = self.text.get(..start).map_or(0, |t| t.chars().count());
+        let chars = self.text.byte_to_char(start);
         self.select_chars(chars..chars);
         self.cursor_line = Some(line);
         self.synced_line = Some(line);
@@ -1370,7 +1380,7 @@ impl Workbench {
             self.find_next();
             return;
         };
-        let mut text = self.text.clone();
+        let mut text = self.text.to_string();
         text.replace_range(a..b, &with);
         let after = commands::char_of_byte(&text, a + with.len());
         self.apply(text, after..after);
@@ -1496,9 +1506,10 @@ impl Workbench {
                         go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                         go |= ui.button(tr("Go")).clicked();
                     });
-                    ui.label(format!("1 – {}", commands::line_count(&self.text)));
+                    ui.label(format!("1 – {}", self.text.line_count()));
                 });
-            match commands::parse_line_number(&input, &self.text) {
+            let line = input.trim().parse::<u32>().ok().filter(|&n| n >= 1);
+            match line.map(|n| n.min(self.text.line_count())) {
                 Some(line) if go => self.go_to_line(line),
                 _ if open && !(go || ctx.input(|i| i.key_pressed(egui::Key::Escape))) => {
                     self.goto = Some(input);
@@ -1635,7 +1646,15 @@ impl Workbench {
             }
             ui.separator();
             ui.label(self.document.encoding.name());
-            if let Some((done, total)) = self.analysis_progress() {
+            if let Some((read, lines)) = self.pending.as_ref().and_then(|p| p.parse_progress()) {
+                ui.separator();
+                ui.label("Analysing");
+                ui.add(
+                    egui::ProgressBar::new(read as f32 / lines.max(1) as f32)
+                        .desired_width(180.0)
+                        .text(format!("{read} / {lines} lines read")),
+                );
+            } else if let Some((done, total)) = self.analysis_progress() {
                 ui.separator();
                 ui.label(tr("Analysing"));
                 let fraction = if total == 0 {

@@ -31,14 +31,25 @@ fn a_pending_analysis_in_steps_equals_the_one_call_run() {
     let setup = Setup::default();
     let whole = Analysis::run(&text, Dialect::Fanuc, &setup, 7);
     let mut pending = PendingAnalysis::start(&text, Dialect::Fanuc, &setup, 7);
-    assert_eq!(pending.progress(), (0, 3002));
+    // The text is read first (two lines per block of budget), then run.
+    assert_eq!(pending.parse_progress(), Some((0, 3003)));
+    assert_eq!(pending.progress(), (0, 0));
     let mut steps = 0;
+    let mut read_steps = 0;
     while !pending.step(100) {
         steps += 1;
-        let (done, total) = pending.progress();
-        assert!(done <= total);
+        if let Some((read, lines)) = pending.parse_progress() {
+            assert_eq!(read, 200 * steps);
+            assert!(read < lines);
+            read_steps += 1;
+        } else {
+            let (done, total) = pending.progress();
+            assert_eq!(total, 3002);
+            assert!(done <= total);
+        }
     }
-    assert!(steps >= 29, "{steps}");
+    assert_eq!(read_steps, 15);
+    assert!(steps >= 15 + 29, "{steps}");
     assert!(pending.is_finished());
     let stepped = pending.finish();
     assert_eq!(stepped.problems, whole.problems);
@@ -81,9 +92,8 @@ fn a_long_program_runs_over_frames_behind_a_progress_bar_keeping_the_old_results
     harness
         .state_mut()
         .set_text(program(lines, "G01 Y$\nM30\n"));
-    let (done, total) = harness.state().analysis_progress().expect("still running");
-    assert_eq!(total, lines + 2);
-    assert!(done > 0 && done < total, "{done} of {total}");
+    // The first frame's budget reads the first lines of the text.
+    assert_eq!(harness.state().analysis_progress(), Some((0, 0)));
     assert_eq!(
         harness.state().problems(),
         old.as_slice(),
@@ -94,14 +104,20 @@ fn a_long_program_runs_over_frames_behind_a_progress_bar_keeping_the_old_results
     assert_eq!(harness.state().problems(), old.as_slice());
     let mut last = 0;
     let mut frames = 1;
-    while let Some((done, _)) = harness.state().analysis_progress() {
-        assert!(done >= last);
-        last = done;
+    let mut run_frames = 0;
+    while let Some((done, total)) = harness.state().analysis_progress() {
+        if total > 0 {
+            assert_eq!(total, lines + 2);
+            assert!(done >= last && done < total, "{done} of {total}");
+            last = done;
+            run_frames += 1;
+        }
         harness.step();
         frames += 1;
         assert!(frames < 100, "the analysis ends");
     }
-    assert!(frames >= 4, "{frames} frames");
+    assert!(run_frames >= 3, "{run_frames} frames running");
+    assert!(frames >= 5, "{frames} frames");
     let wb = harness.state();
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert!(

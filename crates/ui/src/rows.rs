@@ -1,0 +1,606 @@
+//! The editor for programs too large for egui's `TextEdit` (which lays out the whole text every
+//! frame): the text stays in a rope ([`Buffer`]), and each frame lays out only the rows on screen
+//! (highlighted as [`highlight`] does, numbered, marked by their diagnostics). The caret and the
+//! selection are character indices into the rope; keys, pointer and clipboard events edit the
+//! rope in place, so a keystroke costs the same in a million-line program as in a short one.
+
+use std::ops::Range;
+use std::sync::Arc;
+
+use egui::text::CCursor;
+use egui::{Event, FontId, Galley, Key, Pos2, Rect, Sense, Stroke, Ui};
+use swarf_syntax::{Dialect, Severity};
+
+use crate::analysis::Problem;
+use crate::buffer::Buffer;
+use crate::editor::{EditorOutput, gutter_tooltip, highlight, hover_text, severity_color};
+
+/// Space between the gutter and the text, and around the text.
+const PAD: f32 = 6.0;
+
+/// What the row editor keeps between frames.
+#[derive(Debug, Clone, Default)]
+pub struct RowEditor {
+    /// The caret, a character index.
+    caret: usize,
+    /// The other end of the selection (equal to the caret when nothing is selected).
+    anchor: usize,
+    /// The column (characters) Up and Down aim for, kept over short lines.
+    column: Option<usize>,
+    /// Scroll so the caret is on screen (after a key moved it or an edit).
+    reveal: bool,
+    /// Scroll so the caret's row is in the middle (after a jump).
+    centre: bool,
+    /// Scroll offset and height of the view last frame.
+    offset: f32,
+    view_height: f32,
+    /// The widest row laid out so far (the scroll area's width).
+    width: f32,
+}
+
+/// One frame's input for [`RowEditor::show`].
+pub struct RowInput<'a> {
+    /// The widget's id (for focus).
+    pub id: egui::Id,
+    /// The widget naming the editor for screen readers.
+    pub label: egui::Id,
+    /// The dialect the text is highlighted as.
+    pub dialect: Dialect,
+    /// Diagnostics, sorted by position.
+    pub problems: &'a [Problem],
+    /// Character ranges marked in the text (find matches), sorted.
+    pub highlights: &'a [Range<usize>],
+    /// A selection to jump to (characters), scrolled into the middle of the view.
+    pub jump: Option<Range<usize>>,
+    /// The monospace font.
+    pub font: FontId,
+}
+
+/// What a key or clipboard event does to the text and the caret.
+enum Edit {
+    /// Replace the selection with this text.
+    Insert(String),
+    /// Delete the selection, or the character before the caret.
+    Backspace,
+    /// Delete the selection, or the character after the caret.
+    Delete,
+}
+
+impl RowEditor {
+    /// The selection as a sorted character range.
+    pub fn selection(&self) -> Range<usize> {
+        self.caret.min(self.anchor)..self.caret.max(self.anchor)
+    }
+
+    /// The caret, a character index.
+    pub fn caret(&self) -> usize {
+        self.caret
+    }
+
+    /// Selects `chars` (the caret at its end).
+    pub fn select(&mut self, chars: Range<usize>) {
+        self.anchor = chars.start;
+        self.caret = chars.end;
+        self.column = None;
+    }
+
+    /// Applies one edit at the selection; whether the text changed.
+    fn edit(&mut self, text: &mut Buffer, edit: Edit) -> bool {
+        let sel = self.selection();
+        let range = match edit {
+            Edit::Insert(_) => sel,
+            _ if !sel.is_empty() => sel,
+            Edit::Backspace if sel.start > 0 => {
+                // A `\r\n` goes as one line ending.
+                let mut start = sel.start - 1;
+                if start > 0 && text.slice(start - 1..sel.start) == "\r\n" {
+                    start -= 1;
+                }
+                start..sel.start
+            }
+            Edit::Delete if sel.end < text.len_chars() => {
+                let mut end = sel.end + 1;
+                if text.slice(sel.end..end + 1) == "\r\n" {
+                    end += 1;
+                }
+                sel.end..end
+            }
+            _ => return false,
+        };
+        let insert = match &edit {
+            Edit::Insert(s) => s.as_str(),
+            _ => "",
+        };
+        if range.is_empty() && insert.is_empty() {
+            return false;
+        }
+        let after = text.replace(range, insert);
+        self.caret = after;
+        self.anchor = after;
+        self.column = None;
+        self.reveal = true;
+        true
+    }
+
+    /// Moves the caret to `to`, extending the selection when `extend`.
+    fn move_to(&mut self, to: usize, extend: bool) {
+        self.caret = to;
+        if !extend {
+            self.anchor = to;
+        }
+        self.reveal = true;
+    }
+
+    /// Handles the keyboard and clipboard events of this frame; (changed, a line was ended).
+    fn keys(&mut self, ui: &Ui, text: &mut Buffer, rows_per_page: usize) -> (bool, bool) {
+        let events = ui.input(|i| i.events.clone());
+        let mut changed = false;
+        let mut ends_line = false;
+        for event in events {
+            let len = text.len_chars();
+            self.caret = self.caret.min(len);
+            self.anchor = self.anchor.min(len);
+            match event {
+                // A lone line break comes as the Enter key too.
+                Event::Text(t) if !t.is_empty() && t != "\n" && t != "\r" => {
+                    changed |= self.edit(text, Edit::Insert(t));
+                }
+                Event::Paste(t) if !t.is_empty() => {
+                    changed |= self.edit(text, Edit::Insert(t));
+                }
+                Event::Copy | Event::Cut => {
+                    let sel = self.selection();
+                    if !sel.is_empty() {
+                        ui.ctx().copy_text(text.slice(sel));
+                        if matches!(event, Event::Cut) {
+                            changed |= self.edit(text, Edit::Delete);
+                        }
+                    }
+                }
+                Event::Key {
+                    key,
+                    pressed: true,
+                    modifiers,
+                    ..
+                } => {
+                    let shift = modifiers.shift;
+                    let word = modifiers.command || modifiers.alt;
+                    let line = text.char_to_line(self.caret);
+                    let line_start = text.line_to_char(line);
+                    let col = self.caret - line_start;
+                    let vertical = |this: &mut Self, to_line: usize| {
+                        let want = *this.column.get_or_insert(col);
+                        let start = text.line_to_char(to_line);
+                        let to = start + want.min(text.line_len_chars(to_line));
+                        this.move_to(to, shift);
+                    };
+                    match key {
+                        Key::Enter => {
+                            changed |= self.edit(text, Edit::Insert("\n".to_string()));
+                            ends_line = true;
+                        }
+                        Key::Tab if !modifiers.any() => {
+                            changed |= self.edit(text, Edit::Insert("\t".to_string()));
+                        }
+                        Key::Backspace if word && self.selection().is_empty() => {
+                            let to = word_boundary(text, self.caret, false);
+                            self.anchor = to;
+                            changed |= self.edit(text, Edit::Backspace);
+                        }
+                        Key::Backspace => changed |= self.edit(text, Edit::Backspace),
+                        Key::Delete if word && self.selection().is_empty() => {
+                            let to = word_boundary(text, self.caret, true);
+                            self.anchor = to;
+                            changed |= self.edit(text, Edit::Delete);
+                        }
+                        Key::Delete => changed |= self.edit(text, Edit::Delete),
+                        Key::A if modifiers.command => {
+                            self.anchor = 0;
+                            self.caret = len;
+                        }
+                        Key::ArrowLeft => {
+                            let sel = self.selection();
+                            let to = if !shift && !sel.is_empty() {
+                                sel.start
+                            } else if word {
+                                word_boundary(text, self.caret, false)
+                            } else {
+                                self.caret.saturating_sub(1)
+                            };
+                            self.column = None;
+                            self.move_to(to, shift);
+                        }
+                        Key::ArrowRight => {
+                            let sel = self.selection();
+                            let to = if !shift && !sel.is_empty() {
+                                sel.end
+                            } else if word {
+                                word_boundary(text, self.caret, true)
+                            } else {
+                                (self.caret + 1).min(len)
+                            };
+                            self.column = None;
+                            self.move_to(to, shift);
+                        }
+                        Key::ArrowUp if line > 0 => vertical(self, line - 1),
+                        Key::ArrowUp => self.move_to(0, shift),
+                        Key::ArrowDown if line + 1 < text.len_lines() => vertical(self, line + 1),
+                        Key::ArrowDown => self.move_to(len, shift),
+                        Key::PageUp => vertical(self, line.saturating_sub(rows_per_page)),
+                        Key::PageDown => vertical(
+                            self,
+                            (line + rows_per_page).min(text.len_lines().saturating_sub(1)),
+                        ),
+                        Key::Home if modifiers.command => {
+                            self.column = None;
+                            self.move_to(0, shift);
+                        }
+                        Key::End if modifiers.command => {
+                            self.column = None;
+                            self.move_to(len, shift);
+                        }
+                        Key::Home => {
+                            self.column = None;
+                            self.move_to(line_start, shift);
+                        }
+                        Key::End => {
+                            self.column = None;
+                            self.move_to(line_start + text.line_len_chars(line), shift);
+                        }
+                        _ => {}
+                    }
+                }
+                _ => {}
+            }
+        }
+        (changed, ends_line)
+    }
+
+    /// Shows the text filling `ui`; only the rows on screen are laid out.
+    pub fn show(&mut self, ui: &mut Ui, text: &mut Buffer, input: RowInput<'_>) -> EditorOutput {
+        let RowInput {
+            id,
+            label,
+            dialect,
+            problems,
+            highlights,
+            jump,
+            font,
+        } = input;
+        let mut output = EditorOutput::default();
+        let row_height = ui.ctx().fonts_mut(|f| f.row_height(&font)).max(1.0);
+        let char_width = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
+        if let Some(range) = jump {
+            let len = text.len_chars();
+            self.select(range.start.min(len)..range.end.min(len));
+            self.centre = true;
+            ui.memory_mut(|m| m.request_focus(id));
+        }
+        let focused = ui.memory(|m| m.has_focus(id));
+        if focused {
+            ui.memory_mut(|m| {
+                m.set_focus_lock_filter(
+                    id,
+                    egui::EventFilter {
+                        tab: true,
+                        horizontal_arrows: true,
+                        vertical_arrows: true,
+                        escape: false,
+                    },
+                );
+            });
+            let rows_per_page = ((self.view_height / row_height).floor() as usize).max(1);
+            let (changed, ends_line) = self.keys(ui, text, rows_per_page);
+            output.changed = changed;
+            output.ends_line = ends_line;
+        }
+        let len = text.len_chars();
+        self.caret = self.caret.min(len);
+        self.anchor = self.anchor.min(len);
+        let lines = text.len_lines();
+        let digits = lines.to_string().len().max(3);
+        let gutter = (digits + 1) as f32 * char_width + PAD;
+        let caret_line = text.char_to_line(self.caret);
+
+        let mut area = egui::ScrollArea::both()
+            .id_salt("swarf-editor-rows")
+            .auto_shrink([false, false]);
+        let caret_y = caret_line as f32 * row_height;
+        if std::mem::take(&mut self.centre) {
+            area = area.vertical_scroll_offset((caret_y - self.view_height / 2.0).max(0.0));
+            self.reveal = false;
+        } else if std::mem::take(&mut self.reveal) {
+            if caret_y < self.offset {
+                area = area.vertical_scroll_offset(caret_y);
+            } else if caret_y + row_height > self.offset + self.view_height {
+                area = area.vertical_scroll_offset(caret_y + row_height - self.view_height);
+            }
+        }
+        let scroll = area.show_viewport(ui, |ui, viewport| {
+            let size = egui::vec2(
+                gutter + PAD + self.width + 4.0 * char_width,
+                lines as f32 * row_height + PAD,
+            );
+            let (_, rect) = ui.allocate_space(size.max(ui.available_size()));
+            let response = ui
+                .interact(rect, id, Sense::click_and_drag())
+                .labelled_by(label);
+            response.widget_info(|| {
+                egui::WidgetInfo::labeled(egui::Role::MultilineTextInput, true, "Program")
+            });
+            ui.ctx().accesskit_node_builder(id, |node| {
+                node.set_role(egui::accesskit::Role::MultilineTextInput);
+            });
+            let text_left = rect.left() + gutter + PAD;
+            let visible_rows = {
+                let first = (viewport.min.y / row_height).floor().max(0.0) as usize;
+                let last = ((viewport.max.y / row_height).ceil().max(0.0) as usize).min(lines);
+                first.min(last)..last
+            };
+            let layout = |ui: &Ui, row: usize| -> (usize, usize, Arc<Galley>) {
+                let start = text.line_to_char(row);
+                let len = text.line_len_chars(row);
+                let job = highlight(&text.line_text(row), dialect, &font);
+                (start, len, ui.painter().layout_job(job))
+            };
+            // The character under a point: its row, and the column from that row's layout.
+            let char_at = |ui: &Ui, pos: Pos2| -> usize {
+                let row = ((pos.y - rect.top()) / row_height).floor().max(0.0) as usize;
+                let row = row.min(lines.saturating_sub(1));
+                let (start, len, galley) = layout(ui, row);
+                let cursor = galley.cursor_from_pos(egui::vec2(pos.x - text_left, 0.0));
+                start + cursor.index.0.min(len)
+            };
+            let pointer = response
+                .interact_pointer_pos()
+                .or_else(|| response.hover_pos());
+            if response.double_clicked()
+                && let Some(pos) = pointer
+            {
+                // The word under the pointer (an address word, a number, a name).
+                let at = char_at(ui, pos);
+                self.anchor = word_boundary(text, (at + 1).min(len), false);
+                self.caret = word_boundary(text, at, true);
+                self.column = None;
+            } else if let Some(pos) = response.interact_pointer_pos() {
+                let (pressed, extend) =
+                    ui.input(|i| (i.pointer.primary_pressed(), i.modifiers.shift));
+                if pressed {
+                    self.move_to(char_at(ui, pos), extend);
+                    self.column = None;
+                    self.reveal = false;
+                } else if response.dragged() {
+                    self.caret = char_at(ui, pos);
+                    self.column = None;
+                }
+                response.request_focus();
+            }
+            let focused = response.has_focus() || ui.memory(|m| m.has_focus(id));
+            self.paint_rows(
+                ui,
+                text,
+                &Rows {
+                    rect,
+                    rows: visible_rows.clone(),
+                    row_height,
+                    text_left,
+                    digits,
+                    font: &font,
+                    dialect,
+                    problems,
+                    highlights,
+                    focused,
+                },
+            );
+            // Tooltips: a gutter marker's diagnostics; over the text, the code and problems
+            // under the pointer.
+            if let Some(pos) = response.hover_pos() {
+                let row = ((pos.y - rect.top()) / row_height).floor().max(0.0) as usize;
+                if row < lines {
+                    let number = u32::try_from(row + 1).unwrap_or(u32::MAX);
+                    let tip = if pos.x < text_left {
+                        gutter_tooltip(problems, number)
+                    } else {
+                        let (start, _, _) = layout(ui, row);
+                        let local: Vec<Problem> = problems_on_rows(problems, row..row + 1)
+                            .iter()
+                            .map(|p| Problem {
+                                chars: p.chars.start.saturating_sub(start)
+                                    ..p.chars.end.saturating_sub(start),
+                                ..p.clone()
+                            })
+                            .collect();
+                        let at = char_at(ui, pos) - start;
+                        hover_text(&text.line_text(row), dialect, at, &local)
+                    };
+                    if let Some(tip) = tip {
+                        response.on_hover_text_at_pointer(tip);
+                    }
+                }
+            }
+        });
+        self.offset = scroll.state.clamped_offset().y;
+        self.view_height = scroll.inner_rect.height();
+        output.cursor_line = u32::try_from(text.char_to_line(self.caret) + 1).ok();
+        output.selection = Some(self.selection());
+        output
+    }
+
+    /// Paints the gutter, the text, the selection, the caret, the find matches and the
+    /// diagnostics of the visible rows.
+    fn paint_rows(&mut self, ui: &Ui, text: &Buffer, rows: &Rows<'_>) {
+        let painter = ui.painter();
+        let selection = self.selection();
+        let sel_fill = ui.visuals().selection.bg_fill;
+        let mark_fill = egui::Color32::from_rgba_unmultiplied(255, 210, 80, 70);
+        let on_rows = problems_on_rows(rows.problems, rows.rows.clone());
+        let first_char = text.line_to_char(rows.rows.start);
+        let last_char = text.line_to_char(rows.rows.end);
+        let marks_from = rows.highlights.partition_point(|r| r.end < first_char);
+        let marks = rows.highlights[marks_from..]
+            .iter()
+            .take_while(|r| r.start <= last_char);
+        let marks: Vec<&Range<usize>> = marks.collect();
+        let caret_line = text.char_to_line(self.caret);
+        for row in rows.rows.clone() {
+            let top = rows.rect.top() + row as f32 * rows.row_height;
+            let start = text.line_to_char(row);
+            let len = text.line_len_chars(row);
+            let galley =
+                painter.layout_job(highlight(&text.line_text(row), rows.dialect, rows.font));
+            self.width = self.width.max(galley.size().x);
+            let origin = egui::pos2(rows.text_left, top);
+            let x_of = |col: usize| origin.x + galley.pos_from_cursor(CCursor::new(col)).left();
+            let span = |from: usize, to: usize, fill: egui::Color32| {
+                let a = x_of(from.clamp(start, start + len) - start);
+                let b = x_of(to.clamp(start, start + len) - start);
+                // A range running past the line's end takes the line ending too.
+                let b = if to > start + len { b + 6.0 } else { b };
+                if b > a {
+                    painter.rect_filled(
+                        Rect::from_min_max(
+                            egui::pos2(a, top),
+                            egui::pos2(b, top + rows.row_height),
+                        ),
+                        1.0,
+                        fill,
+                    );
+                }
+            };
+            if row == caret_line && rows.focused {
+                painter.rect_filled(
+                    Rect::from_min_max(
+                        egui::pos2(rows.rect.left(), top),
+                        egui::pos2(rows.rect.right(), top + rows.row_height),
+                    ),
+                    0.0,
+                    ui.visuals().faint_bg_color,
+                );
+            }
+            if selection.start <= start + len && selection.end > start {
+                span(selection.start, selection.end, sel_fill);
+            }
+            for m in &marks {
+                if m.start <= start + len && m.end > start {
+                    span(m.start, m.end, mark_fill);
+                }
+            }
+            painter.galley(origin, galley.clone(), crate::editor::TEXT_COLOR);
+            // The line number, coloured (and marked) by the line's worst diagnostic.
+            let number = u32::try_from(row + 1).unwrap_or(u32::MAX);
+            let worst = on_rows
+                .iter()
+                .filter(|p| p.line == number)
+                .map(|p| p.severity)
+                .max();
+            let digits = rows.digits;
+            painter.text(
+                egui::pos2(rows.rect.left(), top),
+                egui::Align2::LEFT_TOP,
+                format!(
+                    "{}{number:>digits$}",
+                    if worst.is_some() { '●' } else { ' ' }
+                ),
+                rows.font.clone(),
+                worst.map_or(crate::editor::NUMBER_COLOR, severity_color),
+            );
+            for p in on_rows.iter().filter(|p| p.line == number) {
+                let from = p.chars.start.clamp(start, start + len) - start;
+                let to = p.chars.end.clamp(start, start + len) - start;
+                squiggle(
+                    painter,
+                    x_of(from),
+                    if to > from {
+                        x_of(to)
+                    } else {
+                        x_of(from) + 8.0
+                    },
+                    top + rows.row_height - 1.0,
+                    p.severity,
+                );
+            }
+            if row == caret_line && rows.focused {
+                let x = x_of(self.caret - start);
+                painter.line_segment(
+                    [egui::pos2(x, top), egui::pos2(x, top + rows.row_height)],
+                    Stroke::new(2.0, ui.visuals().text_cursor.stroke.color),
+                );
+            }
+        }
+    }
+}
+
+/// Where and how the visible rows are painted.
+struct Rows<'a> {
+    rect: Rect,
+    rows: Range<usize>,
+    row_height: f32,
+    text_left: f32,
+    digits: usize,
+    font: &'a FontId,
+    dialect: Dialect,
+    problems: &'a [Problem],
+    highlights: &'a [Range<usize>],
+    focused: bool,
+}
+
+/// The problems on 0-based `rows` (problems are sorted by line).
+fn problems_on_rows(problems: &[Problem], rows: Range<usize>) -> &[Problem] {
+    let first = u32::try_from(rows.start + 1).unwrap_or(u32::MAX);
+    let last = u32::try_from(rows.end).unwrap_or(u32::MAX);
+    let from = problems.partition_point(|p| p.line < first);
+    let to = problems.partition_point(|p| p.line <= last);
+    problems.get(from..to.max(from)).unwrap_or_default()
+}
+
+/// A wavy underline from `x0` to `x1` at height `y`.
+fn squiggle(painter: &egui::Painter, x0: f32, x1: f32, y: f32, severity: Severity) {
+    let stroke = Stroke::new(1.2, severity_color(severity));
+    let mut points = Vec::new();
+    let mut x = x0;
+    let mut up = true;
+    while x <= x1 + 0.01 {
+        points.push(egui::pos2(x, if up { y - 1.5 } else { y + 1.0 }));
+        up = !up;
+        x += 2.5;
+    }
+    if points.len() >= 2 {
+        painter.add(egui::Shape::line(points, stroke));
+    }
+}
+
+/// Whether `c` belongs to a word (an address word such as `X-12.5`, a name, a number).
+fn is_word(c: char) -> bool {
+    c.is_alphanumeric() || c == '_' || c == '.' || c == '#'
+}
+
+/// The next word boundary after `from` (`forward`) or before it, within `from`'s line.
+fn word_boundary(text: &Buffer, from: usize, forward: bool) -> usize {
+    let line = text.char_to_line(from);
+    let start = text.line_to_char(line);
+    let end = start + text.line_len_chars(line);
+    let chars: Vec<char> = text.slice(start..end).chars().collect();
+    let mut i = from.clamp(start, end) - start;
+    if forward {
+        if i == chars.len() {
+            return (end + 1).min(text.len_chars());
+        }
+        while i < chars.len() && !is_word(chars[i]) {
+            i += 1;
+        }
+        while i < chars.len() && is_word(chars[i]) {
+            i += 1;
+        }
+    } else {
+        if i == 0 {
+            return start.saturating_sub(1);
+        }
+        while i > 0 && !is_word(chars[i - 1]) {
+            i -= 1;
+        }
+        while i > 0 && is_word(chars[i - 1]) {
+            i -= 1;
+        }
+    }
+    start + i
+}
