@@ -249,12 +249,8 @@ impl PendingAnalysis {
                         .iter()
                         .map(|(name, text)| OpenFile { name, text })
                         .collect();
-                    self.linked = link_open_files(
-                        &mut self.program,
-                        self.text.len(),
-                        self.dialect,
-                        &others,
-                    );
+                    self.linked =
+                        link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
                 }
                 self.toolpath.reserve(self.program.blocks.len());
                 self.run = Some(swarf_interp::StatesRun::new(
