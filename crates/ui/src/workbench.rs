@@ -36,6 +36,9 @@ pub struct Workbench {
     analysis: Analysis,
     /// The analysis of the current text while it is still running.
     pending: Option<PendingAnalysis>,
+    /// The analysis just replaced, dropped in the next frame (freeing a million-line program
+    /// takes as long as finishing its analysis; the two are not done in one frame).
+    retired: Option<Analysis>,
     /// Blocks the analysis may still run in this frame.
     budget: usize,
     /// Whether [`Workbench::ui`] is running (outside it, every change gets a full budget).
@@ -174,6 +177,7 @@ impl Workbench {
             generation: 1,
             analysis,
             pending: None,
+            retired: None,
             budget: FRAME_BUDGET,
             in_frame: false,
             editor: CodeEditor::default(),
@@ -466,7 +470,7 @@ impl Workbench {
         let used = usize::try_from(pending.work_done().saturating_sub(work)).unwrap_or(usize::MAX);
         self.budget = self.budget.saturating_sub(used);
         if done && let Some(pending) = self.pending.take() {
-            self.analysis = pending.finish();
+            self.retired = Some(std::mem::replace(&mut self.analysis, pending.finish()));
         }
     }
 
@@ -501,6 +505,7 @@ impl Workbench {
     /// Shows the workbench filling `ui`.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
+        self.retired = None;
         self.budget = FRAME_BUDGET;
         self.in_frame = true;
         self.shortcuts(ui.ctx());
@@ -1287,12 +1292,14 @@ impl Workbench {
 
     fn problems_list(&mut self, ui: &mut egui::Ui) {
         ui.strong(format!("Problems ({})", self.analysis.problems.len()));
+        let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
         egui::ScrollArea::vertical()
             .id_salt("swarf-problems-scroll")
             .auto_shrink([false, false])
-            .show(ui, |ui| {
+            .show_rows(ui, row_height, self.analysis.problems.len(), |ui, rows| {
+                // Only the rows on screen are laid out: a program can have many thousands.
                 let mut jump = None;
-                for p in &self.analysis.problems {
+                for p in self.analysis.problems.get(rows).unwrap_or_default() {
                     let text = format!(
                         "{}:{}  {}[{}]  {}",
                         p.line, p.col, p.severity, p.code, p.message
