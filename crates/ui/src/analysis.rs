@@ -451,22 +451,20 @@ fn locate(text: &str, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
     offsets.sort_unstable();
     offsets.dedup();
     let mut char_of = std::collections::HashMap::with_capacity(offsets.len());
-    let mut next = offsets.iter().peekable();
-    let ends = text
-        .char_indices()
-        .chain(std::iter::once((text.len(), ' ')));
-    for (chars, (byte, _)) in ends.enumerate() {
-        // Past the last offset the rest of the text need not be counted.
-        if next.peek().is_none() {
+    // Each offset becomes the index of the character starting there (or the next one), counted
+    // a run of text at a time from the offset before.
+    let (mut at, mut chars) = (0usize, 0usize);
+    for &o in &offsets {
+        if o > text.len() {
             break;
         }
-        while let Some(&&o) = next.peek() {
-            if o > byte {
-                break;
-            }
-            char_of.insert(o, chars);
-            next.next();
+        let mut to = o;
+        while !text.is_char_boundary(to) {
+            to += 1;
         }
+        chars += text.get(at..to).map_or(0, |t| t.chars().count());
+        at = to;
+        char_of.insert(o, chars);
     }
     let mut cols = lines.cursor(text);
     diags

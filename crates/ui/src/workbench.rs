@@ -40,6 +40,9 @@ pub struct Workbench {
     analysis: Analysis,
     /// The analysis of the current text while it is still running.
     pending: Option<PendingAnalysis>,
+    /// The analysis just replaced, dropped in the next frame (freeing a million-line program
+    /// takes as long as finishing its analysis; the two are not done in one frame).
+    retired: Option<Analysis>,
     /// Blocks the analysis may still run in this frame.
     budget: usize,
     /// Whether [`Workbench::ui`] is running (outside it, every change gets a full budget).
@@ -231,6 +234,7 @@ impl Workbench {
             generation: 1,
             analysis,
             pending: None,
+            retired: None,
             budget: FRAME_BUDGET,
             in_frame: false,
             editor: CodeEditor::default(),
@@ -835,7 +839,7 @@ impl Workbench {
         let used = usize::try_from(pending.work_done().saturating_sub(work)).unwrap_or(usize::MAX);
         self.budget = self.budget.saturating_sub(used);
         if done && let Some(pending) = self.pending.take() {
-            self.analysis = pending.finish();
+            self.retired = Some(std::mem::replace(&mut self.analysis, pending.finish()));
         }
     }
 
@@ -871,6 +875,7 @@ impl Workbench {
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
         crate::i18n::set_current(self.lang);
+        self.retired = None;
         self.budget = FRAME_BUDGET;
         self.in_frame = true;
         self.shortcuts(ui.ctx());
@@ -1734,47 +1739,54 @@ impl Workbench {
     }
 
     fn problems_list(&mut self, ui: &mut egui::Ui) {
-        ui.strong(trf(
-            "Problems ({})",
-            &[&(self.analysis.problems.len() + self.analysis.elsewhere.len())],
-        ));
+        let own = self.analysis.problems.len();
+        let total = own + self.analysis.elsewhere.len();
+        ui.strong(trf("Problems ({})", &[&total]));
+        let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
         egui::ScrollArea::vertical()
             .id_salt("swarf-problems-scroll")
             .auto_shrink([false, false])
-            .show(ui, |ui| {
+            .show_rows(ui, row_height, total, |ui, rows| {
+                // Only the rows on screen are laid out: a program can have many thousands. The
+                // program's own problems come first, then those in the other tabs it called.
                 let mut jump = None;
-                for p in &self.analysis.problems {
-                    let text = format!(
-                        "{}:{}  {}[{}]  {}",
-                        p.line, p.col, p.severity, p.code, p.message
-                    );
-                    let label = egui::RichText::new(text)
-                        .monospace()
-                        .color(severity_color(p.severity));
-                    if ui
-                        .add(egui::Label::new(label).sense(egui::Sense::click()))
-                        .on_hover_text(tr("Go to this position"))
-                        .clicked()
-                    {
-                        jump = Some(p.chars.clone());
-                    }
-                }
                 let mut jump_elsewhere = None;
-                for l in &self.analysis.elsewhere {
-                    let p = &l.problem;
-                    let text = format!(
-                        "{}:{}:{}  {}[{}]  {}",
-                        l.file, p.line, p.col, p.severity, p.code, p.message
-                    );
+                for i in rows {
+                    let (text, severity, hover) = if let Some(p) = self.analysis.problems.get(i) {
+                        (
+                            format!(
+                                "{}:{}  {}[{}]  {}",
+                                p.line, p.col, p.severity, p.code, p.message
+                            ),
+                            p.severity,
+                            tr("Go to this position").to_string(),
+                        )
+                    } else if let Some(l) = self.analysis.elsewhere.get(i - own) {
+                        let p = &l.problem;
+                        (
+                            format!(
+                                "{}:{}:{}  {}[{}]  {}",
+                                l.file, p.line, p.col, p.severity, p.code, p.message
+                            ),
+                            p.severity,
+                            trf("Go to this position in {}", &[&l.file]),
+                        )
+                    } else {
+                        continue;
+                    };
                     let label = egui::RichText::new(text)
                         .monospace()
-                        .color(severity_color(p.severity));
+                        .color(severity_color(severity));
                     if ui
                         .add(egui::Label::new(label).sense(egui::Sense::click()))
-                        .on_hover_text(trf("Go to this position in {}", &[&l.file]))
+                        .on_hover_text(hover)
                         .clicked()
                     {
-                        jump_elsewhere = Some((l.file.clone(), p.chars.clone()));
+                        if let Some(p) = self.analysis.problems.get(i) {
+                            jump = Some(p.chars.clone());
+                        } else if let Some(l) = self.analysis.elsewhere.get(i - own) {
+                            jump_elsewhere = Some((l.file.clone(), l.problem.chars.clone()));
+                        }
                     }
                 }
                 if let Some(chars) = jump {
