@@ -306,6 +306,8 @@ impl RowEditor {
             .id_salt("swarf-editor-rows")
             .auto_shrink([false, false]);
         let caret_y = caret_line as f32 * row_height;
+        // Whether the caret is to be brought into view across too (a long line).
+        let reveal = self.reveal || self.centre;
         if std::mem::take(&mut self.centre) {
             area = area.vertical_scroll_offset((caret_y - self.view_height / 2.0).max(0.0));
             self.reveal = false;
@@ -390,6 +392,7 @@ impl RowEditor {
                     problems,
                     highlights,
                     focused,
+                    reveal,
                 },
             );
             // Tooltips: a gutter marker's diagnostics; over the text, the code and problems
@@ -448,7 +451,14 @@ impl RowEditor {
             let len = text.line_len_chars(row);
             let galley =
                 painter.layout_job(highlight(&text.line_text(row), rows.dialect, rows.font));
-            self.width = self.width.max(galley.size().x);
+            if galley.size().x > self.width {
+                self.width = galley.size().x;
+                // The view is only as wide as the rows laid out before: bring the caret into
+                // view again next frame, when its row fits.
+                if row == caret_line && rows.reveal {
+                    self.reveal = true;
+                }
+            }
             let origin = egui::pos2(rows.text_left, top);
             let x_of = |col: usize| origin.x + galley.pos_from_cursor(CCursor::new(col)).left();
             let span = |from: usize, to: usize, fill: egui::Color32| {
@@ -525,6 +535,19 @@ impl RowEditor {
                     [egui::pos2(x, top), egui::pos2(x, top + rows.row_height)],
                     Stroke::new(2.0, ui.visuals().text_cursor.stroke.color),
                 );
+                if rows.reveal {
+                    // Near the line's start the gutter comes into view with it.
+                    let from = if x - 24.0 < rows.text_left {
+                        rows.rect.left()
+                    } else {
+                        x - 24.0
+                    };
+                    let caret = Rect::from_min_max(
+                        egui::pos2(from, top),
+                        egui::pos2(x + 24.0, top + rows.row_height),
+                    );
+                    ui.scroll_to_rect(caret, None);
+                }
             }
         }
     }
@@ -542,6 +565,8 @@ struct Rows<'a> {
     problems: &'a [Problem],
     highlights: &'a [Range<usize>],
     focused: bool,
+    /// Scroll the caret into view across.
+    reveal: bool,
 }
 
 /// The problems on 0-based `rows` (problems are sorted by line).

@@ -303,3 +303,26 @@ fn commands_work_on_a_large_program() {
     assert_eq!(harness.state().cursor_line(), Some(1));
     assert_eq!(harness.state().selection(), problem.chars);
 }
+
+#[test]
+fn the_view_follows_the_caret_along_a_long_line() {
+    let (text, _) = big_program();
+    let mut harness = harness(text);
+    harness.state_mut().go_to_line(3);
+    harness.step();
+    let editor = |h: &Harness<'_, Workbench>| {
+        h.get_by_role(egui::accesskit::Role::MultilineTextInput)
+            .rect()
+            .min
+    };
+    let home = editor(&harness);
+    harness.event(Event::Paste(format!("({})", "x".repeat(400))));
+    // The row is laid out, the view widened, then scrolled.
+    harness.run_steps(4);
+    let scrolled = editor(&harness);
+    assert!(scrolled.x < home.x - 100.0, "{home:?} {scrolled:?}");
+    assert_eq!(scrolled.y, home.y, "no scrolling down");
+    harness.key_press(Key::Home);
+    harness.run_steps(4);
+    assert_eq!(editor(&harness), home);
+}
