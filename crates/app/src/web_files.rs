@@ -30,6 +30,9 @@ enum Purpose {
 /// A file read by the browser, waiting for the next frame.
 type Inbox = Rc<RefCell<Vec<(Purpose, String, Vec<u8>)>>>;
 
+/// The CJK font's bytes once fetched, or why they could not be.
+type FontSlot = Rc<RefCell<Option<Result<Vec<u8>, String>>>>;
+
 /// Web file state: files read asynchronously, and the autosave bookkeeping.
 #[derive(Default)]
 pub struct Host {
@@ -39,7 +42,7 @@ pub struct Host {
     clock: AutosaveClock,
     ctx: Option<egui::Context>,
     /// The CJK font once fetched (or why it was not).
-    font: Rc<RefCell<Option<Result<Vec<u8>, String>>>>,
+    font: FontSlot,
 }
 
 fn local_storage() -> Option<web_sys::Storage> {
