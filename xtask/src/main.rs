@@ -60,7 +60,7 @@ fn run() -> Result<()> {
     match command.as_str() {
         "web" => {
             opts.reject_unused(&["--dev", "--opt"])?;
-            web::build(&web::WebOptions {
+            web::build(web::WebOptions {
                 dev: opts.dev,
                 opt: opts.opt,
             })?;
@@ -68,7 +68,7 @@ fn run() -> Result<()> {
         "serve" => {
             opts.reject_unused(&["--dev", "--opt", "--port", "--no-build"])?;
             if !opts.no_build {
-                web::build(&web::WebOptions {
+                web::build(web::WebOptions {
                     dev: opts.dev,
                     opt: opts.opt,
                 })?;

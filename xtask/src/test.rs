@@ -107,7 +107,7 @@ pub fn run_all(quick: bool, only: Option<&str>) -> Result<()> {
     if let Some(only) = only {
         let wanted: Vec<char> = only
             .chars()
-            .filter(|c| c.is_ascii_alphabetic())
+            .filter(char::is_ascii_alphabetic)
             .map(|c| c.to_ascii_lowercase())
             .collect();
         if let Some(unknown) = wanted.iter().find(|c| !steps.iter().any(|s| s.id == **c)) {
@@ -245,7 +245,7 @@ fn steps(quick: bool) -> Vec<Step> {
             'i',
             "web build (release) and browser end-to-end tests (WebGL2, WebGPU): xvfb-run -a node --test tests/e2e/",
             || {
-                web::build(&web::WebOptions::default())?;
+                web::build(web::WebOptions::default())?;
                 header("i. xvfb-run -a node --test tests/e2e/");
                 run(&mut node_test_command())
             },

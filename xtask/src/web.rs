@@ -29,19 +29,21 @@ pub fn site_dir() -> PathBuf {
 fn target_dir() -> PathBuf {
     std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
-        .map(|dir| {
-            if dir.is_absolute() {
-                dir
-            } else {
-                util::repo_root().join(dir)
-            }
-        })
-        .unwrap_or_else(|| util::repo_root().join("target"))
+        .map_or_else(
+            || util::repo_root().join("target"),
+            |dir| {
+                if dir.is_absolute() {
+                    dir
+                } else {
+                    util::repo_root().join(dir)
+                }
+            },
+        )
 }
 
 /// Builds the web page: wasm build, wasm-bindgen, optional wasm-opt, then copies the static
 /// files next to the generated ones in `target/web/`.
-pub fn build(options: &WebOptions) -> Result<()> {
+pub fn build(options: WebOptions) -> Result<()> {
     tools::ensure_wasm_target()?;
     tools::ensure_wasm_bindgen()?;
 

@@ -220,15 +220,15 @@ impl Host {
                 files::push_recent(&mut self.recent, path.display().to_string());
                 wb.set_recent(self.recent.clone());
                 wb.set_path(Some(path.display().to_string()));
-                if used != wb.document().encoding {
+                if used == wb.document().encoding {
+                    wb.mark_saved(&file_name(path));
+                } else {
                     let text = wb.text().to_string();
                     wb.reload_document(&file_name(path), text, used);
                     wb.set_message(format!(
                         "Saved as UTF-8: the text has characters {} cannot hold",
                         wb.document().encoding.name()
                     ));
-                } else {
-                    wb.mark_saved(&file_name(path));
                 }
                 self.sync_recovery(wb);
                 true

@@ -97,7 +97,11 @@ mod native {
                 let ok = ok.clone();
                 ctx.request_screenshot(move |image| {
                     let [w, h] = image.size;
-                    let rgba: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
+                    let rgba: Vec<u8> = image
+                        .pixels
+                        .iter()
+                        .flat_map(egui::Color32::to_array)
+                        .collect();
                     let saved = u32::try_from(w)
                         .ok()
                         .zip(u32::try_from(h).ok())

@@ -696,17 +696,14 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
             } else {
                 side_change_point(&h, n, s2, plane)
             };
-            match crossing {
-                Some(x) => {
-                    h.end = with_uv(h.end, x, plane);
-                    h.extended = true;
-                    st.comp.start_extended = true;
-                    start = Some(x);
-                }
-                None => {
-                    links.push((s2p, None));
-                    start = Some(s2p);
-                }
+            if let Some(x) = crossing {
+                h.end = with_uv(h.end, x, plane);
+                h.extended = true;
+                st.comp.start_extended = true;
+                start = Some(x);
+            } else {
+                links.push((s2p, None));
+                start = Some(s2p);
             }
         } else if straight {
             // LinuxCNC starts the next move where the last one ended.
@@ -719,23 +716,20 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
             let found = n
                 .offset_curve(s, plane)
                 .and_then(|c| first_met(intersect(h.curve(plane), c), &h, n, s, plane));
-            match found {
-                Some(x) => {
-                    h.end = with_uv(h.end, x, plane);
-                    start = Some(x);
-                }
-                None => {
-                    gouge(
-                        st,
-                        n.span,
-                        format!(
-                            "the tool does not fit in the inside corner between line {} and line {}: their offset paths do not meet",
-                            h.source.line, n.source.line
-                        ),
-                    );
-                    links.push((s2p, None));
-                    start = Some(s2p);
-                }
+            if let Some(x) = found {
+                h.end = with_uv(h.end, x, plane);
+                start = Some(x);
+            } else {
+                gouge(
+                    st,
+                    n.span,
+                    format!(
+                        "the tool does not fit in the inside corner between line {} and line {}: their offset paths do not meet",
+                        h.source.line, n.source.line
+                    ),
+                );
+                links.push((s2p, None));
+                start = Some(s2p);
             }
         } else {
             match mode {

@@ -852,17 +852,16 @@ fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
     }
     st.cutter_comp = if tenths == 420 { 420 } else { 410 };
     st.comp.orientation = orientation;
-    match st.setup.registers.get(&n) {
-        Some(r) => st.comp_radius = r.radius + r.radius_wear,
-        None => {
-            st.comp_radius = 0.0;
-            if n != 0 {
-                st.diagnostics.push(Diagnostic::note(
-                    d.map_or(w.span, |d| d.span),
-                    "N-OFFSET-UNSET",
-                    format!("offset register {n} is not in the setup: its radius is taken as 0"),
-                ));
-            }
+    if let Some(r) = st.setup.registers.get(&n) {
+        st.comp_radius = r.radius + r.radius_wear;
+    } else {
+        st.comp_radius = 0.0;
+        if n != 0 {
+            st.diagnostics.push(Diagnostic::note(
+                d.map_or(w.span, |d| d.span),
+                "N-OFFSET-UNSET",
+                format!("offset register {n} is not in the setup: its radius is taken as 0"),
+            ));
         }
     }
     true
@@ -1445,7 +1444,7 @@ fn unequal_scaling_center(
         let ccw_scaled = ccw != st.reverses_arcs();
         let half = chord / 2.0;
         let h = (r * r - half * half).max(0.0).sqrt();
-        let side = if ccw_scaled != long { 1.0 } else { -1.0 };
+        let side = if ccw_scaled == long { -1.0 } else { 1.0 };
         c[u] = a[u] + du / 2.0 - side * h * dv / chord;
         c[v] = a[v] + dv / 2.0 + side * h * du / chord;
     }
@@ -1499,9 +1498,7 @@ fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option<bool>) {
         st.length_comp = None;
         return;
     };
-    let h = find(words, b'H')
-        .map(|h| h.value.round() as u32)
-        .unwrap_or(st.h_word);
+    let h = find(words, b'H').map_or(st.h_word, |h| h.value.round() as u32);
     if h == 0 {
         // H00 cancels (KT).
         st.length_comp = None;
@@ -1708,13 +1705,11 @@ fn set_position(st: &mut State, axes: &Axes<'_>) {
 /// G10 L2/L20 (work offsets) and L10–L13 / LinuxCNC L1 (offset registers).
 fn data_input(st: &mut State, w: &Word, words: &[Word]) {
     let l = find(words, b'L').map(|l| l.value.round() as i64);
-    let p = find(words, b'P')
-        .map(|p| p.value.round() as i64)
-        .unwrap_or(0);
+    let p = find(words, b'P').map_or(0, |p| p.value.round() as i64);
     let absolute = st.absolute;
     let linuxcnc = st.dialect == Dialect::LinuxCnc;
     match l {
-        Some(2) | Some(20) => {
+        Some(2 | 20) => {
             let name = if l == Some(20) && !linuxcnc {
                 format!("G54.1P{p}")
             } else {

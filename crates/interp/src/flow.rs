@@ -119,7 +119,7 @@ impl Index {
                         let key = match label {
                             OLabel::Number(n) => LabelKey::Number(*n),
                             OLabel::Name(s) => LabelKey::Name(s.clone()),
-                            _ => continue,
+                            OLabel::Expr(_) => continue,
                         };
                         index
                             .owords

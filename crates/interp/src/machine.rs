@@ -565,7 +565,7 @@ impl Interpreter {
                 }
                 match self.calls.last() {
                     Some(frame) if frame.kind == CallKind::OWord(key.clone()) => {
-                        let frame = self.calls.pop().map(|f| f.return_to).unwrap_or(at + 1);
+                        let frame = self.calls.pop().map_or(at + 1, |f| f.return_to);
                         self.vars.pop_frame();
                         Ok(Flow::Jump(frame))
                     }
@@ -652,12 +652,11 @@ impl Interpreter {
             }
             OWord::Do => Ok(Flow::Next),
             OWord::Repeat(count) => {
-                let remaining = match self.repeats.get(&at) {
-                    Some(n) => *n,
-                    None => {
-                        let n = self.eval(program, *count)?.unwrap_or(0.0).max(0.0).round();
-                        n as u64
-                    }
+                let remaining = if let Some(n) = self.repeats.get(&at) {
+                    *n
+                } else {
+                    let n = self.eval(program, *count)?.unwrap_or(0.0).max(0.0).round();
+                    n as u64
                 };
                 if remaining == 0 {
                     self.repeats.remove(&at);

@@ -640,7 +640,7 @@ impl Evaluator<'_> {
                             let arg_node = lookup(self.program, *arg)?;
                             match &arg_node.expr {
                                 Expr::Named(name) => {
-                                    values.push(Some(flag(self.vars.named_exists(name, self.sys))))
+                                    values.push(Some(flag(self.vars.named_exists(name, self.sys))));
                                 }
                                 Expr::Var(index) => {
                                     steps.push(Step::Apply(id));

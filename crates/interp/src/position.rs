@@ -32,16 +32,15 @@ pub(crate) fn factor(st: &State, words: &[Word]) -> Option<(f64, &'static str)> 
 /// The offset radius of the block's D register (geometry + wear), or `None` with a diagnostic.
 fn radius(st: &mut State, block: &Block, code: &str) -> Option<f64> {
     let d = st.d_word;
-    match st.setup.registers.get(&d) {
-        Some(r) => Some(r.radius + r.radius_wear),
-        None => {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-OFFSET-REGISTER",
-                format!("{code} needs a D register with the offset (D{d} is not in the setup); the move is not offset"),
-            ));
-            None
-        }
+    if let Some(r) = st.setup.registers.get(&d) {
+        Some(r.radius + r.radius_wear)
+    } else {
+        st.diagnostics.push(Diagnostic::error(
+            block.span,
+            "E-OFFSET-REGISTER",
+            format!("{code} needs a D register with the offset (D{d} is not in the setup); the move is not offset"),
+        ));
+        None
     }
 }
 

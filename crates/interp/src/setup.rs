@@ -49,6 +49,8 @@ pub struct Register {
     pub orientation: u8,
 }
 
+// serde's `skip_serializing_if` hands the field by reference.
+#[allow(clippy::trivially_copy_pass_by_ref)]
 fn is_zero(v: &u8) -> bool {
     *v == 0
 }

@@ -342,10 +342,10 @@ impl State {
 
     /// Machine frame → program frame (the inverse of [`State::to_machine`]).
     pub fn to_program(&self, m: DVec3) -> DVec3 {
-        let mut q = if self.wcs_rotation != 0.0 {
-            rotate_xy(m - self.wcs_offset, -self.wcs_rotation) - self.local - self.shift
-        } else {
+        let mut q = if self.wcs_rotation == 0.0 {
             rotate_xy(m - self.base(), -self.preset_rotation)
+        } else {
+            rotate_xy(m - self.wcs_offset, -self.wcs_rotation) - self.local - self.shift
         };
         if let Some(r) = self.rotation {
             let (u, v) = plane_axes(r.plane);
@@ -430,10 +430,10 @@ impl State {
             }
             .into(),
             if self.scaling.is_some() { "G51" } else { "G50" }.into(),
-            if self.mirror != DVec3::ONE {
-                "G51.1"
-            } else {
+            if self.mirror == DVec3::ONE {
                 "G50.1"
+            } else {
+                "G51.1"
             }
             .into(),
             if self.css { "G96" } else { "G97" }.into(),
@@ -449,7 +449,7 @@ impl State {
         let unit = |mm: f64| if self.metric { mm } else { mm / 25.4 };
         if self.dialect == Dialect::LinuxCnc {
             return match n {
-                5220 => Some(Some(wcs_number(&self.wcs) as f64)),
+                5220 => Some(Some(f64::from(wcs_number(&self.wcs)))),
                 5221..=5399 => {
                     let k = (n - 5221) / 20;
                     let axis = ((n - 5221) % 20) as usize;

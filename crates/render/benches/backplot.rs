@@ -122,7 +122,7 @@ fn main() {
             return;
         }
     };
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
     println!(
         "adapter: {} ({:?}, {:?}), {threads} CPU threads",
         gpu.info.name, gpu.info.backend, gpu.info.device_type

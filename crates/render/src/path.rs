@@ -539,21 +539,20 @@ impl PointBatch {
             let reuse = old
                 .next()
                 .filter(|c| c.capacity >= count && c.capacity <= 2 * count + CAPACITY_STEP);
-            let chunk = match reuse {
-                Some(c) => Chunk { first, count, ..c },
-                None => {
-                    let capacity = count.next_multiple_of(CAPACITY_STEP).min(per);
-                    Chunk {
-                        buffer: device.create_buffer(&wgpu::BufferDescriptor {
-                            label: Some(self.label),
-                            size: capacity * POINT_SIZE,
-                            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                            mapped_at_creation: false,
-                        }),
-                        capacity,
-                        first,
-                        count,
-                    }
+            let chunk = if let Some(c) = reuse {
+                Chunk { first, count, ..c }
+            } else {
+                let capacity = count.next_multiple_of(CAPACITY_STEP).min(per);
+                Chunk {
+                    buffer: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some(self.label),
+                        size: capacity * POINT_SIZE,
+                        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }),
+                    capacity,
+                    first,
+                    count,
                 }
             };
             let range = usize::try_from(first).unwrap_or(usize::MAX)

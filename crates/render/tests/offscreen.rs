@@ -266,7 +266,7 @@ fn highlight_dim_and_hidden_kinds() {
 
     // Hidden kinds are not drawn.
     let image = render(&gpu, format, &path, &[], |p| {
-        p.hidden_kinds = Kind::Rapid.mask()
+        p.hidden_kinds = Kind::Rapid.mask();
     });
     assert_eq!(image.count(|p| close(p, RAPID_COLOR, 60)), 0);
     assert!(close(image.at(feed_px.0, feed_px.1), FEED_COLOR, 8));

@@ -105,14 +105,14 @@ impl Program {
         for mut block in other.blocks {
             block.span = shift(block.span);
             block.line = block.line.saturating_add(first_line);
-            for w in block.words.iter_mut() {
+            for w in &mut block.words {
                 w.span = shift(w.span);
                 w.expr = w.expr.map(id);
             }
-            for c in block.comments.iter_mut() {
+            for c in &mut block.comments {
                 *c = shift(*c);
             }
-            for s in block.statements.iter_mut() {
+            for s in &mut block.statements {
                 rebase_statement(s, &id);
             }
             self.blocks.push(block);
@@ -154,7 +154,7 @@ impl Program {
                     ProgramNumber::Name(n) => names.push(n.to_string()),
                 }
             }
-            for s in block.statements.iter() {
+            for s in &block.statements {
                 if let Statement::OWord {
                     label: OLabel::Name(n),
                     kind: OWord::Sub,
@@ -196,7 +196,7 @@ impl Program {
                 };
                 add(Missing::Number(number as u32));
             }
-            for s in block.statements.iter() {
+            for s in &block.statements {
                 if let Statement::OWord {
                     label: OLabel::Name(n),
                     kind: OWord::Call(_),

@@ -185,7 +185,7 @@ fn ignore_after_tape_end(program: &mut Program, text: &str, offset: usize) {
 fn unsigned(input: &str) -> IResult<&str, &str> {
     // The consumed slice is computed from the remainder: nom 8.0's `recognize` drops the
     // trailing `digit0` of `1.5` (it runs the inner parsers in check mode).
-    let (rest, _) = alt((
+    let (rest, ()) = alt((
         (digit1, opt(char('.')), digit0).map(|_| ()),
         (char('.'), digit1).map(|_| ()),
     ))
@@ -448,22 +448,19 @@ impl LineReader<'_> {
                     break;
                 }
                 b'(' => {
-                    match line[pos..].find(')') {
-                        Some(close) => {
-                            self.comments.push(self.span(pos, pos + close + 1));
-                            pos += close + 1;
-                        }
-                        None => {
-                            self.comments.push(self.span(pos, bytes.len()));
-                            self.error(
-                                &mut block,
-                                pos,
-                                bytes.len(),
-                                "E-COMMENT-UNCLOSED",
-                                "comment `(` is not closed with `)` on this line".into(),
-                            );
-                            pos = bytes.len();
-                        }
+                    if let Some(close) = line[pos..].find(')') {
+                        self.comments.push(self.span(pos, pos + close + 1));
+                        pos += close + 1;
+                    } else {
+                        self.comments.push(self.span(pos, bytes.len()));
+                        self.error(
+                            &mut block,
+                            pos,
+                            bytes.len(),
+                            "E-COMMENT-UNCLOSED",
+                            "comment `(` is not closed with `)` on this line".into(),
+                        );
+                        pos = bytes.len();
                     }
                     continue;
                 }

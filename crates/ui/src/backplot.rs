@@ -573,12 +573,11 @@ impl Backplot {
             .and_then(|tool| scene.tool_radii.get(tool))
             .copied()
             .filter(|r| r.is_finite() && *r > 0.0);
-        let outline: Vec<(Vec3, Vec3)> = match radius {
-            Some(r) => tool_outline(tip, r, 0.0, 3.0 * r),
-            None => {
-                let r = self.camera.units_per_px(rect.height()) * TOOL_MARKER_POINTS;
-                tool_outline(tip, r, 2.0 * r, 2.0 * r)
-            }
+        let outline: Vec<(Vec3, Vec3)> = if let Some(r) = radius {
+            tool_outline(tip, r, 0.0, 3.0 * r)
+        } else {
+            let r = self.camera.units_per_px(rect.height()) * TOOL_MARKER_POINTS;
+            tool_outline(tip, r, 2.0 * r, 2.0 * r)
         };
         let painter = ui.painter_at(rect);
         let stroke = egui::Stroke::new(1.5, TOOL_MARKER_COLOR);
@@ -687,7 +686,7 @@ impl Backplot {
         let delta = response.drag_delta();
         let delta = Vec2::new(delta.x, delta.y);
         let touch = ui
-            .input(|i| i.multi_touch())
+            .input(egui::InputState::multi_touch)
             .filter(|t| t.num_touches >= 2 && response.hovered());
         if let Some(touch) = touch {
             // Two fingers pan; their pinch zooms below (egui's zoom delta).
@@ -719,7 +718,7 @@ impl Backplot {
             self.fit();
         }
         // Keys never go to the view while another widget (the editor) has keyboard focus.
-        let focus = ui.ctx().memory(|m| m.focused());
+        let focus = ui.ctx().memory(egui::Memory::focused);
         if response.hovered() && focus.is_none_or(|id| id == response.id) {
             self.handle_keys(ui, viewport);
         }
@@ -1025,16 +1024,13 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         );
         if view.target.as_ref().map(RenderTarget::size) != Some(size) {
             view.drawn = None;
-            match RenderTarget::new(device, size.0, size.1, OFFSCREEN_FORMAT) {
-                Ok(target) => {
-                    view.bind_group = Some(compositor.bind(device, &target));
-                    view.target = Some(target);
-                }
-                Err(_) => {
-                    view.target = None;
-                    view.bind_group = None;
-                    return Vec::new();
-                }
+            if let Ok(target) = RenderTarget::new(device, size.0, size.1, OFFSCREEN_FORMAT) {
+                view.bind_group = Some(compositor.bind(device, &target));
+                view.target = Some(target);
+            } else {
+                view.target = None;
+                view.bind_group = None;
+                return Vec::new();
             }
         }
         let params = ViewParams {
@@ -1146,7 +1142,7 @@ mod tests {
         let m = m.unwrap_or_default();
         // The full rect's centre (NDC 0,0) is at pixel (100, 100).
         let p = m.project_point3(Vec3::ZERO);
-        let px = (p.x + 1.0) / 2.0 * 300.0;
+        let px = f32::midpoint(p.x, 1.0) * 300.0;
         let py = (1.0 - p.y) / 2.0 * 250.0;
         assert!(
             (px - 100.0).abs() < 1e-3 && (py - 100.0).abs() < 1e-3,

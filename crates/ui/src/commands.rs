@@ -515,7 +515,7 @@ pub fn completion_prefix(text: &str, cursor: usize) -> Option<(Range<usize>, Str
     if letter_at > 0 && bytes[letter_at - 1].is_ascii_alphabetic() {
         return None;
     }
-    if bytes.get(cursor).is_some_and(|b| b.is_ascii_alphanumeric()) {
+    if bytes.get(cursor).is_some_and(u8::is_ascii_alphanumeric) {
         return None;
     }
     // Not inside a comment on this line.

@@ -86,7 +86,7 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             }
             ui.strong("");
             ui.end_row();
-            for (n, r) in setup.registers.iter_mut() {
+            for (n, r) in &mut setup.registers {
                 ui.label(n.to_string());
                 let fields = [
                     (&mut r.length, "length"),
@@ -121,7 +121,10 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
 }
 
 fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String) {
-    let mut names: Vec<String> = STANDARD_OFFSETS.iter().map(|s| s.to_string()).collect();
+    let mut names: Vec<String> = STANDARD_OFFSETS
+        .iter()
+        .map(std::string::ToString::to_string)
+        .collect();
     for name in setup.work_offsets.keys() {
         if !names.contains(name) {
             names.push(name.clone());

@@ -949,7 +949,7 @@ impl Workbench {
                     self.synced_line = self.cursor_line;
                 }
                 egui::Panel::bottom("swarf-playback").show(ui, |ui| {
-                    self.backplot.playback_bar(ui, &self.analysis.scene)
+                    self.backplot.playback_bar(ui, &self.analysis.scene);
                 });
                 self.backplot.show(ui, &self.analysis.scene);
                 // … a click on a segment moves the editor to its block, and so does playback
@@ -1237,7 +1237,7 @@ impl Workbench {
         let cmd_shift = Modifiers::COMMAND | Modifiers::SHIFT;
         // Undo belongs to the program unless another text field has the keyboard.
         let others_typing = ctx
-            .memory(|m| m.focused())
+            .memory(egui::Memory::focused)
             .is_some_and(|f| f != self.editor.id() && egui::TextEdit::load_state(ctx, f).is_some());
         let (redo, undo) = if others_typing {
             (false, false)
@@ -1651,7 +1651,11 @@ impl Workbench {
             }
             ui.separator();
             ui.label(self.document.encoding.name());
-            if let Some((read, lines)) = self.pending.as_ref().and_then(|p| p.parse_progress()) {
+            if let Some((read, lines)) = self
+                .pending
+                .as_ref()
+                .and_then(super::analysis::PendingAnalysis::parse_progress)
+            {
                 ui.separator();
                 ui.label("Analysing");
                 ui.add(

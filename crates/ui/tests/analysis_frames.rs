@@ -60,7 +60,11 @@ fn a_pending_analysis_in_steps_equals_the_one_call_run() {
 #[test]
 fn typing_in_a_10k_line_program_marks_the_error_in_the_same_frame() {
     let mut wb = Workbench::default();
-    wb.open_document("long.nc", program(10_000, "M30\n"), Default::default());
+    wb.open_document(
+        "long.nc",
+        program(10_000, "M30\n"),
+        swarf_syntax::Encoding::default(),
+    );
     assert!(wb.analysis_progress().is_none());
     assert!(wb.problems().is_empty(), "{:?}", wb.problems());
     let mut harness = harness(wb);

@@ -11,7 +11,7 @@ use swarf_ui::{Analysis, Workbench};
 #[test]
 fn every_example_interprets_cleanly_in_its_dialect() {
     for ex in EXAMPLES {
-        let analysis = Analysis::run(ex.text, ex.dialect, &Default::default(), 1);
+        let analysis = Analysis::run(ex.text, ex.dialect, &swarf_interp::Setup::default(), 1);
         let bad: Vec<_> = analysis
             .problems
             .iter()

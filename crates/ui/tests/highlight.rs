@@ -42,7 +42,8 @@ fn hover_explains_the_code_and_the_problem_under_the_pointer() {
     let help = hover_text(text, Dialect::Syntec, at, &[]).unwrap();
     assert!(help.contains("Bolt-hole"), "{help}");
     // On Fanuc the same code is not one of its codes; with the parser's problem shown too.
-    let analysis = swarf_ui::Analysis::run(text, Dialect::Fanuc, &Default::default(), 1);
+    let analysis =
+        swarf_ui::Analysis::run(text, Dialect::Fanuc, &swarf_interp::Setup::default(), 1);
     let help = hover_text(text, Dialect::Fanuc, at, &analysis.problems).unwrap();
     assert!(help.contains("E-CODE-DIALECT"), "{help}");
     assert!(help.contains("not a code of Fanuc"), "{help}");

@@ -23,7 +23,7 @@ fn big_program() -> (String, usize) {
 
 fn harness(text: String) -> Harness<'static, Workbench> {
     let mut wb = Workbench::default();
-    wb.open_document("big.nc", text, Default::default());
+    wb.open_document("big.nc", text, swarf_syntax::Encoding::default());
     wb.finish_analysis();
     // Frames a 60th of a second apart, so two clicks can make a double click.
     let mut harness = Harness::builder()

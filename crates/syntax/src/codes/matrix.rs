@@ -10,7 +10,7 @@ use super::{Code, Group, codes_of, is_fanuc_reading};
 /// as on Fanuc because the manual leaves them out marked `*`).
 pub fn markdown_table() -> String {
     let mut groups: Vec<Group> = Vec::new();
-    for def in super::CODES.iter() {
+    for def in super::CODES {
         if !groups.contains(&def.group) {
             groups.push(def.group);
         }

@@ -243,7 +243,10 @@ impl Playback {
         if let Some(segment) = self.current_segment(scene)
             && self.pinned.is_some()
         {
-            return scene.points.get(segment + 1).map(|p| p.position());
+            return scene
+                .points
+                .get(segment + 1)
+                .map(swarf_render::PathPoint::position);
         }
         scene.position_at(t)
     }
