@@ -299,7 +299,7 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 .iter()
                 .enumerate()
             {
-                let label = ui.label(tr(*name)).id;
+                let label = ui.label(tr(name)).id;
                 let mut p = m.reference_points.get(i).copied().unwrap_or_default();
                 let mut changed = false;
                 ui.horizontal(|ui| {
