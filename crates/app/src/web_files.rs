@@ -27,6 +27,9 @@ enum Purpose {
     Setup,
 }
 
+/// The CJK font once fetched (or why it was not), waiting for the next frame.
+type FontSlot = Rc<RefCell<Option<Result<Vec<u8>, String>>>>;
+
 /// A file read by the browser, waiting for the next frame.
 type Inbox = Rc<RefCell<Vec<(Purpose, String, Vec<u8>)>>>;
 
@@ -39,7 +42,7 @@ pub struct Host {
     clock: AutosaveClock,
     ctx: Option<egui::Context>,
     /// The CJK font once fetched (or why it was not).
-    font: Rc<RefCell<Option<Result<Vec<u8>, String>>>>,
+    font: FontSlot,
 }
 
 fn local_storage() -> Option<web_sys::Storage> {
