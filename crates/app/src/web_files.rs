@@ -27,6 +27,9 @@ enum Purpose {
     Setup,
 }
 
+/// The CJK font once fetched (or why it was not), waiting for the next frame.
+type FontSlot = Rc<RefCell<Option<Result<Vec<u8>, String>>>>;
+
 /// A file read by the browser, waiting for the next frame.
 type Inbox = Rc<RefCell<Vec<(Purpose, String, Vec<u8>)>>>;
 
