@@ -33,9 +33,6 @@ type FontSlot = Rc<RefCell<Option<Result<Vec<u8>, String>>>>;
 /// A file read by the browser, waiting for the next frame.
 type Inbox = Rc<RefCell<Vec<(Purpose, String, Vec<u8>)>>>;
 
-/// The CJK font's bytes once fetched, or why they could not be.
-type FontSlot = Rc<RefCell<Option<Result<Vec<u8>, String>>>>;
-
 /// Web file state: files read asynchronously, and the autosave bookkeeping.
 #[derive(Default)]
 pub struct Host {
