@@ -615,17 +615,22 @@ fn paint_squiggles(ui: &Ui, galley: &Arc<Galley>, origin: Pos2, problems: &[Prob
         } else {
             x0 + 8.0
         };
-        let stroke = Stroke::new(1.2, severity_color(p.severity));
-        let mut points = Vec::new();
-        let mut x = x0;
-        let mut up = true;
-        while x <= x1 + 0.01 {
-            points.push(egui::pos2(x, if up { y - 1.5 } else { y + 1.0 }));
-            up = !up;
-            x += 2.5;
-        }
-        if points.len() >= 2 {
-            painter.add(egui::Shape::line(points, stroke));
-        }
+        squiggle(painter, x0, x1, y, p.severity);
+    }
+}
+
+/// A wavy underline from `x0` to `x1` at height `y`.
+pub(crate) fn squiggle(painter: &egui::Painter, x0: f32, x1: f32, y: f32, severity: Severity) {
+    let stroke = Stroke::new(1.2, severity_color(severity));
+    let mut points = Vec::new();
+    let mut x = x0;
+    let mut up = true;
+    while x <= x1 + 0.01 {
+        points.push(egui::pos2(x, if up { y - 1.5 } else { y + 1.0 }));
+        up = !up;
+        x += 2.5;
+    }
+    if points.len() >= 2 {
+        painter.add(egui::Shape::line(points, stroke));
     }
 }

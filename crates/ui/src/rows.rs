@@ -9,11 +9,13 @@ use std::sync::Arc;
 
 use egui::text::CCursor;
 use egui::{Event, FontId, Galley, Key, Pos2, Rect, Sense, Stroke, Ui};
-use swarf_syntax::{Dialect, Severity};
+use swarf_syntax::Dialect;
 
 use crate::analysis::Problem;
 use crate::buffer::Buffer;
-use crate::editor::{EditorOutput, gutter_tooltip, highlight, hover_text, severity_color};
+use crate::editor::{
+    EditorOutput, gutter_tooltip, highlight, hover_text, severity_color, squiggle,
+};
 
 /// Space between the gutter and the text, and around the text.
 const PAD: f32 = 6.0;
@@ -576,22 +578,6 @@ fn problems_on_rows(problems: &[Problem], rows: Range<usize>) -> &[Problem] {
     let from = problems.partition_point(|p| p.line < first);
     let to = problems.partition_point(|p| p.line <= last);
     problems.get(from..to.max(from)).unwrap_or_default()
-}
-
-/// A wavy underline from `x0` to `x1` at height `y`.
-fn squiggle(painter: &egui::Painter, x0: f32, x1: f32, y: f32, severity: Severity) {
-    let stroke = Stroke::new(1.2, severity_color(severity));
-    let mut points = Vec::new();
-    let mut x = x0;
-    let mut up = true;
-    while x <= x1 + 0.01 {
-        points.push(egui::pos2(x, if up { y - 1.5 } else { y + 1.0 }));
-        up = !up;
-        x += 2.5;
-    }
-    if points.len() >= 2 {
-        painter.add(egui::Shape::line(points, stroke));
-    }
 }
 
 /// Whether `c` belongs to a word (an address word such as `X-12.5`, a name, a number).
