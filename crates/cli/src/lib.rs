@@ -15,7 +15,7 @@ use clap::{Parser, Subcommand};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
 use swarf_syntax::{
-    Diagnostic, Dialect, LineIndex, Missing, Program, Severity, decode_owned, parse,
+    Diagnostic, Dialect, LineIndex, LinkedSource, Missing, Program, Severity, decode_owned, parse,
 };
 use swarf_toolpath::Toolpath;
 
@@ -157,15 +157,7 @@ struct Loaded {
     /// Decoding and parsing diagnostics.
     diagnostics: Vec<Diagnostic>,
     /// The files linked for the program's calls, in the order of `program.linked`.
-    linked: Vec<LinkedText>,
-}
-
-/// A file linked to the program (a subprogram it calls), kept to report its diagnostics; the
-/// `i`-th is the program's `linked[i]`.
-struct LinkedText {
-    path: String,
-    text: String,
-    lines: LineIndex,
+    linked: Vec<LinkedSource>,
 }
 
 /// Most files linked to one program (a bound on runaway chains of calls).
@@ -187,43 +179,15 @@ fn link_external(
     path: &Path,
     main_len: usize,
     dialect: Dialect,
-) -> Vec<LinkedText> {
+) -> Vec<LinkedSource> {
     let dir = path.parent().unwrap_or(Path::new("."));
-    let mut linked: Vec<LinkedText> = Vec::new();
-    loop {
-        let mut progress = false;
-        for missing in program.missing_calls() {
-            if linked.len() >= MAX_LINKED {
-                return linked;
-            }
-            let Some(file) = candidates(dir, &missing)
-                .into_iter()
-                .find(|c| c.is_file() && c.as_path() != path)
-            else {
-                continue;
-            };
-            let name = file.display().to_string();
-            if linked.iter().any(|l| l.path == name) {
-                continue;
-            }
-            let Ok(bytes) = std::fs::read(&file) else {
-                continue;
-            };
-            let decoded = decode_owned(bytes);
-            let sub = parse(&decoded.text, dialect);
-            let lines = sub.lines.clone();
-            program.link(sub, &name, main_len, decoded.text.len());
-            linked.push(LinkedText {
-                path: name,
-                text: decoded.text,
-                lines,
-            });
-            progress = true;
-        }
-        if !progress {
-            return linked;
-        }
-    }
+    program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
+        let file = candidates(dir, missing)
+            .into_iter()
+            .find(|c| c.is_file() && c.as_path() != path)?;
+        let bytes = std::fs::read(&file).ok()?;
+        Some((file.display().to_string(), decode_owned(bytes).text))
+    })
 }
 
 /// The setup named by `--setup`, or the default one.
@@ -274,7 +238,7 @@ impl Loaded {
                 .and_then(|i| Some((self.program.linked.get(i)?, self.linked.get(i)?)));
             let (path, (line, col)) = match linked {
                 Some((at, l)) => (
-                    l.path.as_str(),
+                    l.name.as_str(),
                     l.lines.line_col(&l.text, d.span.start - at.first_byte),
                 ),
                 None => (self.path.as_str(), cols.line_col(d.span.start)),

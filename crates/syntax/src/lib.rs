@@ -22,5 +22,5 @@ pub use decode::{Decoded, Encoding, decode, decode_owned};
 pub use diagnostic::{Diagnostic, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
-pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, Missing};
+pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Missing};
 pub use parser::{ParseRun, parse};

@@ -7,7 +7,18 @@
 //! [`Program::linked`] tells which file a span or a line belongs to.
 
 use crate::ast::{Expr, ExprId, OLabel, OWord, Statement};
-use crate::{Program, ProgramNumber, Span};
+use crate::{Dialect, LineIndex, Program, ProgramNumber, Span};
+
+/// The text of a file [`Program::link_calls`] linked, kept to show its diagnostics.
+#[derive(Debug, Clone)]
+pub struct LinkedSource {
+    /// The file's name (as `find` gave it).
+    pub name: String,
+    /// Its text.
+    pub text: String,
+    /// Its line index (for locating its diagnostics).
+    pub lines: LineIndex,
+}
 
 /// A file linked into a program: where its text lies among the program's byte offsets and lines.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -68,6 +79,42 @@ impl Missing {
 }
 
 impl Program {
+    /// Links the programs this program calls and does not hold, until nothing more is found or
+    /// `max` files are linked: `find` names the file (name, text) a missing call's program may
+    /// be in (the CLI looks beside the program, the editor among its open tabs). Each file is
+    /// linked once, read as `dialect`; `main_len` is this program's own text's length.
+    pub fn link_calls(
+        &mut self,
+        main_len: usize,
+        dialect: Dialect,
+        max: usize,
+        mut find: impl FnMut(&Missing) -> Option<(String, String)>,
+    ) -> Vec<LinkedSource> {
+        let mut linked: Vec<LinkedSource> = Vec::new();
+        loop {
+            let mut progress = false;
+            for missing in self.missing_calls() {
+                if linked.len() >= max {
+                    return linked;
+                }
+                let Some((name, text)) = find(&missing) else {
+                    continue;
+                };
+                if linked.iter().any(|l| l.name == name) {
+                    continue;
+                }
+                let sub = crate::parse(&text, dialect);
+                let lines = sub.lines.clone();
+                self.link(sub, &name, main_len, text.len());
+                linked.push(LinkedSource { name, text, lines });
+                progress = true;
+            }
+            if !progress {
+                return linked;
+            }
+        }
+    }
+
     /// Appends `other` (parsed from the file `name`, `len` bytes long) after this program, with
     /// its spans moved past `self_len` bytes of this program's own text and everything linked
     /// before, its lines past all lines before, and its expressions after this program's.

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
-use swarf_syntax::{Diagnostic, Dialect, LineIndex, ParseRun, Program, Severity, parse};
+use swarf_syntax::{Diagnostic, Dialect, LineIndex, LinkedSource, ParseRun, Program, Severity};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
 use crate::backplot::{Scene, SourceText};
@@ -50,14 +50,6 @@ pub struct OpenFile<'a> {
 
 /// Most files linked to one program (a bound on runaway chains of calls).
 const MAX_LINKED: usize = 64;
-
-/// A file linked to the program: the `i`-th is the program's `linked[i]`.
-#[derive(Debug, Clone)]
-struct LinkedText {
-    name: String,
-    text: String,
-    lines: LineIndex,
-}
 
 /// Summary numbers of an analysed program.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -146,7 +138,7 @@ pub struct PendingAnalysis {
     generation: u64,
     finished: bool,
     /// The other open files linked for the program's calls.
-    linked: Vec<LinkedText>,
+    linked: Vec<LinkedSource>,
     /// The other open files (name, text) to link the program's calls from once it is read;
     /// `None` when calls are not looked for among open files.
     others: Option<Vec<(String, String)>>,
@@ -401,45 +393,21 @@ impl PendingAnalysis {
     }
 }
 
-/// Links the programs `program` calls and does not hold from the open files named as the CLI
-/// looks for them beside a program, until nothing more is found; the linked files' texts.
+/// Links the programs `program` calls and does not hold from the other open files, by the
+/// names the CLI would look for beside it.
 fn link_open_files(
     program: &mut Program,
     main_len: usize,
     dialect: Dialect,
     others: &[OpenFile<'_>],
-) -> Vec<LinkedText> {
-    let mut linked: Vec<LinkedText> = Vec::new();
-    loop {
-        let mut progress = false;
-        for missing in program.missing_calls() {
-            if linked.len() >= MAX_LINKED {
-                return linked;
-            }
-            let names = missing.file_names();
-            let Some(file) = names
-                .iter()
-                .find_map(|n| others.iter().find(|o| o.name == n))
-            else {
-                continue;
-            };
-            if linked.iter().any(|l| l.name == file.name) {
-                continue;
-            }
-            let sub = parse(file.text, dialect);
-            let lines = sub.lines.clone();
-            program.link(sub, file.name, main_len, file.text.len());
-            linked.push(LinkedText {
-                name: file.name.to_string(),
-                text: file.text.to_string(),
-                lines,
-            });
-            progress = true;
-        }
-        if !progress {
-            return linked;
-        }
-    }
+) -> Vec<LinkedSource> {
+    program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
+        let names = missing.file_names();
+        let file = names
+            .iter()
+            .find_map(|n| others.iter().find(|o| o.name == n))?;
+        Some((file.name.to_string(), file.text.to_string()))
+    })
 }
 
 /// Turns byte spans into lines, columns and character ranges in one pass over the text.
