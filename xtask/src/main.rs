@@ -33,8 +33,8 @@ COMMANDS:
               --quick       skip the browser and desktop steps
               --only STEPS  run only these steps, e.g. `--only g` or `--only a,b,e`
                             (a fmt, b clippy, c clippy wasm32, d tests, e wasm tests in
-                            Node, f wasm tests in Chromium, g architecture, h desktop,
-                            i web build + browser end-to-end test)
+                            Node, f wasm tests in Chromium, g architecture, k cargo deny,
+                            h desktop, j fuzzing, i web build + browser end-to-end test)
     help    Show this message
 ";
 

@@ -225,6 +225,9 @@ fn steps(quick: bool) -> Vec<Step> {
         "dependencies: cargo deny check bans licenses sources (deny.toml)",
         || {
             tools::ensure_cargo_deny()?;
+            // `--offline` reads every platform's crates from the local registry: fetch them
+            // first (quick when they are there) so a fresh machine has them.
+            run(cargo().args(["fetch"]))?;
             run(cargo().args(["deny", "--offline", "check", "bans", "licenses", "sources"]))
         },
     ));
