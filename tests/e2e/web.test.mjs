@@ -59,6 +59,25 @@ test("the backplot canvas is not blank", { timeout: TEST_TIMEOUT_MS }, async () 
   await session.assertCanvasNotBlank("screenshot.png");
 });
 
+test("Ctrl+O opens a picked file in a tab", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  // Listening from the start: the browser's file chooser is intercepted only once a listener is.
+  const chooserOpened = page.waitForEvent("filechooser", { timeout: 60_000 });
+  // Keyboard shortcuts reach the app once the editor has the focus.
+  await page.mouse.click(200, 300);
+  await page.keyboard.press("Control+O");
+  const chooser = await chooserOpened;
+  const picked = "G90 G21\nG00 X0 Y0 Z5.\nG01 X12. F100\nM30\n";
+  await chooser.setFiles({ name: "picked.nc", mimeType: "text/plain", buffer: Buffer.from(picked) });
+  await session.eventually(
+    () => window.swarf.getText(),
+    null,
+    (text) => text === picked,
+    "getText() should become the picked file's text",
+  );
+});
+
 test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
 
@@ -172,12 +191,10 @@ test("a file dropped on the page opens, in its encoding", { timeout: TEST_TIMEOU
   );
 });
 
-test("Ctrl+S downloads the program in its encoding, Ctrl+O opens a picked file", { timeout: TEST_TIMEOUT_MS }, async () => {
+test("Ctrl+S downloads the program in its encoding", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
   assert.equal(await page.evaluate(() => window.swarf.getText()), "(銑) G0 X7.\n", "after the drop test");
 
-  // Listening from the start: the browser's file chooser is intercepted only once a listener is.
-  const chooserOpened = page.waitForEvent("filechooser", { timeout: 60_000 });
   // Keyboard shortcuts reach the app once the editor has the focus.
   await page.mouse.click(200, 300);
   const downloading = page.waitForEvent("download", { timeout: 30_000 });
@@ -186,18 +203,6 @@ test("Ctrl+S downloads the program in its encoding, Ctrl+O opens a picked file",
   assert.equal(download.suggestedFilename(), "dropped.nc");
   const saved = await readFile(await download.path());
   assert.deepEqual([...saved], [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x37, 0x2e, 0x0a]);
-
-  await page.mouse.click(200, 300);
-  await page.keyboard.press("Control+O");
-  const chooser = await chooserOpened;
-  const picked = "G90 G21\nG00 X0 Y0 Z5.\nG01 X12. F100\nM30\n";
-  await chooser.setFiles({ name: "picked.nc", mimeType: "text/plain", buffer: Buffer.from(picked) });
-  await session.eventually(
-    () => window.swarf.getText(),
-    null,
-    (text) => text === picked,
-    "getText() should become the picked file's text",
-  );
 });
 
 test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS }, async () => {
