@@ -141,7 +141,7 @@ pub struct PendingAnalysis {
     linked: Vec<LinkedSource>,
     /// The other open files (name, text) to link the program's calls from once it is read;
     /// `None` when calls are not looked for among open files.
-    others: Option<Vec<(String, String)>>,
+    others: Option<Vec<(String, Arc<String>)>>,
     /// Whether calls were looked for among open files (rather than files beside the program).
     among_open_files: bool,
     /// The dialect the text is read in (for the linked files).
@@ -177,16 +177,21 @@ impl PendingAnalysis {
         others: &[OpenFile<'_>],
     ) -> Self {
         let text = Arc::new(text.to_string());
+        let others = others
+            .iter()
+            .map(|f| (f.name.to_string(), Arc::new(f.text.to_string())))
+            .collect();
         Self::start_with(text, dialect, setup, generation, Some(others))
     }
 
-    /// [`PendingAnalysis::start_among`] for a text already held in an `Arc` (not copied).
+    /// [`PendingAnalysis::start_among`] for texts already held in `Arc`s (not copied): the
+    /// program's and the other open files' as (name, text).
     pub fn start_shared_among(
         text: Arc<String>,
         dialect: Dialect,
         setup: &Setup,
         generation: u64,
-        others: &[OpenFile<'_>],
+        others: Vec<(String, Arc<String>)>,
     ) -> Self {
         Self::start_with(text, dialect, setup, generation, Some(others))
     }
@@ -196,8 +201,9 @@ impl PendingAnalysis {
         dialect: Dialect,
         setup: &Setup,
         generation: u64,
-        others: Option<&[OpenFile<'_>]>,
+        others: Option<Vec<(String, Arc<String>)>>,
     ) -> Self {
+        let among_open_files = others.is_some();
         let parse = ParseRun::new(&text, dialect);
         PendingAnalysis {
             text,
@@ -209,12 +215,8 @@ impl PendingAnalysis {
             generation,
             finished: false,
             linked: Vec::new(),
-            others: others.map(|o| {
-                o.iter()
-                    .map(|f| (f.name.to_string(), f.text.to_string()))
-                    .collect()
-            }),
-            among_open_files: others.is_some(),
+            others,
+            among_open_files,
             dialect,
             work: 0,
         }

@@ -8,7 +8,7 @@ use ropey::Rope;
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, Encoding, Severity};
 
-use crate::analysis::{Analysis, OpenFile, PendingAnalysis, Problem, Stats};
+use crate::analysis::{Analysis, PendingAnalysis, Problem, Stats};
 use crate::backplot::Backplot;
 use crate::buffer::Buffer;
 use crate::commands::{self, FindOptions, Finder, RenumberOptions};
@@ -806,22 +806,20 @@ impl Workbench {
     /// left of this frame's budget of it.
     fn reanalyse(&mut self) {
         self.generation += 1;
-        let others: Vec<OpenFile<'_>> = self
+        // The other tabs' texts are shared, not copied: a keystroke costs no copy of them.
+        let others = self
             .tabs
             .iter()
             .enumerate()
             .filter(|(i, _)| *i != self.active)
-            .map(|(_, t)| OpenFile {
-                name: &t.document.name,
-                text: t.text.as_str(),
-            })
+            .map(|(_, t)| (t.document.name.clone(), Arc::clone(t.text.shared())))
             .collect();
         self.pending = Some(PendingAnalysis::start_shared_among(
             Arc::clone(self.text.shared()),
             self.dialect,
             &self.setup,
             self.generation,
-            &others,
+            others,
         ));
         self.pump();
     }
