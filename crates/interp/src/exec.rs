@@ -341,6 +341,11 @@ fn execute_block(
     sink: &mut dyn Sink,
 ) -> Flow {
     let _ = program;
+    if it.shortcut
+        && let Some(flow) = plain_move(&mut it.st, block, words, source, sink)
+    {
+        return flow;
+    }
     let dialect = it.st.dialect;
     let mut actions: SmallVec<[(Action, &Word); 4]> = SmallVec::new();
     let mut runnable = true;
@@ -470,17 +475,7 @@ fn execute_block(
         }
     }
     spindle_speed(st, words, presets_spindle);
-    let f_word = find(words, b'F');
-    st.block_has_feed = f_word.is_some();
-    if let Some(f) = f_word {
-        st.feed_word = f.value;
-        st.feed_mm_per_min = match st.feed_mode {
-            FeedMode::PerMinute => st.mm(f.value),
-            // Per revolution and inverse time are kept as given; each move's feed in mm/min
-            // comes from them (`move_feed`).
-            FeedMode::PerRevolution | FeedMode::InverseTime => f.value,
-        };
-    }
+    feed_word(st, find(words, b'F'));
     for (a, w) in &actions {
         match *a {
             Action::WorkOffset => work_offset(st, w, words),
@@ -703,6 +698,81 @@ fn execute_block(
         };
     }
     flow
+}
+
+/// Runs a block of nothing but `G00`/`G01`, X/Y/Z, F and S words with literal values, when it
+/// is a straight move from a straight-move mode, without the general path's passes over the
+/// words for every kind of code (most lines of a CAM program are such blocks). Does exactly what
+/// [`execute_block`] does for them; returns `None`, having done nothing, for any other block.
+fn plain_move(
+    st: &mut State,
+    block: &Block,
+    words: &[Word],
+    source: Source,
+    sink: &mut dyn Sink,
+) -> Option<Flow> {
+    // A word left out for a vacant variable leaves the block's own words different.
+    if st.modal_macro.is_some() || words.len() != block.words.len() {
+        return None;
+    }
+    let mut axes: Axes<'_> = [None; 3];
+    let mut code = None;
+    let mut feed = None;
+    let mut least_increment = false;
+    for w in words {
+        if w.form != WordForm::Plain || w.expr.is_some() {
+            return None;
+        }
+        match w.letter {
+            b'X' | b'Y' | b'Z' => {
+                axes[usize::from(w.letter - b'X')] = Some(w);
+                least_increment |= !w.has_point && w.value != 0.0;
+            }
+            b'F' => feed = feed.or(Some(w)),
+            b'S' => {}
+            b'G' if code.is_none() && w.value == 0.0 => code = Some(MotionMode::Rapid),
+            b'G' if code.is_none() && w.value == 1.0 => code = Some(MotionMode::Linear),
+            _ => return None,
+        }
+    }
+    let mode = code.or(st.motion)?;
+    if !matches!(mode, MotionMode::Rapid | MotionMode::Linear)
+        || matches!(st.motion, Some(MotionMode::Cycle(_)))
+    {
+        return None;
+    }
+    spindle_speed(st, words, false);
+    feed_word(st, feed);
+    st.motion = Some(mode);
+    if least_increment {
+        note_least_increment(st, words);
+    }
+    if axes.iter().any(Option::is_some) {
+        let p = target(st, &axes);
+        let to = st.to_machine(p);
+        if mode == MotionMode::Rapid {
+            st.position = to;
+            st.program_pos = p;
+            crate::corners::emit(st, sink, source, &Canon::Rapid { to });
+        } else {
+            feed_to(st, block, p, to, source, sink);
+        }
+    }
+    Some(Flow::Next)
+}
+
+/// The block's F word (the first one), read in the feed mode.
+fn feed_word(st: &mut State, f: Option<&Word>) {
+    st.block_has_feed = f.is_some();
+    if let Some(f) = f {
+        st.feed_word = f.value;
+        st.feed_mm_per_min = match st.feed_mode {
+            FeedMode::PerMinute => st.mm(f.value),
+            // Per revolution and inverse time are kept as given; each move's feed in mm/min
+            // comes from them (`move_feed`).
+            FeedMode::PerRevolution | FeedMode::InverseTime => f.value,
+        };
+    }
 }
 
 /// S and T, D and H words.

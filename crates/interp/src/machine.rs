@@ -121,6 +121,8 @@ pub struct Interpreter {
     calls: Vec<Frame>,
     /// Remaining passes of LinuxCNC `repeat` loops, by the block of their `repeat` line.
     repeats: HashMap<usize, u64>,
+    /// Whether plain straight moves take the short path (see [`Interpreter::general_path_only`]).
+    pub(crate) shortcut: bool,
 }
 
 impl Interpreter {
@@ -137,7 +139,14 @@ impl Interpreter {
             finished: false,
             calls: Vec::new(),
             repeats: HashMap::new(),
+            shortcut: true,
         }
+    }
+
+    /// Runs every block through the general path, without the shorter one plain straight moves
+    /// otherwise take; the two must give the same events and diagnostics, which this checks.
+    pub fn general_path_only(&mut self) {
+        self.shortcut = false;
     }
 
     /// The limits this run stops at.

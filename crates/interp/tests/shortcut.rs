@@ -1,0 +1,195 @@
+//! Plain straight moves take a shorter path through the interpreter than other blocks; every
+//! program must give the same events and diagnostics through it as through the general path
+//! alone: random programs mixing plain moves with blocks that change the state the moves depend
+//! on, the examples, the golden programs and (when `../shared` is present) the corpus, in every
+//! dialect.
+#![cfg(not(target_arch = "wasm32"))]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
+
+use std::path::{Path, PathBuf};
+
+use proptest::prelude::*;
+use swarf_interp::{CanonRecorder, Interpreter, Setup, Status};
+use swarf_syntax::{Dialect, Program, parse};
+
+/// A setup with offset registers, so that compensation and length offsets have values.
+const SETUP: &str =
+    "[registers.1]\nradius = 3.0\nlength = 50.0\n[registers.2]\nradius = 1.5\nlength = 20.0\n";
+
+fn run_both(program: &Program) -> Result<(), String> {
+    let setup = Setup::from_toml(SETUP).expect("setup");
+    let mut out = Vec::new();
+    for shortcut in [true, false] {
+        let mut interp = Interpreter::new(setup.clone(), program.dialect);
+        if !shortcut {
+            interp.general_path_only();
+        }
+        let mut rec = CanonRecorder::default();
+        while interp.step(program, &mut rec, 4096) == Status::Running {}
+        out.push((rec.events, interp.take_diagnostics()));
+    }
+    let (general_events, general_diags) = out.pop().ok_or("no run")?;
+    let (short_events, short_diags) = out.pop().ok_or("no run")?;
+    if let Some(i) = (0..short_events.len().max(general_events.len()))
+        .find(|&i| short_events.get(i) != general_events.get(i))
+    {
+        return Err(format!(
+            "event {i} differs: shortcut {:?}, general {:?}",
+            short_events.get(i),
+            general_events.get(i)
+        ));
+    }
+    if short_diags != general_diags {
+        return Err(format!(
+            "diagnostics differ:\nshortcut {short_diags:#?}\ngeneral {general_diags:#?}"
+        ));
+    }
+    Ok(())
+}
+
+fn check_text(text: &str, what: &str) {
+    for dialect in Dialect::ALL {
+        if let Err(e) = run_both(&parse(text, dialect)) {
+            panic!("{what} read as {dialect:?}: {e}");
+        }
+    }
+}
+
+fn programs_under(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            programs_under(&path, out);
+        } else if path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| matches!(e, "nc" | "ngc" | "gc" | "gcode" | "tap"))
+        {
+            out.push(path);
+        }
+    }
+}
+
+/// A program's text, cut to its first lines when it is large (the debug build is slow).
+fn head(path: &Path) -> String {
+    let bytes = std::fs::read(path).unwrap_or_default();
+    let text = String::from_utf8_lossy(&bytes);
+    text.lines().take(3000).collect::<Vec<_>>().join("\n")
+}
+
+#[test]
+fn examples_and_golden_programs_agree() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files = Vec::new();
+    programs_under(&root.join("assets/examples"), &mut files);
+    programs_under(&root.join("tests/golden"), &mut files);
+    assert!(files.len() >= 5, "examples not found: {files:?}");
+    for file in files {
+        check_text(&head(&file), &file.display().to_string());
+    }
+}
+
+#[test]
+fn corpus_programs_agree() {
+    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    if !corpus.is_dir() {
+        eprintln!("skipped: {} is not present", corpus.display());
+        return;
+    }
+    let mut files = Vec::new();
+    programs_under(&corpus, &mut files);
+    assert!(!files.is_empty());
+    for file in files {
+        check_text(&head(&file), &file.display().to_string());
+    }
+}
+
+/// Blocks that change what a plain move does, or that are plain moves themselves.
+const BLOCKS: &[&str] = &[
+    "G0 X10. Y5.",
+    "G1 X-3.5 Y2. F300.",
+    "X12.5",
+    "Y-4. Z1.",
+    "Z-2.",
+    "X1000 Y-250",
+    "G1 X4 F150",
+    "G0 Z5. S800",
+    "S1200",
+    "F0",
+    "G01 X2. Y2. F1200. S400",
+    "X5. X6.",
+    "G1 G0 X3.",
+    "G90",
+    "G91",
+    "G20",
+    "G21",
+    "G17",
+    "G18",
+    "G2 X5. Y5. R5.",
+    "G3 X0 Y0 I-2.5 J-2.5",
+    "G02 X1. Z1. R3.",
+    "G41 D1 G1 X10. Y0",
+    "G42 D2 X0 Y10.",
+    "G40 G0 X0 Y0",
+    "G43 H1 Z10.",
+    "G49",
+    "G81 X5. Y5. R2. Z-5. F100.",
+    "G80",
+    "G98 G83 X1. Y1. R1. Z-8. Q2. F80.",
+    "G68 X0 Y0 R30.",
+    "G69",
+    "G51 X0 Y0 P2.",
+    "G50",
+    "G51.1 X0",
+    "G50.1 X0",
+    "G16",
+    "G15",
+    "G1 X10. ,C1.",
+    "G1 Y10. ,R2.",
+    "G93 G1 X3. F2.",
+    "G94",
+    "G95 F0.1",
+    "G96 S150",
+    "G97 S1000",
+    "M3",
+    "M5",
+    "M8",
+    "G52 X5. Y5.",
+    "G92 X0 Y0",
+    "G54",
+    "G55 G0 X0",
+    "G4 P100",
+    "G28 Z0",
+    "G53 G0 Z0",
+    "G66 P9000 A1.",
+    "G67",
+    "T2 M6",
+    "#1=5.",
+    "G1 X#1",
+    "G1 X#9 Y1.",
+    "N10 G1 X3.",
+    "/G1 X8.",
+    "G1 X3. (cut) Y1.",
+    "G45 X5. D1",
+    "G22 X50. Y50. Z50. I-50. J-50. K-50.",
+    "G23",
+    "G1 A30.",
+    "G1 X1. I1.",
+];
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+    #[test]
+    fn random_programs_agree(
+        blocks in prop::collection::vec(prop::sample::select(BLOCKS), 1..40),
+        dialect in prop::sample::select(&Dialect::ALL[..]),
+    ) {
+        let mut text = blocks.join("\n");
+        text.push_str("\nM30\nO9000\nG91 G1 X1. F100.\nM99\n");
+        let result = run_both(&parse(&text, dialect));
+        prop_assert!(result.is_ok(), "{text}\n{:?}", result.err());
+    }
+}
