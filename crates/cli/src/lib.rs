@@ -15,7 +15,8 @@ use clap::{Parser, Subcommand};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
 use swarf_syntax::{
-    Diagnostic, Dialect, LineIndex, LinkedSource, Missing, Program, Severity, decode_owned, parse,
+    Decoded, Diagnostic, Dialect, LineIndex, LinkedSource, Missing, Program, Severity,
+    decode_owned, parse,
 };
 use swarf_toolpath::Toolpath;
 
@@ -73,6 +74,10 @@ enum Command {
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
+        /// Hold the whole parsed program in memory while it runs, as the editor does, instead
+        /// of running it piece by piece as it is read (the figures are the same).
+        #[arg(long)]
+        whole: bool,
     },
     /// Draw the toolpath to a PNG image offscreen (no display needed).
     Render(render::RenderArgs),
@@ -122,7 +127,12 @@ where
     let result = match cli.command {
         Command::Check { files, opts } => check(&files, &opts, err),
         Command::Canon { file, opts } => canon(&file, &opts, out, err),
-        Command::Stats { file, opts, json } => stats(&file, &opts, json, out, err),
+        Command::Stats {
+            file,
+            opts,
+            json,
+            whole,
+        } => stats(&file, &opts, json, whole, out, err),
         Command::Render(args) => render::render(&args, out, err),
         Command::Explain {
             what,
@@ -201,19 +211,101 @@ fn read_setup(opts: &RunOptions) -> anyhow::Result<Setup> {
 }
 
 fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
+    Ok(load_decoded(path, read_decoded(path)?, opts))
+}
+
+/// Reads and decodes a program file.
+fn read_decoded(path: &Path) -> anyhow::Result<Decoded> {
     let bytes =
         std::fs::read(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
-    let decoded = decode_owned(bytes);
+    Ok(decode_owned(bytes))
+}
+
+/// Parses a decoded program file and links the programs it calls from files beside it.
+fn load_decoded(path: &Path, decoded: Decoded, opts: &RunOptions) -> Loaded {
     let mut program = parse(&decoded.text, opts.dialect);
     let linked = link_external(&mut program, path, decoded.text.len(), opts.dialect);
     let mut diagnostics = decoded.diagnostics;
     diagnostics.extend(program.diagnostics.iter().cloned());
-    Ok(Loaded {
+    Loaded {
         path: path.display().to_string(),
         text: decoded.text,
         program,
         diagnostics,
         linked,
+    }
+}
+
+/// Lines read and run at a time when a program runs piece by piece.
+const PIECE_LINES: usize = 8192;
+
+/// A program read and run piece by piece into a toolpath.
+struct Streamed {
+    /// The file, its program without blocks (none is kept) and its reading diagnostics.
+    loaded: Loaded,
+    /// How many blocks the program has.
+    blocks: usize,
+    /// Every diagnostic, sorted by position.
+    diagnostics: Vec<Diagnostic>,
+}
+
+/// Reads and runs the program piece by piece as it is parsed, keeping none of its blocks, for
+/// a program that runs straight through (no jumps, loops or calls): the memory and the first
+/// touches of it that the parsed blocks of a long program would take are saved. `None` for a
+/// program that needs all its blocks at once (`path` may then hold part of its moves).
+fn stream(
+    path: &Path,
+    decoded: &mut Decoded,
+    opts: &RunOptions,
+    setup: &Setup,
+    toolpath: &mut Toolpath,
+) -> Option<Streamed> {
+    let text = std::mem::take(&mut decoded.text);
+    let mut reader = swarf_syntax::ParseRun::new(&text, opts.dialect);
+    let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
+    toolpath.reserve(reader.program().lines.line_count());
+    let mut blocks = 0;
+    let mut ended = false;
+    let mut whole = false;
+    loop {
+        let done = reader.step(&text, PIECE_LINES);
+        blocks += reader.program().blocks.len();
+        if !ended {
+            match interp.run_piece(reader.program(), toolpath) {
+                swarf_interp::Piece::Ran => {}
+                swarf_interp::Piece::Ended => ended = true,
+                swarf_interp::Piece::NeedsWhole => {
+                    whole = true;
+                    break;
+                }
+            }
+        }
+        reader.clear_blocks();
+        if done {
+            break;
+        }
+    }
+    if whole {
+        decoded.text = text;
+        return None;
+    }
+    interp.finish_pieces(toolpath);
+    let program = reader.finish();
+    let mut diagnostics = std::mem::take(&mut decoded.diagnostics);
+    diagnostics.extend(program.diagnostics.iter().cloned());
+    let mut all = diagnostics.clone();
+    all.extend(interp.take_diagnostics());
+    all.sort_by_key(|d| (d.span.start, d.span.end));
+    Some(Streamed {
+        loaded: Loaded {
+            path: path.display().to_string(),
+            text,
+            program,
+            diagnostics,
+            linked: Vec::new(),
+        },
+        blocks,
+        diagnostics: all,
     })
 }
 
@@ -337,15 +429,31 @@ fn stats(
     file: &Path,
     opts: &RunOptions,
     as_json: bool,
+    whole: bool,
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
-    let loaded = load(file, opts)?;
+    let mut decoded = read_decoded(file)?;
     let started = Instant::now();
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-    path.reserve(loaded.program.blocks.len());
-    let diags = loaded.interpret(&setup, &mut path);
+    let streamed = if whole {
+        None
+    } else {
+        stream(file, &mut decoded, opts, &setup, &mut path)
+    };
+    let (loaded, blocks, diags) = match streamed {
+        Some(s) => (s.loaded, s.blocks, s.diagnostics),
+        None => {
+            // Run whole: it jumps, loops or calls.
+            path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+            let loaded = load_decoded(file, decoded, opts);
+            path.reserve(loaded.program.blocks.len());
+            let diags = loaded.interpret(&setup, &mut path);
+            let blocks = loaded.program.blocks.len();
+            (loaded, blocks, diags)
+        }
+    };
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
     let errors = diags
         .iter()
@@ -361,7 +469,7 @@ fn stats(
     let report = json!({
         "file": loaded.path,
         "dialect": opts.dialect.name(),
-        "blocks": loaded.program.blocks.len(),
+        "blocks": blocks,
         "motions": path.len(),
         "bounds": bounds,
         "rapid_mm": path.rapid_length_mm(),
@@ -382,7 +490,7 @@ fn stats(
     } else {
         writeln!(out, "file            {}", loaded.path)?;
         writeln!(out, "dialect         {}", opts.dialect.name())?;
-        writeln!(out, "blocks          {}", loaded.program.blocks.len())?;
+        writeln!(out, "blocks          {blocks}")?;
         writeln!(out, "motions         {}", path.len())?;
         match path.bounds() {
             Some(b) => writeln!(
@@ -435,4 +543,42 @@ fn format_secs(secs: f64) -> String {
     let m = ((total - h * 3600.0) / 60.0).floor();
     let s = total - h * 3600.0 - m * 60.0;
     format!("{h:.0}:{m:02.0}:{s:04.1}")
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+
+    use super::*;
+
+    fn streams(text: &str) -> bool {
+        let opts = RunOptions {
+            dialect: Dialect::Fanuc,
+            setup: None,
+        };
+        let setup = Setup::default();
+        let mut decoded = swarf_syntax::decode(text.as_bytes());
+        let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+        let streamed = stream(Path::new("t.nc"), &mut decoded, &opts, &setup, &mut path);
+        // A program that needs running whole gets its text back.
+        assert_eq!(decoded.text.is_empty(), streamed.is_some());
+        streamed.is_some()
+    }
+
+    #[test]
+    fn straight_programs_stream_and_jumping_ones_do_not() {
+        let mut long = String::from("O1000\nG90 G21 G1 F500.\n#1=2.\n");
+        for i in 0..20_000 {
+            long.push_str(&format!("X{i}. Y#1\n"));
+        }
+        assert!(streams(&long));
+        assert!(streams("G0 X1.\nG81 X2. R1. Z-1. F50.\nG80\nM30\n"));
+        assert!(!streams(&format!(
+            "{long}M98 P2000\nM30\nO2000\nX1.\nM99\n"
+        )));
+        assert!(!streams("#1=0\nWHILE [#1 LT 3] DO1\n#1=#1+1\nEND1\nM30\n"));
+        assert!(!streams("N1 G0 X1.\nGOTO 1\n"));
+        assert!(!streams("G65 P9000 A1.\nM30\n"));
+        assert!(!streams("O1\nX1.\nM30\nO2\nX2.\nM99\n"));
+    }
 }

@@ -15,7 +15,7 @@ mod state;
 mod states;
 
 pub use canon::{Axis, Canon, CanonRecorder, Source};
-pub use machine::{Interpreter, Limits, Status, run};
+pub use machine::{Interpreter, Limits, Piece, Status, run};
 pub use setup::{CornerMode, Machine, Register, Setup, SetupError, ShiftDirection, Units};
 pub use states::{BlockState, States, StatesRun, run_with_states};
 

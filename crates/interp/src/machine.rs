@@ -25,6 +25,18 @@ pub enum Status {
     Finished,
 }
 
+/// How a piece of a program read piece by piece ran (see [`Interpreter::run_piece`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Piece {
+    /// Every block of the piece ran; give the next piece.
+    Ran,
+    /// The program ended in this piece (M02/M30 or a limit): the rest need not run.
+    Ended,
+    /// The program jumps, loops or calls (or holds several programs), which needs all its
+    /// blocks at once: run it whole with [`Interpreter::step`] instead, from the start.
+    NeedsWhole,
+}
+
 /// Passes events on and counts the motions among them (for `[machine] max_motions`).
 struct MotionCounter<'s> {
     inner: &'s mut dyn Sink,
@@ -121,6 +133,14 @@ pub struct Interpreter {
     calls: Vec<Frame>,
     /// Remaining passes of LinuxCNC `repeat` loops, by the block of their `repeat` line.
     repeats: HashMap<usize, u64>,
+    /// Running a program piece by piece (see [`Interpreter::run_piece`]).
+    piecewise: bool,
+    /// Blocks of the pieces before this one (added to each event's block number).
+    block_base: usize,
+    /// Whether a block with a program number has been seen (piece by piece).
+    program_seen: bool,
+    /// Whether a block jumped while running piece by piece.
+    jumped: bool,
     /// Whether plain straight moves take the short path (see [`Interpreter::general_path_only`]).
     pub(crate) shortcut: bool,
 }
@@ -140,6 +160,68 @@ impl Interpreter {
             calls: Vec::new(),
             repeats: HashMap::new(),
             shortcut: true,
+            piecewise: false,
+            block_base: 0,
+            program_seen: false,
+            jumped: false,
+        }
+    }
+
+    /// Runs the next piece of a program read piece by piece: `program` holds only the blocks
+    /// read since the last piece (the reader dropped the earlier ones; see
+    /// `swarf_syntax::ParseRun::clear_blocks`) and the state carries over from the pieces
+    /// before. A long program without jumps then never has all its blocks in memory at once.
+    /// Call [`Interpreter::finish_pieces`] after the last piece.
+    pub fn run_piece(&mut self, program: &Program, sink: &mut dyn Sink) -> Piece {
+        if self.jumped || (self.executed > 0 && !self.piecewise) {
+            return Piece::NeedsWhole;
+        }
+        if self.finished {
+            return Piece::Ended;
+        }
+        // What the whole program's index would know beyond this piece: loops, O-word lines,
+        // calls, and programs after the first one.
+        for block in &program.blocks {
+            let several_programs = block.program.is_some() && self.program_seen;
+            self.program_seen |= block.program.is_some();
+            let calls = block.words.iter().any(|w| {
+                matches!(w.letter, b'G' | b'M')
+                    && (w.expr.is_some()
+                        || matches!(w.value, 65.0 | 66.0 | 66.1 | 98.0 | 99.0 | 198.0))
+            });
+            let control = block
+                .statements
+                .iter()
+                .any(|s| !matches!(s, Statement::Assign { .. }));
+            if several_programs || calls || control {
+                self.jumped = true;
+                return Piece::NeedsWhole;
+            }
+        }
+        self.piecewise = true;
+        self.index = None;
+        self.next_block = 0;
+        while self.step(program, sink, 4096) == Status::Running {
+            if self.next_block >= program.blocks.len() && !self.jumped {
+                break;
+            }
+        }
+        self.block_base += program.blocks.len();
+        if self.jumped {
+            Piece::NeedsWhole
+        } else if self.finished {
+            Piece::Ended
+        } else {
+            Piece::Ran
+        }
+    }
+
+    /// Ends a program run piece by piece (the end of its text), as [`Interpreter::step`] does
+    /// at the end of a program run whole.
+    pub fn finish_pieces(&mut self, sink: &mut dyn Sink) {
+        if !self.finished {
+            self.finished = true;
+            crate::corners::flush(&mut self.st, sink);
         }
     }
 
@@ -232,6 +314,10 @@ impl Interpreter {
             }
             let at = self.next_block;
             let Some(block) = program.blocks.get(at) else {
+                if self.piecewise {
+                    // The end of a piece, not of the program.
+                    break;
+                }
                 self.end_of_text(program);
                 continue;
             };
@@ -264,7 +350,7 @@ impl Interpreter {
                 break;
             }
             let source = Source {
-                block: u32::try_from(at).unwrap_or(u32::MAX),
+                block: u32::try_from(self.block_base + at).unwrap_or(u32::MAX),
                 line: block.line.saturating_add(1),
             };
             self.executed += 1;
@@ -286,6 +372,10 @@ impl Interpreter {
             }
             match flow {
                 Flow::Next => self.next_block = at + 1,
+                Flow::Jump(_) if self.piecewise => {
+                    self.jumped = true;
+                    break;
+                }
                 Flow::Jump(to) => self.next_block = to,
                 Flow::Stop => self.finished = true,
             }

@@ -146,6 +146,18 @@ impl ParseRun {
         self.done
     }
 
+    /// The program as read so far.
+    pub fn program(&self) -> &Program {
+        &self.program
+    }
+
+    /// Drops the blocks read so far and keeps the rest (expressions, diagnostics, lines), so
+    /// that a reader that runs a long program piece by piece as it reads it keeps none of the
+    /// pieces it has run; the block array's memory is reused for the next piece.
+    pub fn clear_blocks(&mut self) {
+        self.program.blocks.clear();
+    }
+
     /// The parsed program (the lines read so far, if the run is not done).
     pub fn finish(self) -> Program {
         let mut program = self.program;

@@ -1,0 +1,142 @@
+//! `swarf stats` runs a program piece by piece as it reads it, keeping none of its blocks, and
+//! falls back to the whole program for one that jumps, loops or calls: its report and
+//! diagnostics must be those of the whole program held in memory (`--whole`).
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Exit status, the JSON report without its timing, and the diagnostics.
+fn stats(file: &Path, dialect: &str, whole: bool) -> (i32, String, String) {
+    let mut out = Vec::new();
+    let mut err = Vec::new();
+    let file = file.to_str().unwrap();
+    let mut args = vec!["swarf", "stats", file, "--json", "--dialect", dialect];
+    if whole {
+        args.push("--whole");
+    }
+    let code = swarf_cli::run(args, &mut out, &mut err);
+    let mut report: serde_json::Value = serde_json::from_slice(&out).unwrap();
+    report
+        .as_object_mut()
+        .unwrap()
+        .remove("interpretation_ms")
+        .unwrap();
+    (code, report.to_string(), String::from_utf8(err).unwrap())
+}
+
+fn assert_same(file: &Path, dialect: &str) {
+    let pieces = stats(file, dialect, false);
+    let whole = stats(file, dialect, true);
+    assert_eq!(pieces, whole, "{} read as {dialect}", file.display());
+}
+
+/// A long program that runs straight through, with what a piece boundary must carry over: a
+/// variable, a corner held for the next move, a canned cycle's modal data, arcs, a tool change,
+/// and an error and warnings for the diagnostics.
+fn long_program(lines: usize, tail: &str) -> String {
+    let mut text = String::from("%\nO1000 (LONG)\nG90 G21 G17 G54\n#1=2.5\nT1 M6\nS1200 M3\n");
+    for i in 0..lines {
+        let x = f64::from(u32::try_from(i % 200).unwrap()) * 0.5;
+        let y = f64::from(u32::try_from(i / 200).unwrap()) * 0.25;
+        match i % 997 {
+            0 => writeln!(text, "N{i} G0 X{x:.3} Y{y:.3} Z#1").unwrap(),
+            1 => writeln!(text, "G81 X{x:.3} Y{y:.3} R1. Z-3. F80.").unwrap(),
+            2 => writeln!(text, "X{:.3}", x + 1.0).unwrap(),
+            3 => writeln!(text, "G80 G1 X{x:.3} Y{y:.3} ,C0.5 F500.").unwrap(),
+            4 => writeln!(text, "G2 X{:.3} Y{y:.3} R2.", x + 4.0).unwrap(),
+            5 => writeln!(text, "G1 X{x:.3} Y{y:.3} Q7").unwrap(),
+            6 => writeln!(text, "G1 X{x} Y{y:.3} (no point)").unwrap(),
+            _ => writeln!(text, "G1 X{x:.3} Y{y:.3} Z-1.").unwrap(),
+        }
+    }
+    text.push_str(tail);
+    text.push_str("M30\n%\n");
+    text
+}
+
+#[test]
+fn a_long_straight_program_reads_the_same_in_pieces() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("long.nc");
+    std::fs::write(&file, long_program(30_000, "")).unwrap();
+    for dialect in ["fanuc", "syntec", "linuxcnc"] {
+        assert_same(&file, dialect);
+    }
+    let (_, report, diags) = stats(&file, "fanuc", false);
+    assert!(report.contains("\"blocks\":30006"), "{report}");
+    assert!(
+        !diags.is_empty(),
+        "the program's problems should be reported"
+    );
+}
+
+#[test]
+fn a_call_after_many_pieces_runs_the_program_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("calls.nc");
+    let tail = "M98 P2000\nM30\nO2000\nG91 G1 X1. F100.\nM99\n";
+    std::fs::write(&file, long_program(20_000, tail)).unwrap();
+    assert_same(&file, "fanuc");
+    let (_, report, _) = stats(&file, "fanuc", false);
+    // The subprogram ran: its move is in the toolpath.
+    let (_, without, _) = {
+        let plain = dir.path().join("plain.nc");
+        std::fs::write(&plain, long_program(20_000, "")).unwrap();
+        stats(&plain, "fanuc", false)
+    };
+    let motions = |r: &str| -> u64 {
+        let v: serde_json::Value = serde_json::from_str(r).unwrap();
+        v["motions"].as_u64().unwrap()
+    };
+    assert_eq!(motions(&report), motions(&without) + 1);
+}
+
+fn programs_under(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            programs_under(&path, out);
+        } else if path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| matches!(e, "nc" | "ngc" | "gc" | "gcode" | "tap"))
+        {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn the_examples_read_the_same_in_pieces() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files = Vec::new();
+    programs_under(&root.join("assets/examples"), &mut files);
+    programs_under(&root.join("tests/golden"), &mut files);
+    assert!(files.len() >= 5);
+    for file in &files {
+        for dialect in ["fanuc", "syntec", "lnc", "kt", "gsk", "linuxcnc"] {
+            assert_same(file, dialect);
+        }
+    }
+}
+
+#[test]
+fn the_corpus_reads_the_same_in_pieces() {
+    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    if !corpus.is_dir() {
+        eprintln!("skipped: {} is not present", corpus.display());
+        return;
+    }
+    let mut files = Vec::new();
+    programs_under(&corpus, &mut files);
+    assert!(!files.is_empty());
+    for file in &files {
+        for dialect in ["fanuc", "linuxcnc"] {
+            assert_same(file, dialect);
+        }
+    }
+}
