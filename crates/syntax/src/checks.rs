@@ -173,6 +173,106 @@ fn check_block(
     noted: &mut Vec<Code>,
     out: &mut Vec<Diagnostic>,
 ) {
+    if check_plain_block(dialect, block, out) {
+        return;
+    }
+    check_any_block(dialect, block, scratch, noted, out);
+}
+
+/// Checks the common block of CAM output — literal plain words, no M code, at most one G code
+/// and that one G00 or G01 — in one pass over its words, with exactly the findings (in the same
+/// order) of [`check_any_block`]; returns `false`, having checked nothing, for any other block.
+fn check_plain_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>) -> bool {
+    let mut motion = None;
+    for w in &block.words {
+        if w.form != WordForm::Plain || w.expr.is_some() || w.letter == b'M' {
+            return false;
+        }
+        if w.letter == b'G' {
+            if motion.is_some() || !(w.value == 0.0 || w.value == 1.0) {
+                return false;
+            }
+            motion = Some(w);
+        }
+    }
+    // The G code's definition: it decides which words the block may have.
+    let def = match motion {
+        Some(w) => {
+            let Some(def) = Code::from_value(b'G', w.value).and_then(|c| codes::lookup(dialect, c))
+            else {
+                return false;
+            };
+            if def.group != Group::Motion
+                || !def.required.is_empty()
+                || codes::is_fanuc_reading(dialect, def)
+            {
+                return false;
+            }
+            Some(def)
+        }
+        None => None,
+    };
+    let taken = def.map_or(u32::MAX, |d| ALWAYS_MASK | codes::words_mask(d));
+    let mut seen = 0u32;
+    for word in &block.words {
+        if word.letter == b'G' {
+            continue;
+        }
+        // What `words_twice`, `words_used` and `ranges` find, in that order.
+        let bit = letter_bit(word.letter);
+        if seen & bit != 0 {
+            out.push(Diagnostic::error(
+                word.span,
+                "E-WORD-TWICE",
+                format!("address `{}` appears twice in the block", word.letter()),
+            ));
+        }
+        seen |= bit;
+        if taken & bit == 0
+            && let Some(def) = def
+        {
+            let message = format!(
+                "address `{}` is not used by {} and is ignored",
+                word.letter(),
+                def.code
+            );
+            out.push(if dialect == Dialect::LinuxCnc {
+                Diagnostic::error(word.span, "E-WORD-UNUSED", message)
+            } else {
+                Diagnostic::warning(word.span, "W-WORD-UNUSED", message)
+            });
+        }
+        let v = word.value;
+        match word.letter {
+            b'F' | b'S' if v < 0.0 => out.push(Diagnostic::error(
+                word.span,
+                "E-NUMBER-RANGE",
+                format!("`{}` cannot be negative", word.letter()),
+            )),
+            b'T' | b'H' | b'D' if v < 0.0 || v.fract() != 0.0 => {
+                out.push(Diagnostic::error(
+                    word.span,
+                    "E-NUMBER-RANGE",
+                    format!(
+                        "`{}` takes a whole number that is not negative",
+                        word_text(word)
+                    ),
+                ));
+            }
+            _ => {}
+        }
+    }
+    true
+}
+
+/// Checks any block: its codes, their conflicts, and the words they take.
+fn check_any_block(
+    dialect: Dialect,
+    block: &Block,
+    scratch: &mut Vec<Found>,
+    noted: &mut Vec<Code>,
+    out: &mut Vec<Diagnostic>,
+) {
     scratch.clear();
     let codes = scratch;
     for word in &block.words {
@@ -590,5 +690,70 @@ fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagno
             }
             _ => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// Words a plain CAM block may have, and some that make it a block of another kind.
+    const WORDS: &[&str] = &[
+        "G0", "G1", "G01", "G00", "G2", "G3 R5.", "G81", "G1.5", "G17", "M3", "M30", "X1.", "X-2",
+        "Y3.5", "Z-0.25", "A90.", "F100.", "F-5", "S1200", "S-1", "T1", "T1.5", "H-2", "D3", "P2",
+        "Q1.", "R2.", "I1.", "E5.", "L3", "X#1", ",C1.", "F2=100",
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+        #[test]
+        fn the_plain_block_check_finds_what_the_general_one_does(
+            words in prop::collection::vec(prop::sample::select(WORDS), 0..7),
+            dialect in prop::sample::select(&Dialect::ALL[..]),
+        ) {
+            let line = words.join(" ");
+            let program = crate::parse(&line, dialect);
+            for block in &program.blocks {
+                let mut plain = Vec::new();
+                if !check_plain_block(dialect, block, &mut plain) {
+                    continue;
+                }
+                let mut any = Vec::new();
+                check_any_block(dialect, block, &mut Vec::new(), &mut Vec::new(), &mut any);
+                // The order after the merge: stable by position.
+                plain.sort_by_key(|d| d.span.start);
+                any.sort_by_key(|d| d.span.start);
+                prop_assert_eq!(plain, any, "{}", line);
+            }
+        }
+    }
+
+    #[test]
+    fn plain_blocks_take_the_short_check() {
+        for line in [
+            "G1 X1. Y2. F100.",
+            "X1. Z-2.",
+            "G0 Z5. S1000",
+            "G1 X1 X2 F-1 T1.5",
+        ] {
+            for dialect in Dialect::ALL {
+                let program = crate::parse(line, dialect);
+                let block = program.blocks.first().unwrap();
+                assert!(
+                    check_plain_block(dialect, block, &mut Vec::new()),
+                    "{line} {dialect:?}"
+                );
+            }
+        }
+        let program = crate::parse("G2 X1. R1.", Dialect::Fanuc);
+        assert!(!check_plain_block(
+            Dialect::Fanuc,
+            &program.blocks[0],
+            &mut Vec::new()
+        ));
     }
 }
