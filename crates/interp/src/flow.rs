@@ -59,8 +59,10 @@ pub(crate) struct Index {
     numbers: HashMap<u32, usize>,
     /// `O<name>` → index into `starts`.
     names: HashMap<Box<str>, usize>,
-    /// (program, N) → block index of the first block with that number in the program.
-    labels: HashMap<(usize, u32), usize>,
+    /// (program, N, block index) of every numbered block, sorted: a jump to `N` goes to the
+    /// first block with that number in the program. (A sorted array rather than a map: CAM
+    /// output numbers every line, and the array costs a third of the memory and no hashing.)
+    labels: Vec<(u32, u32, u32)>,
     /// `WHILE … DOm` / `DOm` block → its `ENDm` block, and back.
     loop_end: HashMap<usize, usize>,
     loop_head: HashMap<usize, usize>,
@@ -94,8 +96,10 @@ impl Index {
                 }
             }
             let slot = index.starts.len() - 1;
-            if let Some(n) = block.number {
-                index.labels.entry((slot, n)).or_insert(i);
+            if let Some(n) = block.number
+                && let (Ok(slot), Ok(i)) = (u32::try_from(slot), u32::try_from(i))
+            {
+                index.labels.push((slot, n, i));
             }
             for statement in &block.statements {
                 match statement {
@@ -131,6 +135,8 @@ impl Index {
                 }
             }
         }
+        // Usually in order already (numbers rising through the text), which the sort notices.
+        index.labels.sort_unstable();
         for (label, head) in open_loops {
             if let Some(block) = program.blocks.get(head) {
                 diagnostics.push(Diagnostic::error(
@@ -167,7 +173,14 @@ impl Index {
 
     /// The block numbered `N n` in the program that block `at` belongs to.
     pub(crate) fn label(&self, at: usize, n: u32) -> Option<usize> {
-        self.labels.get(&(self.program_of(at), n)).copied()
+        let program = u32::try_from(self.program_of(at)).ok()?;
+        let first = self
+            .labels
+            .partition_point(|&(p, m, _)| (p, m) < (program, n));
+        self.labels
+            .get(first)
+            .filter(|&&(p, m, _)| p == program && m == n)
+            .map(|&(_, _, block)| block as usize)
     }
 
     /// The `ENDm` block of the loop whose head is `head`.
