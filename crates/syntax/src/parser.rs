@@ -702,7 +702,13 @@ impl LineReader<'_> {
             );
             return end;
         }
-        match digits.parse::<u32>() {
+        // Up to nine digits without a point the scanned value is the number exactly.
+        let parsed = if !number.has_point && number.digits <= 9 {
+            Ok(number.value as u32)
+        } else {
+            digits.parse::<u32>()
+        };
+        match parsed {
             Ok(n) => {
                 if n > self.rules.max_sequence_number {
                     self.error(
