@@ -231,34 +231,12 @@ fn check_plain_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>)
         if taken & bit == 0
             && let Some(def) = def
         {
-            let message = format!(
-                "address `{}` is not used by {} and is ignored",
-                word.letter(),
-                def.code
-            );
-            out.push(if dialect == Dialect::LinuxCnc {
-                Diagnostic::error(word.span, "E-WORD-UNUSED", message)
-            } else {
-                Diagnostic::warning(word.span, "W-WORD-UNUSED", message)
-            });
+            out.push(unused(dialect, word, &def.code.to_string()));
         }
         let v = word.value;
         match word.letter {
-            b'F' | b'S' if v < 0.0 => out.push(Diagnostic::error(
-                word.span,
-                "E-NUMBER-RANGE",
-                format!("`{}` cannot be negative", word.letter()),
-            )),
-            b'T' | b'H' | b'D' if v < 0.0 || v.fract() != 0.0 => {
-                out.push(Diagnostic::error(
-                    word.span,
-                    "E-NUMBER-RANGE",
-                    format!(
-                        "`{}` takes a whole number that is not negative",
-                        word_text(word)
-                    ),
-                ));
-            }
+            b'F' | b'S' if v < 0.0 => out.push(negative(word)),
+            b'T' | b'H' | b'D' if v < 0.0 || v.fract() != 0.0 => out.push(not_whole(word)),
             _ => {}
         }
     }
@@ -512,21 +490,21 @@ fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Di
             .filter(|(d, _)| d.code.letter == b'G')
             .map(|(d, _)| d.code.to_string())
             .collect();
-        let code = if dialect == Dialect::LinuxCnc {
-            "E-WORD-UNUSED"
-        } else {
-            "W-WORD-UNUSED"
-        };
-        let message = format!(
-            "address `{}` is not used by {} and is ignored",
-            word.letter(),
-            names.join(" ")
-        );
-        out.push(if dialect == Dialect::LinuxCnc {
-            Diagnostic::error(word.span, code, message)
-        } else {
-            Diagnostic::warning(word.span, code, message)
-        });
+        out.push(unused(dialect, word, &names.join(" ")));
+    }
+}
+
+/// A word none of the block's codes (`names`) takes: an error in LinuxCNC, ignored with a
+/// warning in the Fanuc family.
+fn unused(dialect: Dialect, word: &Word, names: &str) -> Diagnostic {
+    let message = format!(
+        "address `{}` is not used by {names} and is ignored",
+        word.letter()
+    );
+    if dialect == Dialect::LinuxCnc {
+        Diagnostic::error(word.span, "E-WORD-UNUSED", message)
+    } else {
+        Diagnostic::warning(word.span, "W-WORD-UNUSED", message)
     }
 }
 
@@ -622,6 +600,27 @@ fn arcs(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnost
     }
 }
 
+/// An F or S word below zero.
+fn negative(word: &Word) -> Diagnostic {
+    Diagnostic::error(
+        word.span,
+        "E-NUMBER-RANGE",
+        format!("`{}` cannot be negative", word.letter()),
+    )
+}
+
+/// A T, H or D word that is not a whole number of zero or more.
+fn not_whole(word: &Word) -> Diagnostic {
+    Diagnostic::error(
+        word.span,
+        "E-NUMBER-RANGE",
+        format!(
+            "`{}` takes a whole number that is not negative",
+            word_text(word)
+        ),
+    )
+}
+
 fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
     let has = |t: u32| codes.iter().any(|(d, _)| d.code == Code::g(t));
     for word in &block.words {
@@ -637,22 +636,11 @@ fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagno
                     "the retract feed `F2=` must be a whole number (alarm COR-045)",
                 ));
             }
-            (b'F' | b'S', WordForm::Plain) if v < 0.0 => out.push(Diagnostic::error(
-                word.span,
-                "E-NUMBER-RANGE",
-                format!("`{}` cannot be negative", word.letter()),
-            )),
+            (b'F' | b'S', WordForm::Plain) if v < 0.0 => out.push(negative(word)),
             // LinuxCNC's G41.1/G42.1 D is the tool's diameter, and G96 D a speed limit.
             (b'D', WordForm::Plain) if has(411) || has(421) || has(960) => {}
             (b'T' | b'H' | b'D', WordForm::Plain) if v < 0.0 || v.fract() != 0.0 => {
-                out.push(Diagnostic::error(
-                    word.span,
-                    "E-NUMBER-RANGE",
-                    format!(
-                        "`{}` takes a whole number that is not negative",
-                        word_text(word)
-                    ),
-                ));
+                out.push(not_whole(word));
             }
             (b'P', WordForm::Plain) if has(541) => {
                 let max = match dialect {
