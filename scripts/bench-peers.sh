@@ -7,13 +7,13 @@
 #   pygcode PyPI, its Machine over every line (Python), moves counted
 # Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
 # TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's.
-#   scripts/bench-peers.sh            (RUNS=3, TIMEOUT=600; needs ../shared for the corpus files)
+#   scripts/bench-peers.sh            (RUNS=5, TIMEOUT=600; needs ../shared for the corpus files)
 # It ends with the wasm32 build's figure on the generated program (Node, in-process).
 # The peers are installed once under target/peers (npm and pip; nothing is committed).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 shared=${SWARF_SHARED:-$root/../shared}
-runs=${RUNS:-3}
+runs=${RUNS:-5}
 limit=${TIMEOUT:-600}
 target=${CARGO_TARGET_DIR:-$root/target}
 peers=$target/peers
@@ -51,8 +51,10 @@ measure() {
   while ((n < runs)); do
     n=$((n + 1))
     : > "$tmp"
+    local t0=$EPOCHREALTIME
     timeout "$limit" /usr/bin/time -o "$tmp" -f "%e %M" "$@" > /dev/null 2> /dev/null < /dev/null
     rc=$?
+    local t1=$EPOCHREALTIME
     if ((rc == 124)); then
       echo "timeout 0"
       return
@@ -62,7 +64,9 @@ measure() {
       echo "fail 0"
       return
     fi
-    local t=${out% *} m=${out#* }
+    # The wall clock to the microsecond (`time` gives hundredths of a second only).
+    local t m=${out#* }
+    t=$(awk "BEGIN{printf \"%.4f\", ${t1/,/.} - ${t0/,/.}}")
     if [[ -z "$best" ]] || awk "BEGIN{exit !($t < $best)}"; then best=$t; fi
     ((m > kb)) && kb=$m
     awk "BEGIN{exit !($t > 10)}" && break
@@ -77,7 +81,7 @@ cell() {
     timeout) echo "> ${limit} s" ;;
     fail) echo "fails" ;;
     "") echo "—" ;;
-    *) awk "BEGIN{printf \"%.2f s, %.1f MB/s, %d MB (%.0f×)\", $t, $bytes/1e6/$t, $kb/1024, $t/$swarf_t}" ;;
+    *) awk "BEGIN{printf \"%.3f s, %.1f MB/s, %d MB (%.1f×)\", $t, $bytes/1e6/$t, $kb/1024, $t/$swarf_t}" ;;
   esac
 }
 
