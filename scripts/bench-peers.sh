@@ -43,33 +43,31 @@ programs=(
 tmp=$(mktemp)
 trap 'rm -f "$tmp"' EXIT
 
-# "secs kb" for a command: best of $runs runs (one when a run is slower than 10 s), or
-# "timeout 0" when it does not finish within $limit seconds. A non-zero exit status still
-# counts (rs274 ends some programs with one); "fail 0" when nothing was measured.
+# "secs kb" for a command: its best wall-clock time of $runs runs (one when a run is slower than
+# 10 s) and its peak RSS, or "timeout 0" when it does not finish within $limit seconds. The first
+# run goes through /usr/bin/time for the RSS (and hundredths of a second), the others through
+# bash's `time` (milliseconds, no wrapper process). A non-zero exit status still counts (rs274
+# ends some programs with one); "fail 0" when nothing was measured.
 measure() {
-  local best="" kb=0 out n=0 rc
-  while ((n < runs)); do
-    n=$((n + 1))
-    : > "$tmp"
-    local t0=$EPOCHREALTIME
-    timeout "$limit" /usr/bin/time -o "$tmp" -f "%e %M" "$@" > /dev/null 2> /dev/null < /dev/null
-    rc=$?
-    local t1=$EPOCHREALTIME
-    if ((rc == 124)); then
-      echo "timeout 0"
-      return
-    fi
-    out=$(tail -1 "$tmp")
-    if [[ ! "$out" =~ ^[0-9.]+\ [0-9]+$ ]]; then
-      echo "fail 0"
-      return
-    fi
-    # The wall clock to the microsecond (`time` gives hundredths of a second only).
-    local t m=${out#* }
-    t=$(awk "BEGIN{printf \"%.4f\", ${t1/,/.} - ${t0/,/.}}")
-    if [[ -z "$best" ]] || awk "BEGIN{exit !($t < $best)}"; then best=$t; fi
-    ((m > kb)) && kb=$m
-    awk "BEGIN{exit !($t > 10)}" && break
+  local best="" kb=0 out n=0 rc t
+  : > "$tmp"
+  timeout "$limit" /usr/bin/time -o "$tmp" -f "%e %M" "$@" > /dev/null 2> /dev/null < /dev/null
+  rc=$?
+  if ((rc == 124)); then
+    echo "timeout 0"
+    return
+  fi
+  out=$(tail -1 "$tmp")
+  if [[ ! "$out" =~ ^[0-9.]+\ [0-9]+$ ]]; then
+    echo "fail 0"
+    return
+  fi
+  best=${out% *}
+  kb=${out#* }
+  local TIMEFORMAT=%3R
+  while ((++n < runs)) && awk "BEGIN{exit !($best < 10)}"; do
+    t=$({ time timeout "$limit" "$@" > /dev/null 2> /dev/null < /dev/null; } 2>&1)
+    if [[ "$t" =~ ^[0-9.]+$ ]] && awk "BEGIN{exit !($t < $best)}"; then best=$t; fi
   done
   echo "$best $kb"
 }
