@@ -442,17 +442,16 @@ fn stats(
     } else {
         stream(file, &mut decoded, opts, &setup, &mut path)
     };
-    let (loaded, blocks, diags) = match streamed {
-        Some(s) => (s.loaded, s.blocks, s.diagnostics),
-        None => {
-            // Run whole: it jumps, loops or calls.
-            path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-            let loaded = load_decoded(file, decoded, opts);
-            path.reserve(loaded.program.blocks.len());
-            let diags = loaded.interpret(&setup, &mut path);
-            let blocks = loaded.program.blocks.len();
-            (loaded, blocks, diags)
-        }
+    let (loaded, blocks, diags) = if let Some(s) = streamed {
+        (s.loaded, s.blocks, s.diagnostics)
+    } else {
+        // Run whole: it jumps, loops or calls.
+        path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+        let loaded = load_decoded(file, decoded, opts);
+        path.reserve(loaded.program.blocks.len());
+        let diags = loaded.interpret(&setup, &mut path);
+        let blocks = loaded.program.blocks.len();
+        (loaded, blocks, diags)
     };
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
     let errors = diags
