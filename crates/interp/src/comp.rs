@@ -388,8 +388,15 @@ pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
 }
 
 fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, event: &Canon) {
-    let plane = plane_axes(st.plane);
     let want = wanted(st);
+    if want.is_none() && st.comp.held.is_none() {
+        // Compensation off and nothing held: the move goes on as it is (what the cancel branch
+        // below does with nothing to cancel).
+        st.comp.tool = None;
+        sink.emit(source, event);
+        return;
+    }
+    let plane = plane_axes(st.plane);
     let held_offset = st.comp.held.as_ref().map(|h| h.offset);
     if want.is_some() || held_offset.is_some() {
         sink.programmed(source, event);
