@@ -103,8 +103,9 @@ enum FontState {
 pub struct Document {
     /// The file name shown in the title and status bar (`untitled.nc` before the first save).
     pub name: String,
-    /// Where the file is, as the host names it (a full path on the desktop); `None` before the
-    /// first save and on the web page, which cannot write back to a file.
+    /// Where the file is, as the host names it (a full path on the desktop; on the web page the
+    /// key of the browser's handle to the file, where it has the File System Access API);
+    /// `None` before the first save.
     pub path: Option<String>,
     /// The encoding the file was read with; saving writes it back the same way.
     pub encoding: Encoding,
