@@ -50,8 +50,14 @@ enum Arrival {
         tab: usize,
         generation: u64,
     },
-    /// The save picker refused to open (no user action just before): download instead.
-    Download { name: String, bytes: Vec<u8> },
+    /// The save picker refused to open (no user action just before): download instead, for
+    /// the tab that was active at `generation`.
+    Download {
+        name: String,
+        bytes: Vec<u8>,
+        tab: usize,
+        generation: u64,
+    },
     /// Something to tell the user.
     Message(String),
 }
@@ -187,7 +193,18 @@ impl Host {
                         ));
                     }
                 }
-                Arrival::Download { name, bytes } => self.download_program(wb, &name, &bytes),
+                Arrival::Download {
+                    name,
+                    bytes,
+                    tab,
+                    generation,
+                } => {
+                    if wb.active_tab() == tab && wb.generation() == generation {
+                        self.download_program(wb, &name, &bytes);
+                    } else if let Err(e) = download(&name, &bytes) {
+                        wb.set_message(format!("Cannot download {name}: {e:?}"));
+                    }
+                }
                 Arrival::Message(message) => wb.set_message(message),
             }
         }
@@ -275,9 +292,12 @@ impl Host {
                         // Cancelled: nothing to say.
                         "AbortError" => None,
                         // Refused without a user action just before: download instead.
-                        "SecurityError" | "NotAllowedError" => {
-                            Some(Arrival::Download { name, bytes })
-                        }
+                        "SecurityError" | "NotAllowedError" => Some(Arrival::Download {
+                            name,
+                            bytes,
+                            tab,
+                            generation,
+                        }),
                         _ => Some(Arrival::Message(format!(
                             "Cannot save {name}: {}",
                             js_error(&e)
@@ -394,9 +414,11 @@ impl Host {
                     )));
                 }
             };
-            let handle = js_sys::Array::from(&picked)
-                .get(0)
-                .unchecked_into::<web_sys::FileSystemFileHandle>();
+            let first = js_sys::Array::from(&picked).get(0);
+            if !first.is_object() {
+                return None;
+            }
+            let handle = first.unchecked_into::<web_sys::FileSystemFileHandle>();
             let name = handle.name();
             Some(match read_handle(&handle).await {
                 Ok(bytes) => Arrival::File(Purpose::Program, name, bytes, Some(handle)),
