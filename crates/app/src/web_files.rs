@@ -141,7 +141,8 @@ impl Host {
         });
     }
 
-    /// Hands files the browser has finished reading to the workbench.
+    /// Hands what the browser has finished (files read, saves written or refused) to the
+    /// workbench.
     pub fn poll(&mut self, wb: &mut Workbench) {
         let font = self.font.borrow_mut().take();
         match (font, &self.ctx) {
