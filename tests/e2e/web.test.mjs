@@ -312,6 +312,9 @@ test("with the File System Access API, Save writes back to the opened file in it
     const handle = (name, bytes) => ({
       kind: "file",
       name,
+      async isSameEntry(other) {
+        return other === this;
+      },
       async getFile() {
         return new File([new Uint8Array(bytes)], name);
       },
@@ -327,9 +330,11 @@ test("with the File System Access API, Save writes back to the opened file in it
         };
       },
     });
+    // The same file each time.
+    const gbk = handle("gbk.nc", opened);
     window.showOpenFilePicker = async (options) => {
       record.opens.push(JSON.parse(JSON.stringify(options ?? null)));
-      return [handle("gbk.nc", opened)];
+      return [gbk];
     };
     window.showSaveFilePicker = async (options) => {
       record.saves.push(JSON.parse(JSON.stringify(options ?? null)));
@@ -373,6 +378,17 @@ test("with the File System Access API, Save writes back to the opened file in it
     { name: "gbk.nc", bytes: [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x38, 0x2e, 0x0a] },
   ]);
   assert.equal(now.saves.length, 0, "Save of an opened file should not ask for a file");
+
+  // Opening the same file again brings its tab back, unsaved changes and all.
+  const unsaved = "(銑) G0 X8.\nG0 Y1.\n";
+  await page.evaluate((text) => window.swarf.setText(text), unsaved);
+  await page.evaluate(() => window.swarf.open("other.nc", "G0 X1.\n"));
+  await titled("other.nc —", "open() should show other.nc");
+  await page.mouse.click(200, 300);
+  await page.keyboard.press("Control+O");
+  await titled("gbk.nc* —", "opening gbk.nc again should bring back its tab");
+  assert.equal(await page.evaluate(() => window.swarf.getText()), unsaved, "the tab keeps its unsaved text");
+  assert.equal((await record()).opens.length, 2, "showOpenFilePicker should be called again");
 
   // Save As: asks, suggesting the current name, and the tab becomes the new file.
   await page.evaluate(() => window.swarf.setText("(銑) G0 X9.\n"));

@@ -42,6 +42,12 @@ enum Arrival {
         Vec<u8>,
         Option<web_sys::FileSystemFileHandle>,
     ),
+    /// A program picked with the File System Access API that is the file kept under `key`.
+    Reopened {
+        name: String,
+        bytes: Vec<u8>,
+        key: String,
+    },
     /// A save that was written (to `handle` when there is one), for the tab that was active
     /// at `generation`.
     Saved {
@@ -158,11 +164,13 @@ impl Host {
             match arrival {
                 Arrival::File(Purpose::Program, name, bytes, handle) => {
                     let decoded = swarf_syntax::decode(&bytes);
-                    wb.open_document(&name, decoded.text, decoded.encoding);
-                    if let Some(handle) = handle {
-                        let key = self.keep_handle(&name, handle);
-                        wb.set_path(Some(key));
-                    }
+                    let key = handle.map(|h| self.keep_handle(&name, h));
+                    wb.open_file(&name, decoded.text, decoded.encoding, key);
+                }
+                Arrival::Reopened { name, bytes, key } => {
+                    // The tab that has the file comes back (re-read when nothing is unsaved).
+                    let decoded = swarf_syntax::decode(&bytes);
+                    wb.open_file(&name, decoded.text, decoded.encoding, Some(key));
                 }
                 Arrival::File(Purpose::Dropped, name, bytes, _) => {
                     let decoded = swarf_syntax::decode(&bytes);
@@ -404,6 +412,11 @@ impl Host {
             &JsValue::from_str("types"),
             &js_sys::Array::of1(&program_type),
         );
+        let known: Vec<_> = self
+            .handles
+            .iter()
+            .map(|(key, handle)| (key.clone(), handle.clone()))
+            .collect();
         self.spawn(async move {
             let picked = match call_picker(&picker, &options).await {
                 Ok(picked) => picked,
@@ -421,10 +434,21 @@ impl Host {
             }
             let handle = first.unchecked_into::<web_sys::FileSystemFileHandle>();
             let name = handle.name();
-            Some(match read_handle(&handle).await {
-                Ok(bytes) => Arrival::File(Purpose::Program, name, bytes, Some(handle)),
-                Err(e) => Arrival::Message(format!("Cannot read {name}: {}", js_error(&e))),
-            })
+            let bytes = match read_handle(&handle).await {
+                Ok(bytes) => bytes,
+                Err(e) => {
+                    return Some(Arrival::Message(format!(
+                        "Cannot read {name}: {}",
+                        js_error(&e)
+                    )));
+                }
+            };
+            for (key, other) in known {
+                if same_entry(&handle, &other).await {
+                    return Some(Arrival::Reopened { name, bytes, key });
+                }
+            }
+            Some(Arrival::File(Purpose::Program, name, bytes, Some(handle)))
         });
     }
 
@@ -568,6 +592,15 @@ async fn read_handle(handle: &web_sys::FileSystemFileHandle) -> Result<Vec<u8>, 
         .unchecked_into::<web_sys::File>();
     let buffer = wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await?;
     Ok(js_sys::Uint8Array::new(&buffer).to_vec())
+}
+
+/// Whether two handles are the same file (false when the browser cannot tell).
+async fn same_entry(a: &web_sys::FileSystemFileHandle, b: &web_sys::FileSystemFileHandle) -> bool {
+    wasm_bindgen_futures::JsFuture::from(a.is_same_entry(b))
+        .await
+        .ok()
+        .and_then(|same| same.as_bool())
+        .unwrap_or(false)
 }
 
 /// Replaces the content of the file behind `handle` with `bytes` (the browser writes a
