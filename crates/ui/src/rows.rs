@@ -118,11 +118,6 @@ impl RowEditor {
         self.popup = None;
     }
 
-    /// The text an input method is composing at the caret, if any (it is not in the text yet).
-    pub fn preedit(&self) -> Option<&str> {
-        self.preedit.as_ref().map(|p| p.text.as_str())
-    }
-
     /// The completion list for the G or M code being typed before the caret, if any.
     fn popup_here(&self, text: &Buffer, dialect: Dialect) -> Option<Popup> {
         if !self.selection().is_empty() {
