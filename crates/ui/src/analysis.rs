@@ -3,12 +3,47 @@
 use std::sync::Arc;
 
 use glam::DVec3;
+use ropey::Rope;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
 use swarf_syntax::{Diagnostic, Dialect, LineIndex, LinkedSource, ParseRun, Program, Severity};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
 use crate::backplot::{Scene, SourceText};
+use crate::buffer::RopeLines;
+
+/// A program's text as the analysis reads it: one shared string, or the editor's rope, which
+/// is parsed and located in place so that an edit of a long program costs no copy of it.
+#[derive(Debug, Clone)]
+pub enum ProgramText {
+    /// The whole text as one string.
+    Flat(Arc<String>),
+    /// The text as a rope (a clone shares its chunks).
+    Rope(Rope),
+}
+
+impl ProgramText {
+    /// Length in bytes.
+    pub fn len(&self) -> usize {
+        match self {
+            ProgramText::Flat(text) => text.len(),
+            ProgramText::Rope(rope) => rope.len_bytes(),
+        }
+    }
+
+    /// Whether the text is empty.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The text as one new string (for a linked file, which the program then holds).
+    fn to_owned_string(&self) -> String {
+        match self {
+            ProgramText::Flat(text) => text.as_ref().clone(),
+            ProgramText::Rope(rope) => rope.to_string(),
+        }
+    }
+}
 
 /// One diagnostic, located for display.
 #[derive(Debug, Clone, PartialEq)]
@@ -127,7 +162,9 @@ pub const PARSE_LINES_PER_BLOCK: usize = 2;
 /// long. Dropping it cancels the run.
 #[derive(Debug)]
 pub struct PendingAnalysis {
-    text: Arc<String>,
+    text: ProgramText,
+    /// A line of a rope that straddles its chunks, joined for the parser (reused).
+    joined: String,
     /// The parse, until the whole text is read.
     parse: Option<ParseRun>,
     program: Program,
@@ -141,7 +178,7 @@ pub struct PendingAnalysis {
     linked: Vec<LinkedSource>,
     /// The other open files (name, text) to link the program's calls from once it is read;
     /// `None` when calls are not looked for among open files.
-    others: Option<Vec<(String, Arc<String>)>>,
+    others: Option<Vec<(String, ProgramText)>>,
     /// Whether calls were looked for among open files (rather than files beside the program).
     among_open_files: bool,
     /// The dialect the text is read in (for the linked files).
@@ -153,7 +190,13 @@ pub struct PendingAnalysis {
 impl PendingAnalysis {
     /// Prepares the analysis of `text` (nothing read or executed yet).
     pub fn start(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
-        Self::start_with(Arc::new(text.to_string()), dialect, setup, generation, None)
+        Self::start_with(
+            ProgramText::Flat(Arc::new(text.to_string())),
+            dialect,
+            setup,
+            generation,
+            None,
+        )
     }
 
     /// [`PendingAnalysis::start`] for a text already held in an `Arc` (not copied).
@@ -163,7 +206,7 @@ impl PendingAnalysis {
         setup: &Setup,
         generation: u64,
     ) -> Self {
-        Self::start_with(text, dialect, setup, generation, None)
+        Self::start_with(ProgramText::Flat(text), dialect, setup, generation, None)
     }
 
     /// Like [`start`](PendingAnalysis::start), for a program open beside `others`: the
@@ -176,10 +219,13 @@ impl PendingAnalysis {
         generation: u64,
         others: &[OpenFile<'_>],
     ) -> Self {
-        let text = Arc::new(text.to_string());
+        let text = ProgramText::Flat(Arc::new(text.to_string()));
         let others = others
             .iter()
-            .map(|f| (f.name.to_string(), Arc::new(f.text.to_string())))
+            .map(|f| {
+                let text = ProgramText::Flat(Arc::new(f.text.to_string()));
+                (f.name.to_string(), text)
+            })
             .collect();
         Self::start_with(text, dialect, setup, generation, Some(others))
     }
@@ -193,20 +239,48 @@ impl PendingAnalysis {
         generation: u64,
         others: Vec<(String, Arc<String>)>,
     ) -> Self {
+        let others = others
+            .into_iter()
+            .map(|(name, text)| (name, ProgramText::Flat(text)))
+            .collect();
+        Self::start_with(
+            ProgramText::Flat(text),
+            dialect,
+            setup,
+            generation,
+            Some(others),
+        )
+    }
+
+    /// [`PendingAnalysis::start_shared_among`] for texts that may be ropes: a rope is parsed
+    /// in place, and another file's is copied only when the program calls into it.
+    pub fn start_text_among(
+        text: ProgramText,
+        dialect: Dialect,
+        setup: &Setup,
+        generation: u64,
+        others: Vec<(String, ProgramText)>,
+    ) -> Self {
         Self::start_with(text, dialect, setup, generation, Some(others))
     }
 
     fn start_with(
-        text: Arc<String>,
+        text: ProgramText,
         dialect: Dialect,
         setup: &Setup,
         generation: u64,
-        others: Option<Vec<(String, Arc<String>)>>,
+        others: Option<Vec<(String, ProgramText)>>,
     ) -> Self {
         let among_open_files = others.is_some();
-        let parse = ParseRun::new(&text, dialect);
+        let parse = match &text {
+            ProgramText::Flat(text) => ParseRun::new(text, dialect),
+            ProgramText::Rope(rope) => {
+                ParseRun::with_lines(LineIndex::from_chunks(rope.chunks()), dialect)
+            }
+        };
         PendingAnalysis {
             text,
+            joined: String::new(),
             parse: Some(parse),
             program: Program::default(),
             toolpath: Toolpath::for_machine(DVec3::ZERO, &setup.machine),
@@ -228,7 +302,13 @@ impl PendingAnalysis {
         let mut budget = budget;
         if let Some(parse) = &mut self.parse {
             let (before, _) = parse.progress();
-            let done = parse.step(&self.text, budget.saturating_mul(PARSE_LINES_PER_BLOCK));
+            let lines = budget.saturating_mul(PARSE_LINES_PER_BLOCK);
+            let done = match &self.text {
+                ProgramText::Flat(text) => parse.step(text, lines),
+                ProgramText::Rope(rope) => {
+                    parse.step_from(&mut RopeLines::new(rope, &mut self.joined), lines)
+                }
+            };
             let (after, _) = parse.progress();
             let read = after - before;
             self.work += read as u64;
@@ -239,10 +319,6 @@ impl PendingAnalysis {
             if let Some(parse) = self.parse.take() {
                 self.program = parse.finish();
                 if let Some(others) = self.others.take() {
-                    let others: Vec<OpenFile<'_>> = others
-                        .iter()
-                        .map(|(name, text)| OpenFile { name, text })
-                        .collect();
                     self.linked =
                         link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
                 }
@@ -348,7 +424,10 @@ impl PendingAnalysis {
                 }
             }
         }
-        let problems = locate(&text, &program.lines, &diags);
+        let problems = match &text {
+            ProgramText::Flat(text) => locate(text, &program.lines, &diags),
+            ProgramText::Rope(rope) => locate_in_rope(rope, &program.lines, &diags),
+        };
         let mut elsewhere = Vec::new();
         for (i, (at, file)) in program.linked.iter().zip(&linked).enumerate() {
             let here: Vec<Diagnostic> = others
@@ -376,7 +455,10 @@ impl PendingAnalysis {
             marks.extend(box_marks(travel, scene.origin));
             scene.marks = Arc::new(marks);
         }
-        scene.source = Some(Arc::new(SourceText::shared(text)));
+        scene.source = Some(Arc::new(match text {
+            ProgramText::Flat(text) => SourceText::shared(text),
+            ProgramText::Rope(rope) => SourceText::from_rope(rope),
+        }));
         scene.tool_radii = Arc::new(
             setup
                 .registers
@@ -401,15 +483,45 @@ fn link_open_files(
     program: &mut Program,
     main_len: usize,
     dialect: Dialect,
-    others: &[OpenFile<'_>],
+    others: &[(String, ProgramText)],
 ) -> Vec<LinkedSource> {
     program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
         let names = missing.file_names();
-        let file = names
+        let (name, text) = names
             .iter()
-            .find_map(|n| others.iter().find(|o| o.name == n))?;
-        Some((file.name.to_string(), file.text.to_string()))
+            .find_map(|n| others.iter().find(|(name, _)| name == n))?;
+        Some((name.clone(), text.to_owned_string()))
     })
+}
+
+/// [`locate`] for a text held in a rope: the rope counts the characters (no copy of the text).
+fn locate_in_rope(rope: &Rope, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
+    let len = rope.len_bytes();
+    // The index of the character starting at byte `o`, or of the next one.
+    let char_of = |o: usize| -> Option<usize> {
+        let c = rope.try_byte_to_char(o).ok()?;
+        Some(if rope.char_to_byte(c) < o { c + 1 } else { c })
+    };
+    diags
+        .iter()
+        .map(|d| {
+            let offset = d.span.start as usize;
+            let line = lines.line_of(d.span.start);
+            let line_start = (lines.line_start(line) as usize).min(len);
+            let at = offset.min(len).max(line_start);
+            let col = rope.byte_to_char(at) - rope.byte_to_char(line_start);
+            let start = char_of(offset).unwrap_or(0);
+            let end = char_of(d.span.end as usize).unwrap_or(start);
+            Problem {
+                line: u32::try_from(line + 1).unwrap_or(u32::MAX),
+                col: u32::try_from(col + 1).unwrap_or(u32::MAX),
+                severity: d.severity,
+                code: d.code,
+                message: d.message.clone(),
+                chars: start..end.max(start),
+            }
+        })
+        .collect()
 }
 
 /// Turns byte spans into lines, columns and character ranges in one pass over the text.

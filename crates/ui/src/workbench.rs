@@ -1,7 +1,6 @@
 //! The whole editing surface: editor, problems list and backplot, wired to the pipeline.
 
 use std::ops::Range;
-use std::sync::Arc;
 
 use ropey::Rope;
 
@@ -807,16 +806,17 @@ impl Workbench {
     /// left of this frame's budget of it.
     fn reanalyse(&mut self) {
         self.generation += 1;
-        // The other tabs' texts are shared, not copied: a keystroke costs no copy of them.
+        // The texts are shared, not copied: a keystroke costs no copy of them (a rope is parsed
+        // in place, another tab's text is copied only when the program calls into it).
         let others = self
             .tabs
             .iter()
             .enumerate()
             .filter(|(i, _)| *i != self.active)
-            .map(|(_, t)| (t.document.name.clone(), Arc::clone(t.text.shared())))
+            .map(|(_, t)| (t.document.name.clone(), t.text.program_text()))
             .collect();
-        self.pending = Some(PendingAnalysis::start_shared_among(
-            Arc::clone(self.text.shared()),
+        self.pending = Some(PendingAnalysis::start_text_among(
+            self.text.program_text(),
             self.dialect,
             &self.setup,
             self.generation,
