@@ -269,6 +269,12 @@ impl Workbench {
         self.text.as_str()
     }
 
+    /// Whether the current text is also held as one string (made only where a whole-text
+    /// copy is needed; an edit of a long program and its analysis read the rope instead).
+    pub fn text_is_flat(&self) -> bool {
+        self.text.is_flat()
+    }
+
     /// Replaces the text and re-analyses it (one undo step; the document stays the same file).
     pub fn set_text(&mut self, text: impl Into<String>) {
         self.apply(text.into(), 0..0);
