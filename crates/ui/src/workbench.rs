@@ -23,6 +23,9 @@ pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.
 /// the frame of the edit, a longer one goes on over the next frames behind a progress bar.
 pub const FRAME_BUDGET: usize = 20_000;
 
+/// Blocks of a replaced program freed per frame.
+const RETIRED_BLOCKS_PER_FRAME: usize = 100_000;
+
 /// Editor, problems and backplot over the program of the active tab; re-analyses on every edit.
 ///
 /// Each tab holds one file (a [`Document`] with its text, undo history and cursor). The active
@@ -39,9 +42,10 @@ pub struct Workbench {
     analysis: Analysis,
     /// The analysis of the current text while it is still running.
     pending: Option<PendingAnalysis>,
-    /// The analysis just replaced, dropped in the next frame (freeing a million-line program
-    /// takes as long as finishing its analysis; the two are not done in one frame).
-    retired: Option<Analysis>,
+    /// The analyses just replaced, freed over the next frames (freeing a million-line program
+    /// at once takes as long as finishing its analysis): [`RETIRED_BLOCKS_PER_FRAME`] of
+    /// their blocks a frame, then the rest.
+    retired: Vec<Analysis>,
     /// Blocks the analysis may still run in this frame.
     budget: usize,
     /// Whether [`Workbench::ui`] is running (outside it, every change gets a full budget).
@@ -234,7 +238,7 @@ impl Workbench {
             generation: 1,
             analysis,
             pending: None,
-            retired: None,
+            retired: Vec::new(),
             budget: FRAME_BUDGET,
             in_frame: false,
             editor: CodeEditor::default(),
@@ -844,7 +848,19 @@ impl Workbench {
         let used = usize::try_from(pending.work_done().saturating_sub(work)).unwrap_or(usize::MAX);
         self.budget = self.budget.saturating_sub(used);
         if done && let Some(pending) = self.pending.take() {
-            self.retired = Some(std::mem::replace(&mut self.analysis, pending.finish()));
+            let old = std::mem::replace(&mut self.analysis, pending.finish());
+            self.retired.push(old);
+        }
+    }
+
+    /// Frees part of the analyses replaced (the blocks of the latest first).
+    fn free_retired(&mut self) {
+        if let Some(old) = self.retired.last_mut() {
+            let blocks = &mut old.program.blocks;
+            blocks.truncate(blocks.len().saturating_sub(RETIRED_BLOCKS_PER_FRAME));
+            if blocks.is_empty() {
+                self.retired.pop();
+            }
         }
     }
 
@@ -880,7 +896,7 @@ impl Workbench {
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
         crate::i18n::set_current(self.lang);
-        self.retired = None;
+        self.free_retired();
         self.budget = FRAME_BUDGET;
         self.in_frame = true;
         self.shortcuts(ui.ctx());
