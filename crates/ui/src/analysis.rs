@@ -331,16 +331,18 @@ impl PendingAnalysis {
             }
             if let Some(parse) = self.parse.take() {
                 self.program = parse.finish();
-                if let Some(others) = self.others.take() {
-                    self.linked =
-                        link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
-                }
-                self.toolpath.reserve(self.program.blocks.len());
-                self.run = Some(swarf_interp::StatesRun::new(
-                    &self.program,
-                    self.setup.clone(),
-                ));
             }
+        }
+        if self.run.is_none() && self.wrap.is_none() {
+            // Looking for the calls into other files goes over every block: for a long
+            // program it waits for a step of its own.
+            let cost = self.link_cost();
+            if cost > budget && budget < full {
+                return false;
+            }
+            self.link_and_start();
+            self.work += (cost.min(budget) * PARSE_LINES_PER_BLOCK) as u64;
+            budget = budget.saturating_sub(cost);
         }
         if self.wrap.is_none()
             && budget > 0
@@ -362,6 +364,30 @@ impl PendingAnalysis {
             self.wrap_up(full, budget);
         }
         self.finished
+    }
+
+    /// Budget (in blocks) that linking the program's calls from the other open files costs.
+    fn link_cost(&self) -> usize {
+        match &self.others {
+            Some(others) if !others.is_empty() => self.program.blocks.len() / LINK_BLOCKS_PER_BLOCK,
+            _ => 0,
+        }
+    }
+
+    /// Links the program's calls from the other open files (when there are any) and starts
+    /// the interpreter's run.
+    fn link_and_start(&mut self) {
+        if let Some(others) = self.others.take()
+            && !others.is_empty()
+        {
+            self.linked =
+                link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
+        }
+        self.toolpath.reserve(self.program.blocks.len());
+        self.run = Some(swarf_interp::StatesRun::new(
+            &self.program,
+            self.setup.clone(),
+        ));
     }
 
     /// Ends the run (or, when the text was not read to its end, runs nothing): the machine
@@ -499,8 +525,11 @@ impl PendingAnalysis {
     /// finished, it covers the lines read and the blocks run so far.
     pub fn finish(mut self) -> Analysis {
         if !self.finished {
-            if let Some(parse) = self.parse.take() {
-                self.program = parse.finish();
+            match self.parse.take() {
+                Some(parse) => self.program = parse.finish(),
+                // Read to its end, not yet linked: linked now (and run no further).
+                None if self.run.is_none() && self.wrap.is_none() => self.link_and_start(),
+                None => {}
             }
             if self.wrap.is_none() {
                 self.start_wrap_up();
@@ -559,6 +588,9 @@ impl PendingAnalysis {
 
 /// Budget (in blocks) that locating one diagnostic costs: about twice running a block.
 pub const LOCATE_COST: usize = 2;
+
+/// Blocks looked over for calls into other files per block of budget.
+pub const LINK_BLOCKS_PER_BLOCK: usize = 16;
 
 /// Toolpath segments the scene is prepared for per block of budget.
 pub const SCENE_SEGMENTS_PER_BLOCK: usize = 8;

@@ -853,14 +853,30 @@ impl Workbench {
         }
     }
 
-    /// Frees part of the analyses replaced (the blocks of the latest first).
+    /// Frees part of the analyses replaced: the latest one's blocks a slice a frame (their
+    /// memory given back as they go), then its diagnostics, its machine states (the
+    /// interpreter's checkpoints), its toolpath and the rest, each in a frame of its own.
     fn free_retired(&mut self) {
-        if let Some(old) = self.retired.last_mut() {
-            let blocks = &mut old.program.blocks;
+        let Some(old) = self.retired.last_mut() else {
+            return;
+        };
+        let blocks = &mut old.program.blocks;
+        if blocks.capacity() > 0 {
             blocks.truncate(blocks.len().saturating_sub(RETIRED_BLOCKS_PER_FRAME));
-            if blocks.is_empty() {
-                self.retired.pop();
-            }
+            blocks.shrink_to_fit();
+        } else if !old.problems.is_empty() || !old.program.diagnostics.is_empty() {
+            drop(std::mem::take(&mut old.problems));
+            drop(std::mem::take(&mut old.program));
+        } else if old.states.checkpoints() > 0 {
+            drop(std::mem::take(&mut old.states));
+        } else if !old.toolpath.is_empty() {
+            let empty = swarf_toolpath::Toolpath::for_machine(
+                glam::DVec3::ZERO,
+                &swarf_interp::Machine::default(),
+            );
+            drop(std::mem::replace(&mut old.toolpath, empty));
+        } else {
+            self.retired.pop();
         }
     }
 
