@@ -94,6 +94,15 @@ impl Buffer {
         }
     }
 
+    /// The whole text as a new string, copied from the flat copy when it exists and from the
+    /// rope otherwise (one copy; the flat copy is not made and kept for it).
+    pub fn to_text(&self) -> String {
+        match self.flat.get() {
+            Some(flat) => flat.as_ref().clone(),
+            None => self.rope.to_string(),
+        }
+    }
+
     /// Whether the flat copy of the current text exists (for measuring that edits do not make
     /// one).
     pub fn is_flat(&self) -> bool {

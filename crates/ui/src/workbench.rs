@@ -387,16 +387,16 @@ impl Workbench {
         let records = (0..self.tabs.len())
             .map(|i| {
                 let (doc, text) = if i == self.active {
-                    (&self.document, self.text.as_str())
+                    (&self.document, &self.text)
                 } else {
                     let tab = &self.tabs[i];
-                    (&tab.document, tab.text.as_str())
+                    (&tab.document, &tab.text)
                 };
                 TabRecord {
                     name: doc.name.clone(),
                     path: doc.path.clone(),
                     encoding: doc.encoding,
-                    text: text.to_string(),
+                    text: text.to_text(),
                     dirty: doc.dirty,
                 }
             })

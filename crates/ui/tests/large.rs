@@ -101,6 +101,11 @@ fn typing_in_a_large_program_edits_it_and_marks_the_error() {
     let wb = harness.state();
     // The edit and its analysis (parse, markers, problems) read the rope: no flat copy made.
     assert!(!wb.text_is_flat());
+    // The record kept for recovery is copied from the rope, once, without keeping a flat copy.
+    let (records, active) = wb.tab_records();
+    assert!(records[active].text.starts_with("G01 X$ G90 G21 G17\n"));
+    assert_eq!(records[active].text.len(), text.len() + 7);
+    assert!(!wb.text_is_flat());
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert!(codes.contains(&(1, "E-SYNTAX-CHAR")), "{codes:?}");
     assert_eq!(line(wb, 1), "G01 X$ G90 G21 G17");
