@@ -11,6 +11,7 @@
 //   window.swarf.selection();          // {start, end, text, start_line, end_line}
 //   window.swarf.diagnostics();        // [{line, col, severity, code, message}, ...]
 //   window.swarf.stats();              // {blocks, motions, bounds: {min, max} | null}
+//   window.swarf.project([x, y, z]);   // [px, py]: where the backplot drew that point, or null
 //   window.swarf.setLanguage("zh-Hans"); // interface language: "en", "zh-Hans" or "zh-Hant"
 //   window.swarf.language();           // {language, cjk_font}: the tag, whether the font is in
 //
@@ -90,6 +91,18 @@ window.swarf = Object.freeze({
   },
   stats() {
     return plain(requireApi().stats());
+  },
+  project(point) {
+    const p = Array.from(point ?? [], Number);
+    if (p.length !== 3 || !p.every(Number.isFinite)) {
+      throw new TypeError(`project: expected [x, y, z], not ${JSON.stringify(point)}`);
+    }
+    const at = requireApi().project(p[0], p[1], p[2]);
+    if (at === undefined || at === null) {
+      return null;
+    }
+    const canvas = document.getElementById(CANVAS_ID).getBoundingClientRect();
+    return [canvas.left + at[0], canvas.top + at[1]];
   },
   setLanguage(code) {
     if (!requireApi().set_language(String(code))) {

@@ -166,6 +166,43 @@ export class BrowserSession {
     });
   }
 
+  /**
+   * Intercepts the page's file choosers from now on; `nextFileChooser()` hands them out.
+   * Call it well before a chooser is due: Playwright turns interception on when a listener is
+   * added, without waiting for Chromium, which may acknowledge it only a second or two later
+   * on a busy page. A chooser opened in between is not intercepted and never reported.
+   */
+  interceptFileChoosers() {
+    this.fileChoosers = [];
+    this.fileChooserWaiters = [];
+    this.page.on("filechooser", (chooser) => {
+      const waiter = this.fileChooserWaiters.shift();
+      if (waiter) {
+        waiter(chooser);
+      } else {
+        this.fileChoosers.push(chooser);
+      }
+    });
+  }
+
+  /** The next file chooser the page opens (see `interceptFileChoosers`), within `timeoutMs`. */
+  nextFileChooser(timeoutMs = 30_000) {
+    assert.ok(this.fileChooserWaiters, "call interceptFileChoosers() first");
+    const queued = this.fileChoosers.shift();
+    if (queued) {
+      return Promise.resolve(queued);
+    }
+    let waiter;
+    const next = new Promise((resolve) => {
+      waiter = resolve;
+      this.fileChooserWaiters.push(resolve);
+    });
+    return withTimeout(next, timeoutMs, "waiting for a file chooser").catch((error) => {
+      this.fileChooserWaiters = this.fileChooserWaiters.filter((w) => w !== waiter);
+      throw error;
+    });
+  }
+
   async close() {
     await this.context?.close().catch(() => {});
     await new Promise((resolve) => (this.server ? this.server.close(resolve) : resolve()));

@@ -24,7 +24,55 @@ before(async () => {
   checkPrerequisites();
   session = await BrowserSession.start({ headless: true, args: CHROMIUM_ARGS });
   page = session.page;
+  // From the start, long before the first Ctrl+O (see interceptFileChoosers).
+  session.interceptFileChoosers();
 });
+
+// "(銑) G0 X7." in GB18030.
+const GB18030_PROGRAM = [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x37, 0x2e, 0x0a];
+
+/**
+ * Runs `body` with the File System Access API's pickers hidden, as in a browser without them
+ * (Firefox, Safari): Open then shows the file input and Save downloads.
+ */
+async function withoutFileSystemAccess(body) {
+  await page.evaluate(() => {
+    window.swarfTestPickers = [window.showOpenFilePicker, window.showSaveFilePicker];
+    window.showOpenFilePicker = undefined;
+    window.showSaveFilePicker = undefined;
+  });
+  try {
+    await body();
+  } finally {
+    await page.evaluate(() => {
+      [window.showOpenFilePicker, window.showSaveFilePicker] = window.swarfTestPickers;
+    });
+  }
+}
+
+/** Ctrl+O, a program picked in the file input, and its text in the editor. */
+async function openWithFileInput(name, text) {
+  await withoutFileSystemAccess(async () => {
+    const chooserOpened = session.nextFileChooser(60_000);
+    // Keyboard shortcuts reach the app once the editor has the focus.
+    await page.mouse.click(200, 300);
+    await page.keyboard.press("Control+O");
+    const chooser = await chooserOpened;
+    await chooser.setFiles({ name, mimeType: "text/plain", buffer: Buffer.from(text) });
+  });
+  await session.eventually(
+    () => window.swarf.getText(),
+    null,
+    (got) => got === text,
+    `getText() should become the text of ${name}, picked after Ctrl+O`,
+  );
+  await session.eventually(
+    () => document.title,
+    null,
+    (title) => typeof title === "string" && title.startsWith(name),
+    `the page title should name ${name}`,
+  );
+}
 
 after(async () => {
   await session?.close();
@@ -59,23 +107,9 @@ test("the backplot canvas is not blank", { timeout: TEST_TIMEOUT_MS }, async () 
   await session.assertCanvasNotBlank("screenshot.png");
 });
 
-test("Ctrl+O opens a picked file in a tab", { timeout: TEST_TIMEOUT_MS }, async () => {
+test("Ctrl+O opens a file picked in the file input in a tab", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
-
-  // Listening from the start: the browser's file chooser is intercepted only once a listener is.
-  const chooserOpened = page.waitForEvent("filechooser", { timeout: 60_000 });
-  // Keyboard shortcuts reach the app once the editor has the focus.
-  await page.mouse.click(200, 300);
-  await page.keyboard.press("Control+O");
-  const chooser = await chooserOpened;
-  const picked = "G90 G21\nG00 X0 Y0 Z5.\nG01 X12. F100\nM30\n";
-  await chooser.setFiles({ name: "picked.nc", mimeType: "text/plain", buffer: Buffer.from(picked) });
-  await session.eventually(
-    () => window.swarf.getText(),
-    null,
-    (text) => text === picked,
-    "getText() should become the picked file's text",
-  );
+  await openWithFileInput("picked.nc", "G90 G21\nG00 X0 Y0 Z5.\nG01 X12. F100\nM30\n");
 });
 
 test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async () => {
@@ -165,8 +199,8 @@ test("open, select and selection", { timeout: TEST_TIMEOUT_MS }, async () => {
 test("a file dropped on the page opens, in its encoding", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
 
-  // "(銑) G0 X7." in GB18030: the page decodes it as the desktop does.
-  const bytes = [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x37, 0x2e, 0x0a];
+  // GB18030: the page decodes it as the desktop does.
+  const bytes = GB18030_PROGRAM;
   await page.evaluate((data) => {
     const transfer = new DataTransfer();
     transfer.items.add(new File([new Uint8Array(data)], "dropped.nc"));
@@ -195,14 +229,201 @@ test("Ctrl+S downloads the program in its encoding", { timeout: TEST_TIMEOUT_MS 
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
   assert.equal(await page.evaluate(() => window.swarf.getText()), "(銑) G0 X7.\n", "after the drop test");
 
-  // Keyboard shortcuts reach the app once the editor has the focus.
+  await withoutFileSystemAccess(async () => {
+    // Keyboard shortcuts reach the app once the editor has the focus.
+    await page.mouse.click(200, 300);
+    const downloading = page.waitForEvent("download", { timeout: 30_000 });
+    await page.keyboard.press("Control+S");
+    const download = await downloading;
+    assert.equal(download.suggestedFilename(), "dropped.nc");
+    const saved = await readFile(await download.path());
+    assert.deepEqual([...saved], GB18030_PROGRAM);
+  });
+});
+
+test("Ctrl+O still opens the file input after open, select, a drop and Ctrl+S", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+  await openWithFileInput("late.nc", "G90 G21\nG00 X0 Y0 Z5.\nG01 Y7. F100\nM30\n");
+});
+
+test("a click in the backplot selects the segment's line", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  // Two feed moves far apart at Z-1: line 4 along X, line 5 along Y.
+  const program =
+    "G90 G21 G17\nG00 X0 Y0 Z5.\nG01 Z-1. F100\nG01 X40.\nG01 Y30.\nG00 Z5.\nM30\n";
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["pick.nc", program]);
+  await session.eventually(
+    () => window.swarf.stats(),
+    null,
+    (s) => s && s.bounds !== null && Math.abs(s.bounds.max[0] - 40) < 1e-6,
+    "stats() should describe the opened program (max X = 40)",
+  );
+  const canvas = await page.locator("#swarf-canvas").boundingBox();
+  for (const [line, midpoint] of [
+    [4, [20, 0, -1]],
+    [5, [40, 15, -1]],
+  ]) {
+    // The view fits the new program over the next frames: wait until the point stays put.
+    let previous = null;
+    const at = await session.eventually(
+      (p) => window.swarf.project(p),
+      midpoint,
+      (xy) => {
+        const steady =
+          xy !== null && previous !== null && Math.hypot(xy[0] - previous[0], xy[1] - previous[1]) < 0.5;
+        previous = xy;
+        return steady;
+      },
+      `project(${JSON.stringify(midpoint)}) should give a steady point in the backplot`,
+    );
+    await page.waitForTimeout(300);
+    assert.ok(
+      at[0] > canvas.x && at[0] < canvas.x + canvas.width && at[1] > canvas.y && at[1] < canvas.y + canvas.height,
+      `line ${line}'s midpoint ${JSON.stringify(midpoint)} is drawn at ${JSON.stringify(at)}, outside the canvas`,
+    );
+    await page.mouse.click(at[0], at[1]);
+    await session.eventually(
+      () => window.swarf.selection(),
+      null,
+      (s) => s && s.start_line === line,
+      `a click on line ${line}'s segment at ${JSON.stringify(at.map(Math.round))} should select line ${line}`,
+    );
+  }
+  const refused = await page.evaluate(() => {
+    try {
+      window.swarf.project([1, 2]);
+      return false;
+    } catch (e) {
+      return e instanceof TypeError;
+    }
+  });
+  assert.ok(refused, "project([1, 2]) should throw a TypeError");
+});
+
+test("with the File System Access API, Save writes back to the opened file in its encoding", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  // Pickers handing out handles whose writes are recorded (Playwright cannot answer the
+  // real ones).
+  await page.evaluate((opened) => {
+    const record = { opens: [], saves: [], writes: [] };
+    window.swarfFsa = record;
+    const handle = (name, bytes) => ({
+      kind: "file",
+      name,
+      async isSameEntry(other) {
+        return other === this;
+      },
+      async getFile() {
+        return new File([new Uint8Array(bytes)], name);
+      },
+      async createWritable() {
+        const chunks = [];
+        return {
+          async write(data) {
+            chunks.push(...new Uint8Array(data));
+          },
+          async close() {
+            record.writes.push({ name, bytes: chunks });
+          },
+        };
+      },
+    });
+    // The same file each time.
+    const gbk = handle("gbk.nc", opened);
+    window.showOpenFilePicker = async (options) => {
+      record.opens.push(JSON.parse(JSON.stringify(options ?? null)));
+      return [gbk];
+    };
+    window.showSaveFilePicker = async (options) => {
+      record.saves.push(JSON.parse(JSON.stringify(options ?? null)));
+      return handle("saved-as.nc", []);
+    };
+  }, GB18030_PROGRAM);
+  const record = () => page.evaluate(() => window.swarfFsa);
+  const titled = (prefix, what) =>
+    session.eventually(
+      () => document.title,
+      null,
+      (title) => typeof title === "string" && title.startsWith(prefix),
+      what,
+    );
+
+  // Open: the picker's file, decoded.
   await page.mouse.click(200, 300);
-  const downloading = page.waitForEvent("download", { timeout: 30_000 });
+  await page.keyboard.press("Control+O");
+  await session.eventually(
+    () => window.swarf.getText(),
+    null,
+    (text) => text === "(銑) G0 X7.\n",
+    "getText() should become the text of the file the open picker gave",
+  );
+  await titled("gbk.nc —", "the page title should name gbk.nc, with nothing unsaved");
+  const opens = (await record()).opens;
+  assert.equal(opens.length, 1, "showOpenFilePicker should be called once");
+  assert.ok(
+    opens[0].types?.[0]?.accept?.["text/plain"]?.includes(".nc"),
+    `showOpenFilePicker should offer .nc files: ${JSON.stringify(opens[0])}`,
+  );
+
+  // Save: written back to the same handle, in GB18030, without asking.
+  await page.evaluate(() => window.swarf.setText("(銑) G0 X8.\n"));
+  await titled("gbk.nc* —", "the edit should leave unsaved changes");
+  await page.mouse.click(200, 300);
   await page.keyboard.press("Control+S");
-  const download = await downloading;
-  assert.equal(download.suggestedFilename(), "dropped.nc");
-  const saved = await readFile(await download.path());
-  assert.deepEqual([...saved], [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x37, 0x2e, 0x0a]);
+  await titled("gbk.nc —", "Ctrl+S should save gbk.nc");
+  let now = await record();
+  assert.deepEqual(now.writes, [
+    { name: "gbk.nc", bytes: [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x38, 0x2e, 0x0a] },
+  ]);
+  assert.equal(now.saves.length, 0, "Save of an opened file should not ask for a file");
+
+  // Opening the same file again brings its tab back, unsaved changes and all.
+  const unsaved = "(銑) G0 X8.\nG0 Y1.\n";
+  await page.evaluate((text) => window.swarf.setText(text), unsaved);
+  await page.evaluate(() => window.swarf.open("other.nc", "G0 X1.\n"));
+  await titled("other.nc —", "open() should show other.nc");
+  await page.mouse.click(200, 300);
+  await page.keyboard.press("Control+O");
+  await titled("gbk.nc* —", "opening gbk.nc again should bring back its tab");
+  assert.equal(await page.evaluate(() => window.swarf.getText()), unsaved, "the tab keeps its unsaved text");
+  assert.equal((await record()).opens.length, 2, "showOpenFilePicker should be called again");
+
+  // Save As: asks, suggesting the current name, and the tab becomes the new file.
+  await page.evaluate(() => window.swarf.setText("(銑) G0 X9.\n"));
+  await titled("gbk.nc* —", "the edit should leave unsaved changes");
+  await page.mouse.click(200, 300);
+  await page.keyboard.press("Control+Shift+S");
+  await titled("saved-as.nc —", "Save As should name the tab after the new file");
+  now = await record();
+  assert.deepEqual(now.saves, [{ suggestedName: "gbk.nc" }]);
+  assert.deepEqual(now.writes[1], {
+    name: "saved-as.nc",
+    bytes: [0x28, 0xe3, 0x8a, 0x29, 0x20, 0x47, 0x30, 0x20, 0x58, 0x39, 0x2e, 0x0a],
+  });
+
+  // A cancelled picker: nothing written, the changes stay unsaved, no error.
+  await page.evaluate(() => {
+    window.showSaveFilePicker = async () => {
+      window.swarfFsa.saves.push("cancelled");
+      throw new DOMException("The user aborted a request.", "AbortError");
+    };
+    window.swarf.setText("G0 X10.\n");
+  });
+  await titled("saved-as.nc* —", "the edit should leave unsaved changes");
+  await page.mouse.click(200, 300);
+  await page.keyboard.press("Control+Shift+S");
+  await session.eventually(
+    () => window.swarfFsa.saves.length,
+    null,
+    (n) => n === 2,
+    "Save As should ask the (cancelling) picker",
+  );
+  await page.waitForTimeout(500);
+  now = await record();
+  assert.equal(now.writes.length, 2, "a cancelled Save As should write nothing");
+  assert.ok((await page.title()).startsWith("saved-as.nc* —"), "the changes should stay unsaved");
 });
 
 test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS }, async () => {

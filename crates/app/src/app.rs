@@ -96,6 +96,20 @@ impl SwarfApp {
         self.ctx.request_repaint();
     }
 
+    /// Where the machine point `p` (mm, the frame of the analysis' bounds) was drawn in the
+    /// backplot at the last frame, in CSS pixels from the canvas's top left; `None` before
+    /// the first frame, without geometry, or behind the eye.
+    #[cfg(target_arch = "wasm32")]
+    pub fn project(&self, p: glam::DVec3) -> Option<[f64; 2]> {
+        let scene = &self.workbench.analysis().scene;
+        let pos = self
+            .workbench
+            .backplot()
+            .screen_pos((p - scene.origin).as_vec3())?;
+        let zoom = f64::from(self.ctx.zoom_factor());
+        Some([f64::from(pos.x) * zoom, f64::from(pos.y) * zoom])
+    }
+
     fn update_title(&mut self, ctx: &egui::Context) {
         let doc = self.workbench.document();
         let dirty = if self.workbench.is_dirty() { "*" } else { "" };

@@ -119,6 +119,13 @@ impl SwarfApi {
         to_js(&value)
     }
 
+    /// `[x, y]`: where the machine point `[x, y, z]` (mm, the frame of `stats().bounds`) was
+    /// drawn in the backplot at the last frame, in CSS pixels from the canvas's top left;
+    /// `undefined` when it was not (no geometry yet, or behind the eye).
+    pub fn project(&self, x: f64, y: f64, z: f64) -> Result<Option<Vec<f64>>, JsValue> {
+        self.with_app(|app| app.project(glam::DVec3::new(x, y, z)).map(|p| p.to_vec()))
+    }
+
     /// The program text.
     pub fn get_text(&self) -> Result<String, JsValue> {
         self.with_app(|app| app.workbench.text().to_string())

@@ -12,6 +12,7 @@ mod dialect;
 mod line_index;
 mod link;
 mod parser;
+mod source;
 
 pub use ast::{
     BinOp, Block, Expr, ExprId, ExprNode, Func, OLabel, OWord, Program, ProgramNumber, Statement,
@@ -24,3 +25,4 @@ pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
 pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Missing};
 pub use parser::{ParseRun, parse};
+pub use source::LineSource;

@@ -18,6 +18,21 @@ impl LineIndex {
         LineIndex { starts }
     }
 
+    /// Builds the table for a text given as consecutive pieces (the chunks of a rope), as
+    /// [`LineIndex::new`] would for their concatenation, without joining them.
+    pub fn from_chunks<'a>(chunks: impl IntoIterator<Item = &'a str>) -> Self {
+        let mut starts = vec![0];
+        let mut base = 0usize;
+        for chunk in chunks {
+            starts.extend(
+                memchr::memchr_iter(b'\n', chunk.as_bytes())
+                    .map(|i| u32::try_from(base + i + 1).unwrap_or(u32::MAX)),
+            );
+            base += chunk.len();
+        }
+        LineIndex { starts }
+    }
+
     /// Number of lines (an empty text has one empty line).
     pub fn line_count(&self) -> usize {
         self.starts.len()

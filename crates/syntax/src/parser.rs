@@ -10,7 +10,9 @@ use nom::combinator::opt;
 use nom::{IResult, Parser};
 
 use crate::ast::{BinOp, Expr, ExprId, ExprNode, Func, OLabel, OWord, ProgramNumber, Statement};
-use crate::{Block, Diagnostic, Dialect, LineIndex, Program, Rules, Span, Word, WordForm};
+use crate::{
+    Block, Diagnostic, Dialect, LineIndex, LineSource, Program, Rules, Span, Word, WordForm,
+};
 
 /// Nesting depth at which the parser stops descending into an expression, whatever the dialect
 /// allows (so hostile input cannot exhaust the stack).
@@ -74,6 +76,15 @@ impl ParseRun {
     /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
     /// whether the whole text is read.
     pub fn step(&mut self, text: &str, lines: usize) -> bool {
+        self.step_from(&mut &*text, lines)
+    }
+
+    /// Reads at most `lines` more lines from `source` (the same text the run's line index was
+    /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
+    ///
+    /// One loop serves every source (a string's lines too, one dynamic call a line): made once,
+    /// it keeps the line reader inlined into it as the string-only loop did.
+    pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
         // The line index has found every newline already (with SIMD): the lines come from it.
@@ -86,9 +97,9 @@ impl ParseRun {
             let end = if line_no + 1 < line_count {
                 (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
             } else {
-                text.len()
+                source.len()
             };
-            let raw = text.get(start..end).unwrap_or_default();
+            let raw = source.line(start, end);
             let mut line = raw.strip_suffix('\r').unwrap_or(raw);
             if line.len() > MAX_LINE_BYTES {
                 // A runaway line (a binary file, a generator gone wrong): read its start only.
@@ -128,7 +139,7 @@ impl ParseRun {
                 (Tape::Before, true) => Tape::Open,
                 (Tape::Before | Tape::Plain, false) => Tape::Plain,
                 (Tape::Open, true) => {
-                    ignore_after_tape_end(program, text, self.offset);
+                    ignore_after_tape_end(program, source, self.offset);
                     self.done = true;
                     self.tape
                 }
@@ -166,6 +177,18 @@ impl ParseRun {
     }
 }
 
+impl ParseRun {
+    /// Starts a parse over a text whose line index is already made (e.g. from the pieces of a
+    /// rope, [`LineIndex::from_chunks`]); the lines are then read with
+    /// [`ParseRun::step_from`]. Nothing is read yet.
+    pub fn with_lines(lines: LineIndex, dialect: Dialect) -> Self {
+        let mut run = ParseRun::new("", dialect);
+        run.program.blocks = Vec::with_capacity(lines.line_count());
+        run.program.lines = lines;
+        run
+    }
+}
+
 /// Where the reader is with respect to `%` tape marks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Tape {
@@ -178,14 +201,14 @@ enum Tape {
 }
 
 /// Notes that the text from `offset` on, after the closing `%`, is not read (if it is not blank).
-fn ignore_after_tape_end(program: &mut Program, text: &str, offset: usize) {
-    let rest = text.get(offset.min(text.len())..).unwrap_or_default();
-    let trimmed = rest.trim_start();
-    if trimmed.is_empty() {
+fn ignore_after_tape_end<S: LineSource + ?Sized>(
+    program: &mut Program,
+    source: &mut S,
+    offset: usize,
+) {
+    let Some((start, end)) = source.trimmed_rest(offset) else {
         return;
-    }
-    let start = text.len() - trimmed.len();
-    let end = start + trimmed.trim_end().len();
+    };
     program.diagnostics.push(Diagnostic::note(
         Span::new(start, end),
         "N-AFTER-TAPE-END",

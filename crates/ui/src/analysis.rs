@@ -3,12 +3,47 @@
 use std::sync::Arc;
 
 use glam::DVec3;
+use ropey::Rope;
 use swarf_interp::Setup;
 use swarf_render::{Kind, PathPoint};
 use swarf_syntax::{Diagnostic, Dialect, LineIndex, LinkedSource, ParseRun, Program, Severity};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
 use crate::backplot::{Scene, SourceText};
+use crate::buffer::RopeLines;
+
+/// A program's text as the analysis reads it: one shared string, or the editor's rope, which
+/// is parsed and located in place so that an edit of a long program costs no copy of it.
+#[derive(Debug, Clone)]
+pub enum ProgramText {
+    /// The whole text as one string.
+    Flat(Arc<String>),
+    /// The text as a rope (a clone shares its chunks).
+    Rope(Rope),
+}
+
+impl ProgramText {
+    /// Length in bytes.
+    pub fn len(&self) -> usize {
+        match self {
+            ProgramText::Flat(text) => text.len(),
+            ProgramText::Rope(rope) => rope.len_bytes(),
+        }
+    }
+
+    /// Whether the text is empty.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The text as one new string (for a linked file, which the program then holds).
+    fn to_owned_string(&self) -> String {
+        match self {
+            ProgramText::Flat(text) => text.as_ref().clone(),
+            ProgramText::Rope(rope) => rope.to_string(),
+        }
+    }
+}
 
 /// One diagnostic, located for display.
 #[derive(Debug, Clone, PartialEq)]
@@ -127,7 +162,9 @@ pub const PARSE_LINES_PER_BLOCK: usize = 2;
 /// long. Dropping it cancels the run.
 #[derive(Debug)]
 pub struct PendingAnalysis {
-    text: Arc<String>,
+    text: ProgramText,
+    /// A line of a rope that straddles its chunks, joined for the parser (reused).
+    joined: String,
     /// The parse, until the whole text is read.
     parse: Option<ParseRun>,
     program: Program,
@@ -141,19 +178,30 @@ pub struct PendingAnalysis {
     linked: Vec<LinkedSource>,
     /// The other open files (name, text) to link the program's calls from once it is read;
     /// `None` when calls are not looked for among open files.
-    others: Option<Vec<(String, Arc<String>)>>,
+    others: Option<Vec<(String, ProgramText)>>,
     /// Whether calls were looked for among open files (rather than files beside the program).
     among_open_files: bool,
     /// The dialect the text is read in (for the linked files).
     dialect: Dialect,
     /// Lines read plus blocks executed so far (what the budget is spent on).
     work: u64,
+    /// Blocks executed, and different blocks reached, by the run so far.
+    executed: u64,
+    reached: usize,
+    /// Once the run has ended: what is left to do.
+    wrap: Option<WrapUp>,
 }
 
 impl PendingAnalysis {
     /// Prepares the analysis of `text` (nothing read or executed yet).
     pub fn start(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
-        Self::start_with(Arc::new(text.to_string()), dialect, setup, generation, None)
+        Self::start_with(
+            ProgramText::Flat(Arc::new(text.to_string())),
+            dialect,
+            setup,
+            generation,
+            None,
+        )
     }
 
     /// [`PendingAnalysis::start`] for a text already held in an `Arc` (not copied).
@@ -163,7 +211,7 @@ impl PendingAnalysis {
         setup: &Setup,
         generation: u64,
     ) -> Self {
-        Self::start_with(text, dialect, setup, generation, None)
+        Self::start_with(ProgramText::Flat(text), dialect, setup, generation, None)
     }
 
     /// Like [`start`](PendingAnalysis::start), for a program open beside `others`: the
@@ -176,10 +224,13 @@ impl PendingAnalysis {
         generation: u64,
         others: &[OpenFile<'_>],
     ) -> Self {
-        let text = Arc::new(text.to_string());
+        let text = ProgramText::Flat(Arc::new(text.to_string()));
         let others = others
             .iter()
-            .map(|f| (f.name.to_string(), Arc::new(f.text.to_string())))
+            .map(|f| {
+                let text = ProgramText::Flat(Arc::new(f.text.to_string()));
+                (f.name.to_string(), text)
+            })
             .collect();
         Self::start_with(text, dialect, setup, generation, Some(others))
     }
@@ -193,20 +244,48 @@ impl PendingAnalysis {
         generation: u64,
         others: Vec<(String, Arc<String>)>,
     ) -> Self {
+        let others = others
+            .into_iter()
+            .map(|(name, text)| (name, ProgramText::Flat(text)))
+            .collect();
+        Self::start_with(
+            ProgramText::Flat(text),
+            dialect,
+            setup,
+            generation,
+            Some(others),
+        )
+    }
+
+    /// [`PendingAnalysis::start_shared_among`] for texts that may be ropes: a rope is parsed
+    /// in place, and another file's is copied only when the program calls into it.
+    pub fn start_text_among(
+        text: ProgramText,
+        dialect: Dialect,
+        setup: &Setup,
+        generation: u64,
+        others: Vec<(String, ProgramText)>,
+    ) -> Self {
         Self::start_with(text, dialect, setup, generation, Some(others))
     }
 
     fn start_with(
-        text: Arc<String>,
+        text: ProgramText,
         dialect: Dialect,
         setup: &Setup,
         generation: u64,
-        others: Option<Vec<(String, Arc<String>)>>,
+        others: Option<Vec<(String, ProgramText)>>,
     ) -> Self {
         let among_open_files = others.is_some();
-        let parse = ParseRun::new(&text, dialect);
+        let parse = match &text {
+            ProgramText::Flat(text) => ParseRun::new(text, dialect),
+            ProgramText::Rope(rope) => {
+                ParseRun::with_lines(LineIndex::from_chunks(rope.chunks()), dialect)
+            }
+        };
         PendingAnalysis {
             text,
+            joined: String::new(),
             parse: Some(parse),
             program: Program::default(),
             toolpath: Toolpath::for_machine(DVec3::ZERO, &setup.machine),
@@ -219,16 +298,30 @@ impl PendingAnalysis {
             among_open_files,
             dialect,
             work: 0,
+            executed: 0,
+            reached: 0,
+            wrap: None,
         }
     }
 
-    /// Reads lines and then executes blocks for at most `budget` blocks' worth of work (a block
-    /// buys [`PARSE_LINES_PER_BLOCK`] lines); whether the analysis is finished.
+    /// Reads lines, then executes blocks, then locates the problems and prepares the scene, for
+    /// at most `budget` blocks' worth of work (a block buys [`PARSE_LINES_PER_BLOCK`] lines;
+    /// see [`LOCATE_COST`] and [`SCENE_SEGMENTS_PER_BLOCK`]); whether the analysis is finished.
+    ///
+    /// Locating and the scene of a long program each take a step of their own, so that
+    /// finishing does not hold up one frame for as long as all of it.
     pub fn step(&mut self, budget: usize) -> bool {
+        let full = budget;
         let mut budget = budget;
         if let Some(parse) = &mut self.parse {
             let (before, _) = parse.progress();
-            let done = parse.step(&self.text, budget.saturating_mul(PARSE_LINES_PER_BLOCK));
+            let lines = budget.saturating_mul(PARSE_LINES_PER_BLOCK);
+            let done = match &self.text {
+                ProgramText::Flat(text) => parse.step(text, lines),
+                ProgramText::Rope(rope) => {
+                    parse.step_from(&mut RopeLines::new(rope, &mut self.joined), lines)
+                }
+            };
             let (after, _) = parse.progress();
             let read = after - before;
             self.work += read as u64;
@@ -238,31 +331,157 @@ impl PendingAnalysis {
             }
             if let Some(parse) = self.parse.take() {
                 self.program = parse.finish();
-                if let Some(others) = self.others.take() {
-                    let others: Vec<OpenFile<'_>> = others
-                        .iter()
-                        .map(|(name, text)| OpenFile { name, text })
-                        .collect();
-                    self.linked =
-                        link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
-                }
-                self.toolpath.reserve(self.program.blocks.len());
-                self.run = Some(swarf_interp::StatesRun::new(
-                    &self.program,
-                    self.setup.clone(),
-                ));
             }
         }
-        if !self.finished
+        if self.run.is_none() && self.wrap.is_none() {
+            // Looking for the calls into other files goes over every block: for a long
+            // program it waits for a step of its own.
+            let cost = self.link_cost();
+            if cost > budget && budget < full {
+                return false;
+            }
+            self.link_and_start();
+            self.work += (cost.min(budget) * PARSE_LINES_PER_BLOCK) as u64;
+            budget = budget.saturating_sub(cost);
+        }
+        if self.wrap.is_none()
             && budget > 0
             && let Some(run) = &mut self.run
         {
             let before = run.executed_blocks();
-            self.finished = run.step(&self.program, &mut self.toolpath, budget)
+            let ran = run.step(&self.program, &mut self.toolpath, budget)
                 == swarf_interp::Status::Finished;
-            self.work += run.executed_blocks() - before;
+            let executed = run.executed_blocks() - before;
+            self.work += executed;
+            self.executed = run.executed_blocks();
+            self.reached = run.blocks_reached();
+            budget = budget.saturating_sub(usize::try_from(executed).unwrap_or(usize::MAX));
+            if ran {
+                self.start_wrap_up();
+            }
+        }
+        if self.wrap.is_some() {
+            self.wrap_up(full, budget);
         }
         self.finished
+    }
+
+    /// Budget (in blocks) that linking the program's calls from the other open files costs.
+    fn link_cost(&self) -> usize {
+        match &self.others {
+            Some(others) if !others.is_empty() => self.program.blocks.len() / LINK_BLOCKS_PER_BLOCK,
+            _ => 0,
+        }
+    }
+
+    /// Links the program's calls from the other open files (when there are any) and starts
+    /// the interpreter's run.
+    fn link_and_start(&mut self) {
+        if let Some(others) = self.others.take()
+            && !others.is_empty()
+        {
+            self.linked =
+                link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
+        }
+        self.toolpath.reserve(self.program.blocks.len());
+        self.run = Some(swarf_interp::StatesRun::new(
+            &self.program,
+            self.setup.clone(),
+        ));
+    }
+
+    /// Ends the run (or, when the text was not read to its end, runs nothing): the machine
+    /// states and the diagnostics, sorted and split between the program and its linked files.
+    fn start_wrap_up(&mut self) {
+        let mut diags = self.program.diagnostics.clone();
+        let states = match self.run.take() {
+            Some(run) => {
+                let (run_diags, states) = run.finish();
+                diags.extend(run_diags);
+                states
+            }
+            None => {
+                swarf_interp::StatesRun::new(&self.program, self.setup.clone())
+                    .finish()
+                    .1
+            }
+        };
+        diags.sort_by_key(|d| (d.span.start, d.span.end));
+        // Diagnostics past the program's own text belong to the files linked after it.
+        let own_end = self
+            .program
+            .linked
+            .first()
+            .map_or(u32::MAX, |l| l.first_byte);
+        let split = diags.partition_point(|d| d.span.start < own_end);
+        let others = diags.split_off(split);
+        if self.among_open_files {
+            for d in &mut diags {
+                if matches!(d.code, "E-SUBPROGRAM" | "E-OWORD") {
+                    d.message = d.message.replace("a file beside it", "an open tab");
+                }
+            }
+        }
+        self.wrap = Some(WrapUp {
+            states,
+            problems: Vec::with_capacity(diags.len()),
+            own: diags,
+            others,
+            sweep: Sweep::default(),
+            scene: None,
+        });
+    }
+
+    /// Locates problems and then prepares the scene for `budget` of the step's `full` budget;
+    /// a part that does not fit waits for the next step unless nothing was done in this one.
+    fn wrap_up(&mut self, full: usize, mut budget: usize) {
+        let Some(wrap) = &mut self.wrap else {
+            return;
+        };
+        if wrap.problems.len() < wrap.own.len() {
+            let mut n = budget / LOCATE_COST;
+            if budget == full {
+                n = n.max(1);
+            }
+            let from = wrap.problems.len();
+            let to = from.saturating_add(n).min(wrap.own.len());
+            for d in &wrap.own[from..to] {
+                let problem = locate_one(&self.text, &self.program.lines, &mut wrap.sweep, d);
+                wrap.problems.push(problem);
+            }
+            let cost = (to - from).saturating_mul(LOCATE_COST);
+            self.work += (cost * PARSE_LINES_PER_BLOCK) as u64;
+            budget = budget.saturating_sub(cost);
+            if wrap.problems.len() < wrap.own.len() {
+                return;
+            }
+        }
+        if wrap.scene.is_none() {
+            let cost = self.toolpath.len() / SCENE_SEGMENTS_PER_BLOCK;
+            if cost > budget && budget < full {
+                return;
+            }
+            let mut scene = scene_of(&self.toolpath, self.generation);
+            if let Some(travel) = self.setup.machine.travel_mm {
+                let mut marks = scene.marks.as_ref().clone();
+                marks.extend(box_marks(travel, scene.origin));
+                scene.marks = Arc::new(marks);
+            }
+            scene.source = Some(Arc::new(match &self.text {
+                ProgramText::Flat(text) => SourceText::shared(Arc::clone(text)),
+                ProgramText::Rope(rope) => SourceText::from_rope(rope.clone()),
+            }));
+            scene.tool_radii = Arc::new(
+                self.setup
+                    .registers
+                    .iter()
+                    .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
+                    .collect(),
+            );
+            wrap.scene = Some(scene);
+            self.work += (cost.min(budget) * PARSE_LINES_PER_BLOCK) as u64;
+        }
+        self.finished = true;
     }
 
     /// Whether the run is finished, so [`finish`](PendingAnalysis::finish) gives the result.
@@ -279,17 +498,15 @@ impl PendingAnalysis {
     /// text is still being read. A program that stops early (M30 before its end) finishes short
     /// of the total.
     pub fn progress(&self) -> (usize, usize) {
-        match &self.run {
-            Some(run) => (run.blocks_reached(), self.program.blocks.len()),
-            None => (0, 0),
+        if self.run.is_none() && self.wrap.is_none() {
+            return (0, 0);
         }
+        (self.reached, self.program.blocks.len())
     }
 
     /// Blocks executed so far (every pass of a loop counts).
     pub fn executed_blocks(&self) -> u64 {
-        self.run
-            .as_ref()
-            .map_or(0, swarf_interp::StatesRun::executed_blocks)
+        self.executed
     }
 
     /// The work done so far against the frame budget: lines read (a block's worth per
@@ -306,49 +523,37 @@ impl PendingAnalysis {
 
     /// The finished analysis: problems located, scene prepared. Called before the run is
     /// finished, it covers the lines read and the blocks run so far.
-    pub fn finish(self) -> Analysis {
+    pub fn finish(mut self) -> Analysis {
+        if !self.finished {
+            match self.parse.take() {
+                Some(parse) => self.program = parse.finish(),
+                // Read to its end, not yet linked: linked now (and run no further).
+                None if self.run.is_none() && self.wrap.is_none() => self.link_and_start(),
+                None => {}
+            }
+            if self.wrap.is_none() {
+                self.start_wrap_up();
+            }
+            self.wrap_up(usize::MAX, usize::MAX);
+        }
         let PendingAnalysis {
-            text,
-            parse,
             program,
             toolpath,
-            run,
+            wrap,
             setup,
             generation,
             linked,
-            among_open_files,
             ..
         } = self;
-        let program = match parse {
-            Some(parse) => parse.finish(),
-            None => program,
+        let (states, problems, others, scene) = match wrap {
+            Some(w) => (w.states, w.problems, w.others, w.scene),
+            None => (
+                swarf_interp::StatesRun::new(&program, setup).finish().1,
+                Vec::new(),
+                Vec::new(),
+                None,
+            ),
         };
-        let mut diags = program.diagnostics.clone();
-        let states = match run {
-            Some(run) => {
-                let (run_diags, states) = run.finish();
-                diags.extend(run_diags);
-                states
-            }
-            None => {
-                swarf_interp::StatesRun::new(&program, setup.clone())
-                    .finish()
-                    .1
-            }
-        };
-        diags.sort_by_key(|d| (d.span.start, d.span.end));
-        // Diagnostics past the program's own text belong to the files linked after it.
-        let own_end = program.linked.first().map_or(u32::MAX, |l| l.first_byte);
-        let split = diags.partition_point(|d| d.span.start < own_end);
-        let others = diags.split_off(split);
-        if among_open_files {
-            for d in &mut diags {
-                if matches!(d.code, "E-SUBPROGRAM" | "E-OWORD") {
-                    d.message = d.message.replace("a file beside it", "an open tab");
-                }
-            }
-        }
-        let problems = locate(&text, &program.lines, &diags);
         let mut elsewhere = Vec::new();
         for (i, (at, file)) in program.linked.iter().zip(&linked).enumerate() {
             let here: Vec<Diagnostic> = others
@@ -370,28 +575,121 @@ impl PendingAnalysis {
                     }),
             );
         }
-        let mut scene = scene_of(&toolpath, generation);
-        if let Some(travel) = setup.machine.travel_mm {
-            let mut marks = scene.marks.as_ref().clone();
-            marks.extend(box_marks(travel, scene.origin));
-            scene.marks = Arc::new(marks);
-        }
-        scene.source = Some(Arc::new(SourceText::shared(text)));
-        scene.tool_radii = Arc::new(
-            setup
-                .registers
-                .iter()
-                .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
-                .collect(),
-        );
         Analysis {
             program,
+            scene: scene.unwrap_or_else(|| scene_of(&toolpath, generation)),
             toolpath,
             problems,
             elsewhere,
-            scene,
             states,
         }
+    }
+}
+
+/// Budget (in blocks) that locating one diagnostic costs: about twice running a block.
+pub const LOCATE_COST: usize = 2;
+
+/// Blocks looked over for calls into other files per block of budget.
+pub const LINK_BLOCKS_PER_BLOCK: usize = 16;
+
+/// Toolpath segments the scene is prepared for per block of budget.
+pub const SCENE_SEGMENTS_PER_BLOCK: usize = 8;
+
+/// What is left to do once the run has ended.
+#[derive(Debug)]
+struct WrapUp {
+    states: swarf_interp::States,
+    /// The diagnostics in the program's own text, sorted by position.
+    own: Vec<Diagnostic>,
+    /// The diagnostics in the files linked after it.
+    others: Vec<Diagnostic>,
+    /// `own` located so far, in order.
+    problems: Vec<Problem>,
+    sweep: Sweep,
+    scene: Option<Scene>,
+}
+
+/// Where locating a flat text has counted characters to, so that the sorted diagnostics cost
+/// one pass over the text in all.
+#[derive(Debug, Default)]
+struct Sweep {
+    /// Byte offset counted to, and the characters before it.
+    at: usize,
+    chars: usize,
+    /// The last line located and the index of its first character.
+    line: Option<(usize, usize)>,
+}
+
+impl Sweep {
+    /// The index of the character starting at byte `offset` of `text` (or of the next one).
+    fn char_at(&mut self, text: &str, offset: usize) -> usize {
+        let mut to = offset.min(text.len());
+        while !text.is_char_boundary(to) {
+            to += 1;
+        }
+        if to >= self.at {
+            self.chars += text.get(self.at..to).map_or(0, |t| t.chars().count());
+            self.at = to;
+            self.chars
+        } else {
+            self.chars - text.get(to..self.at).map_or(0, |t| t.chars().count())
+        }
+    }
+}
+
+/// One diagnostic of the program's own text located (as [`locate`] does for many), the
+/// diagnostics taken in order of position.
+fn locate_one(text: &ProgramText, lines: &LineIndex, sweep: &mut Sweep, d: &Diagnostic) -> Problem {
+    let len = text.len();
+    let (start_at, end_at) = (d.span.start as usize, d.span.end as usize);
+    let line = lines.line_of(d.span.start);
+    let line_start = (lines.line_start(line) as usize).min(len);
+    let (col, start, end) = match text {
+        ProgramText::Flat(text) => {
+            let line_chars = match sweep.line {
+                Some((l, c)) if l == line => c,
+                _ => {
+                    let c = sweep.char_at(text, line_start);
+                    sweep.line = Some((line, c));
+                    c
+                }
+            };
+            let here = sweep.char_at(text, start_at.max(line_start));
+            let start = if start_at > len { 0 } else { here };
+            let end = if end_at > len {
+                start
+            } else if end_at >= start_at {
+                let mut to = end_at;
+                while !text.is_char_boundary(to) {
+                    to += 1;
+                }
+                let from = sweep.at.min(to);
+                sweep.chars - text.get(from..sweep.at).map_or(0, |t| t.chars().count())
+                    + text.get(from..to).map_or(0, |t| t.chars().count())
+            } else {
+                start
+            };
+            (here - line_chars, start, end)
+        }
+        ProgramText::Rope(rope) => {
+            let char_of = |o: usize| {
+                let o = o.min(len);
+                let c = rope.byte_to_char(o);
+                if rope.char_to_byte(c) < o { c + 1 } else { c }
+            };
+            let here = char_of(start_at.max(line_start));
+            let start = if start_at > len { 0 } else { here };
+            let end = if end_at > len { start } else { char_of(end_at) };
+            (here - char_of(line_start), start, end)
+        }
+    };
+    Problem {
+        line: u32::try_from(line + 1).unwrap_or(u32::MAX),
+        col: u32::try_from(col + 1).unwrap_or(u32::MAX),
+        severity: d.severity,
+        code: d.code,
+        message: d.message.clone(),
+        chars: start..end.max(start),
     }
 }
 
@@ -401,14 +699,14 @@ fn link_open_files(
     program: &mut Program,
     main_len: usize,
     dialect: Dialect,
-    others: &[OpenFile<'_>],
+    others: &[(String, ProgramText)],
 ) -> Vec<LinkedSource> {
     program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
         let names = missing.file_names();
-        let file = names
+        let (name, text) = names
             .iter()
-            .find_map(|n| others.iter().find(|o| o.name == n))?;
-        Some((file.name.to_string(), file.text.to_string()))
+            .find_map(|n| others.iter().find(|(name, _)| name == n))?;
+        Some((name.clone(), text.to_owned_string()))
     })
 }
 
@@ -651,4 +949,48 @@ fn mark_cycle_moves(path: &Toolpath, points: &mut [PathPoint]) {
 /// The machine point the scene's f32 vertices are relative to: the centre of the bounds.
 pub fn scene_origin(path: &Toolpath) -> DVec3 {
     path.bounds().map_or(DVec3::ZERO, |b| b.center())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Locates `diags` (sorted) one at a time, as the analysis does over steps.
+    fn one_by_one(text: &ProgramText, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
+        let mut sweep = Sweep::default();
+        diags
+            .iter()
+            .map(|d| locate_one(text, lines, &mut sweep, d))
+            .collect()
+    }
+
+    proptest! {
+        #[test]
+        fn diagnostics_located_one_by_one_match_the_single_pass(
+            text in "[GX0-9 ;()\\r\\n注释é$]{0,200}",
+            spans in proptest::collection::vec((0usize..260, 0usize..40), 0..30),
+        ) {
+            let bounds: Vec<usize> = text
+                .char_indices()
+                .map(|(b, _)| b)
+                .chain([text.len(), text.len() + 3])
+                .collect();
+            let mut diags: Vec<Diagnostic> = spans
+                .iter()
+                .map(|&(a, n)| {
+                    let start = bounds[a % bounds.len()];
+                    let end = bounds[(a + n) % bounds.len()].max(start);
+                    Diagnostic::error(swarf_syntax::Span::new(start, end), "E-TEST", "test")
+                })
+                .collect();
+            diags.sort_by_key(|d| (d.span.start, d.span.end));
+            let lines = LineIndex::new(&text);
+            let expected = locate(&text, &lines, &diags);
+            let flat = ProgramText::Flat(Arc::new(text.clone()));
+            prop_assert_eq!(&one_by_one(&flat, &lines, &diags), &expected);
+            let rope = ProgramText::Rope(Rope::from_str(&text));
+            prop_assert_eq!(&one_by_one(&rope, &lines, &diags), &expected);
+        }
+    }
 }

@@ -59,7 +59,10 @@ const TOOLTIP_TEXT_CHARS: usize = 120;
 #[derive(Clone, Debug, Default)]
 pub struct SourceText {
     text: Arc<String>,
-    starts: Vec<usize>,
+    /// The line starts of `text`, found on the first look-up (not when the analysis finishes).
+    starts: std::sync::OnceLock<Vec<usize>>,
+    /// The text as a rope (which knows its lines), instead of `text`.
+    rope: Option<ropey::Rope>,
 }
 
 impl SourceText {
@@ -72,23 +75,49 @@ impl SourceText {
     /// Indexes a text already held in an `Arc` (not copied).
     #[must_use]
     pub fn shared(text: Arc<String>) -> Self {
-        let mut starts = Vec::with_capacity(text.len() / 24 + 1);
-        starts.push(0);
-        starts.extend(memchr::memchr_iter(b'\n', text.as_bytes()).map(|i| i + 1));
-        Self { text, starts }
+        Self {
+            text,
+            starts: std::sync::OnceLock::new(),
+            rope: None,
+        }
+    }
+
+    /// The text of a rope (not copied; a clone of a rope shares its chunks).
+    #[must_use]
+    pub fn from_rope(rope: ropey::Rope) -> Self {
+        Self {
+            rope: Some(rope),
+            ..Self::default()
+        }
     }
 
     /// The text of 1-based `line` without its line ending, if the text has that line.
     #[must_use]
-    pub fn line(&self, line: u32) -> Option<&str> {
+    pub fn line(&self, line: u32) -> Option<std::borrow::Cow<'_, str>> {
         let index = usize::try_from(line).ok()?.checked_sub(1)?;
-        let start = *self.starts.get(index)?;
-        let end = self
-            .starts
+        if let Some(rope) = &self.rope {
+            let slice = rope.get_line(index)?;
+            let mut n = slice.len_chars();
+            if n > 0 && slice.char(n - 1) == '\n' {
+                n -= 1;
+            }
+            if n > 0 && slice.char(n - 1) == '\r' {
+                n -= 1;
+            }
+            return Some(slice.slice(..n).into());
+        }
+        let starts = self.starts.get_or_init(|| {
+            let mut starts = Vec::with_capacity(self.text.len() / 24 + 1);
+            starts.push(0);
+            starts.extend(memchr::memchr_iter(b'\n', self.text.as_bytes()).map(|i| i + 1));
+            starts
+        });
+        let start = *starts.get(index)?;
+        let end = starts
             .get(index + 1)
             .map_or(self.text.len(), |next| next.saturating_sub(1));
         let text = self.text.get(start..end.max(start))?;
-        Some(text.strip_suffix('\r').unwrap_or(text))
+        Some(text.strip_suffix('\r').unwrap_or(text).into())
     }
 }
 
@@ -1191,10 +1220,10 @@ mod tests {
     #[test]
     fn source_lines_and_segments_of_a_line() {
         let text = SourceText::new("G0 X1\r\nG1 X2\n\nM30");
-        assert_eq!(text.line(1), Some("G0 X1"));
-        assert_eq!(text.line(2), Some("G1 X2"));
-        assert_eq!(text.line(3), Some(""));
-        assert_eq!(text.line(4), Some("M30"));
+        assert_eq!(text.line(1).as_deref(), Some("G0 X1"));
+        assert_eq!(text.line(2).as_deref(), Some("G1 X2"));
+        assert_eq!(text.line(3).as_deref(), Some(""));
+        assert_eq!(text.line(4).as_deref(), Some("M30"));
         assert_eq!(text.line(5), None);
         assert_eq!(text.line(0), None);
         let scene = Scene {

@@ -85,6 +85,24 @@ impl Buffer {
         self.flat.get_or_init(|| Arc::new(self.rope.to_string()))
     }
 
+    /// The text for an analysis: the flat copy when it exists (small programs, edited as one
+    /// string), otherwise the rope, which the parser reads in place (no copy per edit).
+    pub fn program_text(&self) -> crate::analysis::ProgramText {
+        match self.flat.get() {
+            Some(flat) => crate::analysis::ProgramText::Flat(Arc::clone(flat)),
+            None => crate::analysis::ProgramText::Rope(self.rope.clone()),
+        }
+    }
+
+    /// The whole text as a new string, copied from the flat copy when it exists and from the
+    /// rope otherwise (one copy; the flat copy is not made and kept for it).
+    pub fn to_text(&self) -> String {
+        match self.flat.get() {
+            Some(flat) => flat.as_ref().clone(),
+            None => self.rope.to_string(),
+        }
+    }
+
     /// Whether the flat copy of the current text exists (for measuring that edits do not make
     /// one).
     pub fn is_flat(&self) -> bool {
@@ -201,6 +219,109 @@ impl Buffer {
         self.remove(start..end);
         self.insert(start, text);
         start + text.chars().count()
+    }
+}
+
+/// The lines of a rope for the parser ([`swarf_syntax::LineSource`]), read in place: a line
+/// inside one chunk of the rope is borrowed from it, and only a line that straddles chunks is
+/// copied, into a reused buffer. Lines are read forward from wherever the first one asked is.
+pub struct RopeLines<'a> {
+    rope: &'a Rope,
+    /// The chunks after `chunk`.
+    chunks: Option<ropey::iter::Chunks<'a>>,
+    /// The chunk the last line was read from, and its byte offset in the text.
+    chunk: &'a str,
+    chunk_start: usize,
+    /// A line that straddles chunks, joined.
+    joined: &'a mut String,
+}
+
+impl<'a> RopeLines<'a> {
+    /// Reads the lines of `rope`; `joined` is the buffer for lines that straddle chunks (kept
+    /// by the caller so that it is reused from one run of lines to the next).
+    pub fn new(rope: &'a Rope, joined: &'a mut String) -> Self {
+        RopeLines {
+            rope,
+            chunks: None,
+            chunk: "",
+            chunk_start: 0,
+            joined,
+        }
+    }
+
+    /// Moves to the chunk holding byte `at` (the one that starts there when `at` is a boundary).
+    fn seek(&mut self, at: usize) {
+        if let Some((mut chunks, start, _, _)) = self.rope.get_chunks_at_byte(at) {
+            self.chunk = chunks.next().unwrap_or("");
+            self.chunk_start = start;
+            self.chunks = Some(chunks);
+        }
+    }
+
+    /// Moves to the next chunk; whether there is one.
+    fn advance(&mut self) -> bool {
+        match self.chunks.as_mut().and_then(Iterator::next) {
+            Some(next) => {
+                self.chunk_start += self.chunk.len();
+                self.chunk = next;
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+impl swarf_syntax::LineSource for RopeLines<'_> {
+    fn len(&self) -> usize {
+        self.rope.len_bytes()
+    }
+
+    fn line(&mut self, start: usize, end: usize) -> &str {
+        if start >= end || end > self.rope.len_bytes() {
+            return "";
+        }
+        if self.chunks.is_none() || start < self.chunk_start {
+            self.seek(start);
+        }
+        while start >= self.chunk_start + self.chunk.len() {
+            if !self.advance() {
+                return "";
+            }
+        }
+        let from = start - self.chunk_start;
+        if end <= self.chunk_start + self.chunk.len() {
+            return self.chunk.get(from..end - self.chunk_start).unwrap_or("");
+        }
+        self.joined.clear();
+        self.joined.push_str(self.chunk.get(from..).unwrap_or(""));
+        while self.chunk_start + self.chunk.len() < end && self.advance() {
+            let take = (end - self.chunk_start).min(self.chunk.len());
+            self.joined.push_str(self.chunk.get(..take).unwrap_or(""));
+        }
+        self.joined.as_str()
+    }
+
+    fn trimmed_rest(&mut self, offset: usize) -> Option<(usize, usize)> {
+        let len = self.rope.len_bytes();
+        let first = self.rope.try_byte_to_char(offset.min(len)).ok()?;
+        let mut start = self.rope.char_to_byte(first);
+        let mut chars = self.rope.chars_at(first);
+        loop {
+            let c = chars.next()?;
+            if !c.is_whitespace() {
+                break;
+            }
+            start += c.len_utf8();
+        }
+        let mut end = len;
+        let mut back = self.rope.chars_at(self.rope.len_chars());
+        while let Some(c) = back.prev() {
+            if !c.is_whitespace() {
+                break;
+            }
+            end -= c.len_utf8();
+        }
+        Some((start, end.max(start)))
     }
 }
 

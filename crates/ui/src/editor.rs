@@ -9,6 +9,7 @@ use swarf_syntax::{Dialect, Severity};
 use crate::analysis::Problem;
 use crate::buffer::Buffer;
 use crate::commands::{self, Completion};
+use crate::completion::{Popup, PopupKey};
 use crate::rows::{RowEditor, RowInput};
 
 /// Colours of the token classes, for a dark background.
@@ -163,20 +164,8 @@ pub struct EditorOutput {
     pub selection: Option<std::ops::Range<usize>>,
 }
 
-/// The completion popup: the word being typed and the codes it can become.
-#[derive(Debug, Clone)]
-struct Popup {
-    /// Byte range of the typed prefix (`G8`).
-    range: std::ops::Range<usize>,
-    items: Vec<Completion>,
-    selected: usize,
-}
-
 /// Most find matches marked in the text at once.
 pub const HIGHLIGHTS_SHOWN: usize = 5000;
-
-/// Most completions listed at once.
-const COMPLETIONS_SHOWN: usize = 12;
 
 /// The G-code editor widget's state (the text itself is owned by the caller).
 #[derive(Debug, Clone)]
@@ -184,8 +173,6 @@ pub struct CodeEditor {
     id: egui::Id,
     jump: Option<std::ops::Range<usize>>,
     popup: Option<Popup>,
-    /// Where the completion list was drawn last frame.
-    popup_rect: Option<egui::Rect>,
     /// The list's top-left corner: under the caret.
     popup_pos: Pos2,
     /// Character ranges marked in the text (the find bar's matches).
@@ -212,7 +199,6 @@ impl CodeEditor {
             id: egui::Id::unique(id_salt),
             jump: None,
             popup: None,
-            popup_rect: None,
             popup_pos: Pos2::ZERO,
             highlights: Vec::new(),
             rows: RowEditor::default(),
@@ -243,12 +229,16 @@ impl CodeEditor {
 
     /// The completions on offer (code and meaning), while the popup is open.
     pub fn completions(&self) -> Option<&[Completion]> {
-        self.popup.as_ref().map(|p| p.items.as_slice())
+        self.popup
+            .as_ref()
+            .map(|p| p.items.as_slice())
+            .or_else(|| self.rows.completions())
     }
 
     /// Closes the completion popup.
     pub fn close_completions(&mut self) {
         self.popup = None;
+        self.rows.close_completions();
     }
 
     /// Shows the editor with a gutter, filling the available space; `label` is the widget that
@@ -277,8 +267,12 @@ impl CodeEditor {
         }
         let mut output = EditorOutput::default();
         let focused = self.has_focus(ui.ctx());
-        if self.popup.is_some() && focused {
-            self.popup_keys(ui.ctx(), text, &mut output);
+        if focused && let Some(popup) = self.popup.as_mut() {
+            match popup.keys(ui.ctx()) {
+                PopupKey::None => {}
+                PopupKey::Close => self.popup = None,
+                PopupKey::Accept(i) => self.accept(text, i, &mut output),
+            }
         }
         // Ctrl+Space asks for the list where the cursor is.
         let ask =
@@ -334,24 +328,25 @@ impl CodeEditor {
                         let (a, b) = (r.primary.index.0, r.secondary.index.0);
                         a.min(b)..a.max(b)
                     });
-                    let cursor_byte = edit
-                        .cursor_range
-                        .map(|r| commands::byte_of_char(text, r.primary.index.0));
+                    let cursor_char = edit.cursor_range.map(|r| r.primary.index.0);
+                    let popup_here = |text: &Buffer| {
+                        cursor_char.and_then(|c| {
+                            Popup::at(text, commands::byte_of_char(text, c), c, dialect)
+                        })
+                    };
                     if ask && !output.changed {
-                        self.popup = cursor_byte.and_then(|b| popup_at(text, b, dialect));
+                        self.popup = popup_here(text);
                     } else if output.changed {
-                        output.ends_line = cursor_byte
+                        output.ends_line = cursor_char
+                            .map(|c| commands::byte_of_char(text, c))
                             .and_then(|b| text.get(..b))
                             .is_some_and(|t| t.ends_with('\n'));
-                        self.popup = cursor_byte.and_then(|b| popup_at(text, b, dialect));
+                        self.popup = popup_here(text);
                     } else if let Some(p) = &self.popup {
                         // The cursor moved away, or the keyboard went elsewhere (a click on the
                         // list itself takes the focus for a moment, so the pointer keeps it).
-                        let moved = cursor_byte.is_some_and(|b| b != p.range.end);
-                        let over_list = ui.ctx().pointer_hover_pos().is_some_and(|pos| {
-                            self.popup_rect.is_some_and(|r| r.expand(4.0).contains(pos))
-                        });
-                        if moved || (!response.has_focus() && !over_list) {
+                        let moved = cursor_char.is_some_and(|c| c != p.chars.end);
+                        if moved || (!response.has_focus() && !p.pointer_over(ui.ctx())) {
                             self.popup = None;
                         }
                     }
@@ -376,92 +371,27 @@ impl CodeEditor {
         output
     }
 
-    /// Up/Down choose a completion, Tab or Enter takes it, Escape closes the list; the keys are
-    /// taken before the text edit sees them.
-    fn popup_keys(&mut self, ctx: &egui::Context, text: &mut Buffer, output: &mut EditorOutput) {
-        let Some(popup) = self.popup.as_mut() else {
-            return;
-        };
-        let none = egui::Modifiers::NONE;
-        let (down, up, accept, close) = ctx.input_mut(|i| {
-            (
-                i.consume_key(none, egui::Key::ArrowDown),
-                i.consume_key(none, egui::Key::ArrowUp),
-                i.consume_key(none, egui::Key::Tab) || i.consume_key(none, egui::Key::Enter),
-                i.consume_key(none, egui::Key::Escape),
-            )
-        });
-        let n = popup.items.len().max(1);
-        if down {
-            popup.selected = (popup.selected + 1) % n;
-        }
-        if up {
-            popup.selected = (popup.selected + n - 1) % n;
-        }
-        if close {
-            self.popup = None;
-        } else if accept {
-            let chosen = popup.selected;
-            self.accept(text, chosen, output);
-        }
-    }
-
     /// Replaces the typed prefix with completion `index` and puts the cursor after it.
     fn accept(&mut self, text: &mut Buffer, index: usize, output: &mut EditorOutput) {
         let Some(popup) = self.popup.take() else {
             return;
         };
-        let Some(item) = popup.items.get(index) else {
+        let Some(code) = popup.code(index, text.len_chars()) else {
             return;
         };
-        if text.get(popup.range.clone()).is_none() {
-            return;
-        }
-        let chars = text.byte_to_char(popup.range.start)..text.byte_to_char(popup.range.end);
-        let end = text.replace(chars, &item.code);
+        let end = text.replace(popup.chars.clone(), code);
         self.jump = Some(end..end);
         output.completed = true;
     }
 
     fn show_popup(&mut self, ui: &Ui, at: Pos2, text: &mut Buffer, output: &mut EditorOutput) {
-        let Some(popup) = &self.popup else {
-            self.popup_rect = None;
+        let Some(popup) = self.popup.as_mut() else {
             return;
         };
-        let mut clicked = None;
-        let area = egui::Area::new(self.id.with("completions"))
-            .order(egui::Order::Foreground)
-            .fixed_pos(at)
-            .show(ui.ctx(), |ui| {
-                egui::Frame::popup(ui.style()).show(ui, |ui| {
-                    for (i, item) in popup.items.iter().enumerate() {
-                        let row = egui::RichText::new(format!("{}  {}", item.code, item.name))
-                            .monospace();
-                        if ui.selectable_label(i == popup.selected, row).clicked() {
-                            clicked = Some(i);
-                        }
-                    }
-                });
-            });
-        self.popup_rect = Some(area.response.rect);
-        if let Some(i) = clicked {
+        if let Some(i) = popup.show(ui.ctx(), self.id, at) {
             self.accept(text, i, output);
         }
     }
-}
-
-/// The completion popup for the word before byte `cursor`, if it is a G or M code prefix with
-/// matches.
-fn popup_at(text: &str, cursor: usize, dialect: Dialect) -> Option<Popup> {
-    let (range, prefix) = commands::completion_prefix(text, cursor)?;
-    let items = commands::completions(dialect, &prefix, COMPLETIONS_SHOWN);
-    // A code typed in full with nothing longer to offer needs no list.
-    let exact = items.len() == 1 && items[0].code.eq_ignore_ascii_case(&prefix);
-    (!items.is_empty() && !exact).then_some(Popup {
-        range,
-        items,
-        selected: 0,
-    })
 }
 
 /// The tooltip of the gutter marker on 1-based `line`: each diagnostic there with its code,

@@ -5,6 +5,7 @@ pub mod analysis;
 pub mod backplot;
 pub mod buffer;
 pub mod commands;
+mod completion;
 pub mod editor;
 pub mod examples;
 pub mod history;

@@ -3,16 +3,21 @@
 //! (highlighted as [`highlight`] does, numbered, marked by their diagnostics). The caret and the
 //! selection are character indices into the rope; keys, pointer and clipboard events edit the
 //! rope in place, so a keystroke costs the same in a million-line program as in a short one.
+//! It offers the same code completion as the smaller programs' editor ([`Popup`]) and takes
+//! input from an input method: the text being composed is drawn at the caret, outside the rope,
+//! until the input method commits it.
 
 use std::ops::Range;
 use std::sync::Arc;
 
 use egui::text::CCursor;
-use egui::{Event, FontId, Galley, Key, Pos2, Rect, Sense, Stroke, Ui};
+use egui::{Event, FontId, Galley, ImeEvent, Key, Pos2, Rect, Sense, Stroke, Ui};
 use swarf_syntax::Dialect;
 
 use crate::analysis::Problem;
 use crate::buffer::Buffer;
+use crate::commands::{self, Completion};
+use crate::completion::{Popup, PopupKey};
 use crate::editor::{
     EditorOutput, gutter_tooltip, highlight, hover_text, severity_color, squiggle,
 };
@@ -38,6 +43,23 @@ pub struct RowEditor {
     view_height: f32,
     /// The widest row laid out so far (the scroll area's width).
     width: f32,
+    /// The completion list, while it is open.
+    popup: Option<Popup>,
+    /// Where the caret was drawn this frame (screen coordinates), if its row is on screen: the
+    /// completion list opens under it and the input method's candidate window beside it.
+    caret_rect: Option<Rect>,
+    /// Where the completion list goes: under the caret, where it was last drawn.
+    popup_pos: Pos2,
+    /// The text an input method is composing, shown at the caret but not yet in the rope.
+    preedit: Option<Preedit>,
+}
+
+/// Text being composed by an input method.
+#[derive(Debug, Clone, PartialEq)]
+struct Preedit {
+    text: String,
+    /// The characters of `text` the input method is working on (the caret sits at their end).
+    active: Option<Range<usize>>,
 }
 
 /// One frame's input for [`RowEditor::show`].
@@ -84,6 +106,92 @@ impl RowEditor {
         self.anchor = chars.start;
         self.caret = chars.end;
         self.column = None;
+    }
+
+    /// The completions on offer (code and meaning), while the list is open.
+    pub fn completions(&self) -> Option<&[Completion]> {
+        self.popup.as_ref().map(|p| p.items.as_slice())
+    }
+
+    /// Closes the completion list.
+    pub fn close_completions(&mut self) {
+        self.popup = None;
+    }
+
+    /// The completion list for the G or M code being typed before the caret, if any.
+    fn popup_here(&self, text: &Buffer, dialect: Dialect) -> Option<Popup> {
+        if !self.selection().is_empty() {
+            return None;
+        }
+        let line = text.char_to_line(self.caret);
+        let col = self.caret - text.line_to_char(line);
+        if col > text.line_len_chars(line) {
+            return None;
+        }
+        let line_text = text.line_text(line);
+        let byte = commands::byte_of_char(&line_text, col);
+        Popup::at(&line_text, byte, self.caret, dialect)
+    }
+
+    /// Replaces the typed prefix with completion `index` and puts the caret after it.
+    fn accept(&mut self, text: &mut Buffer, index: usize, output: &mut EditorOutput) {
+        let Some(popup) = self.popup.take() else {
+            return;
+        };
+        let Some(code) = popup.code(index, text.len_chars()) else {
+            return;
+        };
+        let end = text.replace(popup.chars.clone(), code);
+        self.caret = end;
+        self.anchor = end;
+        self.column = None;
+        self.reveal = true;
+        output.completed = true;
+    }
+
+    /// Applies one input method event; whether the text changed. Composed text stays out of the
+    /// rope until it is committed, which replaces the selection as one edit.
+    fn ime(&mut self, text: &mut Buffer, event: ImeEvent) -> bool {
+        match event {
+            // A line break is the Enter key's, as in egui's text editor.
+            ImeEvent::Preedit { text: shown, .. } | ImeEvent::Commit(shown)
+                if shown == "\n" || shown == "\r" =>
+            {
+                false
+            }
+            ImeEvent::Preedit {
+                text: shown,
+                active_range_chars,
+            } => {
+                self.preedit = (!shown.is_empty()).then_some(Preedit {
+                    text: shown,
+                    active: active_range_chars,
+                });
+                self.reveal = true;
+                false
+            }
+            ImeEvent::Commit(committed) => {
+                self.preedit = None;
+                !committed.is_empty() && self.edit(text, Edit::Insert(committed))
+            }
+            ImeEvent::DeleteSurrounding {
+                before_chars,
+                after_chars,
+            } => {
+                let sel = self.selection();
+                let from = sel.start.saturating_sub(before_chars);
+                let to = (sel.end + after_chars).min(text.len_chars());
+                if from < to {
+                    self.anchor = from;
+                    self.caret = to;
+                    self.edit(text, Edit::Delete)
+                } else {
+                    false
+                }
+            }
+            // The enable and disable notices (no longer sent) change nothing.
+            _ => false,
+        }
     }
 
     /// Applies one edit at the selection; whether the text changed.
@@ -142,7 +250,13 @@ impl RowEditor {
             let len = text.len_chars();
             self.caret = self.caret.min(len);
             self.anchor = self.anchor.min(len);
+            // While an input method composes, its keys (Enter to choose, arrows through the
+            // candidates) are its own, not the text's.
+            if self.preedit.is_some() && matches!(event, Event::Key { .. } | Event::Text(_)) {
+                continue;
+            }
             match event {
+                Event::Ime(ime) => changed |= self.ime(text, ime),
                 // A lone line break comes as the Enter key too.
                 Event::Text(t) if !t.is_empty() && t != "\n" && t != "\r" => {
                     changed |= self.edit(text, Edit::Insert(t));
@@ -280,6 +394,27 @@ impl RowEditor {
         }
         let focused = ui.memory(|m| m.has_focus(id));
         if focused {
+            let composing = self.preedit.is_some();
+            if !composing && let Some(popup) = self.popup.as_mut() {
+                match popup.keys(ui.ctx()) {
+                    PopupKey::None => {}
+                    PopupKey::Close => self.popup = None,
+                    PopupKey::Accept(i) => self.accept(text, i, &mut output),
+                }
+            }
+            // Ctrl+Space asks for the list where the caret is.
+            let ask =
+                !composing && ui.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, Key::Space));
+            let rows_per_page = ((self.view_height / row_height).floor() as usize).max(1);
+            let (changed, ends_line) = self.keys(ui, text, rows_per_page);
+            output.changed = changed;
+            output.ends_line = ends_line;
+            if ask || changed {
+                self.popup = self.popup_here(text, dialect);
+            }
+            // The keys this editor keeps next frame: Escape closes the completion list (or
+            // cancels a composition) rather than leaving.
+            let escape = self.popup.is_some() || self.preedit.is_some();
             ui.memory_mut(|m| {
                 m.set_focus_lock_filter(
                     id,
@@ -287,14 +422,12 @@ impl RowEditor {
                         tab: true,
                         horizontal_arrows: true,
                         vertical_arrows: true,
-                        escape: false,
+                        escape,
                     },
                 );
             });
-            let rows_per_page = ((self.view_height / row_height).floor() as usize).max(1);
-            let (changed, ends_line) = self.keys(ui, text, rows_per_page);
-            output.changed = changed;
-            output.ends_line = ends_line;
+        } else {
+            self.preedit = None;
         }
         let len = text.len_chars();
         self.caret = self.caret.min(len);
@@ -329,6 +462,10 @@ impl RowEditor {
             let response = ui
                 .interact(rect, id, Sense::click_and_drag())
                 .labelled_by(label);
+            if response.hovered() {
+                // The web page shows its on-screen keyboard and input method over editable text.
+                ui.output_mut(|o| o.mutable_text_under_cursor = true);
+            }
             response.widget_info(|| {
                 egui::WidgetInfo::labeled(egui::Role::MultilineTextInput, true, "Program")
             });
@@ -426,9 +563,61 @@ impl RowEditor {
         });
         self.offset = scroll.state.clamped_offset().y;
         self.view_height = scroll.inner_rect.height();
+        self.completion_list(ui, id, text, &mut output);
+        if ui.memory(|m| m.owns_ime_events(id)) {
+            // Where the input method's candidate window goes: at the caret, or at the top of the
+            // view while the caret's row is scrolled away.
+            let view = scroll.inner_rect;
+            let cursor = self
+                .caret_rect
+                .filter(|r| view.intersects(*r))
+                .unwrap_or_else(|| Rect::from_min_size(view.min, egui::vec2(2.0, row_height)));
+            let to_global = ui
+                .ctx()
+                .layer_transform_to_global(ui.layer_id())
+                .unwrap_or_default();
+            ui.output_mut(|o| {
+                o.ime = Some(egui::output::IMEOutput {
+                    purpose: egui::IMEPurpose::Normal,
+                    rect: to_global * view,
+                    cursor_rect: to_global * cursor,
+                    should_interrupt_composition: false,
+                });
+            });
+        }
         output.cursor_line = u32::try_from(text.char_to_line(self.caret) + 1).ok();
         output.selection = Some(self.selection());
         output
+    }
+
+    /// Closes the completion list when the caret left the word or the keyboard went elsewhere,
+    /// and draws it under the caret; a click on an item takes it.
+    fn completion_list(
+        &mut self,
+        ui: &Ui,
+        id: egui::Id,
+        text: &mut Buffer,
+        output: &mut EditorOutput,
+    ) {
+        if let Some(p) = &self.popup {
+            let moved = self.caret != p.chars.end || self.caret != self.anchor;
+            // A click on the list itself takes the focus for a moment: the pointer keeps it.
+            let away = !ui.memory(|m| m.has_focus(id)) && !p.pointer_over(ui.ctx());
+            if moved || away || self.preedit.is_some() {
+                self.popup = None;
+            }
+        }
+        if let Some(r) = self.caret_rect {
+            self.popup_pos = r.left_bottom();
+        }
+        let at = self.popup_pos;
+        let Some(popup) = self.popup.as_mut() else {
+            return;
+        };
+        if let Some(i) = popup.show(ui.ctx(), id, at) {
+            self.accept(text, i, output);
+            ui.memory_mut(|m| m.request_focus(id));
+        }
     }
 
     /// Paints the gutter, the text, the selection, the caret, the find matches and the
@@ -447,12 +636,24 @@ impl RowEditor {
             .take_while(|r| r.start <= last_char);
         let marks: Vec<&Range<usize>> = marks.collect();
         let caret_line = text.char_to_line(self.caret);
+        let caret_col = self.caret - text.line_to_char(caret_line);
+        self.caret_rect = None;
         for row in rows.rows.clone() {
             let top = rows.rect.top() + row as f32 * rows.row_height;
             let start = text.line_to_char(row);
             let len = text.line_len_chars(row);
-            let galley =
-                painter.layout_job(highlight(&text.line_text(row), rows.dialect, rows.font));
+            // Text being composed is shown in the caret's row, at the caret.
+            let preedit = self
+                .preedit
+                .as_ref()
+                .filter(|_| row == caret_line && rows.focused && caret_col <= len);
+            let mut shown = text.line_text(row);
+            if let Some(p) = preedit {
+                let at = commands::byte_of_char(&shown, caret_col);
+                shown.to_mut().insert_str(at, &p.text);
+            }
+            let extra = preedit.map_or(0, |p| p.text.chars().count());
+            let galley = painter.layout_job(highlight(&shown, rows.dialect, rows.font));
             if galley.size().x > self.width {
                 self.width = galley.size().x;
                 // The view is only as wide as the rows laid out before: bring the caret into
@@ -462,7 +663,9 @@ impl RowEditor {
                 }
             }
             let origin = egui::pos2(rows.text_left, top);
-            let x_of = |col: usize| origin.x + galley.pos_from_cursor(CCursor::new(col)).left();
+            let x_at = |col: usize| origin.x + galley.pos_from_cursor(CCursor::new(col)).left();
+            // A column of the text: those after the caret sit past the composed text.
+            let x_of = |col: usize| x_at(if col > caret_col { col + extra } else { col });
             let span = |from: usize, to: usize, fill: egui::Color32| {
                 let a = x_of(from.clamp(start, start + len) - start);
                 let b = x_of(to.clamp(start, start + len) - start);
@@ -531,8 +734,35 @@ impl RowEditor {
                     p.severity,
                 );
             }
+            if let Some(p) = preedit {
+                // The composed text underlined, the part being converted more heavily.
+                let y = top + rows.row_height - 1.0;
+                let color = ui.visuals().text_color();
+                painter.line_segment(
+                    [
+                        egui::pos2(x_at(caret_col), y),
+                        egui::pos2(x_at(caret_col + extra), y),
+                    ],
+                    Stroke::new(1.0, color),
+                );
+                if let Some(active) = p.active.as_ref().filter(|a| a.end > a.start) {
+                    painter.line_segment(
+                        [
+                            egui::pos2(x_at(caret_col + active.start.min(extra)), y),
+                            egui::pos2(x_at(caret_col + active.end.min(extra)), y),
+                        ],
+                        Stroke::new(2.0, color),
+                    );
+                }
+            }
             if row == caret_line && rows.focused {
-                let x = x_of(self.caret - start);
+                // The caret: after the composed text (or its active part) while composing.
+                let composed = preedit.map_or(0, |p| p.active.as_ref().map_or(extra, |a| a.end));
+                let x = x_at(caret_col + composed.min(extra));
+                self.caret_rect = Some(Rect::from_min_max(
+                    egui::pos2(x, top),
+                    egui::pos2(x + 1.0, top + rows.row_height),
+                ));
                 painter.line_segment(
                     [egui::pos2(x, top), egui::pos2(x, top + rows.row_height)],
                     Stroke::new(2.0, ui.visuals().text_cursor.stroke.color),

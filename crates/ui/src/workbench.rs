@@ -1,7 +1,6 @@
 //! The whole editing surface: editor, problems list and backplot, wired to the pipeline.
 
 use std::ops::Range;
-use std::sync::Arc;
 
 use ropey::Rope;
 
@@ -24,6 +23,9 @@ pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.
 /// the frame of the edit, a longer one goes on over the next frames behind a progress bar.
 pub const FRAME_BUDGET: usize = 20_000;
 
+/// Blocks of a replaced program freed per frame.
+const RETIRED_BLOCKS_PER_FRAME: usize = 100_000;
+
 /// Editor, problems and backplot over the program of the active tab; re-analyses on every edit.
 ///
 /// Each tab holds one file (a [`Document`] with its text, undo history and cursor). The active
@@ -40,9 +42,10 @@ pub struct Workbench {
     analysis: Analysis,
     /// The analysis of the current text while it is still running.
     pending: Option<PendingAnalysis>,
-    /// The analysis just replaced, dropped in the next frame (freeing a million-line program
-    /// takes as long as finishing its analysis; the two are not done in one frame).
-    retired: Option<Analysis>,
+    /// The analyses just replaced, freed over the next frames (freeing a million-line program
+    /// at once takes as long as finishing its analysis): [`RETIRED_BLOCKS_PER_FRAME`] of
+    /// their blocks a frame, then the rest.
+    retired: Vec<Analysis>,
     /// Blocks the analysis may still run in this frame.
     budget: usize,
     /// Whether [`Workbench::ui`] is running (outside it, every change gets a full budget).
@@ -103,8 +106,9 @@ enum FontState {
 pub struct Document {
     /// The file name shown in the title and status bar (`untitled.nc` before the first save).
     pub name: String,
-    /// Where the file is, as the host names it (a full path on the desktop); `None` before the
-    /// first save and on the web page, which cannot write back to a file.
+    /// Where the file is, as the host names it (a full path on the desktop; on the web page the
+    /// key of the browser's handle to the file, where it has the File System Access API);
+    /// `None` before the first save.
     pub path: Option<String>,
     /// The encoding the file was read with; saving writes it back the same way.
     pub encoding: Encoding,
@@ -234,7 +238,7 @@ impl Workbench {
             generation: 1,
             analysis,
             pending: None,
-            retired: None,
+            retired: Vec::new(),
             budget: FRAME_BUDGET,
             in_frame: false,
             editor: CodeEditor::default(),
@@ -267,6 +271,12 @@ impl Workbench {
     /// The program text.
     pub fn text(&self) -> &str {
         self.text.as_str()
+    }
+
+    /// Whether the current text is also held as one string (made only where a whole-text
+    /// copy is needed; an edit of a long program and its analysis read the rope instead).
+    pub fn text_is_flat(&self) -> bool {
+        self.text.is_flat()
     }
 
     /// Replaces the text and re-analyses it (one undo step; the document stays the same file).
@@ -377,16 +387,16 @@ impl Workbench {
         let records = (0..self.tabs.len())
             .map(|i| {
                 let (doc, text) = if i == self.active {
-                    (&self.document, self.text.as_str())
+                    (&self.document, &self.text)
                 } else {
                     let tab = &self.tabs[i];
-                    (&tab.document, tab.text.as_str())
+                    (&tab.document, &tab.text)
                 };
                 TabRecord {
                     name: doc.name.clone(),
                     path: doc.path.clone(),
                     encoding: doc.encoding,
-                    text: text.to_string(),
+                    text: text.to_text(),
                     dirty: doc.dirty,
                 }
             })
@@ -806,16 +816,17 @@ impl Workbench {
     /// left of this frame's budget of it.
     fn reanalyse(&mut self) {
         self.generation += 1;
-        // The other tabs' texts are shared, not copied: a keystroke costs no copy of them.
+        // The texts are shared, not copied: a keystroke costs no copy of them (a rope is parsed
+        // in place, another tab's text is copied only when the program calls into it).
         let others = self
             .tabs
             .iter()
             .enumerate()
             .filter(|(i, _)| *i != self.active)
-            .map(|(_, t)| (t.document.name.clone(), Arc::clone(t.text.shared())))
+            .map(|(_, t)| (t.document.name.clone(), t.text.program_text()))
             .collect();
-        self.pending = Some(PendingAnalysis::start_shared_among(
-            Arc::clone(self.text.shared()),
+        self.pending = Some(PendingAnalysis::start_text_among(
+            self.text.program_text(),
             self.dialect,
             &self.setup,
             self.generation,
@@ -837,7 +848,35 @@ impl Workbench {
         let used = usize::try_from(pending.work_done().saturating_sub(work)).unwrap_or(usize::MAX);
         self.budget = self.budget.saturating_sub(used);
         if done && let Some(pending) = self.pending.take() {
-            self.retired = Some(std::mem::replace(&mut self.analysis, pending.finish()));
+            let old = std::mem::replace(&mut self.analysis, pending.finish());
+            self.retired.push(old);
+        }
+    }
+
+    /// Frees part of the analyses replaced: the latest one's blocks a slice a frame (their
+    /// memory given back as they go), then its diagnostics, its machine states (the
+    /// interpreter's checkpoints), its toolpath and the rest, each in a frame of its own.
+    fn free_retired(&mut self) {
+        let Some(old) = self.retired.last_mut() else {
+            return;
+        };
+        let blocks = &mut old.program.blocks;
+        if blocks.capacity() > 0 {
+            blocks.truncate(blocks.len().saturating_sub(RETIRED_BLOCKS_PER_FRAME));
+            blocks.shrink_to_fit();
+        } else if !old.problems.is_empty() || !old.program.diagnostics.is_empty() {
+            drop(std::mem::take(&mut old.problems));
+            drop(std::mem::take(&mut old.program));
+        } else if old.states.checkpoints() > 0 {
+            drop(std::mem::take(&mut old.states));
+        } else if !old.toolpath.is_empty() {
+            let empty = swarf_toolpath::Toolpath::for_machine(
+                glam::DVec3::ZERO,
+                &swarf_interp::Machine::default(),
+            );
+            drop(std::mem::replace(&mut old.toolpath, empty));
+        } else {
+            self.retired.pop();
         }
     }
 
@@ -873,7 +912,7 @@ impl Workbench {
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
         crate::i18n::set_current(self.lang);
-        self.retired = None;
+        self.free_retired();
         self.budget = FRAME_BUDGET;
         self.in_frame = true;
         self.shortcuts(ui.ctx());

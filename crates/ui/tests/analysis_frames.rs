@@ -112,7 +112,8 @@ fn a_long_program_runs_over_frames_behind_a_progress_bar_keeping_the_old_results
     while let Some((done, total)) = harness.state().analysis_progress() {
         if total > 0 {
             assert_eq!(total, lines + 2);
-            assert!(done >= last && done < total, "{done} of {total}");
+            // All blocks reached: the problems are being located, the scene prepared.
+            assert!(done >= last && done <= total, "{done} of {total}");
             last = done;
             run_frames += 1;
         }

@@ -99,6 +99,15 @@ fn typing_in_a_large_program_edits_it_and_marks_the_error() {
         .type_text("G01 X$ ");
     settle(&mut harness);
     let wb = harness.state();
+    // The edit and its analysis (parse, markers, problems) read the rope: no flat copy made.
+    assert!(!wb.text_is_flat());
+    // The record kept for recovery is copied from the rope, once, without keeping a flat copy.
+    let (records, active) = wb.tab_records();
+    assert!(records[active].text.starts_with("G01 X$ G90 G21 G17\n"));
+    assert_eq!(records[active].text.len(), text.len() + 7);
+    assert!(!wb.text_is_flat());
+    let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
+    assert!(codes.contains(&(1, "E-SYNTAX-CHAR")), "{codes:?}");
     assert_eq!(line(wb, 1), "G01 X$ G90 G21 G17");
     assert_eq!(wb.text().len(), text.len() + 7);
     assert!(wb.is_dirty());
@@ -325,4 +334,136 @@ fn the_view_follows_the_caret_along_a_long_line() {
     harness.key_press(Key::Home);
     harness.run_steps(4);
     assert_eq!(editor(&harness), home);
+}
+
+#[test]
+fn typing_a_code_in_a_large_program_offers_completions() {
+    let (text, _) = big_program();
+    let mut harness = harness(text.clone());
+    harness.state_mut().go_to_line(1);
+    harness.step();
+    harness.key_press(Key::End);
+    harness.step();
+    harness
+        .get_by_role(egui::accesskit::Role::MultilineTextInput)
+        .type_text(" G8");
+    // The list is measured in its first frame and shown in the next.
+    harness.run_steps(2);
+    let offered = swarf_ui::commands::completions(harness.state().dialect(), "G8", 12);
+    assert!(offered.len() > 2, "{offered:?}");
+    harness.get_by_label_contains(&format!("{}  {}", offered[0].code, offered[0].name));
+    harness.get_by_label_contains(&format!("{}  {}", offered[1].code, offered[1].name));
+    // Down chooses the second code; Enter takes it (no line break).
+    harness.key_press(Key::ArrowDown);
+    harness.step();
+    harness.key_press(Key::Enter);
+    settle(&mut harness);
+    let wb = harness.state();
+    assert_eq!(line(wb, 1), format!("G90 G21 G17 {}", offered[1].code));
+    assert_eq!(wb.text().lines().count(), text.lines().count());
+    let end = "G90 G21 G17 ".len() + offered[1].code.len();
+    assert_eq!(wb.selection(), end..end, "the caret after the code");
+    assert!(
+        harness
+            .query_by_label_contains(&format!("{}  ", offered[1].code))
+            .is_none(),
+        "the list closes"
+    );
+    // One undo takes the completion back to what was typed, another the typing.
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut harness);
+    assert_eq!(line(harness.state(), 1), "G90 G21 G17 G8");
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut harness);
+    assert_eq!(harness.state().text(), text);
+    // Ctrl+Space asks for the list again; Escape closes it and keeps the editor's focus.
+    harness.key_press(Key::End);
+    harness
+        .get_by_role(egui::accesskit::Role::MultilineTextInput)
+        .type_text(" M0");
+    harness.step();
+    harness.key_press(Key::Escape);
+    harness.step();
+    assert!(harness.query_by_label_contains("M03  ").is_none());
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::Space);
+    harness.run_steps(2);
+    harness.get_by_label_contains("M03  ").click();
+    settle(&mut harness);
+    assert_eq!(line(harness.state(), 1), "G90 G21 G17 M03");
+    harness.key_press(Key::Enter);
+    harness.step();
+    assert_eq!(line(harness.state(), 2), "", "the editor has the keyboard");
+}
+
+/// The screen rectangle the editor gives the input method for its caret, if it owns input.
+fn ime_caret(harness: &Harness<'_, Workbench>) -> egui::Rect {
+    harness
+        .output()
+        .platform_output
+        .ime
+        .expect("the focused editor places the input method")
+        .cursor_rect
+}
+
+#[test]
+#[allow(deprecated)]
+fn an_input_method_composes_at_the_caret_and_commits_once() {
+    let (text, _) = big_program();
+    let mut harness = harness(text.clone());
+    // The test's fonts have no CJK glyphs: they are drawn as boxes, as wide as a character.
+    harness
+        .ctx
+        .set_missing_glyph_policy(egui::MissingGlyphPolicy::Tofu);
+    harness.state_mut().go_to_line(1);
+    harness.step();
+    harness.key_press(Key::End);
+    harness.step();
+    let before = ime_caret(&harness);
+    let editor = harness
+        .get_by_role(egui::accesskit::Role::MultilineTextInput)
+        .rect();
+    assert!(editor.contains(before.center()), "{before:?} in {editor:?}");
+    let row = before.height();
+    harness.event(Event::Ime(egui::ImeEvent::Enabled));
+    harness.event(Event::Ime(egui::ImeEvent::Preedit {
+        text: "中".to_string(),
+        active_range_chars: None,
+    }));
+    harness.step();
+    // Composing text is shown at the caret, which moves past it, but is not in the program.
+    assert_eq!(harness.state().text(), text);
+    let composing = ime_caret(&harness);
+    assert!(
+        composing.left() > before.left() + 4.0,
+        "{before:?} {composing:?}"
+    );
+    assert!((composing.top() - before.top()).abs() < row / 2.0);
+    // The input method's keys are its own while it composes.
+    harness.key_press(Key::Enter);
+    harness.key_press(Key::ArrowLeft);
+    harness.key_press(Key::Backspace);
+    harness.step();
+    assert_eq!(harness.state().text(), text);
+    let end = "G90 G21 G17".chars().count();
+    assert_eq!(harness.state().selection(), end..end);
+    harness.event(Event::Ime(egui::ImeEvent::Preedit {
+        text: "中文".to_string(),
+        active_range_chars: Some(2..2),
+    }));
+    harness.event(Event::Ime(egui::ImeEvent::Commit("中文".to_string())));
+    harness.event(Event::Ime(egui::ImeEvent::Disabled));
+    settle(&mut harness);
+    let wb = harness.state();
+    assert_eq!(line(wb, 1), "G90 G21 G17中文");
+    assert_eq!(wb.text().matches("中文").count(), 1);
+    assert_eq!(wb.text().chars().count(), text.chars().count() + 2);
+    assert_eq!(wb.selection(), end + 2..end + 2);
+    // The caret is after the committed text, where the composition ended.
+    let after = ime_caret(&harness);
+    assert!((after.left() - composing.left()).abs() > 1.0);
+    assert!(after.left() > composing.left());
+    // Typing goes on after it; the commit is one edit to undo.
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    settle(&mut harness);
+    assert_eq!(harness.state().text(), text);
 }
