@@ -81,8 +81,10 @@ impl ParseRun {
 
     /// Reads at most `lines` more lines from `source` (the same text the run's line index was
     /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
-    #[inline]
-    pub fn step_from<S: LineSource + ?Sized>(&mut self, source: &mut S, lines: usize) -> bool {
+    ///
+    /// One loop serves every source (a string's lines too, one dynamic call a line): made once,
+    /// it keeps the line reader inlined into it as the string-only loop did.
+    pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
         // The line index has found every newline already (with SIMD): the lines come from it.
