@@ -681,7 +681,8 @@ fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagno
     }
 }
 
-#[cfg(test)]
+// proptest is a native-only dev-dependency.
+#[cfg(all(test, not(target_arch = "wasm32")))]
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
