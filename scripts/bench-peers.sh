@@ -43,11 +43,12 @@ programs=(
 tmp=$(mktemp)
 trap 'rm -f "$tmp"' EXIT
 
-# "secs kb" for a command: its best wall-clock time of $runs runs (one when a run is slower than
-# 10 s) and its peak RSS, or "timeout 0" when it does not finish within $limit seconds. The first
-# run goes through /usr/bin/time for the RSS (and hundredths of a second), the others through
-# bash's `time` (milliseconds, no wrapper process). A non-zero exit status still counts (rs274
-# ends some programs with one); "fail 0" when nothing was measured.
+# "secs kb" for a command: its best wall-clock time of $runs runs (the first run's when it is
+# slower than 10 s) and its peak RSS, or "timeout 0" when it does not finish within $limit
+# seconds. The first run goes through /usr/bin/time for the RSS (its time is in hundredths of a
+# second, so it counts only for a slow program); the timed runs go through bash's `time`
+# (milliseconds, no wrapper process). A non-zero exit status still counts (rs274 ends some
+# programs with one); "fail 0" when nothing was measured.
 measure() {
   local best="" kb=0 out n=0 rc t
   : > "$tmp"
@@ -62,14 +63,19 @@ measure() {
     echo "fail 0"
     return
   fi
-  best=${out% *}
   kb=${out#* }
+  if awk "BEGIN{exit !(${out% *} >= 10)}"; then
+    echo "${out% *} $kb"
+    return
+  fi
   local TIMEFORMAT=%3R
-  while ((++n < runs)) && awk "BEGIN{exit !($best < 10)}"; do
+  while ((n++ < runs)); do
     t=$({ time timeout "$limit" "$@" > /dev/null 2> /dev/null < /dev/null; } 2>&1)
-    if [[ "$t" =~ ^[0-9.]+$ ]] && awk "BEGIN{exit !($t < $best)}"; then best=$t; fi
+    if [[ "$t" =~ ^[0-9.]+$ ]] && { [[ -z "$best" ]] || awk "BEGIN{exit !($t < $best)}"; }; then
+      best=$t
+    fi
   done
-  echo "$best $kb"
+  echo "${best:-${out% *}} $kb"
 }
 
 # One table cell: "1.23 s, 45 MB/s, 67 MB (12.3×)" against Swarf's time $2 for $3 bytes.
