@@ -6,6 +6,7 @@ use std::ops::Range;
 use egui::{Key, Modifiers, Pos2, Rect};
 use swarf_syntax::Dialect;
 
+use crate::buffer::Buffer;
 use crate::commands::{self, Completion};
 
 /// Most completions listed at once.
@@ -109,10 +110,10 @@ impl Popup {
         clicked
     }
 
-    /// The code of item `index`, if the prefix still lies within a text of `len_chars`.
-    pub fn code(&self, index: usize, len_chars: usize) -> Option<&str> {
-        (self.chars.end <= len_chars)
-            .then(|| self.items.get(index).map(|item| item.code.as_str()))
-            .flatten()
+    /// Replaces the typed prefix in `text` with item `index`; the character just after the
+    /// inserted code, or `None` (nothing changed) when the prefix no longer lies in the text.
+    pub fn accept(&self, index: usize, text: &mut Buffer) -> Option<usize> {
+        let code = self.items.get(index)?;
+        (self.chars.end <= text.len_chars()).then(|| text.replace(self.chars.clone(), &code.code))
     }
 }

@@ -373,13 +373,9 @@ impl CodeEditor {
 
     /// Replaces the typed prefix with completion `index` and puts the cursor after it.
     fn accept(&mut self, text: &mut Buffer, index: usize, output: &mut EditorOutput) {
-        let Some(popup) = self.popup.take() else {
+        let Some(end) = self.popup.take().and_then(|p| p.accept(index, text)) else {
             return;
         };
-        let Some(code) = popup.code(index, text.len_chars()) else {
-            return;
-        };
-        let end = text.replace(popup.chars.clone(), code);
         self.jump = Some(end..end);
         output.completed = true;
     }

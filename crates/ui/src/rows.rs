@@ -135,13 +135,9 @@ impl RowEditor {
 
     /// Replaces the typed prefix with completion `index` and puts the caret after it.
     fn accept(&mut self, text: &mut Buffer, index: usize, output: &mut EditorOutput) {
-        let Some(popup) = self.popup.take() else {
+        let Some(end) = self.popup.take().and_then(|p| p.accept(index, text)) else {
             return;
         };
-        let Some(code) = popup.code(index, text.len_chars()) else {
-            return;
-        };
-        let end = text.replace(popup.chars.clone(), code);
         self.caret = end;
         self.anchor = end;
         self.column = None;
