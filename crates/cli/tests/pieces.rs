@@ -4,7 +4,11 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+
+#[path = "../../../tests/support/programs.rs"]
+mod programs;
+use programs::{corpus, programs_under};
 
 /// Exit status, the JSON report without its timing, and the diagnostics.
 fn stats(file: &Path, dialect: &str, whole: bool) -> (i32, String, String) {
@@ -92,30 +96,11 @@ fn a_call_after_many_pieces_runs_the_program_whole() {
     assert_eq!(motions(&report), motions(&without) + 1);
 }
 
-fn programs_under(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            programs_under(&path, out);
-        } else if path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| matches!(e, "nc" | "ngc" | "gc" | "gcode" | "tap"))
-        {
-            out.push(path);
-        }
-    }
-}
-
 #[test]
 fn the_examples_read_the_same_in_pieces() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let mut files = Vec::new();
-    programs_under(&root.join("assets/examples"), &mut files);
-    programs_under(&root.join("tests/golden"), &mut files);
+    let mut files = programs_under(&root.join("assets/examples"));
+    files.extend(programs_under(&root.join("tests/golden")));
     assert!(files.len() >= 5);
     for file in &files {
         for dialect in ["fanuc", "syntec", "lnc", "kt", "gsk", "linuxcnc"] {
@@ -126,13 +111,10 @@ fn the_examples_read_the_same_in_pieces() {
 
 #[test]
 fn the_corpus_reads_the_same_in_pieces() {
-    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
-    if !corpus.is_dir() {
-        eprintln!("skipped: {} is not present", corpus.display());
+    let Some(corpus) = corpus() else {
         return;
-    }
-    let mut files = Vec::new();
-    programs_under(&corpus, &mut files);
+    };
+    let files = programs_under(&corpus);
     assert!(!files.is_empty());
     for file in &files {
         for dialect in ["fanuc", "linuxcnc"] {

@@ -6,7 +6,11 @@
 #![cfg(not(target_arch = "wasm32"))]
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
+
+#[path = "../../../tests/support/programs.rs"]
+mod programs;
+use programs::{corpus, programs_under};
 
 use proptest::prelude::*;
 use swarf_interp::{CanonRecorder, Interpreter, Setup, Status};
@@ -55,24 +59,6 @@ fn check_text(text: &str, what: &str) {
     }
 }
 
-fn programs_under(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            programs_under(&path, out);
-        } else if path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| matches!(e, "nc" | "ngc" | "gc" | "gcode" | "tap"))
-        {
-            out.push(path);
-        }
-    }
-}
-
 /// A program's text, cut to its first lines when it is large (the debug build is slow).
 fn head(path: &Path) -> String {
     let bytes = std::fs::read(path).unwrap_or_default();
@@ -83,9 +69,8 @@ fn head(path: &Path) -> String {
 #[test]
 fn examples_and_golden_programs_agree() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let mut files = Vec::new();
-    programs_under(&root.join("assets/examples"), &mut files);
-    programs_under(&root.join("tests/golden"), &mut files);
+    let mut files = programs_under(&root.join("assets/examples"));
+    files.extend(programs_under(&root.join("tests/golden")));
     assert!(files.len() >= 5, "examples not found: {files:?}");
     for file in files {
         check_text(&head(&file), &file.display().to_string());
@@ -94,13 +79,10 @@ fn examples_and_golden_programs_agree() {
 
 #[test]
 fn corpus_programs_agree() {
-    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
-    if !corpus.is_dir() {
-        eprintln!("skipped: {} is not present", corpus.display());
+    let Some(corpus) = corpus() else {
         return;
-    }
-    let mut files = Vec::new();
-    programs_under(&corpus, &mut files);
+    };
+    let files = programs_under(&corpus);
     assert!(!files.is_empty());
     for file in files {
         check_text(&head(&file), &file.display().to_string());

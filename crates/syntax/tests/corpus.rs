@@ -7,9 +7,11 @@
 #![cfg(not(target_arch = "wasm32"))]
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
-use std::path::{Path, PathBuf};
-
 use swarf_syntax::{Dialect, Severity, decode, parse};
+
+#[path = "../../../tests/support/programs.rs"]
+mod programs;
+use programs::{corpus, programs_under};
 
 /// Programs LinuxCNC's rs274 rejects, with the error codes Swarf reports for them (sorted; none
 /// where the fault only shows when the program runs). Every other program must read without an
@@ -78,48 +80,12 @@ const ERRONEOUS: &[(&str, &[&str])] = &[
     ),
 ];
 
-/// The extensions of the corpus's programs.
-const PROGRAMS: [&str; 4] = ["ngc", "nc", "gcode", "gc"];
-
-fn corpus() -> Option<PathBuf> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
-    if root.is_dir() {
-        Some(root)
-    } else {
-        eprintln!(
-            "note: {} is not there; the corpus is not checked",
-            root.display()
-        );
-        None
-    }
-}
-
-fn programs(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for path in entries {
-        if path.is_dir() {
-            programs(&path, out);
-        } else if path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| PROGRAMS.contains(&e))
-        {
-            out.push(path);
-        }
-    }
-}
-
 #[test]
 fn every_corpus_program_reads_as_linuxcnc() {
     let Some(root) = corpus() else {
         return;
     };
-    let mut files = Vec::new();
-    programs(&root, &mut files);
+    let files = programs_under(&root);
     assert!(files.len() > 50, "only {} programs found", files.len());
 
     let mut failures = Vec::new();
