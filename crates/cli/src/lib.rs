@@ -236,6 +236,14 @@ fn load_decoded(path: &Path, decoded: Decoded, opts: &RunOptions) -> Loaded {
     }
 }
 
+/// The reading diagnostics and the run's, in one list sorted by position.
+fn merged(reading: &[Diagnostic], run: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    let mut all = reading.to_vec();
+    all.extend(run);
+    all.sort_by_key(|d| (d.span.start, d.span.end));
+    all
+}
+
 /// Lines read and run at a time when a program runs piece by piece.
 const PIECE_LINES: usize = 8192;
 
@@ -293,9 +301,7 @@ fn stream(
     let program = reader.finish();
     let mut diagnostics = std::mem::take(&mut decoded.diagnostics);
     diagnostics.extend(program.diagnostics.iter().cloned());
-    let mut all = diagnostics.clone();
-    all.extend(interp.take_diagnostics());
-    all.sort_by_key(|d| (d.span.start, d.span.end));
+    let all = merged(&diagnostics, interp.take_diagnostics());
     Some(Streamed {
         loaded: Loaded {
             path: path.display().to_string(),
@@ -312,10 +318,10 @@ fn stream(
 impl Loaded {
     /// Interprets the program into `sink`; returns every diagnostic sorted by position.
     fn interpret(&self, setup: &Setup, sink: &mut dyn Sink) -> Vec<Diagnostic> {
-        let mut all = self.diagnostics.clone();
-        all.extend(swarf_interp::run(&self.program, setup.clone(), sink));
-        all.sort_by_key(|d| (d.span.start, d.span.end));
-        all
+        merged(
+            &self.diagnostics,
+            swarf_interp::run(&self.program, setup.clone(), sink),
+        )
     }
 
     fn print(&self, diags: &[Diagnostic], err: &mut dyn Write) -> std::io::Result<i32> {
