@@ -761,6 +761,21 @@ fn plain_move(
     Some(Flow::Next)
 }
 
+/// Runs a block through [`plain_move`] straight from the interpreter's loop (see
+/// `Interpreter::plain_block`) where [`execute`] would add nothing to it: no G22 stroke limit
+/// and no machine travel to check the moves against.
+pub(crate) fn plain_block(
+    st: &mut State,
+    block: &Block,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> Option<Flow> {
+    if (st.stroke_check && st.stroke_zone.is_some()) || st.setup.machine.travel_mm.is_some() {
+        return None;
+    }
+    plain_move(st, block, &block.words, source, sink)
+}
+
 /// The block's F word (the first one), read in the feed mode.
 fn feed_word(st: &mut State, f: Option<&Word>) {
     st.block_has_feed = f.is_some();

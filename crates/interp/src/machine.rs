@@ -143,6 +143,9 @@ pub struct Interpreter {
     jumped: bool,
     /// Whether plain straight moves take the short path (see [`Interpreter::general_path_only`]).
     pub(crate) shortcut: bool,
+    /// Whether `origin` is the program zero of the current frame: only blocks that took the
+    /// short path leave the frame as it was, so only after them can the check be skipped.
+    origin_current: bool,
 }
 
 impl Interpreter {
@@ -160,6 +163,7 @@ impl Interpreter {
             calls: Vec::new(),
             repeats: HashMap::new(),
             shortcut: true,
+            origin_current: false,
             piecewise: false,
             block_base: 0,
             program_seen: false,
@@ -357,14 +361,22 @@ impl Interpreter {
             self.st.blocks_run = self.executed;
             self.st.block_span = block.span;
             let before = counted.motions;
-            let flow = if block.has_error {
-                Flow::Next
+            let plain = if block.has_error {
+                Some(Flow::Next)
             } else {
-                self.run_block(program, at, block, source, &mut counted)
+                self.plain_block(block, source, &mut counted)
             };
-            if counted.motions != before {
+            let flow = match plain {
+                Some(flow) => flow,
+                None => {
+                    self.origin_current = false;
+                    self.run_block(program, at, block, source, &mut counted)
+                }
+            };
+            if counted.motions != before && !self.origin_current {
                 // Moves from a program zero not reported yet: report it for the origin marks.
                 let origin = self.st.to_machine(DVec3::ZERO);
+                self.origin_current = true;
                 if self.origin != Some(origin) && origin.is_finite() {
                     self.origin = Some(origin);
                     counted.inner.origin(origin);
@@ -405,6 +417,21 @@ impl Interpreter {
 
     /// Runs one block: its words are read (expressions evaluated), its assignments made, its
     /// codes executed, then its control statements decide where to go.
+    /// Runs a block of plain straight-move words (no statements, variables or program number)
+    /// without the general path's steps for them, when nothing is pending before it (an alarm
+    /// raised by the block before); `None`, having done nothing, for any other block.
+    fn plain_block(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) -> Option<Flow> {
+        if !self.shortcut
+            || block.words.is_empty()
+            || block.program.is_some()
+            || !block.statements.is_empty()
+            || self.st.alarm.is_some()
+        {
+            return None;
+        }
+        crate::exec::plain_block(&mut self.st, block, source, sink)
+    }
+
     fn run_block(
         &mut self,
         program: &Program,
