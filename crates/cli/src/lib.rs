@@ -78,6 +78,10 @@ enum Command {
         /// of running it piece by piece as it is read (the figures are the same).
         #[arg(long)]
         whole: bool,
+        /// Read and run on this thread only (by default a long program is read on a second
+        /// thread while the part read before runs; the figures are the same).
+        #[arg(long)]
+        one_thread: bool,
     },
     /// Draw the toolpath to a PNG image offscreen (no display needed).
     Render(render::RenderArgs),
@@ -132,7 +136,8 @@ where
             opts,
             json,
             whole,
-        } => stats(&file, &opts, json, whole, out, err),
+            one_thread,
+        } => stats(&file, &opts, json, whole, one_thread, out, err),
         Command::Render(args) => render::render(&args, out, err),
         Command::Explain {
             what,
@@ -259,44 +264,32 @@ struct Streamed {
 
 /// Reads and runs the program piece by piece as it is parsed, keeping none of its blocks, for
 /// a program that runs straight through (no jumps, loops or calls): the memory and the first
-/// touches of it that the parsed blocks of a long program would take are saved. `None` for a
-/// program that needs all its blocks at once (`path` may then hold part of its moves).
+/// touches of it that the parsed blocks of a long program would take are saved. With
+/// `two_threads`, a program of several pieces is read on a second thread while the pieces
+/// before run (the figures are the same). `None` for a program that needs all its blocks at
+/// once (`path` may then hold part of its moves).
 fn stream(
     path: &Path,
     decoded: &mut Decoded,
     opts: &RunOptions,
     setup: &Setup,
     toolpath: &mut Toolpath,
+    two_threads: bool,
 ) -> Option<Streamed> {
     let text = std::mem::take(&mut decoded.text);
-    let mut reader = swarf_syntax::ParseRun::new(&text, opts.dialect);
+    let reader = swarf_syntax::ParseRun::new(&text, opts.dialect);
     let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
-    toolpath.reserve(reader.program().lines.line_count());
-    let mut blocks = 0;
-    let mut ended = false;
-    let mut whole = false;
-    loop {
-        let done = reader.step(&text, PIECE_LINES);
-        blocks += reader.program().blocks.len();
-        if !ended {
-            match interp.run_piece(reader.program(), toolpath) {
-                swarf_interp::Piece::Ran => {}
-                swarf_interp::Piece::Ended => ended = true,
-                swarf_interp::Piece::NeedsWhole => {
-                    whole = true;
-                    break;
-                }
-            }
-        }
-        reader.clear_blocks();
-        if done {
-            break;
-        }
-    }
-    if whole {
+    let lines = reader.program().lines.line_count();
+    toolpath.reserve(lines);
+    let ran = if two_threads && lines > PIECE_LINES {
+        run_pieces_beside(&text, reader, &mut interp, toolpath)
+    } else {
+        run_pieces(&text, reader, &mut interp, toolpath)
+    };
+    let Some((reader, blocks)) = ran else {
         decoded.text = text;
         return None;
-    }
+    };
     interp.finish_pieces(toolpath);
     let program = reader.finish();
     let mut diagnostics = std::mem::take(&mut decoded.diagnostics);
@@ -312,6 +305,100 @@ fn stream(
         },
         blocks,
         diagnostics: all,
+    })
+}
+
+/// Reads and runs `text` piece by piece on this thread: the reader and the number of blocks
+/// read, or `None` when the program needs running whole.
+fn run_pieces(
+    text: &str,
+    mut reader: swarf_syntax::ParseRun,
+    interp: &mut swarf_interp::Interpreter,
+    toolpath: &mut Toolpath,
+) -> Option<(swarf_syntax::ParseRun, usize)> {
+    let mut blocks = 0;
+    let mut ended = false;
+    loop {
+        let done = reader.step(text, PIECE_LINES);
+        blocks += reader.program().blocks.len();
+        if !ended {
+            match interp.run_piece(reader.program(), toolpath) {
+                swarf_interp::Piece::Ran => {}
+                swarf_interp::Piece::Ended => ended = true,
+                swarf_interp::Piece::NeedsWhole => return None,
+            }
+        }
+        reader.clear_blocks();
+        if done {
+            return Some((reader, blocks));
+        }
+    }
+}
+
+/// [`run_pieces`] with the reading on a second thread: it hands each piece's blocks (and the
+/// expressions new in it) over a short queue while this thread runs the piece before, and gets
+/// the block arrays back for reuse.
+fn run_pieces_beside(
+    text: &str,
+    mut reader: swarf_syntax::ParseRun,
+    interp: &mut swarf_interp::Interpreter,
+    toolpath: &mut Toolpath,
+) -> Option<(swarf_syntax::ParseRun, usize)> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::mpsc::sync_channel;
+    type Piece = (Vec<swarf_syntax::Block>, Vec<swarf_syntax::ExprNode>);
+    let stop = AtomicBool::new(false);
+    let dialect = reader.program().dialect;
+    std::thread::scope(|scope| {
+        let (pieces, received) = sync_channel::<Piece>(2);
+        let (spares, spare) = sync_channel::<Vec<swarf_syntax::Block>>(4);
+        let stop = &stop;
+        let parser = scope.spawn(move || {
+            let mut sent_exprs = 0;
+            loop {
+                let done = reader.step(text, PIECE_LINES);
+                let blocks = reader.swap_blocks(spare.try_recv().unwrap_or_default());
+                let exprs = &reader.program().exprs;
+                let new_exprs = exprs.get(sent_exprs..).unwrap_or_default().to_vec();
+                sent_exprs = exprs.len();
+                if stop.load(Ordering::Relaxed) || pieces.send((blocks, new_exprs)).is_err() || done
+                {
+                    return reader;
+                }
+            }
+        });
+        // The program as the interpreter sees it: this piece's blocks, every expression so far.
+        let mut piece = Program {
+            dialect,
+            ..Program::default()
+        };
+        let mut blocks = 0;
+        let mut ended = false;
+        let mut whole = false;
+        for (read, exprs) in received.iter() {
+            piece.blocks = read;
+            piece.exprs.extend(exprs);
+            blocks += piece.blocks.len();
+            if !ended {
+                match interp.run_piece(&piece, toolpath) {
+                    swarf_interp::Piece::Ran => {}
+                    swarf_interp::Piece::Ended => ended = true,
+                    swarf_interp::Piece::NeedsWhole => {
+                        whole = true;
+                        stop.store(true, Ordering::Relaxed);
+                        break;
+                    }
+                }
+            }
+            // A full queue (the reader is done) just drops the array.
+            let _ = spares.try_send(std::mem::take(&mut piece.blocks));
+        }
+        drop(received);
+        let reader = match parser.join() {
+            Ok(reader) => reader,
+            Err(panic) => std::panic::resume_unwind(panic),
+        };
+        (!whole).then_some((reader, blocks))
     })
 }
 
@@ -436,6 +523,7 @@ fn stats(
     opts: &RunOptions,
     as_json: bool,
     whole: bool,
+    one_thread: bool,
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
@@ -446,7 +534,7 @@ fn stats(
     let streamed = if whole {
         None
     } else {
-        stream(file, &mut decoded, opts, &setup, &mut path)
+        stream(file, &mut decoded, opts, &setup, &mut path, !one_thread)
     };
     let (loaded, blocks, diags) = if let Some(s) = streamed {
         (s.loaded, s.blocks, s.diagnostics)
@@ -564,7 +652,14 @@ mod tests {
         let setup = Setup::default();
         let mut decoded = swarf_syntax::decode(text.as_bytes());
         let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-        let streamed = stream(Path::new("t.nc"), &mut decoded, &opts, &setup, &mut path);
+        let streamed = stream(
+            Path::new("t.nc"),
+            &mut decoded,
+            &opts,
+            &setup,
+            &mut path,
+            true,
+        );
         // A program that needs running whole gets its text back.
         assert_eq!(decoded.text.is_empty(), streamed.is_some());
         streamed.is_some()

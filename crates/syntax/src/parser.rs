@@ -169,6 +169,14 @@ impl ParseRun {
         self.program.blocks.clear();
     }
 
+    /// Hands over the blocks read so far and reads on into `spare` (emptied first), so that a
+    /// reader on one thread can pass pieces of a long program to an interpreter on another
+    /// and get their arrays back for reuse.
+    pub fn swap_blocks(&mut self, mut spare: Vec<Block>) -> Vec<Block> {
+        spare.clear();
+        std::mem::replace(&mut self.program.blocks, spare)
+    }
+
     /// The parsed program (the lines read so far, if the run is not done).
     pub fn finish(self) -> Program {
         let mut program = self.program;
