@@ -366,12 +366,11 @@ impl Interpreter {
             } else {
                 self.plain_block(block, source, &mut counted)
             };
-            let flow = match plain {
-                Some(flow) => flow,
-                None => {
-                    self.origin_current = false;
-                    self.run_block(program, at, block, source, &mut counted)
-                }
+            let flow = if let Some(flow) = plain {
+                flow
+            } else {
+                self.origin_current = false;
+                self.run_block(program, at, block, source, &mut counted)
             };
             if counted.motions != before && !self.origin_current {
                 // Moves from a program zero not reported yet: report it for the origin marks.
