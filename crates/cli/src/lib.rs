@@ -375,7 +375,7 @@ fn run_pieces_beside(
         let mut blocks = 0;
         let mut ended = false;
         let mut whole = false;
-        for (read, exprs) in received.iter() {
+        for (read, exprs) in &received {
             piece.blocks = read;
             piece.exprs.extend(exprs);
             blocks += piece.blocks.len();
