@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Throughput and peak memory of Swarf against the interpreters a user could pick instead, in one
 # run on one machine, on the corpus's large programs and a generated 1M-line surfacing program:
-#   Swarf   `swarf stats` (release: read, decode, parse, interpret, record the toolpath)
+#   Swarf   `swarf stats` (release: read, decode, parse, interpret, record the toolpath), once
+#           with `--one-thread` and once as it runs by default (a long program is read on a
+#           second thread while the part read before runs)
 #   rs274   LinuxCNC's reference interpreter (../shared/tools/rs274), canonical calls to /dev/null
 #   gcode-toolpath  npm, cncjs's interpreter (Node.js), moves counted
 #   pygcode PyPI, its Machine over every line (Python), moves counted
 # Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
-# TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's.
+# TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's on one thread and
+# on two.
 #   scripts/bench-peers.sh            (RUNS=5, TIMEOUT=600; needs ../shared for the corpus files)
 # It ends with the wasm32 build's figure on the generated program (Node, in-process).
 # The peers are installed once under target/peers (npm and pip; nothing is committed).
@@ -78,24 +81,31 @@ measure() {
   echo "${best:-${out% *}} $kb"
 }
 
-# One table cell: "1.23 s, 45 MB/s, 67 MB (12.3×)" against Swarf's time $2 for $3 bytes.
+# One table cell: "1.23 s, 45 MB/s, 67 MB (12.3× / 20.1×)": its time over Swarf's on one
+# thread ($3) and on two ($4), for $5 bytes.
 cell() {
-  local t=$1 kb=$2 swarf_t=$3 bytes=$4
+  local t=$1 kb=$2 one=$3 two=$4 bytes=$5
   case $t in
     timeout) echo "> ${limit} s" ;;
     fail) echo "fails" ;;
     "") echo "—" ;;
-    *) awk "BEGIN{printf \"%.3f s, %.1f MB/s, %d MB (%.1f×)\", $t, $bytes/1e6/$t, $kb/1024, $t/$swarf_t}" ;;
+    *) awk "BEGIN{printf \"%.3f s, %.1f MB/s, %d MB (%.1f× / %.1f×)\", $t, $bytes/1e6/$t, $kb/1024, $t/$one, $t/$two}" ;;
   esac
 }
 
-echo "| program | size | lines | Swarf | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
-echo "|---|---|---|---|---|---|---|"
+# Swarf's cell: "0.065 s, 61 MB/s, 18 MB".
+swarf_cell() {
+  awk "BEGIN{printf \"%.3f s, %.0f MB/s, %d MB\", $1, $3/1e6/$1, $2/1024}"
+}
+
+echo "| program | size | lines | Swarf, one thread | Swarf, two threads | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
+echo "|---|---|---|---|---|---|---|---|"
 for prog in "${programs[@]}"; do
   [[ -f "$prog" ]] || continue
   bytes=$(stat -c %s "$prog")
   lines=$(wc -l < "$prog")
-  read -r st sk < <(measure "$swarf" stats "$prog" --dialect linuxcnc)
+  read -r st sk < <(measure "$swarf" stats "$prog" --dialect linuxcnc --one-thread)
+  read -r st2 sk2 < <(measure "$swarf" stats "$prog" --dialect linuxcnc)
   r=("" 0) g=("" 0) p=("" 0)
   if [[ -n "$rs274" ]]; then
     read -r -a r < <(cd "$(dirname "$prog")" && measure "$rs274" -t "$tbl" -g "$(basename "$prog")")
@@ -106,11 +116,10 @@ for prog in "${programs[@]}"; do
   if [[ -d "$peers/py/pygcode" ]]; then
     read -r -a p < <(PYTHONPATH=$peers/py measure python3 "$root/scripts/peers/pygcode_run.py" "$prog")
   fi
-  swarf_cell=$(awk "BEGIN{printf \"%.3f s, %.0f MB/s, %d MB\", $st, $bytes/1e6/$st, $sk/1024}")
-  printf "| %s | %.1f MB | %d | %s | %s | %s | %s |\n" "$(basename "$prog")" \
-    "$(awk "BEGIN{print $bytes/1e6}")" "$lines" "$swarf_cell" \
-    "$(cell "${r[0]}" "${r[1]}" "$st" "$bytes")" "$(cell "${g[0]}" "${g[1]}" "$st" "$bytes")" \
-    "$(cell "${p[0]}" "${p[1]}" "$st" "$bytes")"
+  printf "| %s | %.1f MB | %d | %s | %s | %s | %s | %s |\n" "$(basename "$prog")" \
+    "$(awk "BEGIN{print $bytes/1e6}")" "$lines" "$(swarf_cell "$st" "$sk" "$bytes")" \
+    "$(swarf_cell "$st2" "$sk2" "$bytes")" "$(cell "${r[0]}" "${r[1]}" "$st" "$st2" "$bytes")" \
+    "$(cell "${g[0]}" "${g[1]}" "$st" "$st2" "$bytes")" "$(cell "${p[0]}" "${p[1]}" "$st" "$st2" "$bytes")"
 done
 
 # Swarf's wasm build on the generated program (in Node, in-process: no file reading or process
