@@ -366,6 +366,7 @@ fn corner_mode(st: &State) -> CornerMode {
 }
 
 /// Sends `event` on through cutter compensation.
+#[inline]
 pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &Canon) {
     let from = st.comp.prog;
     match event {

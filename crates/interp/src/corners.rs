@@ -33,6 +33,7 @@ pub(crate) struct Pending {
 }
 
 /// Sends `event` to `sink`, first cutting the corner of a held-back move.
+#[inline]
 pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &Canon) {
     resolve(st, sink, event);
     crate::comp::emit(st, sink, source, event);
@@ -40,6 +41,7 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
 
 /// Cuts the corner of a held-back move against `event`, the next thing the machine does (or
 /// draws it sharp when that is not a cutting move), without sending `event` itself.
+#[inline]
 pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
     let moves = matches!(
         event,

@@ -299,11 +299,13 @@ impl State {
     }
 
     /// Program frame → machine frame.
+    #[inline]
     pub fn to_machine(&self, p: DVec3) -> DVec3 {
         self.place(self.scaled(p))
     }
 
     /// Mirror and scaling of a program-frame point (the first steps of the chain).
+    #[inline]
     pub fn scaled(&self, p: DVec3) -> DVec3 {
         let mut q = p;
         if self.mirror != DVec3::ONE {
@@ -317,6 +319,7 @@ impl State {
 
     /// A mirrored and scaled point → machine frame: G68 rotation, Syntec's G92.1 rotation, then
     /// the offsets (and LinuxCNC's rotated coordinate systems).
+    #[inline]
     pub fn place(&self, q: DVec3) -> DVec3 {
         let q = self.rotated(q);
         if self.wcs_rotation != 0.0 {
@@ -327,6 +330,7 @@ impl State {
     }
 
     /// G68 rotation of a mirrored and scaled point.
+    #[inline]
     fn rotated(&self, p: DVec3) -> DVec3 {
         let mut q = p;
         if let Some(r) = self.rotation {
