@@ -372,6 +372,13 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
     match event {
         Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc { to, .. } => {
             st.comp.prog = *to;
+            if st.comp.held.is_none() && wanted(st).is_none() {
+                // Compensation off and nothing held: the move goes on as it is (what the
+                // cancel branch of `motion` does with nothing to cancel).
+                st.comp.tool = None;
+                sink.emit(source, event);
+                return;
+            }
             motion(st, sink, source, from, event);
         }
         Canon::End => {
@@ -388,15 +395,10 @@ pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
     close(st, sink, None);
 }
 
+// Kept out of `emit`, so that a move with compensation off skips its setup.
+#[inline(never)]
 fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, event: &Canon) {
     let want = wanted(st);
-    if want.is_none() && st.comp.held.is_none() {
-        // Compensation off and nothing held: the move goes on as it is (what the cancel branch
-        // below does with nothing to cancel).
-        st.comp.tool = None;
-        sink.emit(source, event);
-        return;
-    }
     let plane = plane_axes(st.plane);
     let held_offset = st.comp.held.as_ref().map(|h| h.offset);
     if want.is_some() || held_offset.is_some() {
