@@ -205,11 +205,11 @@ impl Interpreter {
         self.piecewise = true;
         self.index = None;
         self.next_block = 0;
-        while self.step(program, sink, 4096) == Status::Running {
-            if self.next_block >= program.blocks.len() && !self.jumped {
-                break;
-            }
-        }
+        // A jump ends the piece too: the program then runs whole, from its start.
+        while self.step(program, sink, 4096) == Status::Running
+            && !self.jumped
+            && self.next_block < program.blocks.len()
+        {}
         self.block_base += program.blocks.len();
         if self.jumped {
             Piece::NeedsWhole
