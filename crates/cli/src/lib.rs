@@ -308,6 +308,24 @@ fn stream(
     })
 }
 
+/// Runs one piece unless the program has ended (`ended` then set); `false` when the program
+/// needs running whole.
+fn run_piece(
+    interp: &mut swarf_interp::Interpreter,
+    piece: &Program,
+    toolpath: &mut Toolpath,
+    ended: &mut bool,
+) -> bool {
+    if !*ended {
+        match interp.run_piece(piece, toolpath) {
+            swarf_interp::Piece::Ran => {}
+            swarf_interp::Piece::Ended => *ended = true,
+            swarf_interp::Piece::NeedsWhole => return false,
+        }
+    }
+    true
+}
+
 /// Reads and runs `text` piece by piece on this thread: the reader and the number of blocks
 /// read, or `None` when the program needs running whole.
 fn run_pieces(
@@ -321,12 +339,8 @@ fn run_pieces(
     loop {
         let done = reader.step(text, PIECE_LINES);
         blocks += reader.program().blocks.len();
-        if !ended {
-            match interp.run_piece(reader.program(), toolpath) {
-                swarf_interp::Piece::Ran => {}
-                swarf_interp::Piece::Ended => ended = true,
-                swarf_interp::Piece::NeedsWhole => return None,
-            }
+        if !run_piece(interp, reader.program(), toolpath, &mut ended) {
+            return None;
         }
         reader.clear_blocks();
         if done {
@@ -379,16 +393,10 @@ fn run_pieces_beside(
             piece.blocks = read;
             piece.exprs.extend(exprs);
             blocks += piece.blocks.len();
-            if !ended {
-                match interp.run_piece(&piece, toolpath) {
-                    swarf_interp::Piece::Ran => {}
-                    swarf_interp::Piece::Ended => ended = true,
-                    swarf_interp::Piece::NeedsWhole => {
-                        whole = true;
-                        stop.store(true, Ordering::Relaxed);
-                        break;
-                    }
-                }
+            if !run_piece(interp, &piece, toolpath, &mut ended) {
+                whole = true;
+                stop.store(true, Ordering::Relaxed);
+                break;
             }
             // A full queue (the reader is done) just drops the array.
             let _ = spares.try_send(std::mem::take(&mut piece.blocks));
