@@ -28,8 +28,6 @@
 //! next stop), like a control's look-ahead buffer, which keeps recording linear in the number
 //! of segments.
 
-use std::collections::VecDeque;
-
 use glam::DVec3;
 use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone};
 
@@ -346,7 +344,7 @@ pub struct Toolpath {
     tool: u32,
     kinematics: Kinematics,
     /// The segments after the settled ones, whose join speeds may still change.
-    window: VecDeque<Plan>,
+    window: Vec<Plan>,
     /// Direction of motion at the end of the last non-empty segment.
     last_direction: Option<DVec3>,
     /// A non-motion event since the last segment: the next one starts at rest.
@@ -410,7 +408,7 @@ impl Toolpath {
             tools: Vec::new(),
             tool: 0,
             kinematics,
-            window: VecDeque::new(),
+            window: Vec::new(),
             last_direction: None,
             stop_pending: false,
             holes: Vec::new(),
@@ -689,7 +687,7 @@ impl Toolpath {
         } else {
             cruise.max(0.0)
         };
-        let limit = match self.window.back() {
+        let limit = match self.window.last() {
             Some(previous) if smooth => previous.cruise.min(cruise),
             _ => 0.0,
         };
@@ -699,10 +697,15 @@ impl Toolpath {
         }
         let forward = self
             .window
-            .back()
+            .last()
             .map_or(0.0, |p| limit.min(k.reach(p.forward, p.length)));
-        let dwell = self.settled.dwell_before(self.ends.len() - 1);
-        self.window.push_back(Plan {
+        // The dwells are in segment order and none comes after the newest segment yet.
+        let newest = self.ends.len() - 1;
+        let dwell = match self.settled.dwells.last() {
+            Some(d) if d.segment == newest => d.secs,
+            _ => 0.0,
+        };
+        self.window.push(Plan {
             length,
             cruise,
             limit,
@@ -739,7 +742,11 @@ impl Toolpath {
             count,
             &mut self.settled.end_times,
         );
-        self.window.drain(..count);
+        if count == self.window.len() {
+            self.window.clear();
+        } else {
+            self.window.drain(..count);
+        }
     }
 
     fn push_line(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
@@ -805,39 +812,37 @@ impl Toolpath {
 }
 
 /// Appends to `out` the end times of the first `count` segments of `window`, the first
-/// starting at `start` seconds (see [`Toolpath::window_end_times`]). The join speeds of a short
-/// window stay on the stack: a program with a stop every few moves settles it that often.
-fn window_end_times(
-    window: &VecDeque<Plan>,
-    k: Kinematics,
-    start: f64,
-    count: usize,
-    out: &mut Vec<f64>,
-) {
-    let mut short = [0.0; 64];
-    let mut long = Vec::new();
-    let entries: &mut [f64] = if window.len() < short.len() {
-        &mut short[..=window.len()]
-    } else {
-        long.resize(window.len() + 1, 0.0);
-        &mut long
-    };
+/// starting at `start` seconds (see [`Toolpath::window_end_times`]). The join speeds are
+/// written where the times go and replaced by them in turn, so no other buffer is needed; a
+/// window of one segment (a program that stops at every corner settles it at every move) is
+/// timed directly.
+fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, out: &mut Vec<f64>) {
+    let count = count.min(window.len());
+    if let [p] = window {
+        if count == 1 {
+            let entry = p.forward.min(p.limit.min(k.reach(0.0, p.length)));
+            out.push(start + (p.dwell + k.move_secs(p.length, p.cruise, entry, 0.0)));
+        }
+        return;
+    }
+    // The entry speed of each segment: the lower of the forward speed and the highest speed
+    // from which the tool can still stop at the end of the window.
+    let base = out.len();
+    out.resize(base + window.len(), 0.0);
+    let entries = &mut out[base..];
     let mut backward = 0.0;
     for (entry, p) in entries.iter_mut().zip(window).rev() {
         backward = p.limit.min(k.reach(backward, p.length));
         *entry = p.forward.min(backward);
     }
     let mut t = start;
-    out.extend(
-        window
-            .iter()
-            .zip(entries.windows(2))
-            .take(count)
-            .map(|(p, speeds)| {
-                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
-                t
-            }),
-    );
+    for i in 0..count {
+        let p = &window[i];
+        let exit = entries.get(i + 1).copied().unwrap_or(0.0);
+        t += p.dwell + k.move_secs(p.length, p.cruise, entries[i], exit);
+        entries[i] = t;
+    }
+    out.truncate(base + count);
 }
 
 /// The fields of [`Canon::Arc`].
