@@ -625,31 +625,37 @@ impl Toolpath {
         self.lines.iter().position(|&l| l == line)
     }
 
-    /// Records a segment to `to`, `cruise` being its speed in mm/s (0 when it has no feed)
-    /// and `exit` its direction at the end (`None` for an empty move).
+    /// Records a segment to `to`, `length` mm long from the last end, `cruise` being its
+    /// speed in mm/s (0 when it has no feed) and `exit` its direction at the end (`None` for
+    /// an empty move).
     #[allow(clippy::too_many_arguments)]
+    #[inline]
     fn push(
         &mut self,
         kind: SegmentKind,
         to: DVec3,
+        length: f64,
         line: u32,
         feed_mm_per_min: f64,
         cruise: f64,
         join: Join,
         exit: Option<DVec3>,
     ) {
-        let from = self.ends.last().copied().unwrap_or(self.start);
-        let length = from.distance(to);
         match kind {
             SegmentKind::Rapid => self.rapid_mm += length,
             SegmentKind::Feed | SegmentKind::Arc => self.feed_mm += length,
         }
-        let bounds = self.bounds.get_or_insert(Bounds {
-            min: from,
-            max: from,
-        });
-        bounds.include(from);
-        bounds.include(to);
+        // Each segment starts where the last one ended, already inside the box.
+        if let Some(bounds) = &mut self.bounds {
+            bounds.include(to);
+        } else {
+            let mut bounds = Bounds {
+                min: self.start,
+                max: self.start,
+            };
+            bounds.include(to);
+            self.bounds = Some(bounds);
+        }
         let previous_kind = self.kinds.last().copied();
         self.ends.push(to);
         self.kinds.push(kind);
@@ -751,7 +757,11 @@ impl Toolpath {
 
     fn push_line(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
         let from = self.ends.last().copied().unwrap_or(self.start);
-        let direction = (to - from).try_normalize();
+        let delta = to - from;
+        let length = delta.length();
+        // `delta.try_normalize()`, reusing the length.
+        let rcp = 1.0 / length;
+        let direction = (rcp.is_finite() && rcp > 0.0).then(|| delta * rcp);
         let cruise = match kind {
             SegmentKind::Rapid => direction.map_or(self.kinematics.rapid_mm_per_s, |d| {
                 self.kinematics.rapid_speed(d)
@@ -761,6 +771,7 @@ impl Toolpath {
         self.push(
             kind,
             to,
+            length,
             line,
             feed_mm_per_min,
             cruise,
@@ -778,9 +789,12 @@ impl Toolpath {
             .max(CHORD_TOLERANCE_MM);
         let centripetal = (self.kinematics.acceleration_mm_per_s2 * radius).sqrt();
         let cruise = (arc.feed_mm_per_min / 60.0).min(centripetal);
-        let points = geometry.points(from, arc.to);
-        let count = points.len();
-        for (k, p) in points.into_iter().enumerate() {
+        let count = geometry.chords();
+        let mut last = from;
+        for k in 0..count {
+            let p = geometry.point(k + 1, count, from, arc.to);
+            let length = last.distance(p);
+            last = p;
             let join = if k == 0 {
                 Join::Corner {
                     entry: geometry.tangent(from, arc.to, 0.0),
@@ -796,6 +810,7 @@ impl Toolpath {
             self.push(
                 SegmentKind::Arc,
                 p,
+                length,
                 line,
                 arc.feed_mm_per_min,
                 cruise,
@@ -986,31 +1001,37 @@ impl ArcGeometry {
         }
     }
 
-    /// Points along the arc (excluding `from`, ending exactly at `to`) within
-    /// [`CHORD_TOLERANCE_MM`].
-    fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
+    /// How many chords the arc takes to stay within [`CHORD_TOLERANCE_MM`].
+    fn chords(&self) -> usize {
         let tau = std::f64::consts::TAU;
         let step = if self.radius > CHORD_TOLERANCE_MM {
             2.0 * (1.0 - CHORD_TOLERANCE_MM / self.radius).acos()
         } else {
             tau / 4.0
         };
-        let n = ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000);
-        (1..=n)
-            .map(|k| {
-                if k == n {
-                    return to;
-                }
-                let t = k as f64 / n as f64;
-                let a = self.a0 + self.sweep * t;
-                let r = self.radius + (self.end_radius - self.radius) * t;
-                let mut p = DVec3::ZERO;
-                p[self.iu] = self.center[self.iu] + r * a.cos();
-                p[self.iv] = self.center[self.iv] + r * a.sin();
-                p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
-                p
-            })
-            .collect()
+        ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000)
+    }
+
+    /// The end of chord `k` (from 1) of `n`: exactly `to` for the last.
+    fn point(&self, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
+        if k == n {
+            return to;
+        }
+        let t = k as f64 / n as f64;
+        let a = self.a0 + self.sweep * t;
+        let r = self.radius + (self.end_radius - self.radius) * t;
+        let mut p = DVec3::ZERO;
+        p[self.iu] = self.center[self.iu] + r * a.cos();
+        p[self.iv] = self.center[self.iv] + r * a.sin();
+        p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
+        p
+    }
+
+    /// Points along the arc (excluding `from`, ending exactly at `to`) within
+    /// [`CHORD_TOLERANCE_MM`].
+    fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
+        let n = self.chords();
+        (1..=n).map(|k| self.point(k, n, from, to)).collect()
     }
 
     /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
