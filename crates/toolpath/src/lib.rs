@@ -629,7 +629,7 @@ impl Toolpath {
     /// speed in mm/s (0 when it has no feed) and `exit` its direction at the end (`None` for
     /// an empty move).
     #[allow(clippy::too_many_arguments)]
-    #[inline]
+    #[inline(always)]
     fn push(
         &mut self,
         kind: SegmentKind,
@@ -699,7 +699,14 @@ impl Toolpath {
         };
         if limit <= 0.0 {
             // Nothing before a stop changes any more.
-            self.settle(self.window.len());
+            if let [lone] = self.window[..] {
+                // A program that stops at every corner settles each move on its own.
+                let start = self.settled.end_times.last().copied().unwrap_or(0.0);
+                self.settled.end_times.push(lone_end_time(&lone, k, start));
+                self.window.clear();
+            } else {
+                self.settle(self.window.len());
+            }
         }
         let forward = self
             .window
@@ -829,14 +836,12 @@ impl Toolpath {
 /// Appends to `out` the end times of the first `count` segments of `window`, the first
 /// starting at `start` seconds (see [`Toolpath::window_end_times`]). The join speeds are
 /// written where the times go and replaced by them in turn, so no other buffer is needed; a
-/// window of one segment (a program that stops at every corner settles it at every move) is
-/// timed directly.
+/// window of one segment is timed directly.
 fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, out: &mut Vec<f64>) {
     let count = count.min(window.len());
     if let [p] = window {
         if count == 1 {
-            let entry = p.forward.min(p.limit.min(k.reach(0.0, p.length)));
-            out.push(start + (p.dwell + k.move_secs(p.length, p.cruise, entry, 0.0)));
+            out.push(lone_end_time(p, k, start));
         }
         return;
     }
@@ -858,6 +863,14 @@ fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, ou
         entries[i] = t;
     }
     out.truncate(base + count);
+}
+
+/// The end time of a window's only segment `p`, which starts at `start` seconds and ends at
+/// rest (what [`window_end_times`] gives for a window of one).
+#[inline]
+fn lone_end_time(p: &Plan, k: Kinematics, start: f64) -> f64 {
+    let entry = p.forward.min(p.limit.min(k.reach(0.0, p.length)));
+    start + (p.dwell + k.move_secs(p.length, p.cruise, entry, 0.0))
 }
 
 /// The fields of [`Canon::Arc`].
