@@ -686,6 +686,7 @@ impl Toolpath {
     /// Adds the newest segment to the planner. Segments are settled (their end times
     /// written) at every stop, and in batches of [`LOOKAHEAD_SEGMENTS`] when a long run
     /// without stops fills twice that, so each segment is planned a bounded number of times.
+    #[inline(always)]
     fn plan(&mut self, length: f64, cruise: f64, smooth: bool) {
         let k = self.kinematics;
         let cruise = if cruise.is_nan() {
