@@ -1078,6 +1078,73 @@ mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
 
+    /// The end times by the plain two-pass definition: every entry speed from a backward pass
+    /// into its own array, then the moves timed in order.
+    fn reference_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize) -> Vec<f64> {
+        let mut entries = vec![0.0; window.len() + 1];
+        let mut backward = 0.0;
+        for (entry, p) in entries.iter_mut().zip(window).rev() {
+            backward = p.limit.min(k.reach(backward, p.length));
+            *entry = p.forward.min(backward);
+        }
+        let mut t = start;
+        window
+            .iter()
+            .zip(entries.windows(2))
+            .take(count)
+            .map(|(p, speeds)| {
+                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
+                t
+            })
+            .collect()
+    }
+
+    #[test]
+    fn window_end_times_match_the_two_pass_definition_bit_for_bit() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for kinematics in [
+            Kinematics::default(),
+            Kinematics {
+                acceleration_mm_per_s2: f64::INFINITY,
+                ..Kinematics::default()
+            },
+        ] {
+            for n in (1..80).flat_map(|n| std::iter::repeat_n(n, if n < 8 { 50 } else { 2 })) {
+                let window: Vec<Plan> = (0..n)
+                    .map(|i| {
+                        let cruise = if next() < 0.1 { 0.0 } else { 200.0 * next() };
+                        let limit = if i == 0 { 0.0 } else { cruise * next() };
+                        Plan {
+                            length: if next() < 0.1 { 0.0 } else { 20.0 * next() },
+                            cruise,
+                            limit,
+                            forward: limit * next(),
+                            dwell: if next() < 0.2 { next() } else { 0.0 },
+                        }
+                    })
+                    .collect();
+                let start = 100.0 * next();
+                for count in 0..=n + 1 {
+                    let want = reference_end_times(&window, kinematics, start, count);
+                    let mut got = vec![1.5];
+                    window_end_times(&window, kinematics, start, count, &mut got);
+                    let bits = |v: &[f64]| v.iter().map(|t| t.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&got[1..]), bits(&want), "n {n} count {count}");
+                    if n == 1 && count == 1 {
+                        let lone = lone_end_time(&window[0], kinematics, start);
+                        assert_eq!(lone.to_bits(), want[0].to_bits());
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn arc_tangents_follow_the_direction_of_travel() {
         let from = DVec3::new(10.0, 0.0, 0.0);
