@@ -867,11 +867,16 @@ fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, ou
 }
 
 /// The end time of a window's only segment `p`, which starts at `start` seconds and ends at
-/// rest (what [`window_end_times`] gives for a window of one).
+/// rest (what [`window_end_times`] gives for a window of one). A window of one starts at a
+/// stop (the window only restarts at one, and a partial settle leaves many segments), so its
+/// limit and entry speed are zero.
 #[inline]
 fn lone_end_time(p: &Plan, k: Kinematics, start: f64) -> f64 {
-    let entry = p.forward.min(p.limit.min(k.reach(0.0, p.length)));
-    start + (p.dwell + k.move_secs(p.length, p.cruise, entry, 0.0))
+    debug_assert!(
+        p.limit <= 0.0 && p.forward <= 0.0,
+        "a lone segment starts at rest"
+    );
+    start + (p.dwell + k.move_secs(p.length, p.cruise, 0.0, 0.0))
 }
 
 /// The fields of [`Canon::Arc`].
