@@ -28,8 +28,6 @@
 //! next stop), like a control's look-ahead buffer, which keeps recording linear in the number
 //! of segments.
 
-use std::collections::VecDeque;
-
 use glam::DVec3;
 use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone};
 
@@ -346,7 +344,7 @@ pub struct Toolpath {
     tool: u32,
     kinematics: Kinematics,
     /// The segments after the settled ones, whose join speeds may still change.
-    window: VecDeque<Plan>,
+    window: Vec<Plan>,
     /// Direction of motion at the end of the last non-empty segment.
     last_direction: Option<DVec3>,
     /// A non-motion event since the last segment: the next one starts at rest.
@@ -410,7 +408,7 @@ impl Toolpath {
             tools: Vec::new(),
             tool: 0,
             kinematics,
-            window: VecDeque::new(),
+            window: Vec::new(),
             last_direction: None,
             stop_pending: false,
             holes: Vec::new(),
@@ -627,31 +625,37 @@ impl Toolpath {
         self.lines.iter().position(|&l| l == line)
     }
 
-    /// Records a segment to `to`, `cruise` being its speed in mm/s (0 when it has no feed)
-    /// and `exit` its direction at the end (`None` for an empty move).
+    /// Records a segment to `to`, `length` mm long from the last end, `cruise` being its
+    /// speed in mm/s (0 when it has no feed) and `exit` its direction at the end (`None` for
+    /// an empty move).
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn push(
         &mut self,
         kind: SegmentKind,
         to: DVec3,
+        length: f64,
         line: u32,
         feed_mm_per_min: f64,
         cruise: f64,
         join: Join,
         exit: Option<DVec3>,
     ) {
-        let from = self.ends.last().copied().unwrap_or(self.start);
-        let length = from.distance(to);
         match kind {
             SegmentKind::Rapid => self.rapid_mm += length,
             SegmentKind::Feed | SegmentKind::Arc => self.feed_mm += length,
         }
-        let bounds = self.bounds.get_or_insert(Bounds {
-            min: from,
-            max: from,
-        });
-        bounds.include(from);
-        bounds.include(to);
+        // Each segment starts where the last one ended, already inside the box.
+        if let Some(bounds) = &mut self.bounds {
+            bounds.include(to);
+        } else {
+            let mut bounds = Bounds {
+                min: self.start,
+                max: self.start,
+            };
+            bounds.include(to);
+            self.bounds = Some(bounds);
+        }
         let previous_kind = self.kinds.last().copied();
         self.ends.push(to);
         self.kinds.push(kind);
@@ -682,6 +686,7 @@ impl Toolpath {
     /// Adds the newest segment to the planner. Segments are settled (their end times
     /// written) at every stop, and in batches of [`LOOKAHEAD_SEGMENTS`] when a long run
     /// without stops fills twice that, so each segment is planned a bounded number of times.
+    #[inline(always)]
     fn plan(&mut self, length: f64, cruise: f64, smooth: bool) {
         let k = self.kinematics;
         let cruise = if cruise.is_nan() {
@@ -689,20 +694,32 @@ impl Toolpath {
         } else {
             cruise.max(0.0)
         };
-        let limit = match self.window.back() {
+        let limit = match self.window.last() {
             Some(previous) if smooth => previous.cruise.min(cruise),
             _ => 0.0,
         };
         if limit <= 0.0 {
             // Nothing before a stop changes any more.
-            self.settle(self.window.len());
+            if let [lone] = self.window[..] {
+                // A program that stops at every corner settles each move on its own.
+                let start = self.settled.end_times.last().copied().unwrap_or(0.0);
+                self.settled.end_times.push(lone_end_time(&lone, k, start));
+                self.window.clear();
+            } else {
+                self.settle(self.window.len());
+            }
         }
         let forward = self
             .window
-            .back()
+            .last()
             .map_or(0.0, |p| limit.min(k.reach(p.forward, p.length)));
-        let dwell = self.settled.dwell_before(self.ends.len() - 1);
-        self.window.push_back(Plan {
+        // The dwells are in segment order and none comes after the newest segment yet.
+        let newest = self.ends.len() - 1;
+        let dwell = match self.settled.dwells.last() {
+            Some(d) if d.segment == newest => d.secs,
+            _ => 0.0,
+        };
+        self.window.push(Plan {
             length,
             cruise,
             limit,
@@ -739,12 +756,20 @@ impl Toolpath {
             count,
             &mut self.settled.end_times,
         );
-        self.window.drain(..count);
+        if count == self.window.len() {
+            self.window.clear();
+        } else {
+            self.window.drain(..count);
+        }
     }
 
     fn push_line(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
         let from = self.ends.last().copied().unwrap_or(self.start);
-        let direction = (to - from).try_normalize();
+        let delta = to - from;
+        let length = delta.length();
+        // `delta.try_normalize()`, reusing the length.
+        let rcp = 1.0 / length;
+        let direction = (rcp.is_finite() && rcp > 0.0).then(|| delta * rcp);
         let cruise = match kind {
             SegmentKind::Rapid => direction.map_or(self.kinematics.rapid_mm_per_s, |d| {
                 self.kinematics.rapid_speed(d)
@@ -754,6 +779,7 @@ impl Toolpath {
         self.push(
             kind,
             to,
+            length,
             line,
             feed_mm_per_min,
             cruise,
@@ -771,9 +797,12 @@ impl Toolpath {
             .max(CHORD_TOLERANCE_MM);
         let centripetal = (self.kinematics.acceleration_mm_per_s2 * radius).sqrt();
         let cruise = (arc.feed_mm_per_min / 60.0).min(centripetal);
-        let points = geometry.points(from, arc.to);
-        let count = points.len();
-        for (k, p) in points.into_iter().enumerate() {
+        let count = geometry.chords();
+        let mut last = from;
+        for k in 0..count {
+            let p = geometry.point(k + 1, count, from, arc.to);
+            let length = last.distance(p);
+            last = p;
             let join = if k == 0 {
                 Join::Corner {
                     entry: geometry.tangent(from, arc.to, 0.0),
@@ -789,6 +818,7 @@ impl Toolpath {
             self.push(
                 SegmentKind::Arc,
                 p,
+                length,
                 line,
                 arc.feed_mm_per_min,
                 cruise,
@@ -805,39 +835,48 @@ impl Toolpath {
 }
 
 /// Appends to `out` the end times of the first `count` segments of `window`, the first
-/// starting at `start` seconds (see [`Toolpath::window_end_times`]). The join speeds of a short
-/// window stay on the stack: a program with a stop every few moves settles it that often.
-fn window_end_times(
-    window: &VecDeque<Plan>,
-    k: Kinematics,
-    start: f64,
-    count: usize,
-    out: &mut Vec<f64>,
-) {
-    let mut short = [0.0; 64];
-    let mut long = Vec::new();
-    let entries: &mut [f64] = if window.len() < short.len() {
-        &mut short[..=window.len()]
-    } else {
-        long.resize(window.len() + 1, 0.0);
-        &mut long
-    };
+/// starting at `start` seconds (see [`Toolpath::window_end_times`]). The join speeds are
+/// written where the times go and replaced by them in turn, so no other buffer is needed; a
+/// window of one segment is timed directly.
+fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, out: &mut Vec<f64>) {
+    let count = count.min(window.len());
+    if let [p] = window {
+        if count == 1 {
+            out.push(lone_end_time(p, k, start));
+        }
+        return;
+    }
+    // The entry speed of each segment: the lower of the forward speed and the highest speed
+    // from which the tool can still stop at the end of the window.
+    let base = out.len();
+    out.resize(base + window.len(), 0.0);
+    let entries = &mut out[base..];
     let mut backward = 0.0;
     for (entry, p) in entries.iter_mut().zip(window).rev() {
         backward = p.limit.min(k.reach(backward, p.length));
         *entry = p.forward.min(backward);
     }
     let mut t = start;
-    out.extend(
-        window
-            .iter()
-            .zip(entries.windows(2))
-            .take(count)
-            .map(|(p, speeds)| {
-                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
-                t
-            }),
+    for i in 0..count {
+        let p = &window[i];
+        let exit = entries.get(i + 1).copied().unwrap_or(0.0);
+        t += p.dwell + k.move_secs(p.length, p.cruise, entries[i], exit);
+        entries[i] = t;
+    }
+    out.truncate(base + count);
+}
+
+/// The end time of a window's only segment `p`, which starts at `start` seconds and ends at
+/// rest (what [`window_end_times`] gives for a window of one). A window of one starts at a
+/// stop (the window only restarts at one, and a partial settle leaves many segments), so its
+/// limit and entry speed are zero.
+#[inline]
+fn lone_end_time(p: &Plan, k: Kinematics, start: f64) -> f64 {
+    debug_assert!(
+        p.limit <= 0.0 && p.forward <= 0.0,
+        "a lone segment starts at rest"
     );
+    start + (p.dwell + k.move_secs(p.length, p.cruise, 0.0, 0.0))
 }
 
 /// The fields of [`Canon::Arc`].
@@ -981,31 +1020,37 @@ impl ArcGeometry {
         }
     }
 
-    /// Points along the arc (excluding `from`, ending exactly at `to`) within
-    /// [`CHORD_TOLERANCE_MM`].
-    fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
+    /// How many chords the arc takes to stay within [`CHORD_TOLERANCE_MM`].
+    fn chords(&self) -> usize {
         let tau = std::f64::consts::TAU;
         let step = if self.radius > CHORD_TOLERANCE_MM {
             2.0 * (1.0 - CHORD_TOLERANCE_MM / self.radius).acos()
         } else {
             tau / 4.0
         };
-        let n = ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000);
-        (1..=n)
-            .map(|k| {
-                if k == n {
-                    return to;
-                }
-                let t = k as f64 / n as f64;
-                let a = self.a0 + self.sweep * t;
-                let r = self.radius + (self.end_radius - self.radius) * t;
-                let mut p = DVec3::ZERO;
-                p[self.iu] = self.center[self.iu] + r * a.cos();
-                p[self.iv] = self.center[self.iv] + r * a.sin();
-                p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
-                p
-            })
-            .collect()
+        ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000)
+    }
+
+    /// The end of chord `k` (from 1) of `n`: exactly `to` for the last.
+    fn point(&self, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
+        if k == n {
+            return to;
+        }
+        let t = k as f64 / n as f64;
+        let a = self.a0 + self.sweep * t;
+        let r = self.radius + (self.end_radius - self.radius) * t;
+        let mut p = DVec3::ZERO;
+        p[self.iu] = self.center[self.iu] + r * a.cos();
+        p[self.iv] = self.center[self.iv] + r * a.sin();
+        p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
+        p
+    }
+
+    /// Points along the arc (excluding `from`, ending exactly at `to`) within
+    /// [`CHORD_TOLERANCE_MM`].
+    fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
+        let n = self.chords();
+        (1..=n).map(|k| self.point(k, n, from, to)).collect()
     }
 
     /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
@@ -1037,6 +1082,73 @@ pub fn tessellate_arc(
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
+
+    /// The end times by the plain two-pass definition: every entry speed from a backward pass
+    /// into its own array, then the moves timed in order.
+    fn reference_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize) -> Vec<f64> {
+        let mut entries = vec![0.0; window.len() + 1];
+        let mut backward = 0.0;
+        for (entry, p) in entries.iter_mut().zip(window).rev() {
+            backward = p.limit.min(k.reach(backward, p.length));
+            *entry = p.forward.min(backward);
+        }
+        let mut t = start;
+        window
+            .iter()
+            .zip(entries.windows(2))
+            .take(count)
+            .map(|(p, speeds)| {
+                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
+                t
+            })
+            .collect()
+    }
+
+    #[test]
+    fn window_end_times_match_the_two_pass_definition_bit_for_bit() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for kinematics in [
+            Kinematics::default(),
+            Kinematics {
+                acceleration_mm_per_s2: f64::INFINITY,
+                ..Kinematics::default()
+            },
+        ] {
+            for n in (1..80).flat_map(|n| std::iter::repeat_n(n, if n < 8 { 50 } else { 2 })) {
+                let window: Vec<Plan> = (0..n)
+                    .map(|i| {
+                        let cruise = if next() < 0.1 { 0.0 } else { 200.0 * next() };
+                        let limit = if i == 0 { 0.0 } else { cruise * next() };
+                        Plan {
+                            length: if next() < 0.1 { 0.0 } else { 20.0 * next() },
+                            cruise,
+                            limit,
+                            forward: limit * next(),
+                            dwell: if next() < 0.2 { next() } else { 0.0 },
+                        }
+                    })
+                    .collect();
+                let start = 100.0 * next();
+                for count in 0..=n + 1 {
+                    let want = reference_end_times(&window, kinematics, start, count);
+                    let mut got = vec![1.5];
+                    window_end_times(&window, kinematics, start, count, &mut got);
+                    let bits = |v: &[f64]| v.iter().map(|t| t.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&got[1..]), bits(&want), "n {n} count {count}");
+                    if n == 1 && count == 1 {
+                        let lone = lone_end_time(&window[0], kinematics, start);
+                        assert_eq!(lone.to_bits(), want[0].to_bits());
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn arc_tangents_follow_the_direction_of_travel() {
