@@ -129,8 +129,11 @@ type Found = (&'static CodeDef, Span);
 
 /// Runs the same-block checks on each block as the parser finishes it (while the block is still
 /// in cache), collecting their diagnostics to merge into the program's at the end.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(crate) struct Checker {
+    dialect: Dialect,
+    /// G00 and G01 as the plain-block check reads them in the dialect.
+    motions: PlainMotions,
     scratch: Vec<Found>,
     out: Vec<Diagnostic>,
     /// Codes already noted as read the Fanuc way (the note is given once per code).
@@ -138,16 +141,29 @@ pub(crate) struct Checker {
 }
 
 impl Checker {
-    /// Checks `block`; an error marks it so the interpreter does not run it.
-    pub(crate) fn check(&mut self, dialect: Dialect, block: &mut Block) {
-        let before = self.out.len();
-        check_block(
+    /// A checker for blocks read as `dialect`.
+    pub(crate) fn new(dialect: Dialect) -> Self {
+        Checker {
             dialect,
-            block,
-            &mut self.scratch,
-            &mut self.noted,
-            &mut self.out,
-        );
+            motions: PlainMotions::of(dialect),
+            scratch: Vec::new(),
+            out: Vec::new(),
+            noted: Vec::new(),
+        }
+    }
+
+    /// Checks `block`; an error marks it so the interpreter does not run it.
+    pub(crate) fn check(&mut self, block: &mut Block) {
+        let before = self.out.len();
+        if !check_plain_block(self.dialect, &self.motions, block, &mut self.out) {
+            check_any_block(
+                self.dialect,
+                block,
+                &mut self.scratch,
+                &mut self.noted,
+                &mut self.out,
+            );
+        }
         if self.out[before..]
             .iter()
             .any(|d| d.severity == crate::Severity::Error)
@@ -165,54 +181,79 @@ impl Checker {
     }
 }
 
-/// Checks one block; `scratch` is reused between blocks to hold its codes.
-fn check_block(
-    dialect: Dialect,
-    block: &Block,
-    scratch: &mut Vec<Found>,
-    noted: &mut Vec<Code>,
-    out: &mut Vec<Diagnostic>,
-) {
-    if check_plain_block(dialect, block, out) {
-        return;
+/// G00 (`[0]`) and G01 (`[1]`) in one dialect, looked up once: the definition and the letters a
+/// block with the code may carry, or `None` where such a block takes the general check (the
+/// code is not a plain motion there, needs words, or is read the Fanuc way).
+#[derive(Debug, Clone, Copy)]
+struct PlainMotions([Option<(&'static CodeDef, u32)>; 2]);
+
+impl PlainMotions {
+    fn of(dialect: Dialect) -> Self {
+        let motion = |value: f64| {
+            let def = Code::from_value(b'G', value).and_then(|c| codes::lookup(dialect, c))?;
+            (def.group == Group::Motion
+                && def.required.is_empty()
+                && !codes::is_fanuc_reading(dialect, def))
+            .then(|| (def, ALWAYS_MASK | codes::words_mask(def)))
+        };
+        PlainMotions([motion(0.0), motion(1.0)])
     }
-    check_any_block(dialect, block, scratch, noted, out);
 }
 
 /// Checks the common block of CAM output — literal plain words, no M code, at most one G code
-/// and that one G00 or G01 — in one pass over its words, with exactly the findings (in the same
-/// order) of [`check_any_block`]; returns `false`, having checked nothing, for any other block.
-fn check_plain_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>) -> bool {
+/// and that one G00 or G01 — with exactly the findings (in the same order) of
+/// [`check_any_block`]; returns `false`, having checked nothing, for any other block. A block
+/// with nothing to report costs one pass over its words.
+fn check_plain_block(
+    dialect: Dialect,
+    motions: &PlainMotions,
+    block: &Block,
+    out: &mut Vec<Diagnostic>,
+) -> bool {
     let mut motion = None;
+    // The letters seen (G aside), and whether any was seen twice, is not a letter, or has a
+    // value out of its range: only then is there anything to report.
+    let mut seen = 0u32;
+    let mut findings = false;
     for w in &block.words {
-        if w.form != WordForm::Plain || w.expr.is_some() || w.letter == b'M' {
+        if w.form != WordForm::Plain || w.expr.is_some() {
             return false;
         }
-        if w.letter == b'G' {
-            if motion.is_some() || !(w.value == 0.0 || w.value == 1.0) {
-                return false;
+        let v = w.value;
+        match w.letter {
+            b'M' => return false,
+            b'G' => {
+                if motion.is_some() {
+                    return false;
+                }
+                motion = Some(if v == 0.0 {
+                    0
+                } else if v == 1.0 {
+                    1
+                } else {
+                    return false;
+                });
+                continue;
             }
-            motion = Some(w);
+            b'F' | b'S' => findings |= v < 0.0,
+            b'T' | b'H' | b'D' => findings |= v < 0.0 || v.fract() != 0.0,
+            _ => {}
         }
+        let bit = letter_bit(w.letter);
+        findings |= bit == 0 || seen & bit != 0;
+        seen |= bit;
     }
     // The G code's definition: it decides which words the block may have.
-    let def = match motion {
-        Some(w) => {
-            let Some(def) = Code::from_value(b'G', w.value).and_then(|c| codes::lookup(dialect, c))
-            else {
-                return false;
-            };
-            if def.group != Group::Motion
-                || !def.required.is_empty()
-                || codes::is_fanuc_reading(dialect, def)
-            {
-                return false;
-            }
-            Some(def)
-        }
-        None => None,
+    let (def, taken) = match motion {
+        Some(i) => match motions.0[i] {
+            Some((def, taken)) => (Some(def), taken),
+            None => return false,
+        },
+        None => (None, u32::MAX),
     };
-    let taken = def.map_or(u32::MAX, |d| ALWAYS_MASK | codes::words_mask(d));
+    if !findings && seen & !taken == 0 {
+        return true;
+    }
     let mut seen = 0u32;
     for word in &block.words {
         if word.letter == b'G' {
@@ -708,7 +749,7 @@ mod tests {
             let program = crate::parse(&line, dialect);
             for block in &program.blocks {
                 let mut plain = Vec::new();
-                if !check_plain_block(dialect, block, &mut plain) {
+                if !check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut plain) {
                     continue;
                 }
                 let mut any = Vec::new();
@@ -733,7 +774,7 @@ mod tests {
                 let program = crate::parse(line, dialect);
                 let block = program.blocks.first().unwrap();
                 assert!(
-                    check_plain_block(dialect, block, &mut Vec::new()),
+                    check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut Vec::new()),
                     "{line} {dialect:?}"
                 );
             }
@@ -741,6 +782,7 @@ mod tests {
         let program = crate::parse("G2 X1. R1.", Dialect::Fanuc);
         assert!(!check_plain_block(
             Dialect::Fanuc,
+            &PlainMotions::of(Dialect::Fanuc),
             &program.blocks[0],
             &mut Vec::new()
         ));
