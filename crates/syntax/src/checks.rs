@@ -152,8 +152,30 @@ impl Checker {
         }
     }
 
-    /// Checks `block`; an error marks it so the interpreter does not run it.
+    /// Checks `block`; an error marks it so the interpreter does not run it. The common block
+    /// with nothing to report costs one pass over its words here, inlined into the reader.
+    #[inline(always)]
     pub(crate) fn check(&mut self, block: &mut Block) {
+        if !self.nothing_to_report(&block.words) {
+            self.check_fully(block);
+        }
+    }
+
+    /// Whether `words` make a block that [`check_plain_block`] takes and finds nothing in.
+    #[inline(always)]
+    fn nothing_to_report(&self, words: &[Word]) -> bool {
+        match plain_pass(words) {
+            Some((Some(motion), seen, false)) => {
+                self.motions.0[motion].is_some_and(|(_, taken)| seen & !taken == 0)
+                    && (motion < 2 || arc_words_fit(seen))
+            }
+            Some((None, _, false)) => true,
+            _ => false,
+        }
+    }
+
+    #[inline(never)]
+    fn check_fully(&mut self, block: &mut Block) {
         let before = self.out.len();
         if !check_plain_block(self.dialect, &self.motions, block, &mut self.out) {
             check_any_block(
@@ -181,11 +203,11 @@ impl Checker {
     }
 }
 
-/// G00 (`[0]`) and G01 (`[1]`) in one dialect, looked up once: the definition and the letters a
-/// block with the code may carry, or `None` where such a block takes the general check (the
-/// code is not a plain motion there, needs words, or is read the Fanuc way).
+/// G00, G01, G02 and G03 (at their numbers) in one dialect, looked up once: the definition and
+/// the letters a block with the code may carry, or `None` where such a block takes the general
+/// check (the code is not a motion there, needs words, or is read the Fanuc way).
 #[derive(Debug, Clone, Copy)]
-struct PlainMotions([Option<(&'static CodeDef, u32)>; 2]);
+struct PlainMotions([Option<(&'static CodeDef, u32)>; 4]);
 
 impl PlainMotions {
     fn of(dialect: Dialect) -> Self {
@@ -196,42 +218,51 @@ impl PlainMotions {
                 && !codes::is_fanuc_reading(dialect, def))
             .then(|| (def, ALWAYS_MASK | codes::words_mask(def)))
         };
-        PlainMotions([motion(0.0), motion(1.0)])
+        PlainMotions([motion(0.0), motion(1.0), motion(2.0), motion(3.0)])
     }
 }
 
-/// Checks the common block of CAM output — literal plain words, no M code, at most one G code
-/// and that one G00 or G01 — with exactly the findings (in the same order) of
-/// [`check_any_block`]; returns `false`, having checked nothing, for any other block. A block
-/// with nothing to report costs one pass over its words.
-fn check_plain_block(
-    dialect: Dialect,
-    motions: &PlainMotions,
-    block: &Block,
-    out: &mut Vec<Diagnostic>,
-) -> bool {
+/// Whether an arc block's letters (`seen`) give [`arcs`] nothing to report: the centre or the
+/// radius, not both, and an end point with the radius.
+#[inline(always)]
+fn arc_words_fit(seen: u32) -> bool {
+    const R: u32 = 1 << (b'R' - b'A');
+    const IJK: u32 = 1 << (b'I' - b'A') | 1 << (b'J' - b'A') | 1 << (b'K' - b'A');
+    const XYZ: u32 = 1 << (b'X' - b'A') | 1 << (b'Y' - b'A') | 1 << (b'Z' - b'A');
+    let has_r = seen & R != 0;
+    has_r != (seen & IJK != 0) && (!has_r || seen & XYZ != 0)
+}
+
+/// The first pass of [`check_plain_block`] over a block's words: `None` when the block is not
+/// one it takes (a word that is not a literal plain one, an M code, a G code other than one
+/// G00 to G03); else the G code's number if any, the letters seen besides G, and whether there
+/// may be something to report (a letter seen twice or that is not one, a value out of range).
+#[inline(always)]
+fn plain_pass(words: &[Word]) -> Option<(Option<usize>, u32, bool)> {
     let mut motion = None;
-    // The letters seen (G aside), and whether any was seen twice, is not a letter, or has a
-    // value out of its range: only then is there anything to report.
     let mut seen = 0u32;
     let mut findings = false;
-    for w in &block.words {
+    for w in words {
         if w.form != WordForm::Plain || w.expr.is_some() {
-            return false;
+            return None;
         }
         let v = w.value;
         match w.letter {
-            b'M' => return false,
+            b'M' => return None,
             b'G' => {
                 if motion.is_some() {
-                    return false;
+                    return None;
                 }
                 motion = Some(if v == 0.0 {
                     0
                 } else if v == 1.0 {
                     1
+                } else if v == 2.0 {
+                    2
+                } else if v == 3.0 {
+                    3
                 } else {
-                    return false;
+                    return None;
                 });
                 continue;
             }
@@ -243,6 +274,22 @@ fn check_plain_block(
         findings |= bit == 0 || seen & bit != 0;
         seen |= bit;
     }
+    Some((motion, seen, findings))
+}
+
+/// Checks the common block of CAM output — literal plain words, no M code, at most one G code
+/// and that one G00 to G03 — with exactly the findings (in the same order) of
+/// [`check_any_block`]; returns `false`, having checked nothing, for any other block. A block
+/// with nothing to report costs one pass over its words.
+fn check_plain_block(
+    dialect: Dialect,
+    motions: &PlainMotions,
+    block: &Block,
+    out: &mut Vec<Diagnostic>,
+) -> bool {
+    let Some((motion, seen, findings)) = plain_pass(&block.words) else {
+        return false;
+    };
     // The G code's definition: it decides which words the block may have.
     let (def, taken) = match motion {
         Some(i) => match motions.0[i] {
@@ -251,7 +298,7 @@ fn check_plain_block(
         },
         None => (None, u32::MAX),
     };
-    if !findings && seen & !taken == 0 {
+    if !findings && seen & !taken == 0 && (motion < Some(2) || arc_words_fit(seen)) {
         return true;
     }
     let mut seen = 0u32;
@@ -280,6 +327,12 @@ fn check_plain_block(
             b'T' | b'H' | b'D' if v < 0.0 || v.fract() != 0.0 => out.push(not_whole(word)),
             _ => {}
         }
+    }
+    if let Some(def) = def
+        && motion >= Some(2)
+        && let Some(g) = block.words.iter().find(|w| w.letter == b'G')
+    {
+        arcs(dialect, block, &[(def, g.span)], out);
     }
     true
 }
@@ -735,7 +788,8 @@ mod tests {
     const WORDS: &[&str] = &[
         "G0", "G1", "G01", "G00", "G2", "G3 R5.", "G81", "G1.5", "G17", "M3", "M30", "X1.", "X-2",
         "Y3.5", "Z-0.25", "A90.", "F100.", "F-5", "S1200", "S-1", "T1", "T1.5", "H-2", "D3", "P2",
-        "Q1.", "R2.", "I1.", "E5.", "L3", "X#1", ",C1.", "F2=100",
+        "Q1.", "R2.", "I1.", "E5.", "L3", "X#1", ",C1.", "F2=100", "G02", "G03", "G3", "J-1.",
+        "K.5", "R-2.", "Z1.", "U1.", "G4",
     ];
 
     proptest! {
@@ -754,6 +808,9 @@ mod tests {
                 }
                 let mut any = Vec::new();
                 check_any_block(dialect, block, &mut Vec::new(), &mut Vec::new(), &mut any);
+                if Checker::new(dialect).nothing_to_report(&block.words) {
+                    prop_assert!(any.is_empty(), "{}", line);
+                }
                 // The order after the merge: stable by position.
                 plain.sort_by_key(|d| d.span.start);
                 any.sort_by_key(|d| d.span.start);
@@ -779,7 +836,17 @@ mod tests {
                 );
             }
         }
-        let program = crate::parse("G2 X1. R1.", Dialect::Fanuc);
+        for line in ["G2 X1. R1.", "G3 X1. Y2. I1. J0.", "G02 R1."] {
+            for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+                let program = crate::parse(line, dialect);
+                let block = program.blocks.first().unwrap();
+                assert!(
+                    check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut Vec::new()),
+                    "{line} {dialect:?}"
+                );
+            }
+        }
+        let program = crate::parse("G4 X1.", Dialect::Fanuc);
         assert!(!check_plain_block(
             Dialect::Fanuc,
             &PlainMotions::of(Dialect::Fanuc),

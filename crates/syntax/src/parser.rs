@@ -342,6 +342,9 @@ fn read_plain_line(
     if pos == n {
         return Some(false);
     }
+    // The spans' offsets, when the whole line lies in the 4 GiB a span addresses (the general
+    // reader clamps the offsets past them). A line is at most `MAX_LINE_BYTES` long.
+    let base = u32::try_from(base + n).ok()? - n as u32;
     let first = pos;
     // The number of digits the general reader takes without a diagnostic and that one
     // division reads exactly (see `scan_decimal`).
@@ -437,7 +440,10 @@ fn read_plain_line(
             letter,
             value: if negative { -value } else { value },
             has_point,
-            span: Span::new(base + start, base + pos),
+            span: Span {
+                start: base + start as u32,
+                end: base + pos as u32,
+            },
             form: WordForm::Plain,
             expr: None,
         });
@@ -446,7 +452,10 @@ fn read_plain_line(
             pos += 1;
         }
     }
-    block.span = Span::new(base + first, base + last);
+    block.span = Span {
+        start: base + first as u32,
+        end: base + last as u32,
+    };
     checker.check(block);
     Some(true)
 }
