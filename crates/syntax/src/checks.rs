@@ -156,15 +156,24 @@ impl Checker {
     /// with nothing to report costs one pass over its words here, inlined into the reader.
     #[inline(always)]
     pub(crate) fn check(&mut self, block: &mut Block) {
-        if !self.nothing_to_report(&block.words) {
+        let scan = PlainScan::of(&block.words);
+        self.check_scanned(block, &scan);
+    }
+
+    /// Checks `block`, whose words `scan` has seen (a reader that makes the words scans them as
+    /// it goes, sparing [`Checker::check`]'s pass over them).
+    #[inline(always)]
+    pub(crate) fn check_scanned(&mut self, block: &mut Block, scan: &PlainScan) {
+        if !self.nothing_to_report(scan) {
             self.check_fully(block);
         }
     }
 
-    /// Whether `words` make a block that [`check_plain_block`] takes and finds nothing in.
+    /// Whether the words `scan` saw make a block that [`check_plain_block`] takes and finds
+    /// nothing in.
     #[inline(always)]
-    fn nothing_to_report(&self, words: &[Word]) -> bool {
-        match plain_pass(words) {
+    fn nothing_to_report(&self, scan: &PlainScan) -> bool {
+        match scan.result() {
             Some((Some(motion), seen, false)) => {
                 self.motions.0[motion].is_some_and(|(_, taken)| seen & !taken == 0)
                     && (motion < 2 || arc_words_fit(seen))
@@ -239,42 +248,73 @@ fn arc_words_fit(seen: u32) -> bool {
 /// may be something to report (a letter seen twice or that is not one, a value out of range).
 #[inline(always)]
 fn plain_pass(words: &[Word]) -> Option<(Option<usize>, u32, bool)> {
-    let mut motion = None;
-    let mut seen = 0u32;
-    let mut findings = false;
-    for w in words {
-        if w.form != WordForm::Plain || w.expr.is_some() {
-            return None;
-        }
-        let v = w.value;
-        match w.letter {
-            b'M' => return None,
-            b'G' => {
-                if motion.is_some() {
-                    return None;
-                }
-                motion = Some(if v == 0.0 {
-                    0
-                } else if v == 1.0 {
-                    1
-                } else if v == 2.0 {
-                    2
-                } else if v == 3.0 {
-                    3
-                } else {
-                    return None;
-                });
-                continue;
+    PlainScan::of(words).result()
+}
+
+/// The pass of [`plain_pass`], a word at a time.
+#[derive(Debug, Default)]
+pub(crate) struct PlainScan {
+    /// The G code's number plus one (0: none yet).
+    motion: u8,
+    /// The letters seen besides G.
+    seen: u32,
+    /// Whether there may be something to report.
+    findings: bool,
+    /// Whether a word makes the block one that the plain check does not take.
+    other: bool,
+}
+
+impl PlainScan {
+    #[inline(always)]
+    fn of(words: &[Word]) -> Self {
+        let mut scan = PlainScan::default();
+        for w in words {
+            if w.form != WordForm::Plain || w.expr.is_some() {
+                scan.other = true;
             }
-            b'F' | b'S' => findings |= v < 0.0,
-            b'T' | b'H' | b'D' => findings |= v < 0.0 || v.fract() != 0.0,
+            scan.word(w.letter, w.value);
+        }
+        scan
+    }
+
+    /// Notes a literal plain word.
+    #[inline(always)]
+    pub(crate) fn word(&mut self, letter: u8, v: f64) {
+        match letter {
+            b'M' => self.other = true,
+            b'G' => {
+                let number = if v == 0.0 {
+                    1
+                } else if v == 1.0 {
+                    2
+                } else if v == 2.0 {
+                    3
+                } else if v == 3.0 {
+                    4
+                } else {
+                    0
+                };
+                self.other |= self.motion != 0 || number == 0;
+                self.motion = number;
+                return;
+            }
+            b'F' | b'S' => self.findings |= v < 0.0,
+            b'T' | b'H' | b'D' => self.findings |= v < 0.0 || v.fract() != 0.0,
             _ => {}
         }
-        let bit = letter_bit(w.letter);
-        findings |= bit == 0 || seen & bit != 0;
-        seen |= bit;
+        let bit = letter_bit(letter);
+        self.findings |= bit == 0 || self.seen & bit != 0;
+        self.seen |= bit;
     }
-    Some((motion, seen, findings))
+
+    #[inline(always)]
+    fn result(&self) -> Option<(Option<usize>, u32, bool)> {
+        if self.other {
+            return None;
+        }
+        let motion = usize::from(self.motion).checked_sub(1);
+        Some((motion, self.seen, self.findings))
+    }
 }
 
 /// Checks the common block of CAM output — literal plain words, no M code, at most one G code
@@ -808,7 +848,7 @@ mod tests {
                 }
                 let mut any = Vec::new();
                 check_any_block(dialect, block, &mut Vec::new(), &mut Vec::new(), &mut any);
-                if Checker::new(dialect).nothing_to_report(&block.words) {
+                if Checker::new(dialect).nothing_to_report(&PlainScan::of(&block.words)) {
                     prop_assert!(any.is_empty(), "{}", line);
                 }
                 // The order after the merge: stable by position.

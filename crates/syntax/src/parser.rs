@@ -382,6 +382,7 @@ fn read_plain_line(
         ..Block::default()
     });
     let block = blocks.last_mut()?;
+    let mut scan = crate::checks::PlainScan::default();
     while pos < n {
         let start = pos;
         let letter = bytes[pos].to_ascii_uppercase();
@@ -435,10 +436,13 @@ fn read_plain_line(
             blocks.pop();
             return None;
         }
-        let value = mantissa as f64 / scale;
+        // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned.
+        let value = mantissa as i64 as f64 / scale;
+        let value = if negative { -value } else { value };
+        scan.word(letter, value);
         block.words.push(Word {
             letter,
-            value: if negative { -value } else { value },
+            value,
             has_point,
             span: Span {
                 start: base + start as u32,
@@ -456,7 +460,7 @@ fn read_plain_line(
         start: base + first as u32,
         end: base + last as u32,
     };
-    checker.check(block);
+    checker.check_scanned(block, &scan);
     Some(true)
 }
 
