@@ -80,15 +80,27 @@ impl ParseRun {
     /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
     /// whether the whole text is read.
     pub fn step(&mut self, text: &str, lines: usize) -> bool {
-        self.step_from(&mut &*text, lines)
+        self.read_lines(Some(text), &mut &*text, lines)
     }
 
     /// Reads at most `lines` more lines from `source` (the same text the run's line index was
     /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
     ///
-    /// One loop serves every source (a string's lines too, one dynamic call a line): made once,
-    /// it keeps the line reader inlined into it as the string-only loop did.
     pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
+        self.read_lines(None, source, lines)
+    }
+
+    /// The loop of [`ParseRun::step`] and [`ParseRun::step_from`]: the lines come from `text`
+    /// when the whole text is at hand, else from `source` (one dynamic call a line).
+    ///
+    /// One loop serves every source: made once, it keeps the line reader inlined into it as the
+    /// string-only loop did.
+    fn read_lines(
+        &mut self,
+        text: Option<&str>,
+        source: &mut dyn LineSource,
+        lines: usize,
+    ) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
         // The line index has found every newline already (with SIMD): the lines come from it.
@@ -103,7 +115,10 @@ impl ParseRun {
             } else {
                 source.len()
             };
-            let raw = source.line(start, end);
+            let raw = match text {
+                Some(text) => text.get(start..end).unwrap_or_default(),
+                None => source.line(start, end),
+            };
             let mut line = raw.strip_suffix('\r').unwrap_or(raw);
             if line.len() > MAX_LINE_BYTES {
                 // A runaway line (a binary file, a generator gone wrong): read its start only.
