@@ -129,8 +129,11 @@ type Found = (&'static CodeDef, Span);
 
 /// Runs the same-block checks on each block as the parser finishes it (while the block is still
 /// in cache), collecting their diagnostics to merge into the program's at the end.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(crate) struct Checker {
+    dialect: Dialect,
+    /// G00 and G01 as the plain-block check reads them in the dialect.
+    motions: PlainMotions,
     scratch: Vec<Found>,
     out: Vec<Diagnostic>,
     /// Codes already noted as read the Fanuc way (the note is given once per code).
@@ -138,16 +141,60 @@ pub(crate) struct Checker {
 }
 
 impl Checker {
-    /// Checks `block`; an error marks it so the interpreter does not run it.
-    pub(crate) fn check(&mut self, dialect: Dialect, block: &mut Block) {
-        let before = self.out.len();
-        check_block(
+    /// A checker for blocks read as `dialect`.
+    pub(crate) fn new(dialect: Dialect) -> Self {
+        Checker {
             dialect,
-            block,
-            &mut self.scratch,
-            &mut self.noted,
-            &mut self.out,
-        );
+            motions: PlainMotions::of(dialect),
+            scratch: Vec::new(),
+            out: Vec::new(),
+            noted: Vec::new(),
+        }
+    }
+
+    /// Checks `block`; an error marks it so the interpreter does not run it. The common block
+    /// with nothing to report costs one pass over its words here, inlined into the reader.
+    #[inline(always)]
+    pub(crate) fn check(&mut self, block: &mut Block) {
+        let scan = PlainScan::of(&block.words);
+        self.check_scanned(block, &scan);
+    }
+
+    /// Checks `block`, whose words `scan` has seen (a reader that makes the words scans them as
+    /// it goes, sparing [`Checker::check`]'s pass over them).
+    #[inline(always)]
+    pub(crate) fn check_scanned(&mut self, block: &mut Block, scan: &PlainScan) {
+        if !self.nothing_to_report(scan) {
+            self.check_fully(block);
+        }
+    }
+
+    /// Whether the words `scan` saw make a block that [`check_plain_block`] takes and finds
+    /// nothing in.
+    #[inline(always)]
+    fn nothing_to_report(&self, scan: &PlainScan) -> bool {
+        match scan.result() {
+            Some((Some(motion), seen, false)) => {
+                self.motions.0[motion].is_some_and(|(_, taken)| seen & !taken == 0)
+                    && (motion < 2 || arc_words_fit(seen))
+            }
+            Some((None, _, false)) => true,
+            _ => false,
+        }
+    }
+
+    #[inline(never)]
+    fn check_fully(&mut self, block: &mut Block) {
+        let before = self.out.len();
+        if !check_plain_block(self.dialect, &self.motions, block, &mut self.out) {
+            check_any_block(
+                self.dialect,
+                block,
+                &mut self.scratch,
+                &mut self.noted,
+                &mut self.out,
+            );
+        }
         if self.out[before..]
             .iter()
             .any(|d| d.severity == crate::Severity::Error)
@@ -165,54 +212,135 @@ impl Checker {
     }
 }
 
-/// Checks one block; `scratch` is reused between blocks to hold its codes.
-fn check_block(
-    dialect: Dialect,
-    block: &Block,
-    scratch: &mut Vec<Found>,
-    noted: &mut Vec<Code>,
-    out: &mut Vec<Diagnostic>,
-) {
-    if check_plain_block(dialect, block, out) {
-        return;
+/// G00, G01, G02 and G03 (at their numbers) in one dialect, looked up once: the definition and
+/// the letters a block with the code may carry, or `None` where such a block takes the general
+/// check (the code is not a motion there, needs words, or is read the Fanuc way).
+#[derive(Debug, Clone, Copy)]
+struct PlainMotions([Option<(&'static CodeDef, u32)>; 4]);
+
+impl PlainMotions {
+    fn of(dialect: Dialect) -> Self {
+        let motion = |value: f64| {
+            let def = Code::from_value(b'G', value).and_then(|c| codes::lookup(dialect, c))?;
+            (def.group == Group::Motion
+                && def.required.is_empty()
+                && !codes::is_fanuc_reading(dialect, def))
+            .then(|| (def, ALWAYS_MASK | codes::words_mask(def)))
+        };
+        PlainMotions([motion(0.0), motion(1.0), motion(2.0), motion(3.0)])
     }
-    check_any_block(dialect, block, scratch, noted, out);
+}
+
+/// Whether an arc block's letters (`seen`) give [`arcs`] nothing to report: the centre or the
+/// radius, not both, and an end point with the radius.
+#[inline(always)]
+fn arc_words_fit(seen: u32) -> bool {
+    const R: u32 = 1 << (b'R' - b'A');
+    const IJK: u32 = 1 << (b'I' - b'A') | 1 << (b'J' - b'A') | 1 << (b'K' - b'A');
+    const XYZ: u32 = 1 << (b'X' - b'A') | 1 << (b'Y' - b'A') | 1 << (b'Z' - b'A');
+    let has_r = seen & R != 0;
+    has_r != (seen & IJK != 0) && (!has_r || seen & XYZ != 0)
+}
+
+/// The first pass of [`check_plain_block`] over a block's words: `None` when the block is not
+/// one it takes (a word that is not a literal plain one, an M code, a G code other than one
+/// G00 to G03); else the G code's number if any, the letters seen besides G, and whether there
+/// may be something to report (a letter seen twice or that is not one, a value out of range).
+#[inline(always)]
+fn plain_pass(words: &[Word]) -> Option<(Option<usize>, u32, bool)> {
+    PlainScan::of(words).result()
+}
+
+/// The pass of [`plain_pass`], a word at a time.
+#[derive(Debug, Default)]
+pub(crate) struct PlainScan {
+    /// The G code's number plus one (0: none yet).
+    motion: u8,
+    /// The letters seen besides G.
+    seen: u32,
+    /// Whether there may be something to report.
+    findings: bool,
+    /// Whether a word makes the block one that the plain check does not take.
+    other: bool,
+}
+
+impl PlainScan {
+    #[inline(always)]
+    fn of(words: &[Word]) -> Self {
+        let mut scan = PlainScan::default();
+        for w in words {
+            if w.form != WordForm::Plain || w.expr.is_some() {
+                scan.other = true;
+            }
+            scan.word(w.letter, w.value);
+        }
+        scan
+    }
+
+    /// Notes a literal plain word.
+    #[inline(always)]
+    pub(crate) fn word(&mut self, letter: u8, v: f64) {
+        match letter {
+            b'M' => self.other = true,
+            b'G' => {
+                let number = if v == 0.0 {
+                    1
+                } else if v == 1.0 {
+                    2
+                } else if v == 2.0 {
+                    3
+                } else if v == 3.0 {
+                    4
+                } else {
+                    0
+                };
+                self.other |= self.motion != 0 || number == 0;
+                self.motion = number;
+                return;
+            }
+            b'F' | b'S' => self.findings |= v < 0.0,
+            b'T' | b'H' | b'D' => self.findings |= v < 0.0 || v.fract() != 0.0,
+            _ => {}
+        }
+        let bit = letter_bit(letter);
+        self.findings |= bit == 0 || self.seen & bit != 0;
+        self.seen |= bit;
+    }
+
+    #[inline(always)]
+    fn result(&self) -> Option<(Option<usize>, u32, bool)> {
+        if self.other {
+            return None;
+        }
+        let motion = usize::from(self.motion).checked_sub(1);
+        Some((motion, self.seen, self.findings))
+    }
 }
 
 /// Checks the common block of CAM output — literal plain words, no M code, at most one G code
-/// and that one G00 or G01 — in one pass over its words, with exactly the findings (in the same
-/// order) of [`check_any_block`]; returns `false`, having checked nothing, for any other block.
-fn check_plain_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>) -> bool {
-    let mut motion = None;
-    for w in &block.words {
-        if w.form != WordForm::Plain || w.expr.is_some() || w.letter == b'M' {
-            return false;
-        }
-        if w.letter == b'G' {
-            if motion.is_some() || !(w.value == 0.0 || w.value == 1.0) {
-                return false;
-            }
-            motion = Some(w);
-        }
-    }
-    // The G code's definition: it decides which words the block may have.
-    let def = match motion {
-        Some(w) => {
-            let Some(def) = Code::from_value(b'G', w.value).and_then(|c| codes::lookup(dialect, c))
-            else {
-                return false;
-            };
-            if def.group != Group::Motion
-                || !def.required.is_empty()
-                || codes::is_fanuc_reading(dialect, def)
-            {
-                return false;
-            }
-            Some(def)
-        }
-        None => None,
+/// and that one G00 to G03 — with exactly the findings (in the same order) of
+/// [`check_any_block`]; returns `false`, having checked nothing, for any other block. A block
+/// with nothing to report costs one pass over its words.
+fn check_plain_block(
+    dialect: Dialect,
+    motions: &PlainMotions,
+    block: &Block,
+    out: &mut Vec<Diagnostic>,
+) -> bool {
+    let Some((motion, seen, findings)) = plain_pass(&block.words) else {
+        return false;
     };
-    let taken = def.map_or(u32::MAX, |d| ALWAYS_MASK | codes::words_mask(d));
+    // The G code's definition: it decides which words the block may have.
+    let (def, taken) = match motion {
+        Some(i) => match motions.0[i] {
+            Some((def, taken)) => (Some(def), taken),
+            None => return false,
+        },
+        None => (None, u32::MAX),
+    };
+    if !findings && seen & !taken == 0 && (motion < Some(2) || arc_words_fit(seen)) {
+        return true;
+    }
     let mut seen = 0u32;
     for word in &block.words {
         if word.letter == b'G' {
@@ -239,6 +367,12 @@ fn check_plain_block(dialect: Dialect, block: &Block, out: &mut Vec<Diagnostic>)
             b'T' | b'H' | b'D' if v < 0.0 || v.fract() != 0.0 => out.push(not_whole(word)),
             _ => {}
         }
+    }
+    if let Some(def) = def
+        && motion >= Some(2)
+        && let Some(g) = block.words.iter().find(|w| w.letter == b'G')
+    {
+        arcs(dialect, block, &[(def, g.span)], out);
     }
     true
 }
@@ -694,7 +828,8 @@ mod tests {
     const WORDS: &[&str] = &[
         "G0", "G1", "G01", "G00", "G2", "G3 R5.", "G81", "G1.5", "G17", "M3", "M30", "X1.", "X-2",
         "Y3.5", "Z-0.25", "A90.", "F100.", "F-5", "S1200", "S-1", "T1", "T1.5", "H-2", "D3", "P2",
-        "Q1.", "R2.", "I1.", "E5.", "L3", "X#1", ",C1.", "F2=100",
+        "Q1.", "R2.", "I1.", "E5.", "L3", "X#1", ",C1.", "F2=100", "G02", "G03", "G3", "J-1.",
+        "K.5", "R-2.", "Z1.", "U1.", "G4",
     ];
 
     proptest! {
@@ -708,11 +843,14 @@ mod tests {
             let program = crate::parse(&line, dialect);
             for block in &program.blocks {
                 let mut plain = Vec::new();
-                if !check_plain_block(dialect, block, &mut plain) {
+                if !check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut plain) {
                     continue;
                 }
                 let mut any = Vec::new();
                 check_any_block(dialect, block, &mut Vec::new(), &mut Vec::new(), &mut any);
+                if Checker::new(dialect).nothing_to_report(&PlainScan::of(&block.words)) {
+                    prop_assert!(any.is_empty(), "{}", line);
+                }
                 // The order after the merge: stable by position.
                 plain.sort_by_key(|d| d.span.start);
                 any.sort_by_key(|d| d.span.start);
@@ -733,14 +871,25 @@ mod tests {
                 let program = crate::parse(line, dialect);
                 let block = program.blocks.first().unwrap();
                 assert!(
-                    check_plain_block(dialect, block, &mut Vec::new()),
+                    check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut Vec::new()),
                     "{line} {dialect:?}"
                 );
             }
         }
-        let program = crate::parse("G2 X1. R1.", Dialect::Fanuc);
+        for line in ["G2 X1. R1.", "G3 X1. Y2. I1. J0.", "G02 R1."] {
+            for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+                let program = crate::parse(line, dialect);
+                let block = program.blocks.first().unwrap();
+                assert!(
+                    check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut Vec::new()),
+                    "{line} {dialect:?}"
+                );
+            }
+        }
+        let program = crate::parse("G4 X1.", Dialect::Fanuc);
         assert!(!check_plain_block(
             Dialect::Fanuc,
+            &PlainMotions::of(Dialect::Fanuc),
             &program.blocks[0],
             &mut Vec::new()
         ));

@@ -38,6 +38,9 @@ pub struct ParseRun {
     /// 0-based number of the next line.
     line_no: usize,
     done: bool,
+    /// Whether lines of plain words take the short reader (always, but in the tests that
+    /// compare it with the general one).
+    plain_lines: bool,
 }
 
 impl ParseRun {
@@ -57,7 +60,7 @@ impl ParseRun {
         program.blocks.reserve_exact(program.lines.line_count());
         ParseRun {
             program,
-            checker: crate::checks::Checker::default(),
+            checker: crate::checks::Checker::new(dialect),
             // A program that opens with a `%` line (the first line that is not blank) ends at
             // the next `%` line: what follows the closing tape mark is not read (LinuxCNC
             // ignores it; on the Fanuc family it is past the end of the tape).
@@ -65,6 +68,7 @@ impl ParseRun {
             offset: 0,
             line_no: 0,
             done: false,
+            plain_lines: true,
         }
     }
 
@@ -76,15 +80,27 @@ impl ParseRun {
     /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
     /// whether the whole text is read.
     pub fn step(&mut self, text: &str, lines: usize) -> bool {
-        self.step_from(&mut &*text, lines)
+        self.read_lines(Some(text), &mut &*text, lines)
     }
 
     /// Reads at most `lines` more lines from `source` (the same text the run's line index was
     /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
     ///
-    /// One loop serves every source (a string's lines too, one dynamic call a line): made once,
-    /// it keeps the line reader inlined into it as the string-only loop did.
     pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
+        self.read_lines(None, source, lines)
+    }
+
+    /// The loop of [`ParseRun::step`] and [`ParseRun::step_from`]: the lines come from `text`
+    /// when the whole text is at hand, else from `source` (one dynamic call a line).
+    ///
+    /// One loop serves every source: made once, it keeps the line reader inlined into it as the
+    /// string-only loop did.
+    fn read_lines(
+        &mut self,
+        text: Option<&str>,
+        source: &mut dyn LineSource,
+        lines: usize,
+    ) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
         // The line index has found every newline already (with SIMD): the lines come from it.
@@ -99,7 +115,10 @@ impl ParseRun {
             } else {
                 source.len()
             };
-            let raw = source.line(start, end);
+            let raw = match text {
+                Some(text) => text.get(start..end).unwrap_or_default(),
+                None => source.line(start, end),
+            };
             let mut line = raw.strip_suffix('\r').unwrap_or(raw);
             if line.len() > MAX_LINE_BYTES {
                 // A runaway line (a binary file, a generator gone wrong): read its start only.
@@ -117,25 +136,44 @@ impl ParseRun {
                 ));
                 line = &line[..cut];
             }
-            let mut reader = LineReader {
-                dialect,
-                rules: dialect.rules(),
-                line,
-                bytes: line.as_bytes(),
-                base: offset,
-                line_no: u32::try_from(line_no).unwrap_or(u32::MAX),
-                program,
-                checker: &mut self.checker,
-                open_brackets: 0,
-                statements: Vec::new(),
-                comments: Vec::new(),
+            let line_no = u32::try_from(line_no).unwrap_or(u32::MAX);
+            let plain = if self.plain_lines {
+                read_plain_line(
+                    line.as_bytes(),
+                    offset,
+                    line_no,
+                    dialect.rules(),
+                    &mut program.blocks,
+                    &mut self.checker,
+                )
+            } else {
+                None
             };
-            reader.read();
+            // Whether the line is blank, and whether it is a `%` line, for the tape marks.
+            let (blank, percent) = if let Some(block) = plain {
+                (!block, false)
+            } else {
+                let mut reader = LineReader {
+                    dialect,
+                    rules: dialect.rules(),
+                    line,
+                    bytes: line.as_bytes(),
+                    base: offset,
+                    line_no,
+                    program,
+                    checker: &mut self.checker,
+                    open_brackets: 0,
+                    statements: Vec::new(),
+                    comments: Vec::new(),
+                };
+                reader.read();
+                let significant = line.trim_start_matches(is_blank);
+                (significant.is_empty(), significant.starts_with('%'))
+            };
             self.offset += raw.len() + 1;
             self.line_no += 1;
-            let significant = line.trim_start_matches(is_blank);
-            self.tape = match (self.tape, significant.starts_with('%')) {
-                (_, false) if significant.is_empty() => self.tape,
+            self.tape = match (self.tape, percent) {
+                (_, false) if blank => self.tape,
                 (Tape::Before, true) => Tape::Open,
                 (Tape::Before | Tape::Plain, false) => Tape::Plain,
                 (Tape::Open, true) => {
@@ -300,6 +338,155 @@ fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
     })
 }
 
+/// Reads a line made only of plain words — a letter, an optional sign and a decimal number of
+/// at most 15 digits (within the dialect's limit), separated by blanks — and optionally a
+/// sequence number first: the line every CAM program is made of (`G1 X5.12 Y0.00 S100`,
+/// ` X3.2040 Z-0.1539`, `N20 G0 Z5.`). The block is written in place at the end of `blocks`
+/// and checked, exactly as the general reader would make and check it. Returns whether the
+/// line gave a block (a blank line gives none), or `None`, having read nothing, for any other
+/// line: the general reader reads it.
+#[inline]
+fn read_plain_line(
+    bytes: &[u8],
+    base: usize,
+    line_no: u32,
+    rules: &Rules,
+    blocks: &mut Vec<Block>,
+    checker: &mut crate::checks::Checker,
+) -> Option<bool> {
+    const POW10: [f64; 16] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+    ];
+    let n = bytes.len();
+    let mut pos = 0;
+    while pos < n && matches!(bytes[pos], b' ' | b'\t') {
+        pos += 1;
+    }
+    if pos == n {
+        return Some(false);
+    }
+    // The spans' offsets, when the whole line lies in the 4 GiB a span addresses (the general
+    // reader clamps the offsets past them). A line is at most `MAX_LINE_BYTES` long.
+    let base = u32::try_from(base + n).ok()? - n as u32;
+    let first = pos;
+    // The number of digits the general reader takes without a diagnostic and that one
+    // division reads exactly (see `scan_decimal`).
+    let max_digits = match usize::from(rules.max_digits) {
+        0 => 15,
+        max => max.min(15),
+    };
+    let mut number = None;
+    // One past the block's last significant byte.
+    let mut last = pos;
+    if bytes[pos] | 0x20 == b'n' {
+        // `N123`: up to nine digits without a point are the number exactly.
+        let start = pos + 1;
+        pos = start;
+        let mut value = 0u32;
+        while pos < n && bytes[pos].is_ascii_digit() && pos - start < 9 {
+            value = value * 10 + u32::from(bytes[pos] - b'0');
+            pos += 1;
+        }
+        if pos == start
+            || value > rules.max_sequence_number
+            || (pos < n && matches!(bytes[pos], b'0'..=b'9' | b'.'))
+        {
+            return None;
+        }
+        number = Some(value);
+        last = pos;
+        while pos < n && matches!(bytes[pos], b' ' | b'\t') {
+            pos += 1;
+        }
+    }
+    blocks.push(Block {
+        line: line_no,
+        number,
+        ..Block::default()
+    });
+    let block = blocks.last_mut()?;
+    let mut scan = crate::checks::PlainScan::default();
+    while pos < n {
+        let start = pos;
+        let letter = bytes[pos].to_ascii_uppercase();
+        if !letter.is_ascii_uppercase() || letter == b'N' || letter == b'O' {
+            blocks.pop();
+            return None;
+        }
+        pos += 1;
+        let negative = match bytes.get(pos) {
+            Some(b'-') => {
+                pos += 1;
+                true
+            }
+            Some(b'+') => {
+                pos += 1;
+                false
+            }
+            _ => false,
+        };
+        // Wrapping arithmetic: a mantissa of too many digits is not used.
+        let mut mantissa = 0u64;
+        let int_start = pos;
+        while pos < n && bytes[pos].is_ascii_digit() {
+            mantissa = mantissa
+                .wrapping_mul(10)
+                .wrapping_add(u64::from(bytes[pos] - b'0'));
+            pos += 1;
+        }
+        let mut digits = pos - int_start;
+        let mut has_point = false;
+        let mut frac_digits = 0;
+        if pos < n && bytes[pos] == b'.' {
+            has_point = true;
+            pos += 1;
+            let frac_start = pos;
+            while pos < n && bytes[pos].is_ascii_digit() {
+                mantissa = mantissa
+                    .wrapping_mul(10)
+                    .wrapping_add(u64::from(bytes[pos] - b'0'));
+                pos += 1;
+            }
+            frac_digits = pos - frac_start;
+            digits += frac_digits;
+        }
+        let scale = POW10.get(frac_digits);
+        let (Some(scale), 1..) = (scale, digits) else {
+            blocks.pop();
+            return None;
+        };
+        if digits > max_digits || (pos < n && bytes[pos] == b'=') {
+            blocks.pop();
+            return None;
+        }
+        // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned.
+        let value = mantissa as i64 as f64 / scale;
+        let value = if negative { -value } else { value };
+        scan.word(letter, value);
+        block.words.push(Word {
+            letter,
+            value,
+            has_point,
+            span: Span {
+                start: base + start as u32,
+                end: base + pos as u32,
+            },
+            form: WordForm::Plain,
+            expr: None,
+        });
+        last = pos;
+        while pos < n && matches!(bytes[pos], b' ' | b'\t') {
+            pos += 1;
+        }
+    }
+    block.span = Span {
+        start: base + first as u32,
+        end: base + last as u32,
+    };
+    checker.check_scanned(block, &scan);
+    Some(true)
+}
+
 fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
 }
@@ -431,7 +618,7 @@ impl LineReader<'_> {
                 || block.has_error
                 || block.block_delete.is_some()
             {
-                self.checker.check(self.dialect, &mut block);
+                self.checker.check(&mut block);
                 self.program.blocks.push(block);
             }
         }
@@ -1596,8 +1783,221 @@ impl LineReader<'_> {
 }
 
 #[cfg(test)]
+#[path = "../../../tests/support/programs.rs"]
+mod test_programs;
+
+#[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
     use super::*;
+
+    /// `text` read by the general line reader alone.
+    fn parse_general(text: &str, dialect: Dialect) -> Program {
+        let mut run = ParseRun::new(text, dialect);
+        run.plain_lines = false;
+        while !run.step(text, usize::MAX) {}
+        run.finish()
+    }
+
+    /// The short reader of plain lines gives what the general reader gives: the same blocks
+    /// (values to the bit) and the same diagnostics.
+    fn assert_same_as_general(text: &str, dialect: Dialect) {
+        let fast = parse(text, dialect);
+        let general = parse_general(text, dialect);
+        assert_eq!(
+            fast.blocks.len(),
+            general.blocks.len(),
+            "{dialect:?}: {text:?}"
+        );
+        for (a, b) in fast.blocks.iter().zip(&general.blocks) {
+            assert_eq!(a, b, "{dialect:?}: {text:?}");
+        }
+        assert_eq!(fast, general, "{dialect:?}: {text:?}");
+        assert!(same_values(&fast, &general), "{dialect:?}: {text:?}");
+    }
+
+    /// Whether the words of `a` and `b` have the same values to the bit (`==` takes -0 for 0).
+    fn same_values(a: &Program, b: &Program) -> bool {
+        a.blocks.len() == b.blocks.len()
+            && a.blocks.iter().zip(&b.blocks).all(|(x, y)| {
+                x.words.len() == y.words.len()
+                    && x.words
+                        .iter()
+                        .zip(&y.words)
+                        .all(|(v, w)| v.value.to_bits() == w.value.to_bits())
+            })
+    }
+
+    #[test]
+    fn plain_lines_read_as_the_general_reader_reads_them() {
+        let lines = [
+            "G1 X5.12 Y0.00 S100",
+            " X3.2040 Z-0.1539",
+            "G01X1Y2Z-.5F100.",
+            "x1.5 y-2 z+3.",
+            "\tX1.\t\tY2.  ",
+            "N10 G0 Z5.",
+            "n20",
+            "N30   ",
+            "N 40 X1.",
+            "N1234567890 X1",
+            "N99999 X1",
+            "N100000 X1",
+            "N10. X1",
+            "X1 N10",
+            "O100",
+            "G1 X1234567890 Y1.",
+            "G1 X123456789012345 Y1.",
+            "G1 X1234567890123456 Y1.",
+            "X0.000000000000001",
+            "X0.0000000000000001",
+            "X99999999999999999999.5",
+            "X-0 Y+0. Z-.0",
+            "X.",
+            "X-",
+            "X--1",
+            "X+-1",
+            "X 1.",
+            "X1.2.3",
+            "X1=2",
+            "F2=100",
+            "X1;Y2",
+            "X1 (c)",
+            "X1 ; c",
+            "/X1",
+            "%",
+            "X1 Y2 Z3 A4 B5 C6 F7",
+            "G1 X1 X2 F-1 T1.5 S-3 H2 D-1",
+            "G0 X1 P2 Q3",
+            "G1 G0 X1",
+            "G2 X1 R1.",
+            "G1 M3 X1",
+            "G1.0 X1",
+            "G-0 X1",
+            "G00 G01",
+            "IF",
+            "DO1",
+            "X1\u{e9}",
+            "X1\r",
+            "   ",
+            "",
+        ];
+        for dialect in Dialect::ALL {
+            for line in lines {
+                assert_same_as_general(line, dialect);
+            }
+            assert_same_as_general(&lines.join("\n"), dialect);
+            assert_same_as_general(&lines.join("\r\n"), dialect);
+        }
+    }
+
+    #[test]
+    fn corpus_programs_read_as_the_general_reader_reads_them() {
+        let Some(corpus) = programs::corpus() else {
+            return;
+        };
+        for path in programs::programs_under(&corpus) {
+            let bytes = std::fs::read(&path).unwrap();
+            let text = crate::decode(&bytes).text;
+            for dialect in [Dialect::LinuxCnc, Dialect::Fanuc] {
+                let fast = parse(&text, dialect);
+                let general = parse_general(&text, dialect);
+                assert!(
+                    fast == general && same_values(&fast, &general),
+                    "{}: {dialect:?}",
+                    path.display()
+                );
+            }
+        }
+    }
+
+    use super::test_programs as programs;
+
+    // proptest is a native-only dev-dependency.
+    #[cfg(not(target_arch = "wasm32"))]
+    mod props {
+        use proptest::prelude::*;
+
+        use super::*;
+
+        /// Pieces of CAM lines, near misses of a plain line among them.
+        const PIECES: &[&str] = &[
+            "G",
+            "X",
+            "Y",
+            "Z",
+            "F",
+            "S",
+            "T",
+            "M",
+            "N",
+            "O",
+            "I",
+            "J",
+            "K",
+            "R",
+            "P",
+            "D",
+            "H",
+            "x",
+            "g",
+            "n",
+            "E",
+            "A",
+            "0",
+            "1",
+            "5",
+            "9",
+            "00",
+            "123",
+            "4567",
+            "0.",
+            ".",
+            ".5",
+            "12.3456",
+            "-",
+            "+",
+            " ",
+            " ",
+            "  ",
+            "\t",
+            "=",
+            "(c)",
+            ";",
+            "/",
+            "%",
+            "#1",
+            ",",
+            ":",
+            "[",
+            "1234567890",
+            "1234567890123456",
+            "\u{e9}",
+            "IF",
+            "DO",
+            "\r",
+        ];
+
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(3000))]
+            #[test]
+            fn lines_read_as_the_general_reader_reads_them(
+                lines in prop::collection::vec(
+                    prop::collection::vec(prop::sample::select(PIECES), 0..14),
+                    1..4,
+                ),
+                dialect in prop::sample::select(&Dialect::ALL[..]),
+            ) {
+                let text: Vec<String> = lines.iter().map(|l| l.concat()).collect();
+                let text = text.join("\n");
+                let fast = parse(&text, dialect);
+                let general = parse_general(&text, dialect);
+                prop_assert_eq!(&fast, &general, "{:?}", text);
+                prop_assert!(same_values(&fast, &general), "{:?}", text);
+            }
+        }
+    }
 
     #[test]
     fn number_forms() {

@@ -57,3 +57,29 @@ fn a_stepped_run_stops_at_the_closing_tape_mark() {
     assert!(run.step("", 0) || run.step("", 1));
     assert!(run.finish().blocks.is_empty());
 }
+
+#[test]
+fn lines_from_a_source_give_the_program_of_the_text() {
+    let mut text = String::from("%\nO1000\nG90 G21 G17\n");
+    for i in 0..200 {
+        text.push_str(&format!("N{} G01 X{}.5 Y-0.{i} F500.\n", i * 10, i % 7));
+        if i % 11 == 0 {
+            text.push_str("#1 = [#2 + 3] (a comment)\r\nG2 X1 R1.\n  \nX$\n");
+        }
+    }
+    text.push_str("M30\n%\nG1 X$\n");
+    for dialect in Dialect::ALL {
+        let whole = parse(&text, dialect);
+        for lines in [1, 9, 1000] {
+            let mut run = ParseRun::new(&text, dialect);
+            // The lines come through the `LineSource` calls, not from the text at hand.
+            let mut source: &str = &text;
+            let mut steps = 0;
+            while !run.step_from(&mut source, lines) {
+                steps += 1;
+                assert!(steps < 10_000, "the run ends");
+            }
+            assert_eq!(run.finish(), whole, "{dialect:?} in steps of {lines} lines");
+        }
+    }
+}
