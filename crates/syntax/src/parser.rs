@@ -292,12 +292,55 @@ struct Decimal {
 /// division gives the correctly rounded value (Clinger's fast path); longer numbers go to the
 /// standard library.
 fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
-    const POW10: [f64; 16] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-    ];
+    let Digits {
+        mantissa,
+        end,
+        digits,
+        frac_digits,
+        has_point,
+    } = scan_digits(bytes, pos);
+    if digits == 0 {
+        return None;
+    }
+    let value = match POW10.get(frac_digits) {
+        Some(scale) if digits <= 15 => mantissa as f64 / scale,
+        _ => std::str::from_utf8(&bytes[pos..end])
+            .ok()
+            .and_then(|t| t.parse::<f64>().ok())
+            .unwrap_or(f64::NAN),
+    };
+    Some(Decimal {
+        end,
+        value,
+        has_point,
+        digits,
+    })
+}
+
+/// The powers of ten that are exact f64s, by number of fraction digits.
+const POW10: [f64; 16] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+];
+
+/// The digits of an unsigned decimal number (`12`, `12.5`, `.5`, `12.`) at `pos`.
+struct Digits {
+    /// The digits as one integer, point left out (wrapping: past 19 digits it is unused).
+    mantissa: u64,
+    /// Where the number ends.
+    end: usize,
+    /// Digits in all.
+    digits: usize,
+    /// Digits after the point.
+    frac_digits: usize,
+    has_point: bool,
+}
+
+/// Scans the digits of a number at `pos` (none: `digits` is 0), for [`scan_decimal`] and the
+/// short reader of plain lines.
+#[inline(always)]
+fn scan_digits(bytes: &[u8], pos: usize) -> Digits {
     let n = bytes.len();
     let mut end = pos;
-    // Wrapping arithmetic: past 19 digits the mantissa is unused (the slow path reads them).
     let mut mantissa: u64 = 0;
     while end < n && bytes[end].is_ascii_digit() {
         mantissa = mantissa
@@ -319,23 +362,23 @@ fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
         }
         frac_digits = end - frac_start;
     }
-    let digits = int_digits + frac_digits;
-    if digits == 0 {
-        return None;
-    }
-    let value = match POW10.get(frac_digits) {
-        Some(scale) if digits <= 15 => mantissa as f64 / scale,
-        _ => std::str::from_utf8(&bytes[pos..end])
-            .ok()
-            .and_then(|t| t.parse::<f64>().ok())
-            .unwrap_or(f64::NAN),
-    };
-    Some(Decimal {
+    Digits {
+        mantissa,
         end,
-        value,
+        digits: int_digits + frac_digits,
+        frac_digits,
         has_point,
-        digits,
-    })
+    }
+}
+
+/// The sign at `pos` before a number: whether it is `-`, and where the number starts.
+#[inline(always)]
+fn scan_sign(bytes: &[u8], pos: usize) -> (bool, usize) {
+    match bytes.get(pos) {
+        Some(b'-') => (true, pos + 1),
+        Some(b'+') => (false, pos + 1),
+        _ => (false, pos),
+    }
 }
 
 /// Reads a line made only of plain words — a letter, an optional sign and a decimal number of
@@ -354,9 +397,6 @@ fn read_plain_line(
     blocks: &mut Vec<Block>,
     checker: &mut crate::checks::Checker,
 ) -> Option<bool> {
-    const POW10: [f64; 16] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-    ];
     let n = bytes.len();
     let mut pos = 0;
     while pos < n && matches!(bytes[pos], b' ' | b'\t') {
@@ -413,43 +453,16 @@ fn read_plain_line(
             blocks.pop();
             return None;
         }
-        pos += 1;
-        let negative = match bytes.get(pos) {
-            Some(b'-') => {
-                pos += 1;
-                true
-            }
-            Some(b'+') => {
-                pos += 1;
-                false
-            }
-            _ => false,
-        };
-        // Wrapping arithmetic: a mantissa of too many digits is not used.
-        let mut mantissa = 0u64;
-        let int_start = pos;
-        while pos < n && bytes[pos].is_ascii_digit() {
-            mantissa = mantissa
-                .wrapping_mul(10)
-                .wrapping_add(u64::from(bytes[pos] - b'0'));
-            pos += 1;
-        }
-        let mut digits = pos - int_start;
-        let mut has_point = false;
-        let mut frac_digits = 0;
-        if pos < n && bytes[pos] == b'.' {
-            has_point = true;
-            pos += 1;
-            let frac_start = pos;
-            while pos < n && bytes[pos].is_ascii_digit() {
-                mantissa = mantissa
-                    .wrapping_mul(10)
-                    .wrapping_add(u64::from(bytes[pos] - b'0'));
-                pos += 1;
-            }
-            frac_digits = pos - frac_start;
-            digits += frac_digits;
-        }
+        let (negative, at) = scan_sign(bytes, pos + 1);
+        // A mantissa of too many digits is not used.
+        let Digits {
+            mantissa,
+            end,
+            digits,
+            frac_digits,
+            has_point,
+        } = scan_digits(bytes, at);
+        pos = end;
         let scale = POW10.get(frac_digits);
         let (Some(scale), 1..) = (scale, digits) else {
             blocks.pop();
@@ -829,18 +842,7 @@ impl LineReader<'_> {
         if letter == b'N' || letter == b'O' {
             return None;
         }
-        let mut at = pos + 1;
-        let negative = match self.bytes.get(at) {
-            Some(b'-') => {
-                at += 1;
-                true
-            }
-            Some(b'+') => {
-                at += 1;
-                false
-            }
-            _ => false,
-        };
+        let (negative, at) = scan_sign(self.bytes, pos + 1);
         let number = scan_decimal(self.bytes, at)?;
         let end = number.end;
         let max = usize::from(self.rules.max_digits);
