@@ -230,15 +230,7 @@ fn read_decoded(path: &Path) -> anyhow::Result<Decoded> {
 fn load_decoded(path: &Path, decoded: Decoded, opts: &RunOptions) -> Loaded {
     let mut program = parse(&decoded.text, opts.dialect);
     let linked = link_external(&mut program, path, decoded.text.len(), opts.dialect);
-    let mut diagnostics = decoded.diagnostics;
-    diagnostics.extend(program.diagnostics.iter().cloned());
-    Loaded {
-        path: path.display().to_string(),
-        text: decoded.text,
-        program,
-        diagnostics,
-        linked,
-    }
+    Loaded::new(path, decoded.diagnostics, decoded.text, program, linked)
 }
 
 /// The reading diagnostics and the run's, in one list sorted by position.
@@ -291,20 +283,13 @@ fn stream(
         return None;
     };
     interp.finish_pieces(toolpath);
-    let program = reader.finish();
-    let mut diagnostics = std::mem::take(&mut decoded.diagnostics);
-    diagnostics.extend(program.diagnostics.iter().cloned());
-    let all = merged(&diagnostics, interp.take_diagnostics());
+    let decoding = std::mem::take(&mut decoded.diagnostics);
+    let loaded = Loaded::new(path, decoding, text, reader.finish(), Vec::new());
+    let diagnostics = merged(&loaded.diagnostics, interp.take_diagnostics());
     Some(Streamed {
-        loaded: Loaded {
-            path: path.display().to_string(),
-            text,
-            program,
-            diagnostics,
-            linked: Vec::new(),
-        },
+        loaded,
         blocks,
-        diagnostics: all,
+        diagnostics,
     })
 }
 
@@ -411,6 +396,26 @@ fn run_pieces_beside(
 }
 
 impl Loaded {
+    /// A program read from `path`, with its reading diagnostics: the decoding ones, then the
+    /// parser's.
+    fn new(
+        path: &Path,
+        decoding: Vec<Diagnostic>,
+        text: String,
+        program: Program,
+        linked: Vec<LinkedSource>,
+    ) -> Self {
+        let mut diagnostics = decoding;
+        diagnostics.extend(program.diagnostics.iter().cloned());
+        Loaded {
+            path: path.display().to_string(),
+            text,
+            program,
+            diagnostics,
+            linked,
+        }
+    }
+
     /// Interprets the program into `sink`; returns every diagnostic sorted by position.
     fn interpret(&self, setup: &Setup, sink: &mut dyn Sink) -> Vec<Diagnostic> {
         merged(
