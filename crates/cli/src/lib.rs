@@ -242,7 +242,7 @@ fn merged(reading: &[Diagnostic], run: Vec<Diagnostic>) -> Vec<Diagnostic> {
 }
 
 /// Lines read and run at a time when a program runs piece by piece.
-const PIECE_LINES: usize = 8192;
+const PIECE_LINES: usize = 1024;
 
 /// A program read and run piece by piece into a toolpath.
 struct Streamed {
