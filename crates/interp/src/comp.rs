@@ -63,6 +63,13 @@ pub(crate) struct Comp {
     pub orientation: u8,
 }
 
+impl Comp {
+    /// Whether no move is held back (compensation has nothing pending).
+    pub(crate) fn is_idle(&self) -> bool {
+        self.held.is_none()
+    }
+}
+
 /// The shape of a compensated move.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Shape {

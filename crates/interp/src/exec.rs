@@ -700,6 +700,61 @@ fn execute_block(
     flow
 }
 
+/// The words of a plain straight move: nothing but `G00`/`G01`, X/Y/Z, F and S words with
+/// literal values, in a straight-move mode.
+struct PlainWords<'w> {
+    /// The motion mode after the block.
+    mode: MotionMode,
+    axes: Axes<'w>,
+    /// The first F and S words.
+    feed: Option<&'w Word>,
+    spindle: Option<&'w Word>,
+    /// Whether an axis word may be read in least increments (no decimal point).
+    least_increment: bool,
+}
+
+impl<'w> PlainWords<'w> {
+    /// The block's words sorted out, or `None` when it is not a plain straight move from the
+    /// current mode.
+    #[inline(always)]
+    fn of(st: &State, words: &'w [Word]) -> Option<Self> {
+        let mut axes: Axes<'w> = [None; 3];
+        let mut code = None;
+        let mut feed = None;
+        let mut spindle = None;
+        let mut least_increment = false;
+        for w in words {
+            if w.form != WordForm::Plain || w.expr.is_some() {
+                return None;
+            }
+            match w.letter {
+                b'X' | b'Y' | b'Z' => {
+                    axes[usize::from(w.letter - b'X')] = Some(w);
+                    least_increment |= !w.has_point && w.value != 0.0;
+                }
+                b'F' => feed = feed.or(Some(w)),
+                b'S' => spindle = spindle.or(Some(w)),
+                b'G' if code.is_none() && w.value == 0.0 => code = Some(MotionMode::Rapid),
+                b'G' if code.is_none() && w.value == 1.0 => code = Some(MotionMode::Linear),
+                _ => return None,
+            }
+        }
+        let mode = code.or(st.motion)?;
+        if !matches!(mode, MotionMode::Rapid | MotionMode::Linear)
+            || matches!(st.motion, Some(MotionMode::Cycle(_)))
+        {
+            return None;
+        }
+        Some(PlainWords {
+            mode,
+            axes,
+            feed,
+            spindle,
+            least_increment,
+        })
+    }
+}
+
 /// Runs a block of nothing but `G00`/`G01`, X/Y/Z, F and S words with literal values, when it
 /// is a straight move from a straight-move mode, without the general path's passes over the
 /// words for every kind of code (most lines of a CAM program are such blocks). Does exactly what
@@ -715,38 +770,14 @@ fn plain_move(
     if st.modal_macro.is_some() || words.len() != block.words.len() {
         return None;
     }
-    let mut axes: Axes<'_> = [None; 3];
-    let mut code = None;
-    let mut feed = None;
-    let mut least_increment = false;
-    for w in words {
-        if w.form != WordForm::Plain || w.expr.is_some() {
-            return None;
-        }
-        match w.letter {
-            b'X' | b'Y' | b'Z' => {
-                axes[usize::from(w.letter - b'X')] = Some(w);
-                least_increment |= !w.has_point && w.value != 0.0;
-            }
-            b'F' => feed = feed.or(Some(w)),
-            b'S' => {}
-            b'G' if code.is_none() && w.value == 0.0 => code = Some(MotionMode::Rapid),
-            b'G' if code.is_none() && w.value == 1.0 => code = Some(MotionMode::Linear),
-            _ => return None,
-        }
-    }
-    let mode = code.or(st.motion)?;
-    if !matches!(mode, MotionMode::Rapid | MotionMode::Linear)
-        || matches!(st.motion, Some(MotionMode::Cycle(_)))
-    {
-        return None;
-    }
+    let plain = PlainWords::of(st, words)?;
     spindle_speed(st, words, false);
-    feed_word(st, feed);
-    st.motion = Some(mode);
-    if least_increment {
+    feed_word(st, plain.feed);
+    st.motion = Some(plain.mode);
+    if plain.least_increment {
         note_least_increment(st, words);
     }
+    let (mode, axes) = (plain.mode, plain.axes);
     if axes.iter().any(Option::is_some) {
         let p = target(st, &axes);
         let to = st.to_machine(p);
@@ -774,6 +805,94 @@ pub(crate) fn plain_block(
         return None;
     }
     plain_move(st, block, &block.words, source, sink)
+}
+
+/// The state that lets plain straight moves take the fastest path ([`fast_move`]): the
+/// coordinate chain is the offsets alone (no polar coordinates, rotation, scaling or mirror),
+/// the feed is per minute at constant spindle speed, nothing is held for a corner or for cutter
+/// compensation, and no stroke limit or travel is checked. Plain moves do not change any of
+/// this, so it holds until another kind of block runs.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Fast {
+    /// The program frame → machine frame offset ([`State::base`]).
+    base: DVec3,
+}
+
+impl Fast {
+    /// The fast path's frame for `st`, or `None` when moves need the general steps.
+    pub(crate) fn of(st: &State) -> Option<Fast> {
+        let simple = st.modal_macro.is_none()
+            && !(st.stroke_check && st.stroke_zone.is_some())
+            && st.setup.machine.travel_mm.is_none()
+            && st.polar.is_none()
+            && st.rotation.is_none()
+            && st.scaling.is_none()
+            && st.mirror == DVec3::ONE
+            && st.wcs_rotation == 0.0
+            && st.preset_rotation == 0.0
+            && st.feed_mode == FeedMode::PerMinute
+            && !st.css
+            && st.pending.is_none()
+            && st.comp.is_idle()
+            && st.cutter_comp == 400;
+        simple.then(|| Fast { base: st.base() })
+    }
+}
+
+/// [`plain_move`] in a [`Fast`] frame: the same events, diagnostics and state, without the
+/// steps the frame makes void (the transform chain reduces to adding the offsets, and the move
+/// goes straight to the sink past the corner and compensation stages, which would pass it on).
+/// `None`, having done nothing, for a block that is not a plain straight move.
+pub(crate) fn fast_move(
+    st: &mut State,
+    fast: Fast,
+    block: &Block,
+    source: Source,
+    sink: &mut dyn Sink,
+) -> Option<Flow> {
+    let PlainWords {
+        mode,
+        axes,
+        feed,
+        spindle,
+        least_increment,
+    } = PlainWords::of(st, &block.words)?;
+    // `spindle_speed` at constant spindle speed.
+    if let Some(s) = spindle.filter(|s| s.value >= 0.0) {
+        st.spindle_rpm = s.value;
+    }
+    feed_word(st, feed);
+    st.motion = Some(mode);
+    if least_increment {
+        note_least_increment(st, &block.words);
+    }
+    if axes.iter().any(Option::is_some) {
+        // `target` without polar coordinates, then `State::to_machine` in the frame.
+        let mut p = st.program_pos;
+        for (i, w) in axes.iter().enumerate() {
+            if let Some(w) = w {
+                let v = st.length(w);
+                p[i] = if st.absolute { v } else { p[i] + v };
+            }
+        }
+        let to = p + fast.base;
+        let event = if mode == MotionMode::Rapid {
+            Canon::Rapid { to }
+        } else {
+            let length = st.position.distance(to);
+            Canon::Feed {
+                to,
+                feed_mm_per_min: move_feed(st, block, length, None),
+            }
+        };
+        st.position = to;
+        st.program_pos = p;
+        // What the compensation stage does with a move when it is off.
+        st.comp.prog = to;
+        st.comp.tool = None;
+        sink.emit(source, &event);
+    }
+    Some(Flow::Next)
 }
 
 /// The block's F word (the first one), read in the feed mode.

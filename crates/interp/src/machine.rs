@@ -146,6 +146,10 @@ pub struct Interpreter {
     /// Whether `origin` is the program zero of the current frame: only blocks that took the
     /// short path leave the frame as it was, so only after them can the check be skipped.
     origin_current: bool,
+    /// The frame of the fastest path for plain moves (see `exec::Fast`), and whether it was
+    /// made after the last block that could change it.
+    fast: Option<crate::exec::Fast>,
+    fast_current: bool,
 }
 
 impl Interpreter {
@@ -164,6 +168,8 @@ impl Interpreter {
             repeats: HashMap::new(),
             shortcut: true,
             origin_current: false,
+            fast: None,
+            fast_current: false,
             piecewise: false,
             block_base: 0,
             program_seen: false,
@@ -308,6 +314,8 @@ impl Interpreter {
                 &mut self.st.diagnostics,
             )));
         }
+        // The state may have been changed from outside since the last step.
+        self.fast_current = false;
         let mut counted = MotionCounter {
             inner: sink,
             motions: self.motions,
@@ -370,6 +378,7 @@ impl Interpreter {
                 flow
             } else {
                 self.origin_current = false;
+                self.fast_current = false;
                 self.run_block(program, at, block, source, &mut counted)
             };
             if counted.motions != before && !self.origin_current {
@@ -427,6 +436,15 @@ impl Interpreter {
             || self.st.alarm.is_some()
         {
             return None;
+        }
+        if !self.fast_current {
+            self.fast = crate::exec::Fast::of(&self.st);
+            self.fast_current = true;
+        }
+        if let Some(fast) = self.fast
+            && let Some(flow) = crate::exec::fast_move(&mut self.st, fast, block, source, sink)
+        {
+            return Some(flow);
         }
         crate::exec::plain_block(&mut self.st, block, source, sink)
     }

@@ -160,6 +160,10 @@ const BLOCKS: &[&str] = &[
     "G23",
     "G1 A30.",
     "G1 X1. I1.",
+    "G10 L2 P1 X5. Y-3. R15.",
+    "G10 L2 P2 X-7. Y4. Z1.",
+    "G92.1 X2. Y1. R20.",
+    "G92.1 X0 Y0 R0",
 ];
 
 proptest! {
