@@ -879,10 +879,16 @@ pub(crate) fn fast_move(
         let event = if mode == MotionMode::Rapid {
             Canon::Rapid { to }
         } else {
-            let length = st.position.distance(to);
+            // `move_feed` per minute, where the move's length does not count: only a feed that
+            // is not positive needs its steps (and its diagnostic).
+            let feed = st.feed_mm_per_min;
             Canon::Feed {
                 to,
-                feed_mm_per_min: move_feed(st, block, length, None),
+                feed_mm_per_min: if feed > 0.0 {
+                    feed
+                } else {
+                    move_feed(st, block, 0.0, None)
+                },
             }
         };
         st.position = to;
