@@ -110,6 +110,24 @@ fn a_call_after_many_pieces_runs_the_program_whole() {
 }
 
 #[test]
+fn a_loop_after_the_end_in_the_same_piece_runs_the_program_whole() {
+    // The program ends in a piece that goes on with a loop, closed in the next piece: the
+    // blocks after the end were never run, but they still send the program to be read whole,
+    // where the loop is seen closed.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("after-end.nc");
+    let mut tail = String::from("M30\n#1=1\nWHILE[#1 LT 3]DO1\n");
+    for _ in 0..1100 {
+        tail.push_str("G1 X1.\n");
+    }
+    tail.push_str("#1=#1+1\nEND1\n");
+    std::fs::write(&file, long_program(20_000, &tail)).unwrap();
+    assert_same(&file, "fanuc");
+    let (_, _, diags) = stats(&file, "fanuc", false);
+    assert!(!diags.contains("E-MACRO-LOOP"), "{diags}");
+}
+
+#[test]
 fn the_examples_read_the_same_in_pieces() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mut files = programs_under(&root.join("assets/examples"));

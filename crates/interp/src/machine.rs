@@ -139,8 +139,10 @@ pub struct Interpreter {
     block_base: usize,
     /// Whether a block with a program number has been seen (piece by piece).
     program_seen: bool,
-    /// Whether a block jumped while running piece by piece.
+    /// Whether a block jumped, or needed the whole program, while running piece by piece.
     jumped: bool,
+    /// The first block of the piece not run yet (running piece by piece).
+    unvisited: usize,
     /// Whether plain straight moves take the short path (see [`Interpreter::general_path_only`]).
     pub(crate) shortcut: bool,
     /// Whether `origin` is the program zero of the current frame: only blocks that took the
@@ -174,6 +176,7 @@ impl Interpreter {
             block_base: 0,
             program_seen: false,
             jumped: false,
+            unvisited: 0,
         }
     }
 
@@ -189,33 +192,26 @@ impl Interpreter {
         if self.finished {
             return Piece::Ended;
         }
-        // What the whole program's index would know beyond this piece: loops, O-word lines,
-        // calls, and programs after the first one.
-        for block in &program.blocks {
-            let several_programs = block.program.is_some() && self.program_seen;
-            self.program_seen |= block.program.is_some();
-            let calls = block.words.iter().any(|w| {
-                matches!(w.letter, b'G' | b'M')
-                    && (w.expr.is_some()
-                        || matches!(w.value, 65.0 | 66.0 | 66.1 | 98.0 | 99.0 | 198.0))
-            });
-            let control = block
-                .statements
-                .iter()
-                .any(|s| !matches!(s, Statement::Assign { .. }));
-            if several_programs || calls || control {
-                self.jumped = true;
-                return Piece::NeedsWhole;
-            }
-        }
         self.piecewise = true;
         self.index = None;
         self.next_block = 0;
-        // A jump ends the piece too: the program then runs whole, from its start.
+        self.unvisited = 0;
+        // A block that needs the whole program (see `needs_whole`) or a jump ends the piece:
+        // the program then runs whole, from its start.
         while self.step(program, sink, 4096) == Status::Running
             && !self.jumped
             && self.next_block < program.blocks.len()
         {}
+        if self.finished && !self.jumped {
+            // The blocks after the end were not run; they still decide, as they would have
+            // before the piece ran.
+            for block in program.blocks.get(self.unvisited..).unwrap_or_default() {
+                if self.needs_whole(block) {
+                    self.jumped = true;
+                    break;
+                }
+            }
+        }
         self.block_base += program.blocks.len();
         if self.jumped {
             Piece::NeedsWhole
@@ -224,6 +220,23 @@ impl Interpreter {
         } else {
             Piece::Ran
         }
+    }
+
+    /// Whether `block`, met running piece by piece, needs what only the whole program's index
+    /// knows: a loop or O-word line, a call, or a second program. Each block of a piece is
+    /// asked once, in order, except the plain moves of the shortest path, which never do.
+    fn needs_whole(&mut self, block: &Block) -> bool {
+        let several_programs = block.program.is_some() && self.program_seen;
+        self.program_seen |= block.program.is_some();
+        let calls = block.words.iter().any(|w| {
+            matches!(w.letter, b'G' | b'M')
+                && (w.expr.is_some() || matches!(w.value, 65.0 | 66.0 | 66.1 | 98.0 | 99.0 | 198.0))
+        });
+        let control = block
+            .statements
+            .iter()
+            .any(|s| !matches!(s, Statement::Assign { .. }));
+        several_programs || calls || control
     }
 
     /// Ends a program run piece by piece (the end of its text), as [`Interpreter::step`] does
@@ -370,17 +383,23 @@ impl Interpreter {
             self.st.block_span = block.span;
             let before = counted.motions;
             let plain = if block.has_error {
-                Some(Flow::Next)
+                None
             } else {
                 self.plain_block(block, source, &mut counted)
             };
             let flow = if let Some(flow) = plain {
                 flow
+            } else if self.piecewise && self.needs_whole(block) {
+                self.jumped = true;
+                break;
+            } else if block.has_error {
+                Flow::Next
             } else {
                 self.origin_current = false;
                 self.fast_current = false;
                 self.run_block(program, at, block, source, &mut counted)
             };
+            self.unvisited = at + 1;
             if counted.motions != before && !self.origin_current {
                 // Moves from a program zero not reported yet: report it for the origin marks.
                 let origin = self.st.to_machine(DVec3::ZERO);
