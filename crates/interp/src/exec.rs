@@ -7,7 +7,7 @@ use smallvec::SmallVec;
 use swarf_syntax::codes::{self, Code, Group};
 use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm};
 
-use crate::machine::{Flow, Interpreter, find};
+use crate::machine::{Flow, Interpreter, MotionCounter, find};
 use crate::macros::argument_variable;
 use crate::state::{FeedMode, ModalMacro, MotionMode, Polar, Rotation, Scaling, State, plane_axes};
 use crate::{Axis, Canon, Sink, Source, StrokeZone};
@@ -842,21 +842,25 @@ impl Fast {
 /// [`plain_move`] in a [`Fast`] frame: the same events, diagnostics and state, without the
 /// steps the frame makes void (the transform chain reduces to adding the offsets, and the move
 /// goes straight to the sink past the corner and compensation stages, which would pass it on).
-/// `None`, having done nothing, for a block that is not a plain straight move.
+/// Whether it ran the block: `false`, having done nothing, for a block that is not a plain
+/// straight move (after one, the program goes on to the next block).
 pub(crate) fn fast_move(
     st: &mut State,
     fast: Fast,
     block: &Block,
     source: Source,
-    sink: &mut dyn Sink,
-) -> Option<Flow> {
-    let PlainWords {
+    sink: &mut MotionCounter<'_>,
+) -> bool {
+    let Some(PlainWords {
         mode,
         axes,
         feed,
         spindle,
         least_increment,
-    } = PlainWords::of(st, &block.words)?;
+    }) = PlainWords::of(st, &block.words)
+    else {
+        return false;
+    };
     // `spindle_speed` at constant spindle speed.
     if let Some(s) = spindle.filter(|s| s.value >= 0.0) {
         st.spindle_rpm = s.value;
@@ -896,9 +900,9 @@ pub(crate) fn fast_move(
         // What the compensation stage does with a move when it is off.
         st.comp.prog = to;
         st.comp.tool = None;
-        sink.emit(source, &event);
+        sink.emit_move(source, &event);
     }
-    Some(Flow::Next)
+    true
 }
 
 /// The block's F word (the first one), read in the feed mode.

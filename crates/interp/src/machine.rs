@@ -38,9 +38,18 @@ pub enum Piece {
 }
 
 /// Passes events on and counts the motions among them (for `[machine] max_motions`).
-struct MotionCounter<'s> {
+pub(crate) struct MotionCounter<'s> {
     inner: &'s mut dyn Sink,
     motions: u64,
+}
+
+impl MotionCounter<'_> {
+    /// Sends on a move (what [`Sink::emit`] does for one, without the dispatch).
+    #[inline]
+    pub(crate) fn emit_move(&mut self, source: Source, event: &Canon) {
+        self.motions += 1;
+        self.inner.emit(source, event);
+    }
 }
 
 impl Sink for MotionCounter<'_> {
@@ -333,10 +342,17 @@ impl Interpreter {
             inner: sink,
             motions: self.motions,
         };
-        for _ in 0..budget {
+        let mut left = budget;
+        while left > 0 {
             if self.finished {
                 break;
             }
+            let ran = self.fast_run(program, left, &mut counted);
+            if ran > 0 {
+                left -= ran;
+                continue;
+            }
+            left -= 1;
             let at = self.next_block;
             let Some(block) = program.blocks.get(at) else {
                 if self.piecewise {
@@ -428,6 +444,62 @@ impl Interpreter {
         }
     }
 
+    /// Runs the plain moves from the next block on in the fast frame (see `exec::Fast`), at
+    /// most `left` of them and short of the runaway limits, with none of the checks the block
+    /// loop makes between other blocks (they change nothing for such moves); how many ran, 0
+    /// where the frame does not apply or the next block is not such a move.
+    fn fast_run(&mut self, program: &Program, left: usize, sink: &mut MotionCounter<'_>) -> usize {
+        // The program zero must have been reported (plain moves leave it as it is).
+        if !self.shortcut || !self.origin_current || self.st.alarm.is_some() {
+            return 0;
+        }
+        if !self.fast_current {
+            self.fast = crate::exec::Fast::of(&self.st);
+            self.fast_current = true;
+        }
+        let Some(fast) = self.fast else {
+            return 0;
+        };
+        // Each block makes one move at most, so this many run within both limits.
+        let machine = &self.st.setup.machine;
+        let room = machine
+            .max_blocks
+            .saturating_sub(self.executed)
+            .min(machine.max_motions.saturating_sub(sink.motions));
+        let room = usize::try_from(room).unwrap_or(usize::MAX).min(left);
+        let at = self.next_block;
+        let mut ran = 0;
+        for block in program
+            .blocks
+            .get(at..)
+            .unwrap_or_default()
+            .iter()
+            .take(room)
+        {
+            if block.has_error
+                || block.words.is_empty()
+                || block.program.is_some()
+                || !block.statements.is_empty()
+            {
+                break;
+            }
+            let source = Source {
+                block: u32::try_from(self.block_base + at + ran).unwrap_or(u32::MAX),
+                line: block.line.saturating_add(1),
+            };
+            if !crate::exec::fast_move(&mut self.st, fast, block, source, sink) {
+                break;
+            }
+            self.st.block_span = block.span;
+            ran += 1;
+        }
+        self.executed += u64::try_from(ran).unwrap_or(u64::MAX);
+        self.st.blocks_run = self.executed;
+        self.next_block = at + ran;
+        self.unvisited = self.next_block;
+        ran
+    }
+
     /// The text ran out: inside a call that is an implicit return; otherwise the end.
     fn end_of_text(&mut self, program: &Program) {
         match self.calls.pop() {
@@ -447,7 +519,12 @@ impl Interpreter {
     /// Runs a block of plain straight-move words (no statements, variables or program number)
     /// without the general path's steps for them, when nothing is pending before it (an alarm
     /// raised by the block before); `None`, having done nothing, for any other block.
-    fn plain_block(&mut self, block: &Block, source: Source, sink: &mut dyn Sink) -> Option<Flow> {
+    fn plain_block(
+        &mut self,
+        block: &Block,
+        source: Source,
+        sink: &mut MotionCounter<'_>,
+    ) -> Option<Flow> {
         if !self.shortcut
             || block.words.is_empty()
             || block.program.is_some()
@@ -461,9 +538,9 @@ impl Interpreter {
             self.fast_current = true;
         }
         if let Some(fast) = self.fast
-            && let Some(flow) = crate::exec::fast_move(&mut self.st, fast, block, source, sink)
+            && crate::exec::fast_move(&mut self.st, fast, block, source, sink)
         {
-            return Some(flow);
+            return Some(Flow::Next);
         }
         crate::exec::plain_block(&mut self.st, block, source, sink)
     }

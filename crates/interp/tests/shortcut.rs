@@ -21,7 +21,11 @@ const SETUP: &str =
     "[registers.1]\nradius = 3.0\nlength = 50.0\n[registers.2]\nradius = 1.5\nlength = 20.0\n";
 
 fn run_both(program: &Program) -> Result<(), String> {
-    let setup = Setup::from_toml(SETUP).expect("setup");
+    run_both_with(program, &Setup::from_toml(SETUP).expect("setup"), 4096)
+}
+
+/// [`run_both`] with `setup`, stepping `budget` blocks at a time.
+fn run_both_with(program: &Program, setup: &Setup, budget: usize) -> Result<(), String> {
     let mut out = Vec::new();
     for shortcut in [true, false] {
         let mut interp = Interpreter::new(setup.clone(), program.dialect);
@@ -29,7 +33,7 @@ fn run_both(program: &Program) -> Result<(), String> {
             interp.general_path_only();
         }
         let mut rec = CanonRecorder::default();
-        while interp.step(program, &mut rec, 4096) == Status::Running {}
+        while interp.step(program, &mut rec, budget) == Status::Running {}
         out.push((rec.events, interp.take_diagnostics()));
     }
     let (general_events, general_diags) = out.pop().ok_or("no run")?;
@@ -86,6 +90,29 @@ fn corpus_programs_agree() {
     assert!(!files.is_empty());
     for file in files {
         check_text(&head(&file), &file.display().to_string());
+    }
+}
+
+#[test]
+fn runs_of_plain_moves_stop_at_the_runaway_limits_and_the_step_budget() {
+    let mut text = String::from("G90 G21 G0 X0 Y0 F500.\n");
+    for i in 0..120 {
+        text.push_str(&format!("G1 X{}. Y{}.\n", i % 7, i % 5));
+        if i % 40 == 39 {
+            text.push_str("(a comment)\nS1000\nG91\nG90\n");
+        }
+    }
+    text.push_str("M30\n");
+    let program = parse(&text, Dialect::Fanuc);
+    for (blocks, motions) in [(37, u64::MAX), (u64::MAX, 23), (50, 50), (1, 1), (0, 0)] {
+        let mut setup = Setup::from_toml(SETUP).expect("setup");
+        setup.machine.max_blocks = blocks;
+        setup.machine.max_motions = motions;
+        for budget in [1, 3, 4096] {
+            if let Err(e) = run_both_with(&program, &setup, budget) {
+                panic!("limits {blocks}/{motions}, budget {budget}: {e}");
+            }
+        }
     }
 }
 
