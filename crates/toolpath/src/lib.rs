@@ -102,6 +102,36 @@ pub const CORNER_DEGREES: f64 = 10.0;
 /// How many segments back the time planner revises the speeds at joins when a move is added.
 pub const LOOKAHEAD_SEGMENTS: usize = 4096;
 
+/// A value of each segment that changes rarely, kept as runs: the first segment of each run and
+/// the value it holds until the next run starts (a few runs for a whole program, where an
+/// array of its own would take four bytes a segment).
+#[derive(Debug, Clone, Default, PartialEq)]
+struct Runs {
+    starts: Vec<usize>,
+    values: Vec<u32>,
+}
+
+impl Runs {
+    /// Gives `segment` (the newest) `value`.
+    #[inline]
+    fn push(&mut self, segment: usize, value: u32) {
+        if self.values.last() != Some(&value) {
+            self.starts.push(segment);
+            self.values.push(value);
+        }
+    }
+
+    /// The value of each of the first `len` segments.
+    fn expand(&self, len: usize) -> Vec<u32> {
+        let mut out = Vec::with_capacity(len);
+        for (i, value) in self.values.iter().enumerate() {
+            let end = self.starts.get(i + 1).copied().unwrap_or(len).min(len);
+            out.resize(end.max(out.len()), *value);
+        }
+        out
+    }
+}
+
 /// The machine's motion limits used by the time model.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Kinematics {
@@ -349,8 +379,9 @@ pub struct Toolpath {
     ends: Vec<DVec3>,
     kinds: Vec<SegmentKind>,
     lines: Vec<u32>,
-    feeds: Vec<f32>,
-    segment_tools: Vec<u32>,
+    /// The feed of each segment (its `f32` bits) and its tool, as runs: both change rarely.
+    feeds: Runs,
+    segment_tools: Runs,
     /// The settled end times (a prefix of the segments) and every dwell.
     settled: Timeline,
     bounds: Option<Bounds>,
@@ -403,8 +434,6 @@ impl Toolpath {
         self.ends.reserve(segments);
         self.kinds.reserve(segments);
         self.lines.reserve(segments);
-        self.feeds.reserve(segments);
-        self.segment_tools.reserve(segments);
         self.settled.end_times.reserve(segments);
     }
 
@@ -415,8 +444,8 @@ impl Toolpath {
             ends: Vec::new(),
             kinds: Vec::new(),
             lines: Vec::new(),
-            feeds: Vec::new(),
-            segment_tools: Vec::new(),
+            feeds: Runs::default(),
+            segment_tools: Runs::default(),
             settled: Timeline::default(),
             bounds: None,
             rapid_mm: 0.0,
@@ -486,15 +515,20 @@ impl Toolpath {
         &self.lines
     }
 
-    /// Feed rate of each segment in mm/min (0 for rapids).
-    pub fn feeds(&self) -> &[f32] {
-        &self.feeds
+    /// Feed rate of each segment in mm/min (0 for rapids); made on each call from the runs
+    /// of equal feeds the path keeps.
+    pub fn feeds(&self) -> Vec<f32> {
+        self.feeds
+            .expand(self.ends.len())
+            .into_iter()
+            .map(f32::from_bits)
+            .collect()
     }
 
     /// The tool in the spindle during each segment (the last tool change's number; 0 before
-    /// the first).
-    pub fn segment_tools(&self) -> &[u32] {
-        &self.segment_tools
+    /// the first); made on each call from the runs the path keeps.
+    pub fn segment_tools(&self) -> Vec<u32> {
+        self.segment_tools.expand(self.ends.len())
     }
 
     /// When each segment runs (see the crate documentation for the model). Built on each
@@ -676,8 +710,9 @@ impl Toolpath {
         self.ends.push(to);
         self.kinds.push(kind);
         self.lines.push(line);
-        self.feeds.push(feed_mm_per_min as f32);
-        self.segment_tools.push(self.tool);
+        let segment = self.ends.len() - 1;
+        self.feeds.push(segment, (feed_mm_per_min as f32).to_bits());
+        self.segment_tools.push(segment, self.tool);
 
         let smooth = match join {
             _ if self.stop_pending => false,
@@ -1223,6 +1258,47 @@ mod tests {
                 assert_eq!(k.reach_capped(speed, length, cap).to_bits(), want.to_bits());
             }
         }
+    }
+
+    #[test]
+    fn runs_give_back_every_segment_value() {
+        let mut seed = 0x1234_5678_9abc_def1_u64;
+        for len in [0usize, 1, 2, 7, 100, 1000] {
+            for changes in [1u64, 3, 50] {
+                let mut runs = Runs::default();
+                let mut plain = Vec::new();
+                let mut value = 0u32;
+                for segment in 0..len {
+                    seed ^= seed << 13;
+                    seed ^= seed >> 7;
+                    seed ^= seed << 17;
+                    if seed % 100 < changes {
+                        value = (seed >> 40) as u32 % 4;
+                    }
+                    runs.push(segment, value);
+                    plain.push(value);
+                }
+                assert_eq!(runs.expand(len), plain, "len {len} changes {changes}");
+                assert!(runs.values.len() <= plain.len());
+            }
+        }
+        // The feeds keep their bits: a negative zero and a NaN come back as they went in.
+        let mut path = Toolpath::default();
+        for feed in [100.0, -0.0, 0.0, f64::NAN, 100.0] {
+            path.emit(
+                Source { block: 0, line: 1 },
+                &Canon::Feed {
+                    to: DVec3::X,
+                    feed_mm_per_min: feed,
+                },
+            );
+        }
+        let bits: Vec<u32> = path.feeds().iter().map(|f| f.to_bits()).collect();
+        let want: Vec<u32> = [100.0f32, -0.0, 0.0, f32::NAN, 100.0]
+            .iter()
+            .map(|f| f.to_bits())
+            .collect();
+        assert_eq!(bits, want);
     }
 
     #[test]

@@ -792,9 +792,9 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
         generation,
         points: Arc::new(points),
         lines: Arc::new(path.lines().to_vec()),
-        feeds: Arc::new(path.feeds().to_vec()),
+        feeds: Arc::new(path.feeds()),
         timeline: Arc::new(path.timeline()),
-        tools: Arc::new(path.segment_tools().to_vec()),
+        tools: Arc::new(path.segment_tools()),
         bounds: Some((rel(bounds.min), rel(bounds.max))),
         zero: rel(DVec3::ZERO),
         origin,
@@ -926,7 +926,7 @@ fn programmed_marks(path: &Toolpath, rel: impl Fn(DVec3) -> glam::Vec3) -> Vec<P
 fn color_by_tool(path: &Toolpath, points: &mut [PathPoint]) {
     let tools = path.tools();
     for (point, tool) in points.iter_mut().skip(1).zip(path.segment_tools()) {
-        let index = tools.iter().position(|t| t == tool).unwrap_or(0);
+        let index = tools.iter().position(|t| *t == tool).unwrap_or(0);
         *point = point.with_color_index(u16::try_from(index).unwrap_or(u16::MAX));
     }
 }
