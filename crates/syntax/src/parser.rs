@@ -474,11 +474,13 @@ fn read_plain_line(
             pos += 1;
         }
     }
-    blocks.push(Block {
+    // Made by the iterator after the array has room for it, the block is written straight into
+    // the array (a `push` of a made block copies it there).
+    blocks.extend(std::iter::once_with(|| Block {
         line: line_no,
         number,
         ..Block::default()
-    });
+    }));
     let block = blocks.last_mut()?;
     let mut scan = crate::checks::PlainScan::default();
     while pos < n {
