@@ -115,31 +115,22 @@ impl ParseRun {
             } else {
                 source.len()
             };
-            let raw = match text {
-                Some(text) => text.get(start..end).unwrap_or_default(),
-                None => source.line(start, end),
+            // The short reader reads bytes: a line of the whole text is taken as bytes, sparing
+            // the checks that a `str` is cut between characters (at a newline it always is).
+            let (raw, whole) = if let Some(text) = text {
+                (text.as_bytes().get(start..end).unwrap_or_default(), None)
+            } else {
+                let line = source.line(start, end);
+                (line.as_bytes(), Some(line))
             };
-            let mut line = raw.strip_suffix('\r').unwrap_or(raw);
-            if line.len() > MAX_LINE_BYTES {
-                // A runaway line (a binary file, a generator gone wrong): read its start only.
-                let mut cut = MAX_LINE_BYTES;
-                while !line.is_char_boundary(cut) {
-                    cut -= 1;
-                }
-                program.diagnostics.push(Diagnostic::error(
-                    Span::new(offset + cut, offset + line.len()),
-                    "E-LINE-LENGTH",
-                    format!(
-                        "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
-                        line.len()
-                    ),
-                ));
-                line = &line[..cut];
-            }
+            let raw_len = raw.len();
+            let bytes = raw.strip_suffix(b"\r").unwrap_or(raw);
             let line_no = u32::try_from(line_no).unwrap_or(u32::MAX);
-            let plain = if self.plain_lines {
+            // A runaway line is cut by the general reader (which reads a plain line as the short
+            // one does).
+            let plain = if self.plain_lines && bytes.len() <= MAX_LINE_BYTES {
                 read_plain_line(
-                    line.as_bytes(),
+                    bytes,
                     offset,
                     line_no,
                     dialect.rules(),
@@ -153,6 +144,26 @@ impl ParseRun {
             let (blank, percent) = if let Some(block) = plain {
                 (!block, false)
             } else {
+                let raw = whole
+                    .or_else(|| text.and_then(|text| text.get(start..end)))
+                    .unwrap_or_default();
+                let mut line = raw.strip_suffix('\r').unwrap_or(raw);
+                if line.len() > MAX_LINE_BYTES {
+                    // A runaway line (a binary file, a generator gone wrong): read its start only.
+                    let mut cut = MAX_LINE_BYTES;
+                    while !line.is_char_boundary(cut) {
+                        cut -= 1;
+                    }
+                    program.diagnostics.push(Diagnostic::error(
+                        Span::new(offset + cut, offset + line.len()),
+                        "E-LINE-LENGTH",
+                        format!(
+                            "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
+                            line.len()
+                        ),
+                    ));
+                    line = &line[..cut];
+                }
                 let mut reader = LineReader {
                     dialect,
                     rules: dialect.rules(),
@@ -170,7 +181,7 @@ impl ParseRun {
                 let significant = line.trim_start_matches(is_blank);
                 (significant.is_empty(), significant.starts_with('%'))
             };
-            self.offset += raw.len() + 1;
+            self.offset += raw_len + 1;
             self.line_no += 1;
             self.tape = match (self.tape, percent) {
                 (_, false) if blank => self.tape,
@@ -1959,6 +1970,22 @@ mod tests {
                 }
             }
             assert_eq!(blocks, whole.blocks, "{dialect:?}");
+        }
+    }
+
+    #[test]
+    fn a_runaway_plain_line_is_cut_as_any_other() {
+        let text = format!("G1 X1.{}\nG0 X2.\n", " ".repeat(MAX_LINE_BYTES));
+        for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+            assert_same_as_general(&text, dialect);
+            let program = parse(&text, dialect);
+            assert!(
+                program
+                    .diagnostics
+                    .iter()
+                    .any(|d| d.code == "E-LINE-LENGTH")
+            );
+            assert_eq!(program.blocks.len(), 2);
         }
     }
 
