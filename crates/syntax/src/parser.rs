@@ -496,8 +496,8 @@ fn read_plain_line(
     let mut scan = crate::checks::PlainScan::default();
     while pos < n {
         let start = pos;
-        let letter = bytes[pos].to_ascii_uppercase();
-        if !letter.is_ascii_uppercase() || letter == b'N' || letter == b'O' {
+        let letter = PLAIN_LETTERS[usize::from(bytes[pos])];
+        if letter == 0 {
             blocks.pop();
             return None;
         }
@@ -511,12 +511,13 @@ fn read_plain_line(
             has_point,
         } = scan_digits(bytes, at);
         pos = end;
+        // At most 15 digits, so at most 15 after the point.
         let scale = POW10.get(frac_digits);
         let (Some(scale), 1..) = (scale, digits) else {
             blocks.pop();
             return None;
         };
-        if digits > max_digits || (pos < n && bytes[pos] == b'=') {
+        if digits > max_digits || bytes.get(pos) == Some(&b'=') {
             blocks.pop();
             return None;
         }
@@ -547,6 +548,21 @@ fn read_plain_line(
     checker.check_scanned(block, &scan);
     Some(true)
 }
+
+/// For each byte, the address letter (uppercase) of a word of a plain line that it starts, or 0:
+/// any letter but `N` (a sequence number) and `O` (a program number or an O-word).
+const PLAIN_LETTERS: [u8; 256] = {
+    let mut table = [0; 256];
+    let mut b = 0;
+    while b < 256 {
+        let letter = (b as u8).to_ascii_uppercase();
+        if letter.is_ascii_uppercase() && letter != b'N' && letter != b'O' {
+            table[b] = letter;
+        }
+        b += 1;
+    }
+    table
+};
 
 fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
