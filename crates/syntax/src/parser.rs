@@ -106,9 +106,13 @@ impl ParseRun {
         // The line index has found every newline already (with SIMD): the lines come from it.
         let line_count = program.lines.line_count();
         let stop = self.line_no.saturating_add(lines).min(line_count);
-        while !self.done && self.line_no < stop {
-            let line_no = self.line_no;
-            let offset = self.offset;
+        // The run's state, kept here while the lines are read (stored at the end).
+        let mut next = self.line_no;
+        let mut offset = self.offset;
+        let mut tape = self.tape;
+        let mut done = self.done;
+        while !done && next < stop {
+            let line_no = next;
             let start = program.lines.line_start(line_no) as usize;
             let end = if line_no + 1 < line_count {
                 (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
@@ -181,20 +185,24 @@ impl ParseRun {
                 let significant = line.trim_start_matches(is_blank);
                 (significant.is_empty(), significant.starts_with('%'))
             };
-            self.offset += raw_len + 1;
-            self.line_no += 1;
-            self.tape = match (self.tape, percent) {
-                (_, false) if blank => self.tape,
+            offset += raw_len + 1;
+            next += 1;
+            tape = match (tape, percent) {
+                (_, false) if blank => tape,
                 (Tape::Before, true) => Tape::Open,
                 (Tape::Before | Tape::Plain, false) => Tape::Plain,
                 (Tape::Open, true) => {
-                    ignore_after_tape_end(program, source, self.offset);
-                    self.done = true;
-                    self.tape
+                    ignore_after_tape_end(program, source, offset);
+                    done = true;
+                    tape
                 }
                 (other, _) => other,
             };
         }
+        self.line_no = next;
+        self.offset = offset;
+        self.tape = tape;
+        self.done = done;
         if self.line_no >= line_count {
             self.done = true;
         }
