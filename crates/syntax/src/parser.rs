@@ -111,6 +111,8 @@ impl ParseRun {
         let mut offset = self.offset;
         let mut tape = self.tape;
         let mut done = self.done;
+        let plain_lines = self.plain_lines;
+        let limits = PlainLimits::of(dialect.rules());
         while !done && next < stop {
             let line_no = next;
             let start = program.lines.line_start(line_no) as usize;
@@ -132,12 +134,12 @@ impl ParseRun {
             let line_no = u32::try_from(line_no).unwrap_or(u32::MAX);
             // A runaway line is cut by the general reader (which reads a plain line as the short
             // one does).
-            let plain = if self.plain_lines && bytes.len() <= MAX_LINE_BYTES {
+            let plain = if plain_lines && bytes.len() <= MAX_LINE_BYTES {
                 read_plain_line(
                     bytes,
                     offset,
                     line_no,
-                    dialect.rules(),
+                    limits,
                     &mut program.blocks,
                     &mut self.checker,
                 )
@@ -435,6 +437,28 @@ fn scan_sign(bytes: &[u8], pos: usize) -> (bool, usize) {
     }
 }
 
+/// The dialect's limits that [`read_plain_line`] applies, looked up once a step.
+#[derive(Debug, Clone, Copy)]
+struct PlainLimits {
+    /// The number of digits the general reader takes without a diagnostic and that one
+    /// division reads exactly (see `scan_decimal`).
+    max_digits: usize,
+    /// The largest sequence number.
+    max_sequence_number: u32,
+}
+
+impl PlainLimits {
+    fn of(rules: &Rules) -> Self {
+        PlainLimits {
+            max_digits: match usize::from(rules.max_digits) {
+                0 => 15,
+                max => max.min(15),
+            },
+            max_sequence_number: rules.max_sequence_number,
+        }
+    }
+}
+
 /// Reads a line made only of plain words — a letter, an optional sign and a decimal number of
 /// at most 15 digits (within the dialect's limit), separated by blanks — and optionally a
 /// sequence number first: the line every CAM program is made of (`G1 X5.12 Y0.00 S100`,
@@ -447,7 +471,7 @@ fn read_plain_line(
     bytes: &[u8],
     base: usize,
     line_no: u32,
-    rules: &Rules,
+    limits: PlainLimits,
     blocks: &mut Vec<Block>,
     checker: &mut crate::checks::Checker,
 ) -> Option<bool> {
@@ -463,12 +487,10 @@ fn read_plain_line(
     // reader clamps the offsets past them). A line is at most `MAX_LINE_BYTES` long.
     let base = u32::try_from(base + n).ok()? - n as u32;
     let first = pos;
-    // The number of digits the general reader takes without a diagnostic and that one
-    // division reads exactly (see `scan_decimal`).
-    let max_digits = match usize::from(rules.max_digits) {
-        0 => 15,
-        max => max.min(15),
-    };
+    let PlainLimits {
+        max_digits,
+        max_sequence_number,
+    } = limits;
     let mut number = None;
     // One past the block's last significant byte.
     let mut last = pos;
@@ -482,7 +504,7 @@ fn read_plain_line(
             pos += 1;
         }
         if pos == start
-            || value > rules.max_sequence_number
+            || value > max_sequence_number
             || (pos < n && matches!(bytes[pos], b'0'..=b'9' | b'.'))
         {
             return None;
