@@ -103,7 +103,7 @@ impl ParseRun {
     ) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
-        // The line index has found every newline already (with SIMD): the lines come from it.
+        // The line index has found every newline already: the lines come from it.
         let line_count = program.lines.line_count();
         let stop = self.line_no.saturating_add(lines).min(line_count);
         // The run's state, kept here while the lines are read (stored at the end).
