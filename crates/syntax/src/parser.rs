@@ -103,46 +103,43 @@ impl ParseRun {
     ) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
-        // The line index has found every newline already (with SIMD): the lines come from it.
+        // The line index has found every newline already: the lines come from it.
         let line_count = program.lines.line_count();
         let stop = self.line_no.saturating_add(lines).min(line_count);
-        while !self.done && self.line_no < stop {
-            let line_no = self.line_no;
-            let offset = self.offset;
+        // The run's state, kept here while the lines are read (stored at the end).
+        let mut next = self.line_no;
+        let mut offset = self.offset;
+        let mut tape = self.tape;
+        let mut done = self.done;
+        let plain_lines = self.plain_lines;
+        let limits = PlainLimits::of(dialect.rules());
+        while !done && next < stop {
+            let line_no = next;
             let start = program.lines.line_start(line_no) as usize;
             let end = if line_no + 1 < line_count {
                 (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
             } else {
                 source.len()
             };
-            let raw = match text {
-                Some(text) => text.get(start..end).unwrap_or_default(),
-                None => source.line(start, end),
+            // The short reader reads bytes: a line of the whole text is taken as bytes, sparing
+            // the checks that a `str` is cut between characters (at a newline it always is).
+            let (raw, whole) = if let Some(text) = text {
+                (text.as_bytes().get(start..end).unwrap_or_default(), None)
+            } else {
+                let line = source.line(start, end);
+                (line.as_bytes(), Some(line))
             };
-            let mut line = raw.strip_suffix('\r').unwrap_or(raw);
-            if line.len() > MAX_LINE_BYTES {
-                // A runaway line (a binary file, a generator gone wrong): read its start only.
-                let mut cut = MAX_LINE_BYTES;
-                while !line.is_char_boundary(cut) {
-                    cut -= 1;
-                }
-                program.diagnostics.push(Diagnostic::error(
-                    Span::new(offset + cut, offset + line.len()),
-                    "E-LINE-LENGTH",
-                    format!(
-                        "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
-                        line.len()
-                    ),
-                ));
-                line = &line[..cut];
-            }
+            let raw_len = raw.len();
+            let bytes = raw.strip_suffix(b"\r").unwrap_or(raw);
             let line_no = u32::try_from(line_no).unwrap_or(u32::MAX);
-            let plain = if self.plain_lines {
+            // A runaway line is cut by the general reader (which reads a plain line as the short
+            // one does).
+            let plain = if plain_lines && bytes.len() <= MAX_LINE_BYTES {
                 read_plain_line(
-                    line.as_bytes(),
+                    bytes,
                     offset,
                     line_no,
-                    dialect.rules(),
+                    limits,
                     &mut program.blocks,
                     &mut self.checker,
                 )
@@ -153,6 +150,26 @@ impl ParseRun {
             let (blank, percent) = if let Some(block) = plain {
                 (!block, false)
             } else {
+                let raw = whole
+                    .or_else(|| text.and_then(|text| text.get(start..end)))
+                    .unwrap_or_default();
+                let mut line = raw.strip_suffix('\r').unwrap_or(raw);
+                if line.len() > MAX_LINE_BYTES {
+                    // A runaway line (a binary file, a generator gone wrong): read its start only.
+                    let mut cut = MAX_LINE_BYTES;
+                    while !line.is_char_boundary(cut) {
+                        cut -= 1;
+                    }
+                    program.diagnostics.push(Diagnostic::error(
+                        Span::new(offset + cut, offset + line.len()),
+                        "E-LINE-LENGTH",
+                        format!(
+                            "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
+                            line.len()
+                        ),
+                    ));
+                    line = &line[..cut];
+                }
                 let mut reader = LineReader {
                     dialect,
                     rules: dialect.rules(),
@@ -170,20 +187,24 @@ impl ParseRun {
                 let significant = line.trim_start_matches(is_blank);
                 (significant.is_empty(), significant.starts_with('%'))
             };
-            self.offset += raw.len() + 1;
-            self.line_no += 1;
-            self.tape = match (self.tape, percent) {
-                (_, false) if blank => self.tape,
+            offset += raw_len + 1;
+            next += 1;
+            tape = match (tape, percent) {
+                (_, false) if blank => tape,
                 (Tape::Before, true) => Tape::Open,
                 (Tape::Before | Tape::Plain, false) => Tape::Plain,
                 (Tape::Open, true) => {
-                    ignore_after_tape_end(program, source, self.offset);
-                    self.done = true;
-                    self.tape
+                    ignore_after_tape_end(program, source, offset);
+                    done = true;
+                    tape
                 }
                 (other, _) => other,
             };
         }
+        self.line_no = next;
+        self.offset = offset;
+        self.tape = tape;
+        self.done = done;
         if self.line_no >= line_count {
             self.done = true;
         }
@@ -204,14 +225,14 @@ impl ParseRun {
     /// that a reader that runs a long program piece by piece as it reads it keeps none of the
     /// pieces it has run; the block array's memory is reused for the next piece.
     pub fn clear_blocks(&mut self) {
-        self.program.blocks.clear();
+        empty_blocks(&mut self.program.blocks);
     }
 
     /// Hands over the blocks read so far and reads on into `spare` (emptied first), so that a
     /// reader on one thread can pass pieces of a long program to an interpreter on another
     /// and get their arrays back for reuse.
     pub fn swap_blocks(&mut self, mut spare: Vec<Block>) -> Vec<Block> {
-        spare.clear();
+        empty_blocks(&mut spare);
         std::mem::replace(&mut self.program.blocks, spare)
     }
 
@@ -233,6 +254,41 @@ impl ParseRun {
         run.program.lines = lines;
         run
     }
+}
+
+/// Empties `blocks`, keeping the array's memory for the blocks to come.
+///
+/// Nearly every block owns no memory (its words are stored in it, and it has no statements,
+/// comments or program number): such a block is let go of without its destructor, which would
+/// find nothing to free, so a million-line program does not pay a million calls for nothing.
+fn empty_blocks(blocks: &mut Vec<Block>) {
+    let mut drain = blocks.drain(..);
+    while let Some(block) = drain.as_slice().first() {
+        // Looked at in place, so that a block let go of is not moved first.
+        if owns_no_memory(block) {
+            std::mem::forget(drain.next());
+        } else {
+            drop(drain.next());
+        }
+    }
+}
+
+/// Whether dropping `block` frees nothing.
+#[inline(always)]
+fn owns_no_memory(block: &Block) -> bool {
+    // Every field is named, so that a field added to `Block` must be looked at here.
+    let Block {
+        span: _,
+        line: _,
+        number: _,
+        program,
+        block_delete: _,
+        words,
+        statements,
+        comments,
+        has_error: _,
+    } = block;
+    program.is_none() && !words.spilled() && statements.is_empty() && comments.is_empty()
 }
 
 /// Where the reader is with respect to `%` tape marks.
@@ -381,6 +437,28 @@ fn scan_sign(bytes: &[u8], pos: usize) -> (bool, usize) {
     }
 }
 
+/// The dialect's limits that [`read_plain_line`] applies, looked up once a step.
+#[derive(Debug, Clone, Copy)]
+struct PlainLimits {
+    /// The number of digits the general reader takes without a diagnostic and that one
+    /// division reads exactly (see `scan_decimal`).
+    max_digits: usize,
+    /// The largest sequence number.
+    max_sequence_number: u32,
+}
+
+impl PlainLimits {
+    fn of(rules: &Rules) -> Self {
+        PlainLimits {
+            max_digits: match usize::from(rules.max_digits) {
+                0 => 15,
+                max => max.min(15),
+            },
+            max_sequence_number: rules.max_sequence_number,
+        }
+    }
+}
+
 /// Reads a line made only of plain words — a letter, an optional sign and a decimal number of
 /// at most 15 digits (within the dialect's limit), separated by blanks — and optionally a
 /// sequence number first: the line every CAM program is made of (`G1 X5.12 Y0.00 S100`,
@@ -393,7 +471,7 @@ fn read_plain_line(
     bytes: &[u8],
     base: usize,
     line_no: u32,
-    rules: &Rules,
+    limits: PlainLimits,
     blocks: &mut Vec<Block>,
     checker: &mut crate::checks::Checker,
 ) -> Option<bool> {
@@ -409,12 +487,10 @@ fn read_plain_line(
     // reader clamps the offsets past them). A line is at most `MAX_LINE_BYTES` long.
     let base = u32::try_from(base + n).ok()? - n as u32;
     let first = pos;
-    // The number of digits the general reader takes without a diagnostic and that one
-    // division reads exactly (see `scan_decimal`).
-    let max_digits = match usize::from(rules.max_digits) {
-        0 => 15,
-        max => max.min(15),
-    };
+    let PlainLimits {
+        max_digits,
+        max_sequence_number,
+    } = limits;
     let mut number = None;
     // One past the block's last significant byte.
     let mut last = pos;
@@ -428,7 +504,7 @@ fn read_plain_line(
             pos += 1;
         }
         if pos == start
-            || value > rules.max_sequence_number
+            || value > max_sequence_number
             || (pos < n && matches!(bytes[pos], b'0'..=b'9' | b'.'))
         {
             return None;
@@ -439,17 +515,19 @@ fn read_plain_line(
             pos += 1;
         }
     }
-    blocks.push(Block {
+    // Made by the iterator after the array has room for it, the block is written straight into
+    // the array (a `push` of a made block copies it there).
+    blocks.extend(std::iter::once_with(|| Block {
         line: line_no,
         number,
         ..Block::default()
-    });
+    }));
     let block = blocks.last_mut()?;
     let mut scan = crate::checks::PlainScan::default();
     while pos < n {
         let start = pos;
-        let letter = bytes[pos].to_ascii_uppercase();
-        if !letter.is_ascii_uppercase() || letter == b'N' || letter == b'O' {
+        let letter = PLAIN_LETTERS[usize::from(bytes[pos])];
+        if letter == 0 {
             blocks.pop();
             return None;
         }
@@ -463,12 +541,13 @@ fn read_plain_line(
             has_point,
         } = scan_digits(bytes, at);
         pos = end;
+        // At most 15 digits, so at most 15 after the point.
         let scale = POW10.get(frac_digits);
         let (Some(scale), 1..) = (scale, digits) else {
             blocks.pop();
             return None;
         };
-        if digits > max_digits || (pos < n && bytes[pos] == b'=') {
+        if digits > max_digits || bytes.get(pos) == Some(&b'=') {
             blocks.pop();
             return None;
         }
@@ -499,6 +578,21 @@ fn read_plain_line(
     checker.check_scanned(block, &scan);
     Some(true)
 }
+
+/// For each byte, the address letter (uppercase) of a word of a plain line that it starts, or 0:
+/// any letter but `N` (a sequence number) and `O` (a program number or an O-word).
+const PLAIN_LETTERS: [u8; 256] = {
+    let mut table = [0; 256];
+    let mut b = 0;
+    while b < 256 {
+        let letter = (b as u8).to_ascii_uppercase();
+        if letter.is_ascii_uppercase() && letter != b'N' && letter != b'O' {
+            table[b] = letter;
+        }
+        b += 1;
+    }
+    table
+};
 
 fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
@@ -1891,6 +1985,53 @@ mod tests {
             }
             assert_same_as_general(&lines.join("\n"), dialect);
             assert_same_as_general(&lines.join("\r\n"), dialect);
+        }
+    }
+
+    #[test]
+    fn pieces_read_into_emptied_arrays_make_the_whole_program() {
+        let text =
+            "O100 (a program)\nG1 X1 Y2 Z3 A4 B5 C6 F7\n#1 = 2\nG0 X#1\n N10 X1.5\n\nX2 (c)\n"
+                .repeat(20);
+        for dialect in Dialect::ALL {
+            let whole = parse(&text, dialect);
+            // Blocks that own memory and blocks that own none, both let go of.
+            assert!(whole.blocks.iter().any(owns_no_memory), "{dialect:?}");
+            assert!(!whole.blocks.iter().all(owns_no_memory), "{dialect:?}");
+            let mut run = ParseRun::new(&text, dialect);
+            let mut blocks = Vec::new();
+            let mut spare = Vec::new();
+            for turn in 0.. {
+                let done = run.step(&text, 3);
+                if turn % 2 == 0 {
+                    blocks.extend(run.program().blocks.iter().cloned());
+                    run.clear_blocks();
+                } else {
+                    spare = run.swap_blocks(spare);
+                    blocks.extend(spare.iter().cloned());
+                }
+                assert!(run.program().blocks.is_empty());
+                if done {
+                    break;
+                }
+            }
+            assert_eq!(blocks, whole.blocks, "{dialect:?}");
+        }
+    }
+
+    #[test]
+    fn a_runaway_plain_line_is_cut_as_any_other() {
+        let text = format!("G1 X1.{}\nG0 X2.\n", " ".repeat(MAX_LINE_BYTES));
+        for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+            assert_same_as_general(&text, dialect);
+            let program = parse(&text, dialect);
+            assert!(
+                program
+                    .diagnostics
+                    .iter()
+                    .any(|d| d.code == "E-LINE-LENGTH")
+            );
+            assert_eq!(program.blocks.len(), 2);
         }
     }
 
