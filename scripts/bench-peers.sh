@@ -10,13 +10,13 @@
 # Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
 # TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's on one thread and
 # on two.
-#   scripts/bench-peers.sh            (RUNS=5, TIMEOUT=600; needs ../shared for the corpus files)
+#   scripts/bench-peers.sh            (RUNS=10, TIMEOUT=600; needs ../shared for the corpus files)
 # It ends with the wasm32 build's figure on the generated program (Node, in-process).
 # The peers are installed once under target/peers (npm and pip; nothing is committed).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 shared=${SWARF_SHARED:-$root/../shared}
-runs=${RUNS:-5}
+runs=${RUNS:-10}
 limit=${TIMEOUT:-600}
 target=${CARGO_TARGET_DIR:-$root/target}
 peers=$target/peers
@@ -49,8 +49,8 @@ trap 'rm -f "$tmp"' EXIT
 # "secs kb" for a command: its best wall-clock time of $runs runs (the first run's when it is
 # slower than 10 s) and its peak RSS, or "timeout 0" when it does not finish within $limit
 # seconds. The first run goes through /usr/bin/time for the RSS (its time is in hundredths of a
-# second, so it counts only for a slow program); the timed runs go through bash's `time`
-# (milliseconds, no wrapper process). A non-zero exit status still counts (rs274 ends some
+# second, so it counts only for a slow program); the timed runs are read off bash's
+# microsecond clock, with no wrapper process. A non-zero exit status still counts (rs274 ends some
 # programs with one); "fail 0" when nothing was measured.
 measure() {
   local best="" kb=0 out n=0 rc t
@@ -71,10 +71,15 @@ measure() {
     echo "${out% *} $kb"
     return
   fi
-  local TIMEFORMAT=%3R
+  # The first run finished within the limit, so the timed runs go without the `timeout`
+  # wrapper (whose own start would count); bash's clock reads microseconds.
+  local start end
   while ((n++ < runs)); do
-    t=$({ time timeout "$limit" "$@" > /dev/null 2> /dev/null < /dev/null; } 2>&1)
-    if [[ "$t" =~ ^[0-9.]+$ ]] && { [[ -z "$best" ]] || awk "BEGIN{exit !($t < $best)}"; }; then
+    start=$EPOCHREALTIME
+    "$@" > /dev/null 2> /dev/null < /dev/null
+    end=$EPOCHREALTIME
+    t=$(awk "BEGIN{printf \"%.4f\", $end - $start}")
+    if [[ -z "$best" ]] || awk "BEGIN{exit !($t < $best)}"; then
       best=$t
     fi
   done
@@ -93,9 +98,9 @@ cell() {
   esac
 }
 
-# Swarf's cell: "0.065 s, 61 MB/s, 18 MB".
+# Swarf's cell: "0.0650 s, 61 MB/s, 18 MB".
 swarf_cell() {
-  awk "BEGIN{printf \"%.3f s, %.0f MB/s, %d MB\", $1, $3/1e6/$1, $2/1024}"
+  awk "BEGIN{printf \"%.4f s, %.0f MB/s, %d MB\", $1, $3/1e6/$1, $2/1024}"
 }
 
 echo "| program | size | lines | Swarf, one thread | Swarf, two threads | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
