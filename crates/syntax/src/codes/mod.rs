@@ -342,23 +342,33 @@ fn index() -> &'static [Vec<(Code, u16)>; 6] {
     INDEX.get_or_init(|| {
         let mut out: [Vec<(Code, u16)>; 6] = Default::default();
         for (slot, dialect) in out.iter_mut().zip(Dialect::ALL) {
-            for (i, def) in CODES.iter().enumerate() {
-                let seen = slot.iter().any(|(c, _)| *c == def.code);
-                if def.dialects.contains(dialect) && !seen {
-                    slot.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
-                }
-            }
+            // The first definition of each code the dialect has, in the table's order: a stable
+            // sort keeps it first among the code's definitions.
+            slot.extend(
+                CODES
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, def)| def.dialects.contains(dialect))
+                    .map(|(i, def)| (def.code, u16::try_from(i).unwrap_or(u16::MAX))),
+            );
+            slot.sort_by_key(|(c, _)| *c);
+            slot.dedup_by_key(|(c, _)| *c);
             // The standard codes a dialect's manual leaves out are read as Fanuc reads them.
             if FANUC_READING.contains(&dialect) {
+                let mut standard: Vec<(Code, u16)> = Vec::new();
                 for (i, def) in CODES.iter().enumerate() {
-                    let standard = FANUC_STANDARD.contains(&def.code);
-                    let seen = slot.iter().any(|(c, _)| *c == def.code);
-                    if standard && def.dialects.contains(Dialect::Fanuc) && !seen {
-                        slot.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
+                    let seen = slot.binary_search_by_key(&def.code, |(c, _)| *c).is_ok()
+                        || standard.iter().any(|(c, _)| *c == def.code);
+                    if FANUC_STANDARD.contains(&def.code)
+                        && def.dialects.contains(Dialect::Fanuc)
+                        && !seen
+                    {
+                        standard.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
                     }
                 }
+                slot.extend(standard);
+                slot.sort_by_key(|(c, _)| *c);
             }
-            slot.sort_by_key(|(c, _)| *c);
         }
         out
     })
@@ -563,4 +573,40 @@ pub fn address(dialect: Dialect, letter: u8) -> impl Iterator<Item = &'static Ad
     ADDRESSES
         .iter()
         .filter(move |a| a.letter == letter && a.dialects.contains(dialect))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The index by its plain definition: each code's first definition the dialect has, then
+    /// the Fanuc reading of the standard codes its manual leaves out, sorted by code.
+    fn plain_index(dialect: Dialect) -> Vec<(Code, u16)> {
+        let mut slot: Vec<(Code, u16)> = Vec::new();
+        for (i, def) in CODES.iter().enumerate() {
+            let seen = slot.iter().any(|(c, _)| *c == def.code);
+            if def.dialects.contains(dialect) && !seen {
+                slot.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
+            }
+        }
+        if FANUC_READING.contains(&dialect) {
+            for (i, def) in CODES.iter().enumerate() {
+                let standard = FANUC_STANDARD.contains(&def.code);
+                let seen = slot.iter().any(|(c, _)| *c == def.code);
+                if standard && def.dialects.contains(Dialect::Fanuc) && !seen {
+                    slot.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
+                }
+            }
+        }
+        slot.sort_by_key(|(c, _)| *c);
+        slot
+    }
+
+    #[test]
+    fn the_index_is_its_plain_definition() {
+        for (slot, dialect) in index().iter().zip(Dialect::ALL) {
+            assert_eq!(*slot, plain_index(dialect), "{dialect:?}");
+            assert!(!slot.is_empty());
+        }
+    }
 }
