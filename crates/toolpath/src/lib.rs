@@ -1155,15 +1155,18 @@ mod tests {
             .collect()
     }
 
+    /// The next number of a xorshift sequence (reproducible test data without a crate).
+    fn xorshift(seed: &mut u64) -> u64 {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        *seed
+    }
+
     #[test]
     fn window_end_times_match_the_two_pass_definition_bit_for_bit() {
         let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = move || (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64;
         for kinematics in [
             Kinematics::default(),
             Kinematics {
@@ -1204,12 +1207,7 @@ mod tests {
     #[test]
     fn capped_reach_is_the_plain_one_bit_for_bit() {
         let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = move || xorshift(&mut seed);
         let special = [
             0.0,
             -0.0,
@@ -1269,9 +1267,7 @@ mod tests {
                 let mut plain = Vec::new();
                 let mut value = 0u32;
                 for segment in 0..len {
-                    seed ^= seed << 13;
-                    seed ^= seed >> 7;
-                    seed ^= seed << 17;
+                    xorshift(&mut seed);
                     if seed % 100 < changes {
                         value = (seed >> 40) as u32 % 4;
                     }
