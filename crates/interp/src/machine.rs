@@ -158,7 +158,8 @@ pub struct Interpreter {
     /// short path leave the frame as it was, so only after them can the check be skipped.
     origin_current: bool,
     /// The frame of the fastest path for plain moves (see `exec::Fast`), and whether it was
-    /// made after the last block that could change it.
+    /// made after the last block that could change it (only blocks change the state, so it
+    /// holds from one step to the next).
     fast: Option<crate::exec::Fast>,
     fast_current: bool,
 }
@@ -336,8 +337,6 @@ impl Interpreter {
                 &mut self.st.diagnostics,
             )));
         }
-        // The state may have been changed from outside since the last step.
-        self.fast_current = false;
         let mut counted = MotionCounter {
             inner: sink,
             motions: self.motions,
