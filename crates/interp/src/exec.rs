@@ -816,6 +816,8 @@ pub(crate) fn plain_block(
 pub(crate) struct Fast {
     /// The program frame → machine frame offset ([`State::base`]).
     base: DVec3,
+    /// Whether G02 and G03 are the dialect's arcs (for [`fast_arc`]).
+    arcs: bool,
 }
 
 impl Fast {
@@ -835,8 +837,71 @@ impl Fast {
             && st.pending.is_none()
             && st.comp.is_idle()
             && st.cutter_comp == 400;
-        simple.then(|| Fast { base: st.base() })
+        simple.then(|| Fast {
+            base: st.base(),
+            arcs: [2.0, 3.0].iter().all(|&g| {
+                Code::from_value(b'G', g)
+                    .and_then(|c| codes::lookup(st.dialect, c))
+                    .and_then(|d| action(st.dialect, d.group, d.code.tenths))
+                    == Some(Action::Motion(Some(MotionMode::Arc { ccw: g == 3.0 })))
+            }),
+        })
     }
+}
+
+/// Runs a plain arc in a [`Fast`] frame: a block of nothing but `G02`/`G03`, X/Y/Z, I/J/K or R,
+/// F and S words with literal values, in an arc mode. It takes the steps [`execute_block`]
+/// takes for such a block (the others find nothing to do in it) and then the same [`motion`];
+/// whether it ran the block (`false`, having done nothing, for any other block).
+pub(crate) fn fast_arc(
+    st: &mut State,
+    fast: Fast,
+    block: &Block,
+    source: Source,
+    sink: &mut MotionCounter<'_>,
+) -> bool {
+    if !fast.arcs {
+        return false;
+    }
+    let words = &block.words[..];
+    let mut axes: Axes<'_> = [None; 3];
+    let mut code = None;
+    let mut feed = None;
+    let mut spindle = None;
+    let mut centre = false;
+    for w in words {
+        if w.form != WordForm::Plain || w.expr.is_some() {
+            return false;
+        }
+        match w.letter {
+            b'X' | b'Y' | b'Z' => axes[usize::from(w.letter - b'X')] = Some(w),
+            b'I' | b'J' | b'K' => centre = true,
+            b'R' => {}
+            b'F' => feed = feed.or(Some(w)),
+            b'S' => spindle = spindle.or(Some(w)),
+            b'G' if code.is_none() && w.value == 2.0 => code = Some(MotionMode::Arc { ccw: false }),
+            b'G' if code.is_none() && w.value == 3.0 => code = Some(MotionMode::Arc { ccw: true }),
+            _ => return false,
+        }
+    }
+    let Some(mode @ MotionMode::Arc { .. }) = code.or(st.motion) else {
+        return false;
+    };
+    if matches!(st.motion, Some(MotionMode::Cycle(_))) {
+        return false;
+    }
+    // `spindle_speed` at constant spindle speed.
+    if let Some(s) = spindle.filter(|s| s.value >= 0.0) {
+        st.spindle_rpm = s.value;
+    }
+    feed_word(st, feed);
+    st.motion = Some(mode);
+    note_least_increment(st, words);
+    // No end point and no centre (`G02 R5.`): only the mode is set, as `execute_block` does.
+    if axes.iter().any(Option::is_some) || centre {
+        motion(st, block, words, &axes, false, source, sink);
+    }
+    true
 }
 
 /// [`plain_move`] in a [`Fast`] frame: the same events, diagnostics and state, without the

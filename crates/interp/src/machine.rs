@@ -486,7 +486,9 @@ impl Interpreter {
                 block: u32::try_from(self.block_base + at + ran).unwrap_or(u32::MAX),
                 line: block.line.saturating_add(1),
             };
-            if !crate::exec::fast_move(&mut self.st, fast, block, source, sink) {
+            if !crate::exec::fast_move(&mut self.st, fast, block, source, sink)
+                && !crate::exec::fast_arc(&mut self.st, fast, block, source, sink)
+            {
                 break;
             }
             self.st.block_span = block.span;
