@@ -244,6 +244,9 @@ fn merged(reading: &[Diagnostic], run: Vec<Diagnostic>) -> Vec<Diagnostic> {
 /// Lines read and run at a time when a program runs piece by piece.
 const PIECE_LINES: usize = 1024;
 
+/// A text up to this long (about a piece's lines) is read and run on one thread.
+const PIECE_BYTES: usize = PIECE_LINES * 24;
+
 /// A program read and run piece by piece into a toolpath.
 struct Streamed {
     /// The file, its program without blocks (none is kept) and its reading diagnostics.
@@ -269,11 +272,13 @@ fn stream(
     two_threads: bool,
 ) -> Option<Streamed> {
     let text = std::mem::take(&mut decoded.text);
-    let reader = swarf_syntax::ParseRun::new(&text, opts.dialect);
+    // The lines are indexed as they are read, by the thread that reads them.
+    let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
     let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
-    let lines = reader.program().lines.line_count();
-    toolpath.reserve(lines);
-    let ran = if two_threads && lines > PIECE_LINES {
+    // About a move a line, and a line is rarely under sixteen bytes: the part of the reserve
+    // that no move fills is never touched.
+    toolpath.reserve(text.len() / 16);
+    let ran = if two_threads && text.len() > PIECE_BYTES {
         run_pieces_beside(&text, reader, &mut interp, toolpath)
     } else {
         run_pieces(&text, reader, &mut interp, toolpath)

@@ -34,6 +34,48 @@ impl LineIndex {
         LineIndex { starts }
     }
 
+    /// The table of a text not yet indexed: its first line only. Grow it with
+    /// [`LineIndex::extend`], reading the text front to back.
+    pub fn started(text_len: usize) -> Self {
+        // G-code lines are rarely shorter than eight bytes: the reserve spares the copies of a
+        // growing table, and a part never written is never touched.
+        let mut starts = Vec::with_capacity(text_len / 8 + 1);
+        starts.push(0);
+        LineIndex { starts }
+    }
+
+    /// Indexes more of `text`, from byte `from` (where the last call stopped; 0 at first) until
+    /// at least `lines` line starts are known: where the next call goes on, or `None` once the
+    /// whole text is indexed (the table is then the one [`LineIndex::new`] makes). Reading a
+    /// long program piece by piece, the indexing is spread over the pieces (and over the thread
+    /// that reads them) instead of done before the first one.
+    pub fn extend(&mut self, text: &str, from: usize, lines: usize) -> Option<usize> {
+        let bytes = text.as_bytes();
+        let mut at = from.min(bytes.len());
+        let starts = &mut self.starts;
+        while starts.len() < lines {
+            let Some((chunk, _)) = bytes.get(at..).and_then(|b| b.split_first_chunk::<16>()) else {
+                // Under sixteen bytes left: byte by byte, to the end.
+                for (i, &b) in bytes.get(at..).unwrap_or_default().iter().enumerate() {
+                    if b == b'\n' {
+                        starts.push(line_after(at, i));
+                    }
+                }
+                return None;
+            };
+            let (low, high) = chunk.split_at(8);
+            for (base, half) in [(at, low), (at + 8, high)] {
+                let mut mask = newline_mask(half.try_into().unwrap_or(&[0; 8]));
+                while mask != 0 {
+                    starts.push(line_after(base, mask.trailing_zeros() as usize / 8));
+                    mask &= mask - 1;
+                }
+            }
+            at += 16;
+        }
+        Some(at)
+    }
+
     /// Number of lines (an empty text has one empty line).
     pub fn line_count(&self) -> usize {
         self.starts.len()
@@ -239,6 +281,7 @@ mod tests {
                     .filter(|&c| text.is_char_boundary(c))
                     .collect();
                 cuts.sort_unstable();
+                let cuts_len = cuts.len();
                 let mut chunks = Vec::new();
                 let mut from = 0;
                 for cut in cuts.into_iter().chain([text.len()]) {
@@ -246,6 +289,17 @@ mod tests {
                     from = cut;
                 }
                 prop_assert_eq!(&LineIndex::from_chunks(chunks), &index, "{:?}", text);
+                // Grown piece by piece, any number of lines at a time.
+                let mut grown = LineIndex::started(text.len());
+                let mut from = Some(0);
+                let mut want = 1;
+                while let Some(at) = from {
+                    prop_assert!(grown.starts.len() >= want.min(index.starts.len()));
+                    prop_assert_eq!(&grown.starts[..], &index.starts[..grown.starts.len()]);
+                    want += 1 + cuts_len % 3;
+                    from = grown.extend(&text, at, want);
+                }
+                prop_assert_eq!(&grown, &index, "{:?}", text);
             }
         }
     }

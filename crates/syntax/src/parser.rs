@@ -38,6 +38,9 @@ pub struct ParseRun {
     /// 0-based number of the next line.
     line_no: usize,
     done: bool,
+    /// Where the line index goes on indexing the text, for a run that indexes it as it reads
+    /// ([`ParseRun::streaming`]); `None` once every line is indexed.
+    indexed: Option<usize>,
     /// Whether lines of plain words take the short reader (always, but in the tests that
     /// compare it with the general one).
     plain_lines: bool,
@@ -68,8 +71,21 @@ impl ParseRun {
             offset: 0,
             line_no: 0,
             done: false,
+            indexed: None,
             plain_lines: true,
         }
+    }
+
+    /// A run that indexes the lines of `text` as it reads them, a piece ahead, rather than all
+    /// before the first step: for a reader that runs a long program piece by piece as it is
+    /// read (the command line), which then starts at once and, reading on a second thread,
+    /// does the indexing there. Until the run is done, [`ParseRun::progress`] counts only the
+    /// lines indexed so far.
+    pub fn streaming(text: &str, dialect: Dialect) -> Self {
+        let mut run = ParseRun::new("", dialect);
+        run.program.lines = LineIndex::started(text.len());
+        run.indexed = Some(0);
+        run
     }
 
     /// Lines read so far and lines in the text.
@@ -103,7 +119,12 @@ impl ParseRun {
     ) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
-        // The line index has found every newline already: the lines come from it.
+        // The lines come from the line index: a streaming run first indexes those it will read
+        // (and the start of the line after them, where the last one ends).
+        if let Some(from) = self.indexed {
+            let wanted = self.line_no.saturating_add(lines).saturating_add(1);
+            self.indexed = index_lines(&mut program.lines, text, source, from, wanted);
+        }
         let line_count = program.lines.line_count();
         let stop = self.line_no.saturating_add(lines).min(line_count);
         // The run's state, kept here while the lines are read (stored at the end).
@@ -208,6 +229,11 @@ impl ParseRun {
         if self.line_no >= line_count {
             self.done = true;
         }
+        // A program that ends before its text does (a closing tape mark) still has its whole
+        // text indexed, as a run that indexes first has.
+        if let (true, Some(from)) = (self.done, self.indexed) {
+            self.indexed = index_lines(&mut self.program.lines, text, source, from, usize::MAX);
+        }
         self.done
     }
 
@@ -253,6 +279,24 @@ impl ParseRun {
         run.program.blocks = Vec::with_capacity(lines.line_count());
         run.program.lines = lines;
         run
+    }
+}
+
+/// [`LineIndex::extend`] over the text a run reads: `text` when it is at hand, else the whole
+/// of `source`.
+fn index_lines(
+    lines: &mut LineIndex,
+    text: Option<&str>,
+    source: &mut dyn LineSource,
+    from: usize,
+    wanted: usize,
+) -> Option<usize> {
+    match text {
+        Some(text) => lines.extend(text, from, wanted),
+        None => {
+            let len = source.len();
+            lines.extend(source.line(0, len), from, wanted)
+        }
     }
 }
 

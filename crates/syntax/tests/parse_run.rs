@@ -3,8 +3,19 @@
 
 use swarf_syntax::{Dialect, ParseRun, parse};
 
-fn stepped(text: &str, dialect: Dialect, lines: usize) -> (swarf_syntax::Program, usize) {
-    let mut run = ParseRun::new(text, dialect);
+/// `text` read `lines` at a time: by a run that indexes the whole text first, or with
+/// `streaming`, by one that indexes it as it reads.
+fn stepped(
+    text: &str,
+    dialect: Dialect,
+    lines: usize,
+    streaming: bool,
+) -> (swarf_syntax::Program, usize) {
+    let mut run = if streaming {
+        ParseRun::streaming(text, dialect)
+    } else {
+        ParseRun::new(text, dialect)
+    };
     let mut steps = 0;
     loop {
         let (read, total) = run.progress();
@@ -31,9 +42,15 @@ fn stepping_a_few_lines_at_a_time_equals_the_whole_parse() {
     text.push_str("M30");
     for dialect in Dialect::ALL {
         let whole = parse(&text, dialect);
-        for lines in [1, 7, 100, 1000] {
-            let (program, steps) = stepped(&text, dialect, lines);
-            assert_eq!(program, whole, "{dialect:?} in steps of {lines} lines");
+        for (lines, streaming) in [1, 7, 100, 1000]
+            .into_iter()
+            .flat_map(|n| [(n, false), (n, true)])
+        {
+            let (program, steps) = stepped(&text, dialect, lines, streaming);
+            assert_eq!(
+                program, whole,
+                "{dialect:?} in steps of {lines} lines, streaming {streaming}"
+            );
             let total = text.lines().count();
             assert!(steps >= total / lines, "{steps} steps of {lines}");
         }
@@ -45,8 +62,12 @@ fn stepping_a_few_lines_at_a_time_equals_the_whole_parse() {
 fn a_stepped_run_stops_at_the_closing_tape_mark() {
     let text = "%\nG0 X1\nG1 X2 F100\n%\nG1 X$\nG1 Y$\n";
     let whole = parse(text, Dialect::Fanuc);
-    let (program, _) = stepped(text, Dialect::Fanuc, 1);
-    assert_eq!(program, whole);
+    for streaming in [false, true] {
+        let (program, _) = stepped(text, Dialect::Fanuc, 1, streaming);
+        // The streaming run has indexed the lines past the tape mark too.
+        assert_eq!(program, whole, "streaming {streaming}");
+    }
+    let program = whole;
     assert!(
         program
             .diagnostics
@@ -70,8 +91,15 @@ fn lines_from_a_source_give_the_program_of_the_text() {
     text.push_str("M30\n%\nG1 X$\n");
     for dialect in Dialect::ALL {
         let whole = parse(&text, dialect);
-        for lines in [1, 9, 1000] {
-            let mut run = ParseRun::new(&text, dialect);
+        for (lines, streaming) in [1, 9, 1000]
+            .into_iter()
+            .flat_map(|n| [(n, false), (n, true)])
+        {
+            let mut run = if streaming {
+                ParseRun::streaming(&text, dialect)
+            } else {
+                ParseRun::new(&text, dialect)
+            };
             // The lines come through the `LineSource` calls, not from the text at hand.
             let mut source: &str = &text;
             let mut steps = 0;
@@ -79,7 +107,32 @@ fn lines_from_a_source_give_the_program_of_the_text() {
                 steps += 1;
                 assert!(steps < 10_000, "the run ends");
             }
-            assert_eq!(run.finish(), whole, "{dialect:?} in steps of {lines} lines");
+            assert_eq!(
+                run.finish(),
+                whole,
+                "{dialect:?} in steps of {lines} lines, streaming {streaming}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_streaming_run_of_texts_around_a_piece_s_size_equals_the_whole_parse() {
+    // Texts whose ends fall at every place in the line index's sixteen-byte steps, with and
+    // without a last newline, read in pieces of a few lines.
+    for len in 0..60 {
+        let mut text = String::new();
+        for i in 0..len {
+            text.push_str(if i % 3 == 0 { "G1 X1.5\n" } else { "Y2\r\n" });
+        }
+        for tail in ["", "G0 Z9", "\n"] {
+            let text = format!("{text}{tail}");
+            let whole = parse(&text, Dialect::LinuxCnc);
+            for lines in [1, 2, 5, 64] {
+                let (program, _) = stepped(&text, Dialect::LinuxCnc, lines, true);
+                assert_eq!(program, whole, "{text:?} in steps of {lines}");
+                assert_eq!(program.lines.line_count(), text.split('\n').count());
+            }
         }
     }
 }
