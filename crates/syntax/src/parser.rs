@@ -291,12 +291,11 @@ fn index_lines(
     from: usize,
     wanted: usize,
 ) -> Option<usize> {
-    match text {
-        Some(text) => lines.extend(text, from, wanted),
-        None => {
-            let len = source.len();
-            lines.extend(source.line(0, len), from, wanted)
-        }
+    if let Some(text) = text {
+        lines.extend(text, from, wanted)
+    } else {
+        let len = source.len();
+        lines.extend(source.line(0, len), from, wanted)
     }
 }
 
