@@ -342,6 +342,11 @@ fn run_pieces(
 /// [`run_pieces`] with the reading on a second thread: it hands each piece's blocks (and the
 /// expressions new in it) over a short queue while this thread runs the piece before, and gets
 /// the block arrays back for reuse.
+///
+/// The toolpath's time model (about a sixth of a plain program's work) runs on whichever
+/// thread would otherwise wait: this thread queues the moves of each piece it has run, and
+/// they are timed, in order, by the reader when its queue of pieces is full and once it has
+/// read the last, or by this thread while it waits for a piece.
 fn run_pieces_beside(
     text: &str,
     mut reader: swarf_syntax::ParseRun,
@@ -349,14 +354,29 @@ fn run_pieces_beside(
     toolpath: &mut Toolpath,
 ) -> Option<(swarf_syntax::ParseRun, usize)> {
     use std::sync::atomic::{AtomicBool, Ordering};
-    use std::sync::mpsc::sync_channel;
+    use std::sync::mpsc::{Receiver, TryRecvError, TrySendError, channel, sync_channel};
+    use std::sync::{Mutex, PoisonError};
+    use swarf_toolpath::{Timer, Timings};
     type Piece = (Vec<swarf_syntax::Block>, Vec<swarf_syntax::ExprNode>);
+    /// Times the moves queued so far; whether there were any.
+    fn time_queued((timer, queued): &mut (Timer, Receiver<Timings>)) -> bool {
+        let mut any = false;
+        for moves in queued.try_iter() {
+            timer.take(&moves);
+            any = true;
+        }
+        any
+    }
     let stop = AtomicBool::new(false);
     let dialect = reader.program().dialect;
-    std::thread::scope(|scope| {
+    let (moves, queued) = channel::<Timings>();
+    // The time model and its queue of moves: whoever holds it times them.
+    let timing = Mutex::new((toolpath.detach_timer(), queued));
+    let ran = std::thread::scope(|scope| {
         let (pieces, received) = sync_channel::<Piece>(2);
         let (spares, spare) = sync_channel::<Vec<swarf_syntax::Block>>(4);
         let stop = &stop;
+        let timing = &timing;
         let parser = scope.spawn(move || {
             let mut sent_exprs = 0;
             loop {
@@ -365,11 +385,37 @@ fn run_pieces_beside(
                 let exprs = &reader.program().exprs;
                 let new_exprs = exprs.get(sent_exprs..).unwrap_or_default().to_vec();
                 sent_exprs = exprs.len();
-                if stop.load(Ordering::Relaxed) || pieces.send((blocks, new_exprs)).is_err() || done
-                {
+                let mut piece = (blocks, new_exprs);
+                let sent = loop {
+                    if stop.load(Ordering::Relaxed) {
+                        break false;
+                    }
+                    match pieces.try_send(piece) {
+                        Ok(()) => break true,
+                        Err(TrySendError::Disconnected(_)) => break false,
+                        Err(TrySendError::Full(back)) => piece = back,
+                    }
+                    // Ahead of the runner: time its moves while waiting, if there are any.
+                    let timed = timing.try_lock().is_ok_and(|mut t| time_queued(&mut t));
+                    if !timed {
+                        break pieces.send(piece).is_ok();
+                    }
+                };
+                if !sent {
                     return reader;
                 }
+                if done {
+                    break;
+                }
             }
+            drop(pieces);
+            // Every piece is read: time the moves of those still running, until the last.
+            let mut held = timing.lock().unwrap_or_else(PoisonError::into_inner);
+            let (timer, queued) = &mut *held;
+            for more in queued.iter() {
+                timer.take(&more);
+            }
+            reader
         });
         // The program as the interpreter sees it: this piece's blocks, every expression so far.
         let mut piece = Program {
@@ -379,7 +425,21 @@ fn run_pieces_beside(
         let mut blocks = 0;
         let mut ended = false;
         let mut whole = false;
-        for (read, exprs) in &received {
+        loop {
+            let (read, exprs) = match received.try_recv() {
+                Ok(next) => next,
+                Err(TryRecvError::Disconnected) => break,
+                Err(TryRecvError::Empty) => {
+                    // Ahead of the reader: time the moves while waiting.
+                    if let Ok(mut t) = timing.try_lock() {
+                        time_queued(&mut t);
+                    }
+                    match received.recv() {
+                        Ok(next) => next,
+                        Err(_) => break,
+                    }
+                }
+            };
             piece.blocks = read;
             piece.exprs.extend(exprs);
             blocks += piece.blocks.len();
@@ -388,16 +448,25 @@ fn run_pieces_beside(
                 stop.store(true, Ordering::Relaxed);
                 break;
             }
+            // Only a reader gone (it panicked, reported at the join) drops them.
+            let _ = moves.send(toolpath.take_timings());
             // A full queue (the reader is done) just drops the array.
             let _ = spares.try_send(std::mem::take(&mut piece.blocks));
         }
         drop(received);
+        drop(moves);
         let reader = match parser.join() {
             Ok(reader) => reader,
             Err(panic) => std::panic::resume_unwind(panic),
         };
         (!whole).then_some((reader, blocks))
-    })
+    });
+    let (mut timer, queued) = timing.into_inner().unwrap_or_else(PoisonError::into_inner);
+    for more in queued.try_iter() {
+        timer.take(&more);
+    }
+    toolpath.attach_timer(timer);
+    ran
 }
 
 impl Loaded {

@@ -302,11 +302,7 @@ impl Timeline {
 
     /// Seconds of dwell just before segment `i`.
     pub fn dwell_before(&self, i: usize) -> f64 {
-        let at = self.dwells.partition_point(|d| d.segment < i);
-        self.dwells
-            .get(at)
-            .filter(|d| d.segment == i)
-            .map_or(0.0, |d| d.secs)
+        dwell_before(&self.dwells, i)
     }
 
     /// When segment `i` starts and ends moving (`None` past the end).
@@ -348,6 +344,148 @@ impl Timeline {
     }
 }
 
+/// Seconds of dwell in `dwells` (in segment order) just before segment `i`.
+fn dwell_before(dwells: &[Dwell], i: usize) -> f64 {
+    let at = dwells.partition_point(|d| d.segment < i);
+    dwells
+        .get(at)
+        .filter(|d| d.segment == i)
+        .map_or(0.0, |d| d.secs)
+}
+
+/// The time model's planner: the end times of the segments settled so far, and the plans of
+/// those after them. Kept apart from the path, it can time a long program's segments on
+/// another thread while the program runs on (see [`Toolpath::detach_timer`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Timer {
+    kinematics: Kinematics,
+    /// The settled end times (a prefix of the segments).
+    end_times: Vec<f64>,
+    /// The segments after the settled ones, whose join speeds may still change.
+    window: Vec<Plan>,
+}
+
+/// What the time model takes of a segment: recorded while the path's timer is detached, for
+/// the timer to take in later.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Timing {
+    length: f64,
+    /// Cruise speed, mm/s.
+    cruise: f64,
+    /// Seconds of dwell before the segment.
+    dwell: f64,
+    /// Whether the segment may join the one before without stopping.
+    smooth: bool,
+}
+
+/// The segments recorded while a path's timer was detached, in order, for [`Timer::take`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Timings(Vec<Timing>);
+
+impl Timings {
+    /// Number of segments.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether there is no segment.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+impl Timer {
+    fn new(kinematics: Kinematics) -> Self {
+        Timer {
+            kinematics,
+            end_times: Vec::new(),
+            window: Vec::new(),
+        }
+    }
+
+    /// Times the segments recorded while the timer was detached, in their order; taken in by
+    /// the timer, the path gets the same times as if it had timed them itself.
+    pub fn take(&mut self, timings: &Timings) {
+        for t in &timings.0 {
+            self.add(t.length, t.cruise, t.smooth, t.dwell);
+        }
+    }
+
+    /// Adds the newest segment to the planner. Segments are settled (their end times
+    /// written) at every stop, and in batches of [`LOOKAHEAD_SEGMENTS`] when a long run
+    /// without stops fills twice that, so each segment is planned a bounded number of times.
+    #[inline(always)]
+    fn add(&mut self, length: f64, cruise: f64, smooth: bool, dwell: f64) {
+        let k = self.kinematics;
+        let cruise = if cruise.is_nan() {
+            0.0
+        } else {
+            cruise.max(0.0)
+        };
+        let limit = match self.window.last() {
+            Some(previous) if smooth => previous.cruise.min(cruise),
+            _ => 0.0,
+        };
+        if limit <= 0.0 {
+            // Nothing before a stop changes any more.
+            if let [lone] = self.window[..] {
+                // A program that stops at every corner settles each move on its own.
+                let start = self.end_times.last().copied().unwrap_or(0.0);
+                self.end_times.push(lone_end_time(&lone, k, start));
+                self.window.clear();
+            } else {
+                self.settle(self.window.len());
+            }
+        }
+        let forward = self
+            .window
+            .last()
+            .map_or(0.0, |p| k.reach_capped(p.forward, p.length, limit));
+        self.window.push(Plan {
+            length,
+            cruise,
+            limit,
+            forward,
+            dwell,
+        });
+        if self.window.len() >= 2 * LOOKAHEAD_SEGMENTS {
+            self.settle(LOOKAHEAD_SEGMENTS);
+        }
+    }
+
+    /// End times of the first `count` segments not settled yet, the tool stopping at the end
+    /// of the last: a backward pass from there gives the highest speed at each join from which
+    /// the tool can still stop in time, and each join runs at the lower of that and the
+    /// forward speed.
+    fn window_end_times(&self, count: usize) -> Vec<f64> {
+        let mut times = Vec::with_capacity(count.min(self.window.len()));
+        let start = self.end_times.last().copied().unwrap_or(0.0);
+        window_end_times(&self.window, self.kinematics, start, count, &mut times);
+        times
+    }
+
+    /// Writes the end times of the first `count` unsettled segments and forgets their plans.
+    fn settle(&mut self, count: usize) {
+        let count = count.min(self.window.len());
+        if count == 0 {
+            return;
+        }
+        let start = self.end_times.last().copied().unwrap_or(0.0);
+        window_end_times(
+            &self.window,
+            self.kinematics,
+            start,
+            count,
+            &mut self.end_times,
+        );
+        if count == self.window.len() {
+            self.window.clear();
+        } else {
+            self.window.drain(..count);
+        }
+    }
+}
+
 /// The planner's view of one of the segments not settled yet (see the crate documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Plan {
@@ -382,16 +520,17 @@ pub struct Toolpath {
     /// The feed of each segment (its `f32` bits) and its tool, as runs: both change rarely.
     feeds: Runs,
     segment_tools: Runs,
-    /// The settled end times (a prefix of the segments) and every dwell.
-    settled: Timeline,
+    /// The time model, or while it is detached, what it is to take in later.
+    timer: Timer,
+    detached: Option<Timings>,
+    /// Every dwell, in segment order.
+    dwells: Vec<Dwell>,
     bounds: Option<Bounds>,
     rapid_mm: f64,
     feed_mm: f64,
     tools: Vec<u32>,
     tool: u32,
     kinematics: Kinematics,
-    /// The segments after the settled ones, whose join speeds may still change.
-    window: Vec<Plan>,
     /// Direction of motion at the end of the last non-empty segment.
     last_direction: Option<DVec3>,
     /// A non-motion event since the last segment: the next one starts at rest.
@@ -434,7 +573,7 @@ impl Toolpath {
         self.ends.reserve(segments);
         self.kinds.reserve(segments);
         self.lines.reserve(segments);
-        self.settled.end_times.reserve(segments);
+        self.timer.end_times.reserve(segments);
     }
 
     /// An empty toolpath starting at `start`, timed with `kinematics`.
@@ -446,14 +585,15 @@ impl Toolpath {
             lines: Vec::new(),
             feeds: Runs::default(),
             segment_tools: Runs::default(),
-            settled: Timeline::default(),
+            timer: Timer::new(kinematics),
+            detached: None,
+            dwells: Vec::new(),
             bounds: None,
             rapid_mm: 0.0,
             feed_mm: 0.0,
             tools: Vec::new(),
             tool: 0,
             kinematics,
-            window: Vec::new(),
             last_direction: None,
             stop_pending: false,
             holes: Vec::new(),
@@ -535,11 +675,13 @@ impl Toolpath {
     /// call: the last segments' times are only settled when asked, since every new move may
     /// still change them.
     pub fn timeline(&self) -> Timeline {
-        let mut timeline = self.settled.clone();
-        timeline
-            .end_times
-            .extend(self.window_end_times(self.window.len()));
-        timeline
+        let timer = &self.timer;
+        let mut end_times = timer.end_times.clone();
+        end_times.extend(timer.window_end_times(timer.window.len()));
+        Timeline {
+            end_times,
+            dwells: self.dwells.clone(),
+        }
     }
 
     /// The limits the times are computed with.
@@ -564,13 +706,14 @@ impl Toolpath {
 
     /// Estimated run time in seconds: every move with acceleration, plus the dwells.
     pub fn estimated_secs(&self) -> f64 {
-        let last = self
-            .window_end_times(self.window.len())
+        let timer = &self.timer;
+        let last = timer
+            .window_end_times(timer.window.len())
             .last()
-            .or(self.settled.end_times.last())
+            .or(timer.end_times.last())
             .copied()
             .unwrap_or(0.0);
-        last + self.settled.dwell_before(self.ends.len())
+        last + dwell_before(&self.dwells, self.ends.len())
     }
 
     /// Tools used, in order of first use.
@@ -734,84 +877,53 @@ impl Toolpath {
         self.plan(length, cruise, smooth);
     }
 
-    /// Adds the newest segment to the planner. Segments are settled (their end times
-    /// written) at every stop, and in batches of [`LOOKAHEAD_SEGMENTS`] when a long run
-    /// without stops fills twice that, so each segment is planned a bounded number of times.
+    /// Hands the newest segment to the time model, or while it is detached, records what the
+    /// timer will need of it.
     #[inline(always)]
     fn plan(&mut self, length: f64, cruise: f64, smooth: bool) {
-        let k = self.kinematics;
-        let cruise = if cruise.is_nan() {
-            0.0
-        } else {
-            cruise.max(0.0)
-        };
-        let limit = match self.window.last() {
-            Some(previous) if smooth => previous.cruise.min(cruise),
-            _ => 0.0,
-        };
-        if limit <= 0.0 {
-            // Nothing before a stop changes any more.
-            if let [lone] = self.window[..] {
-                // A program that stops at every corner settles each move on its own.
-                let start = self.settled.end_times.last().copied().unwrap_or(0.0);
-                self.settled.end_times.push(lone_end_time(&lone, k, start));
-                self.window.clear();
-            } else {
-                self.settle(self.window.len());
-            }
-        }
-        let forward = self
-            .window
-            .last()
-            .map_or(0.0, |p| k.reach_capped(p.forward, p.length, limit));
         // The dwells are in segment order and none comes after the newest segment yet.
         let newest = self.ends.len() - 1;
-        let dwell = match self.settled.dwells.last() {
+        let dwell = match self.dwells.last() {
             Some(d) if d.segment == newest => d.secs,
             _ => 0.0,
         };
-        self.window.push(Plan {
-            length,
-            cruise,
-            limit,
-            forward,
-            dwell,
-        });
-        if self.window.len() >= 2 * LOOKAHEAD_SEGMENTS {
-            self.settle(LOOKAHEAD_SEGMENTS);
-        }
-    }
-
-    /// End times of the first `count` segments not settled yet, the tool stopping at the end
-    /// of the last: a backward pass from there gives the highest speed at each join from which
-    /// the tool can still stop in time, and each join runs at the lower of that and the
-    /// forward speed.
-    fn window_end_times(&self, count: usize) -> Vec<f64> {
-        let mut times = Vec::with_capacity(count.min(self.window.len()));
-        let start = self.settled.end_times.last().copied().unwrap_or(0.0);
-        window_end_times(&self.window, self.kinematics, start, count, &mut times);
-        times
-    }
-
-    /// Writes the end times of the first `count` unsettled segments and forgets their plans.
-    fn settle(&mut self, count: usize) {
-        let count = count.min(self.window.len());
-        if count == 0 {
-            return;
-        }
-        let start = self.settled.end_times.last().copied().unwrap_or(0.0);
-        window_end_times(
-            &self.window,
-            self.kinematics,
-            start,
-            count,
-            &mut self.settled.end_times,
-        );
-        if count == self.window.len() {
-            self.window.clear();
+        if let Some(timings) = &mut self.detached {
+            timings.0.push(Timing {
+                length,
+                cruise,
+                dwell,
+                smooth,
+            });
         } else {
-            self.window.drain(..count);
+            self.timer.add(length, cruise, smooth, dwell);
         }
+    }
+
+    /// Takes the time model out of the path, so that another thread can time the segments
+    /// while more are recorded: until [`Toolpath::attach_timer`] gives it back, each new
+    /// segment is only noted for it ([`Toolpath::take_timings`]), and the times the path gives
+    /// ([`Toolpath::timeline`], [`Toolpath::estimated_secs`]) leave out every segment since.
+    pub fn detach_timer(&mut self) -> Timer {
+        self.detached.get_or_insert_default();
+        std::mem::replace(&mut self.timer, Timer::new(self.kinematics))
+    }
+
+    /// The segments noted for the detached timer since the last call, for [`Timer::take`].
+    pub fn take_timings(&mut self) -> Timings {
+        self.detached
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
+    }
+
+    /// Gives the time model back to the path, having it take in the segments noted since the
+    /// last [`Toolpath::take_timings`] first; the times are then those the path would have
+    /// worked out itself.
+    pub fn attach_timer(&mut self, mut timer: Timer) {
+        if let Some(rest) = self.detached.take() {
+            timer.take(&rest);
+        }
+        self.timer = timer;
     }
 
     fn push_line(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
@@ -984,9 +1096,9 @@ impl Sink for Toolpath {
                 self.stop();
                 let secs = if secs.is_finite() { secs.max(0.0) } else { 0.0 };
                 let segment = self.ends.len();
-                match self.settled.dwells.last_mut() {
+                match self.dwells.last_mut() {
                     Some(d) if d.segment == segment => d.secs += secs,
-                    _ => self.settled.dwells.push(Dwell { segment, secs }),
+                    _ => self.dwells.push(Dwell { segment, secs }),
                 }
             }
             Canon::ToolChange { tool } => {
@@ -1201,6 +1313,86 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn a_detached_timer_gives_the_times_of_one_that_stayed() {
+        let mut seed = 0x51f1_5ee7_c0de_0042_u64;
+        let mut next = move || (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64;
+        for case in 0..40 {
+            // Moves of every kind, with stops, dwells and tool changes between them, and runs
+            // long enough to settle in batches.
+            let count = if case % 4 == 0 {
+                3 * LOOKAHEAD_SEGMENTS
+            } else {
+                200
+            };
+            let events: Vec<Canon> = (0..count)
+                .map(|_| {
+                    let to = DVec3::new(50.0 * next(), 50.0 * next(), 5.0 * next());
+                    let feed_mm_per_min = 100.0 + 2000.0 * next();
+                    match (next() * 20.0) as u32 {
+                        0 => Canon::Dwell { secs: next() },
+                        1 => Canon::ToolChange { tool: 2 },
+                        2..=4 => Canon::Rapid { to },
+                        5..=6 => Canon::Arc {
+                            to,
+                            center: DVec3::new(25.0, 25.0, 0.0),
+                            axis: Axis::Z,
+                            ccw: next() < 0.5,
+                            turns: 0,
+                            feed_mm_per_min,
+                        },
+                        _ => Canon::Feed {
+                            to,
+                            feed_mm_per_min,
+                        },
+                    }
+                })
+                .collect();
+            let source = Source { block: 0, line: 1 };
+            let mut inline = Toolpath::default();
+            for e in &events {
+                inline.emit(source, e);
+            }
+            // The same, the timer detached from a random event on, fed in random batches and
+            // given back at a random event.
+            let detach = (next() * count as f64) as usize;
+            let attach = detach + (next() * (count - detach) as f64) as usize;
+            let mut path = Toolpath::default();
+            let mut timer = None;
+            for (i, e) in events.iter().enumerate() {
+                if i == detach {
+                    timer = Some(path.detach_timer());
+                }
+                if i == attach
+                    && let Some(t) = timer.take()
+                {
+                    path.attach_timer(t);
+                }
+                path.emit(source, e);
+                if let Some(t) = &mut timer
+                    && next() < 0.05
+                {
+                    t.take(&path.take_timings());
+                }
+            }
+            if let Some(t) = timer.take() {
+                path.attach_timer(t);
+            }
+            let bits = |v: &[f64]| v.iter().map(|t| t.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(path.timeline().end_times()),
+                bits(inline.timeline().end_times()),
+                "case {case}"
+            );
+            assert_eq!(path.timeline(), inline.timeline(), "case {case}");
+            assert_eq!(
+                path.estimated_secs().to_bits(),
+                inline.estimated_secs().to_bits()
+            );
+            assert_eq!(path, inline, "case {case}");
         }
     }
 
