@@ -1954,6 +1954,15 @@ mod tests {
         }
         assert_eq!(fast, general, "{dialect:?}: {text:?}");
         assert!(same_values(&fast, &general), "{dialect:?}: {text:?}");
+        // Read as the command line reads it: a streaming run, which indexes the lines as it
+        // reads them, in pieces of a few lines.
+        for lines in [1, 3, 1000] {
+            let mut run = ParseRun::streaming(text, dialect);
+            while !run.step(text, lines) {}
+            let streamed = run.finish();
+            assert_eq!(streamed, general, "{dialect:?} streaming by {lines}: {text:?}");
+            assert!(same_values(&streamed, &general), "{dialect:?}: {text:?}");
+        }
     }
 
     /// Whether the words of `a` and `b` have the same values to the bit (`==` takes -0 for 0).
@@ -2019,6 +2028,10 @@ mod tests {
             "DO1",
             "X1\u{e9}",
             "X1\r",
+            "X1\r\r",
+            "\r",
+            "X1\rY2",
+            "N10\r",
             "   ",
             "",
         ];
