@@ -78,8 +78,9 @@ enum Command {
         /// of running it piece by piece as it is read (the figures are the same).
         #[arg(long)]
         whole: bool,
-        /// Read and run on this thread only (by default a long program is read on a second
-        /// thread while the part read before runs; the figures are the same).
+        /// Read and run on this thread only (by default, on a machine with two cores or more, a
+        /// long program is read on a second thread while the part read before runs; the
+        /// figures are the same).
         #[arg(long)]
         one_thread: bool,
     },
@@ -621,7 +622,10 @@ fn stats(
     let streamed = if whole {
         None
     } else {
-        stream(file, &mut decoded, opts, &setup, &mut path, !one_thread)
+        // A second thread only pays where it has a core of its own.
+        let two_threads =
+            !one_thread && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+        stream(file, &mut decoded, opts, &setup, &mut path, two_threads)
     };
     let (loaded, blocks, diags) = if let Some(s) = streamed {
         (s.loaded, s.blocks, s.diagnostics)
