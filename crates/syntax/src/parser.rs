@@ -1960,7 +1960,10 @@ mod tests {
             let mut run = ParseRun::streaming(text, dialect);
             while !run.step(text, lines) {}
             let streamed = run.finish();
-            assert_eq!(streamed, general, "{dialect:?} streaming by {lines}: {text:?}");
+            assert_eq!(
+                streamed, general,
+                "{dialect:?} streaming by {lines}: {text:?}"
+            );
             assert!(same_values(&streamed, &general), "{dialect:?}: {text:?}");
         }
     }
