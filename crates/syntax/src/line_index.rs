@@ -37,9 +37,9 @@ impl LineIndex {
     /// The table of a text not yet indexed: its first line only. Grow it with
     /// [`LineIndex::extend`], reading the text front to back.
     pub fn started(text_len: usize) -> Self {
-        // G-code lines are rarely shorter than eight bytes: the reserve spares the copies of a
-        // growing table, and a part never written is never touched.
-        let mut starts = Vec::with_capacity(text_len / 8 + 1);
+        // G-code lines are rarely shorter than sixteen bytes: the reserve spares the copies of
+        // a growing table, and a part never written is never touched.
+        let mut starts = Vec::with_capacity(text_len / 16 + 1);
         starts.push(0);
         LineIndex { starts }
     }
