@@ -382,18 +382,6 @@ struct Timing {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Timings(Vec<Timing>);
 
-impl Timings {
-    /// Number of segments.
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    /// Whether there is no segment.
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-}
-
 impl Timer {
     fn new(kinematics: Kinematics) -> Self {
         Timer {
@@ -520,7 +508,8 @@ pub struct Toolpath {
     /// The feed of each segment (its `f32` bits) and its tool, as runs: both change rarely.
     feeds: Runs,
     segment_tools: Runs,
-    /// The time model, or while it is detached, what it is to take in later.
+    /// The time model (with the limits the path uses too), or while it is detached, a stand-in
+    /// with the same limits and what the lent one is to take in later.
     timer: Timer,
     detached: Option<Timings>,
     /// Every dwell, in segment order.
@@ -530,7 +519,6 @@ pub struct Toolpath {
     feed_mm: f64,
     tools: Vec<u32>,
     tool: u32,
-    kinematics: Kinematics,
     /// Direction of motion at the end of the last non-empty segment.
     last_direction: Option<DVec3>,
     /// A non-motion event since the last segment: the next one starts at rest.
@@ -593,7 +581,6 @@ impl Toolpath {
             feed_mm: 0.0,
             tools: Vec::new(),
             tool: 0,
-            kinematics,
             last_direction: None,
             stop_pending: false,
             holes: Vec::new(),
@@ -686,7 +673,7 @@ impl Toolpath {
 
     /// The limits the times are computed with.
     pub fn kinematics(&self) -> Kinematics {
-        self.kinematics
+        self.timer.kinematics
     }
 
     /// The box containing every point of the path (`None` when nothing moved).
@@ -905,7 +892,9 @@ impl Toolpath {
     /// ([`Toolpath::timeline`], [`Toolpath::estimated_secs`]) leave out every segment since.
     pub fn detach_timer(&mut self) -> Timer {
         self.detached.get_or_insert_default();
-        std::mem::replace(&mut self.timer, Timer::new(self.kinematics))
+        // The timer left in its place keeps the limits for the path's own use.
+        let stand_in = Timer::new(self.timer.kinematics);
+        std::mem::replace(&mut self.timer, stand_in)
     }
 
     /// The segments noted for the detached timer since the last call, for [`Timer::take`].
@@ -934,8 +923,8 @@ impl Toolpath {
         let rcp = 1.0 / length;
         let direction = (rcp.is_finite() && rcp > 0.0).then(|| delta * rcp);
         let cruise = match kind {
-            SegmentKind::Rapid => direction.map_or(self.kinematics.rapid_mm_per_s, |d| {
-                self.kinematics.rapid_speed(d)
+            SegmentKind::Rapid => direction.map_or(self.timer.kinematics.rapid_mm_per_s, |d| {
+                self.timer.kinematics.rapid_speed(d)
             }),
             SegmentKind::Feed | SegmentKind::Arc => feed_mm_per_min / 60.0,
         };
@@ -958,7 +947,7 @@ impl Toolpath {
             .radius
             .min(geometry.end_radius)
             .max(CHORD_TOLERANCE_MM);
-        let centripetal = (self.kinematics.acceleration_mm_per_s2 * radius).sqrt();
+        let centripetal = (self.timer.kinematics.acceleration_mm_per_s2 * radius).sqrt();
         let cruise = (arc.feed_mm_per_min / 60.0).min(centripetal);
         let count = geometry.chords();
         let mut last = from;
