@@ -50,28 +50,20 @@ impl LineIndex {
     /// long program piece by piece, the indexing is spread over the pieces (and over the thread
     /// that reads them) instead of done before the first one.
     pub fn extend(&mut self, text: &str, from: usize, lines: usize) -> Option<usize> {
+        /// Bytes searched at a time (the table may run up to this far ahead of `lines`).
+        const STRETCH: usize = 4096;
         let bytes = text.as_bytes();
         let mut at = from.min(bytes.len());
-        let starts = &mut self.starts;
-        while starts.len() < lines {
-            let Some((chunk, _)) = bytes.get(at..).and_then(|b| b.split_first_chunk::<16>()) else {
-                // Under sixteen bytes left: byte by byte, to the end.
-                for (i, &b) in bytes.get(at..).unwrap_or_default().iter().enumerate() {
-                    if b == b'\n' {
-                        starts.push(line_after(at, i));
-                    }
-                }
+        while self.starts.len() < lines {
+            let end = at.saturating_add(STRETCH).min(bytes.len());
+            let starts = &mut self.starts;
+            for_each_newline(bytes.get(at..end).unwrap_or_default(), |i| {
+                starts.push(line_after(at, i));
+            });
+            if end == bytes.len() {
                 return None;
-            };
-            let (low, high) = chunk.split_at(8);
-            for (base, half) in [(at, low), (at + 8, high)] {
-                let mut mask = newline_mask(half.try_into().unwrap_or(&[0; 8]));
-                while mask != 0 {
-                    starts.push(line_after(base, mask.trailing_zeros() as usize / 8));
-                    mask &= mask - 1;
-                }
             }
-            at += 16;
+            at = end;
         }
         Some(at)
     }

@@ -120,9 +120,13 @@ impl ParseRun {
         let program = &mut self.program;
         let dialect = program.dialect;
         // The lines come from the line index: a streaming run first indexes those it will read
-        // (and the start of the line after them, where the last one ends).
+        // (and the start of the line after them, where the last one ends); from a source, whose
+        // whole text may have to be put together to be searched, it indexes all of it at once.
         if let Some(from) = self.indexed {
-            let wanted = self.line_no.saturating_add(lines).saturating_add(1);
+            let wanted = match text {
+                Some(_) => self.line_no.saturating_add(lines).saturating_add(1),
+                None => usize::MAX,
+            };
             self.indexed = index_lines(&mut program.lines, text, source, from, wanted);
         }
         let line_count = program.lines.line_count();
