@@ -462,11 +462,9 @@ fn run_pieces_beside(
         };
         (!whole).then_some((reader, blocks))
     });
-    let (mut timer, queued) = timing.into_inner().unwrap_or_else(PoisonError::into_inner);
-    for more in queued.try_iter() {
-        timer.take(&more);
-    }
-    toolpath.attach_timer(timer);
+    let mut held = timing.into_inner().unwrap_or_else(PoisonError::into_inner);
+    time_queued(&mut held);
+    toolpath.attach_timer(held.0);
     ran
 }
 
