@@ -344,10 +344,11 @@ fn run_pieces(
 /// expressions new in it) over a short queue while this thread runs the piece before, and gets
 /// the block arrays back for reuse.
 ///
-/// The toolpath's time model (about a sixth of a plain program's work) runs on whichever
-/// thread would otherwise wait: this thread queues the moves of each piece it has run, and
-/// they are timed, in order, by the reader when its queue of pieces is full and once it has
-/// read the last, or by this thread while it waits for a piece.
+/// The toolpath's measures and time model (about a quarter of a plain program's work) run on
+/// whichever thread would otherwise wait: this thread queues the moves of each piece it has
+/// run, and they are measured and timed, in order and a piece's moves at a time, by the
+/// reader when its queue of pieces is full and once it has read the last, or by this thread
+/// while it waits for a piece.
 fn run_pieces_beside(
     text: &str,
     mut reader: swarf_syntax::ParseRun,
@@ -355,27 +356,56 @@ fn run_pieces_beside(
     toolpath: &mut Toolpath,
 ) -> Option<(swarf_syntax::ParseRun, usize)> {
     use std::sync::atomic::{AtomicBool, Ordering};
-    use std::sync::mpsc::{Receiver, TryRecvError, TrySendError, channel, sync_channel};
+    use std::sync::mpsc::{
+        Receiver, SyncSender, TryRecvError, TrySendError, channel, sync_channel,
+    };
     use std::sync::{Mutex, PoisonError};
     use swarf_toolpath::{Timer, Timings};
     type Piece = (Vec<swarf_syntax::Block>, Vec<swarf_syntax::ExprNode>);
-    /// Times the moves queued so far; whether there were any.
-    fn time_queued((timer, queued): &mut (Timer, Receiver<Timings>)) -> bool {
-        let mut any = false;
-        for moves in queued.try_iter() {
-            timer.take(&moves);
-            any = true;
+    /// The time model, its queue of moves, and the way back for the batches it has taken in:
+    /// whoever holds it times them.
+    struct Timing {
+        timer: Timer,
+        queued: Receiver<Timings>,
+        spent: SyncSender<Timings>,
+    }
+    impl Timing {
+        fn take(&mut self, moves: Timings) {
+            self.timer.take(&moves);
+            // A full way back (the runner has spares enough, or is done) drops the batch.
+            let _ = self.spent.try_send(moves);
         }
-        any
+    }
+    /// Times the moves of the next piece queued, unless the other thread is timing; whether
+    /// it did (the caller then looks for its own work again before timing more).
+    fn time_next(timing: &Mutex<Timing>) -> bool {
+        let Ok(mut held) = timing.try_lock() else {
+            return false;
+        };
+        match held.queued.try_recv() {
+            Ok(moves) => {
+                held.take(moves);
+                true
+            }
+            Err(_) => false,
+        }
     }
     let stop = AtomicBool::new(false);
     let dialect = reader.program().dialect;
     let (moves, queued) = channel::<Timings>();
-    // The time model and its queue of moves: whoever holds it times them.
-    let timing = Mutex::new((toolpath.detach_timer(), queued));
+    let (spent, spent_batches) = sync_channel::<Timings>(4);
+    let timing = Mutex::new(Timing {
+        timer: toolpath.detach_timer(),
+        queued,
+        spent,
+    });
     let ran = std::thread::scope(|scope| {
         let (pieces, received) = sync_channel::<Piece>(2);
         let (spares, spare) = sync_channel::<Vec<swarf_syntax::Block>>(4);
+        // Rung by the runner when it takes a piece or queues moves: a reader whose queue is
+        // full and who has no moves to time waits for it, not for a free place only, so that
+        // moves queued meanwhile are timed as they come rather than all after the last piece.
+        let (ring, bell) = sync_channel::<()>(1);
         let stop = &stop;
         let timing = &timing;
         let parser = scope.spawn(move || {
@@ -396,9 +426,9 @@ fn run_pieces_beside(
                         Err(TrySendError::Disconnected(_)) => break false,
                         Err(TrySendError::Full(back)) => piece = back,
                     }
-                    // Ahead of the runner: time its moves while waiting, if there are any.
-                    let timed = timing.try_lock().is_ok_and(|mut t| time_queued(&mut t));
-                    if !timed {
+                    // Ahead of the runner: time its moves while waiting, if there are any, else
+                    // wait for the runner to take a piece or queue moves.
+                    if !time_next(timing) && bell.recv().is_err() {
                         break pieces.send(piece).is_ok();
                     }
                 };
@@ -412,9 +442,8 @@ fn run_pieces_beside(
             drop(pieces);
             // Every piece is read: time the moves of those still running, until the last.
             let mut held = timing.lock().unwrap_or_else(PoisonError::into_inner);
-            let (timer, queued) = &mut *held;
-            for more in queued.iter() {
-                timer.take(&more);
+            while let Ok(more) = held.queued.recv() {
+                held.take(more);
             }
             reader
         });
@@ -427,20 +456,20 @@ fn run_pieces_beside(
         let mut ended = false;
         let mut whole = false;
         loop {
-            let (read, exprs) = match received.try_recv() {
-                Ok(next) => next,
-                Err(TryRecvError::Disconnected) => break,
-                Err(TryRecvError::Empty) => {
-                    // Ahead of the reader: time the moves while waiting.
-                    if let Ok(mut t) = timing.try_lock() {
-                        time_queued(&mut t);
-                    }
-                    match received.recv() {
-                        Ok(next) => next,
-                        Err(_) => break,
-                    }
+            let next = loop {
+                match received.try_recv() {
+                    Ok(next) => break Some(next),
+                    Err(TryRecvError::Disconnected) => break None,
+                    // Ahead of the reader: time the moves while waiting, if there are any.
+                    Err(TryRecvError::Empty) if time_next(timing) => {}
+                    Err(TryRecvError::Empty) => break received.recv().ok(),
                 }
             };
+            let Some((read, exprs)) = next else {
+                break;
+            };
+            // A rung bell not yet heard is enough.
+            let _ = ring.try_send(());
             piece.blocks = read;
             piece.exprs.extend(exprs);
             blocks += piece.blocks.len();
@@ -450,21 +479,28 @@ fn run_pieces_beside(
                 break;
             }
             // Only a reader gone (it panicked, reported at the join) drops them.
-            let _ = moves.send(toolpath.take_timings());
-            // A full queue (the reader is done) just drops the array.
+            let spare = spent_batches.try_recv().unwrap_or_default();
+            let _ = moves.send(toolpath.swap_timings(spare));
+            let _ = ring.try_send(());
+            // Emptied here, where the blocks were just read, not by the reader (which has more
+            // to do); a full queue (the reader is done) just drops the array.
+            swarf_syntax::empty_blocks(&mut piece.blocks);
             let _ = spares.try_send(std::mem::take(&mut piece.blocks));
         }
         drop(received);
         drop(moves);
+        drop(ring);
         let reader = match parser.join() {
             Ok(reader) => reader,
             Err(panic) => std::panic::resume_unwind(panic),
         };
         (!whole).then_some((reader, blocks))
     });
-    let mut held = timing.into_inner().unwrap_or_else(PoisonError::into_inner);
-    time_queued(&mut held);
-    toolpath.attach_timer(held.0);
+    let mut timing = timing.into_inner().unwrap_or_else(PoisonError::into_inner);
+    while let Ok(moves) = timing.queued.try_recv() {
+        timing.take(moves);
+    }
+    toolpath.attach_timer(timing.timer);
     ran
 }
 

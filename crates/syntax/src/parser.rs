@@ -303,12 +303,13 @@ fn index_lines(
     }
 }
 
-/// Empties `blocks`, keeping the array's memory for the blocks to come.
+/// Empties `blocks`, keeping the array's memory for the blocks to come (e.g. a piece's array
+/// run on one thread, emptied there before it goes back to the reader for reuse).
 ///
 /// Nearly every block owns no memory (its words are stored in it, and it has no statements,
 /// comments or program number): such a block is let go of without its destructor, which would
 /// find nothing to free, so a million-line program does not pay a million calls for nothing.
-fn empty_blocks(blocks: &mut Vec<Block>) {
+pub fn empty_blocks(blocks: &mut Vec<Block>) {
     let mut drain = blocks.drain(..);
     while let Some(block) = drain.as_slice().first() {
         // Looked at in place, so that a block let go of is not moved first.

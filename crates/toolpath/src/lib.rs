@@ -353,9 +353,10 @@ fn dwell_before(dwells: &[Dwell], i: usize) -> f64 {
         .map_or(0.0, |d| d.secs)
 }
 
-/// The time model's planner: the end times of the segments settled so far, and the plans of
-/// those after them. Kept apart from the path, it can time a long program's segments on
-/// another thread while the program runs on (see [`Toolpath::detach_timer`]).
+/// The time model and the measures taken of each segment with it (lengths, bounds, the
+/// corner between moves): the end times of the segments settled so far, and the plans of
+/// those after them. Kept apart from the path, it can measure and time a long program's
+/// segments on another thread while the program runs on (see [`Toolpath::detach_timer`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Timer {
     kinematics: Kinematics,
@@ -363,40 +364,183 @@ pub struct Timer {
     end_times: Vec<f64>,
     /// The segments after the settled ones, whose join speeds may still change.
     window: Vec<Plan>,
+    /// Where the path starts, and where its last segment ends.
+    start: DVec3,
+    last_end: DVec3,
+    /// The last segment's kind, and its direction at the end (of the last non-empty one).
+    last_kind: Option<SegmentKind>,
+    last_direction: Option<DVec3>,
+    bounds: Option<Bounds>,
+    rapid_mm: f64,
+    feed_mm: f64,
 }
 
-/// What the time model takes of a segment: recorded while the path's timer is detached, for
-/// the timer to take in later.
+/// A segment as the path records it for the timer: its end and speed, and how it joins the
+/// one before (see [`Timer::measure`]). Kept while the path's timer is detached, for the timer
+/// to take in later; the rarer parts (dwells, an arc's tangents) follow in [`Timings`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Timing {
-    length: f64,
-    /// Cruise speed, mm/s.
-    cruise: f64,
-    /// Seconds of dwell before the segment.
-    dwell: f64,
-    /// Whether the segment may join the one before without stopping.
-    smooth: bool,
+struct Note {
+    to: DVec3,
+    /// A straight move's feed in mm/min (unused for a rapid), an arc chord's cruise in mm/s.
+    speed: f64,
+    kind: SegmentKind,
+    /// [`NOTE_STOP`], [`NOTE_CHORD`] and what follows among the extras.
+    flags: u8,
 }
+
+/// The tool came to rest before the segment.
+const NOTE_STOP: u8 = 1;
+/// A chord of an arc: its speed is its cruise, and it continues the chord before unless
+/// [`NOTE_FIRST_CHORD`].
+const NOTE_CHORD: u8 = 2;
+/// The first chord of an arc: a corner whose entry direction follows if [`NOTE_ENTRY`].
+const NOTE_FIRST_CHORD: u8 = 4;
+/// The extras hold the entry direction (three numbers).
+const NOTE_ENTRY: u8 = 8;
+/// The extras hold the direction at the end (three numbers).
+const NOTE_EXIT: u8 = 16;
+/// The extras hold the seconds of dwell before the segment (one number, first).
+const NOTE_DWELL: u8 = 32;
+
+/// How a segment joins the one before and leaves, beyond its end point: `None` for a
+/// straight move (both come from its direction), else an arc chord's join and exit.
+type ChordJoin = Option<(Join, Option<DVec3>)>;
 
 /// The segments recorded while a path's timer was detached, in order, for [`Timer::take`].
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Timings(Vec<Timing>);
+pub struct Timings {
+    notes: Vec<Note>,
+    /// The dwells and arc tangents the notes' flags announce, in order.
+    extras: Vec<f64>,
+}
+
+impl Timings {
+    fn push(&mut self, mut note: Note, dwell: f64, chord: ChordJoin) {
+        if dwell != 0.0 {
+            note.flags |= NOTE_DWELL;
+            self.extras.push(dwell);
+        }
+        if let Some((join, exit)) = chord {
+            note.flags |= NOTE_CHORD;
+            if let Join::Corner { entry } = join {
+                note.flags |= NOTE_FIRST_CHORD;
+                if let Some(entry) = entry {
+                    note.flags |= NOTE_ENTRY;
+                    self.extras.extend(entry.to_array());
+                }
+            }
+            if let Some(exit) = exit {
+                note.flags |= NOTE_EXIT;
+                self.extras.extend(exit.to_array());
+            }
+        }
+        self.notes.push(note);
+    }
+}
 
 impl Timer {
-    fn new(kinematics: Kinematics) -> Self {
+    fn new(kinematics: Kinematics, start: DVec3) -> Self {
         Timer {
             kinematics,
             end_times: Vec::new(),
             window: Vec::new(),
+            start,
+            last_end: start,
+            last_kind: None,
+            last_direction: None,
+            bounds: None,
+            rapid_mm: 0.0,
+            feed_mm: 0.0,
         }
     }
 
-    /// Times the segments recorded while the timer was detached, in their order; taken in by
-    /// the timer, the path gets the same times as if it had timed them itself.
+    /// Measures and times the segments recorded while the timer was detached, in their order;
+    /// taken in by the timer, the path gets the same figures as if it had made them itself.
     pub fn take(&mut self, timings: &Timings) {
-        for t in &timings.0 {
-            self.add(t.length, t.cruise, t.smooth, t.dwell);
+        let mut extras = timings.extras.iter().copied();
+        let mut next = move || extras.next().unwrap_or(0.0);
+        // Arguments are evaluated in order: x, y, then z.
+        let vector = |next: &mut dyn FnMut() -> f64| DVec3::new(next(), next(), next());
+        for note in &timings.notes {
+            let flags = note.flags;
+            let dwell = if flags & NOTE_DWELL != 0 { next() } else { 0.0 };
+            let chord = (flags & NOTE_CHORD != 0).then(|| {
+                let join = if flags & NOTE_FIRST_CHORD != 0 {
+                    Join::Corner {
+                        entry: (flags & NOTE_ENTRY != 0).then(|| vector(&mut next)),
+                    }
+                } else {
+                    Join::Continue
+                };
+                (join, (flags & NOTE_EXIT != 0).then(|| vector(&mut next)))
+            });
+            self.measure(note, dwell, chord);
         }
+    }
+
+    /// Takes in the newest segment `note`, after `dwell` seconds of dwell: its length, the
+    /// box and the distances grow by it, and the planner gets it with its cruise speed and
+    /// whether it joins the one before without stopping. A straight move's direction gives
+    /// its join and, for a rapid, its cruise speed; an arc's chord comes with its own (`chord`).
+    #[inline(always)]
+    fn measure(&mut self, note: &Note, dwell: f64, chord: ChordJoin) {
+        let Note {
+            to,
+            speed,
+            kind,
+            flags,
+        } = *note;
+        let delta = to - self.last_end;
+        let length = delta.length();
+        let (cruise, join, exit) = match chord {
+            None => {
+                // `delta.try_normalize()`, reusing the length.
+                let rcp = 1.0 / length;
+                let direction = (rcp.is_finite() && rcp > 0.0).then(|| delta * rcp);
+                let cruise = match kind {
+                    SegmentKind::Rapid => direction.map_or(self.kinematics.rapid_mm_per_s, |d| {
+                        self.kinematics.rapid_speed(d)
+                    }),
+                    SegmentKind::Feed | SegmentKind::Arc => speed / 60.0,
+                };
+                (cruise, Join::Corner { entry: direction }, direction)
+            }
+            Some((join, exit)) => (speed, join, exit),
+        };
+        match kind {
+            SegmentKind::Rapid => self.rapid_mm += length,
+            SegmentKind::Feed | SegmentKind::Arc => self.feed_mm += length,
+        }
+        // Each segment starts where the last one ended, already inside the box.
+        if let Some(bounds) = &mut self.bounds {
+            bounds.include(to);
+        } else {
+            let mut bounds = Bounds {
+                min: self.start,
+                max: self.start,
+            };
+            bounds.include(to);
+            self.bounds = Some(bounds);
+        }
+        let smooth = match join {
+            _ if flags & NOTE_STOP != 0 => false,
+            Join::Continue => true,
+            Join::Corner { .. }
+                if kind == SegmentKind::Rapid || self.last_kind == Some(SegmentKind::Rapid) =>
+            {
+                false
+            }
+            Join::Corner { entry: None } => true,
+            Join::Corner { entry: Some(entry) } => self
+                .last_direction
+                .is_none_or(|last| last.dot(entry) >= CORNER_DEGREES.to_radians().cos() - 1e-12),
+        };
+        if let Some(exit) = exit {
+            self.last_direction = Some(exit);
+        }
+        self.last_end = to;
+        self.last_kind = Some(kind);
+        self.add(length, cruise, smooth, dwell);
     }
 
     /// Adds the newest segment to the planner. Segments are settled (their end times
@@ -514,13 +658,8 @@ pub struct Toolpath {
     detached: Option<Timings>,
     /// Every dwell, in segment order.
     dwells: Vec<Dwell>,
-    bounds: Option<Bounds>,
-    rapid_mm: f64,
-    feed_mm: f64,
     tools: Vec<u32>,
     tool: u32,
-    /// Direction of motion at the end of the last non-empty segment.
-    last_direction: Option<DVec3>,
     /// A non-motion event since the last segment: the next one starts at rest.
     stop_pending: bool,
     /// The holes drilled by canned cycles, in order.
@@ -573,15 +712,11 @@ impl Toolpath {
             lines: Vec::new(),
             feeds: Runs::default(),
             segment_tools: Runs::default(),
-            timer: Timer::new(kinematics),
+            timer: Timer::new(kinematics, start),
             detached: None,
             dwells: Vec::new(),
-            bounds: None,
-            rapid_mm: 0.0,
-            feed_mm: 0.0,
             tools: Vec::new(),
             tool: 0,
-            last_direction: None,
             stop_pending: false,
             holes: Vec::new(),
             origins: Vec::new(),
@@ -678,17 +813,17 @@ impl Toolpath {
 
     /// The box containing every point of the path (`None` when nothing moved).
     pub fn bounds(&self) -> Option<Bounds> {
-        self.bounds
+        self.timer.bounds
     }
 
     /// Total rapid distance in mm.
     pub fn rapid_length_mm(&self) -> f64 {
-        self.rapid_mm
+        self.timer.rapid_mm
     }
 
     /// Total cutting distance in mm.
     pub fn feed_length_mm(&self) -> f64 {
-        self.feed_mm
+        self.timer.feed_mm
     }
 
     /// Estimated run time in seconds: every move with acceleration, plus the dwells.
@@ -724,7 +859,7 @@ impl Toolpath {
     /// an axis a limit leaves open reaches a tenth of the toolpath's diagonal (at least 1 mm)
     /// past its bounds on that side.
     pub fn zone_boxes(&self) -> Vec<(DVec3, DVec3)> {
-        let bounds = self.bounds.unwrap_or(Bounds {
+        let bounds = self.timer.bounds.unwrap_or(Bounds {
             min: self.start,
             max: self.start,
         });
@@ -805,108 +940,75 @@ impl Toolpath {
         self.lines.iter().position(|&l| l == line)
     }
 
-    /// Records a segment to `to`, `length` mm long from the last end, `cruise` being its
-    /// speed in mm/s (0 when it has no feed) and `exit` its direction at the end (`None` for
-    /// an empty move).
-    #[allow(clippy::too_many_arguments)]
+    /// Records a segment to `to` with `speed` (a straight move's feed in mm/min, an arc chord's
+    /// cruise in mm/s) and, for an arc's chord, its join and exit (`chord`), then has the
+    /// timer measure and time it, or notes it for the timer while that is detached.
     #[inline(always)]
     fn push(
         &mut self,
         kind: SegmentKind,
         to: DVec3,
-        length: f64,
         line: u32,
         feed_mm_per_min: f64,
-        cruise: f64,
-        join: Join,
-        exit: Option<DVec3>,
+        speed: f64,
+        chord: ChordJoin,
     ) {
-        match kind {
-            SegmentKind::Rapid => self.rapid_mm += length,
-            SegmentKind::Feed | SegmentKind::Arc => self.feed_mm += length,
-        }
-        // Each segment starts where the last one ended, already inside the box.
-        if let Some(bounds) = &mut self.bounds {
-            bounds.include(to);
-        } else {
-            let mut bounds = Bounds {
-                min: self.start,
-                max: self.start,
-            };
-            bounds.include(to);
-            self.bounds = Some(bounds);
-        }
-        let previous_kind = self.kinds.last().copied();
         self.ends.push(to);
         self.kinds.push(kind);
         self.lines.push(line);
         let segment = self.ends.len() - 1;
         self.feeds.push(segment, (feed_mm_per_min as f32).to_bits());
         self.segment_tools.push(segment, self.tool);
-
-        let smooth = match join {
-            _ if self.stop_pending => false,
-            Join::Continue => true,
-            Join::Corner { .. }
-                if kind == SegmentKind::Rapid || previous_kind == Some(SegmentKind::Rapid) =>
-            {
-                false
-            }
-            Join::Corner { entry: None } => true,
-            Join::Corner { entry: Some(entry) } => self
-                .last_direction
-                .is_none_or(|last| last.dot(entry) >= CORNER_DEGREES.to_radians().cos() - 1e-12),
-        };
-        self.stop_pending = false;
-        if let Some(exit) = exit {
-            self.last_direction = Some(exit);
-        }
-        self.plan(length, cruise, smooth);
-    }
-
-    /// Hands the newest segment to the time model, or while it is detached, records what the
-    /// timer will need of it.
-    #[inline(always)]
-    fn plan(&mut self, length: f64, cruise: f64, smooth: bool) {
         // The dwells are in segment order and none comes after the newest segment yet.
-        let newest = self.ends.len() - 1;
         let dwell = match self.dwells.last() {
-            Some(d) if d.segment == newest => d.secs,
+            Some(d) if d.segment == segment => d.secs,
             _ => 0.0,
         };
+        let note = Note {
+            to,
+            speed,
+            kind,
+            flags: if self.stop_pending { NOTE_STOP } else { 0 },
+        };
+        self.stop_pending = false;
         if let Some(timings) = &mut self.detached {
-            timings.0.push(Timing {
-                length,
-                cruise,
-                dwell,
-                smooth,
-            });
+            timings.push(note, dwell, chord);
         } else {
-            self.timer.add(length, cruise, smooth, dwell);
+            self.timer.measure(&note, dwell, chord);
         }
     }
 
-    /// Takes the time model out of the path, so that another thread can time the segments
-    /// while more are recorded: until [`Toolpath::attach_timer`] gives it back, each new
-    /// segment is only noted for it ([`Toolpath::take_timings`]), and the times the path gives
-    /// ([`Toolpath::timeline`], [`Toolpath::estimated_secs`]) leave out every segment since.
+    /// Takes the time model out of the path, so that another thread can measure and time the
+    /// segments while more are recorded: until [`Toolpath::attach_timer`] gives it back, each
+    /// new segment is only noted for it ([`Toolpath::take_timings`]), and the figures it gives
+    /// ([`Toolpath::timeline`], [`Toolpath::estimated_secs`], [`Toolpath::bounds`], the
+    /// lengths) leave out every segment since.
     pub fn detach_timer(&mut self) -> Timer {
         self.detached.get_or_insert_default();
         // The timer left in its place keeps the limits for the path's own use.
-        let stand_in = Timer::new(self.timer.kinematics);
+        let stand_in = Timer::new(self.timer.kinematics, self.start);
         std::mem::replace(&mut self.timer, stand_in)
     }
 
     /// The segments noted for the detached timer since the last call, for [`Timer::take`].
     pub fn take_timings(&mut self) -> Timings {
-        self.detached
-            .as_mut()
-            .map(std::mem::take)
-            .unwrap_or_default()
+        self.swap_timings(Timings::default())
+    }
+
+    /// [`Toolpath::take_timings`], noting the next segments into `spare` (emptied first): a
+    /// batch the timer has taken in can come back for reuse, so a long run of batches
+    /// allocates none.
+    pub fn swap_timings(&mut self, mut spare: Timings) -> Timings {
+        spare.notes.clear();
+        spare.extras.clear();
+        match &mut self.detached {
+            Some(timings) => std::mem::replace(timings, spare),
+            None => Timings::default(),
+        }
     }
 
     /// Gives the time model back to the path, having it take in the segments noted since the
-    /// last [`Toolpath::take_timings`] first; the times are then those the path would have
+    /// last [`Toolpath::take_timings`] first; the figures are then those the path would have
     /// worked out itself.
     pub fn attach_timer(&mut self, mut timer: Timer) {
         if let Some(rest) = self.detached.take() {
@@ -916,28 +1018,7 @@ impl Toolpath {
     }
 
     fn push_line(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
-        let from = self.ends.last().copied().unwrap_or(self.start);
-        let delta = to - from;
-        let length = delta.length();
-        // `delta.try_normalize()`, reusing the length.
-        let rcp = 1.0 / length;
-        let direction = (rcp.is_finite() && rcp > 0.0).then(|| delta * rcp);
-        let cruise = match kind {
-            SegmentKind::Rapid => direction.map_or(self.timer.kinematics.rapid_mm_per_s, |d| {
-                self.timer.kinematics.rapid_speed(d)
-            }),
-            SegmentKind::Feed | SegmentKind::Arc => feed_mm_per_min / 60.0,
-        };
-        self.push(
-            kind,
-            to,
-            length,
-            line,
-            feed_mm_per_min,
-            cruise,
-            Join::Corner { entry: direction },
-            direction,
-        );
+        self.push(kind, to, line, feed_mm_per_min, feed_mm_per_min, None);
     }
 
     fn push_arc(&mut self, arc: &ArcEvent, line: u32) {
@@ -950,11 +1031,8 @@ impl Toolpath {
         let centripetal = (self.timer.kinematics.acceleration_mm_per_s2 * radius).sqrt();
         let cruise = (arc.feed_mm_per_min / 60.0).min(centripetal);
         let count = geometry.chords();
-        let mut last = from;
         for k in 0..count {
             let p = geometry.point(k + 1, count, from, arc.to);
-            let length = last.distance(p);
-            last = p;
             let join = if k == 0 {
                 Join::Corner {
                     entry: geometry.tangent(from, arc.to, 0.0),
@@ -970,12 +1048,10 @@ impl Toolpath {
             self.push(
                 SegmentKind::Arc,
                 p,
-                length,
                 line,
                 arc.feed_mm_per_min,
                 cruise,
-                join,
-                exit,
+                Some((join, exit)),
             );
         }
     }
@@ -1351,6 +1427,8 @@ mod tests {
             let attach = detach + (next() * (count - detach) as f64) as usize;
             let mut path = Toolpath::default();
             let mut timer = None;
+            // A batch taken in, given back for the path to note the next ones into.
+            let mut spent = Timings::default();
             for (i, e) in events.iter().enumerate() {
                 if i == detach {
                     timer = Some(path.detach_timer());
@@ -1364,7 +1442,10 @@ mod tests {
                 if let Some(t) = &mut timer
                     && next() < 0.05
                 {
-                    t.take(&path.take_timings());
+                    let spare = std::mem::take(&mut spent);
+                    let batch = path.swap_timings(spare);
+                    t.take(&batch);
+                    spent = batch;
                 }
             }
             if let Some(t) = timer.take() {
@@ -1381,6 +1462,17 @@ mod tests {
                 path.estimated_secs().to_bits(),
                 inline.estimated_secs().to_bits()
             );
+            // The measures taken with the timer are the same to the bit too.
+            let figures = |p: &Toolpath| {
+                let b = p.bounds().unwrap_or(Bounds {
+                    min: DVec3::NAN,
+                    max: DVec3::NAN,
+                });
+                let mut all = vec![p.rapid_length_mm(), p.feed_length_mm()];
+                all.extend(b.min.to_array().into_iter().chain(b.max.to_array()));
+                bits(&all)
+            };
+            assert_eq!(figures(&path), figures(&inline), "case {case}");
             assert_eq!(path, inline, "case {case}");
         }
     }
