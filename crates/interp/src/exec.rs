@@ -1664,11 +1664,17 @@ fn arc(
         machine_center[normal] = st.position[normal];
     }
     let from_machine = st.position;
-    let sweep = arc_sweep(from_machine, to, machine_center, st.plane, ccw, turns);
-    let r0 = (from_machine[u] - machine_center[u]).hypot(from_machine[v] - machine_center[v]);
-    let r1 = (to[u] - machine_center[u]).hypot(to[v] - machine_center[v]);
-    let length = (sweep.abs() * (r0 + r1) / 2.0).hypot(to[normal] - from_machine[normal]);
-    let feed_mm_per_min = move_feed(st, block, length, Some(r0));
+    // The arc's length and radius count only for a feed in inverse time: most arcs spare the
+    // angles and radii they take.
+    let feed_mm_per_min = if st.feed_mode == FeedMode::InverseTime {
+        let sweep = arc_sweep(from_machine, to, machine_center, st.plane, ccw, turns);
+        let r0 = (from_machine[u] - machine_center[u]).hypot(from_machine[v] - machine_center[v]);
+        let r1 = (to[u] - machine_center[u]).hypot(to[v] - machine_center[v]);
+        let length = (sweep.abs() * (r0 + r1) / 2.0).hypot(to[normal] - from_machine[normal]);
+        move_feed(st, block, length, Some(r0))
+    } else {
+        move_feed(st, block, 0.0, None)
+    };
     st.position = to;
     st.program_pos = p;
     crate::corners::emit(

@@ -1035,13 +1035,13 @@ impl Toolpath {
             let p = geometry.point(k + 1, count, from, arc.to);
             let join = if k == 0 {
                 Join::Corner {
-                    entry: geometry.tangent(from, arc.to, 0.0),
+                    entry: geometry.end_tangent(from, arc.to, false),
                 }
             } else {
                 Join::Continue
             };
             let exit = if k + 1 == count {
-                geometry.tangent(from, arc.to, 1.0)
+                geometry.end_tangent(from, arc.to, true)
             } else {
                 None
             };
@@ -1213,6 +1213,9 @@ struct ArcGeometry {
     end_radius: f64,
     a0: f64,
     sweep: f64,
+    /// The start's and the end's offsets from the centre in (u, v).
+    start_offset: (f64, f64),
+    end_offset: (f64, f64),
 }
 
 impl ArcGeometry {
@@ -1245,6 +1248,8 @@ impl ArcGeometry {
             end_radius: eu.hypot(ev),
             a0,
             sweep,
+            start_offset: (su, sv),
+            end_offset: (eu, ev),
         }
     }
 
@@ -1285,10 +1290,31 @@ impl ArcGeometry {
     fn tangent(&self, from: DVec3, to: DVec3, t: f64) -> Option<DVec3> {
         let a = self.a0 + self.sweep * t;
         let r = self.radius + (self.end_radius - self.radius) * t;
+        self.tangent_with(from, to, r, a.cos(), a.sin())
+    }
+
+    /// [`ArcGeometry::tangent`] at the start (`end` false) or the end, the angle's cosine and
+    /// sine read off that end's offset from the centre rather than worked out from the angle.
+    fn end_tangent(&self, from: DVec3, to: DVec3, end: bool) -> Option<DVec3> {
+        let (r, (u, v)) = if end {
+            (self.end_radius, self.end_offset)
+        } else {
+            (self.radius, self.start_offset)
+        };
+        if r > 0.0 {
+            self.tangent_with(from, to, r, u / r, v / r)
+        } else {
+            self.tangent(from, to, f64::from(u8::from(end)))
+        }
+    }
+
+    /// The unit direction of motion where the radius is `r` and the angle has cosine `cos`
+    /// and sine `sin`.
+    fn tangent_with(&self, from: DVec3, to: DVec3, r: f64, cos: f64, sin: f64) -> Option<DVec3> {
         let dr = self.end_radius - self.radius;
         let mut d = DVec3::ZERO;
-        d[self.iu] = dr * a.cos() - r * a.sin() * self.sweep;
-        d[self.iv] = dr * a.sin() + r * a.cos() * self.sweep;
+        d[self.iu] = dr * cos - r * sin * self.sweep;
+        d[self.iv] = dr * sin + r * cos * self.sweep;
         d[self.iw] = to[self.iw] - from[self.iw];
         d.try_normalize()
     }
@@ -1582,5 +1608,33 @@ mod tests {
         let cw = ArcGeometry::new(from, to, DVec3::ZERO, Axis::Z, false, 0);
         let start = cw.tangent(from, to, 0.0).unwrap();
         assert!(start.abs_diff_eq(-DVec3::Y, 1e-12), "{start}");
+    }
+
+    #[test]
+    fn end_tangents_are_the_tangents_at_the_ends() {
+        let mut seed = 0x007a_9ee7_d50f_u64;
+        let mut next = move || (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        for case in 0..2000 {
+            let point = |next: &mut dyn FnMut() -> f64| {
+                DVec3::new(100.0 * next(), 100.0 * next(), 10.0 * next())
+            };
+            let (from, mut to, center) = (point(&mut next), point(&mut next), point(&mut next));
+            // Some arcs end where they start, at the centre, or are helices or spirals.
+            match case % 5 {
+                0 => to = from,
+                1 => to = center,
+                _ => {}
+            }
+            let axis = [Axis::X, Axis::Y, Axis::Z][case % 3];
+            let arc =
+                ArcGeometry::new(from, to, center, axis, next() < 0.0, (case % 7 == 0).into());
+            for (end, t) in [(false, 0.0), (true, 1.0)] {
+                let (quick, plain) = (arc.end_tangent(from, to, end), arc.tangent(from, to, t));
+                match (quick, plain) {
+                    (Some(q), Some(p)) => assert!(q.abs_diff_eq(p, 1e-9), "case {case}: {q} {p}"),
+                    _ => assert_eq!(quick, plain, "case {case}"),
+                }
+            }
+        }
     }
 }
