@@ -410,6 +410,8 @@ fn run_pieces_beside(
         let timing = &timing;
         let parser = scope.spawn(move || {
             let mut sent_exprs = 0;
+            // The first piece is read into an array of a piece's size, not one that grows.
+            let _ = reader.swap_blocks(Vec::with_capacity(PIECE_LINES));
             loop {
                 let done = reader.step(text, PIECE_LINES);
                 let blocks = reader.swap_blocks(spare.try_recv().unwrap_or_default());

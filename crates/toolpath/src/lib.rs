@@ -415,6 +415,7 @@ pub struct Timings {
 }
 
 impl Timings {
+    #[inline(always)]
     fn push(&mut self, mut note: Note, dwell: f64, chord: ChordJoin) {
         if dwell != 0.0 {
             note.flags |= NOTE_DWELL;
