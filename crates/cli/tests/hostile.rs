@@ -64,6 +64,42 @@ fn hostile_inputs_end_with_diagnostics_not_panics() {
         ("a billion spiral turns", b"G2 X0 Y0 I1. L100000000 F100\n".to_vec(), "syntec", Some("E-NUMBER-RANGE")),
         ("a billion subprogram repeats", b"M98 P100 L999999999\nM30\nO100\nG1 X1. F100\nM99\n".to_vec(), "fanuc", Some("E-NUMBER-RANGE")),
         ("a billion holes", b"G0 Z10.\nG99 G81 X1. R1. Z-1. K4000000000 F10\n".to_vec(), "syntec", Some("E-NUMBER-RANGE")),
+        (
+            "a repeat count past K's range",
+            b"G0 X0 Y0 Z10.\nG91 G81 X1. Y1. Z-5. R2. K999999999 F100\nG80\nM30\n".to_vec(),
+            "fanuc",
+            Some("E-NUMBER-RANGE"),
+        ),
+        (
+            "a billion LinuxCNC repeats in one block",
+            b"G0 X0 Y0 Z10\nG91 G81 X1 Y1 Z-5 R2 L1000000000 F100\nG80\nM2\n".to_vec(),
+            "linuxcnc",
+            Some("E-MOTION-LIMIT"),
+        ),
+        (
+            "a billion pecks in one hole",
+            b"G0 X0 Y0 Z10.\nG83 X1. Y1. Z-99999.999 R2. Q0.001 F100\nG80\nM30\n".to_vec(),
+            "fanuc",
+            Some("E-MOTION-LIMIT"),
+        ),
+        (
+            "a peck too small to go deeper",
+            b"G0 X0 Y0 Z10.\n#1=1/100000000/100000000/10\nG83 X1. Y1. Z-50. R2. Q#1 F100\nG80\nM30\n".to_vec(),
+            "fanuc",
+            Some("E-CYCLE-PECK"),
+        ),
+        (
+            "Syntec peck tapping with a tiny peck",
+            b"M3 S100\nG0 X0 Y0 Z10.\n#1=0.0000001\nG84 X1. Y1. Z-1000. R2. Q#1 F100\nG80\nM30\n".to_vec(),
+            "syntec",
+            Some("E-MOTION-LIMIT"),
+        ),
+        (
+            "an endless loop of full circles",
+            b"G0 X0 Y0 Z0\nN10 G2 X0 Y0 I10. F100\nGOTO10\n".to_vec(),
+            "fanuc",
+            Some("E-MOTION-LIMIT"),
+        ),
         ("a huge hole grid", b"G91 G81 Z-10. R5. K0 F100\nG137.1 X0 Y0 I1. P9999 J1. K9999\n".to_vec(), "syntec", Some("E-PATTERN-SIZE")),
         ("invalid UTF-8 and GBK mix", b"G1 X1 (\xd6\xd0\xce\xc4)\n\xff\xfe G0 X2\n".to_vec(), "fanuc", None),
     ];

@@ -137,6 +137,16 @@ pub(crate) fn run(
         _ => b'K',
     };
     let repeats = match plain(repeat_letter) {
+        // The Fanuc family's K counts 0 to 9999 (LinuxCNC's and KT's L has no bound: the
+        // run's limit on moves stops a runaway one).
+        Some(w) if repeat_letter == b'K' && w.value > f64::from(MAX_K_REPEATS) => {
+            st.diagnostics.push(Diagnostic::error(
+                w.span,
+                "E-NUMBER-RANGE",
+                format!("the repeat count K is 0 to {MAX_K_REPEATS}"),
+            ));
+            return false;
+        }
         Some(w) if w.value >= 0.0 && w.value.fract() == 0.0 => w.value as u32,
         Some(w) => {
             st.diagnostics.push(Diagnostic::error(
@@ -167,6 +177,9 @@ pub(crate) fn run(
     drill(st, block, &plan, repeats, &mut next, feed, source, sink);
     true
 }
+
+/// The largest repeat count K of the Fanuc family's canned cycles.
+const MAX_K_REPEATS: u32 = 9999;
 
 /// Most holes one pattern block may drill (a runaway guard: G137.1 allows 9999 × 9999).
 const MAX_PATTERN_HOLES: usize = 100_000;
@@ -480,8 +493,13 @@ fn slanted(
         plan: &plan,
         source,
         sink,
+        halted: false,
+        stuck: false,
     };
     for _ in 0..repeats {
+        if d.stops() {
+            break;
+        }
         let mut start = d.st.program_pos;
         start[drill_axis] = initial;
         if let Some((w, incremental)) = position {
@@ -525,13 +543,16 @@ fn slanted(
             _ => {
                 if let Some(q) = peck {
                     let mut dist = q;
-                    while dist < depth_dist.abs() - 1e-9 {
+                    while dist < depth_dist.abs() - 1e-9 && !d.stops() {
                         d.feed_to(at(r_dist + dist * depth_dist.signum()));
                         d.rapid(r_point);
                         d.rapid(at(
                             r_dist + (dist - d.plan.retract).max(0.0) * depth_dist.signum()
                         ));
-                        dist += q;
+                        let Some(further) = d.next_peck(dist, q, false) else {
+                            break;
+                        };
+                        dist = further;
                     }
                 }
                 d.feed_to(bottom_point);
@@ -802,6 +823,8 @@ fn drill(
         plan,
         source,
         sink,
+        halted: false,
+        stuck: false,
     };
     if linuxcnc && initial < r {
         // rs274ngc: below the R level, straight up to it first.
@@ -818,6 +841,9 @@ fn drill(
         r
     };
     for i in 1..=count {
+        if d.stops() {
+            break;
+        }
         let hole = next(d.st, i);
         if linuxcnc && !(i == 1 && current > r) {
             // Later holes (and a first one from at or below R) move over at the clear level.
@@ -845,9 +871,49 @@ struct Drill<'a, 's> {
     plan: &'a Plan,
     source: Source,
     sink: &'s mut dyn Sink,
+    /// The sink filled up: no more holes or pecks (reported once).
+    halted: bool,
+    /// A peck depth too small to go deeper was reported.
+    stuck: bool,
 }
 
 impl Drill<'_, '_> {
+    /// Whether the cycle stops making moves: the sink holds all it may (the run's limit on
+    /// moves, or the toolpath's memory), so a repeat count or a peck depth that would make
+    /// millions of them ends here, with a diagnostic, and the run stops after the block.
+    fn stops(&mut self) -> bool {
+        if !self.halted && self.sink.full() {
+            self.halted = true;
+            self.st.diagnostics.push(Diagnostic::error(
+                self.block.span,
+                "E-MOTION-LIMIT",
+                "the canned cycle stops here: its holes and pecks would make more moves than the run may ([machine] max_motions), and they would not fit in memory",
+            ));
+        }
+        self.halted
+    }
+
+    /// The next peck's depth from `depth`, `q` further towards the bottom (`down`: the depth
+    /// decreases), or `None` where the peck is too small to change it (a `Q` far below the
+    /// number's resolution at that depth, reported once): the loop would never end.
+    fn next_peck(&mut self, depth: f64, q: f64, down: bool) -> Option<f64> {
+        let next = if down { depth - q } else { depth + q };
+        if next != depth {
+            return Some(next);
+        }
+        if !self.stuck {
+            self.stuck = true;
+            self.st.diagnostics.push(Diagnostic::error(
+                self.block.span,
+                "E-CYCLE-PECK",
+                format!(
+                    "the peck depth Q ({q:.3e} mm) is too small to go any deeper from {depth} mm: the rest of the hole is cut in one feed"
+                ),
+            ));
+        }
+        None
+    }
+
     fn emit(&mut self, event: &Canon) {
         crate::corners::emit(self.st, self.sink, self.source, event);
     }
@@ -976,13 +1042,16 @@ impl Drill<'_, '_> {
                 let q = self.plan.peck.unwrap_or(DEFAULT_Q_MM);
                 let full_out = self.plan.tenths == 830;
                 let mut depth = r - q;
-                while depth > bottom + 1e-9 {
+                while depth > bottom + 1e-9 && !self.stops() {
                     self.feed_to(self.level(hole, depth));
                     if full_out {
                         self.rapid(self.level(hole, r));
                     }
                     self.rapid(self.level(hole, (depth + self.plan.retract).min(r)));
-                    depth -= q;
+                    let Some(deeper) = self.next_peck(depth, q, true) else {
+                        break;
+                    };
+                    depth = deeper;
                 }
                 self.feed_to(self.level(hole, bottom));
                 self.rapid(self.level(hole, clear));
@@ -1017,7 +1086,7 @@ impl Drill<'_, '_> {
                         }
                     };
                     let mut depth = r - q;
-                    while depth > bottom + 1e-9 {
+                    while depth > bottom + 1e-9 && !self.stops() {
                         self.feed_to(self.level(hole, depth));
                         self.spindle(None);
                         self.dwell();
@@ -1026,7 +1095,10 @@ impl Drill<'_, '_> {
                         self.spindle(None);
                         self.dwell();
                         self.spindle(Some(forward));
-                        depth -= q;
+                        let Some(deeper) = self.next_peck(depth, q, true) else {
+                            break;
+                        };
+                        depth = deeper;
                     }
                 }
                 if linuxcnc {

@@ -268,6 +268,10 @@ impl Sink for StrokeGuard<'_> {
         self.inner.emit(source, event);
     }
 
+    fn full(&self) -> bool {
+        self.inner.full()
+    }
+
     fn origin(&mut self, at: DVec3) {
         self.inner.origin(at);
     }

@@ -24,6 +24,13 @@ pub trait Sink {
     /// One event caused by the block at `source`.
     fn emit(&mut self, source: Source, event: &Canon);
 
+    /// Whether the sink holds all it may (a recorder whose memory has a limit): the run then
+    /// stops before the next block with a diagnostic, and a block that makes many moves (a
+    /// canned cycle's holes and pecks) makes no more. `false` for a sink without a limit.
+    fn full(&self) -> bool {
+        false
+    }
+
     /// The program zero (work offset with its G52/G92 shifts, machine frame) that the moves
     /// just emitted were programmed from; told once per change, for the backplot's origin
     /// marks. Not part of the canonical stream: sinks that do not draw may ignore it.

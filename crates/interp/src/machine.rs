@@ -41,6 +41,8 @@ pub enum Piece {
 pub(crate) struct MotionCounter<'s> {
     inner: &'s mut dyn Sink,
     motions: u64,
+    /// The run's limit on motions: past it the counter is full (see [`Sink::full`]).
+    max_motions: u64,
 }
 
 impl MotionCounter<'_> {
@@ -61,6 +63,10 @@ impl Sink for MotionCounter<'_> {
             self.motions += 1;
         }
         self.inner.emit(source, event);
+    }
+
+    fn full(&self) -> bool {
+        self.motions >= self.max_motions || self.inner.full()
     }
 
     fn origin(&mut self, at: DVec3) {
@@ -340,6 +346,7 @@ impl Interpreter {
         let mut counted = MotionCounter {
             inner: sink,
             motions: self.motions,
+            max_motions: self.st.setup.machine.max_motions,
         };
         let mut left = budget;
         while left > 0 {
@@ -376,6 +383,14 @@ impl Interpreter {
                     "E-MOTION-LIMIT",
                     format!(
                         "execution stopped after {} moves (the limit in [machine] max_motions): the toolpath would not fit in memory",
+                        counted.motions
+                    ),
+                ))
+            } else if counted.inner.full() {
+                Some((
+                    "E-MOTION-LIMIT",
+                    format!(
+                        "execution stopped after {} moves: their toolpath holds as many segments as [machine] max_motions allows (an arc is drawn as many), more would not fit in memory",
                         counted.motions
                     ),
                 ))
@@ -448,8 +463,9 @@ impl Interpreter {
     /// loop makes between other blocks (they change nothing for such moves); how many ran, 0
     /// where the frame does not apply or the next block is not such a move.
     fn fast_run(&mut self, program: &Program, left: usize, sink: &mut MotionCounter<'_>) -> usize {
-        // The program zero must have been reported (plain moves leave it as it is).
-        if !self.shortcut || !self.origin_current || self.st.alarm.is_some() {
+        // The program zero must have been reported (plain moves leave it as it is); a full
+        // sink is left to the block loop, which reports it.
+        if !self.shortcut || !self.origin_current || self.st.alarm.is_some() || sink.full() {
             return 0;
         }
         if !self.fast_current {
@@ -486,13 +502,20 @@ impl Interpreter {
                 block: u32::try_from(self.block_base + at + ran).unwrap_or(u32::MAX),
                 line: block.line.saturating_add(1),
             };
-            if !crate::exec::fast_move(&mut self.st, fast, block, source, sink)
-                && !crate::exec::fast_arc(&mut self.st, fast, block, source, sink)
-            {
+            let arc = if crate::exec::fast_move(&mut self.st, fast, block, source, sink) {
+                false
+            } else if crate::exec::fast_arc(&mut self.st, fast, block, source, sink) {
+                true
+            } else {
                 break;
-            }
+            };
             self.st.block_span = block.span;
             ran += 1;
+            // An arc may add many segments: a full sink ends the run here (the block loop
+            // reports it).
+            if arc && sink.full() {
+                break;
+            }
         }
         self.executed += u64::try_from(ran).unwrap_or(u64::MAX);
         self.st.blocks_run = self.executed;

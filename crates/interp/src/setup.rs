@@ -91,7 +91,8 @@ pub struct Machine {
     pub travel_mm: Option<[[f64; 3]; 2]>,
     /// Most motion events (moves and arcs) a run may produce before it is stopped: a bound on
     /// the toolpath's memory (about 50 bytes a segment), so a runaway program cannot exhaust a
-    /// browser tab.
+    /// browser tab. The toolpath holds at most as many segments (an arc's chords count one
+    /// each), and a canned cycle stops making holes and pecks at either limit.
     pub max_motions: u64,
     /// Largest difference between an arc's start and end radius before it is an alarm (mm).
     pub arc_tolerance_mm: f64,

@@ -657,6 +657,8 @@ pub struct Toolpath {
     /// with the same limits and what the lent one is to take in later.
     timer: Timer,
     detached: Option<Timings>,
+    /// The most segments the path holds before it reports itself full (memory's limit).
+    max_segments: usize,
     /// Every dwell, in segment order.
     dwells: Vec<Dwell>,
     tools: Vec<u32>,
@@ -690,9 +692,12 @@ impl Toolpath {
         Toolpath::with_kinematics(start, Kinematics::from_machine(&machine))
     }
 
-    /// An empty toolpath starting at `start`, timed with the limits of a setup's `[machine]`.
+    /// An empty toolpath starting at `start`, timed with the limits of a setup's `[machine]`,
+    /// and holding at most its `max_motions` segments (see [`Sink::full`]).
     pub fn for_machine(start: DVec3, machine: &Machine) -> Self {
-        Toolpath::with_kinematics(start, Kinematics::from_machine(machine))
+        let mut path = Toolpath::with_kinematics(start, Kinematics::from_machine(machine));
+        path.max_segments = max_segments(machine);
+        path
     }
 
     /// Makes room for `segments` more segments at once (e.g. one per block of the program),
@@ -715,6 +720,7 @@ impl Toolpath {
             segment_tools: Runs::default(),
             timer: Timer::new(kinematics, start),
             detached: None,
+            max_segments: max_segments(&Machine::default()),
             dwells: Vec::new(),
             tools: Vec::new(),
             tool: 0,
@@ -1108,6 +1114,12 @@ fn lone_end_time(p: &Plan, k: Kinematics, start: f64) -> f64 {
     start + (p.dwell + k.move_secs(p.length, p.cruise, 0.0, 0.0))
 }
 
+/// The most segments a toolpath for `machine` holds: as many as the moves a run may make, an
+/// arc's chords counting one each (a loop of arcs fills the memory faster than one of lines).
+fn max_segments(machine: &Machine) -> usize {
+    usize::try_from(machine.max_motions).unwrap_or(usize::MAX)
+}
+
 /// The fields of [`Canon::Arc`].
 struct ArcEvent {
     to: DVec3,
@@ -1200,6 +1212,10 @@ impl Sink for Toolpath {
 
     fn programmed(&mut self, source: Source, event: &Canon) {
         self.programmed.push((source.line, event.clone()));
+    }
+
+    fn full(&self) -> bool {
+        self.ends.len() >= self.max_segments
     }
 }
 
