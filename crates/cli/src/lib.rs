@@ -235,11 +235,10 @@ fn load_decoded(path: &Path, decoded: Decoded, opts: &RunOptions) -> Loaded {
 }
 
 /// The reading diagnostics and the run's, in one list sorted by position.
-fn merged(reading: &[Diagnostic], run: Vec<Diagnostic>) -> Vec<Diagnostic> {
-    let mut all = reading.to_vec();
-    all.extend(run);
-    all.sort_by_key(|d| (d.span.start, d.span.end));
-    all
+fn merged(mut reading: Vec<Diagnostic>, run: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    reading.extend(run);
+    reading.sort_by_key(|d| (d.span.start, d.span.end));
+    reading
 }
 
 /// Lines read and run at a time when a program runs piece by piece.
@@ -290,8 +289,11 @@ fn stream(
     };
     interp.finish_pieces(toolpath);
     let decoding = std::mem::take(&mut decoded.diagnostics);
-    let loaded = Loaded::new(path, decoding, text, reader.finish(), Vec::new());
-    let diagnostics = merged(&loaded.diagnostics, interp.take_diagnostics());
+    let mut loaded = Loaded::new(path, decoding, text, reader.finish(), Vec::new());
+    let diagnostics = merged(
+        std::mem::take(&mut loaded.diagnostics),
+        interp.take_diagnostics(),
+    );
     Some(Streamed {
         loaded,
         blocks,
@@ -513,11 +515,12 @@ impl Loaded {
         path: &Path,
         decoding: Vec<Diagnostic>,
         text: String,
-        program: Program,
+        mut program: Program,
         linked: Vec<LinkedSource>,
     ) -> Self {
+        // Moved, not copied: a broken file may have millions.
         let mut diagnostics = decoding;
-        diagnostics.extend(program.diagnostics.iter().cloned());
+        diagnostics.append(&mut program.diagnostics);
         Loaded {
             path: path.display().to_string(),
             text,
@@ -527,18 +530,24 @@ impl Loaded {
         }
     }
 
-    /// Interprets the program into `sink`; returns every diagnostic sorted by position.
+    /// Interprets the program into `sink`; returns the run's diagnostics (see
+    /// [`Loaded::all_diagnostics`]).
     fn interpret(&self, setup: &Setup, sink: &mut dyn Sink) -> Vec<Diagnostic> {
-        merged(
-            &self.diagnostics,
-            swarf_interp::run(&self.program, setup.clone(), sink),
-        )
+        swarf_interp::run(&self.program, setup.clone(), sink)
+    }
+
+    /// The reading diagnostics (moved out) and the run's `run`, sorted by position.
+    fn all_diagnostics(&mut self, run: Vec<Diagnostic>) -> Vec<Diagnostic> {
+        merged(std::mem::take(&mut self.diagnostics), run)
     }
 
     fn print(&self, diags: &[Diagnostic], err: &mut dyn Write) -> std::io::Result<i32> {
         let index: &LineIndex = &self.program.lines;
         let mut cols = index.cursor(&self.text);
         let mut status = EXIT_OK;
+        // Standard error writes at once what it is given: a program with millions of
+        // diagnostics would make a system call of each.
+        let mut err = std::io::BufWriter::with_capacity(64 << 10, err);
         for d in diags {
             // A diagnostic in a linked file is reported at its place in that file.
             let linked = self
@@ -561,6 +570,7 @@ impl Loaded {
                 status = EXIT_ERRORS;
             }
         }
+        err.flush()?;
         Ok(status)
     }
 }
@@ -569,7 +579,7 @@ fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::R
     let setup = read_setup(opts)?;
     let mut status = EXIT_OK;
     for file in files {
-        let loaded = match load(file, opts) {
+        let mut loaded = match load(file, opts) {
             Ok(l) => l,
             Err(e) => {
                 writeln!(err, "swarf: {e:#}")?;
@@ -577,7 +587,8 @@ fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::R
                 continue;
             }
         };
-        let diags = loaded.interpret(&setup, &mut NullSink);
+        let run = loaded.interpret(&setup, &mut NullSink);
+        let diags = loaded.all_diagnostics(run);
         let s = loaded.print(&diags, err)?;
         if status == EXIT_OK {
             status = s;
@@ -627,18 +638,19 @@ fn canon(
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
-    let loaded = load(file, opts)?;
+    let mut loaded = load(file, opts)?;
     let mut buffered = std::io::BufWriter::new(out);
     let mut sink = JsonLines {
         program: &loaded.program,
         out: &mut buffered,
         error: None,
     };
-    let diags = loaded.interpret(&setup, &mut sink);
+    let run = loaded.interpret(&setup, &mut sink);
     if let Some(e) = sink.error {
         return Err(anyhow::anyhow!("cannot write output: {e}"));
     }
     buffered.flush()?;
+    let diags = loaded.all_diagnostics(run);
     Ok(loaded.print(&diags, err)?)
 }
 
@@ -668,9 +680,10 @@ fn stats(
     } else {
         // Run whole: it jumps, loops or calls.
         path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-        let loaded = load_decoded(file, decoded, opts);
+        let mut loaded = load_decoded(file, decoded, opts);
         path.reserve(loaded.program.blocks.len());
-        let diags = loaded.interpret(&setup, &mut path);
+        let run = loaded.interpret(&setup, &mut path);
+        let diags = loaded.all_diagnostics(run);
         let blocks = loaded.program.blocks.len();
         (loaded, blocks, diags)
     };

@@ -101,10 +101,11 @@ pub(crate) fn render(
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
     let setup = super::read_setup(&args.opts)?;
-    let loaded = super::load(&args.file, &args.opts)?;
+    let mut loaded = super::load(&args.file, &args.opts)?;
     let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
     path.reserve(loaded.program.blocks.len());
-    let diags = loaded.interpret(&setup, &mut path);
+    let run = loaded.interpret(&setup, &mut path);
+    let diags = loaded.all_diagnostics(run);
     let status = loaded.print(&diags, err)?;
 
     let origin = path.bounds().map_or(DVec3::ZERO, |b| b.center());

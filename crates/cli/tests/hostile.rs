@@ -139,3 +139,17 @@ fn hostile_inputs_end_with_diagnostics_not_panics() {
         }
     }
 }
+
+#[test]
+fn every_diagnostic_of_a_broken_file_is_printed() {
+    // Two errors a line on 100,000 lines: all printed, in order, the last ones too.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("broken.nc");
+    std::fs::write(&file, "QQ\n".repeat(100_000)).unwrap();
+    let (code, err) = swarf(&["check", file.to_str().unwrap(), "--dialect", "fanuc"]);
+    assert_eq!(code, 1);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 200_000, "{}", head(&err));
+    assert!(lines[0].ends_with(":1:1: error[E-WORD-VALUE]: address `Q` needs a number after it"));
+    assert!(lines[199_999].contains(":100000:2: error[E-WORD-VALUE]"), "{}", lines[199_999]);
+}
