@@ -151,5 +151,9 @@ fn every_diagnostic_of_a_broken_file_is_printed() {
     let lines: Vec<&str> = err.lines().collect();
     assert_eq!(lines.len(), 200_000, "{}", head(&err));
     assert!(lines[0].ends_with(":1:1: error[E-WORD-VALUE]: address `Q` needs a number after it"));
-    assert!(lines[199_999].contains(":100000:2: error[E-WORD-VALUE]"), "{}", lines[199_999]);
+    assert!(
+        lines[199_999].contains(":100000:2: error[E-WORD-VALUE]"),
+        "{}",
+        lines[199_999]
+    );
 }

@@ -540,7 +540,16 @@ fn execute_block(
         return Flow::Stop;
     }
     let axes = axis_words(words);
-    note_least_increment(st, words);
+    // In a block that runs a canned cycle, K is the repeat count, not a length.
+    let block_motion = actions.iter().find_map(|(a, _)| match a {
+        Action::Motion(m) => Some(*m),
+        _ => None,
+    });
+    let cycle = matches!(
+        block_motion.unwrap_or(st.motion),
+        Some(MotionMode::Cycle(_))
+    );
+    note_least_increment(st, if cycle { b"XYZIJRQ" } else { LENGTH_LETTERS }, words);
     // Modes that take the block's axis words as their data.
     let mut consumed = false;
     for (a, w) in &actions {
@@ -779,7 +788,7 @@ fn plain_move(
     feed_word(st, plain.feed);
     st.motion = Some(plain.mode);
     if plain.least_increment {
-        note_least_increment(st, words);
+        note_least_increment(st, LENGTH_LETTERS, words);
     }
     let (mode, axes) = (plain.mode, plain.axes);
     if axes.iter().any(Option::is_some) {
@@ -900,7 +909,7 @@ pub(crate) fn fast_arc(
     }
     feed_word(st, feed);
     st.motion = Some(mode);
-    note_least_increment(st, words);
+    note_least_increment(st, LENGTH_LETTERS, words);
     // No end point and no centre (`G02 R5.`): only the mode is set, as `execute_block` does.
     if axes.iter().any(Option::is_some) || centre {
         motion(st, block, words, &axes, false, source, sink);
@@ -937,7 +946,7 @@ pub(crate) fn fast_move(
     feed_word(st, feed);
     st.motion = Some(mode);
     if least_increment {
-        note_least_increment(st, &block.words);
+        note_least_increment(st, LENGTH_LETTERS, &block.words);
     }
     if axes.iter().any(Option::is_some) {
         // `target` without polar coordinates, then `State::to_machine` in the frame.
@@ -1214,16 +1223,18 @@ fn axis_words(words: &[Word]) -> Axes<'_> {
     axes
 }
 
-/// Notes, once per run, that a length without a decimal point is read in least increments.
-fn note_least_increment(st: &mut State, words: &[Word]) {
+/// The letters whose plain words are lengths (read in least input increments without a point).
+const LENGTH_LETTERS: &[u8] = b"XYZIJKRQ";
+
+/// Notes, once per run, that a length (a word of `lengths`) without a decimal point is read in
+/// least increments.
+fn note_least_increment(st: &mut State, lengths: &[u8], words: &[Word]) {
     if st.noted_least_increment || st.calculator() {
         return;
     }
     let Some(w) = words.iter().find(|w| {
-        matches!(
-            w.letter,
-            b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K' | b'R' | b'Q'
-        ) && w.form == WordForm::Plain
+        lengths.contains(&w.letter)
+            && w.form == WordForm::Plain
             && !w.has_point
             && w.expr.is_none()
             && w.value != 0.0

@@ -94,3 +94,30 @@ fn the_fanuc_familys_repeat_count_ends_at_9999() {
         assert!(motions > 9999 * 3, "{dialect:?}: {motions}");
     }
 }
+
+#[test]
+fn a_cycles_repeat_count_is_not_noted_as_a_length() {
+    let notes = |text: &str| {
+        let program = parse(text, Dialect::Fanuc);
+        let diagnostics = run(
+            &program,
+            Setup::default(),
+            &mut Small {
+                motions: 0,
+                room: usize::MAX,
+            },
+        );
+        diagnostics.iter().map(|d| d.code).collect::<Vec<_>>()
+    };
+    // K5 repeats the hole five times: no least-increment note for it.
+    assert!(notes("G0 X0. Y0. Z10.\nG91 G81 X1. Y1. Z-5. R2. K5 F100\nG80\nM30\n").is_empty());
+    // An arc's K is a length, as is a cycle's X.
+    assert_eq!(
+        notes("G0 X0. Y0. Z0.\nG18 G2 X0. Z.01 K5 F100\nM30\n"),
+        ["N-LEAST-INCREMENT"]
+    );
+    assert_eq!(
+        notes("G0 X0. Y0. Z10.\nG91 G81 X1 Y1. Z-5. R2. K5 F100\nG80\nM30\n"),
+        ["N-LEAST-INCREMENT"]
+    );
+}
