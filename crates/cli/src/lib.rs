@@ -290,10 +290,7 @@ fn stream(
     interp.finish_pieces(toolpath);
     let decoding = std::mem::take(&mut decoded.diagnostics);
     let mut loaded = Loaded::new(path, decoding, text, reader.finish(), Vec::new());
-    let diagnostics = merged(
-        std::mem::take(&mut loaded.diagnostics),
-        interp.take_diagnostics(),
-    );
+    let diagnostics = loaded.all_diagnostics(interp.take_diagnostics());
     Some(Streamed {
         loaded,
         blocks,

@@ -549,7 +549,12 @@ fn execute_block(
         block_motion.unwrap_or(st.motion),
         Some(MotionMode::Cycle(_))
     );
-    note_least_increment(st, if cycle { b"XYZIJRQ" } else { LENGTH_LETTERS }, words);
+    let lengths = if cycle {
+        CYCLE_LENGTH_LETTERS
+    } else {
+        LENGTH_LETTERS
+    };
+    note_least_increment(st, lengths, words);
     // Modes that take the block's axis words as their data.
     let mut consumed = false;
     for (a, w) in &actions {
@@ -1225,6 +1230,9 @@ fn axis_words(words: &[Word]) -> Axes<'_> {
 
 /// The letters whose plain words are lengths (read in least input increments without a point).
 const LENGTH_LETTERS: &[u8] = b"XYZIJKRQ";
+
+/// [`LENGTH_LETTERS`] in a block that runs a canned cycle, where K is the repeat count.
+const CYCLE_LENGTH_LETTERS: &[u8] = b"XYZIJRQ";
 
 /// Notes, once per run, that a length (a word of `lengths`) without a decimal point is read in
 /// least increments.

@@ -987,7 +987,7 @@ impl Toolpath {
 
     /// Takes the time model out of the path, so that another thread can measure and time the
     /// segments while more are recorded: until [`Toolpath::attach_timer`] gives it back, each
-    /// new segment is only noted for it ([`Toolpath::take_timings`]), and the figures it gives
+    /// new segment is only noted for it ([`Toolpath::swap_timings`]), and the figures it gives
     /// ([`Toolpath::timeline`], [`Toolpath::estimated_secs`], [`Toolpath::bounds`], the
     /// lengths) leave out every segment since.
     pub fn detach_timer(&mut self) -> Timer {
@@ -997,14 +997,9 @@ impl Toolpath {
         std::mem::replace(&mut self.timer, stand_in)
     }
 
-    /// The segments noted for the detached timer since the last call, for [`Timer::take`].
-    pub fn take_timings(&mut self) -> Timings {
-        self.swap_timings(Timings::default())
-    }
-
-    /// [`Toolpath::take_timings`], noting the next segments into `spare` (emptied first): a
-    /// batch the timer has taken in can come back for reuse, so a long run of batches
-    /// allocates none.
+    /// The segments noted for the detached timer since the last call, for [`Timer::take`];
+    /// the next ones are noted into `spare` (emptied first), so that a batch the timer has
+    /// taken in can come back for reuse and a long run of batches allocates none.
     pub fn swap_timings(&mut self, mut spare: Timings) -> Timings {
         spare.notes.clear();
         spare.extras.clear();
@@ -1015,7 +1010,7 @@ impl Toolpath {
     }
 
     /// Gives the time model back to the path, having it take in the segments noted since the
-    /// last [`Toolpath::take_timings`] first; the figures are then those the path would have
+    /// last [`Toolpath::swap_timings`] first; the figures are then those the path would have
     /// worked out itself.
     pub fn attach_timer(&mut self, mut timer: Timer) {
         if let Some(rest) = self.detached.take() {
