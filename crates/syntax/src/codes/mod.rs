@@ -336,41 +336,40 @@ pub struct AddressDef {
     pub meaning: &'static str,
 }
 
-/// Per-dialect index into [`CODES`], sorted by code, built on first use.
-fn index() -> &'static [Vec<(Code, u16)>; 6] {
-    static INDEX: OnceLock<[Vec<(Code, u16)>; 6]> = OnceLock::new();
-    INDEX.get_or_init(|| {
-        let mut out: [Vec<(Code, u16)>; 6] = Default::default();
-        for (slot, dialect) in out.iter_mut().zip(Dialect::ALL) {
-            // The first definition of each code the dialect has, in the table's order: a stable
-            // sort keeps it first among the code's definitions.
-            slot.extend(
-                CODES
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, def)| def.dialects.contains(dialect))
-                    .map(|(i, def)| (def.code, u16::try_from(i).unwrap_or(u16::MAX))),
-            );
-            slot.sort_by_key(|(c, _)| *c);
-            slot.dedup_by_key(|(c, _)| *c);
-            // The standard codes a dialect's manual leaves out are read as Fanuc reads them.
-            if FANUC_READING.contains(&dialect) {
-                let mut standard: Vec<(Code, u16)> = Vec::new();
-                for (i, def) in CODES.iter().enumerate() {
-                    let seen = slot.binary_search_by_key(&def.code, |(c, _)| *c).is_ok()
-                        || standard.iter().any(|(c, _)| *c == def.code);
-                    if FANUC_STANDARD.contains(&def.code)
-                        && def.dialects.contains(Dialect::Fanuc)
-                        && !seen
-                    {
-                        standard.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
-                    }
+/// The dialect's index into [`CODES`], sorted by code, built on its first use (each dialect's
+/// apart: a run reads one dialect, and building all six would cost every start).
+fn index(dialect: Dialect) -> &'static Vec<(Code, u16)> {
+    static INDEX: [OnceLock<Vec<(Code, u16)>>; 6] = [const { OnceLock::new() }; 6];
+    INDEX[dialect_slot(dialect)].get_or_init(|| {
+        let mut slot = Vec::new();
+        // The first definition of each code the dialect has, in the table's order: a stable
+        // sort keeps it first among the code's definitions.
+        slot.extend(
+            CODES
+                .iter()
+                .enumerate()
+                .filter(|(_, def)| def.dialects.contains(dialect))
+                .map(|(i, def)| (def.code, u16::try_from(i).unwrap_or(u16::MAX))),
+        );
+        slot.sort_by_key(|(c, _)| *c);
+        slot.dedup_by_key(|(c, _)| *c);
+        // The standard codes a dialect's manual leaves out are read as Fanuc reads them.
+        if FANUC_READING.contains(&dialect) {
+            let mut standard: Vec<(Code, u16)> = Vec::new();
+            for (i, def) in CODES.iter().enumerate() {
+                let seen = slot.binary_search_by_key(&def.code, |(c, _)| *c).is_ok()
+                    || standard.iter().any(|(c, _)| *c == def.code);
+                if FANUC_STANDARD.contains(&def.code)
+                    && def.dialects.contains(Dialect::Fanuc)
+                    && !seen
+                {
+                    standard.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
                 }
-                slot.extend(standard);
-                slot.sort_by_key(|(c, _)| *c);
             }
+            slot.extend(standard);
+            slot.sort_by_key(|(c, _)| *c);
         }
-        out
+        slot
     })
 }
 
@@ -508,36 +507,31 @@ pub fn words_mask(def: &CodeDef) -> u32 {
 /// Codes below this number (in tenths) are found by direct indexing.
 const DENSE: usize = 2000;
 
-/// Per dialect and letter (G, M), the entry of each code below [`DENSE`] (`u16::MAX`: none):
-/// the lookup every G and M word of every block makes.
-fn dense() -> &'static [[Vec<u16>; 2]; 6] {
-    static DENSE_INDEX: OnceLock<[[Vec<u16>; 2]; 6]> = OnceLock::new();
-    DENSE_INDEX.get_or_init(|| {
-        let mut out: [[Vec<u16>; 2]; 6] = Default::default();
-        for (slots, sorted) in out.iter_mut().zip(index()) {
-            slots[0] = vec![u16::MAX; DENSE];
-            slots[1] = vec![u16::MAX; DENSE];
-            for (code, i) in sorted {
-                let letter = usize::from(code.letter == b'M');
-                if let Some(cell) = slots[letter].get_mut(code.tenths as usize) {
-                    *cell = *i;
-                }
+/// For the dialect, per letter (G, M), the entry of each code below [`DENSE`] (`u16::MAX`:
+/// none): the lookup every G and M word of every block makes.
+fn dense(dialect: Dialect) -> &'static [Vec<u16>; 2] {
+    static DENSE_INDEX: [OnceLock<[Vec<u16>; 2]>; 6] = [const { OnceLock::new() }; 6];
+    DENSE_INDEX[dialect_slot(dialect)].get_or_init(|| {
+        let mut slots = [vec![u16::MAX; DENSE], vec![u16::MAX; DENSE]];
+        for (code, i) in index(dialect) {
+            let letter = usize::from(code.letter == b'M');
+            if let Some(cell) = slots[letter].get_mut(code.tenths as usize) {
+                *cell = *i;
             }
         }
-        out
+        slots
     })
 }
 
 /// The meaning of `code` in `dialect`, if the dialect has it.
 #[inline]
 pub fn lookup(dialect: Dialect, code: Code) -> Option<&'static CodeDef> {
-    let d = dialect_slot(dialect);
     if (code.letter == b'G' || code.letter == b'M') && (code.tenths as usize) < DENSE {
         let letter = usize::from(code.letter == b'M');
-        let i = *dense()[d][letter].get(code.tenths as usize)?;
+        let i = *dense(dialect)[letter].get(code.tenths as usize)?;
         return CODES.get(usize::from(i));
     }
-    let slot = &index()[d];
+    let slot = index(dialect);
     let at = slot.binary_search_by_key(&code, |(c, _)| *c).ok()?;
     CODES.get(usize::from(slot[at].1))
 }
@@ -552,7 +546,7 @@ pub fn dialects_with(code: Code) -> DialectSet {
 
 /// Every code `dialect` has, sorted by code.
 pub fn codes_of(dialect: Dialect) -> impl Iterator<Item = &'static CodeDef> {
-    index()[dialect_slot(dialect)]
+    index(dialect)
         .iter()
         .filter_map(|(_, i)| CODES.get(usize::from(*i)))
 }
@@ -604,7 +598,8 @@ mod tests {
 
     #[test]
     fn the_index_is_its_plain_definition() {
-        for (slot, dialect) in index().iter().zip(Dialect::ALL) {
+        for dialect in Dialect::ALL {
+            let slot = index(dialect);
             assert_eq!(*slot, plain_index(dialect), "{dialect:?}");
             assert!(!slot.is_empty());
         }
