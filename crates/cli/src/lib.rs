@@ -244,6 +244,10 @@ fn merged(mut reading: Vec<Diagnostic>, run: Vec<Diagnostic>) -> Vec<Diagnostic>
 /// Lines read and run at a time when a program runs piece by piece.
 const PIECE_LINES: usize = 1024;
 
+/// Lines in the first piece read on a second thread (the pieces after grow fourfold up to
+/// [`PIECE_LINES`]): the runner waits for it.
+const FIRST_PIECE_LINES: usize = 128;
+
 /// A text up to this long (about a piece's lines) is read and run on one thread.
 const PIECE_BYTES: usize = PIECE_LINES * 24;
 
@@ -272,16 +276,17 @@ fn stream(
     two_threads: bool,
 ) -> Option<Streamed> {
     let text = std::mem::take(&mut decoded.text);
-    // The lines are indexed as they are read, by the thread that reads them.
-    let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
-    let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
     // About a move a line, and a line is rarely under sixteen bytes: the part of the reserve
     // that no move fills is never touched.
     toolpath.reserve(text.len() / 16);
-    let ran = if two_threads && text.len() > PIECE_BYTES {
-        run_pieces_beside(&text, reader, &mut interp, toolpath)
+    let (mut interp, ran) = if two_threads && text.len() > PIECE_BYTES {
+        run_pieces_beside(&text, opts.dialect, setup, toolpath)
     } else {
-        run_pieces(&text, reader, &mut interp, toolpath)
+        // The lines are indexed as they are read.
+        let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
+        let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
+        let ran = run_pieces(&text, reader, &mut interp, toolpath);
+        (interp, ran)
     };
     let Some((reader, blocks)) = ran else {
         decoded.text = text;
@@ -350,10 +355,13 @@ fn run_pieces(
 /// while it waits for a piece.
 fn run_pieces_beside(
     text: &str,
-    mut reader: swarf_syntax::ParseRun,
-    interp: &mut swarf_interp::Interpreter,
+    dialect: swarf_syntax::Dialect,
+    setup: &Setup,
     toolpath: &mut Toolpath,
-) -> Option<(swarf_syntax::ParseRun, usize)> {
+) -> (
+    swarf_interp::Interpreter,
+    Option<(swarf_syntax::ParseRun, usize)>,
+) {
     use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::mpsc::{
         Receiver, SyncSender, TryRecvError, TrySendError, channel, sync_channel,
@@ -390,7 +398,6 @@ fn run_pieces_beside(
         }
     }
     let stop = AtomicBool::new(false);
-    let dialect = reader.program().dialect;
     let (moves, queued) = channel::<Timings>();
     let (spent, spent_batches) = sync_channel::<Timings>(4);
     let timing = Mutex::new(Timing {
@@ -407,12 +414,18 @@ fn run_pieces_beside(
         let (ring, bell) = sync_channel::<()>(1);
         let stop = &stop;
         let timing = &timing;
+        // The reader starts first, so that its first piece is being read while this thread
+        // makes its interpreter; the lines are indexed as they are read, by this reader.
         let parser = scope.spawn(move || {
+            let mut reader = swarf_syntax::ParseRun::streaming(text, dialect);
             let mut sent_exprs = 0;
-            // The first piece is read into an array of a piece's size, not one that grows.
+            // The first pieces are short, so that the runner starts soon; each array is of a
+            // whole piece's size, not one that grows.
+            let mut lines = FIRST_PIECE_LINES;
             let _ = reader.swap_blocks(Vec::with_capacity(PIECE_LINES));
             loop {
-                let done = reader.step(text, PIECE_LINES);
+                let done = reader.step(text, lines);
+                lines = (lines * 4).min(PIECE_LINES);
                 let blocks = reader.swap_blocks(spare.try_recv().unwrap_or_default());
                 let exprs = &reader.program().exprs;
                 let new_exprs = exprs.get(sent_exprs..).unwrap_or_default().to_vec();
@@ -448,6 +461,8 @@ fn run_pieces_beside(
             }
             reader
         });
+        let mut runner = swarf_interp::Interpreter::new(setup.clone(), dialect);
+        let interp = &mut runner;
         // The program as the interpreter sees it: this piece's blocks, every expression so far.
         let mut piece = Program {
             dialect,
@@ -495,7 +510,7 @@ fn run_pieces_beside(
             Ok(reader) => reader,
             Err(panic) => std::panic::resume_unwind(panic),
         };
-        (!whole).then_some((reader, blocks))
+        (runner, (!whole).then_some((reader, blocks)))
     });
     let mut timing = timing.into_inner().unwrap_or_else(PoisonError::into_inner);
     while let Ok(moves) = timing.queued.try_recv() {
