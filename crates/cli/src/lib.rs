@@ -346,7 +346,8 @@ fn run_pieces(
 
 /// [`run_pieces`] with the reading on a second thread: it hands each piece's blocks (and the
 /// expressions new in it) over a short queue while this thread runs the piece before, and gets
-/// the block arrays back for reuse.
+/// the block arrays back for reuse. Returns the interpreter this thread made with what
+/// [`run_pieces`] returns.
 ///
 /// The toolpath's measures and time model (about a quarter of a plain program's work) run on
 /// whichever thread would otherwise wait: this thread queues the moves of each piece it has
