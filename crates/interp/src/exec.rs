@@ -540,16 +540,9 @@ fn execute_block(
         return Flow::Stop;
     }
     let axes = axis_words(words);
-    // In a block that runs a canned cycle, K is the repeat count, not a length.
-    let block_motion = actions.iter().find_map(|(a, _)| match a {
-        Action::Motion(m) => Some(*m),
-        _ => None,
-    });
-    let cycle = matches!(
-        block_motion.unwrap_or(st.motion),
-        Some(MotionMode::Cycle(_))
-    );
-    let lengths = if cycle {
+    // In a block that runs a canned cycle (the block's motion code is already the mode), K is
+    // the repeat count, not a length.
+    let lengths = if matches!(st.motion, Some(MotionMode::Cycle(_))) {
         CYCLE_LENGTH_LETTERS
     } else {
         LENGTH_LETTERS
