@@ -86,6 +86,12 @@ measure() {
   echo "${best:-${out% *}} $kb"
 }
 
+# Swarf's round on program $1: "secs kb" (see `measure`) on one thread, then on two.
+swarf_round() {
+  echo "$(measure "$swarf" stats "$1" --dialect linuxcnc --one-thread)" \
+    "$(measure "$swarf" stats "$1" --dialect linuxcnc)"
+}
+
 # The lesser of two measured times (a failed measurement, not a number, loses).
 least() {
   awk -v a="$1" -v b="$2" 'BEGIN{
@@ -116,8 +122,7 @@ for prog in "${programs[@]}"; do
   [[ -f "$prog" ]] || continue
   bytes=$(stat -c %s "$prog")
   lines=$(wc -l < "$prog")
-  read -r st sk < <(measure "$swarf" stats "$prog" --dialect linuxcnc --one-thread)
-  read -r st2 sk2 < <(measure "$swarf" stats "$prog" --dialect linuxcnc)
+  read -r st sk st2 sk2 < <(swarf_round "$prog")
   r=("" 0) g=("" 0) p=("" 0)
   if [[ -n "$rs274" ]]; then
     read -r -a r < <(cd "$(dirname "$prog")" && measure "$rs274" -t "$tbl" -g "$(basename "$prog")")
@@ -131,8 +136,7 @@ for prog in "${programs[@]}"; do
   # Swarf's runs again, after the peers': its runs take a fraction of a second where a peer's
   # take seconds, and a shared machine's speed drifts over seconds, so its best of the two
   # rounds is its best over the stretch of time the peers' runs sample.
-  read -r st_again _ < <(measure "$swarf" stats "$prog" --dialect linuxcnc --one-thread)
-  read -r st2_again _ < <(measure "$swarf" stats "$prog" --dialect linuxcnc)
+  read -r st_again _ st2_again _ < <(swarf_round "$prog")
   st=$(least "$st" "$st_again")
   st2=$(least "$st2" "$st2_again")
   printf "| %s | %.1f MB | %d | %s | %s | %s | %s | %s |\n" "$(basename "$prog")" \
