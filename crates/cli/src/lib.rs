@@ -352,8 +352,8 @@ fn run_pieces(
 /// The toolpath's measures and time model (about a quarter of a plain program's work) run on
 /// whichever thread would otherwise wait: this thread queues the moves of each piece it has
 /// run, and they are measured and timed, in order and a piece's moves at a time, by the
-/// reader when its queue of pieces is full and once it has read the last, or by this thread
-/// while it waits for a piece.
+/// reader while this thread has a piece in hand or the queue of pieces is full and once it has
+/// read the last, or by this thread while it waits for a piece.
 fn run_pieces_beside(
     text: &str,
     dialect: swarf_syntax::Dialect,
@@ -363,7 +363,7 @@ fn run_pieces_beside(
     swarf_interp::Interpreter,
     Option<(swarf_syntax::ParseRun, usize)>,
 ) {
-    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
     use std::sync::mpsc::{
         Receiver, SyncSender, TryRecvError, TrySendError, channel, sync_channel,
     };
@@ -399,6 +399,9 @@ fn run_pieces_beside(
         }
     }
     let stop = AtomicBool::new(false);
+    // Pieces the runner has taken: the reader, knowing how many it has sent, sees whether one
+    // is waiting for the runner.
+    let taken = AtomicUsize::new(0);
     let (moves, queued) = channel::<Timings>();
     let (spent, spent_batches) = sync_channel::<Timings>(4);
     let timing = Mutex::new(Timing {
@@ -415,6 +418,7 @@ fn run_pieces_beside(
         let (ring, bell) = sync_channel::<()>(1);
         let stop = &stop;
         let timing = &timing;
+        let taken = &taken;
         // The reader starts first, so that its first piece is being read while this thread
         // makes its interpreter; the lines are indexed as they are read, by this reader.
         let parser = scope.spawn(move || {
@@ -424,6 +428,7 @@ fn run_pieces_beside(
             // whole piece's size, not one that grows.
             let mut lines = FIRST_PIECE_LINES;
             let _ = reader.swap_blocks(Vec::with_capacity(PIECE_LINES));
+            let mut sent_pieces = 0;
             loop {
                 let done = reader.step(text, lines);
                 lines = (lines * 4).min(PIECE_LINES);
@@ -450,9 +455,13 @@ fn run_pieces_beside(
                 if !sent {
                     return reader;
                 }
+                sent_pieces += 1;
                 if done {
                     break;
                 }
+                // While the runner has a piece in hand, time its moves first: the timing keeps
+                // up with the run, rather than piling up for the end while the runner waits.
+                while sent_pieces > taken.load(Ordering::Relaxed) && time_next(timing) {}
             }
             drop(pieces);
             // Every piece is read: time the moves of those still running, until the last.
@@ -485,6 +494,7 @@ fn run_pieces_beside(
             let Some((read, exprs)) = next else {
                 break;
             };
+            taken.fetch_add(1, Ordering::Relaxed);
             // A rung bell not yet heard is enough.
             let _ = ring.try_send(());
             piece.blocks = read;
