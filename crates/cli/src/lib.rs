@@ -263,30 +263,33 @@ struct Streamed {
 
 /// Reads and runs the program piece by piece as it is parsed, keeping none of its blocks, for
 /// a program that runs straight through (no jumps, loops or calls): the memory and the first
-/// touches of it that the parsed blocks of a long program would take are saved. With
-/// `two_threads`, a program of several pieces is read on a second thread while the pieces
-/// before run (the figures are the same). `None` for a program that needs all its blocks at
-/// once (`path` may then hold part of its moves).
+/// touches of it that the parsed blocks of a long program would take are saved. With a
+/// `helper` thread, a program of several pieces is read on it while the pieces before run
+/// (the figures are the same). `None` for a program that needs all its blocks at once (`path`
+/// may then hold part of its moves).
 fn stream(
     path: &Path,
     decoded: &mut Decoded,
     opts: &RunOptions,
     setup: &Setup,
     toolpath: &mut Toolpath,
-    two_threads: bool,
+    helper: Option<Helper>,
 ) -> Option<Streamed> {
     let text = std::mem::take(&mut decoded.text);
     // About a move a line, and a line is rarely under sixteen bytes: the part of the reserve
     // that no move fills is never touched.
     toolpath.reserve(text.len() / 16);
-    let (mut interp, ran) = if two_threads && text.len() > PIECE_BYTES {
-        run_pieces_beside(&text, opts.dialect, setup, toolpath)
-    } else {
-        // The lines are indexed as they are read.
-        let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
-        let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
-        let ran = run_pieces(&text, reader, &mut interp, toolpath);
-        (interp, ran)
+    let (mut interp, ran, text) = match helper {
+        Some(helper) if text.len() > PIECE_BYTES => {
+            run_pieces_beside(text, opts.dialect, setup, toolpath, helper)
+        }
+        _ => {
+            // The lines are indexed as they are read.
+            let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
+            let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
+            let ran = run_pieces(&text, reader, &mut interp, toolpath);
+            (interp, ran, text)
+        }
     };
     let Some((reader, blocks)) = ran else {
         decoded.text = text;
@@ -344,10 +347,10 @@ fn run_pieces(
     }
 }
 
-/// [`run_pieces`] with the reading on a second thread: it hands each piece's blocks (and the
-/// expressions new in it) over a short queue while this thread runs the piece before, and gets
-/// the block arrays back for reuse. Returns the interpreter this thread made with what
-/// [`run_pieces`] returns.
+/// [`run_pieces`] with the reading on the `helper` thread: it hands each piece's blocks (and
+/// the expressions new in it) over a short queue while this thread runs the piece before, and
+/// gets the block arrays back for reuse. Returns the interpreter this thread made with what
+/// [`run_pieces`] returns, and `text` back.
 ///
 /// The toolpath's measures and time model (about a quarter of a plain program's work) run on
 /// whichever thread would otherwise wait: this thread queues the moves of each piece it has
@@ -355,19 +358,21 @@ fn run_pieces(
 /// reader while this thread has a piece in hand or the queue of pieces is full and once it has
 /// read the last, or by this thread while it waits for a piece.
 fn run_pieces_beside(
-    text: &str,
+    text: String,
     dialect: swarf_syntax::Dialect,
     setup: &Setup,
     toolpath: &mut Toolpath,
+    helper: Helper,
 ) -> (
     swarf_interp::Interpreter,
     Option<(swarf_syntax::ParseRun, usize)>,
+    String,
 ) {
     use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
     use std::sync::mpsc::{
         Receiver, SyncSender, TryRecvError, TrySendError, channel, sync_channel,
     };
-    use std::sync::{Mutex, PoisonError};
+    use std::sync::{Arc, Mutex, PoisonError};
     use swarf_toolpath::{Timer, Timings};
     type Piece = (Vec<swarf_syntax::Block>, Vec<swarf_syntax::ExprNode>);
     /// The time model, its queue of moves, and the way back for the batches it has taken in:
@@ -398,31 +403,42 @@ fn run_pieces_beside(
             Err(_) => false,
         }
     }
-    let stop = AtomicBool::new(false);
-    // Pieces the runner has taken: the reader, knowing how many it has sent, sees whether one
-    // is waiting for the runner.
-    let taken = AtomicUsize::new(0);
+    /// What the two threads share: the time model, whether the reader is to stop (the
+    /// program needs running whole), and how many pieces the runner has taken (the reader,
+    /// knowing how many it has sent, sees whether one is waiting for the runner).
+    struct Shared {
+        timing: Mutex<Timing>,
+        stop: AtomicBool,
+        taken: AtomicUsize,
+    }
     let (moves, queued) = channel::<Timings>();
     let (spent, spent_batches) = sync_channel::<Timings>(4);
-    let timing = Mutex::new(Timing {
-        timer: toolpath.detach_timer(),
-        queued,
-        spent,
+    let shared = Arc::new(Shared {
+        timing: Mutex::new(Timing {
+            timer: toolpath.detach_timer(),
+            queued,
+            spent,
+        }),
+        stop: AtomicBool::new(false),
+        taken: AtomicUsize::new(0),
     });
-    let ran = std::thread::scope(|scope| {
-        let (pieces, received) = sync_channel::<Piece>(2);
-        let (spares, spare) = sync_channel::<Vec<swarf_syntax::Block>>(4);
-        // Rung by the runner when it takes a piece or queues moves: a reader whose queue is
-        // full and who has no moves to time waits for it, not for a free place only, so that
-        // moves queued meanwhile are timed as they come rather than all after the last piece.
-        let (ring, bell) = sync_channel::<()>(1);
-        let stop = &stop;
-        let timing = &timing;
-        let taken = &taken;
+    let (pieces, received) = sync_channel::<Piece>(2);
+    let (spares, spare) = sync_channel::<Vec<swarf_syntax::Block>>(4);
+    // Rung by the runner when it takes a piece or queues moves: a reader whose queue is full
+    // and who has no moves to time waits for it, not for a free place only, so that moves
+    // queued meanwhile are timed as they come rather than all after the last piece.
+    let (ring, bell) = sync_channel::<()>(1);
+    let ran = {
+        let readers = Arc::clone(&shared);
         // The reader starts first, so that its first piece is being read while this thread
         // makes its interpreter; the lines are indexed as they are read, by this reader.
-        let parser = scope.spawn(move || {
-            let mut reader = swarf_syntax::ParseRun::streaming(text, dialect);
+        let parser = helper.run(Box::new(move || {
+            let Shared {
+                timing,
+                stop,
+                taken,
+            } = &*readers;
+            let mut reader = swarf_syntax::ParseRun::streaming(&text, dialect);
             let mut sent_exprs = 0;
             // The first pieces are short, so that the runner starts soon; each array is of a
             // whole piece's size, not one that grows.
@@ -430,7 +446,7 @@ fn run_pieces_beside(
             let _ = reader.swap_blocks(Vec::with_capacity(PIECE_LINES));
             let mut sent_pieces = 0;
             loop {
-                let done = reader.step(text, lines);
+                let done = reader.step(&text, lines);
                 lines = (lines * 4).min(PIECE_LINES);
                 let blocks = reader.swap_blocks(spare.try_recv().unwrap_or_default());
                 let exprs = &reader.program().exprs;
@@ -453,7 +469,7 @@ fn run_pieces_beside(
                     }
                 };
                 if !sent {
-                    return reader;
+                    return (reader, text);
                 }
                 sent_pieces += 1;
                 if done {
@@ -469,8 +485,14 @@ fn run_pieces_beside(
             while let Ok(more) = held.queued.recv() {
                 held.take(more);
             }
-            reader
-        });
+            drop(held);
+            (reader, text)
+        }));
+        let Shared {
+            timing,
+            stop,
+            taken,
+        } = &*shared;
         let mut runner = swarf_interp::Interpreter::new(setup.clone(), dialect);
         let interp = &mut runner;
         // The program as the interpreter sees it: this piece's blocks, every expression so far.
@@ -517,18 +539,53 @@ fn run_pieces_beside(
         drop(received);
         drop(moves);
         drop(ring);
-        let reader = match parser.join() {
-            Ok(reader) => reader,
+        let (reader, text) = match parser.join() {
+            Ok(Some(read)) => read,
+            Ok(None) => std::panic::resume_unwind(Box::new(
+                "the reading thread ended before it was given the text",
+            )),
             Err(panic) => std::panic::resume_unwind(panic),
         };
-        (runner, (!whole).then_some((reader, blocks)))
-    });
-    let mut timing = timing.into_inner().unwrap_or_else(PoisonError::into_inner);
-    while let Ok(moves) = timing.queued.try_recv() {
-        timing.take(moves);
+        (runner, (!whole).then_some((reader, blocks)), text)
+    };
+    // The reader is done: the time model takes in the moves still queued and goes back to
+    // the path (which gives its stand-in for it).
+    let mut held = shared.timing.lock().unwrap_or_else(PoisonError::into_inner);
+    while let Ok(moves) = held.queued.try_recv() {
+        held.take(moves);
     }
-    toolpath.attach_timer(timing.timer);
+    let timer = std::mem::replace(&mut held.timer, toolpath.detach_timer());
+    toolpath.attach_timer(timer);
     ran
+}
+
+/// What the reading thread of [`run_pieces_beside`] hands back: the reader and the text.
+type Read = (swarf_syntax::ParseRun, String);
+
+/// The thread that reads a long program's pieces ([`run_pieces_beside`]), started before the
+/// file is read, so that its start overlaps the reading rather than delaying the first piece.
+struct Helper {
+    jobs: std::sync::mpsc::Sender<Box<dyn FnOnce() -> Read + Send>>,
+    thread: std::thread::JoinHandle<Option<Read>>,
+}
+
+impl Helper {
+    /// Starts the thread, which waits for its job; `None` where no thread can be started.
+    fn start() -> Option<Helper> {
+        let (jobs, job) = std::sync::mpsc::channel::<Box<dyn FnOnce() -> Read + Send>>();
+        let thread = std::thread::Builder::new()
+            .spawn(move || job.recv().ok().map(|job| job()))
+            .ok()?;
+        Some(Helper { jobs, thread })
+    }
+
+    /// Runs `job` on the thread (on a new one were it gone); join the handle for its result.
+    fn run(self, job: Box<dyn FnOnce() -> Read + Send>) -> std::thread::JoinHandle<Option<Read>> {
+        match self.jobs.send(job) {
+            Ok(()) => self.thread,
+            Err(std::sync::mpsc::SendError(job)) => std::thread::spawn(move || Some(job())),
+        }
+    }
 }
 
 impl Loaded {
@@ -687,16 +744,19 @@ fn stats(
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
+    // A second thread only pays where it has a core of its own; it starts while the file is
+    // read.
+    let helper =
+        (!whole && !one_thread && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2))
+            .then(Helper::start)
+            .flatten();
     let mut decoded = read_decoded(file)?;
     let started = Instant::now();
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
     let streamed = if whole {
         None
     } else {
-        // A second thread only pays where it has a core of its own.
-        let two_threads =
-            !one_thread && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
-        stream(file, &mut decoded, opts, &setup, &mut path, two_threads)
+        stream(file, &mut decoded, opts, &setup, &mut path, helper)
     };
     let (loaded, blocks, diags) = if let Some(s) = streamed {
         (s.loaded, s.blocks, s.diagnostics)
@@ -821,7 +881,7 @@ mod tests {
             &opts,
             &setup,
             &mut path,
-            true,
+            Helper::start(),
         );
         // A program that needs running whole gets its text back.
         assert_eq!(decoded.text.is_empty(), streamed.is_some());
