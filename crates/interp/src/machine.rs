@@ -337,7 +337,9 @@ impl Interpreter {
 
     /// Executes at most `budget` blocks of `program`, sending events to `sink`.
     pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
-        if self.index.is_none() {
+        // A program run piece by piece needs no index: a block that would use it (a jump, a
+        // loop, a call) has the program run whole (see `needs_whole`), which makes it.
+        if self.index.is_none() && !self.piecewise {
             self.index = Some(std::sync::Arc::new(Index::build(
                 program,
                 &mut self.st.diagnostics,
@@ -706,6 +708,10 @@ impl Interpreter {
 
     /// The block a `GOTO n` (or `M99 Pn`) in block `at` goes to.
     fn goto(&self, at: usize, n: f64, span: Span) -> Result<usize, Diagnostic> {
+        if self.index.is_none() && self.piecewise {
+            // No index while running piece by piece: the jump has the program run whole.
+            return Ok(at);
+        }
         let label = (n >= 0.0 && n.fract() == 0.0 && n <= f64::from(u32::MAX)).then_some(n as u32);
         label
             .and_then(|n| self.index.as_ref().and_then(|i| i.label(at, n)))
@@ -718,6 +724,17 @@ impl Interpreter {
             })
     }
 
+    /// What a block that needs the program's index does without one: running piece by piece
+    /// (which makes none), a jump, which has the program run whole; else nothing (a program
+    /// run whole has its index from its first step).
+    fn without_index(&self, at: usize) -> Flow {
+        if self.piecewise {
+            Flow::Jump(at)
+        } else {
+            Flow::Next
+        }
+    }
+
     /// Macro B and O-word control statements.
     fn control(
         &mut self,
@@ -726,8 +743,11 @@ impl Interpreter {
         block: &Block,
         statement: &Statement,
     ) -> Result<Flow, Diagnostic> {
-        let Some(index) = self.index.as_ref() else {
+        if let Statement::Assign { .. } = statement {
             return Ok(Flow::Next);
+        }
+        let Some(index) = self.index.as_ref() else {
+            return Ok(self.without_index(at));
         };
         match statement {
             Statement::Assign { .. } => Ok(Flow::Next),
@@ -804,7 +824,7 @@ impl Interpreter {
     ) -> Result<Flow, Diagnostic> {
         let key = self.label_key(program, label)?;
         let Some(index) = self.index.as_ref() else {
-            return Ok(Flow::Next);
+            return Ok(self.without_index(at));
         };
         let missing = |what: &str| {
             Diagnostic::error(
@@ -1017,6 +1037,9 @@ impl Interpreter {
             count = 0.0;
         }
         let repeats = count.min(9999.0) as u32;
+        if self.index.is_none() && self.piecewise {
+            return Ok(self.without_index(at));
+        }
         let index = self.index.as_ref().ok_or_else(|| no_index(block))?;
         let start = if let Some(h) = h {
             // Syntec `M98 H n`: the block N n of this program, as a local subprogram.
@@ -1091,6 +1114,9 @@ impl Interpreter {
         repeats: u32,
         args: &[(u8, f64)],
     ) -> Result<Flow, Diagnostic> {
+        if self.index.is_none() && self.piecewise {
+            return Ok(self.without_index(at));
+        }
         let index = self.index.as_ref().ok_or_else(|| no_index(block))?;
         let start = index
             .program_start(number as u32)
