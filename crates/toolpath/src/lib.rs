@@ -196,10 +196,13 @@ impl Kinematics {
         let u = entry.clamp(0.0, cruise);
         let w = exit.clamp(0.0, cruise);
         let peak = cruise.min(((2.0 * a * length + u * u + w * w) / 2.0).sqrt());
-        let speed_up = ((peak * peak - u * u) / (2.0 * a)).max(0.0);
-        let slow_down = ((peak * peak - w * w) / (2.0 * a)).max(0.0);
+        // One division by the acceleration (the same for every move, so a loop of moves makes
+        // it once) rather than four: the planner's passes time every move.
+        let per_a = 1.0 / a;
+        let speed_up = ((peak * peak - u * u) * (0.5 * per_a)).max(0.0);
+        let slow_down = ((peak * peak - w * w) * (0.5 * per_a)).max(0.0);
         let steady = (length - speed_up - slow_down).max(0.0);
-        (peak - u).max(0.0) / a + (peak - w).max(0.0) / a + steady / peak
+        ((peak - u).max(0.0) + (peak - w).max(0.0)) * per_a + steady / peak
     }
 
     /// The highest speed reachable after `length` mm starting at `speed`.
