@@ -743,11 +743,12 @@ impl Interpreter {
         block: &Block,
         statement: &Statement,
     ) -> Result<Flow, Diagnostic> {
-        if let Statement::Assign { .. } = statement {
-            return Ok(Flow::Next);
-        }
         let Some(index) = self.index.as_ref() else {
-            return Ok(self.without_index(at));
+            // An assignment needs no index (it runs piece by piece as well).
+            return Ok(match statement {
+                Statement::Assign { .. } => Flow::Next,
+                _ => self.without_index(at),
+            });
         };
         match statement {
             Statement::Assign { .. } => Ok(Flow::Next),
