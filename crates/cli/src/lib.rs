@@ -744,12 +744,14 @@ fn stats(
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
-    // A second thread only pays where it has a core of its own; it starts while the file is
-    // read.
-    let helper =
-        (!whole && !one_thread && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2))
-            .then(Helper::start)
-            .flatten();
+    // A second thread only pays where it has a core of its own and the program is longer
+    // than a piece; it starts while the file is read.
+    let helper = (!whole
+        && !one_thread
+        && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2)
+        && std::fs::metadata(file).is_ok_and(|m| m.len() > PIECE_BYTES as u64))
+    .then(Helper::start)
+    .flatten();
     let mut decoded = read_decoded(file)?;
     let started = Instant::now();
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
