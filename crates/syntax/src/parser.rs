@@ -44,6 +44,10 @@ pub struct ParseRun {
     /// Whether lines of plain words take the short reader (always, but in the tests that
     /// compare it with the general one).
     plain_lines: bool,
+    /// Where the program ended at a closing tape mark while its text was still being read
+    /// ([`ParseRun::step_growing`]): the text after it is looked at once it is whole
+    /// ([`ParseRun::complete`]).
+    tape_end: Option<usize>,
 }
 
 impl ParseRun {
@@ -73,6 +77,7 @@ impl ParseRun {
             done: false,
             indexed: None,
             plain_lines: true,
+            tape_end: None,
         }
     }
 
@@ -82,8 +87,14 @@ impl ParseRun {
     /// does the indexing there. Until the run is done, [`ParseRun::progress`] counts only the
     /// lines indexed so far.
     pub fn streaming(text: &str, dialect: Dialect) -> Self {
+        ParseRun::growing(text.len(), dialect)
+    }
+
+    /// [`ParseRun::streaming`] for a text still to be read (a file read a chunk at a time while
+    /// it is parsed, see [`ParseRun::step_growing`]), about `len` bytes long (a reserve).
+    pub fn growing(len: usize, dialect: Dialect) -> Self {
         let mut run = ParseRun::new("", dialect);
-        run.program.lines = LineIndex::started(text.len());
+        run.program.lines = LineIndex::started(len);
         run.indexed = Some(0);
         run
     }
@@ -96,26 +107,54 @@ impl ParseRun {
     /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
     /// whether the whole text is read.
     pub fn step(&mut self, text: &str, lines: usize) -> bool {
-        self.read_lines(Some(text), &mut &*text, lines)
+        self.read_lines(Some(text), &mut &*text, lines, true)
+    }
+
+    /// [`ParseRun::step`] for a run made with [`ParseRun::growing`] over a text that is still
+    /// being read: `text` is the part read so far, which grows from call to call. Until it is
+    /// `complete` it holds whole lines only (each ended by its `\n`), and the run reads none of
+    /// the line still to come. Whether the whole text is read: never before it is complete,
+    /// but at a closing tape mark; call [`ParseRun::complete`] with the whole text then.
+    pub fn step_growing(&mut self, text: &str, complete: bool, lines: usize) -> bool {
+        self.read_lines(Some(text), &mut &*text, lines, complete)
+    }
+
+    /// Finishes a run read with [`ParseRun::step_growing`] once its text is whole (`text`):
+    /// indexes the lines it did not read, and notes the text after a closing tape mark, as a
+    /// run over the whole text does.
+    pub fn complete(&mut self, text: &str) {
+        if let Some(from) = self.indexed {
+            self.indexed = self.program.lines.extend(text, from, usize::MAX);
+        }
+        if let Some(offset) = self.tape_end.take() {
+            ignore_after_tape_end(&mut self.program, &mut &*text, offset);
+        }
+    }
+
+    /// Byte offset of the next line to read.
+    pub fn offset(&self) -> usize {
+        self.offset
     }
 
     /// Reads at most `lines` more lines from `source` (the same text the run's line index was
     /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
     ///
     pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
-        self.read_lines(None, source, lines)
+        self.read_lines(None, source, lines, true)
     }
 
     /// The loop of [`ParseRun::step`] and [`ParseRun::step_from`]: the lines come from `text`
     /// when the whole text is at hand, else from `source` (one dynamic call a line).
     ///
     /// One loop serves every source: made once, it keeps the line reader inlined into it as the
-    /// string-only loop did.
+    /// string-only loop did. A text not `complete` is one still being read (see
+    /// [`ParseRun::step_growing`]).
     fn read_lines(
         &mut self,
         text: Option<&str>,
         source: &mut dyn LineSource,
         lines: usize,
+        complete: bool,
     ) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
@@ -128,9 +167,19 @@ impl ParseRun {
                 None => usize::MAX,
             };
             self.indexed = index_lines(&mut program.lines, text, source, from, wanted);
+            if !complete {
+                // The text read so far is indexed; the rest is still to come.
+                self.indexed = self.indexed.or(Some(source.len()));
+            }
         }
         let line_count = program.lines.line_count();
-        let stop = self.line_no.saturating_add(lines).min(line_count);
+        // A text still being read ends with a line ending: the line after it is still to come.
+        let readable = if complete {
+            line_count
+        } else {
+            line_count.saturating_sub(1)
+        };
+        let stop = self.line_no.saturating_add(lines).min(readable);
         // The run's state, kept here while the lines are read (stored at the end).
         let mut next = self.line_no;
         let mut offset = self.offset;
@@ -219,7 +268,11 @@ impl ParseRun {
                 (Tape::Before, true) => Tape::Open,
                 (Tape::Before | Tape::Plain, false) => Tape::Plain,
                 (Tape::Open, true) => {
-                    ignore_after_tape_end(program, source, offset);
+                    if complete {
+                        ignore_after_tape_end(program, source, offset);
+                    } else {
+                        self.tape_end = Some(offset);
+                    }
                     done = true;
                     tape
                 }
@@ -235,7 +288,7 @@ impl ParseRun {
         }
         // A program that ends before its text does (a closing tape mark) still has its whole
         // text indexed, as a run that indexes first has.
-        if let (true, Some(from)) = (self.done, self.indexed) {
+        if let (true, true, Some(from)) = (complete, self.done, self.indexed) {
             self.indexed = index_lines(&mut self.program.lines, text, source, from, usize::MAX);
         }
         self.done

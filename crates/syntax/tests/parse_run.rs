@@ -136,3 +136,68 @@ fn a_streaming_run_of_texts_around_a_piece_s_size_equals_the_whole_parse() {
         }
     }
 }
+
+/// `text` read as a file is read a chunk of `chunk` bytes at a time while it is parsed: the
+/// run is given the whole lines read so far, `lines` at a time, then the rest at the end.
+fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> swarf_syntax::Program {
+    let mut run = ParseRun::growing(text.len(), dialect);
+    let (mut read, mut whole_lines, mut complete) = (0, 0, false);
+    let mut steps = 0;
+    loop {
+        // Once the whole lines at hand are read, read a chunk more and keep its whole lines
+        // (the rest waits for the next chunk).
+        if !complete && run.offset() >= whole_lines {
+            read = (read + chunk).min(text.len());
+            complete = read == text.len();
+            whole_lines = if complete {
+                read
+            } else {
+                text.as_bytes()[..read]
+                    .iter()
+                    .rposition(|&b| b == b'\n')
+                    .map_or(0, |at| at + 1)
+            };
+        }
+        let part = &text[..whole_lines];
+        let done = run.step_growing(part, complete, lines);
+        assert!(
+            complete || run.offset() <= whole_lines,
+            "no line is read before it ends"
+        );
+        steps += 1;
+        assert!(steps < 100_000, "the run ends");
+        if done {
+            break;
+        }
+    }
+    run.complete(text);
+    run.finish()
+}
+
+#[test]
+fn a_run_over_a_text_still_being_read_equals_the_whole_parse() {
+    let mut text = String::from("O1000\nG90 G21 G17 (début: 加工)\n");
+    for i in 0..120 {
+        text.push_str(&format!("N{} G01 X{}. Y$ F500.\n", i * 10, i % 7));
+        if i % 13 == 0 {
+            text.push_str("#1 = [#2 + 3] (a comment)\nG00 G01 X1\r\n\n");
+        }
+    }
+    for tail in ["M30", "M30\n", "M30\n%\n", "%\n"] {
+        for head in ["", "%\n", "  \n%\n"] {
+            let text = format!("{head}{text}{tail}\nG1 X$\n");
+            for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+                let whole = parse(&text, dialect);
+                for chunk in [1, 7, 64, 1000, 100_000] {
+                    for lines in [1, 5, 1024] {
+                        assert_eq!(
+                            grown(&text, dialect, chunk, lines),
+                            whole,
+                            "{dialect:?} chunks of {chunk}, steps of {lines}: {head:?}…{tail:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
