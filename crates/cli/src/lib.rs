@@ -4,6 +4,7 @@
 //! process arguments and exit status.
 
 mod explain;
+mod growing;
 mod render;
 
 use std::ffi::OsString;
@@ -12,6 +13,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
+use growing::{Growing, Unread};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
 use swarf_syntax::{
@@ -229,9 +231,14 @@ fn read_decoded(path: &Path) -> anyhow::Result<Decoded> {
 
 /// Parses a decoded program file and links the programs it calls from files beside it.
 fn load_decoded(path: &Path, decoded: Decoded, opts: &RunOptions) -> Loaded {
-    let mut program = parse(&decoded.text, opts.dialect);
-    let linked = link_external(&mut program, path, decoded.text.len(), opts.dialect);
-    Loaded::new(path, decoded.diagnostics, decoded.text, program, linked)
+    load_text(path, decoded.text, decoded.diagnostics, opts)
+}
+
+/// [`load_decoded`] for a text and its decoding diagnostics.
+fn load_text(path: &Path, text: String, decoding: Vec<Diagnostic>, opts: &RunOptions) -> Loaded {
+    let mut program = parse(&text, opts.dialect);
+    let linked = link_external(&mut program, path, text.len(), opts.dialect);
+    Loaded::new(path, decoding, text, program, linked)
 }
 
 /// The reading diagnostics and the run's, in one list sorted by position.
@@ -251,6 +258,15 @@ const FIRST_PIECE_LINES: usize = 128;
 /// A text up to this long (about a piece's lines) is read and run on one thread.
 const PIECE_BYTES: usize = PIECE_LINES * 24;
 
+/// How a program read and run piece by piece came out.
+enum Outcome {
+    /// It ran to its end.
+    Ran(Box<Streamed>),
+    /// It needs all its blocks at once (it jumps, loops or calls): its text and decoding
+    /// diagnostics, to be run whole (the path may hold part of its moves).
+    Whole(String, Vec<Diagnostic>),
+}
+
 /// A program read and run piece by piece into a toolpath.
 struct Streamed {
     /// The file, its program without blocks (none is kept) and its reading diagnostics.
@@ -265,25 +281,31 @@ struct Streamed {
 /// a program that runs straight through (no jumps, loops or calls): the memory and the first
 /// touches of it that the parsed blocks of a long program would take are saved. With a
 /// `helper` thread, a program of several pieces is read on it while the pieces before run
-/// (the figures are the same). `None` for a program that needs all its blocks at once (`path`
-/// may then hold part of its moves).
+/// (the figures are the same), and a file `source` is read there too, a chunk at a time as
+/// it is parsed. `decoding` holds the diagnostics of a text decoded before. An error when
+/// the file is not plain UTF-8 (its bytes, to be decoded and run again; `toolpath` may then
+/// hold part of its moves) or cannot be read.
 fn stream(
     path: &Path,
-    decoded: &mut Decoded,
+    mut source: Growing,
+    decoding: Vec<Diagnostic>,
     opts: &RunOptions,
     setup: &Setup,
     toolpath: &mut Toolpath,
     helper: Option<Helper>,
-) -> Option<Streamed> {
-    let text = std::mem::take(&mut decoded.text);
+) -> Result<Outcome, Unread> {
     // About a move a line, and a line is rarely under sixteen bytes: the part of the reserve
     // that no move fills is never touched.
-    toolpath.reserve(text.len() / 16);
+    toolpath.reserve(source.len / 16);
     let (mut interp, ran, text) = match helper {
-        Some(helper) if text.len() > PIECE_BYTES => {
-            run_pieces_beside(text, opts.dialect, setup, toolpath, helper)
+        Some(helper) if source.len > PIECE_BYTES => {
+            let (interp, read) = run_pieces_beside(source, opts.dialect, setup, toolpath, helper);
+            let (ran, text) = read?;
+            (interp, ran, text)
         }
         _ => {
+            source.read_to_end()?;
+            let text = source.text;
             // The lines are indexed as they are read.
             let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
             let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
@@ -292,18 +314,16 @@ fn stream(
         }
     };
     let Some((reader, blocks)) = ran else {
-        decoded.text = text;
-        return None;
+        return Ok(Outcome::Whole(text, decoding));
     };
     interp.finish_pieces(toolpath);
-    let decoding = std::mem::take(&mut decoded.diagnostics);
     let mut loaded = Loaded::new(path, decoding, text, reader.finish(), Vec::new());
     let diagnostics = loaded.all_diagnostics(interp.take_diagnostics());
-    Some(Streamed {
+    Ok(Outcome::Ran(Box::new(Streamed {
         loaded,
         blocks,
         diagnostics,
-    })
+    })))
 }
 
 /// Runs one piece unless the program has ended (`ended` then set); `false` when the program
@@ -349,8 +369,9 @@ fn run_pieces(
 
 /// [`run_pieces`] with the reading on the `helper` thread: it hands each piece's blocks (and
 /// the expressions new in it) over a short queue while this thread runs the piece before, and
-/// gets the block arrays back for reuse. Returns the interpreter this thread made with what
-/// [`run_pieces`] returns, and `text` back.
+/// gets the block arrays back for reuse. A file `source` is read there too, a chunk ahead of
+/// the parse. Returns the interpreter this thread made, with what [`run_pieces`] returns and
+/// the whole text, or why the file gave no text.
 ///
 /// The toolpath's measures and time model (about a quarter of a plain program's work) run on
 /// whichever thread would otherwise wait: this thread queues the moves of each piece it has
@@ -358,16 +379,12 @@ fn run_pieces(
 /// reader while this thread has a piece in hand or the queue of pieces is full and once it has
 /// read the last, or by this thread while it waits for a piece.
 fn run_pieces_beside(
-    text: String,
+    mut source: Growing,
     dialect: swarf_syntax::Dialect,
     setup: &Setup,
     toolpath: &mut Toolpath,
     helper: Helper,
-) -> (
-    swarf_interp::Interpreter,
-    Option<(swarf_syntax::ParseRun, usize)>,
-    String,
-) {
+) -> (swarf_interp::Interpreter, Beside) {
     use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
     use std::sync::mpsc::{
         Receiver, SyncSender, TryRecvError, TrySendError, channel, sync_channel,
@@ -438,7 +455,7 @@ fn run_pieces_beside(
                 stop,
                 taken,
             } = &*readers;
-            let mut reader = swarf_syntax::ParseRun::streaming(&text, dialect);
+            let mut reader = swarf_syntax::ParseRun::growing(source.len, dialect);
             let mut sent_exprs = 0;
             // The first pieces are short, so that the runner starts soon; each array is of a
             // whole piece's size, not one that grows.
@@ -446,7 +463,10 @@ fn run_pieces_beside(
             let _ = reader.swap_blocks(Vec::with_capacity(PIECE_LINES));
             let mut sent_pieces = 0;
             loop {
-                let done = reader.step(&text, lines);
+                // A file is read a chunk ahead of the parse; one not plain UTF-8 stops the
+                // run (the runner stops when the queue is dropped).
+                source.read_ahead(reader.offset())?;
+                let done = reader.step_growing(&source.text, source.is_complete(), lines);
                 lines = (lines * 4).min(PIECE_LINES);
                 let blocks = reader.swap_blocks(spare.try_recv().unwrap_or_default());
                 let exprs = &reader.program().exprs;
@@ -469,7 +489,8 @@ fn run_pieces_beside(
                     }
                 };
                 if !sent {
-                    return (reader, text);
+                    source.read_to_end()?;
+                    return Ok((reader, source.text));
                 }
                 sent_pieces += 1;
                 if done {
@@ -486,7 +507,10 @@ fn run_pieces_beside(
                 held.take(more);
             }
             drop(held);
-            (reader, text)
+            // A program that ends at a closing tape mark may end before its file does.
+            source.read_to_end()?;
+            reader.complete(&source.text);
+            Ok((reader, source.text))
         }));
         let Shared {
             timing,
@@ -539,14 +563,15 @@ fn run_pieces_beside(
         drop(received);
         drop(moves);
         drop(ring);
-        let (reader, text) = match parser.join() {
+        let read = match parser.join() {
             Ok(Some(read)) => read,
             Ok(None) => std::panic::resume_unwind(Box::new(
                 "the reading thread ended before it was given the text",
             )),
             Err(panic) => std::panic::resume_unwind(panic),
         };
-        (runner, (!whole).then_some((reader, blocks)), text)
+        let ran = read.map(|(reader, text)| ((!whole).then_some((reader, blocks)), text));
+        (runner, ran)
     };
     // The reader is done: the time model takes in the moves still queued and goes back to
     // the path (which gives its stand-in for it).
@@ -559,8 +584,14 @@ fn run_pieces_beside(
     ran
 }
 
-/// What the reading thread of [`run_pieces_beside`] hands back: the reader and the text.
-type Read = (swarf_syntax::ParseRun, String);
+/// What [`run_pieces_beside`] gives besides the interpreter: the reader and the number of
+/// blocks read (`None` when the program needs running whole) and the whole text, or why the
+/// file gave no text.
+type Beside = Result<(Option<(swarf_syntax::ParseRun, usize)>, String), Unread>;
+
+/// What the reading thread of [`run_pieces_beside`] hands back: the reader and the whole
+/// text, or why the file gave no text.
+type Read = Result<(swarf_syntax::ParseRun, String), Unread>;
 
 /// The thread that reads a long program's pieces ([`run_pieces_beside`]), started before the
 /// file is read, so that its start overlaps the reading rather than delaying the first piece.
@@ -745,32 +776,66 @@ fn stats(
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
     // A second thread only pays where it has a core of its own and the program is longer
-    // than a piece; it starts while the file is read.
-    let helper = (!whole
+    // than a piece; it starts before the file is read, and reads it a chunk at a time while
+    // the part read before runs.
+    let two_threads = !whole
         && !one_thread
         && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2)
-        && std::fs::metadata(file).is_ok_and(|m| m.len() > PIECE_BYTES as u64))
-    .then(Helper::start)
-    .flatten();
-    let mut decoded = read_decoded(file)?;
+        && std::fs::metadata(file).is_ok_and(|m| m.len() > PIECE_BYTES as u64);
+    let mut helper = two_threads.then(Helper::start).flatten();
+    let cannot_read = |e: std::io::Error| anyhow::anyhow!("cannot read {}: {e}", file.display());
     let started = Instant::now();
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-    let streamed = if whole {
-        None
+    let outcome = if whole {
+        let decoded = read_decoded(file)?;
+        Outcome::Whole(decoded.text, decoded.diagnostics)
     } else {
-        stream(file, &mut decoded, opts, &setup, &mut path, helper)
+        let (mut source, mut decoding) = if helper.is_some() {
+            let opened = std::fs::File::open(file).map_err(cannot_read)?;
+            let len = opened.metadata().map_or(0, |m| m.len());
+            (
+                Growing::open(opened, usize::try_from(len).unwrap_or(usize::MAX)),
+                Vec::new(),
+            )
+        } else {
+            let decoded = read_decoded(file)?;
+            (Growing::whole(decoded.text), decoded.diagnostics)
+        };
+        // Run again, once, when the file turns out not to be plain UTF-8: decoded whole
+        // (a text read whole is not read again).
+        loop {
+            match stream(
+                file,
+                source,
+                decoding,
+                opts,
+                &setup,
+                &mut path,
+                helper.take(),
+            ) {
+                Ok(outcome) => break outcome,
+                Err(Unread::Bytes(bytes)) => {
+                    path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+                    let decoded = decode_owned(bytes);
+                    (source, decoding) = (Growing::whole(decoded.text), decoded.diagnostics);
+                    helper = two_threads.then(Helper::start).flatten();
+                }
+                Err(Unread::Failed(e)) => return Err(cannot_read(e)),
+            }
+        }
     };
-    let (loaded, blocks, diags) = if let Some(s) = streamed {
-        (s.loaded, s.blocks, s.diagnostics)
-    } else {
-        // Run whole: it jumps, loops or calls.
-        path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-        let mut loaded = load_decoded(file, decoded, opts);
-        path.reserve(loaded.program.blocks.len());
-        let run = loaded.interpret(&setup, &mut path);
-        let diags = loaded.all_diagnostics(run);
-        let blocks = loaded.program.blocks.len();
-        (loaded, blocks, diags)
+    let (loaded, blocks, diags) = match outcome {
+        Outcome::Ran(s) => (s.loaded, s.blocks, s.diagnostics),
+        Outcome::Whole(text, decoding) => {
+            // Run whole: it jumps, loops or calls.
+            path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+            let mut loaded = load_text(file, text, decoding, opts);
+            path.reserve(loaded.program.blocks.len());
+            let run = loaded.interpret(&setup, &mut path);
+            let diags = loaded.all_diagnostics(run);
+            let blocks = loaded.program.blocks.len();
+            (loaded, blocks, diags)
+        }
     };
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
     let errors = diags
@@ -865,29 +930,52 @@ fn format_secs(secs: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
     use super::*;
 
+    /// Whether `text` runs piece by piece, from a text read before and from a file read as it
+    /// runs (the two agree).
     fn streams(text: &str) -> bool {
         let opts = RunOptions {
             dialect: Dialect::Fanuc,
             setup: None,
         };
         let setup = Setup::default();
-        let mut decoded = swarf_syntax::decode(text.as_bytes());
-        let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-        let streamed = stream(
-            Path::new("t.nc"),
-            &mut decoded,
-            &opts,
-            &setup,
-            &mut path,
-            Helper::start(),
-        );
-        // A program that needs running whole gets its text back.
-        assert_eq!(decoded.text.is_empty(), streamed.is_some());
-        streamed.is_some()
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("t.nc");
+        std::fs::write(&file, text).unwrap();
+        let sources = [
+            Growing::whole(text.to_string()),
+            Growing::open(std::fs::File::open(&file).unwrap(), text.len()),
+        ];
+        let mut ran = Vec::new();
+        for source in sources {
+            let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+            let outcome = stream(
+                &file,
+                source,
+                Vec::new(),
+                &opts,
+                &setup,
+                &mut path,
+                Helper::start(),
+            );
+            ran.push(match outcome {
+                Ok(Outcome::Ran(streamed)) => {
+                    assert_eq!(streamed.loaded.text, text);
+                    true
+                }
+                // A program that needs running whole gets its whole text back.
+                Ok(Outcome::Whole(back, _)) => {
+                    assert_eq!(back, text);
+                    false
+                }
+                Err(_) => panic!("a UTF-8 text is read"),
+            });
+        }
+        assert_eq!(ran[0], ran[1]);
+        ran[0]
     }
 
     #[test]

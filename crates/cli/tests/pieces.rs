@@ -109,6 +109,47 @@ fn a_call_after_many_pieces_runs_the_program_whole() {
     assert_eq!(motions(&report), motions(&without) + 1);
 }
 
+/// A long program in bytes that are not plain UTF-8 far into the file (read as it runs, it is
+/// decoded whole and run again), with a byte-order mark, with Windows line endings, and with
+/// text after its closing tape mark, far from where the file ends: each reads as it does whole.
+#[test]
+fn a_long_file_read_as_it_runs_reads_as_it_does_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = long_program(30_000, "");
+    let gbk = {
+        // `(加工)` in GB18030, after most of the program has run.
+        let cut = text.len() - 2_000;
+        let cut = cut + text[cut..].find('\n').unwrap() + 1;
+        let mut bytes = text.as_bytes()[..cut].to_vec();
+        bytes.extend_from_slice(b"(\xBC\xD3\xB9\xA4)\n");
+        bytes.extend_from_slice(&text.as_bytes()[cut..]);
+        bytes
+    };
+    let bom = [&[0xEF, 0xBB, 0xBF][..], text.as_bytes()].concat();
+    let crlf = text.replace('\n', "\r\n").into_bytes();
+    let after_end = format!("{text}{}", "G1 X$ (after the end)\n".repeat(20_000)).into_bytes();
+    for (name, bytes) in [
+        ("gbk.nc", gbk),
+        ("bom.nc", bom),
+        ("crlf.nc", crlf),
+        ("after-end.nc", after_end),
+    ] {
+        let file = dir.path().join(name);
+        std::fs::write(&file, &bytes).unwrap();
+        assert_same(&file, "fanuc");
+        let (code, report, diags) = stats(&file, "fanuc", false);
+        assert_eq!(code, 1, "{name}: the program's one error");
+        assert!(report.contains("\"motions\":"), "{name}");
+        if name == "after-end.nc" {
+            assert!(diags.contains("N-AFTER-TAPE-END"), "{diags}");
+        }
+        if name == "gbk.nc" {
+            // Decoded, not replaced: no encoding error.
+            assert!(!diags.contains("E-ENCODING"), "{diags}");
+        }
+    }
+}
+
 #[test]
 fn a_loop_after_the_end_in_the_same_piece_runs_the_program_whole() {
     // The program ends in a piece that goes on with a loop, closed in the next piece: the
