@@ -44,14 +44,18 @@ impl Growing {
         }
     }
 
-    /// A file of about `len` bytes, nothing of it read yet.
-    pub(crate) fn open(file: File, len: usize) -> Self {
-        Growing {
+    /// A file of about `len` bytes, nothing of it read yet, with room for its text; an error
+    /// where there is none (as `std::fs::read` gives, rather than aborting).
+    pub(crate) fn open(file: File, len: usize) -> std::io::Result<Self> {
+        let mut text = String::new();
+        text.try_reserve_exact(len)
+            .map_err(|_| std::io::Error::from(std::io::ErrorKind::OutOfMemory))?;
+        Ok(Growing {
             file: Some(file),
-            text: String::with_capacity(len),
+            text,
             rest: Vec::new(),
             len,
-        }
+        })
     }
 
     /// Whether the text is all there is (the file is read to its end).
@@ -145,7 +149,7 @@ mod tests {
         let path = dir.path().join("p.nc");
         std::fs::write(&path, bytes).unwrap();
         let file = File::open(&path).unwrap();
-        let mut growing = Growing::open(file, bytes.len());
+        let mut growing = Growing::open(file, bytes.len()).unwrap();
         let mut texts = Vec::new();
         let mut from = 0;
         while !growing.is_complete() {
@@ -200,6 +204,16 @@ mod tests {
             let (_, whole) = read(&bytes);
             assert_eq!(whole.err(), Some(Some(bytes)));
         }
+    }
+
+    #[test]
+    fn a_file_too_long_to_hold_is_an_error_not_an_abort() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("p.nc");
+        std::fs::write(&path, "G1 X1\n").unwrap();
+        let file = File::open(&path).unwrap();
+        let error = Growing::open(file, usize::MAX).err().unwrap();
+        assert_eq!(error.kind(), std::io::ErrorKind::OutOfMemory);
     }
 
     #[test]

@@ -778,10 +778,13 @@ fn stats(
     // A second thread only pays where it has a core of its own and the program is longer
     // than a piece; it starts before the file is read, and reads it a chunk at a time while
     // the part read before runs.
-    let two_threads = !whole
-        && !one_thread
-        && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2)
-        && std::fs::metadata(file).is_ok_and(|m| m.len() > PIECE_BYTES as u64);
+    let long_file =
+        (!whole && !one_thread && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2))
+            .then(|| std::fs::metadata(file).ok())
+            .flatten()
+            .map(|m| m.len())
+            .filter(|&len| len > PIECE_BYTES as u64);
+    let two_threads = long_file.is_some();
     let mut helper = two_threads.then(Helper::start).flatten();
     let cannot_read = |e: std::io::Error| anyhow::anyhow!("cannot read {}: {e}", file.display());
     let started = Instant::now();
@@ -790,13 +793,10 @@ fn stats(
         let decoded = read_decoded(file)?;
         Outcome::Whole(decoded.text, decoded.diagnostics)
     } else {
-        let (mut source, mut decoding) = if helper.is_some() {
+        let (mut source, mut decoding) = if let Some(len) = long_file.filter(|_| helper.is_some()) {
             let opened = std::fs::File::open(file).map_err(cannot_read)?;
-            let len = opened.metadata().map_or(0, |m| m.len());
-            (
-                Growing::open(opened, usize::try_from(len).unwrap_or(usize::MAX)),
-                Vec::new(),
-            )
+            let len = usize::try_from(len).unwrap_or(usize::MAX);
+            (Growing::open(opened, len).map_err(cannot_read)?, Vec::new())
         } else {
             let decoded = read_decoded(file)?;
             (Growing::whole(decoded.text), decoded.diagnostics)
@@ -947,7 +947,7 @@ mod tests {
         std::fs::write(&file, text).unwrap();
         let sources = [
             Growing::whole(text.to_string()),
-            Growing::open(std::fs::File::open(&file).unwrap(), text.len()),
+            Growing::open(std::fs::File::open(&file).unwrap(), text.len()).unwrap(),
         ];
         let mut ran = Vec::new();
         for source in sources {
