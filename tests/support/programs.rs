@@ -1,7 +1,9 @@
 //! Finding program files for the tests of several crates (included with `#[path]`): the
 //! corpus next to the repository, and the programs under a folder.
+#![allow(dead_code, reason = "each test uses part of this module")]
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The extensions of program files.
 const PROGRAMS: [&str; 5] = ["ngc", "nc", "gcode", "gc", "tap"];
@@ -44,4 +46,29 @@ fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
             out.push(path);
         }
     }
+}
+
+/// Runs `check` on every item, spread over the machine's threads: the corpus checks take most
+/// of a test run on one. A failing check panics on its thread, which fails the test once all
+/// are done; on one thread (or where none can be started) the items are checked in turn.
+pub fn check_each<T: Sync>(items: &[T], check: impl Fn(&T) + Sync) {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(items.len());
+    if threads <= 1 {
+        items.iter().for_each(check);
+        return;
+    }
+    let next = AtomicUsize::new(0);
+    let work = || {
+        while let Some(item) = items.get(next.fetch_add(1, Ordering::Relaxed)) {
+            check(item);
+        }
+    };
+    std::thread::scope(|scope| {
+        for _ in 1..threads {
+            scope.spawn(work);
+        }
+        work();
+    });
 }

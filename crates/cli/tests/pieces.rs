@@ -9,7 +9,7 @@ use std::path::Path;
 
 #[path = "../../../tests/support/programs.rs"]
 mod programs;
-use programs::{corpus, programs_under};
+use programs::{check_each, corpus, programs_under};
 
 /// Exit status, the JSON report without its timing, and the diagnostics.
 fn stats(file: &Path, dialect: &str, whole: bool) -> (i32, String, String) {
@@ -188,9 +188,9 @@ fn the_corpus_reads_the_same_in_pieces() {
     };
     let files = programs_under(&corpus);
     assert!(!files.is_empty());
-    for file in &files {
+    check_each(&files, |file| {
         for dialect in ["fanuc", "linuxcnc"] {
             assert_same(file, dialect);
         }
-    }
+    });
 }

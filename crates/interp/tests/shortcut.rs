@@ -10,7 +10,7 @@ use std::path::Path;
 
 #[path = "../../../tests/support/programs.rs"]
 mod programs;
-use programs::{corpus, programs_under};
+use programs::{check_each, corpus, programs_under};
 
 use proptest::prelude::*;
 use swarf_interp::{CanonRecorder, Interpreter, Setup, Status};
@@ -88,9 +88,9 @@ fn corpus_programs_agree() {
     };
     let files = programs_under(&corpus);
     assert!(!files.is_empty());
-    for file in files {
-        check_text(&head(&file), &file.display().to_string());
-    }
+    check_each(&files, |file| {
+        check_text(&head(file), &file.display().to_string());
+    });
 }
 
 #[test]
