@@ -73,19 +73,30 @@ const CARGO_DENY_VERSION: &str = "0.18.9";
 /// The cargo-fuzz version the fuzz step installs when it is missing.
 const CARGO_FUZZ_VERSION: &str = "0.13.2";
 
-/// Installs cargo-deny (pinned) when `cargo deny` is not available.
+/// Installs cargo-deny (pinned) when `cargo deny` is not available. Without its default
+/// features: they are the TLS roots for fetching advisories, and the check runs offline.
 pub fn ensure_cargo_deny() -> Result<()> {
-    ensure_cargo_tool("deny", "cargo-deny", CARGO_DENY_VERSION)
+    ensure_cargo_tool(
+        "deny",
+        "cargo-deny",
+        CARGO_DENY_VERSION,
+        &["--no-default-features"],
+    )
 }
 
 /// Installs cargo-fuzz (pinned) when `cargo fuzz` is not available.
 pub fn ensure_cargo_fuzz() -> Result<()> {
-    ensure_cargo_tool("fuzz", "cargo-fuzz", CARGO_FUZZ_VERSION)
+    ensure_cargo_tool("fuzz", "cargo-fuzz", CARGO_FUZZ_VERSION, &[])
 }
 
-/// Installs the crate `package` at exactly `version` unless `cargo SUBCOMMAND --version` already
-/// reports it.
-fn ensure_cargo_tool(subcommand: &str, package: &str, version: &str) -> Result<()> {
+/// Installs the crate `package` at exactly `version` (with `options` for `cargo install`)
+/// unless `cargo SUBCOMMAND --version` already reports it.
+fn ensure_cargo_tool(
+    subcommand: &str,
+    package: &str,
+    version: &str,
+    options: &[&str],
+) -> Result<()> {
     let found = util::cargo()
         .args([subcommand, "--version"])
         .output()
@@ -96,13 +107,15 @@ fn ensure_cargo_tool(subcommand: &str, package: &str, version: &str) -> Result<(
         return Ok(());
     }
     println!("{package} {version} is needed; installing it (takes a few minutes)");
-    run(util::cargo().args([
-        "install",
-        package,
-        "--locked",
-        "--version",
-        &format!("={version}"),
-    ]))
+    run(util::cargo()
+        .args([
+            "install",
+            package,
+            "--locked",
+            "--version",
+            &format!("={version}"),
+        ])
+        .args(options))
 }
 
 /// Files whose presence shows the apt packages the browser and desktop tests need are there.
