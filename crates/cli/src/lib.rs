@@ -258,6 +258,30 @@ const FIRST_PIECE_LINES: usize = 128;
 /// A text up to this long (about a piece's lines) is read and run on one thread.
 const PIECE_BYTES: usize = PIECE_LINES * 24;
 
+/// Sets aside, before a long program runs, address space for its text and toolpath in one
+/// mapping. On Linux jemalloc maps a request that is a multiple of 2 MiB (every size class
+/// from 8 MiB up) at a 2 MiB boundary, so all of it can be backed by transparent huge pages;
+/// the run's arrays are carved from it once it is freed here, instead of from mappings of odd
+/// sizes that are mostly backed by 4 KiB pages, each a page fault (several hundred for a
+/// 1 MB program). Nothing is written, so none of it is touched before the arrays fill.
+fn set_aside_memory(file_len: u64) {
+    /// The transparent huge page size on x86-64 and most AArch64 Linux systems.
+    const HUGE_PAGE: usize = 2 << 20;
+    // Four bytes a byte: the text (one) and the toolpath (37 bytes a move, about a move
+    // every sixteen bytes), with the pieces in flight. Bounded: this is only a hint.
+    let bytes = usize::try_from(file_len)
+        .unwrap_or(usize::MAX)
+        .min(1 << 30)
+        .saturating_mul(4)
+        .max(8 << 20)
+        .next_multiple_of(HUGE_PAGE);
+    let mut room: Vec<u8> = Vec::new();
+    if room.try_reserve_exact(bytes).is_ok() {
+        // Kept from being optimised away with the allocation it frees.
+        drop(std::hint::black_box(room));
+    }
+}
+
 /// How a program read and run piece by piece came out.
 enum Outcome {
     /// It ran to its end.
@@ -279,12 +303,14 @@ struct Streamed {
 
 /// Reads and runs the program piece by piece as it is parsed, keeping none of its blocks, for
 /// a program that runs straight through (no jumps, loops or calls): the memory and the first
-/// touches of it that the parsed blocks of a long program would take are saved. With a
-/// `helper` thread, a program of several pieces is read on it while the pieces before run
+/// touches of it that the parsed blocks of a long program would take are saved. `beside`
+/// lets a program of several pieces be read on a second thread while the pieces before run
 /// (the figures are the same), and a file `source` is read there too, a chunk at a time as
-/// it is parsed. `decoding` holds the diagnostics of a text decoded before. An error when
-/// the file is not plain UTF-8 (its bytes, to be decoded and run again; `toolpath` may then
-/// hold part of its moves) or cannot be read.
+/// it is parsed; the thread starts after the toolpath's arrays are reserved, so that its
+/// stack is not mapped between them and the memory set aside for them (see
+/// [`set_aside_memory`]). `decoding` holds the diagnostics of a text decoded before. An
+/// error when the file is not plain UTF-8 (its bytes, to be decoded and run again;
+/// `toolpath` may then hold part of its moves) or cannot be read.
 fn stream(
     path: &Path,
     mut source: Growing,
@@ -292,26 +318,26 @@ fn stream(
     opts: &RunOptions,
     setup: &Setup,
     toolpath: &mut Toolpath,
-    helper: Option<Helper>,
+    beside: bool,
 ) -> Result<Outcome, Unread> {
     // About a move a line, and a line is rarely under sixteen bytes: the part of the reserve
     // that no move fills is never touched.
     toolpath.reserve(source.len / 16);
-    let (mut interp, ran, text) = match helper {
-        Some(helper) if source.len > PIECE_BYTES => {
-            let (interp, read) = run_pieces_beside(source, opts.dialect, setup, toolpath, helper);
-            let (ran, text) = read?;
-            (interp, ran, text)
-        }
-        _ => {
-            source.read_to_end()?;
-            let text = source.text;
-            // The lines are indexed as they are read.
-            let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
-            let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
-            let ran = run_pieces(&text, reader, &mut interp, toolpath);
-            (interp, ran, text)
-        }
+    let helper = (beside && source.len > PIECE_BYTES)
+        .then(Helper::start)
+        .flatten();
+    let (mut interp, ran, text) = if let Some(helper) = helper {
+        let (interp, read) = run_pieces_beside(source, opts.dialect, setup, toolpath, helper);
+        let (ran, text) = read?;
+        (interp, ran, text)
+    } else {
+        source.read_to_end()?;
+        let text = source.text;
+        // The lines are indexed as they are read.
+        let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
+        let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
+        let ran = run_pieces(&text, reader, &mut interp, toolpath);
+        (interp, ran, text)
     };
     let Some((reader, blocks)) = ran else {
         return Ok(Outcome::Whole(text, decoding));
@@ -593,8 +619,8 @@ type Beside = Result<(Option<(swarf_syntax::ParseRun, usize)>, String), Unread>;
 /// text, or why the file gave no text.
 type Read = Result<(swarf_syntax::ParseRun, String), Unread>;
 
-/// The thread that reads a long program's pieces ([`run_pieces_beside`]), started before the
-/// file is read, so that its start overlaps the reading rather than delaying the first piece.
+/// The thread that reads a long program's pieces ([`run_pieces_beside`]): started, then given
+/// its job (or the job runs on a new thread where it is gone).
 struct Helper {
     jobs: std::sync::mpsc::Sender<Box<dyn FnOnce() -> Read + Send>>,
     thread: std::thread::JoinHandle<Option<Read>>,
@@ -776,8 +802,7 @@ fn stats(
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
     // A second thread only pays where it has a core of its own and the program is longer
-    // than a piece; it starts before the file is read, and reads it a chunk at a time while
-    // the part read before runs.
+    // than a piece; it reads the file a chunk at a time while the part read before runs.
     let long_file =
         (!whole && !one_thread && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2))
             .then(|| std::fs::metadata(file).ok())
@@ -785,7 +810,9 @@ fn stats(
             .map(|m| m.len())
             .filter(|&len| len > PIECE_BYTES as u64);
     let two_threads = long_file.is_some();
-    let mut helper = two_threads.then(Helper::start).flatten();
+    if let Some(len) = long_file {
+        set_aside_memory(len);
+    }
     let cannot_read = |e: std::io::Error| anyhow::anyhow!("cannot read {}: {e}", file.display());
     let started = Instant::now();
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
@@ -793,7 +820,7 @@ fn stats(
         let decoded = read_decoded(file)?;
         Outcome::Whole(decoded.text, decoded.diagnostics)
     } else {
-        let (mut source, mut decoding) = if let Some(len) = long_file.filter(|_| helper.is_some()) {
+        let (mut source, mut decoding) = if let Some(len) = long_file {
             let opened = std::fs::File::open(file).map_err(cannot_read)?;
             let len = usize::try_from(len).unwrap_or(usize::MAX);
             (Growing::open(opened, len).map_err(cannot_read)?, Vec::new())
@@ -804,21 +831,12 @@ fn stats(
         // Run again, once, when the file turns out not to be plain UTF-8: decoded whole
         // (a text read whole is not read again).
         loop {
-            match stream(
-                file,
-                source,
-                decoding,
-                opts,
-                &setup,
-                &mut path,
-                helper.take(),
-            ) {
+            match stream(file, source, decoding, opts, &setup, &mut path, two_threads) {
                 Ok(outcome) => break outcome,
                 Err(Unread::Bytes(bytes)) => {
                     path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
                     let decoded = decode_owned(bytes);
                     (source, decoding) = (Growing::whole(decoded.text), decoded.diagnostics);
-                    helper = two_threads.then(Helper::start).flatten();
                 }
                 Err(Unread::Failed(e)) => return Err(cannot_read(e)),
             }
@@ -952,15 +970,7 @@ mod tests {
         let mut ran = Vec::new();
         for source in sources {
             let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-            let outcome = stream(
-                &file,
-                source,
-                Vec::new(),
-                &opts,
-                &setup,
-                &mut path,
-                Helper::start(),
-            );
+            let outcome = stream(&file, source, Vec::new(), &opts, &setup, &mut path, true);
             ran.push(match outcome {
                 Ok(Outcome::Ran(streamed)) => {
                     assert_eq!(streamed.loaded.text, text);
