@@ -801,18 +801,20 @@ fn stats(
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
-    // A second thread only pays where it has a core of its own and the program is longer
-    // than a piece; it reads the file a chunk at a time while the part read before runs.
-    let long_file =
-        (!whole && !one_thread && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2))
-            .then(|| std::fs::metadata(file).ok())
-            .flatten()
-            .map(|m| m.len())
-            .filter(|&len| len > PIECE_BYTES as u64);
-    let two_threads = long_file.is_some();
+    // The length of a program longer than a piece, read piece by piece.
+    let long_file = (!whole)
+        .then(|| std::fs::metadata(file).ok())
+        .flatten()
+        .map(|m| m.len())
+        .filter(|&len| len > PIECE_BYTES as u64);
     if let Some(len) = long_file {
         set_aside_memory(len);
     }
+    // A second thread only pays where it has a core of its own and the program is longer
+    // than a piece; it reads the file a chunk at a time while the part read before runs.
+    let two_threads = long_file.is_some()
+        && !one_thread
+        && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
     let cannot_read = |e: std::io::Error| anyhow::anyhow!("cannot read {}: {e}", file.display());
     let started = Instant::now();
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
@@ -820,7 +822,7 @@ fn stats(
         let decoded = read_decoded(file)?;
         Outcome::Whole(decoded.text, decoded.diagnostics)
     } else {
-        let (mut source, mut decoding) = if let Some(len) = long_file {
+        let (mut source, mut decoding) = if let Some(len) = long_file.filter(|_| two_threads) {
             let opened = std::fs::File::open(file).map_err(cannot_read)?;
             let len = usize::try_from(len).unwrap_or(usize::MAX);
             (Growing::open(opened, len).map_err(cannot_read)?, Vec::new())
