@@ -9,7 +9,8 @@
 #   pygcode PyPI, its Machine over every line (Python), moves counted
 # Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
 # TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's on one thread and
-# on two. Swarf is measured twice, before and after the peers, and its best counts.
+# on two. Swarf is measured in rounds, before the peers and after each of them, and its best
+# counts.
 #   scripts/bench-peers.sh            (RUNS=10, TIMEOUT=600; needs ../shared for the corpus files)
 # It ends with the wasm32 build's figure on the generated program (Node, in-process).
 # The peers are installed once under target/peers (npm and pip; nothing is committed).
@@ -92,6 +93,15 @@ swarf_round() {
     "$(measure "$swarf" stats "$1" --dialect linuxcnc)"
 }
 
+# Another round of Swarf's runs on program $1: the best times so far, `st` (one thread) and
+# `st2` (two), are kept or bettered.
+swarf_again() {
+  local again again2
+  read -r again _ again2 _ < <(swarf_round "$1")
+  st=$(least "$st" "$again")
+  st2=$(least "$st2" "$again2")
+}
+
 # The lesser of two measured times (a failed measurement, not a number, loses).
 least() {
   awk -v a="$1" -v b="$2" 'BEGIN{
@@ -124,21 +134,21 @@ for prog in "${programs[@]}"; do
   lines=$(wc -l < "$prog")
   read -r st sk st2 sk2 < <(swarf_round "$prog")
   r=("" 0) g=("" 0) p=("" 0)
+  # Swarf's runs again after each peer's: its runs take a fraction of a second where a peer's
+  # take seconds, and a shared machine's speed drifts over seconds, so its best of the rounds
+  # is its best over the stretch of time the peers' runs sample.
   if [[ -n "$rs274" ]]; then
     read -r -a r < <(cd "$(dirname "$prog")" && measure "$rs274" -t "$tbl" -g "$(basename "$prog")")
+    swarf_again "$prog"
   fi
   if [[ -d "$peers/node/node_modules/gcode-toolpath" ]]; then
     read -r -a g < <(NODE_PATH=$peers/node/node_modules measure node "$root/scripts/peers/gcode_toolpath.js" "$prog")
+    swarf_again "$prog"
   fi
   if [[ -d "$peers/py/pygcode" ]]; then
     read -r -a p < <(PYTHONPATH=$peers/py measure python3 "$root/scripts/peers/pygcode_run.py" "$prog")
+    swarf_again "$prog"
   fi
-  # Swarf's runs again, after the peers': its runs take a fraction of a second where a peer's
-  # take seconds, and a shared machine's speed drifts over seconds, so its best of the two
-  # rounds is its best over the stretch of time the peers' runs sample.
-  read -r st_again _ st2_again _ < <(swarf_round "$prog")
-  st=$(least "$st" "$st_again")
-  st2=$(least "$st2" "$st2_again")
   printf "| %s | %.1f MB | %d | %s | %s | %s | %s | %s |\n" "$(basename "$prog")" \
     "$(awk "BEGIN{print $bytes/1e6}")" "$lines" "$(swarf_cell "$st" "$sk" "$bytes")" \
     "$(swarf_cell "$st2" "$sk2" "$bytes")" "$(cell "${r[0]}" "${r[1]}" "$st" "$st2" "$bytes")" \
