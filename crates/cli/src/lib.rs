@@ -619,8 +619,9 @@ type Beside = Result<(Option<(swarf_syntax::ParseRun, usize)>, String), Unread>;
 /// text, or why the file gave no text.
 type Read = Result<(swarf_syntax::ParseRun, String), Unread>;
 
-/// The thread that reads a long program's pieces ([`run_pieces_beside`]): started, then given
-/// its job (or the job runs on a new thread where it is gone).
+/// The thread that reads a long program's pieces ([`run_pieces_beside`]): started first, so
+/// that the file's text is handed only to a thread that could be started, then given its job
+/// (or the job runs on a new thread where it is gone).
 struct Helper {
     jobs: std::sync::mpsc::Sender<Box<dyn FnOnce() -> Read + Send>>,
     thread: std::thread::JoinHandle<Option<Read>>,
