@@ -20,6 +20,8 @@ pub(crate) struct Growing {
     pub(crate) text: String,
     /// Bytes read after the last line ending.
     rest: Vec<u8>,
+    /// Where a chunk is read (empty until the first read).
+    buffer: Vec<u8>,
     /// The file's length when it was opened, or the text's (a reserve, not a limit).
     pub(crate) len: usize,
 }
@@ -41,6 +43,7 @@ impl Growing {
             len: text.len(),
             text,
             rest: Vec::new(),
+            buffer: Vec::new(),
         }
     }
 
@@ -54,6 +57,7 @@ impl Growing {
             file: Some(file),
             text,
             rest: Vec::new(),
+            buffer: Vec::new(),
             len,
         })
     }
@@ -86,40 +90,57 @@ impl Growing {
         let Some(file) = &mut self.file else {
             return Ok(());
         };
-        // One call a chunk (`read_to_end` would make several, growing its reads from 8 KB).
-        let before = self.rest.len();
-        self.rest.resize(before + CHUNK_BYTES, 0);
+        // One call a chunk (`read_to_end` would make several, growing its reads from 8 KB),
+        // into a buffer zeroed once rather than before each read.
+        if self.buffer.is_empty() {
+            self.buffer = vec![0; CHUNK_BYTES];
+        }
         let read = loop {
-            match file.read(&mut self.rest[before..]) {
+            match file.read(&mut self.buffer) {
                 Ok(read) => break read,
                 Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-                Err(e) => {
-                    self.rest.truncate(before);
-                    return Err(Unread::Failed(e));
+                Err(e) => return Err(Unread::Failed(e)),
+            }
+        };
+        let chunk = self.buffer.get(..read).unwrap_or_default();
+        let (lines, after) = if read == 0 {
+            self.file = None;
+            (chunk, &[][..])
+        } else {
+            // The last line ending read: a line never ends inside a character.
+            match chunk.iter().rposition(|&b| b == b'\n') {
+                Some(at) => chunk.split_at(at + 1),
+                None => {
+                    self.rest.extend_from_slice(chunk);
+                    return Ok(());
                 }
             }
         };
-        self.rest.truncate(before + read);
-        let lines = if read == 0 {
-            self.file = None;
-            self.rest.len()
+        // A line begun in an earlier chunk is finished in `rest`; the chunk's other whole
+        // lines go to the text as they are. Until a line is in the text, `rest` and the chunk
+        // hold the file from its start.
+        let (first, others) = if self.rest.is_empty() {
+            (&[][..], lines)
         } else {
-            // The last line ending read: a line never ends inside a character.
-            match self.rest[before..].iter().rposition(|&b| b == b'\n') {
-                Some(at) => before + at + 1,
-                None => return Ok(()),
-            }
+            let end = lines
+                .iter()
+                .position(|&b| b == b'\n')
+                .map_or(lines.len(), |at| at + 1);
+            lines.split_at(end)
         };
-        // Until a line is in the text, `rest` holds the file from its start.
-        if self.text.is_empty() && self.rest.starts_with(&BOM) {
-            return Err(self.unread());
+        self.rest.extend_from_slice(first);
+        if let Some(text) = plain(&self.rest, self.text.is_empty()) {
+            self.text.push_str(text);
+            self.rest.clear();
+            if let Some(text) = plain(others, self.text.is_empty()) {
+                self.text.push_str(text);
+                self.rest.extend_from_slice(after);
+                return Ok(());
+            }
         }
-        match std::str::from_utf8(&self.rest[..lines]) {
-            Ok(text) => self.text.push_str(text),
-            Err(_) => return Err(self.unread()),
-        }
-        self.rest.drain(..lines);
-        Ok(())
+        self.rest.extend_from_slice(others);
+        self.rest.extend_from_slice(after);
+        Err(self.unread())
     }
 
     /// Every byte of the file, for a text that is not plain UTF-8.
@@ -134,6 +155,14 @@ impl Growing {
         }
         Unread::Bytes(bytes)
     }
+}
+
+/// `bytes` as text when they are UTF-8, and where they start the text (`first`), do not start
+/// with a byte-order mark.
+fn plain(bytes: &[u8], first: bool) -> Option<&str> {
+    std::str::from_utf8(bytes)
+        .ok()
+        .filter(|text| !(first && text.as_bytes().starts_with(&BOM)))
 }
 
 #[cfg(test)]
@@ -204,6 +233,25 @@ mod tests {
             let (_, whole) = read(&bytes);
             assert_eq!(whole.err(), Some(Some(bytes)));
         }
+    }
+
+    #[test]
+    fn bytes_not_utf8_are_found_wherever_the_chunks_cut() {
+        // A bad byte in a line cut by the end of a chunk, in the line that finishes it, and in
+        // a line after it; a zero-width no-break space starting a later line is text.
+        for at in [
+            CHUNK_BYTES - 3,
+            CHUNK_BYTES,
+            CHUNK_BYTES + 2,
+            CHUNK_BYTES + 40,
+        ] {
+            let mut bytes = "G1 X1.5\n".repeat(3 * CHUNK_BYTES / 8).into_bytes();
+            bytes[at] = 0xB9;
+            let (_, whole) = read(&bytes);
+            assert_eq!(whole.err(), Some(Some(bytes)), "{at}");
+        }
+        let text = format!("{}\u{feff}G0 Z5\n", "G1 X1.5\n".repeat(CHUNK_BYTES / 8));
+        assert_eq!(read(text.as_bytes()).1.ok(), Some(text));
     }
 
     #[test]

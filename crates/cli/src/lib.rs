@@ -259,8 +259,9 @@ const FIRST_PIECE_LINES: usize = 128;
 const PIECE_BYTES: usize = PIECE_LINES * 24;
 
 /// Sets aside, before a long program runs, address space for its text and toolpath in one
-/// mapping. On Linux jemalloc maps a request that is a multiple of 2 MiB (every size class
-/// from 8 MiB up) at a 2 MiB boundary, so all of it can be backed by transparent huge pages;
+/// mapping. On Linux jemalloc maps a request of 8 MiB or more in a mapping whose length is a
+/// multiple of 2 MiB, which the kernel places at a 2 MiB boundary, so all of it can be backed
+/// by transparent huge pages;
 /// the run's arrays are carved from it once it is freed here, instead of from mappings of odd
 /// sizes that are mostly backed by 4 KiB pages, each a page fault (several hundred for a
 /// 1 MB program). Nothing is written, so none of it is touched before the arrays fill.
