@@ -108,13 +108,11 @@ impl Growing {
             (chunk, &[][..])
         } else {
             // The last line ending read: a line never ends inside a character.
-            match chunk.iter().rposition(|&b| b == b'\n') {
-                Some(at) => chunk.split_at(at + 1),
-                None => {
-                    self.rest.extend_from_slice(chunk);
-                    return Ok(());
-                }
-            }
+            let Some(at) = chunk.iter().rposition(|&b| b == b'\n') else {
+                self.rest.extend_from_slice(chunk);
+                return Ok(());
+            };
+            chunk.split_at(at + 1)
         };
         // A line begun in an earlier chunk is finished in `rest`; the chunk's other whole
         // lines go to the text as they are. Until a line is in the text, `rest` and the chunk
