@@ -47,19 +47,19 @@ impl Growing {
         }
     }
 
-    /// A file of about `len` bytes, nothing of it read yet, with room for its text; an error
-    /// where there is none (as `std::fs::read` gives, rather than aborting).
-    pub(crate) fn open(file: File, len: usize) -> std::io::Result<Self> {
-        let mut text = String::new();
-        text.try_reserve_exact(len)
-            .map_err(|_| std::io::Error::from(std::io::ErrorKind::OutOfMemory))?;
-        Ok(Growing {
+    /// A file of about `len` bytes, nothing of it read yet. The room for its text is taken at
+    /// the first read, on the thread that reads, after the arrays that thread makes first (the
+    /// line index, the first block array): they and the start of the text then share the
+    /// first memory that thread writes, which with transparent huge pages is one 2 MB page
+    /// mapped rather than two before the first piece.
+    pub(crate) fn open(file: File, len: usize) -> Self {
+        Growing {
             file: Some(file),
-            text,
+            text: String::new(),
             rest: Vec::new(),
             buffer: Vec::new(),
             len,
-        })
+        }
     }
 
     /// Whether the text is all there is (the file is read to its end).
@@ -94,6 +94,11 @@ impl Growing {
         // into a buffer zeroed once rather than before each read.
         if self.buffer.is_empty() {
             self.buffer = vec![0; CHUNK_BYTES];
+            // Room for the whole text, or an error where there is none (as `std::fs::read`
+            // gives, rather than aborting).
+            if self.text.try_reserve_exact(self.len).is_err() {
+                return Err(Unread::Failed(std::io::ErrorKind::OutOfMemory.into()));
+            }
         }
         let read = loop {
             match file.read(&mut self.buffer) {
@@ -176,7 +181,7 @@ mod tests {
         let path = dir.path().join("p.nc");
         std::fs::write(&path, bytes).unwrap();
         let file = File::open(&path).unwrap();
-        let mut growing = Growing::open(file, bytes.len()).unwrap();
+        let mut growing = Growing::open(file, bytes.len());
         let mut texts = Vec::new();
         let mut from = 0;
         while !growing.is_complete() {
@@ -258,7 +263,10 @@ mod tests {
         let path = dir.path().join("p.nc");
         std::fs::write(&path, "G1 X1\n").unwrap();
         let file = File::open(&path).unwrap();
-        let error = Growing::open(file, usize::MAX).err().unwrap();
+        let mut growing = Growing::open(file, usize::MAX);
+        let Err(Unread::Failed(error)) = growing.read_ahead(0) else {
+            panic!("no room for the text is an error");
+        };
         assert_eq!(error.kind(), std::io::ErrorKind::OutOfMemory);
     }
 
