@@ -274,10 +274,10 @@ fn cores() -> usize {
 /// Sets aside, before a long program runs, address space for its text and toolpath in one
 /// mapping. On Linux jemalloc maps a request of 8 MiB or more in a mapping whose length is a
 /// multiple of 2 MiB, which the kernel places at a 2 MiB boundary, so all of it can be backed
-/// by transparent huge pages;
-/// the run's arrays are carved from it once it is freed here, instead of from mappings of odd
-/// sizes that are mostly backed by 4 KiB pages, each a page fault (several hundred for a
-/// 1 MB program). Nothing is written, so none of it is touched before the arrays fill.
+/// by transparent huge pages; the run's arrays are carved from it once it is freed here,
+/// instead of from mappings of odd sizes that are mostly backed by 4 KiB pages, each a page
+/// fault (several hundred for a 1 MB program). Nothing is written, so none of it is touched
+/// before the arrays fill.
 fn set_aside_memory(file_len: u64) {
     /// The transparent huge page size on x86-64 and most AArch64 Linux systems.
     const HUGE_PAGE: usize = 2 << 20;
