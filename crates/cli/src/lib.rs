@@ -3,6 +3,7 @@
 //! Everything is in this library so it can be tested in-process; `main.rs` only forwards the
 //! process arguments and exit status.
 
+mod apart;
 mod explain;
 mod growing;
 mod render;
@@ -558,6 +559,12 @@ fn run_pieces_beside(
             taken,
         } = &*shared;
         let mut runner = swarf_interp::Interpreter::new(setup.clone(), dialect);
+        // While the reader makes the first piece, the memory that its moves go to is mapped
+        // here: the first piece then runs without waiting for it.
+        toolpath.prefault();
+        if let Ok(mut held) = timing.try_lock() {
+            held.timer.prefault();
+        }
         let interp = &mut runner;
         // The program as the interpreter sees it: this piece's blocks, every expression so far.
         let mut piece = Program {
@@ -636,27 +643,59 @@ type Read = Result<(swarf_syntax::ParseRun, String), Unread>;
 /// The thread that reads a long program's pieces ([`run_pieces_beside`]): started first, so
 /// that the file's text is handed only to a thread that could be started, then given its job
 /// (or the job runs on a new thread where it is gone).
+///
+/// The calling thread, which runs the pieces, is kept on the processor it is on and the helper
+/// off it until [`Running::join`] ([`apart`]).
 struct Helper {
     jobs: std::sync::mpsc::Sender<Box<dyn FnOnce() -> Read + Send>>,
     thread: std::thread::JoinHandle<Option<Read>>,
+    apart: apart::Apart,
 }
 
 impl Helper {
     /// Starts the thread, which waits for its job; `None` where no thread can be started.
     fn start() -> Option<Helper> {
         let (jobs, job) = std::sync::mpsc::channel::<Box<dyn FnOnce() -> Read + Send>>();
+        let apart = apart::Apart::new();
+        let away = apart.away();
         let thread = std::thread::Builder::new()
-            .spawn(move || job.recv().ok().map(|job| job()))
+            .spawn(move || {
+                away.go();
+                job.recv().ok().map(|job| job())
+            })
             .ok()?;
-        Some(Helper { jobs, thread })
+        apart.stay();
+        Some(Helper {
+            jobs,
+            thread,
+            apart,
+        })
     }
 
-    /// Runs `job` on the thread (on a new one were it gone); join the handle for its result.
-    fn run(self, job: Box<dyn FnOnce() -> Read + Send>) -> std::thread::JoinHandle<Option<Read>> {
-        match self.jobs.send(job) {
+    /// Runs `job` on the thread (on a new one were it gone).
+    fn run(self, job: Box<dyn FnOnce() -> Read + Send>) -> Running {
+        let thread = match self.jobs.send(job) {
             Ok(()) => self.thread,
             Err(std::sync::mpsc::SendError(job)) => std::thread::spawn(move || Some(job())),
+        };
+        Running {
+            thread,
+            apart: self.apart,
         }
+    }
+}
+
+/// The [`Helper`] at its job.
+struct Running {
+    thread: std::thread::JoinHandle<Option<Read>>,
+    apart: apart::Apart,
+}
+
+impl Running {
+    /// Lets the calling thread run on any processor again and waits for the job's result.
+    fn join(self) -> std::thread::Result<Option<Read>> {
+        self.apart.release();
+        self.thread.join()
     }
 }
 
