@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Throughput and peak memory of Swarf against the interpreters a user could pick instead, in one
 # run on one machine, on the corpus's large programs and a generated 1M-line surfacing program:
-#   Swarf   `swarf stats` (release: read, decode, parse, interpret, record the toolpath), once
+#   Swarf   `swarf stats` (read, decode, parse, interpret, record the toolpath), built by
+#           `cargo xtask pgo` (the release build with profile-guided optimisation, trained on a
+#           generated finishing program; the plain release build where that cannot be made), once
 #           with `--one-thread` and once as it runs by default (a long program is read on a
 #           second thread while the part read before runs)
 #   rs274   LinuxCNC's reference interpreter (../shared/tools/rs274), canonical calls to /dev/null
@@ -22,8 +24,16 @@ limit=${TIMEOUT:-600}
 target=${CARGO_TARGET_DIR:-$root/target}
 peers=$target/peers
 
-cargo build -q --release -p swarf-cli --bin swarf -p swarf-syntax --example surfacing || exit 2
-swarf=$target/release/swarf
+cargo build -q --release -p swarf-syntax --example surfacing || exit 2
+if (cd "$root" && cargo xtask pgo > "$target/pgo-build.log" 2>&1); then
+  swarf=$target/pgo/release/swarf
+  build="release build with profile-guided optimisation (cargo xtask pgo)"
+else
+  echo "bench-peers: the profile-guided build failed (see $target/pgo-build.log); the plain release build is measured" >&2
+  cargo build -q --release -p swarf-cli --bin swarf || exit 2
+  swarf=$target/release/swarf
+  build="plain release build"
+fi
 generated=$peers/surfacing-1M.nc
 mkdir -p "$peers"
 [[ -s "$generated" ]] || "$target/release/examples/surfacing" 1000000 > "$generated"
@@ -126,6 +136,8 @@ swarf_cell() {
   awk "BEGIN{printf \"%.4f s, %.0f MB/s, %d MB\", $1, $3/1e6/$1, $2/1024}"
 }
 
+echo "Swarf: $build"
+echo
 echo "| program | size | lines | Swarf, one thread | Swarf, two threads | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
 echo "|---|---|---|---|---|---|---|---|"
 for prog in "${programs[@]}"; do

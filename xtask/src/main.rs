@@ -3,8 +3,10 @@
 //! * `cargo xtask web [--dev] [--opt]` builds the web page into `target/web/`.
 //! * `cargo xtask serve [--port 8080] [--no-build] [--dev]` builds and serves it.
 //! * `cargo xtask test [--quick]` installs what the tests need and runs every test.
+//! * `cargo xtask pgo` builds the `swarf` command line with profile-guided optimisation.
 
 mod desktop;
+mod pgo;
 mod serve;
 mod test;
 mod tools;
@@ -35,10 +37,16 @@ COMMANDS:
                             (a fmt, b clippy, c clippy wasm32, d tests, e wasm tests in
                             Node, f wasm tests in Chromium, g architecture, k cargo deny,
                             h desktop, j fuzzing, i web build + browser end-to-end test)
+    pgo     Build the swarf command line with profile-guided optimisation into
+            target/pgo/release/swarf (trained on a generated finishing program)
     help    Show this message
 ";
 
 fn main() -> ExitCode {
+    // Called by cargo as the compiler wrapper of `cargo xtask pgo`'s builds.
+    if let Some(code) = pgo::wrap() {
+        return code;
+    }
     match run() {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
@@ -78,6 +86,10 @@ fn run() -> Result<()> {
         "test" => {
             opts.reject_unused(&["--quick", "--only"])?;
             test::run_all(opts.quick, opts.only.as_deref())?;
+        }
+        "pgo" => {
+            opts.reject_unused(&[])?;
+            pgo::build()?;
         }
         "help" | "--help" | "-h" => print!("{USAGE}"),
         other => bail!("unknown command `{other}`\n\n{USAGE}"),

@@ -14,6 +14,22 @@ pub fn repo_root() -> PathBuf {
         .map_or_else(|| manifest_dir.to_path_buf(), Path::to_path_buf)
 }
 
+/// Cargo's target folder: `CARGO_TARGET_DIR` (relative to the repository root) or `target/`.
+pub fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .map_or_else(
+            || repo_root().join("target"),
+            |dir| {
+                if dir.is_absolute() {
+                    dir
+                } else {
+                    repo_root().join(dir)
+                }
+            },
+        )
+}
+
 /// The directory `cargo install` puts binaries in (`$CARGO_HOME/bin`, default `~/.cargo/bin`).
 pub fn cargo_bin_dir() -> Option<PathBuf> {
     if let Some(home) = std::env::var_os("CARGO_HOME") {

@@ -23,22 +23,7 @@ pub struct WebOptions {
 
 /// The folder the site is assembled in.
 pub fn site_dir() -> PathBuf {
-    target_dir().join("web")
-}
-
-fn target_dir() -> PathBuf {
-    std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .map_or_else(
-            || util::repo_root().join("target"),
-            |dir| {
-                if dir.is_absolute() {
-                    dir
-                } else {
-                    util::repo_root().join(dir)
-                }
-            },
-        )
+    util::target_dir().join("web")
 }
 
 /// Builds the web page: wasm build, wasm-bindgen, optional wasm-opt, then copies the static
@@ -55,7 +40,7 @@ pub fn build(options: WebOptions) -> Result<()> {
     }
     run(&mut build)?;
 
-    let wasm = target_dir()
+    let wasm = util::target_dir()
         .join(WASM_TARGET)
         .join(profile)
         .join(format!("{APP_LIB}.wasm"));
