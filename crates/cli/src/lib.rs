@@ -880,13 +880,12 @@ fn canon(
 
 fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::Result<i32> {
     let StatsArgs {
-        file,
-        opts,
+        ref file,
+        ref opts,
         json: as_json,
         whole,
         one_thread,
-    } = args;
-    let (file, as_json, whole, one_thread) = (file.as_path(), *as_json, *whole, *one_thread);
+    } = *args;
     let setup = read_setup(opts)?;
     // The length of a program longer than a piece, read piece by piece.
     let long_file = (!whole)
