@@ -141,7 +141,7 @@ const LINUXCNC_EQUAL: f64 = 1e-6;
 /// (#1–#5601, all global except #1–#30 which are local to an o-word call) and named parameters
 /// (`#<name>` local to the call level, `#<_name>` global). System variables are delegated to a
 /// [`SystemVariables`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Variables {
     dialect: Dialect,
     /// The main program's level.
@@ -149,31 +149,57 @@ pub struct Variables {
     /// The macro / o-word call levels entered, innermost last.
     calls: Vec<Frame>,
     /// Fanuc: #100–#199 then #500–#999. LinuxCNC: every numbered parameter by its number
-    /// (#1–#30 of the current level live in the frame instead).
+    /// (#1–#30 of the current level live in the frame instead). Grown as variables are set:
+    /// a slot past its end holds the dialect's initial value ([`Variables::initial`]), so a
+    /// program that sets none writes none of the store's 90 KB (LinuxCNC's 5,602 parameters).
     store: Vec<Value>,
     /// LinuxCNC global named parameters (`#<_name>`).
     globals: HashMap<Box<str>, f64>,
 }
 
+/// Equal when every variable reads the same: a store grown further holds the initial value
+/// in the slots that the other has not grown to.
+impl PartialEq for Variables {
+    fn eq(&self, other: &Self) -> bool {
+        let len = self.store.len().max(other.store.len());
+        self.dialect == other.dialect
+            && self.main == other.main
+            && self.calls == other.calls
+            && self.globals == other.globals
+            && (0..len).all(|i| self.stored(i) == other.stored(i))
+    }
+}
+
 impl Variables {
     /// An empty store for `dialect`: Fanuc-family variables vacant, LinuxCNC parameters 0.
     pub fn new(dialect: Dialect) -> Self {
-        let linuxcnc = is_linuxcnc(dialect);
-        let (fill, size) = if linuxcnc {
-            (Some(0.0), LINUXCNC_PARAMETERS as usize)
-        } else {
-            (
-                None,
-                COMMON_CLEARED.clone().count() + COMMON_KEPT.clone().count(),
-            )
-        };
         Variables {
             dialect,
-            main: Frame::new(fill),
+            main: Frame::new(Self::initial_in(dialect)),
             calls: Vec::new(),
-            store: vec![fill; size],
+            store: Vec::new(),
             globals: HashMap::new(),
         }
+    }
+
+    /// A variable's value before it is set in `dialect`: vacant in the Fanuc family, 0 in
+    /// LinuxCNC.
+    fn initial_in(dialect: Dialect) -> Value {
+        if is_linuxcnc(dialect) {
+            Some(0.0)
+        } else {
+            None
+        }
+    }
+
+    /// A variable's value before it is set, in this store's dialect.
+    fn initial(&self) -> Value {
+        Self::initial_in(self.dialect)
+    }
+
+    /// The stored value at `i` (a slot the store has, see [`Variables::slot`]).
+    fn stored(&self, i: usize) -> Value {
+        self.store.get(i).copied().unwrap_or(self.initial())
     }
 
     /// The dialect whose rules the store follows.
@@ -185,9 +211,8 @@ impl Variables {
     /// (local number, value) pairs: Fanuc locals #1–#33 start vacant, LinuxCNC #1–#30 start at
     /// 0. Numbers outside the local range are ignored.
     pub fn push_frame(&mut self, args: &[(u8, f64)]) {
-        let linuxcnc = is_linuxcnc(self.dialect);
-        let mut frame = Frame::new(if linuxcnc { Some(0.0) } else { None });
-        let count = if linuxcnc {
+        let mut frame = Frame::new(self.initial());
+        let count = if is_linuxcnc(self.dialect) {
             LINUXCNC_LOCALS
         } else {
             FANUC_LOCALS
@@ -217,10 +242,9 @@ impl Variables {
     /// vacant (parameter CCV = 0, the default); #500–#999 and LinuxCNC's numbered and global
     /// parameters are kept.
     pub fn reset(&mut self) {
-        let linuxcnc = is_linuxcnc(self.dialect);
         self.calls.clear();
-        self.main = Frame::new(if linuxcnc { Some(0.0) } else { None });
-        if !linuxcnc {
+        self.main = Frame::new(self.initial());
+        if !is_linuxcnc(self.dialect) {
             let cleared = COMMON_CLEARED.clone().count();
             for slot in self.store.iter_mut().take(cleared) {
                 *slot = None;
@@ -240,7 +264,7 @@ impl Variables {
         }
         match self.slot(n) {
             Some(Slot::Local(i)) => Ok(self.frame().locals.get(i).copied().flatten()),
-            Some(Slot::Store(i)) => Ok(self.store.get(i).copied().flatten()),
+            Some(Slot::Store(i)) => Ok(self.stored(i)),
             None => Err(self.missing(n)),
         }
     }
@@ -257,7 +281,13 @@ impl Variables {
         }
         let slot = match self.slot(n) {
             Some(Slot::Local(i)) => self.frame_mut().locals.get_mut(i),
-            Some(Slot::Store(i)) => self.store.get_mut(i),
+            Some(Slot::Store(i)) => {
+                if self.store.len() <= i {
+                    let initial = self.initial();
+                    self.store.resize(i + 1, initial);
+                }
+                self.store.get_mut(i)
+            }
             None => None,
         };
         match slot {
@@ -1139,6 +1169,36 @@ mod tests {
 
     fn close(a: f64, b: f64) -> bool {
         (a - b).abs() < 1e-9
+    }
+
+    #[test]
+    fn the_store_grows_as_variables_are_set() {
+        let sys = TestSys::new();
+        // Unset variables read as the dialect's initial value, at either end of the store.
+        let lcnc = Variables::new(Dialect::LinuxCnc);
+        assert_eq!(lcnc.get(31.0, &sys), Ok(Some(0.0)));
+        assert_eq!(lcnc.get(5601.0, &sys), Ok(Some(0.0)));
+        assert!(lcnc.get(5602.0, &sys).is_err());
+        let fanuc = Variables::new(Dialect::Fanuc);
+        assert_eq!(fanuc.get(100.0, &sys), Ok(None));
+        assert_eq!(fanuc.get(999.0, &sys), Ok(None));
+        // A set variable reads back; those below it that were not set keep the initial value.
+        let vars = run("#4000 = 7\n", Dialect::LinuxCnc);
+        assert_eq!(vars.get(4000.0, &sys), Ok(Some(7.0)));
+        assert_eq!(vars.get(3999.0, &sys), Ok(Some(0.0)));
+        assert_eq!(vars.get(4001.0, &sys), Ok(Some(1.0)), "a system variable");
+        assert_eq!(vars.get(4002.0, &sys), Ok(Some(0.0)));
+        let vars = run("#998 = 2.5\n", Dialect::Fanuc);
+        assert_eq!(vars.get(998.0, &sys), Ok(Some(2.5)));
+        assert_eq!(vars.get(500.0, &sys), Ok(None));
+        // Stores that read alike are equal however far they have grown.
+        let zero = run("#4000 = 0\n", Dialect::LinuxCnc);
+        assert_eq!(zero, lcnc);
+        assert_ne!(run("#4000 = 1\n", Dialect::LinuxCnc), lcnc);
+        let mut vacated = run("#998 = 2.5\n", Dialect::Fanuc);
+        assert_ne!(vacated, fanuc);
+        vacated.set(998.0, None, &mut TestSys::new()).unwrap();
+        assert_eq!(vacated, fanuc);
     }
 
     #[test]
