@@ -172,4 +172,8 @@ done
 wasm=$(cd "$root" && cargo test -p swarf-toolpath --release --target wasm32-unknown-unknown \
   --test wasm_throughput -- --include-ignored --nocapture 2>&1 | grep -o "wasm32 stats: .*")
 echo
-echo "Swarf wasm32 in Node (generated 1M-line program, parse + interpret + record): ${wasm#wasm32 stats: }"
+if [[ -n "$wasm" ]]; then
+  echo "Swarf wasm32 in Node (generated 1M-line program, parse + interpret + record): ${wasm#wasm32 stats: }"
+else
+  echo "Swarf wasm32 in Node: not measured (the wasm32 test did not run: \`cargo xtask test --only e\` installs the wasm32 target and wasm-bindgen-test-runner it needs)"
+fi
