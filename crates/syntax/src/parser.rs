@@ -531,11 +531,10 @@ fn scan_digits(bytes: &[u8], pos: usize) -> Digits {
 /// The sign at `pos` before a number: whether it is `-`, and where the number starts.
 #[inline(always)]
 fn scan_sign(bytes: &[u8], pos: usize) -> (bool, usize) {
-    match bytes.get(pos) {
-        Some(b'-') => (true, pos + 1),
-        Some(b'+') => (false, pos + 1),
-        _ => (false, pos),
-    }
+    // Without a branch: whether a number is negative is as good as random in a CAM program.
+    let b = bytes.get(pos).copied().unwrap_or(0);
+    let negative = b == b'-';
+    (negative, pos + usize::from(negative | (b == b'+')))
 }
 
 /// The dialect's limits that [`read_plain_line`] applies, looked up once a step.
@@ -654,7 +653,8 @@ fn read_plain_line(
         }
         // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned.
         let value = mantissa as i64 as f64 / scale;
-        let value = if negative { -value } else { value };
+        // Negated without a branch (see `scan_sign`): the value has no sign bit of its own.
+        let value = f64::from_bits(value.to_bits() | (u64::from(negative) << 63));
         scan.word(letter, value);
         block.words.push(Word {
             letter,
