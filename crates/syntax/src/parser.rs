@@ -537,6 +537,13 @@ fn scan_sign(bytes: &[u8], pos: usize) -> (bool, usize) {
     (negative, pos + usize::from(negative | (b == b'+')))
 }
 
+/// `value`, a number scanned without its sign (so with no sign bit of its own), negated when
+/// `negative` ([`scan_sign`]): without a branch, as the sign is read.
+#[inline(always)]
+fn with_sign(value: f64, negative: bool) -> f64 {
+    f64::from_bits(value.to_bits() | (u64::from(negative) << 63))
+}
+
 /// The dialect's limits that [`read_plain_line`] applies, looked up once a step.
 #[derive(Debug, Clone, Copy)]
 struct PlainLimits {
@@ -652,9 +659,7 @@ fn read_plain_line(
             return None;
         }
         // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned.
-        let value = mantissa as i64 as f64 / scale;
-        // Negated without a branch (see `scan_sign`): the value has no sign bit of its own.
-        let value = f64::from_bits(value.to_bits() | (u64::from(negative) << 63));
+        let value = with_sign(mantissa as i64 as f64 / scale, negative);
         scan.word(letter, value);
         block.words.push(Word {
             letter,
@@ -1051,11 +1056,7 @@ impl LineReader<'_> {
         Some((
             Word {
                 letter,
-                value: if negative {
-                    -number.value
-                } else {
-                    number.value
-                },
+                value: with_sign(number.value, negative),
                 has_point: number.has_point,
                 span: self.span(pos, end),
                 form: WordForm::Plain,
