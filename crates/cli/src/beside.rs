@@ -1,0 +1,382 @@
+//! Reading and running a long program on two threads (`stats`): a helper thread reads and
+//! parses the file a piece at a time while this thread runs the pieces read before.
+//!
+//! This thread reads the first pieces itself, until the helper is running on a processor of
+//! its own, and only then hands the reading over: starting a thread and moving it to an idle
+//! processor takes from a few tenths of a millisecond to a few milliseconds (the idle
+//! processor has to be woken, which in a virtual machine goes through the host), and this
+//! thread would otherwise wait all that time for the first piece.
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc::{
+    Receiver, Sender, SyncSender, TryRecvError, TrySendError, channel, sync_channel,
+};
+use std::sync::{Arc, Mutex, PoisonError};
+
+use swarf_interp::{Interpreter, Setup};
+use swarf_syntax::{Block, Dialect, ExprNode, ParseRun, Program};
+use swarf_toolpath::{Timer, Timings, Toolpath};
+
+use crate::growing::{Growing, Unread};
+use crate::{FIRST_PIECE_LINES, PIECE_LINES, run_piece};
+use crate::{apart, waits};
+
+/// A piece as it is handed over: its blocks and the expressions new in it.
+type Piece = (Vec<Block>, Vec<ExprNode>);
+
+/// What [`run_pieces_beside`] gives besides the interpreter: the reader and the number of
+/// blocks read (`None` when the program needs running whole) and the whole text, or why the
+/// file gave no text.
+pub(crate) type Beside = Result<(Option<(ParseRun, usize)>, String), Unread>;
+
+/// What the reading hands back: the reader and the whole text, or why the file gave no text.
+type Read = Result<(ParseRun, String), Unread>;
+
+/// The time model, its queue of moves, and the way back for the batches it has taken in:
+/// whoever holds it times them.
+struct Timing {
+    timer: Timer,
+    queued: Receiver<Timings>,
+    spent: SyncSender<Timings>,
+}
+
+impl Timing {
+    fn take(&mut self, moves: Timings) {
+        self.timer.take(&moves);
+        // A full way back (the runner has spares enough, or is done) drops the batch.
+        let _ = self.spent.try_send(moves);
+    }
+}
+
+/// Times the moves of the next piece queued, unless the other thread is timing; whether it
+/// did (the caller then looks for its own work again before timing more).
+fn time_next(timing: &Mutex<Timing>) -> bool {
+    let Ok(mut held) = timing.try_lock() else {
+        return false;
+    };
+    match held.queued.try_recv() {
+        Ok(moves) => {
+            held.take(moves);
+            true
+        }
+        Err(_) => false,
+    }
+}
+
+/// What the two threads share: the time model, whether the reader is to stop (the program
+/// needs running whole), and how many pieces the runner has taken from the reader (the
+/// reader, knowing how many it has sent, sees whether one is waiting for the runner).
+struct Shared {
+    timing: Mutex<Timing>,
+    stop: AtomicBool,
+    taken: AtomicUsize,
+}
+
+/// The reading of the file: the parse, the text read so far, and how far it has got.
+struct Reading {
+    reader: ParseRun,
+    source: Growing,
+    /// Lines in the next piece.
+    lines: usize,
+    /// How many expressions went with the pieces before.
+    sent_exprs: usize,
+}
+
+impl Reading {
+    fn new(source: Growing, dialect: Dialect) -> Self {
+        let mut reader = ParseRun::growing(source.len, dialect);
+        // Each array is of a whole piece's size, not one that grows.
+        let _ = reader.swap_blocks(Vec::with_capacity(PIECE_LINES));
+        Reading {
+            reader,
+            source,
+            // The first pieces are short, so that the runner starts soon.
+            lines: FIRST_PIECE_LINES,
+            sent_exprs: 0,
+        }
+    }
+
+    /// Reads the next piece, the reading going on into `array` (a spare block array):
+    /// the piece and whether it is the last. A file is read a chunk ahead of the parse; one
+    /// not plain UTF-8 stops the run.
+    fn next_piece(&mut self, array: Vec<Block>) -> Result<(Piece, bool), Unread> {
+        self.source.read_ahead(self.reader.offset())?;
+        let done =
+            self.reader
+                .step_growing(&self.source.text, self.source.is_complete(), self.lines);
+        self.lines = (self.lines * 4).min(PIECE_LINES);
+        let blocks = self.reader.swap_blocks(array);
+        let exprs = &self.reader.program().exprs;
+        let new_exprs = exprs.get(self.sent_exprs..).unwrap_or_default().to_vec();
+        self.sent_exprs = exprs.len();
+        Ok(((blocks, new_exprs), done))
+    }
+
+    /// The reader and the whole text, read to its end: a program that ends at a closing tape
+    /// mark may end before its file does. `complete` once every piece is read (the reader
+    /// then takes in the rest of the text); not when the run stopped part-way.
+    fn finish(mut self, complete: bool) -> Read {
+        self.source.read_to_end()?;
+        if complete {
+            self.reader.complete(&self.source.text);
+        }
+        Ok((self.reader, self.source.text))
+    }
+}
+
+/// The reading thread's ends of the channels, and what it shares with the runner.
+struct ReaderEnds {
+    shared: Arc<Shared>,
+    pieces: SyncSender<Piece>,
+    spare: Receiver<Vec<Block>>,
+    bell: Receiver<()>,
+}
+
+/// The reading thread's job: reads the rest of the pieces from `reading` on and hands them
+/// over; then, and while it is ahead of the runner, times the moves of the pieces run.
+fn read_rest(mut reading: Reading, ends: ReaderEnds) -> Read {
+    let ReaderEnds {
+        shared,
+        pieces,
+        spare,
+        bell,
+    } = ends;
+    let Shared {
+        timing,
+        stop,
+        taken,
+    } = &*shared;
+    let mut sent_pieces = 0;
+    loop {
+        let (mut piece, done) = reading.next_piece(spare.try_recv().unwrap_or_default())?;
+        let sent = loop {
+            if stop.load(Ordering::Relaxed) {
+                break false;
+            }
+            match pieces.try_send(piece) {
+                Ok(()) => break true,
+                Err(TrySendError::Disconnected(_)) => break false,
+                Err(TrySendError::Full(back)) => piece = back,
+            }
+            // Ahead of the runner: time its moves while waiting, if there are any, else wait
+            // for the runner to take a piece or queue moves.
+            if !time_next(timing) && waits::recv(&bell).is_err() {
+                break pieces.send(piece).is_ok();
+            }
+        };
+        if !sent {
+            return reading.finish(false);
+        }
+        sent_pieces += 1;
+        if done {
+            break;
+        }
+        // While the runner has a piece in hand, time its moves first: the timing keeps up
+        // with the run, rather than piling up for the end while the runner waits.
+        while sent_pieces > taken.load(Ordering::Relaxed) && time_next(timing) {}
+    }
+    drop(pieces);
+    // Every piece is read: time the moves of those still running, until the last.
+    let mut held = timing.lock().unwrap_or_else(PoisonError::into_inner);
+    while let Ok(more) = waits::recv(&held.queued) {
+        held.take(more);
+    }
+    drop(held);
+    reading.finish(true)
+}
+
+/// [`crate::run_pieces`] with the reading on the `helper` thread once it is ready (this
+/// thread reads the pieces before): the helper hands each piece's blocks (and the expressions
+/// new in it) over a short queue while this thread runs the piece before, and gets the block
+/// arrays back for reuse. A file `source` is read there too, a chunk ahead of the parse.
+/// Returns the interpreter this thread made, with what [`crate::run_pieces`] returns and the
+/// whole text, or why the file gave no text.
+///
+/// The toolpath's measures and time model (about a quarter of a plain program's work) run on
+/// whichever thread would otherwise wait: this thread queues the moves of each piece it has
+/// run, and they are measured and timed, in order and a piece's moves at a time, by the
+/// reader while this thread has a piece in hand or the queue of pieces is full and once it has
+/// read the last, or by this thread while it waits for a piece.
+pub(crate) fn run_pieces_beside(
+    source: Growing,
+    dialect: Dialect,
+    setup: &Setup,
+    toolpath: &mut Toolpath,
+    helper: Helper,
+) -> (Interpreter, Beside) {
+    let (moves, queued) = channel::<Timings>();
+    let (spent, spent_batches) = sync_channel::<Timings>(4);
+    let shared = Arc::new(Shared {
+        timing: Mutex::new(Timing {
+            timer: toolpath.detach_timer(),
+            queued,
+            spent,
+        }),
+        stop: AtomicBool::new(false),
+        taken: AtomicUsize::new(0),
+    });
+    let (pieces, received) = sync_channel::<Piece>(2);
+    let (spares, spare) = sync_channel::<Vec<Block>>(4);
+    // Rung by the runner when it takes a piece or queues moves: a reader whose queue is full
+    // and who has no moves to time waits for it, not for a free place only, so that moves
+    // queued meanwhile are timed as they come rather than all after the last piece.
+    let (ring, bell) = sync_channel::<()>(1);
+    let ends = ReaderEnds {
+        shared: Arc::clone(&shared),
+        pieces,
+        spare,
+        bell,
+    };
+    // The reader starts first, so that its first piece is being read while this thread makes
+    // its interpreter; the lines are indexed as they are read, by this reader.
+    let parser = helper.run(Box::new(move || {
+        read_rest(Reading::new(source, dialect), ends)
+    }));
+    let Shared {
+        timing,
+        stop,
+        taken,
+    } = &*shared;
+    let mut runner = Interpreter::new(setup.clone(), dialect);
+    // While the reader makes the first piece, the memory that its moves go to is mapped here:
+    // the first piece then runs without waiting for it.
+    toolpath.prefault();
+    if let Ok(mut held) = timing.try_lock() {
+        held.timer.prefault();
+    }
+    // The program as the interpreter sees it: this piece's blocks, every expression so far.
+    let mut piece = Program {
+        dialect,
+        ..Program::default()
+    };
+    let mut blocks = 0;
+    let mut ended = false;
+    let mut whole = false;
+    loop {
+        let next = loop {
+            match received.try_recv() {
+                Ok(next) => break Some(next),
+                Err(TryRecvError::Disconnected) => break None,
+                // Ahead of the reader: time the moves while waiting, if there are any.
+                Err(TryRecvError::Empty) if time_next(timing) => {}
+                Err(TryRecvError::Empty) => break waits::recv(&received).ok(),
+            }
+        };
+        let Some((read, exprs)) = next else {
+            break;
+        };
+        taken.fetch_add(1, Ordering::Relaxed);
+        // A rung bell not yet heard is enough.
+        let _ = ring.try_send(());
+        piece.blocks = read;
+        piece.exprs.extend(exprs);
+        blocks += piece.blocks.len();
+        if !run_piece(&mut runner, &piece, toolpath, &mut ended) {
+            whole = true;
+            stop.store(true, Ordering::Relaxed);
+            break;
+        }
+        // Only a reader gone (it panicked, reported at the join) drops them.
+        let spare = spent_batches.try_recv().unwrap_or_default();
+        let _ = moves.send(toolpath.swap_timings(spare));
+        let _ = ring.try_send(());
+        // Emptied here, where the blocks were just read, not by the reader (which has more to
+        // do); a full queue (the reader is done) just drops the array.
+        swarf_syntax::empty_blocks(&mut piece.blocks);
+        let _ = spares.try_send(std::mem::take(&mut piece.blocks));
+    }
+    drop(received);
+    drop(moves);
+    drop(ring);
+    let read = match parser.join() {
+        Ok(Some(read)) => read,
+        Ok(None) => std::panic::resume_unwind(Box::new(
+            "the reading thread ended before it was given the text",
+        )),
+        Err(panic) => std::panic::resume_unwind(panic),
+    };
+    let ran = read.map(|(reader, text)| ((!whole).then_some((reader, blocks)), text));
+    // The reader is done: the time model takes in the moves still queued and goes back to the
+    // path (which gives its stand-in for it).
+    let mut held = timing.lock().unwrap_or_else(PoisonError::into_inner);
+    while let Ok(moves) = held.queued.try_recv() {
+        held.take(moves);
+    }
+    let timer = std::mem::replace(&mut held.timer, toolpath.detach_timer());
+    drop(held);
+    toolpath.attach_timer(timer);
+    (runner, ran)
+}
+
+/// The thread that reads a long program's pieces ([`run_pieces_beside`]): started first, so
+/// that the file's text is handed only to a thread that could be started, then given its job
+/// (or the job runs on a new thread where it is gone).
+///
+/// The calling thread, which runs the pieces, is kept on the processor it is on and the helper
+/// off it until [`Running::join`] ([`apart`]).
+pub(crate) struct Helper {
+    jobs: Sender<Box<dyn FnOnce() -> Read + Send>>,
+    thread: std::thread::JoinHandle<Option<Read>>,
+    apart: apart::Apart,
+}
+
+impl Helper {
+    /// Starts the thread, which moves to a processor of its own and waits there for its job;
+    /// `None` where no thread can be started.
+    pub(crate) fn start() -> Option<Helper> {
+        let (jobs, job) = channel::<Box<dyn FnOnce() -> Read + Send>>();
+        let apart = apart::Apart::new();
+        // Kept where it is before the new thread starts: moving it back there afterwards (the
+        // scheduler may have moved it to the other processor meanwhile) takes milliseconds.
+        apart.stay();
+        let away = apart.away();
+        let moved = Arc::new(AtomicBool::new(false));
+        let gone = Arc::clone(&moved);
+        let spawned = std::thread::Builder::new().spawn(move || {
+            away.go();
+            gone.store(true, Ordering::Release);
+            // Watching: the job comes within a fraction of a millisecond.
+            waits::recv(&job).ok().map(|job| job())
+        });
+        let Ok(thread) = spawned else {
+            apart.release();
+            return None;
+        };
+        // The new thread starts on this thread's processor, the only one it may run on until it
+        // moves: this thread makes way until it has moved.
+        waits::yielding(|| moved.load(Ordering::Acquire));
+        Some(Helper {
+            jobs,
+            thread,
+            apart,
+        })
+    }
+
+    /// Runs `job` on the thread (on a new one were it gone).
+    fn run(self, job: Box<dyn FnOnce() -> Read + Send>) -> Running {
+        let thread = match self.jobs.send(job) {
+            Ok(()) => self.thread,
+            Err(std::sync::mpsc::SendError(job)) => std::thread::spawn(move || Some(job())),
+        };
+        Running {
+            thread,
+            apart: self.apart,
+        }
+    }
+}
+
+/// The [`Helper`] at its job.
+struct Running {
+    thread: std::thread::JoinHandle<Option<Read>>,
+    apart: apart::Apart,
+}
+
+impl Running {
+    /// Lets the calling thread run on any processor again and waits for the job's result.
+    fn join(self) -> std::thread::Result<Option<Read>> {
+        self.apart.release();
+        // The reader is timing the last moves.
+        waits::until(|| self.thread.is_finished());
+        self.thread.join()
+    }
+}
