@@ -140,6 +140,9 @@ fn parse_args(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> Result<Command, i32> {
+    if let Some(stats) = plain_stats(&args) {
+        return Ok(Command::Stats(stats));
+    }
     let parsed = if args.get(1).is_some_and(|arg| arg == "stats") {
         StatsCli::try_parse_from(args).map(|cli| match cli.command {
             StatsCommand::Stats(args) => Command::Stats(args),
@@ -156,6 +159,71 @@ fn parse_args(
             let _ = out.write_all(text.as_bytes());
             EXIT_OK
         }
+    })
+}
+
+/// `swarf stats FILE` with any of its options each given once, read without clap: the
+/// command line a benchmark or a script repeats, where building clap's parser of even the one
+/// subcommand takes about 0.25 ms of a run that may take a few milliseconds. `None` for any
+/// other command line (help, version, an option given twice or misspelt, a value that does
+/// not parse, `--`, a lone `-`, a second file …): clap reads it, and reports its errors. What
+/// this reads, clap reads the same (a test holds the two together).
+fn plain_stats(args: &[OsString]) -> Option<StatsArgs> {
+    let (_, rest) = args.split_first()?;
+    let (command, rest) = rest.split_first()?;
+    if command != "stats" {
+        return None;
+    }
+    let mut file = None;
+    let (mut dialect, mut setup) = (None, None);
+    let (mut json, mut whole, mut one_thread) = (false, false, false);
+    let mut words = rest.iter();
+    while let Some(word) = words.next() {
+        let text = word.to_str();
+        let (name, inline) = match text.and_then(|t| t.split_once('=')) {
+            Some((name, value)) if name.starts_with("--") => (Some(name), Some(value)),
+            _ => (text, None),
+        };
+        // A value: after `=`, or the next word unless it looks like an option; not empty.
+        let mut value = || {
+            match inline {
+                Some(value) => Some(OsString::from(value)),
+                None => words
+                    .next()
+                    .filter(|v| !v.as_encoded_bytes().starts_with(b"-"))
+                    .cloned(),
+            }
+            .filter(|v| !v.is_empty())
+        };
+        let flag =
+            |set: &mut bool| (!std::mem::replace(set, true) && inline.is_none()).then_some(());
+        match name {
+            Some("--json") => flag(&mut json)?,
+            Some("--whole") => flag(&mut whole)?,
+            Some("--one-thread") => flag(&mut one_thread)?,
+            Some("--dialect") if dialect.is_none() => {
+                let value = value()?;
+                dialect = Some(parse_dialect(value.to_str()?).ok()?);
+            }
+            Some("--setup") if setup.is_none() => setup = Some(PathBuf::from(value()?)),
+            _ if file.is_none()
+                && !word.is_empty()
+                && !word.as_encoded_bytes().starts_with(b"-") =>
+            {
+                file = Some(PathBuf::from(word));
+            }
+            _ => return None,
+        }
+    }
+    Some(StatsArgs {
+        file: file?,
+        opts: RunOptions {
+            dialect: dialect.unwrap_or(Dialect::Fanuc),
+            setup,
+        },
+        json,
+        whole,
+        one_thread,
     })
 }
 
@@ -794,6 +862,80 @@ mod tests {
                 .map_err(|e| (e.kind(), e.render().to_string()));
             assert_eq!(alone, whole, "{case:?}");
         }
+    }
+
+    /// Every `swarf stats` command line that the reader without clap takes, clap reads the
+    /// same: all the command lines of up to four words from a set of files, options, values
+    /// and mistakes; and it takes the plain ones.
+    #[test]
+    fn the_plain_stats_reader_reads_as_clap_does() {
+        let words = [
+            "p.nc",
+            "q.nc",
+            "--json",
+            "--whole",
+            "--one-thread",
+            "--dialect",
+            "linuxcnc",
+            "haas",
+            "--dialect=syntec",
+            "--setup",
+            "--setup=",
+            "--setup=s.toml",
+            "--dialect=",
+            "-",
+            "--",
+            "--json=1",
+            "-x",
+            "",
+        ];
+        let mut lines: Vec<Vec<&str>> = vec![Vec::new()];
+        let mut taken = 0;
+        for _ in 0..4 {
+            let longer: Vec<Vec<&str>> = lines
+                .iter()
+                .filter(|line| line.len() == lines.last().map_or(0, Vec::len))
+                .flat_map(|line| {
+                    words.iter().map(move |word| {
+                        let mut line = line.clone();
+                        line.push(word);
+                        line
+                    })
+                })
+                .collect();
+            lines.extend(longer);
+        }
+        for line in &lines {
+            let args: Vec<OsString> = ["swarf", "stats"]
+                .iter()
+                .chain(line)
+                .map(OsString::from)
+                .collect();
+            if let Some(plain) = plain_stats(&args) {
+                taken += 1;
+                let clap = StatsCli::try_parse_from(&args)
+                    .map(|cli| match cli.command {
+                        StatsCommand::Stats(args) => format!("{args:?}"),
+                    })
+                    .map_err(|e| e.render().to_string());
+                assert_eq!(Ok(format!("{plain:?}")), clap, "{line:?}");
+            }
+        }
+        // The plain lines are taken, in any order.
+        for line in [
+            &["p.nc"][..],
+            &["p.nc", "--dialect", "linuxcnc"],
+            &["--one-thread", "p.nc", "--dialect=syntec", "--json"],
+            &["p.nc", "--setup", "s.toml", "--whole"],
+        ] {
+            let args: Vec<OsString> = ["swarf", "stats"]
+                .iter()
+                .chain(line)
+                .map(OsString::from)
+                .collect();
+            assert!(plain_stats(&args).is_some(), "{line:?}");
+        }
+        assert!(taken > 1000, "{taken} command lines taken");
     }
 
     /// Whether `text` runs piece by piece, from a text read before and from a file read as it
