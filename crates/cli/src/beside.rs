@@ -1,11 +1,11 @@
 //! Reading and running a long program on two threads (`stats`): a helper thread reads and
 //! parses the file a piece at a time while this thread runs the pieces read before.
 //!
-//! This thread reads the first pieces itself, until the helper is running on a processor of
-//! its own, and only then hands the reading over: starting a thread and moving it to an idle
-//! processor takes from a few tenths of a millisecond to a few milliseconds (the idle
-//! processor has to be woken, which in a virtual machine goes through the host), and this
-//! thread would otherwise wait all that time for the first piece.
+//! Starting the helper and handing it its job are kept short: this thread keeps to its
+//! processor from before the helper is spawned and gives way until the helper has moved to
+//! another one (a new thread starts on its starter's processor, where it would otherwise wait
+//! for this thread to sleep), and the helper watches for its job rather than sleeping. Every
+//! wait between the two threads watches likewise before it sleeps (see `waits.rs`).
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{
@@ -132,9 +132,9 @@ struct ReaderEnds {
     bell: Receiver<()>,
 }
 
-/// The reading thread's job: reads the rest of the pieces from `reading` on and hands them
-/// over; then, and while it is ahead of the runner, times the moves of the pieces run.
-fn read_rest(mut reading: Reading, ends: ReaderEnds) -> Read {
+/// The reading thread's job: reads the pieces from `reading` on and hands them over; then,
+/// and while it is ahead of the runner, times the moves of the pieces run.
+fn read_pieces(mut reading: Reading, ends: ReaderEnds) -> Read {
     let ReaderEnds {
         shared,
         pieces,
@@ -185,10 +185,9 @@ fn read_rest(mut reading: Reading, ends: ReaderEnds) -> Read {
     reading.finish(true)
 }
 
-/// [`crate::run_pieces`] with the reading on the `helper` thread once it is ready (this
-/// thread reads the pieces before): the helper hands each piece's blocks (and the expressions
-/// new in it) over a short queue while this thread runs the piece before, and gets the block
-/// arrays back for reuse. A file `source` is read there too, a chunk ahead of the parse.
+/// [`crate::run_pieces`] with the reading on the `helper` thread: it hands each piece's blocks
+/// (and the expressions new in it) over a short queue while this thread runs the piece before,
+/// and gets the block arrays back for reuse. A file `source` is read there too, a chunk ahead of the parse.
 /// Returns the interpreter this thread made, with what [`crate::run_pieces`] returns and the
 /// whole text, or why the file gave no text.
 ///
@@ -230,7 +229,7 @@ pub(crate) fn run_pieces_beside(
     // The reader starts first, so that its first piece is being read while this thread makes
     // its interpreter; the lines are indexed as they are read, by this reader.
     let parser = helper.run(Box::new(move || {
-        read_rest(Reading::new(source, dialect), ends)
+        read_pieces(Reading::new(source, dialect), ends)
     }));
     let Shared {
         timing,
