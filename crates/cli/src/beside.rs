@@ -325,8 +325,8 @@ impl Helper {
     pub(crate) fn start() -> Option<Helper> {
         let (jobs, job) = channel::<Box<dyn FnOnce() -> Read + Send>>();
         let apart = apart::Apart::new();
-        // Kept where it is before the new thread starts: moving it back there afterwards (the
-        // scheduler may have moved it to the other processor meanwhile) takes milliseconds.
+        // Kept where it is before the new thread starts, so that the new thread (which takes
+        // this one's processors) can only start beside it and then move off.
         apart.stay();
         let away = apart.away();
         let moved = Arc::new(AtomicBool::new(false));

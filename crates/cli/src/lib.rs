@@ -889,6 +889,13 @@ mod tests {
             "-x",
             "",
         ];
+        let command_line = |line: &[&str]| -> Vec<OsString> {
+            ["swarf", "stats"]
+                .iter()
+                .chain(line)
+                .map(OsString::from)
+                .collect()
+        };
         let mut lines: Vec<Vec<&str>> = vec![Vec::new()];
         let mut taken = 0;
         for _ in 0..4 {
@@ -906,11 +913,7 @@ mod tests {
             lines.extend(longer);
         }
         for line in &lines {
-            let args: Vec<OsString> = ["swarf", "stats"]
-                .iter()
-                .chain(line)
-                .map(OsString::from)
-                .collect();
+            let args = command_line(line);
             if let Some(plain) = plain_stats(&args) {
                 taken += 1;
                 let clap = StatsCli::try_parse_from(&args)
@@ -928,12 +931,7 @@ mod tests {
             &["--one-thread", "p.nc", "--dialect=syntec", "--json"],
             &["p.nc", "--setup", "s.toml", "--whole"],
         ] {
-            let args: Vec<OsString> = ["swarf", "stats"]
-                .iter()
-                .chain(line)
-                .map(OsString::from)
-                .collect();
-            assert!(plain_stats(&args).is_some(), "{line:?}");
+            assert!(plain_stats(&command_line(line)).is_some(), "{line:?}");
         }
         assert!(taken > 1000, "{taken} command lines taken");
     }
