@@ -8,15 +8,17 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
 
-use crate::util::{self, cargo, command, run};
+use crate::util::{self, command, run};
 
 /// How long the app may take to start, render and save its screenshot.
 const TIMEOUT: Duration = Duration::from_secs(180);
 
-/// Builds `swarf-app` (debug), runs `swarf-app --screenshot target/desktop.png` under
+/// Builds `swarf-app` (debug, with the tests), runs `swarf-app --screenshot target/desktop.png` under
 /// `xvfb-run -a` and checks that the screenshot shows more than one colour.
 pub fn smoke_test() -> Result<()> {
-    run(cargo().args(["build", "-p", "swarf-app", "--bin", "swarf-app"]))?;
+    // The test build (step b's) holds the binary too: built the same way, with the features
+    // the workspace's tests unify, nothing is compiled again after it.
+    run(util::linted_cargo_test()?.args(["--all-targets", "--no-run"]))?;
     let root = util::repo_root();
     let binary = root.join("target").join("debug").join("swarf-app");
     let screenshot = root.join("target").join("desktop.png");

@@ -167,17 +167,8 @@ fn steps(quick: bool) -> Vec<Step> {
         }),
         Step::new(
             'b',
-            "lint (native): cargo clippy --workspace --all-targets -- -D warnings",
-            || {
-                run(cargo().args([
-                    "clippy",
-                    "--workspace",
-                    "--all-targets",
-                    "--",
-                    "-D",
-                    "warnings",
-                ]))
-            },
+            "lint and build (native): cargo test --workspace --all-targets --no-run, the workspace's crates compiled by clippy-driver with -D warnings (the lints of cargo clippy --workspace --all-targets -- -D warnings)",
+            || run(util::linted_cargo_test()?.args(["--all-targets", "--no-run"])),
         ),
         Step::new(
             'c',
@@ -193,9 +184,11 @@ fn steps(quick: bool) -> Vec<Step> {
                 run(&mut cmd)
             },
         ),
-        Step::new('d', "native tests: cargo test --workspace", || {
-            run(cargo().args(["test", "--workspace"]))
-        }),
+        Step::new(
+            'd',
+            "native tests: cargo test --workspace (as built by step b)",
+            || run(&mut util::linted_cargo_test()?),
+        ),
         Step::new(
             'e',
             format!(

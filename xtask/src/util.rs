@@ -95,7 +95,35 @@ pub fn cargo() -> Command {
     command("cargo")
 }
 
-/// Renders a command the way one would type it.
+/// `cargo test --workspace` with the workspace's own crates compiled by clippy-driver, the
+/// compiler `cargo clippy` runs them through, with `-D warnings`: with `--all-targets` they
+/// are linted as `cargo clippy --workspace --all-targets -- -D warnings` lints them (the same
+/// targets, the same lint settings from `Cargo.toml` and `clippy.toml`) while they are built
+/// for the tests, so the dependencies are compiled once, for the tests, rather than also
+/// checked by clippy.
+pub fn linted_cargo_test() -> Result<Command> {
+    let sysroot = output(command("rustc").args(["--print", "sysroot"]))?;
+    let driver = Path::new(sysroot.trim()).join("bin").join("clippy-driver");
+    if !is_executable(&driver) {
+        bail!(
+            "{} is missing: the toolchain's clippy component is needed (`rustup component add clippy`)",
+            driver.display()
+        );
+    }
+    let mut cmd = cargo();
+    cmd.args(["test", "--workspace"])
+        .env("RUSTC_WORKSPACE_WRAPPER", driver)
+        // clippy-driver's own arguments, each ended by this separator (as cargo-clippy passes
+        // them).
+        .env(
+            "CLIPPY_ARGS",
+            "-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__",
+        );
+    Ok(cmd)
+}
+
+/// Renders a command the way one would type it, with the variables it sets in front (but
+/// `PATH` and `XDG_RUNTIME_DIR`, which [`command`] sets for every command).
 pub fn display(cmd: &Command) -> String {
     let program = cmd.get_program();
     let name = Path::new(program)
@@ -103,7 +131,14 @@ pub fn display(cmd: &Command) -> String {
         .unwrap_or(program)
         .to_string_lossy()
         .into_owned();
-    let mut parts = vec![name];
+    let mut parts: Vec<String> = cmd
+        .get_envs()
+        .filter(|(key, _)| *key != "PATH" && *key != "XDG_RUNTIME_DIR")
+        .filter_map(|(key, value)| {
+            value.map(|value| format!("{}={}", key.to_string_lossy(), quote(value)))
+        })
+        .collect();
+    parts.push(name);
     parts.extend(cmd.get_args().map(quote));
     parts.join(" ")
 }
@@ -169,4 +204,25 @@ pub fn copy_dir(from: &Path, to: &Path) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_command_is_shown_with_the_variables_it_sets() {
+        let mut cmd = command("cargo");
+        cmd.args(["test", "--workspace"])
+            .env(
+                "CLIPPY_ARGS",
+                "-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__",
+            )
+            .env("SOME_DIR", "/a b")
+            .env_remove("GONE");
+        assert_eq!(
+            display(&cmd),
+            "CLIPPY_ARGS=-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__ SOME_DIR='/a b' cargo test --workspace"
+        );
+    }
 }
