@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result, bail};
 
-use crate::util::{self, command, run};
+use crate::util::{self, command};
 
 /// How long the app may take to start, render and save its screenshot.
 const TIMEOUT: Duration = Duration::from_secs(180);
@@ -18,7 +18,7 @@ const TIMEOUT: Duration = Duration::from_secs(180);
 pub fn smoke_test() -> Result<()> {
     // The test build (step b's) holds the binary too: built the same way, with the features
     // the workspace's tests unify, nothing is compiled again after it.
-    run(util::linted_cargo_test()?.args(["--all-targets", "--no-run"]))?;
+    util::build_linted_tests()?;
     let root = util::repo_root();
     let binary = root.join("target").join("debug").join("swarf-app");
     let screenshot = root.join("target").join("desktop.png");

@@ -182,12 +182,12 @@ fn check_not_instrumented(swarf: &Path, dir: &Path) -> Result<()> {
 /// missing).
 fn llvm_profdata() -> Result<PathBuf> {
     let find = || -> Option<PathBuf> {
-        let sysroot = output(command("rustc").args(["--print", "sysroot"])).ok()?;
+        let sysroot = util::sysroot().ok()?;
         let version = output(command("rustc").arg("-vV")).ok()?;
         let host = version
             .lines()
             .find_map(|line| line.strip_prefix("host: "))?;
-        let path = Path::new(sysroot.trim())
+        let path = sysroot
             .join("lib")
             .join("rustlib")
             .join(host.trim())

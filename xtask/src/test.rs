@@ -168,7 +168,7 @@ fn steps(quick: bool) -> Vec<Step> {
         Step::new(
             'b',
             "lint and build (native): cargo test --workspace --all-targets --no-run, the workspace's crates compiled by clippy-driver with -D warnings (the lints of cargo clippy --workspace --all-targets -- -D warnings)",
-            || run(util::linted_cargo_test()?.args(["--all-targets", "--no-run"])),
+            util::build_linted_tests,
         ),
         Step::new(
             'c',

@@ -102,8 +102,7 @@ pub fn cargo() -> Command {
 /// for the tests, so the dependencies are compiled once, for the tests, rather than also
 /// checked by clippy.
 pub fn linted_cargo_test() -> Result<Command> {
-    let sysroot = output(command("rustc").args(["--print", "sysroot"]))?;
-    let driver = Path::new(sysroot.trim()).join("bin").join("clippy-driver");
+    let driver = sysroot()?.join("bin").join("clippy-driver");
     if !is_executable(&driver) {
         bail!(
             "{} is missing: the toolchain's clippy component is needed (`rustup component add clippy`)",
@@ -120,6 +119,19 @@ pub fn linted_cargo_test() -> Result<Command> {
             "-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__",
         );
     Ok(cmd)
+}
+
+/// The test build of step b (and of the desktop smoke test, which runs its `swarf-app`):
+/// [`linted_cargo_test`] with `--all-targets --no-run`, one command so that the two stay the
+/// same build.
+pub fn build_linted_tests() -> Result<()> {
+    run(linted_cargo_test()?.args(["--all-targets", "--no-run"]))
+}
+
+/// The sysroot of the toolchain `rust-toolchain.toml` pins (`rustc --print sysroot`).
+pub fn sysroot() -> Result<PathBuf> {
+    let sysroot = output(command("rustc").args(["--print", "sysroot"]))?;
+    Ok(PathBuf::from(sysroot.trim()))
 }
 
 /// Renders a command the way one would type it, with the variables it sets in front (but
