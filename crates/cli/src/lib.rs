@@ -18,6 +18,7 @@ use std::time::Instant;
 use beside::{Helper, run_pieces_beside};
 use clap::{Parser, Subcommand};
 use growing::{Growing, Unread};
+pub use render::{RENDER_HELPER, render_elsewhere, render_helper};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
 use swarf_syntax::{

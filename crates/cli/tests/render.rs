@@ -313,3 +313,81 @@ fn bad_arguments_are_usage_errors() {
     assert_eq!(code, 2);
     assert!(err.contains("cannot read"), "{err}");
 }
+
+#[test]
+fn the_render_helper_is_the_program_beside_with_the_arguments_after_render() {
+    let args = |words: &[&str]| -> Vec<std::ffi::OsString> {
+        words.iter().map(std::ffi::OsString::from).collect()
+    };
+    let exe = Path::new("/opt/swarf/bin/swarf");
+    let helper = swarf_cli::render_helper(
+        &args(&[
+            "swarf", "render", "part.nc", "-o", "part.png", "--view", "top",
+        ]),
+        exe,
+    )
+    .unwrap();
+    let name = format!(
+        "{}{}",
+        swarf_cli::RENDER_HELPER,
+        std::env::consts::EXE_SUFFIX
+    );
+    assert_eq!(
+        Path::new(helper.get_program()),
+        Path::new("/opt/swarf/bin").join(name)
+    );
+    let passed: Vec<_> = helper.get_args().collect();
+    assert_eq!(passed, ["part.nc", "-o", "part.png", "--view", "top"]);
+    for other in [
+        &["swarf"][..],
+        &["swarf", "stats", "part.nc"],
+        &["swarf", "check", "render"],
+        &["swarf", "--help"],
+    ] {
+        assert!(
+            swarf_cli::render_helper(&args(other), exe).is_none(),
+            "{other:?}"
+        );
+    }
+}
+
+/// The helper binary (`swarf-render`) is `swarf render` in a process of its own: it takes the
+/// arguments that follow `render` and writes the same PNG.
+#[test]
+fn the_render_helper_binary_renders_as_swarf_render_does() {
+    let helper = Path::new(env!("CARGO_BIN_EXE_swarf-render"));
+    assert_eq!(
+        helper.file_stem().and_then(|s| s.to_str()),
+        Some(swarf_cli::RENDER_HELPER)
+    );
+    let help = std::process::Command::new(helper)
+        .arg("--help")
+        .output()
+        .unwrap();
+    assert!(help.status.success());
+    let text = String::from_utf8(help.stdout).unwrap();
+    assert!(text.contains("Usage: swarf render"), "{text}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let nc = dir.path().join("part.nc");
+    std::fs::write(&nc, PROGRAM).unwrap();
+    let png = dir.path().join("helper.png");
+    let run = std::process::Command::new(helper)
+        .arg(&nc)
+        .arg("-o")
+        .arg(&png)
+        .args(["--size", "320x240"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    if run.status.code() == Some(2)
+        && (err.contains("no GPU adapter") || err.contains("GPU device"))
+    {
+        eprintln!("SKIPPED: {err}");
+        return;
+    }
+    assert_eq!(run.status.code(), Some(0), "{err}");
+    let image = read_png(&png);
+    assert_eq!((image.width, image.height), (320, 240));
+    assert!(count(&image, Hue::Feed) > 50);
+}
