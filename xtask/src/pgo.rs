@@ -232,7 +232,8 @@ fn check_not_instrumented(swarf: &Path, dir: &Path) -> Result<()> {
 fn check_render_helper(swarf: &Path) -> Result<()> {
     let mut cmd = Command::new(swarf);
     cmd.args(["render", "--help"]);
-    let help = output(&mut cmd).with_context(|| format!("`{}` failed", util::display(&cmd)))?;
+    // `output` names the command when it cannot start or fails.
+    let help = output(&mut cmd)?;
     if !help.contains("Usage: swarf render") {
         bail!("`{}` printed no render usage:\n{help}", util::display(&cmd));
     }

@@ -8,17 +8,15 @@
 static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
 
 fn main() {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     // A statically linked build (the release build on x86-64 Linux, `cargo xtask pgo`) cannot
     // load the Vulkan driver: `swarf render` runs in `swarf-render`, beside it.
     #[cfg(all(target_os = "linux", target_feature = "crt-static"))]
-    {
-        let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
-        if let Some(code) = swarf_cli::render_elsewhere(&args, &mut std::io::stderr().lock()) {
-            std::process::exit(code);
-        }
+    if let Some(code) = swarf_cli::render_elsewhere(&args, &mut std::io::stderr().lock()) {
+        std::process::exit(code);
     }
     let stdout = std::io::stdout();
     let stderr = std::io::stderr();
-    let code = swarf_cli::run(std::env::args_os(), &mut stdout.lock(), &mut stderr.lock());
+    let code = swarf_cli::run(args, &mut stdout.lock(), &mut stderr.lock());
     std::process::exit(code);
 }
