@@ -46,12 +46,6 @@ pub(crate) fn recv<T>(from: &Receiver<T>) -> Result<T, RecvError> {
     seen.unwrap_or_else(|| from.recv())
 }
 
-/// Watches `done` for up to [`WATCH`] (a caller that goes on to a blocking wait sleeps
-/// after).
-pub(crate) fn until(mut done: impl FnMut() -> bool) {
-    let _ = watch(|| done().then_some(()));
-}
-
 /// Gives way to the other threads of this processor until `done` or [`WATCH`] has passed: for
 /// a thread that a new thread has to run beside before it can move to a processor of its own.
 pub(crate) fn yielding(mut done: impl FnMut() -> bool) {
@@ -94,21 +88,18 @@ mod tests {
         assert_eq!(recv(&bell), Err(RecvError));
     }
 
-    /// Watching and giving way end as soon as the condition holds, and after the watch when
-    /// it never does.
+    /// Giving way ends as soon as the condition holds, and after the watch when it never
+    /// does.
     #[test]
-    fn waits_end_when_done_or_after_the_watch() {
-        let waits: [fn(&mut dyn FnMut() -> bool); 2] = [|done| until(done), |done| yielding(done)];
-        for wait in waits {
-            let mut calls = 0;
-            wait(&mut || {
-                calls += 1;
-                calls == 3
-            });
-            assert_eq!(calls, 3);
-            let start = Instant::now();
-            wait(&mut || false);
-            assert!(start.elapsed() >= WATCH);
-        }
+    fn giving_way_ends_when_done_or_after_the_watch() {
+        let mut calls = 0;
+        yielding(|| {
+            calls += 1;
+            calls == 3
+        });
+        assert_eq!(calls, 3);
+        let start = Instant::now();
+        yielding(|| false);
+        assert!(start.elapsed() >= WATCH);
     }
 }
