@@ -10,7 +10,7 @@ use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm
 use crate::machine::{Flow, Interpreter, MotionCounter, find};
 use crate::macros::argument_variable;
 use crate::state::{FeedMode, ModalMacro, MotionMode, Polar, Rotation, Scaling, State, plane_axes};
-use crate::{Axis, Canon, Sink, Source, StrokeZone};
+use crate::{Axis, Canon, Sink, Source, StrokeZone, plane_length};
 
 /// What one G code does.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -297,8 +297,8 @@ fn arc_points(
     let (u, v) = plane_axes(axis);
     let w = 3 - u - v;
     let sweep = arc_sweep(from, to, center, axis, ccw, turns);
-    let r0 = (from[u] - center[u]).hypot(from[v] - center[v]);
-    let r1 = (to[u] - center[u]).hypot(to[v] - center[v]);
+    let r0 = plane_length(from[u] - center[u], from[v] - center[v]);
+    let r1 = plane_length(to[u] - center[u], to[v] - center[v]);
     let a0 = (from[v] - center[v]).atan2(from[u] - center[u]);
     let n = ((sweep.abs() / std::f64::consts::TAU * 64.0).ceil() as usize).clamp(1, 100_000);
     (1..=n)
@@ -1578,7 +1578,7 @@ fn arc(
     if let Some(r) = radius.filter(|_| offsets.iter().all(Option::is_none)) {
         let r_mm = st.length(r);
         let (du, dv) = (p[u] - from[u], p[v] - from[v]);
-        let chord = du.hypot(dv);
+        let chord = plane_length(du, dv);
         if chord < 1e-9 {
             st.diagnostics.push(Diagnostic::error(
                 r.span,
@@ -1621,8 +1621,8 @@ fn arc(
                 }
             }
         }
-        let r0 = (from[u] - center[u]).hypot(from[v] - center[v]);
-        let r1 = (p[u] - center[u]).hypot(p[v] - center[v]);
+        let r0 = plane_length(from[u] - center[u], from[v] - center[v]);
+        let r1 = plane_length(p[u] - center[u], p[v] - center[v]);
         if r0 < 1e-9 {
             st.diagnostics.push(Diagnostic::error(
                 block.span,
@@ -1684,8 +1684,11 @@ fn arc(
     // angles and radii they take.
     let feed_mm_per_min = if st.feed_mode == FeedMode::InverseTime {
         let sweep = arc_sweep(from_machine, to, machine_center, st.plane, ccw, turns);
-        let r0 = (from_machine[u] - machine_center[u]).hypot(from_machine[v] - machine_center[v]);
-        let r1 = (to[u] - machine_center[u]).hypot(to[v] - machine_center[v]);
+        let r0 = plane_length(
+            from_machine[u] - machine_center[u],
+            from_machine[v] - machine_center[v],
+        );
+        let r1 = plane_length(to[u] - machine_center[u], to[v] - machine_center[v]);
         let length = (sweep.abs() * (r0 + r1) / 2.0).hypot(to[normal] - from_machine[normal]);
         move_feed(st, block, length, Some(r0))
     } else {
@@ -1731,7 +1734,7 @@ fn unequal_scaling_center(
     let offset = DVec2::new(center[u] - from[u], center[v] - from[v]);
     let r = offset.length() * factor;
     let (du, dv) = (b[u] - a[u], b[v] - a[v]);
-    let chord = du.hypot(dv);
+    let chord = plane_length(du, dv);
     let mut c = a;
     if chord < 1e-9 {
         // A full circle: the centre offset, scaled by the largest factor (with the signs of

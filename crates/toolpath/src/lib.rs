@@ -29,7 +29,7 @@
 //! of segments.
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone};
+use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone, plane_length};
 
 /// What a segment is, for colouring and statistics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -1060,8 +1060,13 @@ impl Toolpath {
         let centripetal = (self.timer.kinematics.acceleration_mm_per_s2 * radius).sqrt();
         let cruise = (arc.feed_mm_per_min / 60.0).min(centripetal);
         let count = geometry.chords();
+        let a0 = if count > 1 {
+            geometry.start_angle()
+        } else {
+            0.0
+        };
         for k in 0..count {
-            let p = geometry.point(k + 1, count, from, arc.to);
+            let p = geometry.point(a0, k + 1, count, from, arc.to);
             let join = if k == 0 {
                 Join::Corner {
                     entry: geometry.end_tangent(from, arc.to, false),
@@ -1250,7 +1255,6 @@ struct ArcGeometry {
     center: DVec3,
     radius: f64,
     end_radius: f64,
-    a0: f64,
     sweep: f64,
     /// The start's and the end's offsets from the centre in (u, v).
     start_offset: (f64, f64),
@@ -1267,8 +1271,9 @@ impl ArcGeometry {
         let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
         let (su, sv) = rel(from);
         let (eu, ev) = rel(to);
-        let a0 = sv.atan2(su);
-        let mut sweep = ev.atan2(eu) - a0;
+        // The angle from the start's offset to the end's, in (-pi, pi]: one arctangent (of
+        // their cross and dot products) rather than the difference of the two ends' angles.
+        let mut sweep = (su * ev - sv * eu).atan2(su * eu + sv * ev);
         let tau = std::f64::consts::TAU;
         if ccw {
             if sweep <= 1e-12 {
@@ -1283,9 +1288,8 @@ impl ArcGeometry {
             iv,
             iw,
             center,
-            radius: su.hypot(sv),
-            end_radius: eu.hypot(ev),
-            a0,
+            radius: plane_length(su, sv),
+            end_radius: plane_length(eu, ev),
             sweep,
             start_offset: (su, sv),
             end_offset: (eu, ev),
@@ -1303,13 +1307,21 @@ impl ArcGeometry {
         ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000)
     }
 
-    /// The end of chord `k` (from 1) of `n`: exactly `to` for the last.
-    fn point(&self, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
+    /// The start's angle in the plane, which only the points between the ends and the
+    /// tangents of a degenerate arc need (an arc of one chord spares the arctangent).
+    fn start_angle(&self) -> f64 {
+        let (su, sv) = self.start_offset;
+        sv.atan2(su)
+    }
+
+    /// The end of chord `k` (from 1) of `n`, the start being at angle `a0`
+    /// ([`ArcGeometry::start_angle`]): exactly `to` for the last.
+    fn point(&self, a0: f64, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
         if k == n {
             return to;
         }
         let t = k as f64 / n as f64;
-        let a = self.a0 + self.sweep * t;
+        let a = a0 + self.sweep * t;
         let r = self.radius + (self.end_radius - self.radius) * t;
         let mut p = DVec3::ZERO;
         p[self.iu] = self.center[self.iu] + r * a.cos();
@@ -1322,12 +1334,13 @@ impl ArcGeometry {
     /// [`CHORD_TOLERANCE_MM`].
     fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
         let n = self.chords();
-        (1..=n).map(|k| self.point(k, n, from, to)).collect()
+        let a0 = self.start_angle();
+        (1..=n).map(|k| self.point(a0, k, n, from, to)).collect()
     }
 
     /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
     fn tangent(&self, from: DVec3, to: DVec3, t: f64) -> Option<DVec3> {
-        let a = self.a0 + self.sweep * t;
+        let a = self.start_angle() + self.sweep * t;
         let r = self.radius + (self.end_radius - self.radius) * t;
         self.tangent_with(from, to, r, a.cos(), a.sin())
     }
