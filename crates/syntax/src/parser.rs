@@ -658,8 +658,15 @@ fn read_plain_line(
             blocks.pop();
             return None;
         }
-        // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned.
-        let value = with_sign(mantissa as i64 as f64 / scale, negative);
+        // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned; a whole
+        // number (a G or M code, most often) spares the division.
+        let magnitude = mantissa as i64 as f64;
+        let magnitude = if frac_digits == 0 {
+            magnitude
+        } else {
+            magnitude / scale
+        };
+        let value = with_sign(magnitude, negative);
         scan.word(letter, value);
         block.words.push(Word {
             letter,
