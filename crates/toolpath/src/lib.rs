@@ -1271,9 +1271,15 @@ impl ArcGeometry {
         let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
         let (su, sv) = rel(from);
         let (eu, ev) = rel(to);
-        // The angle from the start's offset to the end's, in (-pi, pi]: one arctangent (of
-        // their cross and dot products) rather than the difference of the two ends' angles.
-        let mut sweep = (su * ev - sv * eu).atan2(su * eu + sv * ev);
+        // The angle from the start's offset to the end's: one arctangent (of their cross and
+        // dot products) rather than the difference of the two ends' angles, unless an end is
+        // the centre (each end's angle is then taken on its own, a zero offset's as `atan2`
+        // gives it).
+        let mut sweep = if (su, sv) == (0.0, 0.0) || (eu, ev) == (0.0, 0.0) {
+            ev.atan2(eu) - sv.atan2(su)
+        } else {
+            (su * ev - sv * eu).atan2(su * eu + sv * ev)
+        };
         let tau = std::f64::consts::TAU;
         if ccw {
             if sweep <= 1e-12 {
@@ -1698,7 +1704,7 @@ mod tests {
     }
 
     #[test]
-    fn end_tangents_are_the_tangents_at_the_ends() {
+    fn sweeps_and_end_tangents_agree_with_the_angles_of_the_ends() {
         let mut seed = 0x007a_9ee7_d50f_u64;
         let mut next = move || (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
         for case in 0..2000 {
@@ -1713,8 +1719,24 @@ mod tests {
                 _ => {}
             }
             let axis = [Axis::X, Axis::Y, Axis::Z][case % 3];
-            let arc =
-                ArcGeometry::new(from, to, center, axis, next() < 0.0, (case % 7 == 0).into());
+            let (ccw, turns) = (next() < 0.0, u32::from(case % 7 == 0));
+            let arc = ArcGeometry::new(from, to, center, axis, ccw, turns);
+            // The sweep is the end's angle less the start's, brought round to the direction
+            // (a full turn where the end is the start, and one more for each extra turn).
+            let (iu, iv) = (arc.iu, arc.iv);
+            let angle = |p: DVec3| (p[iv] - center[iv]).atan2(p[iu] - center[iu]);
+            let tau = std::f64::consts::TAU;
+            let raw = angle(to) - angle(from);
+            let turn = (arc.sweep - raw) / tau;
+            let most = tau * f64::from(turns + 1);
+            assert!(
+                (turn - turn.round()).abs() < 1e-9
+                    && (arc.sweep > 0.0) == ccw
+                    && arc.sweep.abs() <= most + 1e-9
+                    && arc.sweep.abs() > most - tau,
+                "case {case}: sweep {} against {raw}",
+                arc.sweep
+            );
             for (end, t) in [(false, 0.0), (true, 1.0)] {
                 let (quick, plain) = (arc.end_tangent(from, to, end), arc.tangent(from, to, t));
                 match (quick, plain) {
