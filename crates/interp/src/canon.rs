@@ -214,7 +214,7 @@ impl Sink for CanonRecorder {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, not(target_arch = "wasm32")))]
 mod tests {
     use super::plane_length;
     use proptest::prelude::*;
