@@ -460,7 +460,7 @@ fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
         return None;
     }
     let value = match POW10.get(frac_digits) {
-        Some(scale) if digits <= 15 => mantissa as f64 / scale,
+        Some(&scale) if digits <= 15 => decimal_value(mantissa, frac_digits, scale),
         _ => std::str::from_utf8(&bytes[pos..end])
             .ok()
             .and_then(|t| t.parse::<f64>().ok())
@@ -472,6 +472,20 @@ fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
         has_point,
         digits,
     })
+}
+
+/// The value of a mantissa of at most 15 digits, `frac_digits` of them after the point (`scale`
+/// is ten to that power): below 10^15 the mantissa converts as a signed integer, exactly as
+/// unsigned, and one correctly rounded division gives the value; a whole number (a G or M code,
+/// most often) spares the division.
+#[inline(always)]
+fn decimal_value(mantissa: u64, frac_digits: usize, scale: f64) -> f64 {
+    let magnitude = mantissa as i64 as f64;
+    if frac_digits == 0 {
+        magnitude
+    } else {
+        magnitude / scale
+    }
 }
 
 /// The powers of ten that are exact f64s, by number of fraction digits.
@@ -658,15 +672,7 @@ fn read_plain_line(
             blocks.pop();
             return None;
         }
-        // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned; a whole
-        // number (a G or M code, most often) spares the division.
-        let magnitude = mantissa as i64 as f64;
-        let magnitude = if frac_digits == 0 {
-            magnitude
-        } else {
-            magnitude / scale
-        };
-        let value = with_sign(magnitude, negative);
+        let value = with_sign(decimal_value(mantissa, frac_digits, *scale), negative);
         scan.word(letter, value);
         block.words.push(Word {
             letter,
