@@ -49,6 +49,30 @@ pub fn plane_length(du: f64, dv: f64) -> f64 {
     }
 }
 
+/// The signed angle (radians, positive counter-clockwise) an arc turns through in its plane,
+/// from its start's offset from the centre to its end's: an end at the start is a full turn,
+/// and each of `turns` adds one. One arctangent, of the offsets' cross and dot products,
+/// unless an end is the centre (each end's angle is then taken on its own, a zero offset's as
+/// `atan2` gives it). The interpreter and the toolpath both sweep arcs with it.
+#[inline]
+pub fn plane_sweep(start: (f64, f64), end: (f64, f64), ccw: bool, turns: u32) -> f64 {
+    let ((su, sv), (eu, ev)) = (start, end);
+    let mut sweep = if start == (0.0, 0.0) || end == (0.0, 0.0) {
+        ev.atan2(eu) - sv.atan2(su)
+    } else {
+        (su * ev - sv * eu).atan2(su * eu + sv * ev)
+    };
+    let tau = std::f64::consts::TAU;
+    if ccw {
+        if sweep <= 1e-12 {
+            sweep += tau;
+        }
+    } else if sweep >= -1e-12 {
+        sweep -= tau;
+    }
+    sweep + f64::from(turns) * tau * sweep.signum()
+}
+
 /// One canonical event. Positions are millimetres in the machine frame, at the tool tip.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Canon {
@@ -216,8 +240,9 @@ impl Sink for CanonRecorder {
 
 #[cfg(all(test, not(target_arch = "wasm32")))]
 mod tests {
-    use super::plane_length;
+    use super::{plane_length, plane_sweep};
     use proptest::prelude::*;
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
     /// The distance in units in the last place between two finite non-negative numbers.
     fn ulps(a: f64, b: f64) -> u64 {
@@ -234,7 +259,66 @@ mod tests {
         assert!(plane_length(f64::NAN, 1.0).is_nan());
     }
 
+    #[test]
+    fn plane_sweep_turns_the_programmed_way() {
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        // A quarter counter-clockwise is three quarters clockwise.
+        assert!(close(
+            plane_sweep((1.0, 0.0), (0.0, 1.0), true, 0),
+            FRAC_PI_2
+        ));
+        assert!(close(
+            plane_sweep((1.0, 0.0), (0.0, 1.0), false, 0),
+            -3.0 * FRAC_PI_2
+        ));
+        // Half way round either way, on either side of the branch cut.
+        assert!(close(plane_sweep((1.0, 0.0), (-1.0, 0.0), true, 0), PI));
+        assert!(close(plane_sweep((1.0, 0.0), (-1.0, 0.0), false, 0), -PI));
+        assert!(close(plane_sweep((-1.0, 0.0), (1.0, 0.0), true, 0), PI));
+        assert!(close(plane_sweep((-1.0, -0.0), (1.0, 0.0), false, 0), -PI));
+        // An end at the start is a full turn; each extra turn adds one.
+        assert!(close(plane_sweep((0.0, 2.0), (0.0, 2.0), true, 0), TAU));
+        assert!(close(
+            plane_sweep((0.0, 2.0), (0.0, 2.0), false, 2),
+            -3.0 * TAU
+        ));
+        assert!(close(
+            plane_sweep((1.0, 0.0), (0.0, 1.0), true, 1),
+            FRAC_PI_2 + TAU
+        ));
+        // An end at the centre: each end's angle on its own.
+        assert!(close(
+            plane_sweep((0.0, 0.0), (0.0, 1.0), true, 0),
+            FRAC_PI_2
+        ));
+        assert!(close(
+            plane_sweep((0.0, 1.0), (0.0, 0.0), false, 0),
+            -FRAC_PI_2
+        ));
+    }
+
     proptest! {
+        /// The angle between the ends' own angles, the programmed way round, plus the turns.
+        #[test]
+        fn plane_sweep_is_the_difference_of_the_ends_angles(
+            a0 in -PI..PI,
+            a1 in -PI..PI,
+            r0 in 0.01..1e4_f64,
+            r1 in 0.01..1e4_f64,
+            ccw: bool,
+            turns in 0..5_u32,
+        ) {
+            let (start, end) = ((r0 * a0.cos(), r0 * a0.sin()), (r1 * a1.cos(), r1 * a1.sin()));
+            let sweep = plane_sweep(start, end, ccw, turns);
+            let (s, e) = (start.1.atan2(start.0), end.1.atan2(end.0));
+            // Its direction, the turns it makes, and the ends' angles.
+            prop_assert_eq!(sweep > 0.0, ccw);
+            let whole = (sweep.abs() / TAU).floor();
+            prop_assert!(whole == f64::from(turns) || whole == f64::from(turns + 1));
+            let off = (s + sweep - e).rem_euclid(TAU);
+            prop_assert!(off.min(TAU - off) < 1e-9, "{sweep} from {s} to {e}");
+        }
+
         /// Within an ulp of `hypot` over every magnitude a program can give.
         #[test]
         fn plane_length_is_hypot_to_within_an_ulp(

@@ -10,7 +10,7 @@ use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm
 use crate::machine::{Flow, Interpreter, MotionCounter, find};
 use crate::macros::argument_variable;
 use crate::state::{FeedMode, ModalMacro, MotionMode, Polar, Rotation, Scaling, State, plane_axes};
-use crate::{Axis, Canon, Sink, Source, StrokeZone, plane_length};
+use crate::{Axis, Canon, Sink, Source, StrokeZone, plane_length, plane_sweep};
 
 /// What one G code does.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -321,17 +321,8 @@ fn arc_points(
 /// at the start is a full turn, and each extra turn adds one.
 fn arc_sweep(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> f64 {
     let (u, v) = plane_axes(axis);
-    let tau = std::f64::consts::TAU;
-    let a0 = (from[v] - center[v]).atan2(from[u] - center[u]);
-    let mut sweep = (to[v] - center[v]).atan2(to[u] - center[u]) - a0;
-    if ccw {
-        if sweep <= 1e-12 {
-            sweep += tau;
-        }
-    } else if sweep >= -1e-12 {
-        sweep -= tau;
-    }
-    sweep + f64::from(turns) * tau * sweep.signum()
+    let offset = |p: DVec3| (p[u] - center[u], p[v] - center[v]);
+    plane_sweep(offset(from), offset(to), ccw, turns)
 }
 
 /// Executes one block's words.

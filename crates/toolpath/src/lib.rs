@@ -29,7 +29,7 @@
 //! of segments.
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone, plane_length};
+use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone, plane_length, plane_sweep};
 
 /// What a segment is, for colouring and statistics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -1060,13 +1060,15 @@ impl Toolpath {
         let centripetal = (self.timer.kinematics.acceleration_mm_per_s2 * radius).sqrt();
         let cruise = (arc.feed_mm_per_min / 60.0).min(centripetal);
         let count = geometry.chords();
-        let a0 = if count > 1 {
-            geometry.start_angle()
-        } else {
-            0.0
-        };
+        // The points between the ends need the start's angle: an arc of one chord spares it.
+        let mut a0 = None;
         for k in 0..count {
-            let p = geometry.point(a0, k + 1, count, from, arc.to);
+            let p = if k + 1 == count {
+                arc.to
+            } else {
+                let a0 = *a0.get_or_insert_with(|| geometry.start_angle());
+                geometry.between(a0, k + 1, count, from, arc.to)
+            };
             let join = if k == 0 {
                 Join::Corner {
                     entry: geometry.end_tangent(from, arc.to, false),
@@ -1271,24 +1273,7 @@ impl ArcGeometry {
         let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
         let (su, sv) = rel(from);
         let (eu, ev) = rel(to);
-        // The angle from the start's offset to the end's: one arctangent (of their cross and
-        // dot products) rather than the difference of the two ends' angles, unless an end is
-        // the centre (each end's angle is then taken on its own, a zero offset's as `atan2`
-        // gives it).
-        let mut sweep = if (su, sv) == (0.0, 0.0) || (eu, ev) == (0.0, 0.0) {
-            ev.atan2(eu) - sv.atan2(su)
-        } else {
-            (su * ev - sv * eu).atan2(su * eu + sv * ev)
-        };
-        let tau = std::f64::consts::TAU;
-        if ccw {
-            if sweep <= 1e-12 {
-                sweep += tau;
-            }
-        } else if sweep >= -1e-12 {
-            sweep -= tau;
-        }
-        sweep += f64::from(turns) * tau * sweep.signum();
+        let sweep = plane_sweep((su, sv), (eu, ev), ccw, turns);
         ArcGeometry {
             iu,
             iv,
@@ -1320,12 +1305,9 @@ impl ArcGeometry {
         sv.atan2(su)
     }
 
-    /// The end of chord `k` (from 1) of `n`, the start being at angle `a0`
-    /// ([`ArcGeometry::start_angle`]): exactly `to` for the last.
-    fn point(&self, a0: f64, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
-        if k == n {
-            return to;
-        }
+    /// The end of chord `k` (from 1) of `n` other than the last (which ends exactly at `to`),
+    /// the start being at angle `a0` ([`ArcGeometry::start_angle`]).
+    fn between(&self, a0: f64, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
         let t = k as f64 / n as f64;
         let a = a0 + self.sweep * t;
         let r = self.radius + (self.end_radius - self.radius) * t;
@@ -1341,7 +1323,10 @@ impl ArcGeometry {
     fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
         let n = self.chords();
         let a0 = self.start_angle();
-        (1..=n).map(|k| self.point(a0, k, n, from, to)).collect()
+        (1..n)
+            .map(|k| self.between(a0, k, n, from, to))
+            .chain(std::iter::once(to))
+            .collect()
     }
 
     /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
