@@ -44,7 +44,7 @@ const FUZZ_SECONDS: u32 = 20;
 fn fuzz() -> Result<()> {
     tools::ensure_cargo_fuzz()?;
     let root = util::repo_root();
-    for target in ["parse", "interpret"] {
+    for target in ["parse", "pieces", "interpret"] {
         let corpus = root.join("target/fuzz-corpus").join(target);
         let artifacts = root.join("target/fuzz-artifacts").join(target);
         std::fs::create_dir_all(&corpus)?;

@@ -3,32 +3,9 @@
 
 use swarf_syntax::{Dialect, ParseRun, parse};
 
-/// `text` read `lines` at a time: by a run that indexes the whole text first, or with
-/// `streaming`, by one that indexes it as it reads.
-fn stepped(
-    text: &str,
-    dialect: Dialect,
-    lines: usize,
-    streaming: bool,
-) -> (swarf_syntax::Program, usize) {
-    let mut run = if streaming {
-        ParseRun::streaming(text, dialect)
-    } else {
-        ParseRun::new(text, dialect)
-    };
-    let mut steps = 0;
-    loop {
-        let (read, total) = run.progress();
-        assert!(read <= total);
-        steps += 1;
-        if run.step(text, lines) {
-            break;
-        }
-        assert!(steps < 10_000, "the run ends");
-    }
-    assert!(run.is_done());
-    (run.finish(), steps)
-}
+#[path = "../../../tests/support/parse_runs.rs"]
+mod parse_runs;
+use parse_runs::{grown, stepped};
 
 #[test]
 fn stepping_a_few_lines_at_a_time_equals_the_whole_parse() {
@@ -135,43 +112,6 @@ fn a_streaming_run_of_texts_around_a_piece_s_size_equals_the_whole_parse() {
             }
         }
     }
-}
-
-/// `text` read as a file is read a chunk of `chunk` bytes at a time while it is parsed: the
-/// run is given the whole lines read so far, `lines` at a time, then the rest at the end.
-fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> swarf_syntax::Program {
-    let mut run = ParseRun::growing(text.len(), dialect);
-    let (mut read, mut whole_lines, mut complete) = (0, 0, false);
-    let mut steps = 0;
-    loop {
-        // Once the whole lines at hand are read, read a chunk more and keep its whole lines
-        // (the rest waits for the next chunk).
-        if !complete && run.offset() >= whole_lines {
-            read = (read + chunk).min(text.len());
-            complete = read == text.len();
-            whole_lines = if complete {
-                read
-            } else {
-                text.as_bytes()[..read]
-                    .iter()
-                    .rposition(|&b| b == b'\n')
-                    .map_or(0, |at| at + 1)
-            };
-        }
-        let part = &text[..whole_lines];
-        let done = run.step_growing(part, complete, lines);
-        assert!(
-            complete || run.offset() <= whole_lines,
-            "no line is read before it ends"
-        );
-        steps += 1;
-        assert!(steps < 100_000, "the run ends");
-        if done {
-            break;
-        }
-    }
-    run.complete(text);
-    run.finish()
 }
 
 #[test]

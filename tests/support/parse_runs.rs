@@ -1,0 +1,70 @@
+//! A program parsed in bounded steps, as the editor and `swarf stats` parse it (included with
+//! `#[path]` by the parser's tests and its fuzz target, which hold it to the whole parse).
+#![allow(dead_code, reason = "each user takes part of this module")]
+
+use swarf_syntax::{Dialect, ParseRun, Program};
+
+/// How many steps a run of `text` may take: each step reads a line or more, or a chunk more
+/// of the text; past this the run is not ending.
+fn step_limit(text: &str) -> usize {
+    2 * text.len() + 16
+}
+
+/// `text` read `lines` at a time: by a run that indexes the whole text first, or with
+/// `streaming`, by one that indexes it as it reads. Also the number of steps it took.
+pub fn stepped(text: &str, dialect: Dialect, lines: usize, streaming: bool) -> (Program, usize) {
+    let mut run = if streaming {
+        ParseRun::streaming(text, dialect)
+    } else {
+        ParseRun::new(text, dialect)
+    };
+    let mut steps = 0;
+    loop {
+        let (read, total) = run.progress();
+        assert!(read <= total, "{read} of {total} lines read");
+        steps += 1;
+        if run.step(text, lines) {
+            break;
+        }
+        assert!(steps < step_limit(text), "the run ends");
+    }
+    assert!(run.is_done());
+    (run.finish(), steps)
+}
+
+/// `text` read as a file is read a chunk of `chunk` bytes at a time while it is parsed: the
+/// run is given the whole lines read so far, `lines` at a time, then the rest at the end.
+pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Program {
+    let mut run = ParseRun::growing(text.len(), dialect);
+    let (mut read, mut whole_lines, mut complete) = (0, 0, false);
+    let mut steps = 0;
+    loop {
+        // Once the whole lines at hand are read, read a chunk more and keep its whole lines
+        // (the rest waits for the next chunk).
+        if !complete && run.offset() >= whole_lines {
+            read = (read + chunk.max(1)).min(text.len());
+            complete = read == text.len();
+            whole_lines = if complete {
+                read
+            } else {
+                text.as_bytes()[..read]
+                    .iter()
+                    .rposition(|&b| b == b'\n')
+                    .map_or(0, |at| at + 1)
+            };
+        }
+        let part = &text[..whole_lines];
+        let done = run.step_growing(part, complete, lines);
+        assert!(
+            complete || run.offset() <= whole_lines,
+            "no line is read before it ends"
+        );
+        steps += 1;
+        assert!(steps < step_limit(text), "the run ends");
+        if done {
+            break;
+        }
+    }
+    run.complete(text);
+    run.finish()
+}
