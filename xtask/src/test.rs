@@ -233,7 +233,7 @@ fn steps(quick: bool) -> Vec<Step> {
         steps.push(Step::new(
             'j',
             format!(
-                "fuzzing: cargo fuzz run parse / interpret, {FUZZ_SECONDS} s each (seeds: the examples and golden programs)"
+                "fuzzing: cargo fuzz run parse / pieces / interpret, {FUZZ_SECONDS} s each (seeds: the examples and golden programs)"
             ),
             fuzz,
         ));
