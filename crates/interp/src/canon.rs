@@ -73,6 +73,91 @@ pub fn plane_sweep(start: (f64, f64), end: (f64, f64), ccw: bool, turns: u32) ->
     sweep + f64::from(turns) * tau * sweep.signum()
 }
 
+/// An arc event's geometry in its plane: the centre, both ends' radii and offsets, and the
+/// sweep. The interpreter walks it for the stroke limits and the toolpath for its chords, so
+/// both put the points between the ends in the same places.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneArc {
+    /// The plane's first axis (0 = X, 1 = Y, 2 = Z): angles are measured from it.
+    pub iu: usize,
+    /// The plane's second axis, a quarter turn counter-clockwise from `iu`.
+    pub iv: usize,
+    /// The plane normal's axis, along which a helix rises.
+    pub iw: usize,
+    /// The centre (its coordinate along the normal is not used).
+    pub center: DVec3,
+    /// The start's distance from the centre in the plane.
+    pub radius: f64,
+    /// The end's distance from the centre in the plane (a spiral's differs from `radius`).
+    pub end_radius: f64,
+    /// The signed angle turned through ([`plane_sweep`]).
+    pub sweep: f64,
+    /// The start's offset from the centre in (`iu`, `iv`).
+    pub start_offset: (f64, f64),
+    /// The end's offset from the centre in (`iu`, `iv`).
+    pub end_offset: (f64, f64),
+}
+
+impl PlaneArc {
+    /// The arc from `from` to `to` about `center`, turning about `axis` the programmed way with
+    /// `turns` extra full turns.
+    #[inline]
+    pub fn new(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> Self {
+        let (iu, iv, iw) = match axis {
+            Axis::Z => (0, 1, 2),
+            Axis::Y => (2, 0, 1),
+            Axis::X => (1, 2, 0),
+        };
+        let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
+        let (start_offset, end_offset) = (rel(from), rel(to));
+        PlaneArc {
+            iu,
+            iv,
+            iw,
+            center,
+            radius: plane_length(start_offset.0, start_offset.1),
+            end_radius: plane_length(end_offset.0, end_offset.1),
+            sweep: plane_sweep(start_offset, end_offset, ccw, turns),
+            start_offset,
+            end_offset,
+        }
+    }
+
+    /// The start's angle in the plane, which only the points between the ends need (an arc
+    /// walked in one step spares the arctangent).
+    #[inline]
+    pub fn start_angle(&self) -> f64 {
+        let (su, sv) = self.start_offset;
+        sv.atan2(su)
+    }
+
+    /// The end of step `k` (from 1) of `n` other than the last (which ends exactly at `to`),
+    /// the start being at angle `a0` ([`PlaneArc::start_angle`]): the angle, the radius and
+    /// the rise along the normal each change evenly with the step.
+    #[inline]
+    pub fn between(&self, a0: f64, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
+        let t = k as f64 / n as f64;
+        let a = a0 + self.sweep * t;
+        let r = self.radius + (self.end_radius - self.radius) * t;
+        let mut p = DVec3::ZERO;
+        p[self.iu] = self.center[self.iu] + r * a.cos();
+        p[self.iv] = self.center[self.iv] + r * a.sin();
+        p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
+        p
+    }
+
+    /// The ends of `n` even steps along the arc (at least one): `from` excluded, the last
+    /// exactly `to`.
+    pub fn points(&self, from: DVec3, to: DVec3, n: usize) -> Vec<DVec3> {
+        let n = n.max(1);
+        let a0 = if n > 1 { self.start_angle() } else { 0.0 };
+        (1..n)
+            .map(|k| self.between(a0, k, n, from, to))
+            .chain(std::iter::once(to))
+            .collect()
+    }
+}
+
 /// One canonical event. Positions are millimetres in the machine frame, at the tool tip.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Canon {
@@ -240,7 +325,8 @@ impl Sink for CanonRecorder {
 
 #[cfg(all(test, not(target_arch = "wasm32")))]
 mod tests {
-    use super::{plane_length, plane_sweep};
+    use super::{Axis, PlaneArc, plane_length, plane_sweep};
+    use glam::DVec3;
     use proptest::prelude::*;
     use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -295,6 +381,41 @@ mod tests {
             plane_sweep((0.0, 1.0), (0.0, 0.0), false, 0),
             -FRAC_PI_2
         ));
+    }
+
+    #[test]
+    fn plane_arc_steps_evenly_in_each_plane() {
+        let close = |a: DVec3, b: DVec3| (a - b).length() < 1e-12;
+        // G17, a half turn counter-clockwise rising 4 along Z: half way is a quarter round, up 2.
+        let (from, to) = (DVec3::new(1.0, 0.0, 0.0), DVec3::new(-1.0, 0.0, 4.0));
+        let arc = PlaneArc::new(from, to, DVec3::ZERO, Axis::Z, true, 0);
+        assert_eq!((arc.iu, arc.iv, arc.iw), (0, 1, 2));
+        let points = arc.points(from, to, 2);
+        assert_eq!(points.len(), 2);
+        assert!(close(points[0], DVec3::new(0.0, 1.0, 2.0)), "{points:?}");
+        assert_eq!(points[1], to);
+        // One step is the end alone; none is taken as one.
+        assert_eq!(arc.points(from, to, 1), vec![to]);
+        assert_eq!(arc.points(from, to, 0), vec![to]);
+        // G18 turns from Z towards X: a quarter counter-clockwise from +Z passes +X at 45°.
+        let (from, to) = (DVec3::new(0.0, 3.0, 2.0), DVec3::new(2.0, 3.0, 0.0));
+        let arc = PlaneArc::new(from, to, DVec3::new(0.0, 3.0, 0.0), Axis::Y, true, 0);
+        assert!((arc.sweep - FRAC_PI_2).abs() < 1e-12);
+        let h = 2.0 * std::f64::consts::FRAC_1_SQRT_2;
+        assert!(close(arc.points(from, to, 2)[0], DVec3::new(h, 3.0, h)));
+        // G19 turns from Y towards Z, clockwise here; a spiral's radius changes evenly.
+        let (from, to) = (DVec3::new(5.0, 0.0, 1.0), DVec3::new(5.0, 0.0, -3.0));
+        let arc = PlaneArc::new(from, to, DVec3::new(5.0, 0.0, 0.0), Axis::X, false, 0);
+        assert_eq!((arc.radius, arc.end_radius), (1.0, 3.0));
+        assert!((arc.sweep + PI).abs() < 1e-12);
+        let points = arc.points(from, to, 2);
+        assert!(close(points[0], DVec3::new(5.0, 2.0, 0.0)), "{points:?}");
+        // A full turn with an extra one: four steps a turn come back to the start twice.
+        let start = DVec3::new(2.0, 0.0, 0.0);
+        let arc = PlaneArc::new(start, start, DVec3::ZERO, Axis::Z, true, 1);
+        let points = arc.points(start, start, 8);
+        assert!(close(points[3], start) && close(points[7], start));
+        assert!(close(points[4], DVec3::new(0.0, 2.0, 0.0)));
     }
 
     proptest! {

@@ -10,7 +10,7 @@ use swarf_syntax::{Block, Diagnostic, Dialect, Program, Quantity, Word, WordForm
 use crate::machine::{Flow, Interpreter, MotionCounter, find};
 use crate::macros::argument_variable;
 use crate::state::{FeedMode, ModalMacro, MotionMode, Polar, Rotation, Scaling, State, plane_axes};
-use crate::{Axis, Canon, Sink, Source, StrokeZone, plane_length, plane_sweep};
+use crate::{Axis, Canon, PlaneArc, Sink, Source, StrokeZone, plane_length};
 
 /// What one G code does.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -294,35 +294,9 @@ fn arc_points(
     ccw: bool,
     turns: u32,
 ) -> Vec<DVec3> {
-    let (u, v) = plane_axes(axis);
-    let w = 3 - u - v;
-    let sweep = arc_sweep(from, to, center, axis, ccw, turns);
-    let r0 = plane_length(from[u] - center[u], from[v] - center[v]);
-    let r1 = plane_length(to[u] - center[u], to[v] - center[v]);
-    let a0 = (from[v] - center[v]).atan2(from[u] - center[u]);
-    let n = ((sweep.abs() / std::f64::consts::TAU * 64.0).ceil() as usize).clamp(1, 100_000);
-    (1..=n)
-        .map(|k| {
-            if k == n {
-                return to;
-            }
-            let t = k as f64 / n as f64;
-            let (a, r) = (a0 + sweep * t, r0 + (r1 - r0) * t);
-            let mut p = DVec3::ZERO;
-            p[u] = center[u] + r * a.cos();
-            p[v] = center[v] + r * a.sin();
-            p[w] = from[w] + (to[w] - from[w]) * t;
-            p
-        })
-        .collect()
-}
-
-/// The signed angle (radians, positive counter-clockwise) an arc event turns through; the end
-/// at the start is a full turn, and each extra turn adds one.
-fn arc_sweep(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> f64 {
-    let (u, v) = plane_axes(axis);
-    let offset = |p: DVec3| (p[u] - center[u], p[v] - center[v]);
-    plane_sweep(offset(from), offset(to), ccw, turns)
+    let arc = PlaneArc::new(from, to, center, axis, ccw, turns);
+    let n = ((arc.sweep.abs() / std::f64::consts::TAU * 64.0).ceil() as usize).clamp(1, 100_000);
+    arc.points(from, to, n)
 }
 
 /// Executes one block's words.
@@ -1674,14 +1648,10 @@ fn arc(
     // The arc's length and radius count only for a feed in inverse time: most arcs spare the
     // angles and radii they take.
     let feed_mm_per_min = if st.feed_mode == FeedMode::InverseTime {
-        let sweep = arc_sweep(from_machine, to, machine_center, st.plane, ccw, turns);
-        let r0 = plane_length(
-            from_machine[u] - machine_center[u],
-            from_machine[v] - machine_center[v],
-        );
-        let r1 = plane_length(to[u] - machine_center[u], to[v] - machine_center[v]);
-        let length = (sweep.abs() * (r0 + r1) / 2.0).hypot(to[normal] - from_machine[normal]);
-        move_feed(st, block, length, Some(r0))
+        let arc = PlaneArc::new(from_machine, to, machine_center, st.plane, ccw, turns);
+        let length = (arc.sweep.abs() * (arc.radius + arc.end_radius) / 2.0)
+            .hypot(to[normal] - from_machine[normal]);
+        move_feed(st, block, length, Some(arc.radius))
     } else {
         move_feed(st, block, 0.0, None)
     };
@@ -1734,7 +1704,9 @@ fn unequal_scaling_center(
         c[v] = a[v] + offset.y * factor * s.factors[v].signum();
     } else {
         // The programmed arc's sweep decides between the short and the long way round.
-        let sweep = arc_sweep(from, to, center, st.plane, ccw, 0).abs();
+        let sweep = PlaneArc::new(from, to, center, st.plane, ccw, 0)
+            .sweep
+            .abs();
         let long = sweep > std::f64::consts::PI;
         let ccw_scaled = ccw != st.reverses_arcs();
         let half = chord / 2.0;

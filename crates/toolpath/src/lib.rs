@@ -29,7 +29,7 @@
 //! of segments.
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, Machine, Sink, Source, StrokeZone, plane_length, plane_sweep};
+use swarf_interp::{Axis, Canon, Machine, PlaneArc, Sink, Source, StrokeZone};
 
 /// What a segment is, for colouring and statistics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -1052,7 +1052,7 @@ impl Toolpath {
 
     fn push_arc(&mut self, arc: &ArcEvent, line: u32) {
         let from = self.ends.last().copied().unwrap_or(self.start);
-        let geometry = ArcGeometry::new(from, arc.to, arc.center, arc.axis, arc.ccw, arc.turns);
+        let geometry = PlaneArc::new(from, arc.to, arc.center, arc.axis, arc.ccw, arc.turns);
         let radius = geometry
             .radius
             .min(geometry.end_radius)
@@ -1248,46 +1248,21 @@ impl Sink for Toolpath {
     }
 }
 
-/// An arc in plane coordinates (u, v, w), w along the axis, right-handed; the points are
-/// parametrised by `t` in 0..=1 with the angle and the radius linear in `t`.
-struct ArcGeometry {
-    iu: usize,
-    iv: usize,
-    iw: usize,
-    center: DVec3,
-    radius: f64,
-    end_radius: f64,
-    sweep: f64,
-    /// The start's and the end's offsets from the centre in (u, v).
-    start_offset: (f64, f64),
-    end_offset: (f64, f64),
+/// What drawing and timing an arc need beyond its plane geometry: its chords and tangents.
+trait ArcDrawing {
+    /// How many chords the arc takes to stay within [`CHORD_TOLERANCE_MM`].
+    fn chords(&self) -> usize;
+    /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
+    fn tangent(&self, from: DVec3, to: DVec3, t: f64) -> Option<DVec3>;
+    /// [`ArcDrawing::tangent`] at the start (`end` false) or the end, the angle's cosine and
+    /// sine read off that end's offset from the centre rather than worked out from the angle.
+    fn end_tangent(&self, from: DVec3, to: DVec3, end: bool) -> Option<DVec3>;
+    /// The unit direction of motion where the radius is `r` and the angle has cosine `cos`
+    /// and sine `sin`.
+    fn tangent_with(&self, from: DVec3, to: DVec3, r: f64, cos: f64, sin: f64) -> Option<DVec3>;
 }
 
-impl ArcGeometry {
-    fn new(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> Self {
-        let (iu, iv, iw) = match axis {
-            Axis::Z => (0, 1, 2),
-            Axis::Y => (2, 0, 1),
-            Axis::X => (1, 2, 0),
-        };
-        let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
-        let (su, sv) = rel(from);
-        let (eu, ev) = rel(to);
-        let sweep = plane_sweep((su, sv), (eu, ev), ccw, turns);
-        ArcGeometry {
-            iu,
-            iv,
-            iw,
-            center,
-            radius: plane_length(su, sv),
-            end_radius: plane_length(eu, ev),
-            sweep,
-            start_offset: (su, sv),
-            end_offset: (eu, ev),
-        }
-    }
-
-    /// How many chords the arc takes to stay within [`CHORD_TOLERANCE_MM`].
+impl ArcDrawing for PlaneArc {
     fn chords(&self) -> usize {
         let tau = std::f64::consts::TAU;
         let step = if self.radius > CHORD_TOLERANCE_MM {
@@ -1298,46 +1273,12 @@ impl ArcGeometry {
         ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000)
     }
 
-    /// The start's angle in the plane, which only the points between the ends and the
-    /// tangents of a degenerate arc need (an arc of one chord spares the arctangent).
-    fn start_angle(&self) -> f64 {
-        let (su, sv) = self.start_offset;
-        sv.atan2(su)
-    }
-
-    /// The end of chord `k` (from 1) of `n` other than the last (which ends exactly at `to`),
-    /// the start being at angle `a0` ([`ArcGeometry::start_angle`]).
-    fn between(&self, a0: f64, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
-        let t = k as f64 / n as f64;
-        let a = a0 + self.sweep * t;
-        let r = self.radius + (self.end_radius - self.radius) * t;
-        let mut p = DVec3::ZERO;
-        p[self.iu] = self.center[self.iu] + r * a.cos();
-        p[self.iv] = self.center[self.iv] + r * a.sin();
-        p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
-        p
-    }
-
-    /// Points along the arc (excluding `from`, ending exactly at `to`) within
-    /// [`CHORD_TOLERANCE_MM`].
-    fn points(&self, from: DVec3, to: DVec3) -> Vec<DVec3> {
-        let n = self.chords();
-        let a0 = self.start_angle();
-        (1..n)
-            .map(|k| self.between(a0, k, n, from, to))
-            .chain(std::iter::once(to))
-            .collect()
-    }
-
-    /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
     fn tangent(&self, from: DVec3, to: DVec3, t: f64) -> Option<DVec3> {
         let a = self.start_angle() + self.sweep * t;
         let r = self.radius + (self.end_radius - self.radius) * t;
         self.tangent_with(from, to, r, a.cos(), a.sin())
     }
 
-    /// [`ArcGeometry::tangent`] at the start (`end` false) or the end, the angle's cosine and
-    /// sine read off that end's offset from the centre rather than worked out from the angle.
     fn end_tangent(&self, from: DVec3, to: DVec3, end: bool) -> Option<DVec3> {
         let (r, (u, v)) = if end {
             (self.end_radius, self.end_offset)
@@ -1351,8 +1292,6 @@ impl ArcGeometry {
         }
     }
 
-    /// The unit direction of motion where the radius is `r` and the angle has cosine `cos`
-    /// and sine `sin`.
     fn tangent_with(&self, from: DVec3, to: DVec3, r: f64, cos: f64, sin: f64) -> Option<DVec3> {
         let dr = self.end_radius - self.radius;
         let mut d = DVec3::ZERO;
@@ -1372,7 +1311,8 @@ pub fn tessellate_arc(
     ccw: bool,
     turns: u32,
 ) -> Vec<DVec3> {
-    ArcGeometry::new(from, to, center, axis, ccw, turns).points(from, to)
+    let arc = PlaneArc::new(from, to, center, axis, ccw, turns);
+    arc.points(from, to, arc.chords())
 }
 
 #[cfg(test)]
@@ -1678,12 +1618,12 @@ mod tests {
     fn arc_tangents_follow_the_direction_of_travel() {
         let from = DVec3::new(10.0, 0.0, 0.0);
         let to = DVec3::new(0.0, 10.0, 0.0);
-        let ccw = ArcGeometry::new(from, to, DVec3::ZERO, Axis::Z, true, 0);
+        let ccw = PlaneArc::new(from, to, DVec3::ZERO, Axis::Z, true, 0);
         let start = ccw.tangent(from, to, 0.0).unwrap();
         let end = ccw.tangent(from, to, 1.0).unwrap();
         assert!(start.abs_diff_eq(DVec3::Y, 1e-12), "{start}");
         assert!(end.abs_diff_eq(-DVec3::X, 1e-12), "{end}");
-        let cw = ArcGeometry::new(from, to, DVec3::ZERO, Axis::Z, false, 0);
+        let cw = PlaneArc::new(from, to, DVec3::ZERO, Axis::Z, false, 0);
         let start = cw.tangent(from, to, 0.0).unwrap();
         assert!(start.abs_diff_eq(-DVec3::Y, 1e-12), "{start}");
     }
@@ -1705,7 +1645,7 @@ mod tests {
             }
             let axis = [Axis::X, Axis::Y, Axis::Z][case % 3];
             let (ccw, turns) = (next() < 0.0, u32::from(case % 7 == 0));
-            let arc = ArcGeometry::new(from, to, center, axis, ccw, turns);
+            let arc = PlaneArc::new(from, to, center, axis, ccw, turns);
             // The sweep is the end's angle less the start's, brought round to the direction
             // (a full turn where the end is the start, and one more for each extra turn).
             let (iu, iv) = (arc.iu, arc.iv);
