@@ -14,7 +14,8 @@
 # on two. Swarf is measured in rounds, before the peers and after each of them, and its best
 # counts.
 #   scripts/bench-peers.sh            (RUNS=10, TIMEOUT=600; needs ../shared for the corpus files)
-# It ends with the wasm32 build's figure on the generated program (Node, in-process).
+# It ends with the wasm32 build's figure on the generated program (Node, in-process; `cargo xtask
+# wasm-tools` installs the wasm32 target and wasm-bindgen-cli it needs where they are missing).
 # The peers are installed once under target/peers (npm and pip; nothing is committed).
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -168,12 +169,16 @@ for prog in "${programs[@]}"; do
 done
 
 # Swarf's wasm build on the generated program (in Node, in-process: no file reading or process
-# start), from the on-demand test in crates/toolpath.
-wasm=$(cd "$root" && cargo test -p swarf-toolpath --release --target wasm32-unknown-unknown \
-  --test wasm_throughput -- --include-ignored --nocapture 2>&1 | grep -o "wasm32 stats: .*")
+# start), from the on-demand test in crates/toolpath, with the wasm32 target and
+# wasm-bindgen-test-runner installed where they are missing.
+(cd "$root" && cargo xtask wasm-tools > "$target/wasm-tools.log" 2>&1) ||
+  echo "bench-peers: the wasm32 tools could not be installed (see $target/wasm-tools.log)" >&2
+(cd "$root" && cargo test -p swarf-toolpath --release --target wasm32-unknown-unknown \
+  --test wasm_throughput -- --include-ignored --nocapture > "$target/wasm-bench.log" 2>&1)
+wasm=$(grep -o "wasm32 stats: .*" "$target/wasm-bench.log")
 echo
 if [[ -n "$wasm" ]]; then
   echo "Swarf wasm32 in Node (generated 1M-line program, parse + interpret + record): ${wasm#wasm32 stats: }"
 else
-  echo "Swarf wasm32 in Node: not measured (the wasm32 test did not run: \`cargo xtask test --only e\` installs the wasm32 target and wasm-bindgen-test-runner it needs)"
+  echo "Swarf wasm32 in Node: not measured (see $target/wasm-tools.log and $target/wasm-bench.log)"
 fi

@@ -4,6 +4,7 @@
 //! * `cargo xtask serve [--port 8080] [--no-build] [--dev]` builds and serves it.
 //! * `cargo xtask test [--quick]` installs what the tests need and runs every test.
 //! * `cargo xtask pgo` builds the `swarf` command line with profile-guided optimisation.
+//! * `cargo xtask wasm-tools` installs what the wasm32 tests need (the benchmark's last step).
 
 mod desktop;
 mod pgo;
@@ -39,6 +40,9 @@ COMMANDS:
                             h desktop, j fuzzing, i web build + browser end-to-end test)
     pgo     Build the swarf command line with profile-guided optimisation into
             target/pgo/release/swarf (trained on a generated finishing program)
+    wasm-tools
+            Install what the wasm32 tests need where it is missing: the wasm32 target and
+            wasm-bindgen-cli (the benchmark script runs its wasm32 test with them)
     help    Show this message
 ";
 
@@ -90,6 +94,11 @@ fn run() -> Result<()> {
         "pgo" => {
             opts.reject_unused(&[])?;
             pgo::build()?;
+        }
+        "wasm-tools" => {
+            opts.reject_unused(&[])?;
+            tools::ensure_wasm_target()?;
+            tools::ensure_wasm_bindgen()?;
         }
         "help" | "--help" | "-h" => print!("{USAGE}"),
         other => bail!("unknown command `{other}`\n\n{USAGE}"),
