@@ -21,6 +21,10 @@ use crate::growing::{Growing, Unread};
 use crate::{FIRST_PIECE_LINES, PIECE_LINES, run_piece};
 use crate::{apart, waits};
 
+/// How far ahead of the parse the reader reads the file while it waits for the runner: a
+/// transparent huge page (2 MB), so that the text's next page is mapped in the wait.
+const IDLE_AHEAD_BYTES: usize = 2 << 20;
+
 /// A piece as it is handed over: its blocks and the expressions new in it.
 type Piece = (Vec<Block>, Vec<ExprNode>);
 
@@ -112,6 +116,13 @@ impl Reading {
         Ok(((blocks, new_exprs), done))
     }
 
+    /// Reads one more chunk of the file while the text is less than [`IDLE_AHEAD_BYTES`] ahead
+    /// of the parse; whether it read one.
+    fn read_on(&mut self) -> Result<bool, Unread> {
+        let until = self.reader.offset().saturating_add(IDLE_AHEAD_BYTES);
+        self.source.read_on(until)
+    }
+
     /// The reader and the whole text, read to its end: a program that ends at a closing tape
     /// mark may end before its file does. `complete` once every piece is read (the reader
     /// then takes in the rest of the text); not when the run stopped part-way.
@@ -162,9 +173,11 @@ fn read_pieces(mut reading: Reading, ends: ReaderEnds) -> Read {
                 Err(TrySendError::Disconnected(_)) => break false,
                 Err(TrySendError::Full(back)) => piece = back,
             }
-            // Ahead of the runner: time its moves while waiting, if there are any, else wait
-            // for the runner to take a piece or queue moves.
-            if !time_next(timing) && waits::recv(&bell).is_err() {
+            // Ahead of the runner: time its moves while waiting, if there are any, else read
+            // on in the file (a chunk at a time, up to a huge page ahead, so that the memory
+            // the text goes to is mapped while waiting), else wait for the runner to take a
+            // piece or queue moves.
+            if !time_next(timing) && !reading.read_on()? && waits::recv(&bell).is_err() {
                 break pieces.send(piece).is_ok();
             }
         };

@@ -76,6 +76,16 @@ impl Growing {
         Ok(())
     }
 
+    /// Reads one more chunk if the text is shorter than `until` bytes and the file is not read
+    /// to its end; whether it read one.
+    pub(crate) fn read_on(&mut self, until: usize) -> Result<bool, Unread> {
+        if self.is_complete() || self.text.len() >= until {
+            return Ok(false);
+        }
+        self.read_chunk()?;
+        Ok(true)
+    }
+
     /// Reads the rest of the file.
     pub(crate) fn read_to_end(&mut self) -> Result<(), Unread> {
         while !self.is_complete() {
@@ -268,6 +278,28 @@ mod tests {
             panic!("no room for the text is an error");
         };
         assert_eq!(error.kind(), std::io::ErrorKind::OutOfMemory);
+    }
+
+    #[test]
+    fn reading_on_takes_a_chunk_at_a_time_up_to_its_bound() {
+        let text = "G1 X1.5\n".repeat(4 * CHUNK_BYTES / 8);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("p.nc");
+        std::fs::write(&path, &text).unwrap();
+        let mut growing = Growing::open(File::open(&path).unwrap(), text.len());
+        // Short of the bound: a chunk a call, each read in whole lines.
+        assert!(growing.read_on(2 * CHUNK_BYTES).ok() == Some(true));
+        assert_eq!(growing.text.len(), CHUNK_BYTES);
+        assert!(growing.read_on(2 * CHUNK_BYTES).ok() == Some(true));
+        assert_eq!(growing.text.len(), 2 * CHUNK_BYTES);
+        // At the bound: nothing more.
+        assert!(growing.read_on(2 * CHUNK_BYTES).ok() == Some(false));
+        assert_eq!(growing.text.len(), 2 * CHUNK_BYTES);
+        // To the end of the file, and nothing after it.
+        while growing.read_on(usize::MAX).ok() == Some(true) {}
+        assert!(growing.is_complete());
+        assert_eq!(growing.text, text);
+        assert!(growing.read_on(usize::MAX).ok() == Some(false));
     }
 
     #[test]
