@@ -25,6 +25,11 @@ use crate::{apart, waits};
 /// transparent huge page (2 MB), so that the text's next page is mapped in the wait.
 const IDLE_AHEAD_BYTES: usize = 2 << 20;
 
+/// The reading thread's stack: 1 MiB, far more than the parse needs (its expressions nest 64
+/// deep at most) and less than a transparent huge page, so that its first write (the thread's
+/// own data sits at the top of its stack) has the system zero one 4 KB page, not 2 MB.
+const HELPER_STACK_BYTES: usize = 1 << 20;
+
 /// A piece as it is handed over: its blocks and the expressions new in it.
 type Piece = (Vec<Block>, Vec<ExprNode>);
 
@@ -349,14 +354,16 @@ impl Helper {
         let away = apart.away();
         let moved = Arc::new(AtomicBool::new(false));
         let gone = Arc::clone(&moved);
-        let spawned = std::thread::Builder::new().spawn(move || {
-            away.go();
-            gone.store(true, Ordering::Release);
-            // Watching: the job comes within a fraction of a millisecond.
-            if let Ok(job) = waits::recv(&job) {
-                job();
-            }
-        });
+        let spawned = std::thread::Builder::new()
+            .stack_size(HELPER_STACK_BYTES)
+            .spawn(move || {
+                away.go();
+                gone.store(true, Ordering::Release);
+                // Watching: the job comes within a fraction of a millisecond.
+                if let Ok(job) = waits::recv(&job) {
+                    job();
+                }
+            });
         let Ok(thread) = spawned else {
             apart.release();
             return None;
