@@ -4,6 +4,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 
 use crate::Sink;
+use crate::state::plane_axes;
 
 /// The block an event came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -103,11 +104,8 @@ impl PlaneArc {
     /// `turns` extra full turns.
     #[inline]
     pub fn new(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> Self {
-        let (iu, iv, iw) = match axis {
-            Axis::Z => (0, 1, 2),
-            Axis::Y => (2, 0, 1),
-            Axis::X => (1, 2, 0),
-        };
+        let (iu, iv) = plane_axes(axis);
+        let iw = 3 - iu - iv;
         let rel = |p: DVec3| (p[iu] - center[iu], p[iv] - center[iv]);
         let (start_offset, end_offset) = (rel(from), rel(to));
         PlaneArc {
