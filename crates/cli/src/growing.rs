@@ -70,9 +70,7 @@ impl Growing {
     /// Reads on until the text holds a chunk's bytes past byte `from`, at least one whole line
     /// of them, or is complete.
     pub(crate) fn read_ahead(&mut self, from: usize) -> Result<(), Unread> {
-        while !self.is_complete() && self.text.len() < from.saturating_add(CHUNK_BYTES) {
-            self.read_chunk()?;
-        }
+        while self.read_on(from.saturating_add(CHUNK_BYTES))? {}
         Ok(())
     }
 
@@ -88,9 +86,7 @@ impl Growing {
 
     /// Reads the rest of the file.
     pub(crate) fn read_to_end(&mut self) -> Result<(), Unread> {
-        while !self.is_complete() {
-            self.read_chunk()?;
-        }
+        while self.read_on(usize::MAX)? {}
         Ok(())
     }
 
