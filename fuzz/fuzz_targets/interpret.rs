@@ -19,6 +19,8 @@ fuzz_target!(|bytes: &[u8]| {
     let mut setup = Setup::default();
     setup.machine.max_blocks = 10_000;
     setup.machine.max_motions = 100_000;
+    // Twice: into the canonical stream, which has no limit, and into the toolpath, whose
+    // segment limit (`Sink::full`, an arc's chords counting one each) can end a run sooner.
     let mut sink = CanonRecorder::default();
     let _ = swarf_interp::run(&program, setup.clone(), &mut sink);
 
