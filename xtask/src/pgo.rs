@@ -167,7 +167,9 @@ pub fn build() -> Result<PathBuf> {
 /// workspace's crates and `bin_flags` to the `swarf` binary's own: `swarf` for `target` where
 /// one is given (and copied to `dir/release`, beside the helper), the helper for the machine.
 fn build_with(dir: &Path, flag: &str, bin_flags: &[&str], target: Option<&str>) -> Result<()> {
-    for target in [None, target] {
+    // The machine's own folder (the helper, and `swarf` where it has no other target), then
+    // `target`'s.
+    for target in std::iter::once(None).chain(target.map(Some)) {
         let mut clean = cargo();
         clean
             .args(["clean", "--release", "--quiet"])
