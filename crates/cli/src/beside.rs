@@ -230,6 +230,10 @@ fn read_pieces(mut reading: Reading, ends: ReaderEnds) -> Read {
 /// Returns the interpreter this thread made, with what [`crate::run_pieces`] returns and the
 /// whole text, or why the file gave no text.
 ///
+/// Until the helper has moved to a processor of its own (a few tenths of a millisecond after
+/// its start here), this thread reads the first pieces itself, giving way after each so that
+/// the helper can move; it then hands the reading over and runs the pieces it read first.
+///
 /// The toolpath's measures and time model (about a quarter of a plain program's work) run on
 /// whichever thread would otherwise wait: this thread queues the moves of each piece it has
 /// run, and they are measured and timed, in order and a piece's moves at a time, by the
@@ -242,6 +246,15 @@ pub(crate) fn run_pieces_beside(
     toolpath: &mut Toolpath,
     helper: Helper,
 ) -> (Interpreter, Beside) {
+    let mut reading = Reading::new(source, dialect);
+    let first = read_first_pieces(&mut reading, &helper);
+    let (first, done) = match first {
+        Ok(first) => first,
+        Err(unread) => {
+            helper.dismiss();
+            return (Interpreter::new(setup.clone(), dialect), Err(unread));
+        }
+    };
     let (moves, queued) = channel::<Timings>();
     let (spent, spent_batches) = sync_channel::<Timings>(4);
     let shared = Arc::new(Shared {
@@ -266,17 +279,25 @@ pub(crate) fn run_pieces_beside(
         spare,
         bell,
     };
-    // The reader starts first, so that its first piece is being read while this thread makes
-    // its interpreter; the lines are indexed as they are read, by this reader.
-    let parser = helper.run(move || read_pieces(Reading::new(source, dialect), ends));
+    // The reading goes on on the helper while this thread makes its interpreter and runs the
+    // pieces read first; the lines are indexed as they are read, by the reader. A program
+    // read to its end already needs no helper: the rest of its reading is done here.
+    let (parser, mut reading) = if done {
+        helper.dismiss();
+        drop(ends);
+        (None, Some(reading))
+    } else {
+        let job = move || read_pieces(reading, ends);
+        (Some(helper.run(job)), None)
+    };
     let Shared {
         timing,
         stop,
         taken,
     } = &*shared;
     let mut runner = Interpreter::new(setup.clone(), dialect);
-    // While the reader makes the first piece, the memory that its moves go to is mapped here:
-    // the first piece then runs without waiting for it.
+    // While the reader reads on, the memory that the moves go to is mapped here: the pieces
+    // then run without waiting for it.
     toolpath.prefault();
     if let Ok(mut held) = timing.try_lock() {
         held.timer.prefault();
@@ -286,25 +307,31 @@ pub(crate) fn run_pieces_beside(
         dialect,
         ..Program::default()
     };
+    let mut first = first.into_iter();
     let mut blocks = 0;
     let mut ended = false;
     let mut whole = false;
     loop {
-        let next = loop {
-            match received.try_recv() {
-                Ok(next) => break Some(next),
-                Err(TryRecvError::Disconnected) => break None,
-                // Ahead of the reader: time the moves while waiting, if there are any.
-                Err(TryRecvError::Empty) if time_next(timing) => {}
-                Err(TryRecvError::Empty) => break waits::recv(&received).ok(),
+        let next = first.next().or_else(|| {
+            let next = loop {
+                match received.try_recv() {
+                    Ok(next) => break Some(next),
+                    Err(TryRecvError::Disconnected) => break None,
+                    // Ahead of the reader: time the moves while waiting, if there are any.
+                    Err(TryRecvError::Empty) if time_next(timing) => {}
+                    Err(TryRecvError::Empty) => break waits::recv(&received).ok(),
+                }
+            };
+            if next.is_some() {
+                taken.fetch_add(1, Ordering::Relaxed);
+                // A rung bell not yet heard is enough.
+                let _ = ring.try_send(());
             }
-        };
+            next
+        });
         let Some((read, exprs)) = next else {
             break;
         };
-        taken.fetch_add(1, Ordering::Relaxed);
-        // A rung bell not yet heard is enough.
-        let _ = ring.try_send(());
         piece.blocks = read;
         piece.exprs.extend(exprs);
         blocks += piece.blocks.len();
@@ -325,12 +352,14 @@ pub(crate) fn run_pieces_beside(
     drop(received);
     drop(moves);
     drop(ring);
-    let read = match parser.join() {
-        Ok(Some(read)) => read,
-        Ok(None) => std::panic::resume_unwind(Box::new(
+    let read = match (parser.map(Running::join), reading.take()) {
+        (Some(Ok(Some(read))), _) => read,
+        (Some(Ok(None)), _) => std::panic::resume_unwind(Box::new(
             "the reading thread ended before it was given the text",
         )),
-        Err(panic) => std::panic::resume_unwind(panic),
+        (Some(Err(panic)), _) => std::panic::resume_unwind(panic),
+        (None, Some(reading)) => reading.finish(!whole),
+        (None, None) => std::panic::resume_unwind(Box::new("the reading was lost")),
     };
     let ran = read.map(|(reader, text)| ((!whole).then_some((reader, blocks)), text));
     // The reader is done: the time model takes in the moves still queued and goes back to the
@@ -345,6 +374,22 @@ pub(crate) fn run_pieces_beside(
     (runner, ran)
 }
 
+/// Reads pieces on this thread, giving way after each, until the helper has moved to its own
+/// processor or [`waits::WATCH`] has passed: the pieces and whether the last was the end.
+fn read_first_pieces(reading: &mut Reading, helper: &Helper) -> Result<(Vec<Piece>, bool), Unread> {
+    let start = std::time::Instant::now();
+    let mut first = Vec::new();
+    while !helper.moved() && start.elapsed() < waits::WATCH {
+        let (piece, done) = reading.next_piece(Vec::with_capacity(PIECE_LINES))?;
+        first.push(piece);
+        if done {
+            return Ok((first, true));
+        }
+        std::thread::yield_now();
+    }
+    Ok((first, false))
+}
+
 /// The thread that reads a long program's pieces ([`run_pieces_beside`]): started first, so
 /// that the file's text is handed only to a thread that could be started, then given its job
 /// (or the job runs on a new thread where it is gone).
@@ -355,6 +400,8 @@ pub(crate) struct Helper {
     jobs: Sender<Job>,
     thread: std::thread::JoinHandle<()>,
     apart: apart::Apart,
+    /// Set by the thread once it has moved off this thread's processor.
+    moved: Arc<AtomicBool>,
 }
 
 /// A job for the [`Helper`]: it hands its result back itself.
@@ -387,13 +434,24 @@ impl Helper {
             return None;
         };
         // The new thread starts on this thread's processor, the only one it may run on until it
-        // moves: this thread makes way until it has moved.
-        waits::yielding(|| moved.load(Ordering::Acquire));
+        // moves: this thread gives way to it while it reads the first pieces.
         Some(Helper {
             jobs,
             thread,
             apart,
+            moved,
         })
+    }
+
+    /// Whether the thread has moved to a processor of its own (and watches for its job).
+    fn moved(&self) -> bool {
+        self.moved.load(Ordering::Acquire)
+    }
+
+    /// Lets the thread go without a job (it ends on its own) and this thread run on any
+    /// processor again.
+    fn dismiss(self) {
+        self.apart.release();
     }
 
     /// Runs `job` on the thread (on a new one were it gone).

@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 /// How long a thread watches before it sleeps: longer than the other thread takes for a
 /// piece, short enough that a thread left waiting (the other one was descheduled) gives its
 /// processor back soon.
-const WATCH: Duration = Duration::from_micros(500);
+pub(crate) const WATCH: Duration = Duration::from_micros(500);
 
 /// Polls between two looks at the clock.
 const POLLS: u32 = 64;
@@ -44,15 +44,6 @@ pub(crate) fn recv<T>(from: &Receiver<T>) -> Result<T, RecvError> {
         Err(TryRecvError::Empty) => None,
     });
     seen.unwrap_or_else(|| from.recv())
-}
-
-/// Gives way to the other threads of this processor until `done` or [`WATCH`] has passed: for
-/// a thread that a new thread has to run beside before it can move to a processor of its own.
-pub(crate) fn yielding(mut done: impl FnMut() -> bool) {
-    let start = Instant::now();
-    while !done() && start.elapsed() < WATCH {
-        std::thread::yield_now();
-    }
 }
 
 #[cfg(test)]
@@ -86,20 +77,5 @@ mod tests {
         assert_eq!(recv(&bell), Ok(()));
         drop(ring);
         assert_eq!(recv(&bell), Err(RecvError));
-    }
-
-    /// Giving way ends as soon as the condition holds, and after the watch when it never
-    /// does.
-    #[test]
-    fn giving_way_ends_when_done_or_after_the_watch() {
-        let mut calls = 0;
-        yielding(|| {
-            calls += 1;
-            calls == 3
-        });
-        assert_eq!(calls, 3);
-        let start = Instant::now();
-        yielding(|| false);
-        assert!(start.elapsed() >= WATCH);
     }
 }

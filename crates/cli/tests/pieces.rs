@@ -150,6 +150,34 @@ fn a_long_file_read_as_it_runs_reads_as_it_does_whole() {
     }
 }
 
+/// Programs a few pieces long, which the running thread may read to their end itself before
+/// the reading thread is ready to take over (or only their first pieces), read as they do
+/// whole: plain, not plain UTF-8 from their first line, and calling a subprogram at the end.
+/// The shortest is longer than a piece in bytes but not in lines, so its first piece is all
+/// of it.
+#[test]
+fn a_program_of_a_few_pieces_reads_as_it_does_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let comment = format!(" ({})", "-".repeat(240));
+    for lines in [100, 1_200, 2_500, 5_000, 10_000] {
+        let mut text = long_program(lines, "");
+        if lines == 100 {
+            text = text.replace('\n', &format!("{comment}\n"));
+        }
+        let gbk = [&b"(\xBC\xD3\xB9\xA4)\n"[..], text.as_bytes()].concat();
+        let call = long_program(lines, "M98 P2000\nM30\nO2000\nG1 X1\nM99\n");
+        for (name, bytes) in [
+            ("plain", text.into_bytes()),
+            ("gbk", gbk),
+            ("call", call.into_bytes()),
+        ] {
+            let file = dir.path().join(format!("{name}-{lines}.nc"));
+            std::fs::write(&file, &bytes).unwrap();
+            assert_same(&file, "fanuc");
+        }
+    }
+}
+
 #[test]
 fn a_loop_after_the_end_in_the_same_piece_runs_the_program_whole() {
     // The program ends in a piece that goes on with a loop, closed in the next piece: the
