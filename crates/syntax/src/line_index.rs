@@ -68,6 +68,12 @@ impl LineIndex {
         Some(at)
     }
 
+    /// Adds the start of the next line, at byte `start` (just after a `\n`), for a reader that
+    /// finds the line endings as it reads (the table then grows as [`LineIndex::extend`] makes it).
+    pub(crate) fn push_start(&mut self, start: usize) {
+        self.starts.push(u32::try_from(start).unwrap_or(u32::MAX));
+    }
+
     /// Number of lines (an empty text has one empty line).
     pub fn line_count(&self) -> usize {
         self.starts.len()

@@ -81,11 +81,11 @@ impl ParseRun {
         }
     }
 
-    /// A run that indexes the lines of `text` as it reads them, a piece ahead, rather than all
-    /// before the first step: for a reader that runs a long program piece by piece as it is
-    /// read (the command line), which then starts at once and, reading on a second thread,
-    /// does the indexing there. Until the run is done, [`ParseRun::progress`] counts only the
-    /// lines indexed so far.
+    /// A run that indexes the lines of `text` as it reads them (each line's end is found as the
+    /// line is read), rather than all before the first step: for a reader that runs a long
+    /// program piece by piece as it is read (the command line), which then starts at once and,
+    /// reading on a second thread, does the indexing there. Until the run is done,
+    /// [`ParseRun::progress`] counts only the lines indexed so far.
     pub fn streaming(text: &str, dialect: Dialect) -> Self {
         ParseRun::growing(text.len(), dialect)
     }
@@ -156,6 +156,9 @@ impl ParseRun {
         lines: usize,
         complete: bool,
     ) -> bool {
+        if let (Some(text), Some(_)) = (text, self.indexed) {
+            return self.read_indexing(text, lines, complete);
+        }
         let program = &mut self.program;
         let dialect = program.dialect;
         // The lines come from the line index: a streaming run first indexes those it will read
@@ -197,11 +200,13 @@ impl ParseRun {
             };
             // The short reader reads bytes: a line of the whole text is taken as bytes, sparing
             // the checks that a `str` is cut between characters (at a newline it always is).
-            let (raw, whole) = if let Some(text) = text {
-                (text.as_bytes().get(start..end).unwrap_or_default(), None)
+            // The short reader is given the text from the line's start on (it finds the same end).
+            let (raw, whole, onward) = if let Some(text) = text {
+                let onward = text.as_bytes().get(start..).unwrap_or_default();
+                (onward.get(..end - start).unwrap_or_default(), None, onward)
             } else {
                 let line = source.line(start, end);
-                (line.as_bytes(), Some(line))
+                (line.as_bytes(), Some(line), line.as_bytes())
             };
             let raw_len = raw.len();
             let bytes = raw.strip_suffix(b"\r").unwrap_or(raw);
@@ -210,13 +215,14 @@ impl ParseRun {
             // one does).
             let plain = if plain_lines && bytes.len() <= MAX_LINE_BYTES {
                 read_plain_line(
-                    bytes,
+                    onward,
                     offset,
                     line_no,
                     limits,
                     &mut program.blocks,
                     &mut self.checker,
                 )
+                .map(|(block, _)| block)
             } else {
                 None
             };
@@ -227,57 +233,20 @@ impl ParseRun {
                 let raw = whole
                     .or_else(|| text.and_then(|text| text.get(start..end)))
                     .unwrap_or_default();
-                let mut line = raw.strip_suffix('\r').unwrap_or(raw);
-                if line.len() > MAX_LINE_BYTES {
-                    // A runaway line (a binary file, a generator gone wrong): read its start only.
-                    let mut cut = MAX_LINE_BYTES;
-                    while !line.is_char_boundary(cut) {
-                        cut -= 1;
-                    }
-                    program.diagnostics.push(Diagnostic::error(
-                        Span::new(offset + cut, offset + line.len()),
-                        "E-LINE-LENGTH",
-                        format!(
-                            "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
-                            line.len()
-                        ),
-                    ));
-                    line = &line[..cut];
-                }
-                let mut reader = LineReader {
-                    dialect,
-                    rules: dialect.rules(),
-                    line,
-                    bytes: line.as_bytes(),
-                    base: offset,
-                    line_no,
-                    program,
-                    checker: &mut self.checker,
-                    open_brackets: 0,
-                    statements: Vec::new(),
-                    comments: Vec::new(),
-                };
-                reader.read();
-                let significant = line.trim_start_matches(is_blank);
-                (significant.is_empty(), significant.starts_with('%'))
+                read_general_line(program, &mut self.checker, raw, offset, line_no)
             };
             offset += raw_len + 1;
             next += 1;
-            tape = match (tape, percent) {
-                (_, false) if blank => tape,
-                (Tape::Before, true) => Tape::Open,
-                (Tape::Before | Tape::Plain, false) => Tape::Plain,
-                (Tape::Open, true) => {
-                    if complete {
-                        ignore_after_tape_end(program, source, offset);
-                    } else {
-                        self.tape_end = Some(offset);
-                    }
-                    done = true;
-                    tape
+            let closed;
+            (tape, closed) = tape.after(blank, percent);
+            if closed {
+                if complete {
+                    ignore_after_tape_end(program, source, offset);
+                } else {
+                    self.tape_end = Some(offset);
                 }
-                (other, _) => other,
-            };
+                done = true;
+            }
         }
         self.line_no = next;
         self.offset = offset;
@@ -290,6 +259,89 @@ impl ParseRun {
         // text indexed, as a run that indexes first has.
         if let (true, true, Some(from)) = (complete, self.done, self.indexed) {
             self.indexed = index_lines(&mut self.program.lines, text, source, from, usize::MAX);
+        }
+        self.done
+    }
+
+    /// [`ParseRun::read_lines`] for a run that indexes the lines as it reads them
+    /// ([`ParseRun::streaming`], [`ParseRun::growing`]) over a text at hand: each line's end is
+    /// found as it is read (by the short reader, as it reads a plain line) rather than by a
+    /// pass over the text before, and the start of the line after it goes to the index.
+    fn read_indexing(&mut self, text: &str, lines: usize, complete: bool) -> bool {
+        let program = &mut self.program;
+        let limits = PlainLimits::of(program.dialect.rules());
+        let bytes = text.as_bytes();
+        // A text still being read is read to its last line ending: the line after it is still
+        // to come (the text holds whole lines only).
+        let readable = if complete {
+            usize::MAX
+        } else {
+            bytes
+                .iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |at| at + 1)
+        };
+        let stop = self.line_no.saturating_add(lines);
+        let mut next = self.line_no;
+        let mut offset = self.offset;
+        let mut tape = self.tape;
+        let mut done = self.done;
+        while !done && next < stop && offset < readable {
+            let rest = bytes.get(offset..).unwrap_or_default();
+            let line_no = u32::try_from(next).unwrap_or(u32::MAX);
+            let plain = if self.plain_lines {
+                read_plain_line(
+                    rest,
+                    offset,
+                    line_no,
+                    limits,
+                    &mut program.blocks,
+                    &mut self.checker,
+                )
+            } else {
+                None
+            };
+            let (raw_len, blank, percent) = if let Some((block, raw_len)) = plain {
+                (raw_len, !block, false)
+            } else {
+                let raw_len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+                let raw = text.get(offset..offset + raw_len).unwrap_or_default();
+                let (blank, percent) =
+                    read_general_line(program, &mut self.checker, raw, offset, line_no);
+                (raw_len, blank, percent)
+            };
+            offset += raw_len + 1;
+            next += 1;
+            if raw_len < rest.len() {
+                // Ended by its `\n`: a line starts after it.
+                program.lines.push_start(offset);
+            } else {
+                // The text's last line.
+                done = true;
+            }
+            let closed;
+            (tape, closed) = tape.after(blank, percent);
+            if closed {
+                if complete {
+                    ignore_after_tape_end(program, &mut &*text, offset);
+                } else {
+                    self.tape_end = Some(offset);
+                }
+                done = true;
+            }
+        }
+        self.line_no = next;
+        self.offset = offset;
+        self.tape = tape;
+        self.done = done;
+        // The lines not read (after a closing tape mark) are indexed too, once the text is
+        // whole, as a run that indexes first has them.
+        self.indexed = Some(offset.min(bytes.len()));
+        if complete && done {
+            self.indexed = self
+                .program
+                .lines
+                .extend(text, offset.min(bytes.len()), usize::MAX);
         }
         self.done
     }
@@ -401,6 +453,65 @@ enum Tape {
     Open,
     /// The program did not open with `%`: a `%` line is only a mark.
     Plain,
+}
+
+impl Tape {
+    /// Where the reader is after a line (whether blank, whether a `%` line), and whether that
+    /// line closed the program.
+    fn after(self, blank: bool, percent: bool) -> (Tape, bool) {
+        match (self, percent) {
+            (_, false) if blank => (self, false),
+            (Tape::Before, true) => (Tape::Open, false),
+            (Tape::Before | Tape::Plain, false) => (Tape::Plain, false),
+            (Tape::Open, true) => (self, true),
+            (other, _) => (other, false),
+        }
+    }
+}
+
+/// Reads `raw` (a line without its `\n`, at byte `offset`) with the general reader: whether it
+/// is blank and whether it is a `%` line, for the tape marks.
+fn read_general_line(
+    program: &mut Program,
+    checker: &mut crate::checks::Checker,
+    raw: &str,
+    offset: usize,
+    line_no: u32,
+) -> (bool, bool) {
+    let dialect = program.dialect;
+    let mut line = raw.strip_suffix('\r').unwrap_or(raw);
+    if line.len() > MAX_LINE_BYTES {
+        // A runaway line (a binary file, a generator gone wrong): read its start only.
+        let mut cut = MAX_LINE_BYTES;
+        while !line.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        program.diagnostics.push(Diagnostic::error(
+            Span::new(offset + cut, offset + line.len()),
+            "E-LINE-LENGTH",
+            format!(
+                "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
+                line.len()
+            ),
+        ));
+        line = &line[..cut];
+    }
+    let mut reader = LineReader {
+        dialect,
+        rules: dialect.rules(),
+        line,
+        bytes: line.as_bytes(),
+        base: offset,
+        line_no,
+        program,
+        checker,
+        open_brackets: 0,
+        statements: Vec::new(),
+        comments: Vec::new(),
+    };
+    reader.read();
+    let significant = line.trim_start_matches(is_blank);
+    (significant.is_empty(), significant.starts_with('%'))
 }
 
 /// Notes that the text from `offset` on, after the closing `%`, is not read (if it is not blank).
@@ -584,9 +695,13 @@ impl PlainLimits {
 /// at most 15 digits (within the dialect's limit), separated by blanks — and optionally a
 /// sequence number first: the line every CAM program is made of (`G1 X5.12 Y0.00 S100`,
 /// ` X3.2040 Z-0.1539`, `N20 G0 Z5.`). The block is written in place at the end of `blocks`
-/// and checked, exactly as the general reader would make and check it. Returns whether the
-/// line gave a block (a blank line gives none), or `None`, having read nothing, for any other
-/// line: the general reader reads it.
+/// and checked, exactly as the general reader would make and check it.
+///
+/// `bytes` is the text from the line's start on: the line ends at its `\n` (a `\r` just before
+/// it, or at the end, is not part of it) or at the end of `bytes`, and is found as it is read.
+/// Returns whether the line gave a block (a blank line gives none) and the length of the line
+/// with its `\r` if it has one (where its `\n` is, if it has one), or `None`, having read
+/// nothing, for any other line (or one over [`MAX_LINE_BYTES`]): the general reader reads it.
 #[inline]
 fn read_plain_line(
     bytes: &[u8],
@@ -595,18 +710,26 @@ fn read_plain_line(
     limits: PlainLimits,
     blocks: &mut Vec<Block>,
     checker: &mut crate::checks::Checker,
-) -> Option<bool> {
-    let n = bytes.len();
+) -> Option<(bool, usize)> {
+    // Where the line ends, if at `pos`: its length with and without a `\r` there.
+    let end_at = |pos: usize| -> Option<usize> {
+        match bytes.get(pos) {
+            None | Some(b'\n') => Some(pos),
+            Some(b'\r') if matches!(bytes.get(pos + 1), None | Some(b'\n')) => Some(pos + 1),
+            _ => None,
+        }
+    };
     let mut pos = 0;
-    while pos < n && matches!(bytes[pos], b' ' | b'\t') {
+    while matches!(bytes.get(pos), Some(b' ' | b'\t')) {
         pos += 1;
     }
-    if pos == n {
-        return Some(false);
+    if let Some(raw_len) = end_at(pos) {
+        return (pos <= MAX_LINE_BYTES).then_some((false, raw_len));
     }
-    // The spans' offsets, when the whole line lies in the 4 GiB a span addresses (the general
-    // reader clamps the offsets past them). A line is at most `MAX_LINE_BYTES` long.
-    let base = u32::try_from(base + n).ok()? - n as u32;
+    // The spans' offsets, when the longest line read here lies in the 4 GiB a span addresses
+    // (the general reader clamps the offsets past them).
+    let reach = bytes.len().min(MAX_LINE_BYTES + 2);
+    let base = u32::try_from(base + reach).ok()? - reach as u32;
     let first = pos;
     let PlainLimits {
         max_digits,
@@ -620,19 +743,22 @@ fn read_plain_line(
         let start = pos + 1;
         pos = start;
         let mut value = 0u32;
-        while pos < n && bytes[pos].is_ascii_digit() && pos - start < 9 {
-            value = value * 10 + u32::from(bytes[pos] - b'0');
+        while let Some(&b) = bytes.get(pos)
+            && b.is_ascii_digit()
+            && pos - start < 9
+        {
+            value = value * 10 + u32::from(b - b'0');
             pos += 1;
         }
         if pos == start
             || value > max_sequence_number
-            || (pos < n && matches!(bytes[pos], b'0'..=b'9' | b'.'))
+            || matches!(bytes.get(pos), Some(b'0'..=b'9' | b'.'))
         {
             return None;
         }
         number = Some(value);
         last = pos;
-        while pos < n && matches!(bytes[pos], b' ' | b'\t') {
+        while matches!(bytes.get(pos), Some(b' ' | b'\t')) {
             pos += 1;
         }
     }
@@ -645,7 +771,14 @@ fn read_plain_line(
     }));
     let block = blocks.last_mut()?;
     let mut scan = crate::checks::PlainScan::default();
-    while pos < n {
+    let raw_len = loop {
+        if let Some(raw_len) = end_at(pos) {
+            break raw_len;
+        }
+        if pos > MAX_LINE_BYTES {
+            blocks.pop();
+            return None;
+        }
         let start = pos;
         let letter = PLAIN_LETTERS[usize::from(bytes[pos])];
         if letter == 0 {
@@ -668,7 +801,8 @@ fn read_plain_line(
             blocks.pop();
             return None;
         };
-        if digits > max_digits || bytes.get(pos) == Some(&b'=') {
+        // A runaway line is cut by the general reader.
+        if digits > max_digits || bytes.get(pos) == Some(&b'=') || pos > MAX_LINE_BYTES {
             blocks.pop();
             return None;
         }
@@ -686,16 +820,20 @@ fn read_plain_line(
             expr: None,
         });
         last = pos;
-        while pos < n && matches!(bytes[pos], b' ' | b'\t') {
+        while matches!(bytes.get(pos), Some(b' ' | b'\t')) {
             pos += 1;
         }
+    };
+    if pos > MAX_LINE_BYTES {
+        blocks.pop();
+        return None;
     }
     block.span = Span {
         start: base + first as u32,
         end: base + last as u32,
     };
     checker.check_scanned(block, &scan);
-    Some(true)
+    Some((true, raw_len))
 }
 
 /// For each byte, the address letter (uppercase) of a word of a plain line that it starts, or 0:

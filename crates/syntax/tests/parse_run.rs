@@ -141,3 +141,34 @@ fn a_run_over_a_text_still_being_read_equals_the_whole_parse() {
         }
     }
 }
+
+/// Line endings and lengths that a reader finding each line's end as it reads must get right:
+/// `\r\n`, `\r\r\n`, a `\r` inside a line and at the text's end, lines of blanks, and a plain
+/// line longer than the longest line read whole (the rest is reported and skipped). Read
+/// streaming and as a text still being read, each gives the whole parse.
+#[test]
+fn line_ends_found_as_the_lines_are_read_equal_the_whole_parse() {
+    let long = format!("G1 X1{}\n", " Y2".repeat(400_000));
+    let texts = [
+        (String::from("G1 X1\r\nG1 X2\r\r\nG1\rX3\nG1 X4\r"), 1),
+        (String::from("G1 X1\n   \t \nX2\r\n\r\n\rG1\n  \r\n"), 1),
+        (String::from("\r\n\n%\r\nG1 X1\r\n%\r\nX$\r\n"), 1),
+        (format!("G1 X0\n{long}N10 G1 X5\n"), 4096),
+    ];
+    for (text, smallest_chunk) in &texts {
+        for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+            let whole = parse(text, dialect);
+            for lines in [1, 3, 1000] {
+                let (program, _) = stepped(text, dialect, lines, true);
+                assert_eq!(program, whole, "{dialect:?} in steps of {lines}");
+                for chunk in [*smallest_chunk, 64, 100_000] {
+                    assert_eq!(
+                        grown(text, dialect, chunk.max(*smallest_chunk), lines),
+                        whole,
+                        "{dialect:?} chunks of {chunk}, steps of {lines}"
+                    );
+                }
+            }
+        }
+    }
+}
