@@ -30,14 +30,14 @@ const IDLE_AHEAD_BYTES: usize = 2 << 20;
 /// own data sits at the top of its stack) has the system zero one 4 KB page, not 2 MB.
 const HELPER_STACK_BYTES: usize = 1 << 20;
 
-/// How many block arrays the reader makes (each a piece long, 168 KB) before it reuses the
+/// How many block arrays the reader makes (each a piece long, 344 KB) before it reuses the
 /// ones the runner gives back, oldest first: enough that an array has left the runner's
 /// processor cache (2 MB of second-level cache a core here) before the reader writes it again.
 /// An array the runner has just read is still in that cache, and each of its cache lines the
 /// reader then writes first has the other processor's copy invalidated, a wait of the order of
-/// a cache miss: with four arrays going round, the reader's parse took 60–70 % longer than on
-/// one thread (`stellabee1.ngc` 8.1 ms against 4.9 ms).
-const POOL_ARRAYS: usize = 16;
+/// a cache miss: with the few arrays that used to go round, the reader's parse took 60–70 %
+/// longer than on one thread (`stellabee1.ngc` 8.1 ms against 4.9 ms).
+const POOL_ARRAYS: usize = 8;
 
 /// A piece as it is handed over: its blocks and the expressions new in it.
 type Piece = (Vec<Block>, Vec<ExprNode>);

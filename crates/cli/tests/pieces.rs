@@ -158,7 +158,7 @@ fn a_long_file_read_as_it_runs_reads_as_it_does_whole() {
 #[test]
 fn a_program_of_a_few_pieces_reads_as_it_does_whole() {
     let dir = tempfile::tempdir().unwrap();
-    let comment = format!(" ({})", "-".repeat(240));
+    let comment = format!(" ({})", "-".repeat(600));
     for lines in [100, 1_200, 2_500, 5_000, 10_000] {
         let mut text = long_program(lines, "");
         if lines == 100 {
