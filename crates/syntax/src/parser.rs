@@ -712,6 +712,9 @@ fn read_plain_line(
     checker: &mut crate::checks::Checker,
 ) -> Option<(bool, usize)> {
     // Where the line ends, if at `pos`: its length with and without a `\r` there.
+    // A line longer than the longest read whole is left to the general reader, which cuts it:
+    // it is read no further than that here, and goes there at its end.
+    let bytes = bytes.get(..MAX_LINE_BYTES + 2).unwrap_or(bytes);
     let end_at = |pos: usize| -> Option<usize> {
         match bytes.get(pos) {
             None | Some(b'\n') => Some(pos),
@@ -728,7 +731,7 @@ fn read_plain_line(
     }
     // The spans' offsets, when the longest line read here lies in the 4 GiB a span addresses
     // (the general reader clamps the offsets past them).
-    let reach = bytes.len().min(MAX_LINE_BYTES + 2);
+    let reach = bytes.len();
     let base = u32::try_from(base + reach).ok()? - reach as u32;
     let first = pos;
     let PlainLimits {
@@ -772,16 +775,15 @@ fn read_plain_line(
     let block = blocks.last_mut()?;
     let mut scan = crate::checks::PlainScan::default();
     let raw_len = loop {
-        if let Some(raw_len) = end_at(pos) {
-            break raw_len;
-        }
-        if pos > MAX_LINE_BYTES {
-            blocks.pop();
-            return None;
-        }
+        let Some(&b) = bytes.get(pos) else {
+            break pos;
+        };
         let start = pos;
-        let letter = PLAIN_LETTERS[usize::from(bytes[pos])];
+        let letter = PLAIN_LETTERS[usize::from(b)];
         if letter == 0 {
+            if let Some(raw_len) = end_at(pos) {
+                break raw_len;
+            }
             blocks.pop();
             return None;
         }
@@ -801,8 +803,7 @@ fn read_plain_line(
             blocks.pop();
             return None;
         };
-        // A runaway line is cut by the general reader.
-        if digits > max_digits || bytes.get(pos) == Some(&b'=') || pos > MAX_LINE_BYTES {
+        if digits > max_digits || bytes.get(pos) == Some(&b'=') {
             blocks.pop();
             return None;
         }
