@@ -186,6 +186,20 @@ impl Kinematics {
     /// reach `cruise` peaks where acceleration and deceleration meet. Zero for an empty move
     /// and for a move without a feed (`cruise <= 0`).
     pub fn move_secs(&self, length: f64, cruise: f64, entry: f64, exit: f64) -> f64 {
+        self.move_secs_per(length, cruise, entry, exit, self.per_acceleration())
+    }
+
+    /// One over the acceleration, which [`Kinematics::move_secs_per`] takes: worked out once
+    /// for a run of moves rather than a division each.
+    fn per_acceleration(&self) -> f64 {
+        1.0 / self.acceleration_mm_per_s2
+    }
+
+    /// [`Kinematics::move_secs`] given `per_a`, [`Kinematics::per_acceleration`]: one division
+    /// by the acceleration for every move of a run rather than four a move (the planner's
+    /// passes time every move, and divisions take turns on one unit of the processor).
+    #[inline]
+    fn move_secs_per(&self, length: f64, cruise: f64, entry: f64, exit: f64, per_a: f64) -> f64 {
         if length <= 0.0 || cruise.is_nan() || cruise <= 0.0 {
             return 0.0;
         }
@@ -196,9 +210,6 @@ impl Kinematics {
         let u = entry.clamp(0.0, cruise);
         let w = exit.clamp(0.0, cruise);
         let peak = cruise.min(((2.0 * a * length + u * u + w * w) / 2.0).sqrt());
-        // One division by the acceleration (the same for every move, so a loop of moves makes
-        // it once) rather than four: the planner's passes time every move.
-        let per_a = 1.0 / a;
         let speed_up = ((peak * peak - u * u) * (0.5 * per_a)).max(0.0);
         let slow_down = ((peak * peak - w * w) * (0.5 * per_a)).max(0.0);
         let steady = (length - speed_up - slow_down).max(0.0);
@@ -363,6 +374,8 @@ fn dwell_before(dwells: &[Dwell], i: usize) -> f64 {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Timer {
     kinematics: Kinematics,
+    /// One over its acceleration ([`Kinematics::per_acceleration`]).
+    per_acceleration: f64,
     /// The settled end times (a prefix of the segments).
     end_times: Vec<f64>,
     /// The segments after the settled ones, whose join speeds may still change.
@@ -458,6 +471,7 @@ impl Timer {
     fn new(kinematics: Kinematics, start: DVec3) -> Self {
         Timer {
             kinematics,
+            per_acceleration: kinematics.per_acceleration(),
             end_times: Vec::new(),
             window: Vec::new(),
             start,
@@ -579,7 +593,8 @@ impl Timer {
             if let [lone] = self.window[..] {
                 // A program that stops at every corner settles each move on its own.
                 let start = self.end_times.last().copied().unwrap_or(0.0);
-                self.end_times.push(lone_end_time(&lone, k, start));
+                self.end_times
+                    .push(lone_end_time(&lone, k, self.per_acceleration, start));
                 self.window.clear();
             } else {
                 self.settle(self.window.len());
@@ -1106,7 +1121,7 @@ fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, ou
     let count = count.min(window.len());
     if let [p] = window {
         if count == 1 {
-            out.push(lone_end_time(p, k, start));
+            out.push(lone_end_time(p, k, k.per_acceleration(), start));
         }
         return;
     }
@@ -1120,11 +1135,12 @@ fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, ou
         backward = k.reach_capped(backward, p.length, p.limit);
         *entry = p.forward.min(backward);
     }
+    let per_a = k.per_acceleration();
     let mut t = start;
     for i in 0..count {
         let p = &window[i];
         let exit = entries.get(i + 1).copied().unwrap_or(0.0);
-        t += p.dwell + k.move_secs(p.length, p.cruise, entries[i], exit);
+        t += p.dwell + k.move_secs_per(p.length, p.cruise, entries[i], exit, per_a);
         entries[i] = t;
     }
     out.truncate(base + count);
@@ -1135,12 +1151,12 @@ fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, ou
 /// stop (the window only restarts at one, and a partial settle leaves many segments), so its
 /// limit and entry speed are zero.
 #[inline]
-fn lone_end_time(p: &Plan, k: Kinematics, start: f64) -> f64 {
+fn lone_end_time(p: &Plan, k: Kinematics, per_a: f64, start: f64) -> f64 {
     debug_assert!(
         p.limit <= 0.0 && p.forward <= 0.0,
         "a lone segment starts at rest"
     );
-    start + (p.dwell + k.move_secs(p.length, p.cruise, 0.0, 0.0))
+    start + (p.dwell + k.move_secs_per(p.length, p.cruise, 0.0, 0.0, per_a))
 }
 
 /// The most segments a toolpath for `machine` holds: as many as the moves a run may make, an
@@ -1417,7 +1433,12 @@ mod tests {
                     let bits = |v: &[f64]| v.iter().map(|t| t.to_bits()).collect::<Vec<_>>();
                     assert_eq!(bits(&got[1..]), bits(&want), "n {n} count {count}");
                     if n == 1 && count == 1 {
-                        let lone = lone_end_time(&window[0], kinematics, start);
+                        let lone = lone_end_time(
+                            &window[0],
+                            kinematics,
+                            kinematics.per_acceleration(),
+                            start,
+                        );
                         assert_eq!(lone.to_bits(), want[0].to_bits());
                     }
                 }
