@@ -240,11 +240,7 @@ impl ParseRun {
             let closed;
             (tape, closed) = tape.after(blank, percent);
             if closed {
-                if complete {
-                    ignore_after_tape_end(program, source, offset);
-                } else {
-                    self.tape_end = Some(offset);
-                }
+                close_tape(program, source, complete, offset, &mut self.tape_end);
                 done = true;
             }
         }
@@ -322,11 +318,7 @@ impl ParseRun {
             let closed;
             (tape, closed) = tape.after(blank, percent);
             if closed {
-                if complete {
-                    ignore_after_tape_end(program, &mut &*text, offset);
-                } else {
-                    self.tape_end = Some(offset);
-                }
+                close_tape(program, &mut &*text, complete, offset, &mut self.tape_end);
                 done = true;
             }
         }
@@ -512,6 +504,23 @@ fn read_general_line(
     reader.read();
     let significant = line.trim_start_matches(is_blank);
     (significant.is_empty(), significant.starts_with('%'))
+}
+
+/// After the line that closes the program, ending at `offset`: the text after it is noted as
+/// not read once it is whole (now if `complete`, else its start is kept in `tape_end` for
+/// [`ParseRun::complete`]).
+fn close_tape(
+    program: &mut Program,
+    source: &mut dyn LineSource,
+    complete: bool,
+    offset: usize,
+    tape_end: &mut Option<usize>,
+) {
+    if complete {
+        ignore_after_tape_end(program, source, offset);
+    } else {
+        *tape_end = Some(offset);
+    }
 }
 
 /// Notes that the text from `offset` on, after the closing `%`, is not read (if it is not blank).
