@@ -282,13 +282,12 @@ pub(crate) fn run_pieces_beside(
     // The reading goes on on the helper while this thread makes its interpreter and runs the
     // pieces read first; the lines are indexed as they are read, by the reader. A program
     // read to its end already needs no helper: the rest of its reading is done here.
-    let (parser, mut reading) = if done {
+    let reader = if done {
         helper.dismiss();
         drop(ends);
-        (None, Some(reading))
+        Reader::Here(reading)
     } else {
-        let job = move || read_pieces(reading, ends);
-        (Some(helper.run(job)), None)
+        Reader::Beside(helper.run(move || read_pieces(reading, ends)))
     };
     let Shared {
         timing,
@@ -352,14 +351,16 @@ pub(crate) fn run_pieces_beside(
     drop(received);
     drop(moves);
     drop(ring);
-    let read = match (parser.map(Running::join), reading.take()) {
-        (Some(Ok(Some(read))), _) => read,
-        (Some(Ok(None)), _) => std::panic::resume_unwind(Box::new(
-            "the reading thread ended before it was given the text",
-        )),
-        (Some(Err(panic)), _) => std::panic::resume_unwind(panic),
-        (None, Some(reading)) => reading.finish(!whole),
-        (None, None) => std::panic::resume_unwind(Box::new("the reading was lost")),
+    let read = match reader {
+        // Every piece was read here.
+        Reader::Here(reading) => reading.finish(true),
+        Reader::Beside(running) => match running.join() {
+            Ok(Some(read)) => read,
+            Ok(None) => std::panic::resume_unwind(Box::new(
+                "the reading thread ended before it was given the text",
+            )),
+            Err(panic) => std::panic::resume_unwind(panic),
+        },
     };
     let ran = read.map(|(reader, text)| ((!whole).then_some((reader, blocks)), text));
     // The reader is done: the time model takes in the moves still queued and goes back to the
@@ -372,6 +373,15 @@ pub(crate) fn run_pieces_beside(
     drop(held);
     toolpath.attach_timer(timer);
     (runner, ran)
+}
+
+/// Where the reading of a run on two threads goes on: on the helper, or here where this thread
+/// read the whole program before the helper had moved.
+enum Reader {
+    /// The helper at its job.
+    Beside(Running),
+    /// The reading, every piece read.
+    Here(Reading),
 }
 
 /// Reads pieces on this thread, giving way after each, until the helper has moved to its own

@@ -161,15 +161,11 @@ impl ParseRun {
         }
         let program = &mut self.program;
         let dialect = program.dialect;
-        // The lines come from the line index: a streaming run first indexes those it will read
-        // (and the start of the line after them, where the last one ends); from a source, whose
-        // whole text may have to be put together to be searched, it indexes all of it at once.
+        // The lines come from the line index: a streaming run over a source (a text at hand
+        // goes to `read_indexing`), whose whole text may have to be put together to be searched,
+        // indexes all of it at once.
         if let Some(from) = self.indexed {
-            let wanted = match text {
-                Some(_) => self.line_no.saturating_add(lines).saturating_add(1),
-                None => usize::MAX,
-            };
-            self.indexed = index_lines(&mut program.lines, text, source, from, wanted);
+            self.indexed = index_source(&mut program.lines, source, from);
             if !complete {
                 // The text read so far is indexed; the rest is still to come.
                 self.indexed = self.indexed.or(Some(source.len()));
@@ -254,7 +250,7 @@ impl ParseRun {
         // A program that ends before its text does (a closing tape mark) still has its whole
         // text indexed, as a run that indexes first has.
         if let (true, true, Some(from)) = (complete, self.done, self.indexed) {
-            self.indexed = index_lines(&mut self.program.lines, text, source, from, usize::MAX);
+            self.indexed = index_source(&mut self.program.lines, source, from);
         }
         self.done
     }
@@ -383,21 +379,10 @@ impl ParseRun {
     }
 }
 
-/// [`LineIndex::extend`] over the text a run reads: `text` when it is at hand, else the whole
-/// of `source`.
-fn index_lines(
-    lines: &mut LineIndex,
-    text: Option<&str>,
-    source: &mut dyn LineSource,
-    from: usize,
-    wanted: usize,
-) -> Option<usize> {
-    if let Some(text) = text {
-        lines.extend(text, from, wanted)
-    } else {
-        let len = source.len();
-        lines.extend(source.line(0, len), from, wanted)
-    }
+/// [`LineIndex::extend`] over the whole of `source`, from byte `from`.
+fn index_source(lines: &mut LineIndex, source: &mut dyn LineSource, from: usize) -> Option<usize> {
+    let len = source.len();
+    lines.extend(source.line(0, len), from, usize::MAX)
 }
 
 /// Empties `blocks`, keeping the array's memory for the blocks to come (e.g. a piece's array
