@@ -2,10 +2,11 @@
 //! parses the file a piece at a time while this thread runs the pieces read before.
 //!
 //! Starting the helper and handing it its job are kept short: this thread keeps to its
-//! processor from before the helper is spawned and gives way until the helper has moved to
-//! another one (a new thread starts on its starter's processor, where it would otherwise wait
-//! for this thread to sleep), and the helper watches for its job rather than sleeping. Every
-//! wait between the two threads watches likewise before it sleeps (see `waits.rs`).
+//! processor from before the helper is spawned and, until the helper has moved to another one
+//! (a new thread starts on its starter's processor, where it would otherwise wait for this
+//! thread to sleep), reads the first pieces itself, giving way after each; the helper watches
+//! for its job rather than sleeping. Every wait between the two threads watches likewise
+//! before it sleeps (see `waits.rs`).
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc::{
