@@ -195,8 +195,8 @@ impl ParseRun {
                 source.len()
             };
             // The short reader reads bytes: a line of the whole text is taken as bytes, sparing
-            // the checks that a `str` is cut between characters (at a newline it always is).
-            // The short reader is given the text from the line's start on (it finds the same end).
+            // the checks that a `str` is cut between characters (at a newline it always is), and
+            // from the line's start on (it finds the same end).
             let (raw, whole, onward) = if let Some(text) = text {
                 let onward = text.as_bytes().get(start..).unwrap_or_default();
                 (onward.get(..end - start).unwrap_or_default(), None, onward)
@@ -705,10 +705,10 @@ fn read_plain_line(
     blocks: &mut Vec<Block>,
     checker: &mut crate::checks::Checker,
 ) -> Option<(bool, usize)> {
-    // Where the line ends, if at `pos`: its length with and without a `\r` there.
     // A line longer than the longest read whole is left to the general reader, which cuts it:
     // it is read no further than that here, and goes there at its end.
     let bytes = bytes.get(..MAX_LINE_BYTES + 2).unwrap_or(bytes);
+    // The line's length with its `\r` if it ends at `pos` (where a `\n`, a `\r\n` or the end is).
     let end_at = |pos: usize| -> Option<usize> {
         match bytes.get(pos) {
             None | Some(b'\n') => Some(pos),
