@@ -921,27 +921,20 @@ pub(crate) fn fast_move(
             }
         }
         let to = p + fast.base;
-        let event = if mode == MotionMode::Rapid {
-            Canon::Rapid { to }
-        } else {
-            // `move_feed` per minute, where the move's length does not count: only a feed that
-            // is not positive needs its steps (and its diagnostic).
-            let feed = st.feed_mm_per_min;
-            Canon::Feed {
-                to,
-                feed_mm_per_min: if feed > 0.0 {
-                    feed
-                } else {
-                    move_feed(st, block, 0.0, None)
-                },
-            }
+        let rapid = mode == MotionMode::Rapid;
+        // `move_feed` per minute, where the move's length does not count: only a feed that is
+        // not positive needs its steps (and its diagnostic).
+        let feed = match st.feed_mm_per_min {
+            _ if rapid => 0.0,
+            feed if feed > 0.0 => feed,
+            _ => move_feed(st, block, 0.0, None),
         };
         st.position = to;
         st.program_pos = p;
         // What the compensation stage does with a move when it is off.
         st.comp.prog = to;
         st.comp.tool = None;
-        sink.emit_move(source, &event);
+        sink.straight(source, rapid, to, feed);
     }
     true
 }

@@ -24,6 +24,32 @@ pub trait Sink {
     /// One event caused by the block at `source`.
     fn emit(&mut self, source: Source, event: &Canon);
 
+    /// A straight move to (`x`, `y`, `z`): a rapid ([`Canon::Rapid`]) when `rapid`, else a
+    /// feed ([`Canon::Feed`]) at `feed_mm_per_min`. The same as emitting the event, which is
+    /// what it does unless a sink takes moves this way: the numbers then come in registers, not
+    /// in an event written just before the call and read back at its start (a read that
+    /// spans two of those writes waits for them to reach the cache, on every move).
+    fn straight(
+        &mut self,
+        source: Source,
+        rapid: bool,
+        x: f64,
+        y: f64,
+        z: f64,
+        feed_mm_per_min: f64,
+    ) {
+        let to = glam::DVec3::new(x, y, z);
+        let event = if rapid {
+            Canon::Rapid { to }
+        } else {
+            Canon::Feed {
+                to,
+                feed_mm_per_min,
+            }
+        };
+        self.emit(source, &event);
+    }
+
     /// Whether the sink holds all it may (a recorder whose memory has a limit): the run then
     /// stops before the next block with a diagnostic, and a block that makes many moves (a
     /// canned cycle's holes and pecks) makes no more. `false` for a sink without a limit.

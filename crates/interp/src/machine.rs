@@ -46,11 +46,18 @@ pub(crate) struct MotionCounter<'s> {
 }
 
 impl MotionCounter<'_> {
-    /// Sends on a move (what [`Sink::emit`] does for one, without the dispatch).
+    /// Sends on a straight move ([`Sink::straight`]), counting it.
     #[inline]
-    pub(crate) fn emit_move(&mut self, source: Source, event: &Canon) {
+    pub(crate) fn straight(
+        &mut self,
+        source: Source,
+        rapid: bool,
+        to: DVec3,
+        feed_mm_per_min: f64,
+    ) {
         self.motions += 1;
-        self.inner.emit(source, event);
+        self.inner
+            .straight(source, rapid, to.x, to.y, to.z, feed_mm_per_min);
     }
 }
 
@@ -75,6 +82,11 @@ impl Sink for MotionCounter<'_> {
 
     fn programmed(&mut self, source: Source, event: &Canon) {
         self.inner.programmed(source, event);
+    }
+
+    fn straight(&mut self, source: Source, rapid: bool, x: f64, y: f64, z: f64, feed: f64) {
+        self.motions += 1;
+        self.inner.straight(source, rapid, x, y, z, feed);
     }
 
     fn stroke_zone(&mut self, source: Source, zone: Option<&crate::StrokeZone>) {

@@ -1255,6 +1255,15 @@ impl Sink for Toolpath {
         }
     }
 
+    fn straight(&mut self, source: Source, rapid: bool, x: f64, y: f64, z: f64, feed: f64) {
+        let kind = if rapid {
+            SegmentKind::Rapid
+        } else {
+            SegmentKind::Feed
+        };
+        self.push_line(kind, DVec3::new(x, y, z), source.line, feed);
+    }
+
     fn programmed(&mut self, source: Source, event: &Canon) {
         self.programmed.push((source.line, event.clone()));
     }

@@ -510,3 +510,34 @@ fn a_syntec_protected_zone_is_told_to_the_sink_and_g23_turns_it_off() {
     assert_eq!(z.max.truncate(), glam::DVec2::new(10.0, 20.0));
     assert_eq!(sink.0[1..], [None, None]);
 }
+
+#[test]
+fn straight_moves_taken_in_registers_record_as_their_events_do() {
+    let moves = [
+        (true, DVec3::new(10.0, 0.0, 5.0), 0.0),
+        (false, DVec3::new(10.0, 0.0, 0.0), 600.0),
+        (false, DVec3::new(40.0, 2.5, 0.0), 1200.0),
+        (false, DVec3::new(40.0, 2.5, 0.0), 1200.0),
+        (true, DVec3::new(-3.0, 7.0, 12.0), 0.0),
+        (false, DVec3::new(0.0, 0.0, -1.0), 0.0),
+    ];
+    let mut by_event = Toolpath::new(DVec3::ZERO, 6000.0);
+    let mut by_numbers = Toolpath::new(DVec3::ZERO, 6000.0);
+    for (line, &(rapid, to, feed_mm_per_min)) in (1..).zip(&moves) {
+        let event = if rapid {
+            Canon::Rapid { to }
+        } else {
+            Canon::Feed {
+                to,
+                feed_mm_per_min,
+            }
+        };
+        let source = Source { block: line, line };
+        by_event.emit(source, &event);
+        by_numbers.straight(source, rapid, to.x, to.y, to.z, feed_mm_per_min);
+    }
+    assert_eq!(by_numbers.len(), moves.len());
+    assert_eq!(by_numbers, by_event);
+    assert_eq!(by_numbers.kinds()[4], SegmentKind::Rapid);
+    assert_eq!(by_numbers.ends()[2], DVec3::new(40.0, 2.5, 0.0));
+}
