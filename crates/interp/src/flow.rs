@@ -80,7 +80,7 @@ impl Index {
         index.starts.push(0);
         let mut open_loops: Vec<(u8, usize)> = Vec::new();
         for (i, block) in program.blocks.iter().enumerate() {
-            if let Some(number) = block.program.as_deref() {
+            if let Some(number) = block.program() {
                 index.first_program.get_or_insert(i);
                 if index.starts.last() != Some(&i) {
                     index.starts.push(i);
@@ -101,7 +101,7 @@ impl Index {
             {
                 index.labels.push((slot, n, i));
             }
-            for statement in &block.statements {
+            for statement in block.statements() {
                 match statement {
                     Statement::While { label, .. } => open_loops.push((*label, i)),
                     Statement::End { label } => {

@@ -254,14 +254,14 @@ impl Interpreter {
     /// knows: a loop or O-word line, a call, or a second program. Each block of a piece is
     /// asked once, in order, except the plain moves of the shortest path, which never do.
     fn needs_whole(&mut self, block: &Block) -> bool {
-        let several_programs = block.program.is_some() && self.program_seen;
-        self.program_seen |= block.program.is_some();
+        let several_programs = block.program().is_some() && self.program_seen;
+        self.program_seen |= block.program().is_some();
         let calls = block.words.iter().any(|w| {
             matches!(w.letter, b'G' | b'M')
                 && (w.expr.is_some() || matches!(w.value, 65.0 | 66.0 | 66.1 | 98.0 | 99.0 | 198.0))
         });
         let control = block
-            .statements
+            .statements()
             .iter()
             .any(|s| !matches!(s, Statement::Assign { .. }));
         several_programs || calls || control
@@ -507,8 +507,8 @@ impl Interpreter {
         {
             if block.has_error
                 || block.words.is_empty()
-                || block.program.is_some()
-                || !block.statements.is_empty()
+                || block.program().is_some()
+                || !block.statements().is_empty()
             {
                 break;
             }
@@ -565,8 +565,8 @@ impl Interpreter {
     ) -> Option<Flow> {
         if !self.shortcut
             || block.words.is_empty()
-            || block.program.is_some()
-            || !block.statements.is_empty()
+            || block.program().is_some()
+            || !block.statements().is_empty()
             || self.st.alarm.is_some()
         {
             return None;
@@ -593,7 +593,7 @@ impl Interpreter {
     ) -> Flow {
         // Each `O` program is a program of its own: the main program running into the next
         // one's `O` line has ended (it is only run when called).
-        if block.program.is_some()
+        if block.program().is_some()
             && self.calls.is_empty()
             && self
                 .index
@@ -617,7 +617,7 @@ impl Interpreter {
         // Every assignment of the block reads the values from before the block (LinuxCNC's
         // rule; the Fanuc family has one assignment per block).
         let mut prepared = Vec::new();
-        for statement in &block.statements {
+        for statement in block.statements() {
             if let Statement::Assign { target, value } = statement {
                 match macros::prepare_assign(program, *target, *value, &self.vars, &self.st) {
                     Ok(a) => prepared.push(a),
@@ -645,7 +645,7 @@ impl Interpreter {
         if flow != Flow::Next {
             return flow;
         }
-        for statement in &block.statements {
+        for statement in block.statements() {
             match self.control(program, at, block, statement) {
                 Ok(Flow::Next) => {}
                 Ok(other) => return other,

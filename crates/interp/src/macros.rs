@@ -1098,7 +1098,7 @@ mod tests {
             program.diagnostics
         );
         for block in &program.blocks {
-            for statement in &block.statements {
+            for statement in block.statements() {
                 let r = match statement {
                     Statement::Assign { target, value } => {
                         assign(&program, *target, *value, vars, sys)
@@ -1714,7 +1714,7 @@ mod tests {
         let mut vars = Variables::new(Dialect::LinuxCnc);
         for block in &program.blocks {
             let prepared: Vec<Assignment> = block
-                .statements
+                .statements()
                 .iter()
                 .filter_map(|s| match s {
                     Statement::Assign { target, value } => {
@@ -1752,7 +1752,7 @@ mod tests {
         let program = parse("#1 = 1 / 0", Dialect::Fanuc);
         let mut sys = NoSystemVariables;
         let mut vars = Variables::new(Dialect::Fanuc);
-        let assigned = program.blocks[0].statements.iter().any(|s| {
+        let assigned = program.blocks[0].statements().iter().any(|s| {
             matches!(s, Statement::Assign { target, value }
                 if assign(&program, *target, *value, &mut vars, &mut sys).is_err())
         });

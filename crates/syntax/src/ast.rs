@@ -331,20 +331,28 @@ pub struct Block {
     pub line: u32,
     /// The `N` sequence number, if any.
     pub number: Option<u32>,
-    /// The program number when the block starts a program (`O1234`, `:1234`); boxed, as few
-    /// blocks have one and every block pays for the field.
-    pub program: Option<Box<ProgramNumber>>,
     /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
     pub block_delete: Option<u8>,
     /// The address words in the order written (without `N` and `O`); up to four are stored in
     /// the block itself, so a typical CAM line needs no allocation of its own.
     pub words: SmallVec<[Word; 4]>,
-    /// Macro statements, in the order written (a boxed slice: most blocks have none).
-    pub statements: Box<[Statement]>,
-    /// Spans of the comments in the block.
-    pub comments: Box<[Span]>,
+    /// The program number, statements and comments, which few blocks have: boxed together, so
+    /// that every other block pays one pointer for them ([`Block::program`],
+    /// [`Block::statements`], [`Block::comments`]). `None` when the block has none of them.
+    pub(crate) extras: Option<Box<Extras>>,
     /// Whether the parser found an error in this block (it is not executed).
     pub has_error: bool,
+}
+
+/// What few blocks have besides their words (see [`Block::extras`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(crate) struct Extras {
+    /// The program number when the block starts a program (`O1234`, `:1234`).
+    pub(crate) program: Option<ProgramNumber>,
+    /// Macro statements, in the order written.
+    pub(crate) statements: Box<[Statement]>,
+    /// Spans of the comments in the block.
+    pub(crate) comments: Box<[Span]>,
 }
 
 impl Block {
@@ -364,12 +372,51 @@ impl Block {
 
     /// Whether the block has neither words nor statements (blank, comment or tape mark).
     pub fn is_empty(&self) -> bool {
-        self.words.is_empty() && self.statements.is_empty()
+        self.words.is_empty() && self.statements().is_empty()
     }
 
     /// Whether the block needs the macro evaluator (statements or expression-valued words).
     pub fn has_macro(&self) -> bool {
-        !self.statements.is_empty() || self.words.iter().any(|w| w.expr.is_some())
+        !self.statements().is_empty() || self.words.iter().any(|w| w.expr.is_some())
+    }
+
+    /// The program number when the block starts a program (`O1234`, `:1234`).
+    pub fn program(&self) -> Option<&ProgramNumber> {
+        self.extras.as_deref()?.program.as_ref()
+    }
+
+    /// Macro statements, in the order written (most blocks have none).
+    pub fn statements(&self) -> &[Statement] {
+        self.extras.as_deref().map_or(&[], |e| &e.statements)
+    }
+
+    /// Spans of the comments in the block.
+    pub fn comments(&self) -> &[Span] {
+        self.extras.as_deref().map_or(&[], |e| &e.comments)
+    }
+
+    /// Sets the program number the block starts.
+    pub fn set_program(&mut self, program: ProgramNumber) {
+        self.extras_mut().program = Some(program);
+    }
+
+    /// Sets the block's statements (none makes no room for them).
+    pub fn set_statements(&mut self, statements: Vec<Statement>) {
+        if !statements.is_empty() || self.extras.is_some() {
+            self.extras_mut().statements = statements.into_boxed_slice();
+        }
+    }
+
+    /// Sets the block's comments (none makes no room for them).
+    pub fn set_comments(&mut self, comments: Vec<Span>) {
+        if !comments.is_empty() || self.extras.is_some() {
+            self.extras_mut().comments = comments.into_boxed_slice();
+        }
+    }
+
+    /// The extras, made when the block has none yet.
+    fn extras_mut(&mut self) -> &mut Extras {
+        self.extras.get_or_insert_with(Box::default)
     }
 }
 

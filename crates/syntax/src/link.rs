@@ -156,11 +156,13 @@ impl Program {
                 w.span = shift(w.span);
                 w.expr = w.expr.map(id);
             }
-            for c in &mut block.comments {
-                *c = shift(*c);
-            }
-            for s in &mut block.statements {
-                rebase_statement(s, &id);
+            if let Some(extras) = block.extras.as_deref_mut() {
+                for c in &mut extras.comments {
+                    *c = shift(*c);
+                }
+                for s in &mut extras.statements {
+                    rebase_statement(s, &id);
+                }
             }
             self.blocks.push(block);
         }
@@ -195,13 +197,13 @@ impl Program {
         let mut numbers = Vec::new();
         let mut names = Vec::new();
         for block in &self.blocks {
-            if let Some(p) = block.program.as_deref() {
+            if let Some(p) = block.program() {
                 match p {
                     ProgramNumber::Number(n) => numbers.push(*n),
                     ProgramNumber::Name(n) => names.push(n.to_string()),
                 }
             }
-            for s in &block.statements {
+            for s in block.statements() {
                 if let Statement::OWord {
                     label: OLabel::Name(n),
                     kind: OWord::Sub,
@@ -243,7 +245,7 @@ impl Program {
                 };
                 add(Missing::Number(number as u32));
             }
-            for s in &block.statements {
+            for s in block.statements() {
                 if let Statement::OWord {
                     label: OLabel::Name(n),
                     kind: OWord::Call(_),

@@ -411,14 +411,12 @@ fn owns_no_memory(block: &Block) -> bool {
         span: _,
         line: _,
         number: _,
-        program,
         block_delete: _,
         words,
-        statements,
-        comments,
+        extras,
         has_error: _,
     } = block;
-    program.is_none() && !words.spilled() && statements.is_empty() && comments.is_empty()
+    extras.is_none() && !words.spilled()
 }
 
 /// Where the reader is with respect to `%` tape marks.
@@ -965,15 +963,11 @@ impl LineReader<'_> {
         if let Some(first) = first {
             let mut block = block;
             block.span = self.span(first, last);
-            if !statements.is_empty() {
-                block.statements = statements.into_boxed_slice();
-            }
-            if !comments.is_empty() {
-                block.comments = comments.into_boxed_slice();
-            }
+            block.set_statements(statements);
+            block.set_comments(comments);
             if !block.is_empty()
                 || block.number.is_some()
-                || block.program.is_some()
+                || block.program().is_some()
                 || block.has_error
                 || block.block_delete.is_some()
             {
@@ -1305,7 +1299,7 @@ impl LineReader<'_> {
         if self.rules.o_words && self.bytes.get(value_start) == Some(&b'<') {
             return match self.angle_name(value_start) {
                 Ok((name, end)) => {
-                    block.program = Some(Box::new(ProgramNumber::Name(name)));
+                    block.set_program(ProgramNumber::Name(name));
                     end
                 }
                 Err(f) => {
@@ -1319,7 +1313,7 @@ impl LineReader<'_> {
         let digits_len = rest.bytes().take_while(u8::is_ascii_digit).count();
         let end = value_start + digits_len;
         match rest[..digits_len].parse::<u32>() {
-            Ok(n) if digits_len <= 8 => block.program = Some(Box::new(ProgramNumber::Number(n))),
+            Ok(n) if digits_len <= 8 => block.set_program(ProgramNumber::Number(n)),
             _ => self.error(
                 block,
                 pos,

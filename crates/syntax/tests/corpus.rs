@@ -111,7 +111,7 @@ fn every_corpus_program_reads_as_linuxcnc() {
                 program
                     .blocks
                     .iter()
-                    .flat_map(|b| b.comments.iter().copied()),
+                    .flat_map(|b| b.comments().iter().copied()),
             )
             .chain(
                 program

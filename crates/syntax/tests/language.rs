@@ -54,7 +54,7 @@ fn assignments_and_fanuc_precedence() {
     let got: Vec<_> = p
         .blocks
         .iter()
-        .map(|b| assign(&p, &b.statements[0]))
+        .map(|b| assign(&p, &b.statements()[0]))
         .collect();
     assert_eq!(got[0], ("#1".into(), "(2 + (3 * 4))".into()));
     // Fanuc: AND binds like `*`, so `#1 AND 3 + 1` is `(#1 AND 3) + 1`.
@@ -71,10 +71,13 @@ fn linuxcnc_logic_binds_loosest_and_power_is_right_associative() {
     );
     assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
     assert_eq!(
-        assign(&p, &p.blocks[0].statements[0]).1,
+        assign(&p, &p.blocks[0].statements()[0]).1,
         "(((1 + 2) GT 2) AND 1)"
     );
-    assert_eq!(assign(&p, &p.blocks[1].statements[0]).1, "(2 ** (3 ** 2))");
+    assert_eq!(
+        assign(&p, &p.blocks[1].statements()[0]).1,
+        "(2 ** (3 ** 2))"
+    );
 }
 
 #[test]
@@ -105,7 +108,7 @@ fn macro_b_control_statements() {
     let text = "N10 IF [#1 GT 10] GOTO 20\nIF [#2 EQ 0] THEN #3=1\nWHILE [#1 LT 5] DO1\n#1=#1+1\nEND1\nGOTO #4\nDO2\nEND2\n";
     let p = parse(text, Dialect::Fanuc);
     assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
-    match &p.blocks[0].statements[0] {
+    match &p.blocks[0].statements()[0] {
         Statement::If { cond, then } => {
             assert_eq!(show(&p, *cond), "(#1 GT 10)");
             assert!(matches!(**then, Statement::Goto { target } if show(&p, target) == "20"));
@@ -114,22 +117,25 @@ fn macro_b_control_statements() {
     }
     assert_eq!(p.blocks[0].number, Some(10));
     assert!(
-        matches!(&p.blocks[1].statements[0], Statement::If { then, .. } if matches!(**then, Statement::Assign { .. }))
+        matches!(&p.blocks[1].statements()[0], Statement::If { then, .. } if matches!(**then, Statement::Assign { .. }))
     );
     assert!(matches!(
-        p.blocks[2].statements[0],
+        p.blocks[2].statements()[0],
         Statement::While {
             cond: Some(_),
             label: 1
         }
     ));
     assert!(matches!(
-        p.blocks[4].statements[0],
+        p.blocks[4].statements()[0],
         Statement::End { label: 1 }
     ));
-    assert!(matches!(p.blocks[5].statements[0], Statement::Goto { .. }));
     assert!(matches!(
-        p.blocks[6].statements[0],
+        p.blocks[5].statements()[0],
+        Statement::Goto { .. }
+    ));
+    assert!(matches!(
+        p.blocks[6].statements()[0],
         Statement::While {
             cond: None,
             label: 2
@@ -154,7 +160,7 @@ fn syntec_macro_header_and_colon_assignment() {
     assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
     assert!(p.syntec_macro);
     assert_eq!(
-        assign(&p, &p.blocks[0].statements[0]),
+        assign(&p, &p.blocks[0].statements()[0]),
         ("#30".into(), "#1000".into())
     );
     assert_eq!(p.blocks[1].words.len(), 2);
@@ -176,7 +182,7 @@ fn linuxcnc_o_words_and_named_parameters() {
     let kinds: Vec<_> = p
         .blocks
         .iter()
-        .filter_map(|b| match b.statements.first() {
+        .filter_map(|b| match b.statements().first() {
             Some(Statement::OWord { label, kind }) => Some((label.clone(), kind.clone())),
             _ => None,
         })
@@ -189,7 +195,7 @@ fn linuxcnc_o_words_and_named_parameters() {
     assert_eq!(kinds[4].1, OWord::Else);
     assert!(matches!(kinds[8].1, OWord::Return(Some(_))));
     assert_eq!(
-        assign(&p, &p.blocks[1].statements[0]),
+        assign(&p, &p.blocks[1].statements()[0]),
         ("#<depth>".into(), "#1".into())
     );
 }
@@ -212,18 +218,12 @@ fn bad_o_word_keyword() {
 #[test]
 fn program_numbers() {
     let p = parse("O0012\n:0034\nO<part> \n", Dialect::Fanuc);
-    assert_eq!(
-        p.blocks[0].program.as_deref(),
-        Some(&ProgramNumber::Number(12))
-    );
-    assert_eq!(
-        p.blocks[1].program.as_deref(),
-        Some(&ProgramNumber::Number(34))
-    );
+    assert_eq!(p.blocks[0].program(), Some(&ProgramNumber::Number(12)));
+    assert_eq!(p.blocks[1].program(), Some(&ProgramNumber::Number(34)));
     assert!(p.blocks[2].has_error);
     let l = parse("O<part>\n", Dialect::LinuxCnc);
     assert_eq!(
-        l.blocks[0].program.as_deref(),
+        l.blocks[0].program(),
         Some(&ProgramNumber::Name("part".into()))
     );
 }
@@ -366,7 +366,7 @@ fn linuxcnc_o_word_numbers_may_be_computed() {
     let labels: Vec<String> = p
         .blocks
         .iter()
-        .filter_map(|b| match b.statements.first() {
+        .filter_map(|b| match b.statements().first() {
             Some(Statement::OWord {
                 label: OLabel::Expr(e),
                 kind: OWord::Call(args),

@@ -33,12 +33,9 @@ fn sequence_numbers_comments_and_tape_marks() {
     );
     assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
     assert_eq!(p.blocks.len(), 3);
-    assert_eq!(
-        p.blocks[0].program.as_deref(),
-        Some(&ProgramNumber::Number(1000))
-    );
+    assert_eq!(p.blocks[0].program(), Some(&ProgramNumber::Number(1000)));
     assert!(p.blocks[0].words.is_empty());
-    assert_eq!(p.blocks[0].comments.len(), 1);
+    assert_eq!(p.blocks[0].comments().len(), 1);
     assert_eq!(p.blocks[1].number, Some(10));
     assert_eq!(p.blocks[1].line, 2);
     assert_eq!(p.blocks[2].number, Some(20));
@@ -172,7 +169,7 @@ fn a_linked_program_keeps_its_meaning_past_the_main_text() {
     assert_eq!(first.span.start as usize, main.len() + 1);
     // The linked expressions are renumbered after the main program's: `#2=[#1*3]` still reads
     // `#1 * 3`.
-    let Statement::Assign { value, .. } = &p.blocks[5].statements[0] else {
+    let Statement::Assign { value, .. } = &p.blocks[5].statements()[0] else {
         panic!("{:?}", p.blocks[5]);
     };
     assert!(value.index() >= exprs_before);
@@ -196,4 +193,30 @@ fn a_linked_program_keeps_its_meaning_past_the_main_text() {
         l.missing_calls(),
         [swarf_syntax::Missing::Name("sq".into())]
     );
+}
+
+#[test]
+fn a_block_keeps_its_rare_parts_in_one_box_and_gives_them_back() {
+    let text = "O0012 (part)\nG1 X1. Y2. Z3.\n#1 = 5 (set) (twice)\n";
+    let p = parse(text, Dialect::Fanuc);
+    assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
+    let [program, plain, macro_line] = &p.blocks[..] else {
+        panic!("three blocks expected: {:?}", p.blocks);
+    };
+    assert_eq!(program.program(), Some(&ProgramNumber::Number(12)));
+    assert_eq!(program.comments().len(), 1);
+    assert!(program.statements().is_empty());
+    // A plain line has none of them.
+    assert_eq!(plain.program(), None);
+    assert!(plain.statements().is_empty() && plain.comments().is_empty());
+    assert_eq!(plain.words.len(), 4);
+    assert!(!plain.is_empty() && !plain.has_macro());
+    assert_eq!(macro_line.statements().len(), 1);
+    assert_eq!(macro_line.comments().len(), 2);
+    assert!(macro_line.has_macro());
+    let c = macro_line.comments()[1];
+    assert_eq!(&text[c.start as usize..c.end as usize], "(twice)");
+    // The common block pays one pointer for them: four words inline and a few fields.
+    #[cfg(target_pointer_width = "64")]
+    assert!(std::mem::size_of::<swarf_syntax::Block>() <= 136);
 }

@@ -225,7 +225,7 @@ fn block_line(p: &Program, text: &str, block: &Block) -> String {
     if let Some(level) = block.block_delete {
         let _ = write!(out, "/{level} ");
     }
-    match block.program.as_deref() {
+    match block.program() {
         Some(ProgramNumber::Number(n)) => {
             let _ = write!(out, "O{n} ");
         }
@@ -248,11 +248,11 @@ fn block_line(p: &Program, text: &str, block: &Block) -> String {
             WordForm::Indexed(i) => write!(out, "{}{i}={value} ", w.letter()),
         };
     }
-    for s in &block.statements {
+    for s in block.statements() {
         let _ = write!(out, "{} ", statement(p, s));
     }
-    if !block.comments.is_empty() {
-        let _ = write!(out, "({}) ", block.comments.len());
+    if !block.comments().is_empty() {
+        let _ = write!(out, "({}) ", block.comments().len());
     }
     if block.has_error {
         out.push_str("!error ");
