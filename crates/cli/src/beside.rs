@@ -31,7 +31,7 @@ const IDLE_AHEAD_BYTES: usize = 2 << 20;
 /// own data sits at the top of its stack) has the system zero one 4 KB page, not 2 MB.
 const HELPER_STACK_BYTES: usize = 1 << 20;
 
-/// How many block arrays the reader makes (each a piece long, 272 KB) before it reuses the
+/// How many block arrays the reader makes (each a piece long, 256 KB) before it reuses the
 /// ones the runner gives back, oldest first: enough that an array has left the runner's
 /// processor cache (2 MB of second-level cache a core here) before the reader writes it again.
 /// An array the runner has just read is still in that cache, and each of its cache lines the

@@ -96,7 +96,7 @@ impl Index {
                 }
             }
             let slot = index.starts.len() - 1;
-            if let Some(n) = block.number
+            if let Some(n) = block.number()
                 && let (Ok(slot), Ok(i)) = (u32::try_from(slot), u32::try_from(i))
             {
                 index.labels.push((slot, n, i));

@@ -426,7 +426,7 @@ impl Interpreter {
             self.st.blocks_run = self.executed;
             self.st.block_span = block.span;
             let before = counted.motions;
-            let plain = if block.has_error {
+            let plain = if block.has_error() {
                 None
             } else {
                 self.plain_block(block, source, &mut counted)
@@ -436,7 +436,7 @@ impl Interpreter {
             } else if self.piecewise && self.needs_whole(block) {
                 self.jumped = true;
                 break;
-            } else if block.has_error {
+            } else if block.has_error() {
                 Flow::Next
             } else {
                 self.origin_current = false;
@@ -505,7 +505,7 @@ impl Interpreter {
             .iter()
             .take(room)
         {
-            if block.has_error
+            if block.has_error()
                 || block.words.is_empty()
                 || block.program().is_some()
                 || !block.statements().is_empty()

@@ -329,19 +329,17 @@ pub struct Block {
     pub span: Span,
     /// 0-based line the block starts on.
     pub line: u32,
-    /// The `N` sequence number, if any.
-    pub number: Option<u32>,
-    /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
-    pub block_delete: Option<u8>,
+    /// The `N` sequence number plus one, if any ([`Block::number`]): four bytes rather than
+    /// the eight of an `Option<u32>`, so that a block is 128 bytes, two cache lines.
+    pub(crate) number: Option<NonZeroU32>,
     /// The address words in the order written (without `N` and `O`); up to four are stored in
     /// the block itself, so a typical CAM line needs no allocation of its own.
     pub words: SmallVec<[Word; 4]>,
     /// The program number, statements and comments, which few blocks have: boxed together, so
     /// that every other block pays one pointer for them ([`Block::program`],
-    /// [`Block::statements`], [`Block::comments`]). `None` when the block has none of them.
+    /// [`Block::statements`], [`Block::comments`]), with the block-delete level and the mark
+    /// of an error. `None` when the block has none of them.
     pub(crate) extras: Option<Box<Extras>>,
-    /// Whether the parser found an error in this block (it is not executed).
-    pub has_error: bool,
 }
 
 /// What few blocks have besides their words (see [`Block::extras`]).
@@ -353,6 +351,10 @@ pub(crate) struct Extras {
     pub(crate) statements: Box<[Statement]>,
     /// Spans of the comments in the block.
     pub(crate) comments: Box<[Span]>,
+    /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
+    pub(crate) block_delete: Option<u8>,
+    /// Whether the parser found an error in the block (it is not executed).
+    pub(crate) has_error: bool,
 }
 
 impl Block {
@@ -378,6 +380,42 @@ impl Block {
     /// Whether the block needs the macro evaluator (statements or expression-valued words).
     pub fn has_macro(&self) -> bool {
         !self.statements().is_empty() || self.words.iter().any(|w| w.expr.is_some())
+    }
+
+    /// The `N` sequence number, if any.
+    pub fn number(&self) -> Option<u32> {
+        self.number.map(|n| n.get() - 1)
+    }
+
+    /// Sets the `N` sequence number (`u32::MAX` is out of any control's range and not kept).
+    pub fn set_number(&mut self, number: u32) {
+        self.number = Block::stored_number(number);
+    }
+
+    /// How the field holds sequence number `number`.
+    #[inline]
+    pub(crate) fn stored_number(number: u32) -> Option<NonZeroU32> {
+        number.checked_add(1).and_then(NonZeroU32::new)
+    }
+
+    /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
+    pub fn block_delete(&self) -> Option<u8> {
+        self.extras.as_deref()?.block_delete
+    }
+
+    /// Sets the block-delete level.
+    pub fn set_block_delete(&mut self, level: u8) {
+        self.extras_mut().block_delete = Some(level);
+    }
+
+    /// Whether the parser found an error in this block (it is not executed).
+    pub fn has_error(&self) -> bool {
+        self.extras.as_deref().is_some_and(|e| e.has_error)
+    }
+
+    /// Marks the block as holding an error.
+    pub fn set_error(&mut self) {
+        self.extras_mut().has_error = true;
     }
 
     /// The program number when the block starts a program (`O1234`, `:1234`).

@@ -199,7 +199,7 @@ impl Checker {
             .iter()
             .any(|d| d.severity == crate::Severity::Error)
         {
-            block.has_error = true;
+            block.set_error();
         }
     }
 

@@ -411,10 +411,8 @@ fn owns_no_memory(block: &Block) -> bool {
         span: _,
         line: _,
         number: _,
-        block_delete: _,
         words,
         extras,
-        has_error: _,
     } = block;
     extras.is_none() && !words.spilled()
 }
@@ -761,7 +759,7 @@ fn read_plain_line(
     // the array (a `push` of a made block copies it there).
     blocks.extend(std::iter::once_with(|| Block {
         line: line_no,
-        number,
+        number: number.and_then(Block::stored_number),
         ..Block::default()
     }));
     let block = blocks.last_mut()?;
@@ -922,7 +920,7 @@ impl LineReader<'_> {
         code: &'static str,
         msg: String,
     ) {
-        block.has_error = true;
+        block.set_error();
         let (start, end) = self.char_range(start, end);
         let span = self.span(start, end);
         self.program
@@ -966,10 +964,10 @@ impl LineReader<'_> {
             block.set_statements(statements);
             block.set_comments(comments);
             if !block.is_empty()
-                || block.number.is_some()
+                || block.number().is_some()
                 || block.program().is_some()
-                || block.has_error
-                || block.block_delete.is_some()
+                || block.has_error()
+                || block.block_delete().is_some()
             {
                 self.checker.check(&mut block);
                 self.program.blocks.push(block);
@@ -1071,7 +1069,7 @@ impl LineReader<'_> {
                         }
                         _ => 1,
                     };
-                    block.block_delete = Some(level);
+                    block.set_block_delete(level);
                 }
                 b':' if at_start
                     && self.rules.colon_program_number
@@ -1248,7 +1246,7 @@ impl LineReader<'_> {
         };
         let end = number.end;
         let digits = &self.line[value_start..end];
-        if !block.words.is_empty() || block.number.is_some() || !self.statements.is_empty() {
+        if !block.words.is_empty() || block.number().is_some() || !self.statements.is_empty() {
             self.error(
                 block,
                 pos,
@@ -1278,7 +1276,7 @@ impl LineReader<'_> {
                         ),
                     );
                 } else {
-                    block.number = Some(n);
+                    block.set_number(n);
                 }
             }
             Err(_) => self.error(

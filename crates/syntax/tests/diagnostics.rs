@@ -108,7 +108,7 @@ fn every_code_has_its_exact_span() {
             .find(|b| b.span.start <= d.span.start && d.span.start <= b.span.end);
         if let Some(block) = block {
             assert_eq!(
-                block.has_error,
+                block.has_error(),
                 expected == Severity::Error,
                 "{code}: {text:?}"
             );

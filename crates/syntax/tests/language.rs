@@ -115,7 +115,7 @@ fn macro_b_control_statements() {
         }
         s => panic!("{s:?}"),
     }
-    assert_eq!(p.blocks[0].number, Some(10));
+    assert_eq!(p.blocks[0].number(), Some(10));
     assert!(
         matches!(&p.blocks[1].statements()[0], Statement::If { then, .. } if matches!(**then, Statement::Assign { .. }))
     );
@@ -148,7 +148,7 @@ fn loop_numbers_are_one_to_three() {
     let text = "WHILE [1] DO4\n";
     let p = parse(text, Dialect::Fanuc);
     assert_eq!(codes(&p), ["E-LOOP-NUMBER"]);
-    assert!(p.blocks[0].has_error);
+    assert!(p.blocks[0].has_error());
 }
 
 #[test]
@@ -220,7 +220,7 @@ fn program_numbers() {
     let p = parse("O0012\n:0034\nO<part> \n", Dialect::Fanuc);
     assert_eq!(p.blocks[0].program(), Some(&ProgramNumber::Number(12)));
     assert_eq!(p.blocks[1].program(), Some(&ProgramNumber::Number(34)));
-    assert!(p.blocks[2].has_error);
+    assert!(p.blocks[2].has_error());
     let l = parse("O<part>\n", Dialect::LinuxCnc);
     assert_eq!(
         l.blocks[0].program(),
@@ -303,7 +303,7 @@ fn stray_colon_at_block_end_is_a_warning() {
     let p = parse(text, Dialect::Syntec);
     assert_eq!(codes(&p), ["W-STRAY-COLON"]);
     assert_eq!(p.diagnostics[0].severity, Severity::Warning);
-    assert!(!p.blocks[0].has_error);
+    assert!(!p.blocks[0].has_error());
 }
 
 #[test]

@@ -222,7 +222,7 @@ fn o_word(p: &Program, kind: &OWord) -> String {
 
 fn block_line(p: &Program, text: &str, block: &Block) -> String {
     let mut out = String::new();
-    if let Some(level) = block.block_delete {
+    if let Some(level) = block.block_delete() {
         let _ = write!(out, "/{level} ");
     }
     match block.program() {
@@ -234,7 +234,7 @@ fn block_line(p: &Program, text: &str, block: &Block) -> String {
         }
         None => {}
     }
-    if let Some(n) = block.number {
+    if let Some(n) = block.number() {
         let _ = write!(out, "N{n} ");
     }
     for w in &block.words {
@@ -254,7 +254,7 @@ fn block_line(p: &Program, text: &str, block: &Block) -> String {
     if !block.comments().is_empty() {
         let _ = write!(out, "({}) ", block.comments().len());
     }
-    if block.has_error {
+    if block.has_error() {
         out.push_str("!error ");
     }
     for d in p.diagnostics.iter().filter(|d| within(block, d.span)) {
