@@ -40,8 +40,9 @@ const HELPER_STACK_BYTES: usize = 1 << 20;
 /// longer than on one thread (`stellabee1.ngc` 8.1 ms against 4.9 ms).
 const POOL_ARRAYS: usize = 8;
 
-/// A piece as it is handed over: its blocks and the expressions new in it.
-type Piece = (Vec<Block>, Vec<ExprNode>);
+/// A piece as it is handed over: its blocks, the expressions new in it, and the places of the
+/// blocks that own memory (see `swarf_syntax::empty_blocks_known`).
+type Piece = (Vec<Block>, Vec<ExprNode>, Vec<u32>);
 
 /// What [`run_pieces_beside`] gives besides the interpreter: the reader and the number of
 /// blocks read (`None` when the program needs running whole) and the whole text, or why the
@@ -124,11 +125,12 @@ impl Reading {
             self.reader
                 .step_growing(&self.source.text, self.source.is_complete(), self.lines);
         self.lines = (self.lines * 4).min(PIECE_LINES);
+        let owning = self.reader.take_owning();
         let blocks = self.reader.swap_blocks(array);
         let exprs = &self.reader.program().exprs;
         let new_exprs = exprs.get(self.sent_exprs..).unwrap_or_default().to_vec();
         self.sent_exprs = exprs.len();
-        Ok(((blocks, new_exprs), done))
+        Ok(((blocks, new_exprs, owning), done))
     }
 
     /// Reads one more chunk of the file while the text is less than [`IDLE_AHEAD_BYTES`] ahead
@@ -329,7 +331,7 @@ pub(crate) fn run_pieces_beside(
             }
             next
         });
-        let Some((read, exprs)) = next else {
+        let Some((read, exprs, owning)) = next else {
             break;
         };
         piece.blocks = read;
@@ -346,7 +348,7 @@ pub(crate) fn run_pieces_beside(
         let _ = ring.try_send(());
         // Emptied here, where the blocks were just read, not by the reader (which has more to
         // do); a full queue (the reader is done) just drops the array.
-        swarf_syntax::empty_blocks(&mut piece.blocks);
+        swarf_syntax::empty_blocks_known(&mut piece.blocks, &owning);
         let _ = spares.try_send(std::mem::take(&mut piece.blocks));
     }
     drop(received);

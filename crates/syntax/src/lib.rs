@@ -24,5 +24,5 @@ pub use diagnostic::{Diagnostic, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
 pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Missing};
-pub use parser::{ParseRun, empty_blocks, parse};
+pub use parser::{ParseRun, empty_blocks, empty_blocks_known, parse};
 pub use source::LineSource;

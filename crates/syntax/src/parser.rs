@@ -48,6 +48,11 @@ pub struct ParseRun {
     /// ([`ParseRun::step_growing`]): the text after it is looked at once it is whole
     /// ([`ParseRun::complete`]).
     tape_end: Option<usize>,
+    /// The places, among the blocks read since they were last emptied or handed over, of those
+    /// that own memory (words past the four stored in a block, or boxed extras): few blocks
+    /// do, and the others are let go of at once, without a pass over them
+    /// ([`empty_blocks_known`]).
+    owning: Vec<u32>,
 }
 
 impl ParseRun {
@@ -78,6 +83,7 @@ impl ParseRun {
             indexed: None,
             plain_lines: true,
             tape_end: None,
+            owning: Vec::new(),
         }
     }
 
@@ -207,6 +213,7 @@ impl ParseRun {
             let raw_len = raw.len();
             let bytes = raw.strip_suffix(b"\r").unwrap_or(raw);
             let line_no = u32::try_from(line_no).unwrap_or(u32::MAX);
+            let made = program.blocks.len();
             // A runaway line is cut by the general reader (which reads a plain line as the short
             // one does).
             let plain = if plain_lines && bytes.len() <= MAX_LINE_BYTES {
@@ -231,6 +238,7 @@ impl ParseRun {
                     .unwrap_or_default();
                 read_general_line(program, &mut self.checker, raw, offset, line_no)
             };
+            note_owning(&program.blocks, made, &mut self.owning);
             offset += raw_len + 1;
             next += 1;
             let closed;
@@ -281,6 +289,7 @@ impl ParseRun {
         while !done && next < stop && offset < readable {
             let rest = bytes.get(offset..).unwrap_or_default();
             let line_no = u32::try_from(next).unwrap_or(u32::MAX);
+            let made = program.blocks.len();
             let plain = if self.plain_lines {
                 read_plain_line(
                     rest,
@@ -302,6 +311,7 @@ impl ParseRun {
                     read_general_line(program, &mut self.checker, raw, offset, line_no);
                 (raw_len, blank, percent)
             };
+            note_owning(&program.blocks, made, &mut self.owning);
             offset += raw_len + 1;
             next += 1;
             if raw_len < rest.len() {
@@ -348,7 +358,14 @@ impl ParseRun {
     /// that a reader that runs a long program piece by piece as it reads it keeps none of the
     /// pieces it has run; the block array's memory is reused for the next piece.
     pub fn clear_blocks(&mut self) {
-        empty_blocks(&mut self.program.blocks);
+        empty_blocks_known(&mut self.program.blocks, &self.owning);
+        self.owning.clear();
+    }
+
+    /// The places, among the blocks that [`ParseRun::swap_blocks`] hands over next, of those
+    /// that own memory: what [`empty_blocks_known`] needs to know of them.
+    pub fn take_owning(&mut self) -> Vec<u32> {
+        std::mem::take(&mut self.owning)
     }
 
     /// Hands over the blocks read so far and reads on into `spare` (emptied first), so that a
@@ -356,6 +373,7 @@ impl ParseRun {
     /// and get their arrays back for reuse.
     pub fn swap_blocks(&mut self, mut spare: Vec<Block>) -> Vec<Block> {
         empty_blocks(&mut spare);
+        self.owning.clear();
         std::mem::replace(&mut self.program.blocks, spare)
     }
 
@@ -399,6 +417,34 @@ pub fn empty_blocks(blocks: &mut Vec<Block>) {
             std::mem::forget(drain.next());
         } else {
             drop(drain.next());
+        }
+    }
+}
+
+/// [`empty_blocks`] for blocks of which it is known which own memory (their places,
+/// [`ParseRun::take_owning`]): those let go of what they own, and the array is then emptied at
+/// once, without a look at the others. A place left out leaves that block's memory never
+/// freed (nothing else goes wrong).
+pub fn empty_blocks_known(blocks: &mut Vec<Block>, owning: &[u32]) {
+    for &at in owning {
+        if let Some(block) = blocks.get_mut(at as usize) {
+            drop(std::mem::take(&mut block.words));
+            drop(block.extras.take());
+        }
+    }
+    // A drain sets the array's length to the start of its range when it is made: let go of,
+    // it leaves the array empty, each block forgotten rather than dropped.
+    std::mem::forget(blocks.drain(..));
+    // Empty already; were it not, this drops what is left (which frees nothing).
+    blocks.clear();
+}
+
+/// Notes the places of the blocks from `made` on that own memory in `owning`.
+#[inline(always)]
+fn note_owning(blocks: &[Block], made: usize, owning: &mut Vec<u32>) {
+    for (at, block) in blocks.iter().enumerate().skip(made) {
+        if !owns_no_memory(block) {
+            owning.push(u32::try_from(at).unwrap_or(u32::MAX));
         }
     }
 }

@@ -172,3 +172,74 @@ fn line_ends_found_as_the_lines_are_read_equal_the_whole_parse() {
         }
     }
 }
+
+#[test]
+fn the_blocks_handed_over_name_those_that_own_memory() {
+    // Plain lines of up to four words own nothing; five words, a comment, a statement or a
+    // program number make a block own memory.
+    let mut text = String::new();
+    let mut expected = Vec::new();
+    for i in 0..40u32 {
+        let line = match i % 8 {
+            0 => "G1 X1. Y2. Z3. F100.",
+            3 => "G0 X5. (move)",
+            5 => "#1 = 2",
+            6 => "O0100",
+            _ => "G1 X1. Y2.",
+        };
+        if !matches!(i % 8, 1 | 2 | 4 | 7) {
+            expected.push(i);
+        }
+        text.push_str(line);
+        text.push('\n');
+    }
+    for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
+        let whole = parse(&text, dialect);
+        for streaming in [false, true] {
+            let mut run = if streaming {
+                ParseRun::streaming(&text, dialect)
+            } else {
+                ParseRun::new(&text, dialect)
+            };
+            let mut spare = Vec::with_capacity(16);
+            let mut seen = Vec::new();
+            let mut first = 0u32;
+            loop {
+                let done = run.step(&text, 16);
+                let owning = run.take_owning();
+                let mut blocks = run.swap_blocks(std::mem::take(&mut spare));
+                for &at in &owning {
+                    let b = &blocks[at as usize];
+                    assert!(
+                        b.words.spilled()
+                            || b.program().is_some()
+                            || !b.comments().is_empty()
+                            || !b.statements().is_empty()
+                    );
+                }
+                let all: Vec<u32> = (0..blocks.len() as u32)
+                    .filter(|&at| {
+                        let b = &blocks[at as usize];
+                        b.words.len() > 4
+                            || b.program().is_some()
+                            || !b.comments().is_empty()
+                            || !b.statements().is_empty()
+                    })
+                    .collect();
+                assert_eq!(owning, all, "{dialect:?}, streaming {streaming}");
+                seen.extend(owning.iter().map(|&at| first + at));
+                first += blocks.len() as u32;
+                let capacity = blocks.capacity();
+                swarf_syntax::empty_blocks_known(&mut blocks, &owning);
+                assert!(blocks.is_empty());
+                assert_eq!(blocks.capacity(), capacity);
+                spare = blocks;
+                if done {
+                    break;
+                }
+            }
+            assert_eq!(first as usize, whole.blocks.len());
+            assert_eq!(seen, expected, "{dialect:?}, streaming {streaming}");
+        }
+    }
+}
