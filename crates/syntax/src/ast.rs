@@ -383,6 +383,7 @@ impl Block {
     }
 
     /// The `N` sequence number, if any.
+    #[inline]
     pub fn number(&self) -> Option<u32> {
         self.number.map(|n| n.get() - 1)
     }
@@ -399,6 +400,7 @@ impl Block {
     }
 
     /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
+    #[inline]
     pub fn block_delete(&self) -> Option<u8> {
         self.extras.as_deref()?.block_delete
     }
@@ -409,6 +411,7 @@ impl Block {
     }
 
     /// Whether the parser found an error in this block (it is not executed).
+    #[inline]
     pub fn has_error(&self) -> bool {
         self.extras.as_deref().is_some_and(|e| e.has_error)
     }
@@ -419,16 +422,19 @@ impl Block {
     }
 
     /// The program number when the block starts a program (`O1234`, `:1234`).
+    #[inline]
     pub fn program(&self) -> Option<&ProgramNumber> {
         self.extras.as_deref()?.program.as_ref()
     }
 
     /// Macro statements, in the order written (most blocks have none).
+    #[inline]
     pub fn statements(&self) -> &[Statement] {
         self.extras.as_deref().map_or(&[], |e| &e.statements)
     }
 
     /// Spans of the comments in the block.
+    #[inline]
     pub fn comments(&self) -> &[Span] {
         self.extras.as_deref().map_or(&[], |e| &e.comments)
     }
