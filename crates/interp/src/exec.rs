@@ -934,7 +934,8 @@ pub(crate) fn fast_move(
         // What the compensation stage does with a move when it is off.
         st.comp.prog = to;
         st.comp.tool = None;
-        sink.straight(source, rapid, to, feed);
+        // On the counter itself, not through a `dyn Sink`: no dispatch to it.
+        sink.straight(source, rapid, to.x, to.y, to.z, feed);
     }
     true
 }

@@ -45,22 +45,6 @@ pub(crate) struct MotionCounter<'s> {
     max_motions: u64,
 }
 
-impl MotionCounter<'_> {
-    /// Sends on a straight move ([`Sink::straight`]), counting it.
-    #[inline]
-    pub(crate) fn straight(
-        &mut self,
-        source: Source,
-        rapid: bool,
-        to: DVec3,
-        feed_mm_per_min: f64,
-    ) {
-        self.motions += 1;
-        self.inner
-            .straight(source, rapid, to.x, to.y, to.z, feed_mm_per_min);
-    }
-}
-
 impl Sink for MotionCounter<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
         if matches!(
