@@ -33,7 +33,9 @@ pub fn stepped(text: &str, dialect: Dialect, lines: usize, streaming: bool) -> (
 }
 
 /// `text` read as a file is read a chunk of `chunk` bytes at a time while it is parsed: the
-/// run is given the whole lines read so far, `lines` at a time, then the rest at the end.
+/// run is given the whole lines read so far, `lines` at a time, then the rest at the end,
+/// each time from the next line to read on (through the narrowest window: the lines read
+/// are let go of).
 pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Program {
     let mut run = ParseRun::growing(text.len(), dialect);
     let (mut read, mut whole_lines, mut complete) = (0, 0, false);
@@ -53,8 +55,9 @@ pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Progra
                     .map_or(0, |at| at + 1)
             };
         }
-        let part = &text[..whole_lines];
-        let done = run.step_growing(part, complete, lines);
+        let base = run.offset().min(whole_lines);
+        let part = &text[base..whole_lines];
+        let done = run.step_growing(part, base, complete, lines);
         assert!(
             complete || run.offset() <= whole_lines,
             "no line is read before it ends"
@@ -65,6 +68,7 @@ pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Progra
             break;
         }
     }
-    run.complete(text);
+    let base = run.offset().min(text.len());
+    run.complete(&text[base..], base);
     run.finish()
 }

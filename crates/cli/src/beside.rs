@@ -22,9 +22,10 @@ use crate::growing::{Growing, Unread};
 use crate::{FIRST_PIECE_LINES, PIECE_LINES, run_piece};
 use crate::{apart, waits};
 
-/// How far ahead of the parse the reader reads the file while it waits for the runner: a
-/// transparent huge page (2 MB), so that the text's next page is mapped in the wait.
-const IDLE_AHEAD_BYTES: usize = 2 << 20;
+/// How far ahead of the parse the reader reads the file while it waits for the runner (two
+/// chunks): the reads are then not in the parse's way, and the window of the text
+/// (`growing.rs`) has room for them.
+const IDLE_AHEAD_BYTES: usize = 128 << 10;
 
 /// The reading thread's stack: 1 MiB, far more than the parse needs (its expressions nest 64
 /// deep at most) and less than a transparent huge page, so that its first write (the thread's
@@ -45,12 +46,12 @@ const POOL_ARRAYS: usize = 8;
 type Piece = (Vec<Block>, Vec<ExprNode>, Vec<u32>);
 
 /// What [`run_pieces_beside`] gives besides the interpreter: the reader and the number of
-/// blocks read (`None` when the program needs running whole) and the whole text, or why the
-/// file gave no text.
-pub(crate) type Beside = Result<(Option<(ParseRun, usize)>, String), Unread>;
+/// blocks read (`None` when the program needs running whole) and the text as read (see
+/// [`Growing::into_text`]), or why the file gave no text.
+pub(crate) type Beside = Result<(Option<(ParseRun, usize)>, Growing), Unread>;
 
-/// What the reading hands back: the reader and the whole text, or why the file gave no text.
-type Read = Result<(ParseRun, String), Unread>;
+/// What the reading hands back: the reader and the text as read, or why the file gave no text.
+type Read = Result<(ParseRun, Growing), Unread>;
 
 /// The time model, its queue of moves, and the way back for the batches it has taken in:
 /// whoever holds it times them.
@@ -121,9 +122,12 @@ impl Reading {
     /// not plain UTF-8 stops the run.
     fn next_piece(&mut self, array: Vec<Block>) -> Result<(Piece, bool), Unread> {
         self.source.read_ahead(self.reader.offset())?;
-        let done =
-            self.reader
-                .step_growing(&self.source.text, self.source.is_complete(), self.lines);
+        let done = self.reader.step_growing(
+            &self.source.text,
+            self.source.base,
+            self.source.is_complete(),
+            self.lines,
+        );
         self.lines = (self.lines * 4).min(PIECE_LINES);
         let owning = self.reader.take_owning();
         let blocks = self.reader.swap_blocks(array);
@@ -140,15 +144,16 @@ impl Reading {
         self.source.read_on(until)
     }
 
-    /// The reader and the whole text, read to its end: a program that ends at a closing tape
-    /// mark may end before its file does. `complete` once every piece is read (the reader
-    /// then takes in the rest of the text); not when the run stopped part-way.
+    /// The reader and the text. `complete` once every piece is read: the file is then read to
+    /// its end (a program that ends at a closing tape mark may end before its file does) and
+    /// the reader takes in the rest of the text; not when the run stopped part-way (the
+    /// program is then read again whole).
     fn finish(mut self, complete: bool) -> Read {
-        self.source.read_to_end()?;
         if complete {
-            self.reader.complete(&self.source.text);
+            self.source.read_to_end()?;
+            self.reader.complete(&self.source.text, self.source.base);
         }
-        Ok((self.reader, self.source.text))
+        Ok((self.reader, self.source))
     }
 }
 

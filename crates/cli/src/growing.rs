@@ -1,11 +1,20 @@
 //! A program file read a chunk at a time while it is parsed, so that a long program starts
-//! running before the end of it is read (the read is no longer a wait before the first piece).
+//! running before the end of it is read (the read is no longer a wait before the first piece),
+//! through a window: the lines parsed are let go of, so the text of a long file is never held
+//! whole (its memory, a fresh page zeroed by the system for every 2 MB of text, and the copy
+//! into it are saved) and the window's bytes are still in the processor's cache when they are
+//! parsed.
 
 use std::fs::File;
-use std::io::Read;
+use std::io::{Read, Seek};
 
 /// Bytes read at a time, and how far ahead of the parse the text is kept.
 const CHUNK_BYTES: usize = 64 * 1024;
+
+/// The room the window of a file's text takes: the lines parsed are let go of when the next
+/// chunk would not fit in it (a line longer than that is read whole all the same). The lines
+/// not yet parsed move to its start then, a fraction of what was read since the last time.
+const WINDOW_BYTES: usize = 512 * 1024;
 
 /// The UTF-8 byte-order mark: a file that starts with it is decoded whole.
 const BOM: [u8; 3] = [0xEF, 0xBB, 0xBF];
@@ -16,8 +25,17 @@ const BOM: [u8; 3] = [0xEF, 0xBB, 0xBF];
 pub(crate) struct Growing {
     /// The file, until it is read to its end.
     file: Option<File>,
-    /// The whole lines read so far, checked to be UTF-8; the whole text once complete.
+    /// The file read to its end, kept to be read again from its start where its whole text
+    /// is wanted after the window let go of some of it ([`Growing::into_text`]).
+    read: Option<File>,
+    /// The whole lines read so far from byte `base` on, checked to be UTF-8; the whole text
+    /// of a text read before.
     pub(crate) text: String,
+    /// Where `text` starts in the file: the bytes before it are parsed and let go of.
+    pub(crate) base: usize,
+    /// The offset of the first byte still wanted (the next line to parse): the window keeps
+    /// the text from here on.
+    wanted: usize,
     /// Bytes read after the last line ending.
     rest: Vec<u8>,
     /// Where a chunk is read (empty until the first read).
@@ -40,22 +58,28 @@ impl Growing {
     pub(crate) fn whole(text: String) -> Self {
         Growing {
             file: None,
+            read: None,
             len: text.len(),
             text,
+            base: 0,
+            wanted: 0,
             rest: Vec::new(),
             buffer: Vec::new(),
         }
     }
 
-    /// A file of about `len` bytes, nothing of it read yet. The room for its text is taken at
-    /// the first read, on the thread that reads, after the arrays that thread makes first (the
-    /// line index, the first block array): they and the start of the text then share the
-    /// first memory that thread writes, which with transparent huge pages is one 2 MB page
-    /// mapped rather than two before the first piece.
+    /// A file of about `len` bytes, nothing of it read yet. The room for its window is taken
+    /// at the first read, on the thread that reads, after the arrays that thread makes first
+    /// (the line index, the first block array): they and the window then share the first
+    /// memory that thread writes, which with transparent huge pages is one 2 MB page mapped
+    /// rather than two before the first piece.
     pub(crate) fn open(file: File, len: usize) -> Self {
         Growing {
             file: Some(file),
+            read: None,
             text: String::new(),
+            base: 0,
+            wanted: 0,
             rest: Vec::new(),
             buffer: Vec::new(),
             len,
@@ -67,17 +91,24 @@ impl Growing {
         self.file.is_none()
     }
 
-    /// Reads on until the text holds a chunk's bytes past byte `from`, at least one whole line
-    /// of them, or is complete.
+    /// Where the text read so far ends in the file.
+    fn end(&self) -> usize {
+        self.base + self.text.len()
+    }
+
+    /// Reads on until the text holds a chunk's bytes past byte `from` (the next line to
+    /// parse: the lines before it may be let go of), at least one whole line of them, or is
+    /// complete.
     pub(crate) fn read_ahead(&mut self, from: usize) -> Result<(), Unread> {
+        self.wanted = self.wanted.max(from);
         while self.read_on(from.saturating_add(CHUNK_BYTES))? {}
         Ok(())
     }
 
-    /// Reads one more chunk if the text is shorter than `until` bytes and the file is not read
-    /// to its end; whether it read one.
+    /// Reads one more chunk if the text ends before byte `until` and the file is not read to
+    /// its end; whether it read one.
     pub(crate) fn read_on(&mut self, until: usize) -> Result<bool, Unread> {
-        if self.is_complete() || self.text.len() >= until {
+        if self.is_complete() || self.end() >= until {
             return Ok(false);
         }
         self.read_chunk()?;
@@ -100,9 +131,13 @@ impl Growing {
         // into a buffer zeroed once rather than before each read.
         if self.buffer.is_empty() {
             self.buffer = vec![0; CHUNK_BYTES];
-            // Room for the whole text, or an error where there is none (as `std::fs::read`
-            // gives, rather than aborting).
-            if self.text.try_reserve_exact(self.len).is_err() {
+            // Room for the window, or an error where there is none (as `std::fs::read` gives,
+            // rather than aborting).
+            if self
+                .text
+                .try_reserve_exact(self.len.min(WINDOW_BYTES))
+                .is_err()
+            {
                 return Err(Unread::Failed(std::io::ErrorKind::OutOfMemory.into()));
             }
         }
@@ -115,7 +150,7 @@ impl Growing {
         };
         let chunk = self.buffer.get(..read).unwrap_or_default();
         let (lines, after) = if read == 0 {
-            self.file = None;
+            self.read = self.file.take();
             (chunk, &[][..])
         } else {
             // The last line ending read: a line never ends inside a character.
@@ -138,10 +173,17 @@ impl Growing {
             lines.split_at(end)
         };
         self.rest.extend_from_slice(first);
-        if let Some(text) = plain(&self.rest, self.text.is_empty()) {
+        // The lines parsed make room for these where the window is full.
+        if self.text.len() + self.rest.len() + others.len() > WINDOW_BYTES {
+            let parsed = self.wanted.saturating_sub(self.base).min(self.text.len());
+            self.text.drain(..parsed);
+            self.base += parsed;
+        }
+        let at_start = self.end() == 0;
+        if let Some(text) = plain(&self.rest, at_start) {
             self.text.push_str(text);
             self.rest.clear();
-            if let Some(text) = plain(others, self.text.is_empty()) {
+            if let Some(text) = plain(others, self.end() == 0) {
                 self.text.push_str(text);
                 self.rest.extend_from_slice(after);
                 return Ok(());
@@ -154,6 +196,16 @@ impl Growing {
 
     /// Every byte of the file, for a text that is not plain UTF-8.
     fn unread(&mut self) -> Unread {
+        if self.base > 0 {
+            // The window let go of the file's start: it is read again.
+            return match self.file.take().or_else(|| self.read.take()) {
+                Some(file) => match read_again(file) {
+                    Ok(bytes) => Unread::Bytes(bytes),
+                    Err(e) => Unread::Failed(e),
+                },
+                None => Unread::Failed(std::io::ErrorKind::UnexpectedEof.into()),
+            };
+        }
         let mut bytes = std::mem::take(&mut self.text).into_bytes();
         bytes.append(&mut self.rest);
         if let Some(mut file) = self.file.take() {
@@ -164,6 +216,36 @@ impl Growing {
         }
         Unread::Bytes(bytes)
     }
+
+    /// Whether the text held is the whole text: read before, or a file read to its end with
+    /// none of it let go of.
+    pub(crate) fn is_whole(&self) -> bool {
+        self.is_complete() && self.base == 0
+    }
+
+    /// The whole text: the one held where it is whole, else the file read again from its
+    /// start (a file that is no longer plain UTF-8 gives its bytes, to be decoded).
+    pub(crate) fn into_text(mut self) -> Result<String, Unread> {
+        if self.is_whole() {
+            return Ok(self.text);
+        }
+        let Some(file) = self.file.take().or_else(|| self.read.take()) else {
+            return Ok(self.text);
+        };
+        match String::from_utf8(read_again(file).map_err(Unread::Failed)?) {
+            Ok(text) if !text.as_bytes().starts_with(&BOM) => Ok(text),
+            Ok(text) => Err(Unread::Bytes(text.into_bytes())),
+            Err(e) => Err(Unread::Bytes(e.into_bytes())),
+        }
+    }
+}
+
+/// Every byte of `file`, read from its start.
+fn read_again(mut file: File) -> std::io::Result<Vec<u8>> {
+    file.rewind()?;
+    let mut bytes = Vec::new();
+    file.read_to_end(&mut bytes)?;
+    Ok(bytes)
 }
 
 /// `bytes` as text when they are UTF-8, and where they start the text (`first`), do not start
@@ -180,26 +262,35 @@ mod tests {
 
     use super::*;
 
-    /// `bytes` written to a file and read as it is while it runs: the text after each read
-    /// ahead (each ends at a line ending until the file is read), and how it ended.
+    /// `bytes` written to a file and read as it is while it runs, each read ahead from where
+    /// the last ended (as a parse that has read every line before would): the text each read
+    /// ahead adds (each ends at a line ending until the file is read), and how it ended (the
+    /// text put together from them, which the window gives back whole too).
     fn read(bytes: &[u8]) -> (Vec<String>, Result<String, Option<Vec<u8>>>) {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("p.nc");
         std::fs::write(&path, bytes).unwrap();
         let file = File::open(&path).unwrap();
         let mut growing = Growing::open(file, bytes.len());
-        let mut texts = Vec::new();
-        let mut from = 0;
+        let mut parts = Vec::new();
+        let mut whole = String::new();
         while !growing.is_complete() {
-            match growing.read_ahead(from) {
+            match growing.read_ahead(whole.len()) {
                 Ok(()) => {}
-                Err(Unread::Bytes(all)) => return (texts, Err(Some(all))),
-                Err(Unread::Failed(_)) => return (texts, Err(None)),
+                Err(Unread::Bytes(all)) => return (parts, Err(Some(all))),
+                Err(Unread::Failed(_)) => return (parts, Err(None)),
             }
-            texts.push(growing.text.clone());
-            from = growing.text.len();
+            // The window keeps the text from where the parse is on.
+            assert!(growing.base <= whole.len());
+            let added = growing.text[whole.len() - growing.base..].to_string();
+            whole.push_str(&added);
+            parts.push(added);
         }
-        (texts, Ok(growing.text))
+        match growing.into_text() {
+            Ok(again) => assert_eq!(again, whole),
+            Err(_) => panic!("the whole text is given back"),
+        }
+        (parts, Ok(whole))
     }
 
     #[test]
@@ -213,7 +304,6 @@ mod tests {
         assert!(parts.len() > 3, "{} reads", parts.len());
         for part in &parts[..parts.len() - 1] {
             assert!(part.ends_with('\n'));
-            assert!(text.starts_with(part.as_str()));
         }
         assert_eq!(whole.ok(), Some(text));
     }
@@ -229,7 +319,8 @@ mod tests {
     #[test]
     fn a_file_not_plain_utf8_is_given_back_whole() {
         // GB18030 in a comment far into the file, a byte-order mark, UTF-16.
-        let mut gbk = "G1 X1\n".repeat(30_000).into_bytes();
+        // The first far enough in that the window has let go of the file's start.
+        let mut gbk = "G1 X1\n".repeat(150_000).into_bytes();
         gbk.extend_from_slice(b"(\xBC\xD3\xB9\xA4)\nM30\n");
         let mut bom = BOM.to_vec();
         bom.extend_from_slice("G1 X1\n".repeat(30_000).as_bytes());
@@ -264,16 +355,30 @@ mod tests {
     }
 
     #[test]
-    fn a_file_too_long_to_hold_is_an_error_not_an_abort() {
+    fn a_long_file_is_read_through_a_window_and_can_be_read_again_whole() {
+        let mut text = String::new();
+        for i in 0..200_000 {
+            text.push_str(&format!("G1 X{i}.25 Y-{i}.5\n"));
+        }
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("p.nc");
-        std::fs::write(&path, "G1 X1\n").unwrap();
-        let file = File::open(&path).unwrap();
-        let mut growing = Growing::open(file, usize::MAX);
-        let Err(Unread::Failed(error)) = growing.read_ahead(0) else {
-            panic!("no room for the text is an error");
-        };
-        assert_eq!(error.kind(), std::io::ErrorKind::OutOfMemory);
+        std::fs::write(&path, &text).unwrap();
+        // A length far over any memory is only a reserve.
+        let mut growing = Growing::open(File::open(&path).unwrap(), usize::MAX);
+        let mut most = 0;
+        while !growing.is_complete() {
+            assert!(growing.read_ahead(growing.end()).is_ok());
+            most = most.max(growing.text.len());
+            // What it holds is the file's, from where it starts.
+            assert!(text[growing.base..].starts_with(&growing.text));
+        }
+        assert!(most <= WINDOW_BYTES + CHUNK_BYTES, "{most} bytes held");
+        assert!(growing.base > text.len() - WINDOW_BYTES);
+        assert!(!growing.is_whole());
+        match growing.into_text() {
+            Ok(again) => assert_eq!(again, text),
+            Err(_) => panic!("the whole text is read again"),
+        }
     }
 
     #[test]

@@ -276,6 +276,8 @@ where
 /// A program file read, decoded and parsed.
 struct Loaded {
     path: String,
+    /// The text, for the diagnostics' lines and columns: empty for a long program run as its
+    /// file was read (`stream`) where there is nothing to report.
     text: String,
     program: Program,
     /// Decoding and parsing diagnostics.
@@ -448,25 +450,34 @@ fn stream(
     let helper = (beside && source.len > PIECE_BYTES)
         .then(Helper::start)
         .flatten();
-    let (mut interp, ran, text) = if let Some(helper) = helper {
+    let (mut interp, ran, source) = if let Some(helper) = helper {
         let (interp, read) = run_pieces_beside(source, opts.dialect, setup, toolpath, helper);
-        let (ran, text) = read?;
-        (interp, ran, text)
+        let (ran, source) = read?;
+        (interp, ran, source)
     } else {
         source.read_to_end()?;
-        let text = source.text;
         // The lines are indexed as they are read.
-        let reader = swarf_syntax::ParseRun::streaming(&text, opts.dialect);
+        let reader = swarf_syntax::ParseRun::streaming(&source.text, opts.dialect);
         let mut interp = swarf_interp::Interpreter::new(setup.clone(), opts.dialect);
-        let ran = run_pieces(&text, reader, &mut interp, toolpath);
-        (interp, ran, text)
+        let ran = run_pieces(&source.text, reader, &mut interp, toolpath);
+        (interp, ran, source)
     };
     let Some((reader, blocks)) = ran else {
-        return Ok(Outcome::Whole(text, decoding));
+        return Ok(Outcome::Whole(source.into_text()?, decoding));
     };
     interp.finish_pieces(toolpath);
-    let mut loaded = Loaded::new(path, decoding, text, reader.finish(), Vec::new());
-    let diagnostics = loaded.all_diagnostics(interp.take_diagnostics());
+    let program = reader.finish();
+    let run = interp.take_diagnostics();
+    // The text is wanted to report diagnostics: a file read through a window, which let go of
+    // the lines it parsed, is read again for them (and only then).
+    let reported = !(decoding.is_empty() && program.diagnostics.is_empty() && run.is_empty());
+    let text = if reported || source.is_whole() {
+        source.into_text()?
+    } else {
+        String::new()
+    };
+    let mut loaded = Loaded::new(path, decoding, text, program, Vec::new());
+    let diagnostics = loaded.all_diagnostics(run);
     Ok(Outcome::Ran(Box::new(Streamed {
         loaded,
         blocks,
@@ -960,7 +971,12 @@ mod tests {
             let outcome = stream(&file, source, Vec::new(), &opts, &setup, &mut path, true);
             ran.push(match outcome {
                 Ok(Outcome::Ran(streamed)) => {
-                    assert_eq!(streamed.loaded.text, text);
+                    // A text read through a window is read again only to report diagnostics.
+                    if streamed.loaded.text.is_empty() {
+                        assert!(streamed.diagnostics.is_empty() && text.len() > (512 << 10));
+                    } else {
+                        assert_eq!(streamed.loaded.text, text);
+                    }
                     true
                 }
                 // A program that needs running whole gets its whole text back.
@@ -973,6 +989,44 @@ mod tests {
         }
         assert_eq!(ran[0], ran[1]);
         ran[0]
+    }
+
+    /// A program longer than the window its file is read through (`growing.rs`), so that its
+    /// start is let go of before its end is read: its diagnostics are reported where they
+    /// are, from its text read again, and one that needs running whole gets its whole text.
+    #[test]
+    fn a_long_file_read_through_a_window_reports_where_its_diagnostics_are() {
+        let mut long = String::from("G90 G21 G1 F500.\n");
+        for i in 0..120_000 {
+            long.push_str(&format!("X{i}.5 Y1.\n"));
+        }
+        assert!(streams(&long));
+        let broken = format!("{long}G1 X1. @ Y2.\nM30\n");
+        assert!(streams(&broken));
+        assert!(!streams(&format!(
+            "{long}M98 P2000\nM30\nO2000\nX1.\nM99\n"
+        )));
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("t.nc");
+        std::fs::write(&file, &broken).unwrap();
+        let args = StatsArgs {
+            file: file.clone(),
+            opts: RunOptions {
+                dialect: Dialect::Fanuc,
+                setup: None,
+            },
+            json: false,
+            whole: false,
+            one_thread: false,
+        };
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        assert_eq!(stats(&args, &mut out, &mut err).unwrap(), EXIT_ERRORS);
+        let err = String::from_utf8(err).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with(&format!("{}:120002:8: error", file.display())),
+            "{err}"
+        );
     }
 
     #[test]

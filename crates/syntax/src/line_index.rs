@@ -50,22 +50,35 @@ impl LineIndex {
     /// long program piece by piece, the indexing is spread over the pieces (and over the thread
     /// that reads them) instead of done before the first one.
     pub fn extend(&mut self, text: &str, from: usize, lines: usize) -> Option<usize> {
+        self.extend_window(text, 0, from, lines)
+    }
+
+    /// [`LineIndex::extend`] where `text` is the whole text from byte `base` on (a file read
+    /// through a window); `from` (at least `base`) and the offset returned are into the whole
+    /// text.
+    pub fn extend_window(
+        &mut self,
+        text: &str,
+        base: usize,
+        from: usize,
+        lines: usize,
+    ) -> Option<usize> {
         /// Bytes searched at a time (the table may run up to this far ahead of `lines`).
         const STRETCH: usize = 4096;
         let bytes = text.as_bytes();
-        let mut at = from.min(bytes.len());
+        let mut at = from.saturating_sub(base).min(bytes.len());
         while self.starts.len() < lines {
             let end = at.saturating_add(STRETCH).min(bytes.len());
             let starts = &mut self.starts;
             for_each_newline(bytes.get(at..end).unwrap_or_default(), |i| {
-                starts.push(line_after(at, i));
+                starts.push(line_after(base + at, i));
             });
             if end == bytes.len() {
                 return None;
             }
             at = end;
         }
-        Some(at)
+        Some(base + at)
     }
 
     /// Adds the start of the next line, at byte `start` (just after a `\n`), for a reader that

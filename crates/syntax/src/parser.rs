@@ -10,6 +10,7 @@ use nom::combinator::opt;
 use nom::{IResult, Parser};
 
 use crate::ast::{BinOp, Expr, ExprId, ExprNode, Func, OLabel, OWord, ProgramNumber, Statement};
+use crate::source::Window;
 use crate::{
     Block, Diagnostic, Dialect, LineIndex, LineSource, Program, Rules, Span, Word, WordForm,
 };
@@ -117,23 +118,30 @@ impl ParseRun {
     }
 
     /// [`ParseRun::step`] for a run made with [`ParseRun::growing`] over a text that is still
-    /// being read: `text` is the part read so far, which grows from call to call. Until it is
-    /// `complete` it holds whole lines only (each ended by its `\n`), and the run reads none of
-    /// the line still to come. Whether the whole text is read: never before it is complete,
-    /// but at a closing tape mark; call [`ParseRun::complete`] with the whole text then.
-    pub fn step_growing(&mut self, text: &str, complete: bool, lines: usize) -> bool {
-        self.read_lines(Some(text), &mut &*text, lines, complete)
+    /// being read: `text` is the part read so far from byte `base` of the whole text on (the
+    /// bytes before `base` are read already, and their text need not be kept: a long file is
+    /// read through a window). The text grows from call to call, and `base` may move up to
+    /// the offset of the next line to read ([`ParseRun::offset`]). Until it is `complete` it
+    /// holds whole lines only (each ended by its `\n`), and the run reads none of the line
+    /// still to come. Whether the whole text is read: never before it is complete, but at a
+    /// closing tape mark; call [`ParseRun::complete`] with the rest of the text then.
+    pub fn step_growing(&mut self, text: &str, base: usize, complete: bool, lines: usize) -> bool {
+        self.read_indexing(text, base, lines, complete)
     }
 
-    /// Finishes a run read with [`ParseRun::step_growing`] once its text is whole (`text`):
-    /// indexes the lines it did not read, and notes the text after a closing tape mark, as a
-    /// run over the whole text does.
-    pub fn complete(&mut self, text: &str) {
+    /// Finishes a run read with [`ParseRun::step_growing`] once its text is whole: `text` is
+    /// the text from byte `base` on, to its end (`base` at most [`ParseRun::offset`]). Indexes
+    /// the lines it did not read, and notes the text after a closing tape mark, as a run over
+    /// the whole text does.
+    pub fn complete(&mut self, text: &str, base: usize) {
         if let Some(from) = self.indexed {
-            self.indexed = self.program.lines.extend(text, from, usize::MAX);
+            self.indexed = self
+                .program
+                .lines
+                .extend_window(text, base, from, usize::MAX);
         }
         if let Some(offset) = self.tape_end.take() {
-            ignore_after_tape_end(&mut self.program, &mut &*text, offset);
+            ignore_after_tape_end(&mut self.program, &mut Window { text, base }, offset);
         }
     }
 
@@ -163,7 +171,7 @@ impl ParseRun {
         complete: bool,
     ) -> bool {
         if let (Some(text), Some(_)) = (text, self.indexed) {
-            return self.read_indexing(text, lines, complete);
+            return self.read_indexing(text, 0, lines, complete);
         }
         let program = &mut self.program;
         let dialect = program.dialect;
@@ -267,7 +275,8 @@ impl ParseRun {
     /// ([`ParseRun::streaming`], [`ParseRun::growing`]) over a text at hand: each line's end is
     /// found as it is read (by the short reader, as it reads a plain line) rather than by a
     /// pass over the text before, and the start of the line after it goes to the index.
-    fn read_indexing(&mut self, text: &str, lines: usize, complete: bool) -> bool {
+    /// `text` starts at byte `base` of the whole text (see [`ParseRun::step_growing`]).
+    fn read_indexing(&mut self, text: &str, base: usize, lines: usize, complete: bool) -> bool {
         let program = &mut self.program;
         let limits = PlainLimits::of(program.dialect.rules());
         let bytes = text.as_bytes();
@@ -279,7 +288,7 @@ impl ParseRun {
             bytes
                 .iter()
                 .rposition(|&b| b == b'\n')
-                .map_or(0, |at| at + 1)
+                .map_or(base, |at| base + at + 1)
         };
         let stop = self.line_no.saturating_add(lines);
         let mut next = self.line_no;
@@ -287,7 +296,7 @@ impl ParseRun {
         let mut tape = self.tape;
         let mut done = self.done;
         while !done && next < stop && offset < readable {
-            let rest = bytes.get(offset..).unwrap_or_default();
+            let rest = bytes.get(offset.wrapping_sub(base)..).unwrap_or_default();
             let line_no = u32::try_from(next).unwrap_or(u32::MAX);
             let made = program.blocks.len();
             let plain = if self.plain_lines {
@@ -306,7 +315,8 @@ impl ParseRun {
                 (raw_len, !block, false)
             } else {
                 let raw_len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-                let raw = text.get(offset..offset + raw_len).unwrap_or_default();
+                let at = offset.wrapping_sub(base);
+                let raw = text.get(at..at + raw_len).unwrap_or_default();
                 let (blank, percent) =
                     read_general_line(program, &mut self.checker, raw, offset, line_no);
                 (raw_len, blank, percent)
@@ -324,7 +334,13 @@ impl ParseRun {
             let closed;
             (tape, closed) = tape.after(blank, percent);
             if closed {
-                close_tape(program, &mut &*text, complete, offset, &mut self.tape_end);
+                close_tape(
+                    program,
+                    &mut Window { text, base },
+                    complete,
+                    offset,
+                    &mut self.tape_end,
+                );
                 done = true;
             }
         }
@@ -334,12 +350,13 @@ impl ParseRun {
         self.done = done;
         // The lines not read (after a closing tape mark) are indexed too, once the text is
         // whole, as a run that indexes first has them.
-        self.indexed = Some(offset.min(bytes.len()));
+        let end = base + bytes.len();
+        self.indexed = Some(offset.min(end));
         if complete && done {
-            self.indexed = self
-                .program
-                .lines
-                .extend(text, offset.min(bytes.len()), usize::MAX);
+            self.indexed =
+                self.program
+                    .lines
+                    .extend_window(text, base, offset.min(end), usize::MAX);
         }
         self.done
     }

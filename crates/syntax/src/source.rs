@@ -43,3 +43,31 @@ impl LineSource for &str {
         Some((start, start + trimmed.trim_end().len()))
     }
 }
+
+/// The part of a text from byte `base` on (a file read through a window: the bytes before
+/// `base` are gone), addressed by offsets into the whole text.
+pub(crate) struct Window<'a> {
+    /// The text from `base` on.
+    pub(crate) text: &'a str,
+    /// Where `text` starts in the whole text.
+    pub(crate) base: usize,
+}
+
+impl LineSource for Window<'_> {
+    fn len(&self) -> usize {
+        self.base + self.text.len()
+    }
+
+    /// Empty for a range before the window.
+    fn line(&mut self, start: usize, end: usize) -> &str {
+        match (start.checked_sub(self.base), end.checked_sub(self.base)) {
+            (Some(start), Some(end)) => self.text.get(start..end).unwrap_or_default(),
+            _ => "",
+        }
+    }
+
+    fn trimmed_rest(&mut self, offset: usize) -> Option<(usize, usize)> {
+        let (start, end) = (&mut &*self.text).trimmed_rest(offset.saturating_sub(self.base))?;
+        Some((self.base + start, self.base + end))
+    }
+}
