@@ -56,7 +56,7 @@ pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Progra
             };
         }
         let base = run.offset().min(whole_lines);
-        let part = &text[base..whole_lines];
+        let part = &text.as_bytes()[base..whole_lines];
         let done = run.step_growing(part, base, complete, lines);
         assert!(
             complete || run.offset() <= whole_lines,
@@ -69,6 +69,6 @@ pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Progra
         }
     }
     let base = run.offset().min(text.len());
-    run.complete(&text[base..], base);
+    run.complete(&text.as_bytes()[base..], base);
     run.finish()
 }

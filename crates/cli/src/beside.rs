@@ -123,7 +123,7 @@ impl Reading {
     fn next_piece(&mut self, array: Vec<Block>) -> Result<(Piece, bool), Unread> {
         self.source.read_ahead(self.reader.offset())?;
         let done = self.reader.step_growing(
-            &self.source.text,
+            self.source.bytes(),
             self.source.base,
             self.source.is_complete(),
             self.lines,
@@ -151,7 +151,7 @@ impl Reading {
     fn finish(mut self, complete: bool) -> Read {
         if complete {
             self.source.read_to_end()?;
-            self.reader.complete(&self.source.text, self.source.base);
+            self.reader.complete(self.source.bytes(), self.source.base);
         }
         Ok((self.reader, self.source))
     }

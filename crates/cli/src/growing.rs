@@ -28,18 +28,19 @@ pub(crate) struct Growing {
     /// The file read to its end, kept to be read again from its start where its whole text
     /// is wanted after the window let go of some of it ([`Growing::into_text`]).
     read: Option<File>,
-    /// The whole lines read so far from byte `base` on, checked to be UTF-8; the whole text
-    /// of a text read before.
-    pub(crate) text: String,
-    /// Where `text` starts in the file: the bytes before it are parsed and let go of.
+    /// A text read before, whole.
+    text: String,
+    /// A file's window: its bytes from `base` on, the chunks read straight into it (zeroed
+    /// once, when made). Whole lines checked to be UTF-8 up to `lines`, then the start of the
+    /// next line up to `filled`.
+    window: Vec<u8>,
+    lines: usize,
+    filled: usize,
+    /// Where the window starts in the file: the bytes before it are parsed and let go of.
     pub(crate) base: usize,
     /// The offset of the first byte still wanted (the next line to parse): the window keeps
     /// the text from here on.
     wanted: usize,
-    /// Bytes read after the last line ending.
-    rest: Vec<u8>,
-    /// Where a chunk is read (empty until the first read).
-    buffer: Vec<u8>,
     /// The file's length when it was opened, or the text's (a reserve, not a limit).
     pub(crate) len: usize,
 }
@@ -61,10 +62,11 @@ impl Growing {
             read: None,
             len: text.len(),
             text,
+            window: Vec::new(),
+            lines: 0,
+            filled: 0,
             base: 0,
             wanted: 0,
-            rest: Vec::new(),
-            buffer: Vec::new(),
         }
     }
 
@@ -78,11 +80,22 @@ impl Growing {
             file: Some(file),
             read: None,
             text: String::new(),
+            window: Vec::new(),
+            lines: 0,
+            filled: 0,
             base: 0,
             wanted: 0,
-            rest: Vec::new(),
-            buffer: Vec::new(),
             len,
+        }
+    }
+
+    /// The whole lines read so far, from byte `base` of the file on (UTF-8); the whole text
+    /// of a text read before.
+    pub(crate) fn bytes(&self) -> &[u8] {
+        if self.window.is_empty() {
+            self.text.as_bytes()
+        } else {
+            self.window.get(..self.lines).unwrap_or_default()
         }
     }
 
@@ -91,9 +104,9 @@ impl Growing {
         self.file.is_none()
     }
 
-    /// Where the text read so far ends in the file.
+    /// Where the whole lines read so far end in the file.
     fn end(&self) -> usize {
-        self.base + self.text.len()
+        self.base + self.bytes().len()
     }
 
     /// Reads on until the text holds a chunk's bytes past byte `from` (the next line to
@@ -121,94 +134,93 @@ impl Growing {
         Ok(())
     }
 
-    /// Reads a chunk and adds the lines it ends to the text (at the end of the file, all that
-    /// is left).
+    /// Reads a chunk into the window and checks the lines it ends (at the end of the file,
+    /// all that is left).
     fn read_chunk(&mut self) -> Result<(), Unread> {
+        if self.file.is_none() {
+            return Ok(());
+        }
+        self.make_room()?;
         let Some(file) = &mut self.file else {
             return Ok(());
         };
-        // One call a chunk (`read_to_end` would make several, growing its reads from 8 KB),
-        // into a buffer zeroed once rather than before each read.
-        if self.buffer.is_empty() {
-            self.buffer = vec![0; CHUNK_BYTES];
-            // Room for the window, or an error where there is none (as `std::fs::read` gives,
-            // rather than aborting).
-            if self
-                .text
-                .try_reserve_exact(self.len.min(WINDOW_BYTES))
-                .is_err()
-            {
-                return Err(Unread::Failed(std::io::ErrorKind::OutOfMemory.into()));
-            }
-        }
+        let from = self.filled;
+        let room = self
+            .window
+            .get_mut(from..from + CHUNK_BYTES)
+            .unwrap_or_default();
         let read = loop {
-            match file.read(&mut self.buffer) {
+            match file.read(room) {
                 Ok(read) => break read,
                 Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
                 Err(e) => return Err(Unread::Failed(e)),
             }
         };
-        let chunk = self.buffer.get(..read).unwrap_or_default();
-        let (lines, after) = if read == 0 {
+        self.filled += read;
+        let lines_end = if read == 0 {
             self.read = self.file.take();
-            (chunk, &[][..])
+            self.filled
         } else {
             // The last line ending read: a line never ends inside a character.
-            let Some(at) = chunk.iter().rposition(|&b| b == b'\n') else {
-                self.rest.extend_from_slice(chunk);
-                return Ok(());
-            };
-            chunk.split_at(at + 1)
-        };
-        // A line begun in an earlier chunk is finished in `rest`; the chunk's other whole
-        // lines go to the text as they are. Until a line is in the text, `rest` and the chunk
-        // hold the file from its start.
-        let (first, others) = if self.rest.is_empty() {
-            (&[][..], lines)
-        } else {
-            let end = lines
-                .iter()
-                .position(|&b| b == b'\n')
-                .map_or(lines.len(), |at| at + 1);
-            lines.split_at(end)
-        };
-        self.rest.extend_from_slice(first);
-        // The lines parsed make room for these where the window is full.
-        if self.text.len() + self.rest.len() + others.len() > WINDOW_BYTES {
-            let parsed = self.wanted.saturating_sub(self.base).min(self.text.len());
-            self.text.drain(..parsed);
-            self.base += parsed;
-        }
-        let at_start = self.end() == 0;
-        if let Some(text) = plain(&self.rest, at_start) {
-            self.text.push_str(text);
-            self.rest.clear();
-            if let Some(text) = plain(others, self.end() == 0) {
-                self.text.push_str(text);
-                self.rest.extend_from_slice(after);
-                return Ok(());
+            let chunk = self.window.get(from..self.filled).unwrap_or_default();
+            match chunk.iter().rposition(|&b| b == b'\n') {
+                Some(at) => from + at + 1,
+                None => return Ok(()),
             }
+        };
+        let first = self.base + self.lines == 0;
+        let lines = self.window.get(self.lines..lines_end).unwrap_or_default();
+        if plain(lines, first).is_none() {
+            return Err(self.unread());
         }
-        self.rest.extend_from_slice(others);
-        self.rest.extend_from_slice(after);
-        Err(self.unread())
+        self.lines = lines_end;
+        Ok(())
+    }
+
+    /// Room for a chunk at the end of the window: made at the first read, then by letting go
+    /// of the lines parsed when the window is full (the rest moves to its start), and by
+    /// growing it where a line is longer than it. An error where there is no memory for it
+    /// (as `std::fs::read` gives, rather than aborting).
+    fn make_room(&mut self) -> Result<(), Unread> {
+        if self.window.len() >= self.filled + CHUNK_BYTES {
+            return Ok(());
+        }
+        if !self.window.is_empty() {
+            let parsed = self.wanted.saturating_sub(self.base).min(self.lines);
+            self.window.copy_within(parsed..self.filled, 0);
+            self.base += parsed;
+            self.lines -= parsed;
+            self.filled -= parsed;
+        }
+        let wanted = (self.filled + CHUNK_BYTES).max(self.len.clamp(CHUNK_BYTES, WINDOW_BYTES));
+        if self.window.len() < wanted {
+            if self
+                .window
+                .try_reserve_exact(wanted - self.window.len())
+                .is_err()
+            {
+                return Err(Unread::Failed(std::io::ErrorKind::OutOfMemory.into()));
+            }
+            self.window.resize(wanted, 0);
+        }
+        Ok(())
     }
 
     /// Every byte of the file, for a text that is not plain UTF-8.
     fn unread(&mut self) -> Unread {
+        let at_end = self.is_complete();
+        let file = self.file.take().or_else(|| self.read.take());
         if self.base > 0 {
             // The window let go of the file's start: it is read again.
-            return match self.file.take().or_else(|| self.read.take()) {
-                Some(file) => match read_again(file) {
-                    Ok(bytes) => Unread::Bytes(bytes),
-                    Err(e) => Unread::Failed(e),
-                },
+            return match file.map(read_again) {
+                Some(Ok(bytes)) => Unread::Bytes(bytes),
+                Some(Err(e)) => Unread::Failed(e),
                 None => Unread::Failed(std::io::ErrorKind::UnexpectedEof.into()),
             };
         }
-        let mut bytes = std::mem::take(&mut self.text).into_bytes();
-        bytes.append(&mut self.rest);
-        if let Some(mut file) = self.file.take() {
+        let mut bytes = std::mem::take(&mut self.window);
+        bytes.truncate(self.filled);
+        if let (Some(mut file), false) = (file, at_end) {
             bytes.reserve(self.len.saturating_sub(bytes.len()));
             if let Err(e) = file.read_to_end(&mut bytes) {
                 return Unread::Failed(e);
@@ -217,22 +229,27 @@ impl Growing {
         Unread::Bytes(bytes)
     }
 
-    /// Whether the text held is the whole text: read before, or a file read to its end with
-    /// none of it let go of.
-    pub(crate) fn is_whole(&self) -> bool {
-        self.is_complete() && self.base == 0
+    /// Whether this is a text read before, held whole.
+    pub(crate) fn held_whole(&self) -> bool {
+        self.window.is_empty() && self.file.is_none() && self.read.is_none()
     }
 
-    /// The whole text: the one held where it is whole, else the file read again from its
-    /// start (a file that is no longer plain UTF-8 gives its bytes, to be decoded).
+    /// The whole text: a text read before, or a file's read to its end and held whole, else
+    /// the file read again from its start (a file that is no longer plain UTF-8 gives its
+    /// bytes, to be decoded).
     pub(crate) fn into_text(mut self) -> Result<String, Unread> {
-        if self.is_whole() {
+        if self.held_whole() {
             return Ok(self.text);
         }
-        let Some(file) = self.file.take().or_else(|| self.read.take()) else {
-            return Ok(self.text);
+        let at_end = self.is_complete();
+        let bytes = match self.file.take().or_else(|| self.read.take()) {
+            Some(file) if self.base > 0 || !at_end => read_again(file).map_err(Unread::Failed)?,
+            _ => {
+                self.window.truncate(self.lines);
+                self.window
+            }
         };
-        match String::from_utf8(read_again(file).map_err(Unread::Failed)?) {
+        match String::from_utf8(bytes) {
             Ok(text) if !text.as_bytes().starts_with(&BOM) => Ok(text),
             Ok(text) => Err(Unread::Bytes(text.into_bytes())),
             Err(e) => Err(Unread::Bytes(e.into_bytes())),
@@ -282,7 +299,8 @@ mod tests {
             }
             // The window keeps the text from where the parse is on.
             assert!(growing.base <= whole.len());
-            let added = growing.text[whole.len() - growing.base..].to_string();
+            let added = &growing.bytes()[whole.len() - growing.base..];
+            let added = String::from_utf8(added.to_vec()).unwrap();
             whole.push_str(&added);
             parts.push(added);
         }
@@ -368,13 +386,13 @@ mod tests {
         let mut most = 0;
         while !growing.is_complete() {
             assert!(growing.read_ahead(growing.end()).is_ok());
-            most = most.max(growing.text.len());
+            most = most.max(growing.bytes().len());
             // What it holds is the file's, from where it starts.
-            assert!(text[growing.base..].starts_with(&growing.text));
+            assert!(text.as_bytes()[growing.base..].starts_with(growing.bytes()));
         }
         assert!(most <= WINDOW_BYTES + CHUNK_BYTES, "{most} bytes held");
         assert!(growing.base > text.len() - WINDOW_BYTES);
-        assert!(!growing.is_whole());
+        assert!(!growing.held_whole());
         match growing.into_text() {
             Ok(again) => assert_eq!(again, text),
             Err(_) => panic!("the whole text is read again"),
@@ -390,16 +408,16 @@ mod tests {
         let mut growing = Growing::open(File::open(&path).unwrap(), text.len());
         // Short of the bound: a chunk a call, each read in whole lines.
         assert!(growing.read_on(2 * CHUNK_BYTES).ok() == Some(true));
-        assert_eq!(growing.text.len(), CHUNK_BYTES);
+        assert_eq!(growing.bytes().len(), CHUNK_BYTES);
         assert!(growing.read_on(2 * CHUNK_BYTES).ok() == Some(true));
-        assert_eq!(growing.text.len(), 2 * CHUNK_BYTES);
+        assert_eq!(growing.bytes().len(), 2 * CHUNK_BYTES);
         // At the bound: nothing more.
         assert!(growing.read_on(2 * CHUNK_BYTES).ok() == Some(false));
-        assert_eq!(growing.text.len(), 2 * CHUNK_BYTES);
+        assert_eq!(growing.bytes().len(), 2 * CHUNK_BYTES);
         // To the end of the file, and nothing after it.
         while growing.read_on(usize::MAX).ok() == Some(true) {}
         assert!(growing.is_complete());
-        assert_eq!(growing.text, text);
+        assert_eq!(growing.bytes(), text.as_bytes());
         assert!(growing.read_on(usize::MAX).ok() == Some(false));
     }
 
@@ -408,6 +426,6 @@ mod tests {
         let mut growing = Growing::whole("G1 X1\nM30".to_string());
         assert!(growing.is_complete());
         assert!(growing.read_ahead(0).is_ok() && growing.read_to_end().is_ok());
-        assert_eq!(growing.text, "G1 X1\nM30");
+        assert_eq!(growing.bytes(), b"G1 X1\nM30");
     }
 }

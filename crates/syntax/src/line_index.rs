@@ -50,22 +50,21 @@ impl LineIndex {
     /// long program piece by piece, the indexing is spread over the pieces (and over the thread
     /// that reads them) instead of done before the first one.
     pub fn extend(&mut self, text: &str, from: usize, lines: usize) -> Option<usize> {
-        self.extend_window(text, 0, from, lines)
+        self.extend_window(text.as_bytes(), 0, from, lines)
     }
 
-    /// [`LineIndex::extend`] where `text` is the whole text from byte `base` on (a file read
-    /// through a window); `from` (at least `base`) and the offset returned are into the whole
-    /// text.
+    /// [`LineIndex::extend`] where `bytes` are the whole text's from byte `base` on (a file
+    /// read through a window); `from` (at least `base`) and the offset returned are into the
+    /// whole text.
     pub fn extend_window(
         &mut self,
-        text: &str,
+        bytes: &[u8],
         base: usize,
         from: usize,
         lines: usize,
     ) -> Option<usize> {
         /// Bytes searched at a time (the table may run up to this far ahead of `lines`).
         const STRETCH: usize = 4096;
-        let bytes = text.as_bytes();
         let mut at = from.saturating_sub(base).min(bytes.len());
         while self.starts.len() < lines {
             let end = at.saturating_add(STRETCH).min(bytes.len());

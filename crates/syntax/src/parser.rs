@@ -123,9 +123,11 @@ impl ParseRun {
     /// read through a window). The text grows from call to call, and `base` may move up to
     /// the offset of the next line to read ([`ParseRun::offset`]). Until it is `complete` it
     /// holds whole lines only (each ended by its `\n`), and the run reads none of the line
-    /// still to come. Whether the whole text is read: never before it is complete, but at a
+    /// still to come. The text is UTF-8 (given as bytes, so that a reader can read a file
+    /// straight into its window and check each chunk once; a line that is not is read as an
+    /// empty one). Whether the whole text is read: never before it is complete, but at a
     /// closing tape mark; call [`ParseRun::complete`] with the rest of the text then.
-    pub fn step_growing(&mut self, text: &str, base: usize, complete: bool, lines: usize) -> bool {
+    pub fn step_growing(&mut self, text: &[u8], base: usize, complete: bool, lines: usize) -> bool {
         self.read_indexing(text, base, lines, complete)
     }
 
@@ -133,7 +135,7 @@ impl ParseRun {
     /// the text from byte `base` on, to its end (`base` at most [`ParseRun::offset`]). Indexes
     /// the lines it did not read, and notes the text after a closing tape mark, as a run over
     /// the whole text does.
-    pub fn complete(&mut self, text: &str, base: usize) {
+    pub fn complete(&mut self, text: &[u8], base: usize) {
         if let Some(from) = self.indexed {
             self.indexed = self
                 .program
@@ -171,7 +173,7 @@ impl ParseRun {
         complete: bool,
     ) -> bool {
         if let (Some(text), Some(_)) = (text, self.indexed) {
-            return self.read_indexing(text, 0, lines, complete);
+            return self.read_indexing(text.as_bytes(), 0, lines, complete);
         }
         let program = &mut self.program;
         let dialect = program.dialect;
@@ -276,10 +278,9 @@ impl ParseRun {
     /// found as it is read (by the short reader, as it reads a plain line) rather than by a
     /// pass over the text before, and the start of the line after it goes to the index.
     /// `text` starts at byte `base` of the whole text (see [`ParseRun::step_growing`]).
-    fn read_indexing(&mut self, text: &str, base: usize, lines: usize, complete: bool) -> bool {
+    fn read_indexing(&mut self, bytes: &[u8], base: usize, lines: usize, complete: bool) -> bool {
         let program = &mut self.program;
         let limits = PlainLimits::of(program.dialect.rules());
-        let bytes = text.as_bytes();
         // A text still being read is read to its last line ending: the line after it is still
         // to come (the text holds whole lines only).
         let readable = if complete {
@@ -316,7 +317,9 @@ impl ParseRun {
             } else {
                 let raw_len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
                 let at = offset.wrapping_sub(base);
-                let raw = text.get(at..at + raw_len).unwrap_or_default();
+                let raw = bytes.get(at..at + raw_len).unwrap_or_default();
+                // Whole at a line's ends, the text is cut between characters.
+                let raw = std::str::from_utf8(raw).unwrap_or_default();
                 let (blank, percent) =
                     read_general_line(program, &mut self.checker, raw, offset, line_no);
                 (raw_len, blank, percent)
@@ -336,7 +339,7 @@ impl ParseRun {
             if closed {
                 close_tape(
                     program,
-                    &mut Window { text, base },
+                    &mut Window { text: bytes, base },
                     complete,
                     offset,
                     &mut self.tape_end,
@@ -356,7 +359,7 @@ impl ParseRun {
             self.indexed =
                 self.program
                     .lines
-                    .extend_window(text, base, offset.min(end), usize::MAX);
+                    .extend_window(bytes, base, offset.min(end), usize::MAX);
         }
         self.done
     }
