@@ -383,9 +383,13 @@ pub struct Timer {
     /// Where the path starts, and where its last segment ends.
     start: DVec3,
     last_end: DVec3,
-    /// The last segment's kind, and its direction at the end (of the last non-empty one).
+    /// The last segment's kind, and its direction at the end (of the last non-empty one), as
+    /// a vector and its length ([`Heading`]).
     last_kind: Option<SegmentKind>,
-    last_direction: Option<DVec3>,
+    last_direction: Option<Heading>,
+    /// The last straight feed in mm/min and its cruise speed in mm/s: a run of moves at one
+    /// feed divides once.
+    last_feed: (f64, f64),
     bounds: Option<Bounds>,
     rapid_mm: f64,
     feed_mm: f64,
@@ -478,6 +482,7 @@ impl Timer {
             last_end: start,
             last_kind: None,
             last_direction: None,
+            last_feed: (0.0, 0.0),
             bounds: None,
             rapid_mm: 0.0,
             feed_mm: 0.0,
@@ -522,7 +527,22 @@ impl Timer {
         } = *note;
         let delta = to - self.last_end;
         let length = delta.length();
-        let (cruise, join, exit) = match chord {
+        let (cruise, entry, exit) = match chord {
+            // A feed of an ordinary length: its direction is the move itself over its length,
+            // with no division (the corner test below takes the lengths).
+            None if kind != SegmentKind::Rapid
+                && (HEADING_LEAST..HEADING_MOST).contains(&length) =>
+            {
+                let cruise = if speed.to_bits() == self.last_feed.0.to_bits() {
+                    self.last_feed.1
+                } else {
+                    let cruise = speed / 60.0;
+                    self.last_feed = (speed, cruise);
+                    cruise
+                };
+                let heading = Some(Heading::new(delta, length));
+                (cruise, Some(heading), heading)
+            }
             None => {
                 // `delta.try_normalize()`, reusing the length.
                 let rcp = 1.0 / length;
@@ -533,9 +553,15 @@ impl Timer {
                     }),
                     SegmentKind::Feed | SegmentKind::Arc => speed / 60.0,
                 };
-                (cruise, Join::Corner { entry: direction }, direction)
+                let heading = direction.map(Heading::unit);
+                (cruise, Some(heading), heading)
             }
-            Some((join, exit)) => (speed, join, exit),
+            Some((Join::Continue, exit)) => (speed, None, exit.map(Heading::unit)),
+            Some((Join::Corner { entry }, exit)) => (
+                speed,
+                Some(entry.map(Heading::unit)),
+                exit.map(Heading::unit),
+            ),
         };
         match kind {
             SegmentKind::Rapid => self.rapid_mm += length,
@@ -552,18 +578,18 @@ impl Timer {
             bounds.include(to);
             self.bounds = Some(bounds);
         }
-        let smooth = match join {
+        // `entry`: `None` for the next chord of an arc, else the new move's direction (`None`
+        // inside for an empty move).
+        let smooth = match entry {
             _ if flags & NOTE_STOP != 0 => false,
-            Join::Continue => true,
-            Join::Corner { .. }
-                if kind == SegmentKind::Rapid || self.last_kind == Some(SegmentKind::Rapid) =>
-            {
+            None => true,
+            Some(_) if kind == SegmentKind::Rapid || self.last_kind == Some(SegmentKind::Rapid) => {
                 false
             }
-            Join::Corner { entry: None } => true,
-            Join::Corner { entry: Some(entry) } => self
+            Some(None) => true,
+            Some(Some(entry)) => self
                 .last_direction
-                .is_none_or(|last| last.dot(entry) >= CORNER_DEGREES.to_radians().cos() - 1e-12),
+                .is_none_or(|last| last.within_corner_of(entry)),
         };
         if let Some(exit) = exit {
             self.last_direction = Some(exit);
@@ -646,6 +672,39 @@ impl Timer {
         } else {
             self.window.drain(..count);
         }
+    }
+}
+
+/// Lengths of a straight feed whose direction is kept as the move and its length (see
+/// [`Heading`]): products of two such lengths neither overflow nor lose precision.
+const HEADING_LEAST: f64 = 1e-100;
+const HEADING_MOST: f64 = 1e100;
+
+/// A direction of travel: `vector` over `length` (1 for a unit vector), so that a straight
+/// move's comes without a division (divisions and square roots take turns on one unit of the
+/// processor, and the time model has several a move).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Heading {
+    vector: DVec3,
+    length: f64,
+}
+
+impl Heading {
+    fn new(vector: DVec3, length: f64) -> Self {
+        Heading { vector, length }
+    }
+
+    fn unit(vector: DVec3) -> Self {
+        Heading::new(vector, 1.0)
+    }
+
+    /// Whether the turn from this direction to `next` is at most [`CORNER_DEGREES`] (with a
+    /// margin of 1e-12 on the cosine): the dot product of the two directions against the
+    /// cosine, both sides times the two lengths.
+    #[inline(always)]
+    fn within_corner_of(self, next: Heading) -> bool {
+        self.vector.dot(next.vector)
+            >= (CORNER_DEGREES.to_radians().cos() - 1e-12) * (self.length * next.length)
     }
 }
 
@@ -1407,6 +1466,51 @@ mod tests {
         *seed ^= *seed >> 7;
         *seed ^= *seed << 17;
         *seed
+    }
+
+    /// A straight feed's direction kept as the move and its length turns the same corners as
+    /// its unit vector: random moves of 1 µm to 1 km, turns near the limit among them, and the
+    /// limit itself.
+    #[test]
+    fn a_direction_without_a_division_turns_corners_as_the_unit_vector_does() {
+        let limit = CORNER_DEGREES.to_radians().cos() - 1e-12;
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let unit = |seed: &mut u64| {
+            let mut v = || (xorshift(seed) % 2001) as f64 / 1000.0 - 1.0;
+            DVec3::new(v(), v(), v())
+        };
+        let mut checked = 0;
+        for i in 0..20_000 {
+            let a = unit(&mut seed);
+            let b = if i % 2 == 0 {
+                unit(&mut seed)
+            } else {
+                // A turn of about the limit: `a` turned about a perpendicular axis.
+                let axis = a.any_orthonormal_vector();
+                let turn = CORNER_DEGREES + (xorshift(&mut seed) % 2001) as f64 / 1000.0 - 1.0;
+                glam::DQuat::from_axis_angle(axis, turn.to_radians()) * a
+            };
+            let scale = |seed: &mut u64| 10f64.powi((xorshift(seed) % 10) as i32 - 3);
+            let (a, b) = (a * scale(&mut seed), b * scale(&mut seed));
+            let (la, lb) = (a.length(), b.length());
+            if la == 0.0 || lb == 0.0 {
+                continue;
+            }
+            let unit_dot = (a * (1.0 / la)).dot(b * (1.0 / lb));
+            if (unit_dot - limit).abs() < 1e-13 {
+                continue;
+            }
+            let kept = Heading::new(a, la).within_corner_of(Heading::new(b, lb));
+            assert_eq!(kept, unit_dot >= limit, "{a} {b}");
+            checked += 1;
+        }
+        assert!(checked > 19_000, "{checked}");
+        // Exactly at the limit, both ways of writing the direction count the turn as smooth.
+        let a = DVec3::new(3.0, 0.0, 0.0);
+        let b =
+            glam::DQuat::from_rotation_z(CORNER_DEGREES.to_radians()) * DVec3::new(0.5, 0.0, 0.0);
+        assert!(Heading::new(a, a.length()).within_corner_of(Heading::new(b, b.length())));
+        assert!(Heading::unit(a.normalize()).within_corner_of(Heading::unit(b.normalize())));
     }
 
     #[test]
