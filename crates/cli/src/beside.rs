@@ -18,7 +18,7 @@ use swarf_interp::{Interpreter, Setup};
 use swarf_syntax::{Block, Dialect, ExprNode, ParseRun, Program};
 use swarf_toolpath::{Timer, Timings, Toolpath};
 
-use crate::growing::{Growing, Unread};
+use crate::growing::{Feeder, Growing, Unread};
 use crate::{FIRST_PIECE_LINES, PIECE_LINES, run_piece};
 use crate::{apart, waits};
 
@@ -248,12 +248,19 @@ fn read_pieces(mut reading: Reading, ends: ReaderEnds) -> Read {
 /// reader while this thread has a piece in hand or the queue of pieces is full and once it has
 /// read the last, or by this thread while it waits for a piece.
 pub(crate) fn run_pieces_beside(
-    source: Growing,
+    mut source: Growing,
+    again: Option<std::fs::File>,
     dialect: Dialect,
     setup: &Setup,
     toolpath: &mut Toolpath,
     helper: Helper,
 ) -> (Interpreter, Beside) {
+    // The runner reads chunks of the file ahead for the reader while it waits for a piece.
+    let mut feeder: Option<Feeder> = again.map(|file| {
+        let (feed, feeder) = crate::growing::feed(file, source.len);
+        source.fed_by(feed);
+        feeder
+    });
     let mut reading = Reading::new(source, dialect);
     let first = read_first_pieces(&mut reading, &helper);
     let (first, done) = match first {
@@ -324,8 +331,10 @@ pub(crate) fn run_pieces_beside(
                 match received.try_recv() {
                     Ok(next) => break Some(next),
                     Err(TryRecvError::Disconnected) => break None,
-                    // Ahead of the reader: time the moves while waiting, if there are any.
+                    // Ahead of the reader: read a chunk of the file ahead for it, else time the
+                    // moves while waiting, if there are any.
                     Err(TryRecvError::Empty) if time_next(timing) => {}
+                    Err(TryRecvError::Empty) if feeder.as_mut().is_some_and(Feeder::read_one) => {}
                     Err(TryRecvError::Empty) => break waits::recv(&received).ok(),
                 }
             };

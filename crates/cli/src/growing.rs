@@ -7,6 +7,9 @@
 
 use std::fs::File;
 use std::io::{Read, Seek};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 
 /// Bytes read at a time, and how far ahead of the parse the text is kept.
 const CHUNK_BYTES: usize = 64 * 1024;
@@ -43,6 +46,12 @@ pub(crate) struct Growing {
     wanted: usize,
     /// The file's length when it was opened, or the text's (a reserve, not a limit).
     pub(crate) len: usize,
+    /// The next chunk of the file to read (chunk `k` is its bytes from `k * CHUNK_BYTES`),
+    /// and where the file's handle reads next.
+    next_chunk: usize,
+    at: usize,
+    /// Chunks read ahead by another thread, if any ([`feed`]).
+    feed: Option<Feed>,
 }
 
 /// Why a file read while it ran gives no text.
@@ -67,6 +76,9 @@ impl Growing {
             filled: 0,
             base: 0,
             wanted: 0,
+            next_chunk: 0,
+            at: 0,
+            feed: None,
         }
     }
 
@@ -86,7 +98,16 @@ impl Growing {
             base: 0,
             wanted: 0,
             len,
+            next_chunk: 0,
+            at: 0,
+            feed: None,
         }
+    }
+
+    /// Takes the chunks another thread reads ahead ([`feed`]) where it has them, and reads
+    /// the others itself.
+    pub(crate) fn fed_by(&mut self, feed: Feed) {
+        self.feed = Some(feed);
     }
 
     /// The whole lines read so far, from byte `base` of the file on (UTF-8); the whole text
@@ -97,6 +118,11 @@ impl Growing {
         } else {
             self.window.get(..self.lines).unwrap_or_default()
         }
+    }
+
+    /// Whether this is a file read as it runs (not a text read before).
+    pub(crate) fn is_file(&self) -> bool {
+        self.file.is_some() || self.read.is_some()
     }
 
     /// Whether the text is all there is (the file is read to its end).
@@ -149,11 +175,30 @@ impl Growing {
             .window
             .get_mut(from..from + CHUNK_BYTES)
             .unwrap_or_default();
-        let read = loop {
-            match file.read(room) {
-                Ok(read) => break read,
-                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-                Err(e) => return Err(Unread::Failed(e)),
+        let chunk = self.next_chunk;
+        self.next_chunk += 1;
+        let read = match self.feed.as_ref().and_then(|feed| feed.take(chunk)) {
+            // Read by the other thread.
+            Some(Ok(bytes)) => {
+                let read = bytes.len().min(room.len());
+                room.get_mut(..read)
+                    .unwrap_or_default()
+                    .copy_from_slice(bytes.get(..read).unwrap_or_default());
+                if let Some(feed) = &self.feed {
+                    feed.give_back(bytes);
+                }
+                read
+            }
+            Some(Err(e)) => return Err(Unread::Failed(e)),
+            None => {
+                let offset = chunk * CHUNK_BYTES;
+                if self.at != offset {
+                    file.seek(std::io::SeekFrom::Start(offset as u64))
+                        .map_err(Unread::Failed)?;
+                }
+                let read = read_full(file, room).map_err(Unread::Failed)?;
+                self.at = offset + read;
+                read
             }
         };
         self.filled += read;
@@ -210,8 +255,9 @@ impl Growing {
     fn unread(&mut self) -> Unread {
         let at_end = self.is_complete();
         let file = self.file.take().or_else(|| self.read.take());
-        if self.base > 0 {
-            // The window let go of the file's start: it is read again.
+        if self.base > 0 || self.feed.is_some() {
+            // The window let go of the file's start, or chunks were read elsewhere: it is
+            // read again.
             return match file.map(read_again) {
                 Some(Ok(bytes)) => Unread::Bytes(bytes),
                 Some(Err(e)) => Unread::Failed(e),
@@ -255,6 +301,141 @@ impl Growing {
             Err(e) => Err(Unread::Bytes(e.into_bytes())),
         }
     }
+}
+
+/// Reads into `room` until it is full or the file ends; how many bytes were read.
+fn read_full(file: &mut File, room: &mut [u8]) -> std::io::Result<usize> {
+    let mut read = 0;
+    while let Some(rest) = room.get_mut(read..).filter(|rest| !rest.is_empty()) {
+        match file.read(rest) {
+            Ok(0) => break,
+            Ok(n) => read += n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(read)
+}
+
+/// How many chunks the other thread reads ahead of the reading at most.
+const FED_AHEAD: usize = 4;
+
+/// What the reading and the thread that reads chunks for it share: how many chunks are
+/// claimed (each is read by the one that claims it), and how many the reading has taken.
+struct Chunks {
+    claimed: AtomicUsize,
+    taken: AtomicUsize,
+}
+
+/// The reading's end of a [`feed`]: the chunks the other thread read, in order, and the way
+/// back for their buffers.
+pub(crate) struct Feed {
+    shared: Arc<Chunks>,
+    chunks: Receiver<std::io::Result<Vec<u8>>>,
+    spare: SyncSender<Vec<u8>>,
+}
+
+impl Feed {
+    /// Chunk `k`, the next the reading needs: `None` when it is for the reading to read (it
+    /// is claimed for it now), else the chunk the other thread read (it is waited for: the
+    /// other thread claims a chunk as it starts reading it).
+    fn take(&self, k: usize) -> Option<std::io::Result<Vec<u8>>> {
+        let shared = &self.shared;
+        let mine = shared
+            .claimed
+            .compare_exchange(k, k + 1, Ordering::AcqRel, Ordering::Acquire)
+            .is_ok();
+        shared.taken.store(k + 1, Ordering::Release);
+        if mine {
+            return None;
+        }
+        Some(
+            crate::waits::recv(&self.chunks)
+                .unwrap_or_else(|_| Err(std::io::ErrorKind::BrokenPipe.into())),
+        )
+    }
+
+    fn give_back(&self, bytes: Vec<u8>) {
+        let _ = self.spare.try_send(bytes);
+    }
+}
+
+/// The other thread's end of a [`feed`]: its own handle on the file, and where it reads.
+pub(crate) struct Feeder {
+    file: File,
+    at: usize,
+    /// Chunks in the file.
+    count: usize,
+    shared: Arc<Chunks>,
+    chunks: SyncSender<std::io::Result<Vec<u8>>>,
+    spare: Receiver<Vec<u8>>,
+}
+
+impl Feeder {
+    /// Reads the next chunk the reading has not claimed, if it is not too far ahead of it:
+    /// whether it read one.
+    pub(crate) fn read_one(&mut self) -> bool {
+        let shared = &self.shared;
+        let k = shared.claimed.load(Ordering::Acquire);
+        if k >= self.count || k >= shared.taken.load(Ordering::Acquire) + FED_AHEAD {
+            return false;
+        }
+        if shared
+            .claimed
+            .compare_exchange(k, k + 1, Ordering::AcqRel, Ordering::Acquire)
+            .is_err()
+        {
+            return false;
+        }
+        let mut bytes = self.spare.try_recv().unwrap_or_default();
+        bytes.resize(CHUNK_BYTES, 0);
+        let offset = k * CHUNK_BYTES;
+        let read = (|| {
+            if self.at != offset {
+                self.file.seek(std::io::SeekFrom::Start(offset as u64))?;
+            }
+            read_full(&mut self.file, &mut bytes)
+        })();
+        let result = read.map(|read| {
+            self.at = offset + read;
+            bytes.truncate(read);
+            bytes
+        });
+        if result.is_err() {
+            self.at = usize::MAX;
+        }
+        // Never full: at most `FED_AHEAD` chunks are ahead of the reading.
+        let _ = self.chunks.send(result);
+        true
+    }
+}
+
+/// Chunks of a file `len` bytes long read ahead for a [`Growing`] (`Growing::fed_by`) by
+/// another thread, from `file`, a second handle on it (`Feeder::read_one`, while that thread
+/// would otherwise wait): the reading then spends its time on the parse rather than in the
+/// system's copy of the file. Each chunk is read by whichever claims it first.
+pub(crate) fn feed(file: File, len: usize) -> (Feed, Feeder) {
+    let shared = Arc::new(Chunks {
+        claimed: AtomicUsize::new(0),
+        taken: AtomicUsize::new(0),
+    });
+    let (chunks_in, chunks) = sync_channel(FED_AHEAD + 1);
+    let (spare, spares) = sync_channel(FED_AHEAD + 1);
+    (
+        Feed {
+            shared: Arc::clone(&shared),
+            chunks,
+            spare,
+        },
+        Feeder {
+            file,
+            at: 0,
+            count: len.div_ceil(CHUNK_BYTES),
+            shared,
+            chunks: chunks_in,
+            spare: spares,
+        },
+    )
 }
 
 /// Every byte of `file`, read from its start.
@@ -419,6 +600,71 @@ mod tests {
         assert!(growing.is_complete());
         assert_eq!(growing.bytes(), text.as_bytes());
         assert!(growing.read_on(usize::MAX).ok() == Some(false));
+    }
+
+    /// A file read with chunks read ahead by another thread (each chunk by whichever claims
+    /// it first) gives the same text, in whole lines, as one read alone; and one that is not
+    /// plain UTF-8 still gives back all its bytes.
+    #[test]
+    fn chunks_read_ahead_by_another_thread_make_the_same_text() {
+        let mut text = String::new();
+        for i in 0..60_000 {
+            text.push_str(&format!("N{i} G1 X{i}.5 Y-2.25 (é)\n"));
+        }
+        let mut bad = text.clone().into_bytes();
+        let at = bad.len() - 1000;
+        bad[at] = 0xB9;
+        for (bytes, good) in [(text.as_bytes(), true), (&bad[..], false)] {
+            let dir = tempfile::tempdir().unwrap();
+            let path = dir.path().join("p.nc");
+            std::fs::write(&path, bytes).unwrap();
+            let mut growing = Growing::open(File::open(&path).unwrap(), bytes.len());
+            let (feed, mut feeder) = feed(File::open(&path).unwrap(), bytes.len());
+            growing.fed_by(feed);
+            // The first two chunks are read there for certain, the rest as the threads go.
+            assert!(feeder.read_one() && feeder.read_one());
+            let done = Arc::new(std::sync::atomic::AtomicBool::new(false));
+            let stop = Arc::clone(&done);
+            let other = std::thread::spawn(move || {
+                let mut read = 0;
+                while !stop.load(Ordering::Acquire) {
+                    if feeder.read_one() {
+                        read += 1;
+                    } else {
+                        std::thread::yield_now();
+                    }
+                }
+                read
+            });
+            let mut whole = String::new();
+            let outcome = loop {
+                if growing.is_complete() {
+                    break Ok(());
+                }
+                if let Err(e) = growing.read_ahead(whole.len()) {
+                    break Err(e);
+                }
+                let added = &growing.bytes()[whole.len() - growing.base..];
+                assert!(added.is_empty() || added.ends_with(b"\n") || growing.is_complete());
+                whole.push_str(std::str::from_utf8(added).unwrap());
+                // The parse takes its time: the other thread reads on meanwhile.
+                std::thread::sleep(std::time::Duration::from_micros(50));
+            };
+            done.store(true, Ordering::Release);
+            let read_there = other.join().unwrap();
+            match outcome {
+                Ok(()) => {
+                    assert!(good);
+                    assert_eq!(whole, text);
+                    assert!(read_there <= bytes.len().div_ceil(CHUNK_BYTES));
+                }
+                Err(Unread::Bytes(all)) => {
+                    assert!(!good);
+                    assert_eq!(all, bytes);
+                }
+                Err(Unread::Failed(e)) => panic!("{e}"),
+            }
+        }
     }
 
     #[test]

@@ -451,7 +451,13 @@ fn stream(
         .then(Helper::start)
         .flatten();
     let (mut interp, ran, source) = if let Some(helper) = helper {
-        let (interp, read) = run_pieces_beside(source, opts.dialect, setup, toolpath, helper);
+        // A second handle on the file, for the runner to read chunks ahead on.
+        let again = source
+            .is_file()
+            .then(|| std::fs::File::open(path).ok())
+            .flatten();
+        let (interp, read) =
+            run_pieces_beside(source, again, opts.dialect, setup, toolpath, helper);
         let (ran, source) = read?;
         (interp, ran, source)
     } else {
