@@ -381,7 +381,7 @@ fn cores() -> usize {
     std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
 }
 
-/// Sets aside, before a long program runs, address space for its text and toolpath in one
+/// Sets aside, before a long program runs, address space for its toolpath and pieces in one
 /// mapping. On Linux jemalloc maps a request of 8 MiB or more in a mapping whose length is a
 /// multiple of 2 MiB, which the kernel places at a 2 MiB boundary, so all of it can be backed
 /// by transparent huge pages; the run's arrays are carved from it once it is freed here,
@@ -391,8 +391,9 @@ fn cores() -> usize {
 fn set_aside_memory(file_len: u64) {
     /// The transparent huge page size on x86-64 and most AArch64 Linux systems.
     const HUGE_PAGE: usize = 2 << 20;
-    // Four bytes a byte: the text (one) and the toolpath (37 bytes a move, about a move
-    // every sixteen bytes), with the pieces in flight. Bounded: this is only a hint.
+    // Four bytes a byte: the toolpath (37 bytes a move, about a move every sixteen bytes),
+    // the line index, and the reading's window and block arrays with the pieces in flight.
+    // Bounded: this is only a hint.
     let bytes = usize::try_from(file_len)
         .unwrap_or(usize::MAX)
         .min(1 << 30)
