@@ -190,16 +190,7 @@ impl Growing {
                 read
             }
             Some(Err(e)) => return Err(Unread::Failed(e)),
-            None => {
-                let offset = chunk * CHUNK_BYTES;
-                if self.at != offset {
-                    file.seek(std::io::SeekFrom::Start(offset as u64))
-                        .map_err(Unread::Failed)?;
-                }
-                let read = read_full(file, room).map_err(Unread::Failed)?;
-                self.at = offset + read;
-                read
-            }
+            None => read_chunk_at(file, &mut self.at, chunk, room).map_err(Unread::Failed)?,
         };
         self.filled += read;
         let lines_end = if read == 0 {
@@ -251,28 +242,31 @@ impl Growing {
         Ok(())
     }
 
-    /// Every byte of the file, for a text that is not plain UTF-8.
-    fn unread(&mut self) -> Unread {
+    /// Every byte of the file: those the window holds, with the rest of the file where it
+    /// let go of none, else the file read again from its start. The file is read no more.
+    fn all_bytes(&mut self) -> std::io::Result<Vec<u8>> {
         let at_end = self.is_complete();
         let file = self.file.take().or_else(|| self.read.take());
-        if self.base > 0 || self.feed.is_some() {
-            // The window let go of the file's start, or chunks were read elsewhere: it is
-            // read again.
-            return match file.map(read_again) {
-                Some(Ok(bytes)) => Unread::Bytes(bytes),
-                Some(Err(e)) => Unread::Failed(e),
-                None => Unread::Failed(std::io::ErrorKind::UnexpectedEof.into()),
-            };
+        // The window let go of the file's start, or the handle is not where the window ends
+        // (chunks were read elsewhere): it is read again.
+        if self.base > 0 || (!at_end && self.feed.is_some()) {
+            return file.map_or_else(|| Err(std::io::ErrorKind::UnexpectedEof.into()), read_again);
         }
         let mut bytes = std::mem::take(&mut self.window);
         bytes.truncate(self.filled);
         if let (Some(mut file), false) = (file, at_end) {
             bytes.reserve(self.len.saturating_sub(bytes.len()));
-            if let Err(e) = file.read_to_end(&mut bytes) {
-                return Unread::Failed(e);
-            }
+            file.read_to_end(&mut bytes)?;
         }
-        Unread::Bytes(bytes)
+        Ok(bytes)
+    }
+
+    /// Every byte of the file, for a text that is not plain UTF-8.
+    fn unread(&mut self) -> Unread {
+        match self.all_bytes() {
+            Ok(bytes) => Unread::Bytes(bytes),
+            Err(e) => Unread::Failed(e),
+        }
     }
 
     /// Whether this is a text read before, held whole.
@@ -287,20 +281,32 @@ impl Growing {
         if self.held_whole() {
             return Ok(self.text);
         }
-        let at_end = self.is_complete();
-        let bytes = match self.file.take().or_else(|| self.read.take()) {
-            Some(file) if self.base > 0 || !at_end => read_again(file).map_err(Unread::Failed)?,
-            _ => {
-                self.window.truncate(self.lines);
-                self.window
-            }
-        };
-        match String::from_utf8(bytes) {
+        match String::from_utf8(self.all_bytes().map_err(Unread::Failed)?) {
             Ok(text) if !text.as_bytes().starts_with(&BOM) => Ok(text),
             Ok(text) => Err(Unread::Bytes(text.into_bytes())),
             Err(e) => Err(Unread::Bytes(e.into_bytes())),
         }
     }
+}
+
+/// Reads chunk `k` of `file` into `room`, a chunk long: how many bytes it holds (fewer at the
+/// end of the file). `at` is where the handle reads next, kept so that a handle reading chunk
+/// after chunk is not moved; unknown (`usize::MAX`) after an error.
+fn read_chunk_at(
+    file: &mut File,
+    at: &mut usize,
+    k: usize,
+    room: &mut [u8],
+) -> std::io::Result<usize> {
+    let offset = k * CHUNK_BYTES;
+    let moved = *at != offset;
+    *at = usize::MAX;
+    if moved {
+        file.seek(std::io::SeekFrom::Start(offset as u64))?;
+    }
+    let read = read_full(file, room)?;
+    *at = offset + read;
+    Ok(read)
 }
 
 /// Reads into `room` until it is full or the file ends; how many bytes were read.
@@ -389,21 +395,10 @@ impl Feeder {
         }
         let mut bytes = self.spare.try_recv().unwrap_or_default();
         bytes.resize(CHUNK_BYTES, 0);
-        let offset = k * CHUNK_BYTES;
-        let read = (|| {
-            if self.at != offset {
-                self.file.seek(std::io::SeekFrom::Start(offset as u64))?;
-            }
-            read_full(&mut self.file, &mut bytes)
-        })();
-        let result = read.map(|read| {
-            self.at = offset + read;
+        let result = read_chunk_at(&mut self.file, &mut self.at, k, &mut bytes).map(|read| {
             bytes.truncate(read);
             bytes
         });
-        if result.is_err() {
-            self.at = usize::MAX;
-        }
         // Never full: at most `FED_AHEAD` chunks are ahead of the reading.
         let _ = self.chunks.send(result);
         true
