@@ -209,7 +209,15 @@ impl Kinematics {
         }
         let u = entry.clamp(0.0, cruise);
         let w = exit.clamp(0.0, cruise);
-        let peak = cruise.min(((2.0 * a * length + u * u + w * w) / 2.0).sqrt());
+        let squared = (2.0 * a * length + u * u + w * w) / 2.0;
+        // Without the square root where the move clearly reaches its feed (as in
+        // `reach_capped`): the passes time every move, and square roots and divisions take
+        // turns on one unit of the processor.
+        let peak = if squared >= cruise * cruise * (1.0 + 4.0 * f64::EPSILON) {
+            cruise
+        } else {
+            cruise.min(squared.sqrt())
+        };
         let speed_up = ((peak * peak - u * u) * (0.5 * per_a)).max(0.0);
         let slow_down = ((peak * peak - w * w) * (0.5 * per_a)).max(0.0);
         let steady = (length - speed_up - slow_down).max(0.0);
@@ -1705,6 +1713,86 @@ mod tests {
                     .sqrt();
                 let want = cap.min(k.reach(speed, length));
                 assert_eq!(k.reach_capped(speed, length, cap).to_bits(), want.to_bits());
+            }
+        }
+    }
+
+    /// [`Kinematics::move_secs_per`] as written before it spared the square root of a move
+    /// that reaches its feed.
+    fn plain_move_secs(k: &Kinematics, length: f64, cruise: f64, entry: f64, exit: f64) -> f64 {
+        if length <= 0.0 || cruise.is_nan() || cruise <= 0.0 {
+            return 0.0;
+        }
+        let a = k.acceleration_mm_per_s2;
+        if a.is_infinite() {
+            return length / cruise;
+        }
+        let per_a = k.per_acceleration();
+        let u = entry.clamp(0.0, cruise);
+        let w = exit.clamp(0.0, cruise);
+        let peak = cruise.min(((2.0 * a * length + u * u + w * w) / 2.0).sqrt());
+        let speed_up = ((peak * peak - u * u) * (0.5 * per_a)).max(0.0);
+        let slow_down = ((peak * peak - w * w) * (0.5 * per_a)).max(0.0);
+        let steady = (length - speed_up - slow_down).max(0.0);
+        ((peak - u).max(0.0) + (peak - w).max(0.0)) * per_a + steady / peak
+    }
+
+    #[test]
+    fn a_move_that_reaches_its_feed_is_timed_as_with_the_square_root() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || xorshift(&mut seed);
+        let special = [
+            0.0,
+            -0.0,
+            1e-300,
+            1e-100,
+            1.0,
+            5.0,
+            16.666_666_666_666_668,
+            1e154,
+            f64::INFINITY,
+            f64::NAN,
+            -1.0,
+        ];
+        for acceleration in [1000.0, 500.0, 1e-3, 1e9, f64::INFINITY] {
+            let k = Kinematics {
+                acceleration_mm_per_s2: acceleration,
+                ..Kinematics::default()
+            };
+            let per_a = k.per_acceleration();
+            for _ in 0..200_000 {
+                let mut value = || {
+                    let r = next();
+                    if r % 8 == 0 {
+                        special[(r / 8 % special.len() as u64) as usize]
+                    } else {
+                        let scale = 10f64.powi((r % 13) as i32 - 6);
+                        scale * (r >> 11) as f64 / (1u64 << 53) as f64
+                    }
+                };
+                let (length, cruise, entry, exit) = (value(), value(), value(), value());
+                let want = plain_move_secs(&k, length, cruise, entry, exit);
+                let got = k.move_secs_per(length, cruise, entry, exit, per_a);
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "length {length} cruise {cruise} entry {entry} exit {exit} acceleration {acceleration}"
+                );
+            }
+            // Right at the feed: the peak speed's root lands on it, just under or just over.
+            for i in 0..10_000 {
+                let cruise = 1.0 + f64::from(i) * 1e-3;
+                let entry = 0.5 * cruise;
+                // Where (2aL + u² + w²) / 2 is the feed squared.
+                let length = (cruise * cruise - entry * entry) / acceleration.min(1e12);
+                let length = length * (1.0 + f64::from(i % 7) * f64::EPSILON - 3.0 * f64::EPSILON);
+                let want = plain_move_secs(&k, length, cruise, entry, entry);
+                let got = k.move_secs_per(length, cruise, entry, entry, per_a);
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "length {length} cruise {cruise}"
+                );
             }
         }
     }
