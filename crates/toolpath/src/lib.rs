@@ -1670,38 +1670,41 @@ mod tests {
         }
     }
 
-    #[test]
-    fn capped_reach_is_the_plain_one_bit_for_bit() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || xorshift(&mut seed);
-        let special = [
+    /// A speed, length or feed for the tests of the model's arithmetic, from the random `r`: one
+    /// in eight an edge value (zeros, the smallest and largest, infinity, NaN, a negative one),
+    /// else a random magnitude around the speeds and lengths of real moves.
+    fn edge_or_random(r: u64) -> f64 {
+        const EDGES: [f64; 11] = [
             0.0,
             -0.0,
             1e-300,
             1e-100,
             1.0,
+            5.0,
             16.666_666_666_666_668,
             1e154,
             f64::INFINITY,
             f64::NAN,
             -1.0,
         ];
+        if r.is_multiple_of(8) {
+            EDGES[(r / 8 % EDGES.len() as u64) as usize]
+        } else {
+            let scale = 10f64.powi((r % 13) as i32 - 6);
+            scale * (r >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    #[test]
+    fn capped_reach_is_the_plain_one_bit_for_bit() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut value = move || edge_or_random(xorshift(&mut seed));
         for acceleration in [500.0, 1e-3, 1e9, f64::INFINITY] {
             let k = Kinematics {
                 acceleration_mm_per_s2: acceleration,
                 ..Kinematics::default()
             };
             for _ in 0..200_000 {
-                let mut value = || {
-                    let r = next();
-                    if r % 8 == 0 {
-                        special[(r / 8 % special.len() as u64) as usize]
-                    } else {
-                        // Random magnitudes around the speeds and lengths of real moves.
-                        let scale = 10f64.powi((r % 13) as i32 - 6);
-                        scale * (r >> 11) as f64 / (1u64 << 53) as f64
-                    }
-                };
                 let (speed, length, cap) = (value(), value(), value());
                 let want = cap.min(k.reach(speed, length));
                 let got = k.reach_capped(speed, length, cap);
@@ -1775,20 +1778,7 @@ mod tests {
     #[test]
     fn a_move_is_timed_as_with_the_square_root_and_the_division() {
         let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = move || xorshift(&mut seed);
-        let special = [
-            0.0,
-            -0.0,
-            1e-300,
-            1e-100,
-            1.0,
-            5.0,
-            16.666_666_666_666_668,
-            1e154,
-            f64::INFINITY,
-            f64::NAN,
-            -1.0,
-        ];
+        let mut value = move || edge_or_random(xorshift(&mut seed));
         for acceleration in [1000.0, 500.0, 1e-3, 1e9, f64::INFINITY] {
             let k = Kinematics {
                 acceleration_mm_per_s2: acceleration,
@@ -1796,15 +1786,6 @@ mod tests {
             };
             let per_a = k.per_acceleration();
             for _ in 0..200_000 {
-                let mut value = || {
-                    let r = next();
-                    if r % 8 == 0 {
-                        special[(r / 8 % special.len() as u64) as usize]
-                    } else {
-                        let scale = 10f64.powi((r % 13) as i32 - 6);
-                        scale * (r >> 11) as f64 / (1u64 << 53) as f64
-                    }
-                };
                 let (length, cruise, entry, exit) = (value(), value(), value(), value());
                 let got = k.move_secs_per(length, cruise, entry, exit, per_a);
                 same_move_time(&k, length, cruise, entry, exit, got);
