@@ -213,7 +213,7 @@ impl Kinematics {
         // Without the square root where the move clearly reaches its feed (as in
         // `reach_capped`): the passes time every move, and square roots and divisions take
         // turns on one unit of the processor.
-        let peak = if squared >= cruise * cruise * (1.0 + 4.0 * f64::EPSILON) {
+        let peak = if root_clearly_reaches(squared, cruise) {
             cruise
         } else {
             let peak = squared.sqrt();
@@ -245,16 +245,24 @@ impl Kinematics {
     /// planner's passes chain these, and a chain of square roots waits on each in turn.
     #[inline]
     fn reach_capped(&self, speed: f64, length: f64, cap: f64) -> f64 {
-        if length > 0.0 && cap > 1e-100 {
-            let squared = speed * speed + 2.0 * self.acceleration_mm_per_s2 * length;
-            // The margin covers the roundings of cap² and of the square root: past it the
-            // rounded root is at least `cap` too.
-            if squared >= cap * cap * (1.0 + 4.0 * f64::EPSILON) {
-                return cap;
-            }
+        if length > 0.0
+            && root_clearly_reaches(
+                speed * speed + 2.0 * self.acceleration_mm_per_s2 * length,
+                cap,
+            )
+        {
+            return cap;
         }
         cap.min(self.reach(speed, length))
     }
+}
+
+/// Whether the rounded square root of `squared` is surely at least `cap`, told without taking
+/// it: the margin covers the roundings of cap² and of the root. False for a cap so small that
+/// its square would underflow, where only the root itself can tell.
+#[inline]
+fn root_clearly_reaches(squared: f64, cap: f64) -> bool {
+    cap > 1e-100 && squared >= cap * cap * (1.0 + 4.0 * f64::EPSILON)
 }
 
 fn positive(v: f64) -> Option<f64> {
@@ -1800,6 +1808,16 @@ mod tests {
                 let got = k.move_secs_per(length, cruise, entry, entry, per_a);
                 same_move_time(&k, length, cruise, entry, entry, got);
             }
+        }
+        // A move so short that 2aL underflows to zero, from rest to rest: it takes no time
+        // (2·sqrt(L/a) is about 1e-160 s), not the endless time its zero peak speed gives.
+        let k = Kinematics {
+            acceleration_mm_per_s2: 1e-3,
+            ..Kinematics::default()
+        };
+        for (entry, exit) in [(0.0, 0.0), (-1.0, 0.0), (0.0, -0.0)] {
+            let got = k.move_secs_per(5e-324, 1.0, entry, exit, k.per_acceleration());
+            assert!((0.0..1e-150).contains(&got), "{entry} {exit}: {got}");
         }
     }
 
