@@ -37,7 +37,23 @@ pub fn stepped(text: &str, dialect: Dialect, lines: usize, streaming: bool) -> (
 /// each time from the next line to read on (through the narrowest window: the lines read
 /// are let go of).
 pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Program {
-    let mut run = ParseRun::growing(text.len(), dialect);
+    grown_indexing(text, dialect, chunk, lines, true)
+}
+
+/// [`grown`], by a run that indexes the lines as it reads them or (`index` false, as
+/// `swarf stats` reads) by one that leaves them unindexed.
+pub fn grown_indexing(
+    text: &str,
+    dialect: Dialect,
+    chunk: usize,
+    lines: usize,
+    index: bool,
+) -> Program {
+    let mut run = if index {
+        ParseRun::growing(text.len(), dialect)
+    } else {
+        ParseRun::growing_unindexed(dialect)
+    };
     let (mut read, mut whole_lines, mut complete) = (0, 0, false);
     let mut steps = 0;
     loop {

@@ -105,7 +105,8 @@ struct Reading {
 
 impl Reading {
     fn new(source: Growing, dialect: Dialect) -> Self {
-        let mut reader = ParseRun::growing(source.len, dialect);
+        // Its lines are indexed only where there is something to report (see `stream`).
+        let mut reader = ParseRun::growing_unindexed(dialect);
         // Each array is of a whole piece's size, not one that grows.
         let _ = reader.swap_blocks(Vec::with_capacity(PIECE_LINES));
         Reading {

@@ -470,7 +470,7 @@ fn stream(
         return Ok(Outcome::Whole(source.into_text()?, decoding));
     };
     interp.finish_pieces(toolpath);
-    let program = reader.finish();
+    let mut program = reader.finish();
     let run = interp.take_diagnostics();
     // The text is wanted to report diagnostics: a file read through a window, which let go of
     // the lines it parsed, is read again for them (and only then).
@@ -480,6 +480,11 @@ fn stream(
     } else {
         String::new()
     };
+    // The reading indexed no lines (four bytes a line of fresh memory, of no use to a
+    // program with nothing to report): they are indexed for the report.
+    if reported {
+        program.lines = LineIndex::new(&text);
+    }
     let mut loaded = Loaded::new(path, decoding, text, program, Vec::new());
     let diagnostics = loaded.all_diagnostics(run);
     Ok(Outcome::Ran(Box::new(Streamed {
@@ -516,8 +521,8 @@ fn run_pieces(
     interp: &mut swarf_interp::Interpreter,
     toolpath: &mut Toolpath,
 ) -> Result<Option<(swarf_syntax::ParseRun, usize)>, Unread> {
-    // The lines are indexed as they are read.
-    let mut reader = swarf_syntax::ParseRun::growing(source.len, dialect);
+    // The lines are indexed only where there is something to report (see `stream`).
+    let mut reader = swarf_syntax::ParseRun::growing_unindexed(dialect);
     let mut blocks = 0;
     let mut ended = false;
     loop {

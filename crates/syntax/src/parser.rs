@@ -45,6 +45,9 @@ pub struct ParseRun {
     /// Whether lines of plain words take the short reader (always, but in the tests that
     /// compare it with the general one).
     plain_lines: bool,
+    /// Whether a run that reads a text still being read indexes its lines (all but
+    /// [`ParseRun::growing_unindexed`]).
+    index_lines: bool,
     /// Where the program ended at a closing tape mark while its text was still being read
     /// ([`ParseRun::step_growing`]): the text after it is looked at once it is whole
     /// ([`ParseRun::complete`]).
@@ -83,6 +86,7 @@ impl ParseRun {
             done: false,
             indexed: None,
             plain_lines: true,
+            index_lines: true,
             tape_end: None,
             owning: Vec::new(),
         }
@@ -103,6 +107,17 @@ impl ParseRun {
         let mut run = ParseRun::new("", dialect);
         run.program.lines = LineIndex::started(len);
         run.indexed = Some(0);
+        run
+    }
+
+    /// [`ParseRun::growing`] that leaves the lines unindexed: for a reader that has no use for
+    /// the index (the command line's `stats`, which reads a long file again to report
+    /// diagnostics at their lines, and only when there are some), where it would be four bytes
+    /// a line of fresh memory for nothing. The program's [`Program::lines`] then holds the
+    /// first line alone, and [`ParseRun::progress`] counts no more.
+    pub fn growing_unindexed(dialect: Dialect) -> Self {
+        let mut run = ParseRun::new("", dialect);
+        run.index_lines = false;
         run
     }
 
@@ -281,6 +296,7 @@ impl ParseRun {
     fn read_indexing(&mut self, bytes: &[u8], base: usize, lines: usize, complete: bool) -> bool {
         let program = &mut self.program;
         let limits = PlainLimits::of(program.dialect.rules());
+        let index_lines = self.index_lines;
         // A text still being read is read to its last line ending: the line after it is still
         // to come (the text holds whole lines only).
         let readable = if complete {
@@ -329,7 +345,9 @@ impl ParseRun {
             next += 1;
             if raw_len < rest.len() {
                 // Ended by its `\n`: a line starts after it.
-                program.lines.push_start(offset);
+                if index_lines {
+                    program.lines.push_start(offset);
+                }
             } else {
                 // The text's last line.
                 done = true;
@@ -351,6 +369,9 @@ impl ParseRun {
         self.offset = offset;
         self.tape = tape;
         self.done = done;
+        if !index_lines {
+            return self.done;
+        }
         // The lines not read (after a closing tape mark) are indexed too, once the text is
         // whole, as a run that indexes first has them.
         let end = base + bytes.len();

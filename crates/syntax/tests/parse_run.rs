@@ -5,7 +5,7 @@ use swarf_syntax::{Dialect, ParseRun, parse};
 
 #[path = "../../../tests/support/parse_runs.rs"]
 mod parse_runs;
-use parse_runs::{grown, stepped};
+use parse_runs::{grown, grown_indexing, stepped};
 
 #[test]
 fn stepping_a_few_lines_at_a_time_equals_the_whole_parse() {
@@ -135,6 +135,12 @@ fn a_run_over_a_text_still_being_read_equals_the_whole_parse() {
                             whole,
                             "{dialect:?} chunks of {chunk}, steps of {lines}: {head:?}…{tail:?}"
                         );
+                        // Unindexed, the same program but for its line index, which holds
+                        // the first line alone.
+                        let mut unindexed = grown_indexing(&text, dialect, chunk, lines, false);
+                        assert_eq!(unindexed.lines.line_count(), 1);
+                        unindexed.lines = whole.lines.clone();
+                        assert_eq!(unindexed, whole, "unindexed, {dialect:?} chunks of {chunk}");
                     }
                 }
             }
