@@ -167,8 +167,9 @@ struct ReaderEnds {
 }
 
 /// The reading thread's job: reads the pieces from `reading` on and hands them over; then,
-/// and while it is ahead of the runner, times the moves of the pieces run.
-fn read_pieces(mut reading: Reading, ends: ReaderEnds) -> Read {
+/// and while it is ahead of the runner, times the moves of the pieces run. The block arrays
+/// `made_before` (while the thread waited for the job) are used first.
+fn read_pieces(mut reading: Reading, ends: ReaderEnds, mut made_before: Vec<Vec<Block>>) -> Read {
     let ReaderEnds {
         shared,
         pieces,
@@ -188,7 +189,9 @@ fn read_pieces(mut reading: Reading, ends: ReaderEnds) -> Read {
         // then the arrays the runner has given back go round.
         let array = if made < POOL_ARRAYS {
             made += 1;
-            Vec::with_capacity(PIECE_LINES)
+            made_before
+                .pop()
+                .unwrap_or_else(|| Vec::with_capacity(PIECE_LINES))
         } else {
             spare
                 .try_recv()
@@ -303,7 +306,7 @@ pub(crate) fn run_pieces_beside(
         drop(ends);
         Reader::Here(reading)
     } else {
-        Reader::Beside(helper.run(move || read_pieces(reading, ends)))
+        Reader::Beside(helper.run(move |arrays| read_pieces(reading, ends, arrays)))
     };
     let Shared {
         timing,
@@ -432,8 +435,33 @@ pub(crate) struct Helper {
     moved: Arc<AtomicBool>,
 }
 
-/// A job for the [`Helper`]: it hands its result back itself.
-type Job = Box<dyn FnOnce() + Send>;
+/// A job for the [`Helper`], given the block arrays the helper made while it waited for it
+/// (see [`made_while_waiting`]): it hands its result back itself.
+type Job = Box<dyn FnOnce(Vec<Vec<Block>>) + Send>;
+
+/// Waits for the helper's job, making the reader's block arrays meanwhile (each a piece long,
+/// its memory touched, up to the pool less the reading's own array): the 2 MB page or two they
+/// take is zeroed by the system while the helper has nothing else to do, rather than while it
+/// parses the first pieces into them. The job comes as soon as the running thread has seen the
+/// helper move; it is looked for between one array and the next.
+fn made_while_waiting(job: &Receiver<Job>) -> Option<(Job, Vec<Vec<Block>>)> {
+    let mut arrays = Vec::with_capacity(POOL_ARRAYS);
+    loop {
+        match job.try_recv() {
+            Ok(job) => return Some((job, arrays)),
+            Err(TryRecvError::Disconnected) => return None,
+            Err(TryRecvError::Empty) if arrays.len() + 1 < POOL_ARRAYS => {
+                let mut array: Vec<Block> = Vec::with_capacity(PIECE_LINES);
+                // A block every 4 KB: every page of the array is touched, whatever its size.
+                for slot in array.spare_capacity_mut().iter_mut().step_by(32) {
+                    slot.write(Block::default());
+                }
+                arrays.push(array);
+            }
+            Err(TryRecvError::Empty) => return waits::recv(job).ok().map(|job| (job, arrays)),
+        }
+    }
+}
 
 impl Helper {
     /// Starts the thread, which moves to a processor of its own and waits there for its job;
@@ -452,9 +480,8 @@ impl Helper {
             .spawn(move || {
                 away.go();
                 gone.store(true, Ordering::Release);
-                // Watching: the job comes within a fraction of a millisecond.
-                if let Ok(job) = waits::recv(&job) {
-                    job();
+                if let Some((job, arrays)) = made_while_waiting(&job) {
+                    job(arrays);
                 }
             });
         let Ok(thread) = spawned else {
@@ -482,16 +509,16 @@ impl Helper {
         self.apart.release();
     }
 
-    /// Runs `job` on the thread (on a new one were it gone).
-    fn run(self, job: impl FnOnce() -> Read + Send + 'static) -> Running {
+    /// Runs `job` on the thread (on a new one were it gone), with the block arrays made there.
+    fn run(self, job: impl FnOnce(Vec<Vec<Block>>) -> Read + Send + 'static) -> Running {
         let (result, results) = sync_channel::<Read>(1);
-        let job: Job = Box::new(move || {
+        let job: Job = Box::new(move |arrays| {
             // Only a runner gone (it panicked) would not take it.
-            let _ = result.send(job());
+            let _ = result.send(job(arrays));
         });
         let thread = match self.jobs.send(job) {
             Ok(()) => self.thread,
-            Err(std::sync::mpsc::SendError(job)) => std::thread::spawn(job),
+            Err(std::sync::mpsc::SendError(job)) => std::thread::spawn(|| job(Vec::new())),
         };
         Running {
             thread,
