@@ -41,6 +41,16 @@ const HELPER_STACK_BYTES: usize = 1 << 20;
 /// longer than on one thread (`stellabee1.ngc` 8.1 ms against 4.9 ms).
 const POOL_ARRAYS: usize = 8;
 
+/// How many pieces read may wait for the runner. With two, each thread often waited for the
+/// other in turn (the reader with its queue full and no moves to time, the runner with no piece
+/// and the moves being timed by the reader): their speeds vary from piece to piece (a run of
+/// arcs is slow to run, a run of short lines slow to read), and a longer queue takes up the
+/// difference. Paired runs, two → four: `stellabee1.ngc` 0.977, 0.966 and 0.960, `tiger.nc`
+/// 0.969, `la_peinture.gc` 0.981; six was slower than four (1.004, 1.019, 1.010) and three the
+/// same. Four in the queue, one being run and one being read leave two of the
+/// [`POOL_ARRAYS`] to go round.
+const QUEUED_PIECES: usize = 4;
+
 /// A piece as it is handed over: its blocks, the expressions new in it, and the places of the
 /// blocks that own memory (see `swarf_syntax::empty_blocks_known`).
 type Piece = (Vec<Block>, Vec<ExprNode>, Vec<u32>);
@@ -285,7 +295,7 @@ pub(crate) fn run_pieces_beside(
         stop: AtomicBool::new(false),
         taken: AtomicUsize::new(0),
     });
-    let (pieces, received) = sync_channel::<Piece>(2);
+    let (pieces, received) = sync_channel::<Piece>(QUEUED_PIECES);
     // Room for the whole pool: no array given back is dropped.
     let (spares, spare) = sync_channel::<Vec<Block>>(POOL_ARRAYS);
     // Rung by the runner when it takes a piece or queues moves: a reader whose queue is full
