@@ -191,6 +191,12 @@ fn read_pieces(mut reading: Reading, ends: ReaderEnds, mut made_before: Vec<Vec<
         stop,
         taken,
     } = &*shared;
+    // The first page of the end times, which the time model writes on either thread, is
+    // mapped here: this thread starts with time to spare (the runner has the pieces it read
+    // first to run), the runner with its own arrays' pages to map.
+    if let Ok(mut held) = timing.try_lock() {
+        held.timer.prefault();
+    }
     let mut sent_pieces = 0;
     // The reading's first array is made with it.
     let mut made = 1;
@@ -325,11 +331,8 @@ pub(crate) fn run_pieces_beside(
     } = &*shared;
     let mut runner = Interpreter::new(setup.clone(), dialect);
     // While the reader reads on, the memory that the moves go to is mapped here: the pieces
-    // then run without waiting for it.
+    // then run without waiting for it (the reader maps the end times', see `read_pieces`).
     toolpath.prefault();
-    if let Ok(mut held) = timing.try_lock() {
-        held.timer.prefault();
-    }
     // The program as the interpreter sees it: this piece's blocks, every expression so far.
     let mut piece = Program {
         dialect,
