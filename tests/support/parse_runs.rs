@@ -2,7 +2,7 @@
 //! `#[path]` by the parser's tests and its fuzz target, which hold it to the whole parse).
 #![allow(dead_code, reason = "each user takes part of this module")]
 
-use swarf_syntax::{Dialect, ParseRun, Program};
+use swarf_syntax::{Dialect, LineIndex, ParseRun, Program};
 
 /// How many steps a run of `text` may take: each step reads a line or more, or a chunk more
 /// of the text; past this the run is not ending.
@@ -10,14 +10,10 @@ fn step_limit(text: &str) -> usize {
     2 * text.len() + 16
 }
 
-/// `text` read `lines` at a time: by a run that indexes the whole text first, or with
-/// `streaming`, by one that indexes it as it reads. Also the number of steps it took.
-pub fn stepped(text: &str, dialect: Dialect, lines: usize, streaming: bool) -> (Program, usize) {
-    let mut run = if streaming {
-        ParseRun::streaming(text, dialect)
-    } else {
-        ParseRun::new(text, dialect)
-    };
+/// `text` read `lines` at a time by a run that indexes the whole text first (as the editor
+/// reads it), and the number of steps it took.
+pub fn stepped(text: &str, dialect: Dialect, lines: usize) -> (Program, usize) {
+    let mut run = ParseRun::new(text, dialect);
     let mut steps = 0;
     loop {
         let (read, total) = run.progress();
@@ -32,28 +28,14 @@ pub fn stepped(text: &str, dialect: Dialect, lines: usize, streaming: bool) -> (
     (run.finish(), steps)
 }
 
-/// `text` read as a file is read a chunk of `chunk` bytes at a time while it is parsed: the
-/// run is given the whole lines read so far, `lines` at a time, then the rest at the end,
-/// each time from the next line to read on (through the narrowest window: the lines read
-/// are let go of).
+/// `text` read as `swarf stats` reads a file, a chunk of `chunk` bytes at a time while it is
+/// parsed: the run is given the whole lines read so far, `lines` at a time, then the rest at
+/// the end, each time from the next line to read on (through the narrowest window: the lines
+/// read are let go of). Such a run indexes no lines (its index holds the first line alone,
+/// which is checked); the program comes back with the whole text's index, as `stats` makes it
+/// to report diagnostics.
 pub fn grown(text: &str, dialect: Dialect, chunk: usize, lines: usize) -> Program {
-    grown_indexing(text, dialect, chunk, lines, true)
-}
-
-/// [`grown`], by a run that indexes the lines as it reads them or (`index` false, as
-/// `swarf stats` reads) by one that leaves them unindexed.
-pub fn grown_indexing(
-    text: &str,
-    dialect: Dialect,
-    chunk: usize,
-    lines: usize,
-    index: bool,
-) -> Program {
-    let mut run = if index {
-        ParseRun::growing(text.len(), dialect)
-    } else {
-        ParseRun::growing_unindexed(dialect)
-    };
+    let mut run = ParseRun::growing_unindexed(dialect);
     let (mut read, mut whole_lines, mut complete) = (0, 0, false);
     let mut steps = 0;
     loop {
@@ -86,5 +68,8 @@ pub fn grown_indexing(
     }
     let base = run.offset().min(text.len());
     run.complete(&text.as_bytes()[base..], base);
-    run.finish()
+    let mut program = run.finish();
+    assert_eq!(program.lines.line_count(), 1, "no line is indexed");
+    program.lines = LineIndex::new(text);
+    program
 }

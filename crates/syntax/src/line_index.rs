@@ -34,58 +34,6 @@ impl LineIndex {
         LineIndex { starts }
     }
 
-    /// The table of a text not yet indexed: its first line only. Grow it with
-    /// [`LineIndex::extend`], reading the text front to back.
-    pub fn started(text_len: usize) -> Self {
-        // G-code lines are rarely shorter than sixteen bytes: the reserve spares the copies of
-        // a growing table, and a part never written is never touched.
-        let mut starts = Vec::with_capacity(text_len / 16 + 1);
-        starts.push(0);
-        LineIndex { starts }
-    }
-
-    /// Indexes more of `text`, from byte `from` (where the last call stopped; 0 at first) until
-    /// at least `lines` line starts are known: where the next call goes on, or `None` once the
-    /// whole text is indexed (the table is then the one [`LineIndex::new`] makes). Reading a
-    /// long program piece by piece, the indexing is spread over the pieces (and over the thread
-    /// that reads them) instead of done before the first one.
-    pub fn extend(&mut self, text: &str, from: usize, lines: usize) -> Option<usize> {
-        self.extend_window(text.as_bytes(), 0, from, lines)
-    }
-
-    /// [`LineIndex::extend`] where `bytes` are the whole text's from byte `base` on (a file
-    /// read through a window); `from` (at least `base`) and the offset returned are into the
-    /// whole text.
-    pub fn extend_window(
-        &mut self,
-        bytes: &[u8],
-        base: usize,
-        from: usize,
-        lines: usize,
-    ) -> Option<usize> {
-        /// Bytes searched at a time (the table may run up to this far ahead of `lines`).
-        const STRETCH: usize = 4096;
-        let mut at = from.saturating_sub(base).min(bytes.len());
-        while self.starts.len() < lines {
-            let end = at.saturating_add(STRETCH).min(bytes.len());
-            let starts = &mut self.starts;
-            for_each_newline(bytes.get(at..end).unwrap_or_default(), |i| {
-                starts.push(line_after(base + at, i));
-            });
-            if end == bytes.len() {
-                return None;
-            }
-            at = end;
-        }
-        Some(base + at)
-    }
-
-    /// Adds the start of the next line, at byte `start` (just after a `\n`), for a reader that
-    /// finds the line endings as it reads (the table then grows as [`LineIndex::extend`] makes it).
-    pub(crate) fn push_start(&mut self, start: usize) {
-        self.starts.push(u32::try_from(start).unwrap_or(u32::MAX));
-    }
-
     /// Number of lines (an empty text has one empty line).
     pub fn line_count(&self) -> usize {
         self.starts.len()
@@ -291,7 +239,6 @@ mod tests {
                     .filter(|&c| text.is_char_boundary(c))
                     .collect();
                 cuts.sort_unstable();
-                let cuts_len = cuts.len();
                 let mut chunks = Vec::new();
                 let mut from = 0;
                 for cut in cuts.into_iter().chain([text.len()]) {
@@ -299,17 +246,6 @@ mod tests {
                     from = cut;
                 }
                 prop_assert_eq!(&LineIndex::from_chunks(chunks), &index, "{:?}", text);
-                // Grown piece by piece, any number of lines at a time.
-                let mut grown = LineIndex::started(text.len());
-                let mut from = Some(0);
-                let mut want = 1;
-                while let Some(at) = from {
-                    prop_assert!(grown.starts.len() >= want.min(index.starts.len()));
-                    prop_assert_eq!(&grown.starts[..], &index.starts[..grown.starts.len()]);
-                    want += 1 + cuts_len % 3;
-                    from = grown.extend(&text, at, want);
-                }
-                prop_assert_eq!(&grown, &index, "{:?}", text);
             }
         }
     }

@@ -39,15 +39,9 @@ pub struct ParseRun {
     /// 0-based number of the next line.
     line_no: usize,
     done: bool,
-    /// Where the line index goes on indexing the text, for a run that indexes it as it reads
-    /// ([`ParseRun::streaming`]); `None` once every line is indexed.
-    indexed: Option<usize>,
     /// Whether lines of plain words take the short reader (always, but in the tests that
     /// compare it with the general one).
     plain_lines: bool,
-    /// Whether a run that reads a text still being read indexes its lines (all but
-    /// [`ParseRun::growing_unindexed`]).
-    index_lines: bool,
     /// Where the program ended at a closing tape mark while its text was still being read
     /// ([`ParseRun::step_growing`]): the text after it is looked at once it is whole
     /// ([`ParseRun::complete`]).
@@ -84,41 +78,22 @@ impl ParseRun {
             offset: 0,
             line_no: 0,
             done: false,
-            indexed: None,
             plain_lines: true,
-            index_lines: true,
             tape_end: None,
             owning: Vec::new(),
         }
     }
 
-    /// A run that indexes the lines of `text` as it reads them (each line's end is found as the
-    /// line is read), rather than all before the first step: for a reader that runs a long
-    /// program piece by piece as it is read (the command line), which then starts at once and,
-    /// reading on a second thread, does the indexing there. Until the run is done,
-    /// [`ParseRun::progress`] counts only the lines indexed so far.
-    pub fn streaming(text: &str, dialect: Dialect) -> Self {
-        ParseRun::growing(text.len(), dialect)
-    }
-
-    /// [`ParseRun::streaming`] for a text still to be read (a file read a chunk at a time while
-    /// it is parsed, see [`ParseRun::step_growing`]), about `len` bytes long (a reserve).
-    pub fn growing(len: usize, dialect: Dialect) -> Self {
-        let mut run = ParseRun::new("", dialect);
-        run.program.lines = LineIndex::started(len);
-        run.indexed = Some(0);
-        run
-    }
-
-    /// [`ParseRun::growing`] that leaves the lines unindexed: for a reader that has no use for
-    /// the index (the command line's `stats`, which reads a long file again to report
-    /// diagnostics at their lines, and only when there are some), where it would be four bytes
-    /// a line of fresh memory for nothing. The program's [`Program::lines`] then holds the
-    /// first line alone, and [`ParseRun::progress`] counts no more.
+    /// A run over a text still to be read (a file read a chunk at a time while it is parsed,
+    /// see [`ParseRun::step_growing`]): each line's end is found as the line is read, and the
+    /// lines are not indexed. It is for a reader that runs a long program piece by piece as it
+    /// reads it and has no use for the index (the command line's `stats`, which reads the file
+    /// again to report diagnostics at their lines, and only when there are some), where the
+    /// index would be four bytes a line of fresh memory for nothing. The program's
+    /// [`Program::lines`] holds the first line alone, and [`ParseRun::progress`] counts no
+    /// lines but the first in the text.
     pub fn growing_unindexed(dialect: Dialect) -> Self {
-        let mut run = ParseRun::new("", dialect);
-        run.index_lines = false;
-        run
+        ParseRun::new("", dialect)
     }
 
     /// Lines read so far and lines in the text.
@@ -129,10 +104,10 @@ impl ParseRun {
     /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
     /// whether the whole text is read.
     pub fn step(&mut self, text: &str, lines: usize) -> bool {
-        self.read_lines(Some(text), &mut &*text, lines, true)
+        self.read_lines(Some(text), &mut &*text, lines)
     }
 
-    /// [`ParseRun::step`] for a run made with [`ParseRun::growing`] over a text that is still
+    /// [`ParseRun::step`] for a run made with [`ParseRun::growing_unindexed`] over a text that is still
     /// being read: `text` is the part read so far from byte `base` of the whole text on (the
     /// bytes before `base` are read already, and their text need not be kept: a long file is
     /// read through a window). The text grows from call to call, and `base` may move up to
@@ -143,20 +118,13 @@ impl ParseRun {
     /// empty one). Whether the whole text is read: never before it is complete, but at a
     /// closing tape mark; call [`ParseRun::complete`] with the rest of the text then.
     pub fn step_growing(&mut self, text: &[u8], base: usize, complete: bool, lines: usize) -> bool {
-        self.read_indexing(text, base, lines, complete)
+        self.read_growing(text, base, lines, complete)
     }
 
     /// Finishes a run read with [`ParseRun::step_growing`] once its text is whole: `text` is
-    /// the text from byte `base` on, to its end (`base` at most [`ParseRun::offset`]). Indexes
-    /// the lines it did not read, and notes the text after a closing tape mark, as a run over
-    /// the whole text does.
+    /// the text from byte `base` on, to its end (`base` at most [`ParseRun::offset`]). Notes
+    /// the text after a closing tape mark, as a run over the whole text does.
     pub fn complete(&mut self, text: &[u8], base: usize) {
-        if let Some(from) = self.indexed {
-            self.indexed = self
-                .program
-                .lines
-                .extend_window(text, base, from, usize::MAX);
-        }
         if let Some(offset) = self.tape_end.take() {
             ignore_after_tape_end(&mut self.program, &mut Window { text, base }, offset);
         }
@@ -171,45 +139,25 @@ impl ParseRun {
     /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
     ///
     pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
-        self.read_lines(None, source, lines, true)
+        self.read_lines(None, source, lines)
     }
 
     /// The loop of [`ParseRun::step`] and [`ParseRun::step_from`]: the lines come from `text`
     /// when the whole text is at hand, else from `source` (one dynamic call a line).
     ///
     /// One loop serves every source: made once, it keeps the line reader inlined into it as the
-    /// string-only loop did. A text not `complete` is one still being read (see
-    /// [`ParseRun::step_growing`]).
+    /// string-only loop did.
     fn read_lines(
         &mut self,
         text: Option<&str>,
         source: &mut dyn LineSource,
         lines: usize,
-        complete: bool,
     ) -> bool {
-        if let (Some(text), Some(_)) = (text, self.indexed) {
-            return self.read_indexing(text.as_bytes(), 0, lines, complete);
-        }
         let program = &mut self.program;
         let dialect = program.dialect;
-        // The lines come from the line index: a streaming run over a source (a text at hand
-        // goes to `read_indexing`), whose whole text may have to be put together to be searched,
-        // indexes all of it at once.
-        if let Some(from) = self.indexed {
-            self.indexed = index_source(&mut program.lines, source, from);
-            if !complete {
-                // The text read so far is indexed; the rest is still to come.
-                self.indexed = self.indexed.or(Some(source.len()));
-            }
-        }
+        // The lines come from the line index.
         let line_count = program.lines.line_count();
-        // A text still being read ends with a line ending: the line after it is still to come.
-        let readable = if complete {
-            line_count
-        } else {
-            line_count.saturating_sub(1)
-        };
-        let stop = self.line_no.saturating_add(lines).min(readable);
+        let stop = self.line_no.saturating_add(lines).min(line_count);
         // The run's state, kept here while the lines are read (stored at the end).
         let mut next = self.line_no;
         let mut offset = self.offset;
@@ -269,7 +217,7 @@ impl ParseRun {
             let closed;
             (tape, closed) = tape.after(blank, percent);
             if closed {
-                close_tape(program, source, complete, offset, &mut self.tape_end);
+                close_tape(program, source, true, offset, &mut self.tape_end);
                 done = true;
             }
         }
@@ -280,23 +228,16 @@ impl ParseRun {
         if self.line_no >= line_count {
             self.done = true;
         }
-        // A program that ends before its text does (a closing tape mark) still has its whole
-        // text indexed, as a run that indexes first has.
-        if let (true, true, Some(from)) = (complete, self.done, self.indexed) {
-            self.indexed = index_source(&mut self.program.lines, source, from);
-        }
         self.done
     }
 
-    /// [`ParseRun::read_lines`] for a run that indexes the lines as it reads them
-    /// ([`ParseRun::streaming`], [`ParseRun::growing`]) over a text at hand: each line's end is
-    /// found as it is read (by the short reader, as it reads a plain line) rather than by a
-    /// pass over the text before, and the start of the line after it goes to the index.
-    /// `text` starts at byte `base` of the whole text (see [`ParseRun::step_growing`]).
-    fn read_indexing(&mut self, bytes: &[u8], base: usize, lines: usize, complete: bool) -> bool {
+    /// [`ParseRun::read_lines`] for a run over a text still being read
+    /// ([`ParseRun::growing_unindexed`]): each line's end is found as it is read (by the short
+    /// reader, as it reads a plain line) rather than from a line index. `bytes` start at byte
+    /// `base` of the whole text (see [`ParseRun::step_growing`]).
+    fn read_growing(&mut self, bytes: &[u8], base: usize, lines: usize, complete: bool) -> bool {
         let program = &mut self.program;
         let limits = PlainLimits::of(program.dialect.rules());
-        let index_lines = self.index_lines;
         // A text still being read is read to its last line ending: the line after it is still
         // to come (the text holds whole lines only).
         let readable = if complete {
@@ -343,13 +284,8 @@ impl ParseRun {
             note_owning(&program.blocks, made, &mut self.owning);
             offset += raw_len + 1;
             next += 1;
-            if raw_len < rest.len() {
-                // Ended by its `\n`: a line starts after it.
-                if index_lines {
-                    program.lines.push_start(offset);
-                }
-            } else {
-                // The text's last line.
+            if raw_len >= rest.len() {
+                // Not ended by a `\n`: the text's last line.
                 done = true;
             }
             let closed;
@@ -369,20 +305,7 @@ impl ParseRun {
         self.offset = offset;
         self.tape = tape;
         self.done = done;
-        if !index_lines {
-            return self.done;
-        }
-        // The lines not read (after a closing tape mark) are indexed too, once the text is
-        // whole, as a run that indexes first has them.
-        let end = base + bytes.len();
-        self.indexed = Some(offset.min(end));
-        if complete && done {
-            self.indexed =
-                self.program
-                    .lines
-                    .extend_window(bytes, base, offset.min(end), usize::MAX);
-        }
-        self.done
+        done
     }
 
     /// Whether the whole text is read.
@@ -436,12 +359,6 @@ impl ParseRun {
         run.program.lines = lines;
         run
     }
-}
-
-/// [`LineIndex::extend`] over the whole of `source`, from byte `from`.
-fn index_source(lines: &mut LineIndex, source: &mut dyn LineSource, from: usize) -> Option<usize> {
-    let len = source.len();
-    lines.extend(source.line(0, len), from, usize::MAX)
 }
 
 /// Empties `blocks`, keeping the array's memory for the blocks to come (e.g. a piece's array
@@ -2238,17 +2155,17 @@ mod tests {
         }
         assert_eq!(fast, general, "{dialect:?}: {text:?}");
         assert!(same_values(&fast, &general), "{dialect:?}: {text:?}");
-        // Read as the command line reads it: a streaming run, which indexes the lines as it
-        // reads them, in pieces of a few lines.
+        // Read as the command line reads it: a run over a text still being read, which finds
+        // each line's end as it reads the line, in pieces of a few lines (its line index holds
+        // the first line alone).
         for lines in [1, 3, 1000] {
-            let mut run = ParseRun::streaming(text, dialect);
-            while !run.step(text, lines) {}
-            let streamed = run.finish();
-            assert_eq!(
-                streamed, general,
-                "{dialect:?} streaming by {lines}: {text:?}"
-            );
-            assert!(same_values(&streamed, &general), "{dialect:?}: {text:?}");
+            let mut run = ParseRun::growing_unindexed(dialect);
+            while !run.step_growing(text.as_bytes(), 0, true, lines) {}
+            let mut grown = run.finish();
+            assert_eq!(grown.lines.line_count(), 1);
+            grown.lines = general.lines.clone();
+            assert_eq!(grown, general, "{dialect:?} grown by {lines}: {text:?}");
+            assert!(same_values(&grown, &general), "{dialect:?}: {text:?}");
         }
     }
 

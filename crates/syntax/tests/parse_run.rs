@@ -5,7 +5,7 @@ use swarf_syntax::{Dialect, ParseRun, parse};
 
 #[path = "../../../tests/support/parse_runs.rs"]
 mod parse_runs;
-use parse_runs::{grown, grown_indexing, stepped};
+use parse_runs::{grown, stepped};
 
 #[test]
 fn stepping_a_few_lines_at_a_time_equals_the_whole_parse() {
@@ -19,15 +19,9 @@ fn stepping_a_few_lines_at_a_time_equals_the_whole_parse() {
     text.push_str("M30");
     for dialect in Dialect::ALL {
         let whole = parse(&text, dialect);
-        for (lines, streaming) in [1, 7, 100, 1000]
-            .into_iter()
-            .flat_map(|n| [(n, false), (n, true)])
-        {
-            let (program, steps) = stepped(&text, dialect, lines, streaming);
-            assert_eq!(
-                program, whole,
-                "{dialect:?} in steps of {lines} lines, streaming {streaming}"
-            );
+        for lines in [1, 7, 100, 1000] {
+            let (program, steps) = stepped(&text, dialect, lines);
+            assert_eq!(program, whole, "{dialect:?} in steps of {lines} lines");
             let total = text.lines().count();
             assert!(steps >= total / lines, "{steps} steps of {lines}");
         }
@@ -39,10 +33,15 @@ fn stepping_a_few_lines_at_a_time_equals_the_whole_parse() {
 fn a_stepped_run_stops_at_the_closing_tape_mark() {
     let text = "%\nG0 X1\nG1 X2 F100\n%\nG1 X$\nG1 Y$\n";
     let whole = parse(text, Dialect::Fanuc);
-    for streaming in [false, true] {
-        let (program, _) = stepped(text, Dialect::Fanuc, 1, streaming);
-        // The streaming run has indexed the lines past the tape mark too.
-        assert_eq!(program, whole, "streaming {streaming}");
+    let (program, _) = stepped(text, Dialect::Fanuc, 1);
+    assert_eq!(program, whole);
+    // Read as a file is read, a line a step: the run stops at the tape mark too.
+    for chunk in [1, 5, 100] {
+        assert_eq!(
+            grown(text, Dialect::Fanuc, chunk, 1),
+            whole,
+            "chunks of {chunk}"
+        );
     }
     let program = whole;
     assert!(
@@ -68,15 +67,8 @@ fn lines_from_a_source_give_the_program_of_the_text() {
     text.push_str("M30\n%\nG1 X$\n");
     for dialect in Dialect::ALL {
         let whole = parse(&text, dialect);
-        for (lines, streaming) in [1, 9, 1000]
-            .into_iter()
-            .flat_map(|n| [(n, false), (n, true)])
-        {
-            let mut run = if streaming {
-                ParseRun::streaming(&text, dialect)
-            } else {
-                ParseRun::new(&text, dialect)
-            };
+        for lines in [1, 9, 1000] {
+            let mut run = ParseRun::new(&text, dialect);
             // The lines come through the `LineSource` calls, not from the text at hand.
             let mut source: &str = &text;
             let mut steps = 0;
@@ -84,19 +76,15 @@ fn lines_from_a_source_give_the_program_of_the_text() {
                 steps += 1;
                 assert!(steps < 10_000, "the run ends");
             }
-            assert_eq!(
-                run.finish(),
-                whole,
-                "{dialect:?} in steps of {lines} lines, streaming {streaming}"
-            );
+            assert_eq!(run.finish(), whole, "{dialect:?} in steps of {lines} lines");
         }
     }
 }
 
 #[test]
-fn a_streaming_run_of_texts_around_a_piece_s_size_equals_the_whole_parse() {
-    // Texts whose ends fall at every place in the line index's sixteen-byte steps, with and
-    // without a last newline, read in pieces of a few lines.
+fn a_grown_run_of_short_texts_equals_the_whole_parse() {
+    // Texts of every length up to sixty lines, with and without a last newline, read in
+    // pieces of a few lines from chunks of a few bytes.
     for len in 0..60 {
         let mut text = String::new();
         for i in 0..len {
@@ -106,9 +94,13 @@ fn a_streaming_run_of_texts_around_a_piece_s_size_equals_the_whole_parse() {
             let text = format!("{text}{tail}");
             let whole = parse(&text, Dialect::LinuxCnc);
             for lines in [1, 2, 5, 64] {
-                let (program, _) = stepped(&text, Dialect::LinuxCnc, lines, true);
-                assert_eq!(program, whole, "{text:?} in steps of {lines}");
-                assert_eq!(program.lines.line_count(), text.split('\n').count());
+                for chunk in [1, 3, 16, 1000] {
+                    assert_eq!(
+                        grown(&text, Dialect::LinuxCnc, chunk, lines),
+                        whole,
+                        "{text:?} in chunks of {chunk}, steps of {lines}"
+                    );
+                }
             }
         }
     }
@@ -135,12 +127,6 @@ fn a_run_over_a_text_still_being_read_equals_the_whole_parse() {
                             whole,
                             "{dialect:?} chunks of {chunk}, steps of {lines}: {head:?}…{tail:?}"
                         );
-                        // Unindexed, the same program but for its line index, which holds
-                        // the first line alone.
-                        let mut unindexed = grown_indexing(&text, dialect, chunk, lines, false);
-                        assert_eq!(unindexed.lines.line_count(), 1);
-                        unindexed.lines = whole.lines.clone();
-                        assert_eq!(unindexed, whole, "unindexed, {dialect:?} chunks of {chunk}");
                     }
                 }
             }
@@ -150,8 +136,8 @@ fn a_run_over_a_text_still_being_read_equals_the_whole_parse() {
 
 /// Line endings and lengths that a reader finding each line's end as it reads must get right:
 /// `\r\n`, `\r\r\n`, a `\r` inside a line and at the text's end, lines of blanks, and a plain
-/// line longer than the longest line read whole (the rest is reported and skipped). Read
-/// streaming and as a text still being read, each gives the whole parse.
+/// line longer than the longest line read whole (the rest is reported and skipped). Read in
+/// steps and as a text still being read, each gives the whole parse.
 #[test]
 fn line_ends_found_as_the_lines_are_read_equal_the_whole_parse() {
     let long = format!("G1 X1{}\n", " Y2".repeat(400_000));
@@ -165,7 +151,7 @@ fn line_ends_found_as_the_lines_are_read_equal_the_whole_parse() {
         for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
             let whole = parse(text, dialect);
             for lines in [1, 3, 1000] {
-                let (program, _) = stepped(text, dialect, lines, true);
+                let (program, _) = stepped(text, dialect, lines);
                 assert_eq!(program, whole, "{dialect:?} in steps of {lines}");
                 for chunk in [*smallest_chunk, 64, 100_000] {
                     assert_eq!(
@@ -201,9 +187,11 @@ fn the_blocks_handed_over_name_those_that_own_memory() {
     }
     for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
         let whole = parse(&text, dialect);
-        for streaming in [false, true] {
-            let mut run = if streaming {
-                ParseRun::streaming(&text, dialect)
+        // Indexed first (as the editor reads), or finding each line's end as it reads (as
+        // `swarf stats` reads).
+        for growing in [false, true] {
+            let mut run = if growing {
+                ParseRun::growing_unindexed(dialect)
             } else {
                 ParseRun::new(&text, dialect)
             };
@@ -211,7 +199,11 @@ fn the_blocks_handed_over_name_those_that_own_memory() {
             let mut seen = Vec::new();
             let mut first = 0u32;
             loop {
-                let done = run.step(&text, 16);
+                let done = if growing {
+                    run.step_growing(text.as_bytes(), 0, true, 16)
+                } else {
+                    run.step(&text, 16)
+                };
                 let owning = run.take_owning();
                 let mut blocks = run.swap_blocks(std::mem::take(&mut spare));
                 for &at in &owning {
@@ -232,7 +224,7 @@ fn the_blocks_handed_over_name_those_that_own_memory() {
                             || !b.statements().is_empty()
                     })
                     .collect();
-                assert_eq!(owning, all, "{dialect:?}, streaming {streaming}");
+                assert_eq!(owning, all, "{dialect:?}, growing {growing}");
                 seen.extend(owning.iter().map(|&at| first + at));
                 first += blocks.len() as u32;
                 let capacity = blocks.capacity();
@@ -245,7 +237,7 @@ fn the_blocks_handed_over_name_those_that_own_memory() {
                 }
             }
             assert_eq!(first as usize, whole.blocks.len());
-            assert_eq!(seen, expected, "{dialect:?}, streaming {streaming}");
+            assert_eq!(seen, expected, "{dialect:?}, growing {growing}");
         }
     }
 }
