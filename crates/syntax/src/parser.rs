@@ -270,6 +270,10 @@ impl ParseRun {
                 None
             };
             let (raw_len, blank, percent) = if let Some((block, raw_len)) = plain {
+                // A plain line makes one block at most: the last, at `made`.
+                if block && program.blocks.last().is_some_and(|b| !owns_no_memory(b)) {
+                    self.owning.push(u32::try_from(made).unwrap_or(u32::MAX));
+                }
                 (raw_len, !block, false)
             } else {
                 let raw_len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
@@ -279,9 +283,9 @@ impl ParseRun {
                 let raw = std::str::from_utf8(raw).unwrap_or_default();
                 let (blank, percent) =
                     read_general_line(program, &mut self.checker, raw, offset, line_no);
+                note_owning(&program.blocks, made, &mut self.owning);
                 (raw_len, blank, percent)
             };
-            note_owning(&program.blocks, made, &mut self.owning);
             offset += raw_len + 1;
             next += 1;
             if raw_len >= rest.len() {
