@@ -253,12 +253,13 @@ impl ParseRun {
         let mut offset = self.offset;
         let mut tape = self.tape;
         let mut done = self.done;
+        let plain_lines = self.plain_lines;
         while !done && next < stop && offset < readable {
             let rest = bytes.get(offset.wrapping_sub(base)..).unwrap_or_default();
             let line_no = u32::try_from(next).unwrap_or(u32::MAX);
             let made = program.blocks.len();
-            let plain = if self.plain_lines {
-                read_plain_line(
+            if plain_lines
+                && let Some((block, raw_len)) = read_plain_line(
                     rest,
                     offset,
                     line_no,
@@ -266,26 +267,32 @@ impl ParseRun {
                     &mut program.blocks,
                     &mut self.checker,
                 )
-            } else {
-                None
-            };
-            let (raw_len, blank, percent) = if let Some((block, raw_len)) = plain {
-                // A plain line makes one block at most: the last, at `made`.
-                if block && program.blocks.last().is_some_and(|b| !owns_no_memory(b)) {
-                    self.owning.push(u32::try_from(made).unwrap_or(u32::MAX));
+            {
+                // A plain line makes one block at most (the last, at `made`); one that makes
+                // none is blank. Neither is a `%` line: the tape stays open or closed as it
+                // was, and a program not opened with `%` has begun (`Tape::after`).
+                if block {
+                    if program.blocks.last().is_some_and(|b| !owns_no_memory(b)) {
+                        self.owning.push(u32::try_from(made).unwrap_or(u32::MAX));
+                    }
+                    if tape == Tape::Before {
+                        tape = Tape::Plain;
+                    }
                 }
-                (raw_len, !block, false)
-            } else {
-                let raw_len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-                let at = offset.wrapping_sub(base);
-                let raw = bytes.get(at..at + raw_len).unwrap_or_default();
-                // Whole at a line's ends, the text is cut between characters.
-                let raw = std::str::from_utf8(raw).unwrap_or_default();
-                let (blank, percent) =
-                    read_general_line(program, &mut self.checker, raw, offset, line_no);
-                note_owning(&program.blocks, made, &mut self.owning);
-                (raw_len, blank, percent)
-            };
+                offset += raw_len + 1;
+                next += 1;
+                // Not ended by a `\n`: the text's last line.
+                done = raw_len >= rest.len();
+                continue;
+            }
+            let raw_len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+            let at = offset.wrapping_sub(base);
+            let raw = bytes.get(at..at + raw_len).unwrap_or_default();
+            // Whole at a line's ends, the text is cut between characters.
+            let raw = std::str::from_utf8(raw).unwrap_or_default();
+            let (blank, percent) =
+                read_general_line(program, &mut self.checker, raw, offset, line_no);
+            note_owning(&program.blocks, made, &mut self.owning);
             offset += raw_len + 1;
             next += 1;
             if raw_len >= rest.len() {
