@@ -107,8 +107,8 @@ impl ParseRun {
         self.read_lines(Some(text), &mut &*text, lines)
     }
 
-    /// [`ParseRun::step`] for a run made with [`ParseRun::growing_unindexed`] over a text that is still
-    /// being read: `text` is the part read so far from byte `base` of the whole text on (the
+    /// [`ParseRun::step`] for a run made with [`ParseRun::growing_unindexed`] over a text that is
+    /// still being read: `text` is the part read so far from byte `base` of the whole text on (the
     /// bytes before `base` are read already, and their text need not be kept: a long file is
     /// read through a window). The text grows from call to call, and `base` may move up to
     /// the offset of the next line to read ([`ParseRun::offset`]). Until it is `complete` it
@@ -204,14 +204,16 @@ impl ParseRun {
             };
             // Whether the line is blank, and whether it is a `%` line, for the tape marks.
             let (blank, percent) = if let Some(block) = plain {
+                note_plain_owning(&program.blocks, made, &mut self.owning);
                 (!block, false)
             } else {
                 let raw = whole
                     .or_else(|| text.and_then(|text| text.get(start..end)))
                     .unwrap_or_default();
-                read_general_line(program, &mut self.checker, raw, offset, line_no)
+                let read = read_general_line(program, &mut self.checker, raw, offset, line_no);
+                note_owning(&program.blocks, made, &mut self.owning);
+                read
             };
-            note_owning(&program.blocks, made, &mut self.owning);
             offset += raw_len + 1;
             next += 1;
             let closed;
@@ -268,17 +270,10 @@ impl ParseRun {
                     &mut self.checker,
                 )
             {
-                // A plain line makes one block at most (the last, at `made`); one that makes
-                // none is blank. Neither is a `%` line: the tape stays open or closed as it
-                // was, and a program not opened with `%` has begun (`Tape::after`).
-                if block {
-                    if program.blocks.last().is_some_and(|b| !owns_no_memory(b)) {
-                        self.owning.push(u32::try_from(made).unwrap_or(u32::MAX));
-                    }
-                    if tape == Tape::Before {
-                        tape = Tape::Plain;
-                    }
-                }
+                // One that makes no block is blank; none is a `%` line, so none closes the
+                // tape.
+                note_plain_owning(&program.blocks, made, &mut self.owning);
+                (tape, _) = tape.after(!block, false);
                 offset += raw_len + 1;
                 next += 1;
                 // Not ended by a `\n`: the text's last line.
@@ -415,6 +410,15 @@ fn note_owning(blocks: &[Block], made: usize, owning: &mut Vec<u32>) {
         if !owns_no_memory(block) {
             owning.push(u32::try_from(at).unwrap_or(u32::MAX));
         }
+    }
+}
+
+/// [`note_owning`] for a plain line, which makes one block at most (the last, at `made`): the
+/// block itself is looked at, without a pass over the blocks made.
+#[inline(always)]
+fn note_plain_owning(blocks: &[Block], made: usize, owning: &mut Vec<u32>) {
+    if blocks.len() > made && blocks.last().is_some_and(|b| !owns_no_memory(b)) {
+        owning.push(u32::try_from(made).unwrap_or(u32::MAX));
     }
 }
 
