@@ -136,8 +136,6 @@ pub(crate) struct Checker {
     motions: PlainMotions,
     scratch: Vec<Found>,
     out: Vec<Diagnostic>,
-    /// Codes already noted as read the Fanuc way (the note is given once per code).
-    noted: Vec<Code>,
 }
 
 impl Checker {
@@ -148,7 +146,6 @@ impl Checker {
             motions: PlainMotions::of(dialect),
             scratch: Vec::new(),
             out: Vec::new(),
-            noted: Vec::new(),
         }
     }
 
@@ -187,13 +184,7 @@ impl Checker {
     fn check_fully(&mut self, block: &mut Block) {
         let before = self.out.len();
         if !check_plain_block(self.dialect, &self.motions, block, &mut self.out) {
-            check_any_block(
-                self.dialect,
-                block,
-                &mut self.scratch,
-                &mut self.noted,
-                &mut self.out,
-            );
+            check_any_block(self.dialect, block, &mut self.scratch, &mut self.out);
         }
         if self.out[before..]
             .iter()
@@ -214,7 +205,7 @@ impl Checker {
 
 /// G00, G01, G02 and G03 (at their numbers) in one dialect, looked up once: the definition and
 /// the letters a block with the code may carry, or `None` where such a block takes the general
-/// check (the code is not a motion there, needs words, or is read the Fanuc way).
+/// check (the code is not a motion there, or needs words).
 #[derive(Debug, Clone, Copy)]
 struct PlainMotions([Option<(&'static CodeDef, u32)>; 4]);
 
@@ -222,10 +213,8 @@ impl PlainMotions {
     fn of(dialect: Dialect) -> Self {
         let motion = |value: f64| {
             let def = Code::from_value(b'G', value).and_then(|c| codes::lookup(dialect, c))?;
-            (def.group == Group::Motion
-                && def.required.is_empty()
-                && !codes::is_fanuc_reading(dialect, def))
-            .then(|| (def, ALWAYS_MASK | codes::words_mask(def)))
+            (def.group == Group::Motion && def.required.is_empty())
+                .then(|| (def, ALWAYS_MASK | codes::words_mask(def)))
         };
         PlainMotions([motion(0.0), motion(1.0), motion(2.0), motion(3.0)])
     }
@@ -382,7 +371,6 @@ fn check_any_block(
     dialect: Dialect,
     block: &Block,
     scratch: &mut Vec<Found>,
-    noted: &mut Vec<Code>,
     out: &mut Vec<Diagnostic>,
 ) {
     scratch.clear();
@@ -406,22 +394,10 @@ fn check_any_block(
             ));
             continue;
         };
+        // The standard codes a dialect's manual leaves out (G17, M30 …) are read as on Fanuc
+        // without a note: every Fanuc-family control has them.
         match codes::lookup(dialect, code) {
-            Some(def) => {
-                if codes::is_fanuc_reading(dialect, def) && !noted.contains(&code) {
-                    noted.push(code);
-                    out.push(Diagnostic::note(
-                        word.span,
-                        "N-FANUC-READING",
-                        format!(
-                            "{code} is not in the {} manual; it is read as on Fanuc: {}",
-                            dialect.label(),
-                            def.name
-                        ),
-                    ));
-                }
-                codes.push((def, word.span));
-            }
+            Some(def) => codes.push((def, word.span)),
             None => out.push(unknown_code(dialect, code, word.span)),
         }
     }
@@ -847,7 +823,7 @@ mod tests {
                     continue;
                 }
                 let mut any = Vec::new();
-                check_any_block(dialect, block, &mut Vec::new(), &mut Vec::new(), &mut any);
+                check_any_block(dialect, block, &mut Vec::new(), &mut any);
                 if Checker::new(dialect).nothing_to_report(&PlainScan::of(&block.words)) {
                     prop_assert!(any.is_empty(), "{}", line);
                 }

@@ -82,7 +82,6 @@ const CASES: &[(Dialect, &str, &str, &str)] = &[
         "E-NUMBER-RANGE",
         "F2=10.5",
     ),
-    (Lnc, "G0 X1. M03 S500\n", "N-FANUC-READING", "M03"),
 ];
 
 #[test]
@@ -136,4 +135,12 @@ fn a_line_past_one_mebibyte_is_read_up_to_the_limit() {
     assert_eq!(d.span.end as usize, text.find('\n').unwrap());
     // The next line is read as usual.
     assert_eq!(p.blocks.last().unwrap().words[1].value, 2.0);
+}
+
+#[test]
+fn standard_codes_a_manual_leaves_out_are_read_without_a_note() {
+    for dialect in [Lnc, Kt, Gsk] {
+        let p = parse("G17 G21 G40\nG0 X1. M03 S500\nM30\n", dialect);
+        assert!(p.diagnostics.is_empty(), "{dialect}: {:?}", p.diagnostics);
+    }
 }
