@@ -1,17 +1,13 @@
 #!/usr/bin/env bash
 # Throughput and peak memory of Swarf against the interpreters a user could pick instead, in one
 # run on one machine, on the corpus's large programs and a generated 1M-line surfacing program:
-#   Swarf   `swarf stats` (read, decode, parse, interpret, record the toolpath), built by
-#           `cargo xtask pgo` (the release build with profile-guided optimisation, trained on a
-#           generated finishing program; the plain release build where that cannot be made), once
-#           with `--one-thread` and once as it runs by default (a long program is read on a
-#           second thread while the part read before runs)
+#   Swarf   `swarf stats` (read, decode, parse, interpret, record the toolpath), the plain
+#           release build (`cargo build --release`)
 #   rs274   LinuxCNC's reference interpreter (../shared/tools/rs274), canonical calls to /dev/null
 #   gcode-toolpath  npm, cncjs's interpreter (Node.js), moves counted
 #   pygcode PyPI, its Machine over every line (Python), moves counted
 # Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
-# TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's on one thread and
-# on two. Swarf is measured in rounds, before the peers and after each of them, and its best
+# TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's. Swarf is measured in rounds, before the peers and after each of them, and its best
 # counts.
 #   scripts/bench-peers.sh            (RUNS=10, TIMEOUT=600; needs ../shared for the corpus files)
 # It ends with the wasm32 build's figure on the generated program (Node, in-process; `cargo xtask
@@ -26,15 +22,8 @@ target=${CARGO_TARGET_DIR:-$root/target}
 peers=$target/peers
 
 cargo build -q --release -p swarf-syntax --example surfacing || exit 2
-if (cd "$root" && cargo xtask pgo > "$target/pgo-build.log" 2>&1); then
-  swarf=$target/pgo/release/swarf
-  build="release build with profile-guided optimisation (cargo xtask pgo)"
-else
-  echo "bench-peers: the profile-guided build failed (see $target/pgo-build.log); the plain release build is measured" >&2
-  cargo build -q --release -p swarf-cli --bin swarf || exit 2
-  swarf=$target/release/swarf
-  build="plain release build"
-fi
+cargo build -q --release -p swarf-cli --bin swarf || exit 2
+swarf=$target/release/swarf
 generated=$peers/surfacing-1M.nc
 mkdir -p "$peers"
 [[ -s "$generated" ]] || "$target/release/examples/surfacing" 1000000 > "$generated"
@@ -98,19 +87,16 @@ measure() {
   echo "${best:-${out% *}} $kb"
 }
 
-# Swarf's round on program $1: "secs kb" (see `measure`) on one thread, then on two.
+# Swarf's round on program $1: "secs kb" (see `measure`).
 swarf_round() {
-  echo "$(measure "$swarf" stats "$1" --dialect linuxcnc --one-thread)" \
-    "$(measure "$swarf" stats "$1" --dialect linuxcnc)"
+  measure "$swarf" stats "$1" --dialect linuxcnc
 }
 
-# Another round of Swarf's runs on program $1: the best times so far, `st` (one thread) and
-# `st2` (two), are kept or bettered.
+# Another round of Swarf's runs on program $1: the best time so far, `st`, is kept or bettered.
 swarf_again() {
-  local again again2
-  read -r again _ again2 _ < <(swarf_round "$1")
+  local again
+  read -r again _ < <(swarf_round "$1")
   st=$(least "$st" "$again")
-  st2=$(least "$st2" "$again2")
 }
 
 # The lesser of two measured times (a failed measurement, not a number, loses).
@@ -120,15 +106,14 @@ least() {
     if (an && bn) print (a + 0 <= b + 0 ? a : b); else if (an) print a; else print b }'
 }
 
-# One table cell: "1.23 s, 45 MB/s, 67 MB (12.3× / 20.1×)": its time over Swarf's on one
-# thread ($3) and on two ($4), for $5 bytes.
+# One table cell: "1.23 s, 45 MB/s, 67 MB (12.3×)": its time over Swarf's ($3), for $4 bytes.
 cell() {
-  local t=$1 kb=$2 one=$3 two=$4 bytes=$5
+  local t=$1 kb=$2 one=$3 bytes=$4
   case $t in
     timeout) echo "> ${limit} s" ;;
     fail) echo "fails" ;;
     "") echo "—" ;;
-    *) awk "BEGIN{printf \"%.3f s, %.1f MB/s, %d MB (%.1f× / %.1f×)\", $t, $bytes/1e6/$t, $kb/1024, $t/$one, $t/$two}" ;;
+    *) awk "BEGIN{printf \"%.3f s, %.1f MB/s, %d MB (%.1f×)\", $t, $bytes/1e6/$t, $kb/1024, $t/$one}" ;;
   esac
 }
 
@@ -137,15 +122,13 @@ swarf_cell() {
   awk "BEGIN{printf \"%.4f s, %.0f MB/s, %d MB\", $1, $3/1e6/$1, $2/1024}"
 }
 
-echo "Swarf: $build"
-echo
-echo "| program | size | lines | Swarf, one thread | Swarf, two threads | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| program | size | lines | Swarf | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
+echo "|---|---|---|---|---|---|---|"
 for prog in "${programs[@]}"; do
   [[ -f "$prog" ]] || continue
   bytes=$(stat -c %s "$prog")
   lines=$(wc -l < "$prog")
-  read -r st sk st2 sk2 < <(swarf_round "$prog")
+  read -r st sk < <(swarf_round "$prog")
   r=("" 0) g=("" 0) p=("" 0)
   # Swarf's runs again after each peer's: its runs take a fraction of a second where a peer's
   # take seconds, and a shared machine's speed drifts over seconds, so its best of the rounds
@@ -162,10 +145,10 @@ for prog in "${programs[@]}"; do
     read -r -a p < <(PYTHONPATH=$peers/py measure python3 "$root/scripts/peers/pygcode_run.py" "$prog")
     swarf_again "$prog"
   fi
-  printf "| %s | %.1f MB | %d | %s | %s | %s | %s | %s |\n" "$(basename "$prog")" \
+  printf "| %s | %.1f MB | %d | %s | %s | %s | %s |\n" "$(basename "$prog")" \
     "$(awk "BEGIN{print $bytes/1e6}")" "$lines" "$(swarf_cell "$st" "$sk" "$bytes")" \
-    "$(swarf_cell "$st2" "$sk2" "$bytes")" "$(cell "${r[0]}" "${r[1]}" "$st" "$st2" "$bytes")" \
-    "$(cell "${g[0]}" "${g[1]}" "$st" "$st2" "$bytes")" "$(cell "${p[0]}" "${p[1]}" "$st" "$st2" "$bytes")"
+    "$(cell "${r[0]}" "${r[1]}" "$st" "$bytes")" \
+    "$(cell "${g[0]}" "${g[1]}" "$st" "$bytes")" "$(cell "${p[0]}" "${p[1]}" "$st" "$bytes")"
 done
 
 # Swarf's wasm build on the generated program (in Node, in-process: no file reading or process

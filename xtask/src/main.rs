@@ -3,11 +3,9 @@
 //! * `cargo xtask web [--dev] [--opt]` builds the web page into `target/web/`.
 //! * `cargo xtask serve [--port 8080] [--no-build] [--dev]` builds and serves it.
 //! * `cargo xtask test [--quick]` installs what the tests need and runs every test.
-//! * `cargo xtask pgo` builds the `swarf` command line with profile-guided optimisation.
 //! * `cargo xtask wasm-tools` installs what the wasm32 tests need (the benchmark's last step).
 
 mod desktop;
-mod pgo;
 mod serve;
 mod test;
 mod tools;
@@ -38,8 +36,6 @@ COMMANDS:
                             (a fmt, b clippy, c clippy wasm32, d tests, e wasm tests in
                             Node, f wasm tests in Chromium, g architecture, k cargo deny,
                             h desktop, j fuzzing, i web build + browser end-to-end test)
-    pgo     Build the swarf command line with profile-guided optimisation into
-            target/pgo/release/swarf (trained on a generated finishing program)
     wasm-tools
             Install what the wasm32 tests need where it is missing: the wasm32 target and
             wasm-bindgen-cli (the benchmark script runs its wasm32 test with them)
@@ -47,10 +43,6 @@ COMMANDS:
 ";
 
 fn main() -> ExitCode {
-    // Called by cargo as the compiler wrapper of `cargo xtask pgo`'s builds.
-    if let Some(code) = pgo::wrap() {
-        return code;
-    }
     match run() {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
@@ -90,10 +82,6 @@ fn run() -> Result<()> {
         "test" => {
             opts.reject_unused(&["--quick", "--only"])?;
             test::run_all(opts.quick, opts.only.as_deref())?;
-        }
-        "pgo" => {
-            opts.reject_unused(&[])?;
-            pgo::build()?;
         }
         "wasm-tools" => {
             opts.reject_unused(&[])?;

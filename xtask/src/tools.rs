@@ -203,24 +203,6 @@ pub fn ensure_apt_packages() -> Result<()> {
     apt_install(APT_PACKAGES)
 }
 
-/// The target of the `swarf` binary that `cargo xtask pgo` builds on x86-64 Linux: musl's C
-/// library, linked statically.
-pub const MUSL_TARGET: &str = "x86_64-unknown-linux-musl";
-
-/// Makes sure the [`MUSL_TARGET`] can be built, C included: rustup's target, and `musl-gcc`
-/// (Debian's `musl-tools`) for the allocator's C code, each installed when missing.
-pub fn ensure_musl() -> Result<()> {
-    let installed =
-        output(command("rustup").args(["target", "list", "--installed"])).unwrap_or_default();
-    if !installed.lines().any(|line| line.trim() == MUSL_TARGET) {
-        run(command("rustup").args(["target", "add", MUSL_TARGET]))?;
-    }
-    if util::which("musl-gcc").is_none() {
-        apt_install(&["musl-tools"])?;
-    }
-    Ok(())
-}
-
 /// `apt-get update` then `apt-get install -y packages` (through sudo when not root).
 fn apt_install(packages: &[&str]) -> Result<()> {
     if util::which("apt-get").is_none() {

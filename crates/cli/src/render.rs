@@ -2,10 +2,8 @@
 //! Mesa lavapipe works with no display) and writes it as a PNG, with the machine's travel box and
 //! the G22 stroke limits as outlines.
 
-use std::ffi::OsString;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use glam::{DVec3, Vec3};
 use swarf_render::{
@@ -92,50 +90,6 @@ fn cycle_kind(role: CycleMove) -> Kind {
         CycleMove::Retract => Kind::Retract,
         CycleMove::Other => Kind::Cycle,
     }
-}
-
-/// The program that runs `swarf render` for a `swarf` that cannot: a statically linked `swarf`
-/// (the release build on x86-64 Linux, `cargo xtask pgo`) starts faster but cannot load the
-/// system's Vulkan driver, a shared library, so its `render` runs this program from its own
-/// folder: the same command line built from the same code, linked dynamically.
-pub const RENDER_HELPER: &str = "swarf-render";
-
-/// The command that runs the `swarf render …` command line `args` (with the program name) in
-/// [`RENDER_HELPER`] beside `exe`, given the arguments after `render`. `None` for any other
-/// command line.
-pub fn render_helper(args: &[OsString], exe: &Path) -> Option<Command> {
-    let (_, rest) = args.split_first()?;
-    let (command, rest) = rest.split_first()?;
-    if command != "render" {
-        return None;
-    }
-    let name = format!("{RENDER_HELPER}{}", std::env::consts::EXE_SUFFIX);
-    let mut helper = Command::new(exe.with_file_name(name));
-    helper.args(rest);
-    Some(helper)
-}
-
-/// Runs the `swarf render …` command line `args` in [`RENDER_HELPER`] beside this program.
-/// On Unix the helper takes this process's place, so this returns only when it could not be
-/// started (exit status 2, the reason written to `err`); elsewhere it returns the helper's exit
-/// status. `None` for any other command line.
-pub fn render_elsewhere(args: &[OsString], err: &mut dyn Write) -> Option<i32> {
-    // Where this program's own path is unknown, the helper is looked for on the `PATH`.
-    let exe = std::env::current_exe().unwrap_or_else(|_| PathBuf::from(RENDER_HELPER));
-    let mut helper = render_helper(args, &exe)?;
-    #[cfg(unix)]
-    let error = std::os::unix::process::CommandExt::exec(&mut helper);
-    #[cfg(not(unix))]
-    let error = match helper.status() {
-        Ok(status) => return Some(status.code().unwrap_or(super::EXIT_USAGE)),
-        Err(error) => error,
-    };
-    let _ = writeln!(
-        err,
-        "swarf: this build of swarf is statically linked and cannot load the system's Vulkan driver, so `swarf render` runs `{}`, which could not be started: {error}",
-        Path::new(helper.get_program()).display()
-    );
-    Some(super::EXIT_USAGE)
 }
 
 /// Runs `swarf render`: interprets the program (diagnostics to `err` as with `check`), draws

@@ -1,7 +1,6 @@
-//! `swarf stats` runs a program piece by piece as it reads it, keeping none of its blocks, and
+//! `swarf stats` runs a program piece by piece as it parses it, keeping none of its blocks, and
 //! falls back to the whole program for one that jumps, loops or calls: its report and
-//! diagnostics must be those of the whole program held in memory (`--whole`), whether the
-//! pieces are read on a second thread (the default) or on the same one (`--one-thread`).
+//! diagnostics must be those of the whole program held in memory (`--whole`).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::fmt::Write as _;
@@ -16,7 +15,7 @@ fn stats(file: &Path, dialect: &str, whole: bool) -> (i32, String, String) {
     stats_with(file, dialect, if whole { "--whole" } else { "" })
 }
 
-/// [`stats`] with an extra option (`--whole`, `--one-thread`, or none).
+/// [`stats`] with an extra option (`--whole`, or none).
 fn stats_with(file: &Path, dialect: &str, option: &str) -> (i32, String, String) {
     let mut out = Vec::new();
     let mut err = Vec::new();
@@ -39,13 +38,6 @@ fn assert_same(file: &Path, dialect: &str) {
     let pieces = stats(file, dialect, false);
     let whole = stats(file, dialect, true);
     assert_eq!(pieces, whole, "{} read as {dialect}", file.display());
-    let one_thread = stats_with(file, dialect, "--one-thread");
-    assert_eq!(
-        one_thread,
-        whole,
-        "{} read as {dialect} on one thread",
-        file.display()
-    );
 }
 
 /// A long program that runs straight through, with what a piece boundary must carry over: a
