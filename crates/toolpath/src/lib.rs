@@ -392,10 +392,9 @@ fn dwell_before(dwells: &[Dwell], i: usize) -> f64 {
 
 /// The time model and the measures taken of each segment with it (lengths, bounds, the
 /// corner between moves): the end times of the segments settled so far, and the plans of
-/// those after them. Kept apart from the path, it can measure and time a long program's
-/// segments on another thread while the program runs on (see [`Toolpath::detach_timer`]).
+/// those after them.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Timer {
+struct Timer {
     kinematics: Kinematics,
     /// One over its acceleration ([`Kinematics::per_acceleration`]).
     per_acceleration: f64,
@@ -418,83 +417,23 @@ pub struct Timer {
     feed_mm: f64,
 }
 
-/// A segment as the path records it for the timer: its end and speed, and how it joins the
-/// one before (see [`Timer::measure`]). Kept while the path's timer is detached, for the timer
-/// to take in later; the rarer parts (dwells, an arc's tangents) follow in [`Timings`].
+/// A segment as the path records it for the timer: its end and speed, and whether the tool
+/// came to rest before it (see [`Timer::measure`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Note {
     to: DVec3,
     /// A straight move's feed in mm/min (unused for a rapid), an arc chord's cruise in mm/s.
     speed: f64,
     kind: SegmentKind,
-    /// [`NOTE_STOP`], [`NOTE_CHORD`] and what follows among the extras.
-    flags: u8,
+    /// The tool came to rest before the segment.
+    stop: bool,
 }
-
-/// The tool came to rest before the segment.
-const NOTE_STOP: u8 = 1;
-/// A chord of an arc: its speed is its cruise, and it continues the chord before unless
-/// [`NOTE_FIRST_CHORD`].
-const NOTE_CHORD: u8 = 2;
-/// The first chord of an arc: a corner whose entry direction follows if [`NOTE_ENTRY`].
-const NOTE_FIRST_CHORD: u8 = 4;
-/// The extras hold the entry direction (three numbers).
-const NOTE_ENTRY: u8 = 8;
-/// The extras hold the direction at the end (three numbers).
-const NOTE_EXIT: u8 = 16;
-/// The extras hold the seconds of dwell before the segment (one number, first).
-const NOTE_DWELL: u8 = 32;
 
 /// How a segment joins the one before and leaves, beyond its end point: `None` for a
 /// straight move (both come from its direction), else an arc chord's join and exit.
 type ChordJoin = Option<(Join, Option<DVec3>)>;
 
-/// The segments recorded while a path's timer was detached, in order, for [`Timer::take`].
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Timings {
-    notes: Vec<Note>,
-    /// The dwells and arc tangents the notes' flags announce, in order.
-    extras: Vec<f64>,
-}
-
-impl Timings {
-    #[inline(always)]
-    fn push(&mut self, mut note: Note, dwell: f64, chord: ChordJoin) {
-        if dwell != 0.0 {
-            note.flags |= NOTE_DWELL;
-            self.extras.push(dwell);
-        }
-        if let Some((join, exit)) = chord {
-            note.flags |= NOTE_CHORD;
-            if let Join::Corner { entry } = join {
-                note.flags |= NOTE_FIRST_CHORD;
-                if let Some(entry) = entry {
-                    note.flags |= NOTE_ENTRY;
-                    self.extras.extend(entry.to_array());
-                }
-            }
-            if let Some(exit) = exit {
-                note.flags |= NOTE_EXIT;
-                self.extras.extend(exit.to_array());
-            }
-        }
-        self.notes.push(note);
-    }
-}
-
-/// Writes `value` where the next element of `array` goes, if it has room for one.
-fn prefault<T>(array: &mut Vec<T>, value: T) {
-    if let Some(slot) = array.spare_capacity_mut().first_mut() {
-        slot.write(value);
-    }
-}
-
 impl Timer {
-    /// [`Toolpath::prefault`] for the end times.
-    pub fn prefault(&mut self) {
-        prefault(&mut self.end_times, 0.0);
-    }
-
     fn new(kinematics: Kinematics, start: DVec3) -> Self {
         Timer {
             kinematics,
@@ -512,30 +451,6 @@ impl Timer {
         }
     }
 
-    /// Measures and times the segments recorded while the timer was detached, in their order;
-    /// taken in by the timer, the path gets the same figures as if it had made them itself.
-    pub fn take(&mut self, timings: &Timings) {
-        let mut extras = timings.extras.iter().copied();
-        let mut next = move || extras.next().unwrap_or(0.0);
-        // Arguments are evaluated in order: x, y, then z.
-        let vector = |next: &mut dyn FnMut() -> f64| DVec3::new(next(), next(), next());
-        for note in &timings.notes {
-            let flags = note.flags;
-            let dwell = if flags & NOTE_DWELL != 0 { next() } else { 0.0 };
-            let chord = (flags & NOTE_CHORD != 0).then(|| {
-                let join = if flags & NOTE_FIRST_CHORD != 0 {
-                    Join::Corner {
-                        entry: (flags & NOTE_ENTRY != 0).then(|| vector(&mut next)),
-                    }
-                } else {
-                    Join::Continue
-                };
-                (join, (flags & NOTE_EXIT != 0).then(|| vector(&mut next)))
-            });
-            self.measure(note, dwell, chord);
-        }
-    }
-
     /// Takes in the newest segment `note`, after `dwell` seconds of dwell: its length, the
     /// box and the distances grow by it, and the planner gets it with its cruise speed and
     /// whether it joins the one before without stopping. A straight move's direction gives
@@ -546,7 +461,7 @@ impl Timer {
             to,
             speed,
             kind,
-            flags,
+            stop,
         } = *note;
         let delta = to - self.last_end;
         let length = delta.length();
@@ -604,7 +519,7 @@ impl Timer {
         // `entry`: `None` for the next chord of an arc, else the new move's direction (`None`
         // inside for an empty move).
         let smooth = match entry {
-            _ if flags & NOTE_STOP != 0 => false,
+            _ if stop => false,
             None => true,
             Some(_) if kind == SegmentKind::Rapid || self.last_kind == Some(SegmentKind::Rapid) => {
                 false
@@ -765,10 +680,8 @@ pub struct Toolpath {
     /// The feed of each segment (its `f32` bits) and its tool, as runs: both change rarely.
     feeds: Runs,
     segment_tools: Runs,
-    /// The time model (with the limits the path uses too), or while it is detached, a stand-in
-    /// with the same limits and what the lent one is to take in later.
+    /// The time model (with the limits the path uses too) and the measures taken with it.
     timer: Timer,
-    detached: Option<Timings>,
     /// The most segments the path holds before it reports itself full (memory's limit).
     max_segments: usize,
     /// Every dwell, in segment order.
@@ -821,18 +734,6 @@ impl Toolpath {
         self.timer.end_times.reserve(segments);
     }
 
-    /// Maps the memory of the room reserved for the next segments (see [`Toolpath::reserve`])
-    /// by writing where the first of them goes (nothing is recorded), so that the first
-    /// segments do not wait for it: with transparent huge pages that first write has the
-    /// system zero 2 MB per array, a fraction of a millisecond that a thread waiting for its
-    /// first piece of a program can take on.
-    pub fn prefault(&mut self) {
-        prefault(&mut self.ends, DVec3::ZERO);
-        prefault(&mut self.kinds, SegmentKind::Rapid);
-        prefault(&mut self.lines, 0);
-        self.timer.prefault();
-    }
-
     /// An empty toolpath starting at `start`, timed with `kinematics`.
     pub fn with_kinematics(start: DVec3, kinematics: Kinematics) -> Self {
         Toolpath {
@@ -843,7 +744,6 @@ impl Toolpath {
             feeds: Runs::default(),
             segment_tools: Runs::default(),
             timer: Timer::new(kinematics, start),
-            detached: None,
             max_segments: max_segments(&Machine::default()),
             dwells: Vec::new(),
             tools: Vec::new(),
@@ -1073,7 +973,7 @@ impl Toolpath {
 
     /// Records a segment to `to` with `speed` (a straight move's feed in mm/min, an arc chord's
     /// cruise in mm/s) and, for an arc's chord, its join and exit (`chord`), then has the
-    /// timer measure and time it, or notes it for the timer while that is detached.
+    /// timer measure and time it.
     #[inline(always)]
     fn push(
         &mut self,
@@ -1099,48 +999,10 @@ impl Toolpath {
             to,
             speed,
             kind,
-            flags: if self.stop_pending { NOTE_STOP } else { 0 },
+            stop: self.stop_pending,
         };
         self.stop_pending = false;
-        if let Some(timings) = &mut self.detached {
-            timings.push(note, dwell, chord);
-        } else {
-            self.timer.measure(&note, dwell, chord);
-        }
-    }
-
-    /// Takes the time model out of the path, so that another thread can measure and time the
-    /// segments while more are recorded: until [`Toolpath::attach_timer`] gives it back, each
-    /// new segment is only noted for it ([`Toolpath::swap_timings`]), and the figures it gives
-    /// ([`Toolpath::timeline`], [`Toolpath::estimated_secs`], [`Toolpath::bounds`], the
-    /// lengths) leave out every segment since.
-    pub fn detach_timer(&mut self) -> Timer {
-        self.detached.get_or_insert_default();
-        // The timer left in its place keeps the limits for the path's own use.
-        let stand_in = Timer::new(self.timer.kinematics, self.start);
-        std::mem::replace(&mut self.timer, stand_in)
-    }
-
-    /// The segments noted for the detached timer since the last call, for [`Timer::take`];
-    /// the next ones are noted into `spare` (emptied first), so that a batch the timer has
-    /// taken in can come back for reuse and a long run of batches allocates none.
-    pub fn swap_timings(&mut self, mut spare: Timings) -> Timings {
-        spare.notes.clear();
-        spare.extras.clear();
-        match &mut self.detached {
-            Some(timings) => std::mem::replace(timings, spare),
-            None => Timings::default(),
-        }
-    }
-
-    /// Gives the time model back to the path, having it take in the segments noted since the
-    /// last [`Toolpath::swap_timings`] first; the figures are then those the path would have
-    /// worked out itself.
-    pub fn attach_timer(&mut self, mut timer: Timer) {
-        if let Some(rest) = self.detached.take() {
-            timer.take(&rest);
-        }
-        self.timer = timer;
+        self.timer.measure(&note, dwell, chord);
     }
 
     fn push_line(&mut self, kind: SegmentKind, to: DVec3, line: u32, feed_mm_per_min: f64) {
@@ -1427,41 +1289,6 @@ mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
 
-    /// Writing where the first reserved segments go records nothing: the path is the one made
-    /// without it, before its segments and after.
-    #[test]
-    fn prefault_records_nothing() {
-        let events = [
-            Canon::Rapid {
-                to: DVec3::new(10.0, 0.0, 5.0),
-            },
-            Canon::Feed {
-                to: DVec3::new(10.0, 20.0, 0.0),
-                feed_mm_per_min: 600.0,
-            },
-        ];
-        let source = Source { block: 0, line: 1 };
-        let mut plain = Toolpath::default();
-        plain.reserve(8);
-        let mut touched = Toolpath::default();
-        touched.reserve(8);
-        touched.prefault();
-        let mut timer = touched.detach_timer();
-        timer.prefault();
-        touched.attach_timer(timer);
-        assert_eq!(touched, plain);
-        for e in &events {
-            plain.emit(source, e);
-            touched.emit(source, e);
-        }
-        assert_eq!(touched.len(), 2);
-        assert_eq!(touched, plain);
-        assert_eq!(
-            touched.estimated_secs().to_bits(),
-            plain.estimated_secs().to_bits()
-        );
-    }
-
     /// The end times by the plain two-pass definition: every entry speed from a backward pass
     /// into its own array, then the moves timed in order.
     fn reference_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize) -> Vec<f64> {
@@ -1579,102 +1406,6 @@ mod tests {
                     }
                 }
             }
-        }
-    }
-
-    #[test]
-    fn a_detached_timer_gives_the_times_of_one_that_stayed() {
-        let mut seed = 0x51f1_5ee7_c0de_0042_u64;
-        let mut next = move || (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64;
-        for case in 0..40 {
-            // Moves of every kind, with stops, dwells and tool changes between them, and runs
-            // long enough to settle in batches.
-            let count = if case % 4 == 0 {
-                3 * LOOKAHEAD_SEGMENTS
-            } else {
-                200
-            };
-            let events: Vec<Canon> = (0..count)
-                .map(|_| {
-                    let to = DVec3::new(50.0 * next(), 50.0 * next(), 5.0 * next());
-                    let feed_mm_per_min = 100.0 + 2000.0 * next();
-                    match (next() * 20.0) as u32 {
-                        0 => Canon::Dwell { secs: next() },
-                        1 => Canon::ToolChange { tool: 2 },
-                        2..=4 => Canon::Rapid { to },
-                        5..=6 => Canon::Arc {
-                            to,
-                            center: DVec3::new(25.0, 25.0, 0.0),
-                            axis: Axis::Z,
-                            ccw: next() < 0.5,
-                            turns: 0,
-                            feed_mm_per_min,
-                        },
-                        _ => Canon::Feed {
-                            to,
-                            feed_mm_per_min,
-                        },
-                    }
-                })
-                .collect();
-            let source = Source { block: 0, line: 1 };
-            let mut inline = Toolpath::default();
-            for e in &events {
-                inline.emit(source, e);
-            }
-            // The same, the timer detached from a random event on, fed in random batches and
-            // given back at a random event.
-            let detach = (next() * count as f64) as usize;
-            let attach = detach + (next() * (count - detach) as f64) as usize;
-            let mut path = Toolpath::default();
-            let mut timer = None;
-            // A batch taken in, given back for the path to note the next ones into.
-            let mut spent = Timings::default();
-            for (i, e) in events.iter().enumerate() {
-                if i == detach {
-                    timer = Some(path.detach_timer());
-                }
-                if i == attach
-                    && let Some(t) = timer.take()
-                {
-                    path.attach_timer(t);
-                }
-                path.emit(source, e);
-                if let Some(t) = &mut timer
-                    && next() < 0.05
-                {
-                    let spare = std::mem::take(&mut spent);
-                    let batch = path.swap_timings(spare);
-                    t.take(&batch);
-                    spent = batch;
-                }
-            }
-            if let Some(t) = timer.take() {
-                path.attach_timer(t);
-            }
-            let bits = |v: &[f64]| v.iter().map(|t| t.to_bits()).collect::<Vec<_>>();
-            assert_eq!(
-                bits(path.timeline().end_times()),
-                bits(inline.timeline().end_times()),
-                "case {case}"
-            );
-            assert_eq!(path.timeline(), inline.timeline(), "case {case}");
-            assert_eq!(
-                path.estimated_secs().to_bits(),
-                inline.estimated_secs().to_bits()
-            );
-            // The measures taken with the timer are the same to the bit too.
-            let figures = |p: &Toolpath| {
-                let b = p.bounds().unwrap_or(Bounds {
-                    min: DVec3::NAN,
-                    max: DVec3::NAN,
-                });
-                let mut all = vec![p.rapid_length_mm(), p.feed_length_mm()];
-                all.extend(b.min.to_array().into_iter().chain(b.max.to_array()));
-                bits(&all)
-            };
-            assert_eq!(figures(&path), figures(&inline), "case {case}");
-            assert_eq!(path, inline, "case {case}");
         }
     }
 
