@@ -1924,6 +1924,33 @@ impl LineReader<'_> {
                     return Err(Fail::new(start, start + 1, "E-EXPR", "expected a number"));
                 };
                 let end = self.line.len() - rest.len();
+                // `1e3` is no number to a control: refused, not read as 1 and a word `E3`.
+                let after = self.bytes.get(end + 1..).unwrap_or_default();
+                let exponent_digit = match after.first() {
+                    Some(b'+' | b'-') => after.get(1).is_some_and(u8::is_ascii_digit),
+                    Some(c) => c.is_ascii_digit(),
+                    None => false,
+                };
+                if matches!(self.bytes.get(end), Some(b'e' | b'E')) && exponent_digit {
+                    let stop = end
+                        + 1
+                        + after
+                            .iter()
+                            .enumerate()
+                            .take_while(|&(i, c)| {
+                                c.is_ascii_digit() || (i == 0 && b"+-".contains(c))
+                            })
+                            .count();
+                    return Err(Fail::new(
+                        start,
+                        stop,
+                        "E-EXPR",
+                        format!(
+                            "`{}`: a number with an exponent is not read by the control; write it out in full",
+                            &self.line[start..stop]
+                        ),
+                    ));
+                }
                 let value = digits.parse::<f64>().unwrap_or(f64::NAN);
                 if !value.is_finite() || value > 1e15 {
                     return Err(Fail::new(

@@ -82,6 +82,9 @@ const CASES: &[(Dialect, &str, &str, &str)] = &[
         "E-NUMBER-RANGE",
         "F2=10.5",
     ),
+    (Fanuc, "#1=1e3\n", "E-EXPR", "1e3"),
+    (LinuxCnc, "#1=2.5E-2\n", "E-EXPR", "2.5E-2"),
+    (Fanuc, "G00.9999999 X10.\n", "E-CODE-NUMBER", "G00.9999999"),
 ];
 
 #[test]

@@ -61,7 +61,9 @@ impl Code {
             return None;
         }
         let tenths = (scaled + 0.5) as u32;
-        if (scaled - f64::from(tenths)).abs() > 1e-6 {
+        // Exact but for the rounding of the decimal reading (`54.1 × 10`): `G00.9999999` is no
+        // code, not G01.
+        if (scaled - f64::from(tenths)).abs() > 1e-9 {
             return None;
         }
         Some(Code { letter, tenths })
