@@ -80,8 +80,8 @@ pub struct Machine {
     pub rapid_xyz_mm_per_min: Option<[f64; 3]>,
     /// Acceleration and deceleration along the path in mm/s², for the time estimate: each move
     /// speeds up from its entry speed to its feed (or rapid rate) and slows down to its exit
-    /// speed with a trapezoidal velocity profile. Zero, negative or not finite: no acceleration
-    /// is modelled (every move runs at its feed from end to end).
+    /// speed with a trapezoidal velocity profile. Zero: no acceleration is modelled (every move
+    /// runs at its feed from end to end).
     pub acceleration_mm_per_s2: f64,
     /// Most blocks executed before a run is stopped as runaway.
     pub max_blocks: u64,
@@ -218,12 +218,50 @@ pub enum SetupError {
     /// The setup could not be written as TOML (a number TOML cannot hold).
     #[error("{0}")]
     Write(#[from] toml::ser::Error),
-    /// A value that is not a finite number.
-    #[error("`{0}` must be a finite number")]
-    NotFinite(String),
+    /// A value outside the range the key allows (or not a number at all).
+    #[error("`{key}` must be from {min} to {max} (it is {value})")]
+    Range {
+        /// The key, `machine.rapid_mm_per_min` or `registers.3.radius`.
+        key: String,
+        /// The lowest value allowed.
+        min: f64,
+        /// The highest value allowed.
+        max: f64,
+        /// The value given.
+        value: f64,
+    },
     /// A tool orientation outside 0–9.
     #[error("`registers.{0}.orientation` must be 0 to 9")]
     Orientation(u32),
+}
+
+/// The largest length a setup may give (an offset, a travel limit, a reference point), in its
+/// units: a kilometre, past any machine, so an absurd value is refused rather than computed.
+pub const MAX_LENGTH: f64 = 1.0e6;
+
+/// The largest rate a setup may give (mm/min, mm/s²).
+pub const MAX_RATE: f64 = 1.0e7;
+
+/// `value` for `key` when it lies in `min..=max`; a range error naming the key otherwise.
+fn in_range(key: impl Into<String>, value: f64, min: f64, max: f64) -> Result<f64, SetupError> {
+    if (min..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(SetupError::Range {
+            key: key.into(),
+            min,
+            max,
+            value,
+        })
+    }
+}
+
+/// Every coordinate of `values` within ±[`MAX_LENGTH`].
+fn lengths_in_range(key: &str, values: &[f64]) -> Result<(), SetupError> {
+    for &v in values {
+        in_range(key, v, -MAX_LENGTH, MAX_LENGTH)?;
+    }
+    Ok(())
 }
 
 #[derive(Deserialize, Serialize)]
@@ -255,9 +293,7 @@ impl Setup {
                 ("length_wear", r.length_wear),
                 ("radius_wear", r.radius_wear),
             ] {
-                if !v.is_finite() {
-                    return Err(SetupError::NotFinite(format!("registers.{n}.{name}")));
-                }
+                in_range(format!("registers.{n}.{name}"), v, -MAX_LENGTH, MAX_LENGTH)?;
             }
             if r.orientation > 9 {
                 return Err(SetupError::Orientation(n));
@@ -276,17 +312,13 @@ impl Setup {
         for (name, v) in file.work_offsets {
             let canonical =
                 canonical_work_offset(&name).ok_or_else(|| SetupError::WorkOffset(name.clone()))?;
-            if v.iter().any(|c| !c.is_finite()) {
-                return Err(SetupError::NotFinite(format!("work_offsets.{name}")));
-            }
+            lengths_in_range(&format!("work_offsets.{name}"), &v)?;
             setup
                 .work_offsets
                 .insert(canonical, DVec3::from_array(v) * k);
         }
         if let Some(travel) = &mut setup.machine.travel_mm {
-            if travel.iter().flatten().any(|c| !c.is_finite()) {
-                return Err(SetupError::NotFinite("machine.travel_mm".into()));
-            }
+            lengths_in_range("machine.travel_mm", travel.as_flattened())?;
             for c in travel.iter_mut().flatten() {
                 *c *= k;
             }
@@ -297,18 +329,32 @@ impl Setup {
             ];
         }
         for point in &mut setup.machine.reference_points {
-            if point.iter().any(|c| !c.is_finite()) {
-                return Err(SetupError::NotFinite("machine.reference_points".into()));
-            }
+            lengths_in_range("machine.reference_points", point)?;
             for c in point.iter_mut() {
                 *c *= k;
             }
         }
-        if !(setup.machine.rapid_mm_per_min.is_finite() && setup.machine.rapid_mm_per_min > 0.0) {
-            return Err(SetupError::NotFinite("machine.rapid_mm_per_min".into()));
+        let m = &setup.machine;
+        // A rate of zero would make every move take forever.
+        in_range(
+            "machine.rapid_mm_per_min",
+            m.rapid_mm_per_min,
+            1.0,
+            MAX_RATE,
+        )?;
+        for &rate in m.rapid_xyz_mm_per_min.iter().flatten() {
+            in_range("machine.rapid_xyz_mm_per_min", rate, 1.0, MAX_RATE)?;
         }
-        if !(setup.machine.peck_retract_mm.is_finite() && setup.machine.peck_retract_mm >= 0.0) {
-            return Err(SetupError::NotFinite("machine.peck_retract_mm".into()));
+        in_range(
+            "machine.acceleration_mm_per_s2",
+            m.acceleration_mm_per_s2,
+            0.0,
+            MAX_RATE,
+        )?;
+        in_range("machine.arc_tolerance_mm", m.arc_tolerance_mm, 0.0, 1000.0)?;
+        in_range("machine.peck_retract_mm", m.peck_retract_mm, 0.0, 1000.0)?;
+        for &angle in &m.measured_angles {
+            in_range("machine.measured_angles", angle, -360.0, 360.0)?;
         }
         Ok(setup)
     }
@@ -415,5 +461,47 @@ mod tests {
         assert!(Setup::from_toml("[work_offsets]\n\"G54.1P49\" = [0,0,0]\n").is_err());
         assert!(Setup::from_toml("bogus = 1\n").is_err());
         assert!(Setup::from_toml("[machine]\nrapid_mm_per_min = -1\n").is_err());
+    }
+
+    #[test]
+    fn values_out_of_range_are_refused_naming_the_key_and_the_range() {
+        for (text, key) in [
+            (
+                "[machine]\nacceleration_mm_per_s2 = -1000\n",
+                "machine.acceleration_mm_per_s2",
+            ),
+            (
+                "[machine]\narc_tolerance_mm = -1\n",
+                "machine.arc_tolerance_mm",
+            ),
+            (
+                "[machine]\nrapid_mm_per_min = 0\n",
+                "machine.rapid_mm_per_min",
+            ),
+            (
+                "[machine]\nrapid_xyz_mm_per_min = [1e4, 0, 1e4]\n",
+                "machine.rapid_xyz_mm_per_min",
+            ),
+            ("[registers.3]\nradius = 1e300\n", "registers.3.radius"),
+            ("[registers.3]\nlength = nan\n", "registers.3.length"),
+            ("[work_offsets]\nG54 = [0, 1e300, 0]\n", "work_offsets.G54"),
+            (
+                "[machine]\ntravel_mm = [[0, 0, 0], [inf, 1, 1]]\n",
+                "machine.travel_mm",
+            ),
+        ] {
+            let e = Setup::from_toml(text).unwrap_err().to_string();
+            assert!(e.contains(&format!("`{key}` must be from")), "{text}: {e}");
+        }
+        let e = Setup::from_toml("[machine]\nrapid_mm_per_min = 0\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`machine.rapid_mm_per_min` must be from 1 to 10000000 (it is 0)"
+        );
+        // Zero acceleration (no ramps modelled) and tolerance stay allowed.
+        assert!(
+            Setup::from_toml("[machine]\nacceleration_mm_per_s2 = 0\narc_tolerance_mm = 0\n")
+                .is_ok()
+        );
     }
 }
