@@ -157,3 +157,37 @@ fn every_diagnostic_of_a_broken_file_is_printed() {
         lines[199_999]
     );
 }
+
+/// A called subroutine is read only from the program's own folder: a name with a folder, `..`
+/// or a root is refused with an error, and no other file is read (nor quoted).
+#[test]
+fn a_call_never_reads_a_file_outside_the_program_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let inner = dir.path().join("job");
+    std::fs::create_dir(&inner).unwrap();
+    std::fs::write(
+        dir.path().join("secret.ngc"),
+        "o<secret> sub\n(SECRET-TEXT)\nG0 X99\no<secret> endsub\n",
+    )
+    .unwrap();
+    let secret = dir.path().join("secret.ngc");
+    for call in [
+        "o<../secret> call".to_string(),
+        format!("o<{}> call", secret.display()),
+        "o</etc/passwd> call".to_string(),
+    ] {
+        let file = inner.join("main.ngc");
+        std::fs::write(&file, format!("G21\n{call}\nM2\n")).unwrap();
+        let (code, err) = swarf(&["check", file.to_str().unwrap(), "--dialect", "linuxcnc"]);
+        assert_eq!(code, 1, "{call}: {err}");
+        assert!(
+            err.contains("E-OWORD") && err.contains("only beside the program"),
+            "{call}: {err}"
+        );
+        assert!(
+            !err.contains("SECRET") && !err.contains("root:"),
+            "{call}: {err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{call}: {err}");
+    }
+}

@@ -864,14 +864,19 @@ impl Interpreter {
                     .find(|(_, k)| *k == OKind::Sub)
                     .map(|(b, _)| *b)
                     .ok_or_else(|| {
-                        Diagnostic::error(
-                            block.span,
-                            "E-OWORD",
-                            format!(
+                        let message = match &key {
+                            LabelKey::Name(name) if !swarf_syntax::is_plain_file_name(name) => {
+                                format!(
+                                    "{}: a called subroutine is looked for only beside the program, so its name may not hold a folder, `..` or a root",
+                                    show_label(&key)
+                                )
+                            }
+                            _ => format!(
                                 "no `{} sub` in this program nor in a file beside it (name.ngc)",
                                 show_label(&key)
                             ),
-                        )
+                        };
+                        Diagnostic::error(block.span, "E-OWORD", message)
                     })?;
                 let mut values = Vec::with_capacity(args.len());
                 for (i, arg) in args.iter().enumerate().take(30) {

@@ -23,6 +23,6 @@ pub use decode::{Decoded, Encoding, decode, decode_owned};
 pub use diagnostic::{Diagnostic, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
-pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Missing};
+pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Missing, is_plain_file_name};
 pub use parser::{ParseRun, empty_blocks, empty_blocks_known, parse};
 pub use source::LineSource;

@@ -48,13 +48,23 @@ pub enum Missing {
 pub const CALLED_FILE_EXTENSIONS: [&str; 8] =
     ["", ".nc", ".NC", ".ngc", ".tap", ".txt", ".gcode", ".cnc"];
 
+/// Whether `name` (a LinuxCNC `o<name> call`) can name a called program's file: a plain file
+/// name with no folder, no `..` and no root or drive, so that a call never reaches a file
+/// outside the program's own folder.
+pub fn is_plain_file_name(name: &str) -> bool {
+    !name.is_empty() && name != "." && name != ".." && !name.contains(['/', '\\', ':', '\0'])
+}
+
 impl Missing {
     /// The file names that may hold this called program, in the order they are tried:
     /// `O1234`, `O1234.nc`, `1234.nc` … for a number, `name.ngc` (LinuxCNC's subroutine files)
     /// or `name.nc` for a name. The CLI looks for them beside the caller, the editor among its
     /// open files.
+    /// A name that is not a plain file name (a folder, `..`, a root or a drive) names none: a
+    /// program reads no file outside its own folder.
     pub fn file_names(&self) -> Vec<String> {
         let stems: Vec<String> = match self {
+            Missing::Name(name) if !is_plain_file_name(name) => return Vec::new(),
             Missing::Number(n) => vec![
                 format!("O{n:04}"),
                 format!("O{n}"),
