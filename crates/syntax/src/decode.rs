@@ -1,4 +1,5 @@
-//! Turning a file's bytes into text: UTF-8, GBK/GB18030 or Big5, detected.
+//! Turning a file's bytes into text: UTF-8, GBK/GB18030 or Big5, detected; UTF-16 and UTF-32
+//! by their byte-order mark.
 
 use crate::{Diagnostic, Span};
 
@@ -14,7 +15,24 @@ pub enum Encoding {
     Gb18030,
     /// Big5 (Traditional Chinese).
     Big5,
+    /// UTF-16, little-endian, with a byte-order mark (Windows "Unicode").
+    Utf16Le,
+    /// UTF-16, big-endian, with a byte-order mark.
+    Utf16Be,
+    /// UTF-32, little-endian, with a byte-order mark.
+    Utf32Le,
+    /// UTF-32, big-endian, with a byte-order mark.
+    Utf32Be,
 }
+
+/// The byte-order marks of the UTF-16 and UTF-32 encodings, longest first (UTF-32LE's starts
+/// with UTF-16LE's).
+const WIDE_BOMS: [(&[u8], Encoding); 4] = [
+    (&[0xFF, 0xFE, 0x00, 0x00], Encoding::Utf32Le),
+    (&[0x00, 0x00, 0xFE, 0xFF], Encoding::Utf32Be),
+    (&[0xFF, 0xFE], Encoding::Utf16Le),
+    (&[0xFE, 0xFF], Encoding::Utf16Be),
+];
 
 impl Encoding {
     /// The name shown in the status bar and CLI.
@@ -24,6 +42,10 @@ impl Encoding {
             Encoding::Utf8Bom => "UTF-8 BOM",
             Encoding::Gb18030 => "GB18030",
             Encoding::Big5 => "Big5",
+            Encoding::Utf16Le => "UTF-16LE",
+            Encoding::Utf16Be => "UTF-16BE",
+            Encoding::Utf32Le => "UTF-32LE",
+            Encoding::Utf32Be => "UTF-32BE",
         }
     }
 
@@ -38,6 +60,20 @@ impl Encoding {
             }
             Encoding::Gb18030 => encoding_rs::GB18030.encode(text).0.into_owned(),
             Encoding::Big5 => encoding_rs::BIG5.encode(text).0.into_owned(),
+            Encoding::Utf16Le | Encoding::Utf16Be => {
+                let le = self == Encoding::Utf16Le;
+                std::iter::once(0xFEFF)
+                    .chain(text.encode_utf16())
+                    .flat_map(|u| if le { u.to_le_bytes() } else { u.to_be_bytes() })
+                    .collect()
+            }
+            Encoding::Utf32Le | Encoding::Utf32Be => {
+                let le = self == Encoding::Utf32Le;
+                std::iter::once(0xFEFF)
+                    .chain(text.chars().map(u32::from))
+                    .flat_map(|c| if le { c.to_le_bytes() } else { c.to_be_bytes() })
+                    .collect()
+            }
         }
     }
 }
@@ -56,6 +92,11 @@ pub struct Decoded {
 /// Decodes a program file: UTF-8 when valid, otherwise GB18030 or Big5 when the bytes are valid
 /// in one of them, otherwise UTF-8 with each invalid byte replaced and reported.
 pub fn decode(bytes: &[u8]) -> Decoded {
+    for (bom, encoding) in WIDE_BOMS {
+        if let Some(rest) = bytes.strip_prefix(bom) {
+            return wide(rest, encoding);
+        }
+    }
     if let Some(rest) = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF])
         && let Ok(text) = std::str::from_utf8(rest)
     {
@@ -78,12 +119,70 @@ pub fn decode(bytes: &[u8]) -> Decoded {
 /// [`decode`] for bytes the caller owns: valid UTF-8 without a byte-order mark (the usual
 /// file) becomes the text without being copied.
 pub fn decode_owned(bytes: Vec<u8>) -> Decoded {
-    if bytes.starts_with(&[0xEF, 0xBB, 0xBF]) {
+    if bytes.starts_with(&[0xEF, 0xBB, 0xBF])
+        || WIDE_BOMS.iter().any(|(bom, _)| bytes.starts_with(bom))
+    {
         return decode(&bytes);
     }
     match String::from_utf8(bytes) {
         Ok(text) => plain(text, Encoding::Utf8),
         Err(e) => decode(e.as_bytes()),
+    }
+}
+
+/// Decodes UTF-16 or UTF-32 text (after its byte-order mark); each unit that is no character is
+/// replaced with U+FFFD and reported.
+fn wide(bytes: &[u8], encoding: Encoding) -> Decoded {
+    let width = match encoding {
+        Encoding::Utf16Le | Encoding::Utf16Be => 2,
+        _ => 4,
+    };
+    let le = matches!(encoding, Encoding::Utf16Le | Encoding::Utf32Le);
+    let whole = bytes.len() - bytes.len() % width;
+    let units = bytes
+        .get(..whole)
+        .unwrap_or_default()
+        .chunks_exact(width)
+        .map(|c| {
+            let mut b = [0u8; 4];
+            b[..c.len()].copy_from_slice(c);
+            match (width, le) {
+                (2, true) => u32::from(u16::from_le_bytes([b[0], b[1]])),
+                (2, false) => u32::from(u16::from_be_bytes([b[0], b[1]])),
+                (_, true) => u32::from_le_bytes(b),
+                (_, false) => u32::from_be_bytes(b),
+            }
+        });
+    let mut chars: Vec<Option<char>> = if width == 2 {
+        let units: Vec<u16> = units.map(|u| u16::try_from(u).unwrap_or(0xFFFD)).collect();
+        char::decode_utf16(units).map(Result::ok).collect()
+    } else {
+        units.map(char::from_u32).collect()
+    };
+    // A last unit cut short is no character either.
+    if whole < bytes.len() {
+        chars.push(None);
+    }
+    let mut text = String::with_capacity(chars.len());
+    let mut diagnostics = Vec::new();
+    for c in chars {
+        match c {
+            Some(c) => text.push(c),
+            None => {
+                let start = text.len();
+                text.push('\u{FFFD}');
+                diagnostics.push(Diagnostic::error(
+                    Span::new(start, text.len()),
+                    "E-ENCODING",
+                    format!("invalid {} unit; replaced with U+FFFD", encoding.name()),
+                ));
+            }
+        }
+    }
+    Decoded {
+        text,
+        encoding,
+        diagnostics,
     }
 }
 
@@ -131,5 +230,38 @@ fn lossy_utf8(mut bytes: &[u8]) -> Decoded {
         text,
         encoding: Encoding::Utf8,
         diagnostics,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn utf16_and_utf32_with_a_byte_order_mark_are_read_and_written_back() {
+        let text = "G0 X1. (铣刀 ø6)\r\nM30 𝄞\n";
+        for encoding in [
+            Encoding::Utf16Le,
+            Encoding::Utf16Be,
+            Encoding::Utf32Le,
+            Encoding::Utf32Be,
+        ] {
+            let bytes = encoding.encode(text);
+            let d = decode(&bytes);
+            assert_eq!(d.text, text, "{encoding:?}");
+            assert_eq!(d.encoding, encoding);
+            assert!(d.diagnostics.is_empty());
+            assert_eq!(decode_owned(bytes).text, text);
+        }
+    }
+
+    #[test]
+    fn broken_wide_text_is_replaced_and_reported() {
+        // A lone surrogate, then a last unit cut short.
+        let d = decode(&[0xFF, 0xFE, b'G', 0, 0x00, 0xD8, b'1', 0, b'X']);
+        assert_eq!(d.text, "G\u{FFFD}1\u{FFFD}");
+        assert_eq!(d.diagnostics.len(), 2);
+        assert!(d.diagnostics.iter().all(|x| x.code == "E-ENCODING"));
     }
 }
