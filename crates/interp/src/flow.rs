@@ -86,13 +86,28 @@ impl Index {
                     index.starts.push(i);
                 }
                 let slot = index.starts.len() - 1;
-                match number {
-                    ProgramNumber::Number(n) => {
-                        index.numbers.entry(*n).or_insert(slot);
-                    }
-                    ProgramNumber::Name(name) => {
-                        index.names.entry(name.clone()).or_insert(slot);
-                    }
+                let first = match number {
+                    ProgramNumber::Number(n) => *index.numbers.entry(*n).or_insert(slot),
+                    ProgramNumber::Name(name) => *index.names.entry(name.clone()).or_insert(slot),
+                };
+                // A second program of the same number: calls go to the first, so the second
+                // would never run.
+                if first != slot
+                    && let Some(earlier) =
+                        index.starts.get(first).and_then(|&b| program.blocks.get(b))
+                {
+                    let name = match number {
+                        ProgramNumber::Number(n) => format!("O{n:04}"),
+                        ProgramNumber::Name(name) => format!("O<{name}>"),
+                    };
+                    diagnostics.push(Diagnostic::error(
+                        block.span,
+                        "E-PROGRAM-TWICE",
+                        format!(
+                            "{name} is defined twice in this program: at line {} and here; a call runs the first",
+                            earlier.line + 1
+                        ),
+                    ));
                 }
             }
             let slot = index.starts.len() - 1;

@@ -308,3 +308,26 @@ fn lnc_g168_rotates_by_a_measured_angle() {
     let (_, diags) = run_text("G168 Q3\nG00 X1\n", Dialect::Lnc);
     assert_eq!(errors(&diags), ["E-MEASUREMENT"]);
 }
+
+#[test]
+fn a_program_number_defined_twice_is_an_error_naming_both_lines() {
+    let (_, diags) = run_text(
+        "O1000\nM98 P2000\nM30\nO2000\nG0 X1.\nM99\nO2000\nG0 X2.\nM99\n",
+        Dialect::Fanuc,
+    );
+    let twice: Vec<&Diagnostic> = diags
+        .iter()
+        .filter(|d| d.code == "E-PROGRAM-TWICE")
+        .collect();
+    assert_eq!(twice.len(), 1, "{diags:?}");
+    assert!(
+        twice[0].message.contains("O2000") && twice[0].message.contains("line 4"),
+        "{}",
+        twice[0].message
+    );
+    let (_, diags) = run_text("O1000\nG0 X1.\nM30\nO2000\nM99\n", Dialect::Fanuc);
+    assert!(
+        diags.iter().all(|d| d.code != "E-PROGRAM-TWICE"),
+        "{diags:?}"
+    );
+}
