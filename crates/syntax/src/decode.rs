@@ -166,18 +166,17 @@ fn wide(bytes: &[u8], encoding: Encoding) -> Decoded {
     let mut text = String::with_capacity(chars.len());
     let mut diagnostics = Vec::new();
     for c in chars {
-        match c {
-            Some(c) => text.push(c),
-            None => {
-                let start = text.len();
-                text.push('\u{FFFD}');
-                diagnostics.push(Diagnostic::error(
-                    Span::new(start, text.len()),
-                    "E-ENCODING",
-                    format!("invalid {} unit; replaced with U+FFFD", encoding.name()),
-                ));
-            }
+        if let Some(c) = c {
+            text.push(c);
+            continue;
         }
+        let start = text.len();
+        text.push('\u{FFFD}');
+        diagnostics.push(Diagnostic::error(
+            Span::new(start, text.len()),
+            "E-ENCODING",
+            format!("invalid {} unit; replaced with U+FFFD", encoding.name()),
+        ));
     }
     Decoded {
         text,
