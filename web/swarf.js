@@ -9,11 +9,15 @@
 //   window.swarf.open("part.nc", text); // open a program as a file (nothing unsaved)
 //   window.swarf.select(12);           // select line 12 in the editor
 //   window.swarf.selection();          // {start, end, text, start_line, end_line}
-//   window.swarf.diagnostics();        // [{line, col, severity, code, message}, ...]
-//   window.swarf.stats();              // {blocks, motions, bounds: {min, max} | null}
+//   await window.swarf.idle();         // the current text's analysis is finished and drawn
+//   window.swarf.diagnostics();        // [{line, col, severity, code, message}, ...] shown now
+//   window.swarf.stats();              // {blocks, motions, bounds: {min, max} | null} shown now
 //   window.swarf.project([x, y, z]);   // [px, py]: where the backplot drew that point, or null
+//   window.swarf.widget("find_next");  // {x, y, width, height}: where a widget was drawn, or null
 //   window.swarf.setLanguage("zh-Hans"); // interface language: "en", "zh-Hans" or "zh-Hant"
 //   window.swarf.language();           // {language, cjk_font}: the tag, whether the font is in
+//   window.swarf.tabs();               // {tabs: [{name, unsaved}], active}: the open tabs
+//   window.swarf.status();             // the status bar's message, or null
 //
 // The program calls act on the active tab; open() opens a tab of its own.
 //
@@ -92,6 +96,18 @@ window.swarf = Object.freeze({
   stats() {
     return plain(requireApi().stats());
   },
+  idle() {
+    return requireApi().idle();
+  },
+  widget(name) {
+    const at = requireApi().widget(String(name));
+    if (at === undefined || at === null) {
+      return null;
+    }
+    const canvas = document.getElementById(CANVAS_ID).getBoundingClientRect();
+    const [x, y, width, height] = Array.from(at);
+    return { x: canvas.left + x, y: canvas.top + y, width, height };
+  },
   project(point) {
     const p = Array.from(point ?? [], Number);
     if (p.length !== 3 || !p.every(Number.isFinite)) {
@@ -111,6 +127,12 @@ window.swarf = Object.freeze({
   },
   language() {
     return plain(requireApi().language());
+  },
+  tabs() {
+    return plain(requireApi().tabs());
+  },
+  status() {
+    return requireApi().status() ?? null;
   },
 });
 

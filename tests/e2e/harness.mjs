@@ -244,6 +244,18 @@ export class BrowserSession {
     }
   }
 
+  /**
+   * Waits for `window.swarf.idle()`: the current text's analysis is finished and a frame
+   * showing it was painted, so `diagnostics()` and `stats()` describe the current text.
+   */
+  async idle(timeoutMs = 60_000) {
+    await withTimeout(
+      this.page.evaluate(() => window.swarf.idle()),
+      timeoutMs,
+      "waiting for window.swarf.idle()",
+    ).catch((error) => assert.fail(this.withLog(error.message)));
+  }
+
   async saveFailureScreenshot(name) {
     try {
       await mkdir(ARTIFACTS, { recursive: true });

@@ -73,6 +73,7 @@ test("a reload works offline once the page was visited", { timeout: TEST_TIMEOUT
   assert.ok(outcome.controlled, "the reloaded page should be served by the service worker");
   const text = await page.evaluate(() => window.swarf.getText());
   assert.ok(text.trim().length > 0, "the editor is empty after the offline reload");
+  await session.idle();
   const stats = await page.evaluate(() => window.swarf.stats());
   assert.ok(stats.motions > 0, `stats() offline: ${JSON.stringify(stats)}`);
   assert.equal(

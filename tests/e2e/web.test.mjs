@@ -85,11 +85,11 @@ test("the page loads, becomes ready and shows the example program", { timeout: T
   assert.equal(typeof text, "string", "getText() must return a string");
   assert.ok(text.trim().length > 0, "the editor is empty: the example program was not loaded");
 
-  const stats = await session.eventually(
-    () => window.swarf.stats(),
-    null,
-    (s) => s && s.motions > 0 && s.bounds !== null,
-    "stats() of the example program should report motions > 0 and bounds",
+  await session.idle();
+  const stats = await page.evaluate(() => window.swarf.stats());
+  assert.ok(
+    stats && stats.motions > 0 && stats.bounds !== null,
+    `stats() of the example program should report motions > 0 and bounds: ${JSON.stringify(stats)}`,
   );
   assert.ok(Number.isInteger(stats.blocks) && stats.blocks > 0, `stats().blocks: ${stats.blocks}`);
   for (const corner of ["min", "max"]) {
@@ -118,11 +118,11 @@ test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async (
   const broken = "G90 G21\nG00 X0 Y0 Z5\nG01 X10 Y$ F100\n";
   await page.evaluate((text) => window.swarf.setText(text), broken);
   assert.equal(await page.evaluate(() => window.swarf.getText()), broken, "getText() after setText()");
-  await session.eventually(
-    () => window.swarf.diagnostics(),
-    null,
-    (list) => Array.isArray(list) && list.some((d) => d.line === 3 && isError(d)),
-    "diagnostics() should report an error on line 3 for `Y$`",
+  await session.idle();
+  const reported = await page.evaluate(() => window.swarf.diagnostics());
+  assert.ok(
+    Array.isArray(reported) && reported.some((d) => d.line === 3 && isError(d)),
+    `diagnostics() should report an error on line 3 for \`Y$\`: ${JSON.stringify(reported)}`,
   );
 
   // A square pocket outline: 2 feeds down/up and the 4 sides, all in mm.
@@ -130,17 +130,16 @@ test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async (
   const square =
     "G90 G21 G17\nG00 X0 Y0 Z5.\nG01 Z-1. F100\nG01 X30.\nG01 Y20.\nG01 X0\nG01 Y0\nG00 Z5.\nM30\n";
   await page.evaluate((text) => window.swarf.setText(text), square);
-  await session.eventually(
-    () => window.swarf.diagnostics(),
-    null,
-    (list) => Array.isArray(list) && !list.some(isError),
-    "diagnostics() should have no errors for a valid program",
+  await session.idle();
+  const clean = await page.evaluate(() => window.swarf.diagnostics());
+  assert.ok(
+    Array.isArray(clean) && !clean.some(isError),
+    `diagnostics() should have no errors for a valid program: ${JSON.stringify(clean)}`,
   );
-  const stats = await session.eventually(
-    () => window.swarf.stats(),
-    null,
-    (s) => s && s.motions >= 5 && s.bounds !== null && Math.abs(s.bounds.max[0] - 30) < 1e-6,
-    "stats() should report the square's motions and bounds (max X = 30)",
+  const stats = await page.evaluate(() => window.swarf.stats());
+  assert.ok(
+    stats && stats.motions >= 5 && stats.bounds !== null && Math.abs(stats.bounds.max[0] - 30) < 1e-6,
+    `stats() should report the square's motions and bounds (max X = 30): ${JSON.stringify(stats)}`,
   );
   const near = (a, b) => Math.abs(a - b) < 1e-6;
   assert.ok(near(stats.bounds.max[1], 20), `bounds.max Y should be 20: ${JSON.stringify(stats)}`);
@@ -149,12 +148,50 @@ test("diagnostics follow the edited text", { timeout: TEST_TIMEOUT_MS }, async (
   // A longer program must give more motions: stats follow every edit.
   const twice = square.replace("M30\n", "G01 Z-2.\nG01 X30.\nG01 Y20.\nG00 Z5.\nM30\n");
   await page.evaluate((text) => window.swarf.setText(text), twice);
-  await session.eventually(
-    () => window.swarf.stats(),
-    null,
-    (s) => s && s.motions > stats.motions,
-    `stats().motions should grow past ${stats.motions} after adding moves`,
+  await session.idle();
+  const grown = await page.evaluate(() => window.swarf.stats());
+  assert.ok(
+    grown.motions > stats.motions,
+    `stats().motions should grow past ${stats.motions} after adding moves: ${JSON.stringify(grown)}`,
   );
+});
+
+test("diagnostics() and stats() report what the page shows; idle() waits for the current text", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  const short = "G90 G21\nG00 X0 Y0 Z5.\nG01 X10. F100\nM30\n";
+  await page.evaluate((text) => window.swarf.setText(text), short);
+  await session.idle();
+  const shown = await page.evaluate(() => window.swarf.stats());
+  assert.equal(shown.blocks, 4, `stats() of the short program: ${JSON.stringify(shown)}`);
+
+  // A long program with an error on its last line: its analysis takes several frames.
+  const lines = ["G90 G21 G17", "G00 X0 Y0 Z5.", "G01 Z-1. F1000"];
+  for (let i = 0; i < 60_000; i++) {
+    lines.push(`X${i % 97}. Y${i % 89}.`);
+  }
+  lines.push("G01 X10 Y$ F100", "M30", "");
+  const long = lines.join("\n");
+  const rightAfter = await page.evaluate((text) => {
+    window.swarf.setText(text);
+    return { stats: window.swarf.stats(), diagnostics: window.swarf.diagnostics() };
+  }, long);
+  assert.deepEqual(rightAfter.stats, shown, "right after setText(), stats() reports the analysis on screen");
+  assert.ok(
+    !rightAfter.diagnostics.some(isError),
+    `right after setText(), diagnostics() reports the analysis on screen: ${JSON.stringify(rightAfter.diagnostics)}`,
+  );
+  await session.idle();
+  const stats = await page.evaluate(() => window.swarf.stats());
+  assert.ok(stats.blocks > 60_000 && stats.motions > 60_000, `stats() after idle(): ${JSON.stringify(stats)}`);
+  const reported = await page.evaluate(() => window.swarf.diagnostics());
+  assert.ok(
+    reported.some((d) => d.line === lines.length - 2 && isError(d)),
+    `diagnostics() after idle() should report the last lines' error: ${JSON.stringify(reported.slice(0, 5))}`,
+  );
+  await page.evaluate((text) => window.swarf.setText(text), short);
+  await session.idle();
+  assert.deepEqual(await page.evaluate(() => window.swarf.stats()), shown, "stats() of the short program again");
 });
 
 test("open, select and selection", { timeout: TEST_TIMEOUT_MS }, async () => {
@@ -253,11 +290,11 @@ test("a click in the backplot selects the segment's line", { timeout: TEST_TIMEO
   const program =
     "G90 G21 G17\nG00 X0 Y0 Z5.\nG01 Z-1. F100\nG01 X40.\nG01 Y30.\nG00 Z5.\nM30\n";
   await page.evaluate(([name, text]) => window.swarf.open(name, text), ["pick.nc", program]);
-  await session.eventually(
-    () => window.swarf.stats(),
-    null,
-    (s) => s && s.bounds !== null && Math.abs(s.bounds.max[0] - 40) < 1e-6,
-    "stats() should describe the opened program (max X = 40)",
+  await session.idle();
+  const opened = await page.evaluate(() => window.swarf.stats());
+  assert.ok(
+    opened.bounds !== null && Math.abs(opened.bounds.max[0] - 40) < 1e-6,
+    `stats() should describe the opened program (max X = 40): ${JSON.stringify(opened)}`,
   );
   const canvas = await page.locator("#swarf-canvas").boundingBox();
   for (const [line, midpoint] of [
@@ -431,12 +468,37 @@ test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS },
 
   const edited = "G90 G21\nG00 X0 Y0 Z5.\nG01 X42. F100\nM30\n";
   await page.evaluate((text) => window.swarf.setText(text), edited);
-  // Kept in localStorage a moment after the edit.
+  // Kept in IndexedDB (a record a tab) a moment after the edit.
   await session.eventually(
-    () => window.localStorage.getItem("swarf.recovery"),
+    async () => {
+      const known = await indexedDB.databases();
+      if (!known.some((d) => d.name === "swarf-recovery")) {
+        return false;
+      }
+      const db = await new Promise((resolve, reject) => {
+        const open = indexedDB.open("swarf-recovery");
+        open.onsuccess = () => resolve(open.result);
+        open.onerror = () => reject(open.error);
+      });
+      try {
+        if (!db.objectStoreNames.contains("records")) {
+          return false;
+        }
+        const all = await new Promise((resolve, reject) => {
+          const request = db.transaction("records").objectStore("records").getAll();
+          request.onsuccess = () => resolve(request.result);
+          request.onerror = () => reject(request.error);
+        });
+        return all.some(
+          (r) => typeof r !== "string" && new TextDecoder().decode(r).includes("X42."),
+        );
+      } finally {
+        db.close();
+      }
+    },
     null,
-    (record) => typeof record === "string" && record.includes("X42."),
-    "the unsaved program should be kept in localStorage",
+    (kept) => kept === true,
+    "the unsaved program should be kept in IndexedDB",
   );
   await session.loadUntilReady("reload-not-ready.png");
   assert.equal(

@@ -111,11 +111,11 @@ test("the page gets ready on the WebGPU backend", { timeout: TEST_TIMEOUT_MS }, 
   });
   assert.equal(kind, "webgpu", "the canvas should have a WebGPU context");
 
-  await session.eventually(
-    () => window.swarf.stats(),
-    null,
-    (s) => s && s.motions > 0 && s.bounds !== null,
-    "stats() of the example program should report motions > 0 and bounds",
+  await session.idle();
+  const stats = await page.evaluate(() => window.swarf.stats());
+  assert.ok(
+    stats && stats.motions > 0 && stats.bounds !== null,
+    `stats() of the example program should report motions > 0 and bounds: ${JSON.stringify(stats)}`,
   );
   ready = true;
 });
@@ -135,11 +135,11 @@ test("diagnostics report an error in the edited text", { timeout: TEST_TIMEOUT_M
   assert.ok(ready, "the page did not get ready (see the first test)");
   const broken = "G90 G21\nG00 X0 Y0 Z5\nG01 X10 Y$ F100\n";
   await page.evaluate((text) => window.swarf.setText(text), broken);
-  await session.eventually(
-    () => window.swarf.diagnostics(),
-    null,
-    (list) => Array.isArray(list) && list.some((d) => d.line === 3 && isError(d)),
-    "diagnostics() should report an error on line 3 for `Y$`",
+  await session.idle();
+  const reported = await page.evaluate(() => window.swarf.diagnostics());
+  assert.ok(
+    Array.isArray(reported) && reported.some((d) => d.line === 3 && isError(d)),
+    `diagnostics() should report an error on line 3 for \`Y$\`: ${JSON.stringify(reported)}`,
   );
 });
 

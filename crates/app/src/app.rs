@@ -14,6 +14,9 @@ use crate::web_files::Host;
 /// A hook run after each frame with the number of frames shown so far.
 type FrameHook = Box<dyn FnMut(&egui::Context, u64)>;
 
+/// A callback waiting for the page to show the current text's analysis.
+type IdleWaiter = Box<dyn FnOnce()>;
+
 /// The Swarf application: the workbench plus host bookkeeping.
 pub struct SwarfApp {
     /// The editor, problems list and backplot.
@@ -26,6 +29,12 @@ pub struct SwarfApp {
     after_frame: Option<FrameHook>,
     /// The window title last set.
     title: String,
+    /// Callbacks waiting until a frame shows the finished analysis of the current text.
+    idle_waiting: Vec<IdleWaiter>,
+    /// Callbacks whose wait a frame ended, with the text generation that frame showed: called
+    /// at the start of the next frame (the frame was painted by then) if the text is still
+    /// that one.
+    idle_drawn: Vec<(u64, IdleWaiter)>,
 }
 
 impl SwarfApp {
@@ -46,6 +55,8 @@ impl SwarfApp {
             frames: 0,
             after_frame: None,
             title: String::new(),
+            idle_waiting: Vec::new(),
+            idle_drawn: Vec::new(),
         };
         if let Some(storage) = cc.storage {
             app.load_settings(storage);
@@ -55,8 +66,13 @@ impl SwarfApp {
     }
 
     /// Restores the dialect, machine setup and recent files saved by [`eframe::App::save`].
+    /// The dialect kept is the one new tabs and opened files start in; the tab already open
+    /// (the example shown at start) keeps its own.
     pub fn load_settings(&mut self, storage: &dyn eframe::Storage) {
+        let active = self.workbench.active_tab();
+        let shown = self.workbench.dialect();
         self.host.recent = files::restore_settings(storage, &mut self.workbench);
+        self.workbench.set_tab_dialect(active, shown);
     }
 
     /// Runs `hook` after every frame with the number of frames shown so far.
@@ -67,6 +83,42 @@ impl SwarfApp {
     /// Frames shown so far.
     pub fn frames(&self) -> u64 {
         self.frames
+    }
+
+    /// Calls `done` once the analysis of the current text is finished and a frame showing it
+    /// has been painted (when nothing is pending, at the start of the second frame from now).
+    pub fn when_idle(&mut self, done: impl FnOnce() + 'static) {
+        self.idle_waiting.push(Box::new(done));
+        self.ctx.request_repaint();
+    }
+
+    /// Calls the idle callbacks whose frame was painted (the previous one showed the current
+    /// text's analysis); those whose text changed since wait again.
+    fn wake_idle(&mut self) {
+        let generation = self.workbench.generation();
+        for (shown, done) in std::mem::take(&mut self.idle_drawn) {
+            if shown == generation {
+                done();
+            } else {
+                self.idle_waiting.push(done);
+            }
+        }
+    }
+
+    /// After the workbench's frame: when it began with no analysis pending and the text did not
+    /// change during it, the frame shows the current text's analysis, and the waiting callbacks
+    /// are called at the start of the next one.
+    fn note_idle(&mut self, ctx: &egui::Context, idle_before: bool, generation_before: u64) {
+        if self.idle_waiting.is_empty() {
+            return;
+        }
+        let generation = self.workbench.generation();
+        if idle_before && generation == generation_before {
+            self.idle_drawn
+                .extend(self.idle_waiting.drain(..).map(|done| (generation, done)));
+        }
+        // The next frame comes at once, whether it calls them or goes on waiting.
+        ctx.request_repaint();
     }
 
     /// Replaces the program text and schedules a repaint (for the JS API).
@@ -110,6 +162,20 @@ impl SwarfApp {
         Some([f64::from(pos.x) * zoom, f64::from(pos.y) * zoom])
     }
 
+    /// Where the workbench's widget `name` was drawn at the last frame, as `[x, y, width,
+    /// height]` in CSS pixels from the canvas's top left; `None` when it was not drawn.
+    #[cfg(target_arch = "wasm32")]
+    pub fn widget_rect(&self, name: &str) -> Option<[f64; 4]> {
+        let rect = self.workbench.widget_rect(name)?;
+        let zoom = f64::from(self.ctx.zoom_factor());
+        Some([
+            f64::from(rect.min.x) * zoom,
+            f64::from(rect.min.y) * zoom,
+            f64::from(rect.width()) * zoom,
+            f64::from(rect.height()) * zoom,
+        ])
+    }
+
     fn update_title(&mut self, ctx: &egui::Context) {
         let doc = self.workbench.document();
         let dirty = if self.workbench.is_dirty() { "*" } else { "" };
@@ -142,10 +208,14 @@ impl eframe::App for SwarfApp {
             self.host.open_dropped(&mut self.workbench, &file);
         }
         self.host.poll(&mut self.workbench);
+        self.wake_idle();
+        let idle_before = self.workbench.analysis_progress().is_none();
+        let generation_before = self.workbench.generation();
         self.workbench.ui(ui);
+        self.note_idle(&ctx, idle_before, generation_before);
         self.host.handle(&mut self.workbench, &ctx);
         let now = ctx.input(|i| i.time);
-        self.host.autosave(&self.workbench, now);
+        self.host.autosave(&mut self.workbench, now);
         if self.workbench.any_dirty() {
             // Wake up for the delayed autosave even when nothing else happens.
             ctx.request_repaint_after(std::time::Duration::from_millis(1200));
@@ -159,7 +229,12 @@ impl eframe::App for SwarfApp {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         files::store_settings(storage, &self.workbench, &self.host.recent);
-        self.host.write_recovery(&self.workbench);
+        // The dialect kept is the default for new tabs, not the active tab's own.
+        storage.set_string(
+            files::KEY_DIALECT,
+            self.workbench.default_dialect().name().to_string(),
+        );
+        self.host.write_recovery(&mut self.workbench);
     }
 
     fn persist_egui_memory(&self) -> bool {

@@ -1,11 +1,19 @@
 //! Files on the desktop: native open and save dialogs (rfd), atomic writes in the file's own
-//! encoding, recent files, and a recovery file in the platform data folder.
+//! encoding, recent files, and crash recovery in the platform data folder: a file per tab whose
+//! text must be kept and an index of the tabs.
 
 use std::path::{Path, PathBuf};
 
 use swarf_ui::{HostRequest, Workbench};
 
-use crate::files::{self, Autosave, AutosaveClock, Session};
+use crate::files::{self, Autosave, AutosaveClock, RecoveryBook, RecoveryIndex, Session, TabState};
+
+/// The recovery folder's index of the open tabs.
+const INDEX_FILE: &str = "index";
+/// The recovery folder inside the data folder.
+const RECOVERY_FOLDER: &str = "recovery";
+/// The single recovery file of earlier versions, in the data folder: read once, then removed.
+const OLD_RECOVERY_FILE: &str = "recovery.nc";
 
 /// The application id: names the data folder (`~/.local/share/swarf` on Linux).
 pub const APP_ID: &str = "Swarf";
@@ -18,38 +26,88 @@ const PROGRAM_EXTENSIONS: &[&str] = &["nc", "ngc", "tap", "gcode", "cnc", "txt",
 pub struct Host {
     /// Recent files, newest first (full paths).
     pub recent: Vec<String>,
-    /// The recovery file (none when the platform has no data folder).
-    recovery: Option<PathBuf>,
-    /// When the recovery file is written or removed.
+    /// The data folder that holds the recovery folder (none when the platform has none).
+    data: Option<PathBuf>,
+    /// When the recovery records are written or removed.
     clock: AutosaveClock,
+    /// Which recovery records are written, and which tabs are not kept.
+    book: RecoveryBook,
     /// Set once the user chose to quit, so the close is no longer held back.
     pub quitting: bool,
 }
 
 impl Host {
-    /// A host whose recovery file is in the platform's data folder for Swarf.
+    /// A host whose recovery records are in the platform's data folder for Swarf.
     pub fn new() -> Host {
+        Host::in_data_folder(eframe::storage_dir(APP_ID))
+    }
+
+    /// A host whose recovery records are in the folder `recovery` of `data` (tests use a
+    /// folder of their own).
+    pub fn with_data_folder(data: PathBuf) -> Host {
+        Host::in_data_folder(Some(data))
+    }
+
+    fn in_data_folder(data: Option<PathBuf>) -> Host {
+        let run = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos());
         Host {
-            recovery: eframe::storage_dir(APP_ID).map(|d| d.join("recovery.nc")),
+            data,
+            book: RecoveryBook::new(&format!("{run:x}{:x}", std::process::id())),
             ..Host::default()
         }
     }
 
-    /// A host with its recovery file at `path` (tests).
-    pub fn with_recovery_file(path: PathBuf) -> Host {
-        Host {
-            recovery: Some(path),
-            ..Host::default()
-        }
+    /// The folder of the recovery records.
+    pub fn recovery_folder(&self) -> Option<PathBuf> {
+        self.data.as_ref().map(|d| d.join(RECOVERY_FOLDER))
     }
 
-    /// Shows the tabs a previous run left with unsaved changes, if it did: unsaved texts as
-    /// changes still to save, the other files read again from disk where they still are.
+    /// Shows the tabs a previous run left when any had unsaved changes: unsaved texts as
+    /// changes still to save, the other files read again from disk where they still are; the
+    /// status bar names the tabs recovered and any whose changes could not be read. Reads the
+    /// single file of earlier versions when there is no index, and removes it once its tabs
+    /// are kept again.
     pub fn recover(&mut self, wb: &mut Workbench) -> bool {
+        let Some(dir) = self.recovery_folder() else {
+            return false;
+        };
+        let stored = std::fs::read_to_string(dir.join(INDEX_FILE)).ok();
+        let Some((index, record)) =
+            stored.and_then(|r| RecoveryIndex::from_record(&r).map(|index| (index, r)))
+        else {
+            return self.recover_old(wb);
+        };
+        // The index is the newer record.
+        self.remove_old_record();
+        let restored = index.restore(
+            |key| std::fs::read_to_string(dir.join(record_file(key))).ok(),
+            read_program,
+        );
+        // Records of earlier runs that the index does not name are left over from a write
+        // that never came to be named.
+        let named: Vec<String> = index.keys().map(record_file).collect();
+        remove_records(&dir, |name| !named.iter().any(|n| n == name));
+        if restored.tabs.is_empty() {
+            files::report_lost(wb, &restored.lost);
+            return false;
+        }
+        wb.restore_tabs(restored.tabs, restored.active);
+        let (tabs, _) = TabState::of(wb, true);
+        self.book.adopt(&tabs, &restored.records, &record);
+        files::report_lost(wb, &restored.lost);
+        self.clock.settled(wb.generation());
+        true
+    }
+
+    /// Shows the tabs kept in the single recovery file of earlier versions, if there is one;
+    /// they are written as records of their own at the first autosave, which removes it.
+    fn recover_old(&mut self, wb: &mut Workbench) -> bool {
         let Some(record) = self
-            .recovery
+            .data
             .as_ref()
-            .and_then(|p| std::fs::read_to_string(p).ok())
+            .and_then(|d| std::fs::read_to_string(d.join(OLD_RECOVERY_FILE)).ok())
         else {
             return false;
         };
@@ -57,15 +115,23 @@ impl Host {
             return false;
         };
         for tab in session.tabs.iter_mut().filter(|t| !t.dirty) {
-            if let Some(bytes) = tab.path.as_ref().and_then(|p| std::fs::read(p).ok()) {
-                let decoded = swarf_syntax::decode(&bytes);
-                tab.text = decoded.text;
-                tab.encoding = decoded.encoding;
+            if let Some((text, encoding)) = tab.path.as_deref().and_then(read_program) {
+                tab.text = text;
+                tab.encoding = encoding;
             }
         }
         wb.restore_tabs(session.tabs, session.active);
-        self.clock.settled(wb.generation());
+        // Not settled: the next autosave writes the tabs as records.
         true
+    }
+
+    fn remove_old_record(&self) {
+        if let Some(old) = self.data.as_ref().map(|d| d.join(OLD_RECOVERY_FILE))
+            && old.exists()
+            && let Err(e) = std::fs::remove_file(&old)
+        {
+            log::warn!("cannot remove the recovery file {}: {e}", old.display());
+        }
     }
 
     /// Opens the program file at `path`.
@@ -240,9 +306,9 @@ impl Host {
         }
     }
 
-    /// Writes unsaved changes to the recovery file a moment after they are made, and removes
+    /// Keeps unsaved changes in the recovery folder a moment after they are made, and empties
     /// it once nothing is unsaved.
-    pub fn autosave(&mut self, wb: &Workbench, now: f64) {
+    pub fn autosave(&mut self, wb: &mut Workbench, now: f64) {
         match self.clock.step(wb.generation(), wb.any_dirty(), now) {
             Autosave::Wait => {}
             Autosave::Clear => self.clear_recovery(),
@@ -250,8 +316,8 @@ impl Host {
         }
     }
 
-    /// Writes the recovery file now when a tab has unsaved changes, removes it otherwise.
-    fn sync_recovery(&mut self, wb: &Workbench) {
+    /// Writes the recovery records now when a tab has unsaved changes, removes them otherwise.
+    fn sync_recovery(&mut self, wb: &mut Workbench) {
         if wb.any_dirty() {
             self.write_recovery(wb);
         } else {
@@ -259,34 +325,111 @@ impl Host {
         }
     }
 
-    /// Writes the recovery file (every tab) now, also on exit with unsaved changes.
-    pub fn write_recovery(&mut self, wb: &Workbench) {
+    /// Brings the recovery folder up to date now (also on exit with unsaved changes): a file
+    /// for each tab whose text changed since it was written and must be kept (unsaved, or with
+    /// no file to read it again from), then the index of the tabs, then the files it no longer
+    /// names are removed. A tab whose text could not be written is named in the status bar,
+    /// and written again at the next change.
+    pub fn write_recovery(&mut self, wb: &mut Workbench) {
         self.clock.restart();
-        let Some(file) = &self.recovery else {
+        // Quitting with the changes discarded (or saved): nothing to recover.
+        if self.quitting {
+            return;
+        }
+        if !wb.any_dirty() {
+            self.clear_recovery();
+            return;
+        }
+        let (tabs, active) = TabState::of(wb, true);
+        let Some(dir) = self.recovery_folder() else {
+            let failed = RecoveryBook::all_failed(&tabs, "no data folder");
+            if let Some(message) = self.book.report(&failed, &tabs) {
+                wb.set_message(message);
+            }
             return;
         };
-        // Quitting with the changes discarded (or saved): nothing to recover.
-        if !wb.any_dirty() || self.quitting {
-            return;
+        let made = std::fs::create_dir_all(&dir).map_err(|e| e.to_string());
+        let writes = self.book.plan(&tabs);
+        let results: Vec<Result<(), String>> = writes
+            .iter()
+            .map(|w| {
+                made.clone()?;
+                let text = wb.tab_text(w.tab).unwrap_or_default();
+                atomic_write(&dir.join(record_file(&w.key)), text.as_bytes())
+                    .map_err(|e| e.to_string())
+            })
+            .collect();
+        let round = self.book.compose(&tabs, active, &writes, &results);
+        let mut failed = round.failed.clone();
+        let stored = !round.changed
+            || match atomic_write(&dir.join(INDEX_FILE), round.record.as_bytes()) {
+                Ok(()) => true,
+                Err(e) => {
+                    failed = RecoveryBook::all_failed(&tabs, &e.to_string());
+                    false
+                }
+            };
+        self.book.commit(round, stored);
+        let stale: Vec<String> = self
+            .book
+            .take_stale()
+            .iter()
+            .map(|k| record_file(k))
+            .collect();
+        remove_records(&dir, |name| stale.iter().any(|s| s == name));
+        if stored {
+            self.remove_old_record();
         }
-        let record = Session::of(wb);
-        if let Some(dir) = file.parent() {
-            let _ = std::fs::create_dir_all(dir);
-        }
-        if let Err(e) = atomic_write(file, record.to_record().as_bytes()) {
-            log::warn!("cannot write the recovery file {}: {e}", file.display());
+        if let Some(message) = self.book.report(&failed, &tabs) {
+            wb.set_message(message);
         }
     }
 
+    /// Empties the recovery folder: nothing is unsaved.
     fn clear_recovery(&mut self) {
         self.clock.restart();
-        if let Some(file) = &self.recovery
-            && file.exists()
-            && let Err(e) = std::fs::remove_file(file)
+        self.book.cleared();
+        if let Some(dir) = self.recovery_folder() {
+            let index = dir.join(INDEX_FILE);
+            if index.exists()
+                && let Err(e) = std::fs::remove_file(&index)
+            {
+                log::warn!("cannot remove the recovery index {}: {e}", index.display());
+            }
+            remove_records(&dir, |_| true);
+        }
+        self.remove_old_record();
+    }
+}
+
+/// The file of the recovery record `key` in the recovery folder.
+fn record_file(key: &str) -> String {
+    format!("{key}.nc")
+}
+
+/// Removes the tab records in `dir` whose file names `remove` picks (a record's file name is
+/// a record key and `.nc`; nothing else in the folder is touched).
+fn remove_records(dir: &Path, remove: impl Fn(&str) -> bool) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let is_record = name.strip_suffix(".nc").is_some_and(files::is_record_key);
+        if is_record
+            && remove(&name)
+            && let Err(e) = std::fs::remove_file(entry.path())
         {
-            log::warn!("cannot remove the recovery file {}: {e}", file.display());
+            log::warn!("cannot remove the recovery record {name}: {e}");
         }
     }
+}
+
+/// A program file's text and encoding, when it can be read.
+fn read_program(path: &str) -> Option<(String, swarf_syntax::Encoding)> {
+    let bytes = std::fs::read(path).ok()?;
+    let decoded = swarf_syntax::decode(&bytes);
+    Some((decoded.text, decoded.encoding))
 }
 
 /// Environment variable naming a CJK font file to use for the Chinese interface languages.

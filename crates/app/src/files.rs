@@ -1,8 +1,10 @@
-//! What the desktop and the web host share about files: the recent list, the recovery record
-//! and saving in the file's own encoding.
+//! What the desktop and the web host share about files: the recent list, the crash-recovery
+//! records (one per tab, and an index) and saving in the file's own encoding.
+
+use std::collections::{HashMap, HashSet};
 
 use swarf_syntax::{Dialect, Encoding};
-use swarf_ui::i18n::Lang;
+use swarf_ui::i18n::{Lang, trf};
 use swarf_ui::{TabRecord, Workbench};
 
 /// Most recent files remembered.
@@ -85,7 +87,7 @@ pub fn encode(text: &str, encoding: Encoding) -> (Vec<u8>, Encoding) {
 pub const AUTOSAVE_DELAY: f64 = 1.0;
 
 /// When the recovery copy of unsaved changes is written or cleared, the same on the desktop
-/// (a file) and the web (localStorage): a moment after an edit, once per text generation.
+/// (files) and the web (IndexedDB): a moment after an edit, once per workbench generation.
 #[derive(Debug, Default, Clone, Copy)]
 pub struct AutosaveClock {
     /// The text generation last written (or cleared).
@@ -183,8 +185,9 @@ impl Recovery {
 
 const SESSION_MAGIC: &str = "swarf-recovery 2";
 
-/// Every open tab kept for crash recovery (written while any has unsaved changes): each tab's
-/// file and text, and which one is active.
+/// Every open tab in one record, as earlier versions kept them for crash recovery: each tab's
+/// file and text, and which one is active. Read once to carry such a record over to the
+/// records of [`RecoveryIndex`], then removed.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Session {
     /// The tabs, in order.
@@ -194,12 +197,6 @@ pub struct Session {
 }
 
 impl Session {
-    /// The workbench's tabs.
-    pub fn of(wb: &Workbench) -> Session {
-        let (tabs, active) = wb.tab_records();
-        Session { tabs, active }
-    }
-
     /// The record as one string: a header line, then for each tab a tab-separated line
     /// (encoding, name, path, 1 when unsaved, length of the text in bytes) and the text.
     pub fn to_record(&self) -> String {
@@ -265,12 +262,460 @@ impl Session {
     }
 }
 
+/// Header of the recovery index record.
+const INDEX_MAGIC: &str = "swarf-recovery 3";
+
+/// The key of the recovery index among the recovery records.
+pub const INDEX_KEY: &str = "index";
+
+/// Whether `key` can name a tab's recovery record: `tab-` and ASCII letters, digits and `-`,
+/// as [`RecoveryBook`] makes them, so that a damaged index never names a file elsewhere.
+pub fn is_record_key(key: &str) -> bool {
+    key.len() <= 64
+        && key.strip_prefix("tab-").is_some_and(|rest| {
+            !rest.is_empty() && rest.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'-')
+        })
+}
+
+/// One tab in the recovery index.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct IndexEntry {
+    /// The document's name.
+    pub name: String,
+    /// Its file, where the host can read it again after a restart (the desktop's full path).
+    pub path: Option<String>,
+    /// The file's encoding.
+    pub encoding: Encoding,
+    /// Whether the text had changes that were not saved.
+    pub dirty: bool,
+    /// The key of the record that holds the tab's text; `None` for a tab read again from its
+    /// file, or one whose text could not be kept.
+    pub record: Option<String>,
+}
+
+/// The small record that lists the open tabs in order, the active one, and which record holds
+/// each one's text (every tab's text is a record of its own, written only when it changed).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RecoveryIndex {
+    /// The tabs, in order.
+    pub tabs: Vec<IndexEntry>,
+    /// The index of the active tab.
+    pub active: usize,
+}
+
+/// Tabs read back from the recovery records, ready for [`Workbench::restore_tabs`].
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Restored {
+    /// The tabs, in order.
+    pub tabs: Vec<TabRecord>,
+    /// The record each tab's text came from (`None`: read from its file).
+    pub records: Vec<Option<String>>,
+    /// The index of the active tab.
+    pub active: usize,
+    /// Names of the tabs with unsaved changes that could not be read back.
+    pub lost: Vec<String>,
+}
+
+impl RecoveryIndex {
+    /// The index as one string: a header line (tab-separated: magic, count, active), then a
+    /// line per tab (encoding, 1 when unsaved, record key or nothing, name, path).
+    pub fn to_record(&self) -> String {
+        let clean = |s: &str| s.replace(['\t', '\n', '\r'], " ");
+        let mut out = format!("{INDEX_MAGIC}\t{}\t{}\n", self.tabs.len(), self.active);
+        for t in &self.tabs {
+            out.push_str(&format!(
+                "{}\t{}\t{}\t{}\t{}\n",
+                encoding_name(t.encoding),
+                u8::from(t.dirty),
+                t.record.as_deref().unwrap_or_default(),
+                clean(&t.name),
+                clean(t.path.as_deref().unwrap_or_default()),
+            ));
+        }
+        out
+    }
+
+    /// Reads an index written by [`RecoveryIndex::to_record`]; `None` for anything else. A
+    /// record key that [`is_record_key`] refuses is read as no record.
+    pub fn from_record(record: &str) -> Option<RecoveryIndex> {
+        let mut lines = record.lines();
+        let mut head = lines.next()?.split('\t');
+        if head.next()? != INDEX_MAGIC {
+            return None;
+        }
+        let count: usize = head.next()?.parse().ok()?;
+        let active: usize = head.next()?.parse().ok()?;
+        let mut tabs = Vec::new();
+        for line in lines.by_ref().take(count) {
+            let mut f = line.split('\t');
+            let encoding = encoding_of(f.next()?)?;
+            let dirty = f.next()? == "1";
+            let record = Some(f.next()?).filter(|k| is_record_key(k));
+            let name = f.next()?.to_string();
+            let path = f.next()?;
+            tabs.push(IndexEntry {
+                name,
+                path: (!path.is_empty()).then(|| path.to_string()),
+                encoding,
+                dirty,
+                record: record.map(str::to_string),
+            });
+        }
+        (tabs.len() == count && active < count).then_some(RecoveryIndex { tabs, active })
+    }
+
+    /// The keys of the records the index names.
+    pub fn keys(&self) -> impl Iterator<Item = &str> {
+        self.tabs.iter().filter_map(|t| t.record.as_deref())
+    }
+
+    /// The tabs to restore: a tab with unsaved changes from its record, one without from its
+    /// file where `read_file` can read it (it may have changed since) and else from its record.
+    /// A tab with unsaved changes whose record cannot be read is named in `lost` and comes
+    /// back from its file without them, or not at all; a tab with nothing to read is left out.
+    pub fn restore(
+        &self,
+        mut read_record: impl FnMut(&str) -> Option<String>,
+        mut read_file: impl FnMut(&str) -> Option<(String, Encoding)>,
+    ) -> Restored {
+        let mut out = Restored::default();
+        for (i, entry) in self.tabs.iter().enumerate() {
+            if i == self.active {
+                out.active = out.tabs.len();
+            }
+            let found = if entry.dirty {
+                if let Some(text) = entry.record.as_deref().and_then(&mut read_record) {
+                    Some((text, entry.encoding, true, entry.record.clone()))
+                } else {
+                    out.lost.push(entry.name.clone());
+                    entry
+                        .path
+                        .as_deref()
+                        .and_then(&mut read_file)
+                        .map(|(text, enc)| (text, enc, false, None))
+                }
+            } else {
+                match entry.path.as_deref().and_then(&mut read_file) {
+                    Some((text, enc)) => Some((text, enc, false, None)),
+                    None => entry
+                        .record
+                        .as_deref()
+                        .and_then(&mut read_record)
+                        .map(|text| (text, entry.encoding, false, entry.record.clone())),
+                }
+            };
+            if let Some((text, encoding, dirty, key)) = found {
+                out.tabs.push(TabRecord {
+                    name: entry.name.clone(),
+                    path: entry.path.clone(),
+                    encoding,
+                    text,
+                    dirty,
+                });
+                out.records.push(key);
+            }
+        }
+        out.active = out.active.min(out.tabs.len().saturating_sub(1));
+        out
+    }
+}
+
+/// An open tab as the recovery records see it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TabState {
+    /// The document's id ([`swarf_ui::Document::id`]).
+    pub id: u64,
+    /// The revision of its text ([`swarf_ui::Document::revision`]).
+    pub revision: u64,
+    /// The document's name.
+    pub name: String,
+    /// Its file, where it can be read again after a restart.
+    pub path: Option<String>,
+    /// The file's encoding.
+    pub encoding: Encoding,
+    /// Whether the text has unsaved changes.
+    pub dirty: bool,
+}
+
+impl TabState {
+    /// The workbench's tabs in order, and the index of the active one. `with_paths`: whether
+    /// a tab's path can be read again after a restart (a file on the desktop; on the web page
+    /// it names a file handle, which does not outlive the page).
+    pub fn of(wb: &Workbench, with_paths: bool) -> (Vec<TabState>, usize) {
+        let tabs = wb
+            .tab_documents()
+            .into_iter()
+            .map(|d| TabState {
+                id: d.id(),
+                revision: d.revision(),
+                name: d.name.clone(),
+                path: if with_paths { d.path.clone() } else { None },
+                encoding: d.encoding,
+                dirty: d.is_unsaved(),
+            })
+            .collect();
+        (tabs, wb.active_tab())
+    }
+
+    /// Whether the tab's text must be kept in a record: it has unsaved changes, or there is
+    /// no file to read it again from.
+    pub fn needs_record(&self) -> bool {
+        self.dirty || self.path.is_none()
+    }
+}
+
+/// A tab's text to write as a record.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RecordWrite {
+    /// The tab's position.
+    pub tab: usize,
+    /// The key to write it under (new: a record is never overwritten).
+    pub key: String,
+}
+
+/// What a round of recovery writes comes to: the index to store once the records are written.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Round {
+    /// The index.
+    pub index: RecoveryIndex,
+    /// The index as a record ([`RecoveryIndex::to_record`]).
+    pub record: String,
+    /// Whether it differs from the index stored.
+    pub changed: bool,
+    /// The tabs whose current text is not kept, with why.
+    pub failed: Vec<(String, String)>,
+    /// Document id → (revision, key) of the record the index names for it.
+    kept: HashMap<u64, (u64, String)>,
+    /// The keys of the records written (or tried) in the round.
+    written: Vec<String>,
+}
+
+/// What the recovery records hold, as far as this host wrote or read them: which record keeps
+/// which revision of which tab, the index last stored, and the tabs last reported not kept. It
+/// decides which records a round writes (those of tabs whose text changed since) and which
+/// may go (those the stored index no longer names).
+#[derive(Debug, Clone, Default)]
+pub struct RecoveryBook {
+    /// Starts every key this host makes, unique to the run (records of another run keep
+    /// their keys).
+    prefix: String,
+    /// Document id → (revision, key) of the record the stored index names for it.
+    kept: HashMap<u64, (u64, String)>,
+    /// The index record stored, when one is.
+    stored: Option<String>,
+    /// Names of the tabs last reported as not kept.
+    failing: Vec<String>,
+    /// The records this host wrote or read and has not removed yet.
+    owned: HashSet<String>,
+}
+
+impl RecoveryBook {
+    /// A book for a run whose keys start with `run` (letters and digits of it only: a time
+    /// stamp, say, unique to the run).
+    pub fn new(run: &str) -> RecoveryBook {
+        let run: String = run
+            .chars()
+            .filter(char::is_ascii_alphanumeric)
+            .take(24)
+            .collect();
+        RecoveryBook {
+            prefix: format!("tab-{run}"),
+            ..RecoveryBook::default()
+        }
+    }
+
+    /// The records to write for `tabs`: those of the tabs that need one whose text changed
+    /// since their record was written (or that have none yet).
+    pub fn plan(&self, tabs: &[TabState]) -> Vec<RecordWrite> {
+        tabs.iter()
+            .enumerate()
+            .filter(|(_, t)| t.needs_record())
+            .filter(|(_, t)| {
+                self.kept
+                    .get(&t.id)
+                    .is_none_or(|(rev, _)| *rev != t.revision)
+            })
+            .map(|(tab, t)| RecordWrite {
+                tab,
+                key: format!("{}-{}", self.prefix, t.revision),
+            })
+            .collect()
+    }
+
+    /// The index once `writes` (from [`RecoveryBook::plan`] for the same `tabs`) ended with
+    /// `results`, in the same order: a tab whose write failed keeps the record of an earlier
+    /// text where it has one, and is named in [`Round::failed`].
+    pub fn compose(
+        &self,
+        tabs: &[TabState],
+        active: usize,
+        writes: &[RecordWrite],
+        results: &[Result<(), String>],
+    ) -> Round {
+        let mut kept = HashMap::new();
+        let mut failed = Vec::new();
+        let mut entries = Vec::with_capacity(tabs.len());
+        for (i, t) in tabs.iter().enumerate() {
+            let earlier = self.kept.get(&t.id);
+            let write = writes.iter().position(|w| w.tab == i);
+            let record = match write {
+                _ if !t.needs_record() => None,
+                None => earlier.cloned(),
+                Some(w) => match results.get(w) {
+                    Some(Ok(())) => Some((t.revision, writes[w].key.clone())),
+                    result => {
+                        let why = match result {
+                            Some(Err(e)) => e.clone(),
+                            _ => "not written".to_string(),
+                        };
+                        failed.push((t.name.clone(), why));
+                        earlier.cloned()
+                    }
+                },
+            };
+            entries.push(IndexEntry {
+                name: t.name.clone(),
+                path: t.path.clone(),
+                encoding: t.encoding,
+                dirty: t.dirty,
+                record: record.as_ref().map(|(_, key)| key.clone()),
+            });
+            if let Some(record) = record {
+                kept.insert(t.id, record);
+            }
+        }
+        let index = RecoveryIndex {
+            tabs: entries,
+            active: active.min(tabs.len().saturating_sub(1)),
+        };
+        let record = index.to_record();
+        Round {
+            changed: self.stored.as_deref() != Some(record.as_str()),
+            index,
+            record,
+            failed,
+            kept,
+            written: writes.iter().map(|w| w.key.clone()).collect(),
+        }
+    }
+
+    /// The tabs that need a record, named with `why`: what is not kept when the index itself
+    /// could not be stored.
+    pub fn all_failed(tabs: &[TabState], why: &str) -> Vec<(String, String)> {
+        tabs.iter()
+            .filter(|t| t.needs_record())
+            .map(|t| (t.name.clone(), why.to_string()))
+            .collect()
+    }
+
+    /// The round is over: `stored` when its index is stored (or was already), and the records
+    /// it names are the ones kept from now on; otherwise the stored index is the earlier one
+    /// and the records just written are not needed.
+    pub fn commit(&mut self, round: Round, stored: bool) {
+        self.owned.extend(round.written);
+        if stored {
+            self.kept = round.kept;
+            self.stored = Some(round.record);
+        }
+    }
+
+    /// Whether the stored index names the record `key`.
+    pub fn keeps(&self, key: &str) -> bool {
+        self.kept.values().any(|(_, k)| k == key)
+    }
+
+    /// The records this host wrote or read that the stored index no longer names (an earlier
+    /// text of a tab, a tab closed or saved, a write the index never came to name), to remove;
+    /// each is handed out once.
+    pub fn take_stale(&mut self) -> Vec<String> {
+        let mut stale: Vec<String> = self
+            .owned
+            .iter()
+            .filter(|key| !self.keeps(key))
+            .cloned()
+            .collect();
+        for key in &stale {
+            self.owned.remove(key);
+        }
+        stale.sort_unstable();
+        stale
+    }
+
+    /// Whether this host stored an index (and records) that are not yet removed.
+    pub fn holds_records(&self) -> bool {
+        self.stored.is_some()
+    }
+
+    /// Every record and the index were removed.
+    pub fn cleared(&mut self) {
+        self.kept.clear();
+        self.owned.clear();
+        self.stored = None;
+        self.failing.clear();
+    }
+
+    /// The tabs just restored (`tabs`, as [`TabState::of`] gives them) came from `records`
+    /// (one per tab, [`Restored::records`]) named by the stored `index`: their texts are kept
+    /// already and are not written again until they change. The records `index` names are
+    /// this host's from now on, removed once no index names them (all of them, when `tabs`
+    /// is empty: the tabs were opened some other way and are written anew).
+    pub fn adopt(&mut self, tabs: &[TabState], records: &[Option<String>], index: &str) {
+        self.kept = tabs
+            .iter()
+            .zip(records)
+            .filter_map(|(t, key)| Some((t.id, (t.revision, key.clone()?))))
+            .collect();
+        if let Some(stored) = RecoveryIndex::from_record(index) {
+            self.owned.extend(stored.keys().map(str::to_string));
+        }
+        self.stored = Some(index.to_string());
+    }
+
+    /// What the status bar says after a round that left `failed` not kept, with `tabs` open:
+    /// the tabs not kept and why, or, once every tab is kept again, those that were not.
+    pub fn report(&mut self, failed: &[(String, String)], tabs: &[TabState]) -> Option<String> {
+        if let Some((_, why)) = failed.first() {
+            let names: Vec<String> = failed.iter().map(|(name, _)| name.clone()).collect();
+            let message = trf("Not kept for recovery: {} ({})", &[&names.join(", "), why]);
+            self.failing = names;
+            return Some(message);
+        }
+        let again: Vec<&str> = self
+            .failing
+            .iter()
+            .filter(|name| tabs.iter().any(|t| t.name == **name && t.needs_record()))
+            .map(String::as_str)
+            .collect();
+        let message =
+            (!again.is_empty()).then(|| trf("Kept for recovery again: {}", &[&again.join(", ")]));
+        self.failing.clear();
+        message
+    }
+}
+
+/// Adds to the status bar's message the tabs whose unsaved changes could not be read back.
+pub fn report_lost(wb: &mut Workbench, lost: &[String]) {
+    if lost.is_empty() {
+        return;
+    }
+    let line = trf("Could not recover {}", &[&lost.join(", ")]);
+    let message = match wb.message() {
+        Some(m) => format!("{m}; {line}"),
+        None => line,
+    };
+    wb.set_message(message);
+}
+
 fn encoding_name(e: Encoding) -> &'static str {
     match e {
         Encoding::Utf8 => "utf8",
         Encoding::Utf8Bom => "utf8bom",
         Encoding::Gb18030 => "gb18030",
         Encoding::Big5 => "big5",
+        Encoding::Utf16Le => "utf16le",
+        Encoding::Utf16Be => "utf16be",
+        Encoding::Utf32Le => "utf32le",
+        Encoding::Utf32Be => "utf32be",
     }
 }
 
@@ -280,6 +725,10 @@ fn encoding_of(name: &str) -> Option<Encoding> {
         "utf8bom" => Encoding::Utf8Bom,
         "gb18030" => Encoding::Gb18030,
         "big5" => Encoding::Big5,
+        "utf16le" => Encoding::Utf16Le,
+        "utf16be" => Encoding::Utf16Be,
+        "utf32le" => Encoding::Utf32Le,
+        "utf32be" => Encoding::Utf32Be,
         _ => return None,
     })
 }
@@ -368,5 +817,288 @@ mod tests {
         assert!(read.tabs[0].dirty);
         assert_eq!(read.tabs[0].path, None);
         assert_eq!(read.tabs[0].text, "G0 X1\n");
+    }
+
+    fn state(id: u64, revision: u64, name: &str, path: Option<&str>, dirty: bool) -> TabState {
+        TabState {
+            id,
+            revision,
+            name: name.into(),
+            path: path.map(str::to_string),
+            encoding: Encoding::Utf8,
+            dirty,
+        }
+    }
+
+    /// Runs a round in which every write ends with `result(key)`; returns the round's index
+    /// and the keys written.
+    fn round(
+        book: &mut RecoveryBook,
+        tabs: &[TabState],
+        active: usize,
+        result: impl Fn(&str) -> Result<(), String>,
+    ) -> (Round, Vec<String>) {
+        let writes = book.plan(tabs);
+        let results: Vec<_> = writes.iter().map(|w| result(&w.key)).collect();
+        let round = book.compose(tabs, active, &writes, &results);
+        (round, writes.into_iter().map(|w| w.key).collect())
+    }
+
+    #[test]
+    fn indexes_read_back_and_damaged_ones_are_refused() {
+        let index = RecoveryIndex {
+            tabs: vec![
+                IndexEntry {
+                    name: "a\tb.nc".into(),
+                    path: Some("/home/me/a b.nc".into()),
+                    encoding: Encoding::Gb18030,
+                    dirty: true,
+                    record: Some("tab-1a2b-7".into()),
+                },
+                IndexEntry {
+                    name: "O1234.nc".into(),
+                    path: None,
+                    encoding: Encoding::Utf8,
+                    dirty: false,
+                    record: None,
+                },
+            ],
+            active: 1,
+        };
+        let record = index.to_record();
+        let back = RecoveryIndex::from_record(&record).unwrap();
+        // A tab in a name would split the line: it is kept as a space.
+        assert_eq!(back.tabs[0].name, "a b.nc");
+        assert_eq!(back.tabs[1], index.tabs[1]);
+        assert_eq!(back.tabs[0].record.as_deref(), Some("tab-1a2b-7"));
+        assert_eq!(back.active, 1);
+        assert_eq!(back.keys().collect::<Vec<_>>(), ["tab-1a2b-7"]);
+        // Cut short, out of range or of another kind: nothing.
+        assert_eq!(
+            RecoveryIndex::from_record(&record[..record.len() - 12]),
+            None
+        );
+        assert_eq!(
+            RecoveryIndex::from_record(&record.replacen("\t2\t1\n", "\t2\t2\n", 1)),
+            None
+        );
+        assert_eq!(RecoveryIndex::from_record("swarf-recovery 2\t1\t0\n"), None);
+        // A key that could name a file elsewhere is no record.
+        let evil = record.replace("tab-1a2b-7", "../../etc/passwd");
+        assert_eq!(
+            RecoveryIndex::from_record(&evil).unwrap().tabs[0].record,
+            None
+        );
+        for key in ["index", "tab-", "tab-a/b", "tab-a.nc", "x-1", ""] {
+            assert!(!is_record_key(key), "{key}");
+        }
+        assert!(is_record_key("tab-19af-12"));
+    }
+
+    #[test]
+    fn only_tabs_whose_text_changed_are_written_and_the_rest_is_removed() {
+        let mut book = RecoveryBook::new("run/1");
+        let mut tabs = vec![
+            state(1, 10, "big.nc", None, false),
+            state(2, 20, "part.nc", Some("/p/part.nc"), false),
+            state(3, 30, "small.nc", Some("/p/small.nc"), true),
+        ];
+        // The clean tab with a file needs no record; the others do.
+        let (first, keys) = round(&mut book, &tabs, 2, |_| Ok(()));
+        assert_eq!(keys, ["tab-run1-10", "tab-run1-30"]);
+        assert!(first.failed.is_empty() && first.changed);
+        let records: Vec<_> = first.index.tabs.iter().map(|t| t.record.clone()).collect();
+        assert_eq!(
+            records,
+            [Some("tab-run1-10".into()), None, Some("tab-run1-30".into())]
+        );
+        book.commit(first, true);
+        assert!(book.take_stale().is_empty());
+        // Nothing changed: nothing to write, the same index.
+        let (same, keys) = round(&mut book, &tabs, 2, |_| Ok(()));
+        assert!(keys.is_empty() && !same.changed);
+        book.commit(same, true);
+        // The small tab changed: its record alone is written, the earlier one goes.
+        tabs[2].revision = 31;
+        let (next, keys) = round(&mut book, &tabs, 2, |_| Ok(()));
+        assert_eq!(keys, ["tab-run1-31"]);
+        book.commit(next, true);
+        assert_eq!(book.take_stale(), ["tab-run1-30"]);
+        // Saved to its file: no record any more. Closed: neither.
+        tabs[2].dirty = false;
+        tabs.remove(0);
+        let (saved, keys) = round(&mut book, &tabs, 1, |_| Ok(()));
+        assert!(keys.is_empty());
+        assert_eq!(saved.index.keys().count(), 0);
+        book.commit(saved, true);
+        assert_eq!(book.take_stale(), ["tab-run1-10", "tab-run1-31"]);
+        assert!(book.holds_records());
+        book.cleared();
+        assert!(!book.holds_records());
+    }
+
+    #[test]
+    fn a_write_that_fails_is_named_keeps_the_earlier_text_and_is_tried_again() {
+        let mut book = RecoveryBook::new("r");
+        let mut tabs = vec![
+            state(1, 10, "big.nc", None, false),
+            state(2, 20, "small.nc", None, true),
+        ];
+        let (first, _) = round(&mut book, &tabs, 1, |_| Ok(()));
+        book.commit(first, true);
+        // The big tab changed and is now too big to keep; the small one changed too.
+        tabs[0].revision = 11;
+        tabs[1].revision = 21;
+        let quota = |key: &str| {
+            if key.ends_with("-11") {
+                Err("QuotaExceededError".to_string())
+            } else {
+                Ok(())
+            }
+        };
+        let (second, keys) = round(&mut book, &tabs, 1, quota);
+        assert_eq!(keys, ["tab-r-11", "tab-r-21"]);
+        assert_eq!(
+            second.failed,
+            [("big.nc".to_string(), "QuotaExceededError".to_string())]
+        );
+        // The big tab keeps its earlier record, the small one has its new one.
+        let records: Vec<_> = second.index.keys().collect();
+        assert_eq!(records, ["tab-r-10", "tab-r-21"]);
+        let failed = second.failed.clone();
+        book.commit(second, true);
+        assert_eq!(book.take_stale(), ["tab-r-11", "tab-r-20"]);
+        assert_eq!(
+            book.report(&failed, &tabs).as_deref(),
+            Some("Not kept for recovery: big.nc (QuotaExceededError)")
+        );
+        // Tried again at the next round, and said so once it is kept.
+        let (third, keys) = round(&mut book, &tabs, 1, |_| Ok(()));
+        assert_eq!(keys, ["tab-r-11"]);
+        let failed = third.failed.clone();
+        book.commit(third, true);
+        assert_eq!(
+            book.report(&failed, &tabs).as_deref(),
+            Some("Kept for recovery again: big.nc")
+        );
+        assert_eq!(book.report(&[], &tabs), None);
+    }
+
+    #[test]
+    fn an_index_that_could_not_be_stored_leaves_the_earlier_one_in_force() {
+        let mut book = RecoveryBook::new("r");
+        let mut tabs = vec![state(1, 10, "a.nc", None, true)];
+        let (first, _) = round(&mut book, &tabs, 0, |_| Ok(()));
+        book.commit(first, true);
+        tabs[0].revision = 11;
+        let (second, _) = round(&mut book, &tabs, 0, |_| Ok(()));
+        assert_eq!(
+            RecoveryBook::all_failed(&tabs, "disk full"),
+            [("a.nc".to_string(), "disk full".to_string())]
+        );
+        book.commit(second, false);
+        // The record written for the index that was not stored goes; the earlier one stays.
+        assert_eq!(book.take_stale(), ["tab-r-11"]);
+        assert!(book.keeps("tab-r-10"));
+        // And the text is written again at the next round.
+        let (_, keys) = round(&mut book, &tabs, 0, |_| Ok(()));
+        assert_eq!(keys, ["tab-r-11"]);
+    }
+
+    #[test]
+    fn restoring_reads_records_and_files_and_names_what_is_lost() {
+        let entry =
+            |name: &str, path: Option<&str>, dirty: bool, record: Option<&str>| IndexEntry {
+                name: name.into(),
+                path: path.map(str::to_string),
+                encoding: Encoding::Utf8,
+                dirty,
+                record: record.map(str::to_string),
+            };
+        let index = RecoveryIndex {
+            tabs: vec![
+                entry("gone.nc", Some("/gone.nc"), false, None),
+                entry("lost.nc", None, true, Some("tab-x-1")),
+                entry("file.nc", Some("/file.nc"), false, None),
+                entry("edited.nc", Some("/edited.nc"), true, Some("tab-x-2")),
+                entry("example.nc", None, false, Some("tab-x-3")),
+            ],
+            active: 3,
+        };
+        let records = HashMap::from([
+            ("tab-x-2".to_string(), "G0 X2 (edited)\n".to_string()),
+            ("tab-x-3".to_string(), "G0 X3\n".to_string()),
+        ]);
+        let files = HashMap::from([
+            ("/file.nc".to_string(), "G0 X1\n".to_string()),
+            ("/edited.nc".to_string(), "G0 X2\n".to_string()),
+        ]);
+        let restored = index.restore(
+            |key| records.get(key).cloned(),
+            |path| files.get(path).map(|t| (t.clone(), Encoding::Big5)),
+        );
+        let got: Vec<_> = restored
+            .tabs
+            .iter()
+            .map(|t| (t.name.as_str(), t.text.as_str(), t.dirty))
+            .collect();
+        assert_eq!(
+            got,
+            [
+                ("file.nc", "G0 X1\n", false),
+                ("edited.nc", "G0 X2 (edited)\n", true),
+                ("example.nc", "G0 X3\n", false),
+            ]
+        );
+        // Read from the file: its encoding is the file's.
+        assert_eq!(restored.tabs[0].encoding, Encoding::Big5);
+        assert_eq!(
+            restored.records,
+            [
+                None,
+                Some("tab-x-2".to_string()),
+                Some("tab-x-3".to_string())
+            ]
+        );
+        assert_eq!(restored.active, 1);
+        assert_eq!(restored.lost, ["lost.nc"]);
+    }
+
+    #[test]
+    fn recovered_tabs_are_not_written_again_until_they_change() {
+        let mut wb = Workbench::default();
+        wb.open_document("a.nc", "G0 X1\n", Encoding::Utf8);
+        wb.set_text("G0 X2\n");
+        let (tabs, active) = TabState::of(&wb, false);
+        let mut book = RecoveryBook::new("one");
+        let (first, _) = round(&mut book, &tabs, active, |_| Ok(()));
+        let (record, index) = (first.record.clone(), first.index.clone());
+        book.commit(first, true);
+        // The next run reads them back.
+        let restored = index.restore(
+            |key| {
+                let i = index
+                    .tabs
+                    .iter()
+                    .position(|t| t.record.as_deref() == Some(key))?;
+                wb.tab_text(i)
+            },
+            |_| None,
+        );
+        let mut next = Workbench::default();
+        next.restore_tabs(restored.tabs, restored.active);
+        assert_eq!(next.message(), Some("Recovered unsaved changes of a.nc"));
+        let (tabs, active) = TabState::of(&next, false);
+        let mut book = RecoveryBook::new("two");
+        book.adopt(&tabs, &restored.records, &record);
+        let (again, keys) = round(&mut book, &tabs, active, |_| Ok(()));
+        assert!(keys.is_empty(), "{keys:?}");
+        assert!(!again.changed);
+        // An edit writes that tab alone.
+        next.set_text("G0 X3\n");
+        let (tabs, active) = TabState::of(&next, false);
+        let (_, keys) = round(&mut book, &tabs, active, |_| Ok(()));
+        assert_eq!(keys.len(), 1);
+        assert!(keys[0].starts_with("tab-two-"), "{keys:?}");
     }
 }

@@ -87,7 +87,8 @@ impl SwarfApi {
         }
     }
 
-    /// Replaces the program text; diagnostics and the backplot update at once.
+    /// Replaces the program text; diagnostics and the backplot follow as its analysis is
+    /// finished over the next frames (see [`SwarfApi::idle`]).
     pub fn set_text(&self, text: String) -> Result<(), JsValue> {
         self.with_app(|app| app.set_text(text))
     }
@@ -131,10 +132,11 @@ impl SwarfApi {
         self.with_app(|app| app.workbench.text().to_string())
     }
 
-    /// `[{line, col, severity, code, message}]` for the current text.
+    /// `[{line, col, severity, code, message}]`: the problems the page shows now, those of the
+    /// last finished analysis (of an earlier text while a new one runs; see
+    /// [`SwarfApi::idle`]).
     pub fn diagnostics(&self) -> Result<JsValue, JsValue> {
         let list = self.with_app(|app| {
-            app.workbench.finish_analysis();
             app.workbench
                 .problems()
                 .iter()
@@ -149,12 +151,10 @@ impl SwarfApi {
         to_js(&Value::Array(list))
     }
 
-    /// `{blocks, motions, bounds: {min, max} | null}` for the current text.
+    /// `{blocks, motions, bounds: {min, max} | null, estimated_secs}`: the numbers the page
+    /// shows now, those of the last finished analysis (see [`SwarfApi::idle`]).
     pub fn stats(&self) -> Result<JsValue, JsValue> {
-        let s = self.with_app(|app| {
-            app.workbench.finish_analysis();
-            app.workbench.stats()
-        })?;
+        let s = self.with_app(|app| app.workbench.stats())?;
         let bounds = s
             .bounds
             .map(|(min, max)| json!({"min": min.to_array(), "max": max.to_array()}));
@@ -162,6 +162,29 @@ impl SwarfApi {
             "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
             "estimated_secs": s.estimated_secs,
         }))
+    }
+
+    /// A Promise that resolves once the analysis of the current text is finished and a frame
+    /// showing it has been painted: then `diagnostics()` and `stats()` describe the current
+    /// text. The analysis runs in the frames, as it does for typing; nothing here hurries it.
+    pub fn idle(&self) -> Result<js_sys::Promise, JsValue> {
+        let mut resolver = None;
+        let promise = js_sys::Promise::new(&mut |resolve, _reject| resolver = Some(resolve));
+        let resolve = resolver.ok_or_else(|| JsValue::from_str("the Promise gave no resolver"))?;
+        self.with_app(|app| {
+            app.when_idle(move || {
+                // Resolving a Promise cannot fail; its handlers run once the frame is over.
+                let _ = resolve.call0(&JsValue::UNDEFINED);
+            });
+        })?;
+        Ok(promise)
+    }
+
+    /// `[x, y, width, height]`: where the named widget (`editor`, `backplot`, `find_field`,
+    /// `find_next`, `problem_first`, `tab 2` …; see `Workbench::widget_rect`) was drawn at the
+    /// last frame, in CSS pixels from the canvas's top left; `undefined` when it was not drawn.
+    pub fn widget(&self, name: String) -> Result<Option<Vec<f64>>, JsValue> {
+        self.with_app(|app| app.widget_rect(&name).map(|r| r.to_vec()))
     }
 
     /// Switches the interface language to the tag `code` (`en`, `zh-Hans`, `zh-Hant`); a
@@ -183,6 +206,25 @@ impl SwarfApi {
             })
         })?;
         to_js(&value)
+    }
+
+    /// `{tabs: [{name, unsaved}], active}`: the open tabs in order and the active one's index.
+    pub fn tabs(&self) -> Result<JsValue, JsValue> {
+        let value = self.with_app(|app| {
+            let wb = &app.workbench;
+            let tabs: Vec<Value> = wb
+                .tab_documents()
+                .iter()
+                .map(|d| json!({"name": d.name, "unsaved": d.is_unsaved()}))
+                .collect();
+            json!({"tabs": tabs, "active": wb.active_tab()})
+        })?;
+        to_js(&value)
+    }
+
+    /// The status bar's message (a command's result, an error, what was recovered), if any.
+    pub fn status(&self) -> Result<Option<String>, JsValue> {
+        self.with_app(|app| app.workbench.message().map(str::to_string))
     }
 
     /// Frames painted so far (the page waits for the first one before it is ready).

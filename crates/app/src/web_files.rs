@@ -1,7 +1,7 @@
 //! Files on the web page: the File System Access API's pickers where the browser has them
 //! (Open keeps the file's handle, Save writes back to it), otherwise an `<input type=file>`
-//! picker and downloads for saving; dropped files; crash recovery in the browser's
-//! localStorage.
+//! picker and downloads for saving; dropped files; crash recovery in the browser's IndexedDB,
+//! a record per tab and an index of the tabs.
 
 use std::cell::RefCell;
 use std::collections::HashMap;
@@ -12,10 +12,18 @@ use wasm_bindgen::prelude::*;
 
 use swarf_ui::{HostRequest, Workbench};
 
-use crate::files::{Autosave, AutosaveClock, Session};
+use crate::files::{
+    self, Autosave, AutosaveClock, INDEX_KEY, RecoveryBook, RecoveryIndex, Round, Session, TabState,
+};
 
-/// localStorage key of the open tabs while any has unsaved changes.
-const RECOVERY_KEY: &str = "swarf.recovery";
+/// The IndexedDB database of the recovery records (made at version 1, with its store).
+const DB_NAME: &str = "swarf-recovery";
+/// Its object store: the index under [`INDEX_KEY`] (a string) and each tab's text under its
+/// record key (UTF-8 bytes).
+const STORE: &str = "records";
+/// localStorage key of the single recovery record of earlier versions (every tab in one
+/// string): read once, and removed once its tabs are kept as records.
+const OLD_RECOVERY_KEY: &str = "swarf.recovery";
 /// Where the page's CJK font is, relative to the page (`cargo xtask web` puts it there). It is
 /// fetched only when a Chinese language is chosen; the service worker keeps it once fetched.
 pub const CJK_FONT_URL: &str = "./fonts/wqy-microhei.ttc";
@@ -66,7 +74,39 @@ enum Arrival {
     },
     /// Something to tell the user.
     Message(String),
+    /// The recovery records read at the start: the index and the texts it names (`None` when
+    /// there is no index), or why they could not be read.
+    Recovered(Result<Option<StoredTabs>, String>),
+    /// A round of recovery writes ended.
+    Autosaved(Box<WrittenRound>),
 }
+
+/// The recovery index as stored, and the texts of the records it names, by key.
+type StoredTabs = (String, HashMap<String, String>);
+
+/// What a round of recovery writes did.
+struct WrittenRound {
+    round: Round,
+    /// Whether its index is stored (or was already).
+    stored: bool,
+    /// The tabs not kept, with why.
+    failed: Vec<(String, String)>,
+}
+
+/// Where the recovery records stand.
+#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
+enum Recovery {
+    /// Nothing is being read or written.
+    #[default]
+    Idle,
+    /// Being read at the start: nothing is written until they are in.
+    Reading,
+    /// A round of writes is under way.
+    Writing,
+}
+
+/// The recovery database once opened.
+type DbSlot = Rc<RefCell<Option<web_sys::IdbDatabase>>>;
 
 /// What the browser finished, waiting for the next frame.
 type Inbox = Rc<RefCell<Vec<Arrival>>>;
@@ -86,6 +126,21 @@ pub struct Host {
     handles: HashMap<String, web_sys::FileSystemFileHandle>,
     /// Handles given out so far, for unique keys.
     handle_count: u64,
+    /// Which recovery records are written, and which tabs are not kept.
+    book: RecoveryBook,
+    /// Whether the recovery records are being read or written.
+    recovery: Recovery,
+    /// The recovery database once opened.
+    db: DbSlot,
+    /// The context to wake when the recovery records were read (the read starts before the
+    /// first frame hands the context over).
+    wake: Rc<RefCell<Option<egui::Context>>>,
+    /// Whether tabs came from the localStorage record of earlier versions, which is removed
+    /// once they are kept as records.
+    migrating: bool,
+    /// Whether the records must be brought up to date once the read or write under way is
+    /// done (a save came meanwhile).
+    again: bool,
 }
 
 fn local_storage() -> Option<web_sys::Storage> {
@@ -102,25 +157,79 @@ pub fn set_document_title(title: &str) {
 impl Host {
     /// A web host.
     pub fn new() -> Host {
-        Host::default()
+        Host {
+            book: RecoveryBook::new(&format!("{:x}", js_sys::Date::now() as u64)),
+            ..Host::default()
+        }
     }
 
-    /// Shows the tabs left with unsaved changes in this browser, if there are.
+    /// Starts reading the tabs this browser kept when any had unsaved changes; they replace
+    /// the workbench's tabs when they are in (see [`Host::poll`]), and nothing is written
+    /// until then. Tabs kept by earlier versions in localStorage are shown at once (true).
     pub fn recover(&mut self, wb: &mut Workbench) -> bool {
-        let Some(record) = local_storage().and_then(|s| s.get_item(RECOVERY_KEY).ok().flatten())
-        else {
-            return false;
-        };
-        let Some(mut session) = Session::from_record(&record) else {
-            return false;
-        };
-        // File handles do not outlive the page: the recovered tabs are saved anew.
-        for tab in &mut session.tabs {
-            tab.path = None;
+        let old = local_storage()
+            .and_then(|s| s.get_item(OLD_RECOVERY_KEY).ok().flatten())
+            .and_then(|record| Session::from_record(&record));
+        if let Some(mut session) = old {
+            // File handles do not outlive the page: the recovered tabs are saved anew.
+            for tab in &mut session.tabs {
+                tab.path = None;
+            }
+            wb.restore_tabs(session.tabs, session.active);
+            // Not settled: the next autosave keeps the tabs as records.
+            self.migrating = true;
+            return true;
         }
-        wb.restore_tabs(session.tabs, session.active);
-        self.clock.settled(wb.generation());
-        true
+        self.recovery = Recovery::Reading;
+        let db = self.db.clone();
+        self.spawn_woken(async move { Arrival::Recovered(read_recovery(&db).await) });
+        false
+    }
+
+    /// Shows the tabs read from the recovery records: in place of the workbench's, or beside
+    /// them when they were changed meanwhile.
+    fn recovered(&mut self, wb: &mut Workbench, result: Result<Option<StoredTabs>, String>) {
+        self.recovery = Recovery::Idle;
+        self.show_recovered(wb, result);
+        self.catch_up(wb);
+    }
+
+    fn show_recovered(&mut self, wb: &mut Workbench, result: Result<Option<StoredTabs>, String>) {
+        let (record, mut texts) = match result {
+            Ok(Some(stored)) => stored,
+            Ok(None) => return,
+            Err(e) => {
+                log::warn!("cannot read the recovery records: {e}");
+                return;
+            }
+        };
+        let Some(index) = RecoveryIndex::from_record(&record) else {
+            return;
+        };
+        let restored = index.restore(|key| texts.remove(key), |_| None);
+        if restored.tabs.is_empty() {
+            files::report_lost(wb, &restored.lost);
+            return;
+        }
+        if wb.any_dirty() {
+            // Changed before the records were in: the recovered tabs open beside, and are
+            // kept as records of their own at the next autosave (the stored ones then go).
+            self.book.adopt(&[], &[], &record);
+            for tab in restored.tabs {
+                if tab.dirty {
+                    wb.new_tab();
+                    wb.recover(&tab.name, tab.text, tab.encoding);
+                } else {
+                    wb.open_file(&tab.name, tab.text, tab.encoding, None);
+                }
+            }
+        } else {
+            wb.restore_tabs(restored.tabs, restored.active);
+            let (tabs, _) = TabState::of(wb, false);
+            self.book.adopt(&tabs, &restored.records, &record);
+            self.clock.settled(wb.generation());
+        }
+        files::report_lost(wb, &restored.lost);
     }
 
     /// Reads a file dropped on the page; it opens in a tab when the browser has read it.
@@ -215,6 +324,8 @@ impl Host {
                     }
                 }
                 Arrival::Message(message) => wb.set_message(message),
+                Arrival::Recovered(result) => self.recovered(wb, result),
+                Arrival::Autosaved(written) => self.autosaved(wb, *written),
             }
         }
     }
@@ -227,12 +338,27 @@ impl Host {
         key
     }
 
-    /// The recovery copy after a save: kept while another tab has unsaved changes.
-    fn after_save(&mut self, wb: &Workbench) {
-        if wb.any_dirty() {
+    /// The recovery records after a save: kept while another tab has unsaved changes.
+    fn after_save(&mut self, wb: &mut Workbench) {
+        self.sync_recovery(wb);
+    }
+
+    /// Brings the recovery records up to date now (written while a tab has unsaved changes,
+    /// removed otherwise), or once the read or write under way is done.
+    fn sync_recovery(&mut self, wb: &mut Workbench) {
+        if self.recovery != Recovery::Idle {
+            self.again = true;
+        } else if wb.any_dirty() {
             self.write_recovery(wb);
         } else {
-            clear_recovery();
+            self.clear_recovery();
+        }
+    }
+
+    /// Catches up with a save made while the records were being read or written.
+    fn catch_up(&mut self, wb: &mut Workbench) {
+        if std::mem::take(&mut self.again) {
+            self.sync_recovery(wb);
         }
     }
 
@@ -347,6 +473,7 @@ impl Host {
     /// Carries out the workbench's file requests: pickers and downloads.
     pub fn handle(&mut self, wb: &mut Workbench, ctx: &egui::Context) {
         self.ctx = Some(ctx.clone());
+        *self.wake.borrow_mut() = Some(ctx.clone());
         for request in wb.take_requests() {
             match request {
                 HostRequest::Open | HostRequest::OpenRecent(_) => self.pick_program(),
@@ -503,33 +630,319 @@ impl Host {
         input.click();
     }
 
-    /// Keeps unsaved changes in localStorage a moment after they are made.
-    pub fn autosave(&mut self, wb: &Workbench, now: f64) {
+    /// Keeps unsaved changes in IndexedDB a moment after they are made, and removes the
+    /// records once nothing is unsaved (not while they are being read or written: the
+    /// change is taken up once that is done).
+    pub fn autosave(&mut self, wb: &mut Workbench, now: f64) {
+        if self.recovery != Recovery::Idle {
+            return;
+        }
         match self.clock.step(wb.generation(), wb.any_dirty(), now) {
             Autosave::Wait => {}
-            Autosave::Clear => clear_recovery(),
+            Autosave::Clear => self.clear_recovery(),
             Autosave::Write => self.write_recovery(wb),
         }
     }
 
-    /// Writes the open tabs to localStorage now, when any has unsaved changes.
-    pub fn write_recovery(&mut self, wb: &Workbench) {
-        self.clock.restart();
-        if !wb.any_dirty() {
+    /// Starts a round of recovery writes now, when any tab has unsaved changes: a record for
+    /// each tab whose text changed since it was written (every tab's text is kept, as the
+    /// page cannot read a file again after a reload), each in a transaction of its own so
+    /// that one too large for the browser's quota spares the others, then the index. How it
+    /// went arrives through [`Host::poll`].
+    pub fn write_recovery(&mut self, wb: &mut Workbench) {
+        if self.recovery != Recovery::Idle {
+            self.again = true;
             return;
         }
-        let record = Session::of(wb);
-        if let Some(storage) = local_storage()
-            && let Err(e) = storage.set_item(RECOVERY_KEY, &record.to_record())
-        {
-            log::warn!("cannot keep the unsaved program in localStorage: {e:?}");
+        self.clock.restart();
+        if !wb.any_dirty() {
+            self.clear_recovery();
+            return;
         }
+        let (tabs, active) = TabState::of(wb, false);
+        let writes = self.book.plan(&tabs);
+        let values: Vec<js_sys::Uint8Array> = writes
+            .iter()
+            .map(|w| js_sys::Uint8Array::from(wb.tab_text(w.tab).unwrap_or_default().as_bytes()))
+            .collect();
+        let book = self.book.clone();
+        let db = self.db.clone();
+        self.recovery = Recovery::Writing;
+        self.spawn_woken(async move {
+            let opened = open_db(&db).await;
+            let mut results = Vec::with_capacity(writes.len());
+            for (write, value) in writes.iter().zip(&values) {
+                results.push(match &opened {
+                    Ok(db) => put(db, &write.key, value).await,
+                    Err(e) => Err(e.clone()),
+                });
+            }
+            let round = book.compose(&tabs, active, &writes, &results);
+            let mut failed = round.failed.clone();
+            let stored = !round.changed
+                || match &opened {
+                    Ok(db) => put(db, INDEX_KEY, &JsValue::from_str(&round.record)).await,
+                    Err(e) => Err(e.clone()),
+                }
+                .map_err(|e| failed = RecoveryBook::all_failed(&tabs, &e))
+                .is_ok();
+            Arrival::Autosaved(Box::new(WrittenRound {
+                round,
+                stored,
+                failed,
+            }))
+        });
+    }
+
+    /// Takes a round of recovery writes in: removes the records no longer needed, and tells
+    /// the user which tabs are not kept (or are again).
+    fn autosaved(&mut self, wb: &mut Workbench, written: WrittenRound) {
+        self.recovery = Recovery::Idle;
+        self.book.commit(written.round, written.stored);
+        let stale = self.book.take_stale();
+        if !stale.is_empty() {
+            let db = self.db.clone();
+            wasm_bindgen_futures::spawn_local(async move {
+                if let Err(e) = delete(&db, Some(&stale)).await {
+                    log::warn!("cannot remove recovery records: {e}");
+                }
+            });
+        }
+        if written.stored && written.failed.is_empty() && self.migrating {
+            self.migrating = false;
+            if let Some(storage) = local_storage() {
+                let _ = storage.remove_item(OLD_RECOVERY_KEY);
+            }
+        }
+        let (tabs, _) = TabState::of(wb, false);
+        if let Some(message) = self.book.report(&written.failed, &tabs) {
+            wb.set_message(message);
+        }
+        self.catch_up(wb);
+    }
+
+    /// Removes every recovery record: nothing is unsaved.
+    fn clear_recovery(&mut self) {
+        self.clock.restart();
+        let stored = self.book.holds_records();
+        self.book.cleared();
+        if self.migrating {
+            self.migrating = false;
+            if let Some(storage) = local_storage() {
+                let _ = storage.remove_item(OLD_RECOVERY_KEY);
+            }
+        }
+        if stored {
+            let db = self.db.clone();
+            wasm_bindgen_futures::spawn_local(async move {
+                if let Err(e) = delete(&db, None).await {
+                    log::warn!("cannot remove the recovery records: {e}");
+                }
+            });
+        }
+    }
+
+    /// Runs `task` in the browser; what it ends with arrives through [`Host::poll`], and the
+    /// app is woken for it even before its first frame.
+    fn spawn_woken(&self, task: impl std::future::Future<Output = Arrival> + 'static) {
+        let (inbox, wake) = (self.inbox.clone(), self.wake.clone());
+        wasm_bindgen_futures::spawn_local(async move {
+            let arrival = task.await;
+            inbox.borrow_mut().push(arrival);
+            if let Some(ctx) = wake.borrow().as_ref() {
+                ctx.request_repaint();
+            }
+        });
     }
 }
 
-fn clear_recovery() {
-    if let Some(storage) = local_storage() {
-        let _ = storage.remove_item(RECOVERY_KEY);
+/// Opens the recovery database (once: it is kept in `slot`), making its store the first time
+/// (or in a new version of the database, should one without it be there).
+async fn open_db(slot: &DbSlot) -> Result<web_sys::IdbDatabase, String> {
+    if let Some(db) = slot.borrow().as_ref() {
+        return Ok(db.clone());
+    }
+    let mut db = open_version(None).await?;
+    if !db.object_store_names().contains(STORE) {
+        let next = db.version() as u32 + 1;
+        db.close();
+        db = open_version(Some(next)).await?;
+    }
+    *slot.borrow_mut() = Some(db.clone());
+    Ok(db)
+}
+
+/// Opens the recovery database at `version` (at the version it has when `None`, or 1 when
+/// it is new), making its store when it upgrades.
+async fn open_version(version: Option<u32>) -> Result<web_sys::IdbDatabase, String> {
+    let factory = web_sys::window()
+        .ok_or("no window")?
+        .indexed_db()
+        .map_err(|e| dom_error(&e))?
+        .ok_or("this browser has no IndexedDB")?;
+    let request = match version {
+        Some(version) => factory.open_with_u32(DB_NAME, version),
+        None => factory.open(DB_NAME),
+    }
+    .map_err(|e| dom_error(&e))?;
+    let opening = request.clone();
+    let upgrade = Closure::<dyn FnMut(web_sys::Event)>::new(move |_event: web_sys::Event| {
+        if let Ok(db) = opening.result() {
+            let db = db.unchecked_into::<web_sys::IdbDatabase>();
+            if !db.object_store_names().contains(STORE)
+                && let Err(e) = db.create_object_store(STORE)
+            {
+                log::warn!("cannot make the recovery store: {}", dom_error(&e));
+            }
+        }
+    });
+    request.set_onupgradeneeded(Some(upgrade.as_ref().unchecked_ref()));
+    let opened = request_done(&request).await;
+    request.set_onupgradeneeded(None);
+    drop(upgrade);
+    Ok(opened
+        .map_err(|e| dom_error(&e))?
+        .unchecked_into::<web_sys::IdbDatabase>())
+}
+
+/// The result of an IndexedDB request once it succeeded, or its error.
+async fn request_done(request: &web_sys::IdbRequest) -> Result<JsValue, JsValue> {
+    let promise = js_sys::Promise::new(&mut |resolve, reject| {
+        request.set_onsuccess(Some(&resolve));
+        request.set_onerror(Some(&reject));
+    });
+    let done = wasm_bindgen_futures::JsFuture::from(promise).await;
+    request.set_onsuccess(None);
+    request.set_onerror(None);
+    match done {
+        Ok(_) => request.result(),
+        Err(_) => Err(request
+            .error()
+            .ok()
+            .flatten()
+            .map_or_else(|| JsValue::from_str("the request failed"), JsValue::from)),
+    }
+}
+
+/// Waits for an IndexedDB transaction to be committed; its error when it was aborted (a
+/// quota exceeded, say).
+async fn transaction_done(tx: &web_sys::IdbTransaction) -> Result<(), JsValue> {
+    let promise = js_sys::Promise::new(&mut |resolve, reject| {
+        tx.set_oncomplete(Some(&resolve));
+        tx.set_onerror(Some(&reject));
+        tx.set_onabort(Some(&reject));
+    });
+    let done = wasm_bindgen_futures::JsFuture::from(promise).await;
+    match done {
+        Ok(_) => Ok(()),
+        Err(_) => Err(tx.error().map_or_else(
+            || JsValue::from_str("the transaction was aborted"),
+            JsValue::from,
+        )),
+    }
+}
+
+/// Stores `value` under `key` in a transaction of its own, committed when this returns Ok.
+async fn put(db: &web_sys::IdbDatabase, key: &str, value: &JsValue) -> Result<(), String> {
+    let tx = db
+        .transaction_with_str_and_mode(STORE, web_sys::IdbTransactionMode::Readwrite)
+        .map_err(|e| dom_error(&e))?;
+    let stored = tx
+        .object_store(STORE)
+        .and_then(|store| store.put_with_key(value, &JsValue::from_str(key)));
+    if let Err(e) = stored {
+        let _ = tx.abort();
+        return Err(dom_error(&e));
+    }
+    transaction_done(&tx).await.map_err(|e| dom_error(&e))
+}
+
+/// Removes the records `keys`, or every record and the index when `None`.
+async fn delete(slot: &DbSlot, keys: Option<&[String]>) -> Result<(), String> {
+    let db = open_db(slot).await?;
+    let tx = db
+        .transaction_with_str_and_mode(STORE, web_sys::IdbTransactionMode::Readwrite)
+        .map_err(|e| dom_error(&e))?;
+    let store = tx.object_store(STORE).map_err(|e| dom_error(&e))?;
+    let issued = match keys {
+        Some(keys) => keys
+            .iter()
+            .try_for_each(|key| store.delete(&JsValue::from_str(key)).map(|_| ())),
+        None => store.clear().map(|_| ()),
+    };
+    if let Err(e) = issued {
+        let _ = tx.abort();
+        return Err(dom_error(&e));
+    }
+    transaction_done(&tx).await.map_err(|e| dom_error(&e))
+}
+
+/// Reads the recovery index and the records it names (a record that cannot be read is left
+/// out), and removes the records it does not name: left over from a round whose index was
+/// never stored. `None` when no index is stored.
+async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
+    let db = open_db(slot).await?;
+    let store = |db: &web_sys::IdbDatabase| {
+        db.transaction_with_str(STORE)
+            .and_then(|tx| tx.object_store(STORE))
+            .map_err(|e| dom_error(&e))
+    };
+    let index = store(&db)?
+        .get(&JsValue::from_str(INDEX_KEY))
+        .map_err(|e| dom_error(&e))?;
+    let record = request_done(&index)
+        .await
+        .map_err(|e| dom_error(&e))?
+        .as_string();
+    let index = record.as_deref().and_then(RecoveryIndex::from_record);
+    let named: Vec<String> = index
+        .as_ref()
+        .map(|i| i.keys().map(str::to_string).collect())
+        .unwrap_or_default();
+    // Every request in one transaction, made before the first is awaited.
+    let records = store(&db)?;
+    let requests: Vec<(String, web_sys::IdbRequest)> = named
+        .iter()
+        .filter_map(|key| Some((key.clone(), records.get(&JsValue::from_str(key)).ok()?)))
+        .collect();
+    let mut texts = HashMap::new();
+    for (key, request) in requests {
+        let bytes = request_done(&request)
+            .await
+            .ok()
+            .and_then(|v| v.dyn_into::<js_sys::Uint8Array>().ok())
+            .map(|a| a.to_vec());
+        match bytes.map(String::from_utf8) {
+            Some(Ok(text)) => {
+                texts.insert(key, text);
+            }
+            _ => log::warn!("the recovery record {key} cannot be read"),
+        }
+    }
+    let all = request_done(&store(&db)?.get_all_keys().map_err(|e| dom_error(&e))?)
+        .await
+        .map_err(|e| dom_error(&e))?;
+    let left_over: Vec<String> = js_sys::Array::from(&all)
+        .iter()
+        .filter_map(|k| k.as_string())
+        .filter(|k| k != INDEX_KEY && !named.contains(k))
+        .collect();
+    if !left_over.is_empty()
+        && let Err(e) = delete(slot, Some(&left_over)).await
+    {
+        log::warn!("cannot remove left-over recovery records: {e}");
+    }
+    Ok(record.filter(|_| index.is_some()).map(|r| (r, texts)))
+}
+
+/// A DOM exception (or any JavaScript error) as `Name: message` for the status bar.
+fn dom_error(error: &JsValue) -> String {
+    let name = js_error_name(error);
+    let message = js_error(error);
+    if name.is_empty() || message.starts_with(&name) {
+        message
+    } else {
+        format!("{name}: {message}")
     }
 }
 

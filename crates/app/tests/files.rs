@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::collections::HashMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use egui_kittest::kittest::Queryable as _;
 use swarf_app::desktop::{Host, atomic_write};
@@ -28,7 +28,7 @@ fn a_gb18030_program_is_saved_back_byte_for_byte_and_edits_keep_the_encoding() {
         .0
         .to_vec();
     std::fs::write(&path, &original).unwrap();
-    let mut host = Host::with_recovery_file(dir.join("recovery.nc"));
+    let mut host = Host::with_data_folder(dir.join("data"));
     let mut wb = Workbench::default();
     host.open_path(&mut wb, &path);
     assert_eq!(wb.document().encoding, Encoding::Gb18030);
@@ -92,7 +92,7 @@ fn a_recent_file_that_is_gone_is_reported_and_forgotten() {
     let dir = scratch("gone");
     let path = dir.join("gone.nc");
     std::fs::write(&path, "G0 X1\n").unwrap();
-    let mut host = Host::with_recovery_file(dir.join("recovery.nc"));
+    let mut host = Host::with_data_folder(dir.join("data"));
     let mut wb = Workbench::default();
     host.open_path(&mut wb, &path);
     std::fs::remove_file(&path).unwrap();
@@ -116,63 +116,104 @@ fn a_recent_file_that_is_gone_is_reported_and_forgotten() {
     assert_eq!(wb.text(), "G0 X5\n");
 }
 
+/// The files in the recovery folder: the index and the tabs' records, sorted.
+fn recovery_files(data: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(data.join("recovery"))
+        .map(|entries| {
+            entries
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names
+}
+
+/// The tabs' record files in the recovery folder.
+fn records(data: &Path) -> Vec<String> {
+    recovery_files(data)
+        .into_iter()
+        .filter(|n| n.starts_with("tab-"))
+        .collect()
+}
+
 #[test]
 fn unsaved_edits_are_recovered_after_a_crash_and_cleared_by_saving() {
     let dir = scratch("recovery");
-    let recovery = dir.join("data").join("recovery.nc");
+    let data = dir.join("data");
     let path = dir.join("part.nc");
     std::fs::write(&path, "G0 X1\n").unwrap();
-    let mut host = Host::with_recovery_file(recovery.clone());
+    let mut host = Host::with_data_folder(data.clone());
     let mut wb = Workbench::default();
     host.open_path(&mut wb, &path);
     wb.set_text("G0 X1\nG1 X5 F100\n");
-    host.autosave(&wb, 10.0);
-    assert!(!recovery.exists(), "written only after a moment");
-    host.autosave(&wb, 11.5);
-    assert!(recovery.exists());
-    // The next run (the process died without saving) gets the text back.
-    let mut host2 = Host::with_recovery_file(recovery.clone());
+    host.autosave(&mut wb, 10.0);
+    assert!(
+        recovery_files(&data).is_empty(),
+        "written only after a moment"
+    );
+    host.autosave(&mut wb, 11.5);
+    // The example tab (no file to read it again from) and the edited one, and the index.
+    assert_eq!(records(&data).len(), 2, "{:?}", recovery_files(&data));
+    assert!(recovery_files(&data).contains(&"index".to_string()));
+    assert_eq!(wb.message(), None, "a kept change says nothing");
+    // The next run (the process died without saving) gets the text back, and says so.
+    let mut host2 = Host::with_data_folder(data.clone());
     let mut wb2 = Workbench::default();
     assert!(host2.recover(&mut wb2));
+    assert_eq!(wb2.tab_count(), 2);
     assert_eq!(wb2.text(), "G0 X1\nG1 X5 F100\n");
     assert!(wb2.is_dirty());
     assert_eq!(wb2.document().name, "part.nc");
     assert_eq!(wb2.document().path, Some(path.display().to_string()));
+    assert_eq!(wb2.message(), Some("Recovered unsaved changes of part.nc"));
     assert!(host2.save_to(&mut wb2, &path));
-    assert!(!recovery.exists());
+    assert!(
+        recovery_files(&data).is_empty(),
+        "{:?}",
+        recovery_files(&data)
+    );
     assert_eq!(
         std::fs::read_to_string(&path).unwrap(),
         "G0 X1\nG1 X5 F100\n"
     );
-    assert!(!Host::with_recovery_file(recovery).recover(&mut Workbench::default()));
+    let mut fresh = Workbench::default();
+    assert!(!Host::with_data_folder(data).recover(&mut fresh));
+    assert_eq!(fresh.message(), None, "nothing recovered, nothing said");
 }
 
 #[test]
 fn every_tab_comes_back_after_a_crash_with_clean_files_read_again() {
     let dir = scratch("tabs");
-    let recovery = dir.join("recovery.nc");
+    let data = dir.join("data");
     let a = dir.join("a.nc");
     let sub = dir.join("O1234.nc");
     std::fs::write(&a, "G0 X1\n").unwrap();
     std::fs::write(&sub, "O1234\nG1 X5. F100\nM99\n").unwrap();
-    let mut host = Host::with_recovery_file(recovery.clone());
+    let mut host = Host::with_data_folder(data.clone());
     let mut wb = Workbench::default();
     host.open_path(&mut wb, &sub);
     host.open_path(&mut wb, &a);
     wb.set_text("G0 X1\nM98 P1234\nM30\n");
-    host.autosave(&wb, 1.0);
-    host.autosave(&wb, 2.5);
-    assert!(recovery.exists());
-    // Saving another tab keeps the record: a.nc still has changes.
+    host.autosave(&mut wb, 1.0);
+    host.autosave(&mut wb, 2.5);
+    // The example and a.nc have records; O1234.nc is read again from its file.
+    assert_eq!(records(&data).len(), 2, "{:?}", recovery_files(&data));
+    // Saving another tab keeps the records: a.nc still has changes.
     wb.switch_tab(1);
     assert!(host.save_to(&mut wb, &sub));
-    assert!(recovery.exists());
+    assert_eq!(records(&data).len(), 2, "{:?}", recovery_files(&data));
     // The sub changed on disk since: the clean tab is read again.
     std::fs::write(&sub, "O1234\nG1 X7. F100\nM99\n").unwrap();
     let mut next = Workbench::default();
-    assert!(Host::with_recovery_file(recovery.clone()).recover(&mut next));
-    assert_eq!(next.tab_count(), 3);
-    // The tab active when the record was written is active again.
+    assert!(Host::with_data_folder(data.clone()).recover(&mut next));
+    let names: Vec<_> = next
+        .tab_documents()
+        .iter()
+        .map(|d| d.name.clone())
+        .collect();
+    assert_eq!(names, ["pocket.nc", "O1234.nc", "a.nc"]);
+    // The tab active when the index was written is active again.
     assert_eq!(next.document().name, "O1234.nc");
     assert_eq!(next.text(), "O1234\nG1 X7. F100\nM99\n");
     assert!(!next.is_dirty());
@@ -184,9 +225,169 @@ fn every_tab_comes_back_after_a_crash_with_clean_files_read_again() {
     // The call reaches the sub's tab: its move ends at X7.
     let bounds = next.stats().bounds.unwrap();
     assert!((bounds.1.x - 7.0).abs() < 1e-9, "{bounds:?}");
-    // Saving the last changed tab removes the record.
-    assert!(Host::with_recovery_file(recovery.clone()).save_to(&mut next, &a));
-    assert!(!recovery.exists());
+    // Saving the last changed tab removes the records.
+    assert!(Host::with_data_folder(data.clone()).save_to(&mut next, &a));
+    assert!(
+        recovery_files(&data).is_empty(),
+        "{:?}",
+        recovery_files(&data)
+    );
+}
+
+#[test]
+fn only_the_tab_that_changed_is_written_again_and_closed_tabs_lose_their_record() {
+    let dir = scratch("changed");
+    let data = dir.join("data");
+    let mut host = Host::with_data_folder(data.clone());
+    let mut wb = Workbench::default();
+    wb.open_document("big.nc", "G0 X1\n".repeat(10_000), Encoding::Utf8);
+    wb.open_document("small.nc", "G0 X2\n", Encoding::Utf8);
+    wb.set_text("G0 X2\nG1 X3 F100\n");
+    host.autosave(&mut wb, 1.0);
+    host.autosave(&mut wb, 2.5);
+    let first = records(&data);
+    assert_eq!(first.len(), 3, "{first:?}");
+    let big_file = |data: &Path| {
+        records(data)
+            .into_iter()
+            .find(|n| {
+                std::fs::metadata(data.join("recovery").join(n))
+                    .unwrap()
+                    .len()
+                    == 60_000
+            })
+            .unwrap()
+    };
+    let big = big_file(&data);
+    // The big tab's record is left alone when the small one changes.
+    let stamp = |data: &Path, name: &str| {
+        std::fs::metadata(data.join("recovery").join(name))
+            .unwrap()
+            .modified()
+            .unwrap()
+    };
+    let written = stamp(&data, &big);
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    wb.set_text("G0 X2\nG1 X4 F100\n");
+    host.autosave(&mut wb, 3.0);
+    host.autosave(&mut wb, 4.5);
+    let second = records(&data);
+    assert_eq!(second.len(), 3, "{second:?}");
+    assert_eq!(big_file(&data), big);
+    assert_eq!(stamp(&data, &big), written);
+    let new: Vec<_> = second.iter().filter(|n| !first.contains(n)).collect();
+    assert_eq!(
+        new.len(),
+        1,
+        "only the small tab's record is new: {first:?} {second:?}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(data.join("recovery").join(new[0])).unwrap(),
+        "G0 X2\nG1 X4 F100\n"
+    );
+    // Switching tabs writes the index alone.
+    wb.switch_tab(1);
+    host.autosave(&mut wb, 5.0);
+    host.autosave(&mut wb, 6.5);
+    assert_eq!(records(&data), second);
+    // Closing the big tab removes its record.
+    wb.close_tab(1);
+    host.autosave(&mut wb, 7.0);
+    host.autosave(&mut wb, 8.5);
+    assert_eq!(records(&data).len(), 2);
+    assert!(!records(&data).contains(&big));
+    let mut next = Workbench::default();
+    assert!(Host::with_data_folder(data).recover(&mut next));
+    let names: Vec<_> = next
+        .tab_documents()
+        .iter()
+        .map(|d| d.name.clone())
+        .collect();
+    assert_eq!(names, ["pocket.nc", "small.nc"]);
+    assert_eq!(next.text(), "G0 X2\nG1 X4 F100\n");
+}
+
+#[test]
+fn a_tab_that_cannot_be_kept_is_named_and_tried_again_at_the_next_change() {
+    let dir = scratch("failing");
+    let data = dir.join("data");
+    std::fs::create_dir_all(&data).unwrap();
+    // A file where the recovery folder should be: nothing can be written there.
+    std::fs::write(data.join("recovery"), "in the way").unwrap();
+    let mut host = Host::with_data_folder(data.clone());
+    let mut wb = Workbench::default();
+    wb.open_document("small.nc", "G0 X2\n", Encoding::Utf8);
+    wb.set_text("G0 X2\nG1 X3 F100\n");
+    host.autosave(&mut wb, 1.0);
+    host.autosave(&mut wb, 2.5);
+    let message = wb.message().unwrap_or_default().to_string();
+    assert!(
+        message.starts_with("Not kept for recovery: pocket.nc, small.nc ("),
+        "{message}"
+    );
+    // Without a change nothing is tried again; the next change is.
+    std::fs::remove_file(data.join("recovery")).unwrap();
+    host.autosave(&mut wb, 3.0);
+    assert!(recovery_files(&data).is_empty());
+    wb.set_text("G0 X2\nG1 X4 F100\n");
+    host.autosave(&mut wb, 4.0);
+    host.autosave(&mut wb, 5.5);
+    assert_eq!(records(&data).len(), 2);
+    assert_eq!(
+        wb.message(),
+        Some("Kept for recovery again: pocket.nc, small.nc")
+    );
+    let mut next = Workbench::default();
+    assert!(Host::with_data_folder(data).recover(&mut next));
+    assert_eq!(next.text(), "G0 X2\nG1 X4 F100\n");
+}
+
+#[test]
+fn the_single_recovery_file_of_earlier_versions_is_read_once_then_removed() {
+    let dir = scratch("migrate");
+    let data = dir.join("data");
+    std::fs::create_dir_all(&data).unwrap();
+    let old = files::Session {
+        tabs: vec![
+            swarf_ui::TabRecord {
+                name: "a.nc".into(),
+                path: None,
+                encoding: Encoding::Utf8,
+                text: "G0 X1\n".into(),
+                dirty: false,
+            },
+            swarf_ui::TabRecord {
+                name: "b.nc".into(),
+                path: None,
+                encoding: Encoding::Big5,
+                text: "G0 X2\n".into(),
+                dirty: true,
+            },
+        ],
+        active: 1,
+    };
+    std::fs::write(data.join("recovery.nc"), old.to_record()).unwrap();
+    let mut host = Host::with_data_folder(data.clone());
+    let mut wb = Workbench::default();
+    assert!(host.recover(&mut wb));
+    assert_eq!(wb.document().name, "b.nc");
+    assert_eq!(wb.message(), Some("Recovered unsaved changes of b.nc"));
+    // The first autosave keeps the tabs as records and removes the old file.
+    host.autosave(&mut wb, 1.0);
+    host.autosave(&mut wb, 2.5);
+    assert!(!data.join("recovery.nc").exists());
+    assert_eq!(records(&data).len(), 2);
+    let mut next = Workbench::default();
+    assert!(Host::with_data_folder(data).recover(&mut next));
+    let names: Vec<_> = next
+        .tab_documents()
+        .iter()
+        .map(|d| d.name.clone())
+        .collect();
+    assert_eq!(names, ["a.nc", "b.nc"]);
+    assert_eq!(next.text(), "G0 X2\n");
+    assert_eq!(next.document().encoding, Encoding::Big5);
+    assert!(next.is_dirty());
 }
 
 #[derive(Default)]

@@ -254,3 +254,62 @@ fn calls_reach_programs_in_files_beside_the_program() {
         ]
     );
 }
+
+/// A file found by its name is the program it is named for, with an `O` line or without one;
+/// an `O` line that says another number is warned of, and the file still runs as the one
+/// called.
+#[test]
+fn a_file_found_by_its_name_is_the_program_called() {
+    let dir = tempfile::tempdir().unwrap();
+    let main = temp_file(
+        &dir,
+        "main.nc",
+        b"G90 G0 X0 Y0\nM98 P5001\nM98 P5001\nM98 P5003\nM30\n",
+    );
+    temp_file(&dir, "5001.nc", b"G91 G1 X1. F100.\nM99\n");
+    temp_file(&dir, "5003.nc", b"O5002\nG91 G1 Y1. F100.\nM99\n");
+    let (code, out, err) = swarf(&["canon", &main]);
+    assert_eq!(code, 0, "{err}");
+    let feeds: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|v| v["kind"] == "feed")
+        .collect();
+    assert_eq!(feeds.len(), 3, "{out}");
+    assert_eq!(feeds[1]["to"], serde_json::json!([2.0, 0.0, 0.0]));
+    assert_eq!(feeds[2]["to"], serde_json::json!([2.0, 1.0, 0.0]));
+    assert!(feeds[0]["file"].as_str().unwrap().ends_with("5001.nc"));
+    assert_eq!(feeds[0]["line"], 1);
+    assert!(!err.contains("E-SUBPROGRAM"), "{err}");
+    assert!(
+        err.contains("5003.nc:1:1: warning[W-PROGRAM-NUMBER]"),
+        "{err}"
+    );
+}
+
+/// Lines ended by `\r\r\n` (some Windows tools) or by a `\r` alone are lines, in every dialect,
+/// and the diagnostics' line numbers count those ends.
+#[test]
+fn lines_ended_by_carriage_returns_are_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = temp_file(&dir, "crcrlf.ngc", b"G21 G90\r\r\nG0 X1 Y2\r\r\nM2\r\r\n");
+    for dialect in ["linuxcnc", "fanuc", "syntec", "lnc", "kt", "gsk"] {
+        let (_, out, err) = swarf(&["canon", &f, "--dialect", dialect]);
+        assert!(!err.contains("E-SYNTAX-CHAR"), "{dialect}: {err}");
+        assert!(
+            out.lines().next().unwrap().contains("\"rapid\""),
+            "{dialect}: {out}"
+        );
+    }
+    let (code, out, err) = swarf(&["canon", &f, "--dialect", "linuxcnc"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.is_empty(), "{err}");
+    assert_eq!(
+        out.lines().next().unwrap(),
+        r#"{"line":3,"kind":"rapid","to":[1.0,2.0,0.0]}"#
+    );
+    let f = temp_file(&dir, "cr.nc", b"G21 G90\rG0 X1 Y2\rG1 X$\rM2\r");
+    let (code, _, err) = swarf(&["check", &f, "--dialect", "linuxcnc"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("cr.nc:3:4: error"), "{err}");
+}

@@ -58,7 +58,9 @@ enum Action {
     /// Syntec G134, G135, G136, G137.1: the stored canned cycle at each point of a hole pattern.
     Pattern(u32),
     StrokeLimit(bool),
-    /// A mode with nothing to draw (cancels, arc-centre mode, lathe diameter mode).
+    /// LinuxCNC G90.1 (`true`) / G91.1: whether arc centres I/J/K are absolute.
+    ArcCentres(bool),
+    /// A mode with nothing to draw (cancels, lathe diameter mode).
     Nothing,
 }
 
@@ -123,7 +125,9 @@ fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
         }
         (Group::MacroModal, 660) => Action::ModalMacro(true),
         (Group::MacroModal, 670) => Action::ModalMacro(false),
-        (Group::ArcDistance | Group::LatheMode, _) => Action::Nothing,
+        (Group::ArcDistance, 901) => Action::ArcCentres(true),
+        (Group::ArcDistance, 911) => Action::ArcCentres(false),
+        (Group::LatheMode, _) => Action::Nothing,
         (Group::NonModal, 520) => Action::Local,
         (Group::NonModal, 530) => Action::Machine,
         (Group::NonModal, 920) => Action::SetPosition,
@@ -427,13 +431,16 @@ fn execute_block(
     }
     let st = &mut it.st;
     let length_before = st.length_comp.map_or(0.0, |(_, o)| o);
-    settings(st, words);
+    if !settings(st, words) {
+        return Flow::Stop;
+    }
     let presets_spindle = has(|a| matches!(a, Action::SetPosition));
     // Units first: the block's numbers are read in the new unit.
     for (a, _) in &actions {
         match *a {
             Action::Metric(m) => st.metric = m,
             Action::Absolute(abs) => st.absolute = abs,
+            Action::ArcCentres(abs) => st.arc_centres_absolute = abs,
             Action::Plane(p) => st.plane = p,
             Action::FeedMode(m) => st.feed_mode = m,
             Action::SpindleMode(css) => st.css = css,
@@ -448,7 +455,7 @@ fn execute_block(
     for (a, w) in &actions {
         match *a {
             Action::WorkOffset => work_offset(st, w, words),
-            Action::LengthComp(sign) => length_comp(st, w, words, sign),
+            Action::LengthComp(sign) if !length_comp(st, w, words, sign) => return Flow::Stop,
             Action::StrokeLimit(on) => {
                 stroke_limit(st, w, words, on);
                 let zone = st.stroke_zone.filter(|_| st.stroke_check);
@@ -572,7 +579,9 @@ fn execute_block(
                 true
             }
             Action::DataInput => {
-                data_input(st, w, words);
+                if !data_input(st, w, words) {
+                    return Flow::Stop;
+                }
                 true
             }
             Action::Dwell => {
@@ -954,18 +963,66 @@ fn feed_word(st: &mut State, f: Option<&Word>) {
     }
 }
 
-/// S and T, D and H words.
-fn settings(st: &mut State, words: &[Word]) {
+/// S and T, D and H words; with M06 in the block, the selected tool is the one in the spindle
+/// from here on (LinuxCNC changes the tool before it applies G43 or G41/G42). Returns `false`
+/// when the run stops: LinuxCNC selects only the tools of its table.
+fn settings(st: &mut State, words: &[Word]) -> bool {
     for w in words.iter().filter(|w| w.form == WordForm::Plain) {
         match w.letter {
-            b'T' if w.value >= 0.0 => st.tool = w.value.round() as u32,
+            b'T' if w.value >= 0.0 => {
+                let tool = w.value.round() as u32;
+                if st.dialect == Dialect::LinuxCnc && !known_register(st, tool, w.span, "tool") {
+                    return false;
+                }
+                st.tool = tool;
+            }
             b'D' if w.value >= 0.0 => st.d_word = w.value.round() as u32,
             b'H' if w.value >= 0.0 && st.dialect != Dialect::Syntec => {
                 st.h_word = w.value.round() as u32;
             }
+            b'M' if w.value == 6.0 => st.spindle_tool = st.tool,
             _ => {}
         }
     }
+    true
+}
+
+/// Whether offset register (or LinuxCNC tool) `n`, named by the word at `span`, is one the
+/// setup holds; `what` is what is read from it (`length`, `radius`, or `tool` for a LinuxCNC T
+/// word). Number 0 is no register. One the setup does not hold reads as zeros: with a note when
+/// the setup listed no registers at all (nothing is known of the machine's), with a warning in
+/// the Fanuc family when it listed others, and in LinuxCNC, whose tool table must hold every
+/// tool a program names, with an error: the run stops there (`false`), as LinuxCNC's does.
+fn known_register(st: &mut State, n: u32, span: swarf_syntax::Span, what: &str) -> bool {
+    if n == 0 || st.setup.registers.contains_key(&n) {
+        return true;
+    }
+    if !st.registers_listed {
+        if what != "tool" {
+            st.diagnostics.push(Diagnostic::note(
+                span,
+                "N-OFFSET-UNSET",
+                format!("offset register {n} is not in the setup: its {what} is taken as 0"),
+            ));
+        }
+        return true;
+    }
+    if st.dialect == Dialect::LinuxCnc {
+        st.diagnostics.push(Diagnostic::error(
+            span,
+            "E-TOOL-UNKNOWN",
+            format!(
+                "tool {n} is not in the setup's tool table (its registers): LinuxCNC stops here (requested tool not found in the tool table)"
+            ),
+        ));
+        return false;
+    }
+    st.diagnostics.push(Diagnostic::warning(
+        span,
+        "W-OFFSET-UNSET",
+        format!("offset register {n} is not among the setup's registers: its {what} is taken as 0"),
+    ));
+    true
 }
 
 /// The S word: the spindle speed (rpm under G97, surface speed under G96), or with G92 the
@@ -1084,9 +1141,12 @@ fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
     }
     let n = match d {
         Some(d) => d.value.round().max(0.0) as u32,
-        None if linuxcnc => st.tool,
+        None if linuxcnc => st.spindle_tool,
         None => st.d_word,
     };
+    if !known_register(st, n, d.map_or(w.span, |d| d.span), "radius") {
+        return false;
+    }
     let orientation = st.setup.registers.get(&n).map_or(0, |r| r.orientation);
     if linuxcnc && st.plane != Axis::Y && !matches!(orientation, 0 | 9) {
         st.diagnostics.push(Diagnostic::error(
@@ -1101,18 +1161,11 @@ fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
     }
     st.cutter_comp = if tenths == 420 { 420 } else { 410 };
     st.comp.orientation = orientation;
-    if let Some(r) = st.setup.registers.get(&n) {
-        st.comp_radius = r.radius + r.radius_wear;
-    } else {
-        st.comp_radius = 0.0;
-        if n != 0 {
-            st.diagnostics.push(Diagnostic::note(
-                d.map_or(w.span, |d| d.span),
-                "N-OFFSET-UNSET",
-                format!("offset register {n} is not in the setup: its radius is taken as 0"),
-            ));
-        }
-    }
+    st.comp_radius = st
+        .setup
+        .registers
+        .get(&n)
+        .map_or(0.0, |r| r.radius + r.radius_wear);
     true
 }
 
@@ -1138,6 +1191,7 @@ fn new_radius_register(st: &mut State, words: &[Word], css: bool) -> bool {
         return true;
     }
     let n = d.value.round().max(0.0) as u32;
+    known_register(st, n, d.span, "radius");
     let r = st.setup.registers.get(&n).copied().unwrap_or_default();
     st.comp_radius = r.radius + r.radius_wear;
     st.comp.orientation = r.orientation;
@@ -1162,6 +1216,7 @@ fn new_length_register(st: &mut State, words: &[Word], has_code: bool) {
         st.length_comp = None;
         return;
     }
+    known_register(st, n, h.span, "length");
     let length = st
         .setup
         .registers
@@ -1564,10 +1619,28 @@ fn arc(
         center[u] = from[u] + du / 2.0 - side * h * dv / chord;
         center[v] = from[v] + dv / 2.0 + side * h * du / chord;
     } else {
+        // LinuxCNC G90.1: the centre words are the centre's program coordinates.
+        let absolute = st.arc_centres_absolute;
+        let plane = match st.plane {
+            Axis::Z => "XY plane (G17)",
+            Axis::Y => "XZ plane (G18)",
+            Axis::X => "YZ plane (G19)",
+        };
         for (i, w) in offsets.iter().enumerate() {
             if let Some(w) = w {
                 if i == u || i == v {
-                    center[i] = from[i] + st.length(w);
+                    let at = st.length(w);
+                    center[i] = if absolute { at } else { from[i] + at };
+                } else if st.dialect == Dialect::LinuxCnc {
+                    st.diagnostics.push(Diagnostic::error(
+                        w.span,
+                        "E-ARC-WORD",
+                        format!(
+                            "`{}` is not a centre word of an arc in the {plane}: LinuxCNC refuses the block, which is not run",
+                            w.letter()
+                        ),
+                    ));
+                    return false;
                 } else {
                     st.diagnostics.push(Diagnostic::warning(
                         w.span,
@@ -1579,6 +1652,17 @@ fn arc(
                     ));
                 }
             }
+        }
+        if absolute && let Some(i) = [u, v].into_iter().find(|&i| offsets[i].is_none()) {
+            st.diagnostics.push(Diagnostic::error(
+                block.span,
+                "E-ARC-CENTER",
+                format!(
+                    "under G90.1 (absolute arc centres) an arc in the {plane} needs both centre words: `{}` is missing",
+                    char::from(b"IJK"[i])
+                ),
+            ));
+            return false;
         }
         let r0 = plane_length(from[u] - center[u], from[v] - center[v]);
         let r1 = plane_length(p[u] - center[u], p[v] - center[v]);
@@ -1754,31 +1838,36 @@ fn work_offset(st: &mut State, w: &Word, words: &[Word]) {
 }
 
 /// G43/G44 H / G49: the tool tip still follows the programmed Z; the offset is recorded.
-fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option<bool>) {
+/// G43/G44 H (`sign`: whether it adds) and G49 (`None`). Without H the Fanuc family takes the
+/// last H word, LinuxCNC the tool in the spindle. Returns `false` when the run stops (LinuxCNC:
+/// a tool its table does not hold).
+fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option<bool>) -> bool {
     let Some(plus) = sign else {
         st.length_comp = None;
-        return;
+        return true;
     };
-    let h = find(words, b'H').map_or(st.h_word, |h| h.value.round() as u32);
+    let h_word = find(words, b'H');
+    let h = match h_word {
+        Some(h) => h.value.round() as u32,
+        None if st.dialect == Dialect::LinuxCnc => st.spindle_tool,
+        None => st.h_word,
+    };
     if h == 0 {
-        // H00 cancels (KT).
+        // H00 cancels (KT); LinuxCNC's tool 0 has no offsets.
         st.length_comp = None;
-        return;
+        return true;
+    }
+    if !known_register(st, h, w.span, "length") {
+        return false;
     }
     let length = st
         .setup
         .registers
         .get(&h)
         .map_or(0.0, |r| r.length + r.length_wear);
-    if !st.setup.registers.contains_key(&h) {
-        st.diagnostics.push(Diagnostic::note(
-            w.span,
-            "N-OFFSET-UNSET",
-            format!("offset register {h} is not in the setup: its length is taken as 0"),
-        ));
-    }
     st.length_comp = Some((h, if plus { length } else { -length }));
     st.length_plus = plus;
+    true
 }
 
 fn polar(st: &mut State, on: bool) {
@@ -1963,8 +2052,9 @@ fn set_position(st: &mut State, axes: &Axes<'_>) {
     st.resync();
 }
 
-/// G10 L2/L20 (work offsets) and L10–L13 / LinuxCNC L1 (offset registers).
-fn data_input(st: &mut State, w: &Word, words: &[Word]) {
+/// G10 L2/L20 (work offsets) and L10–L13 / LinuxCNC L1, L10, L11 (offset registers). Returns
+/// `false` when the run stops (LinuxCNC: a tool its table does not hold).
+fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
     let l = find(words, b'L').map(|l| l.value.round() as i64);
     let p = find(words, b'P').map_or(0, |p| p.value.round() as i64);
     let absolute = st.absolute;
@@ -1984,7 +2074,7 @@ fn data_input(st: &mut State, w: &Word, words: &[Word]) {
                             "E-NUMBER-RANGE",
                             format!("G10 L2 P{p} is not a work coordinate system"),
                         ));
-                        return;
+                        return true;
                     }
                 }
             };
@@ -2034,11 +2124,28 @@ fn data_input(st: &mut State, w: &Word, words: &[Word]) {
         }
         Some(1 | 10 | 11 | 12 | 13) => {
             let linuxcnc = st.dialect == Dialect::LinuxCnc;
-            let reg = st.setup.registers.entry(p.max(0) as u32).or_default();
+            let n = p.max(0) as u32;
+            if linuxcnc
+                && !known_register(st, n, find(words, b'P').map_or(w.span, |p| p.span), "tool")
+            {
+                return false;
+            }
             let metric = st.metric;
             let mm = |x: f64| if metric { x } else { x * 25.4 };
             let r = find(words, b'R').map(|r| mm(r.value));
             let z = find(words, b'Z').map(|z| mm(z.value));
+            // LinuxCNC L10 and L11: the length that makes the current position read Z with
+            // this tool's offset, in the current coordinate system (L10) or in G59.3's, the
+            // tool setter's, with no G52/G92 (L11). The gauge line is the tip plus the offset
+            // in effect.
+            let gauge = st.length_comp.map_or(0.0, |(_, o)| o);
+            let length_for = |z: f64| match l {
+                Some(10) => st.program_pos.z + gauge - z,
+                Some(11) => st.position.z + gauge - st.setup.work_offset("G59.3").z - z,
+                _ => z,
+            };
+            let z = z.map(length_for);
+            let reg = st.setup.registers.entry(n).or_default();
             let slot = match (linuxcnc, l) {
                 (true, _) => {
                     if let Some(z) = z {
@@ -2047,7 +2154,7 @@ fn data_input(st: &mut State, w: &Word, words: &[Word]) {
                     if let Some(r) = r {
                         reg.radius = r;
                     }
-                    return;
+                    return true;
                 }
                 (_, Some(10)) => &mut reg.length,
                 (_, Some(11)) => &mut reg.length_wear,
@@ -2064,6 +2171,7 @@ fn data_input(st: &mut State, w: &Word, words: &[Word]) {
             "this G10 data type is not interpreted yet and is ignored",
         )),
     }
+    true
 }
 
 /// G28 (n = 1) / G30 Pn: rapid to the intermediate point, then to the reference point, for the

@@ -152,6 +152,15 @@ pub(crate) struct State {
     /// The spindle-speed clamp (`G92 S`) for G96.
     pub spindle_clamp: Option<f64>,
     pub tool: u32,
+    /// The tool `M06` last put in the spindle (LinuxCNC's G43 without H and G41/G42 without D
+    /// take its offsets; `tool` is the one the last T word selected).
+    pub spindle_tool: u32,
+    /// Whether the setup listed offset registers (a LinuxCNC tool table) before the run: the
+    /// registers a program then names must be among them (those G10 writes do not count).
+    pub registers_listed: bool,
+    /// LinuxCNC G90.1: arc centres I/J/K are positions in the program frame rather than
+    /// distances from the arc's start (G91.1, the power-on mode).
+    pub arc_centres_absolute: bool,
     /// Active length compensation: register number and signed offset (mm).
     pub length_comp: Option<(u32, f64)>,
     /// Whether the active length compensation is G43 (add) rather than G44 (subtract).
@@ -201,6 +210,7 @@ impl State {
     /// Power-on state.
     pub fn new(setup: Setup, dialect: Dialect) -> State {
         let wcs_offset = setup.work_offset("G54");
+        let registers_listed = !setup.registers.is_empty();
         let inch_default = false;
         State {
             setup,
@@ -242,6 +252,9 @@ impl State {
             surface_speed: 0.0,
             spindle_clamp: None,
             tool: 0,
+            spindle_tool: 0,
+            registers_listed,
+            arc_centres_absolute: false,
             length_comp: None,
             length_plus: true,
             cutter_comp: 400,

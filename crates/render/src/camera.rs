@@ -18,6 +18,8 @@ const DEFAULT_DISTANCE: f32 = 100.0;
 const ORBIT_RADIANS_PER_PX: f32 = 0.01;
 /// Fraction of the view left free around a fitted box (1.1 = 10 % margin).
 const FIT_MARGIN: f32 = 1.1;
+/// Most steps back [`OrbitCamera::fit_in`] takes to fit a box in perspective.
+const FIT_IN_STEPS: usize = 16;
 /// Perspective near plane as a fraction of the orbit distance.
 const NEAR_FRACTION: f32 = 1.0e-3;
 
@@ -193,21 +195,110 @@ impl OrbitCamera {
     /// Empty (`min > max`) or non-finite boxes reset to the default framing of the origin;
     /// zero-size boxes (a single point, a line seen end-on) get a small non-zero framing.
     pub fn fit_aspect(&mut self, min: Vec3, max: Vec3, aspect: f32) {
+        let tan_y = (self.fov() * 0.5).tan();
+        self.fit_tangents(min, max, tan_y * sane_aspect(aspect), tan_y);
+    }
+
+    /// Frames the box `min..max` like [`Self::fit_aspect`], but inside the part `free_min..
+    /// free_max` (pixels from the top-left corner) of a viewport `viewport_px` wide and high,
+    /// e.g. below a row of buttons drawn over the view, keeping the view direction. An empty
+    /// or invalid part frames in the whole viewport.
+    pub fn fit_in(
+        &mut self,
+        min: Vec3,
+        max: Vec3,
+        viewport_px: Vec2,
+        free_min: Vec2,
+        free_max: Vec2,
+    ) {
+        let valid = viewport_px.is_finite()
+            && viewport_px.cmpge(Vec2::ONE).all()
+            && free_min.is_finite()
+            && free_max.is_finite()
+            && (free_max - free_min).cmpge(Vec2::ONE).all();
+        if !valid {
+            self.fit_aspect(min, max, viewport_px.x / viewport_px.y);
+            return;
+        }
+        let (free_min, free_max) = (free_min.max(Vec2::ZERO), free_max.min(viewport_px));
+        let free = (free_max - free_min).max(Vec2::ONE);
+        // The frustum through the free part: its share of the viewport's field of view.
+        let tan_y = (self.fov() * 0.5).tan();
+        let (tan_x, tan_y) = (
+            tan_y * free.x / viewport_px.y,
+            tan_y * free.y / viewport_px.y,
+        );
+        self.fit_tangents(min, max, tan_x, tan_y);
+        if !min.is_finite() || !max.is_finite() || min.cmpgt(max).any() {
+            return;
+        }
+        // Then move the box's centre from the viewport's centre to the free part's. In
+        // perspective the box's depth makes that shift inexact: step back until it fits.
+        let center = (min + max) * 0.5;
+        let shift = (free_min + free_max) * 0.5 - viewport_px * 0.5;
+        let (right, up, _) = self.basis();
+        for _ in 0..FIT_IN_STEPS {
+            let upp = self.units_per_px(viewport_px.y);
+            let target = center - right * (shift.x * upp) + up * (shift.y * upp);
+            if !target.is_finite() {
+                return;
+            }
+            self.target = target;
+            if self.projection == Projection::Orthographic
+                || self.frames_in(min, max, viewport_px, free_min, free_max)
+            {
+                return;
+            }
+            self.distance = (self.dist() * 1.1).clamp(MIN_DISTANCE, MAX_DISTANCE);
+        }
+    }
+
+    /// Whether every corner of the box `min..max` is seen inside the pixels `free_min..free_max`
+    /// of a viewport `viewport_px` (half a pixel of slack).
+    fn frames_in(
+        &self,
+        min: Vec3,
+        max: Vec3,
+        viewport_px: Vec2,
+        free_min: Vec2,
+        free_max: Vec2,
+    ) -> bool {
+        let view_proj = self.view_proj(viewport_px.x / viewport_px.y);
+        (0..8).all(|i| {
+            let corner = Vec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            );
+            let clip = view_proj * corner.extend(1.0);
+            if clip.w <= 0.0 {
+                return false;
+            }
+            let px = Vec2::new(
+                (clip.x / clip.w + 1.0) * 0.5 * viewport_px.x,
+                (1.0 - clip.y / clip.w) * 0.5 * viewport_px.y,
+            );
+            px.cmpge(free_min - 0.5).all() && px.cmple(free_max + 0.5).all()
+        })
+    }
+
+    /// Frames the box `min..max` so that it fits a frustum of half-angle tangents `tan_x`,
+    /// `tan_y` about the view axis, with a margin (see [`Self::fit_aspect`]).
+    fn fit_tangents(&mut self, min: Vec3, max: Vec3, tan_x: f32, tan_y: f32) {
         if !min.is_finite() || !max.is_finite() || min.cmpgt(max).any() {
             self.target = Vec3::ZERO;
             self.distance = DEFAULT_DISTANCE;
             self.scene_radius = DEFAULT_DISTANCE;
             return;
         }
-        let aspect = sane_aspect(aspect);
+        let tan_x = finite_or(tan_x, 1.0).max(1.0e-6);
+        let tan_y = finite_or(tan_y, 1.0).max(1.0e-6);
         let center = (min + max) * 0.5;
         let radius = (max - min).length() * 0.5;
         let radius = if radius > 1.0e-6 { radius } else { 1.0 };
         // Never frame less than a twentieth of the scene, so flat or end-on boxes stay sane.
         let floor = radius * 0.05;
         let (right, up, back) = self.basis();
-        let tan_y = (self.fov() * 0.5).tan();
-        let tan_x = tan_y * aspect;
         let mut needed: f32 = 0.0;
         for i in 0..8 {
             let corner = Vec3::new(
@@ -379,6 +470,60 @@ mod tests {
                 "corner {p} -> {ndc} outside NDC; camera {camera:?} aspect {aspect}"
             );
         }
+    }
+
+    #[test]
+    fn fit_in_frames_every_corner_inside_the_free_part() {
+        let boxes = [
+            (Vec3::new(-10.0, -20.0, -5.0), Vec3::new(110.0, 40.0, 3.0)),
+            (Vec3::new(0.0, 0.0, 0.0), Vec3::new(100.0, 100.0, 0.0)),
+            (Vec3::new(5.0, 5.0, -50.0), Vec3::new(5.0, 5.0, 0.0)),
+            (Vec3::new(-3.0, -3.0, -3.0), Vec3::new(3.0, 3.0, 30.0)),
+        ];
+        let viewport = Vec2::new(800.0, 600.0);
+        // Below a 30-pixel row of buttons, and a part off to one side.
+        let parts = [
+            (Vec2::new(0.0, 30.0), viewport),
+            (Vec2::new(200.0, 100.0), Vec2::new(700.0, 400.0)),
+        ];
+        for (min, max) in boxes {
+            for view in VIEWS {
+                for projection in PROJECTIONS {
+                    for (free_min, free_max) in parts {
+                        let mut camera = OrbitCamera::new(view);
+                        camera.projection = projection;
+                        camera.fit_in(min, max, viewport, free_min, free_max);
+                        assert!(
+                            camera.frames_in(min, max, viewport, free_min, free_max),
+                            "{min}..{max} not inside {free_min}..{free_max}: {camera:?}"
+                        );
+                        // Framed, not lost in a corner: it spans much of the free part.
+                        let vp = camera.view_proj(viewport.x / viewport.y);
+                        let xs: Vec<f32> =
+                            corners(min, max).map(|p| vp.project_point3(p).x).collect();
+                        let ys: Vec<f32> =
+                            corners(min, max).map(|p| vp.project_point3(p).y).collect();
+                        let span = |v: &[f32]| {
+                            v.iter().copied().fold(f32::MIN, f32::max)
+                                - v.iter().copied().fold(f32::MAX, f32::min)
+                        };
+                        let wide = span(&xs) * 0.5 * viewport.x / (free_max.x - free_min.x);
+                        let high = span(&ys) * 0.5 * viewport.y / (free_max.y - free_min.y);
+                        // (A line seen end-on, the third box from above, fills nothing.)
+                        let end_on = min.x == max.x && view == StandardView::Top;
+                        assert!(
+                            end_on || wide.max(high) > 0.5,
+                            "{min}..{max} fills {wide}×{high} of the part ({view:?})"
+                        );
+                    }
+                }
+            }
+        }
+        // An empty part frames in the whole viewport.
+        let mut camera = OrbitCamera::new(StandardView::Iso);
+        let (min, max) = boxes[0];
+        camera.fit_in(min, max, viewport, Vec2::ZERO, Vec2::ZERO);
+        assert_inside_ndc(&camera, min, max, viewport.x / viewport.y);
     }
 
     #[test]

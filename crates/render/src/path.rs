@@ -7,7 +7,10 @@
 //! flag on a point means "no segment arrives here", so separate polylines (the grid's lines,
 //! several toolpaths) live in one buffer. A path longer than the device's largest buffer
 //! (16.7M points at wgpu's default 256 MiB) is split over several buffers sharing one point at
-//! each seam, one draw call each.
+//! each seam, one draw call each. Every buffer has a small uniform of its own (bind group 1):
+//! where its points start in the stream, so the highlight and playback ranges count segments
+//! from the path's start, and whether it holds the toolpath, since those ranges number
+//! toolpath segments and never apply to the grid and marks drawn from the second stream.
 
 use std::borrow::Cow;
 use std::ops::Range;
@@ -225,8 +228,9 @@ pub const RETRACT_COLOR: [u8; 4] = [255, 160, 210, 255];
 pub const CYCLE_COLOR: [u8; 4] = [190, 130, 255, 255];
 /// Default colour of the compensated contour: white.
 pub const COMPENSATED_COLOR: [u8; 4] = [240, 240, 240, 255];
-/// Default colour of the programmed contour overlay: translucent grey.
-pub const PROGRAMMED_COLOR: [u8; 4] = [170, 170, 170, 160];
+/// Default colour of the programmed contour overlay: magenta, drawn with short dashes, so it
+/// never reads as a grid line even where it runs along one.
+pub const PROGRAMMED_COLOR: [u8; 4] = [255, 90, 240, 235];
 /// Colour of ordinary grid lines: grey, translucent so it reads on both themes.
 pub const GRID_COLOR: [u8; 4] = [128, 128, 128, 60];
 /// Colour of every tenth grid line.
@@ -323,10 +327,11 @@ pub struct ViewParams {
     pub dim_alpha: f32,
     /// Seconds, for animations.
     pub time_secs: f32,
-    /// Playback position: segments with an index at or after it are drawn dimmed; `None`
-    /// draws everything as executed.
+    /// Playback position: toolpath segments with an index at or after it are drawn dimmed;
+    /// `None` draws everything as executed. The grid and marks are never dimmed.
     pub executed_segments: Option<u32>,
-    /// Segment indices drawn highlighted (the selected block), besides flagged points.
+    /// Toolpath segment indices drawn highlighted (the selected block), besides flagged
+    /// points; the grid and marks are never highlighted by index.
     pub highlight: Range<u32>,
     /// Kinds not drawn: OR of [`Kind::mask`] (e.g. hide the programmed contour).
     pub hidden_kinds: u32,
@@ -404,6 +409,23 @@ struct Uniforms {
 /// Size of the uniform buffer in bytes.
 pub const UNIFORMS_SIZE: u64 = size_of::<Uniforms>() as u64;
 
+/// What one draw call (one GPU buffer of points) needs besides [`Uniforms`], laid out like the
+/// WGSL `Draw`: where its points start in the whole stream, so segment numbers (highlight,
+/// playback) count from the path's start in every buffer, and whether it is the toolpath —
+/// the grid and reference marks are never highlighted or dimmed by segment number.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct DrawUniforms {
+    segment_base: u32,
+    path: u32,
+    _pad: [u32; 2],
+}
+
+/// Size of the per-draw uniform buffer in bytes.
+pub const DRAW_UNIFORMS_SIZE: u64 = size_of::<DrawUniforms>() as u64;
+
+const _: () = assert!(size_of::<DrawUniforms>() == 16);
+
 const _: () = assert!(size_of::<Uniforms>() == 640);
 
 fn finite_or(value: f32, fallback: f32) -> f32 {
@@ -462,6 +484,9 @@ fn max_points(device: &wgpu::Device) -> u64 {
 /// One GPU vertex buffer of a [`PointBatch`], holding points `first..first + count`.
 struct Chunk {
     buffer: wgpu::Buffer,
+    /// The chunk's [`DrawUniforms`] and the bind group (group 1) that binds them.
+    draw_buffer: wgpu::Buffer,
+    draw_bind_group: wgpu::BindGroup,
     /// Capacity of `buffer` in points.
     capacity: u64,
     /// Index in the whole stream of the chunk's first point.
@@ -481,6 +506,7 @@ impl Chunk {
             return;
         }
         let bytes = self.count * POINT_SIZE;
+        pass.set_bind_group(1, &self.draw_bind_group, &[]);
         // The same buffer twice: instance i reads point i from slot 0, point i + 1 from slot 1.
         pass.set_vertex_buffer(0, self.buffer.slice(..bytes - POINT_SIZE));
         pass.set_vertex_buffer(1, self.buffer.slice(POINT_SIZE..bytes));
@@ -493,6 +519,8 @@ impl Chunk {
 /// path of any length (tens of millions of points) stays resident, one draw call per buffer.
 struct PointBatch {
     label: &'static str,
+    /// Whether the stream is the toolpath (highlight and playback ranges apply to it).
+    path: bool,
     chunks: Vec<Chunk>,
     /// Points uploaded in all.
     count: u64,
@@ -504,9 +532,10 @@ struct PointBatch {
 const CAPACITY_STEP: u64 = 4096;
 
 impl PointBatch {
-    fn new(label: &'static str) -> Self {
+    fn new(label: &'static str, path: bool) -> Self {
         Self {
             label,
+            path,
             chunks: Vec::new(),
             count: 0,
             chunk_limit: None,
@@ -520,8 +549,14 @@ impl PointBatch {
     }
 
     /// Uploads `points`, reusing each buffer whose size fits and reallocating those too small
-    /// or far too big.
-    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
+    /// or far too big; `layout` is the per-draw bind group's (group 1).
+    fn upload(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        points: &[PathPoint],
+    ) {
         let total = points.len() as u64;
         if total < 2 {
             self.count = 0;
@@ -543,6 +578,20 @@ impl PointBatch {
                 Chunk { first, count, ..c }
             } else {
                 let capacity = count.next_multiple_of(CAPACITY_STEP).min(per);
+                let draw_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("swarf_draw_uniforms"),
+                    size: DRAW_UNIFORMS_SIZE,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                let draw_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("swarf_draw_bind_group"),
+                    layout,
+                    entries: &[wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: draw_buffer.as_entire_binding(),
+                    }],
+                });
                 Chunk {
                     buffer: device.create_buffer(&wgpu::BufferDescriptor {
                         label: Some(self.label),
@@ -550,11 +599,19 @@ impl PointBatch {
                         usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
                         mapped_at_creation: false,
                     }),
+                    draw_buffer,
+                    draw_bind_group,
                     capacity,
                     first,
                     count,
                 }
             };
+            let draw = DrawUniforms {
+                segment_base: u32::try_from(first).unwrap_or(u32::MAX),
+                path: u32::from(self.path),
+                _pad: [0; 2],
+            };
+            queue.write_buffer(&chunk.draw_buffer, 0, bytemuck::bytes_of(&draw));
             let range = usize::try_from(first).unwrap_or(usize::MAX)
                 ..usize::try_from(first + count).unwrap_or(usize::MAX);
             if let Some(slice) = points.get(range) {
@@ -615,6 +672,8 @@ pub struct PathRenderer {
     overlay: wgpu::RenderPipeline,
     uniform_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
+    /// Layout of each GPU buffer's per-draw bind group (group 1, [`DrawUniforms`]).
+    draw_layout: wgpu::BindGroupLayout,
     path: PointBatch,
     grid: PointBatch,
 }
@@ -662,9 +721,22 @@ impl PathRenderer {
                 resource: uniform_buffer.as_entire_binding(),
             }],
         });
+        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("swarf_draw_bind_group_layout"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(DRAW_UNIFORMS_SIZE),
+                },
+                count: None,
+            }],
+        });
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("swarf_path_pipeline_layout"),
-            bind_group_layouts: &[Some(&bind_group_layout)],
+            bind_group_layouts: &[Some(&bind_group_layout), Some(&draw_layout)],
             immediate_size: 0,
         });
         let pipeline = |label: &'static str, depth_write: bool| {
@@ -737,15 +809,16 @@ impl PathRenderer {
             overlay: pipeline("swarf_overlay_pipeline", false),
             uniform_buffer,
             bind_group,
-            path: PointBatch::new("swarf_path_points"),
-            grid: PointBatch::new("swarf_grid_points"),
+            draw_layout,
+            path: PointBatch::new("swarf_path_points", true),
+            grid: PointBatch::new("swarf_grid_points", false),
         }
     }
 
     /// Replaces the toolpath points, reusing the buffers whose size fits. Fewer than two
     /// points draw nothing; any number more is kept (split over several buffers if needed).
     pub fn set_path(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
-        self.path.upload(device, queue, points);
+        self.path.upload(device, queue, &self.draw_layout, points);
     }
 
     /// Overwrites part of the uploaded toolpath from point `first` on (e.g. to flag segments
@@ -756,7 +829,7 @@ impl PathRenderer {
 
     /// Replaces the grid, axes and outlines (see [`crate::grid_points`]), drawn after the path.
     pub fn set_grid(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
-        self.grid.upload(device, queue, points);
+        self.grid.upload(device, queue, &self.draw_layout, points);
     }
 
     /// Caps the points one GPU buffer holds below the device's largest buffer, so a long path

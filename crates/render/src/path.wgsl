@@ -44,7 +44,23 @@ struct Uniforms {
 @group(0) @binding(0)
 var<uniform> u: Uniforms;
 
+// One per draw call (one GPU buffer of points).
+struct Draw {
+    // Index in the whole stream of the buffer's first point: instance indices restart at 0 in
+    // every buffer, segment numbers (highlight, playback) count from the stream's start.
+    segment_base: u32,
+    // 1 for the toolpath; 0 for the grid and reference marks, which the highlight and the
+    // playback ranges (numbers of toolpath segments) never touch.
+    path: u32,
+    _pad0: u32,
+    _pad1: u32,
+};
+
+@group(1) @binding(0)
+var<uniform> draw: Draw;
+
 const KIND_RAPID: u32 = 0u;
+const KIND_PROGRAMMED: u32 = 7u;
 const KIND_GRID: u32 = 8u;
 const KIND_GRID_MAJOR: u32 = 9u;
 const HIGHLIGHT_SLOT: u32 = 15u;
@@ -59,7 +75,8 @@ struct VertexOutput {
     // shader gives values interpolated linearly in screen space (WebGL2 has no
     // `noperspective`).
     @location(1) edge: vec3<f32>,
-    // x: half the line width in pixels; y: 1 for dashed (rapid), 0 for solid.
+    // x: half the line width in pixels; y: 0 solid, 1 dashed (rapid), 2 short dashes
+    // (programmed contour).
     @location(2) style: vec2<f32>,
 };
 
@@ -105,9 +122,17 @@ fn vs_main(
         return hidden();
     }
 
+    let on_path = draw.path != 0u;
+    let index = draw.segment_base + segment;
     let highlighted = (flags & FLAG_HIGHLIGHT) != 0u
-        || (segment >= u.highlight_start && segment < u.highlight_end);
+        || (on_path && index >= u.highlight_start && index < u.highlight_end);
     let dashed = kind == KIND_RAPID;
+    var dash_style = 0.0;
+    if dashed {
+        dash_style = 1.0;
+    } else if kind == KIND_PROGRAMMED {
+        dash_style = 2.0;
+    }
     var width = u.line_width;
     if dashed {
         width = u.rapid_width;
@@ -156,7 +181,7 @@ fn vs_main(
     } else {
         color = u.palette[kind & 15u];
     }
-    if segment >= u.executed_end && kind < KIND_GRID && !highlighted {
+    if on_path && index >= u.executed_end && kind < KIND_GRID && !highlighted {
         color.a = color.a * u.dim_alpha;
     }
 
@@ -164,7 +189,7 @@ fn vs_main(
     out.clip_position = clip;
     out.color = color;
     out.edge = vec3<f32>(across * clip.w, along * clip.w, clip.w);
-    out.style = vec2<f32>(half_width, select(0.0, 1.0, dashed));
+    out.style = vec2<f32>(half_width, dash_style);
     return out;
 }
 
@@ -175,9 +200,16 @@ fn coverage(in: VertexOutput) -> f32 {
     let half_width = in.style.x;
     var alpha = 1.0 - smoothstep(half_width - 0.5, half_width + 0.5, abs(across));
     if in.style.y > 0.5 {
-        let period = max(u.dash_on + u.dash_off, 1.0);
+        var on = u.dash_on;
+        var off = u.dash_off;
+        if in.style.y > 1.5 {
+            // The programmed contour: dashes half as long as a rapid's.
+            on = max(u.dash_on * 0.5, 1.0);
+            off = u.dash_off * 0.75;
+        }
+        let period = max(on + off, 1.0);
         let phase = along - floor(along / period) * period;
-        alpha = alpha * (1.0 - smoothstep(u.dash_on - 0.5, u.dash_on + 0.5, phase));
+        alpha = alpha * (1.0 - smoothstep(on - 0.5, on + 0.5, phase));
     }
     return alpha;
 }

@@ -383,13 +383,24 @@ fn composites_into_a_pass_without_depth() {
     }
 }
 
-/// Draws `path` (with the points `highlight` re-uploaded highlighted) into a fresh target with at
-/// most `per_buffer` points in one GPU buffer.
+/// Draws `path` (with the points `highlight` re-uploaded highlighted, or with the segments
+/// `by_range` highlighted through [`ViewParams::highlight`]) into a fresh target with at most
+/// `per_buffer` points in one GPU buffer.
 fn render_split(
     gpu: &HeadlessGpu,
     path: &[PathPoint],
     per_buffer: Option<u64>,
     highlight: std::ops::Range<usize>,
+) -> (Image, usize) {
+    render_split_with(gpu, path, per_buffer, highlight, 0..0)
+}
+
+fn render_split_with(
+    gpu: &HeadlessGpu,
+    path: &[PathPoint],
+    per_buffer: Option<u64>,
+    highlight: std::ops::Range<usize>,
+    by_range: std::ops::Range<u32>,
 ) -> (Image, usize) {
     let (device, queue) = (&gpu.device, &gpu.queue);
     let format = wgpu::TextureFormat::Rgba8Unorm;
@@ -411,6 +422,7 @@ fn render_split(
             viewport_px: Vec2::new(W as f32, H as f32),
             line_width_px: 2.0,
             rapid_width_px: 2.0,
+            highlight: by_range,
             ..ViewParams::default()
         },
     );
@@ -460,9 +472,105 @@ fn a_path_split_over_several_buffers_draws_like_one() {
         whole.pixels, split.pixels,
         "a path split over {many} buffers draws differently"
     );
+    // A highlighted range of segment numbers counts from the path's start in every buffer.
+    let (whole, _) = render_split_with(&gpu, &path, None, 0..0, 399..529);
+    let (split, _) = render_split_with(&gpu, &path, Some(7), 0..0, 399..529);
+    assert!(whole.count(|p| close(p, HIGHLIGHT_COLOR, 40)) > 20);
+    assert_eq!(
+        whole.pixels, split.pixels,
+        "a highlighted range over {many} buffers draws differently"
+    );
     // Two points per buffer is the smallest split: one segment each.
     let (tiny, n) = render_split(&gpu, &path[..50], Some(1), 0..0);
     assert_eq!(n, 49);
     let (single, _) = render_split(&gpu, &path[..50], None, 0..0);
     assert_eq!(tiny.pixels, single.pixels);
+}
+
+#[test]
+fn highlight_and_playback_ranges_touch_only_the_toolpath() {
+    let Some(gpu) = gpu() else {
+        eprintln!("SKIPPED: no wgpu adapter available");
+        return;
+    };
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    // Toolpath: one feed along y = 10 (segment 0), one along y = 0 (segment 2).
+    let path = [
+        PathPoint::pen_up(Vec3::new(-35.0, 10.0, 0.0)),
+        PathPoint::new(Vec3::new(35.0, 10.0, 0.0), Kind::Feed),
+        PathPoint::pen_up(Vec3::new(-35.0, 0.0, 0.0)),
+        PathPoint::new(Vec3::new(35.0, 0.0, 0.0), Kind::Feed),
+    ];
+    // Grid stream: a major grid line along y = -20 (its segment 0) and a programmed contour
+    // mark along y = -12 (its segment 2), numbered like the path's highlighted segments.
+    let grid = [
+        PathPoint::pen_up(Vec3::new(-35.0, -20.0, 0.0)),
+        PathPoint::new(Vec3::new(35.0, -20.0, 0.0), Kind::GridMajor),
+        PathPoint::pen_up(Vec3::new(-35.0, -12.0, 0.0)),
+        PathPoint::new(Vec3::new(35.0, -12.0, 0.0), Kind::Programmed),
+    ];
+    let feed = pixel(Vec3::new(-10.0, 10.0, 0.0));
+    let grid_line = pixel(Vec3::new(-10.0, -20.0, 0.0));
+    let image = render(&gpu, format, &path, &grid, |p| {
+        p.highlight = 0..3;
+        p.grid_width_px = 3.0;
+    });
+    assert!(close(image.at(feed.0, feed.1), HIGHLIGHT_COLOR, 8));
+    let lit = image.count(|p| close(p, HIGHLIGHT_COLOR, 30));
+    let plain = render(&gpu, format, &path, &grid, |p| p.grid_width_px = 3.0);
+    let g = image.at(grid_line.0, grid_line.1);
+    assert_eq!(
+        g,
+        plain.at(grid_line.0, grid_line.1),
+        "grid line highlighted"
+    );
+    // Only the two path lines are lit: no mark or grid line in the highlight colour.
+    let path_only = render(&gpu, format, &path, &[], |p| p.highlight = 0..3);
+    assert_eq!(lit, path_only.count(|p| close(p, HIGHLIGHT_COLOR, 30)));
+    let contour_row = pixel(Vec3::new(0.0, -12.0, 0.0)).1;
+    assert!(
+        (0..W).all(|x| !close(image.at(x, contour_row), HIGHLIGHT_COLOR, 30)),
+        "contour mark highlighted"
+    );
+
+    // Playback before the first segment dims the path, never the marks.
+    let dimmed = render(&gpu, format, &path, &grid, |p| {
+        p.executed_segments = Some(0);
+        p.dim_alpha = 0.25;
+    });
+    let row =
+        |image: &Image| -> Vec<[u8; 4]> { (0..W).map(|x| image.at(x, contour_row)).collect() };
+    assert_eq!(row(&dimmed), row(&plain), "contour mark dimmed by playback");
+    let f = dimmed.at(feed.0, feed.1);
+    assert!(
+        u32::from(f[2]) * 2 < u32::from(FEED_COLOR[2]),
+        "path not dimmed: {f:?}"
+    );
+}
+
+#[test]
+fn the_programmed_contour_is_dashed_in_its_own_colour() {
+    let Some(gpu) = gpu() else {
+        eprintln!("SKIPPED: no wgpu adapter available");
+        return;
+    };
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let grid = [
+        PathPoint::pen_up(Vec3::new(-35.0, 0.0, 0.0)),
+        PathPoint::new(Vec3::new(35.0, 0.0, 0.0), Kind::Programmed),
+    ];
+    let image = render(&gpu, format, &[], &grid, |_| {});
+    let (x0, y) = pixel(Vec3::new(-30.0, 0.0, 0.0));
+    let (x1, _) = pixel(Vec3::new(30.0, 0.0, 0.0));
+    let magenta = |p: [u8; 4]| p[0] > 120 && p[2] > 110 && p[1] + 60 < p[0];
+    let lit = (x0..x1)
+        .filter(|&x| (y.saturating_sub(1)..=y + 1).any(|y| magenta(image.at(x, y))))
+        .count();
+    let span = (x1 - x0) as usize;
+    assert!(
+        lit > span / 4 && lit < span * 9 / 10,
+        "contour not dashed in its colour: {lit} of {span} lit"
+    );
+    // Not grey like a grid line.
+    assert!(!close(swarf_render::PROGRAMMED_COLOR, GRID_MAJOR_COLOR, 60));
 }

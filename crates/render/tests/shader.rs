@@ -3,7 +3,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use swarf_render::{COMPOSITE_WGSL, PATH_WGSL, POINT_SIZE, PathPoint, UNIFORMS_SIZE};
+use swarf_render::{
+    COMPOSITE_WGSL, DRAW_UNIFORMS_SIZE, PATH_WGSL, POINT_SIZE, PathPoint, UNIFORMS_SIZE,
+};
 
 const SHADERS: [(&str, &str); 2] = [("path", PATH_WGSL), ("composite", COMPOSITE_WGSL)];
 
@@ -65,11 +67,23 @@ fn path_shader_entry_points_bindings_and_inputs() {
             "missing entry point {want}: {names:?}"
         );
     }
-    // Exactly one uniform (no storage buffers), the size of the Rust `Uniforms`, padded to
-    // 16 bytes as std140 (WebGL2) requires.
+    // Two uniforms (no storage buffers): the frame's, the size of the Rust `Uniforms`, and
+    // the draw call's, the size of its `DrawUniforms`, both padded to 16 bytes as std140
+    // (WebGL2) requires.
     let globals: Vec<_> = module.global_variables.iter().map(|(_, g)| g).collect();
-    assert_eq!(globals.len(), 1);
-    assert_eq!(globals[0].space, naga::AddressSpace::Uniform);
+    assert_eq!(globals.len(), 2);
+    assert!(
+        globals
+            .iter()
+            .all(|g| g.space == naga::AddressSpace::Uniform)
+    );
+    let draw = module.types[globals[1].ty].inner.size(module.to_ctx());
+    assert_eq!(u64::from(draw), DRAW_UNIFORMS_SIZE);
+    let groups: Vec<u32> = globals
+        .iter()
+        .filter_map(|g| g.binding.as_ref().map(|b| b.group))
+        .collect();
+    assert_eq!(groups, [0, 1]);
     let size = module.types[globals[0].ty].inner.size(module.to_ctx());
     assert_eq!(u64::from(size), UNIFORMS_SIZE);
     assert_eq!(size % 16, 0);

@@ -7,18 +7,29 @@ pub struct LineIndex {
 }
 
 impl LineIndex {
-    /// Builds the table for `text` (a line ends at `\n`; `\r\n` counts as one ending).
+    /// Builds the table for `text`. A line ends at `\n`, at `\r\n` (one ending) or at a `\r`
+    /// alone (old Mac files, and the `\r\r\n` some Windows tools write, which is two endings).
     pub fn new(text: &str) -> Self {
-        // Counted first, the table is written in place.
         let bytes = text.as_bytes();
-        let mut starts = vec![0; count_newlines(bytes) + 1];
-        let mut line = 0;
-        for_each_newline(bytes, |at| {
-            line += 1;
-            if let Some(start) = starts.get_mut(line) {
-                *start = line_after(0, at);
-            }
-        });
+        // Most texts end their lines with `\n`, and a `\r` in one is most often that of a
+        // `\r\n`: one pass finds the line feeds and whether there is a `\r` at all (a line is
+        // rarely under sixteen bytes, so the table seldom grows).
+        let mut starts = Vec::with_capacity(bytes.len() / 16 + 2);
+        starts.push(0);
+        if !for_each_line_feed(bytes, |at| starts.push(line_after(0, at))) {
+            return LineIndex { starts };
+        }
+        // Every `\r` is that of a `\r\n` when there are as many as line feeds after one.
+        let pairs = starts
+            .iter()
+            .skip(1)
+            .filter(|&&start| start >= 2 && bytes.get(start as usize - 2) == Some(&b'\r'))
+            .count();
+        if pairs == count_byte(bytes, b'\r') {
+            return LineIndex { starts };
+        }
+        starts.truncate(1);
+        for_each_line_end(bytes, |at| starts.push(line_after(0, at)));
         LineIndex { starts }
     }
 
@@ -27,9 +38,30 @@ impl LineIndex {
     pub fn from_chunks<'a>(chunks: impl IntoIterator<Item = &'a str>) -> Self {
         let mut starts = vec![0];
         let mut base = 0usize;
+        // A `\r` that ended the chunks so far: a line end unless the next byte is `\n`.
+        let mut cr_at: Option<usize> = None;
         for chunk in chunks {
-            for_each_newline(chunk.as_bytes(), |at| starts.push(line_after(base, at)));
-            base += chunk.len();
+            let bytes = chunk.as_bytes();
+            let Some((&last, init)) = bytes.split_last() else {
+                continue;
+            };
+            if let Some(at) = cr_at.take()
+                && bytes.first() != Some(&b'\n')
+            {
+                starts.push(line_after(0, at));
+            }
+            // A last `\r` waits for the next chunk; before it, the chunk's own bytes tell.
+            let body = if last == b'\r' {
+                cr_at = Some(base + init.len());
+                init
+            } else {
+                bytes
+            };
+            for_each_line_end(body, |at| starts.push(line_after(base, at)));
+            base += bytes.len();
+        }
+        if let Some(at) = cr_at {
+            starts.push(line_after(0, at));
         }
         LineIndex { starts }
     }
@@ -81,41 +113,101 @@ impl LineIndex {
     }
 }
 
-/// The number of `\n` in `bytes`, eight bytes a turn: the newline bytes' marks (see
-/// [`newline_mask`]) are added up in byte-wide lanes, summed every 255 turns.
-fn count_newlines(bytes: &[u8]) -> usize {
-    const ONES: u64 = 0x0101_0101_0101_0101;
+/// The number of bytes `byte` in `bytes`, eight bytes a turn: the bytes' marks (see
+/// [`byte_mask`]) are added up in byte-wide lanes, summed every 255 turns.
+fn count_byte(bytes: &[u8], byte: u8) -> usize {
     const HALF: u64 = 0x00ff_00ff_00ff_00ff;
     let mut total = 0;
     let (words, rest) = bytes.as_chunks::<8>();
     for block in words.chunks(255) {
         let mut lanes = 0u64;
         for word in block {
-            lanes += (newline_mask(word) >> 7) & ONES;
+            lanes += (byte_mask(u64::from_le_bytes(*word), u64::from(byte)) >> 7) & ONES;
         }
         // Byte lanes to 16-bit lanes, then the four summed by a multiplication.
         let pairs = (lanes & HALF) + ((lanes >> 8) & HALF);
         total += (pairs.wrapping_mul(0x0001_0001_0001_0001) >> 48) as usize;
     }
-    total + rest.iter().filter(|&&b| b == b'\n').count()
+    total + rest.iter().filter(|&&b| b == byte).count()
 }
 
-/// The top bit of exactly the bytes of `word` that are `\n`: `(b & 0x7f) + 0x7f` carries into
-/// the top bit, and never out of the byte, for every byte `b` but zero.
+/// Calls `found` with the offset of every `\n` in `bytes`, in order, sixteen bytes a turn with a
+/// mask of their `\n` bytes whose set bits are walked (lines of G-code are about twenty bytes
+/// long, so a search that stops at each newline, `memchr`, spends more on starting again than
+/// on scanning); returns whether `bytes` has a `\r`, seen as a zero byte of `word ^ 0x0d…` (a
+/// borrow runs into the byte above a zero one, never below: whether there is one is exact).
 #[inline(always)]
-fn newline_mask(word: &[u8; 8]) -> u64 {
+fn for_each_line_feed(bytes: &[u8], mut found: impl FnMut(usize)) -> bool {
+    let mut cr = 0u64;
+    let mut walk = |at: usize, half: &[u8]| {
+        let word = u64::from_le_bytes(half.try_into().unwrap_or([0; 8]));
+        let v = word ^ (u64::from(b'\r') * ONES);
+        cr |= v.wrapping_sub(ONES) & !v;
+        let mut mask = byte_mask(word, u64::from(b'\n'));
+        while mask != 0 {
+            found(at + mask.trailing_zeros() as usize / 8);
+            mask &= mask - 1;
+        }
+    };
+    let (pairs, rest) = bytes.as_chunks::<16>();
+    let mut at = 0;
+    for pair in pairs {
+        let (low, high) = pair.split_at(8);
+        walk(at, low);
+        walk(at + 8, high);
+        at += 16;
+    }
+    for &b in rest {
+        if b == b'\n' {
+            found(at);
+        }
+        at += 1;
+    }
+    cr & 0x8080_8080_8080_8080 != 0 || rest.contains(&b'\r')
+}
+
+/// Whether byte `i` of `bytes` ends a line: a `\n`, or a `\r` that no `\n` follows.
+#[inline(always)]
+fn ends_line(bytes: &[u8], i: usize) -> bool {
+    match bytes.get(i) {
+        Some(b'\n') => true,
+        Some(b'\r') => bytes.get(i + 1) != Some(&b'\n'),
+        _ => false,
+    }
+}
+
+/// One in every byte.
+const ONES: u64 = 0x0101_0101_0101_0101;
+
+/// The top bit of exactly the bytes of `word` that are `byte` (not zero): `(b & 0x7f) + 0x7f`
+/// carries into the top bit, and never out of the byte, for every byte `b` but zero.
+#[inline(always)]
+fn byte_mask(word: u64, byte: u64) -> u64 {
     const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
-    let x = u64::from_le_bytes(*word) ^ 0x0a0a_0a0a_0a0a_0a0a;
+    let x = word ^ (byte * ONES);
     !(((x & LOW7) + LOW7) | x | LOW7)
 }
 
-/// Calls `found` with the offset of every `\n` in `bytes`, in order.
-///
-/// Sixteen bytes a turn, with a mask of their newline bytes whose set bits are walked: lines of
-/// G-code are about twenty bytes long, so a search that stops at each newline (`memchr`) spends
-/// more on starting again than on scanning.
+/// The top bit of exactly the bytes of `word` that end a line: each `\n`, and each `\r` not
+/// followed by a `\n` (`next` is the byte after the word, 0 at the text's end).
 #[inline(always)]
-fn for_each_newline(bytes: &[u8], mut found: impl FnMut(usize)) {
+fn line_end_mask(word: &[u8; 8], next: u8) -> u64 {
+    let word = u64::from_le_bytes(*word);
+    let lf = byte_mask(word, u64::from(b'\n'));
+    let cr = byte_mask(word, u64::from(b'\r'));
+    // A `\n` after each byte: the next byte's mark moved down one lane, the last from `next`.
+    let lf_after = (lf >> 8) | (u64::from(next == b'\n') << 63);
+    lf | (cr & !lf_after)
+}
+
+/// Calls `found` with the offset of every byte of `bytes` that ends a line (see
+/// [`LineIndex::new`]; a last `\r` counts as an end), in order.
+///
+/// Sixteen bytes a turn, with a mask of their line-ending bytes whose set bits are walked:
+/// lines of G-code are about twenty bytes long, so a search that stops at each newline
+/// (`memchr`) spends more on starting again than on scanning.
+#[inline(always)]
+fn for_each_line_end(bytes: &[u8], mut found: impl FnMut(usize)) {
     let mut walk = |at: usize, mut mask: u64| {
         while mask != 0 {
             found(at + mask.trailing_zeros() as usize / 8);
@@ -126,15 +218,17 @@ fn for_each_newline(bytes: &[u8], mut found: impl FnMut(usize)) {
     let mut at = 0;
     for pair in pairs {
         let (low, high) = pair.split_at(8);
-        walk(at, newline_mask(low.try_into().unwrap_or(&[0; 8])));
-        walk(at + 8, newline_mask(high.try_into().unwrap_or(&[0; 8])));
+        let low = low.try_into().unwrap_or(&[0; 8]);
+        let high = high.try_into().unwrap_or(&[0; 8]);
+        walk(at, line_end_mask(low, high[0]));
+        let next = bytes.get(at + 16).copied().unwrap_or(0);
+        walk(at + 8, line_end_mask(high, next));
         at += 16;
     }
-    for &b in rest {
-        if b == b'\n' {
-            found(at);
+    for i in at..at + rest.len() {
+        if ends_line(bytes, i) {
+            found(i);
         }
-        at += 1;
     }
 }
 
@@ -182,13 +276,18 @@ impl LineCols<'_> {
 mod tests {
     use super::*;
 
-    /// The table by its definition: 0, then one past every `\n`.
+    /// The table by its definition: 0, then one past every `\n` and every `\r` that no `\n`
+    /// follows.
     fn simple_starts(text: &str) -> Vec<u32> {
+        let bytes = text.as_bytes();
         std::iter::once(0)
             .chain(
-                text.bytes()
+                bytes
+                    .iter()
                     .enumerate()
-                    .filter(|&(_, b)| b == b'\n')
+                    .filter(|&(i, &b)| {
+                        b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n'))
+                    })
                     .map(|(i, _)| u32::try_from(i + 1).unwrap_or(u32::MAX)),
             )
             .collect()
@@ -207,9 +306,27 @@ mod tests {
             "12345678\n",
             "\n2345678\n2345678\n2345678",
             "\u{e9}\u{e9}\u{e9}\u{e9}\n\u{e9}\n",
+            "G21 G90\r\r\nG0 X1 Y2\r\r\nM2\r\r\n",
+            "G1\rX1\rY2\r",
+            "1234567\r\n1234567\r\r123456\r\n\r",
+            "123456789012345\r\n123456789012345\r",
         ] {
             assert_eq!(LineIndex::new(text).starts, simple_starts(text), "{text:?}");
         }
+    }
+
+    #[test]
+    fn a_carriage_return_alone_ends_a_line_and_before_a_line_feed_does_not() {
+        let index = LineIndex::new("G21\r\r\nG0 X1\rM2\r\n");
+        assert_eq!(index.starts, [0, 4, 6, 12, 16]);
+        // Split between the `\r` and the `\n`, or after a last `\r`, the pieces agree.
+        for chunks in [
+            &["G21\r", "\r", "\nG0 X1\r", "M2\r", "\n"][..],
+            &["G21\r\r", "", "\nG0 X1", "\rM2\r\n"],
+        ] {
+            assert_eq!(LineIndex::from_chunks(chunks.iter().copied()), index);
+        }
+        assert_eq!(LineIndex::from_chunks(["G0\r", ""]).starts, [0, 3]);
     }
 
     // proptest is a native-only dev-dependency.
@@ -222,9 +339,9 @@ mod tests {
         proptest! {
             #![proptest_config(ProptestConfig::with_cases(2000))]
             #[test]
-            fn line_starts_are_one_past_each_newline(
+            fn line_starts_are_one_past_each_line_end(
                 pieces in prop::collection::vec(
-                    prop::sample::select(&["\n", "\r\n", "\r", "G1", " X3.2040", "\u{e9}", "", "\n\n", "12345678"][..]),
+                    prop::sample::select(&["\n", "\r\n", "\r", "\r\r\n", "G1", " X3.2040", "\u{e9}", "", "\n\n", "12345678"][..]),
                     0..40,
                 ),
                 cuts in prop::collection::vec(0usize..200, 0..5),

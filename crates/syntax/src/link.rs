@@ -113,7 +113,10 @@ impl Program {
                 if linked.iter().any(|l| l.name == name) {
                     continue;
                 }
-                let sub = crate::parse(&text, dialect);
+                let mut sub = crate::parse(&text, dialect);
+                if let Missing::Number(n) = missing {
+                    number_by_file_name(&mut sub, n, &name);
+                }
                 let lines = sub.lines.clone();
                 self.link(sub, &name, main_len, text.len());
                 linked.push(LinkedSource { name, text, lines });
@@ -267,6 +270,38 @@ impl Program {
         }
         missing
     }
+}
+
+/// Makes `sub`, read from the file `name` found by its name for program `O n`, that program
+/// when it does not hold it: a file found by its name is the program, as a control that loads
+/// it under that number runs it, whether it opens with an `O` line or not. A file without one
+/// gets an empty block numbered `O n` before its first (a call runs the blocks after its `O`
+/// block); a file that opens with another program's number is taken as `O n`, with a warning.
+fn number_by_file_name(sub: &mut Program, n: u32, name: &str) {
+    let defines = |b: &crate::Block| b.program() == Some(&ProgramNumber::Number(n));
+    if sub.blocks.iter().any(defines) {
+        return;
+    }
+    if let Some(first) = sub.blocks.first_mut()
+        && let Some(other) = first.program()
+    {
+        let other = match other {
+            ProgramNumber::Number(m) => format!("O{m:04}"),
+            ProgramNumber::Name(s) => format!("O<{s}>"),
+        };
+        sub.diagnostics.push(crate::Diagnostic::warning(
+            first.span,
+            "W-PROGRAM-NUMBER",
+            format!(
+                "{name} is found by its name for O{n:04} but opens with {other}: it runs as O{n:04}"
+            ),
+        ));
+        first.set_program(ProgramNumber::Number(n));
+        return;
+    }
+    let mut header = crate::Block::default();
+    header.set_program(ProgramNumber::Number(n));
+    sub.blocks.insert(0, header);
 }
 
 fn rebase_statement(s: &mut Statement, id: &impl Fn(ExprId) -> ExprId) {

@@ -280,7 +280,7 @@ impl ParseRun {
                 done = raw_len >= rest.len();
                 continue;
             }
-            let raw_len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+            let raw_len = line_len(rest);
             let at = offset.wrapping_sub(base);
             let raw = bytes.get(at..at + raw_len).unwrap_or_default();
             // Whole at a line's ends, the text is cut between characters.
@@ -707,10 +707,11 @@ impl PlainLimits {
 /// and checked, exactly as the general reader would make and check it.
 ///
 /// `bytes` is the text from the line's start on: the line ends at its `\n` (a `\r` just before
-/// it, or at the end, is not part of it) or at the end of `bytes`, and is found as it is read.
-/// Returns whether the line gave a block (a blank line gives none) and the length of the line
-/// with its `\r` if it has one (where its `\n` is, if it has one), or `None`, having read
-/// nothing, for any other line (or one over [`MAX_LINE_BYTES`]): the general reader reads it.
+/// it is not part of it), at a `\r` alone or at the end of `bytes` (see [`line_len`]), and is
+/// found as it is read. Returns whether the line gave a block (a blank line gives none) and the
+/// length of the line (up to the byte that ends it, a `\r\n` line with its `\r`), or `None`,
+/// having read nothing, for any other line (or one over [`MAX_LINE_BYTES`]): the general
+/// reader reads it.
 #[inline]
 fn read_plain_line(
     bytes: &[u8],
@@ -723,11 +724,12 @@ fn read_plain_line(
     // A line longer than the longest read whole is left to the general reader, which cuts it:
     // it is read no further than that here, and goes there at its end.
     let bytes = bytes.get(..MAX_LINE_BYTES + 2).unwrap_or(bytes);
-    // The line's length with its `\r` if it ends at `pos` (where a `\n`, a `\r\n` or the end is).
+    // The line's length with its `\r` if it ends at `pos` (where a `\n`, a `\r\n`, a `\r` alone
+    // or the end is): a `\r\n` line keeps its `\r`, a line ended by a `\r` alone does not.
     let end_at = |pos: usize| -> Option<usize> {
         match bytes.get(pos) {
             None | Some(b'\n') => Some(pos),
-            Some(b'\r') if matches!(bytes.get(pos + 1), None | Some(b'\n')) => Some(pos + 1),
+            Some(b'\r') => Some(pos + usize::from(bytes.get(pos + 1) == Some(&b'\n'))),
             _ => None,
         }
     };
@@ -860,6 +862,25 @@ const PLAIN_LETTERS: [u8; 256] = {
     }
     table
 };
+
+/// The length of the line `bytes` starts with, up to the byte that ends it (as
+/// [`LineIndex`] ends lines): its `\n` (a `\r\n` line keeps its `\r`, which the reader
+/// leaves out), a `\r` that no `\n` follows, or the end of `bytes`.
+fn line_len(bytes: &[u8]) -> usize {
+    let mut at = 0;
+    while let Some(off) = bytes
+        .get(at..)
+        .and_then(|rest| rest.iter().position(|&b| b == b'\n' || b == b'\r'))
+    {
+        let end = at + off;
+        if bytes.get(end) == Some(&b'\n') || bytes.get(end + 1) != Some(&b'\n') {
+            return end;
+        }
+        // `\r\n`: the `\n` ends the line.
+        at = end + 1;
+    }
+    bytes.len()
+}
 
 fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'

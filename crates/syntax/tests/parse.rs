@@ -195,6 +195,110 @@ fn a_linked_program_keeps_its_meaning_past_the_main_text() {
     );
 }
 
+/// A file found by its name for `M98 P n` is program `O n`, with an `O` line or without one;
+/// one that opens with another number runs as `O n`, with a warning.
+#[test]
+fn a_file_found_by_its_name_is_that_program() {
+    let main = "M98 P5001\nM98 P5003\nM98 P5004\nM30\n";
+    let mut p = parse(main, Dialect::Fanuc);
+    let files = [
+        (5001, "5001.nc", "G91 G1 X1. F100.\nM99\n"),
+        (5003, "5003.nc", "O5002\nG1 Y1.\nM99\n"),
+        (5004, "O5004.nc", "O5004\nG1 Z1.\nM99\n"),
+    ];
+    let linked = p.link_calls(main.len(), Dialect::Fanuc, 8, |missing| {
+        files.iter().find_map(|(n, name, text)| {
+            (*missing == swarf_syntax::Missing::Number(*n))
+                .then(|| (name.to_string(), text.to_string()))
+        })
+    });
+    assert_eq!(linked.len(), 3);
+    assert!(p.missing_calls().is_empty(), "{:?}", p.missing_calls());
+    let start = |n: u32| {
+        p.blocks
+            .iter()
+            .position(|b| b.program() == Some(&ProgramNumber::Number(n)))
+            .unwrap()
+    };
+    // Without an `O` line: an empty `O5001` block on the file's first line, before its own.
+    let at = start(5001);
+    assert!(p.blocks[at].words.is_empty());
+    assert_eq!(p.blocks[at].line, p.linked[0].first_line);
+    assert_eq!(p.blocks[at + 1].words[0].letter(), 'G');
+    assert_eq!(p.blocks[at + 1].line, p.linked[0].first_line);
+    // A contradicting `O` line: the program runs as O5003, with a warning in that file.
+    assert!(
+        p.blocks
+            .iter()
+            .all(|b| b.program() != Some(&ProgramNumber::Number(5002)))
+    );
+    let warned: Vec<_> = p
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "W-PROGRAM-NUMBER")
+        .collect();
+    assert_eq!(warned.len(), 1, "{:?}", p.diagnostics);
+    assert!(warned[0].message.contains("O5002") && warned[0].message.contains("O5003"));
+    assert_eq!(
+        p.linked_at_offset(warned[0].span.start)
+            .map(|i| p.linked[i].name.as_str()),
+        Some("5003.nc")
+    );
+    // A file that holds its program is linked as it is.
+    assert_eq!(start(5004) + 1, p.blocks.len() - 2);
+}
+
+/// A line ends at `\n`, `\r\n` or a `\r` alone, so the `\r\r\n` some Windows tools write is two
+/// line ends and no stray character.
+#[test]
+fn a_carriage_return_ends_a_line_alone_or_before_a_line_feed() {
+    for (text, lines) in [
+        ("G90\r\r\nG0 X1. Y2.\r\r\nM30\r\r\n", [0, 2, 4]),
+        ("G90\rG0 X1. Y2.\rM30", [0, 1, 2]),
+        ("G90\r\nG0 X1. Y2.\nM30\r\n", [0, 1, 2]),
+    ] {
+        for dialect in Dialect::ALL {
+            let p = parse(text, dialect);
+            assert!(
+                p.diagnostics.iter().all(|d| d.code != "E-SYNTAX-CHAR"),
+                "{dialect:?} {text:?}: {:?}",
+                p.diagnostics
+            );
+            let found: Vec<u32> = p.blocks.iter().map(|b| b.line).collect();
+            assert_eq!(found, lines, "{dialect:?} {text:?}");
+            // The second block's words, where the text has them.
+            let x = p.blocks[1].words[1].span;
+            assert_eq!(&text[x.start as usize..x.end as usize], "X1.");
+            assert_eq!(
+                p.lines.line_col(text, x.start),
+                (lines[1] + 1, 4),
+                "{dialect:?} {text:?}"
+            );
+        }
+    }
+    // A diagnostic's line counts the `\r` alone as a line end.
+    let text = "G90\rG1 X$\rM30\r";
+    let p = parse(text, Dialect::Fanuc);
+    let bad = p
+        .diagnostics
+        .iter()
+        .find(|d| d.severity == Severity::Error)
+        .unwrap();
+    assert_eq!(p.lines.line_col(text, bad.span.start), (2, 4));
+    // Lines read from a text in pieces (an editor's rope) end where the text's do.
+    let text = "G90\r\r\nG0 X1.\rY2.\r\nM30\r";
+    let whole = parse(text, Dialect::LinuxCnc);
+    for cut in 1..text.len() {
+        let (a, b) = text.split_at(cut);
+        let index = swarf_syntax::LineIndex::from_chunks([a, b]);
+        assert_eq!(index, whole.lines, "cut at {cut}");
+        let mut run = swarf_syntax::ParseRun::with_lines(index, Dialect::LinuxCnc);
+        let mut source: &str = text;
+        while !run.step_from(&mut source, 2) {}
+        assert_eq!(run.finish(), whole, "cut at {cut}");
+    }
+}
+
 #[test]
 fn a_block_keeps_its_rare_parts_in_one_box_and_gives_them_back() {
     let text = "O0012 (part)\nG1 X1. Y2. Z3.\n#1 = 5 (set) (twice)\n";

@@ -783,6 +783,7 @@ pub fn scene_of(path: &Toolpath, generation: u64) -> Scene {
     color_by_tool(path, &mut points);
     let diagonal = (bounds.max - bounds.min).length();
     let mut marks = hole_marks(path, rel, diagonal);
+    marks.extend(peck_marks(path, rel, diagonal));
     marks.extend(programmed_marks(path, rel));
     marks.extend(origin_marks(path, rel, diagonal));
     for (min, max) in path.zone_boxes() {
@@ -862,6 +863,43 @@ fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> glam::Vec3, diagonal: f64)
             } else {
                 PathPoint::new(p, Kind::Cycle)
             });
+        }
+    }
+    marks
+}
+
+/// A small cross across the hole's axis at the bottom of every peck of a hole drilled in more
+/// than one plunge (G83, G73): each peck's retract runs back over the plunges, so without
+/// them the pecks merge into one line and cannot be counted.
+fn peck_marks(path: &Toolpath, rel: impl Fn(DVec3) -> glam::Vec3, diagonal: f64) -> Vec<PathPoint> {
+    let half = (diagonal / 150.0).clamp(0.5, 5.0) * 0.6;
+    let mut plunges: Vec<(usize, usize)> = Vec::new();
+    for (segment, role) in path.cycle_moves() {
+        if role == CycleMove::Plunge
+            && let Some(hole) = path.hole_of_segment(segment)
+        {
+            plunges.push((hole, segment));
+        }
+    }
+    let mut marks = Vec::new();
+    for group in plunges.chunk_by(|a, b| a.0 == b.0) {
+        if group.len() < 2 {
+            continue;
+        }
+        let Some(hole) = path.holes().get(group[0].0) else {
+            continue;
+        };
+        let axis = (hole.bottom - hole.top).normalize_or(DVec3::NEG_Z);
+        let u = axis.any_orthonormal_vector();
+        let v = axis.cross(u);
+        for &(_, segment) in group {
+            let Some(&bottom) = path.ends().get(segment) else {
+                continue;
+            };
+            for across in [u, v] {
+                marks.push(PathPoint::pen_up(rel(bottom - across * half)));
+                marks.push(PathPoint::new(rel(bottom + across * half), Kind::Plunge));
+            }
         }
     }
     marks

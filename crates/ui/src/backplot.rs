@@ -45,6 +45,12 @@ const KEY_PAN_POINTS: f32 = 40.0;
 /// One `+` press zooms in by this factor.
 const KEY_ZOOM: f32 = 1.25;
 
+/// Width of the outline that shows the view has the keyboard focus, in points.
+const FOCUS_OUTLINE_POINTS: f32 = 2.0;
+
+/// Space left between the view's buttons and what a fit frames, in points.
+const FIT_GAP_POINTS: f32 = 4.0;
+
 /// How far from a segment (in points) the cursor may be to pick it.
 pub const PICK_RADIUS: f32 = 6.0;
 
@@ -161,13 +167,49 @@ impl Scene {
         self.points.len().saturating_sub(1)
     }
 
-    /// The segments caused by source `line`, from its first to its last (a block's segments
-    /// are consecutive); `None` when the line moved nothing.
+    /// The segments caused by source `line`: every run of consecutive segments whose line it
+    /// is, in order (several when the line runs more than once, as in a subprogram called
+    /// twice or a loop); empty when the line moved nothing. Exactly these are highlighted.
     #[must_use]
-    pub fn segments_of_line(&self, line: u32) -> Option<Range<usize>> {
-        let first = self.lines.iter().position(|&l| l == line)?;
-        let last = self.lines.iter().rposition(|&l| l == line)?;
-        Some(first..last + 1)
+    pub fn segments_of_line(&self, line: u32) -> Vec<Range<usize>> {
+        let mut runs: Vec<Range<usize>> = Vec::new();
+        for (i, _) in self.lines.iter().enumerate().filter(|(_, l)| **l == line) {
+            match runs.last_mut() {
+                Some(run) if run.end == i => run.end = i + 1,
+                _ => runs.push(i..i + 1),
+            }
+        }
+        runs
+    }
+
+    /// The box that framing the view shows: the toolpath and the reference marks drawn with
+    /// it (holes, pecks, the programmed contour, program zeros, stroke limits), but not the
+    /// machine's travel box; `None` when there is nothing.
+    #[must_use]
+    pub fn view_bounds(&self) -> Option<(Vec3, Vec3)> {
+        let mut min = Vec3::splat(f32::INFINITY);
+        let mut max = Vec3::splat(f32::NEG_INFINITY);
+        if let Some((lo, hi)) = self.bounds {
+            min = lo;
+            max = hi;
+        }
+        for (i, p) in self.marks.iter().enumerate() {
+            // A pen-up point starts the segment after it, and is of that segment's kind.
+            let kind = if p.is_pen_up() {
+                self.marks
+                    .get(i + 1)
+                    .filter(|next| !next.is_pen_up())
+                    .and_then(PathPoint::kind)
+            } else {
+                p.kind()
+            };
+            let v = p.position();
+            if kind.is_some_and(|k| k != Kind::Boundary) && v.is_finite() {
+                min = min.min(v);
+                max = max.max(v);
+            }
+        }
+        (min.is_finite() && max.is_finite()).then_some((min, max))
     }
 
     /// Machine coordinates (mm) of a point in the scene's frame.
@@ -240,6 +282,9 @@ impl Scene {
     }
 }
 
+/// Runs of consecutive segments (a block's, which may have run more than once).
+type Runs = Arc<Vec<Range<usize>>>;
+
 /// What is under the cursor in the backplot (or was clicked).
 #[derive(Clone, Debug, PartialEq)]
 pub struct HoverInfo {
@@ -273,8 +318,13 @@ pub struct Backplot {
     last_generation: Option<u64>,
     /// Whether the last scene shown had geometry (fit again when it reappears).
     had_geometry: bool,
-    /// Fit to the scene's extents on the next frame.
+    /// Fit to the scene's extents on the next frame …
     fit_pending: bool,
+    /// … or, when set, once the scene has caught up with [`Self::coming`] (a program just
+    /// opened or replaced: the scene on screen is still the one before it).
+    fit_waits: bool,
+    /// The generation of a scene still being made for the text shown, if any.
+    coming: Option<u64>,
     /// Fit to the selected block on the next frame.
     zoom_to_selection_pending: bool,
     /// The block whose segments are highlighted.
@@ -296,9 +346,19 @@ pub struct Backplot {
     hover: Option<HoverInfo>,
     hover_key: Option<HoverKey>,
     /// Highlighted segments cached per (generation, line).
-    selection: Option<(u64, u32, Option<Range<usize>>)>,
+    selection: Option<(u64, u32, Runs)>,
     /// Where the view was last drawn, for [`Self::screen_pos`].
     last_rect: Option<egui::Rect>,
+    /// The view's widget id at the last frame (whose keyboard focus [`Self::has_focus`] asks).
+    last_id: Option<egui::Id>,
+}
+
+/// The view's buttons as drawn this frame.
+struct Buttons {
+    /// Where the row of buttons lies.
+    rect: egui::Rect,
+    /// Whether one was clicked.
+    clicked: bool,
 }
 
 impl Default for Backplot {
@@ -316,6 +376,8 @@ impl Backplot {
             last_generation: None,
             had_geometry: false,
             fit_pending: true,
+            fit_waits: false,
+            coming: None,
             zoom_to_selection_pending: false,
             selected_line: None,
             picked_line: None,
@@ -328,6 +390,7 @@ impl Backplot {
             hover_key: None,
             selection: None,
             last_rect: None,
+            last_id: None,
         }
     }
 
@@ -364,9 +427,25 @@ impl Backplot {
         ctx.data_mut(|d| d.insert_temp(installed_key(), true));
     }
 
-    /// Fit to extents on the next frame.
+    /// Frames everything drawn (see [`Scene::view_bounds`]) once: on the next frame, or, while
+    /// the scene of a new text is still being made (see [`Self::set_coming_generation`]), as
+    /// soon as it is shown. For a program opened, replaced or chosen; edits do not call it.
     pub fn fit(&mut self) {
         self.fit_pending = true;
+        self.fit_waits = true;
+    }
+
+    /// Frames everything drawn on the next frame, whatever is being made (the view's own
+    /// Fit button, keys and standard views).
+    fn fit_now(&mut self) {
+        self.fit_pending = true;
+        self.fit_waits = false;
+    }
+
+    /// The generation of the scene being made for the text shown (an analysis still running),
+    /// or `None` when the scene shown is the latest: a [`Self::fit`] waits for that scene.
+    pub fn set_coming_generation(&mut self, generation: Option<u64>) {
+        self.coming = generation;
     }
 
     /// Fit to the selected block's segments on the next frame (nothing without a selection).
@@ -508,6 +587,10 @@ impl Backplot {
 
     /// Draws the scene filling the available space; handles input and picking; re-uploads
     /// when `scene.generation` changes; fits to extents the first time geometry appears.
+    ///
+    /// The view takes the keyboard focus when it is clicked or dragged (and shows it with an
+    /// outline): its keys (see [`Self::handle_keys`]) act only while it has it, so they never
+    /// reach the editor, and the editor's never reach it.
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) -> egui::Response {
         let size = ui.available_size().max(egui::vec2(64.0, 64.0));
         let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
@@ -528,41 +611,50 @@ impl Backplot {
         }
 
         self.track_scene(scene);
+        self.take_focus(ui, &response);
         self.handle_input(ui, &response, rect);
         // Reserve the paint slot now so the overlay buttons land on top of the 3D lines, but
         // build the callback last so button clicks take effect this very frame.
         let slot = ui.painter().add(egui::Shape::Noop);
-        self.overlay_buttons(ui, rect);
+        let buttons = self.overlay_buttons(ui, rect);
+        if buttons.clicked {
+            // A button of the view keeps the keyboard with the view.
+            response.request_focus();
+        }
 
         let aspect = rect.width() / rect.height();
-        if self.fit_pending {
+        if self.fit_due(scene) {
             self.fit_pending = false;
-            match scene.bounds {
-                Some((min, max)) => self.camera.fit_aspect(min, max, aspect),
-                // Nothing to frame: the default view of the origin.
-                None => self.camera.fit_aspect(Vec3::ONE, Vec3::ZERO, aspect),
-            }
+            self.fit_waits = false;
+            self.frame_scene(scene, rect, buttons.rect);
         }
         // Pick with the camera as it is drawn this frame, before the highlight is chosen so
         // a click shows its selection at once.
         self.handle_picking(&response, rect, scene);
         self.last_rect = Some(rect);
-        let selection = self.selection_range(scene);
+        let selection = self.selection_runs(scene);
         if self.zoom_to_selection_pending {
             self.zoom_to_selection_pending = false;
-            if let Some((min, max)) = selection
-                .clone()
-                .and_then(|s| segment_bounds(&scene.points, s))
-            {
+            let bounds = selection
+                .iter()
+                .filter_map(|run| segment_bounds(&scene.points, run.clone()))
+                .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+            if let Some((min, max)) = bounds {
                 self.camera.zoom_to_selection(min, max, aspect);
             }
         }
 
         let to_u32 = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        // One run goes to the shader as a range; several are flagged on the points instead.
+        let (highlight, flagged) = match selection.as_slice() {
+            [] => (0..0, Arc::new(Vec::new())),
+            [run] => (to_u32(run.start)..to_u32(run.end), Arc::new(Vec::new())),
+            _ => (0..0, Arc::clone(&selection)),
+        };
         let params = ViewParams {
             view_proj: self.camera.view_proj(aspect),
             executed_segments: self.playback.executed(scene).or(self.executed).map(to_u32),
-            highlight: selection.map_or(0..0, |s| to_u32(s.start)..to_u32(s.end)),
+            highlight,
             hidden_kinds: self.hidden_kinds,
             color_mode: self.color_mode,
             ..ViewParams::default()
@@ -575,6 +667,7 @@ impl Backplot {
             bounds: scene.bounds,
             zero: scene.zero,
             marks: Arc::clone(&scene.marks),
+            flagged,
             rect,
             params,
         };
@@ -583,9 +676,81 @@ impl Backplot {
             egui_wgpu::Callback::new_paint_callback(rect, callback),
         );
         self.paint_tool(ui, rect, scene);
+        if response.has_focus() {
+            // The keyboard is the view's: an outline in the focus colour says so.
+            let stroke =
+                egui::Stroke::new(FOCUS_OUTLINE_POINTS, ui.visuals().selection.stroke.color);
+            ui.painter()
+                .rect_stroke(rect, 0.0, stroke, egui::StrokeKind::Inside);
+        }
         match &self.hover {
             Some(hover) => response.on_hover_ui_at_pointer(|ui| hover_tooltip(ui, hover, scene)),
             None => response,
+        }
+    }
+
+    /// Whether a fit asked for is to be done with `scene`: at once, or once the scene being
+    /// made when it was asked for is shown.
+    fn fit_due(&self, scene: &Scene) -> bool {
+        self.fit_pending && (!self.fit_waits || self.coming.is_none_or(|g| g <= scene.generation))
+    }
+
+    /// Whether the view has the keyboard focus (its keys act only then).
+    #[must_use]
+    pub fn has_focus(&self, ctx: &egui::Context) -> bool {
+        self.last_id
+            .is_some_and(|id| ctx.memory(|m| m.has_focus(id)))
+    }
+
+    /// A press, click or drag in the view gives it the keyboard focus, taken from whatever had
+    /// it (the editor); while it has it, the arrow keys and Escape stay with it rather than
+    /// move the focus (Tab still does).
+    fn take_focus(&mut self, ui: &egui::Ui, response: &egui::Response) {
+        self.last_id = Some(response.id);
+        let pressed = response.is_pointer_button_down_on()
+            || response.clicked()
+            || response.secondary_clicked()
+            || response.middle_clicked()
+            || response.drag_started();
+        if pressed && !response.has_focus() {
+            response.request_focus();
+        }
+        if response.has_focus() {
+            ui.memory_mut(|m| {
+                m.set_focus_lock_filter(
+                    response.id,
+                    egui::EventFilter {
+                        tab: false,
+                        horizontal_arrows: true,
+                        vertical_arrows: true,
+                        escape: true,
+                    },
+                );
+            });
+        }
+    }
+
+    /// Frames [`Scene::view_bounds`] in the part of `rect` below the view's buttons (`buttons`),
+    /// so nothing fitted lies under them.
+    fn frame_scene(&mut self, scene: &Scene, rect: egui::Rect, buttons: egui::Rect) {
+        let top = if buttons.is_positive() {
+            (buttons.max.y + FIT_GAP_POINTS).min(rect.max.y - 1.0)
+        } else {
+            rect.min.y
+        };
+        let free = egui::Rect::from_min_max(egui::pos2(rect.min.x, top), rect.max);
+        let viewport = Vec2::new(rect.width(), rect.height());
+        let (free_min, free_max) = (free.min - rect.min, free.max - rect.min);
+        let (free_min, free_max) = (
+            Vec2::new(free_min.x, free_min.y),
+            Vec2::new(free_max.x, free_max.y),
+        );
+        match scene.view_bounds() {
+            Some((min, max)) => self.camera.fit_in(min, max, viewport, free_min, free_max),
+            // Nothing to frame: the default view of the origin.
+            None => self
+                .camera
+                .fit_aspect(Vec3::ONE, Vec3::ZERO, rect.width() / rect.height()),
         }
     }
 
@@ -633,20 +798,32 @@ impl Backplot {
         self.had_geometry = has_geometry;
     }
 
-    /// The selected block's segments (cached per scene generation and line).
-    fn selection_range(&mut self, scene: &Scene) -> Option<Range<usize>> {
-        let line = self.selected_line?;
+    /// The selected block's segments, as runs (cached per scene generation and line).
+    fn selection_runs(&mut self, scene: &Scene) -> Runs {
+        let Some(line) = self.selected_line else {
+            return Arc::new(Vec::new());
+        };
         match &self.selection {
-            Some((generation, cached, range))
+            Some((generation, cached, runs))
                 if *generation == scene.generation && *cached == line =>
             {
-                range.clone()
+                Arc::clone(runs)
             }
             _ => {
-                let range = scene.segments_of_line(line);
-                self.selection = Some((scene.generation, line, range.clone()));
-                range
+                let runs = Arc::new(scene.segments_of_line(line));
+                self.selection = Some((scene.generation, line, Arc::clone(&runs)));
+                runs
             }
+        }
+    }
+
+    /// The segments highlighted at the last frame: those of the selected block (the editor's
+    /// line, a clicked segment's, or playback's current block), as runs.
+    #[must_use]
+    pub fn highlighted_segments(&self) -> Vec<Range<usize>> {
+        match (&self.selection, self.selected_line) {
+            (Some((_, line, runs)), Some(selected)) if *line == selected => runs.to_vec(),
+            _ => Vec::new(),
         }
     }
 
@@ -744,19 +921,18 @@ impl Backplot {
         }
 
         if response.double_clicked() {
-            self.fit();
+            self.fit_now();
         }
-        // Keys never go to the view while another widget (the editor) has keyboard focus.
-        let focus = ui.ctx().memory(egui::Memory::focused);
-        if response.hovered() && focus.is_none_or(|id| id == response.id) {
+        // A key goes to one place: the view's keys act only while it has the keyboard focus.
+        if response.has_focus() {
             self.handle_keys(ui, viewport);
         }
     }
 
-    /// Keys while the pointer is over the view and no widget has keyboard focus: arrows orbit
-    /// (with Shift they pan), `+`/`-` zoom, `F` fits, `S` zooms to the selection, `1`–`4` pick
-    /// the iso, top, front and right views, `P` toggles perspective, `R` rapids, and Escape
-    /// clears the selection.
+    /// Keys while the view has the keyboard focus (click it first): arrows orbit (with Shift
+    /// they pan), `+`/`-` zoom, `F` fits, `S` zooms to the selection, `1`–`4` pick the iso,
+    /// top, front and right views, `P` toggles perspective, `R` rapids, `T` colours by tool,
+    /// and Escape clears the selection.
     fn handle_keys(&mut self, ui: &egui::Ui, viewport: Vec2) {
         use egui::Key;
         let (shift, pressed) = ui.input(|i| {
@@ -776,6 +952,7 @@ impl Backplot {
                 Key::Num4,
                 Key::P,
                 Key::R,
+                Key::T,
                 Key::Escape,
             ];
             let pressed: Vec<Key> = keys.into_iter().filter(|k| i.key_pressed(*k)).collect();
@@ -800,7 +977,7 @@ impl Backplot {
             match key {
                 Key::Plus | Key::Equals => self.camera.zoom(KEY_ZOOM),
                 Key::Minus => self.camera.zoom(1.0 / KEY_ZOOM),
-                Key::F => self.fit(),
+                Key::F => self.fit_now(),
                 Key::S => self.zoom_to_selection(),
                 Key::Num1 | Key::Num2 | Key::Num3 | Key::Num4 => {
                     let view = match key {
@@ -810,7 +987,7 @@ impl Backplot {
                         _ => StandardView::Right,
                     };
                     self.camera.set_view(view);
-                    self.fit();
+                    self.fit_now();
                 }
                 Key::P => {
                     self.camera.projection = match self.camera.projection {
@@ -831,7 +1008,8 @@ impl Backplot {
 
     /// Small buttons in the view's top-left corner: Fit, the standard views, the projection,
     /// rapids on/off and zoom to the selected block.
-    fn overlay_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) {
+    fn overlay_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) -> Buttons {
+        let mut clicked = false;
         let mut child = ui.new_child(
             egui::UiBuilder::new()
                 .id_salt("swarf_backplot_buttons")
@@ -843,7 +1021,8 @@ impl Backplot {
             .on_hover_text(tr("Fit to extents (double-click)"))
             .clicked()
         {
-            self.fit();
+            clicked = true;
+            self.fit_now();
         }
         for (label, view) in [
             ("Iso", StandardView::Iso),
@@ -852,8 +1031,9 @@ impl Backplot {
             ("Right", StandardView::Right),
         ] {
             if child.small_button(tr(label)).clicked() {
+                clicked = true;
                 self.camera.set_view(view);
-                self.fit();
+                self.fit_now();
             }
         }
         let perspective = self.camera.projection == Projection::Perspective;
@@ -862,6 +1042,7 @@ impl Backplot {
             .on_hover_text(tr("Perspective / orthographic projection"))
             .clicked()
         {
+            clicked = true;
             self.camera.projection = if perspective {
                 Projection::Orthographic
             } else {
@@ -874,6 +1055,7 @@ impl Backplot {
             .on_hover_text(tr("Colour the path by tool instead of by kind of move (T)"))
             .clicked()
         {
+            clicked = true;
             self.toggle_color_by_tool();
         }
         let contour = self.kind_visible(Kind::Programmed);
@@ -884,6 +1066,7 @@ impl Backplot {
             ))
             .clicked()
         {
+            clicked = true;
             self.set_kind_visible(Kind::Programmed, !contour);
         }
         let rapids = self.kind_visible(Kind::Rapid);
@@ -892,6 +1075,7 @@ impl Backplot {
             .on_hover_text(tr("Show or hide rapid moves"))
             .clicked()
         {
+            clicked = true;
             self.set_kind_visible(Kind::Rapid, !rapids);
         }
         if self.selected_line.is_some()
@@ -900,7 +1084,12 @@ impl Backplot {
                 .on_hover_text(tr("Zoom to the selected block"))
                 .clicked()
         {
+            clicked = true;
             self.zoom_to_selection();
+        }
+        Buttons {
+            rect: child.min_rect(),
+            clicked,
         }
     }
 }
@@ -988,6 +1177,8 @@ struct GpuView {
     generation: Option<u64>,
     /// Parameters of the image in `target`; drawing again is skipped while they hold.
     drawn: Option<ViewParams>,
+    /// The runs of segments whose points carry the highlight flag on the GPU.
+    flagged: Runs,
     last_frame: u64,
 }
 
@@ -1000,6 +1191,9 @@ struct BackplotCallback {
     bounds: Option<(Vec3, Vec3)>,
     zero: Vec3,
     marks: Arc<Vec<PathPoint>>,
+    /// Runs of segments to highlight by flagging their points (a block that ran several
+    /// times); a single run goes through `params.highlight` instead.
+    flagged: Runs,
     rect: egui::Rect,
     /// View parameters in points, for the whole rectangle.
     params: ViewParams,
@@ -1026,6 +1220,7 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             bind_group: None,
             generation: None,
             drawn: None,
+            flagged: Arc::new(Vec::new()),
             last_frame: self.frame,
         });
         view.last_frame = self.frame;
@@ -1036,6 +1231,19 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             grid.extend_from_slice(&self.marks);
             view.renderer.set_grid(device, queue, &grid);
             view.generation = Some(self.generation);
+            view.drawn = None;
+            // Fresh points carry no flags.
+            view.flagged = Arc::new(Vec::new());
+        }
+        if !Arc::ptr_eq(&view.flagged, &self.flagged) && view.flagged != self.flagged {
+            flag_runs(
+                &view.renderer,
+                queue,
+                &self.points,
+                &view.flagged,
+                &self.flagged,
+            );
+            view.flagged = Arc::clone(&self.flagged);
             view.drawn = None;
         }
 
@@ -1110,6 +1318,64 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         );
         resources.compositor.paint(render_pass, bind_group);
     }
+}
+
+/// Runs of flagged segments rewritten one by one; more are written as one span.
+const FLAG_RUNS_APART: usize = 64;
+
+/// Takes the highlight flag off the points of the segments in `old` (writing the scene's own
+/// points back) and puts it on those in `new`. Segment `i`'s flag is on point `i + 1`.
+fn flag_runs(
+    renderer: &PathRenderer,
+    queue: &wgpu::Queue,
+    points: &[PathPoint],
+    old: &[Range<usize>],
+    new: &[Range<usize>],
+) {
+    let write = |first: usize, slice: &[PathPoint]| {
+        if let Ok(first) = u32::try_from(first) {
+            renderer.update_path(queue, first, slice);
+        }
+    };
+    let points_of = |run: &Range<usize>| {
+        let end = run.end.saturating_add(1).min(points.len());
+        (run.start + 1).min(end)..end
+    };
+    if old.len() + new.len() <= FLAG_RUNS_APART {
+        for run in old {
+            let span = points_of(run);
+            if let Some(slice) = points.get(span.clone()) {
+                write(span.start, slice);
+            }
+        }
+        for run in new {
+            let span = points_of(run);
+            if let Some(slice) = points.get(span.clone()) {
+                let lit: Vec<PathPoint> = slice.iter().map(|p| p.with_highlight(true)).collect();
+                write(span.start, &lit);
+            }
+        }
+        return;
+    }
+    let (Some(start), Some(end)) = (
+        old.iter().chain(new).map(|r| points_of(r).start).min(),
+        old.iter().chain(new).map(|r| points_of(r).end).max(),
+    ) else {
+        return;
+    };
+    let Some(slice) = points.get(start..end) else {
+        return;
+    };
+    let mut span = slice.to_vec();
+    for run in new {
+        let run = points_of(run);
+        if let Some(lit) = span.get_mut(run.start - start..run.end - start) {
+            for p in lit {
+                *p = p.with_highlight(true);
+            }
+        }
+    }
+    write(start, &span);
 }
 
 /// Maps NDC of the whole callback rectangle `full` (pixels, may extend off screen) onto NDC
@@ -1218,6 +1484,56 @@ mod tests {
     }
 
     #[test]
+    fn a_fit_for_a_new_program_waits_for_its_scene() {
+        let mut plot = Backplot::new();
+        let old = Scene {
+            generation: 4,
+            bounds: Some((Vec3::ZERO, Vec3::ONE)),
+            ..Scene::default()
+        };
+        plot.track_scene(&old);
+        plot.fit_pending = false;
+        // A program opened: its scene (generation 6) is still being made.
+        plot.fit();
+        plot.set_coming_generation(Some(6));
+        assert!(!plot.fit_due(&old));
+        assert!(!plot.fit_due(&Scene {
+            generation: 5,
+            ..old.clone()
+        }));
+        assert!(plot.fit_due(&Scene {
+            generation: 6,
+            ..old.clone()
+        }));
+        // Nothing being made: at once.
+        plot.set_coming_generation(None);
+        assert!(plot.fit_due(&old));
+        // The view's own Fit does not wait.
+        plot.set_coming_generation(Some(9));
+        plot.fit_now();
+        assert!(plot.fit_due(&old));
+    }
+
+    #[test]
+    fn view_bounds_take_in_the_marks_but_not_the_travel_box() {
+        let scene = Scene {
+            bounds: Some((Vec3::ZERO, Vec3::ONE)),
+            marks: Arc::new(vec![
+                PathPoint::pen_up(Vec3::new(-5.0, 0.0, 0.0)),
+                PathPoint::new(Vec3::new(0.0, 7.0, 0.0), Kind::Programmed),
+                PathPoint::pen_up(Vec3::new(-500.0, 0.0, 0.0)),
+                PathPoint::new(Vec3::new(0.0, 0.0, -400.0), Kind::Boundary),
+            ]),
+            ..Scene::default()
+        };
+        assert_eq!(
+            scene.view_bounds(),
+            Some((Vec3::new(-5.0, 0.0, 0.0), Vec3::new(1.0, 7.0, 1.0)))
+        );
+        assert_eq!(Scene::default().view_bounds(), None);
+    }
+
+    #[test]
     fn source_lines_and_segments_of_a_line() {
         let text = SourceText::new("G0 X1\r\nG1 X2\n\nM30");
         assert_eq!(text.line(1).as_deref(), Some("G0 X1"));
@@ -1227,13 +1543,16 @@ mod tests {
         assert_eq!(text.line(5), None);
         assert_eq!(text.line(0), None);
         let scene = Scene {
-            points: Arc::new(vec![PathPoint::default(); 5]),
-            lines: Arc::new(vec![2, 3, 3, 5]),
+            points: Arc::new(vec![PathPoint::default(); 8]),
+            lines: Arc::new(vec![2, 3, 3, 5, 7, 3, 7]),
             ..Scene::default()
         };
-        assert_eq!(scene.segment_count(), 4);
-        assert_eq!(scene.segments_of_line(3), Some(1..3));
-        assert_eq!(scene.segments_of_line(5), Some(3..4));
-        assert_eq!(scene.segments_of_line(4), None);
+        assert_eq!(scene.segment_count(), 7);
+        // A line that ran twice (a subprogram, a loop) has two runs, and nothing between.
+        assert_eq!(scene.segments_of_line(3), [1..3, 5..6]);
+        let runs = scene.segments_of_line(5);
+        assert_eq!((runs.len(), runs.first()), (1, Some(&(3..4))));
+        assert_eq!(scene.segments_of_line(7), [4..5, 6..7]);
+        assert!(scene.segments_of_line(4).is_empty());
     }
 }

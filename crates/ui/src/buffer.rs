@@ -119,7 +119,8 @@ impl Buffer {
         self.rope.len_chars()
     }
 
-    /// Number of lines (an empty text, or one ending in `\n`, has an empty last line).
+    /// Number of lines (an empty text, or one ending in a line ending, has an empty last line).
+    /// A line ends at `\n`, `\r\n` or a lone `\r`, as the parser reads it.
     pub fn len_lines(&self) -> usize {
         self.rope.len_lines()
     }
@@ -128,7 +129,7 @@ impl Buffer {
     /// the last line rather than starting one), without a pass over the text.
     pub fn line_count(&self) -> u32 {
         let lines = self.len_lines();
-        let n = if lines > 1 && self.rope.char(self.len_chars() - 1) == '\n' {
+        let n = if lines > 1 && matches!(self.rope.char(self.len_chars() - 1), '\n' | '\r') {
             lines - 1
         } else {
             lines
@@ -156,7 +157,7 @@ impl Buffer {
         self.rope.byte_to_char(byte.min(self.len_bytes()))
     }
 
-    /// Characters of 0-based `line` without its line ending (`\n`, `\r\n`).
+    /// Characters of 0-based `line` without its line ending (`\n`, `\r\n`, `\r`).
     pub fn line_len_chars(&self, line: usize) -> usize {
         if line >= self.len_lines() {
             return 0;
@@ -168,6 +169,8 @@ impl Buffer {
             if n > 0 && slice.char(n - 1) == '\r' {
                 n -= 1;
             }
+        } else if n > 0 && slice.char(n - 1) == '\r' {
+            n -= 1;
         }
         n
     }
@@ -400,7 +403,18 @@ mod tests {
 
     #[test]
     fn lines_are_counted_as_the_commands_count_them() {
-        for text in ["", "\n", "G0", "G0\n", "G0\nG1", "G0\nG1\n\n", "\r\n"] {
+        for text in [
+            "",
+            "\n",
+            "G0",
+            "G0\n",
+            "G0\nG1",
+            "G0\nG1\n\n",
+            "\r\n",
+            "G0\rG1",
+            "G0\r",
+            "G0\r\r\nG1\r\n",
+        ] {
             assert_eq!(
                 Buffer::from(text).line_count(),
                 crate::commands::line_count(text),
@@ -410,10 +424,15 @@ mod tests {
     }
 
     #[test]
-    fn only_line_feeds_end_lines() {
-        let b = Buffer::from("G0\rX1\u{2028}Y2\u{85}\nM30");
-        assert_eq!(b.len_lines(), 2);
-        assert_eq!(b.line_text(1), "M30");
+    fn line_feeds_and_carriage_returns_end_lines_as_the_parser_reads_them() {
+        let b = Buffer::from("G0\rX1\u{2028}Y2\u{85}\nM30\r\r\nM2");
+        assert_eq!(b.len_lines(), 5);
+        assert_eq!(b.line_text(0), "G0");
+        assert_eq!(b.line_text(1), "X1\u{2028}Y2\u{85}");
+        assert_eq!(b.line_text(2), "M30");
+        assert_eq!(b.line_text(3), "");
+        assert_eq!(b.line_text(4), "M2");
+        assert_eq!(b.line_count(), 5);
     }
 
     #[test]

@@ -151,26 +151,33 @@ pub fn line_start(text: &str, line: u32) -> usize {
     if line <= 1 {
         return 0;
     }
-    text.match_indices('\n')
+    line_starts(text)
         .nth(line as usize - 2)
-        .map_or(text.len(), |(i, _)| i + 1)
+        .unwrap_or(text.len())
+}
+
+/// The byte offsets where the lines after the first start: after each `\n`, `\r\n` or lone
+/// `\r`, the line endings the parser reads.
+fn line_starts(text: &str) -> impl Iterator<Item = usize> + '_ {
+    let bytes = text.as_bytes();
+    memchr::memchr2_iter(b'\n', b'\r', bytes).filter_map(move |i| {
+        // The `\r` of a `\r\n` ends no line of its own.
+        (!(bytes[i] == b'\r' && bytes.get(i + 1) == Some(&b'\n'))).then_some(i + 1)
+    })
 }
 
 /// The 1-based line holding byte `byte`.
 pub fn line_of_byte(text: &str, byte: usize) -> u32 {
     let end = byte.min(text.len());
-    let newlines = text.as_bytes()[..end]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count();
+    let newlines = line_starts(text).take_while(|&start| start <= end).count();
     u32::try_from(newlines).unwrap_or(u32::MAX - 1) + 1
 }
 
 /// Number of lines of `text` (a final newline ends the last line rather than starting one, but
 /// an empty text still has one line).
 pub fn line_count(text: &str) -> u32 {
-    let n = text.bytes().filter(|&b| b == b'\n').count();
-    let n = if text.ends_with('\n') || n == 0 {
+    let n = line_starts(text).count();
+    let n = if text.ends_with(['\n', '\r']) || n == 0 {
         n.max(1)
     } else {
         n + 1

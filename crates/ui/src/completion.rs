@@ -1,9 +1,13 @@
-//! The G/M code completion popup shared by both editors (egui's `TextEdit` for smaller programs,
-//! the row editor for large ones): when it opens, the keys that drive it, and the list itself.
+//! The editor's G/M code completion popup: when it opens, the keys that drive it, and the list.
+//!
+//! The list never puts in a code the user did not choose: Tab takes the highlighted code, Enter
+//! takes it only after an arrow key picked it (otherwise Enter ends the line, as after a code
+//! typed in full), and a code is put in only where the text still holds the prefix the list was
+//! made for.
 
 use std::ops::Range;
 
-use egui::{Key, Modifiers, Pos2, Rect};
+use egui::{Key, Pos2, Rect};
 use swarf_syntax::Dialect;
 
 use crate::buffer::Buffer;
@@ -17,6 +21,10 @@ const COMPLETIONS_SHOWN: usize = 12;
 pub(crate) struct Popup {
     /// Character range of the typed prefix (`G8`) in the text.
     pub chars: Range<usize>,
+    /// The typed prefix, as the text held it when the list was made.
+    prefix: String,
+    /// An arrow key picked the highlighted item, so Enter takes it.
+    chosen: bool,
     /// The codes on offer.
     pub items: Vec<Completion>,
     /// The highlighted item.
@@ -25,10 +33,12 @@ pub(crate) struct Popup {
     rect: Option<Rect>,
 }
 
-/// What the popup's keys asked for this frame.
+/// What a key does to the open popup.
 pub(crate) enum PopupKey {
-    /// Nothing for the text (no key, or a move through the list).
+    /// Not the popup's key: the editor handles it.
     None,
+    /// A move through the list.
+    Handled,
     /// Take this item.
     Accept(usize),
     /// Close the list.
@@ -48,37 +58,33 @@ impl Popup {
         let start = caret_char.checked_sub(range.len())?;
         (!items.is_empty() && !exact).then_some(Popup {
             chars: start..caret_char,
+            prefix,
+            chosen: false,
             items,
             selected: 0,
             rect: None,
         })
     }
 
-    /// Up/Down choose a completion, Tab or Enter takes it, Escape closes the list; the keys are
-    /// taken before the editor sees them.
-    pub fn keys(&mut self, ctx: &egui::Context) -> PopupKey {
-        let none = Modifiers::NONE;
-        let (down, up, accept, close) = ctx.input_mut(|i| {
-            (
-                i.consume_key(none, Key::ArrowDown),
-                i.consume_key(none, Key::ArrowUp),
-                i.consume_key(none, Key::Tab) || i.consume_key(none, Key::Enter),
-                i.consume_key(none, Key::Escape),
-            )
-        });
+    /// What `key` (pressed without modifiers) does: Up/Down move through the list, Tab takes
+    /// the highlighted code, Enter takes it once an arrow key picked it, Escape closes the list.
+    pub fn key(&mut self, key: Key) -> PopupKey {
         let n = self.items.len().max(1);
-        if down {
-            self.selected = (self.selected + 1) % n;
-        }
-        if up {
-            self.selected = (self.selected + n - 1) % n;
-        }
-        if close {
-            PopupKey::Close
-        } else if accept {
-            PopupKey::Accept(self.selected)
-        } else {
-            PopupKey::None
+        match key {
+            Key::ArrowDown => {
+                self.selected = (self.selected + 1) % n;
+                self.chosen = true;
+                PopupKey::Handled
+            }
+            Key::ArrowUp => {
+                self.selected = (self.selected + n - 1) % n;
+                self.chosen = true;
+                PopupKey::Handled
+            }
+            Key::Tab => PopupKey::Accept(self.selected),
+            Key::Enter if self.chosen => PopupKey::Accept(self.selected),
+            Key::Escape => PopupKey::Close,
+            _ => PopupKey::None,
         }
     }
 
@@ -111,9 +117,13 @@ impl Popup {
     }
 
     /// Replaces the typed prefix in `text` with item `index`; the character just after the
-    /// inserted code, or `None` (nothing changed) when the prefix no longer lies in the text.
+    /// inserted code, or `None` (nothing changed) when the text no longer holds the prefix there.
     pub fn accept(&self, index: usize, text: &mut Buffer) -> Option<usize> {
         let code = self.items.get(index)?;
-        (self.chars.end <= text.len_chars()).then(|| text.replace(self.chars.clone(), &code.code))
+        let holds = self.chars.end <= text.len_chars()
+            && text
+                .slice(self.chars.clone())
+                .eq_ignore_ascii_case(&self.prefix);
+        holds.then(|| text.replace(self.chars.clone(), &code.code))
     }
 }

@@ -1,15 +1,13 @@
-//! The code editor: G-code highlighting, a line-number gutter and diagnostic underlines.
+//! The code editor: G-code highlighting, hover help and diagnostic underlines, over the row
+//! editor ([`RowEditor`]) that edits every program.
 
-use std::sync::Arc;
-
-use egui::text::{CCursor, CCursorRange, LayoutJob};
-use egui::{Color32, FontId, Galley, Pos2, Stroke, TextFormat, Ui};
+use egui::text::LayoutJob;
+use egui::{Color32, FontId, Stroke, TextFormat, Ui};
 use swarf_syntax::{Dialect, Severity};
 
 use crate::analysis::Problem;
 use crate::buffer::Buffer;
 use crate::commands::{self, Completion};
-use crate::completion::{Popup, PopupKey};
 use crate::rows::{RowEditor, RowInput};
 
 /// Colours of the token classes, for a dark background.
@@ -167,24 +165,19 @@ pub struct EditorOutput {
 /// Most find matches marked in the text at once.
 pub const HIGHLIGHTS_SHOWN: usize = 5000;
 
-/// The G-code editor widget's state (the text itself is owned by the caller).
+/// The G-code editor widget's state (the text itself is owned by the caller). Every program,
+/// short or a million lines long, is edited by the same [`RowEditor`], which lays out only the
+/// rows on screen.
 #[derive(Debug, Clone)]
 pub struct CodeEditor {
     id: egui::Id,
-    jump: Option<std::ops::Range<usize>>,
-    popup: Option<Popup>,
-    /// The list's top-left corner: under the caret.
-    popup_pos: Pos2,
+    /// A selection to show next frame, and whether the editor takes the keyboard with it.
+    jump: Option<(std::ops::Range<usize>, bool)>,
     /// Character ranges marked in the text (the find bar's matches).
     highlights: Vec<std::ops::Range<usize>>,
-    /// The caret and view of a text edited row by row (see [`LARGE_TEXT_BYTES`]).
+    /// The caret, selection, view and completion list.
     rows: RowEditor,
 }
-
-/// Texts longer than this are edited by the row editor ([`RowEditor`]), which lays out only the
-/// rows on screen: egui's text editor lays out (and keeps) the whole text every frame, which a
-/// million-line program does not fit in a frame or in a browser tab's memory.
-pub const LARGE_TEXT_BYTES: usize = 2 << 20;
 
 impl Default for CodeEditor {
     fn default() -> Self {
@@ -198,16 +191,21 @@ impl CodeEditor {
         CodeEditor {
             id: egui::Id::unique(id_salt),
             jump: None,
-            popup: None,
-            popup_pos: Pos2::ZERO,
             highlights: Vec::new(),
             rows: RowEditor::default(),
         }
     }
 
-    /// Selects the character range on the next frame and scrolls to it.
+    /// Selects the character range on the next frame, scrolls to it and gives the editor the
+    /// keyboard.
     pub fn jump_to(&mut self, chars: std::ops::Range<usize>) {
-        self.jump = Some(chars);
+        self.jump = Some((chars, true));
+    }
+
+    /// Selects the character range on the next frame and scrolls to it, leaving the keyboard
+    /// where it is (the find bar's field keeps it while it steps through the matches).
+    pub fn show_range(&mut self, chars: std::ops::Range<usize>) {
+        self.jump = Some((chars, false));
     }
 
     /// Marks these character ranges in the text (at most [`HIGHLIGHTS_SHOWN`] are drawn).
@@ -217,7 +215,7 @@ impl CodeEditor {
         }
     }
 
-    /// The text edit's widget id (for focus checks).
+    /// The editor's widget id (for focus checks).
     pub fn id(&self) -> egui::Id {
         self.id
     }
@@ -229,15 +227,11 @@ impl CodeEditor {
 
     /// The completions on offer (code and meaning), while the popup is open.
     pub fn completions(&self) -> Option<&[Completion]> {
-        self.popup
-            .as_ref()
-            .map(|p| p.items.as_slice())
-            .or_else(|| self.rows.completions())
+        self.rows.completions()
     }
 
     /// Closes the completion popup.
     pub fn close_completions(&mut self) {
-        self.popup = None;
         self.rows.close_completions();
     }
 
@@ -252,141 +246,16 @@ impl CodeEditor {
         problems: &[Problem],
     ) -> EditorOutput {
         let font = egui::TextStyle::Monospace.resolve(ui.style());
-        if text.len_bytes() > LARGE_TEXT_BYTES {
-            self.popup = None;
-            let input = RowInput {
-                id: self.id,
-                label,
-                dialect,
-                problems,
-                highlights: &self.highlights,
-                jump: self.jump.take(),
-                font,
-            };
-            return self.rows.show(ui, text, input);
-        }
-        let mut output = EditorOutput::default();
-        let focused = self.has_focus(ui.ctx());
-        if focused && let Some(popup) = self.popup.as_mut() {
-            match popup.keys(ui.ctx()) {
-                PopupKey::None => {}
-                PopupKey::Close => self.popup = None,
-                PopupKey::Accept(i) => self.accept(text, i, &mut output),
-            }
-        }
-        // Ctrl+Space asks for the list where the cursor is.
-        let ask =
-            focused && ui.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, egui::Key::Space));
-        if let Some(range) = self.jump.take() {
-            // Before the first frame there is no state yet: make one, so a program opened at
-            // start-up shows its first line rather than the text edit's default (the end).
-            let mut state = egui::TextEdit::load_state(ui.ctx(), self.id).unwrap_or_default();
-            state.cursor.set_char_range(Some(CCursorRange::two(
-                CCursor::new(range.start),
-                CCursor::new(range.end),
-            )));
-            state.store(ui.ctx(), self.id);
-            ui.ctx().memory_mut(|m| m.request_focus(self.id));
-        }
-        egui::ScrollArea::both()
-            .id_salt("swarf-editor-scroll")
-            .auto_shrink([false, false])
-            .show(ui, |ui| {
-                ui.horizontal_top(|ui| {
-                    let lines = text.len_lines();
-                    gutter(ui, lines, problems, &font);
-                    let font_for_layout = font.clone();
-                    let mut layouter = |ui: &Ui, buf: &dyn egui::TextBuffer, _wrap: f32| {
-                        let job = highlight(buf.as_str(), dialect, &font_for_layout);
-                        ui.painter().layout_job(job)
-                    };
-                    let edit = egui::TextEdit::multiline(text)
-                        .id(self.id)
-                        .font(font.clone())
-                        .code_editor()
-                        // Tab indents; Escape closes the completion list rather than leaving.
-                        .event_filter(egui::EventFilter {
-                            tab: true,
-                            horizontal_arrows: true,
-                            vertical_arrows: true,
-                            escape: self.popup.is_some(),
-                        })
-                        .desired_width(f32::INFINITY)
-                        .desired_rows(40)
-                        .layouter(&mut layouter)
-                        .show(ui);
-                    let response = edit.response.response.clone().labelled_by(label);
-                    output.changed = response.changed();
-                    output.cursor_line = edit
-                        .cursor_range
-                        .map(|r| edit.galley.pos_from_cursor(r.primary))
-                        .map(|rect| {
-                            let row = (rect.top() / font_row_height(ui, &font)).round();
-                            row.max(0.0) as u32 + 1
-                        });
-                    output.selection = edit.cursor_range.map(|r| {
-                        let (a, b) = (r.primary.index.0, r.secondary.index.0);
-                        a.min(b)..a.max(b)
-                    });
-                    let cursor_char = edit.cursor_range.map(|r| r.primary.index.0);
-                    let popup_here = |text: &Buffer| {
-                        cursor_char.and_then(|c| {
-                            Popup::at(text, commands::byte_of_char(text, c), c, dialect)
-                        })
-                    };
-                    if ask && !output.changed {
-                        self.popup = popup_here(text);
-                    } else if output.changed {
-                        output.ends_line = cursor_char
-                            .map(|c| commands::byte_of_char(text, c))
-                            .and_then(|b| text.get(..b))
-                            .is_some_and(|t| t.ends_with('\n'));
-                        self.popup = popup_here(text);
-                    } else if let Some(p) = &self.popup {
-                        // The cursor moved away, or the keyboard went elsewhere (a click on the
-                        // list itself takes the focus for a moment, so the pointer keeps it).
-                        let moved = cursor_char.is_some_and(|c| c != p.chars.end);
-                        if moved || (!response.has_focus() && !p.pointer_over(ui.ctx())) {
-                            self.popup = None;
-                        }
-                    }
-                    paint_squiggles(ui, &edit.galley, edit.galley_pos, problems);
-                    paint_highlights(ui, &edit.galley, edit.galley_pos, &self.highlights);
-                    // Hover help: the diagnostics there and what the code under the pointer is.
-                    if let Some(pos) = response.hover_pos() {
-                        let at = edit.galley.cursor_from_pos(pos - edit.galley_pos);
-                        if let Some(help) = hover_text(text, dialect, at.index.0, problems) {
-                            response.on_hover_text_at_pointer(help);
-                        }
-                    }
-                    // Under the caret; where it was while a click on the list has the focus.
-                    if let Some(r) = edit.cursor_range {
-                        let caret = edit.galley.pos_from_cursor(r.primary);
-                        self.popup_pos = edit.galley_pos + caret.left_bottom().to_vec2();
-                    }
-                    let at = self.popup_pos;
-                    self.show_popup(ui, at, text, &mut output);
-                });
-            });
-        output
-    }
-
-    /// Replaces the typed prefix with completion `index` and puts the cursor after it.
-    fn accept(&mut self, text: &mut Buffer, index: usize, output: &mut EditorOutput) {
-        let Some(end) = self.popup.take().and_then(|p| p.accept(index, text)) else {
-            return;
+        let input = RowInput {
+            id: self.id,
+            label,
+            dialect,
+            problems,
+            highlights: &self.highlights,
+            jump: self.jump.take(),
+            font,
         };
-        self.jump = Some(end..end);
-        output.completed = true;
-    }
-
-    fn show_popup(&mut self, ui: &Ui, at: Pos2, text: &mut Buffer, output: &mut EditorOutput) {
-        let Some(popup) = self.popup.as_mut() else {
-            return;
-        };
-        if let Some(i) = popup.show(ui.ctx(), self.id, at) {
-            self.accept(text, i, output);
-        }
+        self.rows.show(ui, text, input)
     }
 }
 
@@ -459,90 +328,6 @@ pub fn hover_text(text: &str, dialect: Dialect, at: usize, problems: &[Problem])
         }
     }
     (!lines.is_empty()).then(|| lines.join("\n\n"))
-}
-
-fn font_row_height(ui: &Ui, font: &FontId) -> f32 {
-    ui.ctx().fonts_mut(|f| f.row_height(font)).max(1.0)
-}
-
-/// Line numbers, coloured by the worst diagnostic on each line.
-fn gutter(ui: &mut Ui, lines: usize, problems: &[Problem], font: &FontId) {
-    let mut worst: Vec<Option<Severity>> = vec![None; lines];
-    for p in problems {
-        if let Some(slot) = worst.get_mut((p.line as usize).saturating_sub(1)) {
-            *slot = Some(slot.map_or(p.severity, |s| s.max(p.severity)));
-        }
-    }
-    let digits = lines.to_string().len().max(3);
-    let mut job = LayoutJob::default();
-    for (i, w) in worst.iter().enumerate() {
-        let color = w.map_or(palette::NUMBER, severity_color);
-        let mark = if w.is_some() { '●' } else { ' ' };
-        job.append(
-            &format!("{mark}{:>digits$}\n", i + 1),
-            0.0,
-            TextFormat::simple(font.clone(), color),
-        );
-    }
-    let galley = ui.painter().layout_job(job);
-    // Align with the text edit's inner margin.
-    ui.add_space(0.0);
-    let (rect, response) = ui.allocate_exact_size(
-        egui::vec2(galley.size().x + 6.0, galley.size().y + 4.0),
-        egui::Sense::hover(),
-    );
-    ui.painter()
-        .galley(rect.min + egui::vec2(0.0, 2.0), galley, palette::NUMBER);
-    // A marker's tooltip: what is wrong on that line.
-    if let Some(pos) = response.hover_pos() {
-        let row = ((pos.y - rect.top() - 2.0) / font_row_height(ui, font)).floor();
-        let line = row.max(0.0) as u32 + 1;
-        if let Some(tip) = gutter_tooltip(problems, line) {
-            response.on_hover_text_at_pointer(tip);
-        }
-    }
-}
-
-/// A translucent box over each highlighted range (one per row it spans).
-fn paint_highlights(
-    ui: &Ui,
-    galley: &Arc<Galley>,
-    origin: Pos2,
-    ranges: &[std::ops::Range<usize>],
-) {
-    let fill = Color32::from_rgba_unmultiplied(255, 210, 80, 70);
-    let clip = ui.clip_rect();
-    for r in ranges {
-        let start = galley.pos_from_cursor(CCursor::new(r.start));
-        let end = galley.pos_from_cursor(CCursor::new(r.end));
-        if (end.top() - start.top()).abs() < 1.0 {
-            let rect = egui::Rect::from_min_max(
-                origin + start.left_top().to_vec2(),
-                origin + end.right_bottom().to_vec2(),
-            );
-            if rect.intersects(clip) {
-                ui.painter().rect_filled(rect, 2.0, fill);
-            }
-        }
-    }
-}
-
-/// Wavy underlines under each diagnostic's characters.
-fn paint_squiggles(ui: &Ui, galley: &Arc<Galley>, origin: Pos2, problems: &[Problem]) {
-    let painter = ui.painter();
-    for p in problems {
-        let start = galley.pos_from_cursor(CCursor::new(p.chars.start));
-        let end = galley.pos_from_cursor(CCursor::new(p.chars.end));
-        let y = origin.y + start.bottom() - 1.0;
-        let x0 = origin.x + start.left();
-        let same_row = (end.top() - start.top()).abs() < 1.0;
-        let x1 = if same_row && end.left() > start.left() {
-            origin.x + end.left()
-        } else {
-            x0 + 8.0
-        };
-        squiggle(painter, x0, x1, y, p.severity);
-    }
 }
 
 /// A wavy underline from `x0` to `x1` at height `y`.

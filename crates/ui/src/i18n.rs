@@ -194,9 +194,25 @@ pub const TABLE: &[(&str, &str, &str)] = &[
         "{} 已在此開啟且有未儲存的變更",
     ),
     (
-        "Recovered unsaved changes",
-        "已恢复未保存的更改",
-        "已復原未儲存的變更",
+        "Recovered unsaved changes of {}",
+        "已恢复 {} 的未保存更改",
+        "已復原 {} 的未儲存變更",
+    ),
+    (
+        "Recovered unsaved changes of {} tabs: {}",
+        "已恢复 {} 个标签页的未保存更改：{}",
+        "已復原 {} 個分頁的未儲存變更：{}",
+    ),
+    ("Could not recover {}", "无法恢复 {}", "無法復原 {}"),
+    (
+        "Not kept for recovery: {} ({})",
+        "未能保留以供恢复：{}（{}）",
+        "未能保留以供復原：{}（{}）",
+    ),
+    (
+        "Kept for recovery again: {}",
+        "已重新保留以供恢复：{}",
+        "已重新保留以供復原：{}",
     ),
     ("Saved {}", "已保存 {}", "已儲存 {}"),
     ("{}, line {}", "{}，第 {} 行", "{}，第 {} 行"),
@@ -254,6 +270,7 @@ pub const TABLE: &[(&str, &str, &str)] = &[
     ("Analysing", "分析中", "分析中"),
     ("{} / {} blocks", "{} / {} 个程序段", "{} / {} 個單節"),
     ("Problems ({})", "问题（{}）", "問題（{}）"),
+    ("No problems", "没有问题", "沒有問題"),
     ("Go to this position", "转到此位置", "移至此位置"),
     (
         "Go to this position in {}",
@@ -279,6 +296,25 @@ pub const TABLE: &[(&str, &str, &str)] = &[
     ("feed", "进给", "進給"),
     ("spindle", "主轴", "主軸"),
     ("blocks run", "已执行程序段", "已執行單節"),
+    // A tab's first analysis, and the dialect its program's codes point to.
+    ("Reading… {} %", "读取中… {} %", "讀取中… {} %"),
+    ("Analysing… {} %", "分析中… {} %", "分析中… {} %"),
+    (
+        "This program looks like {} ({} on line {})",
+        "此程序看起来属于 {}（{}，第 {} 行）",
+        "此程式看起來屬於 {}（{}，第 {} 行）",
+    ),
+    (
+        "This program looks like {}",
+        "此程序看起来属于 {}",
+        "此程式看起來屬於 {}",
+    ),
+    ("Switch", "切换", "切換"),
+    (
+        "Read this tab's program as {}",
+        "按 {} 读取此标签页的程序",
+        "以 {} 讀取此分頁的程式",
+    ),
     // The CJK font.
     (
         "Loading the Chinese font…",

@@ -6,6 +6,7 @@ pub mod backplot;
 pub mod buffer;
 pub mod commands;
 mod completion;
+mod dialect_hint;
 pub mod editor;
 pub mod examples;
 pub mod history;

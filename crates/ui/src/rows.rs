@@ -1,11 +1,14 @@
-//! The editor for programs too large for egui's `TextEdit` (which lays out the whole text every
-//! frame): the text stays in a rope ([`Buffer`]), and each frame lays out only the rows on screen
-//! (highlighted as [`highlight`] does, numbered, marked by their diagnostics). The caret and the
-//! selection are character indices into the rope; keys, pointer and clipboard events edit the
-//! rope in place, so a keystroke costs the same in a million-line program as in a short one.
-//! It offers the same code completion as the smaller programs' editor ([`Popup`]) and takes
-//! input from an input method: the text being composed is drawn at the caret, outside the rope,
-//! until the input method commits it.
+//! The editor of every program: the text stays in a rope ([`Buffer`]), and each frame lays out
+//! only the rows on screen (highlighted as [`highlight`] does, numbered, marked by their
+//! diagnostics). The caret and the selection are character indices into the rope; keys, pointer
+//! and clipboard events edit the rope in place, in the order they came, so a keystroke costs the
+//! same in a million-line program as in a short one. It offers G/M code completion ([`Popup`])
+//! and takes input from an input method: the text being composed is drawn at the caret, outside
+//! the rope, until the input method commits it.
+//!
+//! The keyboard reaches the text only while the editor has had the focus since the frame before:
+//! a key that moved the focus here (Enter in the find bar or the go-to-line field, which hands
+//! the selection back) is never also typed into the program.
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -52,6 +55,8 @@ pub struct RowEditor {
     popup_pos: Pos2,
     /// The text an input method is composing, shown at the caret but not yet in the rope.
     preedit: Option<Preedit>,
+    /// Whether the editor had the keyboard focus at the end of the last frame.
+    had_focus: bool,
 }
 
 /// Text being composed by an input method.
@@ -74,8 +79,9 @@ pub struct RowInput<'a> {
     pub problems: &'a [Problem],
     /// Character ranges marked in the text (find matches), sorted.
     pub highlights: &'a [Range<usize>],
-    /// A selection to jump to (characters), scrolled into the middle of the view.
-    pub jump: Option<Range<usize>>,
+    /// A selection to jump to (characters), scrolled into the middle of the view, and whether
+    /// the editor takes the keyboard with it.
+    pub jump: Option<(Range<usize>, bool)>,
     /// The monospace font.
     pub font: FontId,
 }
@@ -237,11 +243,18 @@ impl RowEditor {
         self.reveal = true;
     }
 
-    /// Handles the keyboard and clipboard events of this frame; (changed, a line was ended).
-    fn keys(&mut self, ui: &Ui, text: &mut Buffer, rows_per_page: usize) -> (bool, bool) {
+    /// Handles the keyboard and clipboard events of this frame, in the order they came: the
+    /// completion list's keys are taken only while it is open for the text as it is then, and it
+    /// is worked out again after each edit, so a key never acts on a list made for older text.
+    fn keys(
+        &mut self,
+        ui: &Ui,
+        text: &mut Buffer,
+        dialect: Dialect,
+        rows_per_page: usize,
+        output: &mut EditorOutput,
+    ) {
         let events = ui.input(|i| i.events.clone());
-        let mut changed = false;
-        let mut ends_line = false;
         for event in events {
             let len = text.len_chars();
             self.caret = self.caret.min(len);
@@ -251,121 +264,161 @@ impl RowEditor {
             if self.preedit.is_some() && matches!(event, Event::Key { .. } | Event::Text(_)) {
                 continue;
             }
-            match event {
-                Event::Ime(ime) => changed |= self.ime(text, ime),
-                // A lone line break comes as the Enter key too.
-                Event::Text(t) if !t.is_empty() && t != "\n" && t != "\r" => {
-                    changed |= self.edit(text, Edit::Insert(t));
-                }
-                Event::Paste(t) if !t.is_empty() => {
-                    changed |= self.edit(text, Edit::Insert(t));
-                }
-                Event::Copy | Event::Cut => {
-                    let sel = self.selection();
-                    if !sel.is_empty() {
-                        ui.ctx().copy_text(text.slice(sel));
-                        if matches!(event, Event::Cut) {
-                            changed |= self.edit(text, Edit::Delete);
-                        }
-                    }
-                }
-                Event::Key {
+            if let Some(popup) = self.popup.as_mut()
+                && let Event::Key {
                     key,
                     pressed: true,
                     modifiers,
                     ..
-                } => {
-                    let shift = modifiers.shift;
-                    let word = modifiers.command || modifiers.alt;
-                    let line = text.char_to_line(self.caret);
-                    let line_start = text.line_to_char(line);
-                    let col = self.caret - line_start;
-                    let vertical = |this: &mut Self, to_line: usize| {
-                        let want = *this.column.get_or_insert(col);
-                        let start = text.line_to_char(to_line);
-                        let to = start + want.min(text.line_len_chars(to_line));
-                        this.move_to(to, shift);
-                    };
-                    match key {
-                        Key::Enter => {
-                            changed |= self.edit(text, Edit::Insert("\n".to_string()));
-                            ends_line = true;
-                        }
-                        Key::Tab if !modifiers.any() => {
-                            changed |= self.edit(text, Edit::Insert("\t".to_string()));
-                        }
-                        Key::Backspace if word && self.selection().is_empty() => {
-                            let to = word_boundary(text, self.caret, false);
-                            self.anchor = to;
-                            changed |= self.edit(text, Edit::Backspace);
-                        }
-                        Key::Backspace => changed |= self.edit(text, Edit::Backspace),
-                        Key::Delete if word && self.selection().is_empty() => {
-                            let to = word_boundary(text, self.caret, true);
-                            self.anchor = to;
-                            changed |= self.edit(text, Edit::Delete);
-                        }
-                        Key::Delete => changed |= self.edit(text, Edit::Delete),
-                        Key::A if modifiers.command => {
-                            self.anchor = 0;
-                            self.caret = len;
-                        }
-                        Key::ArrowLeft => {
-                            let sel = self.selection();
-                            let to = if !shift && !sel.is_empty() {
-                                sel.start
-                            } else if word {
-                                word_boundary(text, self.caret, false)
-                            } else {
-                                self.caret.saturating_sub(1)
-                            };
-                            self.column = None;
-                            self.move_to(to, shift);
-                        }
-                        Key::ArrowRight => {
-                            let sel = self.selection();
-                            let to = if !shift && !sel.is_empty() {
-                                sel.end
-                            } else if word {
-                                word_boundary(text, self.caret, true)
-                            } else {
-                                (self.caret + 1).min(len)
-                            };
-                            self.column = None;
-                            self.move_to(to, shift);
-                        }
-                        Key::ArrowUp if line > 0 => vertical(self, line - 1),
-                        Key::ArrowUp => self.move_to(0, shift),
-                        Key::ArrowDown if line + 1 < text.len_lines() => vertical(self, line + 1),
-                        Key::ArrowDown => self.move_to(len, shift),
-                        Key::PageUp => vertical(self, line.saturating_sub(rows_per_page)),
-                        Key::PageDown => vertical(
-                            self,
-                            (line + rows_per_page).min(text.len_lines().saturating_sub(1)),
-                        ),
-                        Key::Home if modifiers.command => {
-                            self.column = None;
-                            self.move_to(0, shift);
-                        }
-                        Key::End if modifiers.command => {
-                            self.column = None;
-                            self.move_to(len, shift);
-                        }
-                        Key::Home => {
-                            self.column = None;
-                            self.move_to(line_start, shift);
-                        }
-                        Key::End => {
-                            self.column = None;
-                            self.move_to(line_start + text.line_len_chars(line), shift);
-                        }
-                        _ => {}
+                } = &event
+                && !modifiers.any()
+            {
+                match popup.key(*key) {
+                    PopupKey::None => {}
+                    PopupKey::Handled => continue,
+                    PopupKey::Close => {
+                        self.popup = None;
+                        continue;
+                    }
+                    PopupKey::Accept(i) => {
+                        self.accept(text, i, output);
+                        continue;
                     }
                 }
-                _ => {}
+            }
+            let changed = self.event(ui, text, event, rows_per_page, output);
+            if changed {
+                output.changed = true;
+                self.popup = self.popup_here(text, dialect);
             }
         }
-        (changed, ends_line)
+    }
+
+    /// Applies one keyboard or clipboard event; whether the text changed.
+    fn event(
+        &mut self,
+        ui: &Ui,
+        text: &mut Buffer,
+        event: Event,
+        rows_per_page: usize,
+        output: &mut EditorOutput,
+    ) -> bool {
+        let len = text.len_chars();
+        let mut changed = false;
+        match event {
+            Event::Ime(ime) => changed |= self.ime(text, ime),
+            // A lone line break comes as the Enter key too.
+            Event::Text(t) if !t.is_empty() && t != "\n" && t != "\r" => {
+                changed |= self.edit(text, Edit::Insert(t));
+            }
+            Event::Paste(t) if !t.is_empty() => {
+                changed |= self.edit(text, Edit::Insert(t));
+            }
+            Event::Copy | Event::Cut => {
+                let sel = self.selection();
+                if !sel.is_empty() {
+                    ui.ctx().copy_text(text.slice(sel));
+                    if matches!(event, Event::Cut) {
+                        changed |= self.edit(text, Edit::Delete);
+                    }
+                }
+            }
+            Event::Key {
+                key,
+                pressed: true,
+                modifiers,
+                ..
+            } => {
+                let shift = modifiers.shift;
+                let word = modifiers.command || modifiers.alt;
+                let line = text.char_to_line(self.caret);
+                let line_start = text.line_to_char(line);
+                let col = self.caret - line_start;
+                let vertical = |this: &mut Self, to_line: usize| {
+                    let want = *this.column.get_or_insert(col);
+                    let start = text.line_to_char(to_line);
+                    let to = start + want.min(text.line_len_chars(to_line));
+                    this.move_to(to, shift);
+                };
+                match key {
+                    Key::Enter => {
+                        changed |= self.edit(text, Edit::Insert("\n".to_string()));
+                        output.ends_line = true;
+                    }
+                    Key::Tab if !modifiers.any() => {
+                        changed |= self.edit(text, Edit::Insert("\t".to_string()));
+                    }
+                    Key::Backspace if word && self.selection().is_empty() => {
+                        let to = word_boundary(text, self.caret, false);
+                        self.anchor = to;
+                        changed |= self.edit(text, Edit::Backspace);
+                    }
+                    Key::Backspace => changed |= self.edit(text, Edit::Backspace),
+                    Key::Delete if word && self.selection().is_empty() => {
+                        let to = word_boundary(text, self.caret, true);
+                        self.anchor = to;
+                        changed |= self.edit(text, Edit::Delete);
+                    }
+                    Key::Delete => changed |= self.edit(text, Edit::Delete),
+                    Key::A if modifiers.command => {
+                        self.anchor = 0;
+                        self.caret = len;
+                    }
+                    Key::ArrowLeft => {
+                        let sel = self.selection();
+                        let to = if !shift && !sel.is_empty() {
+                            sel.start
+                        } else if word {
+                            word_boundary(text, self.caret, false)
+                        } else {
+                            self.caret.saturating_sub(1)
+                        };
+                        self.column = None;
+                        self.move_to(to, shift);
+                    }
+                    Key::ArrowRight => {
+                        let sel = self.selection();
+                        let to = if !shift && !sel.is_empty() {
+                            sel.end
+                        } else if word {
+                            word_boundary(text, self.caret, true)
+                        } else {
+                            (self.caret + 1).min(len)
+                        };
+                        self.column = None;
+                        self.move_to(to, shift);
+                    }
+                    Key::ArrowUp if line > 0 => vertical(self, line - 1),
+                    Key::ArrowUp => self.move_to(0, shift),
+                    Key::ArrowDown if line + 1 < text.len_lines() => vertical(self, line + 1),
+                    Key::ArrowDown => self.move_to(len, shift),
+                    Key::PageUp => vertical(self, line.saturating_sub(rows_per_page)),
+                    Key::PageDown => vertical(
+                        self,
+                        (line + rows_per_page).min(text.len_lines().saturating_sub(1)),
+                    ),
+                    Key::Home if modifiers.command => {
+                        self.column = None;
+                        self.move_to(0, shift);
+                    }
+                    Key::End if modifiers.command => {
+                        self.column = None;
+                        self.move_to(len, shift);
+                    }
+                    Key::Home => {
+                        self.column = None;
+                        self.move_to(line_start, shift);
+                    }
+                    Key::End => {
+                        self.column = None;
+                        self.move_to(line_start + text.line_len_chars(line), shift);
+                    }
+                    _ => {}
+                }
+            }
+            _ => {}
+        }
+        changed
     }
 
     /// Shows the text filling `ui`; only the rows on screen are laid out.
@@ -382,32 +435,27 @@ impl RowEditor {
         let mut output = EditorOutput::default();
         let row_height = ui.ctx().fonts_mut(|f| f.row_height(&font)).max(1.0);
         let char_width = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
-        if let Some(range) = jump {
+        if let Some((range, focus)) = jump {
             let len = text.len_chars();
             self.select(range.start.min(len)..range.end.min(len));
+            self.popup = None;
             self.centre = true;
-            ui.memory_mut(|m| m.request_focus(id));
+            if focus {
+                ui.memory_mut(|m| m.request_focus(id));
+            }
         }
         let focused = ui.memory(|m| m.has_focus(id));
-        if focused {
-            let composing = self.preedit.is_some();
-            if !composing && let Some(popup) = self.popup.as_mut() {
-                match popup.keys(ui.ctx()) {
-                    PopupKey::None => {}
-                    PopupKey::Close => self.popup = None,
-                    PopupKey::Accept(i) => self.accept(text, i, &mut output),
-                }
-            }
+        if focused && self.had_focus {
             // Ctrl+Space asks for the list where the caret is.
-            let ask =
-                !composing && ui.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, Key::Space));
-            let rows_per_page = ((self.view_height / row_height).floor() as usize).max(1);
-            let (changed, ends_line) = self.keys(ui, text, rows_per_page);
-            output.changed = changed;
-            output.ends_line = ends_line;
-            if ask || changed {
+            let ask = self.preedit.is_none()
+                && ui.input_mut(|i| i.consume_key(egui::Modifiers::COMMAND, Key::Space));
+            if ask {
                 self.popup = self.popup_here(text, dialect);
             }
+            let rows_per_page = ((self.view_height / row_height).floor() as usize).max(1);
+            self.keys(ui, text, dialect, rows_per_page, &mut output);
+        }
+        if focused {
             // The keys this editor keeps next frame: Escape closes the completion list (or
             // cancels a composition) rather than leaving.
             let escape = self.popup.is_some() || self.preedit.is_some();
@@ -463,7 +511,11 @@ impl RowEditor {
                 ui.output_mut(|o| o.mutable_text_under_cursor = true);
             }
             response.widget_info(|| {
-                egui::WidgetInfo::labeled(egui::Role::MultilineTextInput, true, "Program")
+                egui::WidgetInfo::labeled(
+                    egui::Role::MultilineTextInput,
+                    true,
+                    crate::i18n::tr("Program"),
+                )
             });
             ui.ctx().accesskit_node_builder(id, |node| {
                 node.set_role(egui::accesskit::Role::MultilineTextInput);
@@ -583,6 +635,7 @@ impl RowEditor {
         }
         output.cursor_line = u32::try_from(text.char_to_line(self.caret) + 1).ok();
         output.selection = Some(self.selection());
+        self.had_focus = ui.memory(|m| m.has_focus(id));
         output
     }
 

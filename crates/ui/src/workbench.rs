@@ -11,6 +11,7 @@ use crate::analysis::{Analysis, PendingAnalysis, Problem, Stats};
 use crate::backplot::Backplot;
 use crate::buffer::Buffer;
 use crate::commands::{self, FindOptions, Finder, RenumberOptions};
+use crate::dialect_hint::DialectHint;
 use crate::editor::{CodeEditor, severity_color};
 use crate::examples::EXAMPLES;
 use crate::history::{EditKind, History, Snapshot};
@@ -26,20 +27,39 @@ pub const FRAME_BUDGET: usize = 20_000;
 /// Blocks of a replaced program freed per frame.
 const RETIRED_BLOCKS_PER_FRAME: usize = 100_000;
 
+/// Width of the editor's panel until the user drags its divider, in points.
+const EDITOR_PANEL_WIDTH: f32 = 460.0;
+/// Width of the "state at cursor" panel until the user drags its divider, in points: room for
+/// a position in millimetres; longer contents wrap or scroll inside it.
+const STATE_PANEL_WIDTH: f32 = 280.0;
+/// Height of the problems list, when there are problems, until the user drags its divider.
+const PROBLEMS_PANEL_HEIGHT: f32 = 140.0;
+
 /// Editor, problems and backplot over the program of the active tab; re-analyses on every edit.
 ///
-/// Each tab holds one file (a [`Document`] with its text, undo history and cursor). The active
-/// tab's program is analysed with the other tabs as the files its subprogram calls may reach.
+/// Each tab holds one file (a [`Document`] with its text, undo history and cursor) and the
+/// dialect it is read in. The active tab's program is analysed with the other tabs as the files
+/// its subprogram calls may reach.
 ///
 /// The analysis runs a bounded number of blocks per frame ([`FRAME_BUDGET`]); until a new one
-/// is finished, the last finished analysis (markers, problems, backplot) stays on screen, and
-/// an edit made meanwhile cancels the unfinished run and starts over.
+/// is finished, the tab's last finished analysis (markers, problems, backplot) stays on screen
+/// — a tab with none yet shows an empty view and its progress, never another tab's — and an
+/// edit made meanwhile cancels the unfinished run and starts over.
 pub struct Workbench {
     text: Buffer,
+    /// The active tab's dialect.
     dialect: Dialect,
+    /// The dialect new tabs and files opened in them start in: the last one chosen in the
+    /// dialect selector or the settings.
+    default_dialect: Dialect,
     setup: Setup,
     generation: u64,
+    /// The active tab's last finished analysis, or an empty one while its first is running.
     analysis: Analysis,
+    /// Whether `analysis` is the active tab's own (false for the empty stand-in).
+    own_analysis: bool,
+    /// Another dialect the active tab's program reads better in, from its last analysis.
+    hint: Option<DialectHint>,
     /// The analysis of the current text while it is still running.
     pending: Option<PendingAnalysis>,
     /// The analyses just replaced, freed over the next frames (freeing a million-line program
@@ -91,6 +111,9 @@ pub struct Workbench {
     lang: Lang,
     /// Whether the CJK font the Chinese languages need is added, asked for, or neither.
     cjk_font: FontState,
+    /// Where the named widgets were drawn in the last frame, the part in sight, in points (see
+    /// [`Workbench::widget_rect`]): the page's test API finds what to click through it.
+    widgets: std::collections::BTreeMap<std::borrow::Cow<'static, str>, egui::Rect>,
 }
 
 /// Where the CJK font stands.
@@ -115,6 +138,12 @@ pub struct Document {
     /// The text as last opened or saved.
     saved: Rope,
     dirty: bool,
+    /// Names this document while it is open (unique in the process), so a host can follow
+    /// a tab over switches, moves and closes.
+    id: u64,
+    /// Moves with every change of the text (unique in the process): a host keeping a copy of
+    /// the text writes it again only when this moved.
+    revision: u64,
 }
 
 impl Default for Document {
@@ -133,6 +162,12 @@ struct Tab {
     shadow: Rope,
     selection: Range<usize>,
     cursor_line: Option<u32>,
+    /// The dialect the tab's program is read in.
+    dialect: Dialect,
+    /// The tab's last finished analysis (`None` before its first is done).
+    analysis: Option<Analysis>,
+    /// The dialect offered for its program by that analysis.
+    hint: Option<DialectHint>,
 }
 
 /// One open tab's file and text, for keeping unsaved work over a crash or a reload.
@@ -158,8 +193,46 @@ impl Document {
             encoding,
             saved: text.clone(),
             dirty: false,
+            id: next_stamp(),
+            revision: next_stamp(),
         }
     }
+
+    /// Whether the text has changes that are not saved.
+    pub fn is_unsaved(&self) -> bool {
+        self.dirty
+    }
+
+    /// Names the document while it is open: the same over tab switches, moves and closes of
+    /// other tabs, never shared with another document of this process.
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// Changes with every change of the text, never to a value another text had in this
+    /// process: a copy kept of a revision is a copy of that text.
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+}
+
+/// What the status bar says after unsaved changes of the tabs `names` were recovered; `None`
+/// when there were none.
+fn recovered_message(names: &[&str]) -> Option<String> {
+    match names {
+        [] => None,
+        [name] => Some(trf("Recovered unsaved changes of {}", &[name])),
+        _ => Some(trf(
+            "Recovered unsaved changes of {} tabs: {}",
+            &[&names.len(), &names.join(", ")],
+        )),
+    }
+}
+
+/// A number no earlier call returned (document ids and text revisions).
+fn next_stamp() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 /// Something the workbench asks its host to do: file dialogs, reading and writing files, which
@@ -231,12 +304,16 @@ impl Workbench {
         let analysis = Analysis::run(&text, dialect, &setup, 1);
         let text = Buffer::from(text);
         let rope = text.rope().clone();
+        let hint = crate::dialect_hint::suggest(&text, &analysis);
         Workbench {
             text,
             dialect,
+            default_dialect: dialect,
             setup,
             generation: 1,
             analysis,
+            own_analysis: true,
+            hint,
             pending: None,
             retired: Vec::new(),
             budget: FRAME_BUDGET,
@@ -265,6 +342,7 @@ impl Workbench {
             message: None,
             lang: Lang::En,
             cjk_font: FontState::Absent,
+            widgets: std::collections::BTreeMap::new(),
         }
     }
 
@@ -301,6 +379,21 @@ impl Workbench {
         encoding: Encoding,
         path: Option<String>,
     ) {
+        // A built-in example saved as a file opens in its dialect, as from the menu.
+        let dialect = EXAMPLES.iter().find(|e| e.text == text).map(|e| e.dialect);
+        self.open_in(name, text, encoding, path, dialect);
+    }
+
+    /// Opens a file in a tab as [`Workbench::open_file`] does, in `dialect` when given (a file
+    /// opened again keeps its tab's dialect otherwise, a new one starts in the default).
+    fn open_in(
+        &mut self,
+        name: &str,
+        text: String,
+        encoding: Encoding,
+        path: Option<String>,
+        dialect: Option<Dialect>,
+    ) {
         let open_at = path.as_ref().and_then(|p| {
             (0..self.tabs.len()).find(|&i| self.tab_document(i).path.as_ref() == Some(p))
         });
@@ -312,18 +405,27 @@ impl Workbench {
                     return;
                 }
             }
-            None if self.is_blank() => {}
-            None => {
-                let current = self.park();
-                if let Some(slot) = self.tabs.get_mut(self.active) {
-                    *slot = current;
-                }
-                self.tabs.push(Tab::default());
-                self.active = self.tabs.len() - 1;
-            }
+            // A new file starts in the default dialect (a tab keeps its own once open).
+            None if self.is_blank() => self.dialect = self.default_dialect,
+            None => self.push_tab(),
+        }
+        if let Some(dialect) = dialect {
+            self.dialect = dialect;
         }
         self.load(name, text, encoding);
         self.document.path = path;
+    }
+
+    /// Parks the active tab and makes a new empty one after the others active, in the default
+    /// dialect, with no analysis yet.
+    fn push_tab(&mut self) {
+        let current = self.park();
+        if let Some(slot) = self.tabs.get_mut(self.active) {
+            *slot = current;
+        }
+        self.tabs.push(Tab::default());
+        self.active = self.tabs.len() - 1;
+        self.dialect = self.default_dialect;
     }
 
     /// Opens a file dropped on the window or the page in a tab (see [`Workbench::open_file`]).
@@ -356,8 +458,19 @@ impl Workbench {
         self.synced_line = None;
         self.editor.jump_to(0..0);
         self.message = None;
+        self.drop_shown_analysis();
         self.reanalyse();
         self.backplot.fit();
+    }
+
+    /// Shows the empty stand-in until the active tab's next analysis is done (its text is
+    /// another file now: what was shown is not of it).
+    fn drop_shown_analysis(&mut self) {
+        self.hint = None;
+        if std::mem::take(&mut self.own_analysis) {
+            let old = std::mem::replace(&mut self.analysis, no_analysis());
+            self.retired.push(old);
+        }
     }
 
     /// Whether the active tab is empty, untitled and unchanged (a file opened replaces it).
@@ -377,7 +490,8 @@ impl Workbench {
         self.text = Buffer::from(text.into());
         self.shadow = self.text.rope().clone();
         self.document.dirty = true;
-        self.message = Some(tr("Recovered unsaved changes").to_string());
+        self.document.revision = next_stamp();
+        self.message = recovered_message(&[name]);
         self.reanalyse();
         self.backplot.fit();
     }
@@ -405,13 +519,20 @@ impl Workbench {
     }
 
     /// Replaces every tab with `records` (kept by [`Workbench::tab_records`]) and activates
-    /// the `active`-th; unsaved texts come back as changes that still need saving. Nothing
-    /// happens for an empty list.
+    /// the `active`-th; unsaved texts come back as changes that still need saving, and the
+    /// status bar names them (it says nothing of recovery when none had any). Nothing happens
+    /// for an empty list.
     pub fn restore_tabs(&mut self, records: Vec<TabRecord>, active: usize) {
         if records.is_empty() {
             return;
         }
         let active = active.min(records.len() - 1);
+        let unsaved: Vec<&str> = records
+            .iter()
+            .filter(|r| r.dirty)
+            .map(|r| r.name.as_str())
+            .collect();
+        let message = recovered_message(&unsaved);
         let mut tabs = Vec::with_capacity(records.len());
         for r in records {
             let text = Buffer::from(r.text);
@@ -427,6 +548,7 @@ impl Workbench {
                 shadow: text.rope().clone(),
                 text,
                 document,
+                dialect: self.default_dialect,
                 ..Tab::default()
             });
         }
@@ -434,15 +556,38 @@ impl Workbench {
         self.tabs = tabs;
         self.active = active;
         self.unpark(first);
-        if self.tabs.iter().any(|t| t.document.dirty) || self.document.dirty {
-            self.message = Some(tr("Recovered unsaved changes").to_string());
+        if message.is_some() {
+            self.message = message;
         }
         self.reanalyse();
         self.backplot.fit();
     }
 
+    /// The text of tab `i` (a copy), `None` past the last tab.
+    pub fn tab_text(&self, i: usize) -> Option<String> {
+        if i == self.active {
+            Some(self.text.to_text())
+        } else {
+            self.tabs.get(i).map(|t| t.text.to_text())
+        }
+    }
+
+    /// The status bar's message, when it shows one.
+    pub fn message(&self) -> Option<&str> {
+        self.message.as_deref()
+    }
+
     /// Takes the active tab's content out of the workbench's fields.
+    ///
+    /// The tab keeps its dialect and last finished analysis; an unfinished one is dropped (it
+    /// starts over when the tab is active again), and the empty stand-in is shown meanwhile.
     fn park(&mut self) -> Tab {
+        self.pending = None;
+        let analysis = if std::mem::take(&mut self.own_analysis) {
+            Some(std::mem::replace(&mut self.analysis, no_analysis()))
+        } else {
+            None
+        };
         Tab {
             text: std::mem::take(&mut self.text),
             document: std::mem::take(&mut self.document),
@@ -450,10 +595,14 @@ impl Workbench {
             shadow: std::mem::take(&mut self.shadow),
             selection: std::mem::take(&mut self.selection),
             cursor_line: self.cursor_line.take(),
+            dialect: self.dialect,
+            analysis,
+            hint: self.hint.take(),
         }
     }
 
-    /// Puts a tab's content into the workbench's fields.
+    /// Puts a tab's content into the workbench's fields: its own last analysis is shown (the
+    /// empty stand-in when it has none yet), never the one of the tab before.
     fn unpark(&mut self, tab: Tab) {
         self.text = tab.text;
         self.document = tab.document;
@@ -463,6 +612,13 @@ impl Workbench {
         self.synced_line = None;
         self.state_cache = None;
         self.select_chars(tab.selection);
+        self.dialect = tab.dialect;
+        self.pending = None;
+        self.own_analysis = tab.analysis.is_some();
+        let shown = tab.analysis.unwrap_or_else(no_analysis);
+        let old = std::mem::replace(&mut self.analysis, shown);
+        self.retired.push(old);
+        self.hint = tab.hint;
     }
 
     /// The document of tab `i` (which may be the active one).
@@ -515,7 +671,8 @@ impl Workbench {
         } else if i == self.active {
             self.remove_active_tab();
         } else {
-            self.tabs.remove(i);
+            let closed = self.tabs.remove(i);
+            self.retired.extend(closed.analysis);
             if i < self.active {
                 self.active -= 1;
             }
@@ -527,6 +684,7 @@ impl Workbench {
     /// Drops the active tab, unsaved changes and all.
     fn remove_active_tab(&mut self) {
         if self.tabs.len() <= 1 {
+            self.dialect = self.default_dialect;
             self.load("untitled.nc", String::new(), Encoding::Utf8);
             return;
         }
@@ -554,12 +712,7 @@ impl Workbench {
 
     /// Opens a new tab with an empty untitled program.
     pub fn new_tab(&mut self) {
-        let current = self.park();
-        if let Some(slot) = self.tabs.get_mut(self.active) {
-            *slot = current;
-        }
-        self.tabs.push(Tab::default());
-        self.active = self.tabs.len() - 1;
+        self.push_tab();
         let name = self.untitled_name();
         self.load(&name, String::new(), Encoding::Utf8);
     }
@@ -781,25 +934,79 @@ impl Workbench {
 
     fn text_changed(&mut self) {
         self.document.dirty = self.text.rope() != &self.document.saved;
+        self.document.revision = next_stamp();
         self.reanalyse();
     }
 
-    /// The dialect programs are read as.
+    /// The dialect the active tab's program is read in.
     pub fn dialect(&self) -> Dialect {
         self.dialect
     }
 
-    /// Changes the dialect and re-analyses.
+    /// Reads the active tab's program in `dialect` (re-analysing it) and makes `dialect` the
+    /// one new tabs start in, as choosing it in the dialect selector does; the other open tabs
+    /// keep theirs.
     pub fn set_dialect(&mut self, dialect: Dialect) {
-        if dialect != self.dialect {
-            self.dialect = dialect;
-            self.reanalyse();
+        self.default_dialect = dialect;
+        self.set_tab_dialect(self.active, dialect);
+    }
+
+    /// The dialect tab `i`'s program is read in; `None` past the last tab.
+    pub fn tab_dialect(&self, i: usize) -> Option<Dialect> {
+        if i == self.active {
+            Some(self.dialect)
+        } else {
+            self.tabs.get(i).map(|t| t.dialect)
         }
+    }
+
+    /// Reads tab `i`'s program in `dialect` (the active one is re-analysed at once, another
+    /// when it is next shown); the other tabs and the default for new ones stay as they are.
+    pub fn set_tab_dialect(&mut self, i: usize, dialect: Dialect) {
+        if i == self.active {
+            if dialect != self.dialect {
+                self.dialect = dialect;
+                self.reanalyse();
+            }
+        } else if let Some(tab) = self.tabs.get_mut(i) {
+            tab.dialect = dialect;
+        }
+    }
+
+    /// The dialect new tabs, and files opened in them, start in.
+    pub fn default_dialect(&self) -> Dialect {
+        self.default_dialect
+    }
+
+    /// Sets the dialect new tabs start in (the open tabs keep theirs), as a host restoring
+    /// its settings does.
+    pub fn set_default_dialect(&mut self, dialect: Dialect) {
+        self.default_dialect = dialect;
+    }
+
+    /// The dialect offered for the active tab's program: one whose codes, by the code tables,
+    /// leave strictly fewer errors than its own dialect (see the notice over the problems).
+    pub fn suggested_dialect(&self) -> Option<Dialect> {
+        self.hint
+            .as_ref()
+            .filter(|h| h.from == self.dialect && self.own_analysis)
+            .map(|h| h.to)
+    }
+
+    /// Whether the analysis shown is the active tab's own; false while the first analysis of
+    /// a tab just opened is still running (an empty view, problems and counts are shown).
+    pub fn analysis_ready(&self) -> bool {
+        self.own_analysis
     }
 
     /// The latest analysis.
     pub fn analysis(&self) -> &Analysis {
         &self.analysis
+    }
+
+    /// The codes the editor's completion list offers, while it is open.
+    pub fn completions(&self) -> Option<&[commands::Completion]> {
+        self.editor.completions()
     }
 
     /// Diagnostics of the current text, sorted by position.
@@ -848,9 +1055,17 @@ impl Workbench {
         let used = usize::try_from(pending.work_done().saturating_sub(work)).unwrap_or(usize::MAX);
         self.budget = self.budget.saturating_sub(used);
         if done && let Some(pending) = self.pending.take() {
-            let old = std::mem::replace(&mut self.analysis, pending.finish());
-            self.retired.push(old);
+            self.install(pending.finish());
         }
+    }
+
+    /// Shows a finished analysis of the active tab's current text (the one it replaces is
+    /// freed over the next frames) with the dialect it suggests.
+    fn install(&mut self, analysis: Analysis) {
+        self.hint = crate::dialect_hint::suggest(&self.text, &analysis);
+        let old = std::mem::replace(&mut self.analysis, analysis);
+        self.retired.push(old);
+        self.own_analysis = true;
     }
 
     /// Frees part of the analyses replaced: the latest one's blocks a slice a frame (their
@@ -891,7 +1106,7 @@ impl Workbench {
     pub fn finish_analysis(&mut self) {
         if let Some(mut pending) = self.pending.take() {
             while !pending.step(FRAME_BUDGET) {}
-            self.analysis = pending.finish();
+            self.install(pending.finish());
         }
     }
 
@@ -908,9 +1123,23 @@ impl Workbench {
         self.generation
     }
 
+    /// Where the widget `name` was drawn in the last frame, in points; `None` when it was not
+    /// drawn or scrolled out of sight; only the part in sight, where a click reaches it. The
+    /// names: `editor`, `backplot`, `fit_view`, `find_field`, `find_previous`, `find_next`,
+    /// `find_close`, `replace_field`, `replace`, `replace_all`, `goto_field`, `goto_button`,
+    /// `problem_first` (the problems list's first row), `tab N` (the 1-based tab's label),
+    /// `close_tab N` and `new_tab`.
+    pub fn widget_rect(&self, name: &str) -> Option<egui::Rect> {
+        self.widgets
+            .get(name)
+            .copied()
+            .filter(egui::Rect::is_positive)
+    }
+
     /// Shows the workbench filling `ui`.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
+        self.widgets.clear();
         crate::i18n::set_current(self.lang);
         self.free_retired();
         self.budget = FRAME_BUDGET;
@@ -918,17 +1147,32 @@ impl Workbench {
         self.shortcuts(ui.ctx());
         egui::Panel::top("swarf-top").show(ui, |ui| self.top_bar(ui));
         egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
-        egui::Panel::bottom("swarf-problems")
-            .resizable(true)
-            .default_size(140.0)
-            .show(ui, |ui| self.problems_list(ui));
+        // The panels keep their size (the user's, once a divider is dragged) whatever they
+        // show: their contents wrap or scroll inside, so the view never jumps under the mouse.
+        if self.problem_count() == 0 {
+            // Nothing to list: one line, not an empty list's height.
+            egui::Panel::bottom("swarf-problems-none")
+                .resizable(false)
+                .show(ui, |ui| self.problems_list(ui));
+        } else {
+            egui::Panel::bottom("swarf-problems")
+                .resizable(true)
+                .default_size(PROBLEMS_PANEL_HEIGHT)
+                .show(ui, |ui| self.problems_list(ui));
+        }
         egui::Panel::right("swarf-state")
             .resizable(true)
-            .default_size(200.0)
-            .show(ui, |ui| self.state_view(ui));
+            .default_size(STATE_PANEL_WIDTH)
+            .min_size(120.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::both()
+                    .id_salt("swarf-state-scroll")
+                    .auto_shrink([false, false])
+                    .show(ui, |ui| self.state_view(ui));
+            });
         egui::Panel::left("swarf-editor")
             .resizable(true)
-            .default_size(460.0)
+            .default_size(EDITOR_PANEL_WIDTH)
             .show(ui, |ui| {
                 self.tab_strip(ui);
                 let title = ui.horizontal(|ui| {
@@ -938,13 +1182,19 @@ impl Workbench {
                     title
                 });
                 if self.find.open {
-                    self.find_bar(ui);
+                    // Scrolled sideways where it is wider than the panel, never widening it.
+                    egui::ScrollArea::horizontal()
+                        .id_salt("swarf-find-bar")
+                        .show(ui, |ui| self.find_bar(ui));
                 }
                 let matches = match &self.find.count {
                     Some((_, Ok(m))) if self.find.open => m.as_slice(),
                     _ => &[],
                 };
                 self.editor.set_highlights(matches);
+                // The editor fills the rest of the panel.
+                let editor_rect = ui.available_rect_before_wrap();
+                self.widgets.insert("editor".into(), editor_rect);
                 let out = self.editor.show(
                     ui,
                     title.inner.id,
@@ -988,7 +1238,13 @@ impl Workbench {
                 egui::Panel::bottom("swarf-playback").show(ui, |ui| {
                     self.backplot.playback_bar(ui, &self.analysis.scene);
                 });
-                self.backplot.show(ui, &self.analysis.scene);
+                // A fit asked for a program just opened waits for its scene.
+                self.backplot
+                    .set_coming_generation(self.pending.as_ref().map(PendingAnalysis::generation));
+                let view = self.backplot.show(ui, &self.analysis.scene);
+                self.widgets
+                    .insert("backplot".into(), view.rect.intersect(ui.clip_rect()));
+                self.loading_overlay(ui, view.rect);
                 // … a click on a segment moves the editor to its block, and so does playback
                 // (the backplot highlights the block itself).
                 let played = self.backplot.take_playback_line();
@@ -1039,14 +1295,15 @@ impl Workbench {
             return;
         };
         let mm = |v: glam::DVec3| format!("X{:.3} Y{:.3} Z{:.3}", v.x, v.y, v.z);
+        // The modal codes, many on some lines, wrap within the panel's width (first, before
+        // anything wider than the panel that scrolls).
+        ui.label(tr("modes"));
+        ui.add(egui::Label::new(s.codes.join(" ")).wrap());
         egui::Grid::new("swarf-state-grid")
             .num_columns(2)
             .show(ui, |ui| {
                 ui.label(tr("line"));
                 ui.label(line.to_string());
-                ui.end_row();
-                ui.label(tr("modes"));
-                ui.label(s.codes.join(" "));
                 ui.end_row();
                 ui.label(tr("work"));
                 ui.monospace(mm(s.work));
@@ -1075,6 +1332,11 @@ impl Workbench {
             });
     }
 
+    /// The problems of the active tab's program and of the files it called.
+    fn problem_count(&self) -> usize {
+        self.analysis.problems.len() + self.analysis.elsewhere.len()
+    }
+
     /// The backplot (camera, selection, playback).
     pub fn backplot(&self) -> &Backplot {
         &self.backplot
@@ -1086,11 +1348,14 @@ impl Workbench {
     }
 
     /// Puts the editor's cursor at the start of 1-based `line`.
+    /// Shows the line a click in the view or the playback reached in the editor; the keyboard
+    /// stays with the view or the playback bar, so their keys never type into the program.
     fn jump_to_line(&mut self, line: u32) {
         let lines = &self.analysis.program.lines;
         let start = lines.line_start(line.saturating_sub(1) as usize) as usize;
         let chars = self.text.byte_to_char(start);
-        self.select_chars(chars..chars);
+        self.selection = chars..chars;
+        self.editor.show_range(chars..chars);
         self.cursor_line = Some(line);
         self.synced_line = Some(line);
     }
@@ -1117,9 +1382,15 @@ impl Workbench {
                 })
                 .response
                 .labelled_by(label.id);
-            self.set_dialect(dialect);
+            // The active tab's dialect, and the one new tabs start in.
+            if dialect != self.dialect {
+                self.set_dialect(dialect);
+            }
             ui.separator();
-            if ui.button(tr("Fit view")).clicked() {
+            let fit = ui.button(tr("Fit view"));
+            self.widgets
+                .insert("fit_view".into(), fit.rect.intersect(ui.clip_rect()));
+            if fit.clicked() {
                 self.backplot.fit();
             }
         });
@@ -1262,8 +1533,13 @@ impl Workbench {
         let Some(ex) = EXAMPLES.iter().find(|e| e.name == name) else {
             return false;
         };
-        self.dialect = ex.dialect;
-        self.open_document(ex.name, ex.text, Encoding::Utf8);
+        self.open_in(
+            ex.name,
+            ex.text.to_string(),
+            Encoding::Utf8,
+            None,
+            Some(ex.dialect),
+        );
         true
     }
 
@@ -1384,7 +1660,7 @@ impl Workbench {
         let Some(m) = finder.next(&self.text, from) else {
             return false;
         };
-        self.select_bytes(m);
+        self.show_match(m);
         true
     }
 
@@ -1397,15 +1673,18 @@ impl Workbench {
         let Some(m) = finder.previous(&self.text, before) else {
             return false;
         };
-        self.select_bytes(m);
+        self.show_match(m);
         true
     }
 
-    fn select_bytes(&mut self, bytes: Range<usize>) {
+    /// Selects a find match (bytes) and scrolls to it; the keyboard stays where it is, so the
+    /// find field keeps it while Enter steps through the matches.
+    fn show_match(&mut self, bytes: Range<usize>) {
         let chars = commands::char_of_byte(&self.text, bytes.start)
             ..commands::char_of_byte(&self.text, bytes.end);
         self.cursor_line = Some(commands::line_of_byte(&self.text, bytes.start));
-        self.select_chars(chars);
+        self.selection = chars.clone();
+        self.editor.show_range(chars);
     }
 
     /// Replaces the selected match with the replacement field and selects the next match; when
@@ -1449,7 +1728,7 @@ impl Workbench {
         let mut replace = false;
         let mut replace_all = false;
         let mut close = false;
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             let label = ui.label(tr("Find"));
             let field = ui.add(
                 egui::TextEdit::singleline(&mut self.find.query)
@@ -1461,6 +1740,8 @@ impl Workbench {
                     }),
             );
             let field = field.labelled_by(label.id);
+            self.widgets
+                .insert("find_field".into(), field.rect.intersect(ui.clip_rect()));
             if std::mem::take(&mut self.find.focus) {
                 field.request_focus();
             }
@@ -1473,8 +1754,18 @@ impl Workbench {
             }
             ui.checkbox(&mut self.find.options.regex, tr("Regex"));
             ui.checkbox(&mut self.find.options.match_case, tr("Match case"));
-            previous = ui.button(tr("Previous")).clicked();
-            next |= ui.button(tr("Next")).clicked();
+            let previous_button = ui.button(tr("Previous"));
+            let next_button = ui.button(tr("Next"));
+            self.widgets.insert(
+                "find_previous".into(),
+                previous_button.rect.intersect(ui.clip_rect()),
+            );
+            self.widgets.insert(
+                "find_next".into(),
+                next_button.rect.intersect(ui.clip_rect()),
+            );
+            previous = previous_button.clicked();
+            next |= next_button.clicked();
             let key = (self.generation, self.find.query.clone(), self.find.options);
             if self.find.count.as_ref().map(|(k, _)| k) != Some(&key) {
                 let count = if self.find.query.is_empty() {
@@ -1496,15 +1787,31 @@ impl Workbench {
                 }
                 None => {}
             }
-            close |= ui.button("×").on_hover_text(tr("Close")).clicked();
+            let close_button = ui.button("×").on_hover_text(tr("Close"));
+            self.widgets.insert(
+                "find_close".into(),
+                close_button.rect.intersect(ui.clip_rect()),
+            );
+            close |= close_button.clicked();
         });
         if self.find.replace {
-            ui.horizontal(|ui| {
+            ui.horizontal_wrapped(|ui| {
                 let label = ui.label(tr("Replace"));
-                ui.add(egui::TextEdit::singleline(&mut self.find.replacement).desired_width(160.0))
+                let field = ui
+                    .add(
+                        egui::TextEdit::singleline(&mut self.find.replacement).desired_width(160.0),
+                    )
                     .labelled_by(label.id);
-                replace = ui.button(tr("Replace")).clicked();
-                replace_all = ui.button(tr("Replace all")).clicked();
+                let one = ui.button(tr("Replace"));
+                let all = ui.button(tr("Replace all"));
+                self.widgets
+                    .insert("replace_field".into(), field.rect.intersect(ui.clip_rect()));
+                self.widgets
+                    .insert("replace".into(), one.rect.intersect(ui.clip_rect()));
+                self.widgets
+                    .insert("replace_all".into(), all.rect.intersect(ui.clip_rect()));
+                replace = one.clicked();
+                replace_all = all.clicked();
             });
         }
         if close {
@@ -1546,7 +1853,12 @@ impl Workbench {
                             field.request_focus();
                         }
                         go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                        go |= ui.button(tr("Go")).clicked();
+                        let button = ui.button(tr("Go"));
+                        self.widgets
+                            .insert("goto_field".into(), field.rect.intersect(ui.clip_rect()));
+                        self.widgets
+                            .insert("goto_button".into(), button.rect.intersect(ui.clip_rect()));
+                        go |= button.clicked();
                     });
                     ui.label(format!("1 – {}", self.text.line_count()));
                 });
@@ -1609,7 +1921,9 @@ impl Workbench {
                     );
                 });
             self.settings_open = open;
-            self.set_dialect(dialect);
+            if dialect != self.dialect {
+                self.set_dialect(dialect);
+            }
             self.set_setup(setup);
             if let Some(r) = request {
                 self.requests.push(r);
@@ -1721,6 +2035,58 @@ impl Workbench {
         });
     }
 
+    /// "Reading… N %" over the empty view of a tab whose first analysis is still running.
+    fn loading_overlay(&self, ui: &mut egui::Ui, view: egui::Rect) {
+        if self.own_analysis {
+            return;
+        }
+        let Some(pending) = &self.pending else {
+            return;
+        };
+        let percent = |done: usize, total: usize| {
+            let (done, total) = (done as u64, total.max(1) as u64);
+            done.min(total) * 100 / total
+        };
+        let text = if let Some((read, lines)) = pending.parse_progress() {
+            trf("Reading… {} %", &[&percent(read, lines)])
+        } else {
+            let (done, total) = pending.progress();
+            trf("Analysing… {} %", &[&percent(done, total)])
+        };
+        let at = egui::Rect::from_center_size(view.center(), egui::vec2(260.0, 40.0));
+        ui.put(
+            at,
+            egui::Label::new(egui::RichText::new(text).heading().weak()),
+        );
+    }
+
+    /// The offer to read the active tab's program in the dialect its codes point to, over the
+    /// problems: "This program looks like Syntec 900M (G71 on line 3)" and a Switch button.
+    fn dialect_notice(&mut self, ui: &mut egui::Ui) {
+        let Some(to) = self.suggested_dialect() else {
+            return;
+        };
+        let first = self.hint.as_ref().and_then(|h| h.first.clone());
+        let mut switch = false;
+        ui.horizontal(|ui| {
+            let text = match &first {
+                Some((what, line)) => trf(
+                    "This program looks like {} ({} on line {})",
+                    &[&to.label(), what, line],
+                ),
+                None => trf("This program looks like {}", &[&to.label()]),
+            };
+            ui.colored_label(severity_color(Severity::Warning), text);
+            switch = ui
+                .button(tr("Switch"))
+                .on_hover_text(trf("Read this tab's program as {}", &[&to.label()]))
+                .clicked();
+        });
+        if switch {
+            self.set_tab_dialect(self.active, to);
+        }
+    }
+
     /// The tabs over the editor: one per open file (click to switch, × to close) and + for a
     /// new one.
     fn tab_strip(&mut self, ui: &mut egui::Ui) {
@@ -1736,14 +2102,15 @@ impl Workbench {
                         let dirty = if doc.dirty { " *" } else { "" };
                         let label = format!("{}{dirty}", doc.name);
                         let hover = doc.path.clone().unwrap_or_else(|| doc.name.clone());
-                        if ui
-                            .selectable_label(i == self.active, label)
-                            .on_hover_text(hover)
-                            .clicked()
-                        {
+                        let close_label = trf("Close {}", &[&doc.name]);
+                        let tab = ui.selectable_label(i == self.active, label);
+                        self.widgets.insert(
+                            format!("tab {}", i + 1).into(),
+                            tab.rect.intersect(ui.clip_rect()),
+                        );
+                        if tab.on_hover_text(hover).clicked() {
                             switch = Some(i);
                         }
-                        let close_label = trf("Close {}", &[&doc.name]);
                         let button = ui.small_button("×");
                         button.widget_info(|| {
                             egui::WidgetInfo::labeled(
@@ -1752,6 +2119,10 @@ impl Workbench {
                                 &close_label,
                             )
                         });
+                        self.widgets.insert(
+                            format!("close_tab {}", i + 1).into(),
+                            button.rect.intersect(ui.clip_rect()),
+                        );
                         if button.on_hover_text(&close_label).clicked() {
                             close = Some(i);
                         }
@@ -1765,6 +2136,8 @@ impl Workbench {
                             tr("New tab"),
                         )
                     });
+                    self.widgets
+                        .insert("new_tab".into(), button.rect.intersect(ui.clip_rect()));
                     new = button.on_hover_text(tr("New tab")).clicked();
                 });
             });
@@ -1780,8 +2153,13 @@ impl Workbench {
     }
 
     fn problems_list(&mut self, ui: &mut egui::Ui) {
+        self.dialect_notice(ui);
         let own = self.analysis.problems.len();
         let total = own + self.analysis.elsewhere.len();
+        if total == 0 {
+            ui.label(tr("No problems"));
+            return;
+        }
         ui.strong(trf("Problems ({})", &[&total]));
         let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
         egui::ScrollArea::vertical()
@@ -1818,11 +2196,12 @@ impl Workbench {
                     let label = egui::RichText::new(text)
                         .monospace()
                         .color(severity_color(severity));
-                    if ui
-                        .add(egui::Label::new(label).sense(egui::Sense::click()))
-                        .on_hover_text(hover)
-                        .clicked()
-                    {
+                    let row = ui.add(egui::Label::new(label).sense(egui::Sense::click()));
+                    if i == 0 {
+                        self.widgets
+                            .insert("problem_first".into(), row.rect.intersect(ui.clip_rect()));
+                    }
+                    if row.on_hover_text(hover).clicked() {
                         if let Some(p) = self.analysis.problems.get(i) {
                             jump = Some(p.chars.clone());
                         } else if let Some(l) = self.analysis.elsewhere.get(i - own) {
@@ -1842,6 +2221,11 @@ impl Workbench {
                 }
             });
     }
+}
+
+/// What a tab shows before its first analysis is done: no path, no problems, no counts.
+fn no_analysis() -> Analysis {
+    Analysis::run("", Dialect::default(), &Setup::default(), 0)
 }
 
 /// The shortcut of an editor command: Ctrl (Cmd on macOS) and `key`.

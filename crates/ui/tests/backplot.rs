@@ -317,17 +317,43 @@ fn click_picks_a_block_hover_describes_it_and_playback_dims() {
         .unwrap();
     assert!((a - b).length() > 150.0, "{a:?} {b:?}");
 
-    // Keyboard over the view: arrows orbit, `2` is the top view, Escape clears the selection.
+    // The keyboard goes to the view only once it has the focus: the pointer over it is not
+    // enough.
+    harness.ctx.memory_mut(|m| {
+        if let Some(id) = m.focused() {
+            m.surrender_focus(id);
+        }
+    });
     let centre = egui::pos2(160.0, 140.0);
     harness.hover_at(centre);
     harness.run();
+    assert!(!harness.state().0.has_focus(&harness.ctx));
     let yaw = harness.state().0.camera().yaw;
+    harness.key_press(egui::Key::ArrowLeft);
+    harness.run();
+    assert_eq!(
+        harness.state().0.camera().yaw,
+        yaw,
+        "keys reached an unfocused view"
+    );
+    // A click takes it (here on empty space, which clears the selection).
+    harness.drag_at(centre);
+    harness.run();
+    harness.drop_at(centre);
+    harness.run();
+    assert!(harness.state().0.has_focus(&harness.ctx));
+    harness.state_mut().0.set_selected_line(Some(7));
+    // Arrows orbit, `2` is the top view, Escape clears the selection and keeps the focus.
     harness.key_press(egui::Key::ArrowLeft);
     harness.run();
     assert_ne!(
         harness.state().0.camera().yaw,
         yaw,
         "arrow key did not orbit"
+    );
+    assert!(
+        harness.state().0.has_focus(&harness.ctx),
+        "an arrow key moved the focus away"
     );
     harness.key_press(egui::Key::Num2);
     harness.run();
@@ -338,9 +364,16 @@ fn click_picks_a_block_hover_describes_it_and_playback_dims() {
     harness.key_press(egui::Key::Escape);
     harness.run();
     assert_eq!(harness.state().0.selected_line(), None);
+    assert!(harness.state().0.has_focus(&harness.ctx));
     harness.key_press(egui::Key::R);
     harness.run();
     assert!(!harness.state().0.kind_visible(Kind::Rapid));
+    harness.key_press(egui::Key::T);
+    harness.run();
+    assert_eq!(
+        harness.state().0.color_mode(),
+        swarf_render::ColorMode::ByIndex
+    );
 }
 
 #[test]
@@ -536,4 +569,50 @@ fn compensated_blocks_are_drawn_as_such_with_the_programmed_contour_beside() {
         .filter(|p| p.y > centre.y + 0.5)
         .all(|p| ((*p - centre).length() - 10.0).abs() < 1e-3);
     assert!(on_arc, "{contour:?}");
+}
+
+#[test]
+fn each_peck_of_a_deep_hole_is_marked_at_its_bottom() {
+    // G83 from R2 down to Z-10 in pecks of 3 mm: bottoms at Z-1, -4, -7 and -10. Each peck's
+    // retract runs back over the plunges, so only a mark at each bottom lets them be counted.
+    let program = swarf_syntax::parse(
+        "G0 X0 Y0 Z20.\nG98 G83 X10. Y10. R2. Z-10. Q3. F100\nG80\nG0 X40.\n",
+        swarf_syntax::Dialect::Fanuc,
+    );
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
+    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let ticks: Vec<(Vec3, Vec3)> = scene
+        .marks
+        .windows(2)
+        .filter(|w| w[0].is_pen_up() && w[1].kind() == Some(Kind::Plunge))
+        .map(|w| (w[0].position(), w[1].position()))
+        .collect();
+    // A cross (two ticks) at each of the four bottoms.
+    assert_eq!(ticks.len(), 8, "{ticks:?}");
+    let mut bottoms: Vec<f64> = ticks
+        .iter()
+        .map(|(a, b)| {
+            let mid = ((*a + *b) * 0.5).as_dvec3() + scene.origin;
+            assert!(
+                (mid.x - 10.0).abs() < 1e-3 && (mid.y - 10.0).abs() < 1e-3,
+                "{mid}"
+            );
+            // Across the hole's axis, a little wider than nothing.
+            assert!((a.z - b.z).abs() < 1e-4 && (*a - *b).length() > 0.5);
+            (mid.z * 1000.0).round() / 1000.0
+        })
+        .collect();
+    bottoms.dedup();
+    assert_eq!(bottoms, [-1.0, -4.0, -7.0, -10.0]);
+
+    // A hole drilled in one plunge (G81) gets no peck marks.
+    let program = swarf_syntax::parse(
+        "G0 X0 Y0 Z20.\nG98 G81 X10. Y10. R2. Z-10. F100\nG80\n",
+        swarf_syntax::Dialect::Fanuc,
+    );
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
+    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    assert!(scene.marks.iter().all(|p| p.kind() != Some(Kind::Plunge)));
 }

@@ -204,7 +204,8 @@ fn gutter_markers_explain_the_problem_on_hover() {
         * harness
             .ctx
             .fonts_mut(|f| f.row_height(&egui::FontId::monospace(12.0)));
-    harness.hover_at(egui::pos2(rect.left() - 12.0, rect.top() + 2.0 + row));
+    // The line numbers sit at the editor's left edge.
+    harness.hover_at(egui::pos2(rect.left() + 8.0, rect.top() + row));
     harness.run();
     harness.get_by_label_contains("error [E-SYNTAX-CHAR]: unexpected character");
 }

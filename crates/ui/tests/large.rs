@@ -7,7 +7,10 @@ use egui::{Event, Key, Modifiers, PointerButton, Pos2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 use swarf_ui::Workbench;
-use swarf_ui::editor::LARGE_TEXT_BYTES;
+
+/// Bytes of the large program the tests edit: over 2 MB, where laying out every row would not fit
+/// in a frame.
+const LARGE_TEXT_BYTES: usize = 2 << 20;
 
 /// A program over [`LARGE_TEXT_BYTES`]: a setup line, a rapid, then straight feeds; and the
 /// number of feeds.

@@ -33,7 +33,10 @@ fn stepping_blocks_moves_the_editor_cursor() {
     let mut harness = harness();
     harness.run();
     assert_eq!(harness.state().backplot().player().time(), None);
-    assert_eq!(lines(&harness), (None, None, None));
+    // Before playback the backplot highlights the editor's line, whatever it is.
+    let (current, cursor, selected) = lines(&harness);
+    assert_eq!(current, None);
+    assert_eq!(selected, cursor);
 
     harness.get_by_label("Block »").click();
     harness.run();
@@ -111,4 +114,44 @@ fn playing_advances_and_the_editor_follows() {
     harness.run();
     assert_eq!(lines(&harness), (Some(7), Some(7), Some(7)));
     harness.get_by_label("Play");
+}
+
+#[test]
+fn the_current_block_is_highlighted_exactly() {
+    let Ok(render_state) = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        egui_kittest::wgpu::create_render_state(
+            egui_kittest::wgpu::default_wgpu_setup(),
+            egui_wgpu::RendererOptions::PREDICTABLE,
+        )
+    })) else {
+        eprintln!("SKIPPED: no wgpu adapter available for the playback highlight test");
+        return;
+    };
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 700.0))
+        .renderer(egui_kittest::wgpu::WgpuTestRenderer::from_render_state(
+            render_state.clone(),
+        ))
+        .build_ui_state(
+            |ui, wb: &mut Workbench| wb.ui(ui),
+            Workbench::new(PROGRAM.to_string()),
+        );
+    swarf_ui::backplot::Backplot::install(&harness.ctx, &render_state);
+    harness.run();
+    for _ in 0..5 {
+        harness.get_by_label("Block »").click();
+        harness.run();
+        let wb = harness.state();
+        let scene = &wb.analysis().scene;
+        let line = wb.backplot().player().current_line(scene).expect("a block");
+        let lit = wb.backplot().highlighted_segments();
+        assert!(!lit.is_empty(), "line {line} not highlighted");
+        assert_eq!(lit, scene.segments_of_line(line), "line {line}");
+        assert!(
+            lit.iter()
+                .flat_map(Clone::clone)
+                .all(|i| scene.lines[i] == line),
+            "line {line}: {lit:?}"
+        );
+    }
 }

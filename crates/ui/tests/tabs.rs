@@ -3,7 +3,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable as _;
+use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use swarf_syntax::{Dialect, Encoding, Severity};
 use swarf_ui::{HostRequest, Workbench};
 
@@ -237,4 +237,190 @@ fn every_tab_is_kept_and_restored() {
     assert_eq!(back.document().encoding, Encoding::Gb18030);
     assert_eq!(back.document().path.as_deref(), Some("/work/O1234.nc"));
     assert!(!back.is_dirty());
+}
+
+/// The dialect the top bar's selector shows.
+fn selector(harness: &Harness<'_, Workbench>) -> Option<String> {
+    harness.get_by_label("Dialect").accesskit_node().value()
+}
+
+fn dialect_errors(wb: &Workbench) -> usize {
+    wb.problems()
+        .iter()
+        .filter(|p| p.code == "E-CODE-DIALECT")
+        .count()
+}
+
+/// A Syntec program: `G71` is its metric code, which Fanuc does not have.
+const SYNTEC: &str =
+    "%\nO3001\nN10 G90 G71 G17 G54\nG00 X0. Y0. Z20.\nG01 Z-2. F200.\nX40.\nM30\n%\n";
+
+#[test]
+fn each_tab_keeps_its_dialect_and_the_selector_follows_the_active_one() {
+    let mut harness = harness(Workbench::default());
+    assert!(harness.state_mut().open_example("syntec-bolt-circle.nc"));
+    harness.run();
+    assert_eq!(harness.state().dialect(), Dialect::Syntec);
+    assert_eq!(selector(&harness).as_deref(), Some("Syntec 900M"));
+    assert_eq!(dialect_errors(harness.state()), 0);
+    // The example shown at start keeps Fanuc.
+    harness.get_by_label("pocket.nc").click();
+    harness.run();
+    assert_eq!(harness.state().dialect(), Dialect::Fanuc);
+    assert_eq!(selector(&harness).as_deref(), Some("Fanuc 0i-M"));
+    assert_eq!(dialect_errors(harness.state()), 0);
+    // The selector changes the active tab alone …
+    harness.get_by_label("Dialect").click();
+    harness.run();
+    harness.get_by_label("LNC / Baoyuan").click();
+    harness.run();
+    assert_eq!(harness.state().dialect(), Dialect::Lnc);
+    assert_eq!(harness.state().tab_dialect(1), Some(Dialect::Syntec));
+    harness.get_by_label("syntec-bolt-circle.nc").click();
+    harness.run();
+    assert_eq!(harness.state().dialect(), Dialect::Syntec);
+    assert_eq!(selector(&harness).as_deref(), Some("Syntec 900M"));
+    assert_eq!(dialect_errors(harness.state()), 0);
+    harness.get_by_label("pocket.nc").click();
+    harness.run();
+    assert_eq!(harness.state().dialect(), Dialect::Lnc);
+    // … and is what new tabs start in.
+    assert_eq!(harness.state().default_dialect(), Dialect::Lnc);
+    harness.get_by_label("New tab").click();
+    harness.run();
+    assert_eq!(harness.state().dialect(), Dialect::Lnc);
+    assert_eq!(selector(&harness).as_deref(), Some("LNC / Baoyuan"));
+    // A host can read and set each tab's dialect (for its recovery record).
+    let wb = harness.state_mut();
+    assert_eq!(wb.tab_dialect(3), None);
+    wb.set_tab_dialect(0, Dialect::Kt);
+    assert_eq!(wb.dialect(), Dialect::Lnc);
+    wb.switch_tab(0);
+    assert_eq!(wb.dialect(), Dialect::Kt);
+    assert_eq!(wb.default_dialect(), Dialect::Lnc);
+}
+
+#[test]
+fn a_file_opens_in_the_default_dialect_and_a_reopened_one_keeps_its_tabs() {
+    let mut wb = Workbench::default();
+    wb.set_default_dialect(Dialect::Syntec);
+    // The tab already open keeps its own.
+    assert_eq!(wb.dialect(), Dialect::Fanuc);
+    wb.open_file(
+        "flange.nc",
+        SYNTEC.to_string(),
+        Encoding::Utf8,
+        Some("/work/flange.nc".into()),
+    );
+    assert_eq!(wb.dialect(), Dialect::Syntec);
+    assert_eq!(dialect_errors(&wb), 0);
+    wb.set_tab_dialect(1, Dialect::Kt);
+    wb.switch_tab(0);
+    wb.open_file(
+        "flange.nc",
+        SYNTEC.to_string(),
+        Encoding::Utf8,
+        Some("/work/flange.nc".into()),
+    );
+    assert_eq!(wb.active_tab(), 1);
+    assert_eq!(wb.dialect(), Dialect::Kt);
+}
+
+#[test]
+fn a_syntec_program_in_a_fanuc_tab_is_offered_syntec_and_one_click_switches() {
+    let mut wb = Workbench::default();
+    wb.open_document("flange.nc", SYNTEC, Encoding::Utf8);
+    assert_eq!(wb.dialect(), Dialect::Fanuc);
+    assert_eq!(dialect_errors(&wb), 1);
+    assert_eq!(wb.suggested_dialect(), Some(Dialect::Syntec));
+    let mut harness = harness(wb);
+    harness.get_by_label_contains("This program looks like Syntec 900M (G71 on line 3)");
+    // Offered, not switched.
+    assert_eq!(harness.state().dialect(), Dialect::Fanuc);
+    harness.get_by_label("Switch").click();
+    harness.run();
+    let wb = harness.state();
+    assert_eq!(wb.dialect(), Dialect::Syntec);
+    assert_eq!(dialect_errors(wb), 0);
+    assert!(errors(wb).is_empty(), "{:?}", wb.problems());
+    assert_eq!(wb.suggested_dialect(), None);
+    assert!(
+        harness
+            .query_by_label_contains("This program looks like")
+            .is_none()
+    );
+    assert_eq!(selector(&harness).as_deref(), Some("Syntec 900M"));
+    // The switch is the tab's own: the other tab and new ones stay Fanuc.
+    assert_eq!(harness.state().tab_dialect(0), Some(Dialect::Fanuc));
+    assert_eq!(harness.state().default_dialect(), Dialect::Fanuc);
+    // A clean Fanuc program gets no offer.
+    harness.state_mut().switch_tab(0);
+    harness.run();
+    assert_eq!(harness.state().suggested_dialect(), None);
+    assert!(
+        harness
+            .query_by_label_contains("This program looks like")
+            .is_none()
+    );
+}
+
+/// `lines` straight feeds: long enough that its analysis takes several frames.
+fn long_program(lines: usize) -> String {
+    let mut text = String::from("G90 G21 G17 G54\nG00 X0 Y0 Z5\n");
+    for i in 0..lines {
+        text.push_str(&format!("G01 X{}. Y{}. F500.\n", i % 100, i % 37));
+    }
+    text.push_str("M30\n");
+    text
+}
+
+#[test]
+fn a_loading_tab_shows_none_of_the_tab_before() {
+    let mut wb = Workbench::default();
+    wb.finish_analysis();
+    let example = wb.stats();
+    assert!(example.motions > 0);
+    assert!(wb.analysis_ready());
+    wb.open_document("long.nc", long_program(100_000), Encoding::Utf8);
+    // Its first analysis runs over several frames: until it is done the tab shows an empty
+    // view, no problems and no counts, not the example's.
+    assert!(wb.analysis_progress().is_some());
+    assert!(!wb.analysis_ready());
+    assert_eq!(wb.stats().motions, 0);
+    assert_eq!(wb.stats().blocks, 0);
+    assert!(wb.stats().bounds.is_none());
+    assert_eq!(wb.analysis().scene.segment_count(), 0);
+    assert!(wb.problems().is_empty());
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.step();
+    assert!(
+        harness.query_by_label_contains("Reading… ").is_some()
+            || harness.query_by_label_contains("Analysing… ").is_some()
+    );
+    assert_eq!(harness.state().stats().motions, 0);
+    // Back to the example: its own analysis at once.
+    harness.state_mut().switch_tab(0);
+    assert!(harness.state().analysis_ready());
+    assert_eq!(harness.state().stats(), example);
+    harness.step();
+    assert!(harness.query_by_label_contains("Reading… ").is_none());
+    // The long tab's unfinished run was dropped: it shows nothing until a new one is done …
+    harness.state_mut().switch_tab(1);
+    assert!(!harness.state().analysis_ready());
+    assert_eq!(harness.state().stats().motions, 0);
+    harness.state_mut().finish_analysis();
+    let long = harness.state().stats();
+    assert_eq!(long.motions, 100_001);
+    // … and once it has one, it is the tab's to show while it is analysed again.
+    harness.state_mut().switch_tab(0);
+    assert_eq!(harness.state().stats(), example);
+    harness.state_mut().switch_tab(1);
+    assert!(harness.state().analysis_progress().is_some());
+    assert!(harness.state().analysis_ready());
+    assert_eq!(harness.state().stats(), long);
+    // Closing a tab leaves no trace of it on the other.
+    harness.state_mut().close_tab(1);
+    assert_eq!(harness.state().stats(), example);
 }

@@ -2004,8 +2004,8 @@ pub static CODES: &[CodeDef] = &[
     lcycle(
         g(730),
         "Drilling cycle with chip breaking",
-        "G73 X_ Y_ Z_ R_ Q_ [P_] [L_]",
-        "XYZUVWRQPLF",
+        "G73 X_ Y_ Z_ R_ Q_ [L_]",
+        "XYZUVWRQLF",
         "Pecks Q at feed with a 0.010 in (0.254 mm) rapid retract between pecks, then rapids to clear Z; L repeats in G91.",
     ),
     cycle(
@@ -2229,8 +2229,8 @@ pub static CODES: &[CodeDef] = &[
     lcycle(
         g(830),
         "Peck drilling cycle",
-        "G83 X_ Y_ Z_ R_ Q_ [P_] [L_]",
-        "XYZUVWRQPLF",
+        "G83 X_ Y_ Z_ R_ Q_ [L_]",
+        "XYZUVWRQLF",
         "Pecks Q, rapids back to R after each peck and down to 0.010 in (0.254 mm) above the last depth, then rapids to clear Z.",
     ),
     cycle(

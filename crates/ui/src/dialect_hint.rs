@@ -1,0 +1,221 @@
+//! Which dialect a program's own codes point to: a program read in one dialect whose lines read
+//! with fewer errors in another (Syntec's `G71` metric and `//` comments in a Fanuc tab, say)
+//! gets that dialect offered, never switched to silently.
+
+use std::collections::HashSet;
+
+use swarf_syntax::{Dialect, Severity, codes};
+
+use crate::analysis::{Analysis, Problem};
+use crate::buffer::Buffer;
+
+/// Lines from the start of a program read again in every dialect (all of a short program).
+const HEAD_LINES: usize = 200;
+
+/// Further lines, past the head, read again in every dialect: those with a problem here and
+/// those with a code that not every dialect has, at most this many of each.
+const MORE_LINES: usize = 2_000;
+
+/// Longest text shown for what gave the dialect away.
+const WHAT_CHARS: usize = 16;
+
+/// A dialect that reads a program with fewer errors than the one it was analysed in.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DialectHint {
+    /// The dialect the program was analysed in (the hint is stale once the tab has another).
+    pub from: Dialect,
+    /// The dialect offered.
+    pub to: Dialect,
+    /// The first problem the switch removes, as written (`G71`), with its 1-based line.
+    pub first: Option<(String, u32)>,
+}
+
+/// One dialect's reading of the lines compared: its score and the (line, code) of each
+/// diagnostic counted.
+type Reading = (Dialect, Score, HashSet<(usize, &'static str)>);
+
+/// Errors and unknown M codes of one reading of the lines compared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct Score {
+    errors: usize,
+    unknown_m: usize,
+}
+
+/// Whether a problem is one another dialect may not have: an error, or an M code the dialect's
+/// list lacks.
+fn telling(p: &Problem) -> bool {
+    p.severity == Severity::Error || p.code == "W-UNKNOWN-M"
+}
+
+/// Whether some dialects have `code` and others do not.
+fn differs(code: codes::Code) -> bool {
+    let have = Dialect::ALL
+        .iter()
+        .filter(|&&d| codes::lookup(d, code).is_some())
+        .count();
+    have > 0 && have < Dialect::ALL.len()
+}
+
+/// The dialect `analysis` (of `text`) would read with strictly fewer errors, if any: the lines
+/// that may read differently (the head of the program, the lines with a problem, those with a
+/// code not every dialect has) are parsed again in every dialect and the one with the fewest
+/// errors, then the fewest unknown M codes, wins (the menu's order breaks ties).
+pub fn suggest(text: &Buffer, analysis: &Analysis) -> Option<DialectHint> {
+    let from = analysis.program.dialect;
+    let problems = &analysis.problems;
+    // A program with nothing wrong reads no better elsewhere.
+    if !problems.iter().any(telling) {
+        return None;
+    }
+    let last = text.len_lines();
+    let mut lines: Vec<usize> = (0..HEAD_LINES.min(last)).collect();
+    lines.extend(
+        problems
+            .iter()
+            .filter(|p| telling(p))
+            .map(|p| p.line.saturating_sub(1) as usize)
+            .filter(|&l| l >= HEAD_LINES && l < last)
+            .take(MORE_LINES),
+    );
+    // Whether each code seen differs between dialects, looked up once (a program uses few).
+    let mut seen: Vec<(codes::Code, bool)> = Vec::new();
+    let mut sensitive = |code: codes::Code| {
+        if let Some(&(_, d)) = seen.iter().find(|(c, _)| *c == code) {
+            d
+        } else {
+            let d = differs(code);
+            seen.push((code, d));
+            d
+        }
+    };
+    lines.extend(
+        analysis
+            .program
+            .blocks
+            .iter()
+            .filter(|b| {
+                b.words
+                    .iter()
+                    .any(|w| codes::Code::of_word(w).is_some_and(&mut sensitive))
+            })
+            .map(|b| b.line as usize)
+            .filter(|&l| l >= HEAD_LINES && l < last)
+            .take(MORE_LINES),
+    );
+    lines.sort_unstable();
+    lines.dedup();
+    let mut sample = String::new();
+    for &l in &lines {
+        sample.push_str(&text.line_text(l));
+        sample.push('\n');
+    }
+    // Each dialect's score, and the (sample line, code) of each diagnostic it counts.
+    let readings: Vec<Reading> = Dialect::ALL
+        .iter()
+        .map(|&d| {
+            let program = swarf_syntax::parse(&sample, d);
+            let mut score = Score {
+                errors: 0,
+                unknown_m: 0,
+            };
+            let mut found = HashSet::new();
+            for diag in &program.diagnostics {
+                if diag.severity == Severity::Error {
+                    score.errors += 1;
+                } else if diag.code == "W-UNKNOWN-M" {
+                    score.unknown_m += 1;
+                } else {
+                    continue;
+                }
+                found.insert((program.lines.line_of(diag.span.start), diag.code));
+            }
+            (d, score, found)
+        })
+        .collect();
+    let here = readings.iter().find(|(d, ..)| *d == from)?.1;
+    let (to, best, found) = readings
+        .iter()
+        .filter(|(d, ..)| *d != from)
+        .min_by_key(|(_, score, _)| *score)?;
+    if best.errors >= here.errors {
+        return None;
+    }
+    // The first problem here that the other reading does not have on its line.
+    let first = problems.iter().filter(|p| telling(p)).find_map(|p| {
+        let line = p.line.saturating_sub(1) as usize;
+        let at = lines.binary_search(&line).ok()?;
+        if found.contains(&(at, p.code)) {
+            return None;
+        }
+        let mut what = text.slice(p.chars.clone());
+        // A stray character is shown with its repeats: `//` rather than `/`.
+        if let [c] = what.chars().collect::<Vec<_>>()[..]
+            && !c.is_alphanumeric()
+        {
+            let after = text.slice(p.chars.end..p.chars.end.saturating_add(WHAT_CHARS));
+            what.extend(after.chars().take_while(|&a| a == c));
+        }
+        let what: String = what.trim().chars().take(WHAT_CHARS).collect();
+        (!what.is_empty()).then_some((what, p.line))
+    });
+    Some(DialectHint {
+        from,
+        to: *to,
+        first,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+    use super::*;
+
+    fn hint(text: &str, dialect: Dialect) -> Option<DialectHint> {
+        let analysis = Analysis::run(text, dialect, &swarf_interp::Setup::default(), 1);
+        suggest(&Buffer::from(text.to_string()), &analysis)
+    }
+
+    #[test]
+    fn a_syntec_program_read_as_fanuc_points_to_syntec() {
+        let text = "%\nO3001\nN10 G90 G71 G17 G54\nG00 X0. Y0. Z20.\nM30\n%\n";
+        let h = hint(text, Dialect::Fanuc).expect("offered");
+        assert_eq!(h.from, Dialect::Fanuc);
+        assert_eq!(h.to, Dialect::Syntec);
+        assert_eq!(h.first, Some(("G71".to_string(), 3)));
+        assert_eq!(hint(text, Dialect::Syntec), None);
+    }
+
+    #[test]
+    fn slash_comments_point_to_syntec() {
+        let text = "G90 G54 // absolute\nG00 X0 Y0 Z5 // over the part\nM30\n";
+        let h = hint(text, Dialect::Fanuc).expect("offered");
+        assert_eq!(h.to, Dialect::Syntec);
+        assert_eq!(h.first, Some(("//".to_string(), 1)));
+    }
+
+    #[test]
+    fn a_fanuc_program_read_as_syntec_points_back_to_fanuc() {
+        let h = hint(crate::EXAMPLE_PROGRAM, Dialect::Syntec).expect("offered");
+        assert_eq!(h.to, Dialect::Fanuc);
+        assert_eq!(h.first.map(|(what, _)| what), Some("G21".to_string()));
+    }
+
+    #[test]
+    fn a_clean_program_or_an_error_every_dialect_has_gets_no_offer() {
+        assert_eq!(hint(crate::EXAMPLE_PROGRAM, Dialect::Fanuc), None);
+        assert_eq!(hint("G1 X$ F100\nM30\n", Dialect::Fanuc), None);
+        assert_eq!(hint("", Dialect::Fanuc), None);
+    }
+
+    #[test]
+    fn a_code_far_down_a_long_program_is_seen() {
+        let mut text = String::from("G90 G54\n");
+        for i in 0..5_000 {
+            text.push_str(&format!("G01 X{} Y1 F500\n", i % 50));
+        }
+        text.push_str("G71\nM30\n");
+        let h = hint(&text, Dialect::Fanuc).expect("offered");
+        assert_eq!(h.to, Dialect::Syntec);
+        assert_eq!(h.first, Some(("G71".to_string(), 5_002)));
+    }
+}
