@@ -13,7 +13,7 @@ pub fn nice_step(raw: f32) -> f32 {
     if !raw.is_finite() || raw <= 0.0 {
         return 1.0;
     }
-    let raw = raw.clamp(1.0e-6, 1.0e9);
+    let raw = raw.clamp(1.0e-6, 1.0e30);
     let magnitude = 10f32.powf(raw.log10().floor());
     for mantissa in [1.0, 2.0, 5.0, 10.0] {
         let step = mantissa * magnitude;
@@ -45,7 +45,11 @@ pub fn grid_points(min: Vec3, max: Vec3) -> Vec<PathPoint> {
     // One cell of margin all round, snapped to the step.
     let mut start = (lo / step).floor() - Vec2::ONE;
     let mut end = (hi / step).ceil() + Vec2::ONE;
-    while (end - start).max_element() > MAX_CELLS {
+    // Bounded: a step that no longer grows (at the clamp of `nice_step`) ends the search too.
+    for _ in 0..128 {
+        if (end - start).max_element() <= MAX_CELLS {
+            break;
+        }
         step = nice_step(step * 1.5);
         start = (lo / step).floor() - Vec2::ONE;
         end = (hi / step).ceil() + Vec2::ONE;
@@ -55,19 +59,22 @@ pub fn grid_points(min: Vec3, max: Vec3) -> Vec<PathPoint> {
     let (x0, x1) = (start.x * step, end.x * step);
     let (y0, y1) = (start.y * step, end.y * step);
     // Grid lines are indexed by integer multiples of the step, so major lines line up.
-    let mut i = start.x;
-    while i <= end.x {
+    // Counted in integers: far from the origin `i + 1.0` can equal `i` in f32, and a loop that
+    // stepped the float would never end (coordinates of 1e12 are an error elsewhere, but must not
+    // hang the drawing).
+    let lines = |from: f32, to: f32| {
+        let count = ((to - from).max(0.0) as u32).min(MAX_CELLS as u32 + 2);
+        (0..=count).map(move |k| from + k as f32)
+    };
+    for i in lines(start.x, end.x) {
         let x = i * step;
         out.push(PathPoint::pen_up(Vec3::new(x, y0, 0.0)));
         out.push(PathPoint::new(Vec3::new(x, y1, 0.0), grid_kind(i)));
-        i += 1.0;
     }
-    let mut j = start.y;
-    while j <= end.y {
+    for j in lines(start.y, end.y) {
         let y = j * step;
         out.push(PathPoint::pen_up(Vec3::new(x0, y, 0.0)));
         out.push(PathPoint::new(Vec3::new(x1, y, 0.0), grid_kind(j)));
-        j += 1.0;
     }
 
     let axis = (size * 0.15).max(step * 2.0);
@@ -116,6 +123,15 @@ mod tests {
         assert!((nice_step(0.03) - 0.05).abs() < 1e-7);
         assert_eq!(nice_step(0.0), 1.0);
         assert_eq!(nice_step(f32::NAN), 1.0);
+    }
+
+    /// Far from the origin a float counter stops moving: the grid is still finite and small.
+    #[test]
+    fn a_grid_far_from_the_origin_ends() {
+        for far in [1.0e12_f32, 3.0e20, -1.0e15] {
+            let v = grid_points(Vec3::splat(far), Vec3::splat(far) + Vec3::ONE);
+            assert!(v.len() < 2000, "{far}: {}", v.len());
+        }
     }
 
     #[test]
