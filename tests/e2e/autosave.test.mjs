@@ -9,7 +9,12 @@
 import { after, test } from "node:test";
 import assert from "node:assert/strict";
 
-import { BrowserSession, TEST_TIMEOUT_MS, checkPrerequisites } from "./harness.mjs";
+import {
+  BrowserSession,
+  TEST_TIMEOUT_MS,
+  checkPrerequisites,
+  recoveryRecords,
+} from "./harness.mjs";
 
 const CHROMIUM_ARGS = ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"];
 const SMALL = "G90 G21\nG00 X0 Y0 Z5.\nG01 Z-1. F100\nM30\n";
@@ -81,46 +86,17 @@ function activeTextDigest(page) {
  * The recovery index stored in IndexedDB and the text of the record it names for the tab
  * `name` (null when there is none); null when nothing is stored. Does not make the database.
  */
-function storedRecord(page, name) {
-  return page.evaluate(async (name) => {
-    const known = await indexedDB.databases();
-    if (!known.some((d) => d.name === "swarf-recovery")) {
-      return null;
-    }
-    const db = await new Promise((resolve, reject) => {
-      const open = indexedDB.open("swarf-recovery");
-      open.onsuccess = () => resolve(open.result);
-      open.onerror = () => reject(open.error);
-    });
-    try {
-      if (!db.objectStoreNames.contains("records")) {
-        return null;
-      }
-      const get = (store, key) =>
-        new Promise((resolve, reject) => {
-          const request = store.get(key);
-          request.onsuccess = () => resolve(request.result);
-          request.onerror = () => reject(request.error);
-        });
-      const store = db.transaction("records").objectStore("records");
-      const index = await get(store, "index");
-      if (typeof index !== "string") {
-        return null;
-      }
-      const line = index
-        .split("\n")
-        .slice(1)
-        .find((l) => l.split("\t")[3] === name);
-      const key = line?.split("\t")[2];
-      if (!key) {
-        return { index, text: null };
-      }
-      const bytes = await get(db.transaction("records").objectStore("records"), key);
-      return { index, text: bytes ? new TextDecoder().decode(bytes) : null };
-    } finally {
-      db.close();
-    }
-  }, name);
+async function storedRecord(page, name) {
+  const stored = await recoveryRecords(page);
+  if (!stored?.index) {
+    return null;
+  }
+  const line = stored.index
+    .split("\n")
+    .slice(1)
+    .find((l) => l.split("\t")[3] === name);
+  const key = line?.split("\t")[2];
+  return { index: stored.index, text: key ? (stored.records[key] ?? null) : null };
 }
 
 /**

@@ -389,3 +389,47 @@ function analyse(image) {
 export function isError(diagnostic) {
   return String(diagnostic.severity).toLowerCase() === "error";
 }
+
+/**
+ * What the page keeps for crash recovery in IndexedDB: `{ index, records }` — the index text
+ * and every tab record's text by key — or `null` while nothing is stored.
+ */
+export function recoveryRecords(page) {
+  return page.evaluate(async () => {
+    const known = await indexedDB.databases();
+    if (!known.some((d) => d.name === "swarf-recovery")) {
+      return null;
+    }
+    const db = await new Promise((resolve, reject) => {
+      const open = indexedDB.open("swarf-recovery");
+      open.onsuccess = () => resolve(open.result);
+      open.onerror = () => reject(open.error);
+    });
+    try {
+      if (!db.objectStoreNames.contains("records")) {
+        return null;
+      }
+      const store = db.transaction("records").objectStore("records");
+      const all = (request) =>
+        new Promise((resolve, reject) => {
+          request.onsuccess = () => resolve(request.result);
+          request.onerror = () => reject(request.error);
+        });
+      const [keys, values] = await Promise.all([all(store.getAllKeys()), all(store.getAll())]);
+      let index = null;
+      const records = {};
+      keys.forEach((key, i) => {
+        const value = values[i];
+        if (key === "index") {
+          index = typeof value === "string" ? value : null;
+        } else {
+          records[key] = typeof value === "string" ? value : new TextDecoder().decode(value);
+        }
+      });
+      return { index, records };
+    } finally {
+      db.close();
+    }
+  });
+}
+

@@ -12,7 +12,13 @@ import { after, before, test } from "node:test";
 import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
 
-import { BrowserSession, TEST_TIMEOUT_MS, checkPrerequisites, isError } from "./harness.mjs";
+import {
+  BrowserSession,
+  TEST_TIMEOUT_MS,
+  checkPrerequisites,
+  isError,
+  recoveryRecords,
+} from "./harness.mjs";
 
 const CHROMIUM_ARGS = ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"];
 
@@ -469,41 +475,20 @@ test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS },
   const edited = "G90 G21\nG00 X0 Y0 Z5.\nG01 X42. F100\nM30\n";
   await page.evaluate((text) => window.swarf.setText(text), edited);
   // Kept in IndexedDB (a record a tab) a moment after the edit.
-  await session.eventually(
-    async () => {
-      const known = await indexedDB.databases();
-      if (!known.some((d) => d.name === "swarf-recovery")) {
-        return false;
-      }
-      const db = await new Promise((resolve, reject) => {
-        const open = indexedDB.open("swarf-recovery");
-        open.onsuccess = () => resolve(open.result);
-        open.onerror = () => reject(open.error);
-      });
-      try {
-        if (!db.objectStoreNames.contains("records")) {
-          return false;
-        }
-        const all = await new Promise((resolve, reject) => {
-          const request = db.transaction("records").objectStore("records").getAll();
-          request.onsuccess = () => resolve(request.result);
-          request.onerror = () => reject(request.error);
-        });
-        return all.some(
-          (r) => typeof r !== "string" && new TextDecoder().decode(r).includes("X42."),
-        );
-      } finally {
-        db.close();
-      }
-    },
-    null,
-    (kept) => kept === true,
-    "the unsaved program should be kept in IndexedDB",
-  );
+  for (let waited = 0; ; waited += 250) {
+    const stored = await recoveryRecords(page);
+    if (stored && Object.values(stored.records).some((text) => text.includes("X42."))) {
+      break;
+    }
+    assert.ok(waited < 30_000, "the unsaved program should be kept in IndexedDB within 30 s");
+    await page.waitForTimeout(250);
+  }
   await session.loadUntilReady("reload-not-ready.png");
-  assert.equal(
-    await page.evaluate(() => window.swarf.getText()),
-    edited,
+  // The tabs come back from IndexedDB, which the page reads after its first frame.
+  await session.eventually(
+    () => window.swarf.getText(),
+    null,
+    (text) => text === edited,
     "the reloaded page should show the unsaved program",
   );
 });

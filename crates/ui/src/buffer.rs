@@ -1,6 +1,6 @@
 //! The program text as a rope: an edit costs a walk down a balanced tree of small chunks, not a
 //! copy of the text, and a copy of the buffer (an undo step) shares every chunk it did not
-//! change. Lines end at `\n` only, as the parser reads them.
+//! change. Lines end at `\n`, `\r\n` or a lone `\r`, as the parser reads them.
 //!
 //! Code that wants the text as one `str` (the parser, find, save) gets it through
 //! [`Buffer::as_str`] (or `Deref`): the flat copy is made on the first such call after an edit
@@ -325,29 +325,6 @@ impl swarf_syntax::LineSource for RopeLines<'_> {
             end -= c.len_utf8();
         }
         Some((start, end.max(start)))
-    }
-}
-
-impl egui::TextBuffer for Buffer {
-    fn is_mutable(&self) -> bool {
-        true
-    }
-
-    fn as_str(&self) -> &str {
-        Buffer::as_str(self)
-    }
-
-    fn insert_text(&mut self, text: &str, char_index: egui::text::CharIndex) -> usize {
-        self.insert(char_index.0, text);
-        text.chars().count()
-    }
-
-    fn delete_char_range(&mut self, char_range: Range<egui::text::CharIndex>) {
-        self.remove(char_range.start.0..char_range.end.0);
-    }
-
-    fn type_id(&self) -> std::any::TypeId {
-        std::any::TypeId::of::<Self>()
     }
 }
 

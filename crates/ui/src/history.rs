@@ -1,9 +1,7 @@
 //! Undo and redo over the whole program text, shared by typing and the editor commands.
 //!
-//! egui's `TextEdit` keeps its own undo list inside the widget, which knows nothing of text
-//! replaced from outside (replace all, renumbering, comment toggling). The workbench takes the
-//! undo keys away from the widget and keeps this history instead: each entry is the text and the
-//! selection before a change. Consecutive typing is merged into one entry until a line break,
+//! Each entry is the text and the selection before a change, whether typed in the editor or
+//! made by a command (replace all, renumbering, comment toggling). Consecutive typing is merged into one entry until a line break,
 //! a pause or a command ends it. The text is kept as a rope, so a step of typing shares all but
 //! the few chunks it changed with the steps beside it.
 

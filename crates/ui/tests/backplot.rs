@@ -3,12 +3,14 @@
 //! playback dimming; and it degrades to a label when the GPU resources were never installed.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
-use std::panic::AssertUnwindSafe;
+mod support;
+use support::render_state;
+
 use std::sync::Arc;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+use egui_kittest::wgpu::WgpuTestRenderer;
 use glam::{DVec3, Vec3};
 use swarf_render::{ARC_COLOR, FEED_COLOR, HIGHLIGHT_COLOR, Kind, PathPoint, RAPID_COLOR};
 use swarf_ui::backplot::{Backplot, Scene, SourceText};
@@ -55,17 +57,6 @@ fn count(rgba: &[u8], want: [u8; 4], tolerance: u8) -> usize {
     rgba.chunks_exact(4)
         .filter(|p| close([p[0], p[1], p[2], p[3]], want, tolerance))
         .count()
-}
-
-fn render_state() -> Option<egui_wgpu::RenderState> {
-    // `create_render_state` panics when no adapter can be created; treat that as "skip".
-    std::panic::catch_unwind(AssertUnwindSafe(|| {
-        create_render_state(
-            default_wgpu_setup(),
-            egui_wgpu::RendererOptions::PREDICTABLE,
-        )
-    }))
-    .ok()
 }
 
 type State = (Backplot, Scene);

@@ -3,12 +3,13 @@
 //! list takes one line. And a new program is framed once, whole, below the view's buttons.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
-use std::panic::AssertUnwindSafe;
+mod support;
+use support::render_state;
 
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+use egui_kittest::wgpu::WgpuTestRenderer;
 use swarf_ui::Workbench;
 use swarf_ui::backplot::{Backplot, Scene};
 
@@ -21,16 +22,6 @@ G43 H12 G00 X-1234.567 Y-2345.678 Z345.678\nG01 Z-2. F200\nX10.\nM30\n%\n";
 /// the tool centre's path, outside it (the tool runs inside the square).
 const POCKET: &str = "%\nO1000\nG90 G17 G40 G49 G80\nG54 G00 X25. Y25.\nG00 Z5.\nG01 Z-2. F200\n\
 G42 X10. Y10. D1\nY40.\nX40.\nY10.\nX10.\nG40 X25. Y25.\nG00 Z5.\nM30\n%\n";
-
-fn render_state() -> Option<egui_wgpu::RenderState> {
-    std::panic::catch_unwind(AssertUnwindSafe(|| {
-        create_render_state(
-            default_wgpu_setup(),
-            egui_wgpu::RendererOptions::PREDICTABLE,
-        )
-    }))
-    .ok()
-}
 
 fn plain(wb: Workbench) -> Harness<'static, Workbench> {
     Harness::builder()

@@ -5,12 +5,13 @@
 //! after a code typed in full ends the line, and a list made for older text is never applied.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
-use std::panic::AssertUnwindSafe;
+mod support;
+use support::render_state;
 
 use egui::{Event, Key, Modifiers, PointerButton, Pos2};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+use egui_kittest::wgpu::WgpuTestRenderer;
 use proptest::prelude::*;
 use swarf_ui::Workbench;
 use swarf_ui::backplot::Backplot;
@@ -20,17 +21,6 @@ use swarf_ui::backplot::Backplot;
 const PROGRAM: &str = "%\nO1000\nG90 G17 G40 G49 G80\nG54 G00 X0 Y0\nG00 Z5.\nG01 Z-2. F200\n\
 G41 X10. Y10. D1\nY40.\nX40.\nY10.\nX10.\nG40 X0 Y0\nG00 Z5.\nG81 X20. Y20. Z-5. R2. F100\n\
 X30. Y30.\nG80\nG01 X$ F100\nM30\n%\n";
-
-fn render_state() -> Option<egui_wgpu::RenderState> {
-    // `create_render_state` panics when no adapter can be created; treat that as "skip".
-    std::panic::catch_unwind(AssertUnwindSafe(|| {
-        create_render_state(
-            default_wgpu_setup(),
-            egui_wgpu::RendererOptions::PREDICTABLE,
-        )
-    }))
-    .ok()
-}
 
 fn harness(
     render_state: Option<&egui_wgpu::RenderState>,

@@ -3,26 +3,17 @@
 //! gets none; a click in the editor takes the keyboard back.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
-use std::panic::AssertUnwindSafe;
+mod support;
+use support::render_state;
 
 use egui::Key;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+use egui_kittest::wgpu::WgpuTestRenderer;
 use swarf_ui::Workbench;
 use swarf_ui::backplot::Backplot;
 
 const PROGRAM: &str = "G90 G21\nG0 X0 Y0 Z5.\nG1 Z0 F600.\nX20.\nY20.\nG0 Z5.\nM30\n";
-
-fn render_state() -> Option<egui_wgpu::RenderState> {
-    std::panic::catch_unwind(AssertUnwindSafe(|| {
-        create_render_state(
-            default_wgpu_setup(),
-            egui_wgpu::RendererOptions::PREDICTABLE,
-        )
-    }))
-    .ok()
-}
 
 fn harness(render_state: &egui_wgpu::RenderState) -> Harness<'static, Workbench> {
     let harness = Harness::builder()

@@ -3,11 +3,13 @@
 //! reference marks' (which are numbered apart), and every run of a line that ran more than once.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+mod support;
+use support::render_state;
+
 use std::ops::Range;
-use std::panic::AssertUnwindSafe;
 
 use egui_kittest::Harness;
-use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+use egui_kittest::wgpu::WgpuTestRenderer;
 use swarf_render::HIGHLIGHT_COLOR;
 use swarf_syntax::Dialect;
 use swarf_ui::analysis::Analysis;
@@ -70,16 +72,6 @@ fn every_line_highlights_exactly_its_own_segments() {
     let scene = scene_of(LOOP);
     assert_eq!(scene.segments_of_line(5).len(), 2);
     assert_eq!(scene.segments_of_line(6).len(), 2);
-}
-
-fn render_state() -> Option<egui_wgpu::RenderState> {
-    std::panic::catch_unwind(AssertUnwindSafe(|| {
-        create_render_state(
-            default_wgpu_setup(),
-            egui_wgpu::RendererOptions::PREDICTABLE,
-        )
-    }))
-    .ok()
 }
 
 type State = (Backplot, Scene);
