@@ -9,9 +9,9 @@ use std::process::Command;
 /// Programs (relative to `shared/corpus`) whose every motion must match rs274, with rs274's tool
 /// table as the setup's offset registers (lathe tool orientations included) and the position a
 /// tool change re-reads taken as a machine's (`scripts/rs274-machine-canon.py`). The others of
-/// `scripts/peer-compare.sh` differ for the reasons the README's agreement section gives (rs274
-/// stops at a block Swarf refuses and goes on from; rs274's printed rounding makes moves to one
-/// machine point under rotated offsets look like several). Of `ccomp/`, `early-exit` runs in a
+/// `scripts/peer-compare.sh` differ for the reasons the agreement section of docs/interpreter.md
+/// gives (rs274 stops at a block Swarf refuses and goes on from; rs274's printed rounding makes
+/// moves to one machine point under rotated offsets look like several). Of `ccomp/`, `early-exit` runs in a
 /// full LinuxCNC, not rs274: the interpreter's compensation tests cover it.
 const AGREEING: &[&str] = &[
     "linuxcnc-tests/interp/g10/g10-l1-l10/test.ngc",

@@ -3,7 +3,7 @@
 //! (Mesa lavapipe on a machine without a GPU).
 //!
 //! Run: `cargo bench -p swarf-render --bench backplot` (add `-- --quick` for fewer
-//! repetitions). Prints a Markdown table for the README.
+//! repetitions). Prints a Markdown table for docs/performance.md.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::time::{Duration, Instant};

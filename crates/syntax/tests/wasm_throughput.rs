@@ -1,4 +1,4 @@
-//! The wasm32 parse-throughput figure for the README's table: run on demand with
+//! The wasm32 parse-throughput figure for docs/performance.md's table: run on demand with
 //! `cargo test -p swarf-syntax --release --target wasm32-unknown-unknown --test wasm_throughput -- --include-ignored --nocapture`.
 //! It measures and prints; it asserts only that the parse saw every line.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]

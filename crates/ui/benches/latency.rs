@@ -10,7 +10,7 @@
 //! million-line one in the row editor, which lays out only the rows on screen.
 //!
 //! Run: `cargo bench -p swarf-ui --bench latency` (add `-- --quick` for fewer repetitions).
-//! Prints Markdown tables for the README. Memory figures are read from `/proc/self/status`
+//! Prints Markdown tables for docs/performance.md. Memory figures are read from `/proc/self/status`
 //! (Linux only; elsewhere they are left out).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
