@@ -61,6 +61,9 @@ impl SwarfApp {
         if let Some(storage) = cc.storage {
             app.load_settings(storage);
         }
+        #[cfg(target_arch = "wasm32")]
+        app.host.recover();
+        #[cfg(not(target_arch = "wasm32"))]
         app.host.recover(&mut app.workbench);
         app
     }

@@ -6,14 +6,12 @@ use std::path::{Path, PathBuf};
 
 use swarf_ui::{HostRequest, Workbench};
 
-use crate::files::{self, Autosave, AutosaveClock, RecoveryBook, RecoveryIndex, Session, TabState};
+use crate::files::{self, Autosave, AutosaveClock, RecoveryBook, RecoveryIndex, TabState};
 
 /// The recovery folder's index of the open tabs.
 const INDEX_FILE: &str = "index";
 /// The recovery folder inside the data folder.
 const RECOVERY_FOLDER: &str = "recovery";
-/// The single recovery file of earlier versions, in the data folder: read once, then removed.
-const OLD_RECOVERY_FILE: &str = "recovery.nc";
 
 /// The application id: names the data folder (`~/.local/share/swarf` on Linux).
 pub const APP_ID: &str = "Swarf";
@@ -66,9 +64,7 @@ impl Host {
 
     /// Shows the tabs a previous run left when any had unsaved changes: unsaved texts as
     /// changes still to save, the other files read again from disk where they still are; the
-    /// status bar names the tabs recovered and any whose changes could not be read. Reads the
-    /// single file of earlier versions when there is no index, and removes it once its tabs
-    /// are kept again.
+    /// status bar names the tabs recovered and any whose changes could not be read.
     pub fn recover(&mut self, wb: &mut Workbench) -> bool {
         let Some(dir) = self.recovery_folder() else {
             return false;
@@ -77,10 +73,8 @@ impl Host {
         let Some((index, record)) =
             stored.and_then(|r| RecoveryIndex::from_record(&r).map(|index| (index, r)))
         else {
-            return self.recover_old(wb);
+            return false;
         };
-        // The index is the newer record.
-        self.remove_old_record();
         let restored = index.restore(
             |key| std::fs::read_to_string(dir.join(record_file(key))).ok(),
             read_program,
@@ -99,39 +93,6 @@ impl Host {
         files::report_lost(wb, &restored.lost);
         self.clock.settled(wb.generation());
         true
-    }
-
-    /// Shows the tabs kept in the single recovery file of earlier versions, if there is one;
-    /// they are written as records of their own at the first autosave, which removes it.
-    fn recover_old(&mut self, wb: &mut Workbench) -> bool {
-        let Some(record) = self
-            .data
-            .as_ref()
-            .and_then(|d| std::fs::read_to_string(d.join(OLD_RECOVERY_FILE)).ok())
-        else {
-            return false;
-        };
-        let Some(mut session) = Session::from_record(&record) else {
-            return false;
-        };
-        for tab in session.tabs.iter_mut().filter(|t| !t.dirty) {
-            if let Some((text, encoding)) = tab.path.as_deref().and_then(read_program) {
-                tab.text = text;
-                tab.encoding = encoding;
-            }
-        }
-        wb.restore_tabs(session.tabs, session.active);
-        // Not settled: the next autosave writes the tabs as records.
-        true
-    }
-
-    fn remove_old_record(&self) {
-        if let Some(old) = self.data.as_ref().map(|d| d.join(OLD_RECOVERY_FILE))
-            && old.exists()
-            && let Err(e) = std::fs::remove_file(&old)
-        {
-            log::warn!("cannot remove the recovery file {}: {e}", old.display());
-        }
     }
 
     /// Opens the program file at `path`.
@@ -377,9 +338,6 @@ impl Host {
             .map(|k| record_file(k))
             .collect();
         remove_records(&dir, |name| stale.iter().any(|s| s == name));
-        if stored {
-            self.remove_old_record();
-        }
         if let Some(message) = self.book.report(&failed, &tabs) {
             wb.set_message(message);
         }
@@ -398,7 +356,6 @@ impl Host {
             }
             remove_records(&dir, |_| true);
         }
-        self.remove_old_record();
     }
 }
 

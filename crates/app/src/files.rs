@@ -136,132 +136,6 @@ impl AutosaveClock {
     }
 }
 
-/// An unsaved program kept for crash recovery: which file it belongs to and its text.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Recovery {
-    /// The document's name.
-    pub name: String,
-    /// Its file's full path on the desktop (empty when it was never saved, and on the web).
-    pub path: String,
-    /// The file's encoding.
-    pub encoding: Encoding,
-    /// The unsaved text.
-    pub text: String,
-}
-
-const MAGIC: &str = "swarf-recovery 1";
-
-impl Recovery {
-    /// The record as one string: a header line (tab-separated) and the text.
-    pub fn to_record(&self) -> String {
-        let clean = |s: &str| s.replace(['\t', '\n', '\r'], " ");
-        format!(
-            "{MAGIC}\t{}\t{}\t{}\n{}",
-            encoding_name(self.encoding),
-            clean(&self.name),
-            clean(&self.path),
-            self.text
-        )
-    }
-
-    /// Reads a record written by [`Recovery::to_record`]; `None` for anything else.
-    pub fn from_record(record: &str) -> Option<Recovery> {
-        let (head, text) = record.split_once('\n')?;
-        let mut fields = head.split('\t');
-        if fields.next()? != MAGIC {
-            return None;
-        }
-        let encoding = encoding_of(fields.next()?)?;
-        let name = fields.next()?.to_string();
-        let path = fields.next().unwrap_or_default().to_string();
-        Some(Recovery {
-            name,
-            path,
-            encoding,
-            text: text.to_string(),
-        })
-    }
-}
-
-const SESSION_MAGIC: &str = "swarf-recovery 2";
-
-/// Every open tab in one record, as earlier versions kept them for crash recovery: each tab's
-/// file and text, and which one is active. Read once to carry such a record over to the
-/// records of [`RecoveryIndex`], then removed.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Session {
-    /// The tabs, in order.
-    pub tabs: Vec<TabRecord>,
-    /// The index of the active tab.
-    pub active: usize,
-}
-
-impl Session {
-    /// The record as one string: a header line, then for each tab a tab-separated line
-    /// (encoding, name, path, 1 when unsaved, length of the text in bytes) and the text.
-    pub fn to_record(&self) -> String {
-        let clean = |s: &str| s.replace(['\t', '\n', '\r'], " ");
-        let mut out = format!("{SESSION_MAGIC}\t{}\t{}\n", self.tabs.len(), self.active);
-        for t in &self.tabs {
-            out.push_str(&format!(
-                "{}\t{}\t{}\t{}\t{}\n",
-                encoding_name(t.encoding),
-                clean(&t.name),
-                clean(t.path.as_deref().unwrap_or_default()),
-                u8::from(t.dirty),
-                t.text.len()
-            ));
-            out.push_str(&t.text);
-            out.push('\n');
-        }
-        out
-    }
-
-    /// Reads a record written by [`Session::to_record`], or a single unsaved program written
-    /// by [`Recovery::to_record`]; `None` for anything else.
-    pub fn from_record(record: &str) -> Option<Session> {
-        if let Some(r) = Recovery::from_record(record) {
-            return Some(Session {
-                tabs: vec![TabRecord {
-                    name: r.name,
-                    path: (!r.path.is_empty()).then_some(r.path),
-                    encoding: r.encoding,
-                    text: r.text,
-                    dirty: true,
-                }],
-                active: 0,
-            });
-        }
-        let (head, mut rest) = record.split_once('\n')?;
-        let mut fields = head.split('\t');
-        if fields.next()? != SESSION_MAGIC {
-            return None;
-        }
-        let count: usize = fields.next()?.parse().ok()?;
-        let active: usize = fields.next()?.parse().ok()?;
-        let mut tabs = Vec::new();
-        for _ in 0..count {
-            let (line, after) = rest.split_once('\n')?;
-            let mut f = line.split('\t');
-            let encoding = encoding_of(f.next()?)?;
-            let name = f.next()?.to_string();
-            let path = f.next()?.to_string();
-            let dirty = f.next()? == "1";
-            let len: usize = f.next()?.parse().ok()?;
-            let text = after.get(..len)?.to_string();
-            rest = after.get(len..)?.strip_prefix('\n')?;
-            tabs.push(TabRecord {
-                name,
-                path: (!path.is_empty()).then_some(path),
-                encoding,
-                text,
-                dirty,
-            });
-        }
-        (!tabs.is_empty() && active < tabs.len()).then_some(Session { tabs, active })
-    }
-}
-
 /// Header of the recovery index record.
 const INDEX_MAGIC: &str = "swarf-recovery 3";
 
@@ -291,6 +165,8 @@ pub struct IndexEntry {
     /// The key of the record that holds the tab's text; `None` for a tab read again from its
     /// file, or one whose text could not be kept.
     pub record: Option<String>,
+    /// The tab's dialect; `None` in an index that names none.
+    pub dialect: Option<Dialect>,
 }
 
 /// The small record that lists the open tabs in order, the active one, and which record holds
@@ -318,18 +194,19 @@ pub struct Restored {
 
 impl RecoveryIndex {
     /// The index as one string: a header line (tab-separated: magic, count, active), then a
-    /// line per tab (encoding, 1 when unsaved, record key or nothing, name, path).
+    /// line per tab (encoding, 1 when unsaved, record key or nothing, name, path, dialect).
     pub fn to_record(&self) -> String {
         let clean = |s: &str| s.replace(['\t', '\n', '\r'], " ");
         let mut out = format!("{INDEX_MAGIC}\t{}\t{}\n", self.tabs.len(), self.active);
         for t in &self.tabs {
             out.push_str(&format!(
-                "{}\t{}\t{}\t{}\t{}\n",
+                "{}\t{}\t{}\t{}\t{}\t{}\n",
                 encoding_name(t.encoding),
                 u8::from(t.dirty),
                 t.record.as_deref().unwrap_or_default(),
                 clean(&t.name),
                 clean(t.path.as_deref().unwrap_or_default()),
+                t.dialect.map(Dialect::name).unwrap_or_default(),
             ));
         }
         out
@@ -353,12 +230,14 @@ impl RecoveryIndex {
             let record = Some(f.next()?).filter(|k| is_record_key(k));
             let name = f.next()?.to_string();
             let path = f.next()?;
+            let dialect = f.next().and_then(|d| d.parse().ok());
             tabs.push(IndexEntry {
                 name,
                 path: (!path.is_empty()).then(|| path.to_string()),
                 encoding,
                 dirty,
                 record: record.map(str::to_string),
+                dialect,
             });
         }
         (tabs.len() == count && active < count).then_some(RecoveryIndex { tabs, active })
@@ -411,6 +290,7 @@ impl RecoveryIndex {
                     encoding,
                     text,
                     dirty,
+                    dialect: entry.dialect,
                 });
                 out.records.push(key);
             }
@@ -435,6 +315,8 @@ pub struct TabState {
     pub encoding: Encoding,
     /// Whether the text has unsaved changes.
     pub dirty: bool,
+    /// The tab's dialect.
+    pub dialect: Dialect,
 }
 
 impl TabState {
@@ -445,13 +327,15 @@ impl TabState {
         let tabs = wb
             .tab_documents()
             .into_iter()
-            .map(|d| TabState {
+            .enumerate()
+            .map(|(i, d)| TabState {
                 id: d.id(),
                 revision: d.revision(),
                 name: d.name.clone(),
                 path: if with_paths { d.path.clone() } else { None },
                 encoding: d.encoding,
                 dirty: d.is_unsaved(),
+                dialect: wb.tab_dialect(i).unwrap_or_default(),
             })
             .collect();
         (tabs, wb.active_tab())
@@ -579,6 +463,7 @@ impl RecoveryBook {
                 encoding: t.encoding,
                 dirty: t.dirty,
                 record: record.as_ref().map(|(_, key)| key.clone()),
+                dialect: Some(t.dialect),
             });
             if let Some(record) = record {
                 kept.insert(t.id, record);
@@ -767,58 +652,6 @@ mod tests {
         assert_eq!(bytes, "(€) G0\n".as_bytes());
     }
 
-    #[test]
-    fn recovery_records_read_back() {
-        let r = Recovery {
-            name: "part.nc".into(),
-            path: "/home/me/part.nc".into(),
-            encoding: Encoding::Big5,
-            text: "G0 X1\n\tG1 X2\n".into(),
-        };
-        assert_eq!(Recovery::from_record(&r.to_record()), Some(r));
-        assert_eq!(Recovery::from_record("G0 X1\n"), None);
-        assert_eq!(Recovery::from_record(""), None);
-    }
-
-    #[test]
-    fn sessions_read_back_and_old_records_are_one_unsaved_tab() {
-        let tab = |name: &str, text: &str, dirty: bool| TabRecord {
-            name: name.into(),
-            path: dirty.then(|| format!("/home/me/{name}")),
-            encoding: Encoding::Utf8,
-            text: text.into(),
-            dirty,
-        };
-        let s = Session {
-            tabs: vec![
-                tab("a.nc", "G0 X1\n\nM30\n", false),
-                tab("O1234.nc", "O1234\n\tG1 X2 (多)\nM99", true),
-                tab("untitled.nc", "", false),
-            ],
-            active: 1,
-        };
-        assert_eq!(Session::from_record(&s.to_record()), Some(s.clone()));
-        // Cut short or out of range: nothing.
-        let record = s.to_record();
-        assert_eq!(Session::from_record(&record[..record.len() - 20]), None);
-        assert_eq!(
-            Session::from_record(&record.replacen("\t3\t1\n", "\t3\t7\n", 1)),
-            None
-        );
-        let old = Recovery {
-            name: "part.nc".into(),
-            path: String::new(),
-            encoding: Encoding::Big5,
-            text: "G0 X1\n".into(),
-        };
-        let read = Session::from_record(&old.to_record()).unwrap();
-        assert_eq!(read.active, 0);
-        assert_eq!(read.tabs.len(), 1);
-        assert!(read.tabs[0].dirty);
-        assert_eq!(read.tabs[0].path, None);
-        assert_eq!(read.tabs[0].text, "G0 X1\n");
-    }
-
     fn state(id: u64, revision: u64, name: &str, path: Option<&str>, dirty: bool) -> TabState {
         TabState {
             id,
@@ -827,6 +660,7 @@ mod tests {
             path: path.map(str::to_string),
             encoding: Encoding::Utf8,
             dirty,
+            dialect: Dialect::Fanuc,
         }
     }
 
@@ -854,6 +688,7 @@ mod tests {
                     encoding: Encoding::Gb18030,
                     dirty: true,
                     record: Some("tab-1a2b-7".into()),
+                    dialect: Some(Dialect::Syntec),
                 },
                 IndexEntry {
                     name: "O1234.nc".into(),
@@ -861,6 +696,7 @@ mod tests {
                     encoding: Encoding::Utf8,
                     dirty: false,
                     record: None,
+                    dialect: None,
                 },
             ],
             active: 1,
@@ -871,7 +707,14 @@ mod tests {
         assert_eq!(back.tabs[0].name, "a b.nc");
         assert_eq!(back.tabs[1], index.tabs[1]);
         assert_eq!(back.tabs[0].record.as_deref(), Some("tab-1a2b-7"));
+        assert_eq!(back.tabs[0].dialect, Some(Dialect::Syntec));
         assert_eq!(back.active, 1);
+        // An index line that names no dialect reads as none.
+        let plain = "swarf-recovery 3\t1\t0\nutf8\t0\t\ta.nc\t\n";
+        assert_eq!(
+            RecoveryIndex::from_record(plain).unwrap().tabs[0].dialect,
+            None
+        );
         assert_eq!(back.keys().collect::<Vec<_>>(), ["tab-1a2b-7"]);
         // Cut short, out of range or of another kind: nothing.
         assert_eq!(
@@ -1014,6 +857,7 @@ mod tests {
                 encoding: Encoding::Utf8,
                 dirty,
                 record: record.map(str::to_string),
+                dialect: Some(Dialect::Lnc),
             };
         let index = RecoveryIndex {
             tabs: vec![

@@ -13,7 +13,7 @@ use wasm_bindgen::prelude::*;
 use swarf_ui::{HostRequest, Workbench};
 
 use crate::files::{
-    self, Autosave, AutosaveClock, INDEX_KEY, RecoveryBook, RecoveryIndex, Round, Session, TabState,
+    self, Autosave, AutosaveClock, INDEX_KEY, RecoveryBook, RecoveryIndex, Round, TabState,
 };
 
 /// The IndexedDB database of the recovery records (made at version 1, with its store).
@@ -21,9 +21,6 @@ const DB_NAME: &str = "swarf-recovery";
 /// Its object store: the index under [`INDEX_KEY`] (a string) and each tab's text under its
 /// record key (UTF-8 bytes).
 const STORE: &str = "records";
-/// localStorage key of the single recovery record of earlier versions (every tab in one
-/// string): read once, and removed once its tabs are kept as records.
-const OLD_RECOVERY_KEY: &str = "swarf.recovery";
 /// Where the page's CJK font is, relative to the page (`cargo xtask web` puts it there). It is
 /// fetched only when a Chinese language is chosen; the service worker keeps it once fetched.
 pub const CJK_FONT_URL: &str = "./fonts/wqy-microhei.ttc";
@@ -135,16 +132,9 @@ pub struct Host {
     /// The context to wake when the recovery records were read (the read starts before the
     /// first frame hands the context over).
     wake: Rc<RefCell<Option<egui::Context>>>,
-    /// Whether tabs came from the localStorage record of earlier versions, which is removed
-    /// once they are kept as records.
-    migrating: bool,
     /// Whether the records must be brought up to date once the read or write under way is
     /// done (a save came meanwhile).
     again: bool,
-}
-
-fn local_storage() -> Option<web_sys::Storage> {
-    web_sys::window().and_then(|w| w.local_storage().ok().flatten())
 }
 
 /// Sets the page's title (the document name and whether it has unsaved changes).
@@ -165,25 +155,11 @@ impl Host {
 
     /// Starts reading the tabs this browser kept when any had unsaved changes; they replace
     /// the workbench's tabs when they are in (see [`Host::poll`]), and nothing is written
-    /// until then. Tabs kept by earlier versions in localStorage are shown at once (true).
-    pub fn recover(&mut self, wb: &mut Workbench) -> bool {
-        let old = local_storage()
-            .and_then(|s| s.get_item(OLD_RECOVERY_KEY).ok().flatten())
-            .and_then(|record| Session::from_record(&record));
-        if let Some(mut session) = old {
-            // File handles do not outlive the page: the recovered tabs are saved anew.
-            for tab in &mut session.tabs {
-                tab.path = None;
-            }
-            wb.restore_tabs(session.tabs, session.active);
-            // Not settled: the next autosave keeps the tabs as records.
-            self.migrating = true;
-            return true;
-        }
+    /// until then.
+    pub fn recover(&mut self) {
         self.recovery = Recovery::Reading;
         let db = self.db.clone();
         self.spawn_woken(async move { Arrival::Recovered(read_recovery(&db).await) });
-        false
     }
 
     /// Shows the tabs read from the recovery records: in place of the workbench's, or beside
@@ -708,12 +684,6 @@ impl Host {
                 }
             });
         }
-        if written.stored && written.failed.is_empty() && self.migrating {
-            self.migrating = false;
-            if let Some(storage) = local_storage() {
-                let _ = storage.remove_item(OLD_RECOVERY_KEY);
-            }
-        }
         let (tabs, _) = TabState::of(wb, false);
         if let Some(message) = self.book.report(&written.failed, &tabs) {
             wb.set_message(message);
@@ -726,12 +696,6 @@ impl Host {
         self.clock.restart();
         let stored = self.book.holds_records();
         self.book.cleared();
-        if self.migrating {
-            self.migrating = false;
-            if let Some(storage) = local_storage() {
-                let _ = storage.remove_item(OLD_RECOVERY_KEY);
-            }
-        }
         if stored {
             let db = self.db.clone();
             wasm_bindgen_futures::spawn_local(async move {

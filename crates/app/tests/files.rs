@@ -195,6 +195,7 @@ fn every_tab_comes_back_after_a_crash_with_clean_files_read_again() {
     host.open_path(&mut wb, &sub);
     host.open_path(&mut wb, &a);
     wb.set_text("G0 X1\nM98 P1234\nM30\n");
+    wb.set_tab_dialect(2, Dialect::Syntec);
     host.autosave(&mut wb, 1.0);
     host.autosave(&mut wb, 2.5);
     // The example and a.nc have records; O1234.nc is read again from its file.
@@ -217,6 +218,9 @@ fn every_tab_comes_back_after_a_crash_with_clean_files_read_again() {
     assert_eq!(next.document().name, "O1234.nc");
     assert_eq!(next.text(), "O1234\nG1 X7. F100\nM99\n");
     assert!(!next.is_dirty());
+    // Each tab keeps its dialect.
+    assert_eq!(next.tab_dialect(2), Some(Dialect::Syntec));
+    assert_eq!(next.tab_dialect(1), Some(Dialect::default()));
     next.switch_tab(2);
     assert_eq!(next.document().name, "a.nc");
     assert_eq!(next.text(), "G0 X1\nM98 P1234\nM30\n");
@@ -340,54 +344,6 @@ fn a_tab_that_cannot_be_kept_is_named_and_tried_again_at_the_next_change() {
     let mut next = Workbench::default();
     assert!(Host::with_data_folder(data).recover(&mut next));
     assert_eq!(next.text(), "G0 X2\nG1 X4 F100\n");
-}
-
-#[test]
-fn the_single_recovery_file_of_earlier_versions_is_read_once_then_removed() {
-    let dir = scratch("migrate");
-    let data = dir.join("data");
-    std::fs::create_dir_all(&data).unwrap();
-    let old = files::Session {
-        tabs: vec![
-            swarf_ui::TabRecord {
-                name: "a.nc".into(),
-                path: None,
-                encoding: Encoding::Utf8,
-                text: "G0 X1\n".into(),
-                dirty: false,
-            },
-            swarf_ui::TabRecord {
-                name: "b.nc".into(),
-                path: None,
-                encoding: Encoding::Big5,
-                text: "G0 X2\n".into(),
-                dirty: true,
-            },
-        ],
-        active: 1,
-    };
-    std::fs::write(data.join("recovery.nc"), old.to_record()).unwrap();
-    let mut host = Host::with_data_folder(data.clone());
-    let mut wb = Workbench::default();
-    assert!(host.recover(&mut wb));
-    assert_eq!(wb.document().name, "b.nc");
-    assert_eq!(wb.message(), Some("Recovered unsaved changes of b.nc"));
-    // The first autosave keeps the tabs as records and removes the old file.
-    host.autosave(&mut wb, 1.0);
-    host.autosave(&mut wb, 2.5);
-    assert!(!data.join("recovery.nc").exists());
-    assert_eq!(records(&data).len(), 2);
-    let mut next = Workbench::default();
-    assert!(Host::with_data_folder(data).recover(&mut next));
-    let names: Vec<_> = next
-        .tab_documents()
-        .iter()
-        .map(|d| d.name.clone())
-        .collect();
-    assert_eq!(names, ["a.nc", "b.nc"]);
-    assert_eq!(next.text(), "G0 X2\n");
-    assert_eq!(next.document().encoding, Encoding::Big5);
-    assert!(next.is_dirty());
 }
 
 #[derive(Default)]

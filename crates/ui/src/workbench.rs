@@ -183,6 +183,8 @@ pub struct TabRecord {
     pub text: String,
     /// Whether the text has changes that are not saved.
     pub dirty: bool,
+    /// The tab's dialect; `None` for the one new tabs start in.
+    pub dialect: Option<Dialect>,
 }
 
 impl Document {
@@ -512,6 +514,7 @@ impl Workbench {
                     encoding: doc.encoding,
                     text: text.to_text(),
                     dirty: doc.dirty,
+                    dialect: self.tab_dialect(i),
                 }
             })
             .collect();
@@ -548,7 +551,7 @@ impl Workbench {
                 shadow: text.rope().clone(),
                 text,
                 document,
-                dialect: self.default_dialect,
+                dialect: r.dialect.unwrap_or(self.default_dialect),
                 ..Tab::default()
             });
         }
