@@ -1,6 +1,10 @@
 //! Diagnostics shared by every stage of the pipeline.
 
+mod registry;
+
 use std::fmt;
+
+pub use registry::{DIAGNOSTICS, DiagnosticDef};
 
 /// A byte range `start..end` into the program text.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -81,31 +85,31 @@ pub struct Diagnostic {
 impl Diagnostic {
     /// An error diagnostic.
     pub fn error(span: Span, code: &'static str, message: impl Into<String>) -> Self {
-        Diagnostic {
-            span,
-            severity: Severity::Error,
-            code,
-            message: message.into(),
-        }
+        Self::new(span, Severity::Error, code, message.into())
     }
 
     /// A warning diagnostic.
     pub fn warning(span: Span, code: &'static str, message: impl Into<String>) -> Self {
-        Diagnostic {
-            span,
-            severity: Severity::Warning,
-            code,
-            message: message.into(),
-        }
+        Self::new(span, Severity::Warning, code, message.into())
     }
 
     /// A note diagnostic.
     pub fn note(span: Span, code: &'static str, message: impl Into<String>) -> Self {
+        Self::new(span, Severity::Note, code, message.into())
+    }
+
+    /// The one constructor; debug builds check `code` is registered with `severity`.
+    fn new(span: Span, severity: Severity, code: &'static str, message: String) -> Self {
+        debug_assert_eq!(
+            DiagnosticDef::lookup(code).map(|d| d.severity),
+            Some(severity),
+            "diagnostic code {code} is not registered as {severity} in diagnostic/registry.rs"
+        );
         Diagnostic {
             span,
-            severity: Severity::Note,
+            severity,
             code,
-            message: message.into(),
+            message,
         }
     }
 }

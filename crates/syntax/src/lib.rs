@@ -20,9 +20,9 @@ pub use ast::{
 };
 pub use codes::{Code, CodeDef, DialectSet};
 pub use decode::{Decoded, Encoding, decode, decode_owned};
-pub use diagnostic::{Diagnostic, Severity, Span};
+pub use diagnostic::{DIAGNOSTICS, Diagnostic, DiagnosticDef, Severity, Span};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
 pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Missing, is_plain_file_name};
-pub use parser::{ParseRun, empty_blocks, empty_blocks_known, parse};
+pub use parser::{ParseRun, parse};
 pub use source::LineSource;

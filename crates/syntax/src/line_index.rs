@@ -29,7 +29,7 @@ impl LineIndex {
             return LineIndex { starts };
         }
         starts.truncate(1);
-        for_each_line_end(bytes, |at| starts.push(line_after(0, at)));
+        for_each_marked(bytes, line_end_mask, |at| starts.push(line_after(0, at)));
         LineIndex { starts }
     }
 
@@ -57,7 +57,7 @@ impl LineIndex {
             } else {
                 bytes
             };
-            for_each_line_end(body, |at| starts.push(line_after(base, at)));
+            for_each_marked(body, line_end_mask, |at| starts.push(line_after(base, at)));
             base += bytes.len();
         }
         if let Some(at) = cr_at {
@@ -131,49 +131,20 @@ fn count_byte(bytes: &[u8], byte: u8) -> usize {
     total + rest.iter().filter(|&&b| b == byte).count()
 }
 
-/// Calls `found` with the offset of every `\n` in `bytes`, in order, sixteen bytes a turn with a
-/// mask of their `\n` bytes whose set bits are walked (lines of G-code are about twenty bytes
-/// long, so a search that stops at each newline, `memchr`, spends more on starting again than
-/// on scanning); returns whether `bytes` has a `\r`, seen as a zero byte of `word ^ 0x0d…` (a
-/// borrow runs into the byte above a zero one, never below: whether there is one is exact).
+/// Calls `found` with the offset of every `\n` in `bytes`, in order; returns whether `bytes` has
+/// a `\r`, seen as a zero byte of `word ^ 0x0d…` (a borrow runs into the byte above a zero one,
+/// never below: whether there is one is exact).
 #[inline(always)]
-fn for_each_line_feed(bytes: &[u8], mut found: impl FnMut(usize)) -> bool {
+fn for_each_line_feed(bytes: &[u8], found: impl FnMut(usize)) -> bool {
     let mut cr = 0u64;
-    let mut walk = |at: usize, half: &[u8]| {
-        let word = u64::from_le_bytes(half.try_into().unwrap_or([0; 8]));
+    let line_feeds = |word: &[u8; 8], _: u8| {
+        let word = u64::from_le_bytes(*word);
         let v = word ^ (u64::from(b'\r') * ONES);
         cr |= v.wrapping_sub(ONES) & !v;
-        let mut mask = byte_mask(word, u64::from(b'\n'));
-        while mask != 0 {
-            found(at + mask.trailing_zeros() as usize / 8);
-            mask &= mask - 1;
-        }
+        byte_mask(word, u64::from(b'\n'))
     };
-    let (pairs, rest) = bytes.as_chunks::<16>();
-    let mut at = 0;
-    for pair in pairs {
-        let (low, high) = pair.split_at(8);
-        walk(at, low);
-        walk(at + 8, high);
-        at += 16;
-    }
-    for &b in rest {
-        if b == b'\n' {
-            found(at);
-        }
-        at += 1;
-    }
-    cr & 0x8080_8080_8080_8080 != 0 || rest.contains(&b'\r')
-}
-
-/// Whether byte `i` of `bytes` ends a line: a `\n`, or a `\r` that no `\n` follows.
-#[inline(always)]
-fn ends_line(bytes: &[u8], i: usize) -> bool {
-    match bytes.get(i) {
-        Some(b'\n') => true,
-        Some(b'\r') => bytes.get(i + 1) != Some(&b'\n'),
-        _ => false,
-    }
+    for_each_marked(bytes, line_feeds, found);
+    cr & 0x8080_8080_8080_8080 != 0
 }
 
 /// One in every byte.
@@ -200,14 +171,18 @@ fn line_end_mask(word: &[u8; 8], next: u8) -> u64 {
     lf | (cr & !lf_after)
 }
 
-/// Calls `found` with the offset of every byte of `bytes` that ends a line (see
-/// [`LineIndex::new`]; a last `\r` counts as an end), in order.
+/// Calls `found` with the offset of every byte of `bytes` that `marks` marks (the top bit of
+/// each marked byte of a word, given the byte after the word, 0 at the end), in order.
 ///
-/// Sixteen bytes a turn, with a mask of their line-ending bytes whose set bits are walked:
-/// lines of G-code are about twenty bytes long, so a search that stops at each newline
-/// (`memchr`) spends more on starting again than on scanning.
+/// Sixteen bytes a turn, the last ones padded with zero bytes (which nothing marks), with the
+/// set bits of the masks walked: lines of G-code are about twenty bytes long, so a search that
+/// stops at each newline (`memchr`) spends more on starting again than on scanning.
 #[inline(always)]
-fn for_each_line_end(bytes: &[u8], mut found: impl FnMut(usize)) {
+fn for_each_marked(
+    bytes: &[u8],
+    mut marks: impl FnMut(&[u8; 8], u8) -> u64,
+    mut found: impl FnMut(usize),
+) {
     let mut walk = |at: usize, mut mask: u64| {
         while mask != 0 {
             found(at + mask.trailing_zeros() as usize / 8);
@@ -215,20 +190,17 @@ fn for_each_line_end(bytes: &[u8], mut found: impl FnMut(usize)) {
         }
     };
     let (pairs, rest) = bytes.as_chunks::<16>();
+    let mut last = [0; 16];
+    last[..rest.len()].copy_from_slice(rest);
     let mut at = 0;
-    for pair in pairs {
+    for pair in pairs.iter().chain([&last]) {
         let (low, high) = pair.split_at(8);
         let low = low.try_into().unwrap_or(&[0; 8]);
         let high = high.try_into().unwrap_or(&[0; 8]);
-        walk(at, line_end_mask(low, high[0]));
+        walk(at, marks(low, high[0]));
         let next = bytes.get(at + 16).copied().unwrap_or(0);
-        walk(at + 8, line_end_mask(high, next));
+        walk(at + 8, marks(high, next));
         at += 16;
-    }
-    for i in at..at + rest.len() {
-        if ends_line(bytes, i) {
-            found(i);
-        }
     }
 }
 

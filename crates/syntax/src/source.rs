@@ -43,38 +43,3 @@ impl LineSource for &str {
         Some((start, start + trimmed.trim_end().len()))
     }
 }
-
-/// The part of a text from byte `base` on (a file read through a window: the bytes before
-/// `base` are gone), addressed by offsets into the whole text. Its bytes are UTF-8.
-pub(crate) struct Window<'a> {
-    /// The text from `base` on.
-    pub(crate) text: &'a [u8],
-    /// Where `text` starts in the whole text.
-    pub(crate) base: usize,
-}
-
-impl LineSource for Window<'_> {
-    fn len(&self) -> usize {
-        self.base + self.text.len()
-    }
-
-    /// Empty for a range before the window or not on a character's bounds.
-    fn line(&mut self, start: usize, end: usize) -> &str {
-        match (start.checked_sub(self.base), end.checked_sub(self.base)) {
-            (Some(start), Some(end)) => self
-                .text
-                .get(start..end)
-                .and_then(|line| std::str::from_utf8(line).ok())
-                .unwrap_or_default(),
-            _ => "",
-        }
-    }
-
-    fn trimmed_rest(&mut self, offset: usize) -> Option<(usize, usize)> {
-        let rest = self.text.get(offset.saturating_sub(self.base)..)?;
-        let rest = std::str::from_utf8(rest).ok()?;
-        let (start, end) = (&mut &*rest).trimmed_rest(0)?;
-        let at = self.base + self.text.len() - rest.len();
-        Some((at + start, at + end))
-    }
-}

@@ -310,6 +310,10 @@ pub struct CodeDef {
     pub power_on: DialectSet,
     /// How well the manual documents it.
     pub documented: Documented,
+    /// Whether a block with the code needs the whole program to run: the code calls a program
+    /// or a macro (G65, G66, M98, M198) or returns from one (M99), so a reader that runs a
+    /// program piece by piece runs it whole instead.
+    pub whole: bool,
     /// Short name, e.g. "Peck drilling cycle".
     pub name: &'static str,
     /// The format line, e.g. "G83 X_ Y_ Z_ R_ Q_ F_ K_".

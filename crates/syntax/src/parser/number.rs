@@ -1,0 +1,193 @@
+//! Decimal numbers as the parser reads them, in one pass over the bytes.
+
+use nom::branch::alt;
+use nom::character::complete::{char, digit0, digit1};
+use nom::combinator::opt;
+use nom::{IResult, Parser};
+
+/// Digits with an optional decimal point (`12`, `1.5`, `.5`, `3.`), no sign.
+pub(super) fn unsigned(input: &str) -> IResult<&str, &str> {
+    // The consumed slice is computed from the remainder: nom 8.0's `recognize` drops the
+    // trailing `digit0` of `1.5` (it runs the inner parsers in check mode).
+    let (rest, ()) = alt((
+        (digit1, opt(char('.')), digit0).map(|_| ()),
+        (char('.'), digit1).map(|_| ()),
+    ))
+    .parse(input)?;
+    Ok((rest, &input[..input.len() - rest.len()]))
+}
+
+/// A decimal number scanned from the text: `12`, `1.5`, `.5`, `3.` (no sign).
+pub(super) struct Decimal {
+    /// Byte offset just after it.
+    pub(super) end: usize,
+    /// Its value, as `str::parse::<f64>` gives it.
+    pub(super) value: f64,
+    /// Whether it has a decimal point.
+    pub(super) has_point: bool,
+    /// How many digits it has.
+    pub(super) digits: usize,
+}
+
+/// Scans a decimal number at `pos` in one pass (the hot path of the parser: every word).
+///
+/// Up to 15 digits the mantissa and the power of ten are exact f64s, so one correctly rounded
+/// division gives the correctly rounded value (Clinger's fast path); longer numbers go to the
+/// standard library.
+pub(super) fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
+    let Digits {
+        mantissa,
+        end,
+        digits,
+        frac_digits,
+        has_point,
+    } = scan_digits(bytes, pos);
+    if digits == 0 {
+        return None;
+    }
+    let value = match POW10.get(frac_digits) {
+        Some(&scale) if digits <= 15 => decimal_value(mantissa, frac_digits, scale),
+        _ => std::str::from_utf8(&bytes[pos..end])
+            .ok()
+            .and_then(|t| t.parse::<f64>().ok())
+            .unwrap_or(f64::NAN),
+    };
+    Some(Decimal {
+        end,
+        value,
+        has_point,
+        digits,
+    })
+}
+
+/// The value of a mantissa of at most 15 digits, `frac_digits` of them after the point (`scale`
+/// is ten to that power): below 10^15 the mantissa converts as a signed integer, exactly as
+/// unsigned, and one correctly rounded division gives the value; a whole number (a G or M code,
+/// most often) spares the division.
+#[inline(always)]
+pub(super) fn decimal_value(mantissa: u64, frac_digits: usize, scale: f64) -> f64 {
+    let magnitude = mantissa as i64 as f64;
+    if frac_digits == 0 {
+        magnitude
+    } else {
+        magnitude / scale
+    }
+}
+
+/// The powers of ten that are exact f64s, by number of fraction digits.
+pub(super) const POW10: [f64; 16] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+];
+
+/// The digits of an unsigned decimal number (`12`, `12.5`, `.5`, `12.`) at `pos`.
+pub(super) struct Digits {
+    /// The digits as one integer, point left out (wrapping: past 19 digits it is unused).
+    pub(super) mantissa: u64,
+    /// Where the number ends.
+    pub(super) end: usize,
+    /// Digits in all.
+    pub(super) digits: usize,
+    /// Digits after the point.
+    pub(super) frac_digits: usize,
+    pub(super) has_point: bool,
+}
+
+/// Scans the digits of a number at `pos` (none: `digits` is 0), for [`scan_decimal`] and the
+/// short reader of plain lines.
+#[inline(always)]
+pub(super) fn scan_digits(bytes: &[u8], pos: usize) -> Digits {
+    let n = bytes.len();
+    let mut end = pos;
+    let mut mantissa: u64 = 0;
+    while end < n && bytes[end].is_ascii_digit() {
+        mantissa = mantissa
+            .wrapping_mul(10)
+            .wrapping_add(u64::from(bytes[end] - b'0'));
+        end += 1;
+    }
+    let int_digits = end - pos;
+    let has_point = end < n && bytes[end] == b'.';
+    let mut frac_digits = 0;
+    if has_point {
+        end += 1;
+        let frac_start = end;
+        while end < n && bytes[end].is_ascii_digit() {
+            mantissa = mantissa
+                .wrapping_mul(10)
+                .wrapping_add(u64::from(bytes[end] - b'0'));
+            end += 1;
+        }
+        frac_digits = end - frac_start;
+    }
+    Digits {
+        mantissa,
+        end,
+        digits: int_digits + frac_digits,
+        frac_digits,
+        has_point,
+    }
+}
+
+/// The sign at `pos` before a number: whether it is `-`, and where the number starts.
+#[inline(always)]
+pub(super) fn scan_sign(bytes: &[u8], pos: usize) -> (bool, usize) {
+    // Without a branch: whether a number is negative is as good as random in a CAM program.
+    let b = bytes.get(pos).copied().unwrap_or(0);
+    let negative = b == b'-';
+    (negative, pos + usize::from(negative | (b == b'+')))
+}
+
+/// `value`, a number scanned without its sign (so with no sign bit of its own), negated when
+/// `negative` ([`scan_sign`]): without a branch, as the sign is read.
+#[inline(always)]
+pub(super) fn with_sign(value: f64, negative: bool) -> f64 {
+    f64::from_bits(value.to_bits() | (u64::from(negative) << 63))
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+    use super::*;
+
+    #[test]
+    fn number_forms() {
+        assert_eq!(unsigned("12X"), Ok(("X", "12")));
+        assert_eq!(unsigned("1.5"), Ok(("", "1.5")));
+        assert_eq!(unsigned(".5"), Ok(("", ".5")));
+        assert_eq!(unsigned("3."), Ok(("", "3.")));
+        assert!(unsigned("X").is_err());
+        assert!(unsigned("-").is_err());
+    }
+
+    #[test]
+    fn fast_decimal_values_match_the_standard_parser() {
+        for text in [
+            "0",
+            "1",
+            "12.5",
+            ".5",
+            "3.",
+            "0.001",
+            "123456.789",
+            "99999999",
+            "0.1",
+            "0.3",
+            "2.675",
+            "1234567890.12345",
+            "12345678901234567890",
+            "0.000000000000001",
+            "1234567890123456.5",
+        ] {
+            let expected: f64 = text.parse().unwrap();
+            let d = scan_decimal(text.as_bytes(), 0).unwrap();
+            assert_eq!(d.value, expected, "{text}");
+            assert_eq!(d.end, text.len());
+            assert_eq!(d.has_point, text.contains('.'));
+        }
+        let d = scan_decimal(b"12.5.3X", 0).unwrap();
+        assert_eq!((d.end, d.value, d.digits), (4, 12.5, 3));
+        assert!(scan_decimal(b"X", 0).is_none());
+        assert!(scan_decimal(b".", 0).is_none());
+    }
+}

@@ -1,0 +1,304 @@
+//! [`ParseRun`]: a parse of a `&str` or a [`LineSource`] in steps of a bounded number of lines,
+//! each line read by the short reader of plain lines or by the general one.
+
+use super::block::LineReader;
+use super::plain::{PlainLimits, read_plain_line};
+use super::{MAX_LINE_BYTES, is_blank};
+use crate::{Diagnostic, Dialect, LineIndex, LineSource, Program, Span};
+
+/// A parse that reads a bounded number of lines per [`step`](ParseRun::step), so an editor can
+/// spread the parse of a long program over frames. Stepped to its end it gives the same
+/// [`Program`] as [`parse`](super::parse).
+#[derive(Debug)]
+pub struct ParseRun {
+    program: Program,
+    checker: crate::checks::Checker,
+    tape: Tape,
+    /// Byte offset of the next line.
+    offset: usize,
+    /// 0-based number of the next line.
+    line_no: usize,
+    done: bool,
+    /// Whether lines of plain words take the short reader (always, but in the tests that
+    /// compare it with the general one).
+    pub(super) plain_lines: bool,
+}
+
+impl ParseRun {
+    /// Indexes the lines of `text` (every later step must be given the same text); nothing is
+    /// read yet.
+    pub fn new(text: &str, dialect: Dialect) -> Self {
+        let mut program = Program {
+            dialect,
+            blocks: Vec::new(),
+            exprs: Vec::new(),
+            diagnostics: Vec::new(),
+            lines: LineIndex::new(text),
+            syntec_macro: false,
+            linked: Vec::new(),
+        };
+        // Most lines are one block: reserving for them spares the copies of a growing array.
+        program.blocks.reserve_exact(program.lines.line_count());
+        ParseRun {
+            program,
+            checker: crate::checks::Checker::new(dialect),
+            // A program that opens with a `%` line (the first line that is not blank) ends at
+            // the next `%` line: what follows the closing tape mark is not read (LinuxCNC
+            // ignores it; on the Fanuc family it is past the end of the tape).
+            tape: Tape::Before,
+            offset: 0,
+            line_no: 0,
+            done: false,
+            plain_lines: true,
+        }
+    }
+
+    /// Lines read so far and lines in the text.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.line_no, self.program.lines.line_count())
+    }
+
+    /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
+    /// whether the whole text is read.
+    pub fn step(&mut self, text: &str, lines: usize) -> bool {
+        self.read_lines(Some(text), &mut &*text, lines)
+    }
+
+    /// Reads at most `lines` more lines from `source` (the same text the run's line index was
+    /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
+    pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
+        self.read_lines(None, source, lines)
+    }
+
+    /// The loop of [`ParseRun::step`] and [`ParseRun::step_from`]: the lines come from `text`
+    /// when the whole text is at hand, else from `source` (one dynamic call a line).
+    ///
+    /// One loop serves every source: made once, it keeps the line reader inlined into it as the
+    /// string-only loop did.
+    fn read_lines(
+        &mut self,
+        text: Option<&str>,
+        source: &mut dyn LineSource,
+        lines: usize,
+    ) -> bool {
+        let program = &mut self.program;
+        let dialect = program.dialect;
+        // The lines come from the line index.
+        let line_count = program.lines.line_count();
+        let stop = self.line_no.saturating_add(lines).min(line_count);
+        // The run's state, kept here while the lines are read (stored at the end).
+        let mut next = self.line_no;
+        let mut offset = self.offset;
+        let mut tape = self.tape;
+        let mut done = self.done;
+        let plain_lines = self.plain_lines;
+        let limits = PlainLimits::of(dialect.rules());
+        while !done && next < stop {
+            let line_no = next;
+            let start = program.lines.line_start(line_no) as usize;
+            let end = if line_no + 1 < line_count {
+                (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
+            } else {
+                source.len()
+            };
+            // The short reader reads bytes: a line of the whole text is taken as bytes, sparing
+            // the checks that a `str` is cut between characters (at a newline it always is), and
+            // from the line's start on (it finds the same end).
+            let (raw, whole, onward) = if let Some(text) = text {
+                let onward = text.as_bytes().get(start..).unwrap_or_default();
+                (onward.get(..end - start).unwrap_or_default(), None, onward)
+            } else {
+                let line = source.line(start, end);
+                (line.as_bytes(), Some(line), line.as_bytes())
+            };
+            let raw_len = raw.len();
+            let bytes = raw.strip_suffix(b"\r").unwrap_or(raw);
+            let line_no = u32::try_from(line_no).unwrap_or(u32::MAX);
+            // A runaway line is cut by the general reader (which reads a plain line as the short
+            // one does).
+            let plain = if plain_lines && bytes.len() <= MAX_LINE_BYTES {
+                read_plain_line(
+                    onward,
+                    offset,
+                    line_no,
+                    limits,
+                    &mut program.blocks,
+                    &mut self.checker,
+                )
+            } else {
+                None
+            };
+            // Whether the line is blank, and whether it is a `%` line, for the tape marks.
+            let (blank, percent) = if let Some(block) = plain {
+                (!block, false)
+            } else {
+                let raw = whole
+                    .or_else(|| text.and_then(|text| text.get(start..end)))
+                    .unwrap_or_default();
+                read_general_line(program, &mut self.checker, raw, offset, line_no)
+            };
+            offset += raw_len + 1;
+            next += 1;
+            let closed;
+            (tape, closed) = tape.after(blank, percent);
+            if closed {
+                ignore_after_tape_end(program, source, offset);
+                done = true;
+            }
+        }
+        self.line_no = next;
+        self.offset = offset;
+        self.tape = tape;
+        self.done = done;
+        if self.line_no >= line_count {
+            self.done = true;
+        }
+        self.done
+    }
+
+    /// Whether the whole text is read.
+    pub fn is_done(&self) -> bool {
+        self.done
+    }
+
+    /// The program as read so far.
+    pub fn program(&self) -> &Program {
+        &self.program
+    }
+
+    /// Drops the blocks read so far and keeps the rest (expressions, diagnostics, lines), so
+    /// that a reader that runs a long program piece by piece as it reads it keeps none of the
+    /// pieces it has run; the block array's memory is reused for the next piece.
+    pub fn clear_blocks(&mut self) {
+        self.program.blocks.clear();
+    }
+
+    /// The parsed program (the lines read so far, if the run is not done).
+    pub fn finish(self) -> Program {
+        let mut program = self.program;
+        self.checker.finish(&mut program);
+        program
+    }
+}
+
+impl ParseRun {
+    /// Starts a parse over a text whose line index is already made (e.g. from the pieces of a
+    /// rope, [`LineIndex::from_chunks`]); the lines are then read with
+    /// [`ParseRun::step_from`]. Nothing is read yet.
+    pub fn with_lines(lines: LineIndex, dialect: Dialect) -> Self {
+        let mut run = ParseRun::new("", dialect);
+        run.program.blocks = Vec::with_capacity(lines.line_count());
+        run.program.lines = lines;
+        run
+    }
+}
+
+/// Where the reader is with respect to `%` tape marks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Tape {
+    /// Only blank lines so far.
+    Before,
+    /// The program opened with a `%` line: the next one closes it.
+    Open,
+    /// The program did not open with `%`: a `%` line is only a mark.
+    Plain,
+}
+
+impl Tape {
+    /// Where the reader is after a line (whether blank, whether a `%` line), and whether that
+    /// line closed the program.
+    fn after(self, blank: bool, percent: bool) -> (Tape, bool) {
+        match (self, percent) {
+            (_, false) if blank => (self, false),
+            (Tape::Before, true) => (Tape::Open, false),
+            (Tape::Before | Tape::Plain, false) => (Tape::Plain, false),
+            (Tape::Open, true) => (self, true),
+            (other, _) => (other, false),
+        }
+    }
+}
+
+/// Reads `raw` (a line without its `\n`, at byte `offset`) with the general reader: whether it
+/// is blank and whether it is a `%` line, for the tape marks.
+fn read_general_line(
+    program: &mut Program,
+    checker: &mut crate::checks::Checker,
+    raw: &str,
+    offset: usize,
+    line_no: u32,
+) -> (bool, bool) {
+    let dialect = program.dialect;
+    let mut line = raw.strip_suffix('\r').unwrap_or(raw);
+    if line.len() > MAX_LINE_BYTES {
+        // A runaway line (a binary file, a generator gone wrong): read its start only.
+        let mut cut = MAX_LINE_BYTES;
+        while !line.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        program.diagnostics.push(Diagnostic::error(
+            Span::new(offset + cut, offset + line.len()),
+            "E-LINE-LENGTH",
+            format!(
+                "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
+                line.len()
+            ),
+        ));
+        line = &line[..cut];
+    }
+    let mut reader = LineReader {
+        dialect,
+        rules: dialect.rules(),
+        line,
+        bytes: line.as_bytes(),
+        base: offset,
+        line_no,
+        program,
+        checker,
+        open_brackets: 0,
+        statements: Vec::new(),
+        comments: Vec::new(),
+    };
+    reader.read();
+    let significant = line.trim_start_matches(is_blank);
+    (significant.is_empty(), significant.starts_with('%'))
+}
+
+/// Notes that the text from `offset` on, after the closing `%`, is not read (if it is not blank).
+fn ignore_after_tape_end(program: &mut Program, source: &mut dyn LineSource, offset: usize) {
+    let Some((start, end)) = source.trimmed_rest(offset) else {
+        return;
+    };
+    program.diagnostics.push(Diagnostic::note(
+        Span::new(start, end),
+        "N-AFTER-TAPE-END",
+        "the program ends at the closing `%`: the text after it is not read",
+    ));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parse;
+
+    #[test]
+    fn pieces_read_after_the_blocks_are_cleared_make_the_whole_program() {
+        let text =
+            "O100 (a program)\nG1 X1 Y2 Z3 A4 B5 C6 F7\n#1 = 2\nG0 X#1\n N10 X1.5\n\nX2 (c)\n"
+                .repeat(20);
+        for dialect in Dialect::ALL {
+            let whole = parse(&text, dialect);
+            let mut run = ParseRun::new(&text, dialect);
+            let mut blocks = Vec::new();
+            loop {
+                let done = run.step(&text, 3);
+                blocks.extend(run.program().blocks.iter().cloned());
+                run.clear_blocks();
+                assert!(run.program().blocks.is_empty());
+                if done {
+                    break;
+                }
+            }
+            assert_eq!(blocks, whole.blocks, "{dialect:?}");
+        }
+    }
+}
