@@ -1,15 +1,17 @@
-//! `swarf explain`: what a code or address means, per dialect, from the language crate's tables.
+//! `swarf explain`: what a code, an address or a diagnostic code means, from the language
+//! crate's tables.
 
 use std::io::Write;
 
 use serde_json::json;
 use swarf_syntax::codes::{self, CodeDef, Documented, Modality};
-use swarf_syntax::{Code, Dialect};
+use swarf_syntax::{Code, DIAGNOSTICS, DiagnosticDef, Dialect};
 
 use crate::{EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
 
-/// Explains `what` (a code such as `G83`, `g54.1`, `M98`, or an address letter such as `Q`) for
-/// `dialect`, or for every dialect when it is `None`; `list` prints every code of the dialect.
+/// Explains `what` (a code such as `G83`, `g54.1`, `M98`, an address letter such as `Q`, or a
+/// diagnostic code such as `E-ARC-RADIUS`) for `dialect`, or for every dialect when it is
+/// `None`; `list` prints every code of the dialect.
 pub(crate) fn explain(
     what: Option<&str>,
     dialect: Option<Dialect>,
@@ -34,18 +36,21 @@ pub(crate) fn explain(
     let Some(what) = what else {
         writeln!(
             err,
-            "swarf explain: name a code (G83, M98) or an address letter (Q), or pass --list"
+            "swarf explain: name a code (G83, M98), an address letter (Q) or a diagnostic code (E-ARC-RADIUS), or pass --list or --diagnostics"
         )?;
         return Ok(EXIT_USAGE);
     };
     let trimmed = what.trim();
+    if trimmed.as_bytes().get(1) == Some(&b'-') {
+        return diagnostic(&trimmed.to_ascii_uppercase(), json, out, err);
+    }
     if trimmed.len() == 1 && trimmed.as_bytes()[0].is_ascii_alphabetic() {
         return address(trimmed.as_bytes()[0], dialect, json, out);
     }
     let Some(code) = Code::parse(trimmed) else {
         writeln!(
             err,
-            "swarf explain: `{what}` is not a G or M code (such as G83, G54.1, M98) or an address letter"
+            "swarf explain: `{what}` is not a G or M code (such as G83, G54.1, M98), an address letter or a diagnostic code"
         )?;
         return Ok(EXIT_USAGE);
     };
@@ -78,6 +83,62 @@ pub(crate) fn explain(
         return Ok(EXIT_ERRORS);
     }
     Ok(EXIT_OK)
+}
+
+/// Explains one diagnostic code: its severity and meaning.
+fn diagnostic(
+    code: &str,
+    json: bool,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> anyhow::Result<i32> {
+    let Some(d) = DiagnosticDef::lookup(code) else {
+        writeln!(
+            err,
+            "{code} is not a diagnostic code (`swarf explain --diagnostics` lists them)"
+        )?;
+        return Ok(EXIT_ERRORS);
+    };
+    if json {
+        writeln!(
+            out,
+            "{}",
+            serde_json::to_string_pretty(&[diagnostic_json(d)])?
+        )?;
+    } else {
+        writeln!(out, "{} — {}\n  {}", d.code, d.severity, d.summary)?;
+    }
+    Ok(EXIT_OK)
+}
+
+/// Lists every diagnostic code: as text, as JSON, or with `table` as the Markdown table of
+/// docs/interpreter.md.
+pub(crate) fn diagnostics(table: bool, json: bool, out: &mut dyn Write) -> anyhow::Result<i32> {
+    if table {
+        writeln!(out, "| code | severity | meaning |\n|---|---|---|")?;
+        for d in DIAGNOSTICS {
+            let summary = d.summary.replace('|', "\\|");
+            writeln!(out, "| `{}` | {} | {summary} |", d.code, d.severity)?;
+        }
+    } else if json {
+        let items: Vec<_> = DIAGNOSTICS.iter().map(diagnostic_json).collect();
+        writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
+    } else {
+        let width = DIAGNOSTICS.iter().map(|d| d.code.len()).max().unwrap_or(0);
+        for d in DIAGNOSTICS {
+            let severity = d.severity.as_str();
+            writeln!(out, "{:<width$}  {severity:<7}  {}", d.code, d.summary)?;
+        }
+    }
+    Ok(EXIT_OK)
+}
+
+fn diagnostic_json(d: &DiagnosticDef) -> serde_json::Value {
+    json!({
+        "code": d.code,
+        "severity": d.severity.as_str(),
+        "summary": d.summary,
+    })
 }
 
 fn print_def(d: &CodeDef, out: &mut dyn Write) -> anyhow::Result<()> {

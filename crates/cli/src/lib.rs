@@ -69,9 +69,10 @@ enum Command {
     Stats(StatsArgs),
     /// Draw the toolpath to a PNG image offscreen (no display needed).
     Render(render::RenderArgs),
-    /// Explain a G/M code (G83, G54.1, M98) or an address letter (Q) as each control reads it.
+    /// Explain a G/M code (G83, G54.1, M98) or an address letter (Q) as each control reads it,
+    /// or a diagnostic code (E-ARC-RADIUS).
     Explain {
-        /// The code or address; omit with --list.
+        /// The code, address or diagnostic code; omit with --list, --table or --diagnostics.
         what: Option<String>,
         /// Only this dialect (default: every dialect that has it).
         #[arg(long, value_parser = parse_dialect)]
@@ -79,7 +80,11 @@ enum Command {
         /// List every code of the dialect (fanuc unless --dialect is given).
         #[arg(long)]
         list: bool,
-        /// Print the Markdown table of every code group per dialect (the README's feature table).
+        /// List every diagnostic code with its severity and meaning.
+        #[arg(long)]
+        diagnostics: bool,
+        /// Print the Markdown table of every code group per dialect (the README's feature table),
+        /// or with --diagnostics of every diagnostic code (docs/interpreter.md's).
         #[arg(long)]
         table: bool,
         /// Print JSON instead of text.
@@ -151,10 +156,13 @@ where
             what,
             dialect,
             list,
+            diagnostics,
             table,
             json,
         } => {
-            if table {
+            if diagnostics {
+                explain::diagnostics(table, json, out)
+            } else if table {
                 write!(out, "{}", swarf_syntax::codes::markdown_table())
                     .map(|()| EXIT_OK)
                     .map_err(anyhow::Error::from)
@@ -237,14 +245,9 @@ fn read_decoded(path: &Path) -> anyhow::Result<Decoded> {
 
 /// Parses a decoded program file and links the programs it calls from files beside it.
 fn load_decoded(path: &Path, decoded: Decoded, opts: &RunOptions) -> Loaded {
-    load_text(path, decoded.text, decoded.diagnostics, opts)
-}
-
-/// [`load_decoded`] for a text and its decoding diagnostics.
-fn load_text(path: &Path, text: String, decoding: Vec<Diagnostic>, opts: &RunOptions) -> Loaded {
-    let mut program = parse(&text, opts.dialect);
-    let linked = link_external(&mut program, path, text.len(), opts.dialect);
-    Loaded::new(path, decoding, text, program, linked)
+    let mut program = parse(&decoded.text, opts.dialect);
+    let linked = link_external(&mut program, path, decoded.text.len(), opts.dialect);
+    Loaded::new(path, decoded.diagnostics, decoded.text, program, linked)
 }
 
 /// The reading diagnostics and the run's, in one list sorted by position.
@@ -258,15 +261,15 @@ fn merged(mut reading: Vec<Diagnostic>, run: Vec<Diagnostic>) -> Vec<Diagnostic>
 /// parsed blocks of a long program are never held all at once.
 const PIECE_LINES: usize = 2048;
 
-/// Parses and runs `text` piece by piece into `toolpath`, keeping none of the blocks it has
-/// run, for a program that runs straight through: the parsed program (without blocks), how
-/// many blocks it had and the run's diagnostics. `None` when the program needs all its blocks
-/// at once (it jumps, loops or calls); `toolpath` may then hold part of its moves.
+/// Parses and runs `text` piece by piece into `sink`, keeping none of the blocks it has run,
+/// for a program that runs straight through: the parsed program (without blocks), how many
+/// blocks it had and the run's diagnostics. `None` when the program needs all its blocks at
+/// once (it jumps, loops or calls); `sink` then has the first events of the run.
 fn run_pieces(
     text: &str,
     dialect: Dialect,
     setup: &Setup,
-    toolpath: &mut Toolpath,
+    sink: &mut dyn Sink,
 ) -> Option<(Program, usize, Vec<Diagnostic>)> {
     let mut reader = swarf_syntax::ParseRun::new(text, dialect);
     let mut interp = swarf_interp::Interpreter::new(setup.clone(), dialect);
@@ -276,7 +279,7 @@ fn run_pieces(
         let done = reader.step(text, PIECE_LINES);
         blocks += reader.program().blocks.len();
         if !ended {
-            match interp.run_piece(reader.program(), toolpath) {
+            match interp.run_piece(reader.program(), sink) {
                 swarf_interp::Piece::Ran => {}
                 swarf_interp::Piece::Ended => ended = true,
                 swarf_interp::Piece::NeedsWhole => return None,
@@ -287,8 +290,43 @@ fn run_pieces(
             break;
         }
     }
-    interp.finish_pieces(toolpath);
+    interp.finish_pieces(sink);
     Some((reader.finish(), blocks, interp.take_diagnostics()))
+}
+
+/// A program file read (see [`read_run`]).
+enum Read {
+    /// Run piece by piece to its end: the program (without its blocks), how many blocks it
+    /// had, and every diagnostic, sorted.
+    Ran(Loaded, usize, Vec<Diagnostic>),
+    /// Parsed whole, not run: it jumps, loops or calls (or the whole program was asked for).
+    Whole(Loaded),
+}
+
+/// Runs a decoded program file into `sink` piece by piece when it runs straight through, so
+/// that its parsed blocks are never all held at once; otherwise parses it whole (with the
+/// programs it calls from files beside it) for the caller to run, `sink` having the first
+/// events of the run that was tried.
+fn read_run(
+    file: &Path,
+    decoded: Decoded,
+    opts: &RunOptions,
+    setup: &Setup,
+    whole: bool,
+    sink: &mut dyn Sink,
+) -> Read {
+    let pieces = (!whole)
+        .then(|| run_pieces(&decoded.text, opts.dialect, setup, sink))
+        .flatten();
+    match pieces {
+        Some((program, blocks, run)) => {
+            let mut loaded =
+                Loaded::new(file, decoded.diagnostics, decoded.text, program, Vec::new());
+            let diags = loaded.all_diagnostics(run);
+            Read::Ran(loaded, blocks, diags)
+        }
+        None => Read::Whole(load_decoded(file, decoded, opts)),
+    }
 }
 
 impl Loaded {
@@ -362,16 +400,23 @@ fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::R
     let setup = read_setup(opts)?;
     let mut status = EXIT_OK;
     for file in files {
-        let mut loaded = match load(file, opts) {
-            Ok(l) => l,
+        let decoded = match read_decoded(file) {
+            Ok(d) => d,
             Err(e) => {
                 writeln!(err, "swarf: {e:#}")?;
                 status = EXIT_USAGE;
                 continue;
             }
         };
-        let run = loaded.interpret(&setup, &mut NullSink);
-        let diags = loaded.all_diagnostics(run);
+        // Only the diagnostics are wanted: no toolpath is kept.
+        let (loaded, diags) = match read_run(file, decoded, opts, &setup, false, &mut NullSink) {
+            Read::Ran(loaded, _, diags) => (loaded, diags),
+            Read::Whole(mut loaded) => {
+                let run = loaded.interpret(&setup, &mut NullSink);
+                let diags = loaded.all_diagnostics(run);
+                (loaded, diags)
+            }
+        };
         let s = loaded.print(&diags, err)?;
         if status == EXIT_OK {
             status = s;
@@ -390,18 +435,27 @@ impl Sink for NullSink {
 struct JsonLines<'a> {
     out: &'a mut dyn Write,
     error: Option<std::io::Error>,
-    /// The program: an event from a file linked to it names that file, with its line there.
-    program: &'a Program,
+    /// The program, when it has others linked to it: an event from a linked file names that
+    /// file, with its line there.
+    program: Option<&'a Program>,
+    /// Events written, and how many of the first events to leave out (written already by a
+    /// run that was tried piece by piece: a whole run repeats them).
+    written: u64,
+    skip: u64,
 }
 
 impl Sink for JsonLines<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
+        if self.skip > 0 {
+            self.skip -= 1;
+            return;
+        }
+        self.written += 1;
         let mut value = event.to_json(source);
         let line0 = source.line.saturating_sub(1);
         if let Some(file) = self
             .program
-            .linked_at_line(line0)
-            .and_then(|i| self.program.linked.get(i))
+            .and_then(|p| p.linked.get(p.linked_at_line(line0)?))
         {
             value["file"] = json!(file.name);
             value["line"] = json!(line0 - file.first_line + 1);
@@ -421,19 +475,38 @@ fn canon(
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
     let setup = read_setup(opts)?;
-    let mut loaded = load(file, opts)?;
+    let decoded = read_decoded(file)?;
     let mut buffered = std::io::BufWriter::new(out);
-    let mut sink = JsonLines {
-        program: &loaded.program,
+    let mut pieces = JsonLines {
+        program: None,
         out: &mut buffered,
         error: None,
+        written: 0,
+        skip: 0,
     };
-    let run = loaded.interpret(&setup, &mut sink);
-    if let Some(e) = sink.error {
+    let read = read_run(file, decoded, opts, &setup, false, &mut pieces);
+    let (written, mut error) = (pieces.written, pieces.error.take());
+    let (loaded, diags) = match read {
+        Read::Ran(loaded, _, diags) => (loaded, diags),
+        Read::Whole(mut loaded) => {
+            // The whole run makes the same first events as the run tried piece by piece.
+            let mut sink = JsonLines {
+                program: Some(&loaded.program),
+                out: &mut buffered,
+                error: None,
+                written: 0,
+                skip: written,
+            };
+            let run = loaded.interpret(&setup, &mut sink);
+            error = error.or(sink.error);
+            let diags = loaded.all_diagnostics(run);
+            (loaded, diags)
+        }
+    };
+    if let Some(e) = error {
         return Err(anyhow::anyhow!("cannot write output: {e}"));
     }
     buffered.flush()?;
-    let diags = loaded.all_diagnostics(run);
     Ok(loaded.print(&diags, err)?)
 }
 
@@ -450,22 +523,16 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
     // About a move a line, and a line is rarely under sixteen bytes.
     path.reserve(decoded.text.len() / 16);
-    let pieces = (!whole)
-        .then(|| run_pieces(&decoded.text, opts.dialect, &setup, &mut path))
-        .flatten();
-    let (loaded, blocks, diags) = if let Some((program, blocks, run)) = pieces {
-        let mut loaded = Loaded::new(file, decoded.diagnostics, decoded.text, program, Vec::new());
-        let diags = loaded.all_diagnostics(run);
-        (loaded, blocks, diags)
-    } else {
-        // Run whole: it jumps, loops or calls (or `--whole` asked for it).
-        path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-        let mut loaded = load_text(file, decoded.text, decoded.diagnostics, opts);
-        path.reserve(loaded.program.blocks.len());
-        let run = loaded.interpret(&setup, &mut path);
-        let diags = loaded.all_diagnostics(run);
-        let blocks = loaded.program.blocks.len();
-        (loaded, blocks, diags)
+    let (loaded, blocks, diags) = match read_run(file, decoded, opts, &setup, whole, &mut path) {
+        Read::Ran(loaded, blocks, diags) => (loaded, blocks, diags),
+        Read::Whole(mut loaded) => {
+            path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+            path.reserve(loaded.program.blocks.len());
+            let run = loaded.interpret(&setup, &mut path);
+            let diags = loaded.all_diagnostics(run);
+            let blocks = loaded.program.blocks.len();
+            (loaded, blocks, diags)
+        }
     };
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
     let errors = diags

@@ -1,15 +1,15 @@
-//! `swarf render`: draws a program's toolpath offscreen with the backplot's renderer (wgpu;
-//! Mesa lavapipe works with no display) and writes it as a PNG, with the machine's travel box and
-//! the G22 stroke limits as outlines.
+//! `swarf render`: draws a program's toolpath offscreen as the backplot draws it (its
+//! [`Drawing`] and renderer, wgpu; Mesa lavapipe works with no display) and writes it as a PNG.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
 use swarf_render::{
-    HeadlessGpu, Kind, OrbitCamera, PathPoint, Projection, StandardView, ViewParams, grid_points_at,
+    Drawing, HeadlessGpu, OrbitCamera, Projection, StandardView, ViewParams, reference_points,
+    view_bounds,
 };
-use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
+use swarf_toolpath::Toolpath;
 
 /// Background of the image: the app's dark backplot (sRGB).
 const BACKGROUND: [u8; 4] = [16, 16, 18, 255];
@@ -61,37 +61,6 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
-/// The toolpath as the renderer's point stream relative to `origin`: the start (pen up),
-/// then one point per segment end with its kind.
-fn path_points(path: &Toolpath, origin: DVec3) -> Vec<PathPoint> {
-    let rel = |p: DVec3| (p - origin).as_vec3();
-    let mut points = Vec::with_capacity(path.len() + 1);
-    points.push(PathPoint::pen_up(rel(path.start())));
-    points.extend(path.ends().iter().zip(path.kinds()).map(|(end, kind)| {
-        let kind = match kind {
-            SegmentKind::Rapid => Kind::Rapid,
-            SegmentKind::Feed => Kind::Feed,
-            SegmentKind::Arc => Kind::Arc,
-        };
-        PathPoint::new(rel(*end), kind)
-    }));
-    for (segment, role) in path.cycle_moves() {
-        if let Some(p) = points.get_mut(segment + 1) {
-            *p = PathPoint::new(p.position(), cycle_kind(role));
-        }
-    }
-    points
-}
-
-/// The renderer's kind for a canned-cycle move.
-fn cycle_kind(role: CycleMove) -> Kind {
-    match role {
-        CycleMove::Plunge => Kind::Plunge,
-        CycleMove::Retract => Kind::Retract,
-        CycleMove::Other => Kind::Cycle,
-    }
-}
-
 /// Runs `swarf render`: interprets the program (diagnostics to `err` as with `check`), draws
 /// it and writes the PNG. The exit status follows the diagnostics; the image is written
 /// even when the program has errors (it shows what runs).
@@ -108,33 +77,10 @@ pub(crate) fn render(
     let diags = loaded.all_diagnostics(run);
     let status = loaded.print(&diags, err)?;
 
-    let origin = path.bounds().map_or(DVec3::ZERO, |b| b.center());
-    let points = path_points(&path, origin);
-    let zones = path.zone_boxes();
-    // The view takes in the path and the stroke limits it set.
-    let (min, max) = path.bounds().map_or((Vec3::ONE, Vec3::ZERO), |b| {
-        let (lo, hi) = zones
-            .iter()
-            .fold((b.min, b.max), |(lo, hi), z| (lo.min(z.0), hi.max(z.1)));
-        ((lo - origin).as_vec3(), (hi - origin).as_vec3())
-    });
-    let zero = (DVec3::ZERO - origin).as_vec3();
-    let mut grid = grid_points_at(zero, min, max);
-    // Outlines: the machine's travel and every G22 stroke limit the program set.
-    let travel = setup
-        .machine
-        .travel_mm
-        .map(|[lo, hi]| (DVec3::from_array(lo), DVec3::from_array(hi)));
-    let outlines = travel
-        .into_iter()
-        .map(|b| (b, Kind::Boundary))
-        .chain(zones.into_iter().map(|b| (b, Kind::Zone)));
-    for ((lo, hi), kind) in outlines {
-        for (a, b) in box_edges(lo, hi) {
-            grid.push(PathPoint::pen_up((a - origin).as_vec3()));
-            grid.push(PathPoint::new((b - origin).as_vec3(), kind));
-        }
-    }
+    // What the backplot draws, framed as its Fit frames it.
+    let drawing = Drawing::of(&path, setup.machine.travel_mm);
+    let (min, max) = view_bounds(drawing.bounds, &drawing.marks).unwrap_or((Vec3::ONE, Vec3::ZERO));
+    let reference = reference_points(drawing.zero, drawing.bounds, &drawing.marks);
 
     let (width, height) = args.size;
     let aspect = width as f32 / height as f32;
@@ -150,7 +96,7 @@ pub(crate) fn render(
     .scaled((height as f32 / 768.0).clamp(1.0, 4.0));
 
     let gpu = pollster::block_on(HeadlessGpu::new())?;
-    let pixels = gpu.render_rgba8(&points, &grid, &params, args.size, BACKGROUND)?;
+    let pixels = gpu.render_rgba8(&drawing.points, &reference, &params, args.size, BACKGROUND)?;
     write_png(&args.output, width, height, &pixels)?;
     writeln!(
         out,

@@ -198,6 +198,79 @@ fn the_readme_code_table_is_generated_from_the_code_tables() {
     );
 }
 
+#[test]
+fn explain_gives_a_diagnostic_codes_severity_and_meaning() {
+    let (code, out, err) = swarf(&["explain", "E-ARC-RADIUS"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        out,
+        "E-ARC-RADIUS — error\n  An arc's R is smaller than half the distance from its start to its end point.\n"
+    );
+    assert_eq!(
+        swarf(&["explain", " w-offset-unset "]).1.lines().next(),
+        Some("W-OFFSET-UNSET — warning")
+    );
+    let (code, out, _) = swarf(&["explain", "N-PROBE", "--json"]);
+    assert_eq!(code, 0);
+    let items: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(items[0]["code"], "N-PROBE");
+    assert_eq!(items[0]["severity"], "note");
+    assert!(
+        items[0]["summary"]
+            .as_str()
+            .unwrap()
+            .contains("measuring move")
+    );
+    let (code, out, err) = swarf(&["explain", "E-NO-SUCH-THING"]);
+    assert_eq!(code, 1);
+    assert!(out.is_empty());
+    assert!(
+        err.contains("E-NO-SUCH-THING is not a diagnostic code"),
+        "{err}"
+    );
+}
+
+#[test]
+fn explain_diagnostics_lists_every_code() {
+    let registry = swarf_syntax::DIAGNOSTICS;
+    let (code, out, _) = swarf(&["explain", "--diagnostics"]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), registry.len());
+    for (line, d) in lines.iter().zip(registry) {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        assert_eq!(words[..2], [d.code, d.severity.as_str()], "{line}");
+        assert!(line.ends_with(d.summary), "{line}");
+    }
+    let (code, out, _) = swarf(&["explain", "--diagnostics", "--json"]);
+    assert_eq!(code, 0);
+    let items: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(items.as_array().unwrap().len(), registry.len());
+    assert_eq!(items[0]["code"], registry[0].code);
+}
+
+/// docs/interpreter.md's list of diagnostics is the one `swarf explain --diagnostics --table`
+/// prints from the registry.
+#[test]
+fn the_diagnostics_doc_is_generated_from_the_registry() {
+    let (code, out, _) = swarf(&["explain", "--diagnostics", "--table"]);
+    assert_eq!(code, 0);
+    assert!(out.starts_with("| code | severity | meaning |\n"));
+    assert_eq!(out.lines().count(), swarf_syntax::DIAGNOSTICS.len() + 2);
+    let doc = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/interpreter.md"),
+    )
+    .unwrap();
+    let begin = "<!-- diagnostics:begin -->\n";
+    let start = doc.find(begin).unwrap() + begin.len();
+    let end = doc.find("<!-- diagnostics:end -->").unwrap();
+    assert_eq!(
+        doc[start..end],
+        out,
+        "docs/interpreter.md's diagnostics are stale: replace them with `swarf explain --diagnostics --table`"
+    );
+}
+
 /// Subprograms in files beside the program are linked: `M98`/`M198 P1234` finds `O1234.nc`,
 /// LinuxCNC's `o<name> call` finds `name.ngc`, and their diagnostics name their own file.
 #[test]

@@ -52,7 +52,7 @@ fn hostile_inputs_end_with_diagnostics_not_panics() {
             "endless M99 main with moves",
             b"G1 X1. F100\nX0\nM99\n".to_vec(),
             "fanuc",
-            Some("E-MOTION-LIMIT"),
+            Some("N-M99-MAIN-REPEATS"),
         ),
         ("self-calling subprogram", b"O1\nM98 P1\nM99\n".to_vec(), "fanuc", Some("E-NESTING")),
         ("self-calling o-word", b"o100 sub\no100 call\no100 endsub\no100 call\nM2\n".to_vec(), "linuxcnc", Some("E-NESTING")),
@@ -190,4 +190,115 @@ fn a_call_never_reads_a_file_outside_the_program_folder() {
         );
         assert_eq!(err.lines().count(), 1, "{call}: {err}");
     }
+}
+
+/// Runs `swarf ARGS` in-process; returns the exit status, standard output and standard error.
+fn swarf_out(args: &[&str]) -> (i32, String, String) {
+    let mut out = Vec::new();
+    let mut err = Vec::new();
+    let mut all = vec!["swarf"];
+    all.extend_from_slice(args);
+    let code = swarf_cli::run(all, &mut out, &mut err);
+    (
+        code,
+        String::from_utf8_lossy(&out).into_owned(),
+        String::from_utf8_lossy(&err).into_owned(),
+    )
+}
+
+/// A warning met at every pass of an endless loop is printed once with its count; past a
+/// thousand different ones, `check` says how many more there were.
+#[test]
+fn check_prints_a_repeated_diagnostic_once_and_counts_the_ones_left_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("loop.nc");
+    let looped = format!("WHILE [1 EQ 1] DO1\n{}END1\n", "G05.1 Q1\n".repeat(10));
+    std::fs::write(&file, looped).unwrap();
+    let setup = dir.path().join("SETUP.toml");
+    std::fs::write(&setup, "[machine]\nmax_blocks = 120000\n").unwrap();
+    let (code, err) = swarf(&[
+        "check",
+        file.to_str().unwrap(),
+        "--setup",
+        setup.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 11, "{err}");
+    assert!(
+        lines[0].ends_with("this block is not run (10000 times)"),
+        "{err}"
+    );
+    assert!(lines[10].contains("error[E-RUNAWAY]"), "{err}");
+
+    std::fs::write(&file, "G05.1 Q1\n".repeat(1200)).unwrap();
+    let (code, err) = swarf(&["check", file.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1001, "{}", head(&err));
+    assert!(
+        lines[1000].contains(":1001:1: note[N-DIAGNOSTICS-LEFT-OUT]: 200 more diagnostics"),
+        "{}",
+        lines[1000]
+    );
+}
+
+/// `stats` of programs whose numbers run away prints no `inf` or `NaN`: the block that
+/// computes an absurd coordinate, feed or dwell is an error and the run stops there.
+#[test]
+fn stats_never_prints_inf_or_nan() {
+    let huge = "#1=99999999\n#1=#1*#1\n#1=#1*#1\n#1=#1*#1\n#1=#1*#1\n#1=#1*#1\n";
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("absurd.nc");
+    for text in [
+        format!("{huge}G00 X#1\nG00 X-#1\n"),
+        format!("{huge}G04 P#1\nG04 P#1\n"),
+        "G51 X0 Y0 P99999999\nG00 X99999.\n".to_string(),
+        format!(
+            "#2=0.0000001\n{}G01 X1000. F#2\n",
+            "#2=#2*#2*#2*#2\n".repeat(2)
+        ),
+    ] {
+        std::fs::write(&file, &text).unwrap();
+        for json in [false, true] {
+            let mut args = vec!["stats", file.to_str().unwrap()];
+            if json {
+                args.push("--json");
+            }
+            let (code, out, err) = swarf_out(&args);
+            assert_eq!(code, 1, "{text}: {err}");
+            assert!(err.contains("error[E-COORDINATE-RANGE]"), "{text}: {err}");
+            let lower = out.to_lowercase();
+            assert!(
+                !lower.contains("inf") && !lower.contains("nan"),
+                "{text}: {out}"
+            );
+        }
+    }
+}
+
+/// `canon` runs a program piece by piece until it finds that it needs the whole program (a
+/// call after the moves here); the whole run then prints only the events not printed yet,
+/// so every event is printed once, as a run of the whole program prints them.
+#[test]
+fn canon_prints_each_event_once_when_the_run_turns_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("late-call.nc");
+    let mut text = String::from("G90 G01 F500.\n");
+    for i in 0..10_000 {
+        text.push_str(&format!("X{i}. Y1.\n"));
+    }
+    text.push_str("M98 P100\nM30\nO100\nG00 Z5.\nM99\n");
+    std::fs::write(&file, &text).unwrap();
+    let (code, out, err) = swarf_out(&["canon", file.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let program = swarf_syntax::parse(&text, swarf_syntax::Dialect::Fanuc);
+    let mut whole = swarf_interp::CanonRecorder::default();
+    swarf_interp::run(&program, swarf_interp::Setup::default(), &mut whole);
+    let expected: Vec<String> = whole
+        .events
+        .iter()
+        .map(|(source, event)| event.to_json(*source).to_string())
+        .collect();
+    assert_eq!(out.lines().collect::<Vec<_>>(), expected);
 }

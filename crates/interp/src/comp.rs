@@ -8,7 +8,7 @@
 //! (LinuxCNC any number of blocks, the Fanuc family one). Geometry is done in the machine frame,
 //! so compensation follows G68 rotation, G16 polar input and scaling.
 //!
-//! Changes while compensating (the Fanuc family; LinuxCNC refuses both, see `exec.rs`): a new
+//! Changes while compensating (the Fanuc family; LinuxCNC refuses both, see `exec/tools.rs`): a new
 //! side (G41 <-> G42) ends the held move where its offset path meets the next move's on the new
 //! side, or, where they do not meet, square to its end with a move across to the next move's
 //! start vector; a new radius (a D word) counts from the end of the block that gives it, so the

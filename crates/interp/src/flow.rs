@@ -4,7 +4,11 @@
 
 use std::collections::HashMap;
 
-use swarf_syntax::{Diagnostic, OLabel, OWord, Program, ProgramNumber, Statement};
+use swarf_syntax::{
+    Block, Diagnostic, Expr, ExprId, OLabel, OWord, Program, ProgramNumber, Statement,
+};
+
+use crate::diagnostics::Diagnostics;
 
 /// A LinuxCNC O-word label as a map key (`o100` or `o<name>`; computed labels are looked up by
 /// their value at run time).
@@ -70,16 +74,25 @@ pub(crate) struct Index {
     owords: HashMap<LabelKey, Vec<(usize, OKind)>>,
     /// The first block with a program number: the main program's header.
     first_program: Option<usize>,
+    /// The expression terms of each block (see [`terms`]), up to the last block that has any.
+    terms: Vec<u32>,
 }
 
 impl Index {
     /// Indexes `program`; structural problems (an `ENDm` with no `DOm`) become diagnostics.
-    pub(crate) fn build(program: &Program, diagnostics: &mut Vec<Diagnostic>) -> Index {
+    pub(crate) fn build(program: &Program, diagnostics: &mut Diagnostics) -> Index {
         let mut index = Index::default();
         // Program 0 is what comes before the first `O` (the main program when there is none).
         index.starts.push(0);
         let mut open_loops: Vec<(u8, usize)> = Vec::new();
         for (i, block) in program.blocks.iter().enumerate() {
+            let terms = terms(program, block);
+            if terms > 0 {
+                index.terms.resize(i + 1, 0);
+                if let Some(t) = index.terms.get_mut(i) {
+                    *t = u32::try_from(terms).unwrap_or(u32::MAX);
+                }
+            }
             if let Some(number) = block.program() {
                 index.first_program.get_or_insert(i);
                 if index.starts.last() != Some(&i) {
@@ -213,30 +226,139 @@ impl Index {
         self.owords.get(label).map_or(&[], Vec::as_slice)
     }
 
-    /// The next line of `label` after block `at` whose kind is in `kinds`.
+    /// The expression terms of block `at` (see [`terms`]).
+    pub(crate) fn terms(&self, at: usize) -> u64 {
+        self.terms.get(at).map_or(0, |&t| u64::from(t))
+    }
+
+    /// The next line of `label` after block `at` whose kind is in `kinds`; the lines of the
+    /// label looked at are added to `searched` (the run's work).
     pub(crate) fn next_oword(
         &self,
         label: &LabelKey,
         at: usize,
         kinds: &[OKind],
+        searched: &mut u64,
     ) -> Option<(usize, OKind)> {
-        self.owords(label)
-            .iter()
-            .find(|(b, k)| *b > at && kinds.contains(k))
-            .copied()
+        let lines = self.owords(label);
+        let after = lines.get(lines.partition_point(|(b, _)| *b <= at)..)?;
+        first_of(after.iter(), kinds, searched)
     }
 
-    /// The last line of `label` before block `at` whose kind is in `kinds`.
+    /// The last line of `label` before block `at` whose kind is in `kinds` (see
+    /// [`Index::next_oword`]).
     pub(crate) fn previous_oword(
         &self,
         label: &LabelKey,
         at: usize,
         kinds: &[OKind],
+        searched: &mut u64,
     ) -> Option<(usize, OKind)> {
-        self.owords(label)
-            .iter()
-            .rev()
-            .find(|(b, k)| *b < at && kinds.contains(k))
-            .copied()
+        let lines = self.owords(label);
+        let before = lines.get(..lines.partition_point(|(b, _)| *b < at))?;
+        first_of(before.iter().rev(), kinds, searched)
+    }
+}
+
+/// The first of `lines` whose kind is in `kinds`, counting the lines looked at in `searched`.
+fn first_of<'a>(
+    lines: impl Iterator<Item = &'a (usize, OKind)>,
+    kinds: &[OKind],
+    searched: &mut u64,
+) -> Option<(usize, OKind)> {
+    for line in lines {
+        *searched += 1;
+        if kinds.contains(&line.1) {
+            return Some(*line);
+        }
+    }
+    None
+}
+
+/// How many expression terms (numbers, variables, operators, functions) running `block`
+/// evaluates at most: the work a block does besides its words, which the runaway limit
+/// `[machine] max_work` counts.
+pub(crate) fn terms(program: &Program, block: &Block) -> u64 {
+    if !block.has_macro() {
+        return 0;
+    }
+    let mut roots: Vec<ExprId> = block.words.iter().filter_map(|w| w.expr).collect();
+    let mut statements: Vec<&Statement> = block.statements().iter().collect();
+    while let Some(statement) = statements.pop() {
+        match statement {
+            Statement::Assign { target, value } => roots.extend([*target, *value]),
+            Statement::Goto { target } => roots.push(*target),
+            Statement::If { cond, then } => {
+                roots.push(*cond);
+                statements.push(then);
+            }
+            Statement::While { cond, .. } => roots.extend(*cond),
+            Statement::End { .. } => {}
+            Statement::OWord { label, kind } => {
+                if let OLabel::Expr(id) = label {
+                    roots.push(*id);
+                }
+                match kind {
+                    OWord::EndSub(value) | OWord::Return(value) => roots.extend(*value),
+                    OWord::Call(args) => roots.extend(args),
+                    OWord::If(e) | OWord::ElseIf(e) | OWord::While(e) | OWord::Repeat(e) => {
+                        roots.push(*e);
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    // Every node once; a tree has no more nodes than the arena.
+    let mut count = 0;
+    while let Some(id) = roots.pop() {
+        count += 1;
+        if count > program.exprs.len() as u64 {
+            break;
+        }
+        match program.expr(id).map(|n| &n.expr) {
+            Some(Expr::Var(a) | Expr::Neg(a) | Expr::Call(_, a, None)) => roots.push(*a),
+            Some(Expr::Binary(_, a, b) | Expr::Call(_, a, Some(b))) => roots.extend([*a, *b]),
+            _ => {}
+        }
+    }
+    count
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+    use swarf_syntax::{Dialect, parse};
+
+    #[test]
+    fn an_oword_search_starts_at_its_line_and_counts_the_lines_it_looks_at() {
+        let text = "o1 if [1]\no1 endif\n".repeat(1000);
+        let program = parse(&text, Dialect::LinuxCnc);
+        let index = Index::build(&program, &mut Diagnostics::default());
+        let key = LabelKey::Number(1);
+        let mut searched = 0;
+        let found = index.next_oword(&key, 1998, &[OKind::EndIf], &mut searched);
+        assert_eq!((found, searched), (Some((1999, OKind::EndIf)), 1));
+        let found = index.previous_oword(&key, 1999, &[OKind::If], &mut searched);
+        assert_eq!((found, searched), (Some((1998, OKind::If)), 2));
+        assert_eq!(
+            index.next_oword(&key, 1999, &[OKind::If], &mut searched),
+            None
+        );
+        assert_eq!(searched, 2);
+    }
+
+    #[test]
+    fn a_block_s_terms_are_its_expression_nodes() {
+        let program = parse("#1=[1+2*#3]\nG01 X[#1] Y2.\nG00 X1.\n", Dialect::Fanuc);
+        let terms: Vec<u64> = program.blocks.iter().map(|b| terms(&program, b)).collect();
+        // #1 (two nodes) = 1 + 2 * #3 (six); X[#1] (two); none.
+        assert_eq!(terms, [8, 2, 0]);
+        let index = Index::build(&program, &mut Diagnostics::default());
+        assert_eq!(
+            (0..4).map(|b| index.terms(b)).collect::<Vec<_>>(),
+            [8, 2, 0, 0]
+        );
     }
 }

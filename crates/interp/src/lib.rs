@@ -5,6 +5,7 @@ mod canon;
 mod comp;
 mod corners;
 mod cycles;
+mod diagnostics;
 mod exec;
 mod flow;
 mod machine;

@@ -11,6 +11,7 @@ use swarf_syntax::{
     codes::Code,
 };
 
+use crate::exec::Request;
 use crate::flow::{Index, LabelKey, OKind};
 use crate::macros::{self, SystemVariables, Value, Variables};
 use crate::state::State;
@@ -37,27 +38,109 @@ pub enum Piece {
     NeedsWhole,
 }
 
-/// Passes events on and counts the motions among them (for `[machine] max_motions`).
+/// The farthest from the machine origin a position may be, in mm along each axis: no machine
+/// reaches it, so a move, arc centre or hole past it (or at a number that is not finite) is an
+/// error of the block that computed it (`E-COORDINATE-RANGE`), which ends the run.
+pub const MAX_COORDINATE_MM: f64 = 1.0e9;
+
+/// The longest dwell, in seconds (about 32 years), and the lowest feed other than zero, in
+/// mm/min, that a run accepts: only a variable gone astray gives more or less, and the time
+/// estimate would not be a finite number.
+const MAX_DWELL_SECS: f64 = 1.0e9;
+const MIN_FEED_MM_PER_MIN: f64 = 1.0e-100;
+
+/// The work an arc's extra full turn counts (see `[machine] max_work`): the points a turn is
+/// checked at against the stroke limits and the machine's travel.
+const TURN_WORK: u64 = 64;
+
+/// The work a diagnostic met again counts (see `[machine] max_work`): its message is made
+/// again, which takes about as long as that many expression terms.
+const REPEAT_WORK: u64 = 8;
+
+/// Passes events on and counts the motions among them (for `[machine] max_motions`), the arc
+/// turns (for `[machine] max_work`), and holds back every event from the first whose numbers
+/// are out of range on (see [`MAX_COORDINATE_MM`]).
 pub(crate) struct MotionCounter<'s> {
     inner: &'s mut dyn Sink,
     motions: u64,
     /// The run's limit on motions: past it the counter is full (see [`Sink::full`]).
     max_motions: u64,
+    /// The work of the extra full turns of the arcs passed on.
+    turns: u64,
+    /// The first event out of range: its block and what is wrong.
+    out_of_range: Option<(Source, String)>,
+}
+
+/// What is out of range in a point (see [`MAX_COORDINATE_MM`]), if anything.
+fn point_out_of_range(what: &str, p: DVec3) -> Option<String> {
+    let within = |c: f64| c.abs() <= MAX_COORDINATE_MM;
+    (!(within(p.x) && within(p.y) && within(p.z))).then(|| {
+        format!(
+            "{what} X{} Y{} Z{} mm (machine frame) is beyond the ±{MAX_COORDINATE_MM:e} mm any machine reaches: a variable or scale out of range? The run stops here",
+            p.x, p.y, p.z
+        )
+    })
+}
+
+/// What is out of range in a feed rate, if anything.
+fn feed_out_of_range(feed: f64) -> Option<String> {
+    (!(feed == 0.0 || (MIN_FEED_MM_PER_MIN..=f64::MAX).contains(&feed))).then(|| {
+        format!(
+            "the feed {feed} mm/min is not a usable number (a move would take forever): a variable out of range? The run stops here"
+        )
+    })
+}
+
+/// What is out of range in an event's numbers, if anything.
+fn out_of_range(event: &Canon) -> Option<String> {
+    match event {
+        Canon::Rapid { to } => point_out_of_range("the end point", *to),
+        Canon::Feed {
+            to,
+            feed_mm_per_min,
+        } => point_out_of_range("the end point", *to)
+            .or_else(|| feed_out_of_range(*feed_mm_per_min)),
+        Canon::Arc {
+            to,
+            center,
+            feed_mm_per_min,
+            ..
+        } => point_out_of_range("the end point", *to)
+            .or_else(|| point_out_of_range("the arc centre", *center))
+            .or_else(|| feed_out_of_range(*feed_mm_per_min)),
+        Canon::Hole { top, bottom, .. } => point_out_of_range("the hole's top", *top)
+            .or_else(|| point_out_of_range("the hole's bottom", *bottom)),
+        Canon::Dwell { secs } => (!(0.0..=MAX_DWELL_SECS).contains(secs)).then(|| {
+            format!(
+                "a dwell of {secs} s is beyond the {MAX_DWELL_SECS:e} s a run accepts: a variable out of range? The run stops here"
+            )
+        }),
+        _ => None,
+    }
 }
 
 impl Sink for MotionCounter<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
-        if matches!(
-            event,
-            Canon::Rapid { .. } | Canon::Feed { .. } | Canon::Arc { .. }
-        ) {
-            self.motions += 1;
+        if self.out_of_range.is_some() {
+            return;
+        }
+        if let Some(problem) = out_of_range(event) {
+            self.out_of_range = Some((source, problem));
+            return;
+        }
+        match event {
+            Canon::Rapid { .. } | Canon::Feed { .. } => self.motions += 1,
+            Canon::Arc { turns, .. } => {
+                self.motions += 1;
+                self.turns += u64::from(*turns) * TURN_WORK;
+            }
+            _ => {}
         }
         self.inner.emit(source, event);
     }
 
     fn full(&self) -> bool {
-        self.motions >= self.max_motions || self.inner.full()
+        self.motions >= self.max_motions || self.out_of_range.is_some() || self.inner.full()
     }
 
     fn origin(&mut self, at: DVec3) {
@@ -65,10 +148,21 @@ impl Sink for MotionCounter<'_> {
     }
 
     fn programmed(&mut self, source: Source, event: &Canon) {
-        self.inner.programmed(source, event);
+        if self.out_of_range.is_none() {
+            self.inner.programmed(source, event);
+        }
     }
 
     fn straight(&mut self, source: Source, rapid: bool, x: f64, y: f64, z: f64, feed: f64) {
+        if self.out_of_range.is_some() {
+            return;
+        }
+        let problem = point_out_of_range("the end point", DVec3::new(x, y, z))
+            .or_else(|| (!rapid).then(|| feed_out_of_range(feed)).flatten());
+        if let Some(problem) = problem {
+            self.out_of_range = Some((source, problem));
+            return;
+        }
         self.motions += 1;
         self.inner.straight(source, rapid, x, y, z, feed);
     }
@@ -136,6 +230,11 @@ pub struct Interpreter {
     index: Option<std::sync::Arc<Index>>,
     next_block: usize,
     executed: u64,
+    /// Work done inside the blocks (for `[machine] max_work`): expression terms evaluated and
+    /// O-word lines searched (arc turns and diagnostics met again are counted apart).
+    work: u64,
+    /// The last jump back (from block, to block): the loop a runaway run is in.
+    back_jump: Option<(usize, usize)>,
     /// Motion events produced so far.
     motions: u64,
     /// The program zero last reported with `Canon::Origin`.
@@ -154,16 +253,16 @@ pub struct Interpreter {
     jumped: bool,
     /// The first block of the piece not run yet (running piece by piece).
     unvisited: usize,
-    /// Whether plain straight moves take the short path (see [`Interpreter::general_path_only`]).
-    pub(crate) shortcut: bool,
+    /// Whether plain motion blocks take the short path (see [`Interpreter::general_path_only`]).
+    shortcut: bool,
     /// Whether `origin` is the program zero of the current frame: only blocks that took the
     /// short path leave the frame as it was, so only after them can the check be skipped.
     origin_current: bool,
-    /// The frame of the fastest path for plain moves (see `exec::Fast`), and whether it was
-    /// made after the last block that could change it (only blocks change the state, so it
-    /// holds from one step to the next).
-    fast: Option<crate::exec::Fast>,
-    fast_current: bool,
+    /// What the short path for plain motion blocks may take (see `exec::Shortcut`), and whether
+    /// it was made after the last block that could change it (only blocks change the state, so
+    /// it holds from one step to the next).
+    short: Option<crate::exec::Shortcut>,
+    short_current: bool,
 }
 
 impl Interpreter {
@@ -175,6 +274,8 @@ impl Interpreter {
             index: None,
             next_block: 0,
             executed: 0,
+            work: 0,
+            back_jump: None,
             motions: 0,
             origin: None,
             finished: false,
@@ -182,8 +283,8 @@ impl Interpreter {
             repeats: HashMap::new(),
             shortcut: true,
             origin_current: false,
-            fast: None,
-            fast_current: false,
+            short: None,
+            short_current: false,
             piecewise: false,
             block_base: 0,
             program_seen: false,
@@ -240,9 +341,17 @@ impl Interpreter {
     fn needs_whole(&mut self, block: &Block) -> bool {
         let several_programs = block.program().is_some() && self.program_seen;
         self.program_seen |= block.program().is_some();
+        // A code the code table marks `whole`; one the dialect lacks is taken as Fanuc's (an
+        // M198 runs as a call in every dialect).
+        let dialect = self.st.dialect;
         let calls = block.words.iter().any(|w| {
             matches!(w.letter, b'G' | b'M')
-                && (w.expr.is_some() || matches!(w.value, 65.0 | 66.0 | 66.1 | 98.0 | 99.0 | 198.0))
+                && (w.expr.is_some()
+                    || Code::from_value(w.letter, w.value).is_some_and(|code| {
+                        swarf_syntax::codes::lookup(dialect, code)
+                            .or_else(|| swarf_syntax::codes::lookup(Dialect::Fanuc, code))
+                            .is_some_and(|def| def.whole)
+                    }))
         });
         let control = block
             .statements()
@@ -260,7 +369,7 @@ impl Interpreter {
         }
     }
 
-    /// Runs every block through the general path, without the shorter one plain straight moves
+    /// Runs every block through the general path, without the shorter one plain motion blocks
     /// otherwise take; the two must give the same events and diagnostics, which this checks.
     pub fn general_path_only(&mut self) {
         self.shortcut = false;
@@ -274,14 +383,11 @@ impl Interpreter {
         }
     }
 
-    /// Diagnostics found while executing so far.
-    pub fn diagnostics(&self) -> &[Diagnostic] {
-        &self.st.diagnostics
-    }
-
-    /// Takes the diagnostics found so far, leaving none.
+    /// Takes the diagnostics found so far, leaving none: each code and place once, a repeated
+    /// one saying how often it was met, and at most `MAX_KEPT` different ones (then a note of
+    /// how many more there were).
     pub fn take_diagnostics(&mut self) -> Vec<Diagnostic> {
-        std::mem::take(&mut self.st.diagnostics)
+        self.st.diagnostics.take()
     }
 
     /// The tool-tip position in the machine frame.
@@ -345,13 +451,15 @@ impl Interpreter {
             inner: sink,
             motions: self.motions,
             max_motions: self.st.setup.machine.max_motions,
+            turns: 0,
+            out_of_range: None,
         };
         let mut left = budget;
         while left > 0 {
-            if self.finished {
+            if self.stopped(program, &mut counted) {
                 break;
             }
-            let ran = self.fast_run(program, left, &mut counted);
+            let ran = self.short_run(program, left, &mut counted);
             if ran > 0 {
                 left -= ran;
                 continue;
@@ -366,40 +474,15 @@ impl Interpreter {
                 self.end_of_text(program);
                 continue;
             };
-            // The runaway limits: blocks run, and moves made (the toolpath's memory).
+            // The runaway limits: blocks run, the work inside them, and moves made (the
+            // toolpath's memory).
             let machine = &self.st.setup.machine;
-            let limit = if self.executed >= machine.max_blocks {
-                Some((
-                    "E-RUNAWAY",
-                    format!(
-                        "execution stopped after {} blocks (the limit in [machine] max_blocks): an endless loop?",
-                        self.executed
-                    ),
-                ))
-            } else if counted.motions >= machine.max_motions {
-                Some((
-                    "E-MOTION-LIMIT",
-                    format!(
-                        "execution stopped after {} moves (the limit in [machine] max_motions): the toolpath would not fit in memory",
-                        counted.motions
-                    ),
-                ))
-            } else if counted.inner.full() {
-                Some((
-                    "E-MOTION-LIMIT",
-                    format!(
-                        "execution stopped after {} moves: their toolpath holds as many segments as [machine] max_motions allows (an arc is drawn as many), more would not fit in memory",
-                        counted.motions
-                    ),
-                ))
-            } else {
-                None
-            };
-            if let Some((code, message)) = limit {
-                self.st
-                    .diagnostics
-                    .push(Diagnostic::error(block.span, code, message));
-                self.finished = true;
+            if self.executed >= machine.max_blocks
+                || self.work(&counted) >= machine.max_work
+                || counted.motions >= machine.max_motions
+                || counted.inner.full()
+            {
+                self.limit_reached(program, block, &counted);
                 break;
             }
             let source = Source {
@@ -407,35 +490,30 @@ impl Interpreter {
                 line: block.line.saturating_add(1),
             };
             self.executed += 1;
+            self.st.diagnostics.block = self.executed;
+            self.work += match &self.index {
+                Some(index) => index.terms(at),
+                None => crate::flow::terms(program, block),
+            };
             self.st.blocks_run = self.executed;
             self.st.block_span = block.span;
             let before = counted.motions;
-            let plain = if block.has_error() {
-                None
-            } else {
-                self.plain_block(block, source, &mut counted)
-            };
-            let flow = if let Some(flow) = plain {
-                flow
-            } else if self.piecewise && self.needs_whole(block) {
+            let flow = if self.piecewise
+                && !ends_main_program(block, self.st.dialect)
+                && self.needs_whole(block)
+            {
                 self.jumped = true;
                 break;
             } else if block.has_error() {
                 Flow::Next
             } else {
                 self.origin_current = false;
-                self.fast_current = false;
+                self.short_current = false;
                 self.run_block(program, at, block, source, &mut counted)
             };
             self.unvisited = at + 1;
             if counted.motions != before && !self.origin_current {
-                // Moves from a program zero not reported yet: report it for the origin marks.
-                let origin = self.st.to_machine(DVec3::ZERO);
-                self.origin_current = true;
-                if self.origin != Some(origin) && origin.is_finite() {
-                    self.origin = Some(origin);
-                    counted.inner.origin(origin);
-                }
+                self.report_origin(counted.inner);
             }
             match flow {
                 Flow::Next => self.next_block = at + 1,
@@ -443,34 +521,137 @@ impl Interpreter {
                     self.jumped = true;
                     break;
                 }
-                Flow::Jump(to) => self.next_block = to,
+                Flow::Jump(to) => {
+                    if to <= at {
+                        self.back_jump = Some((at, to));
+                    }
+                    self.next_block = to;
+                }
                 Flow::Stop => self.finished = true,
             }
         }
-        self.motions = counted.motions;
+        self.stopped(program, &mut counted);
         if self.finished {
-            crate::corners::flush(&mut self.st, sink);
+            crate::corners::flush(&mut self.st, &mut counted);
+        }
+        self.motions = counted.motions;
+        self.work += counted.turns;
+        if self.finished {
             Status::Finished
         } else {
             Status::Running
         }
     }
 
-    /// Runs the plain moves from the next block on in the fast frame (see `exec::Fast`), at
-    /// most `left` of them and short of the runaway limits, with none of the checks the block
-    /// loop makes between other blocks (they change nothing for such moves); how many ran, 0
-    /// where the frame does not apply or the next block is not such a move.
-    fn fast_run(&mut self, program: &Program, left: usize, sink: &mut MotionCounter<'_>) -> usize {
-        // The program zero must have been reported (plain moves leave it as it is); a full
-        // sink is left to the block loop, which reports it.
-        if !self.shortcut || !self.origin_current || self.st.alarm.is_some() || sink.full() {
+    /// Whether the run has ended, or must end now: a diagnostic that stops it (see
+    /// `Diagnostics::push`), or an event whose numbers are out of range, reported at its block.
+    fn stopped(&mut self, program: &Program, counted: &mut MotionCounter<'_>) -> bool {
+        if let Some((source, problem)) = counted.out_of_range.take() {
+            let at = (source.block as usize).saturating_sub(self.block_base);
+            let span = program
+                .blocks
+                .get(at)
+                .map_or(self.st.block_span, |b| b.span);
+            self.st
+                .diagnostics
+                .push(Diagnostic::error(span, "E-COORDINATE-RANGE", problem));
+            // Nothing more is passed on.
+            counted.out_of_range = Some((source, String::new()));
+            self.finished = true;
+        }
+        if self.st.diagnostics.stops() {
+            self.finished = true;
+        }
+        self.finished
+    }
+
+    /// Ends the run at one of its limits (see the block loop in [`Interpreter::step`]), with
+    /// the diagnostic that names it and the loop the run is in.
+    fn limit_reached(&mut self, program: &Program, block: &Block, counted: &MotionCounter<'_>) {
+        let machine = &self.st.setup.machine;
+        let (in_loop, loop_span) = self.in_loop(program);
+        let work = self.work(counted);
+        let (code, span, message) = if self.executed >= machine.max_blocks {
+            (
+                "E-RUNAWAY",
+                loop_span,
+                format!(
+                    "execution stopped after {} blocks (the limit in [machine] max_blocks){in_loop}: an endless loop?",
+                    self.executed
+                ),
+            )
+        } else if work >= machine.max_work {
+            (
+                "E-RUNAWAY",
+                loop_span,
+                format!(
+                    "execution stopped after {} blocks and {work} steps of work in them: expression terms, O-word lines searched, arc turns, diagnostics met again (the limit in [machine] max_work){in_loop}: an endless loop?",
+                    self.executed
+                ),
+            )
+        } else if counted.motions >= machine.max_motions {
+            (
+                "E-MOTION-LIMIT",
+                None,
+                format!(
+                    "execution stopped after {} moves (the limit in [machine] max_motions){in_loop}: the toolpath would not fit in memory",
+                    counted.motions
+                ),
+            )
+        } else {
+            (
+                "E-MOTION-LIMIT",
+                None,
+                format!(
+                    "execution stopped after {} moves{in_loop}: their toolpath holds as much as [machine] max_motions allows (an arc is drawn as many segments, a hole or dwell counts as more), more would not fit in memory",
+                    counted.motions
+                ),
+            )
+        };
+        self.st
+            .diagnostics
+            .push(Diagnostic::error(span.unwrap_or(block.span), code, message));
+        self.finished = true;
+    }
+
+    /// The work done so far (see `[machine] max_work`).
+    fn work(&self, counted: &MotionCounter<'_>) -> u64 {
+        self.work + counted.turns + REPEAT_WORK * self.st.diagnostics.repeats
+    }
+
+    /// The loop the run is in, for a runaway's diagnostic: its words for the message and the
+    /// span of the block that jumps back (`None` when the run has not jumped back).
+    fn in_loop(&self, program: &Program) -> (String, Option<Span>) {
+        let Some((from, to)) = self.back_jump else {
+            return (String::new(), None);
+        };
+        let (Some(from), Some(to)) = (program.blocks.get(from), program.blocks.get(to)) else {
+            return (String::new(), None);
+        };
+        (
+            format!(
+                ", in the loop from line {} to the jump back at line {}",
+                to.line + 1,
+                from.line + 1
+            ),
+            Some(from.span),
+        )
+    }
+
+    /// Runs the plain motion blocks from the next block on through the short path (see
+    /// `exec::plain_block`), at most `left` of them and short of the runaway limits, with none
+    /// of the checks the block loop makes between other blocks (they change nothing for such
+    /// blocks); how many ran, 0 where the next block is not one or the short path is closed.
+    fn short_run(&mut self, program: &Program, left: usize, sink: &mut MotionCounter<'_>) -> usize {
+        // An alarm raised by the block before is reported by the block loop, as is a full sink.
+        if !self.shortcut || self.st.alarm.is_some() || sink.full() {
             return 0;
         }
-        if !self.fast_current {
-            self.fast = crate::exec::Fast::of(&self.st);
-            self.fast_current = true;
+        if !self.short_current {
+            self.short = crate::exec::Shortcut::of(&self.st);
+            self.short_current = true;
         }
-        let Some(fast) = self.fast else {
+        let Some(short) = self.short else {
             return 0;
         };
         // Each block makes one move at most, so this many run within both limits.
@@ -500,18 +681,29 @@ impl Interpreter {
                 block: u32::try_from(self.block_base + at + ran).unwrap_or(u32::MAX),
                 line: block.line.saturating_add(1),
             };
-            let arc = if crate::exec::fast_move(&mut self.st, fast, block, source, sink) {
-                false
-            } else if crate::exec::fast_arc(&mut self.st, fast, block, source, sink) {
-                true
-            } else {
+            // What the block loop sets before a block: cutter compensation and the
+            // diagnostics read them.
+            self.st.block_span = block.span;
+            self.st.blocks_run += 1;
+            self.st.diagnostics.block = self.st.blocks_run;
+            let before = sink.motions;
+            let Some(one_segment) =
+                crate::exec::plain_block(&mut self.st, short, block, source, sink)
+            else {
                 break;
             };
-            self.st.block_span = block.span;
             ran += 1;
-            // An arc may add many segments: a full sink ends the run here (the block loop
-            // reports it).
-            if arc && sink.full() {
+            if !self.origin_current && sink.motions != before {
+                self.report_origin(sink.inner);
+            }
+            // An arc may add many segments: a full sink ends the run here, as do an alarm, a
+            // diagnostic that stops the run and a move out of range (the block loop reports
+            // them).
+            if (!one_segment && sink.full())
+                || self.st.alarm.is_some()
+                || self.st.diagnostics.stops()
+                || sink.out_of_range.is_some()
+            {
                 break;
             }
         }
@@ -520,6 +712,17 @@ impl Interpreter {
         self.next_block = at + ran;
         self.unvisited = self.next_block;
         ran
+    }
+
+    /// After moves from a program zero not reported since the frame last changed, reports it
+    /// for the origin marks.
+    fn report_origin(&mut self, sink: &mut dyn Sink) {
+        let origin = self.st.to_machine(DVec3::ZERO);
+        self.origin_current = true;
+        if self.origin != Some(origin) && origin.is_finite() {
+            self.origin = Some(origin);
+            sink.origin(origin);
+        }
     }
 
     /// The text ran out: inside a call that is an implicit return; otherwise the end.
@@ -538,35 +741,6 @@ impl Interpreter {
 
     /// Runs one block: its words are read (expressions evaluated), its assignments made, its
     /// codes executed, then its control statements decide where to go.
-    /// Runs a block of plain straight-move words (no statements, variables or program number)
-    /// without the general path's steps for them, when nothing is pending before it (an alarm
-    /// raised by the block before); `None`, having done nothing, for any other block.
-    fn plain_block(
-        &mut self,
-        block: &Block,
-        source: Source,
-        sink: &mut MotionCounter<'_>,
-    ) -> Option<Flow> {
-        if !self.shortcut
-            || block.words.is_empty()
-            || block.program().is_some()
-            || !block.statements().is_empty()
-            || self.st.alarm.is_some()
-        {
-            return None;
-        }
-        if !self.fast_current {
-            self.fast = crate::exec::Fast::of(&self.st);
-            self.fast_current = true;
-        }
-        if let Some(fast) = self.fast
-            && crate::exec::fast_move(&mut self.st, fast, block, source, sink)
-        {
-            return Some(Flow::Next);
-        }
-        crate::exec::plain_block(&mut self.st, block, source, sink)
-    }
-
     fn run_block(
         &mut self,
         program: &Program,
@@ -624,7 +798,9 @@ impl Interpreter {
         }
         let mut flow = Flow::Next;
         if !words.is_empty() {
-            flow = crate::exec::execute(self, program, at, block, &words, source, sink);
+            for request in crate::exec::execute(&mut self.st, block, &words, source, sink) {
+                flow = self.carry_out(at, block, &words, request, flow);
+            }
         }
         if flow != Flow::Next {
             return flow;
@@ -640,6 +816,38 @@ impl Interpreter {
             }
         }
         flow
+    }
+
+    /// Carries out what a block asks of the program's flow (after `flow`, what its requests
+    /// before asked): where the run goes next.
+    fn carry_out(
+        &mut self,
+        at: usize,
+        block: &Block,
+        words: &[Word],
+        request: Request,
+        flow: Flow,
+    ) -> Flow {
+        let next = match request {
+            Request::Stop => return Flow::Stop,
+            Request::Subprogram => self.call_subprogram(at, block, words),
+            Request::Return => self.return_from(at, block, find(words, b'P')),
+            Request::Macro {
+                number,
+                repeats,
+                args,
+            } => self.call_macro(at, block, number, repeats, &args),
+            Request::ModalMacro => match self.st.modal_macro.clone() {
+                Some(call) if flow == Flow::Next && !self.in_modal_macro() => {
+                    self.call_modal_macro(at, block, call.number, call.repeats, &call.args)
+                }
+                _ => return flow,
+            },
+        };
+        next.unwrap_or_else(|e| {
+            self.st.diagnostics.push(e);
+            Flow::Stop
+        })
     }
 
     /// Reads the block's words: expressions are evaluated, and a word whose variable is vacant
@@ -820,7 +1028,9 @@ impl Interpreter {
         kind: &OWord,
     ) -> Result<Flow, Diagnostic> {
         let key = self.label_key(program, label)?;
-        let Some(index) = self.index.as_ref() else {
+        // A copy of the index's handle, so that the O-word lines searched to find where to go
+        // can be counted as the run's work.
+        let Some(index) = self.index.clone() else {
             return Ok(self.without_index(at));
         };
         let missing = |what: &str| {
@@ -834,7 +1044,7 @@ impl Interpreter {
             OWord::Sub => {
                 // Reached in sequence: a definition is skipped, not run.
                 let end = index
-                    .next_oword(&key, at, &[OKind::EndSub])
+                    .next_oword(&key, at, &[OKind::EndSub], &mut self.work)
                     .ok_or_else(|| missing("endsub"))?;
                 Ok(Flow::Jump(end.0 + 1))
             }
@@ -892,7 +1102,12 @@ impl Interpreter {
                     return Ok(Flow::Next);
                 }
                 let next = index
-                    .next_oword(&key, at, &[OKind::ElseIf, OKind::Else, OKind::EndIf])
+                    .next_oword(
+                        &key,
+                        at,
+                        &[OKind::ElseIf, OKind::Else, OKind::EndIf],
+                        &mut self.work,
+                    )
                     .ok_or_else(|| missing("endif"))?;
                 Ok(match next.1 {
                     // The elseif line evaluates its own condition.
@@ -903,7 +1118,7 @@ impl Interpreter {
             OWord::Else => {
                 // Reached from a branch that ran: skip to the end.
                 let end = index
-                    .next_oword(&key, at, &[OKind::EndIf])
+                    .next_oword(&key, at, &[OKind::EndIf], &mut self.work)
                     .ok_or_else(|| missing("endif"))?;
                 Ok(Flow::Jump(end.0 + 1))
             }
@@ -911,7 +1126,12 @@ impl Interpreter {
             OWord::While(cond) => {
                 // The tail of a `do … while` loop, or the head of a `while … endwhile` one.
                 let do_head = index
-                    .previous_oword(&key, at, &[OKind::Do, OKind::EndWhile, OKind::While])
+                    .previous_oword(
+                        &key,
+                        at,
+                        &[OKind::Do, OKind::EndWhile, OKind::While],
+                        &mut self.work,
+                    )
                     .filter(|(_, k)| *k == OKind::Do);
                 let holds = self.condition(program, *cond)?;
                 if let Some((head, _)) = do_head {
@@ -925,13 +1145,13 @@ impl Interpreter {
                     return Ok(Flow::Next);
                 }
                 let end = index
-                    .next_oword(&key, at, &[OKind::EndWhile])
+                    .next_oword(&key, at, &[OKind::EndWhile], &mut self.work)
                     .ok_or_else(|| missing("endwhile"))?;
                 Ok(Flow::Jump(end.0 + 1))
             }
             OWord::EndWhile => {
                 let head = index
-                    .previous_oword(&key, at, &[OKind::While])
+                    .previous_oword(&key, at, &[OKind::While], &mut self.work)
                     .ok_or_else(|| missing("while"))?;
                 Ok(Flow::Jump(head.0))
             }
@@ -946,7 +1166,7 @@ impl Interpreter {
                 if remaining == 0 {
                     self.repeats.remove(&at);
                     let end = index
-                        .next_oword(&key, at, &[OKind::EndRepeat])
+                        .next_oword(&key, at, &[OKind::EndRepeat], &mut self.work)
                         .ok_or_else(|| missing("endrepeat"))?;
                     return Ok(Flow::Jump(end.0 + 1));
                 }
@@ -955,26 +1175,38 @@ impl Interpreter {
             }
             OWord::EndRepeat => {
                 let head = index
-                    .previous_oword(&key, at, &[OKind::Repeat])
+                    .previous_oword(&key, at, &[OKind::Repeat], &mut self.work)
                     .ok_or_else(|| missing("repeat"))?;
                 Ok(Flow::Jump(head.0))
             }
             OWord::Break => {
                 let end = index
-                    .next_oword(&key, at, &[OKind::EndWhile, OKind::EndRepeat, OKind::While])
+                    .next_oword(
+                        &key,
+                        at,
+                        &[OKind::EndWhile, OKind::EndRepeat, OKind::While],
+                        &mut self.work,
+                    )
                     .ok_or_else(|| missing("endwhile"))?;
-                if let Some((head, _)) = index.previous_oword(&key, at, &[OKind::Repeat]) {
+                if let Some((head, _)) =
+                    index.previous_oword(&key, at, &[OKind::Repeat], &mut self.work)
+                {
                     self.repeats.remove(&head);
                 }
                 Ok(Flow::Jump(end.0 + 1))
             }
             OWord::Continue => {
                 let head = index
-                    .previous_oword(&key, at, &[OKind::While, OKind::Repeat, OKind::Do])
+                    .previous_oword(
+                        &key,
+                        at,
+                        &[OKind::While, OKind::Repeat, OKind::Do],
+                        &mut self.work,
+                    )
                     .ok_or_else(|| missing("while"))?;
                 Ok(match head.1 {
                     OKind::Do => {
-                        let tail = index.next_oword(&key, at, &[OKind::While]);
+                        let tail = index.next_oword(&key, at, &[OKind::While], &mut self.work);
                         tail.map_or(Flow::Jump(head.0 + 1), |(t, _)| Flow::Jump(t))
                     }
                     _ => Flow::Jump(head.0),
@@ -1011,7 +1243,7 @@ impl Interpreter {
     }
 
     /// `M98 P… L…` (or `M98 Pllllpppp`, or Syntec `M98 H…`): runs a subprogram.
-    pub(crate) fn call_subprogram(
+    fn call_subprogram(
         &mut self,
         at: usize,
         block: &Block,
@@ -1085,12 +1317,12 @@ impl Interpreter {
     }
 
     /// Whether the G66 modal macro is running (a move inside it does not call it again).
-    pub(crate) fn in_modal_macro(&self) -> bool {
+    fn in_modal_macro(&self) -> bool {
         self.calls.iter().any(|f| f.modal)
     }
 
     /// The G66 modal macro after a move: like G65, marked so that its own moves do not call it.
-    pub(crate) fn call_modal_macro(
+    fn call_modal_macro(
         &mut self,
         at: usize,
         block: &Block,
@@ -1108,7 +1340,7 @@ impl Interpreter {
     }
 
     /// `G65 P… L… args`: a macro call with local variables from the arguments.
-    pub(crate) fn call_macro(
+    fn call_macro(
         &mut self,
         at: usize,
         block: &Block,
@@ -1143,21 +1375,30 @@ impl Interpreter {
 
     /// `M99` (and `M99 Pn`): returns from a subprogram or macro; in the main program it goes back
     /// to the start (or to N n), as the controls do.
-    pub(crate) fn return_from(
+    fn return_from(
         &mut self,
         at: usize,
         block: &Block,
         target: Option<&Word>,
     ) -> Result<Flow, Diagnostic> {
         let Some(frame) = self.calls.last_mut() else {
-            if self.st.dialect == Dialect::LinuxCnc {
-                // LinuxCNC's standalone interpreter ends the program at a main-program M99.
-                return Ok(Flow::Stop);
-            }
-            return match target {
-                Some(p) => self.goto(at, p.value, p.span).map(Flow::Jump),
-                None => Ok(Flow::Jump(0)),
+            // The control runs the program again, endlessly (LinuxCNC's task too; its
+            // standalone interpreter ends here): one pass is drawn.
+            let from = match target {
+                Some(p) => {
+                    self.goto(at, p.value, p.span)?;
+                    format!("from N{}", p.value)
+                }
+                None => "from its start".to_string(),
             };
+            self.st.diagnostics.push(Diagnostic::note(
+                block.span,
+                "N-M99-MAIN-REPEATS",
+                format!(
+                    "M99 in the main program: the control runs it again {from}, over and over until it is stopped; one pass is run here. (A subprogram opened on its own returns here.)"
+                ),
+            ));
+            return Ok(Flow::Stop);
         };
         if frame.repeats_left > 0 {
             frame.repeats_left -= 1;
@@ -1174,6 +1415,30 @@ impl Interpreter {
             None => Ok(Flow::Jump(frame.return_to)),
         }
     }
+}
+
+/// Whether `block` is a plain `M99` (without P, another call, a statement or a program
+/// number). Met piece by piece, where no call is open, it ends the main program (see
+/// [`Interpreter::return_from`]), which needs no more of the program than the pieces run.
+fn ends_main_program(block: &Block, dialect: Dialect) -> bool {
+    let mut m99 = false;
+    let no_other_call = block
+        .words
+        .iter()
+        .filter(|w| matches!(w.letter, b'G' | b'M'))
+        .all(|w| {
+            let code = Code::from_value(w.letter, w.value);
+            m99 |= w.letter == b'M' && w.value == 99.0;
+            w.expr.is_none()
+                && (w.value == 99.0
+                    || !code
+                        .and_then(|c| swarf_syntax::codes::lookup(dialect, c))
+                        .is_some_and(|def| def.whole))
+        });
+    m99 && no_other_call
+        && block.program().is_none()
+        && block.statements().is_empty()
+        && block.word(b'P').is_none()
 }
 
 fn no_index(block: &Block) -> Diagnostic {

@@ -85,14 +85,21 @@ pub struct Machine {
     pub acceleration_mm_per_s2: f64,
     /// Most blocks executed before a run is stopped as runaway.
     pub max_blocks: u64,
+    /// Most work a run does inside its blocks before it is stopped as runaway: each macro
+    /// expression term evaluated (number, variable, operator, function), each O-word line
+    /// searched for where a LinuxCNC `if`, `while` or `repeat` goes count one, a diagnostic met
+    /// again 8 and an extra turn of an arc 64 (the points it is checked at), so a loop of
+    /// long expressions ends as quickly as a loop of short blocks.
+    pub max_work: u64,
     /// The machine's travel in machine coordinates, mm: the lowest and highest X, Y, Z the axes
     /// reach (the gauge line, as the machine's own limits). A move past it is an overtravel
     /// alarm (`E-OVERTRAVEL`), and the backplot draws the box. Unset: not checked.
     pub travel_mm: Option<[[f64; 3]; 2]>,
     /// Most motion events (moves and arcs) a run may produce before it is stopped: a bound on
     /// the toolpath's memory (about 50 bytes a segment), so a runaway program cannot exhaust a
-    /// browser tab. The toolpath holds at most as many segments (an arc's chords count one
-    /// each), and a canned cycle stops making holes and pecks at either limit.
+    /// browser tab. The toolpath holds at most as many segments (an arc's chords and a dwell
+    /// count one each, a hole and a compensated block's programmed motion two), and a canned
+    /// cycle stops making holes and pecks at either limit.
     pub max_motions: u64,
     /// Largest difference between an arc's start and end radius before it is an alarm (mm).
     pub arc_tolerance_mm: f64,
@@ -178,6 +185,7 @@ impl Default for Machine {
             rapid_xyz_mm_per_min: None,
             acceleration_mm_per_s2: 1000.0,
             max_blocks: 50_000_000,
+            max_work: 200_000_000,
             max_motions: 20_000_000,
             travel_mm: None,
             arc_tolerance_mm: 0.01,
@@ -241,6 +249,10 @@ pub const MAX_LENGTH: f64 = 1.0e6;
 
 /// The largest rate a setup may give (mm/min, mm/s²).
 pub const MAX_RATE: f64 = 1.0e7;
+
+/// The highest `[machine] max_work` a setup may give: at some ten million terms a second, a
+/// run that long would take days.
+const MAX_WORK: f64 = 1.0e13;
 
 /// `value` for `key` when it lies in `min..=max`; a range error naming the key otherwise.
 fn in_range(key: impl Into<String>, value: f64, min: f64, max: f64) -> Result<f64, SetupError> {
@@ -352,6 +364,8 @@ impl Setup {
             MAX_RATE,
         )?;
         in_range("machine.arc_tolerance_mm", m.arc_tolerance_mm, 0.0, 1000.0)?;
+        // A limit of zero would stop every run before its first block.
+        in_range("machine.max_work", m.max_work as f64, 1.0, MAX_WORK)?;
         in_range("machine.peck_retract_mm", m.peck_retract_mm, 0.0, 1000.0)?;
         for &angle in &m.measured_angles {
             in_range("machine.measured_angles", angle, -360.0, 360.0)?;
@@ -481,6 +495,11 @@ mod tests {
             (
                 "[machine]\nrapid_xyz_mm_per_min = [1e4, 0, 1e4]\n",
                 "machine.rapid_xyz_mm_per_min",
+            ),
+            ("[machine]\nmax_work = 0\n", "machine.max_work"),
+            (
+                "[machine]\nmax_work = 100000000000000\n",
+                "machine.max_work",
             ),
             ("[registers.3]\nradius = 1e300\n", "registers.3.radius"),
             ("[registers.3]\nlength = nan\n", "registers.3.length"),

@@ -201,7 +201,8 @@ pub(crate) struct State {
     pub pending: Option<crate::corners::Pending>,
     /// An alarm raised by writing #3000.
     pub alarm: Option<Diagnostic>,
-    pub diagnostics: Vec<Diagnostic>,
+    /// The run's diagnostics (repeats counted, bounded).
+    pub diagnostics: crate::diagnostics::Diagnostics,
     /// Whether the least-increment note has been given in this run.
     pub noted_least_increment: bool,
 }
@@ -275,7 +276,7 @@ impl State {
             h_word: 0,
             pending: None,
             alarm: None,
-            diagnostics: Vec::new(),
+            diagnostics: crate::diagnostics::Diagnostics::default(),
             noted_least_increment: false,
         }
     }

@@ -171,14 +171,6 @@ fn g65_passes_arguments_as_local_variables() {
 }
 
 #[test]
-fn m99_in_the_main_program_loops_until_the_limit() {
-    let mut setup = Setup::default();
-    setup.machine.max_blocks = 100;
-    let (_, diags) = run_with("G91 G00 X1.\nM99\n", Dialect::Fanuc, setup);
-    assert_eq!(errors(&diags), ["E-RUNAWAY"]);
-}
-
-#[test]
 fn a_self_calling_subprogram_stops_at_the_nesting_limit() {
     let (_, diags) = run_text("M98 P10\nM30\nO0010\nM98 P10\nM99\n", Dialect::Fanuc);
     assert_eq!(errors(&diags), ["E-NESTING"]);

@@ -28,6 +28,8 @@
 //! next stop), like a control's look-ahead buffer, which keeps recording linear in the number
 //! of segments.
 
+use std::collections::HashSet;
+
 use glam::DVec3;
 use swarf_interp::{Axis, Canon, Machine, PlaneArc, Sink, Source, StrokeZone};
 
@@ -325,6 +327,12 @@ impl Timeline {
     /// The dwells, in segment order.
     pub fn dwells(&self) -> &[Dwell] {
         &self.dwells
+    }
+
+    /// The timeline of these end times and dwells (as [`Timeline::end_times`] and
+    /// [`Timeline::dwells`] give them), for a copy sent from another thread or worker.
+    pub fn from_parts(end_times: Vec<f64>, dwells: Vec<Dwell>) -> Self {
+        Timeline { end_times, dwells }
     }
 
     /// Number of segments.
@@ -686,18 +694,52 @@ pub struct Toolpath {
     max_segments: usize,
     /// Every dwell, in segment order.
     dwells: Vec<Dwell>,
-    tools: Vec<u32>,
+    tools: Listed<u32>,
     tool: u32,
     /// A non-motion event since the last segment: the next one starts at rest.
     stop_pending: bool,
     /// The holes drilled by canned cycles, in order.
     holes: Vec<Hole>,
     /// The program zeros the moves were programmed from, each once, in order of first use.
-    origins: Vec<DVec3>,
+    origins: Listed<DVec3>,
     /// The programmed motions of blocks cut under cutter radius compensation.
     programmed: Vec<(u32, Canon)>,
     /// The G22 stroke limits the program switched on, each once, in order.
-    zones: Vec<StrokeZone>,
+    zones: Listed<StrokeZone>,
+}
+
+/// The most tools, program zeros and G22 zones a toolpath lists: a loop that changes them at
+/// every pass lists no more (they are marks and names, not motion).
+const MAX_LISTED: usize = 10_000;
+
+/// Values listed once each, in order of first use, at most [`MAX_LISTED`]; a value is looked
+/// up by its bits in a set, not in the list.
+#[derive(Debug, Clone, PartialEq)]
+struct Listed<T> {
+    items: Vec<T>,
+    seen: HashSet<[u64; 7]>,
+}
+
+impl<T> Default for Listed<T> {
+    fn default() -> Self {
+        Listed {
+            items: Vec::new(),
+            seen: HashSet::new(),
+        }
+    }
+}
+
+impl<T> Listed<T> {
+    fn add(&mut self, item: T, key: [u64; 7]) {
+        if self.items.len() < MAX_LISTED && self.seen.insert(key) {
+            self.items.push(item);
+        }
+    }
+}
+
+/// The bits of a point, for [`Listed`].
+fn point_key(p: DVec3) -> [u64; 7] {
+    [p.x.to_bits(), p.y.to_bits(), p.z.to_bits(), 0, 0, 0, 0]
 }
 
 impl Default for Toolpath {
@@ -746,13 +788,13 @@ impl Toolpath {
             timer: Timer::new(kinematics, start),
             max_segments: max_segments(&Machine::default()),
             dwells: Vec::new(),
-            tools: Vec::new(),
+            tools: Listed::default(),
             tool: 0,
             stop_pending: false,
             holes: Vec::new(),
-            origins: Vec::new(),
+            origins: Listed::default(),
             programmed: Vec::new(),
-            zones: Vec::new(),
+            zones: Listed::default(),
         }
     }
 
@@ -871,19 +913,19 @@ impl Toolpath {
 
     /// Tools used, in order of first use.
     pub fn tools(&self) -> &[u32] {
-        &self.tools
+        &self.tools.items
     }
 
     /// The program zeros (work offsets with their shifts, machine frame) the moves were
     /// programmed from, each once, in order of first use.
     pub fn origins(&self) -> &[DVec3] {
-        &self.origins
+        &self.origins.items
     }
 
     /// The G22 stroke limits (machine coordinates) the program switched on, each once, in
     /// order: for drawing the protected zones and soft limits.
     pub fn zones(&self) -> &[StrokeZone] {
-        &self.zones
+        &self.zones.items
     }
 
     /// The corners (min, max; machine coordinates) of the boxes to draw for [`Self::zones`]:
@@ -897,6 +939,7 @@ impl Toolpath {
         let margin = ((bounds.max - bounds.min).length() * 0.1).max(1.0);
         let or = |limit: f64, open: f64| if limit.is_finite() { limit } else { open };
         self.zones
+            .items
             .iter()
             .map(|z| {
                 let (mut min, mut max) = (DVec3::ZERO, DVec3::ZERO);
@@ -1121,16 +1164,15 @@ struct ArcEvent {
 
 impl Sink for Toolpath {
     fn origin(&mut self, at: DVec3) {
-        if !self.origins.contains(&at) {
-            self.origins.push(at);
-        }
+        self.origins.add(at, point_key(at));
     }
 
     fn stroke_zone(&mut self, _source: Source, zone: Option<&StrokeZone>) {
-        if let Some(zone) = zone
-            && !self.zones.contains(zone)
-        {
-            self.zones.push(*zone);
+        if let Some(zone) = zone {
+            let [a, b, c, ..] = point_key(zone.min);
+            let [d, e, f, ..] = point_key(zone.max);
+            self.zones
+                .add(*zone, [a, b, c, d, e, f, u64::from(zone.inside_forbidden)]);
         }
     }
 
@@ -1171,9 +1213,7 @@ impl Sink for Toolpath {
             Canon::ToolChange { tool } => {
                 self.stop();
                 self.tool = *tool;
-                if !self.tools.contains(tool) {
-                    self.tools.push(*tool);
-                }
+                self.tools.add(*tool, [u64::from(*tool), 0, 0, 0, 0, 0, 0]);
             }
             Canon::Hole {
                 cycle,
@@ -1212,8 +1252,12 @@ impl Sink for Toolpath {
         self.programmed.push((source.line, event.clone()));
     }
 
+    /// Full when its segments and the rest it keeps with them (a dwell weighing as much as a
+    /// segment, a hole or a compensated block's programmed motion as two) reach
+    /// `max_motions` segments: the memory a run may take.
     fn full(&self) -> bool {
-        self.ends.len() >= self.max_segments
+        self.ends.len() + self.dwells.len() + 2 * (self.holes.len() + self.programmed.len())
+            >= self.max_segments
     }
 }
 

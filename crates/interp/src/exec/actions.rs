@@ -1,0 +1,232 @@
+//! What each G code does in a dialect: the action [`super::execute_block`] takes for it.
+
+use smallvec::SmallVec;
+use swarf_syntax::codes::{self, Code, Group};
+use swarf_syntax::{Diagnostic, Dialect, Word, WordForm};
+
+use crate::Axis;
+use crate::state::{FeedMode, MotionMode, State};
+
+/// What one G code does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Action {
+    Motion(Option<MotionMode>),
+    Plane(Axis),
+    Absolute(bool),
+    Metric(bool),
+    WorkOffset,
+    Dwell,
+    ExactStop,
+    PathMode(u32),
+    FeedMode(FeedMode),
+    SpindleMode(bool),
+    ReturnLevel(bool),
+    Polar(bool),
+    Rotation(bool),
+    Scaling(bool),
+    Mirror(bool),
+    Local,
+    Machine,
+    SetPosition,
+    ResetShift,
+    Reference(u8),
+    FromReference,
+    /// LNC G168: rotation by a measured angle from the setup.
+    MeasuredRotation,
+    /// LinuxCNC G28.1/G30.1: the current position becomes reference point n.
+    StoreReference(usize),
+    DataInput,
+    LengthComp(Option<bool>),
+    /// LinuxCNC G43.1/G43.2: a length offset given in the block's axis words.
+    DynamicLength,
+    CutterComp(u32),
+    MacroCall,
+    ModalMacro(bool),
+    /// G31 skip: drawn as the full programmed move.
+    Probe,
+    /// Syntec G37 (`false`, Z in program coordinates) and G37.1 (`true`, Z in machine
+    /// coordinates): tool-length measurement, drawn as the return to the reference point and
+    /// the full measuring move.
+    Measure(bool),
+    /// Syntec G92.1: the program zero preset at X Y Z from the work origin, the plane turned by R.
+    PresetZero,
+    /// Syntec G134, G135, G136, G137.1: the stored canned cycle at each point of a hole pattern.
+    Pattern(u32),
+    StrokeLimit(bool),
+    /// LinuxCNC G90.1 (`true`) / G91.1: whether arc centres I/J/K are absolute.
+    ArcCentres(bool),
+    /// A mode with nothing to draw (cancels, lathe diameter mode).
+    Nothing,
+}
+
+/// The action of a code in `dialect`, or `None` for the codes the interpreter does not run yet.
+pub(super) fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
+    let syntec = dialect == Dialect::Syntec;
+    let linuxcnc = dialect == Dialect::LinuxCnc;
+    Some(match (group, tenths) {
+        (Group::Motion, 0) => Action::Motion(Some(MotionMode::Rapid)),
+        (Group::Motion, 10) => Action::Motion(Some(MotionMode::Linear)),
+        (Group::Motion, 20) => Action::Motion(Some(MotionMode::Arc { ccw: false })),
+        (Group::Motion, 30) => Action::Motion(Some(MotionMode::Arc { ccw: true })),
+        (Group::Motion, 330) => Action::Motion(Some(MotionMode::Thread)),
+        (Group::Motion | Group::Cycle, 800) => Action::Motion(None),
+        (Group::Motion | Group::Cycle, t) if crate::cycles::runs(dialect, t) => {
+            Action::Motion(Some(MotionMode::Cycle(t)))
+        }
+        (_, 40) => Action::Dwell,
+        (_, 90) if !linuxcnc => Action::ExactStop,
+        (Group::Plane, 170) => Action::Plane(Axis::Z),
+        (Group::Plane, 180) => Action::Plane(Axis::Y),
+        (Group::Plane, 190) => Action::Plane(Axis::X),
+        (Group::Distance, 900) => Action::Absolute(true),
+        (Group::Distance, 910) => Action::Absolute(false),
+        (Group::Units, 200) if !syntec => Action::Metric(false),
+        (Group::Units, 210) if !syntec => Action::Metric(true),
+        (Group::Units, 700) if syntec => Action::Metric(false),
+        (Group::Units, 710) if syntec => Action::Metric(true),
+        (Group::WorkOffset, _) => Action::WorkOffset,
+        (Group::PathMode, t) => Action::PathMode(t),
+        (Group::FeedMode, 930) => Action::FeedMode(FeedMode::InverseTime),
+        (Group::FeedMode, 940) => Action::FeedMode(FeedMode::PerMinute),
+        (Group::FeedMode, 950) => Action::FeedMode(FeedMode::PerRevolution),
+        // GSK's examples use G98/G99 for feed per minute / per revolution.
+        (Group::FeedMode, 980) => Action::FeedMode(FeedMode::PerMinute),
+        (Group::FeedMode, 990) => Action::FeedMode(FeedMode::PerRevolution),
+        (Group::SpindleMode, 960) => Action::SpindleMode(true),
+        (Group::SpindleMode, 970) => Action::SpindleMode(false),
+        (Group::ReturnLevel, 980) => Action::ReturnLevel(true),
+        (Group::ReturnLevel, 990) => Action::ReturnLevel(false),
+        (Group::Polar, 150) => Action::Polar(false),
+        (Group::Polar, 160) => Action::Polar(true),
+        (Group::Rotation, 680) => Action::Rotation(true),
+        (Group::Rotation, 690) => Action::Rotation(false),
+        (Group::Rotation, 1680) => Action::MeasuredRotation,
+        (Group::Scaling, 500) => Action::Scaling(false),
+        (Group::Scaling, 510) => Action::Scaling(true),
+        (Group::Mirror, 501) => Action::Mirror(false),
+        (Group::Mirror, 511) => Action::Mirror(true),
+        (Group::StrokeLimit, 220) => Action::StrokeLimit(true),
+        (Group::StrokeLimit, 230) => Action::StrokeLimit(false),
+        (Group::LengthComp, 430) => Action::LengthComp(Some(true)),
+        (Group::LengthComp, 440) => Action::LengthComp(Some(false)),
+        (Group::LengthComp, 490) => Action::LengthComp(None),
+        (Group::LengthComp, 431 | 432) if linuxcnc => Action::DynamicLength,
+        (Group::CutterComp, t) => Action::CutterComp(t),
+        // G45–G48 change the block's move (`position::offset_line`, `offset_arc`).
+        (Group::NonModal, 450 | 460 | 470 | 480)
+            if matches!(dialect, Dialect::Fanuc | Dialect::Syntec) =>
+        {
+            Action::Nothing
+        }
+        (Group::MacroModal, 660) => Action::ModalMacro(true),
+        (Group::MacroModal, 670) => Action::ModalMacro(false),
+        (Group::ArcDistance, 901) => Action::ArcCentres(true),
+        (Group::ArcDistance, 911) => Action::ArcCentres(false),
+        (Group::LatheMode, _) => Action::Nothing,
+        (Group::NonModal, 520) => Action::Local,
+        (Group::NonModal, 530) => Action::Machine,
+        (Group::NonModal, 920) => Action::SetPosition,
+        (Group::NonModal, 921 | 922) if linuxcnc => Action::ResetShift,
+        (Group::NonModal, 280) => Action::Reference(1),
+        (Group::NonModal, 300) => Action::Reference(2),
+        (Group::NonModal, 290) => Action::FromReference,
+        (Group::NonModal, 281) if linuxcnc => Action::StoreReference(1),
+        (Group::NonModal, 301) if linuxcnc => Action::StoreReference(2),
+        (Group::NonModal, 100) => Action::DataInput,
+        (Group::NonModal, 650) => Action::MacroCall,
+        (Group::NonModal, 310) if !linuxcnc => Action::Probe,
+        (Group::NonModal, 370) if syntec => Action::Measure(false),
+        (Group::NonModal, 371) if syntec => Action::Measure(true),
+        (Group::NonModal, 921) if syntec => Action::PresetZero,
+        (Group::NonModal, t @ (1340 | 1350 | 1360 | 1371)) if syntec => Action::Pattern(t),
+        _ => return None,
+    })
+}
+
+/// The block's G codes with the actions they take, in the block's order.
+pub(super) type Actions<'w> = SmallVec<[(Action, &'w Word); 4]>;
+
+/// The actions of the block's G codes, and warnings for the words not interpreted; `None` when
+/// a code is not run, and with it the block.
+pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<'w>> {
+    let dialect = st.dialect;
+    let mut actions: Actions<'w> = SmallVec::new();
+    let mut runnable = true;
+    for word in words
+        .iter()
+        .filter(|w| w.letter == b'G' && w.form == WordForm::Plain)
+    {
+        let Some(def) = Code::from_value(b'G', word.value).and_then(|c| codes::lookup(dialect, c))
+        else {
+            continue;
+        };
+        match action(dialect, def.group, def.code.tenths) {
+            Some(a) => {
+                // Two codes of one group: the last one wins (the parser has warned, or refused
+                // the block where the dialect alarms).
+                if def.group.exclusive()
+                    && let Some(i) = actions.iter().position(|(b, w)| {
+                        Code::from_value(b'G', w.value)
+                            .and_then(|c| codes::lookup(dialect, c))
+                            .is_some_and(|d| d.group == def.group)
+                            && *b != Action::Dwell
+                    })
+                {
+                    actions.remove(i);
+                }
+                actions.push((a, word));
+            }
+            None if def.documented != codes::Documented::Full => {
+                // LNC's two-stage cycles, G36–G39, G77/G78 …: the manual lists the code but
+                // not its format, so nothing can be drawn from it.
+                st.diagnostics.push(Diagnostic::warning(
+                    word.span,
+                    "W-NOT-DOCUMENTED",
+                    format!(
+                        "{} ({}) is only listed in the {} manual, which does not document its format or motion; this block is not run",
+                        def.code,
+                        def.name,
+                        dialect.label()
+                    ),
+                ));
+                runnable = false;
+            }
+            None => {
+                st.diagnostics.push(Diagnostic::warning(
+                    word.span,
+                    "W-NOT-INTERPRETED",
+                    format!(
+                        "{} ({}) is not interpreted yet; this block is not run",
+                        def.code, def.name
+                    ),
+                ));
+                runnable = false;
+            }
+        }
+    }
+    for word in words {
+        match word.form {
+            WordForm::Comma if matches!(word.letter, b'C' | b'R') => {}
+            WordForm::Comma => st.diagnostics.push(Diagnostic::warning(
+                word.span,
+                "W-NOT-INTERPRETED",
+                format!(
+                    "`,{}` (chamfer/corner rounding) is not drawn yet: the corner is drawn sharp",
+                    word.letter()
+                ),
+            )),
+            // Syntec's `F2=`: the retract feed of G81 (read by the cycle).
+            WordForm::Indexed(2) if word.letter == b'F' && dialect == Dialect::Syntec => {}
+            WordForm::Indexed(n) => st.diagnostics.push(Diagnostic::warning(
+                word.span,
+                "W-NOT-INTERPRETED",
+                format!(
+                    "`{}{n}=` is not interpreted yet and is ignored",
+                    word.letter()
+                ),
+            )),
+            WordForm::Plain => {}
+        }
+    }
+    runnable.then_some(actions)
+}

@@ -1,0 +1,78 @@
+//! M codes: pauses, spindle, coolant, tool change, program end, subprogram calls and returns.
+
+use swarf_syntax::codes::{self, Code};
+use swarf_syntax::{Diagnostic, Dialect, Word, WordForm};
+
+use super::{Request, Requests};
+use crate::state::State;
+use crate::{Canon, Sink, Source};
+
+/// M codes, and the flow they ask for (subprogram calls and returns, program end), in the
+/// block's order.
+pub(super) fn m_codes(
+    st: &mut State,
+    words: &[Word],
+    source: Source,
+    sink: &mut dyn Sink,
+) -> Requests {
+    let mut requests = Requests::new();
+    for word in words
+        .iter()
+        .filter(|w| w.letter == b'M' && w.form == WordForm::Plain)
+    {
+        let Some(code) = Code::from_value(b'M', word.value) else {
+            continue;
+        };
+        let event = match code.tenths {
+            0 => Canon::Pause { optional: false },
+            10 => Canon::Pause { optional: true },
+            20 | 300 => {
+                requests.push(Request::Stop);
+                Canon::End
+            }
+            600 if st.dialect == Dialect::LinuxCnc => Canon::Pause { optional: false },
+            30 => Canon::Spindle {
+                clockwise: Some(true),
+                rpm: st.spindle_rpm,
+            },
+            40 => Canon::Spindle {
+                clockwise: Some(false),
+                rpm: st.spindle_rpm,
+            },
+            50 => Canon::Spindle {
+                clockwise: None,
+                rpm: 0.0,
+            },
+            60 => Canon::ToolChange { tool: st.tool },
+            70 | 80 => Canon::Coolant { on: true },
+            90 => Canon::Coolant { on: false },
+            190 => continue,
+            // M198: a program from outside the control's memory (the files linked to the
+            // program), called as M98 calls one.
+            980 | 1980 => {
+                requests.push(Request::Subprogram);
+                continue;
+            }
+            990 => {
+                requests.push(Request::Return);
+                continue;
+            }
+            _ => {
+                // Codes outside the dialect's list were reported by the parser.
+                if let Some(def) = codes::lookup(st.dialect, code) {
+                    st.diagnostics.push(Diagnostic::warning(
+                        word.span,
+                        "W-NOT-INTERPRETED",
+                        format!("{} ({}) is not interpreted yet", def.code, def.name),
+                    ));
+                }
+                continue;
+            }
+        };
+        if let Canon::Spindle { clockwise, .. } = event {
+            st.spindle_dir = clockwise;
+        }
+        crate::corners::emit(st, sink, source, &event);
+    }
+    requests
+}
