@@ -1,10 +1,12 @@
 //! Swarf's wgpu renderer: instanced anti-aliased segments with depth, an orbit camera,
 //! grid/axes geometry, CPU picking, offscreen targets and a compositor for egui.
 //!
-//! It knows nothing of egui or the interpreter: callers hand it plain [`PathPoint`] slices
-//! (positions as f32 relative to an origin they choose, one point per path vertex) and a
-//! view-projection matrix from [`OrbitCamera`]. Everything works on the WebGL2 fallback
-//! (uniform buffers and vertex attributes only, no storage buffers).
+//! It knows nothing of egui: callers hand it plain [`PathPoint`] slices (positions as f32
+//! relative to an origin they choose, one point per path vertex) and a view-projection matrix
+//! from [`OrbitCamera`]. With the `toolpath` feature, [`Drawing`] turns a recorded toolpath into
+//! those points as the backplot draws it; without it, the crate knows nothing of the
+//! interpreter. Everything works on the WebGL2 fallback (uniform buffers and vertex attributes
+//! only, no storage buffers).
 
 mod camera;
 mod composite;
@@ -12,6 +14,8 @@ mod grid;
 mod offscreen;
 mod path;
 mod pick;
+#[cfg(feature = "toolpath")]
+mod scene;
 
 pub use camera::{MAX_DISTANCE, MIN_DISTANCE, OrbitCamera, Projection, StandardView};
 pub use composite::{COMPOSITE_WGSL, Compositor};
@@ -25,3 +29,5 @@ pub use path::{
     Z_AXIS_COLOR, ZONE_COLOR, srgba,
 };
 pub use pick::{Pick, pick_segment, segment_bounds};
+#[cfg(feature = "toolpath")]
+pub use scene::{Drawing, reference_points, view_bounds};

@@ -1,0 +1,269 @@
+//! A toolpath as the backplot draws it: the path with its kinds of move, and the reference
+//! marks beside it (hole rings, pecks, the programmed contour, program zeros, G22 zones, the
+//! travel box). The app's view and `swarf render` both draw this, so they show the same.
+
+use glam::{DVec3, Vec3};
+use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
+
+use crate::grid::grid_points_at;
+use crate::path::{Kind, PathPoint};
+
+/// What is drawn of a toolpath, in f32 relative to `origin` (the centre of its bounds).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Drawing {
+    /// The start point (pen up), then one point per segment end with the segment's kind and
+    /// its tool's number in order of first use as colour index.
+    pub points: Vec<PathPoint>,
+    /// Reference marks drawn with the grid (not picked, not played back); pen-up points
+    /// separate them.
+    pub marks: Vec<PathPoint>,
+    /// Bounds of the path, `None` when it has no segment.
+    pub bounds: Option<(Vec3, Vec3)>,
+    /// Where machine zero lies in the drawing's frame (the grid and axes are drawn there).
+    pub zero: Vec3,
+    /// Machine coordinates (mm) of the drawing's origin.
+    pub origin: DVec3,
+}
+
+impl Drawing {
+    /// The drawing of `path`, with the machine's travel box `travel` (machine mm, from the
+    /// setup) outlined. A path without segments draws only the travel box.
+    #[must_use]
+    pub fn of(path: &Toolpath, travel: Option<[[f64; 3]; 2]>) -> Self {
+        let origin = path.bounds().map_or(DVec3::ZERO, |b| b.center());
+        let rel = |p: DVec3| (p - origin).as_vec3();
+        let travel = travel.map_or_else(Vec::new, |[lo, hi]| {
+            let edges = box_edges(DVec3::from_array(lo), DVec3::from_array(hi));
+            edge_marks(&edges, rel, Kind::Boundary)
+        });
+        let Some(bounds) = path.bounds() else {
+            return Self {
+                marks: travel,
+                ..Self::default()
+            };
+        };
+        let mut points = Vec::with_capacity(path.len() + 1);
+        points.push(PathPoint::pen_up(rel(path.start())));
+        let tools = path.tools();
+        points.extend(
+            path.ends()
+                .iter()
+                .zip(path.kinds())
+                .zip(path.segment_tools())
+                .map(|((end, kind), tool)| {
+                    let kind = match kind {
+                        SegmentKind::Rapid => Kind::Rapid,
+                        SegmentKind::Feed => Kind::Feed,
+                        SegmentKind::Arc => Kind::Arc,
+                    };
+                    let index = tools.iter().position(|t| *t == tool).unwrap_or(0);
+                    PathPoint::new(rel(*end), kind)
+                        .with_color_index(u16::try_from(index).unwrap_or(u16::MAX))
+                }),
+        );
+        for (segment, role) in path.cycle_moves() {
+            if let Some(p) = points.get_mut(segment + 1) {
+                let kind = match role {
+                    CycleMove::Plunge => Kind::Plunge,
+                    CycleMove::Retract => Kind::Retract,
+                    CycleMove::Other => Kind::Cycle,
+                };
+                *p = PathPoint::new(p.position(), kind).with_color_index(p.color_index());
+            }
+        }
+        mark_compensated(path, &mut points);
+        let diagonal = (bounds.max - bounds.min).length();
+        let mut marks = hole_marks(path, rel, diagonal);
+        marks.extend(peck_marks(path, rel, diagonal));
+        marks.extend(programmed_marks(path, rel));
+        marks.extend(origin_marks(path, rel, diagonal));
+        for (min, max) in path.zone_boxes() {
+            marks.extend(edge_marks(&box_edges(min, max), rel, Kind::Zone));
+        }
+        marks.extend(travel);
+        Self {
+            points,
+            marks,
+            bounds: Some((rel(bounds.min), rel(bounds.max))),
+            zero: rel(DVec3::ZERO),
+            origin,
+        }
+    }
+}
+
+/// The box that framing a view shows: the path's `bounds` and the `marks` drawn with it, but
+/// not the travel box; `None` when there is nothing.
+#[must_use]
+pub fn view_bounds(bounds: Option<(Vec3, Vec3)>, marks: &[PathPoint]) -> Option<(Vec3, Vec3)> {
+    let (mut min, mut max) = bounds.unwrap_or((Vec3::INFINITY, Vec3::NEG_INFINITY));
+    for (i, p) in marks.iter().enumerate() {
+        // A pen-up point starts the segment after it, and is of that segment's kind.
+        let kind = if p.is_pen_up() {
+            marks
+                .get(i + 1)
+                .filter(|next| !next.is_pen_up())
+                .and_then(PathPoint::kind)
+        } else {
+            p.kind()
+        };
+        let v = p.position();
+        if kind.is_some_and(|k| k != Kind::Boundary) && v.is_finite() {
+            min = min.min(v);
+            max = max.max(v);
+        }
+    }
+    (min.is_finite() && max.is_finite()).then_some((min, max))
+}
+
+/// What is drawn beside the path: the grid and axes at machine zero `zero` covering the path's
+/// `bounds`, then the `marks`.
+#[must_use]
+pub fn reference_points(
+    zero: Vec3,
+    bounds: Option<(Vec3, Vec3)>,
+    marks: &[PathPoint],
+) -> Vec<PathPoint> {
+    let (min, max) = bounds.unwrap_or((Vec3::ONE, Vec3::ZERO));
+    let mut points = grid_points_at(zero, min, max);
+    points.extend_from_slice(marks);
+    points
+}
+
+/// Line segments (machine coordinates) as `kind` marks.
+fn edge_marks(edges: &[(DVec3, DVec3)], rel: impl Fn(DVec3) -> Vec3, kind: Kind) -> Vec<PathPoint> {
+    edges
+        .iter()
+        .flat_map(|&(a, b)| [PathPoint::pen_up(rel(a)), PathPoint::new(rel(b), kind)])
+        .collect()
+}
+
+/// An X/Y/Z axis cross at every program zero the moves were programmed from (G54…, with
+/// G52/G92 shifts), 1/20 of the path's diagonal long (2 to 50 mm).
+fn origin_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Vec<PathPoint> {
+    let length = (diagonal / 20.0).clamp(2.0, 50.0);
+    let mut marks = Vec::with_capacity(path.origins().len() * 6);
+    for &at in path.origins() {
+        for (axis, kind) in [
+            (DVec3::X, Kind::AxisX),
+            (DVec3::Y, Kind::AxisY),
+            (DVec3::Z, Kind::AxisZ),
+        ] {
+            marks.push(PathPoint::pen_up(rel(at)));
+            marks.push(PathPoint::new(rel(at + axis * length), kind));
+        }
+    }
+    marks
+}
+
+/// A ring at the top of every hole, across the hole's axis, sized to the path (1/150 of its
+/// diagonal, 0.5 to 5 mm), so holes stand out where plunges are seen end-on (a top view).
+fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Vec<PathPoint> {
+    const SIDES: usize = 12;
+    let radius = (diagonal / 150.0).clamp(0.5, 5.0);
+    let mut marks = Vec::with_capacity(path.holes().len() * (SIDES + 1));
+    for hole in path.holes() {
+        let axis = (hole.bottom - hole.top).normalize_or(DVec3::NEG_Z);
+        let u = axis.any_orthonormal_vector();
+        let v = axis.cross(u);
+        for k in 0..=SIDES {
+            let a = std::f64::consts::TAU * k as f64 / SIDES as f64;
+            let p = rel(hole.top + (u * a.cos() + v * a.sin()) * radius);
+            marks.push(if k == 0 {
+                PathPoint::pen_up(p)
+            } else {
+                PathPoint::new(p, Kind::Cycle)
+            });
+        }
+    }
+    marks
+}
+
+/// A small cross across the hole's axis at the bottom of every peck of a hole drilled in more
+/// than one plunge (G83, G73): each peck's retract runs back over the plunges, so without
+/// them the pecks merge into one line and cannot be counted.
+fn peck_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Vec<PathPoint> {
+    let half = (diagonal / 150.0).clamp(0.5, 5.0) * 0.6;
+    let mut plunges: Vec<(usize, usize)> = Vec::new();
+    for (segment, role) in path.cycle_moves() {
+        if role == CycleMove::Plunge
+            && let Some(hole) = path.hole_of_segment(segment)
+        {
+            plunges.push((hole, segment));
+        }
+    }
+    let mut marks = Vec::new();
+    for group in plunges.chunk_by(|a, b| a.0 == b.0) {
+        if group.len() < 2 {
+            continue;
+        }
+        let Some(hole) = path.holes().get(group[0].0) else {
+            continue;
+        };
+        let axis = (hole.bottom - hole.top).normalize_or(DVec3::NEG_Z);
+        let u = axis.any_orthonormal_vector();
+        let v = axis.cross(u);
+        for &(_, segment) in group {
+            let Some(&bottom) = path.ends().get(segment) else {
+                continue;
+            };
+            for across in [u, v] {
+                marks.push(PathPoint::pen_up(rel(bottom - across * half)));
+                marks.push(PathPoint::new(rel(bottom + across * half), Kind::Plunge));
+            }
+        }
+    }
+    marks
+}
+
+/// The segments of blocks cut under cutter radius compensation are the tool centre's path:
+/// they are drawn as compensated (the programmed contour goes beside them as a mark).
+fn mark_compensated(path: &Toolpath, points: &mut [PathPoint]) {
+    if path.programmed().is_empty() {
+        return;
+    }
+    let lines: std::collections::HashSet<u32> = path.programmed().iter().map(|(l, _)| *l).collect();
+    for (point, (line, kind)) in points
+        .iter_mut()
+        .skip(1)
+        .zip(path.lines().iter().zip(path.kinds()))
+    {
+        if lines.contains(line) && *kind != SegmentKind::Rapid {
+            *point = PathPoint::new(point.position(), Kind::Compensated)
+                .with_color_index(point.color_index());
+        }
+    }
+}
+
+/// The programmed contour of the compensated blocks (the part as drawn, beside the tool centre's
+/// path), as marks: each move from the end of the one before, arcs as chords.
+fn programmed_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3) -> Vec<PathPoint> {
+    let mut marks = Vec::new();
+    let mut last: Option<(u32, DVec3)> = None;
+    for (line, event) in path.programmed() {
+        let Some(end) = event.end_point() else {
+            continue;
+        };
+        // A move right after the one before continues it; otherwise the contour starts here.
+        let from = last.filter(|(l, _)| *l <= *line).map(|(_, p)| p);
+        match (from, event) {
+            (None, _) => marks.push(PathPoint::pen_up(rel(end))),
+            (
+                Some(from),
+                swarf_interp::Canon::Arc {
+                    center,
+                    axis,
+                    ccw,
+                    turns,
+                    ..
+                },
+            ) => {
+                for p in swarf_toolpath::tessellate_arc(from, end, *center, *axis, *ccw, *turns) {
+                    marks.push(PathPoint::new(rel(p), Kind::Programmed));
+                }
+            }
+            (Some(_), _) => marks.push(PathPoint::new(rel(end), Kind::Programmed)),
+        }
+        last = Some((*line, end));
+    }
+    marks
+}
