@@ -91,6 +91,7 @@ fn the_view_menu_switches_the_language_and_asks_for_the_font_once() {
 fn nothing_on_screen_stays_english_in_chinese() {
     let mut wb = Workbench::default();
     wb.set_text("G90 G21\nG0 X0 Y0 Z5\nG1 X10 Y$ F100\nM30\n");
+    wb.finish_analysis();
     let mut harness = harness(wb);
     // With the system's CJK font every character must have a glyph; without one, boxes.
     match std::fs::read(SYSTEM_CJK_FONT) {
@@ -111,7 +112,7 @@ fn nothing_on_screen_stays_english_in_chinese() {
         harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::H);
         harness.run();
         let shown = labels(&harness);
-        let english: Vec<&str> = i18n::TABLE.iter().map(|(en, _, _)| *en).collect();
+        let english: Vec<&str> = i18n::table().map(|(en, _, _)| en).collect();
         let left: Vec<&String> = shown
             .iter()
             .filter(|l| english.contains(&l.as_str()))
