@@ -7,16 +7,17 @@ mod explain;
 mod render;
 
 use std::ffi::OsString;
-use std::io::Write;
+use std::io::{Read as _, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
+use swarf_stock::{StockRun, StockSetup};
 use swarf_syntax::{
-    Decoded, Diagnostic, Dialect, LineIndex, LinkedSource, Missing, Program, Severity,
-    decode_owned, parse,
+    Decoded, Diagnostic, Dialect, LineIndex, LinkedSource, Lookup, MAX_FILE_BYTES, Missing,
+    Program, Severity, Span, decode_owned, parse,
 };
 use swarf_toolpath::Toolpath;
 
@@ -46,6 +47,16 @@ struct RunOptions {
     /// Machine setup (offset registers, work offsets, machine parameters) as TOML.
     #[arg(long, value_name = "SETUP.toml")]
     setup: Option<PathBuf>,
+    /// The largest program, setup or called file read, in MiB: a larger one is refused.
+    #[arg(long, value_name = "MB", default_value_t = MAX_FILE_BYTES >> 20)]
+    max_file_mb: u64,
+}
+
+impl RunOptions {
+    /// The largest file read, in bytes.
+    fn max_file_bytes(&self) -> u64 {
+        self.max_file_mb.saturating_mul(1 << 20)
+    }
 }
 
 #[derive(Subcommand, Debug)]
@@ -57,6 +68,8 @@ enum Command {
         files: Vec<PathBuf>,
         #[command(flatten)]
         opts: RunOptions,
+        #[arg(long, help = STOCK_HELP)]
+        stock: bool,
     },
     /// Print the canonical motion stream as JSON Lines.
     Canon {
@@ -93,6 +106,10 @@ enum Command {
     },
 }
 
+/// What `--stock` does, in the help of each command that has it.
+const STOCK_HELP: &str = "Cut the stock and check for rapids into it and shank cuts even when \
+                          the setup has no [stock] (a box around the feed moves is assumed)";
+
 /// What `swarf stats` does, in its help and the command list.
 const STATS_ABOUT: &str = "Print statistics: blocks, motions, bounds, lengths, time, tools";
 
@@ -109,6 +126,8 @@ struct StatsArgs {
     /// of running it piece by piece as it is parsed (the figures are the same).
     #[arg(long)]
     whole: bool,
+    #[arg(long, help = STOCK_HELP)]
+    stock: bool,
 }
 
 /// The command line parsed; `Err` with the exit status once clap has printed its message
@@ -148,7 +167,7 @@ where
         Err(code) => return code,
     };
     let result = match command {
-        Command::Check { files, opts } => check(&files, &opts, err),
+        Command::Check { files, opts, stock } => check(&files, &opts, stock, err),
         Command::Canon { file, opts } => canon(&file, &opts, out, err),
         Command::Stats(args) => stats(&args, out, err),
         Command::Render(args) => render::render(&args, out, err),
@@ -205,48 +224,174 @@ fn candidates(dir: &Path, missing: &Missing) -> Vec<PathBuf> {
 }
 
 /// Links the programs the program calls and does not hold from files beside it, until nothing
-/// more can be found; returns the linked files' texts.
+/// more can be found; returns the linked files' texts. A file found that cannot be read (a
+/// folder, unreadable, larger than `max` bytes) is named with the reason in the call's error;
+/// one that changed while it was read gets `W-FILE-CHANGED`.
 fn link_external(
     program: &mut Program,
     path: &Path,
     main_len: usize,
     dialect: Dialect,
-) -> Vec<LinkedSource> {
+    max: u64,
+) -> (Vec<LinkedSource>, Vec<Diagnostic>) {
     let dir = path.parent().unwrap_or(Path::new("."));
-    program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
-        let file = candidates(dir, missing)
+    let mut changed = Vec::new();
+    let linked = program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
+        let candidates: Vec<PathBuf> = candidates(dir, missing)
             .into_iter()
-            .find(|c| c.is_file() && c.as_path() != path)?;
-        let bytes = std::fs::read(&file).ok()?;
-        Some((file.display().to_string(), decode_owned(bytes).text))
-    })
+            .filter(|c| c.as_path() != path)
+            .collect();
+        // A file first; else something else of a candidate's name (a folder) is named.
+        let Some(file) = candidates.iter().find(|c| c.is_file()) else {
+            return candidates
+                .iter()
+                .find(|c| c.exists())
+                .map_or(Lookup::None, |c| {
+                    Lookup::Refused(format!("{} is not a file", c.display()))
+                });
+        };
+        match read_file(file, max) {
+            Ok((bytes, same)) => {
+                let name = file.display().to_string();
+                if !same {
+                    changed.push(name.clone());
+                }
+                Lookup::Found(name, decode_owned(bytes).text)
+            }
+            Err(why) => Lookup::Refused(why),
+        }
+    });
+    let warnings = changed
+        .iter()
+        .filter_map(|name| program.linked.iter().find(|l| l.name == *name))
+        .map(|l| {
+            changed_warning(
+                &l.name,
+                Span::new(l.first_byte as usize, l.first_byte as usize),
+            )
+        })
+        .collect();
+    (linked, warnings)
 }
 
-/// The setup named by `--setup`, or the default one.
-fn read_setup(opts: &RunOptions) -> anyhow::Result<Setup> {
-    let Some(p) = &opts.setup else {
-        return Ok(Setup::default());
+/// The warning that file `name` changed while it was read, at `span`.
+fn changed_warning(name: &str, span: Span) -> Diagnostic {
+    Diagnostic::warning(
+        span,
+        "W-FILE-CHANGED",
+        format!("{name} changed while it was read: what was read may be part old, part new"),
+    )
+}
+
+/// The bytes of the file at `path`, refused past `max` bytes before more is read (a file that
+/// grows, or a device that never ends, is read no further than `max` + 1 bytes), and whether
+/// the file stayed the same while it was read (its length and time of change).
+fn read_file(path: &Path, max: u64) -> Result<(Vec<u8>, bool), String> {
+    let shown = path.display();
+    let cannot = |e: std::io::Error| format!("cannot read {shown}: {e}");
+    let too_large = || {
+        format!(
+            "{shown} is larger than {} MiB, the most read (--max-file-mb)",
+            max >> 20
+        )
     };
-    let text = std::fs::read_to_string(p)
+    let mut file = std::fs::File::open(path).map_err(cannot)?;
+    let before = file.metadata().map_err(cannot)?;
+    if before.is_dir() {
+        return Err(format!("{shown} is a folder, not a file"));
+    }
+    if before.len() > max {
+        return Err(too_large());
+    }
+    let mut bytes = Vec::with_capacity(usize::try_from(before.len()).unwrap_or(0));
+    (&mut file)
+        .take(max.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > max {
+        return Err(too_large());
+    }
+    let after = std::fs::metadata(path).ok();
+    let same = !before.is_file()
+        || (bytes.len() as u64 == before.len()
+            && after.as_ref().map(std::fs::Metadata::len) == Some(before.len())
+            && after.and_then(|a| a.modified().ok()) == before.modified().ok());
+    Ok((bytes, same))
+}
+
+/// The setup named by `--setup`, or the default one, with its stock and tools; a setup that
+/// changed while it was read gets `W-FILE-CHANGED` on `err`.
+fn read_setup(opts: &RunOptions, err: &mut dyn Write) -> anyhow::Result<(Setup, StockSetup)> {
+    let Some(p) = &opts.setup else {
+        return Ok((Setup::default(), StockSetup::default()));
+    };
+    let (bytes, same) =
+        read_file(p, opts.max_file_bytes()).map_err(|e| anyhow::anyhow!("setup: {e}"))?;
+    if !same {
+        let w = changed_warning(&p.display().to_string(), Span::default());
+        writeln!(
+            err,
+            "{}: {}[{}]: {}",
+            p.display(),
+            w.severity,
+            w.code,
+            w.message
+        )?;
+    }
+    let text = String::from_utf8(bytes)
         .map_err(|e| anyhow::anyhow!("cannot read setup {}: {e}", p.display()))?;
-    Setup::from_toml(&text).map_err(|e| anyhow::anyhow!("invalid setup {}: {e}", p.display()))
+    let invalid = |e: &dyn std::fmt::Display| anyhow::anyhow!("invalid setup {}: {e}", p.display());
+    let setup = Setup::from_toml(&text).map_err(|e| invalid(&e))?;
+    let stock = StockSetup::from_setup(&setup).map_err(|e| invalid(&e))?;
+    Ok((setup, stock))
+}
+
+/// Cuts `path` out of the stock when the setup has `[stock]` or `asked` (`--stock`): the cut
+/// and its diagnostics at their places in `loaded`.
+fn cut_stock(
+    path: &Toolpath,
+    stock: &StockSetup,
+    asked: bool,
+    loaded: &Loaded,
+) -> Option<(StockRun, Vec<Diagnostic>)> {
+    if !asked && stock.stock.is_none() {
+        return None;
+    }
+    let mut cut = StockRun::new(path, stock)?;
+    cut.step(path, usize::MAX);
+    let diags = cut.diagnostics(|line| loaded.line_span(line));
+    Some((cut, diags))
 }
 
 fn load(path: &Path, opts: &RunOptions) -> anyhow::Result<Loaded> {
-    Ok(load_decoded(path, read_decoded(path)?, opts))
+    Ok(load_decoded(path, read_decoded(path, opts)?, opts))
 }
 
-/// Reads and decodes a program file.
-fn read_decoded(path: &Path) -> anyhow::Result<Decoded> {
-    let bytes =
-        std::fs::read(path).map_err(|e| anyhow::anyhow!("cannot read {}: {e}", path.display()))?;
-    Ok(decode_owned(bytes))
+/// Reads and decodes a program file (at most `--max-file-mb`); one that changed while it was
+/// read gets `W-FILE-CHANGED` among its decoding diagnostics.
+fn read_decoded(path: &Path, opts: &RunOptions) -> anyhow::Result<Decoded> {
+    let (bytes, same) = read_file(path, opts.max_file_bytes()).map_err(anyhow::Error::msg)?;
+    let mut decoded = decode_owned(bytes);
+    if !same {
+        let name = path.display().to_string();
+        decoded
+            .diagnostics
+            .push(changed_warning(&name, Span::default()));
+    }
+    Ok(decoded)
 }
 
 /// Parses a decoded program file and links the programs it calls from files beside it.
-fn load_decoded(path: &Path, decoded: Decoded, opts: &RunOptions) -> Loaded {
+fn load_decoded(path: &Path, mut decoded: Decoded, opts: &RunOptions) -> Loaded {
     let mut program = parse(&decoded.text, opts.dialect);
-    let linked = link_external(&mut program, path, decoded.text.len(), opts.dialect);
+    let (linked, warnings) = link_external(
+        &mut program,
+        path,
+        decoded.text.len(),
+        opts.dialect,
+        opts.max_file_bytes(),
+    );
+    decoded.diagnostics.extend(warnings);
     Loaded::new(path, decoded.diagnostics, decoded.text, program, linked)
 }
 
@@ -362,6 +507,26 @@ impl Loaded {
         merged(std::mem::take(&mut self.diagnostics), run)
     }
 
+    /// The span of 1-based `line` of the program, in a linked file's text when it is one of
+    /// theirs.
+    fn line_span(&self, line: u32) -> Span {
+        let line0 = line.saturating_sub(1);
+        let linked = self
+            .program
+            .linked_at_line(line0)
+            .and_then(|i| Some((self.program.linked.get(i)?, self.linked.get(i)?)));
+        match linked {
+            Some((at, l)) => {
+                let span = swarf_stock::line_span(&l.lines, line0 - at.first_line + 1);
+                Span::new(
+                    (at.first_byte + span.start) as usize,
+                    (at.first_byte + span.end) as usize,
+                )
+            }
+            None => swarf_stock::line_span(&self.program.lines, line),
+        }
+    }
+
     fn print(&self, diags: &[Diagnostic], err: &mut dyn Write) -> std::io::Result<i32> {
         let index: &LineIndex = &self.program.lines;
         let mut cols = index.cursor(&self.text);
@@ -396,11 +561,16 @@ impl Loaded {
     }
 }
 
-fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::Result<i32> {
-    let setup = read_setup(opts)?;
+fn check(
+    files: &[PathBuf],
+    opts: &RunOptions,
+    cut: bool,
+    err: &mut dyn Write,
+) -> anyhow::Result<i32> {
+    let (setup, stock) = read_setup(opts, err)?;
     let mut status = EXIT_OK;
     for file in files {
-        let decoded = match read_decoded(file) {
+        let decoded = match read_decoded(file, opts) {
             Ok(d) => d,
             Err(e) => {
                 writeln!(err, "swarf: {e:#}")?;
@@ -408,15 +578,24 @@ fn check(files: &[PathBuf], opts: &RunOptions, err: &mut dyn Write) -> anyhow::R
                 continue;
             }
         };
-        // Only the diagnostics are wanted: no toolpath is kept.
-        let (loaded, diags) = match read_run(file, decoded, opts, &setup, false, &mut NullSink) {
+        // Only the diagnostics are wanted: no toolpath is kept unless the stock is cut.
+        let cuts = cut || stock.stock.is_some();
+        let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+        let mut null = NullSink;
+        let sink: &mut dyn Sink = if cuts { &mut path } else { &mut null };
+        let (loaded, mut diags) = match read_run(file, decoded, opts, &setup, false, sink) {
             Read::Ran(loaded, _, diags) => (loaded, diags),
             Read::Whole(mut loaded) => {
-                let run = loaded.interpret(&setup, &mut NullSink);
+                path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+                let sink: &mut dyn Sink = if cuts { &mut path } else { &mut null };
+                let run = loaded.interpret(&setup, sink);
                 let diags = loaded.all_diagnostics(run);
                 (loaded, diags)
             }
         };
+        if let Some((_, more)) = cut_stock(&path, &stock, cut, &loaded) {
+            diags = merged(diags, more);
+        }
         let s = loaded.print(&diags, err)?;
         if status == EXIT_OK {
             status = s;
@@ -474,8 +653,8 @@ fn canon(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
-    let setup = read_setup(opts)?;
-    let decoded = read_decoded(file)?;
+    let (setup, _) = read_setup(opts, err)?;
+    let decoded = read_decoded(file, opts)?;
     let mut buffered = std::io::BufWriter::new(out);
     let mut pieces = JsonLines {
         program: None,
@@ -516,14 +695,16 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
         ref opts,
         json: as_json,
         whole,
+        stock: cut,
     } = *args;
-    let setup = read_setup(opts)?;
+    let (setup, stock) = read_setup(opts, err)?;
     let started = Instant::now();
-    let decoded = read_decoded(file)?;
+    let decoded = read_decoded(file, opts)?;
     let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
     // About a move a line, and a line is rarely under sixteen bytes.
     path.reserve(decoded.text.len() / 16);
-    let (loaded, blocks, diags) = match read_run(file, decoded, opts, &setup, whole, &mut path) {
+    let (loaded, blocks, mut diags) = match read_run(file, decoded, opts, &setup, whole, &mut path)
+    {
         Read::Ran(loaded, blocks, diags) => (loaded, blocks, diags),
         Read::Whole(mut loaded) => {
             path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
@@ -535,6 +716,21 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
         }
     };
     let interp_ms = started.elapsed().as_secs_f64() * 1000.0;
+    // The material removed, the rapids into the stock and the shank cuts.
+    let mut cut_figures = None;
+    if let Some((cut, more)) = cut_stock(&path, &stock, cut, &loaded) {
+        diags = merged(diags, more);
+        let findings = cut.findings();
+        let rapids = findings
+            .iter()
+            .filter(|f| matches!(f, swarf_stock::Finding::RapidIntoStock { .. }))
+            .count();
+        cut_figures = Some((
+            cut.field().removed_volume(),
+            rapids,
+            findings.len() - rapids,
+        ));
+    }
     let errors = diags
         .iter()
         .filter(|d| d.severity == Severity::Error)
@@ -562,6 +758,11 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
             .iter()
             .map(|(tool, n)| json!({"tool": tool, "holes": n}))
             .collect::<Vec<_>>(),
+        "stock": cut_figures.map(|(removed, rapids, shanks)| json!({
+            "removed_mm3": removed,
+            "rapids_into_stock": rapids,
+            "shank_cuts": shanks,
+        })),
         "diagnostics": {"errors": errors, "warnings": warnings, "total": diags.len()},
         "interpretation_ms": interp_ms,
     });
@@ -610,6 +811,12 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
                 "holes           {} ({})",
                 path.holes().len(),
                 holes.join(", ")
+            )?;
+        }
+        if let Some((removed, rapids, shanks)) = cut_figures {
+            writeln!(
+                out,
+                "stock           {removed:.3} mm³ removed, {rapids} rapids into it, {shanks} shank cuts"
             )?;
         }
         writeln!(out, "diagnostics     {errors} errors, {warnings} warnings")?;
@@ -687,9 +894,11 @@ mod tests {
             opts: RunOptions {
                 dialect: Dialect::Fanuc,
                 setup: None,
+                max_file_mb: 256,
             },
             json: false,
             whole: false,
+            stock: false,
         };
         let (mut out, mut err) = (Vec::new(), Vec::new());
         assert_eq!(stats(&args, &mut out, &mut err).unwrap(), EXIT_ERRORS);

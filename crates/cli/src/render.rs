@@ -1,14 +1,16 @@
 //! `swarf render`: draws a program's toolpath offscreen as the backplot draws it (its
-//! [`Drawing`] and renderer, wgpu; Mesa lavapipe works with no display) and writes it as a PNG.
+//! [`Drawing`] and renderer, wgpu; Mesa lavapipe works with no display), with the cut stock
+//! under it on request, and writes it as a PNG.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec3};
 use swarf_render::{
-    Drawing, HeadlessGpu, OrbitCamera, Projection, StandardView, ViewParams, reference_points,
-    view_bounds,
+    Drawing, HeadlessGpu, OrbitCamera, Projection, StandardView, StockSurface, ViewParams,
+    reference_points, view_bounds,
 };
+use swarf_stock::StockRun;
 use swarf_toolpath::Toolpath;
 
 /// Background of the image: the app's dark backplot (sRGB).
@@ -31,6 +33,13 @@ pub(crate) struct RenderArgs {
     /// Perspective projection (orthographic by default).
     #[arg(long)]
     perspective: bool,
+    /// Draw the stock as the program cuts it (the setup's [stock], or a box around the feed
+    /// moves), as a lit surface under the toolpath.
+    #[arg(long)]
+    stock: bool,
+    /// Draw no toolpath: with --stock, the cut stock alone.
+    #[arg(long)]
+    no_path: bool,
     #[command(flatten)]
     opts: super::RunOptions,
 }
@@ -69,18 +78,43 @@ pub(crate) fn render(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
-    let setup = super::read_setup(&args.opts)?;
+    let (setup, stock) = super::read_setup(&args.opts, err)?;
     let mut loaded = super::load(&args.file, &args.opts)?;
     let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
     path.reserve(loaded.program.blocks.len());
     let run = loaded.interpret(&setup, &mut path);
-    let diags = loaded.all_diagnostics(run);
+    let mut diags = loaded.all_diagnostics(run);
+    let cut = super::cut_stock(&path, &stock, args.stock, &loaded).map(|(cut, more)| {
+        diags = super::merged(std::mem::take(&mut diags), more);
+        cut
+    });
     let status = loaded.print(&diags, err)?;
 
-    // What the backplot draws, framed as its Fit frames it.
+    // What the backplot draws, framed as its Fit frames it, with the stock.
     let drawing = Drawing::of(&path, setup.machine.travel_mm);
-    let (min, max) = view_bounds(drawing.bounds, &drawing.marks).unwrap_or((Vec3::ONE, Vec3::ZERO));
-    let reference = reference_points(drawing.zero, drawing.bounds, &drawing.marks);
+    let field = cut.as_ref().filter(|_| args.stock).map(StockRun::field);
+    let surface = field.map(|field| StockSurface {
+        heights: field.heights(),
+        size: field.size(),
+        cell_mm: field.cell_mm(),
+        min: DVec3::from_array(field.stock().min),
+        top: field.stock().max[2],
+        origin: drawing.origin,
+    });
+    let stock_box = field.map(|field| {
+        let corner = |p: [f64; 3]| (DVec3::from_array(p) - drawing.origin).as_vec3();
+        (corner(field.stock().min), corner(field.stock().max))
+    });
+    let (points, marks) = if args.no_path {
+        (&[][..], &[][..])
+    } else {
+        (&drawing.points[..], &drawing.marks[..])
+    };
+    let (min, max) = match (view_bounds(drawing.bounds, marks), stock_box) {
+        (Some(a), Some(b)) if !args.no_path => (a.0.min(b.0), a.1.max(b.1)),
+        (a, b) => b.or(a).unwrap_or((Vec3::ONE, Vec3::ZERO)),
+    };
+    let reference = reference_points(drawing.zero, drawing.bounds, marks);
 
     let (width, height) = args.size;
     let aspect = width as f32 / height as f32;
@@ -96,7 +130,14 @@ pub(crate) fn render(
     .scaled((height as f32 / 768.0).clamp(1.0, 4.0));
 
     let gpu = pollster::block_on(HeadlessGpu::new())?;
-    let pixels = gpu.render_rgba8(&drawing.points, &reference, &params, args.size, BACKGROUND)?;
+    let pixels = gpu.render_rgba8(
+        surface.as_ref(),
+        points,
+        &reference,
+        &params,
+        args.size,
+        BACKGROUND,
+    )?;
     write_png(&args.output, width, height, &pixels)?;
     writeln!(
         out,

@@ -302,3 +302,123 @@ fn canon_prints_each_event_once_when_the_run_turns_whole() {
         .collect();
     assert_eq!(out.lines().collect::<Vec<_>>(), expected);
 }
+
+/// A program, setup or called file larger than `--max-file-mb` is refused before it is read;
+/// a device that never ends (`/dev/zero`) is read no further than the limit.
+#[test]
+fn a_file_larger_than_the_limit_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.nc");
+    std::fs::write(&big, "G0 X1.\n".repeat(300_000)).unwrap();
+    let big = big.to_str().unwrap();
+    for command in ["check", "canon", "stats"] {
+        let (code, err) = swarf(&[command, big, "--max-file-mb", "1"]);
+        assert_eq!(code, 2, "{err}");
+        assert_eq!(
+            err.trim_end(),
+            format!("swarf: {big} is larger than 1 MiB, the most read (--max-file-mb)")
+        );
+    }
+    let (code, err) = swarf(&["check", big]);
+    assert_eq!(code, 0, "{err}");
+    #[cfg(unix)]
+    {
+        let (code, err) = swarf(&["check", big, "--setup", "/dev/zero", "--max-file-mb", "1"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains("setup: /dev/zero is larger than 1 MiB"),
+            "{err}"
+        );
+        let (code, err) = swarf(&["check", "/dev/zero", "--max-file-mb", "1"]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("/dev/zero is larger than 1 MiB"), "{err}");
+    }
+}
+
+/// A called program whose file is found and cannot be linked (a folder, too large, past the
+/// most files a program links) is an error at the call that names the file and the reason.
+#[test]
+fn a_call_whose_file_cannot_be_read_says_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let main = dir.path().join("main.nc");
+    std::fs::create_dir(dir.path().join("O1000")).unwrap();
+    std::fs::write(dir.path().join("O2000.nc"), "G0 X1.\n".repeat(300_000)).unwrap();
+    std::fs::write(&main, "M98 P1000\nM30\n").unwrap();
+    let main = main.to_str().unwrap();
+    let (code, err) = swarf(&["check", main]);
+    assert_eq!(code, 1, "{err}");
+    let folder = dir.path().join("O1000");
+    assert_eq!(
+        err.trim_end(),
+        format!(
+            "{main}:1:1: error[E-SUBPROGRAM]: program O1000 is not in this program: {} is not a file",
+            folder.display()
+        )
+    );
+    std::fs::write(main, "G65 P2000\nM30\n").unwrap();
+    let (code, err) = swarf(&["check", main, "--max-file-mb", "1"]);
+    assert_eq!(code, 1, "{err}");
+    let big = dir.path().join("O2000.nc");
+    assert!(
+        err.contains(&format!(
+            "error[E-SUBPROGRAM]: macro program O2000 is not in this program: {} is larger than 1 MiB",
+            big.display()
+        )),
+        "{err}"
+    );
+
+    // Sixty-five called files: the last one is not looked for.
+    let calls: String = (1..=65).map(|n| format!("M98 P{n}\n")).collect();
+    std::fs::write(main, format!("{calls}M30\n")).unwrap();
+    for n in 1..=65 {
+        let called = dir.path().join(format!("O{n:04}.nc"));
+        std::fs::write(called, "G91 G0 X1.\nM99\n").unwrap();
+    }
+    let (code, err) = swarf(&["check", main]);
+    assert_eq!(code, 1, "{err}");
+    assert_eq!(
+        err.trim_end(),
+        format!(
+            "{main}:65:1: error[E-SUBPROGRAM]: program O0065 is not in this program: not looked for: the program links 64 files, the most it may"
+        )
+    );
+}
+
+/// A diagnostic in a linked file quotes a short excerpt of a long line there.
+#[test]
+fn a_linked_file_diagnostic_quotes_a_short_excerpt() {
+    let dir = tempfile::tempdir().unwrap();
+    let main = dir.path().join("main.nc");
+    std::fs::write(&main, "M98 P3000\nM30\n").unwrap();
+    let long = format!(
+        "O<{}>\nG0 X1 {}\nM99\n",
+        "p".repeat(50_000),
+        "_".repeat(50_000)
+    );
+    std::fs::write(dir.path().join("O3000.nc"), long).unwrap();
+    let (code, err) = swarf(&["check", main.to_str().unwrap()]);
+    assert_eq!(code, 1, "{}", head(&err));
+    assert!(
+        err.contains("O3000.nc:2:7: error[E-SYNTAX-CHAR]"),
+        "{}",
+        head(&err)
+    );
+    for line in err.lines() {
+        assert!(line.len() < 600, "{}", head(line));
+    }
+}
+
+/// A file whose length differs after it is read from what it was before (here a file of the
+/// kernel's, whose length reads as zero) gets a warning.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_file_that_changes_while_it_is_read_is_reported() {
+    let (_, err) = swarf(&["check", "/proc/self/status"]);
+    assert!(
+        err.lines().next().unwrap().starts_with(
+            "/proc/self/status:1:1: warning[W-FILE-CHANGED]: /proc/self/status changed while it was read"
+        ),
+        "{}",
+        head(&err)
+    );
+}

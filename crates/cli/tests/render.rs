@@ -1,6 +1,6 @@
 //! `swarf render`: writes a PNG of the toolpath offscreen; checked for size, path colours and
-//! against golden images (a pocket, drilling cycles with a G22 zone, a compensated contour)
-//! with a tolerance. Skips (passing, with a note) when no wgpu adapter is available. Set
+//! against golden images (a pocket, drilling cycles with a G22 zone, a compensated contour, a
+//! slot cut out of the stock) with a tolerance. Skips (passing, with a note) when no wgpu adapter is available. Set
 //! `SWARF_UPDATE_GOLDEN=1` to rewrite the golden images.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
@@ -272,6 +272,63 @@ fn a_compensated_contour_matches_the_golden_image() {
         "render_compensated_top.png",
         &["--view", "top", "--setup", setup.to_str().unwrap()],
     );
+}
+
+/// A slot 5 mm deep along Y25 from X20 to X70, a full circle round an island at its end, and
+/// a rapid plunge 3 mm into the stock at X30 Y10.
+const SLOT: &str = "%
+O4000 (golden: a slot cut out of the stock)
+G21 G90 G17
+T1 M6
+G00 Z50.
+G00 X20. Y25. Z5.
+G01 Z-5. F200.
+G01 X70. F600.
+G02 X70. Y25. I0. J-12. F400.
+G00 Z5.
+G00 X30. Y10.
+G00 Z-3.
+G00 Z50.
+M30
+%
+";
+
+/// The stock of [`SLOT`]: a 100 × 50 × 20 mm block with its top at Z0, and T1 a 10 mm flat end
+/// mill.
+const SLOT_SETUP: &str =
+    "[stock]\nmin = [0, 0, -20]\nmax = [100, 50, 0]\ncell_mm = 0.25\n[tools.1]\ndiameter = 10\n";
+
+#[test]
+fn the_cut_stock_matches_the_golden_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let setup = dir.path().join("setup.toml");
+    std::fs::write(&setup, SLOT_SETUP).unwrap();
+    let setup = setup.to_str().unwrap();
+    check_golden(SLOT, "render_stock_iso.png", &["--stock", "--setup", setup]);
+
+    // Alone: the stock's grey and blue, none of the rapids' amber.
+    let Some((image, _)) = render_program(
+        &dir,
+        SLOT,
+        "alone.png",
+        &[
+            "--stock",
+            "--no-path",
+            "--setup",
+            setup,
+            "--size",
+            "320x200",
+        ],
+    ) else {
+        return;
+    };
+    let stock = image
+        .rgba
+        .chunks_exact(4)
+        .filter(|p| p[0] > 60 && p[2] > p[0])
+        .count();
+    assert!(stock > 5000, "{stock} stock pixels");
+    assert_eq!(count(&image, Hue::Rapid), 0);
 }
 
 #[test]

@@ -156,6 +156,31 @@ impl PlaneArc {
     }
 }
 
+/// A circular or helical cutting move ([`Canon::Arc`]); its start is where the move before ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arc {
+    /// End point.
+    pub to: DVec3,
+    /// Centre (its coordinate along `axis` is the start's).
+    pub center: DVec3,
+    /// Plane normal.
+    pub axis: Axis,
+    /// Counter-clockwise as seen from the positive end of `axis`.
+    pub ccw: bool,
+    /// Extra full turns beyond the first.
+    pub turns: u32,
+    /// Feed rate in mm/min.
+    pub feed_mm_per_min: f64,
+}
+
+impl Arc {
+    /// The arc's geometry in its plane, starting at `from`.
+    #[inline]
+    pub fn plane(&self, from: DVec3) -> PlaneArc {
+        PlaneArc::new(from, self.to, self.center, self.axis, self.ccw, self.turns)
+    }
+}
+
 /// One canonical event. Positions are millimetres in the machine frame, at the tool tip.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Canon {
@@ -172,20 +197,7 @@ pub enum Canon {
         feed_mm_per_min: f64,
     },
     /// Circular or helical cutting move.
-    Arc {
-        /// End point.
-        to: DVec3,
-        /// Centre (its coordinate along `axis` is the start's).
-        center: DVec3,
-        /// Plane normal.
-        axis: Axis,
-        /// Counter-clockwise as seen from the positive end of `axis`.
-        ccw: bool,
-        /// Extra full turns beyond the first.
-        turns: u32,
-        /// Feed rate in mm/min.
-        feed_mm_per_min: f64,
-    },
+    Arc(Arc),
     /// A pause with the axes still.
     Dwell {
         /// Duration in seconds.
@@ -236,7 +248,7 @@ impl Canon {
     /// The end point for motion events.
     pub fn end_point(&self) -> Option<DVec3> {
         match self {
-            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc { to, .. } => Some(*to),
+            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) => Some(*to),
             _ => None,
         }
     }
@@ -253,17 +265,10 @@ impl Canon {
             } => {
                 json!({"line": line, "kind": "feed", "to": p(*to), "feed": round(*feed_mm_per_min)})
             }
-            Canon::Arc {
-                to,
-                center,
-                axis,
-                ccw,
-                turns,
-                feed_mm_per_min,
-            } => json!({
-                "line": line, "kind": "arc", "to": p(*to), "center": p(*center),
-                "axis": axis.name(), "dir": if *ccw { "ccw" } else { "cw" },
-                "turns": turns, "feed": round(*feed_mm_per_min),
+            Canon::Arc(a) => json!({
+                "line": line, "kind": "arc", "to": p(a.to), "center": p(a.center),
+                "axis": a.axis.name(), "dir": if a.ccw { "ccw" } else { "cw" },
+                "turns": a.turns, "feed": round(a.feed_mm_per_min),
             }),
             Canon::Dwell { secs } => json!({"line": line, "kind": "dwell", "secs": round(*secs)}),
             Canon::ToolChange { tool } => {

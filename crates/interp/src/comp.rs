@@ -32,7 +32,7 @@ use glam::{DVec2, DVec3};
 use swarf_syntax::{Diagnostic, Dialect, Span};
 
 use crate::state::{MotionMode, State, plane_axes};
-use crate::{Axis, Canon, CornerMode, Sink, Source};
+use crate::{Arc, Axis, Canon, CornerMode, Sink, Source};
 
 /// LinuxCNC's angle below which a corner is taken as straight (TOLERANCE_CONCAVE_CORNER).
 const LINUXCNC_SMALL: f64 = 0.05;
@@ -340,21 +340,11 @@ fn put(st: &State, sink: &mut dyn Sink, source: Source, event: &Canon) {
             to: to + d,
             feed_mm_per_min,
         },
-        Canon::Arc {
-            to,
-            center,
-            axis,
-            ccw,
-            turns,
-            feed_mm_per_min,
-        } => Canon::Arc {
-            to: to + d,
-            center: center + d,
-            axis,
-            ccw,
-            turns,
-            feed_mm_per_min,
-        },
+        Canon::Arc(a) => Canon::Arc(Arc {
+            to: a.to + d,
+            center: a.center + d,
+            ..a
+        }),
         other => other,
     };
     sink.emit(source, &shifted);
@@ -377,7 +367,7 @@ fn corner_mode(st: &State) -> CornerMode {
 pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &Canon) {
     let from = st.comp.prog;
     match event {
-        Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc { to, .. } => {
+        Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) => {
             st.comp.prog = *to;
             if st.comp.held.is_none() && wanted(st).is_none() {
                 // Compensation off and nothing held: the move goes on as it is (what the
@@ -417,18 +407,11 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
             to,
             feed_mm_per_min,
         } => (to, false, feed_mm_per_min, None),
-        Canon::Arc {
-            to,
-            center,
-            ccw,
-            turns,
-            feed_mm_per_min,
-            ..
-        } => (
-            to,
+        Canon::Arc(a) => (
+            a.to,
             false,
-            feed_mm_per_min,
-            Some((uv(center, plane), ccw, turns)),
+            a.feed_mm_per_min,
+            Some((uv(a.center, plane), a.ccw, a.turns)),
         ),
         _ => return,
     };
@@ -821,25 +804,20 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
         }
     }
     if let Some((n, _)) = next {
-        let w = 3 - plane.0 - plane.1;
         for (p, arc) in links {
             if (p - uv(at, plane)).length() < 1e-6 {
                 continue;
             }
             let to = with_uv(at, p, plane);
             let event = match arc {
-                Some((c, ccw)) => {
-                    let mut center = with_uv(at, c, plane);
-                    center[w] = at[w];
-                    Canon::Arc {
-                        to,
-                        center,
-                        axis: st.plane,
-                        ccw,
-                        turns: 0,
-                        feed_mm_per_min: n.feed,
-                    }
-                }
+                Some((c, ccw)) => Canon::Arc(Arc {
+                    to,
+                    center: with_uv(at, c, plane),
+                    axis: st.plane,
+                    ccw,
+                    turns: 0,
+                    feed_mm_per_min: n.feed,
+                }),
                 None if n.rapid => Canon::Rapid { to },
                 None => Canon::Feed {
                     to,
@@ -948,17 +926,14 @@ fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
                     feed_mm_per_min: h.feed,
                 }
             } else {
-                let w = 3 - plane.0 - plane.1;
-                let mut c = with_uv(h.start, center, plane);
-                c[w] = h.start[w];
-                Canon::Arc {
+                Canon::Arc(Arc {
                     to: h.end,
-                    center: c,
+                    center: with_uv(h.start, center, plane),
                     axis: st.plane,
                     ccw,
                     turns,
                     feed_mm_per_min: h.feed,
-                }
+                })
             }
         }
     };
@@ -997,21 +972,7 @@ fn with_end(event: &Canon, to: DVec3) -> Canon {
             to,
             feed_mm_per_min,
         },
-        Canon::Arc {
-            center,
-            axis,
-            ccw,
-            turns,
-            feed_mm_per_min,
-            ..
-        } => Canon::Arc {
-            to,
-            center,
-            axis,
-            ccw,
-            turns,
-            feed_mm_per_min,
-        },
+        Canon::Arc(a) => Canon::Arc(Arc { to, ..a }),
         other => other,
     }
 }
@@ -1020,22 +981,19 @@ fn with_end(event: &Canon, to: DVec3) -> Canon {
 fn as_event(e: &Elem, to: DVec3, plane: (usize, usize)) -> Canon {
     match e.arc {
         Some((c, ccw, turns)) => {
-            let w = 3 - plane.0 - plane.1;
-            let mut center = with_uv(e.from, c, plane);
-            center[w] = e.from[w];
-            let axis = match w {
+            let axis = match 3 - plane.0 - plane.1 {
                 0 => crate::Axis::X,
                 1 => crate::Axis::Y,
                 _ => crate::Axis::Z,
             };
-            Canon::Arc {
+            Canon::Arc(Arc {
                 to,
-                center,
+                center: with_uv(e.from, c, plane),
                 axis,
                 ccw,
                 turns,
                 feed_mm_per_min: e.feed,
-            }
+            })
         }
         None if e.rapid => Canon::Rapid { to },
         None => Canon::Feed {

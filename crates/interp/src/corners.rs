@@ -8,7 +8,7 @@ use glam::DVec3;
 use swarf_syntax::{Diagnostic, Span};
 
 use crate::state::{State, plane_axes};
-use crate::{Canon, Sink, Source};
+use crate::{Arc, Canon, Sink, Source};
 
 /// The corner asked for at the end of a G01 block.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,16 +45,12 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
 pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
     let moves = matches!(
         event,
-        Canon::Rapid { .. }
-            | Canon::Feed { .. }
-            | Canon::Arc { .. }
-            | Canon::Dwell { .. }
-            | Canon::End
+        Canon::Rapid { .. } | Canon::Feed { .. } | Canon::Arc(_) | Canon::Dwell { .. } | Canon::End
     );
     if moves && let Some(pending) = st.pending.take() {
         match event {
             Canon::Feed { to, .. } => corner(st, sink, &pending, *to),
-            Canon::Arc { .. } => {
+            Canon::Arc(_) => {
                 st.diagnostics.push(Diagnostic::warning(
                     pending.span,
                     "W-NOT-INTERPRETED",
@@ -171,14 +167,14 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
                 st,
                 sink,
                 p.source,
-                &Canon::Arc {
+                &Canon::Arc(Arc {
                     to: end,
                     center,
                     axis: st.plane,
                     ccw: left,
                     turns: 0,
                     feed_mm_per_min: feed,
-                },
+                }),
             );
         }
     }

@@ -5,7 +5,8 @@
 use std::collections::HashMap;
 
 use swarf_syntax::{
-    Block, Diagnostic, Expr, ExprId, OLabel, OWord, Program, ProgramNumber, Statement,
+    Block, Diagnostic, Expr, ExprId, Missing, OLabel, OWord, Program, ProgramNumber, Statement,
+    excerpt,
 };
 
 use crate::diagnostics::Diagnostics;
@@ -76,6 +77,9 @@ pub(crate) struct Index {
     first_program: Option<usize>,
     /// The expression terms of each block (see [`terms`]), up to the last block that has any.
     terms: Vec<u32>,
+    /// The calls whose program's file was found and not linked, and why
+    /// ([`Program::unlinked`]).
+    unlinked: Vec<(Missing, String)>,
 }
 
 impl Index {
@@ -111,7 +115,7 @@ impl Index {
                 {
                     let name = match number {
                         ProgramNumber::Number(n) => format!("O{n:04}"),
-                        ProgramNumber::Name(name) => format!("O<{name}>"),
+                        ProgramNumber::Name(name) => format!("O<{}>", excerpt(name)),
                     };
                     diagnostics.push(Diagnostic::error(
                         block.span,
@@ -165,6 +169,7 @@ impl Index {
         }
         // Usually in order already (numbers rising through the text), which the sort notices.
         index.labels.sort_unstable();
+        index.unlinked.clone_from(&program.unlinked);
         for (label, head) in open_loops {
             if let Some(block) = program.blocks.get(head) {
                 diagnostics.push(Diagnostic::error(
@@ -189,6 +194,14 @@ impl Index {
     /// text heads the main program; later ones start programs that run only when called).
     pub(crate) fn starts_other_program(&self, at: usize) -> bool {
         self.first_program.is_some_and(|first| first != at)
+    }
+
+    /// Why the file holding the called program `missing` was not linked, if it was found.
+    pub(crate) fn unlinked(&self, missing: &Missing) -> Option<&str> {
+        self.unlinked
+            .iter()
+            .find(|(m, _)| m == missing)
+            .map(|(_, why)| why.as_str())
     }
 
     /// The first block of program `O number`.

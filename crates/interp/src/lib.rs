@@ -15,7 +15,7 @@ mod setup;
 mod state;
 mod states;
 
-pub use canon::{Axis, Canon, CanonRecorder, PlaneArc, Source, plane_length, plane_sweep};
+pub use canon::{Arc, Axis, Canon, CanonRecorder, PlaneArc, Source, plane_length, plane_sweep};
 pub use machine::{Interpreter, Limits, Piece, Status, run};
 pub use setup::{CornerMode, Machine, Register, Setup, SetupError, ShiftDirection, Units};
 pub use states::{BlockState, States, StatesRun, run_with_states};

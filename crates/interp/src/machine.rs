@@ -7,8 +7,8 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use swarf_syntax::{
-    Block, Diagnostic, Dialect, ExprId, OLabel, OWord, Program, Span, Statement, Word, WordForm,
-    codes::Code,
+    Block, Diagnostic, Dialect, ExprId, Missing, OLabel, OWord, Program, Span, Statement, Word,
+    WordForm, codes::Code,
 };
 
 use crate::exec::Request;
@@ -100,14 +100,9 @@ fn out_of_range(event: &Canon) -> Option<String> {
             feed_mm_per_min,
         } => point_out_of_range("the end point", *to)
             .or_else(|| feed_out_of_range(*feed_mm_per_min)),
-        Canon::Arc {
-            to,
-            center,
-            feed_mm_per_min,
-            ..
-        } => point_out_of_range("the end point", *to)
-            .or_else(|| point_out_of_range("the arc centre", *center))
-            .or_else(|| feed_out_of_range(*feed_mm_per_min)),
+        Canon::Arc(a) => point_out_of_range("the end point", a.to)
+            .or_else(|| point_out_of_range("the arc centre", a.center))
+            .or_else(|| feed_out_of_range(a.feed_mm_per_min)),
         Canon::Hole { top, bottom, .. } => point_out_of_range("the hole's top", *top)
             .or_else(|| point_out_of_range("the hole's bottom", *bottom)),
         Canon::Dwell { secs } => (!(0.0..=MAX_DWELL_SECS).contains(secs)).then(|| {
@@ -130,9 +125,9 @@ impl Sink for MotionCounter<'_> {
         }
         match event {
             Canon::Rapid { .. } | Canon::Feed { .. } => self.motions += 1,
-            Canon::Arc { turns, .. } => {
+            Canon::Arc(a) => {
                 self.motions += 1;
-                self.turns += u64::from(*turns) * TURN_WORK;
+                self.turns += u64::from(a.turns) * TURN_WORK;
             }
             _ => {}
         }
@@ -1074,12 +1069,19 @@ impl Interpreter {
                     .find(|(_, k)| *k == OKind::Sub)
                     .map(|(b, _)| *b)
                     .ok_or_else(|| {
-                        let message = match &key {
-                            LabelKey::Name(name) if !swarf_syntax::is_plain_file_name(name) => {
+                        let why = match &key {
+                            LabelKey::Name(name) => index.unlinked(&Missing::Name(name.to_string())),
+                            LabelKey::Number(_) => None,
+                        };
+                        let message = match (&key, why) {
+                            (LabelKey::Name(name), _) if !swarf_syntax::is_plain_file_name(name) => {
                                 format!(
                                     "{}: a called subroutine is looked for only beside the program, so its name may not hold a folder, `..` or a root",
                                     show_label(&key)
                                 )
+                            }
+                            (_, Some(why)) => {
+                                format!("no `{} sub` in this program: {why}", show_label(&key))
                             }
                             _ => format!(
                                 "no `{} sub` in this program nor in a file beside it (name.ngc)",
@@ -1299,15 +1301,7 @@ impl Interpreter {
             index
                 .program_start(number as u32)
                 .map(|s| s + 1)
-                .ok_or_else(|| {
-                    Diagnostic::error(
-                        block.span,
-                        "E-SUBPROGRAM",
-                        format!(
-                            "program O{number:04} is neither in this program nor in a file beside it (O{number:04}, O{number:04}.nc, {number}.nc …)"
-                        ),
-                    )
-                })?
+                .ok_or_else(|| not_found(index, block, "program", number))?
         };
         if repeats == 0 {
             return Ok(Flow::Next);
@@ -1356,15 +1350,7 @@ impl Interpreter {
             .program_start(number as u32)
             .filter(|_| number >= 0.0 && number.fract() == 0.0)
             .map(|s| s + 1)
-            .ok_or_else(|| {
-                Diagnostic::error(
-                    block.span,
-                    "E-SUBPROGRAM",
-                    format!(
-                        "macro program O{number:04} is neither in this program nor in a file beside it (O{number:04}, O{number:04}.nc, {number}.nc …)"
-                    ),
-                )
-            })?;
+            .ok_or_else(|| not_found(index, block, "macro program", number))?;
         if repeats == 0 {
             return Ok(Flow::Next);
         }
@@ -1452,10 +1438,25 @@ pub(crate) fn find(words: &[Word], letter: u8) -> Option<&Word> {
         .find(|w| w.letter == letter && w.form == WordForm::Plain)
 }
 
+/// The error of a call to program `O number` (`what`: a program or a macro program) that the
+/// program does not hold: why its file was not linked, when it was found.
+fn not_found(index: &Index, block: &Block, what: &str, number: f64) -> Diagnostic {
+    let why = (number >= 0.0 && number.fract() == 0.0)
+        .then(|| index.unlinked(&Missing::Number(number as u32)))
+        .flatten();
+    let message = match why {
+        Some(why) => format!("{what} O{number:04} is not in this program: {why}"),
+        None => format!(
+            "{what} O{number:04} is neither in this program nor in a file beside it (O{number:04}, O{number:04}.nc, {number}.nc …)"
+        ),
+    };
+    Diagnostic::error(block.span, "E-SUBPROGRAM", message)
+}
+
 fn show_label(key: &LabelKey) -> String {
     match key {
         LabelKey::Number(n) => format!("o{n}"),
-        LabelKey::Name(s) => format!("o<{s}>"),
+        LabelKey::Name(s) => format!("o<{}>", swarf_syntax::excerpt(s)),
     }
 }
 

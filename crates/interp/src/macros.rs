@@ -344,7 +344,10 @@ impl Variables {
         }
         match self.get_named(&name) {
             Some(v) => Ok(Some(v)),
-            None => Err(format!("named parameter #<{name}> is not defined")),
+            None => Err(format!(
+                "named parameter #<{}> is not defined",
+                swarf_syntax::excerpt(&name)
+            )),
         }
     }
 

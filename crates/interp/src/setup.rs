@@ -184,7 +184,7 @@ impl Default for Machine {
             rapid_mm_per_min: 10_000.0,
             rapid_xyz_mm_per_min: None,
             acceleration_mm_per_s2: 1000.0,
-            max_blocks: 50_000_000,
+            max_blocks: 20_000_000,
             max_work: 200_000_000,
             max_motions: 20_000_000,
             travel_mm: None,
@@ -212,6 +212,11 @@ pub struct Setup {
     pub work_offsets: BTreeMap<String, DVec3>,
     /// Machine parameters.
     pub machine: Machine,
+    /// The `[stock]` table as written (machine coordinates, mm, whatever `units` says): the
+    /// stock crate reads and checks it, as it depends on this one.
+    pub stock: Option<toml::Table>,
+    /// The `[tools.N]` tables as written (mm), by tool number, read and checked like `stock`.
+    pub tools: BTreeMap<u32, toml::Table>,
 }
 
 /// Why a setup file could not be read.
@@ -287,6 +292,10 @@ struct SetupFile {
     work_offsets: BTreeMap<String, [f64; 3]>,
     #[serde(default)]
     machine: Machine,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    stock: Option<toml::Table>,
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    tools: BTreeMap<u32, toml::Table>,
 }
 
 impl Setup {
@@ -296,6 +305,8 @@ impl Setup {
         let k = file.units.mm();
         let mut setup = Setup {
             machine: file.machine,
+            stock: file.stock,
+            tools: file.tools,
             ..Setup::default()
         };
         for (n, r) in file.registers {
@@ -385,6 +396,8 @@ impl Setup {
                 .map(|(k, v)| (k.clone(), v.to_array()))
                 .collect(),
             machine: self.machine.clone(),
+            stock: self.stock.clone(),
+            tools: self.tools.clone(),
         };
         Ok(toml::to_string(&file)?)
     }
@@ -447,6 +460,15 @@ mod tests {
         )
         .unwrap();
         s.machine.calculator_input = Some(true);
+        let stock = "[stock]\nmin = [0, 0, -20]\nmax = [100, 50, 0]\n[tools.3]\ndiameter = 6.0\n";
+        let with_stock = Setup::from_toml(stock).unwrap();
+        assert_eq!(
+            with_stock.stock.as_ref().unwrap()["max"][0].as_integer(),
+            Some(100)
+        );
+        assert_eq!(with_stock.tools[&3]["diameter"].as_float(), Some(6.0));
+        s.stock = with_stock.stock;
+        s.tools = with_stock.tools;
         let text = s.to_toml().unwrap();
         assert_eq!(Setup::from_toml(&text).unwrap(), s, "{text}");
         assert_eq!(

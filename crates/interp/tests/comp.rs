@@ -8,7 +8,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::{DVec2, DVec3};
-use swarf_interp::{Canon, CornerMode, Register, Setup, Sink, Source, run};
+use swarf_interp::{Arc, Canon, CornerMode, Register, Setup, Sink, Source, run};
 use swarf_syntax::{Diagnostic, Dialect, Severity, parse};
 
 /// Keeps the emitted (compensated) events and the programmed contour beside them.
@@ -172,7 +172,7 @@ fn pieces(events: &[(u32, Canon)], mut from: DVec3) -> Vec<(u32, Piece)> {
     for (line, e) in events {
         let to = e.end_point().unwrap();
         let arc = match e {
-            Canon::Arc { center, ccw, .. } => Some((xy(*center), *ccw)),
+            Canon::Arc(Arc { center, ccw, .. }) => Some((xy(*center), *ccw)),
             _ => None,
         };
         if (xy(to) - xy(from)).length() > 1e-12 || arc.is_some() {
@@ -211,9 +211,9 @@ fn outside_corners_get_an_arc_in_linuxcnc() {
     let arcs: Vec<_> = moves
         .iter()
         .filter_map(|(_, e)| match e {
-            Canon::Arc {
+            Canon::Arc(Arc {
                 to, center, ccw, ..
-            } => Some((*to, *center, *ccw)),
+            }) => Some((*to, *center, *ccw)),
             _ => None,
         })
         .collect();
@@ -245,11 +245,7 @@ fn outside_corners_meet_at_the_intersection_in_fanuc() {
     // The last side ends square to its end before the cancel move.
     assert_at(ends[5], [0.0, -2.0, 0.0], 1e-9);
     assert_at(ends[6], [-10.0, 0.0, 0.0], 1e-9);
-    assert!(
-        r.moves()
-            .iter()
-            .all(|(_, e)| !matches!(e, Canon::Arc { .. }))
-    );
+    assert!(r.moves().iter().all(|(_, e)| !matches!(e, Canon::Arc(_))));
 }
 
 #[test]
@@ -305,11 +301,11 @@ fn arcs_grow_or_shrink_by_the_offset() {
             let moves = r.moves();
             let i = moves
                 .iter()
-                .position(|(_, e)| matches!(e, Canon::Arc { .. }))
+                .position(|(_, e)| matches!(e, Canon::Arc(_)))
                 .unwrap();
             let start = moves[i - 1].1.end_point().unwrap();
             match &moves[i].1 {
-                Canon::Arc { to, center, .. } => (start, (*to, *center)),
+                Canon::Arc(Arc { to, center, .. }) => (start, (*to, *center)),
                 _ => unreachable!(),
             }
         };
@@ -331,7 +327,9 @@ fn a_helix_keeps_its_depth_change() {
     let (start, arc) = moves
         .windows(2)
         .find_map(|w| match &w[1].1 {
-            Canon::Arc { to, center, .. } => Some((w[0].1.end_point().unwrap(), (*to, *center))),
+            Canon::Arc(Arc { to, center, .. }) => {
+                Some((w[0].1.end_point().unwrap(), (*to, *center)))
+            }
             _ => None,
         })
         .unwrap();
@@ -549,9 +547,9 @@ N019 M30;
     let mut from = DVec3::ZERO;
     let mut arcs = 0;
     for (line, e) in &moves {
-        if let Canon::Arc {
+        if let Canon::Arc(Arc {
             to, center, ccw, ..
-        } = e
+        }) = e
         {
             let want = if *ccw { 5.0 } else { 20.0 };
             assert!((from.distance(*center) - want).abs() < 1e-9, "line {line}");
@@ -563,7 +561,7 @@ N019 M30;
                 .find(|(s, _)| s.line == *line)
                 .map(|(_, e)| e.clone());
             match programmed {
-                Some(Canon::Arc { center: c, .. }) => assert_at(*center, c.to_array(), 1e-9),
+                Some(Canon::Arc(Arc { center: c, .. })) => assert_at(*center, c.to_array(), 1e-9),
                 other => panic!("line {line}: {other:?}"),
             }
             arcs += 1;
@@ -614,7 +612,7 @@ M99;
     let mut from = DVec3::ZERO;
     let mut radii = Vec::new();
     for (_, e) in &moves {
-        if let Canon::Arc { to, center, .. } = e {
+        if let Canon::Arc(Arc { to, center, .. }) = e {
             let r0 = from.distance(*center);
             assert!((to.distance(*center) - r0).abs() < 1e-6);
             radii.push(r0);
@@ -740,9 +738,9 @@ fn fanuc_changes_side_at_the_intersection_of_the_two_offset_paths() {
         1e-9,
     );
     match &moves[3].1 {
-        Canon::Arc {
+        Canon::Arc(Arc {
             to, center, ccw, ..
-        } => {
+        }) => {
             assert_at(*center, [10.0, 20.0, 0.0], 1e-9);
             assert_at(*to, [22.0, 20.0, 0.0], 1e-9);
             assert!(!ccw);
@@ -859,7 +857,9 @@ fn a_lathe_tool_reports_its_imaginary_tip() {
                     (a.end_point().unwrap() + shift).to_array(),
                     1e-9,
                 );
-                if let (Canon::Arc { center: ca, .. }, Canon::Arc { center: cb, .. }) = (a, b) {
+                if let (Canon::Arc(Arc { center: ca, .. }), Canon::Arc(Arc { center: cb, .. })) =
+                    (a, b)
+                {
                     assert_at(*cb, (*ca + shift).to_array(), 1e-9);
                 }
             }

@@ -5,7 +5,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Canon, CanonRecorder, Setup, run};
+use swarf_interp::{Arc, Canon, CanonRecorder, Setup, run};
 use swarf_syntax::{Diagnostic, Dialect, parse};
 
 fn run_text(text: &str, dialect: Dialect) -> (Vec<Canon>, Vec<Diagnostic>) {
@@ -47,9 +47,9 @@ fn rounding_inserts_a_tangent_arc() {
         [
             Canon::Rapid { .. },
             Canon::Feed { to: a, .. },
-            Canon::Arc {
+            Canon::Arc(Arc {
                 to: b, center, ccw, ..
-            },
+            }),
             Canon::Feed { to: c, .. },
         ] => {
             assert!(near(*a, [7.0, 0.0, 0.0]), "{a}");

@@ -22,7 +22,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, CanonRecorder, Setup, Source, run};
+use swarf_interp::{Arc, Axis, Canon, CanonRecorder, Setup, Source, run};
 use swarf_syntax::{Diagnostic, Dialect, Severity, parse};
 
 /// One run: the events with their sources, and the parse and run diagnostics.
@@ -86,13 +86,13 @@ impl Run {
         self.events
             .iter()
             .filter_map(|(_, e)| match e {
-                Canon::Arc {
+                Canon::Arc(Arc {
                     to,
                     center,
                     ccw,
                     turns,
                     ..
-                } => Some((*to, *center, *ccw, *turns)),
+                }) => Some((*to, *center, *ccw, *turns)),
                 _ => None,
             })
             .collect()
@@ -106,9 +106,9 @@ impl Run {
                 Canon::Feed {
                     feed_mm_per_min, ..
                 }
-                | Canon::Arc {
+                | Canon::Arc(Arc {
                     feed_mm_per_min, ..
-                } => Some(*feed_mm_per_min),
+                }) => Some(*feed_mm_per_min),
                 _ => None,
             })
             .collect()
@@ -1491,7 +1491,7 @@ M99;                        // small-flower subprogram return
         }
         for (k, (_, e)) in r.moves()[start + 1..start + 5].iter().enumerate() {
             match e {
-                Canon::Arc { ccw: c, .. } => assert_eq!(*c, ccw, "petal {k}"),
+                Canon::Arc(Arc { ccw: c, .. }) => assert_eq!(*c, ccw, "petal {k}"),
                 other => panic!("{other:?}"),
             }
         }
@@ -1884,9 +1884,9 @@ fn syntec_planes_g18_g19_arcs() {
     );
     r.assert_no_errors();
     match r.moves()[1].1 {
-        Canon::Arc {
+        Canon::Arc(Arc {
             to, center, axis, ..
-        } => {
+        }) => {
             assert_at(*to, [0.0, 5.0, 10.0], 1e-9);
             assert_at(*center, [0.0, 0.0, 0.0], 1e-9);
             assert_eq!(*axis, Axis::Y);
@@ -1900,9 +1900,9 @@ fn syntec_planes_g18_g19_arcs() {
     );
     r.assert_no_errors();
     match r.moves()[1].1 {
-        Canon::Arc {
+        Canon::Arc(Arc {
             center, axis, ccw, ..
-        } => {
+        }) => {
             assert_at(*center, [0.0, 0.0, 0.0], 1e-9);
             assert_eq!(*axis, Axis::X);
             assert!(*ccw);

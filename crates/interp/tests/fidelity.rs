@@ -8,7 +8,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Canon, CanonRecorder, Register, Setup, run};
+use swarf_interp::{Arc, Canon, CanonRecorder, Register, Setup, run};
 use swarf_syntax::{Diagnostic, Dialect, Severity, parse};
 
 fn run_with(text: &str, dialect: Dialect, setup: Setup) -> (Vec<Canon>, Vec<Diagnostic>) {
@@ -41,7 +41,7 @@ fn ends(events: &[Canon]) -> Vec<[f64; 3]> {
     events
         .iter()
         .filter_map(|e| match e {
-            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc { to, .. } => Some(*to),
+            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) => Some(*to),
             _ => None,
         })
         .map(|p| {
@@ -56,7 +56,7 @@ fn arcs(events: &[Canon]) -> Vec<(DVec3, bool)> {
     events
         .iter()
         .filter_map(|e| match e {
-            Canon::Arc { center, ccw, .. } => Some((*center, *ccw)),
+            Canon::Arc(Arc { center, ccw, .. }) => Some((*center, *ccw)),
             _ => None,
         })
         .collect()
@@ -274,7 +274,7 @@ fn linuxcnc_refuses_words_its_codes_do_not_take() {
     ] {
         let (events, diags) = run_with(text, Dialect::LinuxCnc, Setup::default());
         assert_eq!(codes(&diags), ["E-ARC-WORD"], "{text}");
-        assert!(events.iter().all(|e| !matches!(e, Canon::Arc { .. })));
+        assert!(events.iter().all(|e| !matches!(e, Canon::Arc(_))));
     }
     // The Fanuc family ignores it with a warning and cuts the arc.
     let (events, diags) = run_with(

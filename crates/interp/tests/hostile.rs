@@ -291,3 +291,58 @@ fn no_event_past_an_absurd_one_reaches_the_sink() {
     assert_eq!(codes(&diags), ["E-COORDINATE-RANGE"]);
     assert_eq!(rec.events.len(), 1);
 }
+
+/// A call whose program's file was found and not linked says why, naming the file, instead of
+/// saying that no file holds it.
+#[test]
+fn a_call_whose_file_was_not_linked_says_why() {
+    for (dialect, text, missing) in [
+        (
+            Dialect::Fanuc,
+            "M98 P1234\nM30\n",
+            swarf_syntax::Missing::Number(1234),
+        ),
+        (
+            Dialect::Fanuc,
+            "G65 P1234 A1.\nM30\n",
+            swarf_syntax::Missing::Number(1234),
+        ),
+        (
+            Dialect::LinuxCnc,
+            "o<part> call\nM2\n",
+            swarf_syntax::Missing::Name("part".into()),
+        ),
+    ] {
+        let mut program = parse(text, dialect);
+        let why = "/jobs/O1234.nc is larger than 1 MiB, the most read (--max-file-mb)";
+        program.unlinked.push((missing, why.to_string()));
+        let diags = swarf_interp::run(&program, Setup::default(), &mut CanonRecorder::default());
+        let call = diags
+            .iter()
+            .find(|d| matches!(d.code, "E-SUBPROGRAM" | "E-OWORD"))
+            .unwrap();
+        assert!(
+            call.message.ends_with(&format!(" in this program: {why}")),
+            "{}",
+            call.message
+        );
+        assert!(!call.message.contains("beside it"), "{}", call.message);
+    }
+}
+
+/// A diagnostic that names a subroutine or parameter quotes a short excerpt of a long name.
+#[test]
+fn a_long_name_is_quoted_short() {
+    let name = "n".repeat(100_000);
+    for text in [
+        format!("o<{name}> call\nM2\n"),
+        format!("#1 = #<{name}>\nM2\n"),
+    ] {
+        let program = parse(&text, Dialect::LinuxCnc);
+        let diags = swarf_interp::run(&program, Setup::default(), &mut CanonRecorder::default());
+        assert!(!diags.is_empty());
+        for d in &diags {
+            assert!(d.message.len() < 400, "{}: {}", d.code, &d.message[..400]);
+        }
+    }
+}

@@ -5,7 +5,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Canon, CanonRecorder, Setup, run};
+use swarf_interp::{Arc, Canon, CanonRecorder, Setup, run};
 use swarf_syntax::{Dialect, parse};
 
 fn run_text(text: &str, dialect: Dialect) -> (Vec<Canon>, Vec<&'static str>) {
@@ -67,7 +67,7 @@ N013 G47 Y-80.0;
     ];
     assert_eq!(ends(&motions), expected);
     match &motions[6] {
-        Canon::Arc { center, ccw, .. } => {
+        Canon::Arc(Arc { center, ccw, .. }) => {
             assert_eq!(*center, DVec3::new(200.0, 75.0, 0.0));
             assert!(*ccw);
         }

@@ -6,7 +6,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Canon, CanonRecorder, Setup, run};
+use swarf_interp::{Arc, Canon, CanonRecorder, Setup, run};
 use swarf_syntax::{Diagnostic, Dialect, Severity, parse};
 
 fn run_with(text: &str, dialect: Dialect, setup: Setup) -> (Vec<Canon>, Vec<Diagnostic>) {
@@ -28,7 +28,7 @@ fn ends(events: &[Canon]) -> Vec<[f64; 3]> {
     events
         .iter()
         .filter_map(|e| match e {
-            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc { to, .. } => Some(*to),
+            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) => Some(*to),
             _ => None,
         })
         .map(|p| {
@@ -128,7 +128,7 @@ fn kt_rotation_about_a_centre_e5() {
         );
     }
     match &events[4] {
-        Canon::Arc { center, ccw, .. } => {
+        Canon::Arc(Arc { center, ccw, .. }) => {
             assert!(*ccw);
             assert!((center.x - 41.716).abs() < 0.002 && (center.y - 30.0).abs() < 0.002);
         }
@@ -279,7 +279,7 @@ fn mirror_reverses_arcs_and_scaling_scales() {
         Dialect::Syntec,
     );
     match &events[1] {
-        Canon::Arc { to, ccw, .. } => {
+        Canon::Arc(Arc { to, ccw, .. }) => {
             assert!(!ccw, "a mirrored arc runs the other way");
             assert!(to.abs_diff_eq(DVec3::new(0.0, 10.0, 0.0), 1e-9));
         }

@@ -5,7 +5,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Canon, CanonRecorder, Interpreter, Setup, Status, run};
+use swarf_interp::{Arc, Canon, CanonRecorder, Interpreter, Setup, Status, run};
 use swarf_syntax::{Dialect, parse};
 
 /// Parses and runs `text` with calculator-type input (integers are millimetres, so these tests
@@ -206,9 +206,9 @@ fn arc_words_outside_arcs_are_reported() {
 fn inch_arcs_convert_centre_offsets() {
     let (rec, _) = run_text("G20 G0 X1\nG03 X-1 I-1 F10\n", Dialect::Fanuc);
     match &rec.events[1].1 {
-        Canon::Arc {
+        Canon::Arc(Arc {
             to, center, ccw, ..
-        } => {
+        }) => {
             assert!(to.abs_diff_eq(DVec3::new(-25.4, 0.0, 0.0), 1e-9));
             assert!(center.abs_diff_eq(DVec3::ZERO, 1e-9));
             assert!(*ccw);
@@ -233,7 +233,7 @@ fn linuxcnc_p_gives_the_turns_of_an_arc_and_counts_stay_in_range() {
     assert!(
         rec.events
             .iter()
-            .any(|(_, e)| matches!(e, Canon::Arc { turns: 2, .. }))
+            .any(|(_, e)| matches!(e, Canon::Arc(Arc { turns: 2, .. })))
     );
     let (_, diags) = run_text("G17 G2 X0 Y0 I1 P0 F100\n", Dialect::LinuxCnc);
     assert_eq!(codes(&diags), ["E-NUMBER-RANGE"]);

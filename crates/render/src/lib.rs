@@ -1,12 +1,13 @@
-//! Swarf's wgpu renderer: instanced anti-aliased segments with depth, an orbit camera,
-//! grid/axes geometry, CPU picking, offscreen targets and a compositor for egui.
+//! Swarf's wgpu renderer: instanced anti-aliased segments with depth, the cut stock as a lit
+//! surface, an orbit camera, grid/axes geometry, CPU picking, offscreen targets and a
+//! compositor for egui.
 //!
 //! It knows nothing of egui: callers hand it plain [`PathPoint`] slices (positions as f32
 //! relative to an origin they choose, one point per path vertex) and a view-projection matrix
 //! from [`OrbitCamera`]. With the `toolpath` feature, [`Drawing`] turns a recorded toolpath into
 //! those points as the backplot draws it; without it, the crate knows nothing of the
-//! interpreter. Everything works on the WebGL2 fallback (uniform buffers and vertex attributes
-//! only, no storage buffers).
+//! interpreter. Everything works on the WebGL2 fallback (uniform buffers, vertex attributes and
+//! a texture read in the vertex stage; no storage buffers).
 
 mod camera;
 mod composite;
@@ -16,6 +17,7 @@ mod path;
 mod pick;
 #[cfg(feature = "toolpath")]
 mod scene;
+mod stock;
 
 pub use camera::{MAX_DISTANCE, MIN_DISTANCE, OrbitCamera, Projection, StandardView};
 pub use composite::{COMPOSITE_WGSL, Compositor};
@@ -31,3 +33,4 @@ pub use path::{
 pub use pick::{Pick, pick_segment, segment_bounds};
 #[cfg(feature = "toolpath")]
 pub use scene::{Drawing, reference_points, view_bounds};
+pub use stock::{MAX_STOCK_CELLS, STOCK_UNIFORMS_SIZE, STOCK_WGSL, StockSurface};

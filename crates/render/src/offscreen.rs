@@ -9,6 +9,8 @@ use glam::Vec2;
 use crate::path::{DEPTH_FORMAT, PathRenderer};
 #[cfg(not(target_arch = "wasm32"))]
 use crate::path::{PathPoint, ViewParams};
+#[cfg(not(target_arch = "wasm32"))]
+use crate::stock::StockSurface;
 
 /// Why an offscreen render failed.
 #[derive(Debug, thiserror::Error)]
@@ -87,9 +89,9 @@ impl HeadlessGpu {
 }
 
 impl HeadlessGpu {
-    /// Draws `path` and `grid` with `params` (its viewport is set to the image size) into a
-    /// new `width`×`height` RGBA8 image over an opaque `background` (sRGB bytes), and returns
-    /// its pixels, top row first.
+    /// Draws `stock`, `path` and `grid` with `params` (its viewport is set to the image size)
+    /// into a new `width`×`height` RGBA8 image over an opaque `background` (sRGB bytes), and
+    /// returns its pixels, top row first.
     ///
     /// # Errors
     /// [`RenderError::Size`] for an unsupported size, [`RenderError::Readback`] when the
@@ -97,6 +99,7 @@ impl HeadlessGpu {
     #[cfg(not(target_arch = "wasm32"))]
     pub fn render_rgba8(
         &self,
+        stock: Option<&StockSurface<'_>>,
         path: &[PathPoint],
         grid: &[PathPoint],
         params: &ViewParams,
@@ -106,6 +109,7 @@ impl HeadlessGpu {
         let format = wgpu::TextureFormat::Rgba8Unorm;
         let target = RenderTarget::new(&self.device, width, height, format)?;
         let mut renderer = PathRenderer::new(&self.device, format, Some(DEPTH_FORMAT), 1);
+        renderer.set_stock(&self.device, &self.queue, stock);
         renderer.set_path(&self.device, &self.queue, path);
         renderer.set_grid(&self.device, &self.queue, grid);
         renderer.prepare(

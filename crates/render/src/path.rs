@@ -17,6 +17,8 @@ use std::ops::Range;
 
 use glam::{Mat4, Vec2, Vec3};
 
+use crate::stock::{StockPass, StockSurface};
+
 /// WGSL source of the path shader (vertex `vs_main`, fragments `fs_main_gamma_framebuffer`
 /// and `fs_main_linear_framebuffer`); public so tests can validate it with naga.
 pub const PATH_WGSL: &str = include_str!("path.wgsl");
@@ -676,6 +678,8 @@ pub struct PathRenderer {
     draw_layout: wgpu::BindGroupLayout,
     path: PointBatch,
     grid: PointBatch,
+    /// The cut stock, drawn before the path.
+    stock: StockPass,
 }
 
 impl PathRenderer {
@@ -807,6 +811,13 @@ impl PathRenderer {
         Self {
             opaque: pipeline("swarf_path_pipeline", true),
             overlay: pipeline("swarf_overlay_pipeline", false),
+            stock: StockPass::new(
+                device,
+                &bind_group_layout,
+                color_format,
+                depth_format,
+                sample_count,
+            ),
             uniform_buffer,
             bind_group,
             draw_layout,
@@ -830,6 +841,16 @@ impl PathRenderer {
     /// Replaces the grid, axes and outlines (see [`crate::grid_points`]), drawn after the path.
     pub fn set_grid(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
         self.grid.upload(device, queue, &self.draw_layout, points);
+    }
+
+    /// Replaces the cut stock drawn under the path (`None`: none).
+    pub fn set_stock(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        stock: Option<&StockSurface<'_>>,
+    ) {
+        self.stock.set(device, queue, stock);
     }
 
     /// Caps the points one GPU buffer holds below the device's largest buffer, so a long path
@@ -881,10 +902,11 @@ impl PathRenderer {
         queue.write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&uniforms));
     }
 
-    /// Records the draws (path, then grid and axes) into `pass`; viewport and scissor are the
-    /// caller's.
+    /// Records the draws (stock, path, then grid and axes) into `pass`; viewport and scissor
+    /// are the caller's.
     pub fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_bind_group(0, &self.bind_group, &[]);
+        self.stock.paint(pass);
         pass.set_pipeline(&self.opaque);
         self.path.draw(pass);
         pass.set_pipeline(&self.overlay);

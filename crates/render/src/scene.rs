@@ -247,17 +247,8 @@ fn programmed_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3) -> Vec<PathPoi
         let from = last.filter(|(l, _)| *l <= *line).map(|(_, p)| p);
         match (from, event) {
             (None, _) => marks.push(PathPoint::pen_up(rel(end))),
-            (
-                Some(from),
-                swarf_interp::Canon::Arc {
-                    center,
-                    axis,
-                    ccw,
-                    turns,
-                    ..
-                },
-            ) => {
-                for p in swarf_toolpath::tessellate_arc(from, end, *center, *axis, *ccw, *turns) {
+            (Some(from), swarf_interp::Canon::Arc(arc)) => {
+                for p in swarf_toolpath::tessellate_arc(from, arc) {
                     marks.push(PathPoint::new(rel(p), Kind::Programmed));
                 }
             }

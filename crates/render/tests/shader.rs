@@ -4,10 +4,15 @@
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use swarf_render::{
-    COMPOSITE_WGSL, DRAW_UNIFORMS_SIZE, PATH_WGSL, POINT_SIZE, PathPoint, UNIFORMS_SIZE,
+    COMPOSITE_WGSL, DRAW_UNIFORMS_SIZE, PATH_WGSL, POINT_SIZE, PathPoint, STOCK_UNIFORMS_SIZE,
+    STOCK_WGSL, UNIFORMS_SIZE,
 };
 
-const SHADERS: [(&str, &str); 2] = [("path", PATH_WGSL), ("composite", COMPOSITE_WGSL)];
+const SHADERS: [(&str, &str); 3] = [
+    ("path", PATH_WGSL),
+    ("composite", COMPOSITE_WGSL),
+    ("stock", STOCK_WGSL),
+];
 
 fn parse(name: &str, source: &str) -> naga::Module {
     match naga::front::wgsl::parse_str(source) {
@@ -134,6 +139,50 @@ fn composite_shader_samples_one_texture() {
             .iter()
             .all(|(_, g)| g.space == naga::AddressSpace::Handle),
         "only a texture and a sampler"
+    );
+}
+
+#[test]
+fn stock_shader_reads_heights_from_a_texture_and_two_uniforms() {
+    let module = parse("stock", STOCK_WGSL);
+    let names = entry_names(&module);
+    for want in [
+        "vs_main",
+        "fs_main_gamma_framebuffer",
+        "fs_main_linear_framebuffer",
+    ] {
+        assert!(
+            names.contains(&want),
+            "missing entry point {want}: {names:?}"
+        );
+    }
+    // Group 0: the path renderer's frame uniforms, of which it reads the first member; group 1:
+    // the stock's uniforms and its heights. No storage buffer, no sampler.
+    let globals: Vec<_> = module.global_variables.iter().map(|(_, g)| g).collect();
+    let spaces: Vec<_> = globals.iter().map(|g| g.space).collect();
+    assert_eq!(
+        spaces,
+        [
+            naga::AddressSpace::Uniform,
+            naga::AddressSpace::Uniform,
+            naga::AddressSpace::Handle
+        ]
+    );
+    let size = |i: usize| u64::from(module.types[globals[i].ty].inner.size(module.to_ctx()));
+    assert!(size(0) <= UNIFORMS_SIZE);
+    assert_eq!(size(1), STOCK_UNIFORMS_SIZE);
+    assert_eq!(STOCK_UNIFORMS_SIZE % 16, 0);
+    // No vertex attributes: every vertex comes from its index.
+    let vs = module
+        .entry_points
+        .iter()
+        .find(|e| e.name == "vs_main")
+        .map(|e| &e.function)
+        .unwrap();
+    assert!(
+        vs.arguments
+            .iter()
+            .all(|a| matches!(a.binding, Some(naga::Binding::BuiltIn(_))))
     );
 }
 

@@ -10,14 +10,18 @@
 //! [`Simulation::new`] takes a [`Stock`] and the [`Tool`]s by number (both read from a setup's
 //! `[stock]` and `[tools.N]`), [`Simulation::step`] cuts a bounded number of a toolpath's
 //! segments per call, and [`Simulation::field`] and [`Simulation::findings`] give the
-//! [`HeightField`] and the [`Finding`]s so far.
+//! [`HeightField`] and the [`Finding`]s so far. [`StockSetup`] reads those tables from a
+//! [`swarf_interp::Setup`], and [`StockRun`] cuts a toolpath out of them and gives what it
+//! assumed and found as diagnostics at their lines.
 
 mod field;
+mod setup;
 mod sim;
 
 use serde::Deserialize;
 
 pub use field::HeightField;
+pub use setup::{StockRun, StockSetup, line_span};
 pub use sim::{Finding, Simulation};
 
 /// The finest cell a grid may have, in millimetres.
@@ -248,6 +252,15 @@ pub enum StockError {
     /// A shape key missing or given to a shape it does not apply to.
     #[error("{0}")]
     Shape(&'static str),
+    /// A setup's table that does not read as a stock or a tool (an unknown key, a missing one,
+    /// a value of the wrong type).
+    #[error("`[{key}]`: {message}")]
+    Table {
+        /// The table, `stock` or `tools.3`.
+        key: String,
+        /// What is wrong in it.
+        message: String,
+    },
 }
 
 /// `value` for `key` when it lies in `min..=max`; a range error naming the key otherwise.

@@ -462,6 +462,63 @@ impl Block {
     fn extras_mut(&mut self) -> &mut Extras {
         self.extras.get_or_insert_with(Box::default)
     }
+
+    /// The bytes the block holds, its own and those it points to (for the parse's memory bound,
+    /// [`MAX_PARSED_BYTES`](crate::MAX_PARSED_BYTES)).
+    pub(crate) fn held_bytes(&self) -> usize {
+        let words = if self.words.spilled() {
+            self.words.capacity() * size_of::<Word>()
+        } else {
+            0
+        };
+        let extras = self.extras.as_deref().map_or(0, |e| {
+            let program = match &e.program {
+                Some(ProgramNumber::Name(name)) => name.len(),
+                _ => 0,
+            };
+            size_of::<Extras>()
+                + program
+                + e.statements
+                    .iter()
+                    .map(Statement::held_bytes)
+                    .sum::<usize>()
+                + size_of_val::<[Span]>(&e.comments)
+        });
+        size_of::<Block>() + words + extras
+    }
+}
+
+impl Statement {
+    /// The bytes the statement holds, its own and those it points to.
+    fn held_bytes(&self) -> usize {
+        size_of::<Statement>()
+            + match self {
+                Statement::If { then, .. } => then.held_bytes(),
+                Statement::OWord { label, kind } => {
+                    let name = match label {
+                        OLabel::Name(name) => name.len(),
+                        OLabel::Number(_) | OLabel::Expr(_) => 0,
+                    };
+                    let args = match kind {
+                        OWord::Call(args) => args.capacity() * size_of::<ExprId>(),
+                        _ => 0,
+                    };
+                    name + args
+                }
+                _ => 0,
+            }
+    }
+}
+
+impl ExprNode {
+    /// The bytes the node holds, its own and a name's.
+    pub(crate) fn held_bytes(&self) -> usize {
+        size_of::<ExprNode>()
+            + match &self.expr {
+                Expr::Named(name) => name.len(),
+                _ => 0,
+            }
+    }
 }
 
 /// A parsed program: its blocks, the diagnostics found while reading it, and its line table.
@@ -481,11 +538,27 @@ pub struct Program {
     pub syntec_macro: bool,
     /// The files linked after the program's own text (see [`Program::link`]).
     pub linked: Vec<crate::link::LinkedFile>,
+    /// The calls whose program was found in a file that was not linked, and why (see
+    /// [`Program::link_calls`]).
+    pub unlinked: Vec<(crate::link::Missing, String)>,
 }
 
 impl Program {
     /// The expression node `id` refers to.
     pub fn expr(&self, id: ExprId) -> Option<&ExprNode> {
         self.exprs.get(id.index())
+    }
+
+    /// The bytes the parsed program holds, estimated from the sizes of its parts: its line
+    /// table, blocks, expressions and diagnostics (see [`MAX_PARSED_BYTES`](crate::MAX_PARSED_BYTES)).
+    pub(crate) fn held_bytes(&self) -> usize {
+        self.lines.line_count() * size_of::<u32>()
+            + self.blocks.iter().map(Block::held_bytes).sum::<usize>()
+            + self.exprs.iter().map(ExprNode::held_bytes).sum::<usize>()
+            + self
+                .diagnostics
+                .iter()
+                .map(Diagnostic::held_bytes)
+                .sum::<usize>()
     }
 }

@@ -194,6 +194,11 @@ impl Checker {
         }
     }
 
+    /// The diagnostics found so far (merged into the program's by [`Checker::finish`]).
+    pub(crate) fn diagnostics(&self) -> &[Diagnostic] {
+        &self.out
+    }
+
     /// Merges the diagnostics found into `program`'s, in text order.
     pub(crate) fn finish(self, program: &mut Program) {
         if !self.out.is_empty() {

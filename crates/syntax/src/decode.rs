@@ -3,6 +3,10 @@
 
 use crate::{Diagnostic, Span};
 
+/// The largest file read as a program, a setup or a called program (256 MiB): a larger one is
+/// refused before it is read (the CLI's `--max-file-mb`, the app's open).
+pub const MAX_FILE_BYTES: u64 = 256 << 20;
+
 /// The character encoding a program file was read with (and should be written back with).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Encoding {

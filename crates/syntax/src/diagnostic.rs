@@ -2,6 +2,7 @@
 
 mod registry;
 
+use std::borrow::Cow;
 use std::fmt;
 
 pub use registry::{DIAGNOSTICS, DiagnosticDef};
@@ -38,6 +39,18 @@ impl Span {
     /// Whether the span covers no byte.
     pub fn is_empty(self) -> bool {
         self.end == self.start
+    }
+}
+
+/// The most characters of a program's text that a diagnostic quotes.
+pub const EXCERPT_CHARS: usize = 40;
+
+/// `text` as a diagnostic quotes it: at most [`EXCERPT_CHARS`] characters, then `…`, so that a
+/// message stays short however long the line it quotes.
+pub fn excerpt(text: &str) -> Cow<'_, str> {
+    match text.char_indices().nth(EXCERPT_CHARS) {
+        Some((at, _)) => Cow::Owned(format!("{}…", text.get(..at).unwrap_or_default())),
+        None => Cow::Borrowed(text),
     }
 }
 
@@ -96,6 +109,11 @@ impl Diagnostic {
     /// A note diagnostic.
     pub fn note(span: Span, code: &'static str, message: impl Into<String>) -> Self {
         Self::new(span, Severity::Note, code, message.into())
+    }
+
+    /// The bytes the diagnostic holds, its own and its message's.
+    pub(crate) fn held_bytes(&self) -> usize {
+        size_of::<Diagnostic>() + self.message.capacity()
     }
 
     /// The one constructor; debug builds check `code` is registered with `severity`.

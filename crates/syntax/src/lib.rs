@@ -19,10 +19,14 @@ pub use ast::{
     Word, WordForm,
 };
 pub use codes::{Code, CodeDef, DialectSet};
-pub use decode::{Decoded, Encoding, decode, decode_owned};
-pub use diagnostic::{DIAGNOSTICS, Diagnostic, DiagnosticDef, Severity, Span};
+pub use decode::{Decoded, Encoding, MAX_FILE_BYTES, decode, decode_owned};
+pub use diagnostic::{
+    DIAGNOSTICS, Diagnostic, DiagnosticDef, EXCERPT_CHARS, Severity, Span, excerpt,
+};
 pub use dialect::{Dialect, Quantity, Rules, TimeRule, UnknownDialect};
 pub use line_index::{LineCols, LineIndex};
-pub use link::{CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Missing, is_plain_file_name};
-pub use parser::{ParseRun, parse};
+pub use link::{
+    CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Lookup, Missing, is_plain_file_name,
+};
+pub use parser::{MAX_PARSED_BYTES, ParseRun, parse};
 pub use source::LineSource;

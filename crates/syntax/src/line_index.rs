@@ -10,26 +10,38 @@ impl LineIndex {
     /// Builds the table for `text`. A line ends at `\n`, at `\r\n` (one ending) or at a `\r`
     /// alone (old Mac files, and the `\r\r\n` some Windows tools write, which is two endings).
     pub fn new(text: &str) -> Self {
+        LineIndex::at_most(text, usize::MAX)
+    }
+
+    /// Builds the table for the first `max` lines of `text` (at least one), so that a text of
+    /// more lines than a reader takes costs no more table than it reads.
+    pub fn at_most(text: &str, max: usize) -> Self {
         let bytes = text.as_bytes();
         // Most texts end their lines with `\n`, and a `\r` in one is most often that of a
         // `\r\n`: one pass finds the line feeds and whether there is a `\r` at all (a line is
         // rarely under sixteen bytes, so the table seldom grows).
-        let mut starts = Vec::with_capacity(bytes.len() / 16 + 2);
+        let mut starts = Vec::with_capacity((bytes.len() / 16 + 2).min(max));
         starts.push(0);
-        if !for_each_line_feed(bytes, |at| starts.push(line_after(0, at))) {
+        let push = |starts: &mut Vec<u32>, at| {
+            if starts.len() < max {
+                starts.push(line_after(0, at));
+            }
+        };
+        if !for_each_line_feed(bytes, |at| push(&mut starts, at)) {
             return LineIndex { starts };
         }
-        // Every `\r` is that of a `\r\n` when there are as many as line feeds after one.
+        // Every `\r` is that of a `\r\n` when there are as many as line feeds after one (a
+        // table cut short counts fewer, and takes the general pass).
         let pairs = starts
             .iter()
             .skip(1)
             .filter(|&&start| start >= 2 && bytes.get(start as usize - 2) == Some(&b'\r'))
             .count();
-        if pairs == count_byte(bytes, b'\r') {
+        if starts.len() < max && pairs == count_byte(bytes, b'\r') {
             return LineIndex { starts };
         }
         starts.truncate(1);
-        for_each_marked(bytes, line_end_mask, |at| starts.push(line_after(0, at)));
+        for_each_marked(bytes, line_end_mask, |at| push(&mut starts, at));
         LineIndex { starts }
     }
 

@@ -7,7 +7,7 @@
 //! [`Program::linked`] tells which file a span or a line belongs to.
 
 use crate::ast::{Expr, ExprId, OLabel, OWord, Statement};
-use crate::{Dialect, LineIndex, Program, ProgramNumber, Span};
+use crate::{Dialect, LineIndex, MAX_PARSED_BYTES, ParseRun, Program, ProgramNumber, Span};
 
 /// The text of a file [`Program::link_calls`] linked, kept to show its diagnostics.
 #[derive(Debug, Clone)]
@@ -42,6 +42,25 @@ pub enum Missing {
     Number(u32),
     /// LinuxCNC `o<name> call` with no `o<name> sub`.
     Name(String),
+}
+
+/// What [`Program::link_calls`]'s `find` found for a call: `None` and `Some((name, text))`
+/// convert to it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Lookup {
+    /// No file holds the called program.
+    None,
+    /// The file (its name, e.g. its path) and its text.
+    Found(String, String),
+    /// A file that would hold it cannot be linked (a folder, unreadable, too large): why,
+    /// naming the file, for the call's diagnostic.
+    Refused(String),
+}
+
+impl From<Option<(String, String)>> for Lookup {
+    fn from(found: Option<(String, String)>) -> Self {
+        found.map_or(Lookup::None, |(name, text)| Lookup::Found(name, text))
+    }
 }
 
 /// File name extensions a called program's file may have, in the order they are tried.
@@ -91,29 +110,59 @@ impl Missing {
 impl Program {
     /// Links the programs this program calls and does not hold, until nothing more is found or
     /// `max` files are linked: `find` names the file (name, text) a missing call's program may
-    /// be in (the CLI looks beside the program, the editor among its open tabs). Each file is
-    /// linked once, read as `dialect`; `main_len` is this program's own text's length.
-    pub fn link_calls(
+    /// be in (the CLI looks beside the program, the editor among its open tabs), or why the
+    /// file it found cannot be linked. Each file is linked once, read as `dialect`; `main_len`
+    /// is this program's own text's length. The linked files' texts and parsed programs hold
+    /// at most what this program leaves of [`MAX_PARSED_BYTES`]. A call whose file is refused,
+    /// or not looked for past `max` files, is in [`Program::unlinked`] with the reason.
+    pub fn link_calls<L: Into<Lookup>>(
         &mut self,
         main_len: usize,
         dialect: Dialect,
         max: usize,
-        mut find: impl FnMut(&Missing) -> Option<(String, String)>,
+        mut find: impl FnMut(&Missing) -> L,
     ) -> Vec<LinkedSource> {
         let mut linked: Vec<LinkedSource> = Vec::new();
+        // What the linked files may still hold (counted once a file is found).
+        let mut left: Option<usize> = None;
+        let limit = MAX_PARSED_BYTES >> 20;
         loop {
             let mut progress = false;
             for missing in self.missing_calls() {
-                if linked.len() >= max {
-                    return linked;
-                }
-                let Some((name, text)) = find(&missing) else {
+                if self.unlinked.iter().any(|(m, _)| *m == missing) {
                     continue;
+                }
+                if linked.len() >= max {
+                    let reason =
+                        format!("not looked for: the program links {max} files, the most it may");
+                    self.unlinked.push((missing, reason));
+                    continue;
+                }
+                let (name, text) = match find(&missing).into() {
+                    Lookup::None => continue,
+                    Lookup::Found(name, text) => (name, text),
+                    Lookup::Refused(reason) => {
+                        self.unlinked.push((missing, reason));
+                        continue;
+                    }
                 };
                 if linked.iter().any(|l| l.name == name) {
                     continue;
                 }
-                let mut sub = crate::parse(&text, dialect);
+                let room =
+                    *left.get_or_insert_with(|| MAX_PARSED_BYTES.saturating_sub(self.held_bytes()));
+                let Some(room) = room.checked_sub(text.len()) else {
+                    let reason = format!(
+                        "{name} is not linked: with it the program would hold more than {limit} MiB"
+                    );
+                    self.unlinked.push((missing, reason));
+                    continue;
+                };
+                let mut run = ParseRun::new(&text, dialect);
+                run.set_max_bytes(room);
+                while !run.step(&text, usize::MAX) {}
+                left = Some(room.saturating_sub(run.held_bytes()));
+                let mut sub = run.finish();
                 if let Missing::Number(n) = missing {
                     number_by_file_name(&mut sub, n, &name);
                 }
@@ -287,7 +336,7 @@ fn number_by_file_name(sub: &mut Program, n: u32, name: &str) {
     {
         let other = match other {
             ProgramNumber::Number(m) => format!("O{m:04}"),
-            ProgramNumber::Name(s) => format!("O<{s}>"),
+            ProgramNumber::Name(s) => format!("O<{}>", crate::excerpt(s)),
         };
         sub.diagnostics.push(crate::Diagnostic::warning(
             first.span,

@@ -31,7 +31,7 @@
 use std::collections::HashSet;
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, Machine, PlaneArc, Sink, Source, StrokeZone};
+use swarf_interp::{Arc, Canon, Machine, PlaneArc, Sink, Source, StrokeZone};
 
 /// What a segment is, for colouring and statistics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -1052,9 +1052,9 @@ impl Toolpath {
         self.push(kind, to, line, feed_mm_per_min, feed_mm_per_min, None);
     }
 
-    fn push_arc(&mut self, arc: &ArcEvent, line: u32) {
+    fn push_arc(&mut self, arc: &Arc, line: u32) {
         let from = self.ends.last().copied().unwrap_or(self.start);
-        let geometry = PlaneArc::new(from, arc.to, arc.center, arc.axis, arc.ccw, arc.turns);
+        let geometry = arc.plane(from);
         let radius = geometry
             .radius
             .min(geometry.end_radius)
@@ -1152,16 +1152,6 @@ fn max_segments(machine: &Machine) -> usize {
     usize::try_from(machine.max_motions).unwrap_or(usize::MAX)
 }
 
-/// The fields of [`Canon::Arc`].
-struct ArcEvent {
-    to: DVec3,
-    center: DVec3,
-    axis: Axis,
-    ccw: bool,
-    turns: u32,
-    feed_mm_per_min: f64,
-}
-
 impl Sink for Toolpath {
     fn origin(&mut self, at: DVec3) {
         self.origins.add(at, point_key(at));
@@ -1183,24 +1173,7 @@ impl Sink for Toolpath {
                 to,
                 feed_mm_per_min,
             } => self.push_line(SegmentKind::Feed, *to, source.line, *feed_mm_per_min),
-            Canon::Arc {
-                to,
-                center,
-                axis,
-                ccw,
-                turns,
-                feed_mm_per_min,
-            } => {
-                let arc = ArcEvent {
-                    to: *to,
-                    center: *center,
-                    axis: *axis,
-                    ccw: *ccw,
-                    turns: *turns,
-                    feed_mm_per_min: *feed_mm_per_min,
-                };
-                self.push_arc(&arc, source.line);
-            }
+            Canon::Arc(arc) => self.push_arc(arc, source.line),
             Canon::Dwell { secs } => {
                 self.stop();
                 let secs = if secs.is_finite() { secs.max(0.0) } else { 0.0 };
@@ -1315,23 +1288,17 @@ impl ArcDrawing for PlaneArc {
     }
 }
 
-/// Points along an arc (excluding `from`, ending exactly at `to`) within [`CHORD_TOLERANCE_MM`].
-pub fn tessellate_arc(
-    from: DVec3,
-    to: DVec3,
-    center: DVec3,
-    axis: Axis,
-    ccw: bool,
-    turns: u32,
-) -> Vec<DVec3> {
-    let arc = PlaneArc::new(from, to, center, axis, ccw, turns);
-    arc.points(from, to, arc.chords())
+/// Points along `arc` after `from`, the last exactly `arc.to`, within [`CHORD_TOLERANCE_MM`].
+pub fn tessellate_arc(from: DVec3, arc: &Arc) -> Vec<DVec3> {
+    let plane = arc.plane(from);
+    plane.points(from, arc.to, plane.chords())
 }
 
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
+    use swarf_interp::Axis;
 
     /// The end times by the plain two-pass definition: every entry speed from a backward pass
     /// into its own array, then the moves timed in order.

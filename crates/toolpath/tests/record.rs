@@ -5,7 +5,7 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{Axis, Canon, Machine, Setup, Sink, Source, run};
+use swarf_interp::{Arc, Axis, Canon, Machine, Setup, Sink, Source, run};
 use swarf_syntax::{Dialect, parse};
 use swarf_toolpath::{Kinematics, SegmentKind, Toolpath, tessellate_arc};
 
@@ -49,7 +49,15 @@ fn records_segments_lengths_bounds_and_time() {
 fn arcs_are_tessellated_within_tolerance_and_end_exactly() {
     let from = DVec3::new(10.0, 0.0, 0.0);
     let to = DVec3::new(-10.0, 0.0, -2.0);
-    let pts = tessellate_arc(from, to, DVec3::ZERO, Axis::Z, true, 0);
+    let arc = Arc {
+        to,
+        center: DVec3::ZERO,
+        axis: Axis::Z,
+        ccw: true,
+        turns: 0,
+        feed_mm_per_min: 100.0,
+    };
+    let pts = tessellate_arc(from, &arc);
     assert!(pts.len() > 10);
     assert_eq!(*pts.last().unwrap(), to);
     for p in &pts {
@@ -59,14 +67,11 @@ fn arcs_are_tessellated_within_tolerance_and_end_exactly() {
     let mut path = Toolpath::new(from, 10_000.0);
     path.emit(
         Source { block: 0, line: 7 },
-        &Canon::Arc {
+        &Canon::Arc(Arc {
             to: from,
-            center: DVec3::ZERO,
-            axis: Axis::Z,
             ccw: false,
-            turns: 0,
-            feed_mm_per_min: 100.0,
-        },
+            ..arc
+        }),
     );
     assert!(path.lines().iter().all(|&l| l == 7));
     assert!((path.feed_length_mm() - 20.0 * std::f64::consts::PI).abs() < 0.05);
@@ -262,14 +267,14 @@ fn arcs_join_tangent_lines_smoothly_and_respect_centripetal_acceleration() {
     feed(&mut path, 1, DVec3::new(50.0, 0.0, 0.0), 6000.0);
     path.emit(
         Source { block: 2, line: 2 },
-        &Canon::Arc {
+        &Canon::Arc(Arc {
             to: DVec3::new(60.0, 10.0, 0.0),
             center: DVec3::new(50.0, 10.0, 0.0),
             axis: Axis::Z,
             ccw: true,
             turns: 0,
             feed_mm_per_min: 6000.0,
-        },
+        }),
     );
     let timeline = path.timeline();
     let times = timeline.end_times();
@@ -286,14 +291,14 @@ fn arcs_join_tangent_lines_smoothly_and_respect_centripetal_acceleration() {
     let mut small = Toolpath::with_kinematics(DVec3::new(1.0, 0.0, 0.0), kinematics());
     small.emit(
         Source::default(),
-        &Canon::Arc {
+        &Canon::Arc(Arc {
             to: DVec3::new(1.0, 0.0, 0.0),
             center: DVec3::ZERO,
             axis: Axis::Z,
             ccw: true,
             turns: 0,
             feed_mm_per_min: 6000.0,
-        },
+        }),
     );
     let v = 1000.0f64.sqrt();
     let expected = small.feed_length_mm() / v + v / 1000.0;

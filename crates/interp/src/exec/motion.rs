@@ -8,7 +8,7 @@ use super::feeds::move_feed;
 use super::{Axes, MAX_COUNT, count_range};
 use crate::machine::find;
 use crate::state::{FeedMode, MotionMode, State, plane_axes};
-use crate::{Axis, Canon, PlaneArc, Sink, Source, plane_length};
+use crate::{Arc, Axis, Canon, PlaneArc, Sink, Source, plane_length};
 
 /// The program-frame end point of a move programmed with `axes` (G90/G91, polar).
 pub(super) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
@@ -412,14 +412,14 @@ pub(super) fn arc(
         st,
         sink,
         source,
-        &Canon::Arc {
+        &Canon::Arc(Arc {
             to,
             center: machine_center,
             axis: st.plane,
             ccw,
             turns,
             feed_mm_per_min,
-        },
+        }),
     );
     true
 }

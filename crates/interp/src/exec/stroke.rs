@@ -8,7 +8,7 @@ use super::Requests;
 use super::tools::tool_tip_shift;
 use crate::machine::find;
 use crate::state::State;
-use crate::{Axis, Canon, PlaneArc, Sink, Source, StrokeZone};
+use crate::{Arc, Canon, Sink, Source, StrokeZone};
 
 /// Runs a block (`run`) with its moves checked against the G22 stroke limit and the machine's
 /// travel where they apply, and reports a move that breaks them.
@@ -77,14 +77,7 @@ impl Sink for StrokeGuard<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
         let points = match event {
             Canon::Rapid { to } | Canon::Feed { to, .. } => vec![*to + self.gauge],
-            Canon::Arc {
-                to,
-                center,
-                axis,
-                ccw,
-                turns,
-                ..
-            } => arc_points(self.from - self.gauge, *to, *center, *axis, *ccw, *turns)
+            Canon::Arc(arc) => arc_points(self.from - self.gauge, arc)
                 .into_iter()
                 .map(|p| p + self.gauge)
                 .collect(),
@@ -119,17 +112,10 @@ impl Sink for StrokeGuard<'_> {
 }
 
 /// Points along an arc event from `from` (excluding it, ending at `to`), 64 per turn.
-fn arc_points(
-    from: DVec3,
-    to: DVec3,
-    center: DVec3,
-    axis: Axis,
-    ccw: bool,
-    turns: u32,
-) -> Vec<DVec3> {
-    let arc = PlaneArc::new(from, to, center, axis, ccw, turns);
-    let n = ((arc.sweep.abs() / std::f64::consts::TAU * 64.0).ceil() as usize).clamp(1, 100_000);
-    arc.points(from, to, n)
+fn arc_points(from: DVec3, arc: &Arc) -> Vec<DVec3> {
+    let plane = arc.plane(from);
+    let n = ((plane.sweep.abs() / std::f64::consts::TAU * 64.0).ceil() as usize).clamp(1, 100_000);
+    plane.points(from, arc.to, n)
 }
 
 /// G22 X Y Z I J K: the programmable stroke limit (machine coordinates) / G23: off. Syntec pairs

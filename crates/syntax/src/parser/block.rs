@@ -4,7 +4,7 @@
 use super::is_blank;
 use super::number::{scan_decimal, scan_sign, with_sign};
 use crate::ast::{Func, ProgramNumber, Statement};
-use crate::{Block, Diagnostic, Dialect, Program, Rules, Span, Word, WordForm};
+use crate::{Block, Diagnostic, Dialect, Program, Rules, Span, Word, WordForm, excerpt};
 
 /// Whether `c` can only be a stray character where a block item should start: not a blank, a
 /// letter, or a character that starts something (comment, block end, slash, variable, comma
@@ -279,7 +279,8 @@ impl LineReader<'_> {
                             .unwrap_or(line.len() - pos);
                     let end = self.recover(pos, end);
                     let stray = &line[pos..end];
-                    let shown = stray.escape_debug();
+                    let shown = excerpt(stray);
+                    let shown = shown.escape_debug();
                     let message = if stray.chars().count() == 1 {
                         format!("unexpected character `{shown}`")
                     } else {
@@ -435,7 +436,8 @@ impl LineReader<'_> {
                         end,
                         "E-NUMBER-RANGE",
                         format!(
-                            "sequence number `N{digits}` is above the largest this control accepts ({})",
+                            "sequence number `N{}` is above the largest this control accepts ({})",
+                            excerpt(digits),
                             self.rules.max_sequence_number
                         ),
                     );
@@ -448,7 +450,10 @@ impl LineReader<'_> {
                 pos,
                 end,
                 "E-SEQUENCE-NUMBER",
-                format!("sequence number `N{digits}` must be a whole number"),
+                format!(
+                    "sequence number `N{}` must be a whole number",
+                    excerpt(digits)
+                ),
             ),
         }
         end
@@ -578,7 +583,7 @@ impl LineReader<'_> {
                     "E-WORD-INDEXED",
                     format!(
                         "`{}` is Syntec syntax (`F2=` retract feed, `S1=` spindle speed); {} does not read it",
-                        &self.line[pos..end],
+                        excerpt(&self.line[pos..end]),
                         self.dialect.label()
                     ),
                 ));
@@ -631,7 +636,7 @@ impl LineReader<'_> {
                     "E-WORD-VALUE",
                     format!(
                         "`{}` is not a word: address `{shown}` needs a number after it",
-                        &self.line[pos..run_end]
+                        excerpt(&self.line[pos..run_end])
                     ),
                 ));
             }
@@ -659,11 +664,14 @@ impl LineReader<'_> {
                 if max > 0 && significant > max {
                     format!(
                         "`{}` has {significant} digits; {} accepts at most {max}",
-                        &self.line[pos..end],
+                        excerpt(&self.line[pos..end]),
                         self.dialect.label()
                     )
                 } else {
-                    format!("the number `{}` is out of range", &self.line[pos..end])
+                    format!(
+                        "the number `{}` is out of range",
+                        excerpt(&self.line[pos..end])
+                    )
                 },
             ));
         }

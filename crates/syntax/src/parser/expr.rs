@@ -4,6 +4,7 @@
 use super::block::{Fail, LineReader, PResult};
 use super::number::unsigned;
 use crate::ast::{BinOp, Expr, ExprId, ExprNode, Func};
+use crate::excerpt;
 
 /// Nesting depth at which the parser stops descending into an expression, whatever the dialect
 /// allows (so hostile input cannot exhaust the stack).
@@ -175,7 +176,7 @@ impl LineReader<'_> {
                         "E-EXPR",
                         format!(
                             "`{}`: a number with an exponent is not read by the control; write it out in full",
-                            &self.line[start..stop]
+                            excerpt(&self.line[start..stop])
                         ),
                     ));
                 }
@@ -185,7 +186,7 @@ impl LineReader<'_> {
                         start,
                         end,
                         "E-NUMBER-RANGE",
-                        format!("the number `{digits}` is out of range"),
+                        format!("the number `{}` is out of range", excerpt(digits)),
                     ));
                 }
                 let id = self.push(Expr::Num(value), start, end)?;
@@ -303,7 +304,8 @@ impl LineReader<'_> {
                 name_end,
                 "E-EXPR",
                 format!(
-                    "`{name}` is not a function (SIN, COS, TAN, ASIN, ACOS, ATAN, SQRT, ABS, ROUND, FIX, FUP, LN, EXP, POW, BIN, BCD)"
+                    "`{}` is not a function (SIN, COS, TAN, ASIN, ACOS, ATAN, SQRT, ABS, ROUND, FIX, FUP, LN, EXP, POW, BIN, BCD)",
+                    excerpt(&name)
                 ),
             ));
         };
@@ -314,7 +316,7 @@ impl LineReader<'_> {
                 start,
                 name_end,
                 "E-EXPR",
-                format!("`{name}` must be followed by `[`"),
+                format!("`{}` must be followed by `[`", excerpt(&name)),
             ));
         }
         let two_args = matches!(func, Func::Atan | Func::Pow);

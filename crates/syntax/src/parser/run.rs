@@ -3,8 +3,8 @@
 
 use super::block::LineReader;
 use super::plain::{PlainLimits, read_plain_line};
-use super::{MAX_LINE_BYTES, is_blank};
-use crate::{Diagnostic, Dialect, LineIndex, LineSource, Program, Span};
+use super::{MAX_LINE_BYTES, MAX_PARSED_BYTES, is_blank};
+use crate::{Block, Diagnostic, Dialect, LineIndex, LineSource, Program, Span};
 
 /// A parse that reads a bounded number of lines per [`step`](ParseRun::step), so an editor can
 /// spread the parse of a long program over frames. Stepped to its end it gives the same
@@ -22,6 +22,69 @@ pub struct ParseRun {
     /// Whether lines of plain words take the short reader (always, but in the tests that
     /// compare it with the general one).
     pub(super) plain_lines: bool,
+    /// What the parsed program holds, and the most it may hold.
+    held: Held,
+}
+
+/// The bytes the parsed program holds, counted as its lines are read, so that the reading stops
+/// at [`Held::max`] with `E-PROGRAM-SIZE`.
+#[derive(Debug)]
+struct Held {
+    /// The most the program may hold ([`MAX_PARSED_BYTES`] unless set).
+    max: usize,
+    /// Blocks, expressions, diagnostics and the checker's diagnostics counted so far.
+    blocks: usize,
+    exprs: usize,
+    diagnostics: usize,
+    checked: usize,
+    /// Bytes of the blocks counted (dropped with them by [`ParseRun::clear_blocks`]), and of
+    /// everything else.
+    block_bytes: usize,
+    other_bytes: usize,
+    /// The byte offset from which the next count is made: a count every
+    /// [`Held::COUNT_EVERY`] bytes of text costs little, and a line makes at most some hundred
+    /// bytes of program a byte.
+    count_at: usize,
+}
+
+impl Held {
+    const COUNT_EVERY: usize = 16 << 10;
+
+    /// Nothing counted but the line table's first `lines` lines, the most that are read.
+    fn new(max: usize, lines: usize) -> Self {
+        Held {
+            max,
+            blocks: 0,
+            exprs: 0,
+            diagnostics: 0,
+            checked: 0,
+            block_bytes: 0,
+            other_bytes: lines.min(max_lines(max) + 1) * size_of::<u32>(),
+            count_at: 0,
+        }
+    }
+
+    /// Counts what was read since the last count; the total.
+    fn count(&mut self, program: &Program, checker: &crate::checks::Checker) -> usize {
+        let new_blocks = program.blocks.get(self.blocks..).unwrap_or_default();
+        self.block_bytes += new_blocks.iter().map(Block::held_bytes).sum::<usize>();
+        self.blocks = program.blocks.len();
+        let new_exprs = program.exprs.get(self.exprs..).unwrap_or_default();
+        self.other_bytes += new_exprs
+            .iter()
+            .map(crate::ExprNode::held_bytes)
+            .sum::<usize>();
+        self.exprs = program.exprs.len();
+        for (counted, diagnostics) in [
+            (&mut self.diagnostics, program.diagnostics.as_slice()),
+            (&mut self.checked, checker.diagnostics()),
+        ] {
+            let new = diagnostics.get(*counted..).unwrap_or_default();
+            self.other_bytes += new.iter().map(Diagnostic::held_bytes).sum::<usize>();
+            *counted = diagnostics.len();
+        }
+        self.block_bytes + self.other_bytes
+    }
 }
 
 impl ParseRun {
@@ -33,12 +96,19 @@ impl ParseRun {
             blocks: Vec::new(),
             exprs: Vec::new(),
             diagnostics: Vec::new(),
-            lines: LineIndex::new(text),
+            lines: LineIndex::at_most(text, max_lines(MAX_PARSED_BYTES) + 1),
             syntec_macro: false,
             linked: Vec::new(),
+            unlinked: Vec::new(),
         };
         // Most lines are one block: reserving for them spares the copies of a growing array.
-        program.blocks.reserve_exact(program.lines.line_count());
+        program.blocks.reserve_exact(
+            program
+                .lines
+                .line_count()
+                .min(MAX_PARSED_BYTES / size_of::<Block>()),
+        );
+        let held = Held::new(MAX_PARSED_BYTES, program.lines.line_count());
         ParseRun {
             program,
             checker: crate::checks::Checker::new(dialect),
@@ -50,7 +120,19 @@ impl ParseRun {
             line_no: 0,
             done: false,
             plain_lines: true,
+            held,
         }
+    }
+
+    /// Lowers the most the parsed program may hold (bytes, see [`MAX_PARSED_BYTES`]) before
+    /// anything is read: a reader with less memory, or a test.
+    pub fn set_max_bytes(&mut self, max: usize) {
+        self.held = Held::new(max.min(self.held.max), self.program.lines.line_count());
+    }
+
+    /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
+    pub fn held_bytes(&self) -> usize {
+        self.held.block_bytes + self.held.other_bytes
     }
 
     /// Lines read so far and lines in the text.
@@ -83,9 +165,11 @@ impl ParseRun {
     ) -> bool {
         let program = &mut self.program;
         let dialect = program.dialect;
-        // The lines come from the line index.
+        // The lines come from the line index; a text of more lines than a parse indexes is read
+        // up to that many.
         let line_count = program.lines.line_count();
-        let stop = self.line_no.saturating_add(lines).min(line_count);
+        let readable = line_count.min(max_lines(self.held.max));
+        let stop = self.line_no.saturating_add(lines).min(readable);
         // The run's state, kept here while the lines are read (stored at the end).
         let mut next = self.line_no;
         let mut offset = self.offset;
@@ -145,12 +229,24 @@ impl ParseRun {
                 ignore_after_tape_end(program, source, offset);
                 done = true;
             }
+            let held = &mut self.held;
+            if offset >= held.count_at || done || next == readable {
+                held.count_at = offset.saturating_add(Held::COUNT_EVERY);
+                if held.count(program, &self.checker) > held.max {
+                    too_large(program, source.len(), offset, held.max);
+                    done = true;
+                }
+            }
+        }
+        if !done && next == readable && readable < line_count {
+            too_large(program, source.len(), offset, self.held.max);
+            done = true;
         }
         self.line_no = next;
         self.offset = offset;
         self.tape = tape;
         self.done = done;
-        if self.line_no >= line_count {
+        if self.line_no >= readable {
             self.done = true;
         }
         self.done
@@ -171,6 +267,8 @@ impl ParseRun {
     /// pieces it has run; the block array's memory is reused for the next piece.
     pub fn clear_blocks(&mut self) {
         self.program.blocks.clear();
+        self.held.blocks = 0;
+        self.held.block_bytes = 0;
     }
 
     /// The parsed program (the lines read so far, if the run is not done).
@@ -187,7 +285,12 @@ impl ParseRun {
     /// [`ParseRun::step_from`]. Nothing is read yet.
     pub fn with_lines(lines: LineIndex, dialect: Dialect) -> Self {
         let mut run = ParseRun::new("", dialect);
-        run.program.blocks = Vec::with_capacity(lines.line_count());
+        run.program.blocks = Vec::with_capacity(
+            lines
+                .line_count()
+                .min(MAX_PARSED_BYTES / size_of::<Block>()),
+        );
+        run.held = Held::new(MAX_PARSED_BYTES, lines.line_count());
         run.program.lines = lines;
         run
     }
@@ -261,6 +364,25 @@ fn read_general_line(
     reader.read();
     let significant = line.trim_start_matches(is_blank);
     (significant.is_empty(), significant.starts_with('%'))
+}
+
+/// The most lines a parse that may hold `max` bytes indexes: their table may take half of them.
+fn max_lines(max: usize) -> usize {
+    (max / 2 / size_of::<u32>()).max(2)
+}
+
+/// Reports that the text from `offset` (of `len` bytes) on is not read: the program read so far
+/// holds more than `max` bytes.
+fn too_large(program: &mut Program, len: usize, offset: usize, max: usize) {
+    program.diagnostics.push(Diagnostic::error(
+        Span::new(offset.min(len), len),
+        "E-PROGRAM-SIZE",
+        format!(
+            "the program is too large to hold whole: what is read up to here passes {} MiB \
+             (its lines, blocks, expressions and diagnostics), so the rest is not read",
+            max.div_ceil(1 << 20)
+        ),
+    ));
 }
 
 /// Notes that the text from `offset` on, after the closing `%`, is not read (if it is not blank).

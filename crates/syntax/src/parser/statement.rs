@@ -2,8 +2,8 @@
 //! `WHILE`, `DO`, `END`) and assignments.
 
 use super::block::{Fail, LineReader, PResult};
-use crate::Block;
 use crate::ast::{OLabel, OWord, Statement};
+use crate::{Block, excerpt};
 
 impl LineReader<'_> {
     /// A LinuxCNC O-word control line at `pos` (`o100 sub`, `o<x> call [1]`), if it is one.
@@ -107,7 +107,8 @@ impl LineReader<'_> {
                 kw_end,
                 "E-OWORD",
                 format!(
-                    "`{kw}` is not an O-word keyword (sub, endsub, call, return, if, elseif, else, endif, while, endwhile, do, repeat, endrepeat, break, continue)"
+                    "`{}` is not an O-word keyword (sub, endsub, call, return, if, elseif, else, endif, while, endwhile, do, repeat, endrepeat, break, continue)",
+                    excerpt(&kw)
                 ),
             )),
         };
@@ -248,7 +249,7 @@ impl LineReader<'_> {
                 "E-MACRO-SYNTAX",
                 format!(
                     "variable `{}` must be followed by `=` to assign it",
-                    self.line[pos..after].trim()
+                    excerpt(self.line[pos..after].trim())
                 ),
             ));
         };
