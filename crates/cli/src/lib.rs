@@ -224,9 +224,9 @@ fn candidates(dir: &Path, missing: &Missing) -> Vec<PathBuf> {
 }
 
 /// Links the programs the program calls and does not hold from files beside it, until nothing
-/// more can be found; returns the linked files' texts. A file found that cannot be read (a
-/// folder, unreadable, larger than `max` bytes) is named with the reason in the call's error;
-/// one that changed while it was read gets `W-FILE-CHANGED`.
+/// more can be found; returns the linked files' texts and warnings. A file found that cannot be
+/// read (a folder, unreadable, larger than `max` bytes) is named with the reason in the call's
+/// error; one that changed while it was read gets `W-FILE-CHANGED`.
 fn link_external(
     program: &mut Program,
     path: &Path,
@@ -237,18 +237,15 @@ fn link_external(
     let dir = path.parent().unwrap_or(Path::new("."));
     let mut changed = Vec::new();
     let linked = program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
-        let candidates: Vec<PathBuf> = candidates(dir, missing)
+        let paths: Vec<PathBuf> = candidates(dir, missing)
             .into_iter()
             .filter(|c| c.as_path() != path)
             .collect();
         // A file first; else something else of a candidate's name (a folder) is named.
-        let Some(file) = candidates.iter().find(|c| c.is_file()) else {
-            return candidates
-                .iter()
-                .find(|c| c.exists())
-                .map_or(Lookup::None, |c| {
-                    Lookup::Refused(format!("{} is not a file", c.display()))
-                });
+        let Some(file) = paths.iter().find(|c| c.is_file()) else {
+            return paths.iter().find(|c| c.exists()).map_or(Lookup::None, |c| {
+                Lookup::Refused(format!("{} is not a file", c.display()))
+            });
         };
         match read_file(file, max) {
             Ok((bytes, same)) => {

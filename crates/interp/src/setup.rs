@@ -186,7 +186,7 @@ impl Default for Machine {
             acceleration_mm_per_s2: 1000.0,
             max_blocks: 20_000_000,
             max_work: 200_000_000,
-            max_motions: 20_000_000,
+            max_motions: 10_000_000,
             travel_mm: None,
             arc_tolerance_mm: 0.01,
             calculator_input: None,

@@ -42,8 +42,8 @@ struct Held {
     block_bytes: usize,
     other_bytes: usize,
     /// The byte offset from which the next count is made: a count every
-    /// [`Held::COUNT_EVERY`] bytes of text costs little, and a line makes at most some hundred
-    /// bytes of program a byte.
+    /// [`Held::COUNT_EVERY`] bytes of text costs little, and passes the bound by no more than
+    /// that much text makes (a few hundred bytes a byte at most).
     count_at: usize,
 }
 
