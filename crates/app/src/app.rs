@@ -58,6 +58,13 @@ impl SwarfApp {
             idle_waiting: Vec::new(),
             idle_drawn: Vec::new(),
         };
+        // The page analyses in a worker of its own, beside its frames (the desktop's workbench
+        // has a thread of its own).
+        #[cfg(target_arch = "wasm32")]
+        match crate::web_worker::WorkerAnalyst::start(&cc.egui_ctx) {
+            Ok(worker) => app.workbench.set_analyst(Box::new(worker)),
+            Err(error) => log::warn!("no analysis worker ({error:?}): it runs in the frames"),
+        }
         if let Some(storage) = cc.storage {
             app.load_settings(storage);
         }
@@ -212,6 +219,8 @@ impl eframe::App for SwarfApp {
         }
         self.host.poll(&mut self.workbench);
         self.wake_idle();
+        // A finished analysis that has come is shown by this frame.
+        self.workbench.take_replies();
         let idle_before = self.workbench.analysis_progress().is_none();
         let generation_before = self.workbench.generation();
         self.workbench.ui(ui);

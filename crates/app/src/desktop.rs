@@ -8,6 +8,21 @@ use swarf_ui::{HostRequest, Workbench};
 
 use crate::files::{self, Autosave, AutosaveClock, RecoveryBook, RecoveryIndex, TabState};
 
+/// The file at `path`, refused past [`swarf_syntax::MAX_FILE_BYTES`] before more of it is read
+/// (a file that grows, or a device, is read no further than one byte past it).
+fn read_bounded(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read as _;
+    let file = std::fs::File::open(path)?;
+    let refuse = |len: u64| files::too_large(len).map(std::io::Error::other);
+    if let Some(e) = refuse(file.metadata()?.len()) {
+        return Err(e);
+    }
+    let mut bytes = Vec::new();
+    file.take(swarf_syntax::MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)?;
+    refuse(bytes.len() as u64).map_or(Ok(bytes), Err)
+}
+
 /// The recovery folder's index of the open tabs.
 const INDEX_FILE: &str = "index";
 /// The recovery folder inside the data folder.
@@ -97,7 +112,7 @@ impl Host {
 
     /// Opens the program file at `path`.
     pub fn open_path(&mut self, wb: &mut Workbench, path: &Path) {
-        match std::fs::read(path) {
+        match read_bounded(path) {
             Ok(bytes) => {
                 let decoded = swarf_syntax::decode(&bytes);
                 wb.open_file(
@@ -116,6 +131,13 @@ impl Host {
     /// Reads a dropped file and opens it in a tab.
     pub fn open_dropped(&mut self, wb: &mut Workbench, file: &egui::DroppedFileHandle) {
         let path = file.path().to_path_buf();
+        if let Some(why) = std::fs::metadata(&path)
+            .ok()
+            .and_then(|m| files::too_large(m.len()))
+        {
+            wb.set_message(format!("Cannot open {}: {why}", path.display()));
+            return;
+        }
         match file.bytes() {
             Ok(bytes) => {
                 let decoded = swarf_syntax::decode(&bytes);
@@ -182,7 +204,8 @@ impl Host {
                 else {
                     return false;
                 };
-                let result = std::fs::read_to_string(&path)
+                let result = read_bounded(&path)
+                    .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
                     .map_err(|e| e.to_string())
                     .and_then(|text| wb.import_setup(&text));
                 wb.set_message(match result {

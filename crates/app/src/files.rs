@@ -19,6 +19,19 @@ pub const KEY_SETUP: &str = "swarf.setup";
 /// Storage key of the interface language (`en`, `zh-Hans`, `zh-Hant`).
 pub const KEY_LANGUAGE: &str = "swarf.language";
 
+/// Why a file of `len` bytes is not opened: it is larger than [`swarf_syntax::MAX_FILE_BYTES`],
+/// past which its text and analysis would not fit in memory.
+pub fn too_large(len: u64) -> Option<String> {
+    let max = swarf_syntax::MAX_FILE_BYTES;
+    (len > max).then(|| {
+        format!(
+            "it is {} MiB; Swarf opens files up to {} MiB",
+            len.div_ceil(1 << 20),
+            max >> 20
+        )
+    })
+}
+
 /// Puts `item` first in `list`, without duplicates, keeping at most [`RECENT_MAX`].
 pub fn push_recent(list: &mut Vec<String>, item: String) {
     list.retain(|p| *p != item);

@@ -10,5 +10,7 @@ pub mod files;
 mod web;
 #[cfg(target_arch = "wasm32")]
 mod web_files;
+#[cfg(target_arch = "wasm32")]
+mod web_worker;
 
 pub use app::SwarfApp;

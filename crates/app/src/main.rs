@@ -76,6 +76,8 @@ mod native {
                     app.host.open_path(&mut app.workbench, &path);
                 }
                 if let Some(out) = screenshot {
+                    // The picture shows the program's analysis, however long it takes.
+                    app.workbench.finish_analysis();
                     install_screenshot(&mut app, out, ok_in_app);
                 }
                 Ok(Box::new(app))

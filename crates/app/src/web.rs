@@ -87,8 +87,8 @@ impl SwarfApi {
         }
     }
 
-    /// Replaces the program text; diagnostics and the backplot follow as its analysis is
-    /// finished over the next frames (see [`SwarfApi::idle`]).
+    /// Replaces the program text; diagnostics and the backplot follow once its analysis, in
+    /// the page's worker, is finished (see [`SwarfApi::idle`]).
     pub fn set_text(&self, text: String) -> Result<(), JsValue> {
         self.with_app(|app| app.set_text(text))
     }
@@ -166,7 +166,8 @@ impl SwarfApi {
 
     /// A Promise that resolves once the analysis of the current text is finished and a frame
     /// showing it has been painted: then `diagnostics()` and `stats()` describe the current
-    /// text. The analysis runs in the frames, as it does for typing; nothing here hurries it.
+    /// text. The analysis runs in the page's worker, as it does for typing; nothing here
+    /// hurries it.
     pub fn idle(&self) -> Result<js_sys::Promise, JsValue> {
         let mut resolver = None;
         let promise = js_sys::Promise::new(&mut |resolve, _reject| resolver = Some(resolve));

@@ -220,9 +220,11 @@ impl Host {
             );
             match file.bytes_async().await {
                 Ok(bytes) => {
-                    inbox
-                        .borrow_mut()
-                        .push(Arrival::File(Purpose::Dropped, name, bytes, None));
+                    let arrival = match files::too_large(bytes.len() as u64) {
+                        Some(why) => Arrival::Message(format!("Cannot open {name}: {why}")),
+                        None => Arrival::File(Purpose::Dropped, name, bytes, None),
+                    };
+                    inbox.borrow_mut().push(arrival);
                     if let Some(ctx) = ctx {
                         ctx.request_repaint();
                     }
@@ -578,6 +580,14 @@ impl Host {
             };
             wasm_bindgen_futures::spawn_local(async move {
                 let name = file.name();
+                if let Some(why) = files::too_large(file.size() as u64) {
+                    let message = format!("Cannot open {name}: {why}");
+                    inbox.borrow_mut().push(Arrival::Message(message));
+                    if let Some(ctx) = ctx {
+                        ctx.request_repaint();
+                    }
+                    return;
+                }
                 match wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await {
                     Ok(buffer) => {
                         let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
@@ -967,6 +977,9 @@ async fn read_handle(handle: &web_sys::FileSystemFileHandle) -> Result<Vec<u8>, 
     let file = wasm_bindgen_futures::JsFuture::from(handle.get_file())
         .await?
         .unchecked_into::<web_sys::File>();
+    if let Some(why) = files::too_large(file.size() as u64) {
+        return Err(JsValue::from_str(&why));
+    }
     let buffer = wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await?;
     Ok(js_sys::Uint8Array::new(&buffer).to_vec())
 }

@@ -1,7 +1,7 @@
 //! Keystroke-to-markers latency of the editor: the time from a keystroke in the editor to the
-//! diagnostics of the new text being on screen, for a generated 10,000-line program (ready in
-//! the frame of the edit) and a 1,000,000-line one (read and run over frames behind a progress
-//! bar), and the resident memory the open program takes per line.
+//! diagnostics of the new text being on screen, for a generated 10,000-line program and a
+//! 1,000,000-line one (each analysed on the analysis' thread beside the frames, the long one
+//! behind a progress bar), and the resident memory the open program takes per line.
 //!
 //! Every frame is a real egui frame of the whole workbench (editor with its markers, problems,
 //! state panel, status bar; no GPU upload, there is no GPU context). The edit is a real one
@@ -118,8 +118,8 @@ fn measure(lines: usize, reps: usize) -> Measured {
             }
         };
         let t = Instant::now();
-        // The frame of the keystroke: the editor edits the text, the analysis starts and runs
-        // this frame's budget; then frames until it is done.
+        // The frame of the keystroke: the editor edits the text and sends it to the analysis,
+        // which runs beside the frames; then frames until its results are shown.
         let mut first = frame(&ctx, &mut wb, vec![event]);
         frames = 1;
         while wb.analysis_progress().is_some() {
@@ -127,7 +127,7 @@ fn measure(lines: usize, reps: usize) -> Measured {
             frames += 1;
         }
         latency.push(t.elapsed());
-        // The frame after, which frees the analysis replaced.
+        // The frame after, which drops the results replaced.
         first = first.max(frame(&ctx, &mut wb, Vec::new()));
         longest_frame = longest_frame.max(first);
         assert_eq!(

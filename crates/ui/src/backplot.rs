@@ -17,7 +17,8 @@ use egui::epaint::ViewportInPixels;
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use swarf_render::{
     ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathPoint, PathRenderer, Projection,
-    RenderTarget, StandardView, ViewParams, grid_points_at, pick_segment, segment_bounds,
+    RenderTarget, StandardView, ViewParams, pick_segment, reference_points, segment_bounds,
+    view_bounds,
 };
 use swarf_toolpath::Timeline;
 
@@ -127,8 +128,9 @@ impl SourceText {
     }
 }
 
-/// Geometry to plot: the toolpath as one polyline stream relative to `origin`, with the
-/// source line and feed of every segment for picking.
+/// What the view shows: a [`swarf_render::Drawing`] (the path and its marks relative to
+/// `origin`) shared for cheap clones, with the source line and feed of every segment for
+/// picking and its times and tool for playback.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     /// Changes whenever the geometry changes; the GPU upload happens only then.
@@ -155,8 +157,8 @@ pub struct Scene {
     pub origin: DVec3,
     /// The program text, for the hover tooltip (`None` when not known).
     pub source: Option<Arc<SourceText>>,
-    /// Reference marks drawn with the grid (not picked, not played back): a ring at each hole
-    /// of a canned cycle. Pen-up points separate the marks.
+    /// Reference marks drawn with the grid (not picked, not played back), see
+    /// [`swarf_render::Drawing::marks`].
     pub marks: Arc<Vec<PathPoint>>,
 }
 
@@ -187,29 +189,7 @@ impl Scene {
     /// machine's travel box; `None` when there is nothing.
     #[must_use]
     pub fn view_bounds(&self) -> Option<(Vec3, Vec3)> {
-        let mut min = Vec3::splat(f32::INFINITY);
-        let mut max = Vec3::splat(f32::NEG_INFINITY);
-        if let Some((lo, hi)) = self.bounds {
-            min = lo;
-            max = hi;
-        }
-        for (i, p) in self.marks.iter().enumerate() {
-            // A pen-up point starts the segment after it, and is of that segment's kind.
-            let kind = if p.is_pen_up() {
-                self.marks
-                    .get(i + 1)
-                    .filter(|next| !next.is_pen_up())
-                    .and_then(PathPoint::kind)
-            } else {
-                p.kind()
-            };
-            let v = p.position();
-            if kind.is_some_and(|k| k != Kind::Boundary) && v.is_finite() {
-                min = min.min(v);
-                max = max.max(v);
-            }
-        }
-        (min.is_finite() && max.is_finite()).then_some((min, max))
+        view_bounds(self.bounds, &self.marks)
     }
 
     /// Machine coordinates (mm) of a point in the scene's frame.
@@ -1226,10 +1206,8 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         view.last_frame = self.frame;
         if view.generation != Some(self.generation) {
             view.renderer.set_path(device, queue, &self.points);
-            let (min, max) = self.bounds.unwrap_or((Vec3::ONE, Vec3::ZERO));
-            let mut grid = grid_points_at(self.zero, min, max);
-            grid.extend_from_slice(&self.marks);
-            view.renderer.set_grid(device, queue, &grid);
+            let reference = reference_points(self.zero, self.bounds, &self.marks);
+            view.renderer.set_grid(device, queue, &reference);
             view.generation = Some(self.generation);
             view.drawn = None;
             // Fresh points carry no flags.

@@ -6,7 +6,6 @@ pub mod backplot;
 pub mod buffer;
 pub mod commands;
 mod completion;
-mod dialect_hint;
 pub mod editor;
 pub mod examples;
 pub mod history;
@@ -15,7 +14,7 @@ pub mod rows;
 mod settings;
 mod workbench;
 
-pub use analysis::{Analysis, LinkedProblem, OpenFile, PendingAnalysis, Problem, Stats};
+pub use analysis::{Analysis, LinkedProblem, Problem, Stats};
 pub use workbench::{
-    Document, EXAMPLE_PROGRAM, FRAME_BUDGET, HostRequest, TabRecord, Workbench, format_duration,
+    Document, EXAMPLE_PROGRAM, HostRequest, TabRecord, Workbench, format_duration, reply_frame,
 };

@@ -1,17 +1,19 @@
 //! The whole editing surface: editor, problems list and backplot, wired to the pipeline.
 
+use std::collections::VecDeque;
 use std::ops::Range;
+use std::sync::{Arc, OnceLock};
 
 use ropey::Rope;
 
+use swarf_analysis::{Analyst, Job, ProgramText, Progress, Reply, Request};
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, Encoding, Severity};
 
-use crate::analysis::{Analysis, PendingAnalysis, Problem, Stats};
+use crate::analysis::{Analysis, Problem, Stats};
 use crate::backplot::Backplot;
 use crate::buffer::Buffer;
 use crate::commands::{self, FindOptions, Finder, RenumberOptions};
-use crate::dialect_hint::DialectHint;
 use crate::editor::{CodeEditor, severity_color};
 use crate::examples::EXAMPLES;
 use crate::history::{EditKind, History, Snapshot};
@@ -20,12 +22,12 @@ use crate::i18n::{Lang, tr, trf};
 /// The example program the editor starts with.
 pub const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.nc");
 
-/// Blocks the interpreter runs per frame: a 10,000-line program (without loops) finishes in
-/// the frame of the edit, a longer one goes on over the next frames behind a progress bar.
-pub const FRAME_BUDGET: usize = 20_000;
-
-/// Blocks of a replaced program freed per frame.
-const RETIRED_BLOCKS_PER_FRAME: usize = 100_000;
+/// How soon after a reply of the analysis the frame that shows it comes: a finished analysis
+/// or an answer at once (replies a moment apart share the frame), `progress` a few times a
+/// second, so that the frames leave the analysis the processor.
+pub fn reply_frame(progress: bool) -> std::time::Duration {
+    std::time::Duration::from_millis(if progress { 100 } else { 2 })
+}
 
 /// Width of the editor's panel until the user drags its divider, in points.
 const EDITOR_PANEL_WIDTH: f32 = 460.0;
@@ -41,10 +43,10 @@ const PROBLEMS_PANEL_HEIGHT: f32 = 140.0;
 /// dialect it is read in. The active tab's program is analysed with the other tabs as the files
 /// its subprogram calls may reach.
 ///
-/// The analysis runs a bounded number of blocks per frame ([`FRAME_BUDGET`]); until a new one
-/// is finished, the tab's last finished analysis (markers, problems, backplot) stays on screen
-/// — a tab with none yet shows an empty view and its progress, never another tab's — and an
-/// edit made meanwhile cancels the unfinished run and starts over.
+/// The analysis runs beside the UI (a thread of its own, or the web page's worker) and a frame
+/// only takes its replies; until a new one is finished, the tab's last finished analysis
+/// (markers, problems, backplot) stays on screen — a tab with none yet shows an empty view and
+/// its progress, never another tab's — and an edit made meanwhile replaces the unfinished run.
 pub struct Workbench {
     text: Buffer,
     /// The active tab's dialect.
@@ -58,24 +60,25 @@ pub struct Workbench {
     analysis: Analysis,
     /// Whether `analysis` is the active tab's own (false for the empty stand-in).
     own_analysis: bool,
-    /// Another dialect the active tab's program reads better in, from its last analysis.
-    hint: Option<DialectHint>,
-    /// The analysis of the current text while it is still running.
-    pending: Option<PendingAnalysis>,
-    /// The analyses just replaced, freed over the next frames (freeing a million-line program
-    /// at once takes as long as finishing its analysis): [`RETIRED_BLOCKS_PER_FRAME`] of
-    /// their blocks a frame, then the rest.
-    retired: Vec<Analysis>,
-    /// Blocks the analysis may still run in this frame.
-    budget: usize,
-    /// Whether [`Workbench::ui`] is running (outside it, every change gets a full budget).
-    in_frame: bool,
+    /// Where the analysis runs: the workbench sends it jobs and questions, takes its replies.
+    analyst: Box<dyn Analyst>,
+    /// The jobs sent and not yet answered, by generation, with their texts (a finished one's
+    /// text goes with its scene, for the tooltips).
+    sent: VecDeque<(u64, ProgramText)>,
+    /// How far the analysis of the current text has got, while it runs.
+    pending: Option<Progress>,
+    /// The first generation of the active tab's text: results of earlier ones are of another.
+    floor: u64,
+    /// The state at cursor asked of the analysis, (generation, line), until it answers.
+    state_asked: Option<(u64, u32)>,
+    /// The context a reply from the analysis' thread repaints (set by the first frame).
+    waker: Arc<OnceLock<egui::Context>>,
     editor: CodeEditor,
     backplot: Backplot,
     cursor_line: Option<u32>,
     /// The cursor line last sent to the backplot as its selection.
     synced_line: Option<u32>,
-    /// The state shown for ((generation, line)), recomputed only when either changes.
+    /// The state shown for ((generation, line)), asked again only when either changes.
     state_cache: Option<((u64, u32), Option<swarf_interp::BlockState>)>,
     /// Undo and redo over typing and commands.
     history: History,
@@ -166,8 +169,6 @@ struct Tab {
     dialect: Dialect,
     /// The tab's last finished analysis (`None` before its first is done).
     analysis: Option<Analysis>,
-    /// The dialect offered for its program by that analysis.
-    hint: Option<DialectHint>,
 }
 
 /// One open tab's file and text, for keeping unsaved work over a crash or a reload.
@@ -299,27 +300,27 @@ impl Default for Workbench {
 }
 
 impl Workbench {
-    /// A workbench showing `text`, read as Fanuc with a default setup.
+    /// A workbench showing `text`, read as Fanuc with a default setup, and its analysis (the
+    /// first one is waited for; later ones come beside the frames).
     pub fn new(text: String) -> Self {
-        let setup = Setup::default();
         let dialect = Dialect::default();
-        let analysis = Analysis::run(&text, dialect, &setup, 1);
         let text = Buffer::from(text);
         let rope = text.rope().clone();
-        let hint = crate::dialect_hint::suggest(&text, &analysis);
-        Workbench {
+        let waker = Arc::new(OnceLock::new());
+        let mut wb = Workbench {
             text,
             dialect,
             default_dialect: dialect,
-            setup,
-            generation: 1,
-            analysis,
-            own_analysis: true,
-            hint,
+            setup: Setup::default(),
+            generation: 0,
+            analysis: no_analysis(),
+            own_analysis: false,
+            analyst: default_analyst(&waker),
+            sent: VecDeque::new(),
             pending: None,
-            retired: Vec::new(),
-            budget: FRAME_BUDGET,
-            in_frame: false,
+            floor: 0,
+            state_asked: None,
+            waker,
             editor: CodeEditor::default(),
             backplot: Backplot::new(),
             cursor_line: None,
@@ -345,7 +346,19 @@ impl Workbench {
             lang: Lang::En,
             cjk_font: FontState::Absent,
             widgets: std::collections::BTreeMap::new(),
-        }
+        };
+        wb.reanalyse();
+        wb.finish_analysis();
+        wb
+    }
+
+    /// Has `analyst` run the analysis from now on (the web page's worker), starting with the
+    /// current text.
+    pub fn set_analyst(&mut self, analyst: Box<dyn Analyst>) {
+        self.analyst = analyst;
+        self.sent.clear();
+        self.state_asked = None;
+        self.reanalyse();
     }
 
     /// The program text.
@@ -468,11 +481,9 @@ impl Workbench {
     /// Shows the empty stand-in until the active tab's next analysis is done (its text is
     /// another file now: what was shown is not of it).
     fn drop_shown_analysis(&mut self) {
-        self.hint = None;
-        if std::mem::take(&mut self.own_analysis) {
-            let old = std::mem::replace(&mut self.analysis, no_analysis());
-            self.retired.push(old);
-        }
+        self.own_analysis = false;
+        self.analysis = no_analysis();
+        self.floor = self.generation + 1;
     }
 
     /// Whether the active tab is empty, untitled and unchanged (a file opened replaces it).
@@ -600,7 +611,6 @@ impl Workbench {
             cursor_line: self.cursor_line.take(),
             dialect: self.dialect,
             analysis,
-            hint: self.hint.take(),
         }
     }
 
@@ -618,10 +628,8 @@ impl Workbench {
         self.dialect = tab.dialect;
         self.pending = None;
         self.own_analysis = tab.analysis.is_some();
-        let shown = tab.analysis.unwrap_or_else(no_analysis);
-        let old = std::mem::replace(&mut self.analysis, shown);
-        self.retired.push(old);
-        self.hint = tab.hint;
+        self.analysis = tab.analysis.unwrap_or_else(no_analysis);
+        self.floor = self.generation + 1;
     }
 
     /// The document of tab `i` (which may be the active one).
@@ -674,8 +682,7 @@ impl Workbench {
         } else if i == self.active {
             self.remove_active_tab();
         } else {
-            let closed = self.tabs.remove(i);
-            self.retired.extend(closed.analysis);
+            self.tabs.remove(i);
             if i < self.active {
                 self.active -= 1;
             }
@@ -990,7 +997,8 @@ impl Workbench {
     /// The dialect offered for the active tab's program: one whose codes, by the code tables,
     /// leave strictly fewer errors than its own dialect (see the notice over the problems).
     pub fn suggested_dialect(&self) -> Option<Dialect> {
-        self.hint
+        self.analysis
+            .hint
             .as_ref()
             .filter(|h| h.from == self.dialect && self.own_analysis)
             .map(|h| h.to)
@@ -1022,8 +1030,7 @@ impl Workbench {
         self.analysis.stats()
     }
 
-    /// Starts analysing the current text (cancelling an unfinished run) and runs what is
-    /// left of this frame's budget of it.
+    /// Sends the current text to the analysis (replacing an unfinished run there).
     fn reanalyse(&mut self) {
         self.generation += 1;
         // The texts are shared, not copied: a keystroke costs no copy of them (a rope is parsed
@@ -1035,89 +1042,107 @@ impl Workbench {
             .filter(|(i, _)| *i != self.active)
             .map(|(_, t)| (t.document.name.clone(), t.text.program_text()))
             .collect();
-        self.pending = Some(PendingAnalysis::start_text_among(
-            self.text.program_text(),
-            self.dialect,
-            &self.setup,
-            self.generation,
-            others,
-        ));
-        self.pump();
+        let text = self.text.program_text();
+        self.ask(Request::Analyse(Box::new(Job {
+            generation: self.generation,
+            text: text.clone(),
+            dialect: self.dialect,
+            setup: self.setup.clone(),
+            others: Some(others),
+        })));
+        self.sent.push_back((self.generation, text));
+        self.pending = Some(Progress::Reading { read: 0, lines: 0 });
     }
 
-    /// Runs the unfinished analysis for the rest of this frame's budget; installs it when done.
-    fn pump(&mut self) {
-        if !self.in_frame {
-            self.budget = FRAME_BUDGET;
-        }
-        let Some(pending) = &mut self.pending else {
-            return;
-        };
-        let work = pending.work_done();
-        let done = pending.step(self.budget);
-        let used = usize::try_from(pending.work_done().saturating_sub(work)).unwrap_or(usize::MAX);
-        self.budget = self.budget.saturating_sub(used);
-        if done && let Some(pending) = self.pending.take() {
-            self.install(pending.finish());
+    /// Sends a request to the analysis, taking an answer given at once.
+    fn ask(&mut self, request: Request) {
+        if let Some(reply) = self.analyst.send(request) {
+            self.receive(reply);
         }
     }
 
-    /// Shows a finished analysis of the active tab's current text (the one it replaces is
-    /// freed over the next frames) with the dialect it suggests.
-    fn install(&mut self, analysis: Analysis) {
-        self.hint = crate::dialect_hint::suggest(&self.text, &analysis);
-        let old = std::mem::replace(&mut self.analysis, analysis);
-        self.retired.push(old);
-        self.own_analysis = true;
+    /// Takes the replies the analysis has sent since the last look (each frame does so first;
+    /// a host may before it, to know what the frame will show); whether any came.
+    pub fn take_replies(&mut self) -> bool {
+        let mut any = false;
+        while let Some(reply) = self.analyst.try_reply() {
+            self.receive(reply);
+            any = true;
+        }
+        any
     }
 
-    /// Frees part of the analyses replaced: the latest one's blocks a slice a frame (their
-    /// memory given back as they go), then its diagnostics, its machine states (the
-    /// interpreter's checkpoints), its toolpath and the rest, each in a frame of its own.
-    fn free_retired(&mut self) {
-        let Some(old) = self.retired.last_mut() else {
-            return;
-        };
-        let blocks = &mut old.program.blocks;
-        if blocks.capacity() > 0 {
-            blocks.truncate(blocks.len().saturating_sub(RETIRED_BLOCKS_PER_FRAME));
-            blocks.shrink_to_fit();
-        } else if !old.problems.is_empty() || !old.program.diagnostics.is_empty() {
-            drop(std::mem::take(&mut old.problems));
-            drop(std::mem::take(&mut old.program));
-        } else if old.states.checkpoints() > 0 {
-            drop(std::mem::take(&mut old.states));
-        } else if !old.toolpath.is_empty() {
-            let empty = swarf_toolpath::Toolpath::for_machine(
-                glam::DVec3::ZERO,
-                &swarf_interp::Machine::default(),
-            );
-            drop(std::mem::replace(&mut old.toolpath, empty));
-        } else {
-            self.retired.pop();
+    /// Takes one reply: progress of the current text's analysis, a finished analysis of the
+    /// active tab (shown unless a newer one is), or the state at cursor asked for.
+    fn receive(&mut self, reply: Reply) {
+        match reply {
+            Reply::Progress {
+                generation,
+                progress,
+            } => {
+                if generation == self.generation && self.pending.is_some() {
+                    self.pending = Some(progress);
+                }
+            }
+            Reply::Done(results) => {
+                let generation = results.generation;
+                // The jobs sent before this one were replaced.
+                while self.sent.front().is_some_and(|(g, _)| *g < generation) {
+                    self.sent.pop_front();
+                }
+                let text = match self.sent.front() {
+                    Some((g, _)) if *g == generation => self.sent.pop_front().map(|(_, t)| t),
+                    _ => None,
+                };
+                let newer = !self.own_analysis || generation > self.analysis.scene.generation;
+                if let Some(text) = text
+                    && generation >= self.floor
+                    && newer
+                {
+                    self.analysis = Analysis::of(*results, &text);
+                    self.own_analysis = true;
+                    if generation == self.generation {
+                        self.pending = None;
+                    }
+                }
+            }
+            Reply::State {
+                generation,
+                line,
+                state,
+            } => {
+                // `None`: that analysis is no longer held; the next one shown is asked again.
+                if let Some(state) = state
+                    && self.state_asked == Some((generation, line))
+                {
+                    self.state_cache = Some(((generation, line), state));
+                    self.state_asked = None;
+                }
+            }
         }
     }
 
-    /// Progress of an unfinished analysis as (different blocks run, blocks in the program);
-    /// `None` when the analysis shown is of the current text.
+    /// Progress of the current text's analysis, while it runs, as (different blocks run,
+    /// blocks in the program); (0, 0) while the text is read. `None` when the analysis shown is
+    /// of the current text.
     pub fn analysis_progress(&self) -> Option<(usize, usize)> {
-        self.pending.as_ref().map(PendingAnalysis::progress)
+        self.pending.map(|p| match p {
+            Progress::Running { reached, blocks } => (reached, blocks),
+            Progress::Reading { .. } => (0, 0),
+        })
     }
 
-    /// Runs an unfinished analysis to its end now (for scripts and the JS API, which want the
-    /// current text's results rather than the last finished ones).
+    /// Waits for the analysis of the current text and shows it (for tests and scripts that want
+    /// the current text's results rather than the last finished ones). Where the host cannot
+    /// wait (a web page), it returns at once and the frames show the results as they come.
     pub fn finish_analysis(&mut self) {
-        if let Some(mut pending) = self.pending.take() {
-            while !pending.step(FRAME_BUDGET) {}
-            self.install(pending.finish());
+        self.take_replies();
+        while self.pending.is_some() {
+            match self.analyst.wait_reply() {
+                Some(reply) => self.receive(reply),
+                None => return,
+            }
         }
-    }
-
-    /// Runs one frame's budget of an unfinished analysis without drawing (what a frame does
-    /// first; for measuring and for hosts that analyse without a window).
-    pub fn run_frame_budget(&mut self) {
-        self.budget = FRAME_BUDGET;
-        self.pump();
     }
 
     /// A number bumped by every change of the text, dialect or setup (the analysis shown
@@ -1144,9 +1169,8 @@ impl Workbench {
         self.now = ui.input(|i| i.time);
         self.widgets.clear();
         crate::i18n::set_current(self.lang);
-        self.free_retired();
-        self.budget = FRAME_BUDGET;
-        self.in_frame = true;
+        let _ = self.waker.set(ui.ctx().clone());
+        self.take_replies();
         self.shortcuts(ui.ctx());
         egui::Panel::top("swarf-top").show(ui, |ui| self.top_bar(ui));
         egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
@@ -1243,7 +1267,7 @@ impl Workbench {
                 });
                 // A fit asked for a program just opened waits for its scene.
                 self.backplot
-                    .set_coming_generation(self.pending.as_ref().map(PendingAnalysis::generation));
+                    .set_coming_generation(self.pending.map(|_| self.generation));
                 let view = self.backplot.show(ui, &self.analysis.scene);
                 self.widgets
                     .insert("backplot".into(), view.rect.intersect(ui.clip_rect()));
@@ -1261,22 +1285,30 @@ impl Workbench {
                     }
                 }
             });
-        // What is left of the frame's budget goes on with an unfinished analysis; the next
-        // frame comes at once while one runs.
-        self.pump();
-        if self.pending.is_some() {
-            ui.ctx().request_repaint();
+        // Each reply asks for a frame as it comes; those taken here (an analysis run in the
+        // frames, where there are no threads and no worker, answers now) are shown by the next.
+        if self.take_replies() {
+            ui.ctx().request_repaint_after(reply_frame(false));
         }
-        self.in_frame = false;
     }
 
     /// The machine state just before the block on 1-based `line` first runs (modal codes,
-    /// position, offsets, tool, feed, speed); `None` when no block there runs.
-    pub fn state_at_line(&self, line: u32) -> Option<swarf_interp::BlockState> {
-        let program = &self.analysis.program;
-        let row = line.checked_sub(1)?;
-        let block = program.blocks.iter().position(|b| b.line == row)?;
-        self.analysis.states.at(program, block)
+    /// position, offsets, tool, feed, speed), asked of the current text's analysis once it is
+    /// finished; `None` when no block there runs, or where the host cannot wait for the answer.
+    pub fn state_at_line(&mut self, line: u32) -> Option<swarf_interp::BlockState> {
+        self.finish_analysis();
+        let generation = self.analysis.scene.generation;
+        let mut now = self.analyst.send(Request::StateAt { generation, line });
+        loop {
+            match now.take().or_else(|| self.analyst.wait_reply())? {
+                Reply::State {
+                    generation: g,
+                    line: l,
+                    state,
+                } if (g, l) == (generation, line) => return state.flatten(),
+                other => self.receive(other),
+            }
+        }
     }
 
     /// The "state at cursor" panel.
@@ -1286,13 +1318,23 @@ impl Workbench {
             ui.label(tr("Put the cursor on a block."));
             return;
         };
+        // Asked of the analysis, which holds the program (answered at once where it is kept
+        // on this side of the thread); the last answer stays until the next one comes.
         let key = (self.analysis.scene.generation, line);
-        if self.state_cache.as_ref().map(|(k, _)| *k) != Some(key) {
-            self.state_cache = Some((key, self.state_at_line(line)));
+        if self.own_analysis
+            && self.state_cache.as_ref().map(|(k, _)| *k) != Some(key)
+            && self.state_asked != Some(key)
+        {
+            self.state_asked = Some(key);
+            self.ask(Request::StateAt {
+                generation: key.0,
+                line,
+            });
         }
-        let Some((_, state)) = &self.state_cache else {
+        let Some(((_, line), state)) = &self.state_cache else {
             return;
         };
+        let line = *line;
         let Some(s) = state else {
             ui.label(trf("Line {} does not run.", &[&line]));
             return;
@@ -1354,9 +1396,7 @@ impl Workbench {
     /// Shows the line a click in the view or the playback reached in the editor; the keyboard
     /// stays with the view or the playback bar, so their keys never type into the program.
     fn jump_to_line(&mut self, line: u32) {
-        let lines = &self.analysis.program.lines;
-        let start = lines.line_start(line.saturating_sub(1) as usize) as usize;
-        let chars = self.text.byte_to_char(start);
+        let chars = self.text.line_to_char(line.saturating_sub(1) as usize);
         self.selection = chars..chars;
         self.editor.show_range(chars..chars);
         self.cursor_line = Some(line);
@@ -2005,11 +2045,7 @@ impl Workbench {
             }
             ui.separator();
             ui.label(self.document.encoding.name());
-            if let Some((read, lines)) = self
-                .pending
-                .as_ref()
-                .and_then(super::analysis::PendingAnalysis::parse_progress)
-            {
+            if let Some(Progress::Reading { read, lines }) = self.pending {
                 ui.separator();
                 ui.label("Analysing");
                 ui.add(
@@ -2043,18 +2079,18 @@ impl Workbench {
         if self.own_analysis {
             return;
         }
-        let Some(pending) = &self.pending else {
+        let Some(progress) = self.pending else {
             return;
         };
         let percent = |done: usize, total: usize| {
             let (done, total) = (done as u64, total.max(1) as u64);
             done.min(total) * 100 / total
         };
-        let text = if let Some((read, lines)) = pending.parse_progress() {
-            trf("Reading… {} %", &[&percent(read, lines)])
-        } else {
-            let (done, total) = pending.progress();
-            trf("Analysing… {} %", &[&percent(done, total)])
+        let text = match progress {
+            Progress::Reading { read, lines } => trf("Reading… {} %", &[&percent(read, lines)]),
+            Progress::Running { reached, blocks } => {
+                trf("Analysing… {} %", &[&percent(reached, blocks)])
+            }
         };
         let at = egui::Rect::from_center_size(view.center(), egui::vec2(260.0, 40.0));
         ui.put(
@@ -2069,7 +2105,7 @@ impl Workbench {
         let Some(to) = self.suggested_dialect() else {
             return;
         };
-        let first = self.hint.as_ref().and_then(|h| h.first.clone());
+        let first = self.analysis.hint.as_ref().and_then(|h| h.first.clone());
         let mut switch = false;
         ui.horizontal(|ui| {
             let text = match &first {
@@ -2228,7 +2264,30 @@ impl Workbench {
 
 /// What a tab shows before its first analysis is done: no path, no problems, no counts.
 fn no_analysis() -> Analysis {
-    Analysis::run("", Dialect::default(), &Setup::default(), 0)
+    Analysis::of(
+        swarf_analysis::Results::default(),
+        &ProgramText::from(String::new()),
+    )
+}
+
+/// The analysis beside the UI: a thread of its own, which has `waker`'s context repaint with
+/// each reply; where there are no threads, the frames themselves (the web page hands its worker
+/// over with [`Workbench::set_analyst`]).
+fn default_analyst(waker: &Arc<OnceLock<egui::Context>>) -> Box<dyn Analyst> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let waker = Arc::clone(waker);
+        let wake = move |progress| {
+            if let Some(ctx) = waker.get() {
+                ctx.request_repaint_after(reply_frame(progress));
+            }
+        };
+        if let Ok(thread) = swarf_analysis::Thread::spawn(wake) {
+            return Box::new(thread);
+        }
+    }
+    let _ = waker;
+    Box::new(swarf_analysis::Inline::default())
 }
 
 /// The shortcut of an editor command: Ctrl (Cmd on macOS) and `key`.

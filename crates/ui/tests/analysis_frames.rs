@@ -1,13 +1,17 @@
-//! Analysis spread over frames: small programs are ready in the frame of the edit, long ones
-//! run behind a progress bar while the last results stay, and a newer edit starts over.
+//! The analysis runs beside the frames: a frame sends the text and takes the replies, long
+//! programs run behind a progress bar while the last results stay, and a newer edit replaces
+//! an unfinished run.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
+
+use std::cell::RefCell;
+use std::collections::VecDeque;
+use std::rc::Rc;
+use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use swarf_interp::Setup;
-use swarf_syntax::Dialect;
-use swarf_ui::analysis::{Analysis, PendingAnalysis};
-use swarf_ui::{FRAME_BUDGET, Workbench};
+use swarf_analysis::{Analyst, Progress, Reply, Request, analyse};
+use swarf_ui::Workbench;
 
 /// `lines` straight moves, then `tail`.
 fn program(lines: usize, tail: &str) -> String {
@@ -25,59 +29,94 @@ fn harness(wb: Workbench) -> Harness<'static, Workbench> {
         .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb)
 }
 
-#[test]
-fn a_pending_analysis_in_steps_equals_the_one_call_run() {
-    let text = program(3000, "G01 X$\nM30\n");
-    let setup = Setup::default();
-    let whole = Analysis::run(&text, Dialect::Fanuc, &setup, 7);
-    let mut pending = PendingAnalysis::start(&text, Dialect::Fanuc, &setup, 7);
-    // The text is read first (two lines per block of budget), then run.
-    assert_eq!(pending.parse_progress(), Some((0, 3003)));
-    assert_eq!(pending.progress(), (0, 0));
-    let mut steps = 0;
-    let mut read_steps = 0;
-    while !pending.step(100) {
-        steps += 1;
-        if let Some((read, lines)) = pending.parse_progress() {
-            assert_eq!(read, 200 * steps);
-            assert!(read < lines);
-            read_steps += 1;
-        } else {
-            let (done, total) = pending.progress();
-            assert_eq!(total, 3002);
-            assert!(done <= total);
-        }
+/// An analysis that answers only when the test says: the requests sent, the replies to give.
+#[derive(Default, Clone)]
+struct Scripted(Rc<RefCell<(Vec<Request>, VecDeque<Reply>)>>);
+
+impl Analyst for Scripted {
+    fn send(&mut self, request: Request) -> Option<Reply> {
+        self.0.borrow_mut().0.push(request);
+        None
     }
-    assert_eq!(read_steps, 15);
-    assert!(steps >= 15 + 29, "{steps}");
-    assert!(pending.is_finished());
-    let stepped = pending.finish();
-    assert_eq!(stepped.problems, whole.problems);
-    assert_eq!(stepped.stats(), whole.stats());
-    assert_eq!(stepped.scene.generation, 7);
+
+    fn try_reply(&mut self) -> Option<Reply> {
+        self.0.borrow_mut().1.pop_front()
+    }
+
+    fn wait_reply(&mut self) -> Option<Reply> {
+        self.try_reply()
+    }
+}
+
+impl Scripted {
+    /// The last job sent.
+    fn last_job(&self) -> swarf_analysis::Job {
+        self.0
+            .borrow()
+            .0
+            .iter()
+            .rev()
+            .find_map(|r| match r {
+                Request::Analyse(job) => Some(job.as_ref().clone()),
+                Request::StateAt { .. } => None,
+            })
+            .expect("a job was sent")
+    }
+
+    fn reply(&self, reply: Reply) {
+        self.0.borrow_mut().1.push_back(reply);
+    }
 }
 
 #[test]
-fn typing_in_a_10k_line_program_marks_the_error_in_the_same_frame() {
+fn a_frame_sends_the_text_and_shows_the_replies_as_they_come() {
     let mut wb = Workbench::default();
     wb.open_document(
         "long.nc",
         program(10_000, "M30\n"),
         swarf_syntax::Encoding::default(),
     );
-    assert!(wb.analysis_progress().is_none());
+    wb.finish_analysis();
     assert!(wb.problems().is_empty(), "{:?}", wb.problems());
+    let analyst = Scripted::default();
+    wb.set_analyst(Box::new(analyst.clone()));
+    let job = analyst.last_job();
+    analyst.reply(Reply::Done(Box::new(analyse(job).0)));
     let mut harness = harness(wb);
     harness.run();
+    assert!(harness.state().analysis_progress().is_none());
     let editor = harness.get_by_role(egui::accesskit::Role::MultilineTextInput);
     editor.focus();
     harness.run();
     let editor = harness.get_by_role(egui::accesskit::Role::MultilineTextInput);
     editor.type_text("G01 X$\n");
-    // One frame: the typed text, its analysis and the markers.
+    harness.step();
+    // The frame of the keystroke sent the new text; nothing in the frames analyses it.
+    let job = analyst.last_job();
+    assert_eq!(job.generation, harness.state().generation());
+    assert!(job.text.to_owned_string().starts_with("G01 X$\nG90"));
+    for _ in 0..3 {
+        harness.step();
+    }
+    assert!(
+        harness.state().problems().is_empty(),
+        "the last results stay"
+    );
+    assert_eq!(harness.state().analysis_progress(), Some((0, 0)));
+    analyst.reply(Reply::Progress {
+        generation: job.generation,
+        progress: Progress::Running {
+            reached: 4000,
+            blocks: 10_001,
+        },
+    });
+    harness.step();
+    harness.step();
+    assert_eq!(harness.state().analysis_progress(), Some((4000, 10_001)));
+    harness.get_by_label_contains("4000 / 10001 blocks");
+    analyst.reply(Reply::Done(Box::new(analyse(job).0)));
     harness.step();
     let wb = harness.state();
-    assert!(wb.text().starts_with("G01 X$\n"));
     assert!(wb.analysis_progress().is_none());
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert!(codes.contains(&(1, "E-SYNTAX-CHAR")), "{codes:?}");
@@ -85,44 +124,82 @@ fn typing_in_a_10k_line_program_marks_the_error_in_the_same_frame() {
 }
 
 #[test]
-fn a_long_program_runs_over_frames_behind_a_progress_bar_keeping_the_old_results() {
+fn the_state_at_cursor_is_asked_of_the_analysis() {
+    let mut wb = Workbench::default();
+    wb.set_text("G90 G21 G17\nT2 M06\nG00 X10. Y5.\nG01 Z-1. F300.\nM30\n");
+    wb.finish_analysis();
+    let analyst = Scripted::default();
+    wb.set_analyst(Box::new(analyst.clone()));
+    let job = analyst.last_job();
+    let generation = job.generation;
+    let (results, kept) = analyse(job);
+    analyst.reply(Reply::Done(Box::new(results)));
+    wb.select_line(4);
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 700.0))
+        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
+    harness.run();
+    assert!(
+        analyst.0.borrow().0.iter().any(|r| matches!(
+            r,
+            Request::StateAt { generation: g, line: 4 } if *g == generation
+        )),
+        "the panel asks for line 4"
+    );
+    assert_eq!(
+        harness
+            .query_all_by_label_contains("X10.000 Y5.000")
+            .count(),
+        0
+    );
+    analyst.reply(Reply::State {
+        generation,
+        line: 4,
+        state: Some(kept.state_at(4)),
+    });
+    harness.run();
+    // The work and machine positions (no offsets).
+    assert_eq!(
+        harness
+            .query_all_by_label_contains("X10.000 Y5.000")
+            .count(),
+        2
+    );
+}
+
+#[test]
+fn a_long_program_runs_beside_the_frames_behind_a_progress_bar_keeping_the_old_results() {
     let mut wb = Workbench::default();
     wb.set_text("G01 X$ F100\n");
+    wb.finish_analysis();
     let old = wb.problems().to_vec();
     assert!(!old.is_empty());
     let mut harness = harness(wb);
     harness.run();
-    let lines = 5 * FRAME_BUDGET;
+    let lines = 100_000;
     harness
         .state_mut()
         .set_text(program(lines, "G01 Y$\nM30\n"));
-    // The first frame's budget reads the first lines of the text.
-    assert_eq!(harness.state().analysis_progress(), Some((0, 0)));
+    assert!(harness.state().analysis_progress().is_some());
     assert_eq!(
         harness.state().problems(),
         old.as_slice(),
         "old problems stay"
     );
-    harness.step();
-    harness.get_by_label_contains("Analysing");
-    assert_eq!(harness.state().problems(), old.as_slice());
-    let mut last = 0;
-    let mut frames = 1;
-    let mut run_frames = 0;
-    while let Some((done, total)) = harness.state().analysis_progress() {
-        if total > 0 {
-            assert_eq!(total, lines + 2);
-            // All blocks reached: the problems are being located, the scene prepared.
-            assert!(done >= last && done <= total, "{done} of {total}");
-            last = done;
-            run_frames += 1;
-        }
+    let started = Instant::now();
+    while harness.state().analysis_progress().is_some() {
         harness.step();
-        frames += 1;
-        assert!(frames < 100, "the analysis ends");
+        if harness.state().analysis_progress().is_some() {
+            // The frame began with the analysis running: it showed the progress.
+            harness.get_by_label_contains("Analysing");
+            assert_eq!(harness.state().problems(), old.as_slice());
+        }
+        assert!(
+            started.elapsed() < Duration::from_secs(120),
+            "the analysis ends"
+        );
+        std::thread::sleep(Duration::from_millis(5));
     }
-    assert!(run_frames >= 3, "{run_frames} frames running");
-    assert!(frames >= 5, "{frames} frames");
     let wb = harness.state();
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert!(
@@ -136,11 +213,12 @@ fn a_long_program_runs_over_frames_behind_a_progress_bar_keeping_the_old_results
 }
 
 #[test]
-fn a_newer_edit_cancels_an_unfinished_run() {
+fn a_newer_edit_replaces_an_unfinished_run() {
     let mut wb = Workbench::default();
-    wb.set_text(program(3 * FRAME_BUDGET, "M30\n"));
+    wb.set_text(program(300_000, "M30\n"));
     assert!(wb.analysis_progress().is_some());
     wb.set_text("G0 X1\nG01 X$\n");
+    wb.finish_analysis();
     assert!(wb.analysis_progress().is_none());
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert!(codes.contains(&(2, "E-SYNTAX-CHAR")), "{codes:?}");
@@ -148,13 +226,13 @@ fn a_newer_edit_cancels_an_unfinished_run() {
 }
 
 #[test]
-fn finishing_the_analysis_gives_the_current_texts_results_at_once() {
+fn finishing_the_analysis_gives_the_current_texts_results() {
     let mut wb = Workbench::default();
-    wb.set_text(program(3 * FRAME_BUDGET, "G01 Z$\n"));
+    wb.set_text(program(60_000, "G01 Z$\n"));
     assert!(wb.analysis_progress().is_some());
     wb.finish_analysis();
     assert!(wb.analysis_progress().is_none());
-    assert_eq!(wb.stats().blocks, 3 * FRAME_BUDGET + 1);
+    assert_eq!(wb.stats().blocks, 60_001);
     assert!(wb.problems().iter().any(|p| p.code == "E-SYNTAX-CHAR"));
     assert_eq!(wb.analysis().scene.generation, wb.generation());
 }

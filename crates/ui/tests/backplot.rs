@@ -421,7 +421,7 @@ fn scene_of_colours_drilling_plunges_and_retracts() {
     );
     let mut path = swarf_toolpath::Toolpath::default();
     swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
-    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
     // One ring of 12 sides around the hole's top (R, 2 mm) across its axis, then the axis
     // cross at the program zero.
     assert_eq!(scene.marks.len(), 13 + 6);
@@ -454,25 +454,40 @@ fn scene_of_colours_drilling_plunges_and_retracts() {
 }
 
 #[test]
-fn the_travel_box_has_twelve_edges_on_its_corners() {
-    let marks = swarf_ui::analysis::box_marks(
-        [[-500.0, -300.0, -400.0], [0.0, 0.0, 0.0]],
-        DVec3::new(-250.0, 0.0, 0.0),
-    );
-    assert_eq!(marks.len(), 24);
-    for pair in marks.chunks(2) {
-        assert!(pair[0].is_pen_up());
-        assert_eq!(pair[1].kind(), Some(Kind::Boundary));
-        let d = pair[1].position() - pair[0].position();
+fn the_travel_box_has_twelve_edges_on_its_corners_and_is_not_framed() {
+    let setup = swarf_interp::Setup::from_toml(
+        "[machine]\ntravel_mm = [[-500.0, -300.0, -400.0], [0.0, 0.0, 0.0]]\n",
+    )
+    .unwrap();
+    let program = swarf_syntax::parse("G0 X-100. Y-50. Z-10.\n", swarf_syntax::Dialect::Fanuc);
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, setup.clone(), &mut path);
+    let scene = swarf_ui::analysis::scene_of(&path, &setup, 1);
+    let edges: Vec<(Vec3, Vec3)> = scene
+        .marks
+        .windows(2)
+        .filter(|w| w[0].is_pen_up() && w[1].kind() == Some(Kind::Boundary))
+        .map(|w| (w[0].position(), w[1].position()))
+        .collect();
+    assert_eq!(edges.len(), 12);
+    for (a, b) in &edges {
+        let d = *b - *a;
         // Each edge runs along one axis, the whole length of the box on it.
         let along: Vec<f32> = [d.x, d.y, d.z].into_iter().filter(|c| *c != 0.0).collect();
         assert_eq!(along.len(), 1, "{d}");
         assert!([500.0, 300.0, 400.0].contains(&along[0].abs()));
     }
+    let corner = (DVec3::new(-500.0, -300.0, -400.0) - scene.origin).as_vec3();
     assert!(
-        marks
+        edges
             .iter()
-            .any(|p| p.position() == Vec3::new(-250.0, -300.0, -400.0))
+            .any(|(a, b)| (*a - corner).length() < 1e-3 || (*b - corner).length() < 1e-3)
+    );
+    // Fit frames the path and its marks, not the travel box.
+    let (min, max) = scene.view_bounds().unwrap();
+    assert!(
+        min.x > corner.x + 100.0 && max.length() < 200.0,
+        "{min} {max}"
     );
 }
 
@@ -484,7 +499,7 @@ fn a_g22_zone_is_outlined_in_the_scene() {
     );
     let mut path = swarf_toolpath::Toolpath::default();
     swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
-    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
     let zone: Vec<&PathPoint> = scene
         .marks
         .iter()
@@ -507,7 +522,7 @@ fn scene_points_carry_their_tool_for_colouring_by_tool() {
     );
     let mut path = swarf_toolpath::Toolpath::default();
     swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
-    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
     let indices: Vec<u16> = scene
         .points
         .iter()
@@ -532,7 +547,7 @@ fn compensated_blocks_are_drawn_as_such_with_the_programmed_contour_beside() {
     let setup = swarf_interp::Setup::from_toml("[registers.1]\nradius = 2.0\n").unwrap();
     let mut path = swarf_toolpath::Toolpath::default();
     swarf_interp::run(&program, setup, &mut path);
-    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
     assert!(
         scene
             .points
@@ -572,7 +587,7 @@ fn each_peck_of_a_deep_hole_is_marked_at_its_bottom() {
     );
     let mut path = swarf_toolpath::Toolpath::default();
     swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
-    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
     let ticks: Vec<(Vec3, Vec3)> = scene
         .marks
         .windows(2)
@@ -604,6 +619,6 @@ fn each_peck_of_a_deep_hole_is_marked_at_its_bottom() {
     );
     let mut path = swarf_toolpath::Toolpath::default();
     swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
-    let scene = swarf_ui::analysis::scene_of(&path, 1);
+    let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
     assert!(scene.marks.iter().all(|p| p.kind() != Some(Kind::Plunge)));
 }

@@ -12,6 +12,7 @@ use swarf_ui::{HostRequest, Workbench};
 fn harness(text: &str) -> Harness<'static, Workbench> {
     let mut wb = Workbench::default();
     wb.open_document("test.nc", text, swarf_syntax::Encoding::Utf8);
+    wb.finish_analysis();
     let mut harness = Harness::builder()
         .with_size(egui::vec2(1200.0, 800.0))
         .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
@@ -103,6 +104,7 @@ fn ctrl_slash_comments_and_uncomments_the_selected_lines() {
     harness.key_press_modifiers(Modifiers::COMMAND, Key::Slash);
     harness.run();
     assert_eq!(harness.state().text(), "G00 X0\n(G01 X1) (cut)\nM30\n");
+    harness.state_mut().finish_analysis();
     assert_eq!(harness.state().stats().motions, 1);
     harness.key_press_modifiers(Modifiers::COMMAND, Key::Slash);
     harness.run();

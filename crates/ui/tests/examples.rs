@@ -46,6 +46,7 @@ fn the_examples_menu_opens_a_program_in_its_dialect() {
         .get_by_label("linuxcnc-engrave-sub.ngc  (LinuxCNC)")
         .click();
     harness.run();
+    harness.state_mut().finish_analysis();
     let wb = harness.state();
     assert_eq!(wb.dialect(), Dialect::LinuxCnc);
     assert_eq!(wb.document().name, "linuxcnc-engrave-sub.ngc");
@@ -68,6 +69,7 @@ fn the_syntec_example_opens_in_syntec_in_its_own_tab() {
         .get_by_label("syntec-bolt-circle.nc  (Syntec 900M)")
         .click();
     harness.run();
+    harness.state_mut().finish_analysis();
     let wb = harness.state();
     assert_eq!(wb.document().name, "syntec-bolt-circle.nc");
     assert_eq!(wb.dialect(), Dialect::Syntec);
@@ -160,6 +162,8 @@ fn an_example_opened_as_a_file_opens_in_its_dialect_and_its_copy_is_offered_it()
         Some("/work/assets/examples/syntec-bolt-circle.nc".into()),
     );
     assert_eq!(wb.dialect(), Dialect::Syntec);
+    wb.finish_analysis();
+    assert!(wb.analysis_ready());
     assert!(wb.problems().iter().all(|p| p.code != "E-CODE-DIALECT"));
     assert_eq!(wb.default_dialect(), Dialect::Fanuc);
     // A changed copy opens in the default dialect, with the offer of Syntec.
@@ -171,6 +175,7 @@ fn an_example_opened_as_a_file_opens_in_its_dialect_and_its_copy_is_offered_it()
         Some("/work/flange.nc".into()),
     );
     assert_eq!(wb.dialect(), Dialect::Fanuc);
+    wb.finish_analysis();
     assert!(wb.problems().iter().any(|p| p.code == "E-CODE-DIALECT"));
     assert_eq!(wb.suggested_dialect(), Some(Dialect::Syntec));
 }

@@ -97,6 +97,13 @@ fn an_empty_problems_list_takes_one_line() {
     );
 }
 
+/// Runs frames, waits for the analysis of the current text, and runs the frames that show it.
+fn settle(harness: &mut Harness<'_, Workbench>) {
+    harness.run();
+    harness.state_mut().finish_analysis();
+    harness.run();
+}
+
 /// Whether every point drawn (path and marks but the travel box) lies in `free`.
 fn drawn_inside(harness: &Harness<'_, Workbench>, free: egui::Rect) -> Result<(), String> {
     let wb = harness.state();
@@ -125,7 +132,7 @@ fn a_new_program_is_framed_whole_below_the_buttons_once() {
     let mut harness = drawn(wb, &render_state);
     harness.run();
     harness.state_mut().set_text(POCKET);
-    harness.run();
+    settle(&mut harness);
     let scene = harness.state().analysis().scene.clone();
     assert!(scene.segment_count() > 5);
     assert!(
@@ -167,13 +174,13 @@ fn a_new_program_is_framed_whole_below_the_buttons_once() {
     harness.run();
     let edited = POCKET.replace("X40.", "X60.");
     harness.state_mut().set_text(edited.clone());
-    harness.run();
+    settle(&mut harness);
     let after_set = *harness.state().backplot().camera();
     assert_ne!(after_set, camera, "a new text set is framed");
     harness
         .get_by_role(egui::accesskit::Role::MultilineTextInput)
         .type_text("(NOTE)");
-    harness.run();
+    settle(&mut harness);
     assert_ne!(
         harness.state().text(),
         edited,
@@ -188,7 +195,7 @@ fn a_new_program_is_framed_whole_below_the_buttons_once() {
     // An example chosen is framed whole, as is a program pasted into an empty tab.
     for example in ["fanuc-drill-plate.nc", "syntec-bolt-circle.nc"] {
         assert!(harness.state_mut().open_example(example));
-        harness.run();
+        settle(&mut harness);
         drawn_inside(&harness, free)
             .map_err(|e| format!("{example}: {e}"))
             .unwrap();
@@ -199,7 +206,7 @@ fn a_new_program_is_framed_whole_below_the_buttons_once() {
     editor.focus();
     harness.run();
     harness.event(egui::Event::Paste(POCKET.to_string()));
-    harness.run();
+    settle(&mut harness);
     assert_eq!(
         harness.state().text(),
         POCKET,

@@ -41,6 +41,7 @@ fn the_settings_window_edits_the_setup_and_re_runs_the_program() {
         .import_setup("[work_offsets]\nG55 = [100, 50, -20]\n")
         .unwrap();
     harness.run();
+    harness.state_mut().finish_analysis();
     assert!(harness.state().analysis().scene.generation > before);
     let bounds = harness.state().stats().bounds.unwrap();
     assert_eq!(bounds.1.x, 100.0);

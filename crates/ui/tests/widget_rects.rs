@@ -88,6 +88,8 @@ fn named_widgets_are_where_they_were_drawn() {
     // A problem gives the list its first row, under the editor.
     harness.state_mut().set_text("G90\nG01 X10 Y$ F100\n");
     harness.run();
+    harness.state_mut().finish_analysis();
+    harness.run();
     let row = rect(&harness, "problem_first");
     let editor = rect(&harness, "editor");
     assert!(

@@ -8,7 +8,8 @@ use swarf_ui::Workbench;
 
 #[test]
 fn example_program_runs_clean_and_draws() {
-    let wb = Workbench::default();
+    let mut wb = Workbench::default();
+    wb.finish_analysis();
     assert!(wb.problems().is_empty(), "{:?}", wb.problems());
     let s = wb.stats();
     assert!(s.motions > 10);
@@ -21,6 +22,7 @@ fn edits_update_problems_with_lines_columns_and_character_ranges() {
     let mut wb = Workbench::default();
     let text = "(銑) G90\nG00 X0 Y0 Z5\nG01 X10 Y$ F100\n";
     wb.set_text(text);
+    wb.finish_analysis();
     let p = wb
         .problems()
         .iter()
@@ -32,8 +34,10 @@ fn edits_update_problems_with_lines_columns_and_character_ranges() {
     assert_eq!(wb.stats().motions, 1);
     let before = wb.analysis().scene.generation;
     wb.set_dialect(Dialect::LinuxCnc);
+    wb.finish_analysis();
     assert!(wb.analysis().scene.generation > before);
     wb.set_text("G0 X1\n");
+    wb.finish_analysis();
     assert!(wb.problems().is_empty());
 }
 
@@ -41,6 +45,7 @@ fn edits_update_problems_with_lines_columns_and_character_ranges() {
 fn the_problems_panel_lists_each_diagnostic() {
     let mut wb = Workbench::default();
     wb.set_text("G01 X10 Y$ F100\n");
+    wb.finish_analysis();
     let mut harness = Harness::builder()
         .with_size(egui::vec2(1000.0, 600.0))
         .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
@@ -62,6 +67,7 @@ fn typing_in_the_editor_re_plots_and_marks_errors() {
     editor.focus();
     editor.type_text("G0 X5. Y7.\nG1 X$ F100\n");
     harness.run();
+    harness.state_mut().finish_analysis();
     let wb = harness.state();
     assert_eq!(wb.text(), "G0 X5. Y7.\nG1 X$ F100\n");
     assert_eq!(wb.stats().motions, 1);

@@ -4,10 +4,10 @@
 
 use std::collections::HashSet;
 
-use swarf_syntax::{Dialect, Severity, codes};
+use swarf_syntax::{Dialect, Program, Severity, codes};
 
-use crate::analysis::{Analysis, Problem};
-use crate::buffer::Buffer;
+use crate::run::Problem;
+use crate::text::ProgramText;
 
 /// Lines from the start of a program read again in every dialect (all of a short program).
 const HEAD_LINES: usize = 200;
@@ -56,18 +56,24 @@ fn differs(code: codes::Code) -> bool {
     have > 0 && have < Dialect::ALL.len()
 }
 
-/// The dialect `analysis` (of `text`) would read with strictly fewer errors, if any: the lines
-/// that may read differently (the head of the program, the lines with a problem, those with a
-/// code not every dialect has) are parsed again in every dialect and the one with the fewest
-/// errors, then the fewest unknown M codes, wins (the menu's order breaks ties).
-pub fn suggest(text: &Buffer, analysis: &Analysis) -> Option<DialectHint> {
-    let from = analysis.program.dialect;
-    let problems = &analysis.problems;
+/// The dialect `program` (of `text`, with its located `problems`) would read with strictly fewer
+/// errors, if any: the lines that may read differently (the head of the program, the lines with
+/// a problem, those with a code not every dialect has) are parsed again in every dialect and
+/// the one with the fewest errors, then the fewest unknown M codes, wins (the menu's order
+/// breaks ties).
+pub fn suggest(text: &ProgramText, program: &Program, problems: &[Problem]) -> Option<DialectHint> {
+    let from = program.dialect;
     // A program with nothing wrong reads no better elsewhere.
     if !problems.iter().any(telling) {
         return None;
     }
-    let last = text.len_lines();
+    // The program's own lines (those of the files linked after it follow).
+    let index = &program.lines;
+    let last = program
+        .linked
+        .first()
+        .map_or(index.line_count(), |l| l.first_line as usize)
+        .min(index.line_count());
     let mut lines: Vec<usize> = (0..HEAD_LINES.min(last)).collect();
     lines.extend(
         problems
@@ -89,8 +95,7 @@ pub fn suggest(text: &Buffer, analysis: &Analysis) -> Option<DialectHint> {
         }
     };
     lines.extend(
-        analysis
-            .program
+        program
             .blocks
             .iter()
             .filter(|b| {
@@ -106,7 +111,7 @@ pub fn suggest(text: &Buffer, analysis: &Analysis) -> Option<DialectHint> {
     lines.dedup();
     let mut sample = String::new();
     for &l in &lines {
-        sample.push_str(&text.line_text(l));
+        sample.push_str(&text.line(index, l));
         sample.push('\n');
     }
     // Each dialect's score, and the (sample line, code) of each diagnostic it counts.
@@ -147,13 +152,15 @@ pub fn suggest(text: &Buffer, analysis: &Analysis) -> Option<DialectHint> {
         if found.contains(&(at, p.code)) {
             return None;
         }
-        let mut what = text.slice(p.chars.clone());
+        let row = text.line(index, line);
+        let (col, len) = (p.col.saturating_sub(1) as usize, p.chars.len());
+        let mut what: String = row.chars().skip(col).take(len).collect();
         // A stray character is shown with its repeats: `//` rather than `/`.
         if let [c] = what.chars().collect::<Vec<_>>()[..]
             && !c.is_alphanumeric()
         {
-            let after = text.slice(p.chars.end..p.chars.end.saturating_add(WHAT_CHARS));
-            what.extend(after.chars().take_while(|&a| a == c));
+            let after = row.chars().skip(col + len).take(WHAT_CHARS);
+            what.extend(after.take_while(|&a| a == c));
         }
         let what: String = what.trim().chars().take(WHAT_CHARS).collect();
         (!what.is_empty()).then_some((what, p.line))
@@ -171,9 +178,18 @@ mod tests {
     use super::*;
 
     fn hint(text: &str, dialect: Dialect) -> Option<DialectHint> {
-        let analysis = Analysis::run(text, dialect, &swarf_interp::Setup::default(), 1);
-        suggest(&Buffer::from(text.to_string()), &analysis)
+        let job = crate::Job {
+            generation: 1,
+            text: ProgramText::from(text.to_string()),
+            dialect,
+            setup: swarf_interp::Setup::default(),
+            others: None,
+        };
+        crate::analyse(job).0.hint
     }
+
+    /// The example program the editor starts with.
+    const EXAMPLE_PROGRAM: &str = include_str!("../../../assets/examples/pocket.nc");
 
     #[test]
     fn a_syntec_program_read_as_fanuc_points_to_syntec() {
@@ -195,14 +211,14 @@ mod tests {
 
     #[test]
     fn a_fanuc_program_read_as_syntec_points_back_to_fanuc() {
-        let h = hint(crate::EXAMPLE_PROGRAM, Dialect::Syntec).expect("offered");
+        let h = hint(EXAMPLE_PROGRAM, Dialect::Syntec).expect("offered");
         assert_eq!(h.to, Dialect::Fanuc);
         assert_eq!(h.first.map(|(what, _)| what), Some("G21".to_string()));
     }
 
     #[test]
     fn a_clean_program_or_an_error_every_dialect_has_gets_no_offer() {
-        assert_eq!(hint(crate::EXAMPLE_PROGRAM, Dialect::Fanuc), None);
+        assert_eq!(hint(EXAMPLE_PROGRAM, Dialect::Fanuc), None);
         assert_eq!(hint("G1 X$ F100\nM30\n", Dialect::Fanuc), None);
         assert_eq!(hint("", Dialect::Fanuc), None);
     }

@@ -7,10 +7,9 @@ use std::sync::Arc;
 
 use proptest::prelude::*;
 use ropey::{Rope, RopeBuilder};
+use swarf_analysis::{Job, PendingAnalysis, ProgramText, RopeLines};
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, LineIndex, ParseRun, Program};
-use swarf_ui::analysis::{PendingAnalysis, ProgramText};
-use swarf_ui::buffer::RopeLines;
 
 /// The rope of `text` built from pieces of `piece` bytes (cut at character boundaries), so its
 /// chunk boundaries fall inside lines, multibyte characters' neighbours and `\r\n` pairs alike.
@@ -117,46 +116,56 @@ fn a_rope_edited_in_place_parses_as_its_text() {
     }
 }
 
+/// Analyses `text` opened beside `others`, 50 blocks' worth a step.
+fn analyse_in_steps(
+    text: ProgramText,
+    others: Vec<(String, ProgramText)>,
+) -> (swarf_analysis::Results, swarf_analysis::Kept) {
+    let mut pending = PendingAnalysis::start(Job {
+        generation: 3,
+        text,
+        dialect: Dialect::Fanuc,
+        setup: Setup::default(),
+        others: Some(others),
+    });
+    while !pending.step(50) {}
+    pending.finish()
+}
+
 #[test]
 fn an_analysis_of_a_rope_locates_its_problems_as_the_flat_one() {
     let text = mixed_program(400);
     let rope = rope_in_pieces(&text, 97);
-    let setup = Setup::default();
-    let run = |t: ProgramText| {
-        let mut pending =
-            PendingAnalysis::start_text_among(t, Dialect::Fanuc, &setup, 3, Vec::new());
-        while !pending.step(50) {}
-        pending.finish()
-    };
-    let flat = run(ProgramText::Flat(Arc::new(text.clone())));
-    let roped = run(ProgramText::Rope(rope));
+    let flat_text = ProgramText::Flat(Arc::new(text.clone()));
+    let rope_text = ProgramText::Rope(rope);
+    let (flat, flat_kept) = analyse_in_steps(flat_text.clone(), Vec::new());
+    let (roped, roped_kept) = analyse_in_steps(rope_text.clone(), Vec::new());
     assert!(flat.problems.len() > 40, "{}", flat.problems.len());
     assert!(flat.problems.iter().any(|p| p.code == "E-SYNTAX-CHAR"));
     assert_eq!(roped.problems, flat.problems);
-    assert_eq!(roped.program, flat.program);
-    assert_eq!(roped.toolpath.len(), flat.toolpath.len());
-    let (a, b) = (flat.scene.source.unwrap(), roped.scene.source.unwrap());
-    for line in [1, 2, 3, 7, 100, 2000, 100_000] {
-        assert_eq!(a.line(line), b.line(line), "line {line}");
+    assert_eq!(roped_kept.program, flat_kept.program);
+    assert_eq!(roped.stats, flat.stats);
+    let lines = &flat_kept.program.lines;
+    for line in [0, 1, 2, 6, 99, 1999, 100_000] {
+        assert_eq!(
+            rope_text.line(lines, line),
+            flat_text.line(lines, line),
+            "line {line}"
+        );
     }
-    assert_eq!(b.line(2).as_deref(), Some("O1234 (主程序 铣削)"));
+    assert_eq!(rope_text.line(lines, 1), "O1234 (主程序 铣削)");
 }
 
 #[test]
 fn a_program_calling_another_tab_held_as_a_rope_links_it() {
     let main = "O1\nM98 P2000\nM30\n";
     let sub = "O2000\nG01 X$ Y1\nM99\n";
-    let setup = Setup::default();
     let run = |t: ProgramText| {
-        let mut pending = PendingAnalysis::start_text_among(
+        analyse_in_steps(
             ProgramText::Rope(Rope::from_str(main)),
-            Dialect::Fanuc,
-            &setup,
-            1,
             vec![("O2000.nc".to_string(), t)],
-        );
-        while !pending.step(50) {}
-        pending.finish()
+        )
+        .0
     };
     let flat = run(ProgramText::Flat(Arc::new(sub.to_string())));
     let roped = run(ProgramText::Rope(rope_in_pieces(sub, 5)));

@@ -1,0 +1,588 @@
+//! One analysis: parse, link the calls into other open files, run, then locate the problems and
+//! prepare what the backplot draws, in pieces of bounded work.
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+use swarf_interp::{BlockState, Setup, States, StatesRun, Status};
+use swarf_render::Drawing;
+use swarf_syntax::{
+    Diagnostic, Dialect, LineIndex, LinkedFile, LinkedSource, ParseRun, Program, Severity,
+};
+use swarf_toolpath::{Timeline, Toolpath};
+
+use crate::hint::{DialectHint, suggest};
+use crate::text::{ProgramText, RopeLines};
+
+/// What to analyse: a program's text, how to read and run it, and the files its calls may reach.
+#[derive(Debug, Clone)]
+pub struct Job {
+    /// Tags the results (a number bumped by every change of the text, dialect or setup).
+    pub generation: u64,
+    /// The program's text.
+    pub text: ProgramText,
+    /// The dialect it is read in.
+    pub dialect: Dialect,
+    /// The machine it runs on.
+    pub setup: Setup,
+    /// The other open files (name, text) whose programs its calls may reach, named as the CLI
+    /// looks for them beside a program; `None` when calls are not looked for among open files.
+    pub others: Option<Vec<(String, ProgramText)>>,
+}
+
+/// One diagnostic, located for display.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Problem {
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based column in characters.
+    pub col: u32,
+    /// How bad it is.
+    pub severity: Severity,
+    /// Stable code such as `E-SYNTAX-CHAR`.
+    pub code: &'static str,
+    /// The message.
+    pub message: String,
+    /// Character range in the text, for underlining and jumping.
+    pub chars: std::ops::Range<usize>,
+}
+
+/// A diagnostic in another open file that the program called (a subprogram's error), located
+/// in that file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkedProblem {
+    /// The name of the file (tab) it is in.
+    pub file: String,
+    /// The diagnostic, located in that file's text.
+    pub problem: Problem,
+}
+
+/// Summary numbers of an analysed program.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Stats {
+    /// Blocks parsed.
+    pub blocks: usize,
+    /// Motion segments recorded.
+    pub motions: usize,
+    /// Bounds of the path in millimetres (machine frame).
+    pub bounds: Option<(DVec3, DVec3)>,
+    /// Estimated run time in seconds.
+    pub estimated_secs: f64,
+}
+
+/// What the backplot shows of a toolpath: its [`Drawing`] (with the setup's travel box), each
+/// segment's source line and feed for picking, its times and tool for playback, and the radii
+/// of the setup's tools for the tool marker.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Plot {
+    /// The path and its marks.
+    pub drawing: Drawing,
+    /// 1-based source line of each segment.
+    pub lines: Vec<u32>,
+    /// Feed of each segment in mm/min (0 for rapids).
+    pub feeds: Vec<f32>,
+    /// When each segment runs.
+    pub timeline: Timeline,
+    /// The tool in the spindle during each segment.
+    pub tools: Vec<u32>,
+    /// Radius in mm of the tools the setup knows, by number.
+    pub tool_radii: BTreeMap<u32, f32>,
+}
+
+impl Plot {
+    /// The plot of `path` run on `setup`'s machine.
+    pub fn of(path: &Toolpath, setup: &Setup) -> Self {
+        Plot {
+            drawing: Drawing::of(path, setup.machine.travel_mm),
+            lines: path.lines().to_vec(),
+            feeds: path.feeds(),
+            timeline: path.timeline(),
+            tools: path.segment_tools(),
+            tool_radii: setup
+                .registers
+                .iter()
+                .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
+                .collect(),
+        }
+    }
+}
+
+/// What the editor shows of a finished analysis: everything but the program, its toolpath and
+/// its machine states, which stay with the analysis ([`Kept`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Results {
+    /// The job's generation.
+    pub generation: u64,
+    /// Every diagnostic in the program's own text, sorted by position.
+    pub problems: Vec<Problem>,
+    /// Diagnostics in the other open files its calls reached, by file then position.
+    pub elsewhere: Vec<LinkedProblem>,
+    /// Summary numbers.
+    pub stats: Stats,
+    /// What the backplot draws.
+    pub plot: Plot,
+    /// The other open files linked into the program, in the order their lines follow its own.
+    pub linked: Vec<LinkedFile>,
+    /// Another dialect the program's codes read better in.
+    pub hint: Option<DialectHint>,
+}
+
+/// What an analysis keeps to answer questions about its program after its results are sent:
+/// the program and the machine state before any block.
+#[derive(Debug, Clone, Default)]
+pub struct Kept {
+    /// The job's generation.
+    pub generation: u64,
+    /// The parsed (and linked) program.
+    pub program: Program,
+    /// The machine states.
+    pub states: States,
+}
+
+impl Kept {
+    /// The machine state just before the block on 1-based `line` first runs; `None` when no
+    /// block there runs. The blocks are in the order of their lines (those of linked files
+    /// after the program's own), so the block is found by halves, and the state is re-run from
+    /// the nearest one kept: the cost does not grow with the program.
+    pub fn state_at(&self, line: u32) -> Option<BlockState> {
+        let row = line.checked_sub(1)?;
+        let blocks = &self.program.blocks;
+        let block = blocks.partition_point(|b| b.line < row);
+        if blocks.get(block)?.line != row {
+            return None;
+        }
+        self.states.at(&self.program, block)
+    }
+}
+
+/// How far an analysis has got.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Progress {
+    /// Reading the text: lines read, lines in the text.
+    Reading {
+        /// Lines read.
+        read: usize,
+        /// Lines in the text.
+        lines: usize,
+    },
+    /// Running the program: different blocks reached, blocks in the program (a program that
+    /// stops early, at an M30 before its end, finishes short of the total).
+    Running {
+        /// Different blocks run.
+        reached: usize,
+        /// Blocks in the program.
+        blocks: usize,
+    },
+}
+
+/// Most files linked to one program (a bound on runaway chains of calls).
+const MAX_LINKED: usize = 64;
+
+/// Lines the parser reads for one block of budget: reading a line costs about half of running
+/// a block.
+pub const PARSE_LINES_PER_BLOCK: usize = 2;
+
+/// An analysis under way: the text is read and then run by the interpreter, a bounded amount
+/// of each per [`step`](PendingAnalysis::step), so that whoever runs it can stop between
+/// pieces (a newer job replaces it) and answer other questions. Dropping it cancels the run.
+#[derive(Debug)]
+pub struct PendingAnalysis {
+    text: ProgramText,
+    /// A line of a rope that straddles its chunks, joined for the parser (reused).
+    joined: String,
+    /// The parse, until the whole text is read.
+    parse: Option<ParseRun>,
+    program: Program,
+    toolpath: Toolpath,
+    /// The interpreter's run, once the text is read.
+    run: Option<StatesRun>,
+    setup: Setup,
+    generation: u64,
+    dialect: Dialect,
+    /// The other open files linked for the program's calls.
+    linked: Vec<LinkedSource>,
+    /// The other open files to link the program's calls from once it is read.
+    others: Option<Vec<(String, ProgramText)>>,
+    /// Whether calls were looked for among open files (rather than files beside the program).
+    among_open_files: bool,
+}
+
+impl PendingAnalysis {
+    /// Prepares the analysis of `job` (a rope is parsed in place; nothing is read or executed
+    /// yet). A file of `job.others` is copied only when the program calls into it, and a call
+    /// found in none says so.
+    pub fn start(job: Job) -> Self {
+        let Job {
+            generation,
+            text,
+            dialect,
+            setup,
+            others,
+        } = job;
+        let parse = match &text {
+            ProgramText::Flat(text) => ParseRun::new(text, dialect),
+            ProgramText::Rope(rope) => {
+                ParseRun::with_lines(LineIndex::from_chunks(rope.chunks()), dialect)
+            }
+        };
+        PendingAnalysis {
+            text,
+            joined: String::new(),
+            parse: Some(parse),
+            program: Program::default(),
+            toolpath: Toolpath::for_machine(DVec3::ZERO, &setup.machine),
+            run: None,
+            setup,
+            generation,
+            dialect,
+            linked: Vec::new(),
+            among_open_files: others.is_some(),
+            others,
+        }
+    }
+
+    /// Reads lines, then executes blocks, for at most `budget` blocks' worth of work (a block
+    /// buys [`PARSE_LINES_PER_BLOCK`] lines; linking the calls, once the text is read, is not
+    /// counted); whether the run is over, so that [`finish`](PendingAnalysis::finish) only
+    /// wraps up.
+    pub fn step(&mut self, budget: usize) -> bool {
+        let mut budget = budget;
+        if let Some(parse) = &mut self.parse {
+            let (before, _) = parse.progress();
+            let lines = budget.saturating_mul(PARSE_LINES_PER_BLOCK);
+            let done = match &self.text {
+                ProgramText::Flat(text) => parse.step(text, lines),
+                ProgramText::Rope(rope) => {
+                    parse.step_from(&mut RopeLines::new(rope, &mut self.joined), lines)
+                }
+            };
+            let (after, _) = parse.progress();
+            budget = budget.saturating_sub((after - before).div_ceil(PARSE_LINES_PER_BLOCK));
+            if !done {
+                return false;
+            }
+            if let Some(parse) = self.parse.take() {
+                self.program = parse.finish();
+            }
+            self.link_and_start();
+        }
+        match &mut self.run {
+            Some(run) if budget > 0 => {
+                run.step(&self.program, &mut self.toolpath, budget) == Status::Finished
+            }
+            Some(_) => false,
+            None => true,
+        }
+    }
+
+    /// Links the program's calls from the other open files (when there are any) and starts
+    /// the interpreter's run.
+    fn link_and_start(&mut self) {
+        if let Some(others) = self.others.take()
+            && !others.is_empty()
+        {
+            self.linked =
+                link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
+        }
+        self.toolpath.reserve(self.program.blocks.len());
+        self.run = Some(StatesRun::new(&self.program, self.setup.clone()));
+    }
+
+    /// How far the analysis has got.
+    pub fn progress(&self) -> Progress {
+        match (&self.parse, &self.run) {
+            (Some(parse), _) => {
+                let (read, lines) = parse.progress();
+                Progress::Reading { read, lines }
+            }
+            (None, run) => Progress::Running {
+                reached: run.as_ref().map_or(0, StatesRun::blocks_reached),
+                blocks: self.program.blocks.len(),
+            },
+        }
+    }
+
+    /// The generation the results will carry.
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// Runs what is left, then locates the problems (the program's own, and those of the files
+    /// it called in those files), prepares the plot and looks for a dialect that reads the
+    /// program better: the results, and what is kept for questions about the program.
+    pub fn finish(mut self) -> (Results, Kept) {
+        while !self.step(usize::MAX) {}
+        let mut diags = self.program.diagnostics.clone();
+        let states = match self.run.take() {
+            Some(run) => {
+                let (run_diags, states) = run.finish();
+                diags.extend(run_diags);
+                states
+            }
+            None => StatesRun::new(&self.program, self.setup.clone()).finish().1,
+        };
+        diags.sort_by_key(|d| (d.span.start, d.span.end));
+        // Diagnostics past the program's own text belong to the files linked after it.
+        let program = &self.program;
+        let own_end = program.linked.first().map_or(u32::MAX, |l| l.first_byte);
+        let split = diags.partition_point(|d| d.span.start < own_end);
+        let others = diags.split_off(split);
+        if self.among_open_files {
+            for d in &mut diags {
+                if matches!(d.code, "E-SUBPROGRAM" | "E-OWORD") {
+                    d.message = d.message.replace("a file beside it", "an open tab");
+                }
+            }
+        }
+        let mut sweep = Sweep::default();
+        let problems: Vec<Problem> = diags
+            .iter()
+            .map(|d| locate_one(&self.text, &program.lines, &mut sweep, d))
+            .collect();
+        let mut elsewhere = Vec::new();
+        for (i, (at, file)) in program.linked.iter().zip(&self.linked).enumerate() {
+            let here: Vec<Diagnostic> = others
+                .iter()
+                .filter(|d| program.linked_at_offset(d.span.start) == Some(i))
+                .map(|d| {
+                    let mut d = d.clone();
+                    d.span.start = d.span.start.saturating_sub(at.first_byte);
+                    d.span.end = d.span.end.saturating_sub(at.first_byte);
+                    d
+                })
+                .collect();
+            elsewhere.extend(
+                locate(&file.text, &file.lines, &here)
+                    .into_iter()
+                    .map(|problem| LinkedProblem {
+                        file: file.name.clone(),
+                        problem,
+                    }),
+            );
+        }
+        let toolpath = &self.toolpath;
+        let stats = Stats {
+            blocks: program.blocks.len(),
+            motions: toolpath.len(),
+            bounds: toolpath.bounds().map(|b| (b.min, b.max)),
+            estimated_secs: toolpath.estimated_secs(),
+        };
+        let hint = suggest(&self.text, program, &problems);
+        let results = Results {
+            generation: self.generation,
+            plot: Plot::of(toolpath, &self.setup),
+            problems,
+            elsewhere,
+            stats,
+            linked: program.linked.clone(),
+            hint,
+        };
+        let kept = Kept {
+            generation: self.generation,
+            program: self.program,
+            states,
+        };
+        (results, kept)
+    }
+}
+
+/// Analyses `job` in one call.
+pub fn analyse(job: Job) -> (Results, Kept) {
+    PendingAnalysis::start(job).finish()
+}
+
+/// Where locating a flat text has counted characters to, so that the sorted diagnostics cost
+/// one pass over the text in all.
+#[derive(Debug, Default)]
+struct Sweep {
+    /// Byte offset counted to, and the characters before it.
+    at: usize,
+    chars: usize,
+    /// The last line located and the index of its first character.
+    line: Option<(usize, usize)>,
+}
+
+impl Sweep {
+    /// The index of the character starting at byte `offset` of `text` (or of the next one).
+    fn char_at(&mut self, text: &str, offset: usize) -> usize {
+        let mut to = offset.min(text.len());
+        while !text.is_char_boundary(to) {
+            to += 1;
+        }
+        if to >= self.at {
+            self.chars += text.get(self.at..to).map_or(0, |t| t.chars().count());
+            self.at = to;
+            self.chars
+        } else {
+            self.chars - text.get(to..self.at).map_or(0, |t| t.chars().count())
+        }
+    }
+}
+
+/// One diagnostic of the program's own text located (as [`locate`] does for many), the
+/// diagnostics taken in order of position.
+fn locate_one(text: &ProgramText, lines: &LineIndex, sweep: &mut Sweep, d: &Diagnostic) -> Problem {
+    let len = text.len();
+    let (start_at, end_at) = (d.span.start as usize, d.span.end as usize);
+    let line = lines.line_of(d.span.start);
+    let line_start = (lines.line_start(line) as usize).min(len);
+    let (col, start, end) = match text {
+        ProgramText::Flat(text) => {
+            let line_chars = match sweep.line {
+                Some((l, c)) if l == line => c,
+                _ => {
+                    let c = sweep.char_at(text, line_start);
+                    sweep.line = Some((line, c));
+                    c
+                }
+            };
+            let here = sweep.char_at(text, start_at.max(line_start));
+            let start = if start_at > len { 0 } else { here };
+            let end = if end_at > len {
+                start
+            } else if end_at >= start_at {
+                let mut to = end_at;
+                while !text.is_char_boundary(to) {
+                    to += 1;
+                }
+                let from = sweep.at.min(to);
+                sweep.chars - text.get(from..sweep.at).map_or(0, |t| t.chars().count())
+                    + text.get(from..to).map_or(0, |t| t.chars().count())
+            } else {
+                start
+            };
+            (here - line_chars, start, end)
+        }
+        ProgramText::Rope(rope) => {
+            let char_of = |o: usize| {
+                let o = o.min(len);
+                let c = rope.byte_to_char(o);
+                if rope.char_to_byte(c) < o { c + 1 } else { c }
+            };
+            let here = char_of(start_at.max(line_start));
+            let start = if start_at > len { 0 } else { here };
+            let end = if end_at > len { start } else { char_of(end_at) };
+            (here - char_of(line_start), start, end)
+        }
+    };
+    Problem {
+        line: u32::try_from(line + 1).unwrap_or(u32::MAX),
+        col: u32::try_from(col + 1).unwrap_or(u32::MAX),
+        severity: d.severity,
+        code: d.code,
+        message: d.message.clone(),
+        chars: start..end.max(start),
+    }
+}
+
+/// Links the programs `program` calls and does not hold from the other open files, by the
+/// names the CLI would look for beside it.
+fn link_open_files(
+    program: &mut Program,
+    main_len: usize,
+    dialect: Dialect,
+    others: &[(String, ProgramText)],
+) -> Vec<LinkedSource> {
+    program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
+        let names = missing.file_names();
+        let (name, text) = names
+            .iter()
+            .find_map(|n| others.iter().find(|(name, _)| name == n))?;
+        Some((name.clone(), text.to_owned_string()))
+    })
+}
+
+/// Turns byte spans into lines, columns and character ranges in one pass over the text.
+fn locate(text: &str, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
+    let mut offsets: Vec<usize> = diags
+        .iter()
+        .flat_map(|d| [d.span.start as usize, d.span.end as usize])
+        .collect();
+    offsets.sort_unstable();
+    offsets.dedup();
+    let mut char_of = std::collections::HashMap::with_capacity(offsets.len());
+    // Each offset becomes the index of the character starting there (or the next one), counted
+    // a run of text at a time from the offset before.
+    let (mut at, mut chars) = (0usize, 0usize);
+    for &o in &offsets {
+        if o > text.len() {
+            break;
+        }
+        let mut to = o;
+        while !text.is_char_boundary(to) {
+            to += 1;
+        }
+        chars += text.get(at..to).map_or(0, |t| t.chars().count());
+        at = to;
+        char_of.insert(o, chars);
+    }
+    let mut cols = lines.cursor(text);
+    diags
+        .iter()
+        .map(|d| {
+            let (line, col) = cols.line_col(d.span.start);
+            let start = char_of.get(&(d.span.start as usize)).copied().unwrap_or(0);
+            let end = char_of
+                .get(&(d.span.end as usize))
+                .copied()
+                .unwrap_or(start);
+            Problem {
+                line,
+                col,
+                severity: d.severity,
+                code: d.code,
+                message: d.message.clone(),
+                chars: start..end.max(start),
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+    use std::sync::Arc;
+
+    use proptest::prelude::*;
+    use ropey::Rope;
+
+    use super::*;
+
+    /// Locates `diags` (sorted) one at a time, as the analysis does.
+    fn one_by_one(text: &ProgramText, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
+        let mut sweep = Sweep::default();
+        diags
+            .iter()
+            .map(|d| locate_one(text, lines, &mut sweep, d))
+            .collect()
+    }
+
+    proptest! {
+        #[test]
+        fn diagnostics_located_one_by_one_match_the_single_pass(
+            text in "[GX0-9 ;()\\r\\n注释é$]{0,200}",
+            spans in proptest::collection::vec((0usize..260, 0usize..40), 0..30),
+        ) {
+            let bounds: Vec<usize> = text
+                .char_indices()
+                .map(|(b, _)| b)
+                .chain([text.len(), text.len() + 3])
+                .collect();
+            let mut diags: Vec<Diagnostic> = spans
+                .iter()
+                .map(|&(a, n)| {
+                    let start = bounds[a % bounds.len()];
+                    let end = bounds[(a + n) % bounds.len()].max(start);
+                    Diagnostic::error(swarf_syntax::Span::new(start, end), "E-SYNTAX-CHAR", "test")
+                })
+                .collect();
+            diags.sort_by_key(|d| (d.span.start, d.span.end));
+            let lines = LineIndex::new(&text);
+            let expected = locate(&text, &lines, &diags);
+            let flat = ProgramText::Flat(Arc::new(text.clone()));
+            prop_assert_eq!(&one_by_one(&flat, &lines, &diags), &expected);
+            let rope = ProgramText::Rope(Rope::from_str(&text));
+            prop_assert_eq!(&one_by_one(&rope, &lines, &diags), &expected);
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! The analysis as a service beside the UI: the UI sends [`Request`]s and takes [`Reply`]s as
+//! they come, from a thread ([`Thread`]), a web worker (the page's host) or, where neither
+//! exists, in its own frames ([`Inline`]). All of them run the same [`Service`].
+
+use std::sync::{Arc, Mutex};
+
+use swarf_interp::BlockState;
+
+use crate::run::{Job, Kept, PendingAnalysis, Progress, Results};
+
+/// Blocks' worth of work (see [`PendingAnalysis::step`]) between two looks at the requests: a
+/// few milliseconds, so that a newer edit replaces a running analysis at once.
+pub const PIECE: usize = 20_000;
+
+/// What the UI asks of the analysis.
+#[derive(Debug, Clone)]
+pub enum Request {
+    /// Analyse a program, dropping any unfinished analysis.
+    Analyse(Box<Job>),
+    /// The machine state before the block on 1-based `line` of the program analysed in
+    /// `generation`.
+    StateAt {
+        /// The analysis asked about.
+        generation: u64,
+        /// 1-based line.
+        line: u32,
+    },
+}
+
+/// What the analysis answers.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Reply {
+    /// How far the analysis of `generation` has got.
+    Progress {
+        /// The analysis.
+        generation: u64,
+        /// How far it has got.
+        progress: Progress,
+    },
+    /// A finished analysis.
+    Done(Box<Results>),
+    /// The answer to [`Request::StateAt`]: `None` when that analysis is no longer held (a
+    /// newer one finished), `Some(None)` when no block on the line runs.
+    State {
+        /// The analysis asked about.
+        generation: u64,
+        /// 1-based line.
+        line: u32,
+        /// The state.
+        state: Option<Option<BlockState>>,
+    },
+}
+
+/// What the last finished analysis keeps, shared with whoever answers questions about it.
+pub type Held = Arc<Mutex<Option<Kept>>>;
+
+/// The answer to [`Request::StateAt`] from what `held` keeps (see [`Reply::State`]).
+pub fn state_at(held: &Held, generation: u64, line: u32) -> Option<Option<BlockState>> {
+    let kept = held.lock().ok()?;
+    kept.as_ref()
+        .filter(|k| k.generation == generation)
+        .map(|k| k.state_at(line))
+}
+
+/// The analysis side's state: the analysis under way and what the last finished one keeps.
+#[derive(Debug, Default)]
+pub struct Service {
+    pending: Option<PendingAnalysis>,
+    held: Held,
+}
+
+impl Service {
+    /// Takes a request: a job replaces the analysis under way (answered later, by
+    /// [`step`](Service::step)); a question is answered now.
+    pub fn handle(&mut self, request: Request) -> Option<Reply> {
+        match request {
+            Request::Analyse(job) => {
+                self.pending = Some(PendingAnalysis::start(*job));
+                None
+            }
+            Request::StateAt { generation, line } => Some(Reply::State {
+                generation,
+                line,
+                state: state_at(&self.held, generation, line),
+            }),
+        }
+    }
+
+    /// Whether an analysis is under way.
+    pub fn is_busy(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// Runs a [`PIECE`] of the analysis under way: its progress, or its results once it is
+    /// finished (then it answers questions until the next one finishes); `None` when idle.
+    pub fn step(&mut self) -> Option<Reply> {
+        let pending = self.pending.as_mut()?;
+        if !pending.step(PIECE) {
+            return Some(Reply::Progress {
+                generation: pending.generation(),
+                progress: pending.progress(),
+            });
+        }
+        let pending = self.pending.take()?;
+        // The program kept before is freed first (two long ones need not be held at once), and
+        // outside the lock.
+        let old = self.held.lock().ok().and_then(|mut held| held.take());
+        drop(old);
+        let (results, kept) = pending.finish();
+        if let Ok(mut held) = self.held.lock() {
+            *held = Some(kept);
+        }
+        Some(Reply::Done(Box::new(results)))
+    }
+}
+
+/// Where the UI sends its requests and takes the replies (a thread, a worker, or its own
+/// frames).
+pub trait Analyst {
+    /// Sends a request; an answer given at once comes back (a question about the finished
+    /// analysis, where it is held on the caller's side of the thread).
+    fn send(&mut self, request: Request) -> Option<Reply>;
+    /// The next reply, if one has come.
+    fn try_reply(&mut self) -> Option<Reply>;
+    /// Waits for the next reply; `None` when none will come or this host cannot wait (a web
+    /// page's main thread).
+    fn wait_reply(&mut self) -> Option<Reply>;
+}
+
+/// The analysis run in the caller's own time: a job runs whole when its reply is first asked
+/// for (for a host with neither threads nor a worker).
+#[derive(Debug, Default)]
+pub struct Inline {
+    service: Service,
+}
+
+impl Analyst for Inline {
+    fn send(&mut self, request: Request) -> Option<Reply> {
+        self.service.handle(request)
+    }
+
+    fn try_reply(&mut self) -> Option<Reply> {
+        while let Some(reply) = self.service.step() {
+            if matches!(reply, Reply::Done(_)) {
+                return Some(reply);
+            }
+        }
+        None
+    }
+
+    fn wait_reply(&mut self) -> Option<Reply> {
+        self.try_reply()
+    }
+}
+
+/// The analysis on a thread of its own: it takes the jobs between pieces, so a newer job
+/// replaces one under way at once, and calls a waker with every reply it sends (the UI
+/// repaints). A question about the finished analysis is answered at once, from what it keeps
+/// (a bounded re-run from the nearest machine state kept). The thread ends when this is dropped.
+#[cfg(not(target_arch = "wasm32"))]
+#[derive(Debug)]
+pub struct Thread {
+    requests: std::sync::mpsc::Sender<Request>,
+    replies: std::sync::mpsc::Receiver<Reply>,
+    held: Held,
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl Thread {
+    /// Starts the thread; `wake` is called after each reply is sent, with whether it was only
+    /// progress.
+    pub fn spawn(wake: impl Fn(bool) + Send + 'static) -> std::io::Result<Self> {
+        let (requests, requests_in) = std::sync::mpsc::channel();
+        let (replies_out, replies) = std::sync::mpsc::channel();
+        let service = Service::default();
+        let held = Arc::clone(&service.held);
+        std::thread::Builder::new()
+            .name("swarf-analysis".into())
+            .spawn(move || serve(service, &requests_in, &replies_out, &wake))?;
+        Ok(Thread {
+            requests,
+            replies,
+            held,
+        })
+    }
+}
+
+/// The thread's loop: every request that has come, then a piece of the analysis under way (or a
+/// wait for the next request when there is none).
+#[cfg(not(target_arch = "wasm32"))]
+fn serve(
+    mut service: Service,
+    requests: &std::sync::mpsc::Receiver<Request>,
+    replies: &std::sync::mpsc::Sender<Reply>,
+    wake: &dyn Fn(bool),
+) {
+    use std::sync::mpsc::TryRecvError;
+    loop {
+        let request = if service.is_busy() {
+            match requests.try_recv() {
+                Ok(request) => Some(request),
+                Err(TryRecvError::Empty) => None,
+                Err(TryRecvError::Disconnected) => return,
+            }
+        } else {
+            match requests.recv() {
+                Ok(request) => Some(request),
+                Err(_) => return,
+            }
+        };
+        let reply = match request {
+            Some(request) => service.handle(request),
+            None => service.step(),
+        };
+        if let Some(reply) = reply {
+            let progress = matches!(reply, Reply::Progress { .. });
+            if replies.send(reply).is_err() {
+                return;
+            }
+            wake(progress);
+        }
+    }
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl Analyst for Thread {
+    fn send(&mut self, request: Request) -> Option<Reply> {
+        if let Request::StateAt { generation, line } = request {
+            let state = state_at(&self.held, generation, line);
+            return Some(Reply::State {
+                generation,
+                line,
+                state,
+            });
+        }
+        // A thread that ended (it never panics) leaves nothing to send to.
+        let _ = self.requests.send(request);
+        None
+    }
+
+    fn try_reply(&mut self) -> Option<Reply> {
+        self.replies.try_recv().ok()
+    }
+
+    fn wait_reply(&mut self) -> Option<Reply> {
+        self.replies.recv().ok()
+    }
+}

@@ -1,0 +1,192 @@
+//! The analysis as a service: in pieces it gives what one call gives, a newer job replaces one
+//! under way at once, and the program stays on the analysis side to answer questions.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
+
+use swarf_analysis::{
+    Analyst, Inline, Job, PendingAnalysis, ProgramText, Progress, Reply, Request, Thread, analyse,
+};
+use swarf_interp::Setup;
+use swarf_syntax::Dialect;
+
+/// `lines` straight moves, then `tail`.
+fn program(lines: usize, tail: &str) -> String {
+    let mut text = String::from("G90 G21 G17 G54\n");
+    for i in 1..lines {
+        text.push_str(&format!("G01 X{}. Y{}. F500.\n", i % 100, i % 37));
+    }
+    text.push_str(tail);
+    text
+}
+
+fn job(generation: u64, text: String) -> Job {
+    Job {
+        generation,
+        text: ProgramText::from(text),
+        dialect: Dialect::Fanuc,
+        setup: Setup::default(),
+        others: None,
+    }
+}
+
+/// Replies until the first finished analysis.
+fn until_done(analyst: &mut dyn Analyst) -> (Vec<Reply>, swarf_analysis::Results) {
+    let mut before = Vec::new();
+    loop {
+        match analyst.wait_reply().expect("a reply") {
+            Reply::Done(results) => return (before, *results),
+            other => before.push(other),
+        }
+    }
+}
+
+#[test]
+fn an_analysis_in_steps_equals_the_one_call_run() {
+    let text = program(3000, "G01 X$\nM30\n");
+    let (whole, _) = analyse(job(7, text.clone()));
+    let mut pending = PendingAnalysis::start(job(7, text));
+    // The text is read first (two lines per block of budget), then run.
+    assert_eq!(
+        pending.progress(),
+        Progress::Reading {
+            read: 0,
+            lines: 3003
+        }
+    );
+    let mut steps = 0;
+    let mut reading = 0;
+    while !pending.step(100) {
+        steps += 1;
+        match pending.progress() {
+            Progress::Reading { read, lines } => {
+                assert_eq!(read, 200 * steps);
+                assert!(read < lines);
+                reading += 1;
+            }
+            Progress::Running { reached, blocks } => {
+                assert_eq!(blocks, 3002);
+                assert!(reached <= blocks);
+            }
+        }
+    }
+    assert_eq!(reading, 15);
+    assert!(steps >= 15 + 29, "{steps}");
+    let (stepped, _) = pending.finish();
+    assert_eq!(stepped, whole);
+    assert_eq!(stepped.generation, 7);
+    assert!(stepped.problems.iter().any(|p| p.code == "E-SYNTAX-CHAR"));
+}
+
+#[test]
+fn a_newer_job_replaces_one_under_way_on_the_thread() {
+    let mut thread = Thread::spawn(|_| {}).unwrap();
+    thread.send(Request::Analyse(Box::new(job(
+        1,
+        program(400_000, "M30\n"),
+    ))));
+    thread.send(Request::Analyse(Box::new(job(
+        2,
+        "G0 X1\nG01 X$\n".to_string(),
+    ))));
+    let (before, results) = until_done(&mut thread);
+    assert_eq!(results.generation, 2, "the long job never finishes");
+    assert_eq!(results.stats.blocks, 2);
+    assert!(before.len() <= 2, "{before:?}");
+    let codes: Vec<_> = results.problems.iter().map(|p| (p.line, p.code)).collect();
+    assert!(codes.contains(&(2, "E-SYNTAX-CHAR")), "{codes:?}");
+}
+
+#[test]
+fn a_long_analysis_reports_its_progress_and_keeps_its_program_for_questions() {
+    let mut thread = Thread::spawn(|_| {}).unwrap();
+    let text = program(100_000, "M30\n");
+    thread.send(Request::Analyse(Box::new(job(5, text.clone()))));
+    let (before, results) = until_done(&mut thread);
+    assert!(before.len() > 5, "{}", before.len());
+    let mut last = 0;
+    for reply in &before {
+        let Reply::Progress {
+            generation: 5,
+            progress,
+        } = reply
+        else {
+            panic!("{reply:?}");
+        };
+        if let Progress::Running { reached, blocks } = *progress {
+            assert_eq!(blocks, 100_001);
+            assert!(reached >= last);
+            last = reached;
+        }
+    }
+    assert_eq!(results, analyse(job(5, text)).0);
+    // Questions about the finished analysis are answered at once, on the caller's side.
+    let Some(Reply::State {
+        generation: 5,
+        line: 3,
+        state: Some(Some(state)),
+    }) = thread.send(Request::StateAt {
+        generation: 5,
+        line: 3,
+    })
+    else {
+        panic!("the state at line 3");
+    };
+    assert_eq!((state.work.x, state.work.y), (1.0, 1.0));
+    assert_eq!(state.executed, 2);
+    // Another analysis is not held; a line without a block does not run.
+    assert!(matches!(
+        thread.send(Request::StateAt {
+            generation: 4,
+            line: 3,
+        }),
+        Some(Reply::State { state: None, .. })
+    ));
+    assert!(matches!(
+        thread.send(Request::StateAt {
+            generation: 5,
+            line: 200_000,
+        }),
+        Some(Reply::State {
+            state: Some(None),
+            ..
+        })
+    ));
+    // The state of the last line run, with its many blocks before it.
+    let Some(Reply::State {
+        state: Some(Some(last)),
+        ..
+    }) = thread.send(Request::StateAt {
+        generation: 5,
+        line: 100_000,
+    })
+    else {
+        panic!("the state at line 100,000");
+    };
+    assert_eq!(last.executed, 99_999);
+}
+
+#[test]
+fn inline_gives_the_thread_s_replies_when_asked() {
+    let text = program(500, "G01 Y$\nM30\n");
+    let mut inline = Inline::default();
+    assert!(inline.try_reply().is_none());
+    assert!(
+        inline
+            .send(Request::Analyse(Box::new(job(3, text.clone()))))
+            .is_none()
+    );
+    let Some(Reply::Done(results)) = inline.try_reply() else {
+        panic!("finished when asked");
+    };
+    assert_eq!(*results, analyse(job(3, text)).0);
+    assert!(matches!(
+        inline.send(Request::StateAt {
+            generation: 3,
+            line: 2,
+        }),
+        Some(Reply::State {
+            state: Some(Some(_)),
+            ..
+        })
+    ));
+    assert!(inline.wait_reply().is_none());
+}

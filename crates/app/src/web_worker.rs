@@ -1,0 +1,162 @@
+//! The page's analysis in a web worker (`web/worker.js` running crates/worker): the
+//! workbench's requests are posted to it and its replies taken as they come, each one asking
+//! for a frame. Should the worker fail, the analysis goes on in the page's own frames.
+
+use std::cell::RefCell;
+use std::collections::VecDeque;
+use std::rc::Rc;
+
+use js_sys::{Array, ArrayBuffer, Uint8Array};
+use swarf_analysis::{Analyst, Inline, Job, ProgramText, Reply, Request, wire};
+use wasm_bindgen::JsCast as _;
+use wasm_bindgen::prelude::*;
+
+/// The script the worker runs, beside the page's own.
+const WORKER_SCRIPT: &str = "./worker.js";
+
+/// What the worker's events leave for the next frame.
+#[derive(Default)]
+struct Inbox {
+    replies: VecDeque<Reply>,
+    failed: bool,
+}
+
+/// The analysis in a web worker (an [`Analyst`] for [`swarf_ui::Workbench::set_analyst`]).
+pub struct WorkerAnalyst {
+    worker: web_sys::Worker,
+    inbox: Rc<RefCell<Inbox>>,
+    /// The worker's handlers, which live as long as it does.
+    _on_message: Closure<dyn FnMut(web_sys::MessageEvent)>,
+    _on_error: Closure<dyn FnMut(web_sys::ErrorEvent)>,
+    /// The last job sent: run here should the worker fail before it answers.
+    last_job: Option<Job>,
+    /// The analysis in the frames, once the worker has failed.
+    fallback: Option<Inline>,
+}
+
+impl WorkerAnalyst {
+    /// Starts the worker; each reply it posts asks `ctx` for a frame.
+    pub fn start(ctx: &egui::Context) -> Result<Self, JsValue> {
+        let worker = web_sys::Worker::new(WORKER_SCRIPT)?;
+        let inbox = Rc::new(RefCell::new(Inbox::default()));
+        let on_message = {
+            let (inbox, ctx) = (Rc::clone(&inbox), ctx.clone());
+            Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |event: web_sys::MessageEvent| {
+                match read_reply(&event.data()) {
+                    Some(reply) => {
+                        let progress = matches!(reply, Reply::Progress { .. });
+                        ctx.request_repaint_after(swarf_ui::reply_frame(progress));
+                        inbox.borrow_mut().replies.push_back(reply);
+                    }
+                    None => log::warn!("the analysis worker sent a message that does not read"),
+                }
+            })
+        };
+        worker.set_onmessage(Some(on_message.as_ref().unchecked_ref()));
+        let on_error = {
+            let (inbox, ctx) = (Rc::clone(&inbox), ctx.clone());
+            Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |event: web_sys::ErrorEvent| {
+                log::error!(
+                    "the analysis worker failed ({}); it goes on in the page",
+                    event.message()
+                );
+                inbox.borrow_mut().failed = true;
+                ctx.request_repaint();
+            })
+        };
+        worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
+        Ok(WorkerAnalyst {
+            worker,
+            inbox,
+            _on_message: on_message,
+            _on_error: on_error,
+            last_job: None,
+            fallback: None,
+        })
+    }
+
+    /// Leaves the worker for the frames, starting with the last job sent.
+    fn fail(&mut self) {
+        self.worker.terminate();
+        let mut inline = Inline::default();
+        if let Some(job) = self.last_job.take() {
+            // A job is answered later, from the frames.
+            let _ = inline.send(Request::Analyse(Box::new(job)));
+        }
+        self.fallback = Some(inline);
+    }
+}
+
+impl Drop for WorkerAnalyst {
+    fn drop(&mut self) {
+        self.worker.terminate();
+    }
+}
+
+impl Analyst for WorkerAnalyst {
+    fn send(&mut self, request: Request) -> Option<Reply> {
+        if let Request::Analyse(job) = &request {
+            self.last_job = Some(job.as_ref().clone());
+        }
+        if let Some(inline) = &mut self.fallback {
+            return inline.send(request);
+        }
+        let (head, texts) = wire::request_parts(&request);
+        let message: Array = std::iter::once(Uint8Array::from(head.as_slice()).buffer())
+            .chain(texts.into_iter().map(text_buffer))
+            .collect();
+        if let Err(error) = self.worker.post_message_with_transfer(&message, &message) {
+            log::error!("the analysis worker takes no message ({error:?}); it goes on in the page");
+            self.fail();
+        }
+        None
+    }
+
+    fn try_reply(&mut self) -> Option<Reply> {
+        if self.fallback.is_none() && self.inbox.borrow().failed {
+            self.fail();
+        }
+        match &mut self.fallback {
+            Some(inline) => inline.try_reply(),
+            None => self.inbox.borrow_mut().replies.pop_front(),
+        }
+    }
+
+    /// The page's main thread cannot wait: the reply that has come, if any.
+    fn wait_reply(&mut self) -> Option<Reply> {
+        self.try_reply()
+    }
+}
+
+/// A text as UTF-8 in a new `ArrayBuffer`, its pieces copied straight into place.
+fn text_buffer(text: &ProgramText) -> ArrayBuffer {
+    let len = u32::try_from(text.len()).unwrap_or(u32::MAX);
+    let array = Uint8Array::new_with_length(len);
+    let mut at = 0u32;
+    for chunk in text.chunks() {
+        let n = u32::try_from(chunk.len()).unwrap_or(u32::MAX);
+        let end = at.saturating_add(n).min(len);
+        if let Some(bytes) = chunk.as_bytes().get(..(end - at) as usize) {
+            array.subarray(at, end).copy_from(bytes);
+        }
+        at = end;
+    }
+    array.buffer()
+}
+
+/// A reply of the worker (`[head, ...arrays]`), its arrays copied straight into place.
+fn read_reply(data: &JsValue) -> Option<Reply> {
+    let message = data.dyn_ref::<Array>()?;
+    let buffers = message
+        .iter()
+        .map(|part| part.dyn_into::<ArrayBuffer>().ok())
+        .collect::<Option<Vec<_>>>()?;
+    let (head, arrays) = buffers.split_first()?;
+    let head = Uint8Array::new(head).to_vec();
+    let sizes: Vec<usize> = arrays.iter().map(|a| a.byte_length() as usize).collect();
+    wire::reply_from(&head, &sizes, |i, bytes| {
+        if let Some(array) = arrays.get(i) {
+            Uint8Array::new(array).copy_to(bytes);
+        }
+    })
+}
