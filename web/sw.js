@@ -18,24 +18,26 @@ const PAGE_FILES = [
   "./swarf.css",
   "./swarf_app.js",
   "./swarf_app_bg.wasm",
+  "./worker.js",
+  "./swarf_worker.js",
+  "./swarf_worker_bg.wasm",
 ];
 
 // Keeps a successful same-origin response. The body is read whole into memory first: when the
-// disk is nearly full Chromium refuses large blobs, so putting the wasm's streamed body (about
-// 12 MB) into the cache fails with a "network error", while the same bytes from memory are
-// stored.
+// disk is nearly full Chromium refuses large blobs, so putting the wasm's streamed body into the
+// cache fails with a "network error", while the same bytes from memory are stored. The body
+// read is the decoded one, so the stored copy drops the headers of the compressed transfer.
 async function store(cache, request, response) {
   if (!response.ok || response.type !== "basic") {
     return;
   }
   const body = await response.arrayBuffer();
+  const headers = new Headers(response.headers);
+  headers.delete("Content-Encoding");
+  headers.delete("Content-Length");
   await cache.put(
     request,
-    new Response(body, {
-      status: response.status,
-      statusText: response.statusText,
-      headers: response.headers,
-    }),
+    new Response(body, { status: response.status, statusText: response.statusText, headers }),
   );
 }
 

@@ -1,13 +1,14 @@
-// Shared helpers of the browser end-to-end tests (`*.test.mjs` in this folder): a static server
-// for the web build, a Chromium session that records the page's console, and the checks that
+// Shared helpers of the browser end-to-end tests (`*.test.mjs` in this folder): the web build
+// served by `cargo xtask serve`, a Chromium session that records the page's console, and the checks that
 // every variant makes. Not a test file itself (`node --test` only runs `*.test.mjs` here).
 //
 // Environment: SWARF_WEB_DIR (default <repo>/target/web), SWARF_CHROMIUM (default
-// /usr/bin/chromium).
+// /usr/bin/chromium), SWARF_XTASK (the xtask program to serve the page with; default
+// `cargo run --package xtask`).
 
 import assert from "node:assert/strict";
-import { createServer } from "node:http";
-import { mkdtemp, mkdir, readFile, rm, stat, writeFile } from "node:fs/promises";
+import { spawn } from "node:child_process";
+import { mkdtemp, mkdir, rm, writeFile } from "node:fs/promises";
 import { existsSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
@@ -20,6 +21,7 @@ const HERE = path.dirname(fileURLToPath(import.meta.url));
 const REPO = path.resolve(HERE, "..", "..");
 export const SITE = path.resolve(process.env.SWARF_WEB_DIR ?? path.join(REPO, "target", "web"));
 export const CHROMIUM = process.env.SWARF_CHROMIUM ?? "/usr/bin/chromium";
+const XTASK = process.env.SWARF_XTASK;
 export const ARTIFACTS = path.join(HERE, "artifacts");
 
 export const READY_TIMEOUT_MS = 120_000;
@@ -34,18 +36,6 @@ export const COMMON_CHROMIUM_ARGS = [
   "--disable-component-update",
   "--disable-sync",
 ];
-
-const MIME = {
-  ".html": "text/html; charset=utf-8",
-  ".js": "text/javascript; charset=utf-8",
-  ".mjs": "text/javascript; charset=utf-8",
-  ".css": "text/css; charset=utf-8",
-  ".wasm": "application/wasm",
-  ".png": "image/png",
-  ".svg": "image/svg+xml",
-  ".json": "application/json",
-  ".ico": "image/x-icon",
-};
 
 /** Throws a readable error when the web build or Chromium is missing. */
 export function checkPrerequisites() {
@@ -63,33 +53,33 @@ export function checkPrerequisites() {
   }
 }
 
-/** A static file server for SITE; 404 for anything outside it. */
+/**
+ * Serves SITE through `cargo xtask serve --no-build` on a free port of 127.0.0.1, the server a
+ * person runs (it sends the precompressed copies of the files); resolves to the child process
+ * and the page's URL.
+ */
 function startServer() {
-  const root = SITE + path.sep;
-  const httpServer = createServer(async (request, response) => {
-    try {
-      const url = new URL(request.url ?? "/", "http://localhost");
-      let file = path.normalize(path.join(SITE, decodeURIComponent(url.pathname)));
-      if (!(file + path.sep).startsWith(root) && file !== SITE) {
-        throw new Error("outside the site");
-      }
-      if ((await stat(file)).isDirectory()) {
-        file = path.join(file, "index.html");
-      }
-      const body = await readFile(file);
-      response.writeHead(200, {
-        "Content-Type": MIME[path.extname(file).toLowerCase()] ?? "application/octet-stream",
-        "Cache-Control": "no-store",
-      });
-      response.end(request.method === "HEAD" ? undefined : body);
-    } catch {
-      response.writeHead(404, { "Content-Type": "text/plain" });
-      response.end("not found");
-    }
-  });
+  const serve = ["serve", "--no-build", "--port", "0", "--dir", SITE];
+  const [program, args] = XTASK
+    ? [XTASK, serve]
+    : ["cargo", ["run", "--quiet", "--package", "xtask", "--", ...serve]];
+  const server = spawn(program, args, { cwd: REPO, stdio: ["ignore", "pipe", "pipe"] });
+  const stopOnExit = () => server.kill();
+  process.once("exit", stopOnExit);
+  server.once("exit", () => process.off("exit", stopOnExit));
+  let output = "";
   return new Promise((resolve, reject) => {
-    httpServer.once("error", reject);
-    httpServer.listen(0, "127.0.0.1", () => resolve(httpServer));
+    const failed = (why) => reject(new Error(`cargo xtask serve ${why}:\n${output}`));
+    server.stderr.on("data", (chunk) => (output += chunk));
+    server.stdout.on("data", (chunk) => {
+      output += chunk;
+      const address = /running at (http:\/\/127\.0\.0\.1:\d+\/)/.exec(output);
+      if (address) {
+        resolve({ server, url: address[1] });
+      }
+    });
+    server.once("error", (error) => failed(`did not start (${error.message})`));
+    server.once("exit", (code, signal) => failed(`stopped (${signal ?? `exit code ${code}`})`));
   });
 }
 
@@ -127,8 +117,9 @@ export class BrowserSession {
   }
 
   async #start(headless, args) {
-    this.server = await startServer();
-    this.baseUrl = `http://127.0.0.1:${this.server.address().port}/`;
+    const { server, url } = await startServer();
+    this.server = server;
+    this.baseUrl = url;
 
     this.userDataDir = await mkdtemp(path.join(tmpdir(), "swarf-e2e-chromium-"));
     this.context = await chromium.launchPersistentContext(this.userDataDir, {
@@ -203,9 +194,20 @@ export class BrowserSession {
     });
   }
 
+  /** Stops the server (the page's files are then only where the browser keeps them). */
+  async stopServer() {
+    const { server } = this;
+    this.server = undefined;
+    if (server && server.exitCode === null && server.signalCode === null) {
+      const exited = new Promise((resolve) => server.once("exit", resolve));
+      server.kill();
+      await exited;
+    }
+  }
+
   async close() {
     await this.context?.close().catch(() => {});
-    await new Promise((resolve) => (this.server ? this.server.close(resolve) : resolve()));
+    await this.stopServer();
     if (this.userDataDir) {
       await rm(this.userDataDir, { recursive: true, force: true }).catch(() => {});
     }

@@ -51,11 +51,7 @@ test("a reload works offline once the page was visited", { timeout: TEST_TIMEOUT
 
   // No network: offline emulation, and the server gone as well.
   await context.setOffline(true);
-  await new Promise((resolve) => {
-    session.server.closeAllConnections?.();
-    session.server.close(resolve);
-  });
-  session.server = undefined;
+  await session.stopServer();
 
   await page.reload({ waitUntil: "load", timeout: 60_000 });
   await page.waitForFunction(() => typeof window.swarf === "object" && window.swarf !== null, null, {

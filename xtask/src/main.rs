@@ -1,7 +1,7 @@
 //! Build tasks for Swarf, run as `cargo xtask <command>`.
 //!
-//! * `cargo xtask web [--dev] [--opt]` builds the web page into `target/web/`.
-//! * `cargo xtask serve [--port 8080] [--no-build] [--dev]` builds and serves it.
+//! * `cargo xtask web [--dev] [--no-opt]` builds the web page into `target/web/`.
+//! * `cargo xtask serve [--port 8080] [--no-build] [--dir DIR] [--dev]` builds and serves it.
 //! * `cargo xtask test [--quick]` installs what the tests need and runs every test.
 //! * `cargo xtask wasm-tools` installs what the wasm32 tests need (the benchmark's last step).
 
@@ -12,6 +12,7 @@ mod tools;
 mod util;
 mod web;
 
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Result, bail};
@@ -24,12 +25,15 @@ USAGE:
 
 COMMANDS:
     web     Build the web page into target/web/
-              --dev         debug build of the wasm (faster to build, slower to run)
-              --opt         run wasm-opt -Oz (only an npm-installed binaryen is used)
-    serve   Build the web page and serve it on http://127.0.0.1:PORT/
-              --port PORT   port to listen on (default 8080)
-              --no-build    serve target/web/ as it is
-              --dev, --opt  as for `web`
+              --dev         debug build of the wasm (faster to build, slower to run, no
+                            wasm-opt)
+              --no-opt      leave out wasm-opt -Oz (npm's binaryen, installed when missing)
+    serve   Build the web page and serve it on http://127.0.0.1:PORT/, each file
+            compressed (.br, .gz beside it) when the browser accepts it
+              --port PORT   port to listen on (default 8080; 0 picks a free one)
+              --no-build    serve the site as it is
+              --dir DIR     serve DIR instead of target/web/ (with --no-build)
+              --dev, --no-opt  as for `web`
     test    Install what the tests need, then run every check and test
               --quick       skip the browser and desktop steps
               --only STEPS  run only these steps, e.g. `--only g` or `--only a,b,e`
@@ -63,21 +67,25 @@ fn run() -> Result<()> {
     let mut opts = Options::parse(rest)?;
     match command.as_str() {
         "web" => {
-            opts.reject_unused(&["--dev", "--opt"])?;
+            opts.reject_unused(&["--dev", "--no-opt"])?;
             web::build(web::WebOptions {
                 dev: opts.dev,
-                opt: opts.opt,
+                no_opt: opts.no_opt,
             })?;
         }
         "serve" => {
-            opts.reject_unused(&["--dev", "--opt", "--port", "--no-build"])?;
+            opts.reject_unused(&["--dev", "--no-opt", "--port", "--no-build", "--dir"])?;
+            if opts.dir.is_some() && !opts.no_build {
+                bail!("--dir serves a site as it is; add --no-build");
+            }
             if !opts.no_build {
                 web::build(web::WebOptions {
                     dev: opts.dev,
-                    opt: opts.opt,
+                    no_opt: opts.no_opt,
                 })?;
             }
-            serve::serve(opts.port.take().unwrap_or(8080))?;
+            let dir = opts.dir.take().map_or_else(web::site_dir, PathBuf::from);
+            serve::serve(&dir, opts.port.take().unwrap_or(8080))?;
         }
         "test" => {
             opts.reject_unused(&["--quick", "--only"])?;
@@ -98,11 +106,12 @@ fn run() -> Result<()> {
 #[derive(Debug, Default)]
 struct Options {
     dev: bool,
-    opt: bool,
+    no_opt: bool,
     no_build: bool,
     quick: bool,
     port: Option<u16>,
     only: Option<String>,
+    dir: Option<String>,
     seen: Vec<&'static str>,
 }
 
@@ -115,14 +124,20 @@ impl Options {
                 Some((flag, value)) => (flag, Some(value.to_owned())),
                 None => (arg.as_str(), None),
             };
+            // The option's value: after `=` or the next argument.
+            let mut value =
+                |example: &str| match inline_value.clone().or_else(|| iter.next().cloned()) {
+                    Some(value) => Ok(value),
+                    None => Err(anyhow::anyhow!("{flag} needs {example}")),
+                };
             let name: &'static str = match flag {
                 "--dev" => {
                     opts.dev = true;
                     "--dev"
                 }
-                "--opt" => {
-                    opts.opt = true;
-                    "--opt"
+                "--no-opt" => {
+                    opts.no_opt = true;
+                    "--no-opt"
                 }
                 "--no-build" => {
                     opts.no_build = true;
@@ -133,24 +148,15 @@ impl Options {
                     "--quick"
                 }
                 "--only" => {
-                    let value = match inline_value.clone() {
-                        Some(value) => value,
-                        None => match iter.next() {
-                            Some(value) => value.clone(),
-                            None => bail!("--only needs step letters, e.g. --only a,g"),
-                        },
-                    };
-                    opts.only = Some(value);
+                    opts.only = Some(value("step letters, e.g. --only a,g")?);
                     "--only"
                 }
+                "--dir" => {
+                    opts.dir = Some(value("a folder, e.g. --dir target/web")?);
+                    "--dir"
+                }
                 "--port" => {
-                    let value = match inline_value.clone() {
-                        Some(value) => value,
-                        None => match iter.next() {
-                            Some(value) => value.clone(),
-                            None => bail!("--port needs a value, e.g. --port 8080"),
-                        },
-                    };
+                    let value = value("a value, e.g. --port 8080")?;
                     let port = value
                         .parse::<u16>()
                         .map_err(|e| anyhow::anyhow!("invalid port `{value}`: {e}"))?;
@@ -159,7 +165,7 @@ impl Options {
                 }
                 other => bail!("unknown option `{other}`\n\n{USAGE}"),
             };
-            if inline_value.is_some() && !matches!(name, "--port" | "--only") {
+            if inline_value.is_some() && !matches!(name, "--port" | "--only" | "--dir") {
                 bail!("option `{name}` takes no value");
             }
             opts.seen.push(name);

@@ -1,4 +1,6 @@
-//! `cargo xtask serve`: a small static file server for `target/web/`.
+//! `cargo xtask serve`: a small static file server for `target/web/`, which sends a file's
+//! precompressed copy (`NAME.br`, `NAME.gz`, written by `cargo xtask web`) to a browser that
+//! accepts it. The browser tests serve the page through it as well.
 
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
@@ -11,9 +13,8 @@ use crate::web;
 /// Number of threads answering requests (the browser loads a few files at once).
 const WORKERS: usize = 4;
 
-/// Serves `target/web/` on `127.0.0.1:port` until the process is interrupted.
-pub fn serve(port: u16) -> Result<()> {
-    let root = web::site_dir();
+/// Serves `root` on `127.0.0.1:port` (port 0: a free one) until the process is interrupted.
+pub fn serve(root: &Path, port: u16) -> Result<()> {
     if !root.join("index.html").exists() {
         bail!(
             "{} has no index.html; run `cargo xtask web` first (or drop --no-build)",
@@ -27,6 +28,11 @@ pub fn serve(port: u16) -> Result<()> {
     let server = Server::http(&address)
         .map_err(|e| anyhow!("cannot listen on {address}: {e}"))
         .map(Arc::new)?;
+    // The browser tests read the address, the port chosen for port 0, from this line.
+    let address = server
+        .server_addr()
+        .to_ip()
+        .map_or(address, |ip| ip.to_string());
     println!("Swarf is running at http://{address}/");
     println!("(serving {}; press Ctrl-C to stop)", root.display());
 
@@ -59,13 +65,25 @@ fn handle(root: &Path, request: Request) {
         let _ = request.respond(text_response(404, "not found"));
         return;
     };
-    match std::fs::read(&path) {
+    let accept = request
+        .headers()
+        .iter()
+        .find(|h| h.field.equiv("Accept-Encoding"))
+        .map(|h| h.value.as_str().to_owned())
+        .unwrap_or_default();
+    let (file, encoding) = precompressed(root, &path, &accept).unwrap_or((path.clone(), ""));
+    match std::fs::read(&file) {
         Ok(body) => {
             let mut response = Response::from_data(body);
+            let encoding = (!encoding.is_empty()).then_some(("Content-Encoding", encoding));
             for (name, value) in [
                 ("Content-Type", content_type(&path)),
                 ("Cache-Control", "no-cache"),
-            ] {
+                ("Vary", "Accept-Encoding"),
+            ]
+            .into_iter()
+            .chain(encoding)
+            {
                 if let Ok(header) = Header::from_bytes(name.as_bytes(), value.as_bytes()) {
                     response.add_header(header);
                 }
@@ -76,6 +94,36 @@ fn handle(root: &Path, request: Request) {
             let _ = request.respond(text_response(404, "not found"));
         }
     }
+}
+
+/// The precompressed copy of `file` to send for the request's `Accept-Encoding` header and its
+/// content coding: brotli before gzip, `None` when neither is accepted or written.
+fn precompressed(root: &Path, file: &Path, accept: &str) -> Option<(PathBuf, &'static str)> {
+    [("br", ".br"), ("gzip", ".gz")]
+        .into_iter()
+        .filter(|(coding, _)| accepts(accept, coding))
+        .find_map(|(coding, suffix)| {
+            let real = web::with_suffix(file, suffix).canonicalize().ok()?;
+            (real.starts_with(root) && real.is_file()).then_some((real, coding))
+        })
+}
+
+/// Whether an `Accept-Encoding` value allows `coding`: named, or else `*`, with a q above 0.
+fn accepts(accept: &str, coding: &str) -> bool {
+    let quality = |name: &str| {
+        accept.split(',').find_map(|item| {
+            let mut parts = item.split(';');
+            let listed = parts.next()?.trim().eq_ignore_ascii_case(name);
+            listed.then(|| {
+                parts
+                    .find_map(|p| p.trim().strip_prefix("q=")?.trim().parse::<f32>().ok())
+                    .unwrap_or(1.0)
+            })
+        })
+    };
+    quality(coding)
+        .or_else(|| quality("*"))
+        .is_some_and(|q| q > 0.0)
 }
 
 fn text_response(status: u16, text: &str) -> Response<std::io::Cursor<Vec<u8>>> {
@@ -153,8 +201,10 @@ fn content_type(path: &Path) -> &'static str {
 mod tests {
     use super::*;
 
-    fn site() -> std::io::Result<PathBuf> {
-        let dir = std::env::temp_dir().join(format!("xtask-serve-test-{}", std::process::id()));
+    /// A small site in a temporary folder of its own for the test `name`.
+    fn site(name: &str) -> std::io::Result<PathBuf> {
+        let dir =
+            std::env::temp_dir().join(format!("xtask-serve-test-{}-{name}", std::process::id()));
         std::fs::create_dir_all(dir.join("assets"))?;
         std::fs::write(dir.join("index.html"), "<html></html>")?;
         std::fs::write(dir.join("swarf_app_bg.wasm"), [0u8, 97, 115, 109])?;
@@ -164,7 +214,7 @@ mod tests {
 
     #[test]
     fn resolves_files_and_rejects_traversal() -> std::io::Result<()> {
-        let root = site()?;
+        let root = site("resolve")?;
         assert_eq!(resolve(&root, "/"), Some(root.join("index.html")));
         assert_eq!(
             resolve(&root, "/index.html?v=1"),
@@ -181,6 +231,42 @@ mod tests {
         assert_eq!(resolve(&root, "/%2E%2E%2Fetc%2Fpasswd"), None);
         assert_eq!(resolve(&root, "/..%5c..%5cetc"), None);
         assert_eq!(resolve(&root, "/bad%zz"), None);
+        std::fs::remove_dir_all(&root)
+    }
+
+    #[test]
+    fn accept_encoding() {
+        assert!(accepts("gzip, deflate, br, zstd", "br"));
+        assert!(accepts("gzip, deflate, br, zstd", "gzip"));
+        assert!(!accepts("gzip, deflate", "br"));
+        assert!(!accepts("br;q=0, gzip", "br"));
+        assert!(accepts("br;q=0.5", "br"));
+        assert!(accepts("*", "br"));
+        assert!(!accepts("br;q=0, *", "br"));
+        assert!(!accepts("", "gzip"));
+        assert!(!accepts("identity", "gzip"));
+    }
+
+    #[test]
+    fn precompressed_copies_when_accepted() -> std::io::Result<()> {
+        let root = site("compressed")?;
+        let wasm = root.join("a.wasm");
+        for name in ["a.wasm", "a.wasm.br", "a.wasm.gz", "b.js", "b.js.gz"] {
+            std::fs::write(root.join(name), name)?;
+        }
+        assert_eq!(
+            precompressed(&root, &wasm, "gzip, br"),
+            Some((root.join("a.wasm.br"), "br"))
+        );
+        assert_eq!(
+            precompressed(&root, &wasm, "gzip"),
+            Some((root.join("a.wasm.gz"), "gzip"))
+        );
+        assert_eq!(precompressed(&root, &wasm, "identity"), None);
+        assert_eq!(
+            precompressed(&root, &root.join("b.js"), "br, gzip"),
+            Some((root.join("b.js.gz"), "gzip"))
+        );
         std::fs::remove_dir_all(&root)
     }
 

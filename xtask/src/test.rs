@@ -19,6 +19,7 @@ const WASM_CLIPPY_CRATES: &[&str] = &[
     "swarf-syntax",
     "swarf-interp",
     "swarf-toolpath",
+    "swarf-stock",
     "swarf-render",
     "swarf-ui",
     "swarf-app",
@@ -33,18 +34,30 @@ const FORBIDDEN_DEPENDENCIES: &[(&str, &[&str])] = &[
     ("swarf-syntax", &["egui", "eframe", "wgpu", "winit"]),
     ("swarf-interp", &["egui", "eframe", "wgpu", "winit"]),
     ("swarf-toolpath", &["egui", "eframe", "wgpu", "winit"]),
-    ("swarf-render", &["egui", "swarf-interp"]),
+    ("swarf-stock", &["egui", "eframe", "wgpu", "winit"]),
+    // The stock is drawn from its heights: the renderer never needs the stock crate.
+    ("swarf-render", &["egui", "swarf-interp", "swarf-stock"]),
 ];
 
 /// How long each fuzz target runs in the test run.
 const FUZZ_SECONDS: u32 = 20;
 
-/// Runs the cargo-fuzz targets briefly from a seed corpus of the repository's own programs,
-/// the corpus and any crash kept under `target/` (not in the tree).
+/// The cargo-fuzz targets, and the file name extensions of their seeds.
+const FUZZ_TARGETS: [(&str, &[&str]); 5] = [
+    ("parse", &["nc", "ngc"]),
+    ("pieces", &["nc", "ngc"]),
+    ("interpret", &["nc", "ngc"]),
+    ("linked", &["nc", "ngc"]),
+    ("setup", &["toml"]),
+];
+
+/// Runs the cargo-fuzz targets briefly from a seed corpus of the repository's own programs
+/// (setups for the setup target), the corpus and any crash kept under `target/` (not in the
+/// tree).
 fn fuzz() -> Result<()> {
     tools::ensure_cargo_fuzz()?;
     let root = util::repo_root();
-    for target in ["parse", "pieces", "interpret"] {
+    for (target, seeds) in FUZZ_TARGETS {
         let corpus = root.join("target/fuzz-corpus").join(target);
         let artifacts = root.join("target/fuzz-artifacts").join(target);
         std::fs::create_dir_all(&corpus)?;
@@ -52,8 +65,10 @@ fn fuzz() -> Result<()> {
         for dir in ["assets/examples", "tests/golden"] {
             for entry in std::fs::read_dir(root.join(dir))?.flatten() {
                 let path = entry.path();
-                let program = path.extension().is_some_and(|e| e == "nc" || e == "ngc");
-                if program && let Some(name) = path.file_name() {
+                let seed = path
+                    .extension()
+                    .is_some_and(|e| seeds.iter().any(|s| e == *s));
+                if seed && let Some(name) = path.file_name() {
                     std::fs::copy(&path, corpus.join(name))?;
                 }
             }
@@ -233,7 +248,7 @@ fn steps(quick: bool) -> Vec<Step> {
         steps.push(Step::new(
             'j',
             format!(
-                "fuzzing: cargo fuzz run parse / pieces / interpret, {FUZZ_SECONDS} s each (seeds: the examples and golden programs)"
+                "fuzzing: cargo fuzz run parse / pieces / interpret / linked / setup, {FUZZ_SECONDS} s each (seeds: the examples and golden programs and setups)"
             ),
             fuzz,
         ));
@@ -311,6 +326,10 @@ fn node_test_command() -> Command {
         .args(["-a", "node", "--test", "tests/e2e/"])
         .env("SWARF_CHROMIUM", CHROMIUM)
         .env("SWARF_WEB_DIR", web::site_dir());
+    // The tests serve the page with this program itself rather than through cargo.
+    if let Ok(xtask) = std::env::current_exe() {
+        cmd.env("SWARF_XTASK", xtask);
+    }
     cmd
 }
 

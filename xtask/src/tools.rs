@@ -1,7 +1,7 @@
 //! Installs the tools the build and the tests need. Every check is idempotent and fast when
 //! the tool is already there, so the commands can run on a fresh CI machine.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
@@ -262,6 +262,20 @@ fn is_root() -> bool {
         .is_ok_and(|out| String::from_utf8_lossy(&out.stdout).trim() == "0")
 }
 
+/// The npm packages of `tests/e2e/package.json`: the browser tests' and binaryen's `wasm-opt`.
+const NPM_PACKAGES: &[&str] = &["playwright-core", "pngjs", "binaryen"];
+
+/// Installs the npm packages and returns npm binaryen's `wasm-opt`. Debian's binaryen is too
+/// old for the wasm features rustc emits and corrupts the module, so it is never used.
+pub fn ensure_wasm_opt() -> Result<PathBuf> {
+    ensure_node_modules()?;
+    Ok(e2e_dir().join("node_modules").join(".bin").join("wasm-opt"))
+}
+
+fn e2e_dir() -> PathBuf {
+    util::repo_root().join("tests").join("e2e")
+}
+
 /// Makes sure `node` (20 or newer) and `npm` exist and that `tests/e2e/node_modules`
 /// holds the packages locked in `tests/e2e/package-lock.json`.
 pub fn ensure_node_modules() -> Result<()> {
@@ -279,16 +293,16 @@ pub fn ensure_node_modules() -> Result<()> {
              node 20 or newer); install a newer node from nodejs.org or NodeSource"
         ),
         None => bail!(
-            "node (20 or newer) and npm are needed for the browser end-to-end test; install \
+            "node (20 or newer) and npm are needed for wasm-opt and the browser end-to-end test; install \
              them (Debian 12's own nodejs is too old: use NodeSource or nodejs.org)"
         ),
     }
     if util::which("npm").is_none() {
         bail!("npm is needed for the browser end-to-end test's packages; install it with node");
     }
-    let e2e = util::repo_root().join("tests").join("e2e");
+    let e2e = e2e_dir();
     let modules = e2e.join("node_modules");
-    let complete = ["playwright-core", "pngjs"]
+    let complete = NPM_PACKAGES
         .iter()
         .all(|name| modules.join(name).join("package.json").exists());
     if complete {

@@ -11,32 +11,54 @@ use crate::util::{self, cargo, command, run};
 const APP_PACKAGE: &str = "swarf-app";
 /// Its library's file name stem (`swarf_app.wasm`).
 const APP_LIB: &str = "swarf_app";
+/// The package of the analysis' web worker (its own module, loaded by `web/worker.js`).
+const WORKER_PACKAGE: &str = "swarf-worker";
+/// Its library's file name stem (`swarf_worker.wasm`).
+const WORKER_LIB: &str = "swarf_worker";
 
 /// Options of the web build.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct WebOptions {
-    /// Debug build (faster to compile) instead of release.
+    /// Debug build (faster to compile, no wasm-opt) instead of the `web` profile.
     pub dev: bool,
-    /// Run `wasm-opt -Oz` when an npm-installed binaryen is present.
-    pub opt: bool,
+    /// Leave out `wasm-opt`, which otherwise shrinks the wasm of a `web` profile build.
+    pub no_opt: bool,
 }
+
+/// Wasm SIMD for the page's build, which every browser with WebGL2 or WebGPU has had since
+/// 2023: without it the SIMD code of the rasteriser egui draws text with (`fearless_simd`) is
+/// compiled as scalar code, a fifth of the module. Added to the target's `rustflags` of
+/// `.cargo/config.toml`.
+const WEB_RUSTFLAGS: &str =
+    r#"target.wasm32-unknown-unknown.rustflags=["-Ctarget-feature=+simd128"]"#;
+
+/// Extensions of the site's files written beside them compressed (`.br`, `.gz`), which
+/// `cargo xtask serve` sends to browsers that accept them.
+const COMPRESSED: &[&str] = &["wasm", "js", "css", "html"];
 
 /// The folder the site is assembled in.
 pub fn site_dir() -> PathBuf {
     util::target_dir().join("web")
 }
 
-/// Builds the web page: wasm build, wasm-bindgen, optional wasm-opt, then copies the static
-/// files next to the generated ones in `target/web/`.
+/// Builds the web page: wasm build (the `web` profile of `Cargo.toml`), wasm-bindgen, wasm-opt,
+/// then copies the static files next to the generated ones in `target/web/` and writes the
+/// compressed copies.
 pub fn build(options: WebOptions) -> Result<()> {
     tools::ensure_wasm_target()?;
     tools::ensure_wasm_bindgen()?;
+    let wasm_opt = if options.dev || options.no_opt {
+        None
+    } else {
+        Some(tools::ensure_wasm_opt().context("wasm-opt is needed (or pass --no-opt)")?)
+    };
 
-    let profile = if options.dev { "debug" } else { "release" };
+    let profile = if options.dev { "debug" } else { "web" };
     let mut build = cargo();
-    build.args(["build", "-p", APP_PACKAGE, "--lib", "--target", WASM_TARGET]);
+    build.args(["build", "-p", APP_PACKAGE, "-p", WORKER_PACKAGE, "--lib"]);
+    build.args(["--target", WASM_TARGET]);
     if !options.dev {
-        build.arg("--release");
+        build.args(["--profile", profile, "--config", WEB_RUSTFLAGS]);
     }
     run(&mut build)?;
 
@@ -72,22 +94,41 @@ pub fn build(options: WebOptions) -> Result<()> {
     run(&mut bindgen)?;
 
     let bg_wasm = site.join(format!("{APP_LIB}_bg.wasm"));
-    if options.opt {
-        optimize(&bg_wasm)?;
+    if let Some(wasm_opt) = &wasm_opt {
+        optimize(wasm_opt, &bg_wasm)?;
+    }
+
+    // The worker's module, for a classic worker script (`importScripts`), which every browser
+    // the page runs in starts.
+    let worker_wasm = wasm.with_file_name(format!("{WORKER_LIB}.wasm"));
+    let mut bindgen = command("wasm-bindgen");
+    bindgen
+        .args([
+            "--target",
+            "no-modules",
+            "--no-typescript",
+            "--out-name",
+            WORKER_LIB,
+            "--out-dir",
+        ])
+        .arg(&site)
+        .arg(&worker_wasm);
+    run(&mut bindgen)?;
+    if let Some(wasm_opt) = &wasm_opt {
+        optimize(wasm_opt, &site.join(format!("{WORKER_LIB}_bg.wasm")))?;
     }
 
     copy_static_files(&site)?;
     copy_cjk_font(&site)?;
+    compress(&site)?;
 
-    let size = std::fs::metadata(&bg_wasm)
-        .with_context(|| format!("wasm-bindgen did not write {}", bg_wasm.display()))?
-        .len();
     println!("web build ({profile}) is in {}", site.display());
-    println!(
-        "wasm size: {:.2} MiB ({size} bytes) {}",
-        size as f64 / (1024.0 * 1024.0),
-        bg_wasm.display()
-    );
+    for suffix in ["", ".br", ".gz"] {
+        let size = std::fs::metadata(with_suffix(&bg_wasm, suffix))
+            .with_context(|| format!("{} was not written", bg_wasm.display()))?
+            .len();
+        println!("wasm{suffix}: {:.2} MB ({size} bytes)", size as f64 / 1e6);
+    }
     Ok(())
 }
 
@@ -130,33 +171,17 @@ fn copy_cjk_font(site: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Runs `wasm-opt -Oz` from an npm-installed binaryen. Debian's `/usr/bin/wasm-opt` is too old
-/// for the wasm features rustc emits and corrupts the output, so it is never used.
-fn optimize(wasm: &Path) -> Result<()> {
-    let root = util::repo_root();
-    let candidates = [
-        root.join("tests/e2e/node_modules/.bin/wasm-opt"),
-        root.join("node_modules/.bin/wasm-opt"),
-    ];
-    let Some(wasm_opt) = candidates.iter().find(|path| path.exists()) else {
-        println!(
-            "--opt: no npm-installed binaryen found (looked for {}); skipping wasm-opt. \
-             Install it with `npm install --no-save binaryen` in the repository root \
-             (node_modules/ is ignored by git).",
-            candidates
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-        return Ok(());
-    };
+/// Runs `wasm-opt -Oz` (npm's binaryen), without inlining, on the wasm in place.
+fn optimize(wasm_opt: &Path, wasm: &Path) -> Result<()> {
     let before = std::fs::metadata(wasm)?.len();
     let optimized = wasm.with_extension("opt.wasm");
     let mut cmd = std::process::Command::new(wasm_opt);
-    cmd.current_dir(&root)
-        .arg("-Oz")
-        // The features rustc enables by default for wasm32-unknown-unknown.
+    cmd.current_dir(util::repo_root())
+        // No inlining (it must come before `-Oz` to hold for its passes): rustc has inlined
+        // already, and binaryen's inlining on top leaves a smaller module whose brotli copy is
+        // larger and which the page takes longer to start.
+        .args(["--no-inline=*", "-Oz"])
+        // The features rustc enables by default for wasm32-unknown-unknown, and SIMD.
         .args([
             "--enable-bulk-memory",
             "--enable-sign-ext",
@@ -164,6 +189,7 @@ fn optimize(wasm: &Path) -> Result<()> {
             "--enable-nontrapping-float-to-int",
             "--enable-reference-types",
             "--enable-multivalue",
+            "--enable-simd",
         ])
         .arg(wasm)
         .arg("-o")
@@ -172,5 +198,60 @@ fn optimize(wasm: &Path) -> Result<()> {
     std::fs::rename(&optimized, wasm)?;
     let after = std::fs::metadata(wasm)?.len();
     println!("wasm-opt: {before} -> {after} bytes");
+    Ok(())
+}
+
+/// Writes `NAME.br` (brotli, quality 11) and `NAME.gz` (gzip, level 9) beside each file of the
+/// site's top folder whose extension is in [`COMPRESSED`].
+fn compress(site: &Path) -> Result<()> {
+    let entries = std::fs::read_dir(site).with_context(|| format!("reading {}", site.display()))?;
+    let files: Vec<PathBuf> = entries
+        .flatten()
+        .map(|entry| entry.path())
+        .filter(|path| {
+            path.is_file()
+                && path
+                    .extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| COMPRESSED.contains(&e))
+        })
+        .collect();
+    // One thread a file: the wasm takes most of the time, the others finish beside it.
+    std::thread::scope(|scope| {
+        let jobs: Vec<_> = files
+            .iter()
+            .map(|file| scope.spawn(move || compress_file(file)))
+            .collect();
+        jobs.into_iter().try_for_each(|job| {
+            job.join()
+                .map_err(|_| anyhow::anyhow!("a compression thread stopped unexpectedly"))?
+        })
+    })
+}
+
+/// `path` with `suffix` added to its file name (`a.wasm` and `.br` make `a.wasm.br`).
+pub fn with_suffix(path: &Path, suffix: &str) -> PathBuf {
+    let mut name = path.as_os_str().to_owned();
+    name.push(suffix);
+    PathBuf::from(name)
+}
+
+fn compress_file(file: &Path) -> Result<()> {
+    use std::io::Write as _;
+    let data = std::fs::read(file).with_context(|| format!("reading {}", file.display()))?;
+    let mut gzip = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    gzip.write_all(&data)?;
+    let gz = with_suffix(file, ".gz");
+    std::fs::write(&gz, gzip.finish()?).with_context(|| format!("writing {}", gz.display()))?;
+
+    let mut brotli = Vec::new();
+    let params = brotli::enc::BrotliEncoderParams {
+        quality: 11,
+        lgwin: 24,
+        ..Default::default()
+    };
+    brotli::BrotliCompress(&mut data.as_slice(), &mut brotli, &params)?;
+    let br = with_suffix(file, ".br");
+    std::fs::write(&br, brotli).with_context(|| format!("writing {}", br.display()))?;
     Ok(())
 }
