@@ -2,14 +2,12 @@
 //! a hang or a usage error.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+mod support;
+
 /// Runs `swarf ARGS` in-process; returns the exit status and standard error.
 fn swarf(args: &[&str]) -> (i32, String) {
-    let mut out = Vec::new();
-    let mut err = Vec::new();
-    let mut all = vec!["swarf"];
-    all.extend_from_slice(args);
-    let code = swarf_cli::run(all, &mut out, &mut err);
-    (code, String::from_utf8_lossy(&err).into_owned())
+    let (code, _, err) = support::swarf(args);
+    (code, err)
 }
 
 /// The start of a long text, for failure messages.
@@ -192,20 +190,6 @@ fn a_call_never_reads_a_file_outside_the_program_folder() {
     }
 }
 
-/// Runs `swarf ARGS` in-process; returns the exit status, standard output and standard error.
-fn swarf_out(args: &[&str]) -> (i32, String, String) {
-    let mut out = Vec::new();
-    let mut err = Vec::new();
-    let mut all = vec!["swarf"];
-    all.extend_from_slice(args);
-    let code = swarf_cli::run(all, &mut out, &mut err);
-    (
-        code,
-        String::from_utf8_lossy(&out).into_owned(),
-        String::from_utf8_lossy(&err).into_owned(),
-    )
-}
-
 /// A warning met at every pass of an endless loop is printed once with its count; past a
 /// thousand different ones, `check` says how many more there were.
 #[test]
@@ -265,7 +249,7 @@ fn stats_never_prints_inf_or_nan() {
             if json {
                 args.push("--json");
             }
-            let (code, out, err) = swarf_out(&args);
+            let (code, out, err) = support::swarf(&args);
             assert_eq!(code, 1, "{text}: {err}");
             assert!(err.contains("error[E-COORDINATE-RANGE]"), "{text}: {err}");
             let lower = out.to_lowercase();
@@ -290,7 +274,7 @@ fn canon_prints_each_event_once_when_the_run_turns_whole() {
     }
     text.push_str("M98 P100\nM30\nO100\nG00 Z5.\nM99\n");
     std::fs::write(&file, &text).unwrap();
-    let (code, out, err) = swarf_out(&["canon", file.to_str().unwrap()]);
+    let (code, out, err) = support::swarf(&["canon", file.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     let program = swarf_syntax::parse(&text, swarf_syntax::Dialect::Fanuc);
     let mut whole = swarf_interp::CanonRecorder::default();

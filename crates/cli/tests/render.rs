@@ -4,7 +4,9 @@
 //! `SWARF_UPDATE_GOLDEN=1` to rewrite the golden images.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+mod support;
 use std::path::{Path, PathBuf};
+use support::swarf;
 
 /// A small pocket: rapids, a plunge, straight cuts, a full circle, a retract.
 const PROGRAM: &str = "%
@@ -26,19 +28,6 @@ G00 Z10.
 M30
 %
 ";
-
-fn swarf(args: &[&str]) -> (i32, String, String) {
-    let mut out = Vec::new();
-    let mut err = Vec::new();
-    let mut all = vec!["swarf"];
-    all.extend_from_slice(args);
-    let code = swarf_cli::run(all, &mut out, &mut err);
-    (
-        code,
-        String::from_utf8(out).unwrap(),
-        String::from_utf8(err).unwrap(),
-    )
-}
 
 fn golden_png(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/{name}"))
