@@ -37,6 +37,9 @@ const FORBIDDEN_DEPENDENCIES: &[(&str, &[&str])] = &[
     ("swarf-stock", &["egui", "eframe", "wgpu", "winit"]),
     // The stock is drawn from its heights: the renderer never needs the stock crate.
     ("swarf-render", &["egui", "swarf-interp", "swarf-stock"]),
+    // The analysis runs on a thread or in the page's worker: it never reaches the UI toolkit.
+    ("swarf-analysis", &["egui", "eframe", "winit"]),
+    ("swarf-worker", &["egui", "eframe", "winit"]),
 ];
 
 /// How long each fuzz target runs in the test run.
