@@ -144,15 +144,25 @@ impl PlaneArc {
         p
     }
 
+    /// How many even steps keep every chord within `tolerance` mm of the arc: at least one,
+    /// and at most 100 000 however large the radius or many the turns.
+    pub fn chords(&self, tolerance: f64) -> usize {
+        let step = if self.radius > tolerance {
+            2.0 * (1.0 - tolerance / self.radius).acos()
+        } else {
+            std::f64::consts::TAU / 4.0
+        };
+        ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000)
+    }
+
     /// The ends of `n` even steps along the arc (at least one): `from` excluded, the last
     /// exactly `to`.
-    pub fn points(&self, from: DVec3, to: DVec3, n: usize) -> Vec<DVec3> {
-        let n = n.max(1);
+    pub fn points(&self, from: DVec3, to: DVec3, n: usize) -> impl Iterator<Item = DVec3> + use<> {
+        let (arc, n) = (*self, n.max(1));
         let a0 = if n > 1 { self.start_angle() } else { 0.0 };
         (1..n)
-            .map(|k| self.between(a0, k, n, from, to))
+            .map(move |k| arc.between(a0, k, n, from, to))
             .chain(std::iter::once(to))
-            .collect()
     }
 }
 
@@ -393,32 +403,56 @@ mod tests {
         let (from, to) = (DVec3::new(1.0, 0.0, 0.0), DVec3::new(-1.0, 0.0, 4.0));
         let arc = PlaneArc::new(from, to, DVec3::ZERO, Axis::Z, true, 0);
         assert_eq!((arc.iu, arc.iv, arc.iw), (0, 1, 2));
-        let points = arc.points(from, to, 2);
+        let points: Vec<DVec3> = arc.points(from, to, 2).collect();
         assert_eq!(points.len(), 2);
         assert!(close(points[0], DVec3::new(0.0, 1.0, 2.0)), "{points:?}");
         assert_eq!(points[1], to);
         // One step is the end alone; none is taken as one.
-        assert_eq!(arc.points(from, to, 1), vec![to]);
-        assert_eq!(arc.points(from, to, 0), vec![to]);
+        assert_eq!(arc.points(from, to, 1).collect::<Vec<_>>(), vec![to]);
+        assert_eq!(arc.points(from, to, 0).collect::<Vec<_>>(), vec![to]);
         // G18 turns from Z towards X: a quarter counter-clockwise from +Z passes +X at 45°.
         let (from, to) = (DVec3::new(0.0, 3.0, 2.0), DVec3::new(2.0, 3.0, 0.0));
         let arc = PlaneArc::new(from, to, DVec3::new(0.0, 3.0, 0.0), Axis::Y, true, 0);
         assert!((arc.sweep - FRAC_PI_2).abs() < 1e-12);
         let h = 2.0 * std::f64::consts::FRAC_1_SQRT_2;
-        assert!(close(arc.points(from, to, 2)[0], DVec3::new(h, 3.0, h)));
+        let mid = arc.points(from, to, 2).next();
+        assert!(
+            mid.is_some_and(|p| close(p, DVec3::new(h, 3.0, h))),
+            "{mid:?}"
+        );
         // G19 turns from Y towards Z, clockwise here; a spiral's radius changes evenly.
         let (from, to) = (DVec3::new(5.0, 0.0, 1.0), DVec3::new(5.0, 0.0, -3.0));
         let arc = PlaneArc::new(from, to, DVec3::new(5.0, 0.0, 0.0), Axis::X, false, 0);
         assert_eq!((arc.radius, arc.end_radius), (1.0, 3.0));
         assert!((arc.sweep + PI).abs() < 1e-12);
-        let points = arc.points(from, to, 2);
+        let points: Vec<DVec3> = arc.points(from, to, 2).collect();
         assert!(close(points[0], DVec3::new(5.0, 2.0, 0.0)), "{points:?}");
         // A full turn with an extra one: four steps a turn come back to the start twice.
         let start = DVec3::new(2.0, 0.0, 0.0);
         let arc = PlaneArc::new(start, start, DVec3::ZERO, Axis::Z, true, 1);
-        let points = arc.points(start, start, 8);
+        let points: Vec<DVec3> = arc.points(start, start, 8).collect();
         assert!(close(points[3], start) && close(points[7], start));
         assert!(close(points[4], DVec3::new(0.0, 2.0, 0.0)));
+    }
+
+    #[test]
+    fn chords_keep_within_the_tolerance_and_stay_bounded() {
+        // A full turn of radius 10 within 0.01: each step's sagitta r·(1 − cos(step / 2)).
+        let start = DVec3::new(10.0, 0.0, 0.0);
+        let arc = PlaneArc::new(start, start, DVec3::ZERO, Axis::Z, true, 0);
+        let n = arc.chords(0.01);
+        assert!(n > 4 && 10.0 * (1.0 - (PI / n as f64).cos()) <= 0.01, "{n}");
+        // A huge radius with many turns stays bounded, and so does a tolerance out of range.
+        let far = DVec3::new(1e9, 0.0, 0.0);
+        let huge = PlaneArc::new(far, far, DVec3::ZERO, Axis::Z, true, u32::MAX);
+        assert_eq!(huge.chords(1e-6), 100_000);
+        assert_eq!(huge.points(far, far, huge.chords(1e-6)).count(), 100_000);
+        for tolerance in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(
+                (1..=100_000).contains(&arc.chords(tolerance)),
+                "{tolerance}"
+            );
+        }
     }
 
     proptest! {

@@ -266,7 +266,14 @@ fn a_move_past_the_machine_travel_is_an_overtravel_alarm() {
     let (_, diags) = run_with(
         "G0 X-10. Y-100.\nG3 X-10. Y-60. R20. F100.\n",
         Dialect::Fanuc,
-        setup,
+        setup.clone(),
     );
     assert_eq!(codes(&diags), ["E-OVERTRAVEL"]);
+    // A half turn of radius 50 whose widest point passes X0 by 5 µm between the chords of 64
+    // a turn, and the same arc 10 µm to the left, clear of it.
+    for (from, to, want) in [(-58.677, -41.313, 1), (-58.687, -41.323, 0)] {
+        let text = format!("G0 X{from} Y-149.24\nG3 X{to} Y-50.76 I8.682 J49.24 F100.\n");
+        let (_, diags) = run_with(&text, Dialect::Fanuc, setup.clone());
+        assert_eq!(codes(&diags), ["E-OVERTRAVEL"][..want], "{text}");
+    }
 }

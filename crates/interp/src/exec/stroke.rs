@@ -8,7 +8,7 @@ use super::Requests;
 use super::tools::tool_tip_shift;
 use crate::machine::find;
 use crate::state::State;
-use crate::{Arc, Canon, Sink, Source, StrokeZone};
+use crate::{Canon, Sink, Source, StrokeZone};
 
 /// Runs a block (`run`) with its moves checked against the G22 stroke limit and the machine's
 /// travel where they apply, and reports a move that breaks them.
@@ -59,6 +59,10 @@ pub(super) fn checked(
     requests
 }
 
+/// How close the checked chords keep to an arc, in mm: a micrometre, the finest step a position
+/// is programmed in, so that an arc crossing a limit by more is caught.
+const ARC_TOLERANCE_MM: f64 = 0.001;
+
 /// Checks the moves of one block against the G22 stroke limit and the machine's travel before
 /// passing them on.
 struct StrokeGuard<'s> {
@@ -75,15 +79,29 @@ struct StrokeGuard<'s> {
 
 impl Sink for StrokeGuard<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
-        let points = match event {
-            Canon::Rapid { to } | Canon::Feed { to, .. } => vec![*to + self.gauge],
-            Canon::Arc(arc) => arc_points(self.from - self.gauge, arc)
-                .into_iter()
-                .map(|p| p + self.gauge)
-                .collect(),
-            _ => Vec::new(),
+        let gauge = self.gauge;
+        let (end, arc) = match event {
+            Canon::Rapid { to } | Canon::Feed { to, .. } => (Some(*to), None),
+            Canon::Arc(arc) => {
+                let from = self.from - gauge;
+                let plane = arc.plane(from);
+                let reach = plane.radius.max(plane.end_radius);
+                let (mut lo, mut hi) = (from.min(arc.to), from.max(arc.to));
+                for i in [plane.iu, plane.iv] {
+                    (lo[i], hi[i]) = (plane.center[i] - reach, plane.center[i] + reach);
+                }
+                // Only an arc whose box comes near a limit is walked chord by chord.
+                if clear(&self.zones, lo + gauge, hi + gauge) {
+                    (Some(arc.to), None)
+                } else {
+                    let n = plane.chords(ARC_TOLERANCE_MM);
+                    (None, Some(plane.points(from, arc.to, n)))
+                }
+            }
+            _ => (None, None),
         };
-        for p in points {
+        for p in end.into_iter().chain(arc.into_iter().flatten()) {
+            let p = p + gauge;
             for (zone, broken) in self.zones.iter().zip(&mut self.broken) {
                 if let Some(zone) = zone {
                     *broken |= zone.violated_by(self.from, p);
@@ -111,11 +129,16 @@ impl Sink for StrokeGuard<'_> {
     }
 }
 
-/// Points along an arc event from `from` (excluding it, ending at `to`), 64 per turn.
-fn arc_points(from: DVec3, arc: &Arc) -> Vec<DVec3> {
-    let plane = arc.plane(from);
-    let n = ((plane.sweep.abs() / std::f64::consts::TAU * 64.0).ceil() as usize).clamp(1, 100_000);
-    plane.points(from, arc.to, n)
+/// Whether no move within the box from `lo` to `hi` can break `zones`: the box lies inside each
+/// zone that keeps the tool in and outside each that keeps it out.
+fn clear(zones: &[Option<StrokeZone>], lo: DVec3, hi: DVec3) -> bool {
+    zones.iter().flatten().all(|z| {
+        if z.inside_forbidden {
+            (0..3).any(|i| hi[i] <= z.min[i] || lo[i] >= z.max[i])
+        } else {
+            (0..3).all(|i| lo[i] >= z.min[i] && hi[i] <= z.max[i])
+        }
+    })
 }
 
 /// G22 X Y Z I J K: the programmable stroke limit (machine coordinates) / G23: off. Syntec pairs
