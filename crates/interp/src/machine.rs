@@ -598,7 +598,7 @@ impl Interpreter {
                 "E-MOTION-LIMIT",
                 None,
                 format!(
-                    "execution stopped after {} moves{in_loop}: their toolpath holds as much as [machine] max_motions allows (an arc is drawn as many segments, a hole or dwell counts as more), more would not fit in memory",
+                    "execution stopped after {} moves{in_loop}: their toolpath holds as much as [machine] max_motions allows (an arc is drawn as many segments; holes, dwells and changes of feed or tool count too), more would not fit in memory",
                     counted.motions
                 ),
             )

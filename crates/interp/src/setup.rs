@@ -98,8 +98,8 @@ pub struct Machine {
     /// Most motion events (moves and arcs) a run may produce before it is stopped: a bound on
     /// the toolpath's memory (about 50 bytes a segment), so a runaway program cannot exhaust a
     /// browser tab. The toolpath holds at most as many segments (an arc's chords and a dwell
-    /// count one each, a hole and a compensated block's programmed motion two), and a canned
-    /// cycle stops making holes and pecks at either limit.
+    /// count one each, a hole and a compensated block's programmed motion two, a change of
+    /// feed or tool a half), and a canned cycle stops making holes and pecks at either limit.
     pub max_motions: u64,
     /// Largest difference between an arc's start and end radius before it is an alarm (mm).
     pub arc_tolerance_mm: f64,

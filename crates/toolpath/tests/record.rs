@@ -546,3 +546,25 @@ fn straight_moves_taken_in_registers_record_as_their_events_do() {
     assert_eq!(by_numbers.kinds()[4], SegmentKind::Rapid);
     assert_eq!(by_numbers.ends()[2], DVec3::new(40.0, 2.5, 0.0));
 }
+
+/// A toolpath is full when what it holds reaches `max_motions` segments: a loop whose every
+/// move changes the tool and the feed keeps half as many segments as a loop of plain moves (a
+/// change weighs half a segment), so that its memory stays within the same bound.
+#[test]
+fn changes_of_feed_and_tool_count_towards_the_motion_limit() {
+    let mut setup = Setup::default();
+    setup.machine.max_motions = 1000;
+    let segments = |text: &str| {
+        let program = parse(text, Dialect::Fanuc);
+        let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+        let diags = run(&program, setup.clone(), &mut path);
+        let codes: Vec<_> = diags.iter().map(|d| d.code).collect();
+        assert_eq!(codes, ["E-MOTION-LIMIT"], "{text}");
+        path.len()
+    };
+    assert_eq!(segments("G01 F100\nN1 X1.\nX0\nGOTO 1\n"), 1000);
+    assert_eq!(
+        segments("N1 T1 M6 G01 X1. F100\nT2 M6 X0 F200\nGOTO 1\n"),
+        501
+    );
+}
