@@ -494,15 +494,8 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
     let linuxcnc = st.dialect == Dialect::LinuxCnc;
     if let Some((c, ccw, turns)) = elem.arc {
         if !linuxcnc {
-            alarm(
-                st,
-                elem.span,
-                "E-COMP-START",
-                "G41/G42 starts only in a G00/G01 move, not in G02/G03".into(),
-            );
-            st.comp.tool = None;
-            sink.emit(elem.source, &as_event(&elem, elem.to, plane));
-            return;
+            let message = "G41/G42 starts only in a G00/G01 move, not in G02/G03";
+            return refuse_start(st, sink, &elem, plane, message);
         }
         // LinuxCNC: an arc through the compensated end, tangent to the tool where it is.
         if (p - t).length() <= s.abs() {
@@ -518,15 +511,8 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
         let u = (c - end).normalize_or_zero();
         let den = 2.0 * u.dot(t - end);
         if den.abs() < EPS {
-            alarm(
-                st,
-                elem.span,
-                "E-COMP-START",
-                "the tool radius is not less than the entry arc's radius".into(),
-            );
-            st.comp.tool = None;
-            sink.emit(elem.source, &as_event(&elem, elem.to, plane));
-            return;
+            let message = "the tool radius is not less than the entry arc's radius";
+            return refuse_start(st, sink, &elem, plane, message);
         }
         let center = end + u * ((t - end).length_squared() / den);
         st.comp.held = Some(Held {
@@ -588,6 +574,19 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
         startup,
     });
     st.comp.held_run = st.blocks_run;
+}
+
+/// Compensation cannot start in `elem`: the alarm, and the move itself uncompensated.
+fn refuse_start(
+    st: &mut State,
+    sink: &mut dyn Sink,
+    elem: &Elem,
+    plane: (usize, usize),
+    message: &str,
+) {
+    alarm(st, elem.span, "E-COMP-START", message.into());
+    st.comp.tool = None;
+    sink.emit(elem.source, &as_event(elem, elem.to, plane));
 }
 
 /// Holds `elem` compensated by `s`, starting at `start` (plane coordinates) after the move of

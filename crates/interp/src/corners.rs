@@ -56,7 +56,7 @@ pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
                     "W-NOT-INTERPRETED",
                     "a corner before an arc is not drawn yet: the corner is drawn sharp",
                 ));
-                sharp(st, sink, &pending);
+                feed(st, sink, &pending, pending.to);
             }
             _ => {
                 st.diagnostics.push(Diagnostic::error(
@@ -64,7 +64,7 @@ pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
                     "E-CORNER-NEXT",
                     "a `,C`/`,R` corner needs a cutting move (G01–G03) in the next block; the corner is drawn sharp",
                 ));
-                sharp(st, sink, &pending);
+                feed(st, sink, &pending, pending.to);
             }
         }
     }
@@ -78,18 +78,19 @@ pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
             "E-CORNER-NEXT",
             "a `,C`/`,R` corner needs a cutting move in the next block; the program ends first",
         ));
-        sharp(st, sink, &pending);
+        feed(st, sink, &pending, pending.to);
     }
     crate::comp::flush(st, sink);
 }
 
-fn sharp(st: &mut State, sink: &mut dyn Sink, p: &Pending) {
+/// A feed of the held-back move to `to` (its own end where the corner stays sharp).
+fn feed(st: &mut State, sink: &mut dyn Sink, p: &Pending, to: DVec3) {
     crate::comp::emit(
         st,
         sink,
         p.source,
         &Canon::Feed {
-            to: p.to,
+            to,
             feed_mm_per_min: p.feed_mm_per_min,
         },
     );
@@ -108,7 +109,7 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
             "W-CORNER-SKIPPED",
             "a corner is cut only between two moves in the selected plane: drawn sharp",
         ));
-        sharp(st, sink, p);
+        feed(st, sink, p, p.to);
         return;
     }
     let (a, b) = (d1 / l1, d2 / l2);
@@ -116,32 +117,15 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
     let cos = a.dot(b).clamp(-1.0, 1.0);
     if cross.abs() < 1e-9 {
         // Straight on (or straight back): there is no corner to cut.
-        sharp(st, sink, p);
+        feed(st, sink, p, p.to);
         return;
     }
-    let feed = p.feed_mm_per_min;
     match p.corner {
         Corner::Chamfer(c) => {
             let start = p.to - a * c;
             let end = p.to + b * c;
-            crate::comp::emit(
-                st,
-                sink,
-                p.source,
-                &Canon::Feed {
-                    to: start,
-                    feed_mm_per_min: feed,
-                },
-            );
-            crate::comp::emit(
-                st,
-                sink,
-                p.source,
-                &Canon::Feed {
-                    to: end,
-                    feed_mm_per_min: feed,
-                },
-            );
+            feed(st, sink, p, start);
+            feed(st, sink, p, end);
         }
         Corner::Round(r) => {
             // The turn angle between the moves; the tangent points are r·tan(θ/2) from the corner.
@@ -154,15 +138,7 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
             normal[u] = -a[v];
             normal[v] = a[u];
             let center = start + normal * if left { r } else { -r };
-            crate::comp::emit(
-                st,
-                sink,
-                p.source,
-                &Canon::Feed {
-                    to: start,
-                    feed_mm_per_min: feed,
-                },
-            );
+            feed(st, sink, p, start);
             crate::comp::emit(
                 st,
                 sink,
@@ -173,7 +149,7 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
                     axis: st.plane,
                     ccw: left,
                     turns: 0,
-                    feed_mm_per_min: feed,
+                    feed_mm_per_min: p.feed_mm_per_min,
                 }),
             );
         }

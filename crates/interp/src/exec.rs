@@ -74,8 +74,9 @@ pub(crate) fn count_range(w: &Word, what: &str) -> Diagnostic {
     )
 }
 
-/// Executes `words` (the block's words with expressions evaluated); with a G22 stroke limit
-/// or the machine's travel, every move of the block is checked against them.
+/// Executes `words` (the block's words with expressions evaluated): its G codes sorted into
+/// actions, then each stage in the controls' order; with a G22 stroke limit or the machine's
+/// travel, every move of the block is checked against them.
 pub(crate) fn execute(
     st: &mut State,
     block: &Block,
@@ -84,54 +85,42 @@ pub(crate) fn execute(
     sink: &mut dyn Sink,
 ) -> Requests {
     stroke::checked(st, block, sink, |st, sink| {
-        execute_block(st, block, words, source, sink)
+        let Some(actions) = actions::of_block(st, words) else {
+            return Requests::new();
+        };
+        if let Some(requests) = calls::macro_codes(st, words, &actions) {
+            return requests;
+        }
+        let length_before = st.length_comp.map_or(0.0, |(_, o)| o);
+        if !modal_codes(st, words, &actions, source, sink) {
+            return stop();
+        }
+        let axes = axis_words(words);
+        // In a block that runs a canned cycle (the block's motion code is already the mode), K is
+        // the repeat count, not a length.
+        let lengths = if matches!(st.motion, Some(MotionMode::Cycle(_))) {
+            CYCLE_LENGTH_LETTERS
+        } else {
+            LENGTH_LETTERS
+        };
+        note_least_increment(st, lengths, words);
+        let Some(consumed) = axis_codes(st, block, words, &axes, &actions, source, sink) else {
+            return stop();
+        };
+        tools::follow_length_change(st, length_before);
+        let probe = actions.iter().any(|(a, _)| matches!(a, Action::Probe));
+        let moved = !consumed && motion::motion(st, block, words, &axes, probe, source, sink);
+        // Without G codes the parser cannot tell which words the modal motion uses.
+        if actions.is_empty() {
+            motion::unused_arc_words(st, words);
+        }
+        let mut requests = mcodes::m_codes(st, words, source, sink);
+        // G66: the modal macro is called after each move.
+        if moved {
+            requests.push(Request::ModalMacro);
+        }
+        requests
     })
-}
-
-/// Executes one block's words: its G codes sorted into actions, then each stage in the
-/// controls' order.
-fn execute_block(
-    st: &mut State,
-    block: &Block,
-    words: &[Word],
-    source: Source,
-    sink: &mut dyn Sink,
-) -> Requests {
-    let Some(actions) = actions::of_block(st, words) else {
-        return Requests::new();
-    };
-    if let Some(requests) = calls::macro_codes(st, words, &actions) {
-        return requests;
-    }
-    let length_before = st.length_comp.map_or(0.0, |(_, o)| o);
-    if !modal_codes(st, words, &actions, source, sink) {
-        return stop();
-    }
-    let axes = axis_words(words);
-    // In a block that runs a canned cycle (the block's motion code is already the mode), K is
-    // the repeat count, not a length.
-    let lengths = if matches!(st.motion, Some(MotionMode::Cycle(_))) {
-        CYCLE_LENGTH_LETTERS
-    } else {
-        LENGTH_LETTERS
-    };
-    note_least_increment(st, lengths, words);
-    let Some(consumed) = axis_codes(st, block, words, &axes, &actions, source, sink) else {
-        return stop();
-    };
-    tools::follow_length_change(st, length_before);
-    let probe = actions.iter().any(|(a, _)| matches!(a, Action::Probe));
-    let moved = !consumed && motion::block_move(st, block, words, &axes, probe, source, sink);
-    // Without G codes the parser cannot tell which words the modal motion uses.
-    if actions.is_empty() {
-        motion::unused_arc_words(st, words);
-    }
-    let mut requests = mcodes::m_codes(st, words, source, sink);
-    // G66: the modal macro is called after each move.
-    if moved {
-        requests.push(Request::ModalMacro);
-    }
-    requests
 }
 
 /// The block's settings and modal codes, units first (the block's numbers are read in the new

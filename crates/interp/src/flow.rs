@@ -244,32 +244,24 @@ impl Index {
         self.terms.get(at).map_or(0, |&t| u64::from(t))
     }
 
-    /// The next line of `label` after block `at` whose kind is in `kinds`; the lines of the
-    /// label looked at are added to `searched` (the run's work).
-    pub(crate) fn next_oword(
+    /// The nearest line of `label` after block `at` (`forward`) or before it whose kind is in
+    /// `kinds`; the lines of the label looked at are added to `searched` (the run's work).
+    pub(crate) fn near_oword(
         &self,
         label: &LabelKey,
         at: usize,
+        forward: bool,
         kinds: &[OKind],
         searched: &mut u64,
     ) -> Option<(usize, OKind)> {
         let lines = self.owords(label);
-        let after = lines.get(lines.partition_point(|(b, _)| *b <= at)..)?;
-        first_of(after.iter(), kinds, searched)
-    }
-
-    /// The last line of `label` before block `at` whose kind is in `kinds` (see
-    /// [`Index::next_oword`]).
-    pub(crate) fn previous_oword(
-        &self,
-        label: &LabelKey,
-        at: usize,
-        kinds: &[OKind],
-        searched: &mut u64,
-    ) -> Option<(usize, OKind)> {
-        let lines = self.owords(label);
-        let before = lines.get(..lines.partition_point(|(b, _)| *b < at))?;
-        first_of(before.iter().rev(), kinds, searched)
+        if forward {
+            let after = lines.get(lines.partition_point(|(b, _)| *b <= at)..)?;
+            first_of(after.iter(), kinds, searched)
+        } else {
+            let before = lines.get(..lines.partition_point(|(b, _)| *b < at))?;
+            first_of(before.iter().rev(), kinds, searched)
+        }
     }
 }
 
@@ -351,12 +343,12 @@ mod tests {
         let index = Index::build(&program, &mut Diagnostics::default());
         let key = LabelKey::Number(1);
         let mut searched = 0;
-        let found = index.next_oword(&key, 1998, &[OKind::EndIf], &mut searched);
+        let found = index.near_oword(&key, 1998, true, &[OKind::EndIf], &mut searched);
         assert_eq!((found, searched), (Some((1999, OKind::EndIf)), 1));
-        let found = index.previous_oword(&key, 1999, &[OKind::If], &mut searched);
+        let found = index.near_oword(&key, 1999, false, &[OKind::If], &mut searched);
         assert_eq!((found, searched), (Some((1998, OKind::If)), 2));
         assert_eq!(
-            index.next_oword(&key, 1999, &[OKind::If], &mut searched),
+            index.near_oword(&key, 1999, true, &[OKind::If], &mut searched),
             None
         );
         assert_eq!(searched, 2);

@@ -834,7 +834,14 @@ impl Interpreter {
             } => self.call_macro(at, block, number, repeats, &args),
             Request::ModalMacro => match self.st.modal_macro.clone() {
                 Some(call) if flow == Flow::Next && !self.in_modal_macro() => {
-                    self.call_modal_macro(at, block, call.number, call.repeats, &call.args)
+                    // Like G65, marked so that the macro's own moves do not call it again.
+                    let called = self.call_macro(at, block, call.number, call.repeats, &call.args);
+                    if called.as_ref().is_ok_and(|f| *f != Flow::Next)
+                        && let Some(frame) = self.calls.last_mut()
+                    {
+                        frame.modal = true;
+                    }
+                    called
                 }
                 _ => return flow,
             },
@@ -1035,12 +1042,15 @@ impl Interpreter {
                 format!("{} has no matching `{what}`", show_label(&key)),
             )
         };
+        // The nearest line of the label after or before this one whose kind is in `kinds`.
+        let after = |work: &mut u64, kinds: &[OKind]| index.near_oword(&key, at, true, kinds, work);
+        let before =
+            |work: &mut u64, kinds: &[OKind]| index.near_oword(&key, at, false, kinds, work);
         match kind {
             OWord::Sub => {
                 // Reached in sequence: a definition is skipped, not run.
-                let end = index
-                    .next_oword(&key, at, &[OKind::EndSub], &mut self.work)
-                    .ok_or_else(|| missing("endsub"))?;
+                let end =
+                    after(&mut self.work, &[OKind::EndSub]).ok_or_else(|| missing("endsub"))?;
                 Ok(Flow::Jump(end.0 + 1))
             }
             OWord::EndSub(value) | OWord::Return(value) => {
@@ -1103,13 +1113,7 @@ impl Interpreter {
                 if self.condition(program, *cond)? {
                     return Ok(Flow::Next);
                 }
-                let next = index
-                    .next_oword(
-                        &key,
-                        at,
-                        &[OKind::ElseIf, OKind::Else, OKind::EndIf],
-                        &mut self.work,
-                    )
+                let next = after(&mut self.work, &[OKind::ElseIf, OKind::Else, OKind::EndIf])
                     .ok_or_else(|| missing("endif"))?;
                 Ok(match next.1 {
                     // The elseif line evaluates its own condition.
@@ -1119,21 +1123,13 @@ impl Interpreter {
             }
             OWord::Else => {
                 // Reached from a branch that ran: skip to the end.
-                let end = index
-                    .next_oword(&key, at, &[OKind::EndIf], &mut self.work)
-                    .ok_or_else(|| missing("endif"))?;
+                let end = after(&mut self.work, &[OKind::EndIf]).ok_or_else(|| missing("endif"))?;
                 Ok(Flow::Jump(end.0 + 1))
             }
             OWord::EndIf => Ok(Flow::Next),
             OWord::While(cond) => {
                 // The tail of a `do … while` loop, or the head of a `while … endwhile` one.
-                let do_head = index
-                    .previous_oword(
-                        &key,
-                        at,
-                        &[OKind::Do, OKind::EndWhile, OKind::While],
-                        &mut self.work,
-                    )
+                let do_head = before(&mut self.work, &[OKind::Do, OKind::EndWhile, OKind::While])
                     .filter(|(_, k)| *k == OKind::Do);
                 let holds = self.condition(program, *cond)?;
                 if let Some((head, _)) = do_head {
@@ -1146,15 +1142,13 @@ impl Interpreter {
                 if holds {
                     return Ok(Flow::Next);
                 }
-                let end = index
-                    .next_oword(&key, at, &[OKind::EndWhile], &mut self.work)
-                    .ok_or_else(|| missing("endwhile"))?;
+                let end =
+                    after(&mut self.work, &[OKind::EndWhile]).ok_or_else(|| missing("endwhile"))?;
                 Ok(Flow::Jump(end.0 + 1))
             }
             OWord::EndWhile => {
-                let head = index
-                    .previous_oword(&key, at, &[OKind::While], &mut self.work)
-                    .ok_or_else(|| missing("while"))?;
+                let head =
+                    before(&mut self.work, &[OKind::While]).ok_or_else(|| missing("while"))?;
                 Ok(Flow::Jump(head.0))
             }
             OWord::Do => Ok(Flow::Next),
@@ -1167,8 +1161,7 @@ impl Interpreter {
                 };
                 if remaining == 0 {
                     self.repeats.remove(&at);
-                    let end = index
-                        .next_oword(&key, at, &[OKind::EndRepeat], &mut self.work)
+                    let end = after(&mut self.work, &[OKind::EndRepeat])
                         .ok_or_else(|| missing("endrepeat"))?;
                     return Ok(Flow::Jump(end.0 + 1));
                 }
@@ -1176,39 +1169,27 @@ impl Interpreter {
                 Ok(Flow::Next)
             }
             OWord::EndRepeat => {
-                let head = index
-                    .previous_oword(&key, at, &[OKind::Repeat], &mut self.work)
-                    .ok_or_else(|| missing("repeat"))?;
+                let head =
+                    before(&mut self.work, &[OKind::Repeat]).ok_or_else(|| missing("repeat"))?;
                 Ok(Flow::Jump(head.0))
             }
             OWord::Break => {
-                let end = index
-                    .next_oword(
-                        &key,
-                        at,
-                        &[OKind::EndWhile, OKind::EndRepeat, OKind::While],
-                        &mut self.work,
-                    )
-                    .ok_or_else(|| missing("endwhile"))?;
-                if let Some((head, _)) =
-                    index.previous_oword(&key, at, &[OKind::Repeat], &mut self.work)
-                {
+                let end = after(
+                    &mut self.work,
+                    &[OKind::EndWhile, OKind::EndRepeat, OKind::While],
+                )
+                .ok_or_else(|| missing("endwhile"))?;
+                if let Some((head, _)) = before(&mut self.work, &[OKind::Repeat]) {
                     self.repeats.remove(&head);
                 }
                 Ok(Flow::Jump(end.0 + 1))
             }
             OWord::Continue => {
-                let head = index
-                    .previous_oword(
-                        &key,
-                        at,
-                        &[OKind::While, OKind::Repeat, OKind::Do],
-                        &mut self.work,
-                    )
+                let head = before(&mut self.work, &[OKind::While, OKind::Repeat, OKind::Do])
                     .ok_or_else(|| missing("while"))?;
                 Ok(match head.1 {
                     OKind::Do => {
-                        let tail = index.next_oword(&key, at, &[OKind::While], &mut self.work);
+                        let tail = after(&mut self.work, &[OKind::While]);
                         tail.map_or(Flow::Jump(head.0 + 1), |(t, _)| Flow::Jump(t))
                     }
                     _ => Flow::Jump(head.0),
@@ -1313,24 +1294,6 @@ impl Interpreter {
     /// Whether the G66 modal macro is running (a move inside it does not call it again).
     fn in_modal_macro(&self) -> bool {
         self.calls.iter().any(|f| f.modal)
-    }
-
-    /// The G66 modal macro after a move: like G65, marked so that its own moves do not call it.
-    fn call_modal_macro(
-        &mut self,
-        at: usize,
-        block: &Block,
-        number: f64,
-        repeats: u32,
-        args: &[(u8, f64)],
-    ) -> Result<Flow, Diagnostic> {
-        let flow = self.call_macro(at, block, number, repeats, args)?;
-        if flow != Flow::Next
-            && let Some(frame) = self.calls.last_mut()
-        {
-            frame.modal = true;
-        }
-        Ok(flow)
     }
 
     /// `G65 P… L… args`: a macro call with local variables from the arguments.

@@ -4,16 +4,25 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
+mod support;
+
 use glam::DVec3;
-use swarf_interp::{Arc, Canon, CanonRecorder, Setup, run};
-use swarf_syntax::{Diagnostic, Dialect, parse};
+use swarf_interp::{Arc, Canon, Setup};
+use swarf_syntax::{Diagnostic, Dialect};
 
 fn run_text(text: &str, dialect: Dialect) -> (Vec<Canon>, Vec<Diagnostic>) {
-    let program = parse(text, dialect);
-    let mut rec = CanonRecorder::default();
-    let mut diags = program.diagnostics.clone();
-    diags.extend(run(&program, Setup::default(), &mut rec));
-    (rec.events.into_iter().map(|(_, e)| e).collect(), diags)
+    support::run_with(text, dialect, Setup::default())
+}
+
+/// The end points of the feeds.
+fn feed_ends(events: &[Canon]) -> Vec<DVec3> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            Canon::Feed { to, .. } => Some(*to),
+            _ => None,
+        })
+        .collect()
 }
 
 fn near(a: DVec3, b: [f64; 3]) -> bool {
@@ -25,13 +34,7 @@ fn chamfer_cuts_equal_legs_from_the_corner() {
     let text = "G90 G00 X0 Y0\nG01 X10. Y0 ,C2. F100\nX10. Y10.\n";
     let (events, diags) = run_text(text, Dialect::Lnc);
     assert!(diags.is_empty(), "{diags:?}");
-    let ends: Vec<DVec3> = events
-        .iter()
-        .filter_map(|e| match e {
-            Canon::Feed { to, .. } => Some(*to),
-            _ => None,
-        })
-        .collect();
+    let ends = feed_ends(&events);
     assert_eq!(ends.len(), 3, "{events:?}");
     assert!(near(ends[0], [8.0, 0.0, 0.0]));
     assert!(near(ends[1], [10.0, 2.0, 0.0]));
@@ -79,13 +82,7 @@ fn consecutive_corners_are_each_cut() {
     let text = "G90 G00 X0 Y0\nG01 X10. ,C1. F100\nY10. ,C1.\nX0\n";
     let (events, diags) = run_text(text, Dialect::Lnc);
     assert!(diags.is_empty(), "{diags:?}");
-    let ends: Vec<DVec3> = events
-        .iter()
-        .filter_map(|e| match e {
-            Canon::Feed { to, .. } => Some(*to),
-            _ => None,
-        })
-        .collect();
+    let ends = feed_ends(&events);
     let expected = [
         [9.0, 0.0, 0.0],
         [10.0, 1.0, 0.0],

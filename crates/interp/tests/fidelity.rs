@@ -7,17 +7,12 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-use glam::DVec3;
-use swarf_interp::{Arc, Canon, CanonRecorder, Register, Setup, run};
-use swarf_syntax::{Diagnostic, Dialect, Severity, parse};
+mod support;
 
-fn run_with(text: &str, dialect: Dialect, setup: Setup) -> (Vec<Canon>, Vec<Diagnostic>) {
-    let program = parse(text, dialect);
-    let mut rec = CanonRecorder::default();
-    let mut diags = program.diagnostics.clone();
-    diags.extend(run(&program, setup, &mut rec));
-    (rec.events.into_iter().map(|(_, e)| e).collect(), diags)
-}
+use glam::DVec3;
+use support::run_with;
+use swarf_interp::{Arc, Canon, Register, Setup};
+use swarf_syntax::{Diagnostic, Dialect, Severity};
 
 /// A setup whose registers hold tools 1 (12.9794 mm long, as LinuxCNC's sample table's
 /// `T1 Z0.511`) and 2.
@@ -38,17 +33,7 @@ fn two_tools() -> Setup {
 
 /// The motions' end points, rounded to 0.0001.
 fn ends(events: &[Canon]) -> Vec<[f64; 3]> {
-    events
-        .iter()
-        .filter_map(|e| match e {
-            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) => Some(*to),
-            _ => None,
-        })
-        .map(|p| {
-            let r = |v: f64| (v * 10_000.0).round() / 10_000.0 + 0.0;
-            [r(p.x), r(p.y), r(p.z)]
-        })
-        .collect()
+    support::ends_rounded(events, 10_000.0)
 }
 
 /// The arcs' centres and directions.

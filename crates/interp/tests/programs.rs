@@ -5,17 +5,12 @@
 #[cfg(target_arch = "wasm32")]
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
-use glam::DVec3;
-use swarf_interp::{Arc, Canon, CanonRecorder, Setup, run};
-use swarf_syntax::{Diagnostic, Dialect, Severity, parse};
+mod support;
 
-fn run_with(text: &str, dialect: Dialect, setup: Setup) -> (Vec<Canon>, Vec<Diagnostic>) {
-    let program = parse(text, dialect);
-    let mut rec = CanonRecorder::default();
-    let mut diags = program.diagnostics.clone();
-    diags.extend(run(&program, setup, &mut rec));
-    (rec.events.into_iter().map(|(_, e)| e).collect(), diags)
-}
+use glam::DVec3;
+use support::run_with;
+use swarf_interp::{Arc, Canon, Setup};
+use swarf_syntax::{Diagnostic, Dialect, Severity};
 
 fn run_text(text: &str, dialect: Dialect) -> (Vec<Canon>, Vec<Diagnostic>) {
     let mut setup = Setup::default();
@@ -25,17 +20,7 @@ fn run_text(text: &str, dialect: Dialect) -> (Vec<Canon>, Vec<Diagnostic>) {
 
 /// End points of the motions, rounded to 0.001.
 fn ends(events: &[Canon]) -> Vec<[f64; 3]> {
-    events
-        .iter()
-        .filter_map(|e| match e {
-            Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) => Some(*to),
-            _ => None,
-        })
-        .map(|p| {
-            let r = |v: f64| (v * 1000.0).round() / 1000.0 + 0.0;
-            [r(p.x), r(p.y), r(p.z)]
-        })
-        .collect()
+    support::ends_rounded(events, 1000.0)
 }
 
 fn errors(diags: &[Diagnostic]) -> Vec<&'static str> {

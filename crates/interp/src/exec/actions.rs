@@ -1,4 +1,4 @@
-//! What each G code does in a dialect: the action [`super::execute_block`] takes for it.
+//! What each G code does in a dialect: the action [`super::execute`] takes for it.
 
 use smallvec::SmallVec;
 use swarf_syntax::codes::{self, Code, Group};

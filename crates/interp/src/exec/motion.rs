@@ -56,7 +56,8 @@ fn arc_full_circle(st: &State, words: &[Word]) -> bool {
             .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'I' | b'J' | b'K'))
 }
 
-/// The block's move in the current motion mode; returns whether the tool moved.
+/// The block's move in the current motion mode, where its words make one: axis words, rotary
+/// words alone, a canned cycle or a full circle. Returns whether the tool moved.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn motion(
     st: &mut State,
@@ -67,6 +68,21 @@ pub(super) fn motion(
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
+    // Rotary axis words alone still make a move (the rotary position itself is not drawn).
+    let rotary = words
+        .iter()
+        .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'A' | b'B' | b'C'));
+    let cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
+    if !(axes.iter().any(Option::is_some) || rotary || cycle || arc_full_circle(st, words)) {
+        return false;
+    }
+    if probe {
+        st.diagnostics.push(Diagnostic::note(
+            block.span,
+            "N-PROBE",
+            "a skip or measuring move is drawn as its full programmed move (where the signal stops it is not known)",
+        ));
+    }
     let Some(mode) = st.motion else {
         let span = axes.iter().flatten().next().map_or(block.span, |w| w.span);
         st.diagnostics.push(Diagnostic::error(
@@ -116,7 +132,10 @@ pub(super) fn motion(
             };
             return arc(st, block, p, (offsets, radius, turns), ccw, source, sink);
         }
-        MotionMode::Thread => return thread(st, block, words, p, to, source, sink),
+        MotionMode::Thread => Canon::Feed {
+            to,
+            feed_mm_per_min: thread_feed(st, block, words),
+        },
         MotionMode::Cycle(t) => {
             // The hole position: the block's in-plane words only (the normal word is the bottom).
             let (u, v) = plane_axes(st.plane);
@@ -158,22 +177,26 @@ pub(super) fn motion(
         }
         MotionMode::Rapid | MotionMode::Linear => return feed_to(st, block, p, to, source, sink),
     };
-    st.position = to;
-    st.program_pos = p;
-    crate::corners::emit(st, sink, source, &event);
-    true
+    end_move(st, p, to, source, sink, &event)
 }
 
-/// G33: a feed along the programmed line at the lead (F; LinuxCNC's K) per spindle revolution.
-fn thread(
+/// Ends a move at `to` (`p` in the program frame) and passes its event to the corner stage.
+fn end_move(
     st: &mut State,
-    block: &Block,
-    words: &[Word],
     p: DVec3,
     to: DVec3,
     source: Source,
     sink: &mut dyn Sink,
+    event: &Canon,
 ) -> bool {
+    st.position = to;
+    st.program_pos = p;
+    crate::corners::emit(st, sink, source, event);
+    true
+}
+
+/// G33's feed along the programmed line: the lead (F; LinuxCNC's K) per spindle revolution.
+fn thread_feed(st: &mut State, block: &Block, words: &[Word]) -> f64 {
     let lead = if st.dialect == Dialect::LinuxCnc {
         find(words, b'K').map_or(0.0, |k| st.length(k))
     } else {
@@ -187,18 +210,7 @@ fn thread(
             "G33 feeds the lead once per spindle revolution: it needs the lead and a spindle speed (S)",
         ));
     }
-    st.position = to;
-    st.program_pos = p;
-    crate::corners::emit(
-        st,
-        sink,
-        source,
-        &Canon::Feed {
-            to,
-            feed_mm_per_min: feed_mm_per_min.max(0.0),
-        },
-    );
-    true
+    feed_mm_per_min.max(0.0)
 }
 
 /// The block's `,C` or `,R` word as a corner in millimetres.
@@ -222,18 +234,17 @@ pub(super) fn feed_to(
 ) -> bool {
     let length = st.position.distance(to);
     let feed_mm_per_min = move_feed(st, block, length, None);
-    st.position = to;
-    st.program_pos = p;
-    crate::corners::emit(
+    end_move(
         st,
-        sink,
+        p,
+        to,
         source,
+        sink,
         &Canon::Feed {
             to,
             feed_mm_per_min,
         },
-    );
-    true
+    )
 }
 
 /// The words that shape an arc: centre offsets I/J/K, radius R and Syntec's turns L.
@@ -406,12 +417,12 @@ pub(super) fn arc(
     } else {
         move_feed(st, block, 0.0, None)
     };
-    st.position = to;
-    st.program_pos = p;
-    crate::corners::emit(
+    end_move(
         st,
-        sink,
+        p,
+        to,
         source,
+        sink,
         &Canon::Arc(Arc {
             to,
             center: machine_center,
@@ -420,8 +431,7 @@ pub(super) fn arc(
             turns,
             feed_mm_per_min,
         }),
-    );
-    true
+    )
 }
 
 /// Syntec scales an arc's radius by the largest of the plane's two factors when G51 scales them
@@ -500,9 +510,8 @@ pub(super) fn dwell(
 }
 
 pub(super) fn rapid_to(st: &mut State, to: DVec3, source: Source, sink: &mut dyn Sink) {
-    st.position = to;
-    st.program_pos = st.to_program(to);
-    crate::corners::emit(st, sink, source, &Canon::Rapid { to });
+    let p = st.to_program(to);
+    end_move(st, p, to, source, sink, &Canon::Rapid { to });
 }
 
 /// The motion mode a G code sets: entering or leaving a canned cycle mode takes the cycle's
@@ -526,35 +535,6 @@ pub(super) fn set_mode(st: &mut State, m: Option<MotionMode>) {
             m
         }
     };
-}
-
-/// The block's move, where its words make one: axis words, rotary words alone, a canned cycle
-/// or a full circle. Returns whether the tool moved.
-pub(super) fn block_move(
-    st: &mut State,
-    block: &Block,
-    words: &[Word],
-    axes: &Axes<'_>,
-    probe: bool,
-    source: Source,
-    sink: &mut dyn Sink,
-) -> bool {
-    // Rotary axis words alone still make a move (the rotary position itself is not drawn).
-    let rotary = words
-        .iter()
-        .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'A' | b'B' | b'C'));
-    let cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
-    if !(axes.iter().any(Option::is_some) || rotary || cycle || arc_full_circle(st, words)) {
-        return false;
-    }
-    if probe {
-        st.diagnostics.push(Diagnostic::note(
-            block.span,
-            "N-PROBE",
-            "a skip or measuring move is drawn as its full programmed move (where the signal stops it is not known)",
-        ));
-    }
-    motion(st, block, words, axes, probe, source, sink)
 }
 
 /// Warns of I/J/K/R words in a block without G codes whose motion mode does not use them.

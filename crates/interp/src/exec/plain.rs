@@ -147,7 +147,7 @@ impl<'w> PlainWords<'w> {
 }
 
 /// Runs a plain motion block (see [`PlainWords`]) without the general path's passes over the
-/// words for every kind of code: it takes the steps [`super::execute_block`] takes for such a block
+/// words for every kind of code: it takes the steps [`super::execute`] takes for such a block
 /// (the others find nothing to do in it) and gives the same events, diagnostics and state.
 /// `None`, having done nothing, for any other block; otherwise whether the block's move went
 /// straight to `sink` as one segment (the general steps may hold moves or make many segments).
