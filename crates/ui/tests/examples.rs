@@ -32,8 +32,8 @@ fn every_example_interprets_cleanly_in_its_dialect() {
     }
 }
 
-#[test]
-fn the_examples_menu_opens_a_program_in_its_dialect() {
+/// A workbench with the menu's example `entry` opened (File → Examples) and analysed.
+fn open_example(entry: &str) -> Harness<'static, Workbench> {
     let mut harness = Harness::builder()
         .with_size(egui::vec2(1200.0, 800.0))
         .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), Workbench::default());
@@ -42,11 +42,15 @@ fn the_examples_menu_opens_a_program_in_its_dialect() {
     harness.run();
     harness.get_by_label("Examples").click();
     harness.run();
-    harness
-        .get_by_label("linuxcnc-engrave-sub.ngc  (LinuxCNC)")
-        .click();
+    harness.get_by_label(entry).click();
     harness.run();
     harness.state_mut().finish_analysis();
+    harness
+}
+
+#[test]
+fn the_examples_menu_opens_a_program_in_its_dialect() {
+    let harness = open_example("linuxcnc-engrave-sub.ngc  (LinuxCNC)");
     let wb = harness.state();
     assert_eq!(wb.dialect(), Dialect::LinuxCnc);
     assert_eq!(wb.document().name, "linuxcnc-engrave-sub.ngc");
@@ -57,19 +61,7 @@ fn the_examples_menu_opens_a_program_in_its_dialect() {
 
 #[test]
 fn the_syntec_example_opens_in_syntec_in_its_own_tab() {
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 800.0))
-        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), Workbench::default());
-    harness.run();
-    harness.get_by_label("File").click();
-    harness.run();
-    harness.get_by_label("Examples").click();
-    harness.run();
-    harness
-        .get_by_label("syntec-bolt-circle.nc  (Syntec 900M)")
-        .click();
-    harness.run();
-    harness.state_mut().finish_analysis();
+    let mut harness = open_example("syntec-bolt-circle.nc  (Syntec 900M)");
     let wb = harness.state();
     assert_eq!(wb.document().name, "syntec-bolt-circle.nc");
     assert_eq!(wb.dialect(), Dialect::Syntec);

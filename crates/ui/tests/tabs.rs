@@ -256,6 +256,15 @@ fn dialect_errors(wb: &Workbench) -> usize {
         .count()
 }
 
+/// Finishes the analysis of the active tab and checks its dialect, shown by the selector,
+/// with no dialect errors.
+fn analysed_in(harness: &mut Harness<'_, Workbench>, dialect: Dialect, shown: &str) {
+    harness.state_mut().finish_analysis();
+    assert_eq!(harness.state().dialect(), dialect);
+    assert_eq!(selector(harness).as_deref(), Some(shown));
+    assert_eq!(dialect_errors(harness.state()), 0);
+}
+
 /// A Syntec program: `G71` is its metric code, which Fanuc does not have.
 const SYNTEC: &str =
     "%\nO3001\nN10 G90 G71 G17 G54\nG00 X0. Y0. Z20.\nG01 Z-2. F200.\nX40.\nM30\n%\n";
@@ -265,17 +274,11 @@ fn each_tab_keeps_its_dialect_and_the_selector_follows_the_active_one() {
     let mut harness = harness(Workbench::default());
     assert!(harness.state_mut().open_example("syntec-bolt-circle.nc"));
     harness.run();
-    harness.state_mut().finish_analysis();
-    assert_eq!(harness.state().dialect(), Dialect::Syntec);
-    assert_eq!(selector(&harness).as_deref(), Some("Syntec 900M"));
-    assert_eq!(dialect_errors(harness.state()), 0);
+    analysed_in(&mut harness, Dialect::Syntec, "Syntec 900M");
     // The example shown at start keeps Fanuc.
     harness.get_by_label("pocket.nc").click();
     harness.run();
-    harness.state_mut().finish_analysis();
-    assert_eq!(harness.state().dialect(), Dialect::Fanuc);
-    assert_eq!(selector(&harness).as_deref(), Some("Fanuc 0i-M"));
-    assert_eq!(dialect_errors(harness.state()), 0);
+    analysed_in(&mut harness, Dialect::Fanuc, "Fanuc 0i-M");
     // The selector changes the active tab alone …
     harness.get_by_label("Dialect").click();
     harness.run();
@@ -285,10 +288,7 @@ fn each_tab_keeps_its_dialect_and_the_selector_follows_the_active_one() {
     assert_eq!(harness.state().tab_dialect(1), Some(Dialect::Syntec));
     harness.get_by_label("syntec-bolt-circle.nc").click();
     harness.run();
-    harness.state_mut().finish_analysis();
-    assert_eq!(harness.state().dialect(), Dialect::Syntec);
-    assert_eq!(selector(&harness).as_deref(), Some("Syntec 900M"));
-    assert_eq!(dialect_errors(harness.state()), 0);
+    analysed_in(&mut harness, Dialect::Syntec, "Syntec 900M");
     harness.get_by_label("pocket.nc").click();
     harness.run();
     assert_eq!(harness.state().dialect(), Dialect::Lnc);
