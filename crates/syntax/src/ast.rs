@@ -42,11 +42,6 @@ impl Word {
     pub fn letter(&self) -> char {
         char::from(self.letter)
     }
-
-    /// Whether this is a plain word with a literal number (no comma, index or expression).
-    pub fn is_plain_number(&self) -> bool {
-        self.form == WordForm::Plain && self.expr.is_none()
-    }
 }
 
 /// Index of an expression node in [`Program::exprs`].

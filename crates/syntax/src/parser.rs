@@ -35,7 +35,7 @@ fn is_blank(c: char) -> bool {
 /// The most a parsed program may hold, in bytes, estimated from the sizes of its parts: its
 /// line table (at most half of it), blocks, statements, expressions and diagnostics. A program
 /// held whole (the editor's, or one that jumps or calls) is read up to there, with
-/// `E-PROGRAM-SIZE`; one run piece by piece holds only its expressions, diagnostics and lines.
+/// `E-PROGRAM-SIZE`; one run piece by piece holds only its diagnostics and lines.
 pub const MAX_PARSED_BYTES: usize = 256 << 20;
 
 /// The longest line read in full (1 MiB); the rest of a longer line is reported and skipped.

@@ -43,6 +43,13 @@ fn a_program_too_large_to_hold_is_read_up_to_its_bound() {
     assert!(held > max && held < max + (1 << 20), "{held}");
     let read = program.blocks.len();
     assert!(read > 1000 && read < 100_000, "{read} blocks");
+    // The blocks are given room for no more than the bound holds, and the lines of a count.
+    let room = program.blocks.capacity();
+    let block = size_of::<swarf_syntax::Block>();
+    assert!(
+        room >= read && room <= max / block + (8 << 10) + 1,
+        "{room}"
+    );
     let cut = program.lines.line_of(stops[0].span.start);
     assert_eq!(program.blocks.last().unwrap().line as usize + 1, cut);
     assert_eq!(stops[0].span.end as usize, text.len());

@@ -222,12 +222,52 @@ impl Toolpath {
     }
 
     /// Makes room for `segments` more segments at once (e.g. one per block of the program),
-    /// sparing the copies of arrays that grow while a big program is recorded.
+    /// up to the most the path holds, sparing the copies of arrays that grow while a big
+    /// program is recorded.
     pub fn reserve(&mut self, segments: usize) {
-        self.ends.reserve(segments);
-        self.kinds.reserve(segments);
-        self.lines.reserve(segments);
-        self.timer.end_times.reserve(segments);
+        let len = self.ends.len();
+        self.reserve_to(len + segments.min(self.max_segments.saturating_sub(len)));
+    }
+
+    /// Gives the segment arrays room for `total` segments in all (the timer's end times lag
+    /// behind the ends, so they never grow past it first).
+    fn reserve_to(&mut self, total: usize) {
+        self.ends
+            .reserve_exact(total.saturating_sub(self.ends.len()));
+        self.kinds
+            .reserve_exact(total.saturating_sub(self.kinds.len()));
+        self.lines
+            .reserve_exact(total.saturating_sub(self.lines.len()));
+        let times = &mut self.timer.end_times;
+        times.reserve_exact(total.saturating_sub(times.len()));
+    }
+
+    /// Makes room for more segments when the arrays are full: twice as many, but not past the
+    /// most the path holds and a 64th more (the rest of the block that fills it, such as an
+    /// arc's chords), so that a path run to its limit holds little spare room; past that, a
+    /// little more at a time.
+    #[cold]
+    fn grow(&mut self) {
+        let len = self.ends.len();
+        let most = self.max_segments.saturating_add(self.max_segments / 64);
+        let total = if len < most {
+            len.max(64).saturating_mul(2).min(most)
+        } else {
+            len.saturating_add(len / 32 + 64)
+        };
+        self.reserve_to(total);
+    }
+
+    /// Gives back the spare room of the arrays, which grow ahead of what they hold, once the
+    /// path is recorded: what is made from it next can take that memory.
+    pub fn shrink_to_fit(&mut self) {
+        self.ends.shrink_to_fit();
+        self.kinds.shrink_to_fit();
+        self.lines.shrink_to_fit();
+        self.timer.end_times.shrink_to_fit();
+        self.dwells.shrink_to_fit();
+        self.holes.shrink_to_fit();
+        self.programmed.shrink_to_fit();
     }
 
     /// An empty toolpath starting at `start`, timed with `kinematics`.
@@ -325,8 +365,10 @@ impl Toolpath {
     /// still change them.
     pub fn timeline(&self) -> Timeline {
         let timer = &self.timer;
-        let mut end_times = timer.end_times.clone();
-        end_times.extend(timer.window_end_times(timer.window.len()));
+        let window = timer.window_end_times(timer.window.len());
+        let mut end_times = Vec::with_capacity(timer.end_times.len() + window.len());
+        end_times.extend_from_slice(&timer.end_times);
+        end_times.extend_from_slice(&window);
         Timeline::from_parts(end_times, self.dwells.clone())
     }
 
@@ -478,6 +520,9 @@ impl Toolpath {
         speed: f64,
         chord: ChordJoin,
     ) {
+        if self.ends.len() == self.ends.capacity() {
+            self.grow();
+        }
         self.ends.push(to);
         self.kinds.push(kind);
         self.lines.push(line);
@@ -676,5 +721,40 @@ mod tests {
             .map(|f| f.to_bits())
             .collect();
         assert_eq!(bits, want);
+    }
+
+    #[test]
+    fn the_arrays_grow_to_the_most_the_path_holds_and_little_past() {
+        let machine = Machine {
+            max_motions: 10_000,
+            ..Machine::default()
+        };
+        let mut path = Toolpath::for_machine(DVec3::ZERO, &machine);
+        let source = Source { block: 0, line: 1 };
+        let mut x = 0.0;
+        while !path.full() {
+            x += 1.0;
+            path.straight(source, false, x, 0.0, 0.0, 100.0);
+        }
+        assert_eq!(path.len(), 10_000);
+        let most = 10_000 + 10_000 / 64;
+        for array in [
+            path.ends.capacity(),
+            path.lines.capacity(),
+            path.kinds.capacity(),
+        ] {
+            assert!((10_000..=most).contains(&array), "{array}");
+        }
+        assert!(path.timer.end_times.capacity() <= most);
+        // The rest of the block that filled it (an arc's chords) still goes in.
+        for _ in 0..500 {
+            x += 1.0;
+            path.straight(source, false, x, 0.0, 0.0, 100.0);
+        }
+        assert_eq!(path.len(), 10_500);
+        assert!(path.ends.capacity() < 11_000, "{}", path.ends.capacity());
+        path.shrink_to_fit();
+        assert_eq!(path.ends.capacity(), 10_500);
+        assert_eq!(path.timeline().end_times().len(), 10_500);
     }
 }

@@ -115,8 +115,6 @@ impl DialectSet {
     pub const LINUXCNC: DialectSet = DialectSet(32);
     /// The Fanuc family: every dialect but LinuxCNC.
     pub const FANUC_FAMILY: DialectSet = DialectSet(1 | 2 | 4 | 8 | 16);
-    /// The milling controls of the Fanuc family (GSK 988TD is a lathe).
-    pub const MILLS: DialectSet = DialectSet(1 | 2 | 4 | 8);
     /// Every dialect.
     pub const ALL: DialectSet = DialectSet(63);
 
@@ -540,14 +538,6 @@ pub fn lookup(dialect: Dialect, code: Code) -> Option<&'static CodeDef> {
     let slot = index(dialect);
     let at = slot.binary_search_by_key(&code, |(c, _)| *c).ok()?;
     CODES.get(usize::from(slot[at].1))
-}
-
-/// Every dialect that has `code` (in any meaning).
-pub fn dialects_with(code: Code) -> DialectSet {
-    CODES
-        .iter()
-        .filter(|d| d.code == code)
-        .fold(DialectSet::NONE, |acc, d| acc.or(d.dialects))
 }
 
 /// Every code `dialect` has, sorted by code.

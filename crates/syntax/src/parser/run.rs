@@ -37,9 +37,10 @@ struct Held {
     exprs: usize,
     diagnostics: usize,
     checked: usize,
-    /// Bytes of the blocks counted (dropped with them by [`ParseRun::clear_blocks`]), and of
-    /// everything else.
+    /// Bytes of the blocks and of the expressions counted (dropped with them by
+    /// [`ParseRun::clear_blocks`]), and of everything else.
     block_bytes: usize,
+    expr_bytes: usize,
     other_bytes: usize,
     /// The byte offset from which the next count is made: a count every
     /// [`Held::COUNT_EVERY`] bytes of text costs little, and passes the bound by no more than
@@ -59,9 +60,16 @@ impl Held {
             diagnostics: 0,
             checked: 0,
             block_bytes: 0,
+            expr_bytes: 0,
             other_bytes: lines.min(max_lines(max) + 1) * size_of::<u32>(),
             count_at: 0,
         }
+    }
+
+    /// The most blocks the program can come to hold: as many as fit beside its line table,
+    /// and the lines of the text read past the bound before the count that finds it.
+    fn most_blocks(&self) -> usize {
+        self.max.saturating_sub(self.other_bytes) / size_of::<Block>() + Self::COUNT_EVERY / 2 + 1
     }
 
     /// Counts what was read since the last count; the total.
@@ -70,7 +78,7 @@ impl Held {
         self.block_bytes += new_blocks.iter().map(Block::held_bytes).sum::<usize>();
         self.blocks = program.blocks.len();
         let new_exprs = program.exprs.get(self.exprs..).unwrap_or_default();
-        self.other_bytes += new_exprs
+        self.expr_bytes += new_exprs
             .iter()
             .map(crate::ExprNode::held_bytes)
             .sum::<usize>();
@@ -83,7 +91,7 @@ impl Held {
             self.other_bytes += new.iter().map(Diagnostic::held_bytes).sum::<usize>();
             *counted = diagnostics.len();
         }
-        self.block_bytes + self.other_bytes
+        self.block_bytes + self.expr_bytes + self.other_bytes
     }
 }
 
@@ -101,14 +109,11 @@ impl ParseRun {
             linked: Vec::new(),
             unlinked: Vec::new(),
         };
-        // Most lines are one block: reserving for them spares the copies of a growing array.
-        program.blocks.reserve_exact(
-            program
-                .lines
-                .line_count()
-                .min(MAX_PARSED_BYTES / size_of::<Block>()),
-        );
         let held = Held::new(MAX_PARSED_BYTES, program.lines.line_count());
+        // Most lines are one block: reserving for them spares the copies of a growing array.
+        program
+            .blocks
+            .reserve_exact(program.lines.line_count().min(held.most_blocks()));
         ParseRun {
             program,
             checker: crate::checks::Checker::new(dialect),
@@ -127,12 +132,14 @@ impl ParseRun {
     /// Lowers the most the parsed program may hold (bytes, see [`MAX_PARSED_BYTES`]) before
     /// anything is read: a reader with less memory, or a test.
     pub fn set_max_bytes(&mut self, max: usize) {
-        self.held = Held::new(max.min(self.held.max), self.program.lines.line_count());
+        let lines = self.program.lines.line_count();
+        self.held = Held::new(max.min(self.held.max), lines);
+        self.program.blocks = Vec::with_capacity(lines.min(self.held.most_blocks()));
     }
 
     /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
     pub fn held_bytes(&self) -> usize {
-        self.held.block_bytes + self.held.other_bytes
+        self.held.block_bytes + self.held.expr_bytes + self.held.other_bytes
     }
 
     /// Lines read so far and lines in the text.
@@ -252,23 +259,22 @@ impl ParseRun {
         self.done
     }
 
-    /// Whether the whole text is read.
-    pub fn is_done(&self) -> bool {
-        self.done
-    }
-
     /// The program as read so far.
     pub fn program(&self) -> &Program {
         &self.program
     }
 
-    /// Drops the blocks read so far and keeps the rest (expressions, diagnostics, lines), so
-    /// that a reader that runs a long program piece by piece as it reads it keeps none of the
-    /// pieces it has run; the block array's memory is reused for the next piece.
+    /// Drops the blocks read so far and their expressions and keeps the rest (diagnostics,
+    /// lines), so that a reader that runs a long program piece by piece as it reads it keeps
+    /// none of the pieces it has run; the arrays' memory is reused for the next piece. A block
+    /// refers only to expressions of its own line, so those of the next piece count from 0.
     pub fn clear_blocks(&mut self) {
         self.program.blocks.clear();
+        self.program.exprs.clear();
         self.held.blocks = 0;
         self.held.block_bytes = 0;
+        self.held.exprs = 0;
+        self.held.expr_bytes = 0;
     }
 
     /// The parsed program (the lines read so far, if the run is not done).
@@ -285,12 +291,8 @@ impl ParseRun {
     /// [`ParseRun::step_from`]. Nothing is read yet.
     pub fn with_lines(lines: LineIndex, dialect: Dialect) -> Self {
         let mut run = ParseRun::new("", dialect);
-        run.program.blocks = Vec::with_capacity(
-            lines
-                .line_count()
-                .min(MAX_PARSED_BYTES / size_of::<Block>()),
-        );
         run.held = Held::new(MAX_PARSED_BYTES, lines.line_count());
+        run.program.blocks = Vec::with_capacity(lines.line_count().min(run.held.most_blocks()));
         run.program.lines = lines;
         run
     }
@@ -402,25 +404,53 @@ mod tests {
     use super::*;
     use crate::parse;
 
+    /// `block` written out with each expression id replaced by its expression from `exprs`
+    /// (written out in turn): the same for a block read in a piece and read whole.
+    fn resolved(block: &str, exprs: &[crate::ExprNode]) -> String {
+        let mut out = String::new();
+        let mut rest = block;
+        while let Some(at) = rest.find("ExprId(") {
+            out.push_str(&rest[..at]);
+            rest = &rest[at + "ExprId(".len()..];
+            let end = rest.find(')').unwrap();
+            let index = rest[..end].parse::<usize>().unwrap() - 1;
+            out.push_str(&resolved(&format!("{:?}", exprs[index]), exprs));
+            rest = &rest[end + 1..];
+        }
+        out + rest
+    }
+
     #[test]
     fn pieces_read_after_the_blocks_are_cleared_make_the_whole_program() {
-        let text =
-            "O100 (a program)\nG1 X1 Y2 Z3 A4 B5 C6 F7\n#1 = 2\nG0 X#1\n N10 X1.5\n\nX2 (c)\n"
-                .repeat(20);
+        let text = "O100 (a program)\nG1 X1 Y2 Z3 A4 B5 C6 F7\n#1 = [2 + #1]\nG0 X#1\n \
+                    N10 X1.5\n\nX2 (c)\nIF [#1 GT 3] THEN #2 = -#1\n"
+            .repeat(20);
         for dialect in Dialect::ALL {
             let whole = parse(&text, dialect);
+            let whole: Vec<String> = whole
+                .blocks
+                .iter()
+                .map(|b| resolved(&format!("{b:?}"), &whole.exprs))
+                .collect();
             let mut run = ParseRun::new(&text, dialect);
             let mut blocks = Vec::new();
             loop {
                 let done = run.step(&text, 3);
-                blocks.extend(run.program().blocks.iter().cloned());
+                let program = run.program();
+                blocks.extend(
+                    program
+                        .blocks
+                        .iter()
+                        .map(|b| resolved(&format!("{b:?}"), &program.exprs)),
+                );
                 run.clear_blocks();
-                assert!(run.program().blocks.is_empty());
+                assert!(run.program().blocks.is_empty() && run.program().exprs.is_empty());
                 if done {
                     break;
                 }
             }
-            assert_eq!(blocks, whole.blocks, "{dialect:?}");
+            assert_eq!(blocks, whole, "{dialect:?}");
+            assert!(whole.iter().any(|b| b.contains("Binary(Add")));
         }
     }
 }
