@@ -12,7 +12,12 @@ use crate::util::{self, cargo, command, header, run};
 use crate::{desktop, web};
 
 /// Crates that are compiled and tested for wasm32 (the core has no UI and no GPU).
-const WASM_TEST_CRATES: &[&str] = &["swarf-syntax", "swarf-interp", "swarf-toolpath"];
+const WASM_TEST_CRATES: &[&str] = &[
+    "swarf-syntax",
+    "swarf-interp",
+    "swarf-toolpath",
+    "swarf-stock",
+];
 
 /// Crates that must compile for wasm32 without warnings.
 const WASM_CLIPPY_CRATES: &[&str] = &[

@@ -1,18 +1,20 @@
-//! Stock simulation speed: a million segments cut out of a 200 × 200 × 30 mm block on the
-//! default 1024 × 1024 grid, for a roughing and a finishing program.
+//! Stock simulation speed: a generated program of a million segments cut out of a
+//! 200 × 200 × 30 mm block on the default 1024 × 1024 grid, once with a Ø6 tool of each shape.
+//! The program surfaces a wavy part in back-and-forth rows of 0.2 mm chords, clears rings of
+//! arcs at three depths and pecks a grid of holes.
 //!
-//! Run: `cargo bench -p swarf-stock --bench sweep` (add `-- --quick` for one run each).
+//! Run: `cargo bench -p swarf-stock --bench sweep` (add `-- --quick` for one run each, a word
+//! to run only the shapes whose name has it, `--segments N` for a shorter program).
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
 use std::collections::BTreeMap;
+use std::f64::consts::TAU;
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
 use swarf_interp::{Sink, Source};
 use swarf_stock::{Shape, Simulation, Stock, Tool};
 use swarf_toolpath::Toolpath;
-
-const SEGMENTS: usize = 1_000_000;
 
 /// Chord length of the generated paths, mm (what a CAM system's arc and surface output has).
 const CHORD: f64 = 0.2;
@@ -23,61 +25,71 @@ const STOCK: Stock = Stock {
     cell_mm: None,
 };
 
-/// Pocket roughing: levels 1 mm apart, each an inward spiral of 4 mm stepover about the
-/// block's centre from a 95 mm radius, left by a rapid up and over to the next level's start.
-fn roughing() -> Toolpath {
-    let mut path = Toolpath::new(DVec3::new(195.0, 100.0, 5.0), 10_000.0);
-    path.reserve(SEGMENTS);
-    let mut level = 0.0;
-    while path.len() < SEGMENTS {
-        level -= 1.0;
-        let line = |n: u32| Source {
-            block: n,
-            line: n + 1,
-        };
-        path.straight(line(0), true, 195.0, 100.0, 5.0, 0.0);
-        path.straight(line(1), true, 195.0, 100.0, level + 1.0, 0.0);
-        path.straight(line(2), false, 195.0, 100.0, level, 500.0);
-        let mut theta: f64 = 0.0;
-        loop {
-            let r = 95.0 - 4.0 * theta / std::f64::consts::TAU;
-            if r <= 0.0 || path.len() >= SEGMENTS {
-                break;
-            }
-            let (x, y) = (100.0 + r * theta.cos(), 100.0 + r * theta.sin());
-            path.straight(line(3), false, x, y, level, 2000.0);
-            theta += CHORD / r.max(CHORD);
+/// The program, `segments` long: 70 % surfacing, 25 % rings, 5 % holes.
+fn program(segments: usize) -> Toolpath {
+    let mut path = Toolpath::new(DVec3::new(0.0, 0.0, 10.0), 10_000.0);
+    path.reserve(segments);
+    let mut line = 0;
+    let mut go = |path: &mut Toolpath, rapid: bool, p: DVec3| {
+        if path.len() >= segments {
+            return;
         }
-    }
-    path
-}
-
-/// Surface finishing: back-and-forth rows 0.2 mm apart along X over a wavy surface.
-fn finishing() -> Toolpath {
-    let surface = |x: f64, y: f64| -10.0 + 3.0 * (x / 15.0).sin() * (y / 20.0).cos();
-    let mut path = Toolpath::new(DVec3::new(0.0, 0.0, 5.0), 10_000.0);
-    path.reserve(SEGMENTS);
+        line += 1;
+        let source = Source { block: line, line };
+        let feed = if rapid { 0.0 } else { 3000.0 };
+        path.straight(source, rapid, p.x, p.y, p.z, feed);
+    };
+    // Surfacing: rows along X 0.4 mm apart over a wavy surface, 2 to 6 mm deep.
+    let surface = |x: f64, y: f64| -4.0 + 2.0 * (x / 15.0).sin() * (y / 20.0).cos();
     let per_row = (200.0 / CHORD) as usize;
-    let mut row = 0u32;
-    while path.len() < SEGMENTS {
-        let y = (f64::from(row) * 0.2) % 200.0;
+    let mut row = 0;
+    while path.len() < segments * 7 / 10 {
+        let y = (f64::from(row) * 0.4) % 200.0;
         for k in 0..=per_row {
-            let k = if row.is_multiple_of(2) {
-                k
-            } else {
-                per_row - k
-            };
+            let k = if row % 2 == 0 { k } else { per_row - k };
             let x = k as f64 * CHORD;
-            let source = Source {
-                block: row,
-                line: row + 1,
-            };
-            path.straight(source, false, x, y, surface(x, y), 3000.0);
-            if path.len() >= SEGMENTS {
-                break;
-            }
+            go(&mut path, false, DVec3::new(x, y, surface(x, y)));
         }
         row += 1;
+    }
+    // Up from where the tool is, then across at 10 mm above the block.
+    let retract = |path: &Toolpath| path.ends().last().map_or(DVec3::ZERO, |p| p.with_z(10.0));
+    // Rings: circles of 5 to 60 mm radius about the block's centre, 1 mm apart, each entered
+    // from the one inside it, at 8, 9 and 10 mm deep.
+    let up = retract(&path);
+    go(&mut path, true, up);
+    go(&mut path, true, DVec3::new(100.0, 100.0, 10.0));
+    let mut depth = 8.0;
+    while path.len() < segments * 95 / 100 {
+        go(&mut path, false, DVec3::new(105.0, 100.0, -depth));
+        let mut radius = 5.0;
+        while radius <= 60.0 && path.len() < segments * 95 / 100 {
+            let chords = (TAU * radius / CHORD).ceil();
+            for k in 0..=chords as usize {
+                let a = TAU * k as f64 / chords;
+                let p = DVec3::new(100.0 + radius * a.cos(), 100.0 + radius * a.sin(), -depth);
+                go(&mut path, false, p);
+            }
+            radius += 1.0;
+        }
+        let up = retract(&path);
+        go(&mut path, true, up);
+        go(&mut path, true, DVec3::new(100.0, 100.0, 10.0));
+        depth = if depth >= 10.0 { 8.0 } else { depth + 1.0 };
+    }
+    // Holes: a 5 mm grid, each pecked 12 mm deep in three steps from 1 mm above the part.
+    let mut hole = 0;
+    while path.len() < segments {
+        let (x, y) = (
+            2.5 + f64::from(hole % 39) * 5.0,
+            2.5 + f64::from(hole / 39 % 39) * 5.0,
+        );
+        go(&mut path, true, DVec3::new(x, y, 3.0));
+        for peck in [4.0, 8.0, 12.0] {
+            go(&mut path, false, DVec3::new(x, y, 1.0 - peck));
+            go(&mut path, true, DVec3::new(x, y, 3.0));
+        }
+        hole += 1;
     }
     path
 }
@@ -107,67 +119,52 @@ fn run(path: &Toolpath, tool: Tool) -> (Duration, Option<Duration>, f64, usize) 
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let runs = if args.iter().any(|a| a == "--quick") {
-        1
-    } else {
-        3
-    };
-    let filter = args.iter().find(|a| !a.starts_with('-'));
-    let flat = Tool {
-        diameter: 10.0,
-        shape: Shape::Flat,
+    let quick = args.iter().any(|a| a == "--quick");
+    let runs = if quick { 1 } else { 3 };
+    let segments = args
+        .iter()
+        .position(|a| a == "--segments")
+        .and_then(|i| args.get(i + 1)?.parse().ok())
+        .unwrap_or(1_000_000);
+    let filter = args
+        .iter()
+        .find(|a| !a.starts_with('-') && a.parse::<usize>().is_err());
+    let tool = |shape| Tool {
+        diameter: 6.0,
+        shape,
         flute_length: None,
     };
     let cases = [
-        ("roughing, Ø10 flat", roughing as fn() -> Toolpath, flat),
+        ("flat", tool(Shape::Flat)),
+        ("ball", tool(Shape::Ball)),
+        ("bull, r1", tool(Shape::Bull { corner_radius: 1.0 })),
         (
-            "roughing, Ø10 flat, 25 mm flutes",
-            roughing,
+            "drill, 118°",
+            tool(Shape::Drill {
+                point_angle_deg: 118.0,
+            }),
+        ),
+        (
+            "chamfer, 90°",
+            tool(Shape::Chamfer {
+                point_angle_deg: 90.0,
+            }),
+        ),
+        (
+            "flat, 25 mm flutes (checked)",
             Tool {
                 flute_length: Some(25.0),
-                ..flat
-            },
-        ),
-        (
-            "finishing, Ø6 ball",
-            finishing,
-            Tool {
-                diameter: 6.0,
-                shape: Shape::Ball,
-                flute_length: None,
-            },
-        ),
-        (
-            "finishing, Ø6 bull r1",
-            finishing,
-            Tool {
-                diameter: 6.0,
-                shape: Shape::Bull { corner_radius: 1.0 },
-                flute_length: None,
-            },
-        ),
-        (
-            "finishing, Ø6 90° chamfer",
-            finishing,
-            Tool {
-                diameter: 6.0,
-                shape: Shape::Chamfer {
-                    point_angle_deg: 90.0,
-                },
-                flute_length: None,
+                ..tool(Shape::Flat)
             },
         ),
     ];
-    let cell = 200.0 / 1024.0;
-    println!("| case | segments | cells a segment | wall | CPU | removed mm³ | findings |");
-    println!("|---|---|---|---|---|---|---|");
-    for (name, path, tool) in cases {
+    let path = program(segments);
+    println!("| Ø6 tool | segments | wall | CPU | removed mm³ | findings |");
+    println!("|---|---|---|---|---|---|");
+    for (name, tool) in cases {
         if filter.is_some_and(|f| !name.contains(f.as_str())) {
             continue;
         }
-        let path = path();
-        let radius = tool.diameter / 2.0 / cell;
-        let cells = std::f64::consts::PI * radius * radius + 2.0 * radius * CHORD / cell;
         let results: Vec<_> = (0..runs).map(|_| run(&path, tool)).collect();
         let ms = |d: Duration| format!("{:.0} ms", d.as_secs_f64() * 1000.0);
         let wall = results.iter().map(|r| r.0).min().unwrap();
@@ -178,7 +175,7 @@ fn main() {
             .map_or("?".into(), ms);
         let (_, _, volume, findings) = results[0];
         println!(
-            "| {name} | {} | {cells:.0} | {} | {cpu} | {volume:.0} | {findings} |",
+            "| {name} | {} | {} | {cpu} | {volume:.0} | {findings} |",
             path.len(),
             ms(wall)
         );

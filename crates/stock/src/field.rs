@@ -7,8 +7,10 @@
 //! convex and non-decreasing in `r`, so the end's height is convex in `u`: its minimum has a
 //! closed form for flat, ball and cone ends, and is found by a bisection for a bull nose.
 //!
-//! A move that follows another of the same tool skips the cells behind its start where the
-//! tool only rises as it leaves: the cut before it left them at the tool's shape there.
+//! In a chain of moves of one tool, a cell over which a move's tool is lowest at one of the
+//! move's ends is left to the neighbour that shares that end, which comes at least as low
+//! there: so a move of a chain cuts little more than the band it sweeps, not the discs of the
+//! tool at its ends ([`Cut::join`] shares the cells out).
 
 use glam::DVec3;
 
@@ -22,6 +24,25 @@ pub(crate) const CONTACT_MM: f32 = 0.001;
 /// A straight XY move shorter than this (mm) is taken as purely vertical.
 const VERTICAL_MM: f64 = 1e-4;
 
+/// How far (mm) a cut reaches past the cells its neighbours leave it, so that rounding never
+/// leaves a cell to neither.
+const MARGIN: f64 = 1e-5;
+
+/// How far (mm) the height a bull nose's search settles on may lie above the lowest point over a
+/// cell in front of or behind the tool (over one beside it, that over the cosine of its angle
+/// off the move).
+const BULL_MM: f64 = 1e-5;
+
+/// Cells of a bull nose searched at once: enough vectors for the search to keep several in
+/// flight.
+const GROUP: usize = 16;
+
+/// Cells of a run worked at once: a vector's worth, as most runs are short.
+const RUN: usize = 4;
+
+/// Radii at which a bull nose's reach past the ends of a move is sampled.
+const TAPER: usize = 6;
+
 /// The stock as a Z-map: one height per cell of a square grid over its XY extent.
 #[derive(Debug, Clone)]
 pub struct HeightField {
@@ -30,8 +51,6 @@ pub struct HeightField {
     nx: usize,
     ny: usize,
     heights: Vec<f32>,
-    /// A row's worth of working space for the checks, kept between cuts.
-    scratch: Vec<f32>,
 }
 
 /// A check made while cutting.
@@ -54,14 +73,14 @@ pub(crate) struct Hit {
     pub depth: f32,
 }
 
-/// One segment in the grid's frame (XY from the grid's lowest corner).
+/// One straight move in the grid's frame (XY from the grid's lowest corner) with its tool's
+/// end, and which of the cells it covers it cuts.
 #[derive(Debug, Clone, Copy)]
-struct Segment {
+pub(crate) struct Cut {
+    /// XY start (a vertical move's lower end).
     a: [f64; 2],
-    b: [f64; 2],
-    /// Unit XY direction ((1, 0) for a vertical move), and the inverse of each component.
+    /// Unit XY direction ((1, 0) for a vertical move).
     e: [f64; 2],
-    inv_e: [f64; 2],
     /// XY length (0 for a vertical move).
     len: f64,
     /// Tip height at the start (the lower end for a vertical move).
@@ -70,9 +89,39 @@ struct Segment {
     m: f32,
     /// A vertical move downwards.
     down: bool,
-    /// How far behind its start the segment needs cutting (mm along it): the tool is lowest
-    /// at the start over cells further back, which the cut ending there has already lowered.
+    profile: AnyProfile,
+    reach: Reach,
+    /// A checked move leaves no cell to the next one, nor is left any: what it checks is the
+    /// material as the moves before it left it.
+    checked: bool,
+    /// How far behind its start and past its end (mm along it) it cuts.
     behind: f64,
+    ahead: f64,
+    /// A disc (centre, radius) about one of its ends whose cells a neighbour cuts.
+    hole: Option<([f64; 2], f64)>,
+    /// Of the cells behind its start (`[0]`) or past its end (`[1]`), it cuts those further
+    /// than `wedge` past the line across that end only within [`Cut::keep`] of the end: the
+    /// others are lowest at that end, where the neighbour there (which cut them) comes as low.
+    wedge: [f64; 2],
+    /// Within this of the start (or end), it cuts every cell: the neighbour's hole there.
+    disc: [f64; 2],
+    /// For a bull nose, `(r, β(r))` at radii from past `ρ` (see [`Reach::of`]) to the tool's
+    /// radius: over a cell `r` from an end and at least `β(r)` past the line across it, the
+    /// tool is lowest at that end.
+    taper: Option<[(f64, f64); TAPER]>,
+}
+
+/// Where a move's tool comes lowest over the cells about its ends (mm).
+#[derive(Debug, Clone, Copy)]
+struct Reach {
+    /// Over the cells further than `back` behind its start, the tool is lowest at the start;
+    /// over those further than `front` past its end, at the end.
+    back: f64,
+    front: f64,
+    /// Over the cells within `start` of its start, the tool is lowest at the start; within
+    /// `end` of its end, at the end.
+    start: f64,
+    end: f64,
 }
 
 /// What the sweep knows of one cell the tool covers.
@@ -86,15 +135,14 @@ struct Cell {
     /// The range of `u` over which the tool covers the centre.
     lo: f32,
     hi: f32,
-    /// Where the tool's end is lowest over the centre, and that height (infinite when the
-    /// tool misses the centre).
+    /// Where the tool's end is lowest over the centre, and that height.
     u: f32,
     low: f32,
 }
 
-/// [`Cell`]s of a group of `N` neighbours in a row, field by field.
+/// [`Cell`]s of a group of `N`, field by field.
 #[derive(Debug, Clone, Copy)]
-struct Cells<const N: usize> {
+struct Group<const N: usize> {
     sc: [f32; N],
     hh: [f32; N],
     w: [f32; N],
@@ -104,7 +152,7 @@ struct Cells<const N: usize> {
     low: [f32; N],
 }
 
-impl<const N: usize> Cells<N> {
+impl<const N: usize> Group<N> {
     /// The `l`-th cell.
     #[inline(always)]
     fn get(&self, l: usize) -> Cell {
@@ -120,8 +168,40 @@ impl<const N: usize> Cells<N> {
     }
 }
 
-/// Any of the profiles, chosen once a segment.
+/// Cells of a cut gathered to be searched: `n` of them, by their index in the heights, the
+/// along-coordinate of the centre and its squared offset from the line.
 #[derive(Clone, Copy)]
+struct Batch {
+    index: [usize; GROUP],
+    sc: [f32; GROUP],
+    hh: [f32; GROUP],
+    n: usize,
+}
+
+impl Batch {
+    const EMPTY: Batch = Batch {
+        index: [0; GROUP],
+        sc: [0.0; GROUP],
+        hh: [0.0; GROUP],
+        n: 0,
+    };
+
+    /// Adds a cell; true once the batch is full.
+    fn push(&mut self, index: usize, sc: f32, hh: f32) -> bool {
+        if let (Some(i), Some(s), Some(h)) = (
+            self.index.get_mut(self.n),
+            self.sc.get_mut(self.n),
+            self.hh.get_mut(self.n),
+        ) {
+            (*i, *s, *h) = (index, sc, hh);
+            self.n += 1;
+        }
+        self.n == GROUP
+    }
+}
+
+/// Any of the profiles, chosen once a segment.
+#[derive(Debug, Clone, Copy)]
 enum AnyProfile {
     Flat(Flat),
     Ball(Ball),
@@ -142,25 +222,29 @@ macro_rules! each_profile {
     };
 }
 
+impl AnyProfile {
+    fn radius(self) -> f32 {
+        each_profile!(self, p => p.radius())
+    }
+}
+
 /// A tool's end, with the constants of one segment's slope.
 trait Profile: Copy {
     /// The tool's radius.
     fn radius(self) -> f32;
-    /// The `u` in `[lo, hi]` where the end is lowest over a cell.
-    fn lowest_at(self, sc: f32, hh: f32, w: f32, lo: f32, hi: f32) -> f32;
-    /// Whether a group of cells is worked field by field ([`Profile::lowest_of`] loops).
-    const GROUPED: bool = false;
-    /// [`Profile::lowest_at`] for a group of cells (a profile whose search loops overrides it
-    /// to loop over the group inside, which is what vectorizes).
+    /// For each cell of a group, the `u` in `[lo, hi]` where the end is lowest over it.
+    fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N];
+    /// [`Profile::lowest`] for the cells where it comes without a search, and for each cell
+    /// whether it did (no: it needs the search).
     #[inline(always)]
-    fn lowest_of<const N: usize>(self, c: &Cells<N>) -> [f32; N] {
-        std::array::from_fn(|l| self.lowest_at(c.sc[l], c.hh[l], c.w[l], c.lo[l], c.hi[l]))
+    fn settled<const N: usize>(self, g: &Group<N>) -> ([f32; N], [bool; N]) {
+        (self.lowest(g), [true; N])
     }
     /// Height of the end above the tip at `r² = hh + s²` (within the radius, `w² = R² − hh`).
     fn lift(self, hh: f32, s: f32, w: f32) -> f32;
 }
 
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 struct Flat {
     r: f32,
     /// The move climbs, so the tip is lowest where it first covers a cell.
@@ -172,8 +256,8 @@ impl Profile for Flat {
         self.r
     }
     #[inline(always)]
-    fn lowest_at(self, _: f32, _: f32, _: f32, lo: f32, hi: f32) -> f32 {
-        if self.up { lo } else { hi }
+    fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
+        if self.up { g.lo } else { g.hi }
     }
     #[inline(always)]
     fn lift(self, _: f32, _: f32, _: f32) -> f32 {
@@ -181,7 +265,7 @@ impl Profile for Flat {
     }
 }
 
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 struct Ball {
     r: f32,
     /// `−m / √(1 + m²)`: the lowest point's offset along the move over `w`.
@@ -193,8 +277,8 @@ impl Profile for Ball {
         self.r
     }
     #[inline(always)]
-    fn lowest_at(self, sc: f32, _: f32, w: f32, lo: f32, hi: f32) -> f32 {
-        at_most(at_least(sc + self.c * w, lo), hi)
+    fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
+        std::array::from_fn(|l| clamp(g.sc[l] + self.c * g.w[l], g.lo[l], g.hi[l]))
     }
     #[inline(always)]
     fn lift(self, _: f32, s: f32, w: f32) -> f32 {
@@ -202,7 +286,7 @@ impl Profile for Ball {
     }
 }
 
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 struct Cone {
     r: f32,
     /// Rise per millimetre of radius: `1 / tan(half the point angle)`.
@@ -220,11 +304,13 @@ impl Profile for Cone {
         self.r
     }
     #[inline(always)]
-    fn lowest_at(self, sc: f32, hh: f32, _: f32, lo: f32, hi: f32) -> f32 {
-        if self.steep {
-            if self.up { lo } else { hi }
-        } else {
-            at_most(at_least(sc + self.c * hh.sqrt(), lo), hi)
+    fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
+        match (self.steep, self.up) {
+            (true, true) => g.lo,
+            (true, false) => g.hi,
+            _ => {
+                std::array::from_fn(|l| clamp(g.sc[l] + self.c * g.hh[l].sqrt(), g.lo[l], g.hi[l]))
+            }
         }
     }
     #[inline(always)]
@@ -233,61 +319,94 @@ impl Profile for Cone {
     }
 }
 
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 struct Bull {
     r: f32,
-    /// Radius of the flat centre and of the corner.
+    /// Radius of the flat centre and of the corner, and the inverse of the corner's.
     flat: f32,
     corner: f32,
-    /// The slope squared, and the side of the lowest point (against the slope).
+    inv_corner: f32,
+    /// The slope squared, and `−1` when the move climbs (`1` otherwise).
     m2: f32,
-    ahead: f32,
-    /// The least sine of the corner's angle at a lowest point, `|m| / √(1 + m²)` (over a
-    /// cell on the move's line).
-    least: f32,
+    dir: f32,
+    /// Halvings of the search (none on a level move, where the closest point is lowest).
+    steps: u32,
+}
+
+impl Bull {
+    /// Whether the end still falls at `s = dir·(u − sc)` over a cell `hh` from the line. So
+    /// measured the move descends: the end falls while the tool comes towards the cell
+    /// (`s ≤ 0`), and past it while the corner's angle `φ` under the cell (`sin φ = t =
+    /// (r − flat) / corner`) and the angle `ψ` between the move and the way to the cell (`cos ψ
+    /// = s / r`) keep `tan φ · cos ψ` below the slope `|m|`: squared and cleared of divisions,
+    /// `t²·(s² + m²r²) < m²r²`.
+    #[inline(always)]
+    fn falls(self, s: f32, hh: f32) -> bool {
+        let r2 = hh + s * s;
+        let t = at_least(r2.sqrt() - self.flat, 0.0) * self.inv_corner;
+        (s <= 0.0) | (t * t * (s * s + self.m2 * r2) < self.m2 * r2)
+    }
+
+    /// Each cell's range of `s` (see [`Bull::falls`]).
+    #[inline(always)]
+    fn range<const N: usize>(self, g: &Group<N>, l: usize) -> (f32, f32) {
+        let (x, y) = (
+            self.dir * (g.lo[l] - g.sc[l]),
+            self.dir * (g.hi[l] - g.sc[l]),
+        );
+        if self.dir > 0.0 { (x, y) } else { (y, x) }
+    }
 }
 
 impl Profile for Bull {
     fn radius(self) -> f32 {
         self.r
     }
-    const GROUPED: bool = true;
-    fn lowest_at(self, sc: f32, hh: f32, w: f32, lo: f32, hi: f32) -> f32 {
-        let [u] = self.lowest_of(&Cells {
-            sc: [sc],
-            hh: [hh],
-            w: [w],
-            lo: [lo],
-            hi: [hi],
-            u: [0.0],
-            low: [0.0],
-        });
-        u
-    }
-    /// The lowest point is where the corner's surface is parallel to the move: at the angle
-    /// `φ` up the corner (its sine `s`, at radius `ρ = flat + corner·s`) and `ψ` off the move
-    /// with `tan φ · cos ψ = |m|` and `ρ · sin ψ = h`. That fixes one `s` in `[least, 1]` with
-    /// `s² · (ρ² − h² + m²ρ²) = m²ρ²`, found by bisection without a branch; the point is then
-    /// `√(ρ² − h²)` behind or ahead of the centre's foot.
+    /// The end's height is convex in `u`: the search halves the range where it stops falling.
     #[inline(always)]
-    fn lowest_of<const N: usize>(self, c: &Cells<N>) -> [f32; N] {
-        // The root's lower bound, raised by halving steps (a sum, not a branch per cell).
-        let (mut below, mut step) = ([self.least; N], 0.5 * (1.0 - self.least));
-        for _ in 0..18 {
-            for (below, &hh) in below.iter_mut().zip(&c.hh) {
-                let s = *below + step;
-                let rho = self.flat + self.corner * s;
-                let rho2 = rho * rho;
-                let short = s * s * (at_least(rho2 - hh, 0.0) + self.m2 * rho2) < self.m2 * rho2;
-                *below += step * f32::from(u8::from(short));
+    fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
+        let (ends, settled) = self.settled(g);
+        let mut below: [f32; N] = std::array::from_fn(|l| self.range(g, l).0);
+        let mut half: [f32; N] = std::array::from_fn(|l| {
+            let (a, b) = self.range(g, l);
+            0.5 * (b - a)
+        });
+        for _ in 0..self.steps {
+            for l in 0..N {
+                let f = f32::from(u8::from(self.falls(below[l] + half[l], g.hh[l])));
+                below[l] += half[l] * f;
+                half[l] *= 0.5;
             }
-            step *= 0.5;
         }
         std::array::from_fn(|l| {
-            let rho = self.flat + self.corner * (below[l] + step);
-            let lead = at_least(rho * rho - c.hh[l], 0.0).sqrt();
-            at_most(at_least(c.sc[l] + self.ahead * lead, c.lo[l]), c.hi[l])
+            let u = g.sc[l] + self.dir * (below[l] + half[l]);
+            if settled[l] {
+                ends[l]
+            } else {
+                clamp(u, g.lo[l], g.hi[l])
+            }
         })
+    }
+    /// The end is lowest at the start of a cell's range if it rises from there, at the end if
+    /// it still falls there; on a level move, at the closest point.
+    #[inline(always)]
+    fn settled<const N: usize>(self, g: &Group<N>) -> ([f32; N], [bool; N]) {
+        if self.steps == 0 {
+            return (
+                std::array::from_fn(|l| clamp(g.sc[l], g.lo[l], g.hi[l])),
+                [true; N],
+            );
+        }
+        let mut ends = [0.0; N];
+        let mut settled = [false; N];
+        for l in 0..N {
+            let (a, b) = self.range(g, l);
+            let (rises, falls) = (!self.falls(a, g.hh[l]), self.falls(b, g.hh[l]));
+            let s = if rises { a } else { b };
+            ends[l] = g.sc[l] + self.dir * s;
+            settled[l] = rises | falls;
+        }
+        (ends, settled)
     }
     #[inline(always)]
     fn lift(self, hh: f32, s: f32, _: f32) -> f32 {
@@ -306,7 +425,6 @@ impl HeightField {
             nx,
             ny,
             heights: vec![stock.max[2] as f32; nx * ny],
-            scratch: Vec::new(),
         })
     }
 
@@ -361,138 +479,24 @@ impl HeightField {
     /// Lowers every cell to the lowest point `tool`'s end reaches over it as its tip moves in a
     /// straight line from `from` to `to` (never below the stock's bottom).
     pub fn cut(&mut self, from: DVec3, to: DVec3, tool: &Tool) {
-        self.cut_checked(from, to, tool, false, None);
+        if let Some(cut) = self.plan(from, to, tool, false, false) {
+            self.apply(&cut, None);
+        }
     }
 
-    /// Cuts like [`HeightField::cut`] and makes `check` on the material as it was. `continues`
-    /// says the last cut was made with the same tool and ended at `from`, so the cells it left
-    /// at the tool's shape there are skipped.
-    pub(crate) fn cut_checked(
-        &mut self,
-        from: DVec3,
-        to: DVec3,
-        tool: &Tool,
-        continues: bool,
-        check: Option<Check>,
-    ) -> Option<Hit> {
-        let (seg, profile) = self.prepare(from, to, tool, continues)?;
-        // A level move of a flat end lowers everything it covers to its height.
-        let fill = matches!(profile, AnyProfile::Flat(_)) && seg.m == 0.0;
-        each_profile!(profile, p => self.sweep(&seg, p, fill, check))
-    }
-
-    /// The cut of [`HeightField::cut_checked`] with one profile, row by row. A row where no
-    /// cell stands high enough to pass the check is only cut; any other is cut in a pass that
-    /// notes, per cell, the depth the check is about, and then gone over again to rank the
-    /// cells that pass.
-    fn sweep<P: Profile>(
-        &mut self,
-        seg: &Segment,
-        profile: P,
-        fill: bool,
-        check: Option<Check>,
-    ) -> Option<Hit> {
-        let bottom = self.stock.min[2] as f32;
-        let sweep = Sweep::new(seg, profile, self.cell);
-        let threshold = match check {
-            None => f32::INFINITY,
-            Some(Check::Rapid) => CONTACT_MM,
-            Some(Check::Shank(flutes)) => flutes + CONTACT_MM,
-        };
-        // No cell at or below the tip's lowest point (plus the threshold) can pass the check.
-        let lowest = at_least(seg.z0.min(seg.z0 + seg.m * seg.len as f32), bottom);
-        let clear = lowest + threshold;
-        // The hit so far and what ranks it first: its contact along the move and its depth,
-        // or only its depth.
-        let mut found: Option<((f32, f32), Hit)> = None;
-        let mut depths = std::mem::take(&mut self.scratch);
-        self.rows(
-            seg,
-            f64::from(profile.radius()),
-            !fill,
-            |row, start, sc0, h0| {
-                let check = check.filter(|_| row.iter().fold(false, |any, &h| any | (h > clear)));
-                let Some(check) = check else {
-                    if fill {
-                        for height in row {
-                            *height = lower(*height, lowest);
-                        }
-                    } else {
-                        sweep.each(row, sc0, h0, |_, height, cell| {
-                            *height = lower(*height, at_least(cell.low, bottom));
-                        });
-                    }
-                    return;
-                };
-                depths.clear();
-                depths.resize(row.len(), f32::NEG_INFINITY);
-                let mut over = false;
-                sweep.each(row, sc0, h0, |k, height, cell| {
-                    let floor = at_least(cell.low, bottom);
-                    let depth = match check {
-                        Check::Rapid => *height - floor,
-                        Check::Shank(_) => {
-                            let tip =
-                                sweep.z0 + sweep.m * if sweep.m > 0.0 { cell.lo } else { cell.hi };
-                            let depth = *height - at_least(tip, bottom);
-                            if cell.low.is_finite() {
-                                depth
-                            } else {
-                                f32::NEG_INFINITY
-                            }
-                        }
-                    };
-                    if let Some(slot) = depths.get_mut(k) {
-                        *slot = depth;
-                    }
-                    over |= depth > threshold;
-                    *height = lower(*height, floor);
-                });
-                if !over {
-                    return;
-                }
-                for (k, &depth) in depths.iter().enumerate() {
-                    if depth <= threshold {
-                        continue;
-                    }
-                    let cell = sweep.cell(sc0, h0, k);
-                    let top = at_least(cell.low, bottom) + depth;
-                    let rank = match check {
-                        // When the tool meets the cell: how far along the move, or for a plunge how
-                        // far down (a vertical move up meets everything at its start).
-                        Check::Rapid if seg.len > 0.0 => {
-                            (sweep.first_contact(cell, top - CONTACT_MM), -depth)
-                        }
-                        Check::Rapid if seg.down => (cell.low - top, -depth),
-                        Check::Rapid => (f32::NEG_INFINITY, -depth),
-                        Check::Shank(_) => (-depth, 0.0),
-                    };
-                    if found.is_none_or(|(best, _)| rank < best) {
-                        found = Some((
-                            rank,
-                            Hit {
-                                index: start + k,
-                                depth,
-                            },
-                        ));
-                    }
-                }
-            },
-        );
-        self.scratch = depths;
-        found.map(|(_, hit)| hit)
-    }
-
-    /// The segment in the grid's frame and the tool's profile for its slope (see
-    /// [`HeightField::cut_checked`] for `continues`); `None` for coordinates that are not
-    /// numbers or a tool outside its ranges.
-    fn prepare(
+    /// The move from `from` to `to` in the grid's frame with `tool`'s profile for its slope,
+    /// cutting every cell it covers but, when it `continues` the last cut of the same tool
+    /// (which ended at `from`), those about its start that that cut left at the tool's shape.
+    /// `checked`: a check will be made on it. `None` for coordinates that are not numbers or a
+    /// tool outside its ranges.
+    pub(crate) fn plan(
         &self,
         from: DVec3,
         to: DVec3,
         tool: &Tool,
         continues: bool,
-    ) -> Option<(Segment, AnyProfile)> {
+        checked: bool,
+    ) -> Option<Cut> {
         let origin = DVec3::new(self.stock.min[0], self.stock.min[1], 0.0);
         let (a, b) = (from - origin, to - origin);
         if !(a.is_finite() && b.is_finite() && tool.check().is_ok()) {
@@ -500,33 +504,13 @@ impl HeightField {
         }
         let d = b - a;
         let len = d.x.hypot(d.y);
-        let seg = if len > VERTICAL_MM {
-            Segment {
-                a: [a.x, a.y],
-                b: [b.x, b.y],
-                e: [d.x / len, d.y / len],
-                inv_e: [len / d.x, len / d.y],
-                len,
-                z0: a.z as f32,
-                m: (d.z / len) as f32,
-                down: false,
-                behind: f64::INFINITY,
-            }
+        // A vertical move cuts as its tool at its lower end.
+        let (start, e, len, m) = if len > VERTICAL_MM {
+            (a, [d.x / len, d.y / len], len, (d.z / len) as f32)
         } else {
-            Segment {
-                a: [a.x, a.y],
-                b: [a.x, a.y],
-                e: [1.0, 0.0],
-                inv_e: [1.0, f64::INFINITY],
-                len: 0.0,
-                z0: a.z.min(b.z) as f32,
-                m: 0.0,
-                down: b.z < a.z,
-                behind: f64::INFINITY,
-            }
+            (if b.z < a.z { b } else { a }, [1.0, 0.0], 0.0, 0.0)
         };
         let r = (tool.diameter / 2.0) as f32;
-        let m = seg.m;
         let up = m > 0.0;
         let ball = Ball {
             r,
@@ -542,13 +526,26 @@ impl HeightField {
                 } else if corner >= r * (1.0 - 1e-6) {
                     AnyProfile::Ball(ball)
                 } else {
+                    // Halvings of the range the tool covers a cell over (at most the move or
+                    // the diameter) down to `delta` either side of the lowest point, where the
+                    // height's curvature along the move is at most `2·(1 + |m|)³ / corner`
+                    // (over the cosine of the angle off the move).
+                    let range = len.min(2.0 * f64::from(r));
+                    let curve = (1.0 + f64::from(m.abs())).powi(3) / f64::from(corner);
+                    let delta = (BULL_MM / curve).sqrt();
+                    let steps = if m == 0.0 {
+                        0
+                    } else {
+                        ((range / delta).log2().ceil() - 1.0).clamp(1.0, 30.0) as u32
+                    };
                     AnyProfile::Bull(Bull {
                         r,
                         flat: r - corner,
                         corner,
+                        inv_corner: 1.0 / corner,
                         m2: m * m,
-                        ahead: if up { -1.0 } else { 1.0 },
-                        least: m.abs() / (1.0 + m * m).sqrt(),
+                        dir: if up { -1.0 } else { 1.0 },
+                        steps,
                     })
                 }
             }
@@ -563,65 +560,428 @@ impl HeightField {
                 AnyProfile::Cone(Cone { r, k, c, steep, up })
             }
         };
-        let mut seg = seg;
-        if continues && seg.len > 0.0 {
-            // Behind the start the tool only rises away from a cell when the move climbs or
-            // is level; going down, a ball or a shallow cone still comes lower over cells
-            // within its lowest point's lead (`c·R`) of the start.
-            seg.behind = match profile {
-                _ if m >= 0.0 => 0.0,
-                AnyProfile::Ball(Ball { c, .. })
-                | AnyProfile::Cone(Cone {
-                    c, steep: false, ..
-                }) => f64::from(c * r),
-                _ => f64::INFINITY,
-            };
-        }
-        Some((seg, profile))
+        let reach = Reach::of(profile, m, len, checked);
+        // Past the radius `ρ` where the corner is as steep as the move, the corner under a
+        // cell beyond an end rises away from it faster than the move falls unless the cell
+        // lies less than `β(r) = |m|·r / tan φ` past the line across the end (`sin φ = (r −
+        // flat) / corner`), which falls as `r` grows.
+        let taper = match profile {
+            AnyProfile::Bull(Bull { flat, corner, .. }) if m != 0.0 && !checked => {
+                let (flat, corner, m) = (f64::from(flat), f64::from(corner), f64::from(m.abs()));
+                let rho = flat + corner * m / (1.0 + m * m).sqrt();
+                Some(std::array::from_fn(|k| {
+                    let r = rho + (f64::from(r) - rho) * (k + 1) as f64 / TAPER as f64;
+                    let d = r - flat;
+                    (r, m * r * (corner * corner - d * d).max(0.0).sqrt() / d)
+                }))
+            }
+            _ => None,
+        };
+        Some(Cut {
+            a: [start.x, start.y],
+            e,
+            len,
+            z0: start.z as f32,
+            m,
+            down: b.z < a.z,
+            profile,
+            reach,
+            checked,
+            // Until joined to its neighbours it leaves nothing past its end and, continuing the
+            // last cut (which left it nothing), the cells about its start that the tool is
+            // lowest over at the start.
+            behind: if continues { reach.back } else { f64::INFINITY },
+            ahead: f64::INFINITY,
+            hole: (continues && reach.start > 0.0).then_some(([start.x, start.y], reach.start)),
+            wedge: [if continues { 0.0 } else { f64::INFINITY }, f64::INFINITY],
+            disc: [0.0; 2],
+            taper,
+        })
     }
 
-    /// Calls `each` with every row's run of cells whose centres lie within `r` of the segment
-    /// in XY and no further than `seg.behind` behind its start, with the along-coordinate and
-    /// the offset from the line of its first cell's centre. With `widen`, a run is widened
-    /// within its row to whole groups of [`LANES`] cells, so it is worked in full vectors.
-    #[inline(always)]
-    fn rows(
+    /// Makes `cut` (see [`HeightField::plan`]) and `check` on the material as it was.
+    pub(crate) fn apply(&mut self, cut: &Cut, check: Option<Check>) -> Option<Hit> {
+        each_profile!(cut.profile, p => self.sweep(cut, p, check))
+    }
+
+    /// The cut of [`HeightField::apply`] with one profile.
+    fn sweep<P: Profile>(&mut self, cut: &Cut, profile: P, check: Option<Check>) -> Option<Hit> {
+        let bottom = self.stock.min[2] as f32;
+        let threshold = match check {
+            None => f32::INFINITY,
+            Some(Check::Rapid) => CONTACT_MM,
+            Some(Check::Shank(flutes)) => flutes + CONTACT_MM,
+        };
+        // No cell at or below the tip's lowest point can be cut, nor pass the check unless
+        // above it by the threshold.
+        let lowest = at_least(cut.z0.min(cut.z0 + cut.m * cut.len as f32), bottom);
+        let mut sweeper = Sweeper {
+            sweep: Sweep::new(cut, profile),
+            heights: &mut self.heights,
+            check,
+            bottom,
+            threshold,
+            clear: lowest + threshold,
+            later: check.is_none().then_some(Batch::EMPTY),
+            found: None,
+        };
+        // A level move of a flat end lowers everything it covers to its height.
+        let fill = matches!(cut.profile, AnyProfile::Flat(_)) && cut.m == 0.0;
+        cut.runs(
+            self.cell,
+            self.nx,
+            self.ny,
+            |start, step, n, [sc0, h0, dsc, dh]| {
+                // Worked out in double precision so that a cell's are the same whatever run it
+                // is in: whether the tool covers it never depends on how the cut is split up.
+                let at = |k: usize| ((sc0 + k as f64 * dsc) as f32, (h0 + k as f64 * dh) as f32);
+                let cells = (0..n).map(|k| {
+                    let (sc, h) = at(k);
+                    (start + k * step, sc, h)
+                });
+                let heights = &mut *sweeper.heights;
+                let above = |level: f32| {
+                    (cells.clone()).any(|(i, _, _)| heights.get(i).is_some_and(|&h| h > level))
+                };
+                if !above(lowest) {
+                    return;
+                }
+                if fill && (check.is_none() || !above(sweeper.clear)) {
+                    for (i, _, _) in cells {
+                        if let Some(height) = heights.get_mut(i) {
+                            *height = lower(*height, lowest);
+                        }
+                    }
+                    return;
+                }
+                for k in (0..n).step_by(RUN) {
+                    let sc: [f32; RUN] = std::array::from_fn(|l| at(k + l).0);
+                    let hh: [f32; RUN] = std::array::from_fn(|l| at(k + l).1.powi(2));
+                    let index: [usize; RUN] = std::array::from_fn(|l| start + (k + l) * step);
+                    let index = index.get(..(n - k).min(RUN)).unwrap_or_default();
+                    sweeper.work(&sc, &hh, index, false);
+                }
+            },
+        );
+        if let Some(later) = sweeper.later.take() {
+            let index = later.index.get(..later.n).unwrap_or_default();
+            sweeper.work(&later.sc, &later.hh, index, true);
+        }
+        sweeper.found.map(|(_, hit)| hit)
+    }
+}
+
+/// A cut under way with one profile.
+struct Sweeper<'a, P> {
+    sweep: Sweep<P>,
+    heights: &'a mut [f32],
+    check: Option<Check>,
+    /// The stock's bottom, the depth a check looks for, and the height a cell must stand
+    /// above to pass it.
+    bottom: f32,
+    threshold: f32,
+    clear: f32,
+    /// Cells whose lowest point needs a search, gathered to be searched a group at a time
+    /// (when nothing is checked, so that the order cells are cut in does not matter).
+    later: Option<Batch>,
+    /// The hit so far and what ranks it first: its contact along the move and its depth, or
+    /// only its depth.
+    found: Option<((f32, f32), Hit)>,
+}
+
+impl<P: Profile> Sweeper<'_, P> {
+    /// Cuts the cells whose centres lie at `sc` along the line and `hh` from it squared, at
+    /// `index` (as many as there are): with the search for their lowest points, or leaving
+    /// those that need one to be searched a group at a time. Where no cell stands high enough to
+    /// pass the check, cells are only cut; otherwise each is cut noting the depth the check is
+    /// about, and those that pass are ranked.
+    fn work<const N: usize>(
         &mut self,
-        seg: &Segment,
-        r: f64,
-        widen: bool,
-        mut each: impl FnMut(&mut [f32], usize, f32, f32),
+        sc: &[f32; N],
+        hh: &[f32; N],
+        index: &[usize],
+        search: bool,
     ) {
-        let inv = 1.0 / self.cell;
-        let (ylo, yhi) = (seg.a[1].min(seg.b[1]) - r, seg.a[1].max(seg.b[1]) + r);
-        let Some((j0, j1)) = cells_between(ylo * inv, yhi * inv, self.ny) else {
+        let (g, settled) = self.sweep.group(sc, hh, search || self.later.is_none());
+        let check = self.check.filter(|_| {
+            (index.iter()).any(|&i| self.heights.get(i).is_some_and(|&h| h > self.clear))
+        });
+        for (l, &index) in index.iter().enumerate() {
+            if !settled[l] {
+                if let Some(later) = &mut self.later
+                    && later.push(index, sc[l], hh[l])
+                {
+                    let full = *later;
+                    later.n = 0;
+                    self.work(&full.sc, &full.hh, &full.index, true);
+                }
+                continue;
+            }
+            let (Some(height), cell) = (self.heights.get_mut(index), g.get(l)) else {
+                continue;
+            };
+            let floor = at_least(cell.low, self.bottom);
+            let Some(check) = check else {
+                *height = lower(*height, floor);
+                continue;
+            };
+            let sweep = &self.sweep;
+            let depth = match check {
+                Check::Rapid => *height - floor,
+                Check::Shank(_) => {
+                    let tip = sweep.z0 + sweep.m * if sweep.m > 0.0 { cell.lo } else { cell.hi };
+                    *height - at_least(tip, self.bottom)
+                }
+            };
+            *height = lower(*height, floor);
+            if depth <= self.threshold {
+                continue;
+            }
+            let top = floor + depth;
+            let rank = match check {
+                // When the tool meets the cell: how far along the move, or for a plunge how
+                // far down (a vertical move up meets everything at its start).
+                Check::Rapid if sweep.len > 0.0 => {
+                    (sweep.first_contact(cell, top - CONTACT_MM), -depth)
+                }
+                Check::Rapid if sweep.down => (cell.low - top, -depth),
+                Check::Rapid => (f32::NEG_INFINITY, -depth),
+                Check::Shank(_) => (-depth, 0.0),
+            };
+            // Of equals, the first in rows from the lowest, whatever order the cells came in.
+            let first =
+                |(best, hit): ((f32, f32), Hit)| rank < best || (rank == best && index < hit.index);
+            if self.found.is_none_or(first) {
+                self.found = Some((rank, Hit { index, depth }));
+            }
+        }
+    }
+}
+
+impl Reach {
+    /// The reach of `profile` on a move of slope `m` and XY length `len`. A checked move is
+    /// given none but for the cells behind its start where the tool only rises as it leaves,
+    /// so that it cuts and checks every other cell as a lone move would.
+    fn of(profile: AnyProfile, m: f32, len: f64, checked: bool) -> Reach {
+        let all = f64::INFINITY;
+        let r = f64::from(profile.radius());
+        // Descending, the tool is lowest at the start over cells more than `lead` behind it,
+        // and at the end over cells past it or within `near` of it; climbing, the other way.
+        let ends = |lead: f64, near: f64| {
+            if m < 0.0 {
+                Reach {
+                    back: lead,
+                    front: 0.0,
+                    start: 0.0,
+                    end: near,
+                }
+            } else {
+                Reach {
+                    back: 0.0,
+                    front: lead,
+                    start: near,
+                    end: 0.0,
+                }
+            }
+        };
+        let reach = match profile {
+            _ if len == 0.0 => Reach {
+                back: all,
+                front: all,
+                start: 0.0,
+                end: 0.0,
+            },
+            // On a level move the closest point is lowest.
+            _ if m == 0.0 => ends(0.0, 0.0),
+            // The tip is lowest where the tool first (climbing) or last covers a cell.
+            AnyProfile::Flat(_) | AnyProfile::Cone(Cone { steep: true, .. }) => ends(r, r),
+            AnyProfile::Ball(Ball { c, .. }) => {
+                let lead = f64::from(c.abs()) * r;
+                ends(lead, lead)
+            }
+            AnyProfile::Cone(Cone { c, .. }) => ends(f64::from(c.abs()) * r, 0.0),
+            // Within `ρ = flat + corner·sin(atan |m|)`, where the corner is as steep as the
+            // move, the tool is lowest at the end; further, the corner rises away from a cell
+            // behind the tool faster than the move falls unless the cell lies less than `β(r)
+            // ≤ ρ` behind the line across its end (see `Cut::taper`).
+            AnyProfile::Bull(Bull {
+                flat, corner, m2, ..
+            }) => {
+                let near = f64::from(flat + corner * (m2 / (1.0 + m2)).sqrt());
+                ends(near, near)
+            }
+        };
+        if checked {
+            let bull_down = matches!(profile, AnyProfile::Bull(_)) && m < 0.0;
+            Reach {
+                back: if bull_down { all } else { reach.back },
+                front: all,
+                start: 0.0,
+                end: 0.0,
+            }
+        } else {
+            reach
+        }
+    }
+}
+
+impl Cut {
+    /// The XY end of the move.
+    fn end(&self) -> [f64; 2] {
+        [
+            self.a[0] + self.len * self.e[0],
+            self.a[1] + self.len * self.e[1],
+        ]
+    }
+
+    /// Shares out the cells about the joint between this cut and `next`, the move after it
+    /// with the same tool (neither checked). Over the cells where this cut's tool is lowest at
+    /// its end, `next`, which starts there, comes at least as low, so this cut may leave them
+    /// to it; and `next` may leave to this one those where its tool is lowest at its start. No
+    /// cell may be left by both: whichever leaves a disc about the joint, the other cuts every
+    /// cell of it; and every cell this cut leaves past its end lies within `R·sin θ` (`θ` the
+    /// turn, under a right angle) behind the line across `next` at its start, so one of the two
+    /// reaches that far round the joint.
+    pub(crate) fn join(&mut self, next: &mut Cut) {
+        if self.checked || next.checked {
+            return;
+        }
+        let r = f64::from(self.profile.radius());
+        let ([ex, ey], [fx, fy]) = (self.e, next.e);
+        let turn = if ex * fx + ey * fy >= 0.0 {
+            r * (ex * fy - ey * fx).abs()
+        } else {
+            r
+        };
+        if self.reach.end >= next.reach.start {
+            if self.reach.end > 0.0 {
+                if self.hole.is_some() {
+                    return;
+                }
+                self.hole = Some((self.end(), self.reach.end));
+            }
+            self.ahead = self.reach.front;
+            let round = if self.ahead < r { turn } else { 0.0 };
+            next.behind = next.reach.back.max(self.reach.end).max(round);
+            next.hole = None;
+            (next.wedge[0], next.disc[0]) = (round, self.reach.end);
+        } else {
+            next.behind = next.reach.back;
+            next.hole = Some((next.a, next.reach.start));
+            let round = if next.behind < r { turn } else { 0.0 };
+            self.ahead = self.reach.front.max(next.reach.start).max(round);
+            (self.wedge[1], self.disc[1]) = (round, next.reach.start);
+        }
+    }
+
+    /// How far from its start (`side` 0) or end (1) it cuts the cells `s` past the line across
+    /// that end, beyond its wedge: as far as the tool can come lower than at the end, and over
+    /// the neighbour's hole.
+    fn keep(&self, side: usize, s: f64) -> f64 {
+        let r = f64::from(self.profile.radius());
+        let taper = match self.taper {
+            Some(taper) => taper
+                .iter()
+                .find(|&&(_, beta)| beta <= s)
+                .map_or(r, |&(r, _)| r),
+            None => r,
+        };
+        taper.max(self.disc[side]) + MARGIN
+    }
+
+    /// Calls `each` with the runs of the cells it cuts on a grid of `cell` mm and `nx` × `ny`
+    /// cells: those whose centres lie within the tool's radius of the move, from `behind` its
+    /// start to `ahead` past its end (each a little more, see [`MARGIN`]) and beyond its wedges
+    /// within [`Cut::keep`] of its ends, but for those in its hole. The runs of a short move go
+    /// across its main direction, so that there are few of them. `each` is given the index of
+    /// a run's first cell, the step to the next, their number, and the along-coordinate and
+    /// offset from the line of its centre and their change from one cell to the next (the
+    /// offset's sign may be turned).
+    fn runs(
+        &self,
+        cell: f64,
+        nx: usize,
+        ny: usize,
+        mut each: impl FnMut(usize, usize, usize, [f64; 4]),
+    ) {
+        let r = f64::from(self.profile.radius());
+        let back = -(self.behind + MARGIN).min(r + MARGIN);
+        let front = self.len + (self.ahead + MARGIN).min(r + MARGIN);
+        // In the frame that has the runs along its X, with `n` cells along them and `lines`
+        // of them, the cell `k` along line `j` at `k·step + j·next`. Runs go along Y only over
+        // a band shorter than the diameter: the cells of a column share a set of the cache.
+        let across = front - back < 2.0 * r && self.e[0].abs() > self.e[1].abs();
+        let swap = |[x, y]: [f64; 2]| if across { [y, x] } else { [x, y] };
+        let ([ax, ay], [ex, ey], b) = (swap(self.a), swap(self.e), swap(self.end()));
+        let (n, lines, step, next) = if across {
+            (ny, nx, nx, 1)
+        } else {
+            (nx, ny, 1, nx)
+        };
+        let inv = 1.0 / cell;
+        let (ylo, yhi) = (
+            ay + (back * ey).min(front * ey) - r * ex.abs(),
+            ay + (back * ey).max(front * ey) + r * ex.abs(),
+        );
+        let Some((j0, j1)) = cells_between(ylo * inv, yhi * inv, lines) else {
             return;
         };
-        let [ex, ey] = seg.e;
+        let inv_e = [1.0 / ex, 1.0 / ey];
+        let hole = self.hole.map(|(c, radius)| (swap(c), radius - MARGIN));
+        let (dsc, dh) = (cell * ex, cell * ey);
         for j in j0..=j1 {
-            let y = (j as f64 + 0.5) * self.cell;
-            let Some((xlo, xhi)) = row_span(seg, r, y) else {
-                continue;
-            };
-            let Some((mut i0, mut i1)) = cells_between(xlo * inv, xhi * inv, self.nx) else {
-                continue;
-            };
-            let n = (i1 - i0 + 1).next_multiple_of(LANES);
-            if widen && n <= self.nx {
-                i0 = i0.min(self.nx - n);
-                i1 = i0 + n - 1;
+            let y = (j as f64 + 0.5) * cell;
+            let uy = y - ay;
+            // The along-coordinate and the offset from the line are linear in x − a.x.
+            let (l1, h1) = linear_span(uy * ey, ex, inv_e[0], back, front);
+            let (l2, h2) = linear_span(-uy * ex, ey, inv_e[1], -r, r);
+            let (l3, h3) = linear_span(uy * ey, ex, inv_e[0], 0.0, self.len);
+            // Within the tool's radius of the move (the discs about its ends and the band
+            // between them, which together are convex): exactly the cells the tool covers,
+            // whatever cut asks. And between `back` and `front`.
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            if l2.max(l3) <= h2.min(h3) {
+                (lo, hi) = (ax + l2.max(l3), ax + h2.min(h3));
             }
-            let start = j * self.nx + i0;
-            let Some(row) = self.heights.get_mut(start..=j * self.nx + i1) else {
+            for [px, py] in [[ax, ay], b] {
+                let w2 = r * r - (y - py) * (y - py);
+                if w2 >= 0.0 {
+                    let w = w2.sqrt();
+                    (lo, hi) = (lo.min(px - w), hi.max(px + w));
+                }
+            }
+            let (mut lo, mut hi) = (lo.max(ax + l1), hi.min(ax + h1));
+            // A line wholly beyond the wedge behind the start or past the end is cut only
+            // within `keep` of that end.
+            let (s0, s1) = ((lo - ax) * ex + uy * ey, (hi - ax) * ex + uy * ey);
+            let (s_lo, s_hi) = (s0.min(s1), s0.max(s1));
+            for (side, [px, py], past) in [(0, [ax, ay], -s_hi), (1, b, s_lo - self.len)] {
+                if self.taper.is_some() && past > self.wedge[side] + MARGIN {
+                    let keep = self.keep(side, past);
+                    let w = (keep * keep - (y - py) * (y - py)).max(0.0).sqrt();
+                    (lo, hi) = (lo.max(px - w), hi.min(px + w));
+                }
+            }
+            let Some((i0, i1)) = cells_between(lo * inv, hi * inv, n) else {
                 continue;
             };
-            let (ux, uy) = ((i0 as f64 + 0.5) * self.cell - seg.a[0], y - seg.a[1]);
-            each(
-                row,
-                start,
-                (ux * ex + uy * ey) as f32,
-                (ux * ey - uy * ex) as f32,
-            );
+            // The run either side of the hole, where the line crosses it.
+            let hole = hole.and_then(|([cx, cy], radius)| {
+                let w2 = radius * radius - (y - cy) * (y - cy);
+                let w = (w2 > 0.0).then(|| w2.sqrt())?;
+                cells_between((cx - w) * inv, (cx + w) * inv, n)
+            });
+            let runs = match hole {
+                Some((p, q)) => [(i0, p.min(i1 + 1)), ((q + 1).max(i0), i1 + 1)],
+                None => [(i0, i1 + 1), (0, 0)],
+            };
+            for (p, q) in runs {
+                if p < q {
+                    let ux = (p as f64 + 0.5) * cell - ax;
+                    let (sc, h) = (ux * ex + uy * ey, ux * ey - uy * ex);
+                    each(p * step + j * next, step, q - p, [sc, h, dsc, dh]);
+                }
+            }
         }
     }
 }
@@ -634,32 +994,34 @@ struct Sweep<P> {
     z0: f32,
     m: f32,
     len: f32,
-    /// The change of the along-coordinate and of the offset from one cell to the next in a
-    /// row.
-    dsc: f32,
-    dh: f32,
+    down: bool,
 }
 
 impl<P: Profile> Sweep<P> {
-    fn new(seg: &Segment, profile: P, cell: f64) -> Self {
+    fn new(cut: &Cut, profile: P) -> Self {
         Sweep {
             profile,
             r2: profile.radius() * profile.radius(),
-            z0: seg.z0,
-            m: seg.m,
-            len: seg.len as f32,
-            dsc: (cell * seg.e[0]) as f32,
-            dh: (cell * seg.e[1]) as f32,
+            z0: cut.z0,
+            m: cut.m,
+            len: cut.len as f32,
+            down: cut.down,
         }
     }
 
-    /// The `N` cells from the `k`-th of a row whose first centre is at `sc0` along and `h0`
-    /// off the line (a cell the tool misses has an infinite `low`).
+    /// The cells whose centres lie at `sc` along the line and `hh` from it squared, with the
+    /// lowest point over each found (`search`) or over those that need no search, and which
+    /// those are.
     #[inline(always)]
-    fn cells<const N: usize>(&self, sc0: f32, h0: f32, k: usize) -> Cells<N> {
-        let mut c = Cells {
-            sc: [0.0; N],
-            hh: [0.0; N],
+    fn group<const N: usize>(
+        &self,
+        sc: &[f32; N],
+        hh: &[f32; N],
+        search: bool,
+    ) -> (Group<N>, [bool; N]) {
+        let mut g = Group {
+            sc: *sc,
+            hh: *hh,
             w: [0.0; N],
             lo: [0.0; N],
             hi: [0.0; N],
@@ -667,56 +1029,23 @@ impl<P: Profile> Sweep<P> {
             low: [0.0; N],
         };
         for l in 0..N {
-            let step = (k + l) as f32;
-            let sc = sc0 + step * self.dsc;
-            let h = h0 + step * self.dh;
-            let hh = h * h;
-            let w = at_least(self.r2 - hh, 0.0).sqrt();
-            (c.sc[l], c.hh[l], c.w[l]) = (sc, hh, w);
-            (c.lo[l], c.hi[l]) = (at_least(sc - w, 0.0), at_most(sc + w, self.len));
+            let w = at_least(self.r2 - hh[l], 0.0).sqrt();
+            g.w[l] = w;
+            (g.lo[l], g.hi[l]) = (at_least(sc[l] - w, 0.0), at_most(sc[l] + w, self.len));
         }
-        c.u = self.profile.lowest_of(&c);
+        let settled = if search {
+            g.u = self.profile.lowest(&g);
+            [true; N]
+        } else {
+            let (u, settled) = self.profile.settled(&g);
+            g.u = u;
+            settled
+        };
         for l in 0..N {
-            let lift = self.profile.lift(c.hh[l], c.u[l] - c.sc[l], c.w[l]);
-            let covered = c.hh[l] <= self.r2 && c.lo[l] <= c.hi[l];
-            c.low[l] = if covered {
-                self.z0 + self.m * c.u[l] + lift
-            } else {
-                f32::INFINITY
-            };
+            let lift = self.profile.lift(g.hh[l], g.u[l] - g.sc[l], g.w[l]);
+            g.low[l] = self.z0 + self.m * g.u[l] + lift;
         }
-        c
-    }
-
-    /// The `k`-th cell of a row (see [`Sweep::cells`]).
-    #[inline(always)]
-    fn cell(&self, sc0: f32, h0: f32, k: usize) -> Cell {
-        self.cells::<1>(sc0, h0, k).get(0)
-    }
-
-    /// Calls `visit` with the index, the height and the cell of each of `row` (whose first
-    /// centre is at `sc0` along and `h0` off the line): one at a time, or a group of
-    /// [`GROUP`] at a time for a profile that works groups.
-    #[inline(always)]
-    fn each(
-        &self,
-        row: &mut [f32],
-        sc0: f32,
-        h0: f32,
-        mut visit: impl FnMut(usize, &mut f32, Cell),
-    ) {
-        if !P::GROUPED {
-            for (k, height) in row.iter_mut().enumerate() {
-                visit(k, height, self.cell(sc0, h0, k));
-            }
-            return;
-        }
-        for (g, group) in row.chunks_mut(GROUP).enumerate() {
-            let cells = self.cells::<GROUP>(sc0, h0, g * GROUP);
-            for (l, height) in group.iter_mut().enumerate() {
-                visit(g * GROUP + l, height, cells.get(l));
-            }
-        }
+        (g, settled)
     }
 
     /// The earliest `u` at which the tool's end comes below `level` over `cell`, which it does
@@ -739,14 +1068,6 @@ impl<P: Profile> Sweep<P> {
     }
 }
 
-/// Cells a row's run is widened to a multiple of, so it is worked in full vectors (a multiple of
-/// every vector width the crate is built for).
-const LANES: usize = 8;
-
-/// Cells a profile that searches works at once: enough vectors in flight to hide the latency
-/// of each step of the search.
-const GROUP: usize = 32;
-
 /// The larger of `a` and `b`; `a` when it is not a number, so that a height is never lowered by
 /// one.
 #[inline(always)]
@@ -758,6 +1079,12 @@ fn at_least(a: f32, b: f32) -> f32 {
 #[inline(always)]
 fn at_most(a: f32, b: f32) -> f32 {
     if a > b { b } else { a }
+}
+
+/// `x` brought into `[lo, hi]` (`hi` when the range is empty).
+#[inline(always)]
+fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
+    at_most(at_least(x, lo), hi)
 }
 
 /// `height` lowered to `floor`, unless `floor` is not a number.
@@ -778,34 +1105,6 @@ fn cells_between(lo: f64, hi: f64, n: usize) -> Option<(usize, usize)> {
     let first = below + usize::from((below as f64) < lo);
     let last = (hi as usize).min(n - 1);
     (first <= last).then_some((first, last))
-}
-
-/// The X range of the points of row `y` within `r` of the segment (the union of the two end
-/// discs and the band along the segment, which together are convex), and no further than
-/// `behind` behind its start.
-fn row_span(seg: &Segment, r: f64, y: f64) -> Option<(f64, f64)> {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for [px, py] in [seg.a, seg.b] {
-        let w2 = r * r - (y - py) * (y - py);
-        if w2 >= 0.0 {
-            let w = w2.sqrt();
-            (lo, hi) = (lo.min(px - w), hi.max(px + w));
-        }
-    }
-    if seg.len > 0.0 {
-        let ([ex, ey], [to_x, to_y]) = (seg.e, seg.inv_e);
-        let uy = y - seg.a[1];
-        // The offset from the line and the along-coordinate are linear in x − a.x.
-        let (l1, h1) = linear_span(-uy * ex, ey, to_y, -r, r);
-        let (l2, h2) = linear_span(uy * ey, ex, to_x, 0.0, seg.len);
-        let (l3, h3) = linear_span(uy * ey, ex, to_x, -seg.behind, f64::INFINITY);
-        let (band_lo, band_hi) = (l1.max(l2), h1.min(h2));
-        if band_lo <= band_hi {
-            (lo, hi) = (lo.min(seg.a[0] + band_lo), hi.max(seg.a[0] + band_hi));
-        }
-        (lo, hi) = (lo.max(seg.a[0] + l3), hi.min(seg.a[0] + h3));
-    }
-    (lo <= hi).then_some((lo, hi))
 }
 
 /// The `x` with `c0 + c1·x` in `[lo, hi]`, given `inv = 1 / c1`.

@@ -10,6 +10,17 @@ use swarf_toolpath::{SegmentKind, Toolpath};
 use crate::field::{Check, Hit};
 use crate::{HeightField, Stock, StockError, Tool};
 
+/// The check a segment of `kind` gets with `tool`: rapids for material, feeds (when the tool's
+/// flute length is known) for shank cuts.
+fn check_of(kind: SegmentKind, tool: &Tool) -> Option<Check> {
+    match kind {
+        SegmentKind::Rapid => Some(Check::Rapid),
+        SegmentKind::Feed | SegmentKind::Arc => {
+            tool.flute_length.map(|flutes| Check::Shank(flutes as f32))
+        }
+    }
+}
+
 /// A problem found while cutting, in the order the segments run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Finding {
@@ -96,6 +107,9 @@ impl Simulation {
         }
         let end = self.next.saturating_add(max_segments).min(toolpath.len());
         let mut current: Option<(u32, Tool)> = None;
+        // The next segment's cut, planned with this one's so that each may leave the other
+        // the cells about their joint that it cuts anyway.
+        let mut planned = None;
         for i in self.next..end {
             let number = self.segment_tools.get(i).copied().unwrap_or(0);
             let tool = match current {
@@ -110,15 +124,27 @@ impl Simulation {
                 break;
             };
             let from = toolpath.segment_start(i);
-            let check = match kind {
-                SegmentKind::Rapid => Some(Check::Rapid),
-                SegmentKind::Feed | SegmentKind::Arc => {
-                    tool.flute_length.map(|flutes| Check::Shank(flutes as f32))
-                }
-            };
+            let check = check_of(kind, &tool);
             let continues = self.last == Some((from, number));
             self.last = Some((to, number));
-            let hit = self.field.cut_checked(from, to, &tool, continues, check);
+            let cut = planned
+                .take()
+                .or_else(|| (self.field).plan(from, to, &tool, continues, check.is_some()));
+            let Some(mut cut) = cut else {
+                continue;
+            };
+            // Within the step only, so that what it leaves is cut before the step ends.
+            let next = (i + 1 < end && self.segment_tools.get(i + 1) == Some(&number))
+                .then(|| toolpath.ends().get(i + 1).zip(toolpath.kinds().get(i + 1)))
+                .flatten();
+            if let Some((&next_to, &next_kind)) = next {
+                let checked = check_of(next_kind, &tool).is_some();
+                planned = self.field.plan(to, next_to, &tool, true, checked);
+                if let Some(next) = &mut planned {
+                    cut.join(next);
+                }
+            }
+            let hit = self.field.apply(&cut, check);
             if let (Some(hit), Some(check)) = (hit, check) {
                 let line = toolpath.lines().get(i).copied().unwrap_or(0);
                 self.report(i, line, &tool, check, hit);

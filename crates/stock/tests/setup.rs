@@ -2,6 +2,9 @@
 //! its notes and findings as diagnostics at their lines.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
 use glam::DVec3;
 use swarf_interp::{Setup, run};
 use swarf_stock::{Shape, StockError, StockRun, StockSetup, line_span};

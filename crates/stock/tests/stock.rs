@@ -2,11 +2,14 @@
 //! on rapids and shanks, and the setup keys.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+#[cfg(target_arch = "wasm32")]
+use wasm_bindgen_test::wasm_bindgen_test as test;
+
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
 use glam::DVec3;
-use swarf_interp::{Setup, Sink, Source, run};
+use swarf_interp::{Setup, run};
 use swarf_stock::{Finding, HeightField, Shape, Simulation, Stock, StockError, Tool};
 use swarf_syntax::{Dialect, parse};
 use swarf_toolpath::Toolpath;
@@ -467,6 +470,7 @@ fn values_out_of_range_are_refused_naming_the_key_and_the_range() {
 mod properties {
     use super::*;
     use proptest::prelude::*;
+    use swarf_interp::{Sink, Source};
 
     fn shape() -> impl Strategy<Value = Shape> {
         prop_oneof![
@@ -492,6 +496,17 @@ mod properties {
 
     fn point() -> impl Strategy<Value = DVec3> {
         (-5.0..25.0f64, -5.0..25.0f64, -25.0..3.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    /// A short move of a chain: level, gently sloped, steep, a plunge or none at all.
+    fn step() -> impl Strategy<Value = DVec3> {
+        prop_oneof![
+            (-0.4..0.4f64, -0.4..0.4f64).prop_map(|(x, y)| DVec3::new(x, y, 0.0)),
+            (-0.4..0.4f64, -0.4..0.4f64, -0.1..0.1f64).prop_map(|(x, y, z)| DVec3::new(x, y, z)),
+            (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z)),
+            (-3.0..3.0f64).prop_map(|z| DVec3::new(0.0, 0.0, z)),
+            Just(DVec3::ZERO),
+        ]
     }
 
     proptest! {
@@ -532,6 +547,38 @@ mod properties {
             }
             let mut sim = Simulation::new(&stock, BTreeMap::from([(0, tool)])).unwrap();
             prop_assert!(sim.step(&path, 100));
+            let mut field = HeightField::new(&stock).unwrap();
+            for (i, &to) in path.ends().iter().enumerate() {
+                field.cut(path.segment_start(i), to, &tool);
+            }
+            for (a, b) in sim.field().heights().iter().zip(field.heights()) {
+                prop_assert!((a - b).abs() < 1e-3, "{a} {b}");
+            }
+        }
+
+        /// In a chain of short moves each leaves to its neighbours the cells about their
+        /// joints where they come lower (but where a rapid or a shank check looks at the
+        /// material); however the steps split the chain, the result is the same as cutting
+        /// every move whole.
+        #[test]
+        fn a_chain_of_short_moves_cuts_as_every_move_cut_whole(
+            diameter in 0.5..6.0f64,
+            shape in shape(),
+            start in point(),
+            moves in proptest::collection::vec((step(), 0..8u8), 1..40),
+            per_step in 1..30usize,
+            flutes in proptest::option::of(0.5..5.0f64),
+        ) {
+            let tool = Tool { flute_length: flutes, ..bounded(diameter, shape) };
+            let stock = Stock { min: [0.0, 0.0, -20.0], max: [20.0, 15.0, 0.0], cell_mm: Some(0.2) };
+            let mut path = Toolpath::new(start, 10_000.0);
+            let mut p = start;
+            for (line, (step, kind)) in (1..).zip(&moves) {
+                p += *step;
+                path.straight(Source { block: line, line }, *kind == 0, p.x, p.y, p.z, 1000.0);
+            }
+            let mut sim = Simulation::new(&stock, BTreeMap::from([(0, tool)])).unwrap();
+            while !sim.step(&path, per_step) {}
             let mut field = HeightField::new(&stock).unwrap();
             for (i, &to) in path.ends().iter().enumerate() {
                 field.cut(path.segment_start(i), to, &tool);
