@@ -18,6 +18,8 @@
 //   window.swarf.language();           // {language, cjk_font}: the tag, whether the font is in
 //   window.swarf.tabs();               // {tabs: [{name, unsaved}], active}: the open tabs
 //   window.swarf.status();             // the status bar's message, or null
+//   window.swarf.setup();              // the machine setup as SETUP.toml text
+//   window.swarf.setSetup(toml);       // apply a SETUP.toml text (throws an Error if it is bad)
 //
 // The program calls act on the active tab; open() opens a tab of its own.
 //
@@ -133,6 +135,12 @@ window.swarf = Object.freeze({
   },
   status() {
     return requireApi().status() ?? null;
+  },
+  setup() {
+    return requireApi().setup();
+  },
+  setSetup(toml) {
+    requireApi().set_setup(String(toml));
   },
 });
 

@@ -2,6 +2,7 @@
 //! prepare what the backplot draws, in pieces of bounded work.
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 use glam::DVec3;
 use swarf_interp::{BlockState, Setup, States, StatesRun, Status};
@@ -128,8 +129,8 @@ pub struct Results {
 }
 
 /// What an analysis keeps to answer questions about its program after its results are sent:
-/// the program and the machine state before any block.
-#[derive(Debug, Clone, Default)]
+/// the program and the machine state before any block, and what cutting the stock needs.
+#[derive(Debug, Clone)]
 pub struct Kept {
     /// The job's generation.
     pub generation: u64,
@@ -137,6 +138,12 @@ pub struct Kept {
     pub program: Program,
     /// The machine states.
     pub states: States,
+    /// The program's text, to locate the stock's diagnostics in.
+    pub text: ProgramText,
+    /// The machine it ran on, with the stock and tools.
+    pub setup: Setup,
+    /// The toolpath the stock is cut with.
+    pub toolpath: Arc<Toolpath>,
 }
 
 impl Kept {
@@ -360,6 +367,7 @@ impl PendingAnalysis {
                     }),
             );
         }
+        self.toolpath.shrink_to_fit();
         let toolpath = &self.toolpath;
         let stats = Stats {
             blocks: program.blocks.len(),
@@ -381,6 +389,9 @@ impl PendingAnalysis {
             generation: self.generation,
             program: self.program,
             states,
+            text: self.text,
+            setup: self.setup,
+            toolpath: Arc::new(self.toolpath),
         };
         (results, kept)
     }
@@ -389,6 +400,23 @@ impl PendingAnalysis {
 /// Analyses `job` in one call.
 pub fn analyse(job: Job) -> (Results, Kept) {
     PendingAnalysis::start(job).finish()
+}
+
+/// `diags` of the program's own text located as [`PendingAnalysis::finish`] locates them
+/// (those in linked files are left out), sorted by position.
+pub(crate) fn locate_own(kept: &Kept, mut diags: Vec<Diagnostic>) -> Vec<Problem> {
+    let own_end = kept
+        .program
+        .linked
+        .first()
+        .map_or(u32::MAX, |l| l.first_byte);
+    diags.retain(|d| d.span.start < own_end);
+    diags.sort_by_key(|d| (d.span.start, d.span.end));
+    let mut sweep = Sweep::default();
+    diags
+        .iter()
+        .map(|d| locate_one(&kept.text, &kept.program.lines, &mut sweep, d))
+        .collect()
 }
 
 /// Where locating a flat text has counted characters to, so that the sorted diagnostics cost

@@ -7,6 +7,7 @@ use std::sync::{Arc, Mutex};
 use swarf_interp::BlockState;
 
 use crate::run::{Job, Kept, PendingAnalysis, Progress, Results};
+use crate::stock::{StockCut, StockJob};
 
 /// Blocks' worth of work (see [`PendingAnalysis::step`]) between two looks at the requests: a
 /// few milliseconds, so that a newer edit replaces a running analysis at once.
@@ -24,6 +25,15 @@ pub enum Request {
         generation: u64,
         /// 1-based line.
         line: u32,
+    },
+    /// The stock cut by the toolpath of the analysis of `generation`, up to segment `upto`
+    /// (the whole toolpath, or playback's position): answered by [`Reply::Stock`]s, its
+    /// progress and then the cut. A later `upto` continues the cut; a new job stops it.
+    Stock {
+        /// The analysis whose toolpath is cut.
+        generation: u64,
+        /// Segments to cut.
+        upto: usize,
     },
 }
 
@@ -49,6 +59,19 @@ pub enum Reply {
         /// The state.
         state: Option<Option<BlockState>>,
     },
+    /// The stock asked for by [`Request::Stock`]: its progress (no heights yet), then the cut.
+    Stock(Box<StockCut>),
+}
+
+impl Reply {
+    /// Whether it only tells how far work has got (the UI need not show it at once).
+    pub fn is_progress(&self) -> bool {
+        match self {
+            Reply::Progress { .. } => true,
+            Reply::Stock(cut) => !cut.finished(),
+            Reply::Done(_) | Reply::State { .. } => false,
+        }
+    }
 }
 
 /// What the last finished analysis keeps, shared with whoever answers questions about it.
@@ -62,11 +85,13 @@ pub fn state_at(held: &Held, generation: u64, line: u32) -> Option<Option<BlockS
         .map(|k| k.state_at(line))
 }
 
-/// The analysis side's state: the analysis under way and what the last finished one keeps.
+/// The analysis side's state: the analysis under way, what the last finished one keeps, and
+/// the stock cut from it.
 #[derive(Debug, Default)]
 pub struct Service {
     pending: Option<PendingAnalysis>,
     held: Held,
+    stock: Option<StockJob>,
 }
 
 impl Service {
@@ -76,7 +101,31 @@ impl Service {
         match request {
             Request::Analyse(job) => {
                 self.pending = Some(PendingAnalysis::start(*job));
+                self.stock = None;
                 None
+            }
+            Request::Stock { generation, upto } => {
+                if self
+                    .stock
+                    .as_mut()
+                    .is_some_and(|job| job.extend(generation, upto))
+                {
+                    return None;
+                }
+                self.stock = None;
+                match StockJob::start(&self.held, generation, upto) {
+                    Ok(job) => {
+                        self.stock = Some(job);
+                        None
+                    }
+                    Err(error) => Some(Reply::Stock(Box::new(StockCut {
+                        generation,
+                        upto,
+                        done: upto,
+                        error: Some(error),
+                        ..StockCut::default()
+                    }))),
+                }
             }
             Request::StateAt { generation, line } => Some(Reply::State {
                 generation,
@@ -86,15 +135,19 @@ impl Service {
         }
     }
 
-    /// Whether an analysis is under way.
+    /// Whether an analysis or a cut of the stock is under way.
     pub fn is_busy(&self) -> bool {
-        self.pending.is_some()
+        self.pending.is_some() || self.stock.as_ref().is_some_and(|job| job.due)
     }
 
     /// Runs a [`PIECE`] of the analysis under way: its progress, or its results once it is
-    /// finished (then it answers questions until the next one finishes); `None` when idle.
+    /// finished (then it answers questions until the next one finishes); else a piece of the
+    /// stock's cut; `None` when idle.
     pub fn step(&mut self) -> Option<Reply> {
-        let pending = self.pending.as_mut()?;
+        let Some(pending) = self.pending.as_mut() else {
+            let job = self.stock.as_mut().filter(|job| job.due)?;
+            return Some(Reply::Stock(Box::new(job.step(&self.held))));
+        };
         if !pending.step(PIECE) {
             return Some(Reply::Progress {
                 generation: pending.generation(),
@@ -127,8 +180,8 @@ pub trait Analyst {
     fn wait_reply(&mut self) -> Option<Reply>;
 }
 
-/// The analysis run in the caller's own time: a job runs whole when its reply is first asked
-/// for (for a host with neither threads nor a worker).
+/// The analysis run in the caller's own time: a job (or a cut of the stock) runs whole when
+/// its reply is first asked for (for a host with neither threads nor a worker).
 #[derive(Debug, Default)]
 pub struct Inline {
     service: Service,
@@ -141,7 +194,7 @@ impl Analyst for Inline {
 
     fn try_reply(&mut self) -> Option<Reply> {
         while let Some(reply) = self.service.step() {
-            if matches!(reply, Reply::Done(_)) {
+            if !reply.is_progress() {
                 return Some(reply);
             }
         }
@@ -213,7 +266,7 @@ fn serve(
             None => service.step(),
         };
         if let Some(reply) = reply {
-            let progress = matches!(reply, Reply::Progress { .. });
+            let progress = reply.is_progress();
             if replies.send(reply).is_err() {
                 return;
             }

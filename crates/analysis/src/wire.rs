@@ -12,6 +12,7 @@ use swarf_toolpath::{Dwell, Timeline};
 use crate::hint::DialectHint;
 use crate::run::{Job, LinkedProblem, Plot, Problem, Progress, Results, Stats};
 use crate::service::{Reply, Request};
+use crate::stock::{StockCut, StockField};
 use crate::text::ProgramText;
 
 /// The head of `request` and the texts that go beside it (the program's, then the other
@@ -43,6 +44,12 @@ pub fn request_parts(request: &Request) -> (Vec<u8>, Vec<&ProgramText>) {
             w.u8(1);
             w.u64(*generation);
             w.u32(*line);
+            (w.0, Vec::new())
+        }
+        Request::Stock { generation, upto } => {
+            w.u8(2);
+            w.u64(*generation);
+            w.len(*upto);
             (w.0, Vec::new())
         }
     }
@@ -80,13 +87,17 @@ pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
             generation: r.u64()?,
             line: r.u32()?,
         },
+        2 => Request::Stock {
+            generation: r.u64()?,
+            upto: r.len()?,
+        },
         _ => return None,
     };
     r.end().then_some(request)
 }
 
 /// The head of `reply` and the arrays that go beside it as bytes (a finished analysis' plot:
-/// points, marks, lines, feeds, end times, tools).
+/// points, marks, lines, feeds, end times, tools; a cut stock's heights).
 pub fn reply_parts(reply: &Reply) -> (Vec<u8>, Vec<&[u8]>) {
     let mut w = Writer::default();
     match reply {
@@ -136,6 +147,12 @@ pub fn reply_parts(reply: &Reply) -> (Vec<u8>, Vec<&[u8]>) {
                 }
             }
             (w.0, Vec::new())
+        }
+        Reply::Stock(cut) => {
+            w.u8(3);
+            w.stock_cut(cut);
+            let heights = cut.field.iter().map(|f| bytemuck::cast_slice(&f.heights));
+            (w.0, heights.collect())
         }
     }
 }
@@ -195,6 +212,20 @@ pub fn reply_from(
                 line,
                 state,
             }
+        }
+        3 => {
+            let mut cut = r.stock_cut()?;
+            if let Some(field) = &mut cut.field {
+                field.heights = Arrays {
+                    sizes,
+                    fill: &mut fill,
+                }
+                .take(0)?;
+                if field.heights.len() != field.size.0.checked_mul(field.size.1)? {
+                    return None;
+                }
+            }
+            Reply::Stock(cut)
         }
         _ => return None,
     };
@@ -343,6 +374,40 @@ impl Writer {
                     }
                     None => self.u8(0),
                 }
+            }
+            None => self.u8(0),
+        }
+    }
+
+    /// Everything of `cut` but its heights.
+    fn stock_cut(&mut self, cut: &StockCut) {
+        self.u64(cut.generation);
+        self.len(cut.upto);
+        self.len(cut.done);
+        self.u8(u8::from(cut.whole));
+        match &cut.field {
+            Some(f) => {
+                self.u8(1);
+                self.len(f.size.0);
+                self.len(f.size.1);
+                self.f64(f.cell_mm);
+                self.dvec3(f.min);
+                self.f64(f.top);
+            }
+            None => self.u8(0),
+        }
+        self.len(cut.rapids.len());
+        for (segment, [x, y]) in &cut.rapids {
+            self.len(*segment);
+            self.f64(*x);
+            self.f64(*y);
+        }
+        self.len(cut.problems.len());
+        cut.problems.iter().for_each(|p| self.problem(p));
+        match &cut.error {
+            Some(e) => {
+                self.u8(1);
+                self.str(e);
             }
             None => self.u8(0),
         }
@@ -530,6 +595,39 @@ impl Reader<'_> {
             linked,
             hint,
         })
+    }
+
+    fn stock_cut(&mut self) -> Option<Box<StockCut>> {
+        let generation = self.u64()?;
+        let upto = self.len()?;
+        let done = self.len()?;
+        let whole = self.u8()? != 0;
+        let field = match self.u8()? {
+            0 => None,
+            _ => Some(StockField {
+                size: (self.len()?, self.len()?),
+                cell_mm: self.f64()?,
+                min: self.dvec3()?,
+                top: self.f64()?,
+                heights: Vec::new(),
+            }),
+        };
+        let rapids = self.many(|r| Some((r.len()?, [r.f64()?, r.f64()?])))?;
+        let problems = self.many(Self::problem)?;
+        let error = match self.u8()? {
+            0 => None,
+            _ => Some(self.str()?),
+        };
+        Some(Box::new(StockCut {
+            generation,
+            upto,
+            done,
+            whole,
+            field,
+            rapids,
+            problems,
+            error,
+        }))
     }
 
     fn block_state(&mut self) -> Option<BlockState> {

@@ -172,11 +172,15 @@ impl SwarfApp {
         Some([f64::from(pos.x) * zoom, f64::from(pos.y) * zoom])
     }
 
-    /// Where the workbench's widget `name` was drawn at the last frame, as `[x, y, width,
-    /// height]` in CSS pixels from the canvas's top left; `None` when it was not drawn.
+    /// Where the workbench's widget `name` (or `stock`, the backplot's Stock button) was drawn
+    /// at the last frame, as `[x, y, width, height]` in CSS pixels from the canvas's top left;
+    /// `None` when it was not drawn.
     #[cfg(target_arch = "wasm32")]
     pub fn widget_rect(&self, name: &str) -> Option<[f64; 4]> {
-        let rect = self.workbench.widget_rect(name)?;
+        let rect = match name {
+            "stock" => self.workbench.backplot().stock_button_rect(),
+            _ => self.workbench.widget_rect(name),
+        }?;
         let zoom = f64::from(self.ctx.zoom_factor());
         Some([
             f64::from(rect.min.x) * zoom,

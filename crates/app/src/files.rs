@@ -3,6 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 
+use swarf_interp::Setup;
 use swarf_syntax::{Dialect, Encoding};
 use swarf_ui::i18n::{Lang, trf};
 use swarf_ui::{TabRecord, Workbench};
@@ -66,10 +67,12 @@ pub fn restore_settings(storage: &dyn eframe::Storage, wb: &mut Workbench) -> Ve
     {
         wb.set_language(lang);
     }
-    if let Some(setup) = storage.get_string(KEY_SETUP)
-        && let Err(e) = wb.import_setup(&setup)
-    {
-        log::warn!("the saved setup is not readable: {e}");
+    // Read as the settings window left it: a stock or tool it shows refused stays to be mended.
+    if let Some(setup) = storage.get_string(KEY_SETUP) {
+        match Setup::from_toml(&setup) {
+            Ok(setup) => wb.set_setup(setup),
+            Err(e) => log::warn!("the saved setup is not readable: {e}"),
+        }
     }
     let recent: Vec<String> = storage
         .get_string(KEY_RECENT)

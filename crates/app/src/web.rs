@@ -127,6 +127,19 @@ impl SwarfApi {
         self.with_app(|app| app.project(glam::DVec3::new(x, y, z)).map(|p| p.to_vec()))
     }
 
+    /// The machine setup programs run with, as a `SETUP.toml` text.
+    pub fn setup(&self) -> Result<String, JsValue> {
+        self.with_app(|app| app.workbench.setup_toml())?
+            .map_err(|e| js_sys::Error::new(&e).into())
+    }
+
+    /// Replaces the machine setup with the `SETUP.toml` text `toml` and re-analyses; throws an
+    /// `Error` saying why, the setup unchanged, when the text is not a setup the CLI takes.
+    pub fn set_setup(&self, toml: String) -> Result<(), JsValue> {
+        self.with_app(|app| app.workbench.import_setup(&toml))?
+            .map_err(|e| js_sys::Error::new(&e).into())
+    }
+
     /// The program text.
     pub fn get_text(&self) -> Result<String, JsValue> {
         self.with_app(|app| app.workbench.text().to_string())

@@ -44,7 +44,7 @@ impl WorkerAnalyst {
             Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |event: web_sys::MessageEvent| {
                 match read_reply(&event.data()) {
                     Some(reply) => {
-                        let progress = matches!(reply, Reply::Progress { .. });
+                        let progress = reply.is_progress();
                         ctx.request_repaint_after(swarf_ui::reply_frame(progress));
                         inbox.borrow_mut().replies.push_back(reply);
                     }

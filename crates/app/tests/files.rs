@@ -387,8 +387,11 @@ fn dialect_setup_and_recent_files_are_kept_between_runs() {
     eframe::Storage::set_string(&mut storage, files::KEY_SETUP, "nonsense = [".to_string());
     let mut other = Workbench::default();
     files::restore_settings(&storage, &mut other);
-    // The setup type is the interpreter's, which this crate reaches only through the ui.
-    #[allow(clippy::default_trait_access)]
-    let default = Default::default();
-    assert_eq!(other.setup(), &default);
+    assert_eq!(other.setup(), &swarf_interp::Setup::default());
+    // A stock the settings window shows refused comes back, to be mended there.
+    let refused = "[stock]\nmin = [0, 0, 0]\nmax = [-10, 10, 10]\n";
+    assert!(other.import_setup(refused).is_err());
+    eframe::Storage::set_string(&mut storage, files::KEY_SETUP, refused.to_string());
+    files::restore_settings(&storage, &mut other);
+    assert!(other.setup().stock.is_some());
 }

@@ -1,16 +1,18 @@
 //! Backplot performance: preparing and uploading 1M and 10M segments, GPU bytes per segment,
-//! picking at 1M segments and frame time at 1M segments on whatever wgpu adapter is found
-//! (Mesa lavapipe on a machine without a GPU).
+//! picking at 1M segments, frame time at 1M segments whole and at the level of detail of a
+//! fitted view (the spiral and the web benchmark's surfacing program) on whatever wgpu adapter
+//! is found (Mesa lavapipe on a machine without a GPU).
 //!
 //! Run: `cargo bench -p swarf-render --bench backplot` (add `-- --quick` for fewer
 //! repetitions). Prints a Markdown table for docs/performance.md.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use glam::{DVec3, Vec2, Vec3};
 use swarf_render::{
-    DEPTH_FORMAT, HeadlessGpu, Kind, OrbitCamera, POINT_SIZE, PathPoint, PathRenderer,
+    DEPTH_FORMAT, HeadlessGpu, Kind, OrbitCamera, POINT_SIZE, PathLod, PathPoint, PathRenderer,
     RenderTarget, StandardView, ViewParams, grid_points_at, pick_segment,
 };
 
@@ -97,6 +99,96 @@ fn prepare(path: &SyntheticPath) -> Prepared {
     }
 }
 
+/// The web benchmark's surfacing program (tests/e2e/bench-web.mjs), `n` feeds: rows of 400
+/// moves of 0.25 mm along X, 0.5 mm apart in Y, Z a smooth sine; relative to its centre.
+fn surfacing(n: usize) -> Vec<PathPoint> {
+    let centre = Vec3::new(50.0, n as f32 / 800.0, -1.5);
+    let mut points = vec![
+        PathPoint::pen_up(Vec3::new(0.0, 0.0, 5.0) - centre),
+        PathPoint::new(-centre, Kind::Feed),
+    ];
+    points.extend((0..n).map(|i| {
+        let x = (i % 400) as f32 * 0.25;
+        let y = (i / 400) as f32 * 0.5;
+        let z = -((x * 0.07).sin() * (y * 0.05).cos()).abs() * 3.0;
+        PathPoint::new(Vec3::new(x, y, z) - centre, Kind::Feed)
+    }));
+    points
+}
+
+/// Rows for `points` drawn through a [`PathLod`] in a fitted iso view of [`FRAME`]: the
+/// segments drawn, the time to simplify and upload them, and a frame.
+fn lod_rows(
+    gpu: &HeadlessGpu,
+    what: &str,
+    points: &Arc<Vec<PathPoint>>,
+    runs: usize,
+) -> Vec<(String, String)> {
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let (min, max) = points
+        .iter()
+        .map(PathPoint::position)
+        .filter(|p| p.is_finite())
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p), hi.max(p))
+        });
+    let aspect = FRAME.0 as f32 / FRAME.1 as f32;
+    let mut camera = OrbitCamera::new(StandardView::Iso);
+    camera.fit_aspect(min, max, aspect);
+    let params = ViewParams {
+        view_proj: camera.view_proj(aspect),
+        viewport_px: Vec2::new(FRAME.0 as f32, FRAME.1 as f32),
+        ..ViewParams::default()
+    };
+    let mut renderer = PathRenderer::new(&gpu.device, format, Some(DEPTH_FORMAT), 1);
+    let mut drawn = 0;
+    let make: Vec<Duration> = (0..runs)
+        .map(|_| {
+            let t = Instant::now();
+            let mut lod = PathLod::new(Arc::clone(points), Some((min, max)));
+            lod.prepare(&mut renderer, &gpu.device, &gpu.queue, &params, &[]);
+            gpu.queue.submit([]);
+            gpu.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .unwrap();
+            drawn = lod.drawn_segments();
+            t.elapsed()
+        })
+        .collect();
+    renderer.prepare(&gpu.queue, &params);
+    let target = RenderTarget::new(&gpu.device, FRAME.0, FRAME.1, format).unwrap();
+    // The first frame warms pipelines up.
+    let frames: Vec<Duration> = (0..=runs)
+        .map(|_| {
+            let t = Instant::now();
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+            target.draw(&mut encoder, wgpu::Color::BLACK, &renderer);
+            gpu.queue.submit([encoder.finish()]);
+            gpu.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .unwrap();
+            t.elapsed()
+        })
+        .skip(1)
+        .collect();
+    let (width, height) = FRAME;
+    vec![
+        (
+            format!(
+                "level of detail of the {what} fitted in {width}×{height}: segments drawn / \
+                 simplify + upload"
+            ),
+            format!("{drawn} / {}", median_and_first(make)),
+        ),
+        (
+            format!("frame of the {what} at that level of detail (draw until done)"),
+            ms(median(frames)),
+        ),
+    ]
+}
+
 fn median(mut samples: Vec<Duration>) -> Duration {
     samples.sort_unstable();
     samples[samples.len() / 2]
@@ -169,7 +261,7 @@ fn main() {
             median_and_first(build.clone()),
         ));
         rows.push((
-            format!("upload {label} segments (buffer + copy, until the GPU has it)"),
+            format!("upload {label} segments (texture + copy, until the GPU has it)"),
             median_and_first(upload.clone()),
         ));
         rows.push((
@@ -251,8 +343,20 @@ fn main() {
                 }
             }
             rows.push((
-                format!("frame at {label} segments, {width}×{height} (draw until done)"),
+                format!(
+                    "frame at {label} segments drawn whole, {width}×{height} (draw until done)"
+                ),
                 ms(median(frames)),
+            ));
+        }
+        if n == 1_000_000 {
+            let spiral = Arc::new(prepared.points.clone());
+            rows.extend(lod_rows(&gpu, "spiral pocket", &spiral, runs));
+            rows.extend(lod_rows(
+                &gpu,
+                "surfacing program",
+                &Arc::new(surfacing(n)),
+                runs,
             ));
         }
     }

@@ -12,6 +12,7 @@
 mod camera;
 mod composite;
 mod grid;
+mod lod;
 mod offscreen;
 mod path;
 mod pick;
@@ -22,6 +23,7 @@ mod stock;
 pub use camera::{MAX_DISTANCE, MIN_DISTANCE, OrbitCamera, Projection, StandardView};
 pub use composite::{COMPOSITE_WGSL, Compositor};
 pub use grid::{grid_points, grid_points_at, nice_step};
+pub use lod::{LOD_TOLERANCE_PX, PathLod, pixels_per_unit, simplify};
 pub use offscreen::{HeadlessGpu, RenderError, RenderTarget};
 pub use path::{
     ARC_COLOR, BOUNDARY_COLOR, COMPENSATED_COLOR, CYCLE_COLOR, ColorMode, DEPTH_FORMAT,

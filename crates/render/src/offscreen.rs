@@ -4,7 +4,15 @@
 //! which has no depth buffer.
 
 #[cfg(not(target_arch = "wasm32"))]
+use std::sync::Arc;
+
+#[cfg(not(target_arch = "wasm32"))]
 use glam::Vec2;
+
+#[cfg(not(target_arch = "wasm32"))]
+use crate::lod::PathLod;
+#[cfg(not(target_arch = "wasm32"))]
+use crate::pick::segment_bounds;
 
 use crate::path::{DEPTH_FORMAT, PathRenderer};
 #[cfg(not(target_arch = "wasm32"))]
@@ -89,7 +97,8 @@ impl HeadlessGpu {
 }
 
 impl HeadlessGpu {
-    /// Draws `stock`, `path` and `grid` with `params` (its viewport is set to the image size)
+    /// Draws `stock`, `path` (at the level of detail of the view, as the backplot does, see
+    /// [`crate::PathLod`]) and `grid` with `params` (its viewport is set to the image size)
     /// into a new `width`×`height` RGBA8 image over an opaque `background` (sRGB bytes), and
     /// returns its pixels, top row first.
     ///
@@ -110,15 +119,20 @@ impl HeadlessGpu {
         let target = RenderTarget::new(&self.device, width, height, format)?;
         let mut renderer = PathRenderer::new(&self.device, format, Some(DEPTH_FORMAT), 1);
         renderer.set_stock(&self.device, &self.queue, stock);
-        renderer.set_path(&self.device, &self.queue, path);
         renderer.set_grid(&self.device, &self.queue, grid);
-        renderer.prepare(
+        let params = ViewParams {
+            viewport_px: Vec2::new(width as f32, height as f32),
+            ..params.clone()
+        };
+        let bounds = segment_bounds(path, 0..path.len());
+        let params = PathLod::new(Arc::new(path.to_vec()), bounds).prepare(
+            &mut renderer,
+            &self.device,
             &self.queue,
-            &ViewParams {
-                viewport_px: Vec2::new(width as f32, height as f32),
-                ..params.clone()
-            },
+            &params,
+            &[],
         );
+        renderer.prepare(&self.queue, &params);
         let mut encoder = self
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {

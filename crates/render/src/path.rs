@@ -1,16 +1,17 @@
-//! Instanced segment renderer: one 16-byte point per path vertex, one screen-space quad per
-//! segment, anti-aliased, depth-tested, coloured by kind.
+//! Segment renderer: one 16-byte point per path vertex, one screen-space quad per segment,
+//! anti-aliased, depth-tested, coloured by kind.
 //!
-//! The point buffer is bound twice as per-instance attributes (slot A at offset 0, slot B at
-//! offset +16 bytes), so instance `i` draws the segment from point `i` to point `i + 1` and
-//! consecutive segments share their points: 16 GPU bytes per segment. A [`PathPoint::PEN_UP`]
-//! flag on a point means "no segment arrives here", so separate polylines (the grid's lines,
-//! several toolpaths) live in one buffer. A path longer than the device's largest buffer
-//! (16.7M points at wgpu's default 256 MiB) is split over several buffers sharing one point at
-//! each seam, one draw call each. Every buffer has a small uniform of its own (bind group 1):
-//! where its points start in the stream, so the highlight and playback ranges count segments
-//! from the path's start, and whether it holds the toolpath, since those ranges number
-//! toolpath segments and never apply to the grid and marks drawn from the second stream.
+//! The points lie in a texture, one texel each, and vertices `6i .. 6i + 6` draw the segment
+//! from point `i` to point `i + 1`, so consecutive segments share their points: 16 GPU bytes
+//! per segment, in one draw call without instancing (a software rasteriser such as SwiftShader
+//! spends some 13 µs on each instance). A [`PathPoint::PEN_UP`] flag on a point means "no
+//! segment arrives here", so separate polylines (the grid's lines, several toolpaths) live in
+//! one texture. A path longer than a texture holds (33.5M points at 4096 × 8192) is split over
+//! several sharing one point at each seam, one draw call each. Every texture has a small
+//! uniform of its own (bind group 1): where its points start in the stream, so the highlight
+//! and playback ranges count segments from the path's start, and whether it holds the
+//! toolpath, since those ranges number toolpath segments and never apply to the grid and marks
+//! drawn from the second stream.
 
 use std::borrow::Cow;
 use std::ops::Range;
@@ -411,9 +412,9 @@ struct Uniforms {
 /// Size of the uniform buffer in bytes.
 pub const UNIFORMS_SIZE: u64 = size_of::<Uniforms>() as u64;
 
-/// What one draw call (one GPU buffer of points) needs besides [`Uniforms`], laid out like the
+/// What one draw call (one texture of points) needs besides [`Uniforms`], laid out like the
 /// WGSL `Draw`: where its points start in the whole stream, so segment numbers (highlight,
-/// playback) count from the path's start in every buffer, and whether it is the toolpath —
+/// playback) count from the path's start in every texture, and whether it is the toolpath —
 /// the grid and reference marks are never highlighted or dimmed by segment number.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -472,53 +473,90 @@ impl Uniforms {
     }
 }
 
-/// Slot A: the segment's start point (position only).
-const START_ATTRIBUTES: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x3];
-/// Slot B: the segment's end point (position and packed kind/flags/colour index).
-const END_ATTRIBUTES: [wgpu::VertexAttribute; 2] =
-    wgpu::vertex_attr_array![1 => Float32x3, 2 => Uint32];
+/// Most points in one row of a point texture (each point one `Rgba32Uint` texel).
+const ROW_POINTS: u64 = 4096;
 
-/// Points one buffer may hold on `device`: its largest buffer, at most `u32::MAX` points.
-fn max_points(device: &wgpu::Device) -> u64 {
-    (device.limits().max_buffer_size / POINT_SIZE).min(u64::from(u32::MAX))
+/// Vertices of one segment's quad: two triangles (a list, so no segment joins the next).
+const QUAD_VERTICES: u32 = 6;
+
+/// Texels per row and most points one texture may hold on `device`, at most `u32::MAX`.
+fn texture_shape(device: &wgpu::Device) -> (u64, u64) {
+    let side = u64::from(device.limits().max_texture_dimension_2d).max(2);
+    let width = ROW_POINTS.min(side);
+    (
+        width,
+        (width * side).min(u64::from(u32::MAX / QUAD_VERTICES)),
+    )
 }
 
-/// One GPU vertex buffer of a [`PointBatch`], holding points `first..first + count`.
+/// One texture of a [`PointBatch`], holding `count` points of the stream, a row at a time.
 struct Chunk {
-    buffer: wgpu::Buffer,
-    /// The chunk's [`DrawUniforms`] and the bind group (group 1) that binds them.
+    texture: wgpu::Texture,
+    /// The chunk's [`DrawUniforms`] and the bind group (group 1) that binds them and the
+    /// texture.
     draw_buffer: wgpu::Buffer,
     draw_bind_group: wgpu::BindGroup,
-    /// Capacity of `buffer` in points.
-    capacity: u64,
-    /// Index in the whole stream of the chunk's first point.
-    first: u64,
     /// Points uploaded.
     count: u64,
 }
 
 impl Chunk {
-    fn segments(&self) -> u32 {
-        u32::try_from(self.count.saturating_sub(1)).unwrap_or(u32::MAX)
+    /// Capacity of the texture in points.
+    fn capacity(&self) -> u64 {
+        u64::from(self.texture.width()) * u64::from(self.texture.height())
     }
 
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let segments = self.segments();
+        let segments = u32::try_from(self.count.saturating_sub(1)).unwrap_or(0);
         if segments == 0 {
             return;
         }
-        let bytes = self.count * POINT_SIZE;
         pass.set_bind_group(1, &self.draw_bind_group, &[]);
-        // The same buffer twice: instance i reads point i from slot 0, point i + 1 from slot 1.
-        pass.set_vertex_buffer(0, self.buffer.slice(..bytes - POINT_SIZE));
-        pass.set_vertex_buffer(1, self.buffer.slice(POINT_SIZE..bytes));
-        pass.draw(0..4, 0..segments);
+        // Vertex v draws a corner of segment v / 6, which reads points v / 6 and v / 6 + 1.
+        pass.draw(0..segments.saturating_mul(QUAD_VERTICES), 0..1);
     }
 }
 
-/// A growable polyline stream on the GPU. A stream longer than the device's largest buffer is
-/// split into several buffers that overlap by one point, so no segment is lost at a seam and a
-/// path of any length (tens of millions of points) stays resident, one draw call per buffer.
+/// Copies `points` into the first texels of `texture` (rows `width` texels long).
+fn write_points(queue: &wgpu::Queue, texture: &wgpu::Texture, points: &[PathPoint]) {
+    let width = texture.width() as usize;
+    let whole = points.len() / width * width;
+    let (rows, rest) = points.split_at(whole);
+    for (part, row) in [(rows, 0), (rest, whole / width)] {
+        if part.is_empty() {
+            continue;
+        }
+        let texels = part.len().min(width);
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d {
+                    x: 0,
+                    y: u32::try_from(row).unwrap_or(u32::MAX),
+                    z: 0,
+                },
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(part),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: u32::try_from(texels as u64 * POINT_SIZE).ok(),
+                rows_per_image: None,
+            },
+            wgpu::Extent3d {
+                width: u32::try_from(texels).unwrap_or(u32::MAX),
+                height: u32::try_from(part.len() / texels).unwrap_or(u32::MAX),
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+}
+
+/// A growable polyline stream on the GPU, in textures the vertex stage reads (WebGL2 has no
+/// storage buffers). A stream longer than one texture holds is split into several that
+/// overlap by one point, so no segment is lost at a seam and a path of any length (tens of
+/// millions of points) stays resident, one draw call per texture.
 struct PointBatch {
     label: &'static str,
     /// Whether the stream is the toolpath (highlight and playback ranges apply to it).
@@ -526,12 +564,9 @@ struct PointBatch {
     chunks: Vec<Chunk>,
     /// Points uploaded in all.
     count: u64,
-    /// Largest points per buffer, when lower than the device's (tests use a small one).
+    /// Largest points per texture, when lower than the device's (tests use a small one).
     chunk_limit: Option<u64>,
 }
-
-/// Buffers are sized in steps of this many points (64 KiB).
-const CAPACITY_STEP: u64 = 4096;
 
 impl PointBatch {
     fn new(label: &'static str, path: bool) -> Self {
@@ -544,13 +579,15 @@ impl PointBatch {
         }
     }
 
-    /// Points per buffer on `device` (at least two, so every buffer holds a segment).
-    fn points_per_buffer(&self, device: &wgpu::Device) -> u64 {
-        let max = max_points(device);
-        self.chunk_limit.map_or(max, |l| l.min(max)).max(2)
+    /// Texels per row and points per texture on `device` (at least two, so every texture
+    /// holds a segment).
+    fn shape(&self, device: &wgpu::Device) -> (u64, u64) {
+        let (width, max) = texture_shape(device);
+        let per = self.chunk_limit.map_or(max, |l| l.min(max)).max(2);
+        (width.min(per), per)
     }
 
-    /// Uploads `points`, reusing each buffer whose size fits and reallocating those too small
+    /// Uploads `points`, reusing each texture whose size fits and reallocating those too small
     /// or far too big; `layout` is the per-draw bind group's (group 1).
     fn upload(
         &mut self,
@@ -565,7 +602,7 @@ impl PointBatch {
             self.chunks.clear();
             return;
         }
-        let per = self.points_per_buffer(device);
+        let (width, per) = self.shape(device);
         // Chunk k holds points k·(per − 1) .. k·(per − 1) + per: one point shared at each seam.
         let stride = per - 1;
         let n_chunks = (total - 1).div_ceil(stride);
@@ -573,38 +610,53 @@ impl PointBatch {
         for k in 0..n_chunks {
             let first = k * stride;
             let count = (total - first).min(per);
-            let reuse = old
-                .next()
-                .filter(|c| c.capacity >= count && c.capacity <= 2 * count + CAPACITY_STEP);
+            let reuse = old.next().filter(|c| {
+                u64::from(c.texture.width()) == width
+                    && c.capacity() >= count
+                    && c.capacity() <= 2 * count + width
+            });
             let chunk = if let Some(c) = reuse {
-                Chunk { first, count, ..c }
+                Chunk { count, ..c }
             } else {
-                let capacity = count.next_multiple_of(CAPACITY_STEP).min(per);
+                let texture = device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some(self.label),
+                    size: wgpu::Extent3d {
+                        width: u32::try_from(width).unwrap_or(u32::MAX),
+                        height: u32::try_from(count.div_ceil(width)).unwrap_or(u32::MAX),
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: wgpu::TextureFormat::Rgba32Uint,
+                    usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                    view_formats: &[],
+                });
                 let draw_buffer = device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("swarf_draw_uniforms"),
                     size: DRAW_UNIFORMS_SIZE,
                     usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 });
+                let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
                 let draw_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("swarf_draw_bind_group"),
                     layout,
-                    entries: &[wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: draw_buffer.as_entire_binding(),
-                    }],
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: draw_buffer.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(&view),
+                        },
+                    ],
                 });
                 Chunk {
-                    buffer: device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some(self.label),
-                        size: capacity * POINT_SIZE,
-                        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
-                    }),
+                    texture,
                     draw_buffer,
                     draw_bind_group,
-                    capacity,
-                    first,
                     count,
                 }
             };
@@ -617,33 +669,11 @@ impl PointBatch {
             let range = usize::try_from(first).unwrap_or(usize::MAX)
                 ..usize::try_from(first + count).unwrap_or(usize::MAX);
             if let Some(slice) = points.get(range) {
-                queue.write_buffer(&chunk.buffer, 0, bytemuck::cast_slice(slice));
+                write_points(queue, &chunk.texture, slice);
             }
             self.chunks.push(chunk);
         }
         self.count = total;
-    }
-
-    /// Overwrites points `first..first + points.len()` (clipped to what was uploaded), in
-    /// every buffer that holds them.
-    fn update(&self, queue: &wgpu::Queue, first: u64, points: &[PathPoint]) {
-        let end = (first + points.len() as u64).min(self.count);
-        for chunk in &self.chunks {
-            let lo = first.max(chunk.first);
-            let hi = end.min(chunk.first + chunk.count);
-            if lo >= hi {
-                continue;
-            }
-            let src = usize::try_from(lo - first).unwrap_or(usize::MAX)
-                ..usize::try_from(hi - first).unwrap_or(usize::MAX);
-            if let Some(slice) = points.get(src) {
-                queue.write_buffer(
-                    &chunk.buffer,
-                    (lo - chunk.first) * POINT_SIZE,
-                    bytemuck::cast_slice(slice),
-                );
-            }
-        }
     }
 
     /// Segments drawn (pen-up ones included): one fewer than the points.
@@ -653,7 +683,7 @@ impl PointBatch {
 
     /// Bytes of GPU memory allocated.
     fn allocated_bytes(&self) -> u64 {
-        self.chunks.iter().map(|c| c.capacity * POINT_SIZE).sum()
+        self.chunks.iter().map(|c| c.capacity() * POINT_SIZE).sum()
     }
 
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
@@ -663,18 +693,24 @@ impl PointBatch {
     }
 }
 
-/// Draws a toolpath and the grid/axes as instanced anti-aliased segments.
+/// Draws a toolpath and the grid/axes as anti-aliased segments.
 ///
-/// The path is drawn first with depth writes; the grid and axes follow with depth testing
-/// but no depth writes, so the translucent grid never punches holes into the path behind it
-/// yet stays hidden behind the path in front of it (and behind a path lying on it). Uniform buffer and vertex attributes
-/// only, so it works on WebGPU, native and WebGL2 alike.
+/// The path is drawn first: the cores of its lines with depth writes, then their
+/// anti-aliased edges without, so an edge never hides a line behind it. The grid and axes
+/// follow with depth testing but no depth writes, so the translucent grid never punches holes
+/// into the path behind it yet stays hidden behind the path in front of it (and behind a path
+/// lying on it). Uniform
+/// buffers and textures read in the vertex stage only, so it works on WebGPU, native and
+/// WebGL2 alike.
 pub struct PathRenderer {
-    opaque: wgpu::RenderPipeline,
+    /// The path's cores, which write depth, then its anti-aliased edges, which do not.
+    core: wgpu::RenderPipeline,
+    edge: wgpu::RenderPipeline,
     overlay: wgpu::RenderPipeline,
     uniform_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
-    /// Layout of each GPU buffer's per-draw bind group (group 1, [`DrawUniforms`]).
+    /// Layout of each point texture's per-draw bind group (group 1: [`DrawUniforms`], the
+    /// texture).
     draw_layout: wgpu::BindGroupLayout,
     path: PointBatch,
     grid: PointBatch,
@@ -727,23 +763,42 @@ impl PathRenderer {
         });
         let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("swarf_draw_bind_group_layout"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(DRAW_UNIFORMS_SIZE),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(DRAW_UNIFORMS_SIZE),
+                    },
+                    count: None,
                 },
-                count: None,
-            }],
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::VERTEX,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Uint,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+            ],
         });
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("swarf_path_pipeline_layout"),
             bind_group_layouts: &[Some(&bind_group_layout), Some(&draw_layout)],
             immediate_size: 0,
         });
-        let pipeline = |label: &'static str, depth_write: bool| {
+        // `part`: the fragments drawn ("main": all, "core" or "edge", see the shader).
+        let pipeline = |label: &'static str, part: &str, depth_write: bool| {
+            let encoding = if color_format.is_srgb() {
+                "linear"
+            } else {
+                "gamma"
+            };
+            let fragment = format!("fs_{part}_{encoding}_framebuffer");
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(&layout),
@@ -751,21 +806,10 @@ impl PathRenderer {
                     module: &module,
                     entry_point: Some("vs_main"),
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    buffers: &[
-                        Some(wgpu::VertexBufferLayout {
-                            array_stride: POINT_SIZE,
-                            step_mode: wgpu::VertexStepMode::Instance,
-                            attributes: &START_ATTRIBUTES,
-                        }),
-                        Some(wgpu::VertexBufferLayout {
-                            array_stride: POINT_SIZE,
-                            step_mode: wgpu::VertexStepMode::Instance,
-                            attributes: &END_ATTRIBUTES,
-                        }),
-                    ],
+                    buffers: &[],
                 },
                 primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleStrip,
+                    topology: wgpu::PrimitiveTopology::TriangleList,
                     strip_index_format: None,
                     front_face: wgpu::FrontFace::default(),
                     cull_mode: None,
@@ -777,10 +821,10 @@ impl PathRenderer {
                     format,
                     depth_write_enabled: Some(depth_write),
                     // The grid and axes lose ties, so a path lying on them shows.
-                    depth_compare: Some(if depth_write {
-                        wgpu::CompareFunction::LessEqual
-                    } else {
+                    depth_compare: Some(if part == "main" {
                         wgpu::CompareFunction::Less
+                    } else {
+                        wgpu::CompareFunction::LessEqual
                     }),
                     stencil: wgpu::StencilState::default(),
                     bias: wgpu::DepthBiasState::default(),
@@ -792,11 +836,7 @@ impl PathRenderer {
                 },
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
-                    entry_point: Some(if color_format.is_srgb() {
-                        "fs_main_linear_framebuffer"
-                    } else {
-                        "fs_main_gamma_framebuffer"
-                    }),
+                    entry_point: Some(&fragment),
                     compilation_options: wgpu::PipelineCompilationOptions::default(),
                     targets: &[Some(wgpu::ColorTargetState {
                         format: color_format,
@@ -809,8 +849,9 @@ impl PathRenderer {
             })
         };
         Self {
-            opaque: pipeline("swarf_path_pipeline", true),
-            overlay: pipeline("swarf_overlay_pipeline", false),
+            core: pipeline("swarf_path_pipeline", "core", true),
+            edge: pipeline("swarf_path_edge_pipeline", "edge", false),
+            overlay: pipeline("swarf_overlay_pipeline", "main", false),
             stock: StockPass::new(
                 device,
                 &bind_group_layout,
@@ -826,16 +867,10 @@ impl PathRenderer {
         }
     }
 
-    /// Replaces the toolpath points, reusing the buffers whose size fits. Fewer than two
-    /// points draw nothing; any number more is kept (split over several buffers if needed).
+    /// Replaces the toolpath points, reusing the textures whose size fits. Fewer than two
+    /// points draw nothing; any number more is kept (split over several textures if needed).
     pub fn set_path(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
         self.path.upload(device, queue, &self.draw_layout, points);
-    }
-
-    /// Overwrites part of the uploaded toolpath from point `first` on (e.g. to flag segments
-    /// or stream a long program in), without reallocating.
-    pub fn update_path(&self, queue: &wgpu::Queue, first: u32, points: &[PathPoint]) {
-        self.path.update(queue, u64::from(first), points);
     }
 
     /// Replaces the grid, axes and outlines (see [`crate::grid_points`]), drawn after the path.
@@ -853,8 +888,8 @@ impl PathRenderer {
         self.stock.set(device, queue, stock);
     }
 
-    /// Caps the points one GPU buffer holds below the device's largest buffer, so a long path
-    /// is split into several buffers sooner (for tests of the splitting; takes effect at the
+    /// Caps the points one texture holds below what the device allows, so a long path is
+    /// split into several textures sooner (for tests of the splitting; takes effect at the
     /// next upload). `None` goes back to the device's limit.
     pub fn set_points_per_buffer(&mut self, limit: Option<u64>) {
         self.path.chunk_limit = limit;
@@ -874,8 +909,8 @@ impl PathRenderer {
         u32::try_from(self.path.segments()).unwrap_or(u32::MAX)
     }
 
-    /// GPU buffers the toolpath is split into (one unless it exceeds the device's largest
-    /// buffer).
+    /// Textures the toolpath is split into (one unless it exceeds the largest the device
+    /// allows).
     #[must_use]
     pub fn path_buffer_count(&self) -> usize {
         self.path.chunks.len()
@@ -907,7 +942,9 @@ impl PathRenderer {
     pub fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_bind_group(0, &self.bind_group, &[]);
         self.stock.paint(pass);
-        pass.set_pipeline(&self.opaque);
+        pass.set_pipeline(&self.core);
+        self.path.draw(pass);
+        pass.set_pipeline(&self.edge);
         self.path.draw(pass);
         pass.set_pipeline(&self.overlay);
         self.grid.draw(pass);

@@ -1,10 +1,11 @@
-// Swarf path shader: every segment of a polyline stream is one instanced screen-space quad.
+// Swarf path shader: every segment of a polyline stream is one screen-space quad.
 //
-// The vertex buffer holds ONE point per path vertex (16 bytes: position + packed kind/flags/
-// colour index). It is bound twice with per-instance stepping: slot A at offset 0 and slot B
-// at offset +16 bytes, so instance i sees points i and i + 1. The segment takes its kind and
-// flags from its end point B; a PEN_UP flag on B means "no segment from the previous point".
-// Only a uniform buffer and vertex attributes, so it runs on the WebGL2 fallback too.
+// A texture holds ONE point per path vertex (16 bytes, one texel: position bits + packed kind/
+// flags/colour index), a row after another. Vertices 6i .. 6i + 5 draw segment i, reading
+// points i and i + 1 (no instancing: a software rasteriser pays for every instance). The
+// segment takes its kind and flags from its end point B; a PEN_UP flag on B means "no segment
+// from the previous point". Only uniform buffers and a texture read in the vertex stage, so it
+// runs on the WebGL2 fallback too.
 
 struct Uniforms {
     // World (relative to the scene origin) to clip space; depth 0..1.
@@ -44,10 +45,10 @@ struct Uniforms {
 @group(0) @binding(0)
 var<uniform> u: Uniforms;
 
-// One per draw call (one GPU buffer of points).
+// One per draw call (one texture of points).
 struct Draw {
-    // Index in the whole stream of the buffer's first point: instance indices restart at 0 in
-    // every buffer, segment numbers (highlight, playback) count from the stream's start.
+    // Index in the whole stream of the texture's first point: vertex indices restart at 0 in
+    // every texture, segment numbers (highlight, playback) count from the stream's start.
     segment_base: u32,
     // 1 for the toolpath; 0 for the grid and reference marks, which the highlight and the
     // playback ranges (numbers of toolpath segments) never touch.
@@ -58,6 +59,15 @@ struct Draw {
 
 @group(1) @binding(0)
 var<uniform> draw: Draw;
+
+// The draw call's points: x, y, z as f32 bits, then the packed word.
+@group(1) @binding(1)
+var points: texture_2d<u32>;
+
+fn point_at(i: u32) -> vec4<u32> {
+    let width = textureDimensions(points).x;
+    return textureLoad(points, vec2<u32>(i % width, i / width), 0);
+}
 
 const KIND_RAPID: u32 = 0u;
 const KIND_PROGRAMMED: u32 = 7u;
@@ -91,13 +101,22 @@ fn hidden() -> VertexOutput {
 }
 
 @vertex
-fn vs_main(
-    @builtin(vertex_index) corner: u32,
-    @builtin(instance_index) segment: u32,
-    @location(0) pos_a: vec3<f32>,
-    @location(1) pos_b: vec3<f32>,
-    @location(2) packed_b: u32,
-) -> VertexOutput {
+fn vs_main(@builtin(vertex_index) vertex: u32) -> VertexOutput {
+    let segment = vertex / 6u;
+    // Two triangles over the quad's corners 0 1 2 and 2 1 3.
+    var corner = vertex % 6u;
+    if corner == 3u {
+        corner = 2u;
+    } else if corner == 4u {
+        corner = 1u;
+    } else if corner == 5u {
+        corner = 3u;
+    }
+    let a = point_at(segment);
+    let b = point_at(segment + 1u);
+    let pos_a = bitcast<vec3<f32>>(a.xyz);
+    let pos_b = bitcast<vec3<f32>>(b.xyz);
+    let packed_b = b.w;
     let kind = packed_b & 0xffu;
     let flags = (packed_b >> 8u) & 0xffu;
     let color_index = packed_b >> 16u;
@@ -156,7 +175,7 @@ fn vs_main(
     }
     let normal = vec2<f32>(-dir.y, dir.x);
 
-    // Triangle strip: 0 (A, -), 1 (A, +), 2 (B, -), 3 (B, +).
+    // Corners: 0 (A, -), 1 (A, +), 2 (B, -), 3 (B, +).
     let at_b = corner >= 2u;
     let side = select(-1.0, 1.0, (corner & 1u) == 1u);
     // One pixel beyond the line's edge for the anti-aliasing ramp; square caps of half the
@@ -214,17 +233,6 @@ fn coverage(in: VertexOutput) -> f32 {
     return alpha;
 }
 
-// For gamma-space framebuffers (Rgba8Unorm / Bgra8Unorm, what egui prefers): premultiplied
-// like the rest of egui.
-@fragment
-fn fs_main_gamma_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
-    let alpha = in.color.a * coverage(in);
-    if alpha < 0.004 {
-        discard;
-    }
-    return vec4<f32>(in.color.rgb * alpha, alpha);
-}
-
 fn linear_from_gamma(srgb: vec3<f32>) -> vec3<f32> {
     let cutoff = srgb < vec3<f32>(0.04045);
     let lower = srgb / vec3<f32>(12.92);
@@ -232,12 +240,52 @@ fn linear_from_gamma(srgb: vec3<f32>) -> vec3<f32> {
     return select(higher, lower, cutoff);
 }
 
-// For sRGB framebuffers (the hardware re-encodes): decode to linear first.
-@fragment
-fn fs_main_linear_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
-    let alpha = in.color.a * coverage(in);
-    if alpha < 0.004 {
+// The fragment premultiplied, if its coverage lies in [least, most): for gamma-space framebuffers
+// (Rgba8Unorm / Bgra8Unorm, what egui prefers) as it is, like the rest of egui; for sRGB ones
+// (the hardware re-encodes) decoded to linear first.
+fn shade(in: VertexOutput, least: f32, most: f32, linear: bool) -> vec4<f32> {
+    let covered = coverage(in);
+    let alpha = in.color.a * covered;
+    if alpha < 0.004 || covered < least || covered >= most {
         discard;
     }
-    return vec4<f32>(linear_from_gamma(in.color.rgb) * alpha, alpha);
+    var rgb = in.color.rgb;
+    if linear {
+        rgb = linear_from_gamma(rgb);
+    }
+    return vec4<f32>(rgb * alpha, alpha);
+}
+
+// Whole lines (the grid and marks).
+@fragment
+fn fs_main_gamma_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
+    return shade(in, 0.0, 2.0, false);
+}
+
+@fragment
+fn fs_main_linear_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
+    return shade(in, 0.0, 2.0, true);
+}
+
+// The path in two passes: its cores (at least half covered), which write depth, then its
+// anti-aliased edges, which do not, so an edge never hides a line behind it (lines under a
+// pixel apart would show only the nearest one's faint edge).
+@fragment
+fn fs_core_gamma_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
+    return shade(in, 0.5, 2.0, false);
+}
+
+@fragment
+fn fs_core_linear_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
+    return shade(in, 0.5, 2.0, true);
+}
+
+@fragment
+fn fs_edge_gamma_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
+    return shade(in, 0.0, 0.5, false);
+}
+
+@fragment
+fn fs_edge_linear_framebuffer(in: VertexOutput) -> @location(0) vec4<f32> {
+    return shade(in, 0.0, 0.5, true);
 }

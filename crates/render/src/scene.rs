@@ -61,7 +61,8 @@ impl Drawing {
                         .with_color_index(u16::try_from(index).unwrap_or(u16::MAX))
                 }),
         );
-        for (segment, role) in path.cycle_moves() {
+        let cycle_moves = path.cycle_moves();
+        for &(segment, role) in &cycle_moves {
             if let Some(p) = points.get_mut(segment + 1) {
                 let kind = match role {
                     CycleMove::Plunge => Kind::Plunge,
@@ -73,14 +74,20 @@ impl Drawing {
         }
         mark_compensated(path, &mut points);
         let diagonal = (bounds.max - bounds.min).length();
-        let mut marks = hole_marks(path, rel, diagonal);
-        marks.extend(peck_marks(path, rel, diagonal));
-        marks.extend(programmed_marks(path, rel));
-        marks.extend(origin_marks(path, rel, diagonal));
-        for (min, max) in path.zone_boxes() {
-            marks.extend(edge_marks(&box_edges(min, max), rel, Kind::Zone));
-        }
-        marks.extend(travel);
+        let pecks = peck_marks(path, &cycle_moves, rel, diagonal);
+        drop(cycle_moves);
+        let zones = path.zone_boxes().into_iter();
+        let zones = zones.flat_map(|(min, max)| edge_marks(&box_edges(min, max), rel, Kind::Zone));
+        // Put together once, at their length: the parts of a large path's marks are large.
+        let marks = [
+            hole_marks(path, rel, diagonal),
+            pecks,
+            programmed_marks(path, rel),
+            origin_marks(path, rel, diagonal),
+            zones.collect(),
+            travel,
+        ]
+        .concat();
         Self {
             points,
             marks,
@@ -155,13 +162,21 @@ fn origin_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> 
     marks
 }
 
-/// A ring at the top of every hole, across the hole's axis, sized to the path (1/150 of its
-/// diagonal, 0.5 to 5 mm), so holes stand out where plunges are seen end-on (a top view).
+/// The most holes drawn with a ring and pecks drawn with a cross: past them a hole is a dot
+/// at its top and a peck is not marked, so that a path of millions of holes (a runaway loop)
+/// draws a bounded number of marks.
+const MAX_MARKED: usize = 100_000;
+
+/// A ring at the top of every hole (of the first [`MAX_MARKED`]; a dot past them), across the
+/// hole's axis, sized to the path (1/150 of its diagonal, 0.5 to 5 mm), so holes stand out
+/// where plunges are seen end-on (a top view).
 fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Vec<PathPoint> {
     const SIDES: usize = 12;
     let radius = (diagonal / 150.0).clamp(0.5, 5.0);
-    let mut marks = Vec::with_capacity(path.holes().len() * (SIDES + 1));
-    for hole in path.holes() {
+    let holes = path.holes();
+    let (ringed, dotted) = holes.split_at(holes.len().min(MAX_MARKED));
+    let mut marks = Vec::with_capacity(ringed.len() * (SIDES + 1) + dotted.len() * 2);
+    for hole in ringed {
         let axis = (hole.bottom - hole.top).normalize_or(DVec3::NEG_Z);
         let u = axis.any_orthonormal_vector();
         let v = axis.cross(u);
@@ -175,16 +190,26 @@ fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Ve
             });
         }
     }
+    for hole in dotted {
+        let top = rel(hole.top);
+        marks.extend([PathPoint::pen_up(top), PathPoint::new(top, Kind::Cycle)]);
+    }
     marks
 }
 
-/// A small cross across the hole's axis at the bottom of every peck of a hole drilled in more
-/// than one plunge (G83, G73): each peck's retract runs back over the plunges, so without
-/// them the pecks merge into one line and cannot be counted.
-fn peck_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Vec<PathPoint> {
+/// A small cross across the hole's axis at the bottom of every peck (of the first
+/// [`MAX_MARKED`]) of a hole drilled in more than one plunge (G83, G73): each peck's retract
+/// runs back over the plunges, so without them the pecks merge into one line and cannot be
+/// counted.
+fn peck_marks(
+    path: &Toolpath,
+    cycle_moves: &[(usize, CycleMove)],
+    rel: impl Fn(DVec3) -> Vec3,
+    diagonal: f64,
+) -> Vec<PathPoint> {
     let half = (diagonal / 150.0).clamp(0.5, 5.0) * 0.6;
     let mut plunges: Vec<(usize, usize)> = Vec::new();
-    for (segment, role) in path.cycle_moves() {
+    for &(segment, role) in cycle_moves {
         if role == CycleMove::Plunge
             && let Some(hole) = path.hole_of_segment(segment)
         {
@@ -202,7 +227,8 @@ fn peck_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Ve
         let axis = (hole.bottom - hole.top).normalize_or(DVec3::NEG_Z);
         let u = axis.any_orthonormal_vector();
         let v = axis.cross(u);
-        for &(_, segment) in group {
+        let left = MAX_MARKED.saturating_sub(marks.len() / 4);
+        for &(_, segment) in group.iter().take(left) {
             let Some(&bottom) = path.ends().get(segment) else {
                 continue;
             };

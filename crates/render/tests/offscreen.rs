@@ -3,10 +3,12 @@
 //! (passing, with a note) otherwise.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+use std::sync::Arc;
+
 use glam::{Vec2, Vec3};
 use swarf_render::{
     ARC_COLOR, Compositor, DEPTH_FORMAT, FEED_COLOR, GRID_MAJOR_COLOR, HIGHLIGHT_COLOR,
-    HeadlessGpu, Kind, OrbitCamera, PathPoint, PathRenderer, RAPID_COLOR, RenderTarget,
+    HeadlessGpu, Kind, OrbitCamera, PathLod, PathPoint, PathRenderer, RAPID_COLOR, RenderTarget,
     StandardView, ViewParams, grid_points,
 };
 
@@ -302,9 +304,6 @@ fn grid_and_axes_draw_and_buffers_grow() {
     renderer.set_path(&gpu.device, &gpu.queue, &many);
     assert_eq!(renderer.path_segment_count(), 99_999);
     assert!(renderer.path_buffer_bytes() <= 16 * (100_000 + 4096));
-    // Partial updates stay inside what was uploaded.
-    renderer.update_path(&gpu.queue, 5, &many[..3]);
-    renderer.update_path(&gpu.queue, 99_999, &many[..3]);
     renderer.set_path(&gpu.device, &gpu.queue, &many[..1]);
     assert_eq!(renderer.path_segment_count(), 0);
 }
@@ -383,7 +382,7 @@ fn composites_into_a_pass_without_depth() {
     }
 }
 
-/// Draws `path` (with the points `highlight` re-uploaded highlighted, or with the segments
+/// Draws `path` (with the points `highlight` flagged highlighted, or with the segments
 /// `by_range` highlighted through [`ViewParams::highlight`]) into a fresh target with at most
 /// `per_buffer` points in one GPU buffer.
 fn render_split(
@@ -407,14 +406,14 @@ fn render_split_with(
     let target = RenderTarget::new(device, W, H, format).unwrap();
     let mut renderer = PathRenderer::new(device, format, Some(DEPTH_FORMAT), 1);
     renderer.set_points_per_buffer(per_buffer);
-    renderer.set_path(device, queue, path);
+    let path: Vec<PathPoint> = path
+        .iter()
+        .enumerate()
+        .map(|(i, p)| p.with_highlight(highlight.contains(&i)))
+        .collect();
+    renderer.set_path(device, queue, &path);
     assert_eq!(renderer.path_segment_count() as usize, path.len() - 1);
     assert_eq!(renderer.path_point_count() as usize, path.len());
-    let lit: Vec<PathPoint> = path[highlight.clone()]
-        .iter()
-        .map(|p| p.with_highlight(true))
-        .collect();
-    renderer.update_path(queue, highlight.start as u32, &lit);
     renderer.prepare(
         queue,
         &ViewParams {
@@ -573,4 +572,176 @@ fn the_programmed_contour_is_dashed_in_its_own_colour() {
     );
     // Not grey like a grid line.
     assert!(!close(swarf_render::PROGRAMMED_COLOR, GRID_MAJOR_COLOR, 60));
+}
+
+/// Draws `points` (whole, or through a [`PathLod`] with the segments `flagged` highlighted)
+/// in an iso view fitted to them, `size` pixels; returns the image and the segments drawn.
+fn render_iso(
+    gpu: &HeadlessGpu,
+    points: &Arc<Vec<PathPoint>>,
+    lod: bool,
+    size: (u32, u32),
+    tweak: impl FnOnce(&mut ViewParams),
+    flagged: &[std::ops::Range<usize>],
+) -> (Vec<u8>, usize) {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    let target = RenderTarget::new(device, size.0, size.1, format).unwrap();
+    let mut renderer = PathRenderer::new(device, format, Some(DEPTH_FORMAT), 1);
+    let (min, max) = points
+        .iter()
+        .map(PathPoint::position)
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p), hi.max(p))
+        });
+    let aspect = size.0 as f32 / size.1 as f32;
+    let mut camera = OrbitCamera::new(StandardView::Iso);
+    camera.fit_aspect(min, max, aspect);
+    let mut params = ViewParams {
+        view_proj: camera.view_proj(aspect),
+        viewport_px: Vec2::new(size.0 as f32, size.1 as f32),
+        ..ViewParams::default()
+    };
+    tweak(&mut params);
+    let drawn = if lod {
+        let mut lod = PathLod::new(Arc::clone(points), Some((min, max)));
+        params = lod.prepare(&mut renderer, device, queue, &params, flagged);
+        lod.drawn_segments()
+    } else {
+        let lit: Vec<PathPoint> = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p.with_highlight(i > 0 && flagged.iter().any(|r| r.contains(&(i - 1)))))
+            .collect();
+        renderer.set_path(device, queue, &lit);
+        points.len() - 1
+    };
+    renderer.prepare(queue, &params);
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    target.draw(&mut encoder, wgpu::Color::BLACK, &renderer);
+    queue.submit([encoder.finish()]);
+    (target.read_rgba8(device, queue).unwrap(), drawn)
+}
+
+/// Pixels `lit` in image `a` (`width` pixels wide) with no pixel `faint` in image `b` within
+/// one pixel: what one draws and the other does not, beyond half a pixel's shift.
+fn lit_apart(
+    a: &[u8],
+    b: &[u8],
+    width: usize,
+    lit: impl Fn(&[u8]) -> bool,
+    faint: impl Fn(&[u8]) -> bool,
+    near: isize,
+) -> usize {
+    let on = |image: &[u8], x: isize, y: isize, test: &dyn Fn(&[u8]) -> bool| {
+        let height = (image.len() / 4 / width) as isize;
+        (0..width as isize).contains(&x)
+            && (0..height).contains(&y)
+            && test(&image[(y as usize * width + x as usize) * 4..][..4])
+    };
+    (0..a.len() / 4)
+        .filter(|&i| {
+            let (x, y) = ((i % width) as isize, (i / width) as isize);
+            on(a, x, y, &lit)
+                && !(-near..=near).any(|dy| (-near..=near).any(|dx| on(b, x + dx, y + dy, &faint)))
+        })
+        .count()
+}
+
+#[test]
+fn the_simplified_path_draws_what_the_whole_path_draws() {
+    let Some(gpu) = gpu() else {
+        eprintln!("SKIPPED: no wgpu adapter available");
+        return;
+    };
+    // The web benchmark's surfacing program, 200 rows of 400 feeds, after a rapid down to it.
+    let mut surfacing = vec![
+        PathPoint::pen_up(Vec3::new(0.0, 0.0, 5.0)),
+        PathPoint::new(Vec3::ZERO, Kind::Rapid),
+    ];
+    for n in 0..200 * 400 {
+        let x = (n % 400) as f32 * 0.25;
+        let y = (n / 400) as f32 * 0.5;
+        let z = -((x * 0.07).sin() * (y * 0.05).cos()).abs() * 3.0;
+        surfacing.push(PathPoint::new(Vec3::new(x, y, z), Kind::Feed));
+    }
+    // A flat spiral of ten turns in 40,000 chords, a tenth of a pixel each: where it bends, a
+    // chord cuts across.
+    let spiral: Vec<PathPoint> = (0..40_000)
+        .map(|i| {
+            let a = i as f32 * 0.0016;
+            let r = 5.0 + a * 1.6;
+            PathPoint::new(Vec3::new(r * a.cos(), r * a.sin(), 0.0), Kind::Arc)
+        })
+        .collect();
+    let (surfacing, spiral) = (Arc::new(surfacing), Arc::new(spiral));
+    let size = (320, 240);
+    let total = (size.0 * size.1) as usize;
+    type Tweak = fn(&mut ViewParams);
+    let plain: Tweak = |_| {};
+    let played: Tweak = |p| {
+        p.highlight = 30_101..30_301;
+        p.executed_segments = Some(40_001);
+    };
+    // (what, path, view, runs flagged, fewer segments by, near: how far apart in pixels a lit
+    // pixel may be from one in the other image; the surfacing's rows are under a pixel apart).
+    let cases = [
+        ("surfacing", &surfacing, plain, vec![], 20, 1),
+        (
+            "surfacing with a block highlighted, half played",
+            &surfacing,
+            played,
+            vec![],
+            20,
+            1,
+        ),
+        (
+            "surfacing with two runs flagged",
+            &surfacing,
+            plain,
+            vec![1_000..1_400, 60_000..60_390],
+            20,
+            1,
+        ),
+        ("spiral", &spiral, plain, vec![], 4, 0),
+    ];
+    let width = size.0 as usize;
+    let strong = |p: &[u8]| p.iter().take(3).any(|c| *c > 160);
+    let faint = |p: &[u8]| p.iter().take(3).any(|c| *c > 16);
+    let highlight = |p: &[u8]| p[0] > 200 && p[1] > 200 && p[2] < 220;
+    let highlight_faint = |p: &[u8]| p[0] > 100 && p[1] > 100 && p[2] < 220;
+    type Pixel<'a> = &'a dyn Fn(&[u8]) -> bool;
+    let count = |image: &[u8], test: Pixel| image.chunks_exact(4).filter(|p| test(p)).count();
+    for (what, points, tweak, flagged, fewer, near) in cases {
+        let (whole, all) = render_iso(&gpu, points, false, size, tweak, &flagged);
+        let (simplified, drawn) = render_iso(&gpu, points, true, size, tweak, &flagged);
+        assert!(
+            drawn * fewer < all,
+            "{what}: {drawn} of {all} segments drawn"
+        );
+        assert!(
+            count(&whole, &faint) > total / 20,
+            "{what}: the path drew little"
+        );
+        // Every pixel the simplified path lights, the whole path lights too, and nearly every
+        // one the whole path lights: its tiny segments overdraw their anti-aliased edges, so
+        // it is a little bolder, but no line moves by more than half a pixel.
+        let tests: [(&str, Pixel, Pixel); 2] = [
+            ("lit", &strong, &faint),
+            ("highlighted", &highlight, &highlight_faint),
+        ];
+        for (kind, lit, faint) in tests {
+            let extra = lit_apart(&simplified, &whole, width, lit, faint, near);
+            let missing = lit_apart(&whole, &simplified, width, lit, faint, near);
+            assert!(
+                extra <= total / 2000 && missing <= total / 100,
+                "{what}: {extra} pixels {kind} only simplified, {missing} only whole"
+            );
+        }
+        let lit = !flagged.is_empty() || what.contains("highlighted");
+        for image in [&whole, &simplified] {
+            let n = count(image, &highlight);
+            assert_eq!(n > 20, lit, "{what}: {n} pixels highlighted");
+        }
+    }
 }

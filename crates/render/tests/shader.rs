@@ -74,21 +74,22 @@ fn path_shader_entry_points_bindings_and_inputs() {
     }
     // Two uniforms (no storage buffers): the frame's, the size of the Rust `Uniforms`, and
     // the draw call's, the size of its `DrawUniforms`, both padded to 16 bytes as std140
-    // (WebGL2) requires.
+    // (WebGL2) requires; and the draw call's points, a texture.
     let globals: Vec<_> = module.global_variables.iter().map(|(_, g)| g).collect();
-    assert_eq!(globals.len(), 2);
+    assert_eq!(globals.len(), 3);
     assert!(
-        globals
+        globals[..2]
             .iter()
             .all(|g| g.space == naga::AddressSpace::Uniform)
     );
+    assert_eq!(globals[2].space, naga::AddressSpace::Handle);
     let draw = module.types[globals[1].ty].inner.size(module.to_ctx());
     assert_eq!(u64::from(draw), DRAW_UNIFORMS_SIZE);
     let groups: Vec<u32> = globals
         .iter()
         .filter_map(|g| g.binding.as_ref().map(|b| b.group))
         .collect();
-    assert_eq!(groups, [0, 1]);
+    assert_eq!(groups, [0, 1, 1]);
     let size = module.types[globals[0].ty].inner.size(module.to_ctx());
     assert_eq!(u64::from(size), UNIFORMS_SIZE);
     assert_eq!(size % 16, 0);
@@ -100,8 +101,7 @@ fn path_shader_entry_points_bindings_and_inputs() {
         .iter()
         .find(|m| m.name.as_deref() == Some("palette"));
     assert_eq!(palette.map(|m| m.offset), Some(128));
-    // Instance inputs: location 0 start position, 1 end position, 2 end packed word,
-    // plus the vertex and instance index builtins; no other vertex data.
+    // No vertex data but the vertex index: the points come from the texture.
     let vs = module
         .entry_points
         .iter()
@@ -117,13 +117,13 @@ fn path_shader_entry_points_bindings_and_inputs() {
         })
         .collect();
     locations.sort_unstable();
-    assert_eq!(locations, vec![0, 1, 2]);
+    assert!(locations.is_empty(), "{locations:?}");
     let builtins = vs
         .arguments
         .iter()
         .filter(|a| matches!(a.binding, Some(naga::Binding::BuiltIn(_))))
         .count();
-    assert_eq!(builtins, 2);
+    assert_eq!(builtins, 1);
     assert_eq!(size_of::<PathPoint>() as u64, POINT_SIZE);
     assert_eq!(POINT_SIZE, 16);
 }

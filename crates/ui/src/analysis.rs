@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use swarf_analysis::{Job, Plot, Results};
+use swarf_analysis::{Job, Plot, Results, StockCut};
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, LinkedFile, Severity};
 use swarf_toolpath::Toolpath;
@@ -62,6 +62,26 @@ impl Analysis {
         }
     }
 
+    /// Takes a cut of the stock for the scene shown (one of another analysis is dropped): its
+    /// progress, or the cut, whose problems replace the stock's in the list when it covers
+    /// the whole toolpath.
+    pub fn take_stock(&mut self, mut cut: StockCut) {
+        if cut.generation != self.scene.generation {
+            return;
+        }
+        if !cut.finished() {
+            self.scene.stock_progress = Some((cut.done, cut.upto));
+            return;
+        }
+        self.scene.stock_progress = None;
+        if cut.whole && cut.error.is_none() {
+            self.problems.retain(|p| !STOCK_CODES.contains(&p.code));
+            self.problems.append(&mut cut.problems);
+            self.problems.sort_by_key(|p| (p.chars.start, p.chars.end));
+        }
+        self.scene.stock = Some(Arc::new(cut));
+    }
+
     /// Summary numbers for the status bar and the JS API.
     pub fn stats(&self) -> Stats {
         self.stats
@@ -83,6 +103,14 @@ impl Analysis {
         Some((file.name.as_str(), line - file.first_line + 1))
     }
 }
+
+/// The codes of what cutting the stock assumes and finds.
+const STOCK_CODES: [&str; 4] = [
+    "N-STOCK-ASSUMED",
+    "N-TOOL-ASSUMED",
+    "W-RAPID-INTO-STOCK",
+    "W-SHANK-CUT",
+];
 
 /// The backplot's scene of `path` run on `setup`'s machine (see [`Plot::of`]).
 pub fn scene_of(path: &Toolpath, setup: &Setup, generation: u64) -> Scene {
@@ -112,5 +140,7 @@ fn scene(plot: Plot, generation: u64) -> Scene {
         zero: drawing.zero,
         origin: drawing.origin,
         source: None,
+        stock: None,
+        stock_progress: None,
     }
 }

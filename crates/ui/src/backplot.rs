@@ -4,10 +4,11 @@
 //!
 //! GPU side: [`Backplot::install`] puts a [`BackplotResources`] into egui-wgpu's
 //! `callback_resources` type map. Each frame [`Backplot::show`] adds a paint callback carrying
-//! the scene's `Arc` and the view parameters. Its `prepare` uploads the points only when the
-//! scene's generation changed, and draws the 3D view (with its own depth buffer) into an
-//! offscreen target only when something visible changed; its `paint` composites that target
-//! into egui's render pass, which has no depth buffer. So the app needs no depth setting.
+//! the scene's `Arc` and the view parameters. Its `prepare` uploads the points (simplified to
+//! what the zoom shows, see [`PathLod`]) only when the scene, the zoom or the highlight
+//! changed, and draws the 3D view (with its own depth buffer) into an offscreen target only
+//! when something visible changed; its `paint` composites that target into egui's render pass,
+//! which has no depth buffer. So the app needs no depth setting.
 
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
@@ -15,17 +16,20 @@ use std::sync::Arc;
 
 use egui::epaint::ViewportInPixels;
 use glam::{DVec3, Mat4, Vec2, Vec3};
+use swarf_analysis::StockCut;
 use swarf_render::{
-    ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathPoint, PathRenderer, Projection,
-    RenderTarget, StandardView, ViewParams, pick_segment, reference_points, segment_bounds,
-    view_bounds,
+    ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathLod, PathPoint, PathRenderer,
+    Projection, RenderTarget, StandardView, StockSurface, ViewParams, pick_segment,
+    reference_points, segment_bounds, view_bounds,
 };
 use swarf_toolpath::Timeline;
 
 use crate::i18n::{tr, trf};
 
 mod playback;
+mod stock;
 pub use playback::{PLAYBACK_SPEEDS, Playback};
+pub use stock::RAPID_INTO_STOCK_COLOR;
 
 /// Key of the flag [`Backplot::install`] leaves in the egui context's memory; without it `show`
 /// draws a notice instead of a paint callback nobody would execute (e.g. on the glow backend).
@@ -160,6 +164,10 @@ pub struct Scene {
     /// Reference marks drawn with the grid (not picked, not played back), see
     /// [`swarf_render::Drawing::marks`].
     pub marks: Arc<Vec<PathPoint>>,
+    /// The last cut of the stock received for this scene (see [`Backplot::stock_request`]).
+    pub stock: Option<Arc<StockCut>>,
+    /// (segments cut, segments to cut) while a cut of the stock is under way.
+    pub stock_progress: Option<(usize, usize)>,
 }
 
 impl Scene {
@@ -288,6 +296,8 @@ struct HoverKey {
     rect: egui::Rect,
     camera: OrbitCamera,
     hidden_kinds: u32,
+    /// The stock drawn, by address (0: none).
+    stock: usize,
 }
 
 /// State of one backplot view: camera, selection, playback position and display options.
@@ -324,7 +334,19 @@ pub struct Backplot {
     color_mode: ColorMode,
     /// What the cursor is over.
     hover: Option<HoverInfo>,
+    /// Where the cursor meets the stock's surface (machine mm).
+    stock_hover: Option<DVec3>,
     hover_key: Option<HoverKey>,
+    /// Whether the cut stock is drawn (and asked of the analysis).
+    stock_on: bool,
+    /// Whether the stock is drawn without the toolpath.
+    stock_alone: bool,
+    /// The cut last asked for: (analysis generation, segments).
+    stock_asked: Option<(u64, usize)>,
+    /// The last cut with heights received, drawn until the next one comes (an edit's cut).
+    shown_stock: Option<Arc<StockCut>>,
+    /// Where the Stock button was drawn at the last frame.
+    stock_button: Option<egui::Rect>,
     /// Highlighted segments cached per (generation, line).
     selection: Option<(u64, u32, Runs)>,
     /// Where the view was last drawn, for [`Self::screen_pos`].
@@ -367,7 +389,13 @@ impl Backplot {
             hidden_kinds: 0,
             color_mode: ColorMode::ByKind,
             hover: None,
+            stock_hover: None,
             hover_key: None,
+            stock_on: false,
+            stock_alone: false,
+            stock_asked: None,
+            shown_stock: None,
+            stock_button: None,
             selection: None,
             last_rect: None,
             last_id: None,
@@ -597,7 +625,7 @@ impl Backplot {
         // build the callback last so button clicks take effect this very frame.
         let slot = ui.painter().add(egui::Shape::Noop);
         let buttons = self.overlay_buttons(ui, rect);
-        if buttons.clicked {
+        if self.stock_buttons(ui, rect, scene) || buttons.clicked {
             // A button of the view keeps the keyboard with the view.
             response.request_focus();
         }
@@ -635,7 +663,7 @@ impl Backplot {
             view_proj: self.camera.view_proj(aspect),
             executed_segments: self.playback.executed(scene).or(self.executed).map(to_u32),
             highlight,
-            hidden_kinds: self.hidden_kinds,
+            hidden_kinds: self.hidden(),
             color_mode: self.color_mode,
             ..ViewParams::default()
         };
@@ -648,6 +676,8 @@ impl Backplot {
             zero: scene.zero,
             marks: Arc::clone(&scene.marks),
             flagged,
+            stock: self.drawn_stock(scene),
+            origin: scene.origin,
             rect,
             params,
         };
@@ -655,6 +685,7 @@ impl Backplot {
             slot,
             egui_wgpu::Callback::new_paint_callback(rect, callback),
         );
+        self.paint_rapids_into_stock(ui, rect, scene);
         self.paint_tool(ui, rect, scene);
         if response.has_focus() {
             // The keyboard is the view's: an outline in the focus colour says so.
@@ -663,10 +694,18 @@ impl Backplot {
             ui.painter()
                 .rect_stroke(rect, 0.0, stroke, egui::StrokeKind::Inside);
         }
-        match &self.hover {
-            Some(hover) => response.on_hover_ui_at_pointer(|ui| hover_tooltip(ui, hover, scene)),
-            None => response,
+        if self.hover.is_none() && self.stock_hover.is_none() {
+            return response;
         }
+        response.on_hover_ui_at_pointer(|ui| {
+            if let Some(hover) = &self.hover {
+                hover_tooltip(ui, hover, scene);
+            }
+            if let Some(p) = self.stock_hover {
+                let [x, y, z] = p.to_array().map(|v| format!("{v:.3}"));
+                ui.label(trf("Stock X{} Y{} Z{}", &[&x, &y, &z]));
+            }
+        })
     }
 
     /// Whether a fit asked for is to be done with `scene`: at once, or once the scene being
@@ -817,7 +856,7 @@ impl Backplot {
             viewport,
             Vec2::new(cursor.x, cursor.y),
             PICK_RADIUS,
-            self.hidden_kinds,
+            self.hidden(),
         )?;
         Some(HoverInfo {
             segment: hit.segment,
@@ -848,6 +887,7 @@ impl Backplot {
         };
         let Some(pointer) = pointer else {
             self.hover = None;
+            self.stock_hover = None;
             self.hover_key = None;
             return;
         };
@@ -856,10 +896,14 @@ impl Backplot {
             pointer,
             rect,
             camera: self.camera,
-            hidden_kinds: self.hidden_kinds,
+            hidden_kinds: self.hidden(),
+            stock: self
+                .drawn_stock(scene)
+                .map_or(0, |s| Arc::as_ptr(&s) as usize),
         };
         if self.hover_key.as_ref() != Some(&key) {
             self.hover = self.pick(scene, rect, pointer);
+            self.stock_hover = self.stock_point(scene, rect, pointer);
             self.hover_key = Some(key);
         }
     }
@@ -1072,6 +1116,50 @@ impl Backplot {
             clicked,
         }
     }
+
+    /// The stock's buttons in the view's bottom-left corner: Stock on/off and, while on, the
+    /// path over it or not and how far its cut has got (or why there is none); whether one was
+    /// clicked.
+    fn stock_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect, scene: &Scene) -> bool {
+        let mut clicked = false;
+        let mut child = ui.new_child(
+            egui::UiBuilder::new()
+                .id_salt("swarf_backplot_stock_buttons")
+                .max_rect(rect.shrink(6.0))
+                .layout(egui::Layout::left_to_right(egui::Align::Max)),
+        );
+        let stock = child
+            .selectable_label(self.stock_on, tr("Stock"))
+            .on_hover_text(tr(
+                "Show the stock as the program cuts it (up to the playback position while playing)",
+            ));
+        self.stock_button = Some(stock.rect);
+        if stock.clicked() {
+            clicked = true;
+            self.stock_on = !self.stock_on;
+        }
+        if !self.stock_on {
+            return clicked;
+        }
+        if child
+            .selectable_label(!self.stock_alone, tr("Path"))
+            .on_hover_text(tr("Draw the toolpath over the stock"))
+            .clicked()
+        {
+            clicked = true;
+            self.stock_alone = !self.stock_alone;
+        }
+        let error = scene.stock.as_ref().and_then(|c| c.error.as_deref());
+        if let Some((done, upto)) = scene.stock_progress {
+            let percent = done * 100 / upto.max(1);
+            child.weak(trf("Stock {}%", &[&percent]));
+        } else if let Some(error) = error {
+            child
+                .weak(tr("No stock"))
+                .on_hover_text(trf("Stock: {}", &[&error]));
+        }
+        clicked
+    }
 }
 
 /// Radius of the tool marker, in points, when the setup gives no tool radius.
@@ -1152,6 +1240,8 @@ pub struct BackplotResources {
 /// One backplot's renderer, offscreen target and what it last drew.
 struct GpuView {
     renderer: PathRenderer,
+    /// The scene's path at the level of detail of the last image.
+    path: PathLod,
     target: Option<RenderTarget>,
     bind_group: Option<wgpu::BindGroup>,
     generation: Option<u64>,
@@ -1159,6 +1249,8 @@ struct GpuView {
     drawn: Option<ViewParams>,
     /// The runs of segments whose points carry the highlight flag on the GPU.
     flagged: Runs,
+    /// The stock on the GPU.
+    stock: Option<Arc<StockCut>>,
     last_frame: u64,
 }
 
@@ -1174,6 +1266,10 @@ struct BackplotCallback {
     /// Runs of segments to highlight by flagging their points (a block that ran several
     /// times); a single run goes through `params.highlight` instead.
     flagged: Runs,
+    /// The cut stock drawn under the path, if any.
+    stock: Option<Arc<StockCut>>,
+    /// Machine coordinates of the scene's origin (the stock is placed against it).
+    origin: DVec3,
     rect: egui::Rect,
     /// View parameters in points, for the whole rectangle.
     params: ViewParams,
@@ -1196,31 +1292,42 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         views.retain(|_, view| view.last_frame + STALE_FRAMES >= self.frame);
         let view = views.entry(self.id).or_insert_with(|| GpuView {
             renderer: PathRenderer::new(device, OFFSCREEN_FORMAT, Some(DEPTH_FORMAT), 1),
+            path: PathLod::default(),
             target: None,
             bind_group: None,
             generation: None,
             drawn: None,
             flagged: Arc::new(Vec::new()),
+            stock: None,
             last_frame: self.frame,
         });
         view.last_frame = self.frame;
+        let same_stock = match (&view.stock, &self.stock) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if !same_stock || view.generation != Some(self.generation) {
+            let surface = self.stock.as_ref().and_then(|c| c.field.as_ref());
+            let surface = surface.map(|f| StockSurface {
+                heights: &f.heights,
+                size: f.size,
+                cell_mm: f.cell_mm,
+                min: f.min,
+                top: f.top,
+                origin: self.origin,
+            });
+            view.renderer.set_stock(device, queue, surface.as_ref());
+            view.stock.clone_from(&self.stock);
+            view.drawn = None;
+        }
         if view.generation != Some(self.generation) {
-            view.renderer.set_path(device, queue, &self.points);
+            view.path = PathLod::new(Arc::clone(&self.points), self.bounds);
             let reference = reference_points(self.zero, self.bounds, &self.marks);
             view.renderer.set_grid(device, queue, &reference);
             view.generation = Some(self.generation);
             view.drawn = None;
-            // Fresh points carry no flags.
-            view.flagged = Arc::new(Vec::new());
         }
         if !Arc::ptr_eq(&view.flagged, &self.flagged) && view.flagged != self.flagged {
-            flag_runs(
-                &view.renderer,
-                queue,
-                &self.points,
-                &view.flagged,
-                &self.flagged,
-            );
             view.flagged = Arc::clone(&self.flagged);
             view.drawn = None;
         }
@@ -1256,7 +1363,10 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         if view.drawn.as_ref() != Some(&params)
             && let Some(target) = &view.target
         {
-            view.renderer.prepare(queue, &params);
+            let drawn =
+                view.path
+                    .prepare(&mut view.renderer, device, queue, &params, &view.flagged);
+            view.renderer.prepare(queue, &drawn);
             target.draw(egui_encoder, wgpu::Color::TRANSPARENT, &view.renderer);
             view.drawn = Some(params);
         }
@@ -1296,64 +1406,6 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         );
         resources.compositor.paint(render_pass, bind_group);
     }
-}
-
-/// Runs of flagged segments rewritten one by one; more are written as one span.
-const FLAG_RUNS_APART: usize = 64;
-
-/// Takes the highlight flag off the points of the segments in `old` (writing the scene's own
-/// points back) and puts it on those in `new`. Segment `i`'s flag is on point `i + 1`.
-fn flag_runs(
-    renderer: &PathRenderer,
-    queue: &wgpu::Queue,
-    points: &[PathPoint],
-    old: &[Range<usize>],
-    new: &[Range<usize>],
-) {
-    let write = |first: usize, slice: &[PathPoint]| {
-        if let Ok(first) = u32::try_from(first) {
-            renderer.update_path(queue, first, slice);
-        }
-    };
-    let points_of = |run: &Range<usize>| {
-        let end = run.end.saturating_add(1).min(points.len());
-        (run.start + 1).min(end)..end
-    };
-    if old.len() + new.len() <= FLAG_RUNS_APART {
-        for run in old {
-            let span = points_of(run);
-            if let Some(slice) = points.get(span.clone()) {
-                write(span.start, slice);
-            }
-        }
-        for run in new {
-            let span = points_of(run);
-            if let Some(slice) = points.get(span.clone()) {
-                let lit: Vec<PathPoint> = slice.iter().map(|p| p.with_highlight(true)).collect();
-                write(span.start, &lit);
-            }
-        }
-        return;
-    }
-    let (Some(start), Some(end)) = (
-        old.iter().chain(new).map(|r| points_of(r).start).min(),
-        old.iter().chain(new).map(|r| points_of(r).end).max(),
-    ) else {
-        return;
-    };
-    let Some(slice) = points.get(start..end) else {
-        return;
-    };
-    let mut span = slice.to_vec();
-    for run in new {
-        let run = points_of(run);
-        if let Some(lit) = span.get_mut(run.start - start..run.end - start) {
-            for p in lit {
-                *p = p.with_highlight(true);
-            }
-        }
-    }
-    write(start, &span);
 }
 
 /// Maps NDC of the whole callback rectangle `full` (pixels, may extend off screen) onto NDC

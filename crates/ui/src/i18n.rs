@@ -203,7 +203,13 @@ mod tests {
     #[test]
     fn every_string_the_interface_looks_up_is_in_the_table() {
         let sources = [
-            include_str!("workbench.rs"),
+            include_str!("workbench/mod.rs"),
+            include_str!("workbench/dialogs.rs"),
+            include_str!("workbench/edit.rs"),
+            include_str!("workbench/find.rs"),
+            include_str!("workbench/menus.rs"),
+            include_str!("workbench/panels.rs"),
+            include_str!("workbench/tabs.rs"),
             include_str!("settings.rs"),
             include_str!("backplot.rs"),
             include_str!("backplot/playback.rs"),

@@ -1,9 +1,11 @@
-//! The settings window's contents: dialect, offset registers, work offsets and machine
-//! parameters — everything `SETUP.toml` holds, edited in place.
+//! The settings window's contents: dialect, offset registers, work offsets, machine
+//! parameters, stock and tools — everything `SETUP.toml` holds, edited in place.
 
 use glam::DVec3;
 use swarf_interp::{CornerMode, Register, Setup, ShiftDirection};
+use swarf_stock::{Shape, StockSetup, Tool};
 use swarf_syntax::Dialect;
+use toml::{Table, Value};
 
 use crate::i18n::tr;
 use crate::workbench::HostRequest;
@@ -54,6 +56,12 @@ pub fn settings_ui(
     egui::CollapsingHeader::new(tr("Machine"))
         .default_open(true)
         .show(ui, |ui| machine_ui(ui, setup));
+    egui::CollapsingHeader::new(tr("Stock"))
+        .default_open(true)
+        .show(ui, |ui| stock_ui(ui, setup));
+    egui::CollapsingHeader::new(tr("Tools"))
+        .default_open(true)
+        .show(ui, |ui| tools_ui(ui, setup));
     request
 }
 
@@ -348,6 +356,268 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 ui.end_row();
             }
         });
+}
+
+/// The number `value` holds (a TOML integer too), if it is one.
+fn number(value: &Value) -> Option<f64> {
+    match value {
+        Value::Float(v) => Some(*v),
+        Value::Integer(v) => Some(*v as f64),
+        _ => None,
+    }
+}
+
+/// Three numbers as a TOML array.
+fn floats(values: [f64; 3]) -> Value {
+    Value::Array(values.into_iter().map(Value::Float).collect())
+}
+
+/// A drag value for the number at `key` of `table` (`shown` while the key is unset), named
+/// `name`; written back only when changed, so a table as imported stays as written.
+fn table_value(ui: &mut egui::Ui, table: &mut Table, key: &str, shown: f64, name: &str) {
+    let mut value = table.get(key).and_then(number).unwrap_or(shown);
+    let response = ui.add(length(&mut value));
+    if named(ui, response, name).changed() {
+        table.insert(key.to_string(), Value::Float(value));
+    }
+}
+
+/// The stock crate's objection to `checked`, in red.
+fn refusal<T>(ui: &mut egui::Ui, checked: Result<T, swarf_stock::StockError>) {
+    if let Err(e) = checked {
+        ui.colored_label(ui.visuals().error_fg_color, e.to_string());
+    }
+}
+
+/// The stock box (`[stock]`, machine coordinates); without one a box around the feed moves is
+/// assumed.
+fn stock_ui(ui: &mut egui::Ui, setup: &mut Setup) {
+    let mut on = setup.stock.is_some();
+    ui.checkbox(&mut on, tr("Stock box"));
+    if !on {
+        setup.stock = None;
+        ui.label(tr(
+            "Off: a box around the feed moves is assumed, with a note saying so",
+        ));
+        return;
+    }
+    let stock = setup.stock.get_or_insert_with(|| {
+        Table::from_iter([
+            ("min".to_string(), floats([0.0, 0.0, -20.0])),
+            ("max".to_string(), floats([100.0, 50.0, 0.0])),
+        ])
+    });
+    let read = |stock: &Table| {
+        StockSetup::from_setup(&Setup {
+            stock: Some(stock.clone()),
+            ..Setup::default()
+        })
+    };
+    egui::Grid::new("swarf-stock")
+        .num_columns(4)
+        .show(ui, |ui| {
+            for head in ["", "X", "Y", "Z"] {
+                ui.strong(head);
+            }
+            ui.end_row();
+            for (key, head) in [("min", tr("Min")), ("max", tr("Max"))] {
+                ui.label(head);
+                let numbers = stock.get(key).and_then(Value::as_array);
+                let mut corner: [f64; 3] = std::array::from_fn(|i| {
+                    numbers
+                        .and_then(|a| a.get(i))
+                        .and_then(number)
+                        .unwrap_or_default()
+                });
+                let mut changed = false;
+                for (c, axis) in corner.iter_mut().zip(["X", "Y", "Z"]) {
+                    let response = ui.add(length(c));
+                    changed |= named(ui, response, &format!("Stock {key} {axis}")).changed();
+                }
+                if changed {
+                    stock.insert(key.to_string(), floats(corner));
+                }
+                ui.end_row();
+            }
+            let had = stock.contains_key("cell_mm");
+            let mut fixed = had;
+            ui.checkbox(&mut fixed, tr("Cell size (mm)"));
+            if fixed && !had {
+                // Start from the cell the stock crate would choose.
+                let auto = read(stock)
+                    .ok()
+                    .and_then(|s| s.stock?.grid().ok())
+                    .map_or(1.0, |(cell, _, _)| cell);
+                stock.insert("cell_mm".to_string(), Value::Float(auto));
+            }
+            if fixed {
+                table_value(ui, stock, "cell_mm", 0.0, "Stock cell size");
+            } else {
+                stock.remove("cell_mm");
+                ui.label(tr("auto"));
+            }
+            ui.end_row();
+        });
+    refusal(ui, read(stock));
+}
+
+/// The shapes a `[tools.N]` table may name, as written there.
+const SHAPES: [&str; 5] = ["flat", "ball", "bull", "drill", "chamfer"];
+
+/// A tool shape's name as the window shows it.
+fn shape_label(shape: &str) -> &str {
+    match shape {
+        "flat" => tr("flat end mill"),
+        "ball" => tr("ball end mill"),
+        "bull" => tr("bull nose"),
+        "drill" => tr("drill"),
+        "chamfer" => tr("chamfer mill"),
+        other => other,
+    }
+}
+
+/// The tools the stock is cut with (`[tools.N]`), a row each.
+fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
+    ui.label(tr(
+        "A tool not listed cuts as a flat end mill of its register's diameter, or of 10 mm",
+    ));
+    let mut remove = None;
+    let mut renumber = None;
+    egui::Grid::new("swarf-tools")
+        .num_columns(7)
+        .striped(true)
+        .show(ui, |ui| {
+            for head in [
+                "No.",
+                "Diameter",
+                "Shape",
+                "Corner radius",
+                "Point angle (°)",
+                "Flute length",
+            ] {
+                ui.strong(tr(head));
+            }
+            ui.strong("");
+            ui.end_row();
+            for (&n, tool) in &mut setup.tools {
+                let mut to = n;
+                let response = ui.add(egui::DragValue::new(&mut to));
+                if named(ui, response, &format!("Tool {n} number")).changed() {
+                    renumber = Some((n, to));
+                }
+                let diameter = Tool::default().diameter;
+                table_value(
+                    ui,
+                    tool,
+                    "diameter",
+                    diameter,
+                    &format!("Tool {n} diameter"),
+                );
+                let shape = tool
+                    .get("shape")
+                    .and_then(Value::as_str)
+                    .unwrap_or("flat")
+                    .to_string();
+                let mut chosen = shape.clone();
+                let response = egui::ComboBox::from_id_salt(("swarf-tool-shape", n))
+                    .selected_text(shape_label(&shape))
+                    .show_ui(ui, |ui| {
+                        for s in SHAPES {
+                            ui.selectable_value(&mut chosen, s.to_string(), shape_label(s));
+                        }
+                    })
+                    .response;
+                named(ui, response, &format!("Tool {n} shape"));
+                if chosen != shape {
+                    // Each shape's own keys: a bull nose needs its corner, a point its default.
+                    tool.remove("corner_radius");
+                    tool.remove("point_angle_deg");
+                    if chosen == "bull" {
+                        let d = tool.get("diameter").and_then(number).unwrap_or(diameter);
+                        tool.insert("corner_radius".to_string(), Value::Float(d / 4.0));
+                    }
+                    tool.insert("shape".to_string(), Value::String(chosen));
+                }
+                // The tool as the stock crate reads it, for the defaults it fills in.
+                let read = Value::Table(tool.clone()).try_into::<Tool>().ok();
+                let (corner, point) = match read.map(|t| t.shape) {
+                    Some(Shape::Bull { corner_radius }) => (Some(corner_radius), None),
+                    Some(Shape::Drill { point_angle_deg } | Shape::Chamfer { point_angle_deg }) => {
+                        (None, Some(point_angle_deg))
+                    }
+                    _ => (None, None),
+                };
+                for (key, shown, what) in [
+                    ("corner_radius", corner, "corner radius"),
+                    ("point_angle_deg", point, "point angle"),
+                ] {
+                    if let Some(shown) = shown {
+                        table_value(ui, tool, key, shown, &format!("Tool {n} {what}"));
+                    } else {
+                        ui.label("");
+                    }
+                }
+                ui.horizontal(|ui| {
+                    let had = tool.contains_key("flute_length");
+                    let mut given = had;
+                    let response = ui.checkbox(&mut given, "");
+                    named(ui, response, &format!("Tool {n} flute length given"));
+                    if given && !had {
+                        let d = tool.get("diameter").and_then(number).unwrap_or(diameter);
+                        tool.insert("flute_length".to_string(), Value::Float(3.0 * d));
+                    }
+                    if given {
+                        table_value(
+                            ui,
+                            tool,
+                            "flute_length",
+                            0.0,
+                            &format!("Tool {n} flute length"),
+                        );
+                    } else {
+                        tool.remove("flute_length");
+                    }
+                });
+                let remove_button = ui.small_button("×").on_hover_text(tr("Remove"));
+                if named(ui, remove_button, &format!("Remove tool {n}")).clicked() {
+                    remove = Some(n);
+                }
+                ui.end_row();
+            }
+        });
+    if let Some(n) = remove {
+        setup.tools.remove(&n);
+    }
+    if let Some((from, to)) = renumber
+        && !setup.tools.contains_key(&to)
+        && let Some(tool) = setup.tools.remove(&from)
+    {
+        setup.tools.insert(to, tool);
+    }
+    let next = setup
+        .tools
+        .keys()
+        .next_back()
+        .map_or(Some(1), |n| n.checked_add(1));
+    if ui.button(tr("Add tool")).clicked()
+        && let Some(next) = next
+    {
+        let tool = Table::from_iter([
+            (
+                "diameter".to_string(),
+                Value::Float(Tool::default().diameter),
+            ),
+            ("shape".to_string(), Value::String("flat".to_string())),
+        ]);
+        setup.tools.insert(next, tool);
+    }
+    refusal(
+        ui,
+        StockSetup::from_setup(&Setup {
+            tools: setup.tools.clone(),
+            ..Setup::default()
+        }),
+    );
 }
 
 /// The shift direction as the setup writes it.

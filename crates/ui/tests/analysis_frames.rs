@@ -58,7 +58,7 @@ impl Scripted {
             .rev()
             .find_map(|r| match r {
                 Request::Analyse(job) => Some(job.as_ref().clone()),
-                Request::StateAt { .. } => None,
+                Request::StateAt { .. } | Request::Stock { .. } => None,
             })
             .expect("a job was sent")
     }

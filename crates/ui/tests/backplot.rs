@@ -622,3 +622,32 @@ fn each_peck_of_a_deep_hole_is_marked_at_its_bottom() {
     let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
     assert!(scene.marks.iter().all(|p| p.kind() != Some(Kind::Plunge)));
 }
+
+#[test]
+fn holes_past_the_hundred_thousandth_are_dots_not_rings() {
+    // 100,010 holes in a row, 1 mm apart: a ring at the top of the first 100,000, then a dot
+    // (a pen-up point and a point on it) at each of the last ten, so a runaway loop of holes
+    // draws a bounded number of marks.
+    let text = format!(
+        "G0 X0 Y0 Z20.\nG91 G98 G81 X1. R-18. Z-7. K9999 F100\n{}X1. K20\nG80\n",
+        "X1. K9999\n".repeat(9)
+    );
+    let program = swarf_syntax::parse(&text, swarf_syntax::Dialect::Fanuc);
+    let mut path = swarf_toolpath::Toolpath::default();
+    swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
+    assert_eq!(path.holes().len(), 100_010);
+    let scene = swarf_ui::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
+    let rings = 100_000 * 13;
+    assert_eq!(scene.marks.len(), rings + 10 * 2 + 6);
+    assert!(scene.marks[rings - 13].is_pen_up() && !scene.marks[rings - 12].is_pen_up());
+    for (k, dot) in scene.marks[rings..rings + 20].chunks(2).enumerate() {
+        let top = (DVec3::new(100_001.0 + k as f64, 0.0, 2.0) - scene.origin).as_vec3();
+        assert!(dot[0].is_pen_up() && dot[1].kind() == Some(Kind::Cycle));
+        assert!(
+            (dot[0].position() - top).length() < 1e-2,
+            "{k}: {:?}",
+            dot[0]
+        );
+        assert_eq!(dot[1].position(), dot[0].position());
+    }
+}

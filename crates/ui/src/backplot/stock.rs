@@ -1,0 +1,261 @@
+//! The cut stock in the view: which cut to ask the analysis for (the whole toolpath's, or up to
+//! playback's position), where the pointer meets the stock's surface, and the rapids into it
+//! marked over the view.
+
+use std::sync::Arc;
+
+use glam::{DVec3, Vec3};
+use swarf_analysis::{Request, StockCut, StockField};
+use swarf_render::Kind;
+
+use super::{Backplot, Scene};
+
+/// Colour of the marks of rapids into the stock.
+pub const RAPID_INTO_STOCK_COLOR: egui::Color32 = egui::Color32::from_rgb(240, 40, 40);
+
+/// Rapids into the stock marked at most (each a line and a dot painted over the view).
+const MAX_RAPID_MARKS: usize = 1000;
+
+/// Most samples along the pointer's ray looking for the stock's surface.
+const MAX_RAY_SAMPLES: f64 = 8192.0;
+
+impl Backplot {
+    /// Draws the cut stock under the path (and asks for it through
+    /// [`Self::stock_request`]), or not.
+    pub fn set_stock_visible(&mut self, on: bool) {
+        self.stock_on = on;
+    }
+
+    /// Whether the cut stock is drawn.
+    #[must_use]
+    pub fn stock_visible(&self) -> bool {
+        self.stock_on
+    }
+
+    /// Where the view's Stock button was drawn at the last frame.
+    #[must_use]
+    pub fn stock_button_rect(&self) -> Option<egui::Rect> {
+        self.stock_button
+    }
+
+    /// The cut of the stock to ask the analysis for (send it after [`Self::show`]; the answers
+    /// go to the scene, see `Analysis::take_stock`): while the stock is drawn, the whole
+    /// toolpath's cut, or during playback the cut up to its position. One cut is asked at a
+    /// time: a later position waits for the answer, an earlier one or a new analysis does not.
+    pub fn stock_request(&mut self, scene: &Scene) -> Option<Request> {
+        if !self.stock_on {
+            self.stock_asked = None;
+            return None;
+        }
+        let upto = self
+            .playback
+            .executed(scene)
+            .unwrap_or_else(|| scene.segment_count());
+        let want = (scene.generation, upto);
+        let answered = |(generation, upto): (u64, usize)| {
+            scene
+                .stock
+                .as_ref()
+                .is_some_and(|c| c.generation == generation && c.upto == upto)
+        };
+        if answered(want) || self.stock_asked == Some(want) {
+            return None;
+        }
+        if let Some(asked) = self.stock_asked
+            && asked.0 == want.0
+            && asked.1 < want.1
+            && !answered(asked)
+        {
+            return None;
+        }
+        self.stock_asked = Some(want);
+        Some(Request::Stock {
+            generation: scene.generation,
+            upto,
+        })
+    }
+
+    /// Kinds not drawn: those hidden, and every move of the toolpath when the stock is drawn
+    /// alone.
+    pub(super) fn hidden(&self) -> u32 {
+        if self.stock_on && self.stock_alone {
+            Kind::ALL
+                .iter()
+                .filter(|k| k.is_motion())
+                .fold(self.hidden_kinds, |m, k| m | k.mask())
+        } else {
+            self.hidden_kinds
+        }
+    }
+
+    /// The stock to draw: the scene's cut, or until it comes the last one received (an edit's
+    /// new cut takes a moment); `None` while the stock is not drawn.
+    pub(super) fn drawn_stock(&mut self, scene: &Scene) -> Option<Arc<StockCut>> {
+        if let Some(cut) = &scene.stock
+            && (cut.field.is_some() || cut.error.is_some())
+        {
+            self.shown_stock = Some(Arc::clone(cut));
+        }
+        self.stock_on.then(|| self.shown_stock.clone()).flatten()
+    }
+
+    /// Where the ray under `pointer` first meets the drawn stock's surface, machine mm.
+    pub(super) fn stock_point(
+        &self,
+        scene: &Scene,
+        rect: egui::Rect,
+        pointer: egui::Pos2,
+    ) -> Option<DVec3> {
+        let field = self.shown_stock.as_ref().filter(|_| self.stock_on)?;
+        let field = field.field.as_ref()?;
+        let inverse = self
+            .camera
+            .view_proj(rect.width() / rect.height())
+            .inverse();
+        let x = (pointer.x - rect.min.x) / rect.width() * 2.0 - 1.0;
+        let y = 1.0 - (pointer.y - rect.min.y) / rect.height() * 2.0;
+        let near = inverse.project_point3(Vec3::new(x, y, 0.0));
+        let far = inverse.project_point3(Vec3::new(x, y, 0.5));
+        surface_hit(
+            field,
+            scene.origin + near.as_dvec3(),
+            scene.origin + far.as_dvec3(),
+        )
+    }
+
+    /// Each rapid into the stock the scene's cut found: its move in the stock's colour for
+    /// them, and a dot where it meets material.
+    pub(super) fn paint_rapids_into_stock(&self, ui: &egui::Ui, rect: egui::Rect, scene: &Scene) {
+        let Some(cut) = scene.stock.as_ref().filter(|_| self.stock_on) else {
+            return;
+        };
+        let painter = ui.painter_at(rect);
+        let stroke = egui::Stroke::new(2.5, RAPID_INTO_STOCK_COLOR);
+        for &(segment, [x, y]) in cut.rapids.iter().take(MAX_RAPID_MARKS) {
+            let (Some(a), Some(b)) = (scene.points.get(segment), scene.points.get(segment + 1))
+            else {
+                continue;
+            };
+            let (a, b) = (a.position(), b.position());
+            if let (Some(p), Some(q)) = (self.screen_pos(a), self.screen_pos(b)) {
+                painter.line_segment([p, q], stroke);
+            }
+            // The point of the move over where it meets material.
+            let at = (DVec3::new(x, y, 0.0) - scene.origin).as_vec3();
+            let along = (b - a).truncate();
+            let t = if along.length_squared() > 0.0 {
+                ((at - a).truncate().dot(along) / along.length_squared()).clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
+            if let Some(p) = self.screen_pos(a.lerp(b, t)) {
+                painter.circle_filled(p, 4.0, RAPID_INTO_STOCK_COLOR);
+            }
+        }
+    }
+}
+
+/// The first point of the line from `a` through `b` (machine mm, from `a` on) at or below
+/// `field`'s surface, on its surface.
+fn surface_hit(field: &StockField, a: DVec3, b: DVec3) -> Option<DVec3> {
+    let (nx, ny) = field.size;
+    let lo = DVec3::new(field.min.x, field.min.y, field.min.z);
+    let hi = DVec3::new(
+        field.min.x + nx as f64 * field.cell_mm,
+        field.min.y + ny as f64 * field.cell_mm,
+        field.top,
+    );
+    // Where the line is inside the stock's box (slabs).
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+    for axis in 0..3 {
+        let (o, v) = (a[axis], d[axis]);
+        if v.abs() < 1e-12 {
+            if o < lo[axis] || o > hi[axis] {
+                return None;
+            }
+            continue;
+        }
+        let (p, q) = ((lo[axis] - o) / v, (hi[axis] - o) / v);
+        t0 = t0.max(p.min(q));
+        t1 = t1.min(p.max(q));
+    }
+    if !(t0 <= t1 && t1.is_finite()) {
+        return None;
+    }
+    let below = |t: f64| {
+        let p = a + d * t;
+        field.height_at(p.x, p.y).is_some_and(|h| p.z <= h)
+    };
+    // Half a cell apart across the grid, then halves between the last sample above and the
+    // first below.
+    let across = (d.truncate() * (t1 - t0)).length() / (field.cell_mm * 0.5);
+    let samples = across.ceil().clamp(1.0, MAX_RAY_SAMPLES) as usize;
+    let mut above = t0;
+    for k in 0..=samples {
+        let t = t0 + (t1 - t0) * k as f64 / samples as f64;
+        if !below(t) {
+            above = t;
+            continue;
+        }
+        let mut hit = t;
+        if k > 0 {
+            for _ in 0..32 {
+                let mid = f64::midpoint(above, hit);
+                if below(mid) {
+                    hit = mid;
+                } else {
+                    above = mid;
+                }
+            }
+        }
+        let p = a + d * hit;
+        return Some(DVec3::new(p.x, p.y, field.height_at(p.x, p.y)?));
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 10 × 10 cells of 1 mm from (0, 0), top at 0, bottom at −10, with a 4 mm deep pocket
+    /// over X 4..6.
+    fn field() -> StockField {
+        let mut heights = vec![0.0f32; 100];
+        for j in 0..10 {
+            for i in 4..6 {
+                heights[j * 10 + i] = -4.0;
+            }
+        }
+        StockField {
+            heights,
+            size: (10, 10),
+            cell_mm: 1.0,
+            min: DVec3::new(0.0, 0.0, -10.0),
+            top: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_ray_meets_the_top_or_the_pocket_floor_or_misses() {
+        let field = field();
+        let down = |x: f64| surface_hit(&field, DVec3::new(x, 5.0, 50.0), DVec3::new(x, 5.0, 0.0));
+        assert_eq!(down(2.5), Some(DVec3::new(2.5, 5.0, 0.0)));
+        assert_eq!(down(4.5), Some(DVec3::new(4.5, 5.0, -4.0)));
+        assert_eq!(down(20.0), None);
+        // Slanting down across the pocket, from above X 0: it meets the far wall's top edge
+        // region or the floor, never a point above the surface.
+        let hit = surface_hit(&field, DVec3::new(0.0, 5.0, 3.0), DVec3::new(1.0, 5.0, 2.0));
+        let hit = hit.unwrap_or_default();
+        assert!((hit.x - 3.0).abs() < 1e-6 && hit.z == 0.0, "{hit}");
+        let steep = surface_hit(&field, DVec3::new(4.2, 5.0, 1.0), DVec3::new(4.3, 5.0, 0.0));
+        let steep = steep.unwrap_or_default();
+        assert!(steep.z == -4.0 && (4.0..6.0).contains(&steep.x), "{steep}");
+        // Pointing away from the stock.
+        assert_eq!(
+            surface_hit(&field, DVec3::new(5.0, 5.0, 5.0), DVec3::new(5.0, 5.0, 6.0)),
+            None
+        );
+    }
+}

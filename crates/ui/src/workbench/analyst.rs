@@ -1,0 +1,227 @@
+//! The round trip to the analysis: sending each change, taking its replies, asking the state.
+
+use std::sync::{Arc, OnceLock};
+
+use swarf_analysis::{Analyst, Job, ProgramText, Progress, Reply, Request};
+use swarf_syntax::Dialect;
+
+use super::Workbench;
+use crate::analysis::{Analysis, Problem, Stats};
+
+/// How soon after a reply of the analysis the frame that shows it comes: a finished analysis
+/// or an answer at once (replies a moment apart share the frame), `progress` a few times a
+/// second, so that the frames leave the analysis the processor.
+pub fn reply_frame(progress: bool) -> std::time::Duration {
+    std::time::Duration::from_millis(if progress { 100 } else { 2 })
+}
+
+impl Workbench {
+    /// Has `analyst` run the analysis from now on (the web page's worker), starting with the
+    /// current text.
+    pub fn set_analyst(&mut self, analyst: Box<dyn Analyst>) {
+        self.analyst = analyst;
+        self.sent.clear();
+        self.state_asked = None;
+        self.reanalyse();
+    }
+
+    /// The dialect offered for the active tab's program: one whose codes, by the code tables,
+    /// leave strictly fewer errors than its own dialect (see the notice over the problems).
+    pub fn suggested_dialect(&self) -> Option<Dialect> {
+        self.analysis
+            .hint
+            .as_ref()
+            .filter(|h| h.from == self.dialect && self.own_analysis)
+            .map(|h| h.to)
+    }
+
+    /// Whether the analysis shown is the active tab's own; false while the first analysis of
+    /// a tab just opened is still running (an empty view, problems and counts are shown).
+    pub fn analysis_ready(&self) -> bool {
+        self.own_analysis
+    }
+
+    /// The latest analysis.
+    pub fn analysis(&self) -> &Analysis {
+        &self.analysis
+    }
+
+    /// Diagnostics of the current text, sorted by position.
+    pub fn problems(&self) -> &[Problem] {
+        &self.analysis.problems
+    }
+
+    /// Summary numbers of the current text.
+    pub fn stats(&self) -> Stats {
+        self.analysis.stats()
+    }
+
+    /// Sends the current text to the analysis (replacing an unfinished run there).
+    pub(super) fn reanalyse(&mut self) {
+        self.generation += 1;
+        // The texts are shared, not copied: a keystroke costs no copy of them (a rope is parsed
+        // in place, another tab's text is copied only when the program calls into it).
+        let others = self
+            .tabs
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != self.active)
+            .map(|(_, t)| (t.document.name.clone(), t.text.program_text()))
+            .collect();
+        let text = self.text.program_text();
+        self.ask(Request::Analyse(Box::new(Job {
+            generation: self.generation,
+            text: text.clone(),
+            dialect: self.dialect,
+            setup: self.setup.clone(),
+            others: Some(others),
+        })));
+        self.sent.push_back((self.generation, text));
+        self.pending = Some(Progress::Reading { read: 0, lines: 0 });
+    }
+
+    /// Sends a request to the analysis, taking an answer given at once.
+    pub(super) fn ask(&mut self, request: Request) {
+        if let Some(reply) = self.analyst.send(request) {
+            self.receive(reply);
+        }
+    }
+
+    /// Takes the replies the analysis has sent since the last look (each frame does so first;
+    /// a host may before it, to know what the frame will show); whether any came.
+    pub fn take_replies(&mut self) -> bool {
+        let mut any = false;
+        while let Some(reply) = self.analyst.try_reply() {
+            self.receive(reply);
+            any = true;
+        }
+        any
+    }
+
+    /// Takes one reply: progress of the current text's analysis, a finished analysis of the
+    /// active tab (shown unless a newer one is), or the state at cursor asked for.
+    fn receive(&mut self, reply: Reply) {
+        match reply {
+            Reply::Progress {
+                generation,
+                progress,
+            } => {
+                if generation == self.generation && self.pending.is_some() {
+                    self.pending = Some(progress);
+                }
+            }
+            Reply::Done(results) => {
+                let generation = results.generation;
+                // The jobs sent before this one were replaced.
+                while self.sent.front().is_some_and(|(g, _)| *g < generation) {
+                    self.sent.pop_front();
+                }
+                let text = match self.sent.front() {
+                    Some((g, _)) if *g == generation => self.sent.pop_front().map(|(_, t)| t),
+                    _ => None,
+                };
+                let newer = !self.own_analysis || generation > self.analysis.scene.generation;
+                if let Some(text) = text
+                    && generation >= self.floor
+                    && newer
+                {
+                    self.analysis = Analysis::of(*results, &text);
+                    self.own_analysis = true;
+                    if generation == self.generation {
+                        self.pending = None;
+                    }
+                }
+            }
+            Reply::State {
+                generation,
+                line,
+                state,
+            } => {
+                // `None`: that analysis is no longer held; the next one shown is asked again.
+                if let Some(state) = state
+                    && self.state_asked == Some((generation, line))
+                {
+                    self.state_cache = Some(((generation, line), state));
+                    self.state_asked = None;
+                }
+            }
+            Reply::Stock(cut) => self.analysis.take_stock(*cut),
+        }
+    }
+
+    /// Progress of the current text's analysis, while it runs, as (different blocks run,
+    /// blocks in the program); (0, 0) while the text is read. `None` when the analysis shown is
+    /// of the current text.
+    pub fn analysis_progress(&self) -> Option<(usize, usize)> {
+        self.pending.map(|p| match p {
+            Progress::Running { reached, blocks } => (reached, blocks),
+            Progress::Reading { .. } => (0, 0),
+        })
+    }
+
+    /// Waits for the analysis of the current text and shows it (for tests and scripts that want
+    /// the current text's results rather than the last finished ones). Where the host cannot
+    /// wait (a web page), it returns at once and the frames show the results as they come.
+    pub fn finish_analysis(&mut self) {
+        self.take_replies();
+        while self.pending.is_some() {
+            match self.analyst.wait_reply() {
+                Some(reply) => self.receive(reply),
+                None => return,
+            }
+        }
+    }
+
+    /// A number bumped by every change of the text, dialect or setup (the analysis shown
+    /// carries it in its scene once it has caught up).
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    /// The machine state just before the block on 1-based `line` first runs (modal codes,
+    /// position, offsets, tool, feed, speed), asked of the current text's analysis once it is
+    /// finished; `None` when no block there runs, or where the host cannot wait for the answer.
+    pub fn state_at_line(&mut self, line: u32) -> Option<swarf_interp::BlockState> {
+        self.finish_analysis();
+        let generation = self.analysis.scene.generation;
+        let mut now = self.analyst.send(Request::StateAt { generation, line });
+        loop {
+            match now.take().or_else(|| self.analyst.wait_reply())? {
+                Reply::State {
+                    generation: g,
+                    line: l,
+                    state,
+                } if (g, l) == (generation, line) => return state.flatten(),
+                other => self.receive(other),
+            }
+        }
+    }
+}
+
+/// What a tab shows before its first analysis is done: no path, no problems, no counts.
+pub(super) fn no_analysis() -> Analysis {
+    Analysis::of(
+        swarf_analysis::Results::default(),
+        &ProgramText::from(String::new()),
+    )
+}
+
+/// The analysis beside the UI: a thread of its own, which has `waker`'s context repaint with
+/// each reply; where there are no threads, the frames themselves (the web page hands its worker
+/// over with [`Workbench::set_analyst`]).
+pub(super) fn default_analyst(waker: &Arc<OnceLock<egui::Context>>) -> Box<dyn Analyst> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let waker = Arc::clone(waker);
+        let wake = move |progress| {
+            if let Some(ctx) = waker.get() {
+                ctx.request_repaint_after(reply_frame(progress));
+            }
+        };
+        if let Ok(thread) = swarf_analysis::Thread::spawn(wake) {
+            return Box::new(thread);
+        }
+    }
+    let _ = waker;
+    Box::new(swarf_analysis::Inline::default())
+}

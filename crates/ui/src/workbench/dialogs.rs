@@ -1,0 +1,138 @@
+//! The go-to-line, renumber, settings and unsaved-changes windows.
+
+use super::{HostRequest, Workbench};
+use crate::i18n::{tr, trf};
+
+impl Workbench {
+    /// The go-to-line, renumber, settings and unsaved-changes windows.
+    pub(super) fn dialogs(&mut self, ctx: &egui::Context) {
+        if let Some(mut input) = self.goto.take() {
+            let mut open = true;
+            let mut go = false;
+            egui::Window::new(tr("Go to line"))
+                .open(&mut open)
+                .default_pos([240.0, 80.0])
+                .collapsible(false)
+                .resizable(false)
+                .show(ctx, |ui| {
+                    ui.horizontal(|ui| {
+                        let label = ui.label(tr("Line number"));
+                        let field = ui
+                            .add(egui::TextEdit::singleline(&mut input).desired_width(80.0))
+                            .labelled_by(label.id);
+                        if !field.has_focus() && !field.lost_focus() && input.is_empty() {
+                            field.request_focus();
+                        }
+                        go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                        let button = ui.button(tr("Go"));
+                        self.widgets
+                            .insert("goto_field".into(), field.rect.intersect(ui.clip_rect()));
+                        self.widgets
+                            .insert("goto_button".into(), button.rect.intersect(ui.clip_rect()));
+                        go |= button.clicked();
+                    });
+                    ui.label(format!("1 – {}", self.text.line_count()));
+                });
+            let line = input.trim().parse::<u32>().ok().filter(|&n| n >= 1);
+            match line.map(|n| n.min(self.text.line_count())) {
+                Some(line) if go => self.go_to_line(line),
+                _ if open && !(go || ctx.input(|i| i.key_pressed(egui::Key::Escape))) => {
+                    self.goto = Some(input);
+                }
+                _ => {}
+            }
+        }
+        if let Some(mut options) = self.renumber.take() {
+            let mut open = true;
+            let mut run = false;
+            egui::Window::new(tr("Renumber blocks"))
+                .open(&mut open)
+                .default_pos([240.0, 80.0])
+                .collapsible(false)
+                .resizable(false)
+                .show(ctx, |ui| {
+                    egui::Grid::new("swarf-renumber")
+                        .num_columns(2)
+                        .show(ui, |ui| {
+                            let label = ui.label(tr("Start"));
+                            ui.add(egui::DragValue::new(&mut options.start).range(0..=99_999_999))
+                                .labelled_by(label.id);
+                            ui.end_row();
+                            let label = ui.label(tr("Step"));
+                            ui.add(egui::DragValue::new(&mut options.step).range(1..=10_000))
+                                .labelled_by(label.id);
+                            ui.end_row();
+                        });
+                    ui.checkbox(&mut options.all_blocks, tr("Number every block"));
+                    run = ui.button(tr("Renumber")).clicked();
+                });
+            if run {
+                self.renumber(options);
+            } else if open {
+                self.renumber = Some(options);
+            }
+        }
+        if self.settings_open {
+            let mut open = true;
+            let mut setup = self.setup.clone();
+            let mut dialect = self.dialect;
+            let mut request = None;
+            egui::Window::new(tr("Settings"))
+                .open(&mut open)
+                .default_pos([240.0, 60.0])
+                .default_width(480.0)
+                .default_height(600.0)
+                .vscroll(true)
+                .show(ctx, |ui| {
+                    request = crate::settings::settings_ui(
+                        ui,
+                        &mut dialect,
+                        &mut setup,
+                        &mut self.new_offset,
+                    );
+                });
+            self.settings_open = open;
+            if dialect != self.dialect {
+                self.set_dialect(dialect);
+            }
+            self.set_setup(setup);
+            if let Some(r) = request {
+                self.requests.push(r);
+            }
+        }
+        if let Some(action) = self.confirm.clone() {
+            let mut answer = None;
+            egui::Modal::new(egui::Id::unique("swarf-unsaved")).show(ctx, |ui| {
+                ui.heading(tr("Unsaved changes"));
+                ui.label(trf(
+                    "{} has changes that are not saved.",
+                    &[&self.document.name],
+                ));
+                ui.horizontal(|ui| {
+                    if ui.button(tr("Save")).clicked() {
+                        answer = Some(0);
+                    }
+                    if ui.button(tr("Discard changes")).clicked() {
+                        answer = Some(1);
+                    }
+                    if ui.button(tr("Cancel")).clicked() {
+                        answer = Some(2);
+                    }
+                });
+            });
+            match answer {
+                Some(0) => {
+                    self.confirm = None;
+                    self.after_save = Some(action);
+                    self.requests.push(HostRequest::Save);
+                }
+                Some(1) => {
+                    self.confirm = None;
+                    self.run_action(action);
+                }
+                Some(_) => self.confirm = None,
+                None => {}
+            }
+        }
+    }
+}

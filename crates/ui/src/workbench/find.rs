@@ -1,0 +1,231 @@
+//! The find/replace bar and its commands.
+
+use std::ops::Range;
+
+use swarf_syntax::Severity;
+
+use super::Workbench;
+use crate::commands::{self, FindOptions, Finder};
+use crate::editor::severity_color;
+use crate::i18n::{tr, trf};
+
+/// What a match count was computed for: (text generation, pattern, options).
+type MatchKey = (u64, String, FindOptions);
+
+/// Matches in characters, or why the pattern is invalid.
+type Matches = Result<Vec<Range<usize>>, String>;
+
+/// The find/replace bar's state.
+#[derive(Debug, Clone, Default)]
+pub(super) struct FindBar {
+    pub(super) open: bool,
+    replace: bool,
+    query: String,
+    replacement: String,
+    options: FindOptions,
+    /// Ask for focus on the find field next frame.
+    focus: bool,
+    /// The matches in characters (or the pattern's error) for (generation, query, options).
+    pub(super) count: Option<(MatchKey, Matches)>,
+}
+
+impl Workbench {
+    pub(super) fn open_find(&mut self, replace: bool) {
+        self.find.open = true;
+        self.find.replace |= replace;
+        self.find.focus = true;
+        let selected = self.selected_text();
+        if !selected.is_empty() && !selected.contains('\n') {
+            self.find.query = selected.to_string();
+        }
+    }
+
+    fn finder(&self) -> Option<Finder> {
+        if self.find.query.is_empty() {
+            return None;
+        }
+        Finder::new(&self.find.query, self.find.options).ok()
+    }
+
+    /// Selects the next match of the find field after the selection (wrapping).
+    pub fn find_next(&mut self) -> bool {
+        let Some(finder) = self.finder() else {
+            return false;
+        };
+        let from = commands::byte_of_char(&self.text, self.selection.end);
+        let Some(m) = finder.next(&self.text, from) else {
+            return false;
+        };
+        self.show_match(m);
+        true
+    }
+
+    /// Selects the previous match of the find field before the selection (wrapping).
+    pub fn find_previous(&mut self) -> bool {
+        let Some(finder) = self.finder() else {
+            return false;
+        };
+        let before = commands::byte_of_char(&self.text, self.selection.start);
+        let Some(m) = finder.previous(&self.text, before) else {
+            return false;
+        };
+        self.show_match(m);
+        true
+    }
+
+    /// Selects a find match (bytes) and scrolls to it; the keyboard stays where it is, so the
+    /// find field keeps it while Enter steps through the matches.
+    fn show_match(&mut self, bytes: Range<usize>) {
+        let chars = commands::char_of_byte(&self.text, bytes.start)
+            ..commands::char_of_byte(&self.text, bytes.end);
+        self.cursor_line = Some(commands::line_of_byte(&self.text, bytes.start));
+        self.selection = chars.clone();
+        self.editor.show_range(chars);
+    }
+
+    /// Replaces the selected match with the replacement field and selects the next match; when
+    /// the selection is no match, finds the next one first.
+    pub fn replace_one(&mut self) {
+        let Some(finder) = self.finder() else {
+            return;
+        };
+        let a = commands::byte_of_char(&self.text, self.selection.start);
+        let b = commands::byte_of_char(&self.text, self.selection.end);
+        let with =
+            finder.replacement_at(&self.text, a..b, &self.find.replacement, self.find.options);
+        let Some(with) = with else {
+            self.find_next();
+            return;
+        };
+        let mut text = self.text.to_string();
+        text.replace_range(a..b, &with);
+        let after = commands::char_of_byte(&text, a + with.len());
+        self.apply(text, after..after);
+        self.find_next();
+    }
+
+    /// Replaces every match of the find field; the number replaced.
+    pub fn replace_all(&mut self) -> usize {
+        let Some(finder) = self.finder() else {
+            return 0;
+        };
+        let (text, n) = finder.replace_all(&self.text, &self.find.replacement, self.find.options);
+        if n > 0 {
+            let keep = self.selection.start.min(text.chars().count());
+            self.apply(text, keep..keep);
+        }
+        self.message = Some(trf("Replaced {} matches", &[&n]));
+        n
+    }
+
+    pub(super) fn find_bar(&mut self, ui: &mut egui::Ui) {
+        let mut next = false;
+        let mut previous = false;
+        let mut replace = false;
+        let mut replace_all = false;
+        let mut close = false;
+        ui.horizontal_wrapped(|ui| {
+            let label = ui.label(tr("Find"));
+            let field = ui.add(
+                egui::TextEdit::singleline(&mut self.find.query)
+                    .desired_width(160.0)
+                    .hint_text(if self.find.options.regex {
+                        tr("regular expression")
+                    } else {
+                        tr("text")
+                    }),
+            );
+            let field = field.labelled_by(label.id);
+            self.widgets
+                .insert("find_field".into(), field.rect.intersect(ui.clip_rect()));
+            if std::mem::take(&mut self.find.focus) {
+                field.request_focus();
+            }
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+                next = true;
+                field.request_focus();
+            }
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
+                close = true;
+            }
+            ui.checkbox(&mut self.find.options.regex, tr("Regex"));
+            ui.checkbox(&mut self.find.options.match_case, tr("Match case"));
+            let previous_button = ui.button(tr("Previous"));
+            let next_button = ui.button(tr("Next"));
+            self.widgets.insert(
+                "find_previous".into(),
+                previous_button.rect.intersect(ui.clip_rect()),
+            );
+            self.widgets.insert(
+                "find_next".into(),
+                next_button.rect.intersect(ui.clip_rect()),
+            );
+            previous = previous_button.clicked();
+            next |= next_button.clicked();
+            let key = (self.generation, self.find.query.clone(), self.find.options);
+            if self.find.count.as_ref().map(|(k, _)| k) != Some(&key) {
+                let count = if self.find.query.is_empty() {
+                    Ok(Vec::new())
+                } else {
+                    Finder::new(&self.find.query, self.find.options)
+                        .map(|f| commands::char_ranges(&self.text, &f.find_all(&self.text)))
+                };
+                self.find.count = Some((key, count));
+            }
+            match self.find.count.as_ref().map(|(_, c)| c) {
+                Some(Ok(matches)) => {
+                    ui.label(trf("{} matches", &[&matches.len()]));
+                }
+                Some(Err(e)) => {
+                    let first = e.lines().last().unwrap_or_default().to_string();
+                    ui.colored_label(severity_color(Severity::Error), tr("invalid pattern"))
+                        .on_hover_text(first);
+                }
+                None => {}
+            }
+            let close_button = ui.button("×").on_hover_text(tr("Close"));
+            self.widgets.insert(
+                "find_close".into(),
+                close_button.rect.intersect(ui.clip_rect()),
+            );
+            close |= close_button.clicked();
+        });
+        if self.find.replace {
+            ui.horizontal_wrapped(|ui| {
+                let label = ui.label(tr("Replace"));
+                let field = ui
+                    .add(
+                        egui::TextEdit::singleline(&mut self.find.replacement).desired_width(160.0),
+                    )
+                    .labelled_by(label.id);
+                let one = ui.button(tr("Replace"));
+                let all = ui.button(tr("Replace all"));
+                self.widgets
+                    .insert("replace_field".into(), field.rect.intersect(ui.clip_rect()));
+                self.widgets
+                    .insert("replace".into(), one.rect.intersect(ui.clip_rect()));
+                self.widgets
+                    .insert("replace_all".into(), all.rect.intersect(ui.clip_rect()));
+                replace = one.clicked();
+                replace_all = all.clicked();
+            });
+        }
+        if close {
+            // Back to the program, the selection kept.
+            self.find.open = false;
+            self.select_chars(self.selection.clone());
+        }
+        if next {
+            self.find_next();
+        }
+        if previous {
+            self.find_previous();
+        }
+        if replace {
+            self.replace_one();
+        }
+        if replace_all {
+            self.replace_all();
+        }
+    }
+}

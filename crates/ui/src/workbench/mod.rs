@@ -1,0 +1,511 @@
+//! The whole editing surface: editor, problems list and backplot, wired to the pipeline.
+
+mod analyst;
+mod dialogs;
+mod edit;
+mod find;
+mod menus;
+mod panels;
+mod tabs;
+
+use std::collections::VecDeque;
+use std::ops::Range;
+use std::sync::{Arc, OnceLock};
+
+use ropey::Rope;
+
+use swarf_analysis::{Analyst, ProgramText, Progress};
+use swarf_interp::Setup;
+use swarf_syntax::{Dialect, Encoding};
+
+use crate::analysis::Analysis;
+use crate::backplot::Backplot;
+use crate::buffer::Buffer;
+use crate::commands::{self, RenumberOptions};
+use crate::editor::CodeEditor;
+use crate::history::{EditKind, History, Snapshot};
+use crate::i18n::{Lang, tr, trf};
+
+use analyst::{default_analyst, no_analysis};
+use find::FindBar;
+use menus::Action;
+use tabs::Tab;
+
+pub use analyst::reply_frame;
+pub use panels::format_duration;
+pub use tabs::{Document, TabRecord};
+
+/// The example program the editor starts with.
+pub const EXAMPLE_PROGRAM: &str = include_str!("../../../../assets/examples/pocket.nc");
+
+/// Width of the editor's panel until the user drags its divider, in points.
+const EDITOR_PANEL_WIDTH: f32 = 460.0;
+/// Width of the "state at cursor" panel until the user drags its divider, in points: room for
+/// a position in millimetres; longer contents wrap or scroll inside it.
+const STATE_PANEL_WIDTH: f32 = 280.0;
+/// Height of the problems list, when there are problems, until the user drags its divider.
+const PROBLEMS_PANEL_HEIGHT: f32 = 140.0;
+
+/// Editor, problems and backplot over the program of the active tab; re-analyses on every edit.
+///
+/// Each tab holds one file (a [`Document`] with its text, undo history and cursor) and the
+/// dialect it is read in. The active tab's program is analysed with the other tabs as the files
+/// its subprogram calls may reach.
+///
+/// The analysis runs beside the UI (a thread of its own, or the web page's worker) and a frame
+/// only takes its replies; until a new one is finished, the tab's last finished analysis
+/// (markers, problems, backplot) stays on screen — a tab with none yet shows an empty view and
+/// its progress, never another tab's — and an edit made meanwhile replaces the unfinished run.
+pub struct Workbench {
+    text: Buffer,
+    /// The active tab's dialect.
+    dialect: Dialect,
+    /// The dialect new tabs and files opened in them start in: the last one chosen in the
+    /// dialect selector or the settings.
+    default_dialect: Dialect,
+    setup: Setup,
+    generation: u64,
+    /// The active tab's last finished analysis, or an empty one while its first is running.
+    analysis: Analysis,
+    /// Whether `analysis` is the active tab's own (false for the empty stand-in).
+    own_analysis: bool,
+    /// Where the analysis runs: the workbench sends it jobs and questions, takes its replies.
+    analyst: Box<dyn Analyst>,
+    /// The jobs sent and not yet answered, by generation, with their texts (a finished one's
+    /// text goes with its scene, for the tooltips).
+    sent: VecDeque<(u64, ProgramText)>,
+    /// How far the analysis of the current text has got, while it runs.
+    pending: Option<Progress>,
+    /// The first generation of the active tab's text: results of earlier ones are of another.
+    floor: u64,
+    /// The state at cursor asked of the analysis, (generation, line), until it answers.
+    state_asked: Option<(u64, u32)>,
+    /// The context a reply from the analysis' thread repaints (set by the first frame).
+    waker: Arc<OnceLock<egui::Context>>,
+    editor: CodeEditor,
+    backplot: Backplot,
+    cursor_line: Option<u32>,
+    /// The cursor line last sent to the backplot as its selection.
+    synced_line: Option<u32>,
+    /// The state shown for ((generation, line)), asked again only when either changes.
+    state_cache: Option<((u64, u32), Option<swarf_interp::BlockState>)>,
+    /// Undo and redo over typing and commands.
+    history: History,
+    /// The text as last recorded in the history (the "before" of the next typed change).
+    shadow: Rope,
+    /// The editor's selection in characters, as last reported or set.
+    selection: Range<usize>,
+    /// egui time of the current frame, for merging typing into undo steps.
+    now: f64,
+    find: FindBar,
+    /// The go-to-line dialog's input, while it is open.
+    goto: Option<String>,
+    /// The renumber dialog's options, while it is open.
+    renumber: Option<RenumberOptions>,
+    settings_open: bool,
+    /// A new work offset's name typed in the settings window.
+    new_offset: String,
+    document: Document,
+    /// Every open tab, in order; the active one's entry is empty while its content lives in
+    /// the fields above.
+    tabs: Vec<Tab>,
+    /// Index of the active tab in `tabs`.
+    active: usize,
+    requests: Vec<HostRequest>,
+    /// An action waiting for the answer to "discard unsaved changes?".
+    confirm: Option<Action>,
+    /// The action to run once the host reports the program saved.
+    after_save: Option<Action>,
+    recent: Vec<String>,
+    /// A short message for the status bar (a command's result, an error).
+    message: Option<String>,
+    /// The interface language.
+    lang: Lang,
+    /// Whether the CJK font the Chinese languages need is added, asked for, or neither.
+    cjk_font: FontState,
+    /// Where the named widgets were drawn in the last frame, the part in sight, in points (see
+    /// [`Workbench::widget_rect`]): the page's test API finds what to click through it.
+    widgets: std::collections::BTreeMap<std::borrow::Cow<'static, str>, egui::Rect>,
+}
+
+/// Where the CJK font stands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum FontState {
+    Absent,
+    Requested,
+    Ready,
+}
+
+/// Something the workbench asks its host to do: file dialogs, reading and writing files, which
+/// differ between the desktop and the web page.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum HostRequest {
+    /// Show an open dialog and [`Workbench::open_document`] the chosen file.
+    Open,
+    /// Open the recent file with this name (as given to [`Workbench::set_recent`]).
+    OpenRecent(String),
+    /// Save to the current file (or ask for one), then call [`Workbench::mark_saved`].
+    Save,
+    /// Ask for a file name, save there, then call [`Workbench::mark_saved`].
+    SaveAs,
+    /// Ask for a `SETUP.toml` and pass its text to [`Workbench::import_setup`].
+    ImportSetup,
+    /// Ask for a file name and write [`Workbench::setup_toml`] there.
+    ExportSetup,
+    /// Close the application (unsaved changes were saved or discarded).
+    Quit,
+    /// Get a CJK font for the Chinese interface languages and hand its bytes to
+    /// [`Workbench::add_cjk_font`] (or say why not with [`Workbench::cjk_font_failed`]).
+    LoadCjkFont,
+}
+
+impl Default for Workbench {
+    /// The example program, named as its file in `assets/examples/`.
+    fn default() -> Self {
+        let mut wb = Workbench::new(EXAMPLE_PROGRAM.to_string());
+        wb.document.name = "pocket.nc".to_string();
+        wb
+    }
+}
+
+impl Workbench {
+    /// A workbench showing `text`, read as Fanuc with a default setup, and its analysis (the
+    /// first one is waited for; later ones come beside the frames).
+    pub fn new(text: String) -> Self {
+        let dialect = Dialect::default();
+        let text = Buffer::from(text);
+        let rope = text.rope().clone();
+        let waker = Arc::new(OnceLock::new());
+        let mut wb = Workbench {
+            text,
+            dialect,
+            default_dialect: dialect,
+            setup: Setup::default(),
+            generation: 0,
+            analysis: no_analysis(),
+            own_analysis: false,
+            analyst: default_analyst(&waker),
+            sent: VecDeque::new(),
+            pending: None,
+            floor: 0,
+            state_asked: None,
+            waker,
+            editor: CodeEditor::default(),
+            backplot: Backplot::new(),
+            cursor_line: None,
+            synced_line: None,
+            state_cache: None,
+            history: History::default(),
+            shadow: rope.clone(),
+            selection: 0..0,
+            now: 0.0,
+            find: FindBar::default(),
+            goto: None,
+            renumber: None,
+            settings_open: false,
+            new_offset: String::new(),
+            document: Document::new("untitled.nc", &rope, Encoding::Utf8),
+            tabs: vec![Tab::default()],
+            active: 0,
+            requests: Vec::new(),
+            confirm: None,
+            after_save: None,
+            recent: Vec::new(),
+            message: None,
+            lang: Lang::En,
+            cjk_font: FontState::Absent,
+            widgets: std::collections::BTreeMap::new(),
+        };
+        wb.reanalyse();
+        wb.finish_analysis();
+        wb
+    }
+
+    /// The program text.
+    pub fn text(&self) -> &str {
+        self.text.as_str()
+    }
+
+    /// Whether the current text is also held as one string (made only where a whole-text
+    /// copy is needed; an edit of a long program and its analysis read the rope instead).
+    pub fn text_is_flat(&self) -> bool {
+        self.text.is_flat()
+    }
+
+    /// Replaces the text and re-analyses it (one undo step; the document stays the same file).
+    pub fn set_text(&mut self, text: impl Into<String>) {
+        self.apply(text.into(), 0..0);
+        self.backplot.fit();
+    }
+
+    /// The status bar's message, when it shows one.
+    pub fn message(&self) -> Option<&str> {
+        self.message.as_deref()
+    }
+
+    /// The interface language.
+    pub fn language(&self) -> Lang {
+        self.lang
+    }
+
+    /// Switches the interface language (at once); a Chinese one asks the host for the CJK
+    /// font the first time.
+    pub fn set_language(&mut self, lang: Lang) {
+        self.lang = lang;
+        crate::i18n::set_current(lang);
+        if lang.needs_cjk_font() && self.cjk_font == FontState::Absent {
+            self.cjk_font = FontState::Requested;
+            self.requests.push(HostRequest::LoadCjkFont);
+            self.message = Some(tr("Loading the Chinese font…").to_string());
+        }
+    }
+
+    /// Adds the CJK font's bytes (a `.ttf`, `.otf` or `.ttc` file) to the interface's fonts;
+    /// `false` (with a message) when they are no font.
+    pub fn add_cjk_font(&mut self, ctx: &egui::Context, bytes: Vec<u8>) -> bool {
+        if crate::i18n::add_cjk_font(ctx, bytes) {
+            self.cjk_font = FontState::Ready;
+            if self.message.as_deref() == Some(tr("Loading the Chinese font…")) {
+                self.message = None;
+            }
+            true
+        } else {
+            self.cjk_font_failed("not a font file");
+            false
+        }
+    }
+
+    /// Says that the CJK font could not be had (`why`); choosing a Chinese language again
+    /// asks for it again.
+    pub fn cjk_font_failed(&mut self, why: &str) {
+        self.cjk_font = FontState::Absent;
+        self.message = Some(trf("The Chinese font could not be loaded: {}", &[&why]));
+    }
+
+    /// Says that no CJK font is to be had here (the desktop found none among the system's
+    /// fonts), with what to install.
+    pub fn cjk_font_missing(&mut self) {
+        self.cjk_font = FontState::Absent;
+        self.message = Some(
+            tr("No Chinese font found: install fonts-wqy-microhei or fonts-noto-cjk, or set SWARF_CJK_FONT to a font file")
+                .to_string(),
+        );
+    }
+
+    /// Whether the CJK font has been added.
+    pub fn has_cjk_font(&self) -> bool {
+        self.cjk_font == FontState::Ready
+    }
+
+    /// The file requests made since the last call, in order.
+    pub fn take_requests(&mut self) -> Vec<HostRequest> {
+        std::mem::take(&mut self.requests)
+    }
+
+    /// The recent files offered in the File menu, newest first.
+    pub fn set_recent(&mut self, names: Vec<String>) {
+        self.recent = names;
+    }
+
+    /// Shows `message` in the status bar (a failed save, an unreadable file).
+    pub fn set_message(&mut self, message: impl Into<String>) {
+        self.message = Some(message.into());
+    }
+
+    /// The machine setup programs run with.
+    pub fn setup(&self) -> &Setup {
+        &self.setup
+    }
+
+    /// Replaces the machine setup and re-analyses.
+    pub fn set_setup(&mut self, setup: Setup) {
+        if setup != self.setup {
+            self.setup = setup;
+            self.reanalyse();
+        }
+    }
+
+    /// The setup as a `SETUP.toml` text (the CLI's format).
+    pub fn setup_toml(&self) -> Result<String, String> {
+        self.setup.to_toml().map_err(|e| e.to_string())
+    }
+
+    /// Reads a `SETUP.toml` text into the setup; on error (the CLI's: a value out of range, a
+    /// stock or tool the stock crate refuses) the setup is unchanged.
+    pub fn import_setup(&mut self, toml: &str) -> Result<(), String> {
+        let setup = Setup::from_toml(toml).map_err(|e| format!("SETUP.toml: {e}"))?;
+        swarf_stock::StockSetup::from_setup(&setup).map_err(|e| format!("SETUP.toml: {e}"))?;
+        self.set_setup(setup);
+        Ok(())
+    }
+
+    /// The codes the editor's completion list offers, while it is open.
+    pub fn completions(&self) -> Option<&[commands::Completion]> {
+        self.editor.completions()
+    }
+
+    /// Where the widget `name` was drawn in the last frame, in points; `None` when it was not
+    /// drawn or scrolled out of sight; only the part in sight, where a click reaches it. The
+    /// names: `editor`, `backplot`, `fit_view`, `find_field`, `find_previous`, `find_next`,
+    /// `find_close`, `replace_field`, `replace`, `replace_all`, `goto_field`, `goto_button`,
+    /// `problem_first` (the problems list's first row), `tab N` (the 1-based tab's label),
+    /// `close_tab N` and `new_tab`.
+    pub fn widget_rect(&self, name: &str) -> Option<egui::Rect> {
+        self.widgets
+            .get(name)
+            .copied()
+            .filter(egui::Rect::is_positive)
+    }
+
+    /// Shows the workbench filling `ui`.
+    pub fn ui(&mut self, ui: &mut egui::Ui) {
+        self.now = ui.input(|i| i.time);
+        self.widgets.clear();
+        crate::i18n::set_current(self.lang);
+        let _ = self.waker.set(ui.ctx().clone());
+        self.take_replies();
+        self.shortcuts(ui.ctx());
+        egui::Panel::top("swarf-top").show(ui, |ui| self.top_bar(ui));
+        egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
+        // The panels keep their size (the user's, once a divider is dragged) whatever they
+        // show: their contents wrap or scroll inside, so the view never jumps under the mouse.
+        if self.problem_count() == 0 {
+            // Nothing to list: one line, not an empty list's height.
+            egui::Panel::bottom("swarf-problems-none")
+                .resizable(false)
+                .show(ui, |ui| self.problems_list(ui));
+        } else {
+            egui::Panel::bottom("swarf-problems")
+                .resizable(true)
+                .default_size(PROBLEMS_PANEL_HEIGHT)
+                .show(ui, |ui| self.problems_list(ui));
+        }
+        egui::Panel::right("swarf-state")
+            .resizable(true)
+            .default_size(STATE_PANEL_WIDTH)
+            .min_size(120.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::both()
+                    .id_salt("swarf-state-scroll")
+                    .auto_shrink([false, false])
+                    .show(ui, |ui| self.state_view(ui));
+            });
+        egui::Panel::left("swarf-editor")
+            .resizable(true)
+            .default_size(EDITOR_PANEL_WIDTH)
+            .show(ui, |ui| {
+                self.tab_strip(ui);
+                let title = ui.horizontal(|ui| {
+                    let title = ui.strong(tr("Program"));
+                    let dirty = if self.document.dirty { " *" } else { "" };
+                    ui.label(format!("{}{dirty}", self.document.name));
+                    title
+                });
+                if self.find.open {
+                    // Scrolled sideways where it is wider than the panel, never widening it.
+                    egui::ScrollArea::horizontal()
+                        .id_salt("swarf-find-bar")
+                        .show(ui, |ui| self.find_bar(ui));
+                }
+                let matches = match &self.find.count {
+                    Some((_, Ok(m))) if self.find.open => m.as_slice(),
+                    _ => &[],
+                };
+                self.editor.set_highlights(matches);
+                // The editor fills the rest of the panel.
+                let editor_rect = ui.available_rect_before_wrap();
+                self.widgets.insert("editor".into(), editor_rect);
+                let out = self.editor.show(
+                    ui,
+                    title.inner.id,
+                    &mut self.text,
+                    self.dialect,
+                    &self.analysis.problems,
+                );
+                if out.changed || out.completed {
+                    let before = Snapshot {
+                        text: std::mem::replace(&mut self.shadow, self.text.rope().clone()),
+                        selection: self.selection.clone(),
+                    };
+                    let kind = if out.completed {
+                        EditKind::Command
+                    } else {
+                        EditKind::Typing
+                    };
+                    self.history.record(before, kind, out.ends_line, self.now);
+                    self.text_changed();
+                }
+                if let Some(selection) = out.selection {
+                    if selection != self.selection && !out.changed {
+                        self.history.break_run();
+                    }
+                    self.selection = selection;
+                }
+                if out.cursor_line.is_some() {
+                    self.cursor_line = out.cursor_line;
+                }
+            });
+        self.dialogs(ui.ctx());
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| {
+                // The editor's block is highlighted in the backplot (set only when the cursor
+                // moves, so a click in the backplot is not undone) …
+                if self.cursor_line != self.synced_line {
+                    self.backplot.set_selected_line(self.cursor_line);
+                    self.synced_line = self.cursor_line;
+                }
+                egui::Panel::bottom("swarf-playback").show(ui, |ui| {
+                    self.backplot.playback_bar(ui, &self.analysis.scene);
+                });
+                // A fit asked for a program just opened waits for its scene.
+                self.backplot
+                    .set_coming_generation(self.pending.map(|_| self.generation));
+                let view = self.backplot.show(ui, &self.analysis.scene);
+                if let Some(request) = self.backplot.stock_request(&self.analysis.scene) {
+                    self.ask(request);
+                }
+                self.widgets
+                    .insert("backplot".into(), view.rect.intersect(ui.clip_rect()));
+                self.loading_overlay(ui, view.rect);
+                // … a click on a segment moves the editor to its block, and so does playback
+                // (the backplot highlights the block itself).
+                let played = self.backplot.take_playback_line();
+                if let Some(line) = self.backplot.take_picked_line().or(played) {
+                    // A move of a subprogram in another tab is named, not jumped to.
+                    match self.analysis.linked_line(line.saturating_sub(1)) {
+                        Some((file, at)) => {
+                            self.message = Some(trf("{}, line {}", &[&file, &at]));
+                        }
+                        None => self.jump_to_line(line),
+                    }
+                }
+            });
+        // Each reply asks for a frame as it comes; those taken here (an analysis run in the
+        // frames, where there are no threads and no worker, answers now) are shown by the next.
+        if self.take_replies() {
+            ui.ctx().request_repaint_after(reply_frame(false));
+        }
+    }
+
+    /// The backplot (camera, selection, playback).
+    pub fn backplot(&self) -> &Backplot {
+        &self.backplot
+    }
+
+    /// The 1-based line of the editor's cursor, as last reported or moved there.
+    pub fn cursor_line(&self) -> Option<u32> {
+        self.cursor_line
+    }
+
+    /// Puts the editor's cursor at the start of 1-based `line`.
+    /// Shows the line a click in the view or the playback reached in the editor; the keyboard
+    /// stays with the view or the playback bar, so their keys never type into the program.
+    fn jump_to_line(&mut self, line: u32) {
+        let chars = self.text.line_to_char(line.saturating_sub(1) as usize);
+        self.selection = chars..chars;
+        self.editor.show_range(chars..chars);
+        self.cursor_line = Some(line);
+        self.synced_line = Some(line);
+    }
+}

@@ -1,0 +1,632 @@
+//! Tabs and the documents they hold: opening, closing, switching, parking and restoring them.
+
+use std::ops::Range;
+
+use ropey::Rope;
+
+use swarf_syntax::{Dialect, Encoding};
+
+use super::Workbench;
+use super::analyst::no_analysis;
+use super::menus::Action;
+use crate::analysis::Analysis;
+use crate::buffer::Buffer;
+use crate::examples::EXAMPLES;
+use crate::history::History;
+use crate::i18n::{tr, trf};
+
+/// The open program as a file: its name, encoding and whether it has unsaved changes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Document {
+    /// The file name shown in the title and status bar (`untitled.nc` before the first save).
+    pub name: String,
+    /// Where the file is, as the host names it (a full path on the desktop; on the web page the
+    /// key of the browser's handle to the file, where it has the File System Access API);
+    /// `None` before the first save.
+    pub path: Option<String>,
+    /// The encoding the file was read with; saving writes it back the same way.
+    pub encoding: Encoding,
+    /// The text as last opened or saved.
+    pub(super) saved: Rope,
+    pub(super) dirty: bool,
+    /// Names this document while it is open (unique in the process), so a host can follow
+    /// a tab over switches, moves and closes.
+    id: u64,
+    /// Moves with every change of the text (unique in the process): a host keeping a copy of
+    /// the text writes it again only when this moved.
+    pub(super) revision: u64,
+}
+
+impl Default for Document {
+    /// An empty untitled program.
+    fn default() -> Self {
+        Document::new("untitled.nc", &Rope::new(), Encoding::Utf8)
+    }
+}
+
+/// What a tab holds while another one is active.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Tab {
+    pub(super) text: Buffer,
+    pub(super) document: Document,
+    history: History,
+    shadow: Rope,
+    selection: Range<usize>,
+    cursor_line: Option<u32>,
+    /// The dialect the tab's program is read in.
+    dialect: Dialect,
+    /// The tab's last finished analysis (`None` before its first is done).
+    analysis: Option<Analysis>,
+}
+
+/// One open tab's file and text, for keeping unsaved work over a crash or a reload.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TabRecord {
+    /// The document's name.
+    pub name: String,
+    /// Its file, when the host knows it.
+    pub path: Option<String>,
+    /// The file's encoding.
+    pub encoding: Encoding,
+    /// The text (with its unsaved changes).
+    pub text: String,
+    /// Whether the text has changes that are not saved.
+    pub dirty: bool,
+    /// The tab's dialect; `None` for the one new tabs start in.
+    pub dialect: Option<Dialect>,
+}
+
+impl Document {
+    pub(super) fn new(name: &str, text: &Rope, encoding: Encoding) -> Self {
+        Document {
+            name: name.to_string(),
+            path: None,
+            encoding,
+            saved: text.clone(),
+            dirty: false,
+            id: next_stamp(),
+            revision: next_stamp(),
+        }
+    }
+
+    /// Whether the text has changes that are not saved.
+    pub fn is_unsaved(&self) -> bool {
+        self.dirty
+    }
+
+    /// Names the document while it is open: the same over tab switches, moves and closes of
+    /// other tabs, never shared with another document of this process.
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// Changes with every change of the text, never to a value another text had in this
+    /// process: a copy kept of a revision is a copy of that text.
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+}
+
+impl Workbench {
+    /// Opens a program read from a file in a new tab (or in the active one when that is
+    /// empty, untitled and unchanged): a fresh undo history, no unsaved changes.
+    pub fn open_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
+        self.open_file(name, text.into(), encoding, None);
+    }
+
+    /// Opens a program read from a file in a tab, as [`Workbench::open_document`]; `path` is
+    /// where it came from, when the host knows. A file already open from the same path gets
+    /// its tab back (re-read when it has no unsaved changes).
+    pub fn open_file(
+        &mut self,
+        name: &str,
+        text: String,
+        encoding: Encoding,
+        path: Option<String>,
+    ) {
+        // A built-in example saved as a file opens in its dialect, as from the menu.
+        let dialect = EXAMPLES.iter().find(|e| e.text == text).map(|e| e.dialect);
+        self.open_in(name, text, encoding, path, dialect);
+    }
+
+    /// Opens a file in a tab as [`Workbench::open_file`] does, in `dialect` when given (a file
+    /// opened again keeps its tab's dialect otherwise, a new one starts in the default).
+    fn open_in(
+        &mut self,
+        name: &str,
+        text: String,
+        encoding: Encoding,
+        path: Option<String>,
+        dialect: Option<Dialect>,
+    ) {
+        let open_at = path.as_ref().and_then(|p| {
+            (0..self.tabs.len()).find(|&i| self.tab_document(i).path.as_ref() == Some(p))
+        });
+        match open_at {
+            Some(i) => {
+                self.switch_tab(i);
+                if self.document.dirty {
+                    self.message = Some(trf("{} is open here with unsaved changes", &[&name]));
+                    return;
+                }
+            }
+            // A new file starts in the default dialect (a tab keeps its own once open).
+            None if self.is_blank() => self.dialect = self.default_dialect,
+            None => self.push_tab(),
+        }
+        if let Some(dialect) = dialect {
+            self.dialect = dialect;
+        }
+        self.load(name, text, encoding);
+        self.document.path = path;
+    }
+
+    /// Parks the active tab and makes a new empty one after the others active, in the default
+    /// dialect, with no analysis yet.
+    fn push_tab(&mut self) {
+        let current = self.park();
+        if let Some(slot) = self.tabs.get_mut(self.active) {
+            *slot = current;
+        }
+        self.tabs.push(Tab::default());
+        self.active = self.tabs.len() - 1;
+        self.dialect = self.default_dialect;
+    }
+
+    /// Opens a file dropped on the window or the page in a tab (see [`Workbench::open_file`]).
+    pub fn open_guarded(
+        &mut self,
+        name: &str,
+        text: String,
+        encoding: Encoding,
+        path: Option<String>,
+    ) {
+        self.open_file(name, text, encoding, path);
+    }
+
+    /// Replaces the active tab's program with a file's text (no unsaved changes), as after
+    /// saving it in another encoding.
+    pub fn reload_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
+        let path = self.document.path.take();
+        self.load(name, text.into(), encoding);
+        self.document.path = path;
+    }
+
+    /// Shows `text` as the active tab's file `name`: a fresh undo history, no unsaved changes.
+    fn load(&mut self, name: &str, text: String, encoding: Encoding) {
+        self.text = Buffer::from(text);
+        self.shadow = self.text.rope().clone();
+        self.history.clear();
+        self.document = Document::new(name, self.text.rope(), encoding);
+        self.selection = 0..0;
+        self.cursor_line = None;
+        self.synced_line = None;
+        self.editor.jump_to(0..0);
+        self.message = None;
+        self.drop_shown_analysis();
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// Shows the empty stand-in until the active tab's next analysis is done (its text is
+    /// another file now: what was shown is not of it).
+    fn drop_shown_analysis(&mut self) {
+        self.own_analysis = false;
+        self.analysis = no_analysis();
+        self.floor = self.generation + 1;
+    }
+
+    /// Whether the active tab is empty, untitled and unchanged (a file opened replaces it).
+    fn is_blank(&self) -> bool {
+        self.text.is_empty() && !self.document.dirty && self.document.path.is_none()
+    }
+
+    /// Records where the open document's file is (after opening or saving it).
+    pub fn set_path(&mut self, path: Option<String>) {
+        self.document.path = path;
+    }
+
+    /// Replaces the active tab's program with unsaved `text` recovered after a crash: shown as
+    /// a change to `name` that still needs saving.
+    pub fn recover(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
+        self.load(name, String::new(), encoding);
+        self.text = Buffer::from(text.into());
+        self.shadow = self.text.rope().clone();
+        self.document.dirty = true;
+        self.document.revision = next_stamp();
+        self.message = recovered_message(&[name]);
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// Every tab's file and text, in order, with the index of the active one.
+    pub fn tab_records(&self) -> (Vec<TabRecord>, usize) {
+        let records = (0..self.tabs.len())
+            .map(|i| {
+                let (doc, text) = if i == self.active {
+                    (&self.document, &self.text)
+                } else {
+                    let tab = &self.tabs[i];
+                    (&tab.document, &tab.text)
+                };
+                TabRecord {
+                    name: doc.name.clone(),
+                    path: doc.path.clone(),
+                    encoding: doc.encoding,
+                    text: text.to_text(),
+                    dirty: doc.dirty,
+                    dialect: self.tab_dialect(i),
+                }
+            })
+            .collect();
+        (records, self.active)
+    }
+
+    /// Replaces every tab with `records` (kept by [`Workbench::tab_records`]) and activates
+    /// the `active`-th; unsaved texts come back as changes that still need saving, and the
+    /// status bar names them (it says nothing of recovery when none had any). Nothing happens
+    /// for an empty list.
+    pub fn restore_tabs(&mut self, records: Vec<TabRecord>, active: usize) {
+        if records.is_empty() {
+            return;
+        }
+        let active = active.min(records.len() - 1);
+        let unsaved: Vec<&str> = records
+            .iter()
+            .filter(|r| r.dirty)
+            .map(|r| r.name.as_str())
+            .collect();
+        let message = recovered_message(&unsaved);
+        let mut tabs = Vec::with_capacity(records.len());
+        for r in records {
+            let text = Buffer::from(r.text);
+            let saved = if r.dirty {
+                Rope::new()
+            } else {
+                text.rope().clone()
+            };
+            let mut document = Document::new(&r.name, &saved, r.encoding);
+            document.path = r.path;
+            document.dirty = r.dirty;
+            tabs.push(Tab {
+                shadow: text.rope().clone(),
+                text,
+                document,
+                dialect: r.dialect.unwrap_or(self.default_dialect),
+                ..Tab::default()
+            });
+        }
+        let first = std::mem::take(&mut tabs[active]);
+        self.tabs = tabs;
+        self.active = active;
+        self.unpark(first);
+        if message.is_some() {
+            self.message = message;
+        }
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// The text of tab `i` (a copy), `None` past the last tab.
+    pub fn tab_text(&self, i: usize) -> Option<String> {
+        if i == self.active {
+            Some(self.text.to_text())
+        } else {
+            self.tabs.get(i).map(|t| t.text.to_text())
+        }
+    }
+
+    /// Takes the active tab's content out of the workbench's fields.
+    ///
+    /// The tab keeps its dialect and last finished analysis; an unfinished one is dropped (it
+    /// starts over when the tab is active again), and the empty stand-in is shown meanwhile.
+    fn park(&mut self) -> Tab {
+        self.pending = None;
+        let analysis = if std::mem::take(&mut self.own_analysis) {
+            Some(std::mem::replace(&mut self.analysis, no_analysis()))
+        } else {
+            None
+        };
+        Tab {
+            text: std::mem::take(&mut self.text),
+            document: std::mem::take(&mut self.document),
+            history: std::mem::take(&mut self.history),
+            shadow: std::mem::take(&mut self.shadow),
+            selection: std::mem::take(&mut self.selection),
+            cursor_line: self.cursor_line.take(),
+            dialect: self.dialect,
+            analysis,
+        }
+    }
+
+    /// Puts a tab's content into the workbench's fields: its own last analysis is shown (the
+    /// empty stand-in when it has none yet), never the one of the tab before.
+    fn unpark(&mut self, tab: Tab) {
+        self.text = tab.text;
+        self.document = tab.document;
+        self.history = tab.history;
+        self.shadow = tab.shadow;
+        self.cursor_line = tab.cursor_line;
+        self.synced_line = None;
+        self.state_cache = None;
+        self.select_chars(tab.selection);
+        self.dialect = tab.dialect;
+        self.pending = None;
+        self.own_analysis = tab.analysis.is_some();
+        self.analysis = tab.analysis.unwrap_or_else(no_analysis);
+        self.floor = self.generation + 1;
+    }
+
+    /// The document of tab `i` (which may be the active one).
+    pub(super) fn tab_document(&self, i: usize) -> &Document {
+        if i == self.active {
+            &self.document
+        } else {
+            &self.tabs[i].document
+        }
+    }
+
+    /// Number of open tabs.
+    pub fn tab_count(&self) -> usize {
+        self.tabs.len()
+    }
+
+    /// Index of the active tab.
+    pub fn active_tab(&self) -> usize {
+        self.active
+    }
+
+    /// The open tabs' documents, in order.
+    pub fn tab_documents(&self) -> Vec<&Document> {
+        (0..self.tabs.len()).map(|i| self.tab_document(i)).collect()
+    }
+
+    /// Makes tab `i` the active one (its program goes to the editor and the backplot).
+    pub fn switch_tab(&mut self, i: usize) {
+        if i == self.active || i >= self.tabs.len() {
+            return;
+        }
+        let current = self.park();
+        self.tabs[self.active] = current;
+        let next = std::mem::take(&mut self.tabs[i]);
+        self.active = i;
+        self.unpark(next);
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// Closes tab `i`, after asking to save or discard its unsaved changes (the tab is made
+    /// active for the question). The last tab closed leaves an empty untitled one.
+    pub fn close_tab(&mut self, i: usize) {
+        if i >= self.tabs.len() {
+            return;
+        }
+        if self.tab_document(i).dirty {
+            self.switch_tab(i);
+            self.confirm = Some(Action::Close);
+        } else if i == self.active {
+            self.remove_active_tab();
+        } else {
+            self.tabs.remove(i);
+            if i < self.active {
+                self.active -= 1;
+            }
+            // The active program's calls may have reached the tab closed.
+            self.reanalyse();
+        }
+    }
+
+    /// Drops the active tab, unsaved changes and all.
+    pub(super) fn remove_active_tab(&mut self) {
+        if self.tabs.len() <= 1 {
+            self.dialect = self.default_dialect;
+            self.load("untitled.nc", String::new(), Encoding::Utf8);
+            return;
+        }
+        self.tabs.remove(self.active);
+        self.active = self.active.min(self.tabs.len() - 1);
+        let next = std::mem::take(&mut self.tabs[self.active]);
+        self.unpark(next);
+        self.reanalyse();
+        self.backplot.fit();
+    }
+
+    /// `untitled.nc`, or `untitled-2.nc` … when another tab has that name.
+    fn untitled_name(&self) -> String {
+        let taken = |name: &str| {
+            (0..self.tabs.len()).any(|i| i != self.active && self.tab_document(i).name == name)
+        };
+        let mut name = "untitled.nc".to_string();
+        let mut n = 1;
+        while taken(&name) {
+            n += 1;
+            name = format!("untitled-{n}.nc");
+        }
+        name
+    }
+
+    /// Opens a new tab with an empty untitled program.
+    pub fn new_tab(&mut self) {
+        self.push_tab();
+        let name = self.untitled_name();
+        self.load(&name, String::new(), Encoding::Utf8);
+    }
+
+    /// Whether any tab has unsaved changes.
+    pub fn any_dirty(&self) -> bool {
+        self.document.dirty
+            || self
+                .tabs
+                .iter()
+                .enumerate()
+                .any(|(i, t)| i != self.active && t.document.dirty)
+    }
+
+    /// The open document (name, encoding).
+    pub fn document(&self) -> &Document {
+        &self.document
+    }
+
+    /// Whether the text differs from what was last opened or saved.
+    pub fn is_dirty(&self) -> bool {
+        self.document.dirty
+    }
+
+    /// Records that the active tab's text was saved as `name`; runs an action that waited for
+    /// the save.
+    pub fn mark_saved(&mut self, name: &str) {
+        self.document.name = name.to_string();
+        self.document.saved = self.text.rope().clone();
+        self.document.dirty = false;
+        self.message = Some(trf("Saved {}", &[&name]));
+        if let Some(action) = self.after_save.take() {
+            self.run_action(action);
+        }
+    }
+
+    /// The dialect the active tab's program is read in.
+    pub fn dialect(&self) -> Dialect {
+        self.dialect
+    }
+
+    /// Reads the active tab's program in `dialect` (re-analysing it) and makes `dialect` the
+    /// one new tabs start in, as choosing it in the dialect selector does; the other open tabs
+    /// keep theirs.
+    pub fn set_dialect(&mut self, dialect: Dialect) {
+        self.default_dialect = dialect;
+        self.set_tab_dialect(self.active, dialect);
+    }
+
+    /// The dialect tab `i`'s program is read in; `None` past the last tab.
+    pub fn tab_dialect(&self, i: usize) -> Option<Dialect> {
+        if i == self.active {
+            Some(self.dialect)
+        } else {
+            self.tabs.get(i).map(|t| t.dialect)
+        }
+    }
+
+    /// Reads tab `i`'s program in `dialect` (the active one is re-analysed at once, another
+    /// when it is next shown); the other tabs and the default for new ones stay as they are.
+    pub fn set_tab_dialect(&mut self, i: usize, dialect: Dialect) {
+        if i == self.active {
+            if dialect != self.dialect {
+                self.dialect = dialect;
+                self.reanalyse();
+            }
+        } else if let Some(tab) = self.tabs.get_mut(i) {
+            tab.dialect = dialect;
+        }
+    }
+
+    /// The dialect new tabs, and files opened in them, start in.
+    pub fn default_dialect(&self) -> Dialect {
+        self.default_dialect
+    }
+
+    /// Sets the dialect new tabs start in (the open tabs keep theirs), as a host restoring
+    /// its settings does.
+    pub fn set_default_dialect(&mut self, dialect: Dialect) {
+        self.default_dialect = dialect;
+    }
+
+    /// Opens the built-in example `name` (see [`EXAMPLES`]) in its dialect; false when there is
+    /// no such example.
+    pub fn open_example(&mut self, name: &str) -> bool {
+        let Some(ex) = EXAMPLES.iter().find(|e| e.name == name) else {
+            return false;
+        };
+        self.open_in(
+            ex.name,
+            ex.text.to_string(),
+            Encoding::Utf8,
+            None,
+            Some(ex.dialect),
+        );
+        true
+    }
+
+    /// The tabs over the editor: one per open file (click to switch, × to close) and + for a
+    /// new one.
+    pub(super) fn tab_strip(&mut self, ui: &mut egui::Ui) {
+        let mut switch = None;
+        let mut close = None;
+        let mut new = false;
+        egui::ScrollArea::horizontal()
+            .id_salt("swarf-tabs")
+            .show(ui, |ui| {
+                ui.horizontal(|ui| {
+                    for i in 0..self.tabs.len() {
+                        let doc = self.tab_document(i);
+                        let dirty = if doc.dirty { " *" } else { "" };
+                        let label = format!("{}{dirty}", doc.name);
+                        let hover = doc.path.clone().unwrap_or_else(|| doc.name.clone());
+                        let close_label = trf("Close {}", &[&doc.name]);
+                        let tab = ui.selectable_label(i == self.active, label);
+                        self.widgets.insert(
+                            format!("tab {}", i + 1).into(),
+                            tab.rect.intersect(ui.clip_rect()),
+                        );
+                        if tab.on_hover_text(hover).clicked() {
+                            switch = Some(i);
+                        }
+                        let button = ui.small_button("×");
+                        button.widget_info(|| {
+                            egui::WidgetInfo::labeled(
+                                egui::accesskit::Role::Button,
+                                true,
+                                &close_label,
+                            )
+                        });
+                        self.widgets.insert(
+                            format!("close_tab {}", i + 1).into(),
+                            button.rect.intersect(ui.clip_rect()),
+                        );
+                        if button.on_hover_text(&close_label).clicked() {
+                            close = Some(i);
+                        }
+                        ui.separator();
+                    }
+                    let button = ui.small_button("+");
+                    button.widget_info(|| {
+                        egui::WidgetInfo::labeled(
+                            egui::accesskit::Role::Button,
+                            true,
+                            tr("New tab"),
+                        )
+                    });
+                    self.widgets
+                        .insert("new_tab".into(), button.rect.intersect(ui.clip_rect()));
+                    new = button.on_hover_text(tr("New tab")).clicked();
+                });
+            });
+        if let Some(i) = switch {
+            self.switch_tab(i);
+        }
+        if let Some(i) = close {
+            self.close_tab(i);
+        }
+        if new {
+            self.new_tab();
+        }
+    }
+}
+
+/// What the status bar says after unsaved changes of the tabs `names` were recovered; `None`
+/// when there were none.
+fn recovered_message(names: &[&str]) -> Option<String> {
+    match names {
+        [] => None,
+        [name] => Some(trf("Recovered unsaved changes of {}", &[name])),
+        _ => Some(trf(
+            "Recovered unsaved changes of {} tabs: {}",
+            &[&names.len(), &names.join(", ")],
+        )),
+    }
+}
+
+/// A number no earlier call returned (document ids and text revisions).
+pub(super) fn next_stamp() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+}
