@@ -2,18 +2,27 @@
 // `cargo xtask serve`, the wasm's size as sent and on disk, then a generated 1M-line
 // surfacing program handed to the editor through `window.swarf.open`, timed until
 // `window.swarf.idle()` resolves: its analysis finished in the page's worker, as for a person,
-// and a frame showing it painted; and before it, a keystroke in a 10,000-line program, timed the
-// same way. Headless Chromium (WebGL2 through
-// SwiftShader). Build first with `cargo xtask web`, then run:
+// and a frame showing it painted, with the longest gap between frames meanwhile against the
+// longest while the empty page repaints; and before it, the same keystroke in a 20-line and in
+// a 10,000-line program, timed the same way; the page and worker's memory with the long program
+// open, and npm's gcode-preview given it in the same browser (`peer.mjs`). Headless Chromium
+// (WebGL2 through SwiftShader).
+// Build first with `cargo xtask web`, then run:
 //   node tests/e2e/bench-web.mjs [LINES]        (default 1000000)
 // Prints a Markdown table row per figure.
 
 import { stat } from "node:fs/promises";
 import path from "node:path";
 
+import { execFileSync } from "node:child_process";
+
 import { BrowserSession, SITE } from "./harness.mjs";
+import { gcodePreviewMs } from "./peer.mjs";
 
 const lines = Number(process.argv[2] ?? 1_000_000);
+/** Keystrokes timed in each program: frames take 0.1–0.3 s under SwiftShader, so a median
+ * of several keeps the ratio of the two programs steady. */
+const KEYSTROKES = 11;
 
 /** The same surfacing program as crates/syntax/benches/surfacing.rs, `lines` moves long. */
 function surfacing(count) {
@@ -59,6 +68,56 @@ async function keystroke(session, count, times) {
   return samples[Math.floor(times / 2)];
 }
 
+/** Starts recording the times of the page's frames (`requestAnimationFrame` callbacks). */
+function recordFrames(page) {
+  return page.evaluate(() => {
+    window.benchFrames = [];
+    const frame = (now) => {
+      window.benchFrames.push(now);
+      requestAnimationFrame(frame);
+    };
+    requestAnimationFrame(frame);
+  });
+}
+
+/**
+ * The gaps in milliseconds between the frames recorded since the last call, from page time
+ * `after` on (and from `after` to the first of them).
+ */
+function frameGaps(page, after = 0) {
+  return page.evaluate((after) => {
+    const times = window.benchFrames.splice(0).filter((t) => t >= after);
+    const from = after > 0 ? [after, ...times] : times;
+    return from.slice(1).map((t, i) => t - from[i]);
+  }, after);
+}
+
+/** The longest gap between frames while the pointer moves over the empty page's view. */
+async function emptyPageGap(session) {
+  const { page } = session;
+  const view = await page.evaluate(() => window.swarf.widget("backplot"));
+  await frameGaps(page);
+  for (let i = 0; i < 40; i++) {
+    await page.mouse.move(view.x + view.width * (0.2 + i / 80), view.y + view.height / 2);
+    await page.waitForTimeout(40);
+  }
+  const gaps = await frameGaps(page);
+  return Math.max(...gaps);
+}
+
+/**
+ * Resident megabytes of this session's renderer processes: the page and its worker (a dedicated
+ * worker is a thread of its page's renderer), not the GPU process.
+ */
+function rendererMb(session) {
+  const ps = execFileSync("ps", ["-eo", "rss=,args="], { encoding: "utf8", maxBuffer: 1 << 26 });
+  const kb = ps
+    .split("\n")
+    .filter((l) => l.includes("--type=renderer") && l.includes(session.userDataDir))
+    .reduce((sum, l) => sum + Number.parseInt(l.trim(), 10), 0);
+  return kb / 1024;
+}
+
 const session = await BrowserSession.start({
   headless: true,
   args: ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"],
@@ -74,17 +133,26 @@ try {
   const encoding = wasmResponse.headers()["content-encoding"] ?? "identity";
   const onDisk = async (suffix) => (await stat(path.join(SITE, `swarf_app_bg.wasm${suffix}`))).size;
   const wasmSizes = [sent, await onDisk(".gz"), await onDisk("")].map((b) => (b / 1e6).toFixed(2));
-  const keyMs = await keystroke(session, 10_000, 7);
+  await recordFrames(session.page);
+  const emptyGap = await emptyPageGap(session);
+  const shortKeyMs = await keystroke(session, 20, KEYSTROKES);
+  const keyMs = await keystroke(session, 10_000, KEYSTROKES);
   const text = surfacing(lines);
+  await frameGaps(session.page);
   const result = await session.page.evaluate(async ([name, program]) => {
     const t0 = performance.now();
     window.swarf.open(name, program);
+    const opened = performance.now();
     const late = new Promise((resolve) => setTimeout(() => resolve("late"), 600_000));
     if ((await Promise.race([window.swarf.idle(), late])) === "late") {
-      return { ms: -1, motions: window.swarf.stats().motions };
+      return { ms: -1, opened, call: opened - t0, motions: window.swarf.stats().motions };
     }
-    return { ms: performance.now() - t0, motions: window.swarf.stats().motions };
+    const ms = performance.now() - t0;
+    return { ms, opened, call: opened - t0, motions: window.swarf.stats().motions };
   }, ["surfacing.nc", text]);
+  const openGap = Math.max(...(await frameGaps(session.page, result.opened)));
+  const memoryMb = rendererMb(session);
+  const peerMs = await gcodePreviewMs(session.context, text);
   if (result.ms >= 0 && result.motions < lines) {
     throw new Error(`idle() resolved with ${result.motions} moves shown, not ${lines}`);
   }
@@ -95,11 +163,26 @@ try {
   console.log(
     `| the page's wasm: as sent (${encoding}) / gzip / uncompressed | ${wasmSizes.join(" MB / ")} MB |`,
   );
-  console.log(`| a keystroke in a 10,000-line program to its markers drawn (median of 7) | ${Math.round(keyMs)} ms |`);
+  console.log(
+    `| a keystroke in a 10,000-line program to its markers drawn (median of ${KEYSTROKES}) | ${Math.round(keyMs)} ms |`,
+  );
+  console.log(
+    `| the same keystroke in a 20-line program (median of ${KEYSTROKES}) | ${Math.round(shortKeyMs)} ms |`,
+  );
+  console.log(`| keystroke: 10,000 lines / 20 lines | ${(keyMs / shortKeyMs).toFixed(2)} |`);
   console.log(
     `| ${lines.toLocaleString("en")}-line program (${mb.toFixed(1)} MB) open to its full backplot drawn | ${
       result.ms < 0 ? "over 10 min" : `${Math.round(result.ms)} ms`
     } (${result.motions.toLocaleString("en")} moves) |`,
+  );
+  console.log(
+    `| longest gap between frames: the empty page repainting / after that open() returned (the call: ${Math.round(result.call)} ms) | ${Math.round(emptyGap)} ms / ${Math.round(openGap)} ms |`,
+  );
+  console.log(
+    `| page and worker resident memory with that program open (the renderer process) | ${Math.round(memoryMb)} MB |`,
+  );
+  console.log(
+    `| npm gcode-preview 2.18 (three.js) on the same program, to its first frame | ${Math.round(peerMs)} ms (${(peerMs / result.ms).toFixed(1)}× Swarf's time) |`,
   );
 } catch (error) {
   console.error(session.withLog(`the benchmark failed: ${error.message}`));
