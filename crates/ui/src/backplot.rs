@@ -1152,7 +1152,11 @@ impl Backplot {
         let error = scene.stock.as_ref().and_then(|c| c.error.as_deref());
         if let Some((done, upto)) = scene.stock_progress {
             let percent = done * 100 / upto.max(1);
-            child.weak(trf("Stock {}%", &[&percent]));
+            child.add(
+                egui::ProgressBar::new(done as f32 / upto.max(1) as f32)
+                    .desired_width(110.0)
+                    .text(trf("Stock {}%", &[&percent])),
+            );
         } else if let Some(error) = error {
             child
                 .weak(tr("No stock"))
