@@ -764,7 +764,21 @@ impl Backplot {
             Vec2::new(free_min.x, free_min.y),
             Vec2::new(free_max.x, free_max.y),
         );
-        match scene.view_bounds() {
+        let mut bounds = scene.view_bounds();
+        // With the Stock view on, the whole block is framed too.
+        if let Some(f) = self
+            .shown_stock
+            .as_ref()
+            .filter(|_| self.stock_on)
+            .and_then(|c| c.field.as_ref())
+        {
+            let (nx, ny) = f.size;
+            let far = f.min + DVec3::new(nx as f64 * f.cell_mm, ny as f64 * f.cell_mm, 0.0);
+            let lo = (f.min - scene.origin).as_vec3();
+            let hi = (far.with_z(f.top) - scene.origin).as_vec3();
+            bounds = Some(bounds.map_or((lo, hi), |(min, max)| (min.min(lo), max.max(hi))));
+        }
+        match bounds {
             Some((min, max)) => self.camera.fit_in(min, max, viewport, free_min, free_max),
             // Nothing to frame: the default view of the origin.
             None => self

@@ -120,6 +120,24 @@ fn the_stock_button_cuts_draws_and_reports_the_stock() {
         "the rapid into the stock is not marked: {red} pixels"
     );
 
+    // Fit frames the whole block, the corners of its top included.
+    harness.get_by_label("Fit").click();
+    harness.run();
+    let wb = harness.state();
+    let (field, origin) = (cut.field.as_ref().unwrap(), wb.analysis().scene.origin);
+    let view = wb.widget_rect("backplot").unwrap();
+    let (nx, ny) = field.size;
+    for (i, j) in [(0, 0), (nx, 0), (0, ny), (nx, ny)] {
+        let corner = DVec3::new(i as f64, j as f64, 0.0) * field.cell_mm + field.min;
+        let at = wb
+            .backplot()
+            .screen_pos((corner.with_z(field.top) - origin).as_vec3());
+        assert!(
+            at.is_some_and(|p| view.contains(p)),
+            "{corner} at {at:?}, not in {view:?}"
+        );
+    }
+
     // Hovering the uncut top tells its height.
     let wb = harness.state();
     let origin = wb.analysis().scene.origin;
