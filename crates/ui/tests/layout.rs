@@ -9,9 +9,8 @@ use support::render_state;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use egui_kittest::wgpu::WgpuTestRenderer;
 use swarf_ui::Workbench;
-use swarf_ui::backplot::{Backplot, Scene};
+use swarf_ui::backplot::Scene;
 
 /// A short first line, then a block with a lot of modal state and a long line.
 const MODAL: &str = "%\nO1\nG90 G17 G21 G40 G49 G80 G94 G54 G64 G69 G15 G50.1 G98 G97 T12 M06 \
@@ -31,13 +30,7 @@ fn plain(wb: Workbench) -> Harness<'static, Workbench> {
 
 fn drawn(wb: Workbench, render_state: &egui_wgpu::RenderState) -> Harness<'static, Workbench> {
     // A wide window: the view is framed by its height, where the buttons are.
-    let harness = Harness::builder()
-        .with_size(egui::vec2(1800.0, 600.0))
-        .with_render_cursor(false)
-        .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
-        .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
-    Backplot::install(&harness.ctx, render_state);
-    harness
+    support::drawn_workbench(render_state, wb, egui::vec2(1800.0, 600.0))
 }
 
 fn view(harness: &Harness<'_, Workbench>) -> egui::Rect {

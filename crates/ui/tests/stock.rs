@@ -10,10 +10,9 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use egui_kittest::wgpu::WgpuTestRenderer;
 use glam::DVec3;
 use swarf_ui::Workbench;
-use swarf_ui::backplot::{Backplot, RAPID_INTO_STOCK_COLOR};
+use swarf_ui::backplot::RAPID_INTO_STOCK_COLOR;
 
 /// A slot 2 mm deep from the top at Z0 along X and up Y (a 10 mm tool assumed), then a rapid
 /// down into the material beside it (line 7).
@@ -21,16 +20,11 @@ const PROGRAM: &str =
     "G90 G21 G17\nG1 Z-2. F300.\nG1 X40.\nG1 Y20.\nG0 Z5.\nG0 X10. Y10.\nG0 Z-1.\nM30\n";
 
 fn harness(render_state: &egui_wgpu::RenderState) -> Harness<'static, Workbench> {
-    let harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 700.0))
-        .with_render_cursor(false)
-        .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
-        .build_ui_state(
-            |ui, wb: &mut Workbench| wb.ui(ui),
-            Workbench::new(PROGRAM.to_string()),
-        );
-    Backplot::install(&harness.ctx, render_state);
-    harness
+    support::drawn_workbench(
+        render_state,
+        Workbench::new(PROGRAM.to_string()),
+        egui::vec2(1200.0, 700.0),
+    )
 }
 
 /// Frames until `done` holds of the workbench (the analysis' thread answers meanwhile).

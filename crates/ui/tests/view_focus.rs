@@ -9,23 +9,16 @@ use support::render_state;
 use egui::Key;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
-use egui_kittest::wgpu::WgpuTestRenderer;
 use swarf_ui::Workbench;
-use swarf_ui::backplot::Backplot;
 
 const PROGRAM: &str = "G90 G21\nG0 X0 Y0 Z5.\nG1 Z0 F600.\nX20.\nY20.\nG0 Z5.\nM30\n";
 
 fn harness(render_state: &egui_wgpu::RenderState) -> Harness<'static, Workbench> {
-    let harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 700.0))
-        .with_render_cursor(false)
-        .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
-        .build_ui_state(
-            |ui, wb: &mut Workbench| wb.ui(ui),
-            Workbench::new(PROGRAM.to_string()),
-        );
-    Backplot::install(&harness.ctx, render_state);
-    harness
+    support::drawn_workbench(
+        render_state,
+        Workbench::new(PROGRAM.to_string()),
+        egui::vec2(1200.0, 700.0),
+    )
 }
 
 fn yaw(harness: &Harness<'_, Workbench>) -> f32 {
