@@ -12,6 +12,7 @@ import { mkdtemp, mkdir, rm, writeFile } from "node:fs/promises";
 import { existsSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
+import { after, before } from "node:test";
 import { fileURLToPath } from "node:url";
 
 import { chromium } from "playwright-core";
@@ -36,6 +37,25 @@ export const COMMON_CHROMIUM_ARGS = [
   "--disable-component-update",
   "--disable-sync",
 ];
+
+/** Flags of the headless variant: WebGL2 through SwiftShader. */
+export const HEADLESS_ARGS = ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"];
+
+/**
+ * One headless session for the calling test file: started before its tests (after checking the
+ * prerequisites) and closed after them; the returned function gives it.
+ */
+export function headlessSession() {
+  let session;
+  before(async () => {
+    checkPrerequisites();
+    session = await BrowserSession.start({ headless: true, args: HEADLESS_ARGS });
+  });
+  after(async () => {
+    await session?.close();
+  });
+  return () => session;
+}
 
 /** Throws a readable error when the web build or Chromium is missing. */
 export function checkPrerequisites() {

@@ -4,25 +4,15 @@
 //
 // Needs the web build (`cargo xtask web`); run with `node --test tests/e2e/`.
 
-import { after, before, test } from "node:test";
+import { test } from "node:test";
 import assert from "node:assert/strict";
 
-import { BrowserSession, TEST_TIMEOUT_MS, checkPrerequisites } from "./harness.mjs";
+import { TEST_TIMEOUT_MS, headlessSession } from "./harness.mjs";
 
-const CHROMIUM_ARGS = ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"];
-
-let session;
-
-before(async () => {
-  checkPrerequisites();
-  session = await BrowserSession.start({ headless: true, args: CHROMIUM_ARGS });
-});
-
-after(async () => {
-  await session?.close();
-});
+const startedSession = headlessSession();
 
 test("a reload works offline once the page was visited", { timeout: TEST_TIMEOUT_MS }, async () => {
+  const session = startedSession();
   const { page, context } = session;
   await session.loadUntilReady("offline-first-visit.png");
 

@@ -4,12 +4,10 @@
 //
 // Needs the web build (`cargo xtask web`); run with `node --test tests/e2e/`.
 
-import { after, before, test } from "node:test";
+import { test } from "node:test";
 import assert from "node:assert/strict";
 
-import { BrowserSession, TEST_TIMEOUT_MS, checkPrerequisites } from "./harness.mjs";
-
-const CHROMIUM_ARGS = ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"];
+import { TEST_TIMEOUT_MS, headlessSession } from "./harness.mjs";
 
 const SETUP = `[stock]
 min = [0.0, 0.0, -20.0]
@@ -21,18 +19,10 @@ shape = "ball"
 flute_length = 12.0
 `;
 
-let session;
-
-before(async () => {
-  checkPrerequisites();
-  session = await BrowserSession.start({ headless: true, args: CHROMIUM_ARGS });
-});
-
-after(async () => {
-  await session?.close();
-});
+const startedSession = headlessSession();
 
 test("setSetup applies a SETUP.toml that setup() gives back; a bad one throws", { timeout: TEST_TIMEOUT_MS }, async () => {
+  const session = startedSession();
   const { page } = session;
   await session.loadUntilReady("setup-not-ready.png");
   const before = await page.evaluate(() => window.swarf.setup());

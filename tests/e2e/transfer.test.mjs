@@ -3,26 +3,16 @@
 //
 // Needs the web build (`cargo xtask web`); run with `node --test tests/e2e/transfer.test.mjs`.
 
-import { after, before, test } from "node:test";
+import { test } from "node:test";
 import assert from "node:assert/strict";
 import { get } from "node:http";
 
-import { BrowserSession, TEST_TIMEOUT_MS, checkPrerequisites } from "./harness.mjs";
+import { TEST_TIMEOUT_MS, headlessSession } from "./harness.mjs";
 
-const CHROMIUM_ARGS = ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"];
 const WASM = "swarf_app_bg.wasm";
 const MAX_WASM_BYTES = 2_500_000;
 
-let session;
-
-before(async () => {
-  checkPrerequisites();
-  session = await BrowserSession.start({ headless: true, args: CHROMIUM_ARGS });
-});
-
-after(async () => {
-  await session?.close();
-});
+const startedSession = headlessSession();
 
 /** GET `url` with `acceptEncoding`: the status, the headers and the body's bytes as sent. */
 function fetchRaw(url, acceptEncoding) {
@@ -40,6 +30,7 @@ function fetchRaw(url, acceptEncoding) {
 }
 
 test("the page's wasm is sent compressed, at most 2.5 MB", { timeout: TEST_TIMEOUT_MS }, async () => {
+  const session = startedSession();
   const { page } = session;
   const wasmResponse = page.waitForResponse((response) => response.url().endsWith(`/${WASM}`));
   await session.loadUntilReady("transfer-not-ready.png");
