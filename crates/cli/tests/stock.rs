@@ -3,6 +3,9 @@
 //! error naming its key. (`render --stock` is checked against a golden image in render.rs.)
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+mod support;
+use support::swarf;
+
 /// A slot 5 mm deep along Y25 from X20 to X70 (lines 7–8), then a rapid plunge 3 mm into the
 /// stock at X30 Y10 (line 11).
 const SLOT: &str = "%
@@ -32,19 +35,6 @@ cell_mm = 0.25
 diameter = 10
 flute_length = 6
 ";
-
-fn swarf(args: &[&str]) -> (i32, String, String) {
-    let mut out = Vec::new();
-    let mut err = Vec::new();
-    let mut all = vec!["swarf"];
-    all.extend_from_slice(args);
-    let code = swarf_cli::run(all, &mut out, &mut err);
-    (
-        code,
-        String::from_utf8(out).unwrap(),
-        String::from_utf8(err).unwrap(),
-    )
-}
 
 /// The slot program and `setup` written to a temporary folder: (folder, program, setup).
 fn files(setup: &str) -> (tempfile::TempDir, String, String) {
