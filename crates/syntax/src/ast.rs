@@ -62,62 +62,43 @@ impl ExprId {
     }
 }
 
-/// A binary operator in an expression.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum BinOp {
-    /// `+`
-    Add,
-    /// `-`
-    Sub,
-    /// `*`
-    Mul,
-    /// `/`
-    Div,
-    /// `MOD` (remainder)
-    Mod,
-    /// `**` (LinuxCNC power)
-    Pow,
-    /// `AND` (bitwise on integers in the Fanuc family, logical in LinuxCNC)
-    And,
-    /// `OR`
-    Or,
-    /// `XOR`
-    Xor,
-    /// `EQ`
-    Eq,
-    /// `NE`
-    Ne,
-    /// `GT`
-    Gt,
-    /// `GE`
-    Ge,
-    /// `LT`
-    Lt,
-    /// `LE`
-    Le,
+/// Declares [`BinOp`] from one row an operator: the variant, the operator as written, and
+/// what to know of it besides.
+macro_rules! bin_ops {
+    ($($variant:ident $symbol:literal $note:literal;)*) => {
+        /// A binary operator in an expression.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum BinOp {
+            $(#[doc = concat!("`", $symbol, "`", $note)] $variant,)*
+        }
+
+        impl BinOp {
+            /// The operator as written.
+            pub fn symbol(self) -> &'static str {
+                match self {
+                    $(BinOp::$variant => $symbol,)*
+                }
+            }
+        }
+    };
 }
 
-impl BinOp {
-    /// The operator as written.
-    pub fn symbol(self) -> &'static str {
-        match self {
-            BinOp::Add => "+",
-            BinOp::Sub => "-",
-            BinOp::Mul => "*",
-            BinOp::Div => "/",
-            BinOp::Mod => "MOD",
-            BinOp::Pow => "**",
-            BinOp::And => "AND",
-            BinOp::Or => "OR",
-            BinOp::Xor => "XOR",
-            BinOp::Eq => "EQ",
-            BinOp::Ne => "NE",
-            BinOp::Gt => "GT",
-            BinOp::Ge => "GE",
-            BinOp::Lt => "LT",
-            BinOp::Le => "LE",
-        }
-    }
+bin_ops! {
+    Add "+"   "";
+    Sub "-"   "";
+    Mul "*"   "";
+    Div "/"   "";
+    Mod "MOD" " (remainder)";
+    Pow "**"  " (LinuxCNC power)";
+    And "AND" " (bitwise on integers in the Fanuc family, logical in LinuxCNC)";
+    Or  "OR"  "";
+    Xor "XOR" "";
+    Eq  "EQ"  "";
+    Ne  "NE"  "";
+    Gt  "GT"  "";
+    Ge  "GE"  "";
+    Lt  "LT"  "";
+    Le  "LE"  "";
 }
 
 /// A function applied to bracketed arguments.
@@ -337,18 +318,14 @@ pub struct Block {
     pub(crate) extras: Option<Box<Extras>>,
 }
 
-/// What few blocks have besides their words (see [`Block::extras`]).
+/// What few blocks have besides their words (see [`Block::extras`]), each read by the
+/// [`Block`] method of its name.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub(crate) struct Extras {
-    /// The program number when the block starts a program (`O1234`, `:1234`).
     pub(crate) program: Option<ProgramNumber>,
-    /// Macro statements, in the order written.
     pub(crate) statements: Box<[Statement]>,
-    /// Spans of the comments in the block.
     pub(crate) comments: Box<[Span]>,
-    /// Block-delete level: `/` is 1, `/n` is n; `None` when there is no slash.
     pub(crate) block_delete: Option<u8>,
-    /// Whether the parser found an error in the block (it is not executed).
     pub(crate) has_error: bool,
 }
 

@@ -1,127 +1,37 @@
 //! Checks that need no execution: the same-block rules of each dialect, read from the code
 //! tables. An error marks the block so the interpreter does not run it; a warning does not.
 
-use crate::codes::{self, Code, CodeDef, DialectSet, Group};
-use crate::{Block, Diagnostic, Dialect, Program, Span, Word, WordForm};
+use std::ops::RangeInclusive;
+
+use crate::codes::{self, Code, CodeDef, DialectSet, Group, letter_bit, letter_mask};
+use crate::{Block, Diagnostic, Dialect, Program, Severity, Span, Word, WordForm};
 
 /// Letters any block may carry whatever its codes: they set modal values (feed, speed, tool,
 /// offset numbers) or are codes themselves.
-const ALWAYS: &[u8] = b"NOGMFSTDH";
-
-/// [`ALWAYS`] as a bit set.
-const ALWAYS_MASK: u32 = {
-    let mut mask = 0u32;
-    let mut i = 0;
-    while i < ALWAYS.len() {
-        mask |= 1 << (ALWAYS[i] - b'A');
-        i += 1;
-    }
-    mask
-};
-
-/// Two kinds of code that may not share a block in some dialects.
-struct Forbidden {
-    dialects: DialectSet,
-    first: &'static [u32],
-    second: &'static [u32],
-    why: &'static str,
-}
+const ALWAYS: u32 = letter_mask(b"NOGMFSTDH");
 
 const ARC: &[u32] = &[20, 30];
 const COMP: &[u32] = &[400, 410, 420];
 const LENGTH: &[u32] = &[430, 440, 490];
-const STROKE: &[u32] = &[220, 230];
-const COORD_CALC: &[u32] = &[360, 370, 380, 390];
-const LNC_MEASURE: &[u32] = &[1310, 1320, 1330, 1340, 1730, 1830];
-const CYCLES: &[u32] = &[
-    730, 740, 760, 770, 780, 810, 820, 830, 840, 850, 860, 870, 880, 890,
-];
-const LNC_ALL_MODAL: &[u32] = &[
-    0, 10, 20, 30, 220, 230, 400, 410, 420, 430, 440, 490, 680, 690, 1680, 730, 740, 760, 770, 780,
-    800, 810, 820, 830, 840, 850, 860, 870, 880, 890, 900, 910,
-];
 
-/// Same-block combinations the manuals forbid. LNC's come from its priority tables (§6 of the
-/// reference, the cells recovered as "(2) alarm"); KT's from its G43 rules; the start-up rule for
-/// cutter compensation is common to the Fanuc family.
-const FORBIDDEN: &[Forbidden] = &[
-    Forbidden {
-        dialects: DialectSet::FANUC_FAMILY,
-        first: ARC,
-        second: COMP,
-        why: "cutter compensation starts and ends only in a G00/G01 block",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: ARC,
-        second: LENGTH,
-        why: "LNC changes length compensation only in a G00/G01 block (priority table 1)",
-    },
-    Forbidden {
-        dialects: DialectSet::KT,
-        first: LENGTH,
-        second: &[20, 30, 40, 920, 310, 1420, 1430],
-        why: "KT does not allow G02, G03, G04, G92, G31, G142 or G143 in a length-compensation block",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: STROKE,
-        second: &[
-            40, 100, 280, 290, 300, 360, 370, 380, 390, 400, 410, 420, 430, 440, 490,
-        ],
-        why: "LNC priority table 1: G22/G23 may not share a block with this code",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: COMP,
-        second: &[40, 100, 280, 290, 300, 360, 370, 380, 390],
-        why: "LNC priority table 1: G40–G42 may not share a block with this code",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: LENGTH,
-        second: &[40, 100],
-        why: "LNC priority table 1: G43/G44/G49 may not share a block with this code",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: &[541],
-        second: &[40, 100, 280, 290, 300, 360, 370, 380, 390],
-        why: "LNC priority table 1: G54.1 may not share a block with this code",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: &[40],
-        second: &[100],
-        why: "LNC priority table 4: G04 and G10 may not share a block",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: COORD_CALC,
-        second: ARC,
-        why: "LNC priority table 1: the coordinate calculations G36–G39 are not allowed with G02/G03",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: &[650, 660, 670],
-        second: LNC_ALL_MODAL,
-        why: "LNC priority table 2: a macro call G65/G66/G67 must be alone in its block",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: &[680, 690, 1680],
-        second: CYCLES,
-        why: "LNC priority table 2: rotation and a canned cycle may not share a block",
-    },
-    Forbidden {
-        dialects: DialectSet::LNC,
-        first: LNC_MEASURE,
-        second: &[
-            40, 100, 220, 230, 400, 410, 420, 430, 440, 490, 650, 920, 1000, 1200, 1210, 1220,
-            1230, 1240, 1250, 1260, 1270, 1280, 1290,
-        ],
-        why: "LNC priority tables 3, 5 and 6: measuring feed, tap reversal and G173/G183 must not share a block with this code",
-    },
+/// Same-block combinations the manuals forbid, one a row: the dialects, the G codes (in tenths)
+/// of which one may not share a block with one of the second list, and why. LNC's come from its
+/// priority tables (§6 of the reference, the cells recovered as "(2) alarm"); KT's from its G43
+/// rules; the start-up rule for cutter compensation is common to the Fanuc family.
+#[rustfmt::skip]
+const FORBIDDEN: &[(DialectSet, &[u32], &[u32], &str)] = &[
+    (DialectSet::FANUC_FAMILY, ARC, COMP, "cutter compensation starts and ends only in a G00/G01 block"),
+    (DialectSet::LNC, ARC, LENGTH, "LNC changes length compensation only in a G00/G01 block (priority table 1)"),
+    (DialectSet::KT, LENGTH, &[20, 30, 40, 920, 310, 1420, 1430], "KT does not allow G02, G03, G04, G92, G31, G142 or G143 in a length-compensation block"),
+    (DialectSet::LNC, &[220, 230], &[40, 100, 280, 290, 300, 360, 370, 380, 390, 400, 410, 420, 430, 440, 490], "LNC priority table 1: G22/G23 may not share a block with this code"),
+    (DialectSet::LNC, COMP, &[40, 100, 280, 290, 300, 360, 370, 380, 390], "LNC priority table 1: G40–G42 may not share a block with this code"),
+    (DialectSet::LNC, LENGTH, &[40, 100], "LNC priority table 1: G43/G44/G49 may not share a block with this code"),
+    (DialectSet::LNC, &[541], &[40, 100, 280, 290, 300, 360, 370, 380, 390], "LNC priority table 1: G54.1 may not share a block with this code"),
+    (DialectSet::LNC, &[40], &[100], "LNC priority table 4: G04 and G10 may not share a block"),
+    (DialectSet::LNC, &[360, 370, 380, 390], ARC, "LNC priority table 1: the coordinate calculations G36–G39 are not allowed with G02/G03"),
+    (DialectSet::LNC, &[650, 660, 670], &[0, 10, 20, 30, 220, 230, 400, 410, 420, 430, 440, 490, 680, 690, 1680, 730, 740, 760, 770, 780, 800, 810, 820, 830, 840, 850, 860, 870, 880, 890, 900, 910], "LNC priority table 2: a macro call G65/G66/G67 must be alone in its block"),
+    (DialectSet::LNC, &[680, 690, 1680], &[730, 740, 760, 770, 780, 810, 820, 830, 840, 850, 860, 870, 880, 890], "LNC priority table 2: rotation and a canned cycle may not share a block"),
+    (DialectSet::LNC, &[1310, 1320, 1330, 1340, 1730, 1830], &[40, 100, 220, 230, 400, 410, 420, 430, 440, 490, 650, 920, 1000, 1200, 1210, 1220, 1230, 1240, 1250, 1260, 1270, 1280, 1290], "LNC priority tables 3, 5 and 6: measuring feed, tap reversal and G173/G183 must not share a block with this code"),
 ];
 
 /// A code found in a block, and the span of its word.
@@ -132,8 +42,10 @@ type Found = (&'static CodeDef, Span);
 #[derive(Debug)]
 pub(crate) struct Checker {
     dialect: Dialect,
-    /// G00 and G01 as the plain-block check reads them in the dialect.
-    motions: PlainMotions,
+    /// For G00, G01, G02 and G03 (at their numbers) in the dialect, the letters a block with
+    /// the code may carry, or `None` where such a block takes the full check (the code is not a
+    /// motion there, or needs words).
+    motions: [Option<u32>; 4],
     scratch: Vec<Found>,
     out: Vec<Diagnostic>,
 }
@@ -141,24 +53,28 @@ pub(crate) struct Checker {
 impl Checker {
     /// A checker for blocks read as `dialect`.
     pub(crate) fn new(dialect: Dialect) -> Self {
+        let motion = |value: f64| {
+            let def = Code::from_value(b'G', value).and_then(|c| codes::lookup(dialect, c))?;
+            (def.group == Group::Motion && def.required.is_empty())
+                .then(|| ALWAYS | letter_mask(def.words.as_bytes()))
+        };
         Checker {
             dialect,
-            motions: PlainMotions::of(dialect),
+            motions: [0.0, 1.0, 2.0, 3.0].map(motion),
             scratch: Vec::new(),
             out: Vec::new(),
         }
     }
 
-    /// Checks `block`; an error marks it so the interpreter does not run it. The common block
-    /// with nothing to report costs one pass over its words here, inlined into the reader.
+    /// Checks `block`; an error marks it so the interpreter does not run it.
     #[inline(always)]
     pub(crate) fn check(&mut self, block: &mut Block) {
-        let scan = PlainScan::of(&block.words);
-        self.check_scanned(block, &scan);
+        self.check_scanned(block, &PlainScan::of(&block.words));
     }
 
     /// Checks `block`, whose words `scan` has seen (a reader that makes the words scans them as
-    /// it goes, sparing [`Checker::check`]'s pass over them).
+    /// it goes, sparing [`Checker::check`]'s pass over them). The common block with nothing to
+    /// report costs only that pass, inlined into the reader.
     #[inline(always)]
     pub(crate) fn check_scanned(&mut self, block: &mut Block, scan: &PlainScan) {
         if !self.nothing_to_report(scan) {
@@ -166,29 +82,30 @@ impl Checker {
         }
     }
 
-    /// Whether the words `scan` saw make a block that [`check_plain_block`] takes and finds
-    /// nothing in.
+    /// Whether `scan` saw a block [`check_block`] finds nothing in: literal plain words, no M
+    /// code, at most one G code and that one G00 to G03, each letter once, in range and taken
+    /// by the G code, and an arc's centre or radius and end point as [`arcs`] wants them.
     #[inline(always)]
     fn nothing_to_report(&self, scan: &PlainScan) -> bool {
-        match scan.result() {
-            Some((Some(motion), seen, false)) => {
-                self.motions.0[motion].is_some_and(|(_, taken)| seen & !taken == 0)
-                    && (motion < 2 || arc_words_fit(seen))
+        if scan.other || scan.findings {
+            return false;
+        }
+        match usize::from(scan.motion).checked_sub(1) {
+            None => true,
+            Some(motion) => {
+                self.motions[motion].is_some_and(|taken| scan.seen & !taken == 0)
+                    && (motion < 2 || arc_words_fit(scan.seen))
             }
-            Some((None, _, false)) => true,
-            _ => false,
         }
     }
 
     #[inline(never)]
     fn check_fully(&mut self, block: &mut Block) {
         let before = self.out.len();
-        if !check_plain_block(self.dialect, &self.motions, block, &mut self.out) {
-            check_any_block(self.dialect, block, &mut self.scratch, &mut self.out);
-        }
+        check_block(self.dialect, block, &mut self.scratch, &mut self.out);
         if self.out[before..]
             .iter()
-            .any(|d| d.severity == crate::Severity::Error)
+            .any(|d| d.severity == Severity::Error)
         {
             block.set_error();
         }
@@ -208,53 +125,27 @@ impl Checker {
     }
 }
 
-/// G00, G01, G02 and G03 (at their numbers) in one dialect, looked up once: the definition and
-/// the letters a block with the code may carry, or `None` where such a block takes the general
-/// check (the code is not a motion there, or needs words).
-#[derive(Debug, Clone, Copy)]
-struct PlainMotions([Option<(&'static CodeDef, u32)>; 4]);
-
-impl PlainMotions {
-    fn of(dialect: Dialect) -> Self {
-        let motion = |value: f64| {
-            let def = Code::from_value(b'G', value).and_then(|c| codes::lookup(dialect, c))?;
-            (def.group == Group::Motion && def.required.is_empty())
-                .then(|| (def, ALWAYS_MASK | codes::words_mask(def)))
-        };
-        PlainMotions([motion(0.0), motion(1.0), motion(2.0), motion(3.0)])
-    }
-}
-
 /// Whether an arc block's letters (`seen`) give [`arcs`] nothing to report: the centre or the
 /// radius, not both, and an end point with the radius.
 #[inline(always)]
 fn arc_words_fit(seen: u32) -> bool {
-    const R: u32 = 1 << (b'R' - b'A');
-    const IJK: u32 = 1 << (b'I' - b'A') | 1 << (b'J' - b'A') | 1 << (b'K' - b'A');
-    const XYZ: u32 = 1 << (b'X' - b'A') | 1 << (b'Y' - b'A') | 1 << (b'Z' - b'A');
-    let has_r = seen & R != 0;
-    has_r != (seen & IJK != 0) && (!has_r || seen & XYZ != 0)
+    let has_r = seen & letter_bit(b'R') != 0;
+    has_r != (seen & letter_mask(b"IJK") != 0) && (!has_r || seen & letter_mask(b"XYZ") != 0)
 }
 
-/// The first pass of [`check_plain_block`] over a block's words: `None` when the block is not
-/// one it takes (a word that is not a literal plain one, an M code, a G code other than one
-/// G00 to G03); else the G code's number if any, the letters seen besides G, and whether there
-/// may be something to report (a letter seen twice or that is not one, a value out of range).
-#[inline(always)]
-fn plain_pass(words: &[Word]) -> Option<(Option<usize>, u32, bool)> {
-    PlainScan::of(words).result()
-}
-
-/// The pass of [`plain_pass`], a word at a time.
+/// A block's words seen one at a time (by [`Checker::check`], or by a reader as it makes
+/// them), for [`Checker::nothing_to_report`].
 #[derive(Debug, Default)]
 pub(crate) struct PlainScan {
     /// The G code's number plus one (0: none yet).
     motion: u8,
     /// The letters seen besides G.
     seen: u32,
-    /// Whether there may be something to report.
+    /// Whether there may be something to report (a letter seen twice or that is not one, a
+    /// value out of range).
     findings: bool,
-    /// Whether a word makes the block one that the plain check does not take.
+    /// Whether a word makes the block one that the scan does not judge (a word that is not a
+    /// literal plain one, an M code, a G code other than one G00 to G03, a second G code).
     other: bool,
 }
 
@@ -263,9 +154,7 @@ impl PlainScan {
     fn of(words: &[Word]) -> Self {
         let mut scan = PlainScan::default();
         for w in words {
-            if w.form != WordForm::Plain || w.expr.is_some() {
-                scan.other = true;
-            }
+            scan.other |= w.form != WordForm::Plain || w.expr.is_some();
             scan.word(w.letter, w.value);
         }
         scan
@@ -277,19 +166,9 @@ impl PlainScan {
         match letter {
             b'M' => self.other = true,
             b'G' => {
-                let number = if v == 0.0 {
-                    1
-                } else if v == 1.0 {
-                    2
-                } else if v == 2.0 {
-                    3
-                } else if v == 3.0 {
-                    4
-                } else {
-                    0
-                };
-                self.other |= self.motion != 0 || number == 0;
-                self.motion = number;
+                let number = [0.0, 1.0, 2.0, 3.0].iter().position(|&g| g == v);
+                self.other |= self.motion != 0 || number.is_none();
+                self.motion = number.map_or(0, |i| i as u8 + 1);
                 return;
             }
             b'F' | b'S' => self.findings |= v < 0.0,
@@ -300,79 +179,10 @@ impl PlainScan {
         self.findings |= bit == 0 || self.seen & bit != 0;
         self.seen |= bit;
     }
-
-    #[inline(always)]
-    fn result(&self) -> Option<(Option<usize>, u32, bool)> {
-        if self.other {
-            return None;
-        }
-        let motion = usize::from(self.motion).checked_sub(1);
-        Some((motion, self.seen, self.findings))
-    }
 }
 
-/// Checks the common block of CAM output — literal plain words, no M code, at most one G code
-/// and that one G00 to G03 — with exactly the findings (in the same order) of
-/// [`check_any_block`]; returns `false`, having checked nothing, for any other block. A block
-/// with nothing to report costs one pass over its words.
-fn check_plain_block(
-    dialect: Dialect,
-    motions: &PlainMotions,
-    block: &Block,
-    out: &mut Vec<Diagnostic>,
-) -> bool {
-    let Some((motion, seen, findings)) = plain_pass(&block.words) else {
-        return false;
-    };
-    // The G code's definition: it decides which words the block may have.
-    let (def, taken) = match motion {
-        Some(i) => match motions.0[i] {
-            Some((def, taken)) => (Some(def), taken),
-            None => return false,
-        },
-        None => (None, u32::MAX),
-    };
-    if !findings && seen & !taken == 0 && (motion < Some(2) || arc_words_fit(seen)) {
-        return true;
-    }
-    let mut seen = 0u32;
-    for word in &block.words {
-        if word.letter == b'G' {
-            continue;
-        }
-        // What `words_twice`, `words_used` and `ranges` find, in that order.
-        let bit = letter_bit(word.letter);
-        if seen & bit != 0 {
-            out.push(Diagnostic::error(
-                word.span,
-                "E-WORD-TWICE",
-                format!("address `{}` appears twice in the block", word.letter()),
-            ));
-        }
-        seen |= bit;
-        if taken & bit == 0
-            && let Some(def) = def
-        {
-            out.push(unused(dialect, word, &def.code.to_string()));
-        }
-        let v = word.value;
-        match word.letter {
-            b'F' | b'S' if v < 0.0 => out.push(negative(word)),
-            b'T' | b'H' | b'D' if v < 0.0 || v.fract() != 0.0 => out.push(not_whole(word)),
-            _ => {}
-        }
-    }
-    if let Some(def) = def
-        && motion >= Some(2)
-        && let Some(g) = block.words.iter().find(|w| w.letter == b'G')
-    {
-        arcs(dialect, block, &[(def, g.span)], out);
-    }
-    true
-}
-
-/// Checks any block: its codes, their conflicts, and the words they take.
-fn check_any_block(
+/// Checks a block: its codes, their conflicts, and the words they take.
+fn check_block(
     dialect: Dialect,
     block: &Block,
     scratch: &mut Vec<Found>,
@@ -381,22 +191,14 @@ fn check_any_block(
     scratch.clear();
     let codes = scratch;
     for word in &block.words {
-        if !(word.letter == b'G' || word.letter == b'M') || word.form != WordForm::Plain {
-            continue;
-        }
-        if word.expr.is_some() {
+        let code_word = matches!(word.letter, b'G' | b'M') && word.form == WordForm::Plain;
+        if !code_word || word.expr.is_some() {
             continue;
         }
         let Some(code) = Code::from_value(word.letter, word.value) else {
-            out.push(Diagnostic::error(
-                word.span,
-                "E-CODE-NUMBER",
-                format!(
-                    "`{}` is not a valid {} code number",
-                    word_text(word),
-                    word.letter()
-                ),
-            ));
+            let (text, letter) = (word_text(word), word.letter());
+            let message = format!("`{text}` is not a valid {letter} code number");
+            out.push(Diagnostic::error(word.span, "E-CODE-NUMBER", message));
             continue;
         };
         // The standard codes a dialect's manual leaves out (G17, M30 …) are read as on Fanuc
@@ -415,6 +217,7 @@ fn check_any_block(
     ranges(dialect, block, codes, out);
 }
 
+/// A word as written, for messages.
 fn word_text(word: &Word) -> String {
     let v = word.value;
     if word.has_point {
@@ -426,33 +229,25 @@ fn word_text(word: &Word) -> String {
 
 /// The diagnostic for a code the dialect does not have, naming the dialects that do.
 fn unknown_code(dialect: Dialect, code: Code, span: Span) -> Diagnostic {
-    let elsewhere: Vec<String> = codes::meanings(code)
+    let label = dialect.label();
+    let elsewhere = codes::meanings(code)
         .map(|d| format!("{} on {}", d.name, d.dialects.labels()))
-        .collect();
+        .collect::<Vec<_>>()
+        .join("; ");
     if code.letter == b'M' {
         let also = if elsewhere.is_empty() {
             String::new()
         } else {
-            format!(" (it is {})", elsewhere.join("; "))
+            format!(" (it is {elsewhere})")
         };
-        return Diagnostic::warning(
-            span,
-            "W-UNKNOWN-M",
-            format!(
-                "{code} is not in the {} code list: a machine-specific M code, not drawn{also}",
-                dialect.label()
-            ),
+        let message = format!(
+            "{code} is not in the {label} code list: a machine-specific M code, not drawn{also}"
         );
-    }
-    if elsewhere.is_empty() {
-        Diagnostic::error(
-            span,
-            "E-UNKNOWN-CODE",
-            format!(
-                "{code} is not a code of {} (nor of any other supported control)",
-                dialect.label()
-            ),
-        )
+        Diagnostic::warning(span, "W-UNKNOWN-M", message)
+    } else if elsewhere.is_empty() {
+        let message =
+            format!("{code} is not a code of {label} (nor of any other supported control)");
+        Diagnostic::error(span, "E-UNKNOWN-CODE", message)
     } else {
         let inch_metric = code == Code::g(200) || code == Code::g(210);
         let hint = if inch_metric && dialect == Dialect::Syntec {
@@ -460,25 +255,9 @@ fn unknown_code(dialect: Dialect, code: Code, span: Span) -> Diagnostic {
         } else {
             ""
         };
-        Diagnostic::error(
-            span,
-            "E-CODE-DIALECT",
-            format!(
-                "{code} is not a code of {}; it is {}{hint}",
-                dialect.label(),
-                elsewhere.join("; ")
-            ),
-        )
+        let message = format!("{code} is not a code of {label}; it is {elsewhere}{hint}");
+        Diagnostic::error(span, "E-CODE-DIALECT", message)
     }
-}
-
-/// Whether `a` and `b` are G80 and another motion code in LinuxCNC, which rs274 accepts in one
-/// block (`G0 G17 G80 G90`): the other motion code is the one used.
-fn g80_with_motion(dialect: Dialect, a: &CodeDef, b: &CodeDef) -> bool {
-    dialect == Dialect::LinuxCnc
-        && a.group == Group::Motion
-        && b.group == Group::Motion
-        && (a.code == Code::g(800) || b.code == Code::g(800))
 }
 
 fn modal_conflicts(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>) {
@@ -490,37 +269,28 @@ fn modal_conflicts(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>)
         if def.code.letter == b'M' && def.group != Group::Spindle {
             continue;
         }
+        // LinuxCNC (rs274) accepts G80 with another motion code in one block (`G0 G17 G80
+        // G90`): the other motion code is the one used.
+        let g80_with_motion = |d: &CodeDef| {
+            dialect == Dialect::LinuxCnc
+                && def.group == Group::Motion
+                && (d.code == Code::g(800) || def.code == Code::g(800))
+        };
         let Some((earlier, _)) = codes[..i].iter().rev().find(|(d, _)| {
-            d.group == def.group
-                && d.code.letter == def.code.letter
-                && !g80_with_motion(dialect, d, def)
+            d.group == def.group && d.code.letter == def.code.letter && !g80_with_motion(d)
         }) else {
             continue;
         };
-        if dialect == Dialect::LinuxCnc {
-            out.push(Diagnostic::error(
-                *span,
-                "E-MODAL-CONFLICT",
-                format!(
-                    "{} and {} are both in the {} group and cannot share a block",
-                    earlier.code,
-                    def.code,
-                    def.group.name()
-                ),
-            ));
+        let (a, b, group) = (earlier.code, def.code, def.group.name());
+        out.push(if dialect == Dialect::LinuxCnc {
+            let message =
+                format!("{a} and {b} are both in the {group} group and cannot share a block");
+            Diagnostic::error(*span, "E-MODAL-CONFLICT", message)
         } else {
-            out.push(Diagnostic::warning(
-                *span,
-                "W-MODAL-LAST",
-                format!(
-                    "{} and {} are both in the {} group: {}, the last one, is used",
-                    earlier.code,
-                    def.code,
-                    def.group.name(),
-                    def.code
-                ),
-            ));
-        }
+            let message =
+                format!("{a} and {b} are both in the {group} group: {b}, the last one, is used");
+            Diagnostic::warning(*span, "W-MODAL-LAST", message)
+        });
     }
 }
 
@@ -533,21 +303,13 @@ fn forbidden_pairs(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>)
     if codes.len() < 2 {
         return;
     }
-    for rule in FORBIDDEN {
-        if !rule.dialects.contains(dialect) {
-            continue;
+    for (_, first, second, why) in FORBIDDEN.iter().filter(|rule| rule.0.contains(dialect)) {
+        if let (Some((a, _)), Some((b, wb))) = (g(first), g(second))
+            && a.code != b.code
+        {
+            let message = format!("{} and {} in one block: {why}", a.code, b.code);
+            out.push(Diagnostic::error(*wb, "E-SAME-BLOCK", message));
         }
-        let (Some((a, _)), Some((b, wb))) = (g(rule.first), g(rule.second)) else {
-            continue;
-        };
-        if a.code == b.code {
-            continue;
-        }
-        out.push(Diagnostic::error(
-            *wb,
-            "E-SAME-BLOCK",
-            format!("{} and {} in one block: {}", a.code, b.code, rule.why),
-        ));
     }
 }
 
@@ -574,11 +336,8 @@ fn words_twice(block: &Block, out: &mut Vec<Diagnostic>) {
                 WordForm::Indexed(n) => format!("{}{n}=", word.letter()),
                 WordForm::Plain => word.letter().to_string(),
             };
-            out.push(Diagnostic::error(
-                word.span,
-                "E-WORD-TWICE",
-                format!("address `{shown}` appears twice in the block"),
-            ));
+            let message = format!("address `{shown}` appears twice in the block");
+            out.push(Diagnostic::error(word.span, "E-WORD-TWICE", message));
         }
     }
 }
@@ -595,31 +354,25 @@ fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Di
     // One bit per letter: what any block may carry and what the block's codes take.
     let taken = codes
         .iter()
-        .fold(ALWAYS_MASK, |m, (d, _)| m | codes::words_mask(d));
+        .fold(ALWAYS, |m, (d, _)| m | letter_mask(d.words.as_bytes()));
+    let names = codes
+        .iter()
+        .filter(|(d, _)| d.code.letter == b'G')
+        .map(|(d, _)| d.code.to_string())
+        .collect::<Vec<_>>()
+        .join(" ");
     for word in block.words.iter().filter(|w| w.form == WordForm::Plain) {
         if taken & letter_bit(word.letter) != 0 {
             continue;
         }
-        let names: Vec<String> = codes
-            .iter()
-            .filter(|(d, _)| d.code.letter == b'G')
-            .map(|(d, _)| d.code.to_string())
-            .collect();
-        out.push(unused(dialect, word, &names.join(" ")));
-    }
-}
-
-/// A word none of the block's codes (`names`) takes: an error in LinuxCNC, ignored with a
-/// warning in the Fanuc family.
-fn unused(dialect: Dialect, word: &Word, names: &str) -> Diagnostic {
-    let message = format!(
-        "address `{}` is not used by {names} and is ignored",
-        word.letter()
-    );
-    if dialect == Dialect::LinuxCnc {
-        Diagnostic::error(word.span, "E-WORD-UNUSED", message)
-    } else {
-        Diagnostic::warning(word.span, "W-WORD-UNUSED", message)
+        let letter = word.letter();
+        let message = format!("address `{letter}` is not used by {names} and is ignored");
+        // An error in LinuxCNC; the Fanuc family ignores the word.
+        out.push(if dialect == Dialect::LinuxCnc {
+            Diagnostic::error(word.span, "E-WORD-UNUSED", message)
+        } else {
+            Diagnostic::warning(word.span, "W-WORD-UNUSED", message)
+        });
     }
 }
 
@@ -629,20 +382,6 @@ fn has_any(block: &Block, letters: &str) -> bool {
         .words
         .iter()
         .any(|w| w.form == WordForm::Plain && mask & letter_bit(w.letter) != 0)
-}
-
-/// The bit of an uppercase letter (0 for anything else).
-fn letter_bit(letter: u8) -> u32 {
-    if letter.is_ascii_uppercase() {
-        1 << (letter - b'A')
-    } else {
-        0
-    }
-}
-
-/// The bits of a set of letters.
-fn letter_mask(letters: &[u8]) -> u32 {
-    letters.iter().fold(0, |m, &l| m | letter_bit(l))
 }
 
 fn required_words(block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
@@ -668,131 +407,83 @@ fn arcs(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnost
     else {
         return;
     };
-    let span = *span;
+    let (span, code) = (*span, def.code);
     let has_r = has_any(block, "R");
     let has_ijk = has_any(block, "IJK");
-    let has_end = has_any(block, "XYZ");
     if has_r && has_ijk {
         let r = block.word(b'R').map_or(span, |w| w.span);
-        if dialect == Dialect::LinuxCnc {
-            out.push(Diagnostic::error(
+        out.push(if dialect == Dialect::LinuxCnc {
+            Diagnostic::error(
                 r,
                 "E-ARC-R-AND-IJK",
                 "an arc takes either R or I/J/K, not both",
-            ));
+            )
         } else {
-            out.push(Diagnostic::warning(
-                r,
-                "W-ARC-R-AND-IJK",
-                "R and I/J/K in one arc: R takes precedence and I/J/K are ignored",
-            ));
-        }
+            let message = "R and I/J/K in one arc: R takes precedence and I/J/K are ignored";
+            Diagnostic::warning(r, "W-ARC-R-AND-IJK", message)
+        });
     }
     if !has_r && !has_ijk {
-        if dialect == Dialect::Syntec {
-            out.push(Diagnostic::warning(
-                span,
-                "W-ARC-AS-LINE",
-                format!("{} with neither R nor I/J/K moves in a straight line (G01), as Syntec documents", def.code),
-            ));
+        out.push(if dialect == Dialect::Syntec {
+            let message = format!(
+                "{code} with neither R nor I/J/K moves in a straight line (G01), as Syntec documents"
+            );
+            Diagnostic::warning(span, "W-ARC-AS-LINE", message)
         } else {
-            out.push(Diagnostic::error(
-                span,
-                "E-ARC-CENTER",
-                format!("{} needs the centre (I, J, K) or the radius (R)", def.code),
-            ));
-        }
+            let message = format!("{code} needs the centre (I, J, K) or the radius (R)");
+            Diagnostic::error(span, "E-ARC-CENTER", message)
+        });
     }
-    if has_r && !has_end {
-        out.push(Diagnostic::error(
-            span,
-            "E-ARC-NO-END",
-            format!(
-                "{} with R needs an end point (a full circle needs I/J/K)",
-                def.code
-            ),
-        ));
+    if has_r && !has_any(block, "XYZ") {
+        let message = format!("{code} with R needs an end point (a full circle needs I/J/K)");
+        out.push(Diagnostic::error(span, "E-ARC-NO-END", message));
     }
-}
-
-/// An F or S word below zero.
-fn negative(word: &Word) -> Diagnostic {
-    Diagnostic::error(
-        word.span,
-        "E-NUMBER-RANGE",
-        format!("`{}` cannot be negative", word.letter()),
-    )
-}
-
-/// A T, H or D word that is not a whole number of zero or more.
-fn not_whole(word: &Word) -> Diagnostic {
-    Diagnostic::error(
-        word.span,
-        "E-NUMBER-RANGE",
-        format!(
-            "`{}` takes a whole number that is not negative",
-            word_text(word)
-        ),
-    )
 }
 
 fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
     let has = |t: u32| codes.iter().any(|(d, _)| d.code == Code::g(t));
-    for word in &block.words {
-        if word.expr.is_some() {
-            continue;
-        }
-        let v = word.value;
-        match (word.letter, word.form) {
+    let whole_in = |v: f64, range: RangeInclusive<f64>| range.contains(&v) && v.fract() == 0.0;
+    for word in block.words.iter().filter(|w| w.expr.is_none()) {
+        let (v, letter) = (word.value, word.letter());
+        let message = match (word.letter, word.form) {
             (b'F', WordForm::Indexed(2)) if word.has_point && v.fract() != 0.0 => {
-                out.push(Diagnostic::error(
-                    word.span,
-                    "E-NUMBER-RANGE",
-                    "the retract feed `F2=` must be a whole number (alarm COR-045)",
-                ));
+                "the retract feed `F2=` must be a whole number (alarm COR-045)".to_string()
             }
-            (b'F' | b'S', WordForm::Plain) if v < 0.0 => out.push(negative(word)),
+            (b'F' | b'S', WordForm::Plain) if v < 0.0 => format!("`{letter}` cannot be negative"),
             // LinuxCNC's G41.1/G42.1 D is the tool's diameter, and G96 D a speed limit.
-            (b'D', WordForm::Plain) if has(411) || has(421) || has(960) => {}
+            (b'D', WordForm::Plain) if has(411) || has(421) || has(960) => continue,
             (b'T' | b'H' | b'D', WordForm::Plain) if v < 0.0 || v.fract() != 0.0 => {
-                out.push(not_whole(word));
+                let text = word_text(word);
+                format!("`{text}` takes a whole number that is not negative")
             }
             (b'P', WordForm::Plain) if has(541) => {
-                let max = match dialect {
-                    Dialect::Fanuc => 300.0,
-                    _ => 48.0,
+                let max = if dialect == Dialect::Fanuc {
+                    300.0
+                } else {
+                    48.0
                 };
-                if !(1.0..=max).contains(&v) || v.fract() != 0.0 {
-                    out.push(Diagnostic::error(
-                        word.span,
-                        "E-NUMBER-RANGE",
-                        format!("G54.1 takes P1 to P{max} (extended work coordinate systems)"),
-                    ));
+                if whole_in(v, 1.0..=max) {
+                    continue;
                 }
+                format!("G54.1 takes P1 to P{max} (extended work coordinate systems)")
             }
             (b'P', WordForm::Plain) if has(300) => {
                 let min = if dialect == Dialect::Syntec { 1.0 } else { 2.0 };
-                if !(min..=4.0).contains(&v) || v.fract() != 0.0 {
-                    out.push(Diagnostic::error(
-                        word.span,
-                        "E-NUMBER-RANGE",
-                        format!("G30 takes P{min} to P4 (the reference point number)"),
-                    ));
+                if whole_in(v, min..=4.0) {
+                    continue;
                 }
+                format!("G30 takes P{min} to P4 (the reference point number)")
             }
             (b'E', WordForm::Plain)
                 if dialect == Dialect::Gsk
                     && codes.iter().any(|(d, _)| d.group == Group::Cycle)
                     && (v == 0.0 || v.abs() > 60.0) =>
             {
-                out.push(Diagnostic::error(
-                    word.span,
-                    "E-NUMBER-RANGE",
-                    "the slant angle E must be between −60° and 60° and not 0",
-                ));
+                "the slant angle E must be between −60° and 60° and not 0".to_string()
             }
-            _ => {}
-        }
+            _ => continue,
+        };
+        out.push(Diagnostic::error(word.span, "E-NUMBER-RANGE", message));
     }
 }
 
@@ -810,69 +501,56 @@ mod tests {
         "G0", "G1", "G01", "G00", "G2", "G3 R5.", "G81", "G1.5", "G17", "M3", "M30", "X1.", "X-2",
         "Y3.5", "Z-0.25", "A90.", "F100.", "F-5", "S1200", "S-1", "T1", "T1.5", "H-2", "D3", "P2",
         "Q1.", "R2.", "I1.", "E5.", "L3", "X#1", ",C1.", "F2=100", "G02", "G03", "G3", "J-1.",
-        "K.5", "R-2.", "Z1.", "U1.", "G4",
+        "K.5", "R-2.", "Z1.", "U1.", "G4", "G-0", "G3.0",
     ];
+
+    /// Whether the short check passes `block` in `dialect` without the full one.
+    fn passed(dialect: Dialect, block: &Block) -> bool {
+        Checker::new(dialect).nothing_to_report(&PlainScan::of(&block.words))
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(2000))]
         #[test]
-        fn the_plain_block_check_finds_what_the_general_one_does(
+        fn the_short_check_passes_only_blocks_the_full_one_finds_nothing_in(
             words in prop::collection::vec(prop::sample::select(WORDS), 0..7),
             dialect in prop::sample::select(&Dialect::ALL[..]),
         ) {
             let line = words.join(" ");
             let program = crate::parse(&line, dialect);
             for block in &program.blocks {
-                let mut plain = Vec::new();
-                if !check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut plain) {
-                    continue;
-                }
                 let mut any = Vec::new();
-                check_any_block(dialect, block, &mut Vec::new(), &mut any);
-                if Checker::new(dialect).nothing_to_report(&PlainScan::of(&block.words)) {
+                check_block(dialect, block, &mut Vec::new(), &mut any);
+                if passed(dialect, block) {
                     prop_assert!(any.is_empty(), "{}", line);
                 }
-                // The order after the merge: stable by position.
-                plain.sort_by_key(|d| d.span.start);
-                any.sort_by_key(|d| d.span.start);
-                prop_assert_eq!(plain, any, "{}", line);
             }
         }
     }
 
     #[test]
-    fn plain_blocks_take_the_short_check() {
-        for line in [
-            "G1 X1. Y2. F100.",
-            "X1. Z-2.",
-            "G0 Z5. S1000",
-            "G1 X1 X2 F-1 T1.5",
-        ] {
+    fn clean_plain_blocks_take_the_short_check() {
+        for line in ["G1 X1. Y2. F100.", "X1. Z-2.", "G0 Z5. S1000"] {
             for dialect in Dialect::ALL {
                 let program = crate::parse(line, dialect);
-                let block = program.blocks.first().unwrap();
-                assert!(
-                    check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut Vec::new()),
-                    "{line} {dialect:?}"
-                );
+                assert!(passed(dialect, &program.blocks[0]), "{line} {dialect:?}");
             }
         }
-        for line in ["G2 X1. R1.", "G3 X1. Y2. I1. J0.", "G02 R1."] {
+        for line in ["G2 X1. R1.", "G3 X1. Y2. I1. J0."] {
             for dialect in [Dialect::Fanuc, Dialect::LinuxCnc] {
                 let program = crate::parse(line, dialect);
-                let block = program.blocks.first().unwrap();
-                assert!(
-                    check_plain_block(dialect, &PlainMotions::of(dialect), block, &mut Vec::new()),
-                    "{line} {dialect:?}"
-                );
+                assert!(passed(dialect, &program.blocks[0]), "{line} {dialect:?}");
             }
         }
-        let program = crate::parse("G4 X1.", Dialect::Fanuc);
-        assert!(!check_plain_block(
-            Dialect::Fanuc,
-            &PlainMotions::of(Dialect::Fanuc),
-            &program.blocks[0],
-            &mut Vec::new()
-        ));
+        for line in [
+            "G1 X1 X2 F-1 T1.5",
+            "G02 R1.",
+            "G4 X1.",
+            "G1 M3 X1.",
+            "G0 G1 X1.",
+        ] {
+            let program = crate::parse(line, Dialect::Fanuc);
+            assert!(!passed(Dialect::Fanuc, &program.blocks[0]), "{line}");
+        }
     }
 }

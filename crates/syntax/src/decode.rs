@@ -57,11 +57,7 @@ impl Encoding {
     pub fn encode(self, text: &str) -> Vec<u8> {
         match self {
             Encoding::Utf8 => text.as_bytes().to_vec(),
-            Encoding::Utf8Bom => {
-                let mut out = vec![0xEF, 0xBB, 0xBF];
-                out.extend_from_slice(text.as_bytes());
-                out
-            }
+            Encoding::Utf8Bom => [&[0xEF, 0xBB, 0xBF], text.as_bytes()].concat(),
             Encoding::Gb18030 => encoding_rs::GB18030.encode(text).0.into_owned(),
             Encoding::Big5 => encoding_rs::BIG5.encode(text).0.into_owned(),
             Encoding::Utf16Le | Encoding::Utf16Be => {
@@ -142,51 +138,32 @@ fn wide(bytes: &[u8], encoding: Encoding) -> Decoded {
         _ => 4,
     };
     let le = matches!(encoding, Encoding::Utf16Le | Encoding::Utf32Le);
-    let whole = bytes.len() - bytes.len() % width;
-    let units = bytes
-        .get(..whole)
-        .unwrap_or_default()
-        .chunks_exact(width)
-        .map(|c| {
-            let mut b = [0u8; 4];
-            b[..c.len()].copy_from_slice(c);
-            match (width, le) {
-                (2, true) => u32::from(u16::from_le_bytes([b[0], b[1]])),
-                (2, false) => u32::from(u16::from_be_bytes([b[0], b[1]])),
-                (_, true) => u32::from_le_bytes(b),
-                (_, false) => u32::from_be_bytes(b),
-            }
-        });
+    let units = bytes.chunks_exact(width).map(|c| {
+        let byte = |u: u32, b: &u8| u << 8 | u32::from(*b);
+        if le {
+            c.iter().rev().fold(0, byte)
+        } else {
+            c.iter().fold(0, byte)
+        }
+    });
     let mut chars: Vec<Option<char>> = if width == 2 {
-        let units: Vec<u16> = units.map(|u| u16::try_from(u).unwrap_or(0xFFFD)).collect();
+        let units = units.map(|u| u16::try_from(u).unwrap_or(0xFFFD));
         char::decode_utf16(units).map(Result::ok).collect()
     } else {
         units.map(char::from_u32).collect()
     };
     // A last unit cut short is no character either.
-    if whole < bytes.len() {
+    if !bytes.len().is_multiple_of(width) {
         chars.push(None);
     }
-    let mut text = String::with_capacity(chars.len());
-    let mut diagnostics = Vec::new();
+    let mut decoded = plain(String::with_capacity(chars.len()), encoding);
     for c in chars {
-        if let Some(c) = c {
-            text.push(c);
-            continue;
+        match c {
+            Some(c) => decoded.text.push(c),
+            None => decoded.replaced(format!("invalid {} unit", encoding.name())),
         }
-        let start = text.len();
-        text.push('\u{FFFD}');
-        diagnostics.push(Diagnostic::error(
-            Span::new(start, text.len()),
-            "E-ENCODING",
-            format!("invalid {} unit; replaced with U+FFFD", encoding.name()),
-        ));
     }
-    Decoded {
-        text,
-        encoding,
-        diagnostics,
-    }
+    decoded
 }
 
 fn plain(text: String, encoding: Encoding) -> Decoded {
@@ -197,42 +174,42 @@ fn plain(text: String, encoding: Encoding) -> Decoded {
     }
 }
 
+impl Decoded {
+    /// Adds U+FFFD to the text for what `what` describes, and reports it.
+    fn replaced(&mut self, what: String) {
+        let start = self.text.len();
+        self.text.push('\u{FFFD}');
+        let message = format!("{what}; replaced with U+FFFD");
+        let span = Span::new(start, self.text.len());
+        self.diagnostics
+            .push(Diagnostic::error(span, "E-ENCODING", message));
+    }
+}
+
 fn lossy_utf8(mut bytes: &[u8]) -> Decoded {
-    let mut text = String::with_capacity(bytes.len());
-    let mut diagnostics = Vec::new();
+    let mut decoded = plain(String::with_capacity(bytes.len()), Encoding::Utf8);
     loop {
         match std::str::from_utf8(bytes) {
             Ok(valid) => {
-                text.push_str(valid);
-                break;
+                decoded.text.push_str(valid);
+                return decoded;
             }
             Err(err) => {
                 let (valid, after) = bytes.split_at(err.valid_up_to());
-                text.push_str(&String::from_utf8_lossy(valid));
+                decoded.text.push_str(&String::from_utf8_lossy(valid));
                 let bad_len = err.error_len().unwrap_or(after.len()).max(1);
-                let start = text.len();
-                text.push('\u{FFFD}');
-                diagnostics.push(Diagnostic::error(
-                    Span::new(start, text.len()),
-                    "E-ENCODING",
-                    format!(
-                        "invalid byte sequence {} (not UTF-8, GB18030 or Big5); replaced with U+FFFD",
-                        after
-                            .iter()
-                            .take(bad_len)
-                            .map(|b| format!("0x{b:02X}"))
-                            .collect::<Vec<_>>()
-                            .join(" ")
-                    ),
+                let bad: Vec<String> = after
+                    .iter()
+                    .take(bad_len)
+                    .map(|b| format!("0x{b:02X}"))
+                    .collect();
+                decoded.replaced(format!(
+                    "invalid byte sequence {} (not UTF-8, GB18030 or Big5)",
+                    bad.join(" ")
                 ));
                 bytes = after.get(bad_len..).unwrap_or_default();
             }
         }
-    }
-    Decoded {
-        text,
-        encoding: Encoding::Utf8,
-        diagnostics,
     }
 }
 

@@ -30,16 +30,6 @@ impl Span {
     pub fn range(self) -> std::ops::Range<usize> {
         self.start as usize..self.end as usize
     }
-
-    /// Length in bytes.
-    pub fn len(self) -> usize {
-        (self.end - self.start) as usize
-    }
-
-    /// Whether the span covers no byte.
-    pub fn is_empty(self) -> bool {
-        self.end == self.start
-    }
 }
 
 /// The most characters of a program's text that a diagnostic quotes.
@@ -68,11 +58,7 @@ pub enum Severity {
 impl Severity {
     /// The lowercase name used in CLI output and the JS API.
     pub fn as_str(self) -> &'static str {
-        match self {
-            Severity::Note => "note",
-            Severity::Warning => "warning",
-            Severity::Error => "error",
-        }
+        ["note", "warning", "error"][self as usize]
     }
 }
 

@@ -5,59 +5,48 @@ use std::str::FromStr;
 
 use crate::Word;
 
-/// A controller family whose reading of G-code Swarf reproduces.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Dialect {
-    /// Generic Fanuc 0i-M style milling control.
+/// Declares [`Dialect`] from one row a dialect, in menu order: the variant, its name on the
+/// command line and in settings files, its label for menus, and what it is.
+macro_rules! dialects {
+    ($($(#[$attr:meta])* $variant:ident $name:literal $label:literal $doc:literal;)*) => {
+        /// A controller family whose reading of G-code Swarf reproduces.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+        pub enum Dialect {
+            $(#[doc = $doc] $(#[$attr])* $variant,)*
+        }
+
+        impl Dialect {
+            /// Every dialect, in menu order.
+            pub const ALL: [Dialect; 6] = [$(Dialect::$variant),*];
+
+            /// The name used on the command line and in settings files.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Dialect::$variant => $name,)*
+                }
+            }
+
+            /// A human-readable label for menus.
+            pub fn label(self) -> &'static str {
+                match self {
+                    $(Dialect::$variant => $label,)*
+                }
+            }
+        }
+    };
+}
+
+dialects! {
     #[default]
-    Fanuc,
-    /// Syntec 900M.
-    Syntec,
-    /// LNC / Baoyuan.
-    Lnc,
-    /// KT.
-    Kt,
-    /// GSK 988TD (slanted-hole cycles).
-    Gsk,
-    /// LinuxCNC rs274ngc.
-    LinuxCnc,
+    Fanuc    "fanuc"    "Fanuc 0i-M"    "Generic Fanuc 0i-M style milling control.";
+    Syntec   "syntec"   "Syntec 900M"   "Syntec 900M.";
+    Lnc      "lnc"      "LNC / Baoyuan" "LNC / Baoyuan.";
+    Kt       "kt"       "KT"            "KT.";
+    Gsk      "gsk"      "GSK 988TD"     "GSK 988TD (slanted-hole cycles).";
+    LinuxCnc "linuxcnc" "LinuxCNC"      "LinuxCNC rs274ngc.";
 }
 
 impl Dialect {
-    /// Every dialect, in menu order.
-    pub const ALL: [Dialect; 6] = [
-        Dialect::Fanuc,
-        Dialect::Syntec,
-        Dialect::Lnc,
-        Dialect::Kt,
-        Dialect::Gsk,
-        Dialect::LinuxCnc,
-    ];
-
-    /// The name used on the command line and in settings files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Dialect::Fanuc => "fanuc",
-            Dialect::Syntec => "syntec",
-            Dialect::Lnc => "lnc",
-            Dialect::Kt => "kt",
-            Dialect::Gsk => "gsk",
-            Dialect::LinuxCnc => "linuxcnc",
-        }
-    }
-
-    /// A human-readable label for menus.
-    pub fn label(self) -> &'static str {
-        match self {
-            Dialect::Fanuc => "Fanuc 0i-M",
-            Dialect::Syntec => "Syntec 900M",
-            Dialect::Lnc => "LNC / Baoyuan",
-            Dialect::Kt => "KT",
-            Dialect::Gsk => "GSK 988TD",
-            Dialect::LinuxCnc => "LinuxCNC",
-        }
-    }
-
     /// Whether `;` starts a comment (LinuxCNC) rather than ending the block (Fanuc family).
     pub fn semicolon_is_comment(self) -> bool {
         self.rules().semicolon_comment
@@ -65,14 +54,8 @@ impl Dialect {
 
     /// The dialect's lexical and numeric rules.
     pub fn rules(self) -> &'static Rules {
-        match self {
-            Dialect::Fanuc => &FANUC,
-            Dialect::Syntec => &SYNTEC,
-            Dialect::Lnc => &LNC,
-            Dialect::Kt => &KT,
-            Dialect::Gsk => &GSK,
-            Dialect::LinuxCnc => &LINUXCNC,
-        }
+        static RULES: [Rules; 6] = [FANUC, SYNTEC, LNC, KT, GSK, LINUXCNC];
+        &RULES[self as usize]
     }
 
     /// Reads a literal word as the control does: `quantity` says what the address means in its
@@ -87,28 +70,21 @@ impl Dialect {
             return v;
         }
         let least_length = if inch { 0.0001 } else { 0.001 };
+        // Seconds, or `ms` milliseconds by the rule.
+        let seconds = |rule: TimeRule, ms: f64| match rule {
+            TimeRule::Seconds => v,
+            TimeRule::PointSecondsElseMs if word.has_point => v,
+            TimeRule::PointSecondsElseMs | TimeRule::Millis => ms / 1000.0,
+        };
         match quantity {
             Quantity::Raw => v,
             Quantity::Length | Quantity::Angle if word.has_point || calculator => v,
-            Quantity::Length => v * least_length,
+            Quantity::Length | Quantity::LeastLength => v * least_length,
             Quantity::Angle => v * 0.001,
-            Quantity::LeastLength => v * least_length,
-            Quantity::DwellX => match rules.dwell_x {
-                TimeRule::Seconds => v,
-                TimeRule::PointSecondsElseMs if word.has_point => v,
-                TimeRule::PointSecondsElseMs | TimeRule::Millis => v / 1000.0,
-            },
-            Quantity::DwellP => match rules.dwell_p {
-                TimeRule::Seconds => v,
-                TimeRule::PointSecondsElseMs if word.has_point => v,
-                // Milliseconds, whole numbers only: the fraction is dropped (`G04 P2.5` = 2 ms).
-                TimeRule::PointSecondsElseMs | TimeRule::Millis => v.trunc() / 1000.0,
-            },
-            Quantity::CycleDwellP => match rules.cycle_dwell_p {
-                TimeRule::Seconds => v,
-                TimeRule::PointSecondsElseMs if word.has_point => v,
-                TimeRule::PointSecondsElseMs | TimeRule::Millis => v.trunc() / 1000.0,
-            },
+            Quantity::DwellX => seconds(rules.dwell_x, v),
+            // Milliseconds, whole numbers only: the fraction is dropped (`G04 P2.5` = 2 ms).
+            Quantity::DwellP => seconds(rules.dwell_p, v.trunc()),
+            Quantity::CycleDwellP => seconds(rules.cycle_dwell_p, v.trunc()),
         }
     }
 }
@@ -239,21 +215,15 @@ const GSK: Rules = Rules {
 /// LinuxCNC: every number is read as written; dwell in seconds.
 const LINUXCNC: Rules = Rules {
     semicolon_comment: true,
-    slash_comment: false,
     colon_program_number: false,
-    colon_assign: false,
     o_words: true,
     macro_b: false,
     comma_words: false,
-    indexed_words: false,
     fanuc_logic_precedence: false,
     calculator_input: true,
-    dwell_x: TimeRule::Seconds,
-    dwell_p: TimeRule::Seconds,
-    cycle_dwell_p: TimeRule::Seconds,
-    max_sequence_number: 99_999,
     max_digits: 0,
     max_bracket_depth: 64,
+    ..LNC
 };
 
 impl fmt::Display for Dialect {
@@ -269,12 +239,8 @@ pub struct UnknownDialect(pub String);
 impl fmt::Display for UnknownDialect {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let names: Vec<&str> = Dialect::ALL.iter().map(|d| d.name()).collect();
-        write!(
-            f,
-            "unknown dialect `{}` (expected one of: {})",
-            self.0,
-            names.join(", ")
-        )
+        let (name, names) = (&self.0, names.join(", "));
+        write!(f, "unknown dialect `{name}` (expected one of: {names})")
     }
 }
 

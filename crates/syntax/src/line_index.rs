@@ -17,31 +17,22 @@ impl LineIndex {
     /// more lines than a reader takes costs no more table than it reads.
     pub fn at_most(text: &str, max: usize) -> Self {
         let bytes = text.as_bytes();
-        // Most texts end their lines with `\n`, and a `\r` in one is most often that of a
-        // `\r\n`: one pass finds the line feeds and whether there is a `\r` at all (a line is
-        // rarely under sixteen bytes, so the table seldom grows).
+        // A line is rarely under sixteen bytes, so the table seldom grows.
         let mut starts = Vec::with_capacity((bytes.len() / 16 + 2).min(max));
         starts.push(0);
-        let push = |starts: &mut Vec<u32>, at| {
+        let push = |at| {
             if starts.len() < max {
                 starts.push(line_after(0, at));
             }
         };
-        if !for_each_line_feed(bytes, |at| push(&mut starts, at)) {
-            return LineIndex { starts };
+        // Most texts have no `\r` (a search for one is quick): then only line feeds end lines.
+        if bytes.contains(&b'\r') {
+            for_each_marked(bytes, line_end_mask, push);
+        } else {
+            let line_feeds =
+                |word: &[u8; 8], _| byte_mask(u64::from_le_bytes(*word), u64::from(b'\n'));
+            for_each_marked(bytes, line_feeds, push);
         }
-        // Every `\r` is that of a `\r\n` when there are as many as line feeds after one (a
-        // table cut short counts fewer, and takes the general pass).
-        let pairs = starts
-            .iter()
-            .skip(1)
-            .filter(|&&start| start >= 2 && bytes.get(start as usize - 2) == Some(&b'\r'))
-            .count();
-        if starts.len() < max && pairs == count_byte(bytes, b'\r') {
-            return LineIndex { starts };
-        }
-        starts.truncate(1);
-        for_each_marked(bytes, line_end_mask, |at| push(&mut starts, at));
         LineIndex { starts }
     }
 
@@ -101,16 +92,7 @@ impl LineIndex {
 
     /// 1-based line and 1-based column (in characters) of byte `offset` in `text`.
     pub fn line_col(&self, text: &str, offset: u32) -> (u32, u32) {
-        let line = self.line_of(offset);
-        let start = self.line_start(line) as usize;
-        let end = (offset as usize).min(text.len()).max(start);
-        let col = text
-            .get(start..end)
-            .map_or(end - start, |s| s.chars().count());
-        (
-            u32::try_from(line + 1).unwrap_or(u32::MAX),
-            u32::try_from(col + 1).unwrap_or(u32::MAX),
-        )
+        self.cursor(text).line_col(offset)
     }
 
     /// A cursor that turns many offsets into line and column: in increasing order each costs
@@ -123,40 +105,6 @@ impl LineIndex {
             last: None,
         }
     }
-}
-
-/// The number of bytes `byte` in `bytes`, eight bytes a turn: the bytes' marks (see
-/// [`byte_mask`]) are added up in byte-wide lanes, summed every 255 turns.
-fn count_byte(bytes: &[u8], byte: u8) -> usize {
-    const HALF: u64 = 0x00ff_00ff_00ff_00ff;
-    let mut total = 0;
-    let (words, rest) = bytes.as_chunks::<8>();
-    for block in words.chunks(255) {
-        let mut lanes = 0u64;
-        for word in block {
-            lanes += (byte_mask(u64::from_le_bytes(*word), u64::from(byte)) >> 7) & ONES;
-        }
-        // Byte lanes to 16-bit lanes, then the four summed by a multiplication.
-        let pairs = (lanes & HALF) + ((lanes >> 8) & HALF);
-        total += (pairs.wrapping_mul(0x0001_0001_0001_0001) >> 48) as usize;
-    }
-    total + rest.iter().filter(|&&b| b == byte).count()
-}
-
-/// Calls `found` with the offset of every `\n` in `bytes`, in order; returns whether `bytes` has
-/// a `\r`, seen as a zero byte of `word ^ 0x0d…` (a borrow runs into the byte above a zero one,
-/// never below: whether there is one is exact).
-#[inline(always)]
-fn for_each_line_feed(bytes: &[u8], found: impl FnMut(usize)) -> bool {
-    let mut cr = 0u64;
-    let line_feeds = |word: &[u8; 8], _: u8| {
-        let word = u64::from_le_bytes(*word);
-        let v = word ^ (u64::from(b'\r') * ONES);
-        cr |= v.wrapping_sub(ONES) & !v;
-        byte_mask(word, u64::from(b'\n'))
-    };
-    for_each_marked(bytes, line_feeds, found);
-    cr & 0x8080_8080_8080_8080 != 0
 }
 
 /// One in every byte.

@@ -77,21 +77,15 @@ pub fn is_plain_file_name(name: &str) -> bool {
 impl Missing {
     /// The file names that may hold this called program, in the order they are tried:
     /// `O1234`, `O1234.nc`, `1234.nc` … for a number, `name.ngc` (LinuxCNC's subroutine files)
-    /// or `name.nc` for a name. The CLI looks for them beside the caller, the editor among its
-    /// open files.
-    /// A name that is not a plain file name (a folder, `..`, a root or a drive) names none: a
-    /// program reads no file outside its own folder.
+    /// or `name.nc` for a name; none for a name that is not [a plain file
+    /// name](is_plain_file_name). The CLI looks beside the caller, the editor among its tabs.
     pub fn file_names(&self) -> Vec<String> {
         let stems: Vec<String> = match self {
             Missing::Name(name) if !is_plain_file_name(name) => return Vec::new(),
-            Missing::Number(n) => vec![
-                format!("O{n:04}"),
-                format!("O{n}"),
-                format!("o{n:04}"),
-                format!("o{n}"),
-                format!("{n:04}"),
-                format!("{n}"),
-            ],
+            Missing::Number(n) => ["O", "o", ""]
+                .iter()
+                .flat_map(|p| [format!("{p}{n:04}"), format!("{p}{n}")])
+                .collect(),
             Missing::Name(name) => vec![name.clone()],
         };
         let mut names: Vec<String> = Vec::with_capacity(stems.len() * CALLED_FILE_EXTENSIONS.len());
@@ -256,14 +250,12 @@ impl Program {
     /// The subprogram numbers and O-word names this program calls with literal targets but
     /// does not define (in the order first called).
     pub fn missing_calls(&self) -> Vec<Missing> {
-        let mut numbers = Vec::new();
-        let mut names = Vec::new();
+        let mut defined: Vec<Missing> = Vec::new();
         for block in &self.blocks {
-            if let Some(p) = block.program() {
-                match p {
-                    ProgramNumber::Number(n) => numbers.push(*n),
-                    ProgramNumber::Name(n) => names.push(n.to_string()),
-                }
+            match block.program() {
+                Some(ProgramNumber::Number(n)) => defined.push(Missing::Number(*n)),
+                Some(ProgramNumber::Name(n)) => defined.push(Missing::Name(n.to_string())),
+                None => {}
             }
             for s in block.statements() {
                 if let Statement::OWord {
@@ -271,17 +263,13 @@ impl Program {
                     kind: OWord::Sub,
                 } = s
                 {
-                    names.push(n.to_string());
+                    defined.push(Missing::Name(n.to_string()));
                 }
             }
         }
         let mut missing: Vec<Missing> = Vec::new();
         let mut add = |m: Missing| {
-            let defined = match &m {
-                Missing::Number(n) => numbers.contains(n),
-                Missing::Name(n) => names.contains(n),
-            };
-            if !defined && !missing.contains(&m) {
+            if !defined.contains(&m) && !missing.contains(&m) {
                 missing.push(m);
             }
         };
@@ -372,22 +360,11 @@ fn rebase_statement(s: &mut Statement, id: &impl Fn(ExprId) -> ExprId) {
             }
             match kind {
                 OWord::EndSub(e) | OWord::Return(e) => *e = e.map(id),
-                OWord::Call(args) => {
-                    for a in args.iter_mut() {
-                        *a = id(*a);
-                    }
-                }
+                OWord::Call(args) => args.iter_mut().for_each(|a| *a = id(*a)),
                 OWord::If(e) | OWord::ElseIf(e) | OWord::While(e) | OWord::Repeat(e) => {
                     *e = id(*e);
                 }
-                OWord::Sub
-                | OWord::Else
-                | OWord::EndIf
-                | OWord::EndWhile
-                | OWord::Do
-                | OWord::EndRepeat
-                | OWord::Break
-                | OWord::Continue => {}
+                _ => {}
             }
         }
     }

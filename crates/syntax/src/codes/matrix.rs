@@ -41,25 +41,14 @@ pub fn markdown_table() -> String {
 /// (own or Fanuc reading) joined; the rest listed.
 fn compress(codes: &[(Code, bool)]) -> String {
     let mut parts: Vec<String> = Vec::new();
-    let mut i = 0;
-    while i < codes.len() {
-        let (first, star) = codes[i];
-        let mut j = i;
-        while j + 1 < codes.len()
-            && first.tenths % 10 == 0
-            && codes[j + 1].1 == star
-            && codes[j + 1].0.letter == first.letter
-            && codes[j + 1].0.tenths == codes[j].0.tenths + 10
-        {
-            j += 1;
-        }
-        let mark = if star { "*" } else { "" };
-        if j - i >= 2 {
-            parts.push(format!("{first}–{}{mark}", codes[j].0));
-            i = j + 1;
-        } else {
-            parts.push(format!("{first}{mark}"));
-            i += 1;
+    let next = |(a, star): &(Code, bool), (b, next_star): &(Code, bool)| {
+        star == next_star && a.letter == b.letter && a.tenths % 10 == 0 && b.tenths == a.tenths + 10
+    };
+    for run in codes.chunk_by(next) {
+        let mark = if run[0].1 { "*" } else { "" };
+        match run {
+            [(first, _), _, .., (last, _)] => parts.push(format!("{first}–{last}{mark}")),
+            _ => parts.extend(run.iter().map(|(c, _)| format!("{c}{mark}"))),
         }
     }
     parts.join(" ")

@@ -32,21 +32,11 @@ impl Code {
         }
     }
 
-    /// `M` code `tenths / 10`.
-    pub const fn m(tenths: u32) -> Code {
-        Code {
-            letter: b'M',
-            tenths,
-        }
-    }
-
     /// The code a `G` or `M` word names, if its value is a valid code number (non-negative, at
     /// most one decimal digit, below 10000).
     pub fn of_word(word: &Word) -> Option<Code> {
-        if !(word.letter == b'G' || word.letter == b'M') || word.expr.is_some() {
-            return None;
-        }
-        Code::from_value(word.letter, word.value)
+        let code_word = matches!(word.letter, b'G' | b'M') && word.expr.is_none();
+        code_word.then(|| Code::from_value(word.letter, word.value))?
     }
 
     /// The code for `letter` and a numeric value, if the value is a valid code number.
@@ -72,25 +62,19 @@ impl Code {
     /// Parses `G83.1`, `g0`, `M98` (case-insensitive, leading zeros optional).
     pub fn parse(text: &str) -> Option<Code> {
         let text = text.trim();
-        let mut chars = text.chars();
-        let letter = chars.next()?.to_ascii_uppercase();
-        if letter != 'G' && letter != 'M' {
-            return None;
-        }
-        let value: f64 = chars.as_str().trim().parse().ok()?;
-        Code::from_value(letter as u8, value)
+        let letter = text.bytes().next()?.to_ascii_uppercase();
+        let value: f64 = text.get(1..)?.trim().parse().ok()?;
+        matches!(letter, b'G' | b'M').then(|| Code::from_value(letter, value))?
     }
 }
 
 impl fmt::Display for Code {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let whole = self.tenths / 10;
-        let frac = self.tenths % 10;
-        write!(f, "{}{whole:02}", char::from(self.letter))?;
-        if frac != 0 {
-            write!(f, ".{frac}")?;
+        let (letter, whole, frac) = (char::from(self.letter), self.tenths / 10, self.tenths % 10);
+        match frac {
+            0 => write!(f, "{letter}{whole:02}"),
+            _ => write!(f, "{letter}{whole:02}.{frac}"),
         }
-        Ok(())
     }
 }
 
@@ -120,14 +104,7 @@ impl DialectSet {
 
     /// The set holding only `dialect`.
     pub const fn of(dialect: Dialect) -> DialectSet {
-        DialectSet(match dialect {
-            Dialect::Fanuc => 1,
-            Dialect::Syntec => 2,
-            Dialect::Lnc => 4,
-            Dialect::Kt => 8,
-            Dialect::Gsk => 16,
-            Dialect::LinuxCnc => 32,
-        })
+        DialectSet(1 << dialect as u8)
     }
 
     /// Whether `dialect` is in the set.
@@ -138,11 +115,6 @@ impl DialectSet {
     /// The union of two sets.
     pub const fn or(self, other: DialectSet) -> DialectSet {
         DialectSet(self.0 | other.0)
-    }
-
-    /// The set without `other`'s dialects.
-    pub const fn minus(self, other: DialectSet) -> DialectSet {
-        DialectSet(self.0 & !other.0)
     }
 
     /// Whether the set is empty.
@@ -164,109 +136,63 @@ impl DialectSet {
     }
 }
 
-/// The modal group of a code: codes of one group replace each other, and two of one group in a
-/// block is an error. Named after the Fanuc 0i-M groups; LinuxCNC's groups map onto them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Group {
-    /// Group 00: one-shot codes (dwell, G10, G28, G53, G92 …).
-    NonModal,
-    /// Group 01: G00–G03 and other motions (in LinuxCNC also the canned cycles and G80).
-    Motion,
-    /// Group 02: plane selection G17/G18/G19.
-    Plane,
-    /// Group 03: G90/G91.
-    Distance,
-    /// LinuxCNC G90.1/G91.1: arc centre distance mode.
-    ArcDistance,
-    /// Group 04: stroke limits G22/G23.
-    StrokeLimit,
-    /// Group 05: feed mode G93/G94/G95.
-    FeedMode,
-    /// Group 06: inch/metric (G20/G21, Syntec G70/G71).
-    Units,
-    /// Group 07: cutter radius compensation G40/G41/G42.
-    CutterComp,
-    /// Group 08: tool length compensation G43/G44/G49.
-    LengthComp,
-    /// Group 09: canned cycles and G80 (Fanuc family).
-    Cycle,
-    /// Group 10: canned-cycle return level G98/G99.
-    ReturnLevel,
-    /// Group 11: scaling G50/G51.
-    Scaling,
-    /// Group 12: modal macro call G66/G67.
-    MacroModal,
-    /// Group 13: constant surface speed G96/G97.
-    SpindleMode,
-    /// Group 14: work coordinate systems G54–G59, G54.1, G59.n.
-    WorkOffset,
-    /// Group 15: cutting modes G61–G64.
-    PathMode,
-    /// Group 16: coordinate rotation G68/G69 (LNC G168).
-    Rotation,
-    /// Group 17: polar coordinate command G15/G16.
-    Polar,
-    /// Group 21: polar coordinate interpolation G12.1/G13.1.
-    PolarInterp,
-    /// Group 22: mirror image G50.1/G51.1.
-    Mirror,
-    /// High-speed / smoothing modes (Syntec G05, G05.1; LinuxCNC G64 P).
-    Smoothing,
-    /// Lathe diameter/radius mode (LinuxCNC G7/G8).
-    LatheMode,
-    /// Spindle M codes M03/M04/M05 (M19).
-    Spindle,
-    /// Coolant M codes M07/M08/M09.
-    Coolant,
-    /// Program stops and ends M00/M01/M02/M30/M60.
-    Stop,
-    /// Tool change M06.
-    ToolChange,
-    /// Subprogram call and return M98/M99 and similar.
-    Subprogram,
-    /// Feed/speed override switches (LinuxCNC M48–M53).
-    Override,
-    /// Any other M code (machine-specific outputs).
-    OtherM,
+/// Declares [`Group`] from one row a group: the variant, its name for messages and
+/// documentation, and what it holds.
+macro_rules! groups {
+    ($($variant:ident $name:literal $doc:literal;)*) => {
+        /// The modal group of a code: codes of one group replace each other, and two of one group
+        /// in a block is an error. Named after the Fanuc 0i-M groups; LinuxCNC's groups map onto
+        /// them.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Group {
+            $(#[doc = $doc] $variant,)*
+        }
+
+        impl Group {
+            /// The group's name for messages and documentation.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Group::$variant => $name,)*
+                }
+            }
+        }
+    };
+}
+
+groups! {
+    NonModal    "one-shot (group 00)"                 "Group 00: one-shot codes (dwell, G10, G28, G53, G92 …).";
+    Motion      "motion (group 01)"                   "Group 01: G00–G03 and other motions (in LinuxCNC also the canned cycles and G80).";
+    Plane       "plane (group 02)"                    "Group 02: plane selection G17/G18/G19.";
+    Distance    "absolute/incremental (group 03)"     "Group 03: G90/G91.";
+    ArcDistance "arc centre mode"                     "LinuxCNC G90.1/G91.1: arc centre distance mode.";
+    StrokeLimit "stroke limit (group 04)"             "Group 04: stroke limits G22/G23.";
+    FeedMode    "feed mode (group 05)"                "Group 05: feed mode G93/G94/G95.";
+    Units       "units (group 06)"                    "Group 06: inch/metric (G20/G21, Syntec G70/G71).";
+    CutterComp  "cutter compensation (group 07)"      "Group 07: cutter radius compensation G40/G41/G42.";
+    LengthComp  "tool length compensation (group 08)" "Group 08: tool length compensation G43/G44/G49.";
+    Cycle       "canned cycle (group 09)"             "Group 09: canned cycles and G80 (Fanuc family).";
+    ReturnLevel "cycle return level (group 10)"       "Group 10: canned-cycle return level G98/G99.";
+    Scaling     "scaling (group 11)"                  "Group 11: scaling G50/G51.";
+    MacroModal  "modal macro call (group 12)"         "Group 12: modal macro call G66/G67.";
+    SpindleMode "spindle speed mode (group 13)"       "Group 13: constant surface speed G96/G97.";
+    WorkOffset  "work coordinate system (group 14)"   "Group 14: work coordinate systems G54–G59, G54.1, G59.n.";
+    PathMode    "cutting mode (group 15)"             "Group 15: cutting modes G61–G64.";
+    Rotation    "coordinate rotation (group 16)"      "Group 16: coordinate rotation G68/G69 (LNC G168).";
+    Polar       "polar coordinates (group 17)"        "Group 17: polar coordinate command G15/G16.";
+    PolarInterp "polar interpolation (group 21)"      "Group 21: polar coordinate interpolation G12.1/G13.1.";
+    Mirror      "mirror image (group 22)"             "Group 22: mirror image G50.1/G51.1.";
+    Smoothing   "high-speed/smoothing mode"           "High-speed / smoothing modes (Syntec G05, G05.1; LinuxCNC G64 P).";
+    LatheMode   "diameter/radius mode"                "Lathe diameter/radius mode (LinuxCNC G7/G8).";
+    Spindle     "spindle (M)"                         "Spindle M codes M03/M04/M05 (M19).";
+    Coolant     "coolant (M)"                         "Coolant M codes M07/M08/M09.";
+    Stop        "program stop (M)"                    "Program stops and ends M00/M01/M02/M30/M60.";
+    ToolChange  "tool change (M)"                     "Tool change M06.";
+    Subprogram  "subprogram (M)"                      "Subprogram call and return M98/M99 and similar.";
+    Override    "override switches (M)"               "Feed/speed override switches (LinuxCNC M48–M53).";
+    OtherM      "miscellaneous (M)"                   "Any other M code (machine-specific outputs).";
 }
 
 impl Group {
-    /// The group's name for messages and documentation.
-    pub fn name(self) -> &'static str {
-        match self {
-            Group::NonModal => "one-shot (group 00)",
-            Group::Motion => "motion (group 01)",
-            Group::Plane => "plane (group 02)",
-            Group::Distance => "absolute/incremental (group 03)",
-            Group::ArcDistance => "arc centre mode",
-            Group::StrokeLimit => "stroke limit (group 04)",
-            Group::FeedMode => "feed mode (group 05)",
-            Group::Units => "units (group 06)",
-            Group::CutterComp => "cutter compensation (group 07)",
-            Group::LengthComp => "tool length compensation (group 08)",
-            Group::Cycle => "canned cycle (group 09)",
-            Group::ReturnLevel => "cycle return level (group 10)",
-            Group::Scaling => "scaling (group 11)",
-            Group::MacroModal => "modal macro call (group 12)",
-            Group::SpindleMode => "spindle speed mode (group 13)",
-            Group::WorkOffset => "work coordinate system (group 14)",
-            Group::PathMode => "cutting mode (group 15)",
-            Group::Rotation => "coordinate rotation (group 16)",
-            Group::Polar => "polar coordinates (group 17)",
-            Group::PolarInterp => "polar interpolation (group 21)",
-            Group::Mirror => "mirror image (group 22)",
-            Group::Smoothing => "high-speed/smoothing mode",
-            Group::LatheMode => "diameter/radius mode",
-            Group::Spindle => "spindle (M)",
-            Group::Coolant => "coolant (M)",
-            Group::Stop => "program stop (M)",
-            Group::ToolChange => "tool change (M)",
-            Group::Subprogram => "subprogram (M)",
-            Group::Override => "override switches (M)",
-            Group::OtherM => "miscellaneous (M)",
-        }
-    }
-
     /// Whether two codes of this group may not share a block.
     pub fn exclusive(self) -> bool {
         !matches!(self, Group::NonModal | Group::OtherM)
@@ -340,40 +266,47 @@ pub struct AddressDef {
     pub meaning: &'static str,
 }
 
-/// The dialect's index into [`CODES`], sorted by code, built on its first use (each dialect's
-/// apart: a run reads one dialect, and building all six would cost every start).
-fn index(dialect: Dialect) -> &'static Vec<(Code, u16)> {
-    static INDEX: [OnceLock<Vec<(Code, u16)>>; 6] = [const { OnceLock::new() }; 6];
-    INDEX[dialect_slot(dialect)].get_or_init(|| {
-        let mut slot = Vec::new();
-        // The first definition of each code the dialect has, in the table's order: a stable
-        // sort keeps it first among the code's definitions.
-        slot.extend(
-            CODES
-                .iter()
-                .enumerate()
-                .filter(|(_, def)| def.dialects.contains(dialect))
-                .map(|(i, def)| (def.code, u16::try_from(i).unwrap_or(u16::MAX))),
-        );
-        slot.sort_by_key(|(c, _)| *c);
-        slot.dedup_by_key(|(c, _)| *c);
-        // The standard codes a dialect's manual leaves out are read as Fanuc reads them.
-        if FANUC_READING.contains(&dialect) {
-            let mut standard: Vec<(Code, u16)> = Vec::new();
-            for (i, def) in CODES.iter().enumerate() {
-                let seen = slot.binary_search_by_key(&def.code, |(c, _)| *c).is_ok()
-                    || standard.iter().any(|(c, _)| *c == def.code);
-                if FANUC_STANDARD.contains(&def.code)
+/// A dialect's codes (the first definition of each it has) as entries of [`CODES`]: sorted by
+/// code, and for each code below [`DENSE`] per letter (G, M; `u16::MAX`: none), for the lookup
+/// every G and M word makes.
+struct Index {
+    sorted: Vec<(Code, u16)>,
+    dense: [Vec<u16>; 2],
+}
+
+/// Codes below this number (in tenths) are found by direct indexing.
+const DENSE: usize = 2000;
+
+/// The dialect's [`Index`], built on its first use (each dialect's apart: a run reads one
+/// dialect, and building all six would cost every start).
+fn index(dialect: Dialect) -> &'static Index {
+    static INDEX: [OnceLock<Index>; 6] = [const { OnceLock::new() }; 6];
+    INDEX[dialect as usize].get_or_init(|| {
+        // Each code's first definition the dialect has, else (in a [`FANUC_READING`] dialect)
+        // its first Fanuc definition when it is a standard code.
+        let reads_fanuc = FANUC_READING.contains(&dialect);
+        let mut slot: Vec<(Code, bool, u16)> = CODES
+            .iter()
+            .enumerate()
+            .filter_map(|(i, def)| {
+                let own = def.dialects.contains(dialect);
+                let standard = reads_fanuc
                     && def.dialects.contains(Dialect::Fanuc)
-                    && !seen
-                {
-                    standard.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
-                }
+                    && is_fanuc_standard(def.code);
+                (own || standard).then(|| (def.code, !own, u16::try_from(i).unwrap_or(u16::MAX)))
+            })
+            .collect();
+        slot.sort_unstable();
+        slot.dedup_by_key(|(c, _, _)| *c);
+        let mut dense = [vec![u16::MAX; DENSE], vec![u16::MAX; DENSE]];
+        for &(code, _, i) in &slot {
+            let letter = usize::from(code.letter == b'M');
+            if let Some(cell) = dense[letter].get_mut(code.tenths as usize) {
+                *cell = i;
             }
-            slot.extend(standard);
-            slot.sort_by_key(|(c, _)| *c);
         }
-        slot
+        let sorted = slot.into_iter().map(|(c, _, i)| (c, i)).collect();
+        Index { sorted, dense }
     })
 }
 
@@ -382,82 +315,14 @@ fn index(dialect: Dialect) -> &'static Vec<(Code, u16)> {
 /// and no inch/metric codes. A machinist writing M03 or G21 for them means what Fanuc means.
 const FANUC_READING: [Dialect; 3] = [Dialect::Lnc, Dialect::Kt, Dialect::Gsk];
 
-/// The codes read as on Fanuc where a [`FANUC_READING`] dialect's manual does not give them:
-/// the planes G17–G19, G20/G21, G40, M00–M06, M08, M09, M30, M98, M99.
-const FANUC_STANDARD: [Code; 18] = [
-    Code {
-        letter: b'G',
-        tenths: 170,
-    },
-    Code {
-        letter: b'G',
-        tenths: 180,
-    },
-    Code {
-        letter: b'G',
-        tenths: 190,
-    },
-    Code {
-        letter: b'G',
-        tenths: 400,
-    },
-    Code {
-        letter: b'G',
-        tenths: 200,
-    },
-    Code {
-        letter: b'G',
-        tenths: 210,
-    },
-    Code {
-        letter: b'M',
-        tenths: 0,
-    },
-    Code {
-        letter: b'M',
-        tenths: 10,
-    },
-    Code {
-        letter: b'M',
-        tenths: 20,
-    },
-    Code {
-        letter: b'M',
-        tenths: 30,
-    },
-    Code {
-        letter: b'M',
-        tenths: 40,
-    },
-    Code {
-        letter: b'M',
-        tenths: 50,
-    },
-    Code {
-        letter: b'M',
-        tenths: 60,
-    },
-    Code {
-        letter: b'M',
-        tenths: 80,
-    },
-    Code {
-        letter: b'M',
-        tenths: 90,
-    },
-    Code {
-        letter: b'M',
-        tenths: 300,
-    },
-    Code {
-        letter: b'M',
-        tenths: 980,
-    },
-    Code {
-        letter: b'M',
-        tenths: 990,
-    },
-];
+/// Whether `code` is read as on Fanuc where a [`FANUC_READING`] dialect's manual does not give
+/// it: the planes G17–G19, G20/G21, G40, M00–M06, M08, M09, M30, M98, M99.
+fn is_fanuc_standard(code: Code) -> bool {
+    match code.letter {
+        b'G' => [170, 180, 190, 200, 210, 400].contains(&code.tenths),
+        _ => [0, 10, 20, 30, 40, 50, 60, 80, 90, 300, 980, 990].contains(&code.tenths),
+    }
+}
 
 /// Whether `def` is in `dialect`'s table only as the Fanuc reading of a standard code its manual
 /// does not give (see `FANUC_READING`).
@@ -465,84 +330,43 @@ pub fn is_fanuc_reading(dialect: Dialect, def: &CodeDef) -> bool {
     !def.dialects.contains(dialect) && FANUC_READING.contains(&dialect)
 }
 
-fn dialect_slot(dialect: Dialect) -> usize {
-    match dialect {
-        Dialect::Fanuc => 0,
-        Dialect::Syntec => 1,
-        Dialect::Lnc => 2,
-        Dialect::Kt => 3,
-        Dialect::Gsk => 4,
-        Dialect::LinuxCnc => 5,
+/// The bit of an uppercase letter in a set of letters (0 for anything else).
+#[inline(always)]
+pub(crate) const fn letter_bit(letter: u8) -> u32 {
+    if letter.is_ascii_uppercase() {
+        1 << (letter - b'A')
+    } else {
+        0
     }
 }
 
-/// The letters `def` accepts as a bit set (bit 0 = A), for the same-block checks.
-pub fn words_mask(def: &CodeDef) -> u32 {
-    static MASKS: OnceLock<Vec<u32>> = OnceLock::new();
-    let masks = MASKS.get_or_init(|| {
-        CODES
-            .iter()
-            .map(|d| {
-                d.words.bytes().fold(0u32, |m, l| {
-                    if l.is_ascii_uppercase() {
-                        m | 1 << (l - b'A')
-                    } else {
-                        m
-                    }
-                })
-            })
-            .collect()
-    });
-    // `def` is an element of CODES when it came from a lookup; its position is its offset.
-    let offset = (def as *const CodeDef as usize).wrapping_sub(CODES.as_ptr() as usize);
-    let index = offset / std::mem::size_of::<CodeDef>().max(1);
-    match masks.get(index) {
-        Some(mask) if std::ptr::eq(&CODES[index], def) => *mask,
-        _ => def.words.bytes().fold(0u32, |m, l| {
-            if l.is_ascii_uppercase() {
-                m | 1 << (l - b'A')
-            } else {
-                m
-            }
-        }),
+/// The bits of a set of letters (bit 0 = A).
+pub(crate) const fn letter_mask(letters: &[u8]) -> u32 {
+    let (mut mask, mut i) = (0, 0);
+    while i < letters.len() {
+        mask |= letter_bit(letters[i]);
+        i += 1;
     }
-}
-
-/// Codes below this number (in tenths) are found by direct indexing.
-const DENSE: usize = 2000;
-
-/// For the dialect, per letter (G, M), the entry of each code below [`DENSE`] (`u16::MAX`:
-/// none): the lookup every G and M word of every block makes.
-fn dense(dialect: Dialect) -> &'static [Vec<u16>; 2] {
-    static DENSE_INDEX: [OnceLock<[Vec<u16>; 2]>; 6] = [const { OnceLock::new() }; 6];
-    DENSE_INDEX[dialect_slot(dialect)].get_or_init(|| {
-        let mut slots = [vec![u16::MAX; DENSE], vec![u16::MAX; DENSE]];
-        for (code, i) in index(dialect) {
-            let letter = usize::from(code.letter == b'M');
-            if let Some(cell) = slots[letter].get_mut(code.tenths as usize) {
-                *cell = *i;
-            }
-        }
-        slots
-    })
+    mask
 }
 
 /// The meaning of `code` in `dialect`, if the dialect has it.
 #[inline]
 pub fn lookup(dialect: Dialect, code: Code) -> Option<&'static CodeDef> {
-    if (code.letter == b'G' || code.letter == b'M') && (code.tenths as usize) < DENSE {
-        let letter = usize::from(code.letter == b'M');
-        let i = *dense(dialect)[letter].get(code.tenths as usize)?;
-        return CODES.get(usize::from(i));
-    }
-    let slot = index(dialect);
-    let at = slot.binary_search_by_key(&code, |(c, _)| *c).ok()?;
-    CODES.get(usize::from(slot[at].1))
+    let index = index(dialect);
+    let i = if (code.letter == b'G' || code.letter == b'M') && (code.tenths as usize) < DENSE {
+        *index.dense[usize::from(code.letter == b'M')].get(code.tenths as usize)?
+    } else {
+        let at = index.sorted.binary_search_by_key(&code, |(c, _)| *c).ok()?;
+        index.sorted[at].1
+    };
+    CODES.get(usize::from(i))
 }
 
 /// Every code `dialect` has, sorted by code.
 pub fn codes_of(dialect: Dialect) -> impl Iterator<Item = &'static CodeDef> {
     index(dialect)
+        .sorted
         .iter()
         .filter_map(|(_, i)| CODES.get(usize::from(*i)))
 }
@@ -581,7 +405,7 @@ mod tests {
         }
         if FANUC_READING.contains(&dialect) {
             for (i, def) in CODES.iter().enumerate() {
-                let standard = FANUC_STANDARD.contains(&def.code);
+                let standard = is_fanuc_standard(def.code);
                 let seen = slot.iter().any(|(c, _)| *c == def.code);
                 if standard && def.dialects.contains(Dialect::Fanuc) && !seen {
                     slot.push((def.code, u16::try_from(i).unwrap_or(u16::MAX)));
@@ -595,7 +419,7 @@ mod tests {
     #[test]
     fn the_index_is_its_plain_definition() {
         for dialect in Dialect::ALL {
-            let slot = index(dialect);
+            let slot = &index(dialect).sorted;
             assert_eq!(*slot, plain_index(dialect), "{dialect:?}");
             assert!(!slot.is_empty());
         }
