@@ -255,6 +255,18 @@ pub enum Canon {
 }
 
 impl Canon {
+    /// A straight move to `to`: a rapid when `rapid`, else a feed at `feed_mm_per_min`.
+    pub fn line(rapid: bool, to: DVec3, feed_mm_per_min: f64) -> Canon {
+        if rapid {
+            Canon::Rapid { to }
+        } else {
+            Canon::Feed {
+                to,
+                feed_mm_per_min,
+            }
+        }
+    }
+
     /// The end point for motion events.
     pub fn end_point(&self) -> Option<DVec3> {
         match self {
@@ -336,7 +348,8 @@ impl Sink for CanonRecorder {
     }
 }
 
-#[cfg(all(test, not(target_arch = "wasm32")))]
+#[cfg(test)]
+#[cfg(not(target_arch = "wasm32"))]
 mod tests {
     use super::{Axis, PlaneArc, plane_length, plane_sweep};
     use glam::DVec3;

@@ -213,6 +213,41 @@ impl Elem {
 }
 
 impl Held {
+    /// `elem` held back compensated by `s` from `start` to `end` (its offset end, plane
+    /// coordinates), after the move of line `prev_line`.
+    fn of(
+        elem: &Elem,
+        s: f64,
+        start: DVec3,
+        end: DVec2,
+        plane: (usize, usize),
+        prev_line: u32,
+    ) -> Held {
+        Held {
+            source: elem.source,
+            span: elem.span,
+            rapid: elem.rapid,
+            feed: elem.feed,
+            start,
+            end: with_uv(elem.to, end, plane),
+            shape: elem
+                .arc
+                .map_or(Shape::Line, |(center, ccw, turns)| Shape::Arc {
+                    center,
+                    ccw,
+                    turns,
+                }),
+            corner: uv(elem.to, plane),
+            tangent: elem.end_tangent(plane),
+            offset: s,
+            prog_dir: (uv(elem.to, plane) - uv(elem.from, plane)).normalize_or_zero(),
+            prog_sweep: elem.prog_sweep(plane),
+            extended: false,
+            prev_line,
+            startup: false,
+        }
+    }
+
     fn curve(&self, plane: (usize, usize)) -> Curve {
         match self.shape {
             Shape::Line => Curve::Line {
@@ -331,22 +366,16 @@ fn put(st: &State, sink: &mut dyn Sink, source: Source, event: &Canon) {
         sink.emit(source, event);
         return;
     }
-    let shifted = match event.clone() {
-        Canon::Rapid { to } => Canon::Rapid { to: to + d },
-        Canon::Feed {
-            to,
-            feed_mm_per_min,
-        } => Canon::Feed {
-            to: to + d,
-            feed_mm_per_min,
-        },
+    let shifted = match event {
         Canon::Arc(a) => Canon::Arc(Arc {
-            to: a.to + d,
             center: a.center + d,
-            ..a
+            ..*a
         }),
-        other => other,
+        other => other.clone(),
     };
+    let shifted = shifted
+        .end_point()
+        .map_or(shifted.clone(), |to| with_end(&shifted, to + d));
     sink.emit(source, &shifted);
 }
 
@@ -495,7 +524,7 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
     if let Some((c, ccw, turns)) = elem.arc {
         if !linuxcnc {
             let message = "G41/G42 starts only in a G00/G01 move, not in G02/G03";
-            return refuse_start(st, sink, &elem, plane, message);
+            return refuse_start(st, sink, &elem, message);
         }
         // LinuxCNC: an arc through the compensated end, tangent to the tool where it is.
         if (p - t).length() <= s.abs() {
@@ -512,28 +541,16 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
         let den = 2.0 * u.dot(t - end);
         if den.abs() < EPS {
             let message = "the tool radius is not less than the entry arc's radius";
-            return refuse_start(st, sink, &elem, plane, message);
+            return refuse_start(st, sink, &elem, message);
         }
         let center = end + u * ((t - end).length_squared() / den);
-        st.comp.held = Some(Held {
-            source: elem.source,
-            span: elem.span,
-            rapid: false,
-            feed: elem.feed,
-            start: tool,
-            end: with_uv(elem.to, end, plane),
+        let held = Held {
             shape: Shape::Arc { center, ccw, turns },
-            corner: p,
-            tangent: elem.end_tangent(plane),
-            offset: s,
             prog_dir: DVec2::ZERO,
             prog_sweep: f64::INFINITY,
-            extended: false,
-            prev_line: elem.source.line,
-            startup: false,
-        });
-        st.comp.held_run = st.blocks_run;
-        return;
+            ..Held::of(&elem, s, tool, end, plane, elem.source.line)
+        };
+        return hold(st, held);
     }
     let (dir, startup) = if linuxcnc {
         let d = p - t;
@@ -552,41 +569,30 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
         (d.normalize_or_zero(), true)
     };
     if dir == DVec2::ZERO {
-        sink.emit(elem.source, &as_event(&elem, elem.to, plane));
+        sink.emit(elem.source, &as_event(&elem, st.plane));
         return;
     }
     let end = p + left(dir) * s;
-    st.comp.held = Some(Held {
-        source: elem.source,
-        span: elem.span,
-        rapid: elem.rapid,
-        feed: elem.feed,
-        start: tool,
-        end: with_uv(elem.to, end, plane),
-        shape: Shape::Line,
-        corner: p,
+    let held = Held {
         tangent: dir,
-        offset: s,
         prog_dir: (end - t).normalize_or_zero(),
-        prog_sweep: 0.0,
-        extended: false,
-        prev_line: elem.source.line,
         startup,
-    });
+        ..Held::of(&elem, s, tool, end, plane, elem.source.line)
+    };
+    hold(st, held);
+}
+
+/// Holds `held` back from the block being run.
+fn hold(st: &mut State, held: Held) {
+    st.comp.held = Some(held);
     st.comp.held_run = st.blocks_run;
 }
 
 /// Compensation cannot start in `elem`: the alarm, and the move itself uncompensated.
-fn refuse_start(
-    st: &mut State,
-    sink: &mut dyn Sink,
-    elem: &Elem,
-    plane: (usize, usize),
-    message: &str,
-) {
+fn refuse_start(st: &mut State, sink: &mut dyn Sink, elem: &Elem, message: &str) {
     alarm(st, elem.span, "E-COMP-START", message.into());
     st.comp.tool = None;
-    sink.emit(elem.source, &as_event(elem, elem.to, plane));
+    sink.emit(elem.source, &as_event(elem, st.plane));
 }
 
 /// Holds `elem` compensated by `s`, starting at `start` (plane coordinates) after the move of
@@ -606,28 +612,11 @@ fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_lin
             ),
         );
     }
-    let shape = match elem.arc {
-        Some((center, ccw, turns)) => Shape::Arc { center, ccw, turns },
-        None => Shape::Line,
-    };
-    st.comp.held = Some(Held {
-        source: elem.source,
-        span: elem.span,
-        rapid: elem.rapid,
-        feed: elem.feed,
-        start: with_uv(tool, start, plane),
-        end: with_uv(elem.to, end, plane),
-        shape,
-        corner: uv(elem.to, plane),
-        tangent: elem.end_tangent(plane),
-        offset: s,
-        prog_dir: (uv(elem.to, plane) - uv(elem.from, plane)).normalize_or_zero(),
-        prog_sweep: elem.prog_sweep(plane),
+    let held = Held {
         extended: std::mem::take(&mut st.comp.start_extended),
-        prev_line,
-        startup: false,
-    });
-    st.comp.held_run = st.blocks_run;
+        ..Held::of(&elem, s, with_uv(tool, start, plane), end, plane, prev_line)
+    };
+    hold(st, held);
 }
 
 /// Ends the held move against the next move in the plane (`next`, with its offset; a NaN
@@ -817,11 +806,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                     turns: 0,
                     feed_mm_per_min: n.feed,
                 }),
-                None if n.rapid => Canon::Rapid { to },
-                None => Canon::Feed {
-                    to,
-                    feed_mm_per_min: n.feed,
-                },
+                None => Canon::line(n.rapid, to, n.feed),
             };
             put(st, sink, n.source, &event);
             at = to;
@@ -912,18 +897,11 @@ fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
         gouge(st, h.span, message);
     }
     let event = match h.shape {
-        Shape::Line if h.rapid => Canon::Rapid { to: h.end },
-        Shape::Line => Canon::Feed {
-            to: h.end,
-            feed_mm_per_min: h.feed,
-        },
+        Shape::Line => Canon::line(h.rapid, h.end, h.feed),
         Shape::Arc { center, ccw, turns } => {
             let full = h.prog_sweep >= std::f64::consts::TAU - 1e-9;
             if (a - b).length() < 1e-9 && !full && turns == 0 {
-                Canon::Feed {
-                    to: h.end,
-                    feed_mm_per_min: h.feed,
-                }
+                Canon::line(false, h.end, h.feed)
             } else {
                 Canon::Arc(Arc {
                     to: h.end,
@@ -963,41 +941,27 @@ fn alarm(st: &mut State, span: Span, code: &'static str, message: String) {
 
 /// `event` with its end point moved to `to`.
 fn with_end(event: &Canon, to: DVec3) -> Canon {
-    match event.clone() {
+    match *event {
         Canon::Rapid { .. } => Canon::Rapid { to },
         Canon::Feed {
             feed_mm_per_min, ..
-        } => Canon::Feed {
-            to,
-            feed_mm_per_min,
-        },
+        } => Canon::line(false, to, feed_mm_per_min),
         Canon::Arc(a) => Canon::Arc(Arc { to, ..a }),
-        other => other,
+        ref other => other.clone(),
     }
 }
 
-/// The programmed move as an event.
-fn as_event(e: &Elem, to: DVec3, plane: (usize, usize)) -> Canon {
+/// The programmed move as an event, in the plane with normal `axis`.
+fn as_event(e: &Elem, axis: Axis) -> Canon {
     match e.arc {
-        Some((c, ccw, turns)) => {
-            let axis = match 3 - plane.0 - plane.1 {
-                0 => crate::Axis::X,
-                1 => crate::Axis::Y,
-                _ => crate::Axis::Z,
-            };
-            Canon::Arc(Arc {
-                to,
-                center: with_uv(e.from, c, plane),
-                axis,
-                ccw,
-                turns,
-                feed_mm_per_min: e.feed,
-            })
-        }
-        None if e.rapid => Canon::Rapid { to },
-        None => Canon::Feed {
-            to,
+        Some((c, ccw, turns)) => Canon::Arc(Arc {
+            to: e.to,
+            center: with_uv(e.from, c, plane_axes(axis)),
+            axis,
+            ccw,
+            turns,
             feed_mm_per_min: e.feed,
-        },
+        }),
+        None => Canon::line(e.rapid, e.to, e.feed),
     }
 }

@@ -15,6 +15,7 @@
 use glam::DVec3;
 use swarf_syntax::{Block, Diagnostic, Dialect, Quantity, Word, WordForm};
 
+use crate::machine::find;
 use crate::state::{MotionMode, State, plane_axes};
 use crate::{Canon, Sink, Source};
 
@@ -288,13 +289,7 @@ pub(crate) fn pattern(
             let (Some(r), Some(k)) = (radius(st), count(st, b'K')) else {
                 return false;
             };
-            let pitch = find(words, b'P').map_or(0.0, |w| {
-                if w.has_point {
-                    w.value
-                } else {
-                    w.value / 1000.0
-                }
-            });
+            let pitch = find(words, b'P').map_or(0.0, thousandths);
             (0..k.abs())
                 .map(|i| at(r, angle(b'J') + pitch * i as f64))
                 .collect()
@@ -388,12 +383,7 @@ fn slanted(
     }
     if let Some(w) = find(words, b'Q') {
         // Q is in least input increments (0.001 mm) unless written with a decimal point.
-        let q = if w.has_point {
-            w.value
-        } else {
-            w.value / 1000.0
-        };
-        st.cycle.q = Some(st.mm(q).abs());
+        st.cycle.q = Some(st.mm(thousandths(w)).abs());
     }
     if let Some(w) = find(words, b'P') {
         st.cycle.p = Some(
@@ -486,16 +476,7 @@ fn slanted(
         shift: DVec3::ZERO,
         back: None,
     };
-    let mut d = Drill {
-        st,
-        block,
-        feed,
-        plan: &plan,
-        source,
-        sink,
-        halted: false,
-        stuck: false,
-    };
+    let mut d = Drill::new(st, block, feed, &plan, source, sink);
     for _ in 0..repeats {
         if d.stops() {
             break;
@@ -512,15 +493,7 @@ fn slanted(
         }
         let at = |dist: f64| start + along * dist;
         let (r_point, bottom_point) = (at(r_dist), at(r_dist + depth_dist));
-        d.st.holes = d.st.holes.saturating_add(1);
-        let (top, bottom) = (d.st.to_machine(r_point), d.st.to_machine(bottom_point));
-        let index = d.st.holes;
-        d.emit(&Canon::Hole {
-            cycle: tenths,
-            index,
-            top,
-            bottom,
-        });
+        d.mark(r_point, bottom_point);
         d.rapid(start);
         d.rapid(r_point);
         match tenths {
@@ -565,11 +538,13 @@ fn slanted(
     true
 }
 
-/// The first plain word `letter` of a block.
-fn find(words: &[Word], letter: u8) -> Option<&Word> {
-    words
-        .iter()
-        .find(|w| w.form == WordForm::Plain && w.letter == letter)
+/// A word's value, in thousandths where it has no decimal point.
+fn thousandths(w: &Word) -> f64 {
+    if w.has_point {
+        w.value
+    } else {
+        w.value / 1000.0
+    }
 }
 
 /// Everything about the holes of one cycle block that does not change from hole to hole.
@@ -816,16 +791,7 @@ fn drill(
     let r = plan.r;
     let mut current = st.program_pos[n];
     let mut initial = plan.initial;
-    let mut d = Drill {
-        st,
-        block,
-        feed,
-        plan,
-        source,
-        sink,
-        halted: false,
-        stuck: false,
-    };
+    let mut d = Drill::new(st, block, feed, plan, source, sink);
     if linuxcnc && initial < r {
         // rs274ngc: below the R level, straight up to it first.
         let mut p = d.st.program_pos;
@@ -849,7 +815,7 @@ fn drill(
             // Later holes (and a first one from at or below R) move over at the clear level.
             current = clear;
         }
-        d.mark(hole);
+        d.mark(d.level(hole, plan.r), d.level(hole, plan.bottom));
         d.rapid(d.level(hole, current));
         if plan.tenths == 870 && !linuxcnc {
             d.back_bore(hole, current, clear);
@@ -877,7 +843,27 @@ struct Drill<'a, 's> {
     stuck: bool,
 }
 
-impl Drill<'_, '_> {
+impl<'a, 's> Drill<'a, 's> {
+    fn new(
+        st: &'a mut State,
+        block: &'a Block,
+        feed: &'a dyn Fn(&mut State, &Block, f64) -> f64,
+        plan: &'a Plan,
+        source: Source,
+        sink: &'s mut dyn Sink,
+    ) -> Self {
+        Drill {
+            st,
+            block,
+            feed,
+            plan,
+            source,
+            sink,
+            halted: false,
+            stuck: false,
+        }
+    }
+
     /// Whether the cycle stops making moves: the sink holds all it may (the run's limit on
     /// moves, or the toolpath's memory), so a repeat count or a peck depth that would make
     /// millions of them ends here, with a diagnostic, and the run stops after the block.
@@ -918,35 +904,33 @@ impl Drill<'_, '_> {
         crate::corners::emit(self.st, self.sink, self.source, event);
     }
 
-    fn rapid(&mut self, p: DVec3) {
-        let to = self.st.to_machine(p);
+    /// A move to `p` (program frame): at rapid without `feed`; `shifted`, moved by the G76/G87
+    /// shift (the position is the shifted point; the next unshifted move brings it back).
+    fn go(&mut self, p: DVec3, shifted: bool, feed: Option<f64>) {
+        let mut to = self.st.to_machine(p);
+        if shifted {
+            to += self.plan.shift;
+        }
         self.st.position = to;
         self.st.program_pos = p;
-        self.emit(&Canon::Rapid { to });
+        self.emit(&Canon::line(feed.is_none(), to, feed.unwrap_or(0.0)));
     }
 
-    /// A rapid to `p` moved by the G76/G87 shift (the position is the shifted point; the next
-    /// unshifted move brings it back).
+    fn rapid(&mut self, p: DVec3) {
+        self.go(p, false, None);
+    }
+
     fn rapid_shifted(&mut self, p: DVec3) {
-        let to = self.st.to_machine(p) + self.plan.shift;
-        self.st.position = to;
-        self.st.program_pos = p;
-        self.emit(&Canon::Rapid { to });
+        self.go(p, true, None);
     }
 
     fn feed_to(&mut self, p: DVec3) {
-        let to = self.st.to_machine(p);
-        let length = self.st.position.distance(to);
-        let feed_mm_per_min = match self.plan.tap_feed {
+        let length = self.st.position.distance(self.st.to_machine(p));
+        let feed = match self.plan.tap_feed {
             Some(f) => f,
             None => (self.feed)(self.st, self.block, length),
         };
-        self.st.position = to;
-        self.st.program_pos = p;
-        self.emit(&Canon::Feed {
-            to,
-            feed_mm_per_min,
-        });
+        self.go(p, false, Some(feed));
     }
 
     fn level(&self, hole: DVec3, level: f64) -> DVec3 {
@@ -955,11 +939,10 @@ impl Drill<'_, '_> {
         p
     }
 
-    /// Tags the motions that follow as the next hole.
-    fn mark(&mut self, hole: DVec3) {
+    /// Tags the motions that follow as the next hole, from `top` to `bottom` (program frame).
+    fn mark(&mut self, top: DVec3, bottom: DVec3) {
         self.st.holes = self.st.holes.saturating_add(1);
-        let top = self.st.to_machine(self.level(hole, self.plan.r));
-        let bottom = self.st.to_machine(self.level(hole, self.plan.bottom));
+        let (top, bottom) = (self.st.to_machine(top), self.st.to_machine(bottom));
         let index = self.st.holes;
         self.emit(&Canon::Hole {
             cycle: self.plan.tenths,
@@ -991,20 +974,9 @@ impl Drill<'_, '_> {
         }
     }
 
-    /// Out of the hole to `clear`: at the `F2=` feed where one applies, else at rapid.
+    /// Out of the hole to `p`: at the `F2=` feed where one applies, else at rapid.
     fn retract(&mut self, p: DVec3) {
-        match self.plan.retract_feed {
-            Some(f) => {
-                let to = self.st.to_machine(p);
-                self.st.position = to;
-                self.st.program_pos = p;
-                self.emit(&Canon::Feed {
-                    to,
-                    feed_mm_per_min: f,
-                });
-            }
-            None => self.rapid(p),
-        }
+        self.go(p, false, self.plan.retract_feed);
     }
 
     /// The Fanuc family's G87 back boring, from the initial level over the hole: oriented stop,

@@ -189,39 +189,15 @@ fn axis_codes(
 ) -> Option<bool> {
     let mut consumed = false;
     for (a, w) in actions {
-        let done = match *a {
-            Action::Polar(on) => {
-                frames::polar(st, on);
-                false
-            }
-            Action::MeasuredRotation => {
-                frames::measured_rotation(st, w, words);
-                true
-            }
-            Action::Rotation(on) => {
-                frames::rotation(st, w, words, on);
-                on
-            }
-            Action::Scaling(on) => {
-                frames::scaling(st, w, words, on);
-                on
-            }
-            Action::Mirror(on) => {
-                frames::mirror(st, words, on);
-                true
-            }
-            Action::Local => {
-                frames::local(st, axes);
-                true
-            }
-            Action::SetPosition => {
-                frames::set_position(st, axes);
-                true
-            }
-            Action::PresetZero => {
-                frames::preset_zero(st, words);
-                true
-            }
+        match *a {
+            Action::Polar(on) => frames::polar(st, on),
+            Action::MeasuredRotation => frames::measured_rotation(st, w, words),
+            Action::Rotation(on) => frames::rotation(st, w, words, on),
+            Action::Scaling(on) => frames::scaling(st, w, words, on),
+            Action::Mirror(on) => frames::mirror(st, words, on),
+            Action::Local => frames::local(st, axes),
+            Action::SetPosition => frames::set_position(st, axes),
+            Action::PresetZero => frames::preset_zero(st, words),
             Action::Pattern(t) => {
                 let (u, v) = plane_axes(st.plane);
                 let mut plane_words: Axes<'_> = [None; 3];
@@ -232,57 +208,57 @@ fn axis_codes(
                     feeds::move_feed(st, block, length, None)
                 };
                 crate::cycles::pattern(st, block, w, words, t, origin, &feed, source, sink);
-                true
             }
-            // The words are the limits, not a move.
-            Action::StrokeLimit(_) => true,
             Action::Measure(second) => {
                 references::measure(st, block, w, words, second, source, sink);
-                true
             }
             Action::ResetShift => {
                 st.shift = DVec3::ZERO;
                 st.resync();
-                true
             }
-            Action::DataInput => {
-                if !data_input::data_input(st, w, words) {
-                    return None;
-                }
-                true
-            }
-            Action::Dwell => {
-                motion::dwell(st, w, words, source, sink);
-                true
-            }
-            Action::Reference(n) => {
-                references::reference(st, words, axes, n, source, sink);
-                true
-            }
-            Action::FromReference => {
-                references::from_reference(st, axes, source, sink);
-                true
-            }
+            // G10 refused stops the run.
+            Action::DataInput if !data_input::data_input(st, w, words) => return None,
+            Action::Dwell => motion::dwell(st, w, words, source, sink),
+            Action::Reference(n) => references::reference(st, words, axes, n, source, sink),
+            Action::FromReference => references::from_reference(st, axes, source, sink),
             Action::StoreReference(n) => {
                 let points = &mut st.setup.machine.reference_points;
                 if points.len() < n {
                     points.resize(n, [0.0; 3]);
                 }
                 points[n - 1] = st.position.to_array();
-                true
             }
-            Action::Machine => references::machine_move(st, block, w, axes, source, sink),
+            Action::Machine => {
+                consumed |= references::machine_move(st, block, w, axes, source, sink);
+            }
             Action::DynamicLength => {
                 // The tool tip still follows the program; the offset is only recorded.
                 let z = axes[2].map_or(0.0, |z| st.length(z));
                 st.length_comp = Some((0, z));
                 st.length_plus = true;
-                true
             }
-            Action::ExactStop | Action::Nothing => false,
+            _ => {}
+        }
+        // The codes whose words are their data, not a move (the G22 limits among them).
+        consumed |= match *a {
+            Action::Rotation(on) | Action::Scaling(on) => on,
+            Action::MeasuredRotation
+            | Action::Mirror(_)
+            | Action::Local
+            | Action::SetPosition
+            | Action::PresetZero
+            | Action::Pattern(_)
+            | Action::StrokeLimit(_)
+            | Action::Measure(_)
+            | Action::ResetShift
+            | Action::DataInput
+            | Action::Dwell
+            | Action::Reference(_)
+            | Action::FromReference
+            | Action::StoreReference(_)
+            | Action::DynamicLength => true,
             _ => false,
         };
-        consumed |= done;
     }
     Some(consumed)
 }

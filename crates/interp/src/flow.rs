@@ -271,13 +271,10 @@ fn first_of<'a>(
     kinds: &[OKind],
     searched: &mut u64,
 ) -> Option<(usize, OKind)> {
-    for line in lines {
-        *searched += 1;
-        if kinds.contains(&line.1) {
-            return Some(*line);
-        }
-    }
-    None
+    lines
+        .inspect(|_| *searched += 1)
+        .find(|line| kinds.contains(&line.1))
+        .copied()
 }
 
 /// How many expression terms (numbers, variables, operators, functions) running `block`

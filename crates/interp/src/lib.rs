@@ -16,7 +16,7 @@ mod state;
 mod states;
 
 pub use canon::{Arc, Axis, Canon, CanonRecorder, PlaneArc, Source, plane_length, plane_sweep};
-pub use machine::{Interpreter, Limits, Piece, Status, run};
+pub use machine::{Interpreter, Piece, Status, run};
 pub use setup::{CornerMode, Machine, Register, Setup, SetupError, ShiftDirection, Units};
 pub use states::{BlockState, States, StatesRun, run_with_states};
 
@@ -40,15 +40,7 @@ pub trait Sink {
         feed_mm_per_min: f64,
     ) {
         let to = glam::DVec3::new(x, y, z);
-        let event = if rapid {
-            Canon::Rapid { to }
-        } else {
-            Canon::Feed {
-                to,
-                feed_mm_per_min,
-            }
-        };
-        self.emit(source, &event);
+        self.emit(source, &Canon::line(rapid, to, feed_mm_per_min));
     }
 
     /// Whether the sink holds all it may (a recorder whose memory has a limit): the run then

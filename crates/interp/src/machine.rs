@@ -167,15 +167,6 @@ impl Sink for MotionCounter<'_> {
     }
 }
 
-/// Resource limits that stop runaway programs with a diagnostic.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Limits {
-    /// Most blocks executed in one run.
-    pub max_blocks: u64,
-    /// Deepest nesting of subprogram and macro calls.
-    pub max_call_depth: usize,
-}
-
 /// Subprogram and macro nesting the controls allow (Fanuc 0i: 10 subprogram levels; a few
 /// more here so that macro calls inside them still fit), beyond which a run stops.
 const MAX_CALL_DEPTH: usize = 16;
@@ -223,7 +214,8 @@ pub struct Interpreter {
     pub(crate) st: State,
     pub(crate) vars: Variables,
     index: Option<std::sync::Arc<Index>>,
-    next_block: usize,
+    /// The next block to run (progress through the program).
+    pub(crate) next_block: usize,
     executed: u64,
     /// Work done inside the blocks (for `[machine] max_work`): expression terms evaluated and
     /// O-word lines searched (arc turns and diagnostics met again are counted apart).
@@ -370,14 +362,6 @@ impl Interpreter {
         self.shortcut = false;
     }
 
-    /// The limits this run stops at.
-    pub fn limits(&self) -> Limits {
-        Limits {
-            max_blocks: self.st.setup.machine.max_blocks,
-            max_call_depth: MAX_CALL_DEPTH,
-        }
-    }
-
     /// Takes the diagnostics found so far, leaving none: each code and place once, a repeated
     /// one saying how often it was met, and at most `MAX_KEPT` different ones (then a note of
     /// how many more there were).
@@ -393,11 +377,6 @@ impl Interpreter {
     /// How many blocks have been executed.
     pub fn executed_blocks(&self) -> u64 {
         self.executed
-    }
-
-    /// Index of the next block to execute (progress through the program).
-    pub fn next_block(&self) -> usize {
-        self.next_block
     }
 
     /// A copy of the interpreter without the diagnostics found so far (for [`States`]).
@@ -424,12 +403,6 @@ impl Interpreter {
             spindle_rpm: self.st.spindle_rpm,
             executed: self.executed,
         }
-    }
-
-    /// The active G codes, one per modal group, as text (`G01`, `G17`, `G90`, …), for a
-    /// "state at cursor" view.
-    pub fn active_codes(&self) -> Vec<String> {
-        self.st.active_codes()
     }
 
     /// Executes at most `budget` blocks of `program`, sending events to `sink`.
@@ -466,7 +439,7 @@ impl Interpreter {
                     // The end of a piece, not of the program.
                     break;
                 }
-                self.end_of_text(program);
+                self.end_of_text();
                 continue;
             };
             // The runaway limits: blocks run, the work inside them, and moves made (the
@@ -721,14 +694,13 @@ impl Interpreter {
     }
 
     /// The text ran out: inside a call that is an implicit return; otherwise the end.
-    fn end_of_text(&mut self, program: &Program) {
+    fn end_of_text(&mut self) {
         match self.calls.pop() {
             Some(frame) => {
                 if let CallKind::Macro | CallKind::OWord(_) = frame.kind {
                     self.vars.pop_frame();
                 }
                 self.next_block = frame.return_to;
-                let _ = program;
             }
             None => self.finished = true,
         }
@@ -775,7 +747,7 @@ impl Interpreter {
                 match macros::prepare_assign(program, *target, *value, &self.vars, &self.st) {
                     Ok(a) => prepared.push(a),
                     Err(e) => {
-                        self.st.diagnostics.push(e.to_diagnostic());
+                        self.st.diagnostics.push(e.into());
                         return Flow::Stop;
                     }
                 }
@@ -783,7 +755,7 @@ impl Interpreter {
         }
         for assignment in prepared {
             if let Err(e) = assignment.apply(&mut self.vars, &mut self.st) {
-                self.st.diagnostics.push(e.to_diagnostic());
+                self.st.diagnostics.push(e.into());
                 return Flow::Stop;
             }
         }
@@ -896,20 +868,18 @@ impl Interpreter {
                     out.push(w);
                 }
                 Ok(None) => {}
-                Err(e) => return Err(Diagnostic::error(e.span, e.code, e.message)),
+                Err(e) => return Err(e.into()),
             }
         }
         Ok(Cow::Owned(out))
     }
 
     fn eval(&self, program: &Program, id: ExprId) -> Result<Value, Diagnostic> {
-        macros::eval(program, id, &self.vars, &self.st)
-            .map_err(|e| Diagnostic::error(e.span, e.code, e.message))
+        Ok(macros::eval(program, id, &self.vars, &self.st)?)
     }
 
     fn condition(&self, program: &Program, id: ExprId) -> Result<bool, Diagnostic> {
-        macros::eval_condition(program, id, &self.vars, &self.st)
-            .map_err(|e| Diagnostic::error(e.span, e.code, e.message))
+        Ok(macros::eval_condition(program, id, &self.vars, &self.st)?)
     }
 
     /// The block a `GOTO n` (or `M99 Pn`) in block `at` goes to.
@@ -972,8 +942,7 @@ impl Interpreter {
                         self.goto(at, n, block.span).map(Flow::Jump)
                     }
                     Statement::Assign { target, value } => {
-                        macros::assign(program, *target, *value, &mut self.vars, &mut self.st)
-                            .map_err(|e| Diagnostic::error(e.span, e.code, e.message))?;
+                        macros::assign(program, *target, *value, &mut self.vars, &mut self.st)?;
                         Ok(Flow::Next)
                     }
                     _ => Ok(Flow::Next),

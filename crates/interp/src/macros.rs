@@ -7,7 +7,6 @@
 
 use std::borrow::Cow;
 use std::collections::HashMap;
-use std::fmt;
 
 use swarf_syntax::{BinOp, Diagnostic, Dialect, Expr, ExprId, ExprNode, Func, Program, Span};
 
@@ -43,20 +42,7 @@ impl EvalError {
             message: message.into(),
         }
     }
-
-    /// The error as an error diagnostic, for the run's diagnostic list.
-    pub fn to_diagnostic(&self) -> Diagnostic {
-        Diagnostic::error(self.span, self.code, self.message.clone())
-    }
 }
-
-impl fmt::Display for EvalError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.code, self.message)
-    }
-}
-
-impl std::error::Error for EvalError {}
 
 impl From<EvalError> for Diagnostic {
     fn from(e: EvalError) -> Self {
@@ -87,21 +73,6 @@ pub trait SystemVariables {
     /// handled, `Ok(false)` to let the store keep it.
     fn write_named(&mut self, name: &str, v: Value) -> Result<bool, String> {
         let _ = (name, v);
-        Ok(false)
-    }
-}
-
-/// A machine without system variables: every number outside the store's ranges is an error.
-/// For evaluating expressions outside a run (and for tests).
-#[derive(Debug, Clone, Copy, Default)]
-pub struct NoSystemVariables;
-
-impl SystemVariables for NoSystemVariables {
-    fn read(&self, _n: u32) -> Option<Value> {
-        None
-    }
-
-    fn write(&mut self, _n: u32, _v: Value) -> Result<bool, String> {
         Ok(false)
     }
 }
@@ -390,19 +361,13 @@ impl Variables {
         }
         let r = n.round();
         if (n - r).abs() > tolerance {
-            return Err(format!(
-                "variable number must be a whole number (#[{}])",
-                show(n)
-            ));
+            return Err(format!("variable number must be a whole number (#[{}])", n));
         }
         if r < 0.0 {
-            return Err(format!(
-                "variable number must not be negative (#[{}])",
-                show(n)
-            ));
+            return Err(format!("variable number must not be negative (#[{}])", n));
         }
         if r > f64::from(u32::MAX) {
-            return Err(self.missing_text(&show(r)));
+            return Err(self.missing_text(&r.to_string()));
         }
         // In range and whole: the conversion is exact.
         Ok(r as u32)
@@ -460,39 +425,15 @@ fn lower(name: &str) -> Cow<'_, str> {
     }
 }
 
-/// A number as a message shows it: no trailing `.0`.
-fn show(v: f64) -> String {
-    format!("{v}")
-}
-
 /// Fanuc argument specification I: the local variable a G65/G66 address letter sets (A→#1,
 /// B→#2, C→#3, I→#4, J→#5, K→#6, D→#7, E→#8, F→#9, H→#11, M→#13, Q→#17, R→#18, S→#19, T→#20,
 /// U→#21, V→#22, W→#23, X→#24, Y→#25, Z→#26); G, L, N, O and P are not arguments.
 pub fn argument_variable(letter: u8) -> Option<u8> {
-    Some(match letter.to_ascii_uppercase() {
-        b'A' => 1,
-        b'B' => 2,
-        b'C' => 3,
-        b'I' => 4,
-        b'J' => 5,
-        b'K' => 6,
-        b'D' => 7,
-        b'E' => 8,
-        b'F' => 9,
-        b'H' => 11,
-        b'M' => 13,
-        b'Q' => 17,
-        b'R' => 18,
-        b'S' => 19,
-        b'T' => 20,
-        b'U' => 21,
-        b'V' => 22,
-        b'W' => 23,
-        b'X' => 24,
-        b'Y' => 25,
-        b'Z' => 26,
-        _ => return None,
-    })
+    // Each letter at its variable's place from #1; `_` where no letter sets the variable.
+    const LETTERS: &[u8] = b"ABCIJKDEF_H_M___QRSTUVWXYZ";
+    let letter = letter.to_ascii_uppercase();
+    let i = LETTERS.iter().position(|&l| l == letter && l != b'_')?;
+    u8::try_from(i + 1).ok()
 }
 
 /// Evaluates expression `id` of `program`: `Ok(None)` when it is a vacant variable read as it
@@ -605,33 +546,11 @@ fn lookup(program: &Program, id: ExprId) -> Result<&ExprNode, EvalError> {
     })
 }
 
-/// A failure inside one operation, before its span is known.
-struct Fault {
-    code: &'static str,
-    message: String,
-}
+/// A failure inside one operation, before its span is known: its code and message.
+type Fault = (&'static str, String);
 
-impl Fault {
-    fn divide() -> Self {
-        Fault {
-            code: CODE_DIVIDE,
-            message: "division by zero".to_string(),
-        }
-    }
-
-    fn domain(message: impl Into<String>) -> Self {
-        Fault {
-            code: CODE_DOMAIN,
-            message: message.into(),
-        }
-    }
-
-    fn value(message: impl Into<String>) -> Self {
-        Fault {
-            code: CODE_VALUE,
-            message: message.into(),
-        }
-    }
+fn divide() -> Fault {
+    (CODE_DIVIDE, "division by zero".to_string())
 }
 
 /// One unit of work of the explicit-stack evaluation.
@@ -712,7 +631,7 @@ impl Evaluator<'_> {
                             let b = pop(&mut values, span)?;
                             let a = pop(&mut values, span)?;
                             let r = binary(self.vars.dialect, *op, a, b)
-                                .map_err(|f| EvalError::new(span, f.code, f.message))?;
+                                .map_err(|(code, message)| EvalError::new(span, code, message))?;
                             Some(finite(r, span)?)
                         }
                         Expr::Call(Func::Exists, _, _) => {
@@ -726,7 +645,7 @@ impl Evaluator<'_> {
                             };
                             let a = pop(&mut values, span)?;
                             let r = call(self.vars.dialect, *func, a, b)
-                                .map_err(|f| EvalError::new(span, f.code, f.message))?;
+                                .map_err(|(code, message)| EvalError::new(span, code, message))?;
                             Some(finite(r, span)?)
                         }
                         Expr::Num(_) | Expr::Named(_) => return Err(internal(span)),
@@ -803,13 +722,13 @@ fn binary(dialect: Dialect, op: BinOp, a: Value, b: Value) -> Result<f64, Fault>
         BinOp::Mul => x * y,
         BinOp::Div => {
             if y == 0.0 {
-                return Err(Fault::divide());
+                return Err(divide());
             }
             x / y
         }
         BinOp::Mod => {
             if y == 0.0 {
-                return Err(Fault::divide());
+                return Err(divide());
             }
             let r = x % y;
             if linuxcnc && r < 0.0 {
@@ -863,11 +782,14 @@ fn bits(x: f64, op: BinOp) -> Result<i64, Fault> {
     const LIMIT: f64 = 9_007_199_254_740_992.0; // 2^53
     let r = x.round();
     if r.abs() > LIMIT {
-        return Err(Fault::value(format!(
-            "{} works on integers up to 2^53; {} is too large",
-            op.symbol(),
-            show(x)
-        )));
+        return Err((
+            CODE_VALUE,
+            format!(
+                "{} works on integers up to 2^53; {} is too large",
+                op.symbol(),
+                x
+            ),
+        ));
     }
     Ok(r as i64)
 }
@@ -875,14 +797,16 @@ fn bits(x: f64, op: BinOp) -> Result<i64, Fault> {
 /// `a ** b` and `POW[a,b]`.
 fn power(x: f64, y: f64) -> Result<f64, Fault> {
     if x < 0.0 && y.fract() != 0.0 {
-        return Err(Fault::domain(format!(
-            "a negative number ({}) cannot be raised to a fractional power ({})",
-            show(x),
-            show(y)
-        )));
+        return Err((
+            CODE_DOMAIN,
+            format!(
+                "a negative number ({}) cannot be raised to a fractional power ({})",
+                x, y
+            ),
+        ));
     }
     if x == 0.0 && y < 0.0 {
-        return Err(Fault::divide());
+        return Err(divide());
     }
     Ok(x.powf(y))
 }
@@ -921,17 +845,20 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         Func::Tan => {
             let c = cos_deg(x);
             if c == 0.0 {
-                return Err(Fault::domain(format!("TAN[{}] is infinite", show(x))));
+                return Err((CODE_DOMAIN, format!("TAN[{}] is infinite", x)));
             }
             sin_deg(x) / c
         }
         Func::Asin | Func::Acos => {
             if !(-1.0..=1.0).contains(&x) {
-                return Err(Fault::domain(format!(
-                    "{}[{}] is undefined: the argument must be between -1 and 1",
-                    func.name(),
-                    show(x)
-                )));
+                return Err((
+                    CODE_DOMAIN,
+                    format!(
+                        "{}[{}] is undefined: the argument must be between -1 and 1",
+                        func.name(),
+                        x
+                    ),
+                ));
             }
             if func == Func::Acos {
                 x.acos().to_degrees()
@@ -951,10 +878,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         }
         Func::Sqrt => {
             if x < 0.0 {
-                return Err(Fault::domain(format!(
-                    "SQRT of a negative number ({})",
-                    show(x)
-                )));
+                return Err((CODE_DOMAIN, format!("SQRT of a negative number ({})", x)));
             }
             x.sqrt()
         }
@@ -971,10 +895,10 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         }
         Func::Ln => {
             if x <= 0.0 {
-                return Err(Fault::domain(format!(
-                    "LN of zero or a negative number ({})",
-                    show(x)
-                )));
+                return Err((
+                    CODE_DOMAIN,
+                    format!("LN of zero or a negative number ({})", x),
+                ));
             }
             x.ln()
         }
@@ -991,10 +915,10 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
 fn whole(x: f64, func: &str, max: f64) -> Result<u64, Fault> {
     let r = x.round();
     if (x - r).abs() > 1e-6 || r < 0.0 || r > max {
-        return Err(Fault::value(format!(
-            "{func} needs a whole number from 0 to {max}, not {}",
-            show(x)
-        )));
+        return Err((
+            CODE_VALUE,
+            format!("{func} needs a whole number from 0 to {max}, not {}", x),
+        ));
     }
     Ok(r as u64)
 }
@@ -1006,10 +930,10 @@ fn bin(x: f64) -> Result<f64, Fault> {
     while v > 0 {
         let digit = v & 0xF;
         if digit > 9 {
-            return Err(Fault::value(format!(
-                "BIN[{}] is not a BCD value (a 4-bit group is over 9)",
-                show(x)
-            )));
+            return Err((
+                CODE_VALUE,
+                format!("BIN[{}] is not a BCD value (a 4-bit group is over 9)", x),
+            ));
         }
         out += digit * scale;
         scale *= 10;
@@ -1747,13 +1671,11 @@ mod tests {
     #[test]
     fn errors_become_diagnostics() {
         let e = EvalError::new(Span::new(1, 3), CODE_DIVIDE, "division by zero");
-        let d = e.to_diagnostic();
+        let d = Diagnostic::from(e.clone());
         assert_eq!(d.code, CODE_DIVIDE);
         assert_eq!(d.span, Span::new(1, 3));
-        assert_eq!(Diagnostic::from(e.clone()), d);
-        assert_eq!(e.to_string(), "E-MACRO-DIVIDE: division by zero");
         let program = parse("#1 = 1 / 0", Dialect::Fanuc);
-        let mut sys = NoSystemVariables;
+        let mut sys = TestSys::default();
         let mut vars = Variables::new(Dialect::Fanuc);
         let assigned = program.blocks[0].statements().iter().any(|s| {
             matches!(s, Statement::Assign { target, value }

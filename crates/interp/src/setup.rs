@@ -358,28 +358,27 @@ impl Setup {
             }
         }
         let m = &setup.machine;
-        // A rate of zero would make every move take forever.
-        in_range(
-            "machine.rapid_mm_per_min",
-            m.rapid_mm_per_min,
-            1.0,
-            MAX_RATE,
-        )?;
-        for &rate in m.rapid_xyz_mm_per_min.iter().flatten() {
-            in_range("machine.rapid_xyz_mm_per_min", rate, 1.0, MAX_RATE)?;
-        }
-        in_range(
-            "machine.acceleration_mm_per_s2",
-            m.acceleration_mm_per_s2,
-            0.0,
-            MAX_RATE,
-        )?;
-        in_range("machine.arc_tolerance_mm", m.arc_tolerance_mm, 0.0, 1000.0)?;
-        // A limit of zero would stop every run before its first block.
-        in_range("machine.max_work", m.max_work as f64, 1.0, MAX_WORK)?;
-        in_range("machine.peck_retract_mm", m.peck_retract_mm, 0.0, 1000.0)?;
-        for &angle in &m.measured_angles {
-            in_range("machine.measured_angles", angle, -360.0, 360.0)?;
+        // A rate of zero would make every move take forever, and a work limit of zero would
+        // stop every run before its first block.
+        let rapids = m.rapid_xyz_mm_per_min.iter().flatten();
+        let angles = m.measured_angles.iter();
+        let rapid = ("rapid_mm_per_min", m.rapid_mm_per_min, 1.0, MAX_RATE);
+        for (key, value, min, max) in std::iter::once(rapid)
+            .chain(rapids.map(|&v| ("rapid_xyz_mm_per_min", v, 1.0, MAX_RATE)))
+            .chain([
+                (
+                    "acceleration_mm_per_s2",
+                    m.acceleration_mm_per_s2,
+                    0.0,
+                    MAX_RATE,
+                ),
+                ("arc_tolerance_mm", m.arc_tolerance_mm, 0.0, 1000.0),
+                ("max_work", m.max_work as f64, 1.0, MAX_WORK),
+                ("peck_retract_mm", m.peck_retract_mm, 0.0, 1000.0),
+            ])
+            .chain(angles.map(|&v| ("measured_angles", v, -360.0, 360.0)))
+        {
+            in_range(format!("machine.{key}"), value, min, max)?;
         }
         Ok(setup)
     }

@@ -212,7 +212,12 @@ impl State {
     pub fn new(setup: Setup, dialect: Dialect) -> State {
         let wcs_offset = setup.work_offset("G54");
         let registers_listed = !setup.registers.is_empty();
-        let inch_default = false;
+        // Syntec cuts at 1000 mm/min until an F is programmed (§5.2).
+        let feed = if dialect == Dialect::Syntec {
+            1000.0
+        } else {
+            0.0
+        };
         State {
             setup,
             dialect,
@@ -222,7 +227,7 @@ impl State {
             motion: (dialect != Dialect::LinuxCnc).then_some(MotionMode::Rapid),
             plane: Axis::Z,
             absolute: true,
-            metric: !inch_default,
+            metric: true,
             wcs: "G54".into(),
             wcs_offset,
             wcs_rotation: 0.0,
@@ -235,17 +240,8 @@ impl State {
             mirror_center: DVec3::ZERO,
             polar: None,
             feed_mode: FeedMode::PerMinute,
-            // Syntec cuts at 1000 mm/min until an F is programmed (§5.2).
-            feed_mm_per_min: if dialect == Dialect::Syntec {
-                1000.0
-            } else {
-                0.0
-            },
-            feed_word: if dialect == Dialect::Syntec {
-                1000.0
-            } else {
-                0.0
-            },
+            feed_mm_per_min: feed,
+            feed_word: feed,
             block_has_feed: false,
             spindle_rpm: 0.0,
             spindle_dir: None,
@@ -335,7 +331,7 @@ impl State {
     /// the offsets (and LinuxCNC's rotated coordinate systems).
     #[inline]
     pub fn place(&self, q: DVec3) -> DVec3 {
-        let q = self.rotated(q);
+        let q = self.rotated(q, 1.0);
         if self.wcs_rotation != 0.0 {
             // LinuxCNC rotates the coordinate system about its origin, after G52/G92.
             return rotate_xy(q + self.local + self.shift, self.wcs_rotation) + self.wcs_offset;
@@ -343,13 +339,12 @@ impl State {
         rotate_xy(q, self.preset_rotation) + self.base()
     }
 
-    /// G68 rotation of a mirrored and scaled point.
+    /// G68 rotation of a mirrored and scaled point (`sign` -1: the inverse).
     #[inline]
-    fn rotated(&self, p: DVec3) -> DVec3 {
-        let mut q = p;
+    fn rotated(&self, mut q: DVec3, sign: f64) -> DVec3 {
         if let Some(r) = self.rotation {
             let (u, v) = plane_axes(r.plane);
-            let (sin, cos) = r.degrees.to_radians().sin_cos();
+            let (sin, cos) = (sign * r.degrees).to_radians().sin_cos();
             let du = q[u] - r.center.x;
             let dv = q[v] - r.center.y;
             q[u] = r.center.x + du * cos - dv * sin;
@@ -360,19 +355,12 @@ impl State {
 
     /// Machine frame → program frame (the inverse of [`State::to_machine`]).
     pub fn to_program(&self, m: DVec3) -> DVec3 {
-        let mut q = if self.wcs_rotation == 0.0 {
+        let q = if self.wcs_rotation == 0.0 {
             rotate_xy(m - self.base(), -self.preset_rotation)
         } else {
             rotate_xy(m - self.wcs_offset, -self.wcs_rotation) - self.local - self.shift
         };
-        if let Some(r) = self.rotation {
-            let (u, v) = plane_axes(r.plane);
-            let (sin, cos) = (-r.degrees).to_radians().sin_cos();
-            let du = q[u] - r.center.x;
-            let dv = q[v] - r.center.y;
-            q[u] = r.center.x + du * cos - dv * sin;
-            q[v] = r.center.y + du * sin + dv * cos;
-        }
+        let mut q = self.rotated(q, -1.0);
         if let Some(s) = self.scaling {
             let f = DVec3::select(s.factors.cmpeq(DVec3::ZERO), DVec3::ONE, s.factors);
             q = s.center + (q - s.center) / f;
@@ -400,64 +388,73 @@ impl State {
 
     /// The active G codes, one per group, for a state view.
     pub fn active_codes(&self) -> Vec<String> {
+        let g = |n: u32| {
+            self.modal_code(n)
+                .map_or_else(String::new, |v| format!("G{v}"))
+        };
         let motion = match self.motion {
-            Some(MotionMode::Rapid) => "G00",
-            Some(MotionMode::Linear) => "G01",
-            Some(MotionMode::Arc { ccw: false }) => "G02",
-            Some(MotionMode::Arc { ccw: true }) => "G03",
-            Some(MotionMode::Thread) => "G33",
-            Some(MotionMode::Cycle(t)) => return_cycle_name(t),
-            None => "G80",
+            Some(MotionMode::Cycle(t)) if t % 10 != 0 => 80.0,
+            _ => self.modal_code(4001).unwrap_or(80.0),
         };
-        let plane = match self.plane {
-            Axis::Z => "G17",
-            Axis::Y => "G18",
-            Axis::X => "G19",
-        };
-        let units = match (self.dialect, self.metric) {
-            (Dialect::Syntec, true) => "G71",
-            (Dialect::Syntec, false) => "G70",
-            (_, true) => "G21",
-            (_, false) => "G20",
-        };
-        let feed = match self.feed_mode {
-            FeedMode::PerMinute => "G94",
-            FeedMode::PerRevolution => "G95",
-            FeedMode::InverseTime => "G93",
-        };
-        let mut out: Vec<String> = vec![
-            motion.to_string(),
-            plane.into(),
-            if self.absolute { "G90" } else { "G91" }.into(),
-            units.into(),
-            feed.into(),
-            format!("G{}", self.cutter_comp / 10),
-            match self.length_comp {
-                Some(_) if !self.length_plus => "G44".into(),
-                Some(_) => "G43".into(),
-                None => "G49".into(),
-            },
+        let on_off = |on: bool, yes: &str, no: &str| if on { yes } else { no }.to_string();
+        let mut out = vec![
+            format!("G{motion:02}"),
+            g(4002),
+            g(4003),
+            g(4006),
+            g(4005),
+            g(4007),
+            g(4008),
             self.wcs.clone(),
             format!("G{}", self.path_mode / 10),
-            if self.return_initial { "G98" } else { "G99" }.into(),
-            if self.polar.is_some() { "G16" } else { "G15" }.into(),
-            if self.rotation.is_some() {
-                "G68"
-            } else {
-                "G69"
-            }
-            .into(),
-            if self.scaling.is_some() { "G51" } else { "G50" }.into(),
-            if self.mirror == DVec3::ONE {
-                "G50.1"
-            } else {
-                "G51.1"
-            }
-            .into(),
-            if self.css { "G96" } else { "G97" }.into(),
+            g(4010),
+            g(4017),
+            g(4016),
+            on_off(self.scaling.is_some(), "G51", "G50"),
+            on_off(self.mirror != DVec3::ONE, "G51.1", "G50.1"),
+            on_off(self.css, "G96", "G97"),
         ];
         out.dedup();
         out
+    }
+
+    /// The number of the active code of a modal group as system variables #4001–#4017 give it
+    /// (#4001 motion, #4002 plane, …), or `None` for a number that is not one of them.
+    fn modal_code(&self, n: u32) -> Option<f64> {
+        let pick = |on: bool, yes: f64, no: f64| if on { yes } else { no };
+        Some(match n {
+            4001 => match self.motion {
+                Some(MotionMode::Rapid) => 0.0,
+                Some(MotionMode::Linear) => 1.0,
+                Some(MotionMode::Arc { ccw: false }) => 2.0,
+                Some(MotionMode::Arc { ccw: true }) => 3.0,
+                Some(MotionMode::Thread) => 33.0,
+                Some(MotionMode::Cycle(t)) => f64::from(t) / 10.0,
+                None => 80.0,
+            },
+            4002 => match self.plane {
+                Axis::Z => 17.0,
+                Axis::Y => 18.0,
+                Axis::X => 19.0,
+            },
+            4003 => pick(self.absolute, 90.0, 91.0),
+            4005 => match self.feed_mode {
+                FeedMode::InverseTime => 93.0,
+                FeedMode::PerMinute => 94.0,
+                FeedMode::PerRevolution => 95.0,
+            },
+            4006 if self.dialect == Dialect::Syntec => pick(self.metric, 71.0, 70.0),
+            4006 => pick(self.metric, 21.0, 20.0),
+            4007 => f64::from(self.cutter_comp / 10),
+            4008 if self.length_comp.is_none() => 49.0,
+            4008 => pick(self.length_plus, 43.0, 44.0),
+            4010 => pick(self.return_initial, 98.0, 99.0),
+            4014 => f64::from(wcs_number(&self.wcs)) + 53.0,
+            4015 => f64::from(self.path_mode) / 10.0,
+            4016 => pick(self.rotation.is_some(), 68.0, 69.0),
+            4017 => pick(self.polar.is_some(), 16.0, 15.0),
+            _ => return None,
+        })
     }
 
     /// A system variable (Fanuc numbering; LinuxCNC's own where it differs), or `None` when
@@ -471,8 +468,7 @@ impl State {
                 5221..=5399 => {
                     let k = (n - 5221) / 20;
                     let axis = ((n - 5221) % 20) as usize;
-                    let name = linuxcnc_wcs_name(k as usize)?;
-                    let o = self.setup.work_offset(&name);
+                    let o = self.setup.work_offset(WCS_NAMES.get(k as usize)?);
                     Some(Some(if axis < 3 { unit(o[axis]) } else { 0.0 }))
                 }
                 5211..=5213 => Some(Some(unit(self.shift[(n - 5211) as usize]))),
@@ -482,64 +478,27 @@ impl State {
             };
         }
         let wcs_axis = |name: &str, i: u32| unit(self.setup.work_offset(name)[i as usize]);
+        let syntec = self.dialect == Dialect::Syntec;
         match n {
-            1000 if self.dialect == Dialect::Syntec => Some(Some(match self.motion {
+            1000 if syntec => Some(Some(match self.motion {
                 Some(MotionMode::Linear) => 1.0,
                 Some(MotionMode::Arc { ccw: false }) => 2.0,
                 Some(MotionMode::Arc { ccw: true }) => 3.0,
                 _ => 0.0,
             })),
-            1004 if self.dialect == Dialect::Syntec => {
-                Some(Some(if self.absolute { 90.0 } else { 91.0 }))
-            }
+            1004 if syntec => Some(Some(if self.absolute { 90.0 } else { 91.0 })),
             // Syntec: the G92 offset of each axis, and the G92.1 rotation.
-            1901..=1916 if self.dialect == Dialect::Syntec => {
+            1901..=1916 if syntec => {
                 let i = (n - 1901) as usize;
                 Some(Some(if i < 3 { unit(self.shift[i]) } else { 0.0 }))
             }
-            1930 if self.dialect == Dialect::Syntec => Some(Some(self.preset_rotation)),
+            1930 if syntec => Some(Some(self.preset_rotation)),
             2001..=2400 => {
                 let r = self.setup.registers.get(&(n - 2000));
                 Some(Some(unit(r.map_or(0.0, |r| r.length + r.length_wear))))
             }
             3000 | 3006 => Some(None),
-            4001 => Some(Some(match self.motion {
-                Some(MotionMode::Rapid) => 0.0,
-                Some(MotionMode::Linear) => 1.0,
-                Some(MotionMode::Arc { ccw: false }) => 2.0,
-                Some(MotionMode::Arc { ccw: true }) => 3.0,
-                Some(MotionMode::Thread) => 33.0,
-                Some(MotionMode::Cycle(t)) => f64::from(t) / 10.0,
-                None => 80.0,
-            })),
-            4002 => Some(Some(match self.plane {
-                Axis::Z => 17.0,
-                Axis::Y => 18.0,
-                Axis::X => 19.0,
-            })),
-            4003 => Some(Some(if self.absolute { 90.0 } else { 91.0 })),
-            4005 => Some(Some(match self.feed_mode {
-                FeedMode::InverseTime => 93.0,
-                FeedMode::PerMinute => 94.0,
-                FeedMode::PerRevolution => 95.0,
-            })),
-            4006 => Some(Some(match (self.dialect, self.metric) {
-                (Dialect::Syntec, true) => 71.0,
-                (Dialect::Syntec, false) => 70.0,
-                (_, true) => 21.0,
-                (_, false) => 20.0,
-            })),
-            4007 => Some(Some(f64::from(self.cutter_comp / 10))),
-            4008 => Some(Some(match self.length_comp {
-                Some(_) if !self.length_plus => 44.0,
-                Some(_) => 43.0,
-                None => 49.0,
-            })),
-            4010 => Some(Some(if self.return_initial { 98.0 } else { 99.0 })),
-            4014 => Some(Some(f64::from(wcs_number(&self.wcs)) + 53.0)),
-            4015 => Some(Some(f64::from(self.path_mode) / 10.0)),
-            4016 => Some(Some(if self.rotation.is_some() { 68.0 } else { 69.0 })),
-            4017 => Some(Some(if self.polar.is_some() { 16.0 } else { 15.0 })),
+            4001..=4017 => self.modal_code(n).map(Some),
             4107 => Some(Some(f64::from(self.d_word))),
             4109 => Some(Some(unit(self.feed_mm_per_min))),
             4111 => Some(Some(f64::from(self.h_word))),
@@ -605,25 +564,6 @@ impl State {
     }
 }
 
-/// The name of a canned cycle code in tenths (`G81`).
-fn return_cycle_name(tenths: u32) -> &'static str {
-    match tenths {
-        730 => "G73",
-        740 => "G74",
-        760 => "G76",
-        810 => "G81",
-        820 => "G82",
-        830 => "G83",
-        840 => "G84",
-        850 => "G85",
-        860 => "G86",
-        870 => "G87",
-        880 => "G88",
-        890 => "G89",
-        _ => "G80",
-    }
-}
-
 /// `p` turned by `degrees` counter-clockwise about the Z axis.
 pub(crate) fn rotate_xy(p: DVec3, degrees: f64) -> DVec3 {
     if degrees == 0.0 {
@@ -634,28 +574,17 @@ pub(crate) fn rotate_xy(p: DVec3, degrees: f64) -> DVec3 {
     DVec3::new(p.x * cos - p.y * sin, p.x * sin + p.y * cos, p.z)
 }
 
-/// 1 for G54 … 6 for G59, 7+ for the extended systems (G59.1… / G54.1 Pn).
-fn wcs_number(name: &str) -> u32 {
-    match name {
-        "G54" => 1,
-        "G55" => 2,
-        "G56" => 3,
-        "G57" => 4,
-        "G58" => 5,
-        "G59" => 6,
-        "G59.1" => 7,
-        "G59.2" => 8,
-        "G59.3" => 9,
-        _ => 1,
-    }
-}
+/// LinuxCNC's coordinate systems 1–9 (G54 … G59.3), which #5220 numbers from 1.
+const WCS_NAMES: [&str; 9] = [
+    "G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3",
+];
 
-/// LinuxCNC's coordinate systems 1–9 (G54 … G59.3) by index 0–8.
-fn linuxcnc_wcs_name(k: usize) -> Option<String> {
-    const NAMES: [&str; 9] = [
-        "G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3",
-    ];
-    NAMES.get(k).map(|s| (*s).to_string())
+/// 1 for G54 … 6 for G59, 7–9 for G59.1–G59.3 (1 for the extended systems G54.1 Pn).
+fn wcs_number(name: &str) -> u32 {
+    WCS_NAMES
+        .iter()
+        .position(|n| *n == name)
+        .map_or(1, |i| i as u32 + 1)
 }
 
 /// The two in-plane axes (first, second) of the plane with normal `normal`.

@@ -126,7 +126,7 @@ impl StatesRun {
                     .checkpoints
                     .push((executed, self.interp.snapshot()));
             }
-            if let Some(first) = self.states.first_run.get_mut(self.interp.next_block())
+            if let Some(first) = self.states.first_run.get_mut(self.interp.next_block)
                 && *first == u32::MAX
             {
                 *first = u32::try_from(executed).unwrap_or(u32::MAX);
