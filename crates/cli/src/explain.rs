@@ -20,66 +20,60 @@ pub(crate) fn explain(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> anyhow::Result<i32> {
-    if list {
-        let dialect = dialect.unwrap_or_default();
-        let defs: Vec<&CodeDef> = codes::codes_of(dialect).collect();
-        if json {
-            let items: Vec<_> = defs.iter().map(|d| def_json(d)).collect();
-            writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
-        } else {
-            for d in defs {
-                writeln!(out, "{:<8} {:<40} {}", d.code.to_string(), d.name, d.format)?;
-            }
+    let (code, defs): (_, Vec<&CodeDef>) = if list {
+        (None, codes::codes_of(dialect.unwrap_or_default()).collect())
+    } else {
+        let Some(what) = what else {
+            writeln!(
+                err,
+                "swarf explain: name a code (G83, M98), an address letter (Q) or a diagnostic code (E-ARC-RADIUS), or pass --list or --diagnostics"
+            )?;
+            return Ok(EXIT_USAGE);
+        };
+        let trimmed = what.trim();
+        if trimmed.as_bytes().get(1) == Some(&b'-') {
+            return diagnostic(&trimmed.to_ascii_uppercase(), json, out, err);
         }
-        return Ok(EXIT_OK);
-    }
-    let Some(what) = what else {
-        writeln!(
-            err,
-            "swarf explain: name a code (G83, M98), an address letter (Q) or a diagnostic code (E-ARC-RADIUS), or pass --list or --diagnostics"
-        )?;
-        return Ok(EXIT_USAGE);
-    };
-    let trimmed = what.trim();
-    if trimmed.as_bytes().get(1) == Some(&b'-') {
-        return diagnostic(&trimmed.to_ascii_uppercase(), json, out, err);
-    }
-    if trimmed.len() == 1 && trimmed.as_bytes()[0].is_ascii_alphabetic() {
-        return address(trimmed.as_bytes()[0], dialect, json, out);
-    }
-    let Some(code) = Code::parse(trimmed) else {
-        writeln!(
-            err,
-            "swarf explain: `{what}` is not a G or M code (such as G83, G54.1, M98), an address letter or a diagnostic code"
-        )?;
-        return Ok(EXIT_USAGE);
-    };
-    let defs: Vec<&CodeDef> = match dialect {
-        Some(d) => codes::lookup(d, code).into_iter().collect(),
-        None => codes::meanings(code).collect(),
+        if trimmed.len() == 1 && trimmed.as_bytes()[0].is_ascii_alphabetic() {
+            return address(trimmed.as_bytes()[0], dialect, json, out);
+        }
+        let Some(code) = Code::parse(trimmed) else {
+            writeln!(
+                err,
+                "swarf explain: `{what}` is not a G or M code (such as G83, G54.1, M98), an address letter or a diagnostic code"
+            )?;
+            return Ok(EXIT_USAGE);
+        };
+        match dialect {
+            Some(d) => (Some(code), codes::lookup(d, code).into_iter().collect()),
+            None => (Some(code), codes::meanings(code).collect()),
+        }
     };
     if json {
         let items: Vec<_> = defs.iter().map(|d| def_json(d)).collect();
         writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
+    } else if list {
+        for d in &defs {
+            writeln!(out, "{:<8} {:<40} {}", d.code.to_string(), d.name, d.format)?;
+        }
     } else {
         for d in &defs {
             print_def(d, out)?;
         }
     }
-    if defs.is_empty() {
+    if let Some(code) = code
+        && defs.is_empty()
+    {
         let others: Vec<String> = codes::meanings(code)
             .map(|d| format!("{} on {}", d.name, d.dialects.labels()))
             .collect();
         let name = dialect.map_or("any supported control", Dialect::label);
-        if others.is_empty() {
-            writeln!(err, "{code} is not a code of {name}")?;
+        let also = if others.is_empty() {
+            String::new()
         } else {
-            writeln!(
-                err,
-                "{code} is not a code of {name}; it is {}",
-                others.join("; ")
-            )?;
-        }
+            format!("; it is {}", others.join("; "))
+        };
+        writeln!(err, "{code} is not a code of {name}{also}")?;
         return Ok(EXIT_ERRORS);
     }
     Ok(EXIT_OK)

@@ -16,8 +16,8 @@ use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
 use swarf_stock::{StockRun, StockSetup};
 use swarf_syntax::{
-    Decoded, Diagnostic, Dialect, LineIndex, LinkedSource, Lookup, MAX_FILE_BYTES, Missing,
-    Program, Severity, Span, decode_owned, parse,
+    Decoded, Diagnostic, Dialect, LineIndex, LinkedSource, Lookup, MAX_FILE_BYTES, Program,
+    Severity, Span, decode_owned, parse,
 };
 use swarf_toolpath::Toolpath;
 
@@ -214,15 +214,6 @@ struct Loaded {
 /// Most files linked to one program (a bound on runaway chains of calls).
 const MAX_LINKED: usize = 64;
 
-/// The files in `dir` that may hold a called program (see [`Missing::file_names`]).
-fn candidates(dir: &Path, missing: &Missing) -> Vec<PathBuf> {
-    missing
-        .file_names()
-        .iter()
-        .map(|name| dir.join(name))
-        .collect()
-}
-
 /// Links the programs the program calls and does not hold from files beside it, until nothing
 /// more can be found; returns the linked files' texts and warnings. A file found that cannot be
 /// read (a folder, unreadable, larger than `max` bytes) is named with the reason in the call's
@@ -237,9 +228,10 @@ fn link_external(
     let dir = path.parent().unwrap_or(Path::new("."));
     let mut changed = Vec::new();
     let linked = program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
-        let paths: Vec<PathBuf> = candidates(dir, missing)
-            .into_iter()
-            .filter(|c| c.as_path() != path)
+        // The files beside it that may hold a called program.
+        let paths: Vec<PathBuf> = (missing.file_names().iter())
+            .map(|name| dir.join(name))
+            .filter(|c| c != path)
             .collect();
         // A file first; else something else of a candidate's name (a folder) is named.
         let Some(file) = paths.iter().find(|c| c.is_file()) else {
@@ -697,15 +689,25 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
     let (setup, stock) = read_setup(opts, err)?;
     let started = Instant::now();
     let decoded = read_decoded(file, opts)?;
-    let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+    // The report takes only the path's measures: its segments are kept only to cut the stock,
+    // with room made for `moves` of them.
+    let keep = cut || stock.stock.is_some();
+    let new_path = |moves: usize| {
+        if keep {
+            let mut path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
+            path.reserve(moves);
+            path
+        } else {
+            Toolpath::measuring(glam::DVec3::ZERO, &setup.machine)
+        }
+    };
     // About a move a line, and a line is rarely under sixteen bytes.
-    path.reserve(decoded.text.len() / 16);
+    let mut path = new_path(decoded.text.len() / 16);
     let (loaded, blocks, mut diags) = match read_run(file, decoded, opts, &setup, whole, &mut path)
     {
         Read::Ran(loaded, blocks, diags) => (loaded, blocks, diags),
         Read::Whole(mut loaded) => {
-            path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-            path.reserve(loaded.program.blocks.len());
+            path = new_path(loaded.program.blocks.len());
             let run = loaded.interpret(&setup, &mut path);
             let diags = loaded.all_diagnostics(run);
             let blocks = loaded.program.blocks.len();

@@ -154,19 +154,13 @@ pub(crate) fn render(
 fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> anyhow::Result<()> {
     let file = std::fs::File::create(path)
         .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", path.display()))?;
+    let failed = |e: png::EncodingError| anyhow::anyhow!("cannot write {}: {e}", path.display());
     let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), width, height);
     encoder.set_color(png::ColorType::Rgba);
     encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder
-        .write_header()
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
-    writer
-        .write_image_data(rgba)
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
-    writer
-        .finish()
-        .map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
-    Ok(())
+    let mut writer = encoder.write_header().map_err(failed)?;
+    writer.write_image_data(rgba).map_err(failed)?;
+    writer.finish().map_err(failed)
 }
 
 #[cfg(test)]

@@ -20,13 +20,17 @@ pub(crate) struct Timer {
     pub(crate) kinematics: Kinematics,
     /// One over its acceleration ([`Kinematics::per_acceleration`]).
     per_acceleration: f64,
-    /// The settled end times (a prefix of the segments).
+    /// The settled end times (a prefix of the segments), or only the last of them where
+    /// `keeps_times` is off.
     pub(crate) end_times: Vec<f64>,
+    /// Whether every settled end time is kept (a path that keeps its segments) or only the
+    /// last, which the next count from (a path that only measures them).
+    pub(crate) keeps_times: bool,
     /// The segments after the settled ones, whose join speeds may still change.
     pub(crate) window: Vec<Plan>,
     /// Where the path starts, and where its last segment ends.
     start: DVec3,
-    last_end: DVec3,
+    pub(crate) last_end: DVec3,
     /// The last segment's kind, and its direction at the end (of the last non-empty one), as
     /// a vector and its length ([`Heading`]).
     last_kind: Option<SegmentKind>,
@@ -61,6 +65,7 @@ impl Timer {
             kinematics,
             per_acceleration: kinematics.per_acceleration(),
             end_times: Vec::new(),
+            keeps_times: true,
             window: Vec::new(),
             start,
             last_end: start,
@@ -182,6 +187,7 @@ impl Timer {
                 self.end_times
                     .push(lone_end_time(&lone, k, self.per_acceleration, start));
                 self.window.clear();
+                self.forget_settled();
             } else {
                 self.settle(self.window.len());
             }
@@ -231,6 +237,16 @@ impl Timer {
             self.window.clear();
         } else {
             self.window.drain(..count);
+        }
+        self.forget_settled();
+    }
+
+    /// Where `keeps_times` is off, forgets the settled end times but the last.
+    #[inline(always)]
+    fn forget_settled(&mut self) {
+        let settled = self.end_times.len();
+        if !self.keeps_times && settled > 1 {
+            self.end_times.drain(..settled - 1);
         }
     }
 }

@@ -136,6 +136,11 @@ pub enum CycleMove {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Toolpath {
     start: DVec3,
+    /// The number of segments recorded.
+    segments: usize,
+    /// Whether the segments are kept (their ends, kinds, lines and end times) or only measured
+    /// ([`Toolpath::measuring`]).
+    keeps_segments: bool,
     ends: Vec<DVec3>,
     kinds: Vec<SegmentKind>,
     lines: Vec<u32>,
@@ -221,6 +226,17 @@ impl Toolpath {
         path
     }
 
+    /// An empty toolpath as [`Toolpath::for_machine`] makes it that keeps none of its segments,
+    /// only their measures: how many there are, their bounds, lengths and time, the tools,
+    /// holes, dwells, program zeros and zones (a summary that costs no memory a segment). Its
+    /// segment arrays ([`Toolpath::ends`], [`Toolpath::timeline`] and the like) stay empty.
+    pub fn measuring(start: DVec3, machine: &Machine) -> Self {
+        let mut path = Toolpath::for_machine(start, machine);
+        path.keeps_segments = false;
+        path.timer.keeps_times = false;
+        path
+    }
+
     /// Makes room for `segments` more segments at once (e.g. one per block of the program),
     /// up to the most the path holds, sparing the copies of arrays that grow while a big
     /// program is recorded.
@@ -274,6 +290,8 @@ impl Toolpath {
     pub fn with_kinematics(start: DVec3, kinematics: Kinematics) -> Self {
         Toolpath {
             start,
+            segments: 0,
+            keeps_segments: true,
             ends: Vec::new(),
             kinds: Vec::new(),
             lines: Vec::new(),
@@ -307,12 +325,12 @@ impl Toolpath {
 
     /// Number of segments.
     pub fn len(&self) -> usize {
-        self.ends.len()
+        self.segments
     }
 
     /// Whether there is no segment.
     pub fn is_empty(&self) -> bool {
-        self.ends.is_empty()
+        self.segments == 0
     }
 
     /// Where the tool was before the first segment.
@@ -364,6 +382,9 @@ impl Toolpath {
     /// call: the last segments' times are only settled when asked, since every new move may
     /// still change them.
     pub fn timeline(&self) -> Timeline {
+        if !self.keeps_segments {
+            return Timeline::from_parts(Vec::new(), Vec::new());
+        }
         let timer = &self.timer;
         let window = timer.window_end_times(timer.window.len());
         let mut end_times = Vec::with_capacity(timer.end_times.len() + window.len());
@@ -401,7 +422,7 @@ impl Toolpath {
             .or(timer.end_times.last())
             .copied()
             .unwrap_or(0.0);
-        last + dwell_before(&self.dwells, self.ends.len())
+        last + dwell_before(&self.dwells, self.segments)
     }
 
     /// Tools used, in order of first use.
@@ -520,13 +541,16 @@ impl Toolpath {
         speed: f64,
         chord: ChordJoin,
     ) {
-        if self.ends.len() == self.ends.capacity() {
-            self.grow();
+        if self.keeps_segments {
+            if self.ends.len() == self.ends.capacity() {
+                self.grow();
+            }
+            self.ends.push(to);
+            self.kinds.push(kind);
+            self.lines.push(line);
         }
-        self.ends.push(to);
-        self.kinds.push(kind);
-        self.lines.push(line);
-        let segment = self.ends.len() - 1;
+        let segment = self.segments;
+        self.segments += 1;
         self.feeds.push(segment, (feed_mm_per_min as f32).to_bits());
         self.segment_tools.push(segment, self.tool);
         // The dwells are in segment order and none comes after the newest segment yet.
@@ -549,7 +573,7 @@ impl Toolpath {
     }
 
     fn push_arc(&mut self, arc: &Arc, line: u32) {
-        let from = self.ends.last().copied().unwrap_or(self.start);
+        let from = self.timer.last_end;
         let geometry = arc.plane(from);
         let radius = geometry
             .radius
@@ -619,7 +643,7 @@ impl Sink for Toolpath {
             Canon::Dwell { secs } => {
                 self.stop();
                 let secs = if secs.is_finite() { secs.max(0.0) } else { 0.0 };
-                let segment = self.ends.len();
+                let segment = self.segments;
                 match self.dwells.last_mut() {
                     Some(d) if d.segment == segment => d.secs += secs,
                     _ => self.dwells.push(Dwell { segment, secs }),
@@ -642,7 +666,7 @@ impl Sink for Toolpath {
                 bottom: *bottom,
                 tool: self.tool,
                 line: source.line,
-                first_segment: self.ends.len(),
+                first_segment: self.segments,
             }),
             Canon::Spindle { .. }
             | Canon::Coolant { .. }
@@ -660,7 +684,9 @@ impl Sink for Toolpath {
         } else {
             SegmentKind::Feed
         };
-        self.push_line(kind, DVec3::new(x, y, z), source.line, feed);
+        // `push` inlined here, not reached through `push_line`: the point goes on in registers
+        // rather than through memory (the path's hottest call).
+        self.push(kind, DVec3::new(x, y, z), source.line, feed, feed, None);
     }
 
     fn programmed(&mut self, source: Source, event: &Canon) {
@@ -671,7 +697,7 @@ impl Sink for Toolpath {
     /// segment, a hole or a compensated block's programmed motion as two, a change of feed or
     /// of tool as half) reach `max_motions` segments: the memory a run may take.
     fn full(&self) -> bool {
-        self.ends.len()
+        self.segments
             + self.dwells.len()
             + 2 * (self.holes.len() + self.programmed.len())
             + (self.feeds.values.len() + self.segment_tools.values.len()).saturating_sub(2) / 2

@@ -568,3 +568,60 @@ fn changes_of_feed_and_tool_count_towards_the_motion_limit() {
         501
     );
 }
+
+/// A path that only measures its segments gives the figures of one that keeps them, to the bit,
+/// and fills up at the same segment, holding none of them.
+#[test]
+fn a_measuring_path_gives_the_figures_of_a_kept_one() {
+    // Rapids, feeds, arcs, a dwell, tool changes, holes, and a long smooth run of moves (more
+    // than the planner's look-ahead holds before it settles a batch).
+    let mut text = String::from(
+        "G0 X10. Y0 Z5.\nT1 M6\nG1 Z0 F600.\nG2 X20. Y10. R10.\nG4 P500\n\
+         G81 X30. Y30. Z-2. R1. F100.\nX40.\nG80\nT2 M6\nG1 X0 Y0 F1200.\n",
+    );
+    for i in 0..3 * swarf_toolpath::LOOKAHEAD_SEGMENTS {
+        let y = if i % 2 == 0 { 0.01 } else { 0.0 };
+        text.push_str(&format!("X{}. Y{y}\n", i + 1));
+    }
+    text.push_str("G0 Z50.\nM30\n");
+    let program = parse(&text, Dialect::Fanuc);
+    let setup = Setup::default();
+    let mut kept = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+    let mut measured = Toolpath::measuring(DVec3::ZERO, &setup.machine);
+    assert!(run(&program, setup.clone(), &mut kept).is_empty());
+    assert!(run(&program, setup.clone(), &mut measured).is_empty());
+    assert!(kept.len() > 3 * swarf_toolpath::LOOKAHEAD_SEGMENTS);
+    assert_eq!(measured.len(), kept.len());
+    assert_eq!(measured.bounds(), kept.bounds());
+    assert_eq!(
+        measured.rapid_length_mm().to_bits(),
+        kept.rapid_length_mm().to_bits()
+    );
+    assert_eq!(
+        measured.feed_length_mm().to_bits(),
+        kept.feed_length_mm().to_bits()
+    );
+    assert_eq!(
+        measured.estimated_secs().to_bits(),
+        kept.estimated_secs().to_bits()
+    );
+    assert_eq!(measured.tools(), [1, 2]);
+    assert_eq!(measured.tools(), kept.tools());
+    assert_eq!(measured.holes(), kept.holes());
+    assert_eq!(measured.holes_per_tool(), [(1, 2)]);
+    assert!(measured.ends().is_empty() && measured.kinds().is_empty());
+    assert!(measured.lines().is_empty() && measured.timeline().is_empty());
+
+    // Both stop at the same segment of a loop that fills them.
+    let mut setup = Setup::default();
+    setup.machine.max_motions = 1000;
+    let program = parse(
+        "N1 T1 M6 G01 X1. F100\nT2 M6 X0 F200\nGOTO 1\n",
+        Dialect::Fanuc,
+    );
+    let mut kept = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+    let mut measured = Toolpath::measuring(DVec3::ZERO, &setup.machine);
+    run(&program, setup.clone(), &mut kept);
+    run(&program, setup, &mut measured);
+    assert_eq!((measured.len(), kept.len()), (501, 501));
+}
