@@ -68,10 +68,7 @@ fn run() -> Result<()> {
     match command.as_str() {
         "web" => {
             opts.reject_unused(&["--dev", "--no-opt"])?;
-            web::build(web::WebOptions {
-                dev: opts.dev,
-                no_opt: opts.no_opt,
-            })?;
+            web::build(opts.dev, opts.no_opt)?;
         }
         "serve" => {
             opts.reject_unused(&["--dev", "--no-opt", "--port", "--no-build", "--dir"])?;
@@ -79,10 +76,7 @@ fn run() -> Result<()> {
                 bail!("--dir serves a site as it is; add --no-build");
             }
             if !opts.no_build {
-                web::build(web::WebOptions {
-                    dev: opts.dev,
-                    no_opt: opts.no_opt,
-                })?;
+                web::build(opts.dev, opts.no_opt)?;
             }
             let dir = opts.dir.take().map_or_else(web::site_dir, PathBuf::from);
             serve::serve(&dir, opts.port.take().unwrap_or(8080))?;
@@ -130,41 +124,33 @@ impl Options {
                     Some(value) => Ok(value),
                     None => Err(anyhow::anyhow!("{flag} needs {example}")),
                 };
-            let name: &'static str = match flag {
-                "--dev" => {
-                    opts.dev = true;
-                    "--dev"
-                }
-                "--no-opt" => {
-                    opts.no_opt = true;
-                    "--no-opt"
-                }
-                "--no-build" => {
-                    opts.no_build = true;
-                    "--no-build"
-                }
-                "--quick" => {
-                    opts.quick = true;
-                    "--quick"
-                }
-                "--only" => {
-                    opts.only = Some(value("step letters, e.g. --only a,g")?);
-                    "--only"
-                }
-                "--dir" => {
-                    opts.dir = Some(value("a folder, e.g. --dir target/web")?);
-                    "--dir"
-                }
-                "--port" => {
+            let name = [
+                "--dev",
+                "--no-opt",
+                "--no-build",
+                "--quick",
+                "--only",
+                "--dir",
+                "--port",
+            ]
+            .into_iter()
+            .find(|name| *name == flag)
+            .ok_or_else(|| anyhow::anyhow!("unknown option `{flag}`\n\n{USAGE}"))?;
+            match name {
+                "--dev" => opts.dev = true,
+                "--no-opt" => opts.no_opt = true,
+                "--no-build" => opts.no_build = true,
+                "--quick" => opts.quick = true,
+                "--only" => opts.only = Some(value("step letters, e.g. --only a,g")?),
+                "--dir" => opts.dir = Some(value("a folder, e.g. --dir target/web")?),
+                _ => {
                     let value = value("a value, e.g. --port 8080")?;
                     let port = value
                         .parse::<u16>()
                         .map_err(|e| anyhow::anyhow!("invalid port `{value}`: {e}"))?;
                     opts.port = Some(port);
-                    "--port"
                 }
-                other => bail!("unknown option `{other}`\n\n{USAGE}"),
-            };
+            }
             if inline_value.is_some() && !matches!(name, "--port" | "--only" | "--dir") {
                 bail!("option `{name}` takes no value");
             }

@@ -264,7 +264,7 @@ fn steps(quick: bool) -> Vec<Step> {
             'i',
             "web build (release) and browser end-to-end tests (WebGL2, WebGPU): xvfb-run -a node --test tests/e2e/",
             || {
-                web::build(web::WebOptions::default())?;
+                web::build(false, false)?;
                 header("i. xvfb-run -a node --test tests/e2e/");
                 run(&mut node_test_command())
             },

@@ -25,11 +25,12 @@ pub fn ensure_wasm_target() -> Result<()> {
 }
 
 fn tool_version(program: &str) -> Option<String> {
-    let path = util::which(program)?;
-    let out = Command::new(path).arg("--version").output().ok()?;
-    if !out.status.success() {
-        return None;
-    }
+    version_of(Command::new(util::which(program)?).arg("--version"))
+}
+
+/// What `cmd` (a `--version` query) prints, trimmed, when it succeeds.
+fn version_of(cmd: &mut Command) -> Option<String> {
+    let out = cmd.output().ok().filter(|o| o.status.success())?;
     Some(String::from_utf8_lossy(&out.stdout).trim().to_owned())
 }
 
@@ -97,17 +98,12 @@ fn ensure_cargo_tool(
     version: &str,
     options: &[&str],
 ) -> Result<()> {
-    let found = util::cargo()
-        .args([subcommand, "--version"])
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
+    let found = version_of(cargo().args([subcommand, "--version"]));
     if found.as_deref() == Some(&format!("{package} {version}")) {
         return Ok(());
     }
     println!("{package} {version} is needed; installing it (takes a few minutes)");
-    run(util::cargo()
+    run(cargo()
         .args([
             "install",
             package,
@@ -194,12 +190,6 @@ pub fn ensure_apt_packages() -> Result<()> {
         return Ok(());
     }
     println!("missing system packages: {}", missing.join(", "));
-    if util::which("apt-get").is_none() {
-        bail!(
-            "these packages are needed and apt-get is not available; install them by hand: {}",
-            APT_PACKAGES.join(" ")
-        );
-    }
     apt_install(APT_PACKAGES)
 }
 
@@ -222,14 +212,10 @@ fn apt_install(packages: &[&str]) -> Result<()> {
         );
     };
     let apt = |args: &[&str]| -> Result<()> {
-        let mut cmd = match sudo {
-            Some(sudo) => {
-                let mut cmd = command(sudo);
-                cmd.arg("apt-get");
-                cmd
-            }
-            None => command("apt-get"),
-        };
+        let mut cmd = command(sudo.unwrap_or("apt-get"));
+        if sudo.is_some() {
+            cmd.arg("apt-get");
+        }
         cmd.env("DEBIAN_FRONTEND", "noninteractive").args(args);
         run(&mut cmd)
     };

@@ -16,34 +16,21 @@ pub fn repo_root() -> PathBuf {
 
 /// Cargo's target folder: `CARGO_TARGET_DIR` (relative to the repository root) or `target/`.
 pub fn target_dir() -> PathBuf {
-    std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .map_or_else(
-            || repo_root().join("target"),
-            |dir| {
-                if dir.is_absolute() {
-                    dir
-                } else {
-                    repo_root().join(dir)
-                }
-            },
-        )
+    // An absolute folder replaces the root when joined.
+    repo_root().join(std::env::var_os("CARGO_TARGET_DIR").unwrap_or_else(|| "target".into()))
 }
 
-/// The directory `cargo install` puts binaries in (`$CARGO_HOME/bin`, default `~/.cargo/bin`).
-pub fn cargo_bin_dir() -> Option<PathBuf> {
-    if let Some(home) = std::env::var_os("CARGO_HOME") {
-        return Some(PathBuf::from(home).join("bin"));
-    }
-    std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cargo").join("bin"))
-}
-
-/// `PATH` with the cargo bin directory added (at the front) when it is missing, so that
-/// freshly installed `wasm-bindgen` and `wasm-bindgen-test-runner` are found.
+/// `PATH` with the directory `cargo install` puts binaries in (`$CARGO_HOME/bin`, default
+/// `~/.cargo/bin`) added (at the front) when it is missing, so that freshly installed
+/// `wasm-bindgen` and `wasm-bindgen-test-runner` are found.
 pub fn search_path() -> OsString {
     let current = std::env::var_os("PATH").unwrap_or_default();
     let mut dirs: Vec<PathBuf> = std::env::split_paths(&current).collect();
-    if let Some(bin) = cargo_bin_dir()
+    let bin = std::env::var_os("CARGO_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cargo")))
+        .map(|home| home.join("bin"));
+    if let Some(bin) = bin
         && !dirs.contains(&bin)
     {
         dirs.insert(0, bin);

@@ -16,15 +16,6 @@ const WORKER_PACKAGE: &str = "swarf-worker";
 /// Its library's file name stem (`swarf_worker.wasm`).
 const WORKER_LIB: &str = "swarf_worker";
 
-/// Options of the web build.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct WebOptions {
-    /// Debug build (faster to compile, no wasm-opt) instead of the `web` profile.
-    pub dev: bool,
-    /// Leave out `wasm-opt`, which otherwise shrinks the wasm of a `web` profile build.
-    pub no_opt: bool,
-}
-
 /// Wasm SIMD for the page's build, which every browser with WebGL2 or WebGPU has had since
 /// 2023: without it the SIMD code of the rasteriser egui draws text with (`fearless_simd`) is
 /// compiled as scalar code, a fifth of the module. Added to the target's `rustflags` of
@@ -41,23 +32,23 @@ pub fn site_dir() -> PathBuf {
     util::target_dir().join("web")
 }
 
-/// Builds the web page: wasm build (the `web` profile of `Cargo.toml`), wasm-bindgen, wasm-opt,
-/// then copies the static files next to the generated ones in `target/web/` and writes the
-/// compressed copies.
-pub fn build(options: WebOptions) -> Result<()> {
+/// Builds the web page: wasm build (the `web` profile of `Cargo.toml`, or a debug build with
+/// `dev`), wasm-bindgen, wasm-opt (unless `dev` or `no_opt`), then copies the static files next
+/// to the generated ones in `target/web/` and writes the compressed copies.
+pub fn build(dev: bool, no_opt: bool) -> Result<()> {
     tools::ensure_wasm_target()?;
     tools::ensure_wasm_bindgen()?;
-    let wasm_opt = if options.dev || options.no_opt {
+    let wasm_opt = if dev || no_opt {
         None
     } else {
         Some(tools::ensure_wasm_opt().context("wasm-opt is needed (or pass --no-opt)")?)
     };
 
-    let profile = if options.dev { "debug" } else { "web" };
+    let profile = if dev { "debug" } else { "web" };
     let mut build = cargo();
     build.args(["build", "-p", APP_PACKAGE, "-p", WORKER_PACKAGE, "--lib"]);
     build.args(["--target", WASM_TARGET]);
-    if !options.dev {
+    if !dev {
         build.args(["--profile", profile, "--config", WEB_RUSTFLAGS]);
     }
     run(&mut build)?;
@@ -79,50 +70,19 @@ pub fn build(options: WebOptions) -> Result<()> {
     }
     std::fs::create_dir_all(&site).with_context(|| format!("creating {}", site.display()))?;
 
-    let mut bindgen = command("wasm-bindgen");
-    bindgen
-        .args([
-            "--target",
-            "web",
-            "--no-typescript",
-            "--out-name",
-            APP_LIB,
-            "--out-dir",
-        ])
-        .arg(&site)
-        .arg(&wasm);
-    run(&mut bindgen)?;
-
-    let bg_wasm = site.join(format!("{APP_LIB}_bg.wasm"));
-    if let Some(wasm_opt) = &wasm_opt {
-        optimize(wasm_opt, &bg_wasm)?;
-    }
-
+    let opt = wasm_opt.as_deref();
+    bindgen(&wasm, "web", APP_LIB, &site, opt)?;
     // The worker's module, for a classic worker script (`importScripts`), which every browser
     // the page runs in starts.
-    let worker_wasm = wasm.with_file_name(format!("{WORKER_LIB}.wasm"));
-    let mut bindgen = command("wasm-bindgen");
-    bindgen
-        .args([
-            "--target",
-            "no-modules",
-            "--no-typescript",
-            "--out-name",
-            WORKER_LIB,
-            "--out-dir",
-        ])
-        .arg(&site)
-        .arg(&worker_wasm);
-    run(&mut bindgen)?;
-    if let Some(wasm_opt) = &wasm_opt {
-        optimize(wasm_opt, &site.join(format!("{WORKER_LIB}_bg.wasm")))?;
-    }
+    let worker = wasm.with_file_name(format!("{WORKER_LIB}.wasm"));
+    bindgen(&worker, "no-modules", WORKER_LIB, &site, opt)?;
 
     copy_static_files(&site)?;
     copy_cjk_font(&site)?;
     compress(&site)?;
 
     println!("web build ({profile}) is in {}", site.display());
+    let bg_wasm = site.join(format!("{APP_LIB}_bg.wasm"));
     for suffix in ["", ".br", ".gz"] {
         let size = std::fs::metadata(with_suffix(&bg_wasm, suffix))
             .with_context(|| format!("{} was not written", bg_wasm.display()))?
@@ -130,6 +90,28 @@ pub fn build(options: WebOptions) -> Result<()> {
         println!("wasm{suffix}: {:.2} MB ({size} bytes)", size as f64 / 1e6);
     }
     Ok(())
+}
+
+/// Runs wasm-bindgen for `target` on `wasm`, writing `NAME.js` and `NAME_bg.wasm` into `site`,
+/// then `wasm_opt` on the latter.
+fn bindgen(
+    wasm: &Path,
+    target: &str,
+    name: &str,
+    site: &Path,
+    wasm_opt: Option<&Path>,
+) -> Result<()> {
+    let mut bindgen = command("wasm-bindgen");
+    bindgen
+        .args(["--target", target, "--no-typescript"])
+        .args(["--out-name", name, "--out-dir"])
+        .arg(site)
+        .arg(wasm);
+    run(&mut bindgen)?;
+    match wasm_opt {
+        Some(wasm_opt) => optimize(wasm_opt, &site.join(format!("{name}_bg.wasm"))),
+        None => Ok(()),
+    }
 }
 
 /// Copies `index.html`, the files of `web/` and the `assets/` folder into the site.

@@ -2,7 +2,7 @@
 //! with fewer errors in another (Syntec's `G71` metric and `//` comments in a Fanuc tab, say)
 //! gets that dialect offered, never switched to silently.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use swarf_syntax::{Dialect, Program, Severity, codes};
 
@@ -35,7 +35,7 @@ pub struct DialectHint {
 type Reading = (Dialect, Score, HashSet<(usize, &'static str)>);
 
 /// Errors and unknown M codes of one reading of the lines compared.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
 struct Score {
     errors: usize,
     unknown_m: usize,
@@ -84,16 +84,8 @@ pub fn suggest(text: &ProgramText, program: &Program, problems: &[Problem]) -> O
             .take(MORE_LINES),
     );
     // Whether each code seen differs between dialects, looked up once (a program uses few).
-    let mut seen: Vec<(codes::Code, bool)> = Vec::new();
-    let mut sensitive = |code: codes::Code| {
-        if let Some(&(_, d)) = seen.iter().find(|(c, _)| *c == code) {
-            d
-        } else {
-            let d = differs(code);
-            seen.push((code, d));
-            d
-        }
-    };
+    let mut seen = HashMap::new();
+    let mut sensitive = |code: codes::Code| *seen.entry(code).or_insert_with(|| differs(code));
     lines.extend(
         program
             .blocks
@@ -119,10 +111,7 @@ pub fn suggest(text: &ProgramText, program: &Program, problems: &[Problem]) -> O
         .iter()
         .map(|&d| {
             let program = swarf_syntax::parse(&sample, d);
-            let mut score = Score {
-                errors: 0,
-                unknown_m: 0,
-            };
+            let mut score = Score::default();
             let mut found = HashSet::new();
             for diag in &program.diagnostics {
                 if diag.severity == Severity::Error {

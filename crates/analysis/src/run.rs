@@ -13,7 +13,7 @@ use swarf_syntax::{
 use swarf_toolpath::{Timeline, Toolpath};
 
 use crate::hint::{DialectHint, suggest};
-use crate::text::{ProgramText, RopeLines};
+use crate::text::{ProgramText, RopeLines, Text};
 
 /// What to analyse: a program's text, how to read and run it, and the files its calls may reach.
 #[derive(Debug, Clone)]
@@ -344,28 +344,22 @@ impl PendingAnalysis {
         let mut sweep = Sweep::default();
         let problems: Vec<Problem> = diags
             .iter()
-            .map(|d| locate_one(&self.text, &program.lines, &mut sweep, d))
+            .map(|d| locate_one(self.text.as_text(), &program.lines, &mut sweep, d))
             .collect();
         let mut elsewhere = Vec::new();
         for (i, (at, file)) in program.linked.iter().zip(&self.linked).enumerate() {
-            let here: Vec<Diagnostic> = others
+            let mut sweep = Sweep::default();
+            for d in others
                 .iter()
                 .filter(|d| program.linked_at_offset(d.span.start) == Some(i))
-                .map(|d| {
-                    let mut d = d.clone();
-                    d.span.start = d.span.start.saturating_sub(at.first_byte);
-                    d.span.end = d.span.end.saturating_sub(at.first_byte);
-                    d
-                })
-                .collect();
-            elsewhere.extend(
-                locate(&file.text, &file.lines, &here)
-                    .into_iter()
-                    .map(|problem| LinkedProblem {
-                        file: file.name.clone(),
-                        problem,
-                    }),
-            );
+            {
+                let mut d = d.clone();
+                d.span.start = d.span.start.saturating_sub(at.first_byte);
+                d.span.end = d.span.end.saturating_sub(at.first_byte);
+                let problem = locate_one(Text::Flat(&file.text), &file.lines, &mut sweep, &d);
+                let file = file.name.clone();
+                elsewhere.push(LinkedProblem { file, problem });
+            }
         }
         self.toolpath.shrink_to_fit();
         let toolpath = &self.toolpath;
@@ -415,7 +409,7 @@ pub(crate) fn locate_own(kept: &Kept, mut diags: Vec<Diagnostic>) -> Vec<Problem
     let mut sweep = Sweep::default();
     diags
         .iter()
-        .map(|d| locate_one(&kept.text, &kept.program.lines, &mut sweep, d))
+        .map(|d| locate_one(kept.text.as_text(), &kept.program.lines, &mut sweep, d))
         .collect()
 }
 
@@ -447,15 +441,18 @@ impl Sweep {
     }
 }
 
-/// One diagnostic of the program's own text located (as [`locate`] does for many), the
-/// diagnostics taken in order of position.
-fn locate_one(text: &ProgramText, lines: &LineIndex, sweep: &mut Sweep, d: &Diagnostic) -> Problem {
-    let len = text.len();
+/// One diagnostic of a text (the program's, or a linked file's) located: its line, column and
+/// character range, the diagnostics taken in order of position.
+fn locate_one(text: Text<'_>, lines: &LineIndex, sweep: &mut Sweep, d: &Diagnostic) -> Problem {
+    let len = match text {
+        Text::Flat(text) => text.len(),
+        Text::Rope(rope) => rope.len_bytes(),
+    };
     let (start_at, end_at) = (d.span.start as usize, d.span.end as usize);
     let line = lines.line_of(d.span.start);
     let line_start = (lines.line_start(line) as usize).min(len);
     let (col, start, end) = match text {
-        ProgramText::Flat(text) => {
+        Text::Flat(text) => {
             let line_chars = match sweep.line {
                 Some((l, c)) if l == line => c,
                 _ => {
@@ -481,7 +478,7 @@ fn locate_one(text: &ProgramText, lines: &LineIndex, sweep: &mut Sweep, d: &Diag
             };
             (here - line_chars, start, end)
         }
-        ProgramText::Rope(rope) => {
+        Text::Rope(rope) => {
             let char_of = |o: usize| {
                 let o = o.min(len);
                 let c = rope.byte_to_char(o);
@@ -520,52 +517,6 @@ fn link_open_files(
     })
 }
 
-/// Turns byte spans into lines, columns and character ranges in one pass over the text.
-fn locate(text: &str, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
-    let mut offsets: Vec<usize> = diags
-        .iter()
-        .flat_map(|d| [d.span.start as usize, d.span.end as usize])
-        .collect();
-    offsets.sort_unstable();
-    offsets.dedup();
-    let mut char_of = std::collections::HashMap::with_capacity(offsets.len());
-    // Each offset becomes the index of the character starting there (or the next one), counted
-    // a run of text at a time from the offset before.
-    let (mut at, mut chars) = (0usize, 0usize);
-    for &o in &offsets {
-        if o > text.len() {
-            break;
-        }
-        let mut to = o;
-        while !text.is_char_boundary(to) {
-            to += 1;
-        }
-        chars += text.get(at..to).map_or(0, |t| t.chars().count());
-        at = to;
-        char_of.insert(o, chars);
-    }
-    let mut cols = lines.cursor(text);
-    diags
-        .iter()
-        .map(|d| {
-            let (line, col) = cols.line_col(d.span.start);
-            let start = char_of.get(&(d.span.start as usize)).copied().unwrap_or(0);
-            let end = char_of
-                .get(&(d.span.end as usize))
-                .copied()
-                .unwrap_or(start);
-            Problem {
-                line,
-                col,
-                severity: d.severity,
-                code: d.code,
-                message: d.message.clone(),
-                chars: start..end.max(start),
-            }
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
@@ -581,7 +532,54 @@ mod tests {
         let mut sweep = Sweep::default();
         diags
             .iter()
-            .map(|d| locate_one(text, lines, &mut sweep, d))
+            .map(|d| locate_one(text.as_text(), lines, &mut sweep, d))
+            .collect()
+    }
+
+    /// Turns byte spans into lines, columns and character ranges in one pass over the text: what
+    /// [`locate_one`] must agree with.
+    fn locate(text: &str, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
+        let mut offsets: Vec<usize> = diags
+            .iter()
+            .flat_map(|d| [d.span.start as usize, d.span.end as usize])
+            .collect();
+        offsets.sort_unstable();
+        offsets.dedup();
+        let mut char_of = std::collections::HashMap::with_capacity(offsets.len());
+        // Each offset becomes the index of the character starting there (or the next one), counted
+        // a run of text at a time from the offset before.
+        let (mut at, mut chars) = (0usize, 0usize);
+        for &o in &offsets {
+            if o > text.len() {
+                break;
+            }
+            let mut to = o;
+            while !text.is_char_boundary(to) {
+                to += 1;
+            }
+            chars += text.get(at..to).map_or(0, |t| t.chars().count());
+            at = to;
+            char_of.insert(o, chars);
+        }
+        let mut cols = lines.cursor(text);
+        diags
+            .iter()
+            .map(|d| {
+                let (line, col) = cols.line_col(d.span.start);
+                let start = char_of.get(&(d.span.start as usize)).copied().unwrap_or(0);
+                let end = char_of
+                    .get(&(d.span.end as usize))
+                    .copied()
+                    .unwrap_or(start);
+                Problem {
+                    line,
+                    col,
+                    severity: d.severity,
+                    code: d.code,
+                    message: d.message.clone(),
+                    chars: start..end.max(start),
+                }
+            })
             .collect()
     }
 

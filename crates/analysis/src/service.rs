@@ -251,15 +251,14 @@ fn serve(
     loop {
         let request = if service.is_busy() {
             match requests.try_recv() {
-                Ok(request) => Some(request),
-                Err(TryRecvError::Empty) => None,
                 Err(TryRecvError::Disconnected) => return,
+                request => request.ok(),
             }
         } else {
-            match requests.recv() {
-                Ok(request) => Some(request),
-                Err(_) => return,
-            }
+            let Ok(request) = requests.recv() else {
+                return;
+            };
+            Some(request)
         };
         let reply = match request {
             Some(request) => service.handle(request),

@@ -17,6 +17,13 @@ pub enum ProgramText {
     Rope(Rope),
 }
 
+/// A text borrowed from a [`ProgramText`] or a linked file.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Text<'a> {
+    Flat(&'a str),
+    Rope(&'a Rope),
+}
+
 impl From<String> for ProgramText {
     fn from(text: String) -> Self {
         ProgramText::Flat(Arc::new(text))
@@ -29,6 +36,14 @@ impl ProgramText {
         match self {
             ProgramText::Flat(text) => text.len(),
             ProgramText::Rope(rope) => rope.len_bytes(),
+        }
+    }
+
+    /// The text borrowed.
+    pub(crate) fn as_text(&self) -> Text<'_> {
+        match self {
+            ProgramText::Flat(text) => Text::Flat(text),
+            ProgramText::Rope(rope) => Text::Rope(rope),
         }
     }
 

@@ -27,17 +27,13 @@ pub fn request_parts(request: &Request) -> (Vec<u8>, Vec<&ProgramText>) {
             // A setup TOML cannot hold (a NaN) is read as the default one.
             w.str(&job.setup.to_toml().unwrap_or_default());
             let mut texts = vec![&job.text];
-            match &job.others {
-                Some(others) => {
-                    w.u8(1);
-                    w.len(others.len());
-                    for (name, text) in others {
-                        w.str(name);
-                        texts.push(text);
-                    }
+            w.option(job.others.as_ref(), |w, others| {
+                w.len(others.len());
+                for (name, text) in others {
+                    w.str(name);
+                    texts.push(text);
                 }
-                None => w.u8(0),
-            }
+            });
             (w.0, texts)
         }
         Request::StateAt { generation, line } => {
@@ -65,16 +61,7 @@ pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
             let setup = Setup::from_toml(&r.str()?).unwrap_or_default();
             let mut texts = texts.into_iter().map(ProgramText::from);
             let text = texts.next()?;
-            let others = if r.u8()? == 0 {
-                None
-            } else {
-                let n = r.len()?;
-                let mut others = Vec::new();
-                for _ in 0..n {
-                    others.push((r.str()?, texts.next()?));
-                }
-                Some(others)
-            };
+            let others = r.option(|r| r.many(|r| Some((r.str()?, texts.next()?))))?;
             Request::Analyse(Box::new(Job {
                 generation,
                 text,
@@ -291,6 +278,14 @@ impl Writer {
         v.to_array().into_iter().for_each(|c| self.f64(c));
     }
 
+    /// 1 and the value written by `write`, or 0 for `None`.
+    fn option<T>(&mut self, v: Option<T>, write: impl FnOnce(&mut Self, T)) {
+        self.u8(u8::from(v.is_some()));
+        if let Some(v) = v {
+            write(self, v);
+        }
+    }
+
     fn vec3(&mut self, v: Vec3) {
         v.to_array().into_iter().for_each(|c| self.f32(c));
     }
@@ -322,25 +317,17 @@ impl Writer {
         let s = &results.stats;
         self.len(s.blocks);
         self.len(s.motions);
-        match s.bounds {
-            Some((min, max)) => {
-                self.u8(1);
-                self.dvec3(min);
-                self.dvec3(max);
-            }
-            None => self.u8(0),
-        }
+        self.option(s.bounds, |w, (min, max)| {
+            w.dvec3(min);
+            w.dvec3(max);
+        });
         self.f64(s.estimated_secs);
         let plot = &results.plot;
         let d = &plot.drawing;
-        match d.bounds {
-            Some((min, max)) => {
-                self.u8(1);
-                self.vec3(min);
-                self.vec3(max);
-            }
-            None => self.u8(0),
-        }
+        self.option(d.bounds, |w, (min, max)| {
+            w.vec3(min);
+            w.vec3(max);
+        });
         self.vec3(d.zero);
         self.dvec3(d.origin);
         self.len(plot.timeline.dwells().len());
@@ -361,22 +348,14 @@ impl Writer {
             self.u32(f.len);
             self.u32(f.lines);
         }
-        match &results.hint {
-            Some(h) => {
-                self.u8(1);
-                self.str(h.from.name());
-                self.str(h.to.name());
-                match &h.first {
-                    Some((what, line)) => {
-                        self.u8(1);
-                        self.str(what);
-                        self.u32(*line);
-                    }
-                    None => self.u8(0),
-                }
-            }
-            None => self.u8(0),
-        }
+        self.option(results.hint.as_ref(), |w, h| {
+            w.str(h.from.name());
+            w.str(h.to.name());
+            w.option(h.first.as_ref(), |w, (what, line)| {
+                w.str(what);
+                w.u32(*line);
+            });
+        });
     }
 
     /// Everything of `cut` but its heights.
@@ -385,17 +364,13 @@ impl Writer {
         self.len(cut.upto);
         self.len(cut.done);
         self.u8(u8::from(cut.whole));
-        match &cut.field {
-            Some(f) => {
-                self.u8(1);
-                self.len(f.size.0);
-                self.len(f.size.1);
-                self.f64(f.cell_mm);
-                self.dvec3(f.min);
-                self.f64(f.top);
-            }
-            None => self.u8(0),
-        }
+        self.option(cut.field.as_ref(), |w, f| {
+            w.len(f.size.0);
+            w.len(f.size.1);
+            w.f64(f.cell_mm);
+            w.dvec3(f.min);
+            w.f64(f.top);
+        });
         self.len(cut.rapids.len());
         for (segment, [x, y]) in &cut.rapids {
             self.len(*segment);
@@ -404,13 +379,7 @@ impl Writer {
         }
         self.len(cut.problems.len());
         cut.problems.iter().for_each(|p| self.problem(p));
-        match &cut.error {
-            Some(e) => {
-                self.u8(1);
-                self.str(e);
-            }
-            None => self.u8(0),
-        }
+        self.option(cut.error.as_deref(), Self::str);
     }
 
     fn block_state(&mut self, s: &BlockState) {
@@ -421,14 +390,10 @@ impl Writer {
         self.str(&s.work_offset_name);
         self.dvec3(s.work_offset);
         self.u32(s.tool);
-        match s.length_offset {
-            Some((h, v)) => {
-                self.u8(1);
-                self.u32(h);
-                self.f64(v);
-            }
-            None => self.u8(0),
-        }
+        self.option(s.length_offset, |w, (h, v)| {
+            w.u32(h);
+            w.f64(v);
+        });
         self.f64(s.feed);
         self.f64(s.spindle_rpm);
         self.u64(s.executed);
@@ -491,6 +456,14 @@ impl Reader<'_> {
         Some(Vec3::new(self.f32()?, self.f32()?, self.f32()?))
     }
 
+    /// `None` after a 0, else the value `read` reads.
+    fn option<T>(&mut self, read: impl FnOnce(&mut Self) -> Option<T>) -> Option<Option<T>> {
+        match self.u8()? {
+            0 => Some(None),
+            _ => read(self).map(Some),
+        }
+    }
+
     /// `n` values read by `read` (a count past what the head holds fails as it runs out).
     fn many<T>(&mut self, mut read: impl FnMut(&mut Self) -> Option<T>) -> Option<Vec<T>> {
         let n = self.len()?;
@@ -534,20 +507,14 @@ impl Reader<'_> {
         })?;
         let blocks = self.len()?;
         let motions = self.len()?;
-        let bounds = match self.u8()? {
-            0 => None,
-            _ => Some((self.dvec3()?, self.dvec3()?)),
-        };
+        let bounds = self.option(|r| Some((r.dvec3()?, r.dvec3()?)))?;
         let stats = Stats {
             blocks,
             motions,
             bounds,
             estimated_secs: self.f64()?,
         };
-        let bounds = match self.u8()? {
-            0 => None,
-            _ => Some((self.vec3()?, self.vec3()?)),
-        };
+        let bounds = self.option(|r| Some((r.vec3()?, r.vec3()?)))?;
         let drawing = Drawing {
             bounds,
             zero: self.vec3()?,
@@ -570,17 +537,13 @@ impl Reader<'_> {
                 lines: r.u32()?,
             })
         })?;
-        let hint = match self.u8()? {
-            0 => None,
-            _ => Some(DialectHint {
-                from: self.str()?.parse().ok()?,
-                to: self.str()?.parse().ok()?,
-                first: match self.u8()? {
-                    0 => None,
-                    _ => Some((self.str()?, self.u32()?)),
-                },
-            }),
-        };
+        let hint = self.option(|r| {
+            Some(DialectHint {
+                from: r.str()?.parse().ok()?,
+                to: r.str()?.parse().ok()?,
+                first: r.option(|r| Some((r.str()?, r.u32()?)))?,
+            })
+        })?;
         Some(Results {
             generation,
             problems,
@@ -602,22 +565,18 @@ impl Reader<'_> {
         let upto = self.len()?;
         let done = self.len()?;
         let whole = self.u8()? != 0;
-        let field = match self.u8()? {
-            0 => None,
-            _ => Some(StockField {
-                size: (self.len()?, self.len()?),
-                cell_mm: self.f64()?,
-                min: self.dvec3()?,
-                top: self.f64()?,
+        let field = self.option(|r| {
+            Some(StockField {
+                size: (r.len()?, r.len()?),
+                cell_mm: r.f64()?,
+                min: r.dvec3()?,
+                top: r.f64()?,
                 heights: Vec::new(),
-            }),
-        };
+            })
+        })?;
         let rapids = self.many(|r| Some((r.len()?, [r.f64()?, r.f64()?])))?;
         let problems = self.many(Self::problem)?;
-        let error = match self.u8()? {
-            0 => None,
-            _ => Some(self.str()?),
-        };
+        let error = self.option(Self::str)?;
         Some(Box::new(StockCut {
             generation,
             upto,
@@ -638,10 +597,7 @@ impl Reader<'_> {
             work_offset_name: self.str()?,
             work_offset: self.dvec3()?,
             tool: self.u32()?,
-            length_offset: match self.u8()? {
-                0 => None,
-                _ => Some((self.u32()?, self.f64()?)),
-            },
+            length_offset: self.option(|r| Some((r.u32()?, r.f64()?)))?,
             feed: self.f64()?,
             spindle_rpm: self.f64()?,
             executed: self.u64()?,

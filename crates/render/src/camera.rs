@@ -6,7 +6,7 @@
 
 use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_to_mat4;
-use glam::{Mat4, Vec2, Vec3};
+use glam::{BVec3, Mat4, Vec2, Vec3};
 
 /// Smallest allowed orbit distance, so zooming in can never collapse the view to a point.
 pub const MIN_DISTANCE: f32 = 1.0e-4;
@@ -98,8 +98,13 @@ impl Default for OrbitCamera {
     }
 }
 
+/// The eight corners of the box `min..max`.
+pub(crate) fn corners(min: Vec3, max: Vec3) -> impl Iterator<Item = Vec3> {
+    (0..8).map(move |i| Vec3::select(BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0), max, min))
+}
+
 /// Returns `value` if finite, else `fallback`.
-fn finite_or(value: f32, fallback: f32) -> f32 {
+pub(crate) fn finite_or(value: f32, fallback: f32) -> f32 {
     if value.is_finite() { value } else { fallback }
 }
 
@@ -169,11 +174,7 @@ impl OrbitCamera {
     /// World units per screen pixel at the target's depth, for a viewport `height_px` tall.
     #[must_use]
     pub fn units_per_px(&self, height_px: f32) -> f32 {
-        let height_px = if height_px.is_finite() && height_px >= 1.0 {
-            height_px
-        } else {
-            1.0
-        };
+        let height_px = finite_or(height_px, 1.0).max(1.0);
         2.0 * self.dist() * (self.fov() * 0.5).tan() / height_px
     }
 
@@ -264,12 +265,7 @@ impl OrbitCamera {
         free_max: Vec2,
     ) -> bool {
         let view_proj = self.view_proj(viewport_px.x / viewport_px.y);
-        (0..8).all(|i| {
-            let corner = Vec3::new(
-                if i & 1 == 0 { min.x } else { max.x },
-                if i & 2 == 0 { min.y } else { max.y },
-                if i & 4 == 0 { min.z } else { max.z },
-            );
+        corners(min, max).all(|corner| {
             let clip = view_proj * corner.extend(1.0);
             if clip.w <= 0.0 {
                 return false;
@@ -300,12 +296,7 @@ impl OrbitCamera {
         let floor = radius * 0.05;
         let (right, up, back) = self.basis();
         let mut needed: f32 = 0.0;
-        for i in 0..8 {
-            let corner = Vec3::new(
-                if i & 1 == 0 { min.x } else { max.x },
-                if i & 2 == 0 { min.y } else { max.y },
-                if i & 4 == 0 { min.z } else { max.z },
-            );
+        for corner in corners(min, max) {
             let offset = corner - center;
             let x = offset.dot(right).abs().max(floor) * FIT_MARGIN;
             let y = offset.dot(up).abs().max(floor) * FIT_MARGIN;

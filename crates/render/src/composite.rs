@@ -1,8 +1,7 @@
 //! Compositing an offscreen [`RenderTarget`] into a render pass that has no depth buffer
 //! (egui's): the 3D view is drawn with depth into its own target, then blitted here.
 
-use std::borrow::Cow;
-
+use crate::gpu::{self, Program, Targets};
 use crate::offscreen::RenderTarget;
 
 /// WGSL source of the compositor (vertex `vs_main`, fragments `fs_main_gamma_framebuffer` and
@@ -25,69 +24,23 @@ impl Compositor {
         target_format: wgpu::TextureFormat,
         sample_count: u32,
     ) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("swarf_composite_shader"),
-            source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(COMPOSITE_WGSL)),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("swarf_composite_bind_group_layout"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+        let layout = gpu::bind_group_layout(
+            device,
+            "swarf_composite_bind_group_layout",
+            wgpu::ShaderStages::FRAGMENT,
+            &[
+                gpu::texture_2d(wgpu::TextureSampleType::Float { filterable: true }),
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("swarf_composite_pipeline_layout"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("swarf_composite_pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState {
-                count: sample_count.max(1),
-                mask: !0,
-                alpha_to_coverage_enabled: false,
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some(if target_format.is_srgb() {
-                    "fs_main_linear_framebuffer"
-                } else {
-                    "fs_main_gamma_framebuffer"
-                }),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: target_format,
-                    blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
+        let targets = Targets {
+            color: target_format,
+            depth: None,
+            samples: sample_count,
+        };
+        let blend = Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING);
+        let pipeline = Program::new(device, "swarf_composite", COMPOSITE_WGSL, &[&layout])
+            .pipeline(device, "main", targets, blend, None);
         // Nearest: the target is drawn one texel per pixel.
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("swarf_composite_sampler"),

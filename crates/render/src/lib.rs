@@ -11,6 +11,7 @@
 
 mod camera;
 mod composite;
+mod gpu;
 mod grid;
 mod lod;
 mod offscreen;
@@ -26,11 +27,10 @@ pub use grid::{grid_points, grid_points_at, nice_step};
 pub use lod::{LOD_TOLERANCE_PX, PathLod, pixels_per_unit, simplify};
 pub use offscreen::{HeadlessGpu, RenderError, RenderTarget};
 pub use path::{
-    ARC_COLOR, BOUNDARY_COLOR, COMPENSATED_COLOR, CYCLE_COLOR, ColorMode, DEPTH_FORMAT,
-    DRAW_UNIFORMS_SIZE, FEED_COLOR, GRID_COLOR, GRID_MAJOR_COLOR, HIGHLIGHT_COLOR, HIGHLIGHT_SLOT,
-    Kind, PATH_WGSL, PLUNGE_COLOR, POINT_SIZE, PROGRAMMED_COLOR, Palette, PathPoint, PathRenderer,
-    RAPID_COLOR, RETRACT_COLOR, UNIFORMS_SIZE, ViewParams, X_AXIS_COLOR, Y_AXIS_COLOR,
-    Z_AXIS_COLOR, ZONE_COLOR, srgba,
+    ARC_COLOR, ColorMode, DEPTH_FORMAT, DRAW_UNIFORMS_SIZE, FEED_COLOR, GRID_MAJOR_COLOR,
+    HIGHLIGHT_COLOR, HIGHLIGHT_SLOT, Kind, PATH_WGSL, POINT_SIZE, PROGRAMMED_COLOR, Palette,
+    PathPoint, PathRenderer, RAPID_COLOR, UNIFORMS_SIZE, ViewParams, Z_AXIS_COLOR, ZONE_COLOR,
+    srgba,
 };
 pub use pick::{Pick, pick_segment, segment_bounds};
 #[cfg(feature = "toolpath")]

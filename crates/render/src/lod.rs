@@ -14,6 +14,7 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec2, Vec3, Vec3A};
 
+use crate::camera::corners;
 use crate::path::{Kind, PathPoint, PathRenderer, ViewParams};
 
 /// Largest distance, in pixels, between the simplified path and the full path on screen.
@@ -148,15 +149,8 @@ pub fn pixels_per_unit(
     let row_x = view_proj.row(0).truncate() * half.x;
     let row_y = view_proj.row(1).truncate() * half.y;
     let row_w = view_proj.row(3);
-    let w_min = (0..8)
-        .map(|i| {
-            let corner = Vec3::new(
-                if i & 1 == 0 { min.x } else { max.x },
-                if i & 2 == 0 { min.y } else { max.y },
-                if i & 4 == 0 { min.z } else { max.z },
-            );
-            row_w.dot(corner.extend(1.0))
-        })
+    let w_min = corners(min, max)
+        .map(|corner| row_w.dot(corner.extend(1.0)))
         .fold(f32::INFINITY, f32::min);
     // The largest singular value of the 2×3 screen Jacobian of an affine view, plus what the
     // perspective divide adds on screen (|ndc| ≤ 1), over the nearest depth.
@@ -257,7 +251,14 @@ impl PathLod {
                 .uploaded
                 .as_ref()
                 .is_some_and(|u| u.flagged == wanted.flagged);
-            if drawn != self.drawn || !same_flags {
+            // Every point drawn (`drawn` ascends) and none highlighted: the points as they are,
+            // not a copy (a path that does not simplify may be tens of millions of points).
+            if (drawn != self.drawn || !same_flags)
+                && flagged.is_empty()
+                && drawn.len() == self.points.len()
+            {
+                renderer.set_path(device, queue, &self.points);
+            } else if drawn != self.drawn || !same_flags {
                 let mut points: Vec<PathPoint> = drawn
                     .iter()
                     .filter_map(|&i| self.points.get(i as usize).copied())

@@ -94,9 +94,7 @@ impl HeadlessGpu {
             info,
         })
     }
-}
 
-impl HeadlessGpu {
     /// Draws `stock`, `path` (at the level of detail of the view, as the backplot does, see
     /// [`crate::PathLod`]) and `grid` with `params` (its viewport is set to the image size)
     /// into a new `width`×`height` RGBA8 image over an opaque `background` (sRGB bytes), and

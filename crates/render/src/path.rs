@@ -13,11 +13,12 @@
 //! toolpath, since those ranges number toolpath segments and never apply to the grid and marks
 //! drawn from the second stream.
 
-use std::borrow::Cow;
 use std::ops::Range;
 
 use glam::{Mat4, Vec2, Vec3};
 
+use crate::camera::finite_or;
+use crate::gpu::{self, Program, Targets};
 use crate::stock::{StockPass, StockSurface};
 
 /// WGSL source of the path shader (vertex `vs_main`, fragments `fs_main_gamma_framebuffer`
@@ -223,29 +224,13 @@ pub const RAPID_COLOR: [u8; 4] = [235, 170, 40, 255];
 pub const FEED_COLOR: [u8; 4] = [80, 200, 255, 255];
 /// Default colour of arc cutting moves: green.
 pub const ARC_COLOR: [u8; 4] = [120, 230, 140, 255];
-/// Default colour of drilling plunges: red.
-pub const PLUNGE_COLOR: [u8; 4] = [255, 90, 90, 255];
-/// Default colour of retracts out of a hole: pink.
-pub const RETRACT_COLOR: [u8; 4] = [255, 160, 210, 255];
-/// Default colour of other canned-cycle moves: violet.
-pub const CYCLE_COLOR: [u8; 4] = [190, 130, 255, 255];
-/// Default colour of the compensated contour: white.
-pub const COMPENSATED_COLOR: [u8; 4] = [240, 240, 240, 255];
 /// Default colour of the programmed contour overlay: magenta, drawn with short dashes, so it
 /// never reads as a grid line even where it runs along one.
 pub const PROGRAMMED_COLOR: [u8; 4] = [255, 90, 240, 235];
-/// Colour of ordinary grid lines: grey, translucent so it reads on both themes.
-pub const GRID_COLOR: [u8; 4] = [128, 128, 128, 60];
 /// Colour of every tenth grid line.
 pub const GRID_MAJOR_COLOR: [u8; 4] = [128, 128, 128, 130];
-/// Colour of the X axis (red).
-pub const X_AXIS_COLOR: [u8; 4] = [230, 60, 60, 255];
-/// Colour of the Y axis (green).
-pub const Y_AXIS_COLOR: [u8; 4] = [60, 200, 60, 255];
 /// Colour of the Z axis (blue).
 pub const Z_AXIS_COLOR: [u8; 4] = [70, 110, 255, 255];
-/// Colour of outlines (travel box, limits).
-pub const BOUNDARY_COLOR: [u8; 4] = [200, 200, 200, 110];
 /// Colour of G22 stroke limits (protected zones, soft limits).
 pub const ZONE_COLOR: [u8; 4] = [255, 90, 70, 200];
 /// Colour of highlighted (selected) segments: white-yellow.
@@ -258,17 +243,17 @@ impl Default for Palette {
             (Kind::Rapid, RAPID_COLOR),
             (Kind::Feed, FEED_COLOR),
             (Kind::Arc, ARC_COLOR),
-            (Kind::Plunge, PLUNGE_COLOR),
-            (Kind::Retract, RETRACT_COLOR),
-            (Kind::Cycle, CYCLE_COLOR),
-            (Kind::Compensated, COMPENSATED_COLOR),
+            (Kind::Plunge, [255, 90, 90, 255]),
+            (Kind::Retract, [255, 160, 210, 255]),
+            (Kind::Cycle, [190, 130, 255, 255]),
+            (Kind::Compensated, [240, 240, 240, 255]),
             (Kind::Programmed, PROGRAMMED_COLOR),
-            (Kind::Grid, GRID_COLOR),
+            (Kind::Grid, [128, 128, 128, 60]),
             (Kind::GridMajor, GRID_MAJOR_COLOR),
-            (Kind::AxisX, X_AXIS_COLOR),
-            (Kind::AxisY, Y_AXIS_COLOR),
+            (Kind::AxisX, [230, 60, 60, 255]),
+            (Kind::AxisY, [60, 200, 60, 255]),
             (Kind::AxisZ, Z_AXIS_COLOR),
-            (Kind::Boundary, BOUNDARY_COLOR),
+            (Kind::Boundary, [200, 200, 200, 110]),
             (Kind::Zone, ZONE_COLOR),
         ] {
             kinds[kind as usize] = srgba(color);
@@ -369,11 +354,9 @@ impl ViewParams {
     /// Multiplies every width and the dash pattern by `scale` (pixels per point on HiDPI).
     #[must_use]
     pub fn scaled(self, scale: f32) -> Self {
-        let scale = if scale.is_finite() && scale > 0.0 {
-            scale
-        } else {
-            1.0
-        };
+        let scale = Some(scale)
+            .filter(|s| s.is_finite() && *s > 0.0)
+            .unwrap_or(1.0);
         Self {
             line_width_px: self.line_width_px * scale,
             rapid_width_px: self.rapid_width_px * scale,
@@ -431,10 +414,6 @@ const _: () = assert!(size_of::<DrawUniforms>() == 16);
 
 const _: () = assert!(size_of::<Uniforms>() == 640);
 
-fn finite_or(value: f32, fallback: f32) -> f32 {
-    if value.is_finite() { value } else { fallback }
-}
-
 impl Uniforms {
     fn new(params: &ViewParams) -> Self {
         let mut palette = [[0.0; 4]; 32];
@@ -478,16 +457,6 @@ const ROW_POINTS: u64 = 4096;
 
 /// Vertices of one segment's quad: two triangles (a list, so no segment joins the next).
 const QUAD_VERTICES: u32 = 6;
-
-/// Texels per row and most points one texture may hold on `device`, at most `u32::MAX`.
-fn texture_shape(device: &wgpu::Device) -> (u64, u64) {
-    let side = u64::from(device.limits().max_texture_dimension_2d).max(2);
-    let width = ROW_POINTS.min(side);
-    (
-        width,
-        (width * side).min(u64::from(u32::MAX / QUAD_VERTICES)),
-    )
-}
 
 /// One texture of a [`PointBatch`], holding `count` points of the stream, a row at a time.
 struct Chunk {
@@ -580,9 +549,11 @@ impl PointBatch {
     }
 
     /// Texels per row and points per texture on `device` (at least two, so every texture
-    /// holds a segment).
+    /// holds a segment; at most what `u32` vertices draw).
     fn shape(&self, device: &wgpu::Device) -> (u64, u64) {
-        let (width, max) = texture_shape(device);
+        let side = u64::from(device.limits().max_texture_dimension_2d).max(2);
+        let width = ROW_POINTS.min(side);
+        let max = (width * side).min(u64::from(u32::MAX / QUAD_VERTICES));
         let per = self.chunk_limit.map_or(max, |l| l.min(max)).max(2);
         (width.min(per), per)
     }
@@ -632,12 +603,8 @@ impl PointBatch {
                     usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
                     view_formats: &[],
                 });
-                let draw_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("swarf_draw_uniforms"),
-                    size: DRAW_UNIFORMS_SIZE,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
+                let draw_buffer =
+                    gpu::uniform_buffer(device, "swarf_draw_uniforms", DRAW_UNIFORMS_SIZE);
                 let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
                 let draw_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("swarf_draw_bind_group"),
@@ -674,16 +641,6 @@ impl PointBatch {
             self.chunks.push(chunk);
         }
         self.count = total;
-    }
-
-    /// Segments drawn (pen-up ones included): one fewer than the points.
-    fn segments(&self) -> u64 {
-        self.count.saturating_sub(1)
-    }
-
-    /// Bytes of GPU memory allocated.
-    fn allocated_bytes(&self) -> u64 {
-        self.chunks.iter().map(|c| c.capacity() * POINT_SIZE).sum()
     }
 
     fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
@@ -729,30 +686,14 @@ impl PathRenderer {
         depth_format: Option<wgpu::TextureFormat>,
         sample_count: u32,
     ) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("swarf_path_shader"),
-            source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(PATH_WGSL)),
-        });
-        let uniform_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("swarf_path_uniforms"),
-            size: UNIFORMS_SIZE,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let uniform_buffer = gpu::uniform_buffer(device, "swarf_path_uniforms", UNIFORMS_SIZE);
         // Zero-initialised: a zero matrix draws nothing until `prepare`.
-        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("swarf_path_bind_group_layout"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(UNIFORMS_SIZE),
-                },
-                count: None,
-            }],
-        });
+        let bind_group_layout = gpu::bind_group_layout(
+            device,
+            "swarf_path_bind_group_layout",
+            wgpu::ShaderStages::VERTEX_FRAGMENT,
+            &[gpu::uniform(UNIFORMS_SIZE)],
+        );
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("swarf_path_bind_group"),
             layout: &bind_group_layout,
@@ -761,104 +702,43 @@ impl PathRenderer {
                 resource: uniform_buffer.as_entire_binding(),
             }],
         });
-        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("swarf_draw_bind_group_layout"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(DRAW_UNIFORMS_SIZE),
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::VERTEX,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Uint,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+        let draw_layout = gpu::bind_group_layout(
+            device,
+            "swarf_draw_bind_group_layout",
+            wgpu::ShaderStages::VERTEX,
+            &[
+                gpu::uniform(DRAW_UNIFORMS_SIZE),
+                gpu::texture_2d(wgpu::TextureSampleType::Uint),
             ],
-        });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("swarf_path_pipeline_layout"),
-            bind_group_layouts: &[Some(&bind_group_layout), Some(&draw_layout)],
-            immediate_size: 0,
-        });
-        // `part`: the fragments drawn ("main": all, "core" or "edge", see the shader).
-        let pipeline = |label: &'static str, part: &str, depth_write: bool| {
-            let encoding = if color_format.is_srgb() {
-                "linear"
+        );
+        let program = Program::new(
+            device,
+            "swarf_path",
+            PATH_WGSL,
+            &[&bind_group_layout, &draw_layout],
+        );
+        let targets = Targets {
+            color: color_format,
+            depth: depth_format,
+            samples: sample_count,
+        };
+        // `part`: the fragments drawn ("main": all, "core" or "edge", see the shader); the
+        // grid and axes ("main") lose depth ties, so a path lying on them shows.
+        let pipeline = |part: &str, depth_write: bool| {
+            let compare = if part == "main" {
+                wgpu::CompareFunction::Less
             } else {
-                "gamma"
+                wgpu::CompareFunction::LessEqual
             };
-            let fragment = format!("fs_{part}_{encoding}_framebuffer");
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some("vs_main"),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    buffers: &[],
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    strip_index_format: None,
-                    front_face: wgpu::FrontFace::default(),
-                    cull_mode: None,
-                    unclipped_depth: false,
-                    polygon_mode: wgpu::PolygonMode::Fill,
-                    conservative: false,
-                },
-                depth_stencil: depth_format.map(|format| wgpu::DepthStencilState {
-                    format,
-                    depth_write_enabled: Some(depth_write),
-                    // The grid and axes lose ties, so a path lying on them shows.
-                    depth_compare: Some(if part == "main" {
-                        wgpu::CompareFunction::Less
-                    } else {
-                        wgpu::CompareFunction::LessEqual
-                    }),
-                    stencil: wgpu::StencilState::default(),
-                    bias: wgpu::DepthBiasState::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: sample_count.max(1),
-                    mask: !0,
-                    alpha_to_coverage_enabled: false,
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(&fragment),
-                    compilation_options: wgpu::PipelineCompilationOptions::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: color_format,
-                        blend: Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            let depth = Some((depth_write, compare, wgpu::DepthBiasState::default()));
+            let blend = Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING);
+            program.pipeline(device, part, targets, blend, depth)
         };
         Self {
-            core: pipeline("swarf_path_pipeline", "core", true),
-            edge: pipeline("swarf_path_edge_pipeline", "edge", false),
-            overlay: pipeline("swarf_overlay_pipeline", "main", false),
-            stock: StockPass::new(
-                device,
-                &bind_group_layout,
-                color_format,
-                depth_format,
-                sample_count,
-            ),
+            core: pipeline("core", true),
+            edge: pipeline("edge", false),
+            overlay: pipeline("main", false),
+            stock: StockPass::new(device, &bind_group_layout, targets),
             uniform_buffer,
             bind_group,
             draw_layout,
@@ -906,7 +786,7 @@ impl PathRenderer {
     /// `u32::MAX`).
     #[must_use]
     pub fn path_segment_count(&self) -> u32 {
-        u32::try_from(self.path.segments()).unwrap_or(u32::MAX)
+        u32::try_from(self.path.count.saturating_sub(1)).unwrap_or(u32::MAX)
     }
 
     /// Textures the toolpath is split into (one unless it exceeds the largest the device
@@ -916,16 +796,14 @@ impl PathRenderer {
         self.path.chunks.len()
     }
 
-    /// Grid/axes points uploaded.
-    #[must_use]
-    pub fn grid_point_count(&self) -> u32 {
-        u32::try_from(self.grid.count).unwrap_or(u32::MAX)
-    }
-
     /// Bytes of GPU memory allocated for the toolpath points.
     #[must_use]
     pub fn path_buffer_bytes(&self) -> u64 {
-        self.path.allocated_bytes()
+        self.path
+            .chunks
+            .iter()
+            .map(|c| c.capacity() * POINT_SIZE)
+            .sum()
     }
 
     /// Writes the uniforms used by the next [`Self::paint`].

@@ -7,6 +7,8 @@ use std::borrow::Cow;
 
 use glam::DVec3;
 
+use crate::gpu::{self, Program, Targets};
+
 /// WGSL source of the stock shader (vertex `vs_main`, fragments `fs_main_gamma_framebuffer` and
 /// `fs_main_linear_framebuffer`); public so tests can validate it with naga.
 pub const STOCK_WGSL: &str = include_str!("stock.wgsl");
@@ -69,97 +71,29 @@ impl StockPass {
     pub(crate) fn new(
         device: &wgpu::Device,
         frame_layout: &wgpu::BindGroupLayout,
-        color_format: wgpu::TextureFormat,
-        depth_format: Option<wgpu::TextureFormat>,
-        sample_count: u32,
+        targets: Targets,
     ) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("swarf_stock_shader"),
-            source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(STOCK_WGSL)),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("swarf_stock_bind_group_layout"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: wgpu::BufferSize::new(STOCK_UNIFORMS_SIZE),
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::VERTEX,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+        let layout = gpu::bind_group_layout(
+            device,
+            "swarf_stock_bind_group_layout",
+            wgpu::ShaderStages::VERTEX,
+            &[
+                gpu::uniform(STOCK_UNIFORMS_SIZE),
+                gpu::texture_2d(wgpu::TextureSampleType::Float { filterable: false }),
             ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("swarf_stock_pipeline_layout"),
-            bind_group_layouts: &[Some(frame_layout), Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("swarf_stock_pipeline"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: depth_format.map(|format| wgpu::DepthStencilState {
-                format,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::LessEqual),
-                stencil: wgpu::StencilState::default(),
-                bias: wgpu::DepthBiasState {
-                    constant: 8,
-                    slope_scale: 1.0,
-                    clamp: 0.0,
-                },
-            }),
-            multisample: wgpu::MultisampleState {
-                count: sample_count.max(1),
-                mask: !0,
-                alpha_to_coverage_enabled: false,
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some(if color_format.is_srgb() {
-                    "fs_main_linear_framebuffer"
-                } else {
-                    "fs_main_gamma_framebuffer"
-                }),
-                compilation_options: wgpu::PipelineCompilationOptions::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: color_format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("swarf_stock_uniforms"),
-            size: STOCK_UNIFORMS_SIZE,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        );
+        let bias = wgpu::DepthBiasState {
+            constant: 8,
+            slope_scale: 1.0,
+            clamp: 0.0,
+        };
+        let depth = Some((true, wgpu::CompareFunction::LessEqual, bias));
+        let pipeline = Program::new(device, "swarf_stock", STOCK_WGSL, &[frame_layout, &layout])
+            .pipeline(device, "main", targets, None, depth);
         StockPass {
             pipeline,
             layout,
-            uniforms,
+            uniforms: gpu::uniform_buffer(device, "swarf_stock_uniforms", STOCK_UNIFORMS_SIZE),
             mesh: None,
         }
     }

@@ -87,6 +87,8 @@ pub(crate) struct Cut {
     z0: f32,
     /// Tip rise per millimetre along XY.
     m: f32,
+    /// The tool's radius.
+    r: f32,
     /// A vertical move downwards.
     down: bool,
     profile: AnyProfile,
@@ -222,16 +224,8 @@ macro_rules! each_profile {
     };
 }
 
-impl AnyProfile {
-    fn radius(self) -> f32 {
-        each_profile!(self, p => p.radius())
-    }
-}
-
 /// A tool's end, with the constants of one segment's slope.
 trait Profile: Copy {
-    /// The tool's radius.
-    fn radius(self) -> f32;
     /// For each cell of a group, the `u` in `[lo, hi]` where the end is lowest over it.
     fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N];
     /// [`Profile::lowest`] for the cells where it comes without a search, and for each cell
@@ -246,15 +240,11 @@ trait Profile: Copy {
 
 #[derive(Debug, Clone, Copy)]
 struct Flat {
-    r: f32,
     /// The move climbs, so the tip is lowest where it first covers a cell.
     up: bool,
 }
 
 impl Profile for Flat {
-    fn radius(self) -> f32 {
-        self.r
-    }
     #[inline(always)]
     fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
         if self.up { g.lo } else { g.hi }
@@ -273,9 +263,6 @@ struct Ball {
 }
 
 impl Profile for Ball {
-    fn radius(self) -> f32 {
-        self.r
-    }
     #[inline(always)]
     fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
         std::array::from_fn(|l| clamp(g.sc[l] + self.c * g.w[l], g.lo[l], g.hi[l]))
@@ -288,7 +275,6 @@ impl Profile for Ball {
 
 #[derive(Debug, Clone, Copy)]
 struct Cone {
-    r: f32,
     /// Rise per millimetre of radius: `1 / tan(half the point angle)`.
     k: f32,
     /// `−m / √(k² − m²)`: the lowest point's offset along the move over `h`, when the move is
@@ -300,9 +286,6 @@ struct Cone {
 }
 
 impl Profile for Cone {
-    fn radius(self) -> f32 {
-        self.r
-    }
     #[inline(always)]
     fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
         match (self.steep, self.up) {
@@ -321,7 +304,6 @@ impl Profile for Cone {
 
 #[derive(Debug, Clone, Copy)]
 struct Bull {
-    r: f32,
     /// Radius of the flat centre and of the corner, and the inverse of the corner's.
     flat: f32,
     corner: f32,
@@ -359,9 +341,6 @@ impl Bull {
 }
 
 impl Profile for Bull {
-    fn radius(self) -> f32 {
-        self.r
-    }
     /// The end's height is convex in `u`: the search halves the range where it stops falling.
     #[inline(always)]
     fn lowest<const N: usize>(self, g: &Group<N>) -> [f32; N] {
@@ -517,12 +496,12 @@ impl HeightField {
             c: -m / (1.0 + m * m).sqrt(),
         };
         let profile = match tool.shape {
-            Shape::Flat => AnyProfile::Flat(Flat { r, up }),
+            Shape::Flat => AnyProfile::Flat(Flat { up }),
             Shape::Ball => AnyProfile::Ball(ball),
             Shape::Bull { corner_radius } => {
                 let corner = (corner_radius as f32).min(r);
                 if corner <= 1e-6 {
-                    AnyProfile::Flat(Flat { r, up })
+                    AnyProfile::Flat(Flat { up })
                 } else if corner >= r * (1.0 - 1e-6) {
                     AnyProfile::Ball(ball)
                 } else {
@@ -539,7 +518,6 @@ impl HeightField {
                         ((range / delta).log2().ceil() - 1.0).clamp(1.0, 30.0) as u32
                     };
                     AnyProfile::Bull(Bull {
-                        r,
                         flat: r - corner,
                         corner,
                         inv_corner: 1.0 / corner,
@@ -557,10 +535,10 @@ impl HeightField {
                 } else {
                     -m / (k * k - m * m).sqrt()
                 };
-                AnyProfile::Cone(Cone { r, k, c, steep, up })
+                AnyProfile::Cone(Cone { k, c, steep, up })
             }
         };
-        let reach = Reach::of(profile, m, len, checked);
+        let reach = Reach::of(profile, f64::from(r), m, len, checked);
         // Past the radius `ρ` where the corner is as steep as the move, the corner under a
         // cell beyond an end rises away from it faster than the move falls unless the cell
         // lies less than `β(r) = |m|·r / tan φ` past the line across the end (`sin φ = (r −
@@ -583,6 +561,7 @@ impl HeightField {
             len,
             z0: start.z as f32,
             m,
+            r,
             down: b.z < a.z,
             profile,
             reach,
@@ -759,12 +738,11 @@ impl<P: Profile> Sweeper<'_, P> {
 }
 
 impl Reach {
-    /// The reach of `profile` on a move of slope `m` and XY length `len`. A checked move is
+    /// The reach of `profile`, of radius `r`, on a move of slope `m` and XY length `len`. A checked move is
     /// given none but for the cells behind its start where the tool only rises as it leaves,
     /// so that it cuts and checks every other cell as a lone move would.
-    fn of(profile: AnyProfile, m: f32, len: f64, checked: bool) -> Reach {
+    fn of(profile: AnyProfile, r: f64, m: f32, len: f64, checked: bool) -> Reach {
         let all = f64::INFINITY;
-        let r = f64::from(profile.radius());
         // Descending, the tool is lowest at the start over cells more than `lead` behind it,
         // and at the end over cells past it or within `near` of it; climbing, the other way.
         let ends = |lead: f64, near: f64| {
@@ -846,7 +824,7 @@ impl Cut {
         if self.checked || next.checked {
             return;
         }
-        let r = f64::from(self.profile.radius());
+        let r = f64::from(self.r);
         let ([ex, ey], [fx, fy]) = (self.e, next.e);
         let turn = if ex * fx + ey * fy >= 0.0 {
             r * (ex * fy - ey * fx).abs()
@@ -878,7 +856,7 @@ impl Cut {
     /// that end, beyond its wedge: as far as the tool can come lower than at the end, and over
     /// the neighbour's hole.
     fn keep(&self, side: usize, s: f64) -> f64 {
-        let r = f64::from(self.profile.radius());
+        let r = f64::from(self.r);
         let taper = match self.taper {
             Some(taper) => taper
                 .iter()
@@ -904,7 +882,7 @@ impl Cut {
         ny: usize,
         mut each: impl FnMut(usize, usize, usize, [f64; 4]),
     ) {
-        let r = f64::from(self.profile.radius());
+        let r = f64::from(self.r);
         let back = -(self.behind + MARGIN).min(r + MARGIN);
         let front = self.len + (self.ahead + MARGIN).min(r + MARGIN);
         // In the frame that has the runs along its X, with `n` cells along them and `lines`
@@ -1001,7 +979,7 @@ impl<P: Profile> Sweep<P> {
     fn new(cut: &Cut, profile: P) -> Self {
         Sweep {
             profile,
-            r2: profile.radius() * profile.radius(),
+            r2: cut.r * cut.r,
             z0: cut.z0,
             m: cut.m,
             len: cut.len as f32,

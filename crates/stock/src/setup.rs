@@ -64,22 +64,15 @@ impl StockSetup {
             diameter,
             ..Tool::default()
         });
-        match from_register.filter(|tool| tool.check().is_ok()) {
-            Some(tool) => (
-                tool,
-                Some(format!(
-                    "{missing}: cut as a {} mm flat end mill, twice register {number}'s radius",
-                    tool.diameter
-                )),
-            ),
-            None => (
-                Tool::default(),
-                Some(format!(
-                    "{missing}: cut as a {} mm flat end mill",
-                    Tool::default().diameter
-                )),
-            ),
-        }
+        let (tool, how) = match from_register.filter(|tool| tool.check().is_ok()) {
+            Some(tool) => (tool, format!(", twice register {number}'s radius")),
+            None => (Tool::default(), String::new()),
+        };
+        let note = format!(
+            "{missing}: cut as a {} mm flat end mill{how}",
+            tool.diameter
+        );
+        (tool, Some(note))
     }
 }
 

@@ -52,13 +52,6 @@ pub enum Finding {
 }
 
 impl Finding {
-    /// The segment the finding is about.
-    pub fn segment(&self) -> usize {
-        match *self {
-            Finding::RapidIntoStock { segment, .. } | Finding::ShankCut { segment, .. } => segment,
-        }
-    }
-
     /// The 1-based source line of its segment.
     pub fn line(&self) -> u32 {
         match *self {
