@@ -6,6 +6,8 @@
 # the diagnostics the run printed, in order) and exits 1 when a run takes more than LIMIT_MB
 # (1000 MB) of memory.
 #   scripts/bench-hostile.sh            (about two minutes on a 2-core machine)
+#   scripts/bench-hostile.sh --web      (the web page's and its worker's wasm memory instead,
+#                                        tests/e2e/bench-hostile-web.mjs; build the page first)
 # The programs are generated into a temporary folder, removed at the end; the plain release
 # build (`cargo build --release -p swarf-cli`) runs them, each command under TIMEOUT (120) s.
 set -uo pipefail
@@ -13,8 +15,10 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 limit_mb=${LIMIT_MB:-1000}
 timeout_s=${TIMEOUT:-120}
 target=${CARGO_TARGET_DIR:-$root/target}
+web=0
+[[ ${1:-} == --web ]] && web=1
 
-(cd "$root" && cargo build -q --release -p swarf-cli --bin swarf) || exit 2
+((web)) || (cd "$root" && cargo build -q --release -p swarf-cli --bin swarf) || exit 2
 swarf=$target/release/swarf
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
@@ -96,6 +100,16 @@ largest largest-holes.nc "an endless loop of G81 holes" \
   'G00 Z10.\nG99 G81 X0 Y0 Z-1. R1. F100\nWHILE [1 EQ 1] DO1\nX1.\nX0\nEND1\n'
 largest largest-moves.nc "an endless loop of moves" \
   'G01 F100\nWHILE [1 EQ 1] DO1\nX1.\nX0\nEND1\n'
+
+if ((web)); then
+  for name in "${names[@]}"; do
+    setup=
+    [[ $name == overtravel.nc ]] && setup=travel.toml
+    printf '%s\t%s\t%s\n' "$name" "${what[$name]}" "$setup"
+  done > "$dir/programs.tsv"
+  node "$root/tests/e2e/bench-hostile-web.mjs" "$dir"
+  exit
+fi
 
 echo "| program | command | wall s | peak RSS MB | diagnostics (codes, in order) |"
 echo "|---|---|---|---|---|"

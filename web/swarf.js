@@ -11,7 +11,8 @@
 //   window.swarf.selection();          // {start, end, text, start_line, end_line}
 //   await window.swarf.idle();         // the current text's analysis is finished and drawn
 //   window.swarf.diagnostics();        // [{line, col, severity, code, message}, ...] shown now
-//   window.swarf.stats();              // {blocks, motions, bounds: {min, max} | null} shown now
+//   window.swarf.stats();              // {blocks, motions, bounds: {min, max} | null} shown now,
+//                                      // and wasm_bytes: {page, worker} (the wasm memories)
 //   window.swarf.project([x, y, z]);   // [px, py]: where the backplot drew that point, or null
 //   window.swarf.widget("find_next");  // {x, y, width, height}: where a widget was drawn, or null
 //   window.swarf.setLanguage("zh-Hans"); // interface language: "en", "zh-Hans" or "zh-Hant"

@@ -13,9 +13,13 @@ const early = [];
 const pieces = new MessageChannel();
 let queued = false;
 
+let memory = null;
+
+// Each reply is followed by the size of the worker's wasm memory (the page's `stats()`).
 function post(reply) {
   if (reply !== undefined) {
     self.postMessage(reply, reply);
+    self.postMessage(memory.buffer.byteLength);
   }
 }
 
@@ -46,7 +50,8 @@ self.onmessage = (event) => {
 };
 
 wasm_bindgen({ module_or_path: "./swarf_worker_bg.wasm" }).then(
-  () => {
+  (wasm) => {
+    memory = wasm.memory;
     analysis = new wasm_bindgen.Analysis();
     early.splice(0).forEach(take);
   },

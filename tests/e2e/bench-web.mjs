@@ -5,7 +5,8 @@
 // and a frame showing it painted, with the longest gap between frames meanwhile against the
 // longest while the empty page repaints; and before it, the same keystroke in a 20-line and in
 // a 10,000-line program, timed the same way; the page and worker's memory with the long program
-// open, and npm's gcode-preview given it in the same browser (`peer.mjs`). Headless Chromium
+// open (with the two wasm memories and the page's JavaScript heap apart, and again once the
+// page's garbage is collected), and npm's gcode-preview given it in the same browser (`peer.mjs`). Headless Chromium
 // (WebGL2 through SwiftShader).
 // Build first with `cargo xtask web`, then run:
 //   node tests/e2e/bench-web.mjs [LINES]        (default 1000000)
@@ -120,7 +121,7 @@ function rendererMb(session) {
 
 const session = await BrowserSession.start({
   headless: true,
-  args: ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader"],
+  args: ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader", "--enable-precise-memory-info"],
 });
 try {
   const wasm = session.page.waitForResponse((r) => r.url().endsWith("/swarf_app_bg.wasm"));
@@ -152,6 +153,17 @@ try {
   }, ["surfacing.nc", text]);
   const openGap = Math.max(...(await frameGaps(session.page, result.opened)));
   const memoryMb = rendererMb(session);
+  const parts = await session.page.evaluate(() => ({
+    ...window.swarf.stats().wasm_bytes,
+    js: performance.memory.usedJSHeapSize,
+  }));
+  const partsMb = [parts.page, parts.worker, parts.js].map((b) => Math.round(b / 2 ** 20));
+  // The page's garbage (the text as the caller's string, its copies on the way in) collected.
+  const cdp = await session.page.context().newCDPSession(session.page);
+  await cdp.send("HeapProfiler.collectGarbage");
+  await session.page.waitForTimeout(1000);
+  const collectedMb = rendererMb(session);
+  const collectedJs = await session.page.evaluate(() => performance.memory.usedJSHeapSize);
   const peerMs = await gcodePreviewMs(session.context, text);
   if (result.ms >= 0 && result.motions < lines) {
     throw new Error(`idle() resolved with ${result.motions} moves shown, not ${lines}`);
@@ -180,6 +192,12 @@ try {
   );
   console.log(
     `| page and worker resident memory with that program open (the renderer process) | ${Math.round(memoryMb)} MB |`,
+  );
+  console.log(
+    `| of which: the page's wasm memory / the worker's / the page's JavaScript heap in use | ${partsMb.join(" MB / ")} MB |`,
+  );
+  console.log(
+    `| the same once the page's garbage is collected: resident / the page's JavaScript heap | ${Math.round(collectedMb)} MB / ${Math.round(collectedJs / 2 ** 20)} MB |`,
   );
   console.log(
     `| npm gcode-preview 2.18 (three.js) on the same program, to its first frame | ${Math.round(peerMs)} ms (${(peerMs / result.ms).toFixed(1)}× Swarf's time) |`,

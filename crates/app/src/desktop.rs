@@ -128,31 +128,9 @@ impl Host {
         }
     }
 
-    /// Reads a dropped file and opens it in a tab.
+    /// Opens a file dropped on the window in a tab.
     pub fn open_dropped(&mut self, wb: &mut Workbench, file: &egui::DroppedFileHandle) {
-        let path = file.path().to_path_buf();
-        if let Some(why) = std::fs::metadata(&path)
-            .ok()
-            .and_then(|m| files::too_large(m.len()))
-        {
-            wb.set_message(format!("Cannot open {}: {why}", path.display()));
-            return;
-        }
-        match file.bytes() {
-            Ok(bytes) => {
-                let decoded = swarf_syntax::decode(&bytes);
-                let full = path.display().to_string();
-                files::push_recent(&mut self.recent, full.clone());
-                wb.set_recent(self.recent.clone());
-                wb.open_guarded(
-                    &file_name(&path),
-                    decoded.text,
-                    decoded.encoding,
-                    Some(full),
-                );
-            }
-            Err(e) => wb.set_message(format!("Cannot open {}: {e}", path.display())),
-        }
+        self.open_path(wb, file.path());
     }
 
     /// Nothing arrives later on the desktop (dialogs answer at once); the web host reads picked
@@ -168,6 +146,7 @@ impl Host {
         }
     }
 
+    /// Carries out one request; false when the user cancelled its dialog.
     fn handle_one(
         &mut self,
         wb: &mut Workbench,
@@ -280,7 +259,7 @@ impl Host {
                         wb.document().encoding.name()
                     ));
                 }
-                self.sync_recovery(wb);
+                self.write_recovery(wb);
                 true
             }
             Err(e) => {
@@ -300,28 +279,19 @@ impl Host {
         }
     }
 
-    /// Writes the recovery records now when a tab has unsaved changes, removes them otherwise.
-    fn sync_recovery(&mut self, wb: &mut Workbench) {
-        if wb.any_dirty() {
-            self.write_recovery(wb);
-        } else {
-            self.clear_recovery();
-        }
-    }
-
     /// Brings the recovery folder up to date now (also on exit with unsaved changes): a file
     /// for each tab whose text changed since it was written and must be kept (unsaved, or with
     /// no file to read it again from), then the index of the tabs, then the files it no longer
-    /// names are removed. A tab whose text could not be written is named in the status bar,
-    /// and written again at the next change.
+    /// names are removed; with nothing unsaved, it is emptied. A tab whose text could not be
+    /// written is named in the status bar, and written again at the next change.
     pub fn write_recovery(&mut self, wb: &mut Workbench) {
         self.clock.restart();
-        // Quitting with the changes discarded (or saved): nothing to recover.
-        if self.quitting {
-            return;
-        }
         if !wb.any_dirty() {
             self.clear_recovery();
+            return;
+        }
+        // Quitting with the changes discarded: nothing to recover.
+        if self.quitting {
             return;
         }
         let (tabs, active) = TabState::of(wb, true);

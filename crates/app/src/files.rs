@@ -607,31 +607,27 @@ pub fn report_lost(wb: &mut Workbench, lost: &[String]) {
     wb.set_message(message);
 }
 
+/// Each encoding's name in the recovery index.
+const ENCODINGS: [(Encoding, &str); 8] = [
+    (Encoding::Utf8, "utf8"),
+    (Encoding::Utf8Bom, "utf8bom"),
+    (Encoding::Gb18030, "gb18030"),
+    (Encoding::Big5, "big5"),
+    (Encoding::Utf16Le, "utf16le"),
+    (Encoding::Utf16Be, "utf16be"),
+    (Encoding::Utf32Le, "utf32le"),
+    (Encoding::Utf32Be, "utf32be"),
+];
+
 fn encoding_name(e: Encoding) -> &'static str {
-    match e {
-        Encoding::Utf8 => "utf8",
-        Encoding::Utf8Bom => "utf8bom",
-        Encoding::Gb18030 => "gb18030",
-        Encoding::Big5 => "big5",
-        Encoding::Utf16Le => "utf16le",
-        Encoding::Utf16Be => "utf16be",
-        Encoding::Utf32Le => "utf32le",
-        Encoding::Utf32Be => "utf32be",
-    }
+    ENCODINGS
+        .iter()
+        .find(|(x, _)| *x == e)
+        .map_or("utf8", |(_, n)| *n)
 }
 
 fn encoding_of(name: &str) -> Option<Encoding> {
-    Some(match name {
-        "utf8" => Encoding::Utf8,
-        "utf8bom" => Encoding::Utf8Bom,
-        "gb18030" => Encoding::Gb18030,
-        "big5" => Encoding::Big5,
-        "utf16le" => Encoding::Utf16Le,
-        "utf16be" => Encoding::Utf16Be,
-        "utf32le" => Encoding::Utf32Le,
-        "utf32be" => Encoding::Utf32Be,
-        _ => return None,
-    })
+    ENCODINGS.iter().find(|(_, n)| *n == name).map(|(e, _)| *e)
 }
 
 #[cfg(test)]

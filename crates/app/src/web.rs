@@ -87,6 +87,11 @@ impl SwarfApi {
         }
     }
 
+    /// What `f` makes of the app, as a JavaScript value.
+    fn json(&self, f: impl FnOnce(&mut SwarfApp) -> Value) -> Result<JsValue, JsValue> {
+        to_js(&self.with_app(f)?)
+    }
+
     /// Replaces the program text; diagnostics and the backplot follow once its analysis, in
     /// the page's worker, is finished (see [`SwarfApi::idle`]).
     pub fn set_text(&self, text: String) -> Result<(), JsValue> {
@@ -108,7 +113,7 @@ impl SwarfApi {
     /// `{start, end, text, start_line, end_line}`: the editor's selection in characters, the
     /// selected text and the 1-based lines it covers.
     pub fn selection(&self) -> Result<JsValue, JsValue> {
-        let value = self.with_app(|app| {
+        self.json(|app| {
             let wb = &app.workbench;
             let range = wb.selection();
             let lines = wb.selected_lines();
@@ -116,8 +121,7 @@ impl SwarfApi {
                 "start": range.start, "end": range.end, "text": wb.selected_text(),
                 "start_line": lines.start(), "end_line": lines.end(),
             })
-        })?;
-        to_js(&value)
+        })
     }
 
     /// `[x, y]`: where the machine point `[x, y, z]` (mm, the frame of `stats().bounds`) was
@@ -149,31 +153,38 @@ impl SwarfApi {
     /// last finished analysis (of an earlier text while a new one runs; see
     /// [`SwarfApi::idle`]).
     pub fn diagnostics(&self) -> Result<JsValue, JsValue> {
-        let list = self.with_app(|app| {
-            app.workbench
-                .problems()
-                .iter()
-                .map(|p| {
-                    json!({
-                        "line": p.line, "col": p.col, "severity": p.severity.as_str(),
-                        "code": p.code, "message": p.message,
-                    })
+        self.json(|app| {
+            let problems = app.workbench.problems().iter().map(|p| {
+                json!({
+                    "line": p.line, "col": p.col, "severity": p.severity.as_str(),
+                    "code": p.code, "message": p.message,
                 })
-                .collect::<Vec<_>>()
-        })?;
-        to_js(&Value::Array(list))
+            });
+            Value::Array(problems.collect())
+        })
     }
 
-    /// `{blocks, motions, bounds: {min, max} | null, estimated_secs}`: the numbers the page
-    /// shows now, those of the last finished analysis (see [`SwarfApi::idle`]).
+    /// `{blocks, motions, bounds: {min, max} | null, estimated_secs, wasm_bytes}`: the numbers
+    /// the page shows now, those of the last finished analysis (see [`SwarfApi::idle`]), and
+    /// the sizes of the page's and the worker's wasm memories (`{page, worker}`, bytes).
     pub fn stats(&self) -> Result<JsValue, JsValue> {
         let s = self.with_app(|app| app.workbench.stats())?;
         let bounds = s
             .bounds
             .map(|(min, max)| json!({"min": min.to_array(), "max": max.to_array()}));
+        let page = wasm_bindgen::memory()
+            .dyn_into::<js_sys::WebAssembly::Memory>()
+            .map_or(0.0, |m| {
+                f64::from(
+                    m.buffer()
+                        .unchecked_into::<js_sys::ArrayBuffer>()
+                        .byte_length(),
+                )
+            });
         to_js(&json!({
             "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
             "estimated_secs": s.estimated_secs,
+            "wasm_bytes": {"page": page, "worker": crate::web_worker::memory_bytes()},
         }))
     }
 
@@ -213,18 +224,17 @@ impl SwarfApi {
 
     /// `{language, cjk_font}`: the interface language's tag and whether the CJK font is in.
     pub fn language(&self) -> Result<JsValue, JsValue> {
-        let value = self.with_app(|app| {
+        self.json(|app| {
             json!({
                 "language": app.workbench.language().code(),
                 "cjk_font": app.workbench.has_cjk_font(),
             })
-        })?;
-        to_js(&value)
+        })
     }
 
     /// `{tabs: [{name, unsaved}], active}`: the open tabs in order and the active one's index.
     pub fn tabs(&self) -> Result<JsValue, JsValue> {
-        let value = self.with_app(|app| {
+        self.json(|app| {
             let wb = &app.workbench;
             let tabs: Vec<Value> = wb
                 .tab_documents()
@@ -232,8 +242,7 @@ impl SwarfApi {
                 .map(|d| json!({"name": d.name, "unsaved": d.is_unsaved()}))
                 .collect();
             json!({"tabs": tabs, "active": wb.active_tab()})
-        })?;
-        to_js(&value)
+        })
     }
 
     /// The status bar's message (a command's result, an error, what was recovered), if any.

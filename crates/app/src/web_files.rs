@@ -31,15 +31,13 @@ const PICKER_ID: &str = "swarf-file-picker";
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Purpose {
     Program,
-    Dropped,
     Setup,
 }
 
-/// The CJK font once fetched (or why it was not), waiting for the next frame.
-type FontSlot = Rc<RefCell<Option<Result<Vec<u8>, String>>>>;
-
 /// What the browser finished while the app waited: a file read, a save done or refused.
 enum Arrival {
+    /// The CJK font fetched, or why it was not.
+    Font(Result<Vec<u8>, String>),
     /// A file read for `Purpose`, with its handle when it came from the File System Access API.
     File(
         Purpose,
@@ -105,8 +103,33 @@ enum Recovery {
 /// The recovery database once opened.
 type DbSlot = Rc<RefCell<Option<web_sys::IdbDatabase>>>;
 
-/// What the browser finished, waiting for the next frame.
-type Inbox = Rc<RefCell<Vec<Arrival>>>;
+/// What the browser finished, waiting for the next frame, and the context to wake for it (set
+/// by the first frame; the recovery read starts before it).
+#[derive(Clone, Default)]
+struct Inbox {
+    arrivals: Rc<RefCell<Vec<Arrival>>>,
+    wake: Rc<RefCell<Option<egui::Context>>>,
+}
+
+impl Inbox {
+    /// Keeps `arrival` for [`Host::poll`] and asks for a frame.
+    fn send(&self, arrival: Arrival) {
+        self.arrivals.borrow_mut().push(arrival);
+        if let Some(ctx) = self.wake.borrow().as_ref() {
+            ctx.request_repaint();
+        }
+    }
+
+    /// Runs `task` in the browser; what it ends with arrives through [`Host::poll`].
+    fn spawn<A: Into<Option<Arrival>>>(&self, task: impl Future<Output = A> + 'static) {
+        let inbox = self.clone();
+        wasm_bindgen_futures::spawn_local(async move {
+            if let Some(arrival) = task.await.into() {
+                inbox.send(arrival);
+            }
+        });
+    }
+}
 
 /// Web file state: files read asynchronously, the handles of files opened or saved through
 /// the File System Access API, and the autosave bookkeeping.
@@ -116,9 +139,6 @@ pub struct Host {
     pub recent: Vec<String>,
     inbox: Inbox,
     clock: AutosaveClock,
-    ctx: Option<egui::Context>,
-    /// The CJK font once fetched (or why it was not).
-    font: FontSlot,
     /// File handles by the key kept as their tab's document path.
     handles: HashMap<String, web_sys::FileSystemFileHandle>,
     /// Handles given out so far, for unique keys.
@@ -129,9 +149,6 @@ pub struct Host {
     recovery: Recovery,
     /// The recovery database once opened.
     db: DbSlot,
-    /// The context to wake when the recovery records were read (the read starts before the
-    /// first frame hands the context over).
-    wake: Rc<RefCell<Option<egui::Context>>>,
     /// Whether the records must be brought up to date once the read or write under way is
     /// done (a save came meanwhile).
     again: bool,
@@ -159,7 +176,8 @@ impl Host {
     pub fn recover(&mut self) {
         self.recovery = Recovery::Reading;
         let db = self.db.clone();
-        self.spawn_woken(async move { Arrival::Recovered(read_recovery(&db).await) });
+        self.inbox
+            .spawn(async move { Arrival::Recovered(read_recovery(&db).await) });
     }
 
     /// Shows the tabs read from the recovery records: in place of the workbench's, or beside
@@ -211,25 +229,20 @@ impl Host {
     /// Reads a file dropped on the page; it opens in a tab when the browser has read it.
     pub fn open_dropped(&mut self, _wb: &mut Workbench, file: &egui::DroppedFileHandle) {
         let file = file.clone();
-        let inbox = self.inbox.clone();
-        let ctx = self.ctx.clone();
-        wasm_bindgen_futures::spawn_local(async move {
+        self.inbox.spawn(async move {
             let name = file.path().file_name().map_or_else(
                 || "dropped.nc".to_string(),
                 |n| n.to_string_lossy().into_owned(),
             );
             match file.bytes_async().await {
-                Ok(bytes) => {
-                    let arrival = match files::too_large(bytes.len() as u64) {
-                        Some(why) => Arrival::Message(format!("Cannot open {name}: {why}")),
-                        None => Arrival::File(Purpose::Dropped, name, bytes, None),
-                    };
-                    inbox.borrow_mut().push(arrival);
-                    if let Some(ctx) = ctx {
-                        ctx.request_repaint();
-                    }
+                Ok(bytes) => Some(match files::too_large(bytes.len() as u64) {
+                    Some(why) => Arrival::Message(format!("Cannot open {name}: {why}")),
+                    None => Arrival::File(Purpose::Program, name, bytes, None),
+                }),
+                Err(e) => {
+                    log::warn!("cannot read {name}: {e}");
+                    None
                 }
-                Err(e) => log::warn!("cannot read {name}: {e}"),
             }
         });
     }
@@ -237,31 +250,26 @@ impl Host {
     /// Hands what the browser has finished (files read, saves written or refused) to the
     /// workbench.
     pub fn poll(&mut self, wb: &mut Workbench) {
-        let font = self.font.borrow_mut().take();
-        match (font, &self.ctx) {
-            (Some(Ok(bytes)), Some(ctx)) => {
-                wb.add_cjk_font(ctx, bytes);
-            }
-            (Some(Ok(_)), None) => wb.cjk_font_failed("no context"),
-            (Some(Err(e)), _) => wb.cjk_font_failed(&e),
-            (None, _) => {}
-        }
-        let arrived: Vec<_> = self.inbox.borrow_mut().drain(..).collect();
+        let arrived: Vec<_> = self.inbox.arrivals.borrow_mut().drain(..).collect();
         for arrival in arrived {
             match arrival {
+                Arrival::Font(Ok(bytes)) => match self.inbox.wake.borrow().as_ref() {
+                    Some(ctx) => {
+                        wb.add_cjk_font(ctx, bytes);
+                    }
+                    None => wb.cjk_font_failed("no context"),
+                },
+                Arrival::Font(Err(e)) => wb.cjk_font_failed(&e),
                 Arrival::File(Purpose::Program, name, bytes, handle) => {
-                    let decoded = swarf_syntax::decode(&bytes);
+                    // The bytes become the text (a 256 MiB file is not held twice).
+                    let decoded = swarf_syntax::decode_owned(bytes);
                     let key = handle.map(|h| self.keep_handle(&name, h));
                     wb.open_file(&name, decoded.text, decoded.encoding, key);
                 }
                 Arrival::Reopened { name, bytes, key } => {
                     // The tab that has the file comes back (re-read when nothing is unsaved).
-                    let decoded = swarf_syntax::decode(&bytes);
+                    let decoded = swarf_syntax::decode_owned(bytes);
                     wb.open_file(&name, decoded.text, decoded.encoding, Some(key));
-                }
-                Arrival::File(Purpose::Dropped, name, bytes, _) => {
-                    let decoded = swarf_syntax::decode(&bytes);
-                    wb.open_guarded(&name, decoded.text, decoded.encoding, None);
                 }
                 Arrival::File(Purpose::Setup, name, bytes, _) => {
                     let text = String::from_utf8_lossy(&bytes);
@@ -282,7 +290,7 @@ impl Host {
                             wb.set_path(Some(key));
                         }
                         wb.mark_saved(&name);
-                        self.after_save(wb);
+                        self.write_recovery(wb);
                     } else {
                         wb.set_message(format!(
                             "Saved {name} as it was when saving began; later changes are not in it"
@@ -316,27 +324,10 @@ impl Host {
         key
     }
 
-    /// The recovery records after a save: kept while another tab has unsaved changes.
-    fn after_save(&mut self, wb: &mut Workbench) {
-        self.sync_recovery(wb);
-    }
-
-    /// Brings the recovery records up to date now (written while a tab has unsaved changes,
-    /// removed otherwise), or once the read or write under way is done.
-    fn sync_recovery(&mut self, wb: &mut Workbench) {
-        if self.recovery != Recovery::Idle {
-            self.again = true;
-        } else if wb.any_dirty() {
-            self.write_recovery(wb);
-        } else {
-            self.clear_recovery();
-        }
-    }
-
     /// Catches up with a save made while the records were being read or written.
     fn catch_up(&mut self, wb: &mut Workbench) {
         if std::mem::take(&mut self.again) {
-            self.sync_recovery(wb);
+            self.write_recovery(wb);
         }
     }
 
@@ -345,7 +336,7 @@ impl Host {
         match download(name, bytes) {
             Ok(()) => {
                 wb.mark_saved(name);
-                self.after_save(wb);
+                self.write_recovery(wb);
             }
             Err(e) => wb.set_message(format!("Cannot download {name}: {e:?}")),
         }
@@ -360,22 +351,10 @@ impl Host {
             .and_then(|key| self.handles.get(key))
             .cloned();
         match handle {
+            // The tab keeps its handle (and key).
             Some(handle) => {
-                let name = handle.name();
-                let bytes = encoded(wb);
-                let (tab, generation) = (wb.active_tab(), wb.generation());
-                self.spawn(async move {
-                    match write_file(&handle, &bytes).await {
-                        // The tab keeps its handle (and key).
-                        Ok(()) => Arrival::Saved {
-                            name,
-                            handle: None,
-                            tab,
-                            generation,
-                        },
-                        Err(e) => Arrival::Message(format!("Cannot save {name}: {}", js_error(&e))),
-                    }
-                });
+                let written = save_to(handle, encoded(wb), wb.active_tab(), wb.generation(), false);
+                self.inbox.spawn(written);
             }
             None => self.save_as(wb),
         }
@@ -390,14 +369,9 @@ impl Host {
             self.download_program(wb, &name, &bytes);
             return;
         };
-        let options = js_sys::Object::new();
-        let _ = js_sys::Reflect::set(
-            &options,
-            &JsValue::from_str("suggestedName"),
-            &JsValue::from_str(&name),
-        );
+        let options = js_object(&[("suggestedName", JsValue::from_str(&name))]);
         let (tab, generation) = (wb.active_tab(), wb.generation());
-        self.spawn(async move {
+        self.inbox.spawn(async move {
             let handle = match call_picker(&picker, &options).await {
                 Ok(handle) => handle.unchecked_into::<web_sys::FileSystemFileHandle>(),
                 Err(e) => {
@@ -418,40 +392,13 @@ impl Host {
                     };
                 }
             };
-            let name = handle.name();
-            Some(match write_file(&handle, &bytes).await {
-                Ok(()) => Arrival::Saved {
-                    name,
-                    handle: Some(handle),
-                    tab,
-                    generation,
-                },
-                Err(e) => Arrival::Message(format!("Cannot save {name}: {}", js_error(&e))),
-            })
-        });
-    }
-
-    /// Runs `task` in the browser; what it ends with arrives through [`Host::poll`].
-    fn spawn<A>(&self, task: impl std::future::Future<Output = A> + 'static)
-    where
-        A: Into<Option<Arrival>>,
-    {
-        let inbox = self.inbox.clone();
-        let ctx = self.ctx.clone();
-        wasm_bindgen_futures::spawn_local(async move {
-            if let Some(arrival) = task.await.into() {
-                inbox.borrow_mut().push(arrival);
-                if let Some(ctx) = ctx {
-                    ctx.request_repaint();
-                }
-            }
+            Some(save_to(handle, bytes, tab, generation, true).await)
         });
     }
 
     /// Carries out the workbench's file requests: pickers and downloads.
     pub fn handle(&mut self, wb: &mut Workbench, ctx: &egui::Context) {
-        self.ctx = Some(ctx.clone());
-        *self.wake.borrow_mut() = Some(ctx.clone());
+        *self.inbox.wake.borrow_mut() = Some(ctx.clone());
         for request in wb.take_requests() {
             match request {
                 HostRequest::Open | HostRequest::OpenRecent(_) => self.pick_program(),
@@ -466,26 +413,16 @@ impl Host {
                         wb.set_message(format!("Cannot export the setup: {e}"));
                     }
                 }
-                HostRequest::LoadCjkFont => self.fetch_cjk_font(),
+                HostRequest::LoadCjkFont => self.inbox.spawn(async {
+                    let result = fetch_bytes(CJK_FONT_URL).await;
+                    if let Err(e) = &result {
+                        log::warn!("cannot load {CJK_FONT_URL}: {e}");
+                    }
+                    Arrival::Font(result)
+                }),
                 HostRequest::Quit => {}
             }
         }
-    }
-
-    /// Fetches the CJK font; it is handed to the workbench by [`Host::poll`].
-    fn fetch_cjk_font(&self) {
-        let slot = self.font.clone();
-        let ctx = self.ctx.clone();
-        wasm_bindgen_futures::spawn_local(async move {
-            let result = fetch_bytes(CJK_FONT_URL).await;
-            if let Err(e) = &result {
-                log::warn!("cannot load {CJK_FONT_URL}: {e}");
-            }
-            *slot.borrow_mut() = Some(result);
-            if let Some(ctx) = ctx {
-                ctx.request_repaint();
-            }
-        });
     }
 
     /// Opens the browser's file picker for a program; the chosen file arrives through
@@ -498,31 +435,24 @@ impl Host {
             self.pick(Purpose::Program, &PROGRAM_EXTENSIONS.join(","));
             return;
         };
-        let options = js_sys::Object::new();
-        let accept = js_sys::Object::new();
         let extensions: js_sys::Array = PROGRAM_EXTENSIONS
             .iter()
             .map(|e| JsValue::from_str(e))
             .collect();
-        let _ = js_sys::Reflect::set(&accept, &JsValue::from_str("text/plain"), &extensions);
-        let program_type = js_sys::Object::new();
-        let _ = js_sys::Reflect::set(
-            &program_type,
-            &JsValue::from_str("description"),
-            &JsValue::from_str("G-code programs"),
-        );
-        let _ = js_sys::Reflect::set(&program_type, &JsValue::from_str("accept"), &accept);
-        let _ = js_sys::Reflect::set(
-            &options,
-            &JsValue::from_str("types"),
-            &js_sys::Array::of1(&program_type),
-        );
+        let program_type = js_object(&[
+            ("description", JsValue::from_str("G-code programs")),
+            (
+                "accept",
+                js_object(&[("text/plain", extensions.into())]).into(),
+            ),
+        ]);
+        let options = js_object(&[("types", js_sys::Array::of1(&program_type).into())]);
         let known: Vec<_> = self
             .handles
             .iter()
             .map(|(key, handle)| (key.clone(), handle.clone()))
             .collect();
-        self.spawn(async move {
+        self.inbox.spawn(async move {
             let picked = match call_picker(&picker, &options).await {
                 Ok(picked) => picked,
                 Err(e) if js_error_name(&e) == "AbortError" => return None,
@@ -572,33 +502,25 @@ impl Host {
         input.set_type("file");
         input.set_accept(accept);
         let inbox = self.inbox.clone();
-        let ctx = self.ctx.clone();
         let target = input.clone();
         let on_change = Closure::once_into_js(move |_event: web_sys::Event| {
             let Some(file) = target.files().and_then(|f| f.get(0)) else {
                 return;
             };
-            wasm_bindgen_futures::spawn_local(async move {
+            inbox.spawn(async move {
                 let name = file.name();
                 if let Some(why) = files::too_large(file.size() as u64) {
-                    let message = format!("Cannot open {name}: {why}");
-                    inbox.borrow_mut().push(Arrival::Message(message));
-                    if let Some(ctx) = ctx {
-                        ctx.request_repaint();
-                    }
-                    return;
+                    return Some(Arrival::Message(format!("Cannot open {name}: {why}")));
                 }
                 match wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await {
                     Ok(buffer) => {
                         let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
-                        inbox
-                            .borrow_mut()
-                            .push(Arrival::File(purpose, name, bytes, None));
-                        if let Some(ctx) = ctx {
-                            ctx.request_repaint();
-                        }
+                        Some(Arrival::File(purpose, name, bytes, None))
                     }
-                    Err(e) => log::warn!("cannot read {name}: {e:?}"),
+                    Err(e) => {
+                        log::warn!("cannot read {name}: {e:?}");
+                        None
+                    }
                 }
             });
         });
@@ -654,7 +576,7 @@ impl Host {
         let book = self.book.clone();
         let db = self.db.clone();
         self.recovery = Recovery::Writing;
-        self.spawn_woken(async move {
+        self.inbox.spawn(async move {
             let opened = open_db(&db).await;
             let mut results = Vec::with_capacity(writes.len());
             for (write, value) in writes.iter().zip(&values) {
@@ -715,18 +637,26 @@ impl Host {
             });
         }
     }
+}
 
-    /// Runs `task` in the browser; what it ends with arrives through [`Host::poll`], and the
-    /// app is woken for it even before its first frame.
-    fn spawn_woken(&self, task: impl std::future::Future<Output = Arrival> + 'static) {
-        let (inbox, wake) = (self.inbox.clone(), self.wake.clone());
-        wasm_bindgen_futures::spawn_local(async move {
-            let arrival = task.await;
-            inbox.borrow_mut().push(arrival);
-            if let Some(ctx) = wake.borrow().as_ref() {
-                ctx.request_repaint();
-            }
-        });
+/// Writes `bytes` to the file behind `handle` for the tab `tab` active at `generation`; the
+/// tab is to keep the handle when `keep` (a file just picked).
+async fn save_to(
+    handle: web_sys::FileSystemFileHandle,
+    bytes: Vec<u8>,
+    tab: usize,
+    generation: u64,
+    keep: bool,
+) -> Arrival {
+    let name = handle.name();
+    match write_file(&handle, &bytes).await {
+        Ok(()) => Arrival::Saved {
+            name,
+            handle: keep.then_some(handle),
+            tab,
+            generation,
+        },
+        Err(e) => Arrival::Message(format!("Cannot save {name}: {}", js_error(&e))),
     }
 }
 
@@ -816,39 +746,42 @@ async fn transaction_done(tx: &web_sys::IdbTransaction) -> Result<(), JsValue> {
     }
 }
 
-/// Stores `value` under `key` in a transaction of its own, committed when this returns Ok.
-async fn put(db: &web_sys::IdbDatabase, key: &str, value: &JsValue) -> Result<(), String> {
+/// Makes the changes `issue` asks of the store in a transaction of its own, committed when
+/// this returns Ok (aborted when a change cannot be asked).
+async fn write(
+    db: &web_sys::IdbDatabase,
+    issue: impl FnOnce(&web_sys::IdbObjectStore) -> Result<(), JsValue>,
+) -> Result<(), String> {
     let tx = db
         .transaction_with_str_and_mode(STORE, web_sys::IdbTransactionMode::Readwrite)
         .map_err(|e| dom_error(&e))?;
-    let stored = tx
-        .object_store(STORE)
-        .and_then(|store| store.put_with_key(value, &JsValue::from_str(key)));
-    if let Err(e) = stored {
+    if let Err(e) = tx.object_store(STORE).and_then(|store| issue(&store)) {
         let _ = tx.abort();
         return Err(dom_error(&e));
     }
     transaction_done(&tx).await.map_err(|e| dom_error(&e))
 }
 
+/// Stores `value` under `key` in a transaction of its own, committed when this returns Ok.
+async fn put(db: &web_sys::IdbDatabase, key: &str, value: &JsValue) -> Result<(), String> {
+    write(db, |store| {
+        store
+            .put_with_key(value, &JsValue::from_str(key))
+            .map(|_| ())
+    })
+    .await
+}
+
 /// Removes the records `keys`, or every record and the index when `None`.
 async fn delete(slot: &DbSlot, keys: Option<&[String]>) -> Result<(), String> {
     let db = open_db(slot).await?;
-    let tx = db
-        .transaction_with_str_and_mode(STORE, web_sys::IdbTransactionMode::Readwrite)
-        .map_err(|e| dom_error(&e))?;
-    let store = tx.object_store(STORE).map_err(|e| dom_error(&e))?;
-    let issued = match keys {
+    write(&db, |store| match keys {
         Some(keys) => keys
             .iter()
             .try_for_each(|key| store.delete(&JsValue::from_str(key)).map(|_| ())),
         None => store.clear().map(|_| ()),
-    };
-    if let Err(e) = issued {
-        let _ = tx.abort();
-        return Err(dom_error(&e));
-    }
-    transaction_done(&tx).await.map_err(|e| dom_error(&e))
+    })
+    .await
 }
 
 /// Reads the recovery index and the records it names (a record that cannot be read is left
@@ -947,6 +880,15 @@ const PROGRAM_EXTENSIONS: [&str; 8] = [
 /// the encoding cannot hold).
 fn encoded(wb: &Workbench) -> Vec<u8> {
     crate::files::encode(wb.text(), wb.document().encoding).0
+}
+
+/// A JavaScript object with `entries` as its properties.
+fn js_object(entries: &[(&str, JsValue)]) -> js_sys::Object {
+    let object = js_sys::Object::new();
+    for (key, value) in entries {
+        let _ = js_sys::Reflect::set(&object, &JsValue::from_str(key), value);
+    }
+    object
 }
 
 /// `window[name]` when the browser has such a function (the File System Access API's pickers

@@ -14,6 +14,16 @@ use wasm_bindgen::prelude::*;
 /// The script the worker runs, beside the page's own.
 const WORKER_SCRIPT: &str = "./worker.js";
 
+thread_local! {
+    /// The size of the worker's wasm memory, as it last said (bytes).
+    static WORKER_MEMORY: std::cell::Cell<f64> = const { std::cell::Cell::new(0.0) };
+}
+
+/// The size of the worker's wasm memory in bytes, as it last said with a reply.
+pub fn memory_bytes() -> f64 {
+    WORKER_MEMORY.get()
+}
+
 /// What the worker's events leave for the next frame.
 #[derive(Default)]
 struct Inbox {
@@ -42,6 +52,10 @@ impl WorkerAnalyst {
         let on_message = {
             let (inbox, ctx) = (Rc::clone(&inbox), ctx.clone());
             Closure::<dyn FnMut(web_sys::MessageEvent)>::new(move |event: web_sys::MessageEvent| {
+                if let Some(bytes) = event.data().as_f64() {
+                    WORKER_MEMORY.set(bytes);
+                    return;
+                }
                 match read_reply(&event.data()) {
                     Some(reply) => {
                         let progress = reply.is_progress();

@@ -56,6 +56,14 @@ const FOCUS_OUTLINE_POINTS: f32 = 2.0;
 /// Space left between the view's buttons and what a fit frames, in points.
 const FIT_GAP_POINTS: f32 = 4.0;
 
+/// The standard views' buttons, in the order of their keys `1`–`4`.
+const STANDARD_VIEWS: [(&str, StandardView); 4] = [
+    ("Iso", StandardView::Iso),
+    ("Top", StandardView::Top),
+    ("Front", StandardView::Front),
+    ("Right", StandardView::Right),
+];
+
 /// How far from a segment (in points) the cursor may be to pick it.
 pub const PICK_RADIUS: f32 = 6.0;
 
@@ -301,15 +309,16 @@ struct HoverKey {
 }
 
 /// State of one backplot view: camera, selection, playback position and display options.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct Backplot {
     camera: OrbitCamera,
     /// Generation of the last scene shown, to notice new geometry.
     last_generation: Option<u64>,
     /// Whether the last scene shown had geometry (fit again when it reappears).
     had_geometry: bool,
-    /// Fit to the scene's extents on the next frame …
-    fit_pending: bool,
+    /// Whether the last fit asked for is done; if not, fit to the scene's extents on the next
+    /// frame …
+    fitted: bool,
     /// … or, when set, once the scene has caught up with [`Self::coming`] (a program just
     /// opened or replaced: the scene on screen is still the one before it).
     fit_waits: bool,
@@ -355,76 +364,21 @@ pub struct Backplot {
     last_id: Option<egui::Id>,
 }
 
-/// The view's buttons as drawn this frame.
-struct Buttons {
-    /// Where the row of buttons lies.
-    rect: egui::Rect,
-    /// Whether one was clicked.
-    clicked: bool,
-}
-
-impl Default for Backplot {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 impl Backplot {
     /// A backplot in the isometric view that fits to the first geometry it is shown.
     #[must_use]
     pub fn new() -> Self {
-        Self {
-            camera: OrbitCamera::new(StandardView::Iso),
-            last_generation: None,
-            had_geometry: false,
-            fit_pending: true,
-            fit_waits: false,
-            coming: None,
-            zoom_to_selection_pending: false,
-            selected_line: None,
-            picked_line: None,
-            executed: None,
-            playback: Playback::new(),
-            playback_line: None,
-            hidden_kinds: 0,
-            color_mode: ColorMode::ByKind,
-            hover: None,
-            stock_hover: None,
-            hover_key: None,
-            stock_on: false,
-            stock_alone: false,
-            stock_asked: None,
-            shown_stock: None,
-            stock_button: None,
-            selection: None,
-            last_rect: None,
-            last_id: None,
-        }
+        Self::default()
     }
 
     /// Registers the GPU resources; call once with eframe's `cc.wgpu_render_state`.
     ///
     /// Assumes egui-wgpu's default render pass (as eframe configures it with the default
     /// `multisampling: 0`): one sample. The 3D view brings its own depth buffer, so eframe's
-    /// `depth_buffer` may stay 0. For other MSAA settings use
-    /// [`Self::install_with_sample_count`].
+    /// `depth_buffer` may stay 0.
     pub fn install(ctx: &egui::Context, render_state: &egui_wgpu::RenderState) {
-        Self::install_with_sample_count(ctx, render_state, 1);
-    }
-
-    /// Like [`Self::install`] for an egui render pass with `sample_count` MSAA samples
-    /// (eframe's `NativeOptions::multisampling`, 0 meaning 1).
-    pub fn install_with_sample_count(
-        ctx: &egui::Context,
-        render_state: &egui_wgpu::RenderState,
-        sample_count: u32,
-    ) {
         let resources = BackplotResources {
-            compositor: Compositor::new(
-                &render_state.device,
-                render_state.target_format,
-                sample_count.max(1),
-            ),
+            compositor: Compositor::new(&render_state.device, render_state.target_format, 1),
             views: HashMap::new(),
         };
         render_state
@@ -439,15 +393,21 @@ impl Backplot {
     /// the scene of a new text is still being made (see [`Self::set_coming_generation`]), as
     /// soon as it is shown. For a program opened, replaced or chosen; edits do not call it.
     pub fn fit(&mut self) {
-        self.fit_pending = true;
+        self.fitted = false;
         self.fit_waits = true;
     }
 
     /// Frames everything drawn on the next frame, whatever is being made (the view's own
     /// Fit button, keys and standard views).
     fn fit_now(&mut self) {
-        self.fit_pending = true;
+        self.fitted = false;
         self.fit_waits = false;
+    }
+
+    /// Looks from a standard direction, framing everything drawn.
+    fn set_view(&mut self, view: StandardView) {
+        self.camera.set_view(view);
+        self.fit_now();
     }
 
     /// The generation of the scene being made for the text shown (an analysis still running),
@@ -465,11 +425,6 @@ impl Backplot {
     #[must_use]
     pub fn camera(&self) -> &OrbitCamera {
         &self.camera
-    }
-
-    /// Mutable access to the camera, e.g. to restore a persisted one.
-    pub fn camera_mut(&mut self) -> &mut OrbitCamera {
-        &mut self.camera
     }
 
     /// The 1-based source line the user clicked in the view since the last call, if any:
@@ -520,21 +475,16 @@ impl Backplot {
     /// highlighted and reported through [`Self::take_playback_line`].
     pub fn playback_bar(&mut self, ui: &mut egui::Ui, scene: &Scene) {
         self.playback.ui(ui, scene);
-        self.follow_playback();
+        if let Some(line) = self.playback.take_line() {
+            self.selected_line = Some(line);
+            self.playback_line = Some(line);
+        }
     }
 
     /// The 1-based source line playback moved to since the last call, if any: the editor
     /// should move its cursor there.
     pub fn take_playback_line(&mut self) -> Option<u32> {
         self.playback_line.take()
-    }
-
-    /// Highlights the block playback moved to and queues it for the editor.
-    fn follow_playback(&mut self) {
-        if let Some(line) = self.playback.take_line() {
-            self.selected_line = Some(line);
-            self.playback_line = Some(line);
-        }
     }
 
     /// Shows or hides one kind of segment (e.g. rapids); hidden segments are not picked.
@@ -552,11 +502,6 @@ impl Backplot {
         self.hidden_kinds & kind.mask() == 0
     }
 
-    /// Colours segments by kind or by their colour index (the tool).
-    pub fn set_color_mode(&mut self, mode: ColorMode) {
-        self.color_mode = mode;
-    }
-
     /// The colouring in use: by kind of move or by tool.
     #[must_use]
     pub fn color_mode(&self) -> ColorMode {
@@ -569,6 +514,19 @@ impl Backplot {
             ColorMode::ByKind => ColorMode::ByIndex,
             ColorMode::ByIndex => ColorMode::ByKind,
         };
+    }
+
+    /// Switches between the perspective and the orthographic projection.
+    fn toggle_projection(&mut self) {
+        self.camera.projection = match self.camera.projection {
+            Projection::Perspective => Projection::Orthographic,
+            Projection::Orthographic => Projection::Perspective,
+        };
+    }
+
+    /// Shows `kind` if hidden, hides it if shown.
+    fn toggle_kind(&mut self, kind: Kind) {
+        self.set_kind_visible(kind, !self.kind_visible(kind));
     }
 
     /// What the cursor was over at the last frame.
@@ -624,17 +582,17 @@ impl Backplot {
         // Reserve the paint slot now so the overlay buttons land on top of the 3D lines, but
         // build the callback last so button clicks take effect this very frame.
         let slot = ui.painter().add(egui::Shape::Noop);
-        let buttons = self.overlay_buttons(ui, rect);
-        if self.stock_buttons(ui, rect, scene) || buttons.clicked {
+        let (buttons, clicked) = self.overlay_buttons(ui, rect);
+        if self.stock_buttons(ui, rect, scene) || clicked {
             // A button of the view keeps the keyboard with the view.
             response.request_focus();
         }
 
         let aspect = rect.width() / rect.height();
         if self.fit_due(scene) {
-            self.fit_pending = false;
+            self.fitted = true;
             self.fit_waits = false;
-            self.frame_scene(scene, rect, buttons.rect);
+            self.frame_scene(scene, rect, buttons);
         }
         // Pick with the camera as it is drawn this frame, before the highlight is chosen so
         // a click shows its selection at once.
@@ -670,14 +628,9 @@ impl Backplot {
         let callback = BackplotCallback {
             id: response.id,
             frame: ui.ctx().cumulative_frame_nr(),
-            generation: scene.generation,
-            points: Arc::clone(&scene.points),
-            bounds: scene.bounds,
-            zero: scene.zero,
-            marks: Arc::clone(&scene.marks),
+            scene: scene.clone(),
             flagged,
             stock: self.drawn_stock(scene),
-            origin: scene.origin,
             rect,
             params,
         };
@@ -711,7 +664,7 @@ impl Backplot {
     /// Whether a fit asked for is to be done with `scene`: at once, or once the scene being
     /// made when it was asked for is shown.
     fn fit_due(&self, scene: &Scene) -> bool {
-        self.fit_pending && (!self.fit_waits || self.coming.is_none_or(|g| g <= scene.generation))
+        !self.fitted && (!self.fit_waits || self.coming.is_none_or(|g| g <= scene.generation))
     }
 
     /// Whether the view has the keyboard focus (its keys act only then).
@@ -757,25 +710,12 @@ impl Backplot {
         } else {
             rect.min.y
         };
-        let free = egui::Rect::from_min_max(egui::pos2(rect.min.x, top), rect.max);
         let viewport = Vec2::new(rect.width(), rect.height());
-        let (free_min, free_max) = (free.min - rect.min, free.max - rect.min);
-        let (free_min, free_max) = (
-            Vec2::new(free_min.x, free_min.y),
-            Vec2::new(free_max.x, free_max.y),
-        );
+        let (free_min, free_max) = (Vec2::new(0.0, top - rect.min.y), viewport);
         let mut bounds = scene.view_bounds();
         // With the Stock view on, the whole block is framed too.
-        if let Some(f) = self
-            .shown_stock
-            .as_ref()
-            .filter(|_| self.stock_on)
-            .and_then(|c| c.field.as_ref())
-        {
-            let (nx, ny) = f.size;
-            let far = f.min + DVec3::new(nx as f64 * f.cell_mm, ny as f64 * f.cell_mm, 0.0);
-            let lo = (f.min - scene.origin).as_vec3();
-            let hi = (far.with_z(f.top) - scene.origin).as_vec3();
+        if let Some((lo, hi)) = self.shown_field().map(stock::stock_box) {
+            let (lo, hi) = ((lo - scene.origin).as_vec3(), (hi - scene.origin).as_vec3());
             bounds = Some(bounds.map_or((lo, hi), |(min, max)| (min.min(lo), max.max(hi))));
         }
         match bounds {
@@ -826,7 +766,7 @@ impl Backplot {
         self.last_generation = Some(scene.generation);
         let has_geometry = scene.bounds.is_some();
         if has_geometry && !self.had_geometry {
-            self.fit_pending = true;
+            self.fitted = false;
         }
         self.had_geometry = has_geometry;
     }
@@ -974,24 +914,10 @@ impl Backplot {
     fn handle_keys(&mut self, ui: &egui::Ui, viewport: Vec2) {
         use egui::Key;
         let (shift, pressed) = ui.input(|i| {
+            use egui::Key::*;
             let keys = [
-                Key::ArrowLeft,
-                Key::ArrowRight,
-                Key::ArrowUp,
-                Key::ArrowDown,
-                Key::Plus,
-                Key::Equals,
-                Key::Minus,
-                Key::F,
-                Key::S,
-                Key::Num1,
-                Key::Num2,
-                Key::Num3,
-                Key::Num4,
-                Key::P,
-                Key::R,
-                Key::T,
-                Key::Escape,
+                ArrowLeft, ArrowRight, ArrowUp, ArrowDown, Plus, Equals, Minus, F, S, Num1, Num2,
+                Num3, Num4, P, R, T, Escape,
             ];
             let pressed: Vec<Key> = keys.into_iter().filter(|k| i.key_pressed(*k)).collect();
             (i.modifiers.shift, pressed)
@@ -1018,25 +944,13 @@ impl Backplot {
                 Key::F => self.fit_now(),
                 Key::S => self.zoom_to_selection(),
                 Key::Num1 | Key::Num2 | Key::Num3 | Key::Num4 => {
-                    let view = match key {
-                        Key::Num1 => StandardView::Iso,
-                        Key::Num2 => StandardView::Top,
-                        Key::Num3 => StandardView::Front,
-                        _ => StandardView::Right,
-                    };
-                    self.camera.set_view(view);
-                    self.fit_now();
+                    let n = [Key::Num1, Key::Num2, Key::Num3, Key::Num4]
+                        .iter()
+                        .position(|k| *k == key);
+                    self.set_view(STANDARD_VIEWS[n.unwrap_or(0)].1);
                 }
-                Key::P => {
-                    self.camera.projection = match self.camera.projection {
-                        Projection::Perspective => Projection::Orthographic,
-                        Projection::Orthographic => Projection::Perspective,
-                    };
-                }
-                Key::R => {
-                    let visible = self.kind_visible(Kind::Rapid);
-                    self.set_kind_visible(Kind::Rapid, !visible);
-                }
+                Key::P => self.toggle_projection(),
+                Key::R => self.toggle_kind(Kind::Rapid),
                 Key::T => self.toggle_color_by_tool(),
                 Key::Escape => self.selected_line = None,
                 _ => {}
@@ -1045,8 +959,8 @@ impl Backplot {
     }
 
     /// Small buttons in the view's top-left corner: Fit, the standard views, the projection,
-    /// rapids on/off and zoom to the selected block.
-    fn overlay_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) -> Buttons {
+    /// rapids on/off and zoom to the selected block; where they lie and whether one was clicked.
+    fn overlay_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) -> (egui::Rect, bool) {
         let mut clicked = false;
         let mut child = ui.new_child(
             egui::UiBuilder::new()
@@ -1062,59 +976,44 @@ impl Backplot {
             clicked = true;
             self.fit_now();
         }
-        for (label, view) in [
-            ("Iso", StandardView::Iso),
-            ("Top", StandardView::Top),
-            ("Front", StandardView::Front),
-            ("Right", StandardView::Right),
-        ] {
+        for (label, view) in STANDARD_VIEWS {
             if child.small_button(tr(label)).clicked() {
                 clicked = true;
-                self.camera.set_view(view);
-                self.fit_now();
+                self.set_view(view);
             }
         }
+        let mut toggle = |on: bool, label: &'static str, hint: &'static str| {
+            let hit = (child.selectable_label(on, tr(label)))
+                .on_hover_text(tr(hint))
+                .clicked();
+            clicked |= hit;
+            hit
+        };
         let perspective = self.camera.projection == Projection::Perspective;
-        if child
-            .selectable_label(perspective, tr("Persp"))
-            .on_hover_text(tr("Perspective / orthographic projection"))
-            .clicked()
-        {
-            clicked = true;
-            self.camera.projection = if perspective {
-                Projection::Orthographic
-            } else {
-                Projection::Perspective
-            };
+        if toggle(
+            perspective,
+            "Persp",
+            "Perspective / orthographic projection",
+        ) {
+            self.toggle_projection();
         }
         let by_tool = self.color_mode == ColorMode::ByIndex;
-        if child
-            .selectable_label(by_tool, tr("By tool"))
-            .on_hover_text(tr("Colour the path by tool instead of by kind of move (T)"))
-            .clicked()
-        {
-            clicked = true;
+        let hint = "Colour the path by tool instead of by kind of move (T)";
+        if toggle(by_tool, "By tool", hint) {
             self.toggle_color_by_tool();
         }
         let contour = self.kind_visible(Kind::Programmed);
-        if child
-            .selectable_label(contour, tr("Contour"))
-            .on_hover_text(tr(
-                "Show the programmed contour beside the tool centre's path under cutter compensation",
-            ))
-            .clicked()
-        {
-            clicked = true;
-            self.set_kind_visible(Kind::Programmed, !contour);
+        let hint =
+            "Show the programmed contour beside the tool centre's path under cutter compensation";
+        if toggle(contour, "Contour", hint) {
+            self.toggle_kind(Kind::Programmed);
         }
-        let rapids = self.kind_visible(Kind::Rapid);
-        if child
-            .selectable_label(rapids, tr("Rapids"))
-            .on_hover_text(tr("Show or hide rapid moves"))
-            .clicked()
-        {
-            clicked = true;
-            self.set_kind_visible(Kind::Rapid, !rapids);
+        if toggle(
+            self.kind_visible(Kind::Rapid),
+            "Rapids",
+            "Show or hide rapid moves",
+        ) {
+            self.toggle_kind(Kind::Rapid);
         }
         if self.selected_line.is_some()
             && child
@@ -1125,10 +1024,7 @@ impl Backplot {
             clicked = true;
             self.zoom_to_selection();
         }
-        Buttons {
-            rect: child.min_rect(),
-            clicked,
-        }
+        (child.min_rect(), clicked)
     }
 
     /// The stock's buttons in the view's bottom-left corner: Stock on/off and, while on, the
@@ -1276,18 +1172,13 @@ struct GpuView {
 struct BackplotCallback {
     id: egui::Id,
     frame: u64,
-    generation: u64,
-    points: Arc<Vec<PathPoint>>,
-    bounds: Option<(Vec3, Vec3)>,
-    zero: Vec3,
-    marks: Arc<Vec<PathPoint>>,
+    /// The scene drawn (its arrays shared, not copied).
+    scene: Scene,
     /// Runs of segments to highlight by flagging their points (a block that ran several
     /// times); a single run goes through `params.highlight` instead.
     flagged: Runs,
     /// The cut stock drawn under the path, if any.
     stock: Option<Arc<StockCut>>,
-    /// Machine coordinates of the scene's origin (the stock is placed against it).
-    origin: DVec3,
     rect: egui::Rect,
     /// View parameters in points, for the whole rectangle.
     params: ViewParams,
@@ -1324,7 +1215,8 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             (Some(a), Some(b)) => Arc::ptr_eq(a, b),
             (a, b) => a.is_none() && b.is_none(),
         };
-        if !same_stock || view.generation != Some(self.generation) {
+        let scene = &self.scene;
+        if !same_stock || view.generation != Some(scene.generation) {
             let surface = self.stock.as_ref().and_then(|c| c.field.as_ref());
             let surface = surface.map(|f| StockSurface {
                 heights: &f.heights,
@@ -1332,17 +1224,17 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
                 cell_mm: f.cell_mm,
                 min: f.min,
                 top: f.top,
-                origin: self.origin,
+                origin: scene.origin,
             });
             view.renderer.set_stock(device, queue, surface.as_ref());
             view.stock.clone_from(&self.stock);
             view.drawn = None;
         }
-        if view.generation != Some(self.generation) {
-            view.path = PathLod::new(Arc::clone(&self.points), self.bounds);
-            let reference = reference_points(self.zero, self.bounds, &self.marks);
+        if view.generation != Some(scene.generation) {
+            view.path = PathLod::new(Arc::clone(&scene.points), scene.bounds);
+            let reference = reference_points(scene.zero, scene.bounds, &scene.marks);
             view.renderer.set_grid(device, queue, &reference);
-            view.generation = Some(self.generation);
+            view.generation = Some(scene.generation);
             view.drawn = None;
         }
         if !Arc::ptr_eq(&view.flagged, &self.flagged) && view.flagged != self.flagged {
@@ -1502,7 +1394,7 @@ mod tests {
         let mut plot = Backplot::new();
         let empty = Scene::default();
         plot.track_scene(&empty);
-        plot.fit_pending = false;
+        plot.fitted = true;
         let scene = Scene {
             generation: 1,
             points: Arc::new(vec![PathPoint::default(); 2]),
@@ -1512,14 +1404,14 @@ mod tests {
             ..Scene::default()
         };
         plot.track_scene(&scene);
-        assert!(plot.fit_pending);
-        plot.fit_pending = false;
+        assert!(!plot.fitted);
+        plot.fitted = true;
         let edited = Scene {
             generation: 2,
             ..scene.clone()
         };
         plot.track_scene(&edited);
-        assert!(!plot.fit_pending);
+        assert!(plot.fitted);
         plot.track_scene(&Scene {
             generation: 3,
             ..Scene::default()
@@ -1528,7 +1420,7 @@ mod tests {
             generation: 4,
             ..scene
         });
-        assert!(plot.fit_pending);
+        assert!(!plot.fitted);
     }
 
     #[test]
@@ -1540,7 +1432,7 @@ mod tests {
             ..Scene::default()
         };
         plot.track_scene(&old);
-        plot.fit_pending = false;
+        plot.fitted = true;
         // A program opened: its scene (generation 6) is still being made.
         plot.fit();
         plot.set_coming_generation(Some(6));

@@ -37,17 +37,9 @@ impl PartialEq for Buffer {
 }
 
 impl From<String> for Buffer {
+    /// The rope of `text`; the string is not kept beside it (a long program is held once).
     fn from(text: String) -> Self {
-        let rope = Rope::from_str(&text);
-        let flat = OnceCell::new();
-        let _ = flat.set(Arc::new(text));
-        Buffer { rope, flat }
-    }
-}
-
-impl From<&str> for Buffer {
-    fn from(text: &str) -> Self {
-        Buffer::from(text.to_string())
+        Buffer::from(Rope::from_str(&text))
     }
 }
 
@@ -77,11 +69,6 @@ impl Buffer {
     /// The whole text as one string: made on the first call after an edit (a copy of the
     /// text), then kept until the next edit.
     pub fn as_str(&self) -> &str {
-        self.shared().as_str()
-    }
-
-    /// The whole text as a shared string (see [`Buffer::as_str`]).
-    pub fn shared(&self) -> &Arc<String> {
         self.flat.get_or_init(|| Arc::new(self.rope.to_string()))
     }
 
@@ -107,11 +94,6 @@ impl Buffer {
     /// one).
     pub fn is_flat(&self) -> bool {
         self.flat.get().is_some()
-    }
-
-    /// Length in bytes.
-    pub fn len_bytes(&self) -> usize {
-        self.rope.len_bytes()
     }
 
     /// Length in characters.
@@ -147,16 +129,6 @@ impl Buffer {
         self.rope.line_to_char(line.min(self.len_lines()))
     }
 
-    /// The byte offset of character `char` (clamped to the text).
-    pub fn char_to_byte(&self, char: usize) -> usize {
-        self.rope.char_to_byte(char.min(self.len_chars()))
-    }
-
-    /// The character at byte offset `byte` (clamped to the text).
-    pub fn byte_to_char(&self, byte: usize) -> usize {
-        self.rope.byte_to_char(byte.min(self.len_bytes()))
-    }
-
     /// Characters of 0-based `line` without its line ending (`\n`, `\r\n`, `\r`).
     pub fn line_len_chars(&self, line: usize) -> usize {
         if line >= self.len_lines() {
@@ -164,12 +136,11 @@ impl Buffer {
         }
         let slice = self.rope.line(line);
         let mut n = slice.len_chars();
+        // `\n`, `\r\n` or `\r`: a `\r` is dropped after a `\n` or alone.
         if n > 0 && slice.char(n - 1) == '\n' {
             n -= 1;
-            if n > 0 && slice.char(n - 1) == '\r' {
-                n -= 1;
-            }
-        } else if n > 0 && slice.char(n - 1) == '\r' {
+        }
+        if n > 0 && slice.char(n - 1) == '\r' {
             n -= 1;
         }
         n
@@ -181,11 +152,9 @@ impl Buffer {
             return Cow::Borrowed("");
         }
         let start = self.rope.line_to_char(line);
-        let text: Cow<'_, str> = self
-            .rope
+        self.rope
             .slice(start..start + self.line_len_chars(line))
-            .into();
-        text
+            .into()
     }
 
     /// The characters `chars` (clamped to the text) as a string.

@@ -202,39 +202,29 @@ pub fn toggle_comment(
     dialect: Dialect,
 ) -> String {
     let semicolon = dialect.semicolon_is_comment();
-    let (first, last) = (*lines.start(), *lines.end());
-    let mut parts: Vec<&str> = text.split('\n').collect();
-    let selected = |i: usize| {
-        let n = i as u32 + 1;
-        n >= first && n <= last
-    };
+    // The lines to change: selected and not blank.
+    let chosen = |(i, l): &(usize, &str)| lines.contains(&(*i as u32 + 1)) && !l.trim().is_empty();
     let commented = |l: &str| {
-        let t = l.trim_start();
-        if semicolon {
-            t.starts_with(';')
-        } else {
-            t.starts_with('(')
-        }
+        l.trim_start()
+            .starts_with(if semicolon { ';' } else { '(' })
     };
-    let uncomment_all = parts
-        .iter()
+    let uncomment_all = text
+        .split('\n')
         .enumerate()
-        .filter(|(i, l)| selected(*i) && !l.trim().is_empty())
+        .filter(chosen)
         .all(|(_, l)| commented(l));
-    let mut out: Vec<String> = Vec::with_capacity(parts.len());
-    for (i, line) in parts.drain(..).enumerate() {
-        let keep = !selected(i) || line.trim().is_empty();
-        let new = if keep {
-            line.to_string()
-        } else if uncomment_all {
-            uncomment_line(line, semicolon)
-        } else if commented(line) {
-            line.to_string()
-        } else {
-            comment_line(line, semicolon)
-        };
-        out.push(new);
-    }
+    let out: Vec<String> = (text.split('\n').enumerate())
+        .map(|(i, line)| {
+            let chosen = chosen(&(i, line));
+            if chosen && uncomment_all {
+                uncomment_line(line, semicolon)
+            } else if chosen && !commented(line) {
+                comment_line(line, semicolon)
+            } else {
+                line.to_string()
+            }
+        })
+        .collect();
     out.join("\n")
 }
 

@@ -181,21 +181,16 @@ pub struct CodeEditor {
 
 impl Default for CodeEditor {
     fn default() -> Self {
-        Self::new("swarf-code-editor")
-    }
-}
-
-impl CodeEditor {
-    /// An editor whose state is stored under `id_salt`.
-    pub fn new(id_salt: &str) -> Self {
         CodeEditor {
-            id: egui::Id::unique(id_salt),
+            id: egui::Id::unique("swarf-code-editor"),
             jump: None,
             highlights: Vec::new(),
             rows: RowEditor::default(),
         }
     }
+}
 
+impl CodeEditor {
     /// Selects the character range on the next frame, scrolls to it and gives the editor the
     /// keyboard.
     pub fn jump_to(&mut self, chars: std::ops::Range<usize>) {
@@ -220,19 +215,9 @@ impl CodeEditor {
         self.id
     }
 
-    /// Whether the text has keyboard focus.
-    pub fn has_focus(&self, ctx: &egui::Context) -> bool {
-        ctx.memory(|m| m.has_focus(self.id))
-    }
-
     /// The completions on offer (code and meaning), while the popup is open.
     pub fn completions(&self) -> Option<&[Completion]> {
         self.rows.completions()
-    }
-
-    /// Closes the completion popup.
-    pub fn close_completions(&mut self) {
-        self.rows.close_completions();
     }
 
     /// Shows the editor with a gutter, filling the available space; `label` is the widget that

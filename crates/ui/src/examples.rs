@@ -13,41 +13,24 @@ pub struct Example {
     pub text: &'static str,
 }
 
+/// The example `name` in `assets/examples/`, written for `dialect`.
+macro_rules! example {
+    ($name:literal, $dialect:ident) => {
+        Example {
+            name: $name,
+            dialect: Dialect::$dialect,
+            text: include_str!(concat!("../../../assets/examples/", $name)),
+        }
+    };
+}
+
 /// Every example, in menu order.
 pub const EXAMPLES: &[Example] = &[
-    Example {
-        name: "pocket.nc",
-        dialect: Dialect::Fanuc,
-        text: include_str!("../../../assets/examples/pocket.nc"),
-    },
-    Example {
-        name: "fanuc-drill-plate.nc",
-        dialect: Dialect::Fanuc,
-        text: include_str!("../../../assets/examples/fanuc-drill-plate.nc"),
-    },
-    Example {
-        name: "syntec-bolt-circle.nc",
-        dialect: Dialect::Syntec,
-        text: include_str!("../../../assets/examples/syntec-bolt-circle.nc"),
-    },
-    Example {
-        name: "lnc-chamfered-pocket.nc",
-        dialect: Dialect::Lnc,
-        text: include_str!("../../../assets/examples/lnc-chamfered-pocket.nc"),
-    },
-    Example {
-        name: "kt-tapping.nc",
-        dialect: Dialect::Kt,
-        text: include_str!("../../../assets/examples/kt-tapping.nc"),
-    },
-    Example {
-        name: "gsk-facing.nc",
-        dialect: Dialect::Gsk,
-        text: include_str!("../../../assets/examples/gsk-facing.nc"),
-    },
-    Example {
-        name: "linuxcnc-engrave-sub.ngc",
-        dialect: Dialect::LinuxCnc,
-        text: include_str!("../../../assets/examples/linuxcnc-engrave-sub.ngc"),
-    },
+    example!("pocket.nc", Fanuc),
+    example!("fanuc-drill-plate.nc", Fanuc),
+    example!("syntec-bolt-circle.nc", Syntec),
+    example!("lnc-chamfered-pocket.nc", Lnc),
+    example!("kt-tapping.nc", Kt),
+    example!("gsk-facing.nc", Gsk),
+    example!("linuxcnc-engrave-sub.ngc", LinuxCnc),
 ];

@@ -102,26 +102,17 @@ impl RowEditor {
         self.caret.min(self.anchor)..self.caret.max(self.anchor)
     }
 
-    /// The caret, a character index.
-    pub fn caret(&self) -> usize {
-        self.caret
-    }
-
-    /// Selects `chars` (the caret at its end).
-    pub fn select(&mut self, chars: Range<usize>) {
-        self.anchor = chars.start;
-        self.caret = chars.end;
+    /// Selects `chars` (the caret at its end, both clamped to the text).
+    fn select(&mut self, text: &Buffer, chars: Range<usize>) {
+        let len = text.len_chars();
+        self.anchor = chars.start.min(len);
+        self.caret = chars.end.min(len);
         self.column = None;
     }
 
     /// The completions on offer (code and meaning), while the list is open.
     pub fn completions(&self) -> Option<&[Completion]> {
         self.popup.as_ref().map(|p| p.items.as_slice())
-    }
-
-    /// Closes the completion list.
-    pub fn close_completions(&mut self) {
-        self.popup = None;
     }
 
     /// The completion list for the G or M code being typed before the caret, if any.
@@ -348,42 +339,31 @@ impl RowEditor {
                     Key::Tab if !modifiers.any() => {
                         changed |= self.edit(text, Edit::Insert("\t".to_string()));
                     }
-                    Key::Backspace if word && self.selection().is_empty() => {
-                        let to = word_boundary(text, self.caret, false);
-                        self.anchor = to;
-                        changed |= self.edit(text, Edit::Backspace);
+                    Key::Backspace | Key::Delete => {
+                        let forward = key == Key::Delete;
+                        if word && self.selection().is_empty() {
+                            self.anchor = word_boundary(text, self.caret, forward);
+                        }
+                        let edit = if forward {
+                            Edit::Delete
+                        } else {
+                            Edit::Backspace
+                        };
+                        changed |= self.edit(text, edit);
                     }
-                    Key::Backspace => changed |= self.edit(text, Edit::Backspace),
-                    Key::Delete if word && self.selection().is_empty() => {
-                        let to = word_boundary(text, self.caret, true);
-                        self.anchor = to;
-                        changed |= self.edit(text, Edit::Delete);
-                    }
-                    Key::Delete => changed |= self.edit(text, Edit::Delete),
                     Key::A if modifiers.command => {
                         self.anchor = 0;
                         self.caret = len;
                     }
-                    Key::ArrowLeft => {
+                    Key::ArrowLeft | Key::ArrowRight => {
+                        let forward = key == Key::ArrowRight;
                         let sel = self.selection();
-                        let to = if !shift && !sel.is_empty() {
-                            sel.start
-                        } else if word {
-                            word_boundary(text, self.caret, false)
-                        } else {
-                            self.caret.saturating_sub(1)
-                        };
-                        self.column = None;
-                        self.move_to(to, shift);
-                    }
-                    Key::ArrowRight => {
-                        let sel = self.selection();
-                        let to = if !shift && !sel.is_empty() {
-                            sel.end
-                        } else if word {
-                            word_boundary(text, self.caret, true)
-                        } else {
-                            (self.caret + 1).min(len)
+                        let to = match (!shift && !sel.is_empty(), forward) {
+                            (true, false) => sel.start,
+                            (true, true) => sel.end,
+                            _ if word => word_boundary(text, self.caret, forward),
+                            (_, false) => self.caret.saturating_sub(1),
+                            (_, true) => (self.caret + 1).min(len),
                         };
                         self.column = None;
                         self.move_to(to, shift);
@@ -397,21 +377,15 @@ impl RowEditor {
                         self,
                         (line + rows_per_page).min(text.len_lines().saturating_sub(1)),
                     ),
-                    Key::Home if modifiers.command => {
+                    Key::Home | Key::End => {
+                        let to = match (key == Key::End, modifiers.command) {
+                            (false, true) => 0,
+                            (true, true) => len,
+                            (false, false) => line_start,
+                            (true, false) => line_start + text.line_len_chars(line),
+                        };
                         self.column = None;
-                        self.move_to(0, shift);
-                    }
-                    Key::End if modifiers.command => {
-                        self.column = None;
-                        self.move_to(len, shift);
-                    }
-                    Key::Home => {
-                        self.column = None;
-                        self.move_to(line_start, shift);
-                    }
-                    Key::End => {
-                        self.column = None;
-                        self.move_to(line_start + text.line_len_chars(line), shift);
+                        self.move_to(to, shift);
                     }
                     _ => {}
                 }
@@ -436,8 +410,7 @@ impl RowEditor {
         let row_height = ui.ctx().fonts_mut(|f| f.row_height(&font)).max(1.0);
         let char_width = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
         if let Some((range, focus)) = jump {
-            let len = text.len_chars();
-            self.select(range.start.min(len)..range.end.min(len));
+            self.select(text, range);
             self.popup = None;
             self.centre = true;
             if focus {

@@ -24,16 +24,8 @@ pub fn settings_ui(
 ) -> Option<HostRequest> {
     let mut request = None;
     ui.horizontal(|ui| {
-        let label = ui.label(tr("Dialect"));
-        egui::ComboBox::from_id_salt("swarf-settings-dialect")
-            .selected_text(dialect.label())
-            .show_ui(ui, |ui| {
-                for d in Dialect::ALL {
-                    ui.selectable_value(dialect, d, d.label());
-                }
-            })
-            .response
-            .labelled_by(label.id);
+        let (id, label) = ("swarf-settings-dialect", tr("Dialect"));
+        choice(ui, id, label, dialect, Dialect::ALL, Dialect::label);
     });
     ui.horizontal(|ui| {
         if ui.button(tr("Import SETUP.toml…")).clicked() {
@@ -65,6 +57,35 @@ pub fn settings_ui(
     request
 }
 
+/// A combo box named by the label `label` choosing `value` among `options`, each shown as
+/// `text` names it.
+pub(crate) fn choice<T: PartialEq + Copy>(
+    ui: &mut egui::Ui,
+    id: &str,
+    label: &str,
+    value: &mut T,
+    options: impl IntoIterator<Item = T>,
+    text: impl Fn(T) -> &'static str,
+) {
+    let label = ui.label(label);
+    egui::ComboBox::from_id_salt(id)
+        .selected_text(text(*value))
+        .show_ui(ui, |ui| {
+            for option in options {
+                ui.selectable_value(value, option, text(option));
+            }
+        })
+        .response
+        .labelled_by(label.id);
+}
+
+/// A grid row: `label`, then `drag` named by it.
+pub(crate) fn drag_row(ui: &mut egui::Ui, label: &str, drag: egui::DragValue<'_>) {
+    let label = ui.label(label);
+    ui.add(drag).labelled_by(label.id);
+    ui.end_row();
+}
+
 /// Gives `response` an accessible name (for screen readers) where no label widget names it.
 fn named(ui: &egui::Ui, response: egui::Response, name: &str) -> egui::Response {
     ui.ctx()
@@ -76,24 +97,39 @@ fn length(value: &mut f64) -> egui::DragValue<'_> {
     egui::DragValue::new(value).speed(0.01).max_decimals(4)
 }
 
+/// Three length fields named `{name} X`, `{name} Y` and `{name} Z`; whether one changed.
+fn xyz(ui: &mut egui::Ui, values: &mut [f64; 3], name: &str) -> bool {
+    let mut changed = false;
+    for (c, axis) in values.iter_mut().zip(["X", "Y", "Z"]) {
+        let response = ui.add(length(c));
+        changed |= named(ui, response, &format!("{name} {axis}")).changed();
+    }
+    changed
+}
+
+/// A grid's row of column heads.
+fn heads(ui: &mut egui::Ui, heads: &[&str]) {
+    for head in heads {
+        ui.strong(*head);
+    }
+    ui.end_row();
+}
+
+/// A × button that removes the row, named `name`; whether it was clicked.
+fn remove_button(ui: &mut egui::Ui, name: &str) -> bool {
+    let button = ui.small_button("×").on_hover_text(tr("Remove"));
+    named(ui, button, name).clicked()
+}
+
 fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     let mut remove = None;
     egui::Grid::new("swarf-registers")
         .num_columns(7)
         .striped(true)
         .show(ui, |ui| {
-            for head in [
-                "No.",
-                "Length",
-                "Length wear",
-                "Radius",
-                "Radius wear",
-                "Tip (lathe)",
-            ] {
-                ui.strong(tr(head));
-            }
-            ui.strong("");
-            ui.end_row();
+            let (no, len, len_wear) = (tr("No."), tr("Length"), tr("Length wear"));
+            let (radius, tip) = (tr("Radius"), tr("Tip (lathe)"));
+            heads(ui, &[no, len, len_wear, radius, tr("Radius wear"), tip, ""]);
             for (n, r) in &mut setup.registers {
                 ui.label(n.to_string());
                 let fields = [
@@ -112,8 +148,7 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                         "Lathe tool tip direction 1-8 (LinuxCNC's Q): compensation in G18 reports the imaginary tip; 0 a mill, 9 the nose centre",
                     ));
                 named(ui, response, &format!("Register {n} tool orientation"));
-                let remove_button = ui.small_button("×").on_hover_text(tr("Remove"));
-                if named(ui, remove_button, &format!("Remove register {n}")).clicked() {
+                if remove_button(ui, &format!("Remove register {n}")) {
                     remove = Some(*n);
                 }
                 ui.end_row();
@@ -142,19 +177,11 @@ fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String
         .num_columns(4)
         .striped(true)
         .show(ui, |ui| {
-            for head in ["", "X", "Y", "Z"] {
-                ui.strong(head);
-            }
-            ui.end_row();
+            heads(ui, &["", "X", "Y", "Z"]);
             for name in names {
                 let mut v = setup.work_offset(&name).to_array();
                 ui.label(&name);
-                let mut changed = false;
-                for (c, axis) in v.iter_mut().zip(["X", "Y", "Z"]) {
-                    let response = ui.add(length(c));
-                    changed |= named(ui, response, &format!("{name} {axis}")).changed();
-                }
-                if changed {
+                if xyz(ui, &mut v, &name) {
                     setup.work_offsets.insert(name, DVec3::from_array(v));
                 }
                 ui.end_row();
@@ -185,14 +212,10 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     egui::Grid::new("swarf-machine")
         .num_columns(2)
         .show(ui, |ui| {
-            let label = ui.label(tr("Rapid rate (mm/min)"));
-            ui.add(
-                egui::DragValue::new(&mut m.rapid_mm_per_min)
-                    .range(1.0..=1_000_000.0)
-                    .speed(10.0),
-            )
-            .labelled_by(label.id);
-            ui.end_row();
+            fn rate(v: &mut f64) -> egui::DragValue<'_> {
+                egui::DragValue::new(v).range(1.0..=1_000_000.0).speed(10.0)
+            }
+            drag_row(ui, tr("Rapid rate (mm/min)"), rate(&mut m.rapid_mm_per_min));
             let mut per_axis = m.rapid_xyz_mm_per_min.is_some();
             let per_axis_label = ui
                 .checkbox(&mut per_axis, tr("Rapid rate per axis X Y Z"))
@@ -201,42 +224,27 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             ui.horizontal(|ui| {
                 ui.add_enabled_ui(per_axis, |ui| {
                     for v in &mut xyz {
-                        ui.add(egui::DragValue::new(v).range(1.0..=1_000_000.0).speed(10.0))
-                            .labelled_by(per_axis_label);
+                        ui.add(rate(v)).labelled_by(per_axis_label);
                     }
                 });
             });
             m.rapid_xyz_mm_per_min = per_axis.then_some(xyz);
             ui.end_row();
-            let label = ui.label(tr("Acceleration (mm/s²)"));
-            ui.add(egui::DragValue::new(&mut m.acceleration_mm_per_s2).range(0.0..=100_000.0))
-                .labelled_by(label.id);
-            ui.end_row();
-            let label = ui.label(tr("Peck retract (mm)"));
-            ui.add(
-                egui::DragValue::new(&mut m.peck_retract_mm)
-                    .range(0.0..=100.0)
-                    .speed(0.01),
-            )
-            .labelled_by(label.id);
-            ui.end_row();
-            let label = ui.label(tr("Arc tolerance (mm)"));
-            ui.add(
-                egui::DragValue::new(&mut m.arc_tolerance_mm)
-                    .range(0.0..=10.0)
-                    .speed(0.001)
-                    .max_decimals(4),
-            )
-            .labelled_by(label.id);
-            ui.end_row();
-            let label = ui.label(tr("Runaway limit (blocks)"));
-            ui.add(egui::DragValue::new(&mut m.max_blocks).range(1..=1_000_000_000_u64))
-                .labelled_by(label.id);
-            ui.end_row();
-            let label = ui.label(tr("Move limit (moves)"));
-            ui.add(egui::DragValue::new(&mut m.max_motions).range(1..=1_000_000_000_u64))
-                .labelled_by(label.id);
-            ui.end_row();
+            let acceleration =
+                egui::DragValue::new(&mut m.acceleration_mm_per_s2).range(0.0..=100_000.0);
+            drag_row(ui, tr("Acceleration (mm/s²)"), acceleration);
+            let retract = egui::DragValue::new(&mut m.peck_retract_mm)
+                .range(0.0..=100.0)
+                .speed(0.01);
+            drag_row(ui, tr("Peck retract (mm)"), retract);
+            let tolerance = egui::DragValue::new(&mut m.arc_tolerance_mm)
+                .range(0.0..=10.0)
+                .speed(0.001);
+            drag_row(ui, tr("Arc tolerance (mm)"), tolerance.max_decimals(4));
+            let blocks = egui::DragValue::new(&mut m.max_blocks).range(1..=1_000_000_000_u64);
+            drag_row(ui, tr("Runaway limit (blocks)"), blocks);
+            let moves = egui::DragValue::new(&mut m.max_motions).range(1..=1_000_000_000_u64);
+            drag_row(ui, tr("Move limit (moves)"), moves);
             let mut travel = m.travel_mm.is_some();
             let travel_label = ui
                 .checkbox(&mut travel, tr("Machine travel min / max X Y Z"))
@@ -257,23 +265,23 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             });
             m.travel_mm = travel.then_some(bounds);
             ui.end_row();
-            let label = ui.label(tr("G76/G87 shift direction"));
-            egui::ComboBox::from_id_salt("swarf-shift")
-                .selected_text(shift_name(m.shift_direction))
-                .show_ui(ui, |ui| {
-                    for d in [
-                        ShiftDirection::PlusX,
-                        ShiftDirection::MinusX,
-                        ShiftDirection::PlusY,
-                        ShiftDirection::MinusY,
-                        ShiftDirection::PlusZ,
-                        ShiftDirection::MinusZ,
-                    ] {
-                        ui.selectable_value(&mut m.shift_direction, d, shift_name(d));
-                    }
-                })
-                .response
-                .labelled_by(label.id);
+            let directions = [
+                ShiftDirection::PlusX,
+                ShiftDirection::MinusX,
+                ShiftDirection::PlusY,
+                ShiftDirection::MinusY,
+                ShiftDirection::PlusZ,
+                ShiftDirection::MinusZ,
+            ];
+            let label = tr("G76/G87 shift direction");
+            choice(
+                ui,
+                "swarf-shift",
+                label,
+                &mut m.shift_direction,
+                directions,
+                shift_name,
+            );
             ui.end_row();
             ui.label(tr("Syntec drilling"));
             ui.vertical(|ui| {
@@ -284,56 +292,53 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 );
             });
             ui.end_row();
-            let label = ui.label(tr("Cutter compensation corners"));
             let corner = |c: Option<CornerMode>| match c {
                 None => tr("as the dialect does"),
                 Some(CornerMode::Arc) => tr("arc (LinuxCNC)"),
                 Some(CornerMode::Intersection) => tr("intersection (Fanuc family)"),
             };
-            egui::ComboBox::from_id_salt("swarf-corner")
-                .selected_text(corner(m.corner_mode))
-                .show_ui(ui, |ui| {
-                    for c in [None, Some(CornerMode::Arc), Some(CornerMode::Intersection)] {
-                        ui.selectable_value(&mut m.corner_mode, c, corner(c));
-                    }
-                })
-                .response
-                .labelled_by(label.id);
+            let (label, corners) = (
+                tr("Cutter compensation corners"),
+                [None, Some(CornerMode::Arc), Some(CornerMode::Intersection)],
+            );
+            choice(
+                ui,
+                "swarf-corner",
+                label,
+                &mut m.corner_mode,
+                corners,
+                corner,
+            );
             ui.end_row();
             ui.label(tr("Gouges"));
             ui.checkbox(&mut m.overcut_alarm, tr("stop with an alarm (Syntec 3819)"));
             ui.end_row();
-            let label = ui.label(tr("G41/G42 under a mirror"));
             let side = |c: Option<bool>| match c {
                 None => tr("the dialect's default"),
                 Some(true) => tr("swapped by the control (Fanuc)"),
                 Some(false) => tr("as written (Syntec's example)"),
             };
-            egui::ComboBox::from_id_salt("swarf-mirror-side")
-                .selected_text(side(m.mirror_swaps_comp_side))
-                .show_ui(ui, |ui| {
-                    for c in [None, Some(true), Some(false)] {
-                        ui.selectable_value(&mut m.mirror_swaps_comp_side, c, side(c));
-                    }
-                })
-                .response
-                .labelled_by(label.id);
+            let (label, choices) = (
+                tr("G41/G42 under a mirror"),
+                [None, Some(true), Some(false)],
+            );
+            let value = &mut m.mirror_swaps_comp_side;
+            choice(ui, "swarf-mirror-side", label, value, choices, side);
             ui.end_row();
-            let label = ui.label(tr("Integers without a point"));
             let text = |c: Option<bool>| match c {
                 None => tr("as the dialect's manual says"),
                 Some(true) => tr("millimetres (calculator input)"),
                 Some(false) => tr("least input increments"),
             };
-            egui::ComboBox::from_id_salt("swarf-calculator")
-                .selected_text(text(m.calculator_input))
-                .show_ui(ui, |ui| {
-                    for c in [None, Some(true), Some(false)] {
-                        ui.selectable_value(&mut m.calculator_input, c, text(c));
-                    }
-                })
-                .response
-                .labelled_by(label.id);
+            let label = tr("Integers without a point");
+            choice(
+                ui,
+                "swarf-calculator",
+                label,
+                &mut m.calculator_input,
+                choices,
+                text,
+            );
             ui.end_row();
             for (i, name) in ["G28 reference point", "G30 P2 reference point"]
                 .iter()
@@ -416,10 +421,7 @@ fn stock_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     egui::Grid::new("swarf-stock")
         .num_columns(4)
         .show(ui, |ui| {
-            for head in ["", "X", "Y", "Z"] {
-                ui.strong(head);
-            }
-            ui.end_row();
+            heads(ui, &["", "X", "Y", "Z"]);
             for (key, head) in [("min", tr("Min")), ("max", tr("Max"))] {
                 ui.label(head);
                 let numbers = stock.get(key).and_then(Value::as_array);
@@ -429,12 +431,7 @@ fn stock_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                         .and_then(number)
                         .unwrap_or_default()
                 });
-                let mut changed = false;
-                for (c, axis) in corner.iter_mut().zip(["X", "Y", "Z"]) {
-                    let response = ui.add(length(c));
-                    changed |= named(ui, response, &format!("Stock {key} {axis}")).changed();
-                }
-                if changed {
+                if xyz(ui, &mut corner, &format!("Stock {key}")) {
                     stock.insert(key.to_string(), floats(corner));
                 }
                 ui.end_row();
@@ -487,18 +484,12 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
         .num_columns(7)
         .striped(true)
         .show(ui, |ui| {
-            for head in [
-                "No.",
-                "Diameter",
-                "Shape",
-                "Corner radius",
-                "Point angle (°)",
-                "Flute length",
-            ] {
-                ui.strong(tr(head));
-            }
-            ui.strong("");
-            ui.end_row();
+            let (no, diameter, shape) = (tr("No."), tr("Diameter"), tr("Shape"));
+            let (corner, point) = (tr("Corner radius"), tr("Point angle (°)"));
+            heads(
+                ui,
+                &[no, diameter, shape, corner, point, tr("Flute length"), ""],
+            );
             for (&n, tool) in &mut setup.tools {
                 let mut to = n;
                 let response = ui.add(egui::DragValue::new(&mut to));
@@ -578,8 +569,7 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                         tool.remove("flute_length");
                     }
                 });
-                let remove_button = ui.small_button("×").on_hover_text(tr("Remove"));
-                if named(ui, remove_button, &format!("Remove tool {n}")).clicked() {
+                if remove_button(ui, &format!("Remove tool {n}")) {
                     remove = Some(n);
                 }
                 ui.end_row();

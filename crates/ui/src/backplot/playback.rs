@@ -43,6 +43,9 @@ pub struct Playback {
     moved_line: Option<u32>,
 }
 
+/// A playback button: enabled, its label, its hover text and what a click does.
+type Button<'a> = (bool, &'a str, &'a str, fn(&mut Playback, &Scene));
+
 impl Default for Playback {
     fn default() -> Self {
         Self::new()
@@ -279,37 +282,30 @@ impl Playback {
                     "Play the program from here (from the start at its end)",
                 )
             };
-            if ui
-                .add_enabled(has_path, egui::Button::new(tr(label)))
-                .on_hover_text(tr(hint))
-                .clicked()
-            {
-                if self.playing {
-                    self.pause();
-                } else {
-                    self.play(scene);
+            let stop_hint = tr("Stop playback and draw the whole program");
+            let buttons: [Button<'_>; 4] = [
+                (has_path, tr(label), tr(hint), |p, scene| {
+                    if p.playing { p.pause() } else { p.play(scene) }
+                }),
+                (
+                    has_path,
+                    tr("« Block"),
+                    tr("Step one block back"),
+                    Self::step_back,
+                ),
+                (
+                    has_path,
+                    tr("Block »"),
+                    tr("Step one block forward"),
+                    Self::step_forward,
+                ),
+                (self.time.is_some(), tr("Stop"), stop_hint, |p, _| p.stop()),
+            ];
+            for (enabled, label, hint, run) in buttons {
+                let button = ui.add_enabled(enabled, egui::Button::new(label));
+                if button.on_hover_text(hint).clicked() {
+                    run(self, scene);
                 }
-            }
-            if ui
-                .add_enabled(has_path, egui::Button::new(tr("« Block")))
-                .on_hover_text(tr("Step one block back"))
-                .clicked()
-            {
-                self.step_back(scene);
-            }
-            if ui
-                .add_enabled(has_path, egui::Button::new(tr("Block »")))
-                .on_hover_text(tr("Step one block forward"))
-                .clicked()
-            {
-                self.step_forward(scene);
-            }
-            if ui
-                .add_enabled(self.time.is_some(), egui::Button::new(tr("Stop")))
-                .on_hover_text(tr("Stop playback and draw the whole program"))
-                .clicked()
-            {
-                self.stop();
             }
             let speed_label = ui.label(tr("Speed"));
             let mut speed = self.speed;

@@ -20,12 +20,6 @@ const MAX_RAPID_MARKS: usize = 1000;
 const MAX_RAY_SAMPLES: f64 = 8192.0;
 
 impl Backplot {
-    /// Draws the cut stock under the path (and asks for it through
-    /// [`Self::stock_request`]), or not.
-    pub fn set_stock_visible(&mut self, on: bool) {
-        self.stock_on = on;
-    }
-
     /// Whether the cut stock is drawn.
     #[must_use]
     pub fn stock_visible(&self) -> bool {
@@ -99,6 +93,12 @@ impl Backplot {
         self.stock_on.then(|| self.shown_stock.clone()).flatten()
     }
 
+    /// The heights of the cut drawn, while the stock is drawn.
+    pub(super) fn shown_field(&self) -> Option<&StockField> {
+        let cut = self.shown_stock.as_ref().filter(|_| self.stock_on)?;
+        cut.field.as_ref()
+    }
+
     /// Where the ray under `pointer` first meets the drawn stock's surface, machine mm.
     pub(super) fn stock_point(
         &self,
@@ -106,8 +106,7 @@ impl Backplot {
         rect: egui::Rect,
         pointer: egui::Pos2,
     ) -> Option<DVec3> {
-        let field = self.shown_stock.as_ref().filter(|_| self.stock_on)?;
-        let field = field.field.as_ref()?;
+        let field = self.shown_field()?;
         let inverse = self
             .camera
             .view_proj(rect.width() / rect.height())
@@ -155,16 +154,17 @@ impl Backplot {
     }
 }
 
+/// The box of the stock `field` covers, its lowest and highest corners (machine mm).
+pub(super) fn stock_box(field: &StockField) -> (DVec3, DVec3) {
+    let (nx, ny) = field.size;
+    let far = DVec3::new(nx as f64, ny as f64, 0.0) * field.cell_mm;
+    (field.min, (field.min + far).with_z(field.top))
+}
+
 /// The first point of the line from `a` through `b` (machine mm, from `a` on) at or below
 /// `field`'s surface, on its surface.
 fn surface_hit(field: &StockField, a: DVec3, b: DVec3) -> Option<DVec3> {
-    let (nx, ny) = field.size;
-    let lo = DVec3::new(field.min.x, field.min.y, field.min.z);
-    let hi = DVec3::new(
-        field.min.x + nx as f64 * field.cell_mm,
-        field.min.y + ny as f64 * field.cell_mm,
-        field.top,
-    );
+    let (lo, hi) = stock_box(field);
     // Where the line is inside the stock's box (slabs).
     let d = b - a;
     let (mut t0, mut t1) = (0.0f64, f64::INFINITY);

@@ -2,6 +2,7 @@
 
 use super::{HostRequest, Workbench};
 use crate::i18n::{tr, trf};
+use crate::settings::drag_row;
 
 impl Workbench {
     /// The go-to-line, renumber, settings and unsaved-changes windows.
@@ -25,10 +26,8 @@ impl Workbench {
                         }
                         go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
                         let button = ui.button(tr("Go"));
-                        self.widgets
-                            .insert("goto_field".into(), field.rect.intersect(ui.clip_rect()));
-                        self.widgets
-                            .insert("goto_button".into(), button.rect.intersect(ui.clip_rect()));
+                        self.keep_rect(ui, "goto_field", &field);
+                        self.keep_rect(ui, "goto_button", &button);
                         go |= button.clicked();
                     });
                     ui.label(format!("1 – {}", self.text.line_count()));
@@ -54,14 +53,10 @@ impl Workbench {
                     egui::Grid::new("swarf-renumber")
                         .num_columns(2)
                         .show(ui, |ui| {
-                            let label = ui.label(tr("Start"));
-                            ui.add(egui::DragValue::new(&mut options.start).range(0..=99_999_999))
-                                .labelled_by(label.id);
-                            ui.end_row();
-                            let label = ui.label(tr("Step"));
-                            ui.add(egui::DragValue::new(&mut options.step).range(1..=10_000))
-                                .labelled_by(label.id);
-                            ui.end_row();
+                            let start = egui::DragValue::new(&mut options.start);
+                            drag_row(ui, tr("Start"), start.range(0..=99_999_999));
+                            let step = egui::DragValue::new(&mut options.step);
+                            drag_row(ui, tr("Step"), step.range(1..=10_000));
                         });
                     ui.checkbox(&mut options.all_blocks, tr("Number every block"));
                     run = ui.button(tr("Renumber")).clicked();

@@ -13,13 +13,7 @@ impl Workbench {
     /// Selects the whole of 1-based `line` in the editor (clamped to the text) and scrolls to it.
     pub fn select_line(&mut self, line: u32) {
         let line = line.clamp(1, commands::line_count(&self.text));
-        let start = commands::line_start(&self.text, line);
-        let end = self.text[start..]
-            .find('\n')
-            .map_or(self.text.len(), |j| start + j);
-        let chars =
-            commands::char_of_byte(&self.text, start)..commands::char_of_byte(&self.text, end);
-        self.select_chars(chars);
+        self.select_chars(lines_chars(&self.text, line, line));
         self.cursor_line = Some(line);
     }
 
@@ -110,12 +104,7 @@ impl Workbench {
         let lines = self.selected_lines();
         let (first, last) = (*lines.start(), *lines.end());
         let text = commands::toggle_comment(&self.text, lines, self.dialect);
-        let start = commands::line_start(&text, first);
-        let end_line_start = commands::line_start(&text, last);
-        let end = text[end_line_start..]
-            .find('\n')
-            .map_or(text.len(), |j| end_line_start + j);
-        let chars = commands::char_of_byte(&text, start)..commands::char_of_byte(&text, end);
+        let chars = lines_chars(&text, first, last);
         self.apply(text, chars);
     }
 
@@ -138,4 +127,15 @@ impl Workbench {
         self.select_chars(chars..chars);
         self.cursor_line = Some(line);
     }
+}
+
+/// The characters of `text` from the start of 1-based line `first` to the end of line `last`,
+/// without its line break.
+fn lines_chars(text: &str, first: u32, last: u32) -> Range<usize> {
+    let start = commands::line_start(text, first);
+    let last_start = commands::line_start(text, last);
+    let end = text[last_start..]
+        .find('\n')
+        .map_or(text.len(), |j| last_start + j);
+    commands::char_of_byte(text, start)..commands::char_of_byte(text, end)
 }

@@ -136,8 +136,7 @@ impl Workbench {
                     }),
             );
             let field = field.labelled_by(label.id);
-            self.widgets
-                .insert("find_field".into(), field.rect.intersect(ui.clip_rect()));
+            self.keep_rect(ui, "find_field", &field);
             if std::mem::take(&mut self.find.focus) {
                 field.request_focus();
             }
@@ -152,14 +151,8 @@ impl Workbench {
             ui.checkbox(&mut self.find.options.match_case, tr("Match case"));
             let previous_button = ui.button(tr("Previous"));
             let next_button = ui.button(tr("Next"));
-            self.widgets.insert(
-                "find_previous".into(),
-                previous_button.rect.intersect(ui.clip_rect()),
-            );
-            self.widgets.insert(
-                "find_next".into(),
-                next_button.rect.intersect(ui.clip_rect()),
-            );
+            self.keep_rect(ui, "find_previous", &previous_button);
+            self.keep_rect(ui, "find_next", &next_button);
             previous = previous_button.clicked();
             next |= next_button.clicked();
             let key = (self.generation, self.find.query.clone(), self.find.options);
@@ -184,10 +177,7 @@ impl Workbench {
                 None => {}
             }
             let close_button = ui.button("×").on_hover_text(tr("Close"));
-            self.widgets.insert(
-                "find_close".into(),
-                close_button.rect.intersect(ui.clip_rect()),
-            );
+            self.keep_rect(ui, "find_close", &close_button);
             close |= close_button.clicked();
         });
         if self.find.replace {
@@ -200,12 +190,9 @@ impl Workbench {
                     .labelled_by(label.id);
                 let one = ui.button(tr("Replace"));
                 let all = ui.button(tr("Replace all"));
-                self.widgets
-                    .insert("replace_field".into(), field.rect.intersect(ui.clip_rect()));
-                self.widgets
-                    .insert("replace".into(), one.rect.intersect(ui.clip_rect()));
-                self.widgets
-                    .insert("replace_all".into(), all.rect.intersect(ui.clip_rect()));
+                self.keep_rect(ui, "replace_field", &field);
+                self.keep_rect(ui, "replace", &one);
+                self.keep_rect(ui, "replace_all", &all);
                 replace = one.clicked();
                 replace_all = all.clicked();
             });

@@ -6,6 +6,7 @@ use super::{HostRequest, Workbench};
 use crate::commands::RenumberOptions;
 use crate::examples::EXAMPLES;
 use crate::i18n::{Lang, tr};
+use crate::settings::choice;
 
 /// An action that drops unsaved changes, held while they are confirmed.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -28,25 +29,16 @@ impl Workbench {
                 self.settings_open = true;
             }
             ui.separator();
-            let label = ui.label(tr("Dialect"));
             let mut dialect = self.dialect;
-            egui::ComboBox::from_id_salt("swarf-dialect")
-                .selected_text(dialect.label())
-                .show_ui(ui, |ui| {
-                    for d in Dialect::ALL {
-                        ui.selectable_value(&mut dialect, d, d.label());
-                    }
-                })
-                .response
-                .labelled_by(label.id);
+            let (id, label) = ("swarf-dialect", tr("Dialect"));
+            choice(ui, id, label, &mut dialect, Dialect::ALL, Dialect::label);
             // The active tab's dialect, and the one new tabs start in.
             if dialect != self.dialect {
                 self.set_dialect(dialect);
             }
             ui.separator();
             let fit = ui.button(tr("Fit view"));
-            self.widgets
-                .insert("fit_view".into(), fit.rect.intersect(ui.clip_rect()));
+            self.keep_rect(ui, "fit_view", &fit);
             if fit.clicked() {
                 self.backplot.fit();
             }
@@ -54,17 +46,10 @@ impl Workbench {
     }
 
     fn file_menu(&mut self, ui: &mut egui::Ui) {
-        let cmd = |ui: &egui::Ui, key| ui.ctx().format_shortcut(&shortcut(key));
-        if ui
-            .add(egui::Button::new(tr("New")).shortcut_text(cmd(ui, egui::Key::N)))
-            .clicked()
-        {
+        if item(ui, tr("New"), egui::Key::N, true) {
             self.new_tab();
         }
-        if ui
-            .add(egui::Button::new(tr("Open…")).shortcut_text(cmd(ui, egui::Key::O)))
-            .clicked()
-        {
+        if item(ui, tr("Open…"), egui::Key::O, true) {
             self.requests.push(HostRequest::Open);
         }
         ui.add_enabled_ui(!self.recent.is_empty(), |ui| {
@@ -85,10 +70,7 @@ impl Workbench {
             }
         });
         ui.separator();
-        if ui
-            .add(egui::Button::new(tr("Save")).shortcut_text(cmd(ui, egui::Key::S)))
-            .clicked()
-        {
+        if item(ui, tr("Save"), egui::Key::S, true) {
             self.requests.push(HostRequest::Save);
         }
         if ui.button(tr("Save as…")).clicked() {
@@ -121,39 +103,24 @@ impl Workbench {
     }
 
     fn edit_menu(&mut self, ui: &mut egui::Ui) {
-        let cmd = |ui: &egui::Ui, key| ui.ctx().format_shortcut(&shortcut(key));
-        let undo = egui::Button::new(tr("Undo")).shortcut_text(cmd(ui, egui::Key::Z));
-        if ui.add_enabled(self.history.can_undo(), undo).clicked() {
+        if item(ui, tr("Undo"), egui::Key::Z, self.history.can_undo()) {
             self.undo();
         }
-        let redo = egui::Button::new(tr("Redo")).shortcut_text(cmd(ui, egui::Key::Y));
-        if ui.add_enabled(self.history.can_redo(), redo).clicked() {
+        if item(ui, tr("Redo"), egui::Key::Y, self.history.can_redo()) {
             self.redo();
         }
         ui.separator();
-        if ui
-            .add(egui::Button::new(tr("Find…")).shortcut_text(cmd(ui, egui::Key::F)))
-            .clicked()
-        {
+        if item(ui, tr("Find…"), egui::Key::F, true) {
             self.open_find(false);
         }
-        if ui
-            .add(egui::Button::new(tr("Replace…")).shortcut_text(cmd(ui, egui::Key::H)))
-            .clicked()
-        {
+        if item(ui, tr("Replace…"), egui::Key::H, true) {
             self.open_find(true);
         }
-        if ui
-            .add(egui::Button::new(tr("Go to line…")).shortcut_text(cmd(ui, egui::Key::G)))
-            .clicked()
-        {
+        if item(ui, tr("Go to line…"), egui::Key::G, true) {
             self.goto = Some(String::new());
         }
         ui.separator();
-        if ui
-            .add(egui::Button::new(tr("Toggle comment")).shortcut_text(cmd(ui, egui::Key::Slash)))
-            .clicked()
-        {
+        if item(ui, tr("Toggle comment"), egui::Key::Slash, true) {
             self.toggle_comment();
         }
         if ui.button(tr("Renumber blocks…")).clicked() {
@@ -201,48 +168,44 @@ impl Workbench {
                 (redo, i.consume_key(cmd, Key::Z))
             })
         };
-        let (find, replace, goto, comment, save_as, save, open, new) = ctx.input_mut(|i| {
-            (
-                i.consume_key(cmd, Key::F),
-                i.consume_key(cmd, Key::H),
-                i.consume_key(cmd, Key::G),
-                i.consume_key(cmd, Key::Slash),
-                i.consume_key(cmd_shift, Key::S),
-                i.consume_key(cmd, Key::S),
-                i.consume_key(cmd, Key::O),
-                i.consume_key(cmd, Key::N),
-            )
-        });
         if redo {
             self.redo();
         }
         if undo {
             self.undo();
         }
-        if find || replace {
-            self.open_find(replace);
-        }
-        if goto {
-            self.goto = Some(String::new());
-        }
-        if comment {
-            self.toggle_comment();
-        }
-        if save_as {
-            self.requests.push(HostRequest::SaveAs);
-        } else if save {
-            self.requests.push(HostRequest::Save);
-        }
-        if open {
-            self.requests.push(HostRequest::Open);
-        }
-        if new {
-            self.new_tab();
+        // Ctrl+Shift+S before Ctrl+S, which would take it too.
+        let commands: [Shortcut; 8] = [
+            (cmd, Key::F, |wb| wb.open_find(false)),
+            (cmd, Key::H, |wb| wb.open_find(true)),
+            (cmd, Key::G, |wb| wb.goto = Some(String::new())),
+            (cmd, Key::Slash, Workbench::toggle_comment),
+            (cmd_shift, Key::S, |wb| {
+                wb.requests.push(HostRequest::SaveAs);
+            }),
+            (cmd, Key::S, |wb| wb.requests.push(HostRequest::Save)),
+            (cmd, Key::O, |wb| wb.requests.push(HostRequest::Open)),
+            (cmd, Key::N, Workbench::new_tab),
+        ];
+        let pressed: Vec<fn(&mut Workbench)> = ctx.input_mut(|i| {
+            (commands.into_iter())
+                .filter(|(modifiers, key, _)| i.consume_key(*modifiers, *key))
+                .map(|(_, _, run)| run)
+                .collect()
+        });
+        for run in pressed {
+            run(self);
         }
     }
 }
 
-/// The shortcut of an editor command: Ctrl (Cmd on macOS) and `key`.
-fn shortcut(key: egui::Key) -> egui::KeyboardShortcut {
-    egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, key)
+/// A menu item showing its shortcut, Ctrl (Cmd on macOS) and `key`; whether it was clicked.
+fn item(ui: &mut egui::Ui, label: &str, key: egui::Key, enabled: bool) -> bool {
+    let shortcut = egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, key);
+    let text = ui.ctx().format_shortcut(&shortcut);
+    ui.add_enabled(enabled, egui::Button::new(label).shortcut_text(text))
+        .clicked()
 }
+
+/// A keyboard shortcut: its modifiers, its key and the command it runs.
+type Shortcut = (egui::Modifiers, egui::Key, fn(&mut Workbench));

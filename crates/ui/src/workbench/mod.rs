@@ -357,6 +357,17 @@ impl Workbench {
             .filter(egui::Rect::is_positive)
     }
 
+    /// Keeps where `widget` was drawn, the part in sight, as `name` for
+    /// [`Workbench::widget_rect`].
+    fn keep_rect(
+        &mut self,
+        ui: &egui::Ui,
+        name: impl Into<std::borrow::Cow<'static, str>>,
+        widget: &egui::Response,
+    ) {
+        (self.widgets).insert(name.into(), widget.rect.intersect(ui.clip_rect()));
+    }
+
     /// Shows the workbench filling `ui`.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
@@ -369,17 +380,14 @@ impl Workbench {
         egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
         // The panels keep their size (the user's, once a divider is dragged) whatever they
         // show: their contents wrap or scroll inside, so the view never jumps under the mouse.
-        if self.problem_count() == 0 {
+        let problems = if self.problem_count() == 0 {
             // Nothing to list: one line, not an empty list's height.
-            egui::Panel::bottom("swarf-problems-none")
-                .resizable(false)
-                .show(ui, |ui| self.problems_list(ui));
+            egui::Panel::bottom("swarf-problems-none").resizable(false)
         } else {
-            egui::Panel::bottom("swarf-problems")
-                .resizable(true)
+            (egui::Panel::bottom("swarf-problems").resizable(true))
                 .default_size(PROBLEMS_PANEL_HEIGHT)
-                .show(ui, |ui| self.problems_list(ui));
-        }
+        };
+        problems.show(ui, |ui| self.problems_list(ui));
         egui::Panel::right("swarf-state")
             .resizable(true)
             .default_size(STATE_PANEL_WIDTH)
@@ -465,8 +473,7 @@ impl Workbench {
                 if let Some(request) = self.backplot.stock_request(&self.analysis.scene) {
                     self.ask(request);
                 }
-                self.widgets
-                    .insert("backplot".into(), view.rect.intersect(ui.clip_rect()));
+                self.keep_rect(ui, "backplot", &view);
                 self.loading_overlay(ui, view.rect);
                 // … a click on a segment moves the editor to its block, and so does playback
                 // (the backplot highlights the block itself).

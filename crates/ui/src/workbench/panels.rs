@@ -41,36 +41,33 @@ impl Workbench {
         // anything wider than the panel that scrolls).
         ui.label(tr("modes"));
         ui.add(egui::Label::new(s.codes.join(" ")).wrap());
+        let tool = match s.length_offset {
+            Some((h, v)) => format!("T{} H{h} ({v:+.3} mm)", s.tool),
+            None => format!("T{}", s.tool),
+        };
+        // (name, value, whether it is a position, shown in monospace)
+        let rows = [
+            (tr("line"), line.to_string(), false),
+            (tr("work"), mm(s.work), true),
+            (tr("machine"), mm(s.machine), true),
+            (s.work_offset_name.as_str(), mm(s.work_offset), true),
+            (tr("tool"), tool, false),
+            (tr("feed"), format!("F{}", s.feed), false),
+            (tr("spindle"), format!("S{}", s.spindle_rpm), false),
+            (tr("blocks run"), s.executed.to_string(), false),
+        ];
         egui::Grid::new("swarf-state-grid")
             .num_columns(2)
             .show(ui, |ui| {
-                ui.label(tr("line"));
-                ui.label(line.to_string());
-                ui.end_row();
-                ui.label(tr("work"));
-                ui.monospace(mm(s.work));
-                ui.end_row();
-                ui.label(tr("machine"));
-                ui.monospace(mm(s.machine));
-                ui.end_row();
-                ui.label(&s.work_offset_name);
-                ui.monospace(mm(s.work_offset));
-                ui.end_row();
-                ui.label(tr("tool"));
-                ui.label(match s.length_offset {
-                    Some((h, v)) => format!("T{} H{h} ({v:+.3} mm)", s.tool),
-                    None => format!("T{}", s.tool),
-                });
-                ui.end_row();
-                ui.label(tr("feed"));
-                ui.label(format!("F{}", s.feed));
-                ui.end_row();
-                ui.label(tr("spindle"));
-                ui.label(format!("S{}", s.spindle_rpm));
-                ui.end_row();
-                ui.label(tr("blocks run"));
-                ui.label(s.executed.to_string());
-                ui.end_row();
+                for (name, value, position) in rows {
+                    ui.label(name);
+                    if position {
+                        ui.monospace(value);
+                    } else {
+                        ui.label(value);
+                    }
+                    ui.end_row();
+                }
             });
     }
 
@@ -87,15 +84,8 @@ impl Workbench {
             ui.label(trf("{} motions", &[&s.motions]));
             ui.separator();
             if let Some((min, max)) = s.bounds {
-                let size = max - min;
-                ui.label(trf(
-                    "extent {} × {} × {} mm",
-                    &[
-                        &format!("{:.2}", size.x),
-                        &format!("{:.2}", size.y),
-                        &format!("{:.2}", size.z),
-                    ],
-                ));
+                let [x, y, z] = (max - min).to_array().map(|v| format!("{v:.2}"));
+                ui.label(trf("extent {} × {} × {} mm", &[&x, &y, &z]));
                 ui.separator();
             }
             ui.label(format!("≈ {}", format_duration(s.estimated_secs)));
@@ -116,27 +106,25 @@ impl Workbench {
             }
             ui.separator();
             ui.label(self.document.encoding.name());
-            if let Some(Progress::Reading { read, lines }) = self.pending {
-                ui.separator();
-                ui.label("Analysing");
-                ui.add(
-                    egui::ProgressBar::new(read as f32 / lines.max(1) as f32)
-                        .desired_width(180.0)
-                        .text(format!("{read} / {lines} lines read")),
-                );
+            let progress = if let Some(Progress::Reading { read, lines }) = self.pending {
+                let text = format!("{read} / {lines} lines read");
+                Some(("Analysing", read as f32 / lines.max(1) as f32, text))
             } else if let Some((done, total)) = self.analysis_progress() {
-                ui.separator();
-                ui.label(tr("Analysing"));
                 let fraction = if total == 0 {
                     1.0
                 } else {
                     done as f32 / total as f32
                 };
-                ui.add(
-                    egui::ProgressBar::new(fraction)
-                        .desired_width(180.0)
-                        .text(trf("{} / {} blocks", &[&done, &total])),
-                );
+                let text = trf("{} / {} blocks", &[&done, &total]);
+                Some((tr("Analysing"), fraction, text))
+            } else {
+                None
+            };
+            if let Some((label, fraction, text)) = progress {
+                ui.separator();
+                ui.label(label);
+                let bar = egui::ProgressBar::new(fraction).desired_width(180.0);
+                ui.add(bar.text(text));
             }
             if let Some(message) = &self.message {
                 ui.separator();
@@ -213,8 +201,7 @@ impl Workbench {
             .show_rows(ui, row_height, total, |ui, rows| {
                 // Only the rows on screen are laid out: a program can have many thousands. The
                 // program's own problems come first, then those in the other tabs it called.
-                let mut jump = None;
-                let mut jump_elsewhere = None;
+                let mut clicked = None;
                 for i in rows {
                     let (text, severity, hover) = if let Some(p) = self.analysis.problems.get(i) {
                         (
@@ -243,26 +230,23 @@ impl Workbench {
                         .color(severity_color(severity));
                     let row = ui.add(egui::Label::new(label).sense(egui::Sense::click()));
                     if i == 0 {
-                        self.widgets
-                            .insert("problem_first".into(), row.rect.intersect(ui.clip_rect()));
+                        self.keep_rect(ui, "problem_first", &row);
                     }
                     if row.on_hover_text(hover).clicked() {
-                        if let Some(p) = self.analysis.problems.get(i) {
-                            jump = Some(p.chars.clone());
-                        } else if let Some(l) = self.analysis.elsewhere.get(i - own) {
-                            jump_elsewhere = Some((l.file.clone(), l.problem.chars.clone()));
-                        }
+                        clicked = Some(i);
                     }
                 }
-                if let Some(chars) = jump {
-                    self.select_chars(chars);
-                }
-                if let Some((file, chars)) = jump_elsewhere
-                    && let Some(i) =
-                        (0..self.tabs.len()).find(|&i| self.tab_document(i).name == file)
-                {
-                    self.switch_tab(i);
-                    self.select_chars(chars);
+                let Some(i) = clicked else { return };
+                if let Some(p) = self.analysis.problems.get(i) {
+                    self.select_chars(p.chars.clone());
+                } else if let Some(l) = self.analysis.elsewhere.get(i - own) {
+                    let (file, chars) = (l.file.clone(), l.problem.chars.clone());
+                    if let Some(tab) =
+                        (0..self.tabs.len()).find(|&t| self.tab_document(t).name == file)
+                    {
+                        self.switch_tab(tab);
+                        self.select_chars(chars);
+                    }
                 }
             });
     }

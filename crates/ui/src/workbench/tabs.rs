@@ -173,17 +173,6 @@ impl Workbench {
         self.dialect = self.default_dialect;
     }
 
-    /// Opens a file dropped on the window or the page in a tab (see [`Workbench::open_file`]).
-    pub fn open_guarded(
-        &mut self,
-        name: &str,
-        text: String,
-        encoding: Encoding,
-        path: Option<String>,
-    ) {
-        self.open_file(name, text, encoding, path);
-    }
-
     /// Replaces the active tab's program with a file's text (no unsaved changes), as after
     /// saving it in another encoding.
     pub fn reload_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
@@ -229,31 +218,23 @@ impl Workbench {
     /// Replaces the active tab's program with unsaved `text` recovered after a crash: shown as
     /// a change to `name` that still needs saving.
     pub fn recover(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
-        self.load(name, String::new(), encoding);
-        self.text = Buffer::from(text.into());
-        self.shadow = self.text.rope().clone();
+        self.load(name, text.into(), encoding);
+        self.document.saved = Rope::new();
         self.document.dirty = true;
         self.document.revision = next_stamp();
         self.message = recovered_message(&[name]);
-        self.reanalyse();
-        self.backplot.fit();
     }
 
     /// Every tab's file and text, in order, with the index of the active one.
     pub fn tab_records(&self) -> (Vec<TabRecord>, usize) {
         let records = (0..self.tabs.len())
             .map(|i| {
-                let (doc, text) = if i == self.active {
-                    (&self.document, &self.text)
-                } else {
-                    let tab = &self.tabs[i];
-                    (&tab.document, &tab.text)
-                };
+                let doc = self.tab_document(i);
                 TabRecord {
                     name: doc.name.clone(),
                     path: doc.path.clone(),
                     encoding: doc.encoding,
-                    text: text.to_text(),
+                    text: self.tab_text(i).unwrap_or_default(),
                     dirty: doc.dirty,
                     dialect: self.tab_dialect(i),
                 }
@@ -454,12 +435,7 @@ impl Workbench {
 
     /// Whether any tab has unsaved changes.
     pub fn any_dirty(&self) -> bool {
-        self.document.dirty
-            || self
-                .tabs
-                .iter()
-                .enumerate()
-                .any(|(i, t)| i != self.active && t.document.dirty)
+        (0..self.tabs.len()).any(|i| self.tab_document(i).dirty)
     }
 
     /// The open document (name, encoding).
@@ -563,41 +539,17 @@ impl Workbench {
                         let hover = doc.path.clone().unwrap_or_else(|| doc.name.clone());
                         let close_label = trf("Close {}", &[&doc.name]);
                         let tab = ui.selectable_label(i == self.active, label);
-                        self.widgets.insert(
-                            format!("tab {}", i + 1).into(),
-                            tab.rect.intersect(ui.clip_rect()),
-                        );
+                        self.keep_rect(ui, format!("tab {}", i + 1), &tab);
                         if tab.on_hover_text(hover).clicked() {
                             switch = Some(i);
                         }
-                        let button = ui.small_button("×");
-                        button.widget_info(|| {
-                            egui::WidgetInfo::labeled(
-                                egui::accesskit::Role::Button,
-                                true,
-                                &close_label,
-                            )
-                        });
-                        self.widgets.insert(
-                            format!("close_tab {}", i + 1).into(),
-                            button.rect.intersect(ui.clip_rect()),
-                        );
-                        if button.on_hover_text(&close_label).clicked() {
+                        let name = format!("close_tab {}", i + 1);
+                        if self.small_button(ui, "×", &close_label, name) {
                             close = Some(i);
                         }
                         ui.separator();
                     }
-                    let button = ui.small_button("+");
-                    button.widget_info(|| {
-                        egui::WidgetInfo::labeled(
-                            egui::accesskit::Role::Button,
-                            true,
-                            tr("New tab"),
-                        )
-                    });
-                    self.widgets
-                        .insert("new_tab".into(), button.rect.intersect(ui.clip_rect()));
-                    new = button.on_hover_text(tr("New tab")).clicked();
+                    new = self.small_button(ui, "+", tr("New tab"), "new_tab".to_string());
                 });
             });
         if let Some(i) = switch {
@@ -609,6 +561,16 @@ impl Workbench {
         if new {
             self.new_tab();
         }
+    }
+
+    /// A small button named `label` for screen readers and its hover text, kept in
+    /// [`Workbench::widget_rect`] as `widget`; whether it was clicked.
+    fn small_button(&mut self, ui: &mut egui::Ui, text: &str, label: &str, widget: String) -> bool {
+        let button = ui.small_button(text);
+        button
+            .widget_info(|| egui::WidgetInfo::labeled(egui::accesskit::Role::Button, true, label));
+        self.keep_rect(ui, widget, &button);
+        button.on_hover_text(label).clicked()
     }
 }
 
