@@ -159,18 +159,7 @@ fn lod_rows(
     let target = RenderTarget::new(&gpu.device, FRAME.0, FRAME.1, format).unwrap();
     // The first frame warms pipelines up.
     let frames: Vec<Duration> = (0..=runs)
-        .map(|_| {
-            let t = Instant::now();
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-            target.draw(&mut encoder, wgpu::Color::BLACK, &renderer);
-            gpu.queue.submit([encoder.finish()]);
-            gpu.device
-                .poll(wgpu::PollType::wait_indefinitely())
-                .unwrap();
-            t.elapsed()
-        })
+        .map(|_| timed_frame(gpu, &target, &renderer))
         .skip(1)
         .collect();
     let (width, height) = FRAME;
@@ -187,6 +176,20 @@ fn lod_rows(
             ms(median(frames)),
         ),
     ]
+}
+
+/// Draws one frame of `renderer` into `target` and waits for the GPU: its wall time.
+fn timed_frame(gpu: &HeadlessGpu, target: &RenderTarget, renderer: &PathRenderer) -> Duration {
+    let t = Instant::now();
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    target.draw(&mut encoder, wgpu::Color::BLACK, renderer);
+    gpu.queue.submit([encoder.finish()]);
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .unwrap();
+    t.elapsed()
 }
 
 fn median(mut samples: Vec<Duration>) -> Duration {
@@ -328,18 +331,10 @@ fn main() {
                         ..ViewParams::default()
                     },
                 );
-                let t = Instant::now();
-                let mut encoder = gpu
-                    .device
-                    .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-                target.draw(&mut encoder, wgpu::Color::BLACK, &renderer);
-                gpu.queue.submit([encoder.finish()]);
-                gpu.device
-                    .poll(wgpu::PollType::wait_indefinitely())
-                    .unwrap();
+                let frame = timed_frame(&gpu, &target, &renderer);
                 // The first frame warms pipelines up.
                 if i > 0 {
-                    frames.push(t.elapsed());
+                    frames.push(frame);
                 }
             }
             rows.push((
