@@ -20,7 +20,7 @@ const MORE_LINES: usize = 2_000;
 const WHAT_CHARS: usize = 16;
 
 /// A dialect that reads a program with fewer errors than the one it was analysed in.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct DialectHint {
     /// The dialect the program was analysed in (the hint is stale once the tab has another).
     pub from: Dialect,

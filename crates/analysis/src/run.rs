@@ -8,7 +8,8 @@ use glam::DVec3;
 use swarf_interp::{BlockState, Setup, States, StatesRun, Status};
 use swarf_render::Drawing;
 use swarf_syntax::{
-    Diagnostic, Dialect, LineIndex, LinkedFile, LinkedSource, ParseRun, Program, Severity,
+    Diagnostic, DiagnosticDef, Dialect, LineIndex, LinkedFile, LinkedSource, ParseRun, Program,
+    Severity,
 };
 use swarf_toolpath::{Timeline, Toolpath};
 
@@ -32,7 +33,7 @@ pub struct Job {
 }
 
 /// One diagnostic, located for display.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Problem {
     /// 1-based line.
     pub line: u32,
@@ -41,16 +42,27 @@ pub struct Problem {
     /// How bad it is.
     pub severity: Severity,
     /// Stable code such as `E-SYNTAX-CHAR`.
-    pub code: &'static str,
+    #[serde(deserialize_with = "registered")]
+    pub code: Code,
     /// The message.
     pub message: String,
     /// Character range in the text, for underlining and jumping.
     pub chars: std::ops::Range<usize>,
 }
 
+/// A registered diagnostic code: named apart so that serde reads it through [`registered`]
+/// instead of borrowing it from the message.
+pub type Code = &'static str;
+
+/// A diagnostic code read back as the registered one (`?` for a code not registered).
+fn registered<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Code, D::Error> {
+    let code = <String as serde::Deserialize>::deserialize(d)?;
+    Ok(DiagnosticDef::lookup(&code).map_or("?", |def| def.code))
+}
+
 /// A diagnostic in another open file that the program called (a subprogram's error), located
 /// in that file.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LinkedProblem {
     /// The name of the file (tab) it is in.
     pub file: String,
@@ -59,7 +71,7 @@ pub struct LinkedProblem {
 }
 
 /// Summary numbers of an analysed program.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Stats {
     /// Blocks parsed.
     pub blocks: usize,
@@ -74,17 +86,20 @@ pub struct Stats {
 /// What the backplot shows of a toolpath: its [`Drawing`] (with the setup's travel box), each
 /// segment's source line and feed for picking, its times and tool for playback, and the radii
 /// of the setup's tools for the tool marker.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Plot {
     /// The path and its marks.
     pub drawing: Drawing,
     /// 1-based source line of each segment.
+    #[serde(skip)]
     pub lines: Vec<u32>,
     /// Feed of each segment in mm/min (0 for rapids).
+    #[serde(skip)]
     pub feeds: Vec<f32>,
     /// When each segment runs.
     pub timeline: Timeline,
     /// The tool in the spindle during each segment.
+    #[serde(skip)]
     pub tools: Vec<u32>,
     /// Radius in mm of the tools the setup knows, by number.
     pub tool_radii: BTreeMap<u32, f32>,
@@ -110,7 +125,7 @@ impl Plot {
 
 /// What the editor shows of a finished analysis: everything but the program, its toolpath and
 /// its machine states, which stay with the analysis ([`Kept`]).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Results {
     /// The job's generation.
     pub generation: u64,
@@ -163,7 +178,7 @@ impl Kept {
 }
 
 /// How far an analysis has got.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Progress {
     /// Reading the text: lines read, lines in the text.
     Reading {

@@ -38,7 +38,7 @@ pub enum Request {
 }
 
 /// What the analysis answers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Reply {
     /// How far the analysis of `generation` has got.
     Progress {

@@ -17,10 +17,11 @@ use crate::service::Held;
 const PIECE_CELLS: f64 = 4096.0;
 
 /// The cut stock's heights, as the view draws them.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StockField {
     /// The height of each cell (machine Z, mm), row by row from the lowest Y: cell `(i, j)` at
     /// index `j · nx + i`, over the cell's centre.
+    #[serde(skip)]
     pub heights: Vec<f32>,
     /// Cells along X and along Y (`nx`, `ny`).
     pub size: (usize, usize),
@@ -49,7 +50,7 @@ impl StockField {
 
 /// The stock as cut for the analysis of `generation`: the answer to
 /// [`crate::Request::Stock`], or its progress while `done` is short of `upto`.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StockCut {
     /// The analysis whose toolpath is cut.
     pub generation: u64,

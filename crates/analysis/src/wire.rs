@@ -1,147 +1,117 @@
-//! Requests and replies as bytes, for a web worker: a short head (numbers, names, messages) and
-//! beside it the large parts whole, each in a buffer of its own that is moved, not copied,
-//! between the page and the worker (the texts one way, the plot's arrays the other). Reading
-//! checks every length: a message cut short or from elsewhere reads as `None`.
+//! Requests and replies as bytes, for a web worker: a short head (numbers, names, messages,
+//! in postcard) and beside it the large parts whole, each in a buffer of its own that is moved,
+//! not copied, between the page and the worker (the texts one way, the plot's arrays the other).
+//! Reading checks every length: a message cut short or from elsewhere reads as `None`.
 
-use glam::{DVec3, Vec3};
-use swarf_interp::{BlockState, Setup};
-use swarf_render::Drawing;
-use swarf_syntax::{DiagnosticDef, Dialect, LinkedFile, Severity};
-use swarf_toolpath::{Dwell, Timeline};
+use serde::{Deserialize, Serialize};
+use swarf_interp::Setup;
+use swarf_syntax::Dialect;
+use swarf_toolpath::Timeline;
 
-use crate::hint::DialectHint;
-use crate::run::{Job, LinkedProblem, Plot, Problem, Progress, Results, Stats};
+use crate::run::Job;
 use crate::service::{Reply, Request};
-use crate::stock::{StockCut, StockField};
 use crate::text::ProgramText;
+
+/// A request's head: all but its texts.
+#[derive(Serialize, Deserialize)]
+enum RequestHead {
+    Analyse {
+        generation: u64,
+        dialect: Dialect,
+        /// The setup as TOML (one that TOML cannot hold, with a NaN, is read as the default).
+        setup: String,
+        /// The other open files' names; their texts follow the program's, in order.
+        others: Option<Vec<String>>,
+    },
+    StateAt {
+        generation: u64,
+        line: u32,
+    },
+    Stock {
+        generation: u64,
+        upto: usize,
+    },
+}
 
 /// The head of `request` and the texts that go beside it (the program's, then the other
 /// files', in order).
 pub fn request_parts(request: &Request) -> (Vec<u8>, Vec<&ProgramText>) {
-    let mut w = Writer::default();
-    match request {
+    let (head, texts) = match request {
         Request::Analyse(job) => {
-            w.u8(0);
-            w.u64(job.generation);
-            w.str(job.dialect.name());
-            // A setup TOML cannot hold (a NaN) is read as the default one.
-            w.str(&job.setup.to_toml().unwrap_or_default());
-            let mut texts = vec![&job.text];
-            w.option(job.others.as_ref(), |w, others| {
-                w.len(others.len());
-                for (name, text) in others {
-                    w.str(name);
-                    texts.push(text);
-                }
-            });
-            (w.0, texts)
+            let others = job.others.as_ref();
+            let texts = std::iter::once(&job.text);
+            let texts = texts.chain(others.into_iter().flatten().map(|(_, text)| text));
+            let head = RequestHead::Analyse {
+                generation: job.generation,
+                dialect: job.dialect,
+                setup: job.setup.to_toml().unwrap_or_default(),
+                others: others.map(|o| o.iter().map(|(name, _)| name.clone()).collect()),
+            };
+            (head, texts.collect())
         }
-        Request::StateAt { generation, line } => {
-            w.u8(1);
-            w.u64(*generation);
-            w.u32(*line);
-            (w.0, Vec::new())
+        &Request::StateAt { generation, line } => {
+            (RequestHead::StateAt { generation, line }, vec![])
         }
-        Request::Stock { generation, upto } => {
-            w.u8(2);
-            w.u64(*generation);
-            w.len(*upto);
-            (w.0, Vec::new())
-        }
-    }
+        &Request::Stock { generation, upto } => (RequestHead::Stock { generation, upto }, vec![]),
+    };
+    (postcard::to_allocvec(&head).unwrap_or_default(), texts)
 }
 
 /// The request of a head and its texts ([`request_parts`]).
 pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
-    let mut r = Reader { bytes: head, at: 0 };
-    let request = match r.u8()? {
-        0 => {
-            let generation = r.u64()?;
-            let dialect = r.str()?.parse::<Dialect>().ok()?;
-            let setup = Setup::from_toml(&r.str()?).unwrap_or_default();
+    Some(match whole(head)? {
+        RequestHead::Analyse {
+            generation,
+            dialect,
+            setup,
+            others,
+        } => {
             let mut texts = texts.into_iter().map(ProgramText::from);
             let text = texts.next()?;
-            let others = r.option(|r| r.many(|r| Some((r.str()?, texts.next()?))))?;
+            let others = match others {
+                Some(names) => Some(
+                    names
+                        .into_iter()
+                        .map(|n| Some((n, texts.next()?)))
+                        .collect::<Option<_>>()?,
+                ),
+                None => None,
+            };
             Request::Analyse(Box::new(Job {
                 generation,
                 text,
                 dialect,
-                setup,
+                setup: Setup::from_toml(&setup).unwrap_or_default(),
                 others,
             }))
         }
-        1 => Request::StateAt {
-            generation: r.u64()?,
-            line: r.u32()?,
-        },
-        2 => Request::Stock {
-            generation: r.u64()?,
-            upto: r.len()?,
-        },
-        _ => return None,
-    };
-    r.end().then_some(request)
+        RequestHead::StateAt { generation, line } => Request::StateAt { generation, line },
+        RequestHead::Stock { generation, upto } => Request::Stock { generation, upto },
+    })
 }
 
-/// The head of `reply` and the arrays that go beside it as bytes (a finished analysis' plot:
-/// points, marks, lines, feeds, end times, tools; a cut stock's heights).
+/// The head of `reply` and the arrays that go beside it.
 pub fn reply_parts(reply: &Reply) -> (Vec<u8>, Vec<&[u8]>) {
-    let mut w = Writer::default();
-    match reply {
-        Reply::Progress {
-            generation,
-            progress,
-        } => {
-            w.u8(0);
-            w.u64(*generation);
-            let (kind, a, b) = match *progress {
-                Progress::Reading { read, lines } => (0, read, lines),
-                Progress::Running { reached, blocks } => (1, reached, blocks),
-            };
-            w.u8(kind);
-            w.len(a);
-            w.len(b);
-            (w.0, Vec::new())
-        }
+    let arrays = match reply {
         Reply::Done(results) => {
-            w.u8(1);
-            w.results(results);
             let plot = &results.plot;
-            let arrays = vec![
+            vec![
                 bytemuck::cast_slice(&plot.drawing.points),
                 bytemuck::cast_slice(&plot.drawing.marks),
                 bytemuck::cast_slice(&plot.lines),
                 bytemuck::cast_slice(&plot.feeds),
                 bytemuck::cast_slice(plot.timeline.end_times()),
                 bytemuck::cast_slice(&plot.tools),
-            ];
-            (w.0, arrays)
+            ]
         }
-        Reply::State {
-            generation,
-            line,
-            state,
-        } => {
-            w.u8(2);
-            w.u64(*generation);
-            w.u32(*line);
-            match state {
-                None => w.u8(0),
-                Some(None) => w.u8(1),
-                Some(Some(s)) => {
-                    w.u8(2);
-                    w.block_state(s);
-                }
-            }
-            (w.0, Vec::new())
-        }
-        Reply::Stock(cut) => {
-            w.u8(3);
-            w.stock_cut(cut);
-            let heights = cut.field.iter().map(|f| bytemuck::cast_slice(&f.heights));
-            (w.0, heights.collect())
-        }
-    }
+        Reply::Stock(cut) => cut
+            .field
+            .iter()
+            .map(|f| bytemuck::cast_slice(&f.heights))
+            .collect(),
+        Reply::Progress { .. } | Reply::State { .. } => Vec::new(),
+    };
+    (postcard::to_allocvec(reply).unwrap_or_default(), arrays)
 }
 
 /// The reply of a head and its arrays ([`reply_parts`]): `sizes` are the arrays' lengths in
@@ -151,31 +121,13 @@ pub fn reply_from(
     sizes: &[usize],
     mut fill: impl FnMut(usize, &mut [u8]),
 ) -> Option<Reply> {
-    let mut r = Reader { bytes: head, at: 0 };
-    let reply = match r.u8()? {
-        0 => {
-            let generation = r.u64()?;
-            let kind = r.u8()?;
-            let (a, b) = (r.len()?, r.len()?);
-            let progress = match kind {
-                0 => Progress::Reading { read: a, lines: b },
-                1 => Progress::Running {
-                    reached: a,
-                    blocks: b,
-                },
-                _ => return None,
-            };
-            Reply::Progress {
-                generation,
-                progress,
-            }
-        }
-        1 => {
-            let mut results = r.results()?;
-            let mut array = Arrays {
-                sizes,
-                fill: &mut fill,
-            };
+    let mut reply: Reply = whole(head)?;
+    let mut array = Arrays {
+        sizes,
+        fill: &mut fill,
+    };
+    match &mut reply {
+        Reply::Done(results) => {
             let plot = &mut results.plot;
             plot.drawing.points = array.take(0)?;
             plot.drawing.marks = array.take(1)?;
@@ -184,39 +136,26 @@ pub fn reply_from(
             let dwells = plot.timeline.dwells().to_vec();
             plot.timeline = Timeline::from_parts(array.take(4)?, dwells);
             plot.tools = array.take(5)?;
-            Reply::Done(Box::new(results))
         }
-        2 => {
-            let generation = r.u64()?;
-            let line = r.u32()?;
-            let state = match r.u8()? {
-                0 => None,
-                1 => Some(None),
-                _ => Some(Some(r.block_state()?)),
-            };
-            Reply::State {
-                generation,
-                line,
-                state,
-            }
-        }
-        3 => {
-            let mut cut = r.stock_cut()?;
+        Reply::Stock(cut) => {
             if let Some(field) = &mut cut.field {
-                field.heights = Arrays {
-                    sizes,
-                    fill: &mut fill,
-                }
-                .take(0)?;
+                field.heights = array.take(0)?;
                 if field.heights.len() != field.size.0.checked_mul(field.size.1)? {
                     return None;
                 }
             }
-            Reply::Stock(cut)
         }
-        _ => return None,
-    };
-    r.end().then_some(reply)
+        Reply::Progress { .. } | Reply::State { .. } => {}
+    }
+    Some(reply)
+}
+
+/// The value `head` holds, `None` unless it reads to its last byte.
+fn whole<'a, T: Deserialize<'a>>(head: &'a [u8]) -> Option<T> {
+    match postcard::take_from_bytes(head) {
+        Ok((value, [])) => Some(value),
+        _ => None,
+    }
 }
 
 /// The arrays beside a reply's head: their lengths in bytes, and how to copy one.
@@ -240,376 +179,11 @@ impl<F: FnMut(usize, &mut [u8])> Arrays<'_, F> {
     }
 }
 
-/// Appends values to a head.
-#[derive(Default)]
-struct Writer(Vec<u8>);
-
-impl Writer {
-    fn u8(&mut self, v: u8) {
-        self.0.push(v);
-    }
-
-    fn u32(&mut self, v: u32) {
-        self.0.extend_from_slice(&v.to_le_bytes());
-    }
-
-    fn u64(&mut self, v: u64) {
-        self.0.extend_from_slice(&v.to_le_bytes());
-    }
-
-    fn len(&mut self, v: usize) {
-        self.u64(v as u64);
-    }
-
-    fn f32(&mut self, v: f32) {
-        self.0.extend_from_slice(&v.to_le_bytes());
-    }
-
-    fn f64(&mut self, v: f64) {
-        self.0.extend_from_slice(&v.to_le_bytes());
-    }
-
-    fn str(&mut self, v: &str) {
-        self.len(v.len());
-        self.0.extend_from_slice(v.as_bytes());
-    }
-
-    fn dvec3(&mut self, v: DVec3) {
-        v.to_array().into_iter().for_each(|c| self.f64(c));
-    }
-
-    /// 1 and the value written by `write`, or 0 for `None`.
-    fn option<T>(&mut self, v: Option<T>, write: impl FnOnce(&mut Self, T)) {
-        self.u8(u8::from(v.is_some()));
-        if let Some(v) = v {
-            write(self, v);
-        }
-    }
-
-    fn vec3(&mut self, v: Vec3) {
-        v.to_array().into_iter().for_each(|c| self.f32(c));
-    }
-
-    fn problem(&mut self, p: &Problem) {
-        self.u32(p.line);
-        self.u32(p.col);
-        self.u8(match p.severity {
-            Severity::Note => 0,
-            Severity::Warning => 1,
-            Severity::Error => 2,
-        });
-        self.str(p.code);
-        self.str(&p.message);
-        self.len(p.chars.start);
-        self.len(p.chars.end);
-    }
-
-    /// Everything of `results` but the plot's arrays, and their lengths.
-    fn results(&mut self, results: &Results) {
-        self.u64(results.generation);
-        self.len(results.problems.len());
-        results.problems.iter().for_each(|p| self.problem(p));
-        self.len(results.elsewhere.len());
-        for l in &results.elsewhere {
-            self.str(&l.file);
-            self.problem(&l.problem);
-        }
-        let s = &results.stats;
-        self.len(s.blocks);
-        self.len(s.motions);
-        self.option(s.bounds, |w, (min, max)| {
-            w.dvec3(min);
-            w.dvec3(max);
-        });
-        self.f64(s.estimated_secs);
-        let plot = &results.plot;
-        let d = &plot.drawing;
-        self.option(d.bounds, |w, (min, max)| {
-            w.vec3(min);
-            w.vec3(max);
-        });
-        self.vec3(d.zero);
-        self.dvec3(d.origin);
-        self.len(plot.timeline.dwells().len());
-        for dwell in plot.timeline.dwells() {
-            self.len(dwell.segment);
-            self.f64(dwell.secs);
-        }
-        self.len(plot.tool_radii.len());
-        for (&n, &r) in &plot.tool_radii {
-            self.u32(n);
-            self.f32(r);
-        }
-        self.len(results.linked.len());
-        for f in &results.linked {
-            self.str(&f.name);
-            self.u32(f.first_byte);
-            self.u32(f.first_line);
-            self.u32(f.len);
-            self.u32(f.lines);
-        }
-        self.option(results.hint.as_ref(), |w, h| {
-            w.str(h.from.name());
-            w.str(h.to.name());
-            w.option(h.first.as_ref(), |w, (what, line)| {
-                w.str(what);
-                w.u32(*line);
-            });
-        });
-    }
-
-    /// Everything of `cut` but its heights.
-    fn stock_cut(&mut self, cut: &StockCut) {
-        self.u64(cut.generation);
-        self.len(cut.upto);
-        self.len(cut.done);
-        self.u8(u8::from(cut.whole));
-        self.option(cut.field.as_ref(), |w, f| {
-            w.len(f.size.0);
-            w.len(f.size.1);
-            w.f64(f.cell_mm);
-            w.dvec3(f.min);
-            w.f64(f.top);
-        });
-        self.len(cut.rapids.len());
-        for (segment, [x, y]) in &cut.rapids {
-            self.len(*segment);
-            self.f64(*x);
-            self.f64(*y);
-        }
-        self.len(cut.problems.len());
-        cut.problems.iter().for_each(|p| self.problem(p));
-        self.option(cut.error.as_deref(), Self::str);
-    }
-
-    fn block_state(&mut self, s: &BlockState) {
-        self.len(s.codes.len());
-        s.codes.iter().for_each(|c| self.str(c));
-        self.dvec3(s.machine);
-        self.dvec3(s.work);
-        self.str(&s.work_offset_name);
-        self.dvec3(s.work_offset);
-        self.u32(s.tool);
-        self.option(s.length_offset, |w, (h, v)| {
-            w.u32(h);
-            w.f64(v);
-        });
-        self.f64(s.feed);
-        self.f64(s.spindle_rpm);
-        self.u64(s.executed);
-    }
-}
-
-/// Reads values from a head, each `None` past its end.
-struct Reader<'a> {
-    bytes: &'a [u8],
-    at: usize,
-}
-
-impl Reader<'_> {
-    fn take<const N: usize>(&mut self) -> Option<[u8; N]> {
-        let bytes = self.bytes.get(self.at..self.at.checked_add(N)?)?;
-        self.at += N;
-        bytes.try_into().ok()
-    }
-
-    fn end(&self) -> bool {
-        self.at == self.bytes.len()
-    }
-
-    fn u8(&mut self) -> Option<u8> {
-        Some(self.take::<1>()?[0])
-    }
-
-    fn u32(&mut self) -> Option<u32> {
-        self.take().map(u32::from_le_bytes)
-    }
-
-    fn u64(&mut self) -> Option<u64> {
-        self.take().map(u64::from_le_bytes)
-    }
-
-    fn len(&mut self) -> Option<usize> {
-        usize::try_from(self.u64()?).ok()
-    }
-
-    fn f32(&mut self) -> Option<f32> {
-        self.take().map(f32::from_le_bytes)
-    }
-
-    fn f64(&mut self) -> Option<f64> {
-        self.take().map(f64::from_le_bytes)
-    }
-
-    fn str(&mut self) -> Option<String> {
-        let n = self.len()?;
-        let bytes = self.bytes.get(self.at..self.at.checked_add(n)?)?;
-        self.at += n;
-        String::from_utf8(bytes.to_vec()).ok()
-    }
-
-    fn dvec3(&mut self) -> Option<DVec3> {
-        Some(DVec3::new(self.f64()?, self.f64()?, self.f64()?))
-    }
-
-    fn vec3(&mut self) -> Option<Vec3> {
-        Some(Vec3::new(self.f32()?, self.f32()?, self.f32()?))
-    }
-
-    /// `None` after a 0, else the value `read` reads.
-    fn option<T>(&mut self, read: impl FnOnce(&mut Self) -> Option<T>) -> Option<Option<T>> {
-        match self.u8()? {
-            0 => Some(None),
-            _ => read(self).map(Some),
-        }
-    }
-
-    /// `n` values read by `read` (a count past what the head holds fails as it runs out).
-    fn many<T>(&mut self, mut read: impl FnMut(&mut Self) -> Option<T>) -> Option<Vec<T>> {
-        let n = self.len()?;
-        let mut out = Vec::with_capacity(n.min(self.bytes.len() - self.at));
-        for _ in 0..n {
-            out.push(read(self)?);
-        }
-        Some(out)
-    }
-
-    fn problem(&mut self) -> Option<Problem> {
-        let line = self.u32()?;
-        let col = self.u32()?;
-        let severity = match self.u8()? {
-            0 => Severity::Note,
-            1 => Severity::Warning,
-            _ => Severity::Error,
-        };
-        // Every code is registered; one that is not reads as `?`.
-        let code = DiagnosticDef::lookup(&self.str()?).map_or("?", |d| d.code);
-        let message = self.str()?;
-        let (start, end) = (self.len()?, self.len()?);
-        Some(Problem {
-            line,
-            col,
-            severity,
-            code,
-            message,
-            chars: start..end,
-        })
-    }
-
-    fn results(&mut self) -> Option<Results> {
-        let generation = self.u64()?;
-        let problems = self.many(Self::problem)?;
-        let elsewhere = self.many(|r| {
-            Some(LinkedProblem {
-                file: r.str()?,
-                problem: r.problem()?,
-            })
-        })?;
-        let blocks = self.len()?;
-        let motions = self.len()?;
-        let bounds = self.option(|r| Some((r.dvec3()?, r.dvec3()?)))?;
-        let stats = Stats {
-            blocks,
-            motions,
-            bounds,
-            estimated_secs: self.f64()?,
-        };
-        let bounds = self.option(|r| Some((r.vec3()?, r.vec3()?)))?;
-        let drawing = Drawing {
-            bounds,
-            zero: self.vec3()?,
-            origin: self.dvec3()?,
-            ..Drawing::default()
-        };
-        let dwells = self.many(|r| {
-            Some(Dwell {
-                segment: r.len()?,
-                secs: r.f64()?,
-            })
-        })?;
-        let tool_radii = self.many(|r| Some((r.u32()?, r.f32()?)))?;
-        let linked = self.many(|r| {
-            Some(LinkedFile {
-                name: r.str()?,
-                first_byte: r.u32()?,
-                first_line: r.u32()?,
-                len: r.u32()?,
-                lines: r.u32()?,
-            })
-        })?;
-        let hint = self.option(|r| {
-            Some(DialectHint {
-                from: r.str()?.parse().ok()?,
-                to: r.str()?.parse().ok()?,
-                first: r.option(|r| Some((r.str()?, r.u32()?)))?,
-            })
-        })?;
-        Some(Results {
-            generation,
-            problems,
-            elsewhere,
-            stats,
-            plot: Plot {
-                drawing,
-                timeline: Timeline::from_parts(Vec::new(), dwells),
-                tool_radii: tool_radii.into_iter().collect(),
-                ..Plot::default()
-            },
-            linked,
-            hint,
-        })
-    }
-
-    fn stock_cut(&mut self) -> Option<Box<StockCut>> {
-        let generation = self.u64()?;
-        let upto = self.len()?;
-        let done = self.len()?;
-        let whole = self.u8()? != 0;
-        let field = self.option(|r| {
-            Some(StockField {
-                size: (r.len()?, r.len()?),
-                cell_mm: r.f64()?,
-                min: r.dvec3()?,
-                top: r.f64()?,
-                heights: Vec::new(),
-            })
-        })?;
-        let rapids = self.many(|r| Some((r.len()?, [r.f64()?, r.f64()?])))?;
-        let problems = self.many(Self::problem)?;
-        let error = self.option(Self::str)?;
-        Some(Box::new(StockCut {
-            generation,
-            upto,
-            done,
-            whole,
-            field,
-            rapids,
-            problems,
-            error,
-        }))
-    }
-
-    fn block_state(&mut self) -> Option<BlockState> {
-        Some(BlockState {
-            codes: self.many(Self::str)?,
-            machine: self.dvec3()?,
-            work: self.dvec3()?,
-            work_offset_name: self.str()?,
-            work_offset: self.dvec3()?,
-            tool: self.u32()?,
-            length_offset: self.option(|r| Some((r.u32()?, r.f64()?)))?,
-            feed: self.f64()?,
-            spindle_rpm: self.f64()?,
-            executed: self.u64()?,
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
     use super::*;
-    use crate::run::analyse;
+    use crate::run::{Progress, analyse};
 
     /// `reply` through its parts and back.
     fn again(reply: &Reply) -> Option<Reply> {

@@ -12,7 +12,7 @@ use crate::{Canon, Setup, Sink, Source};
 const CHECKPOINT_EVERY: u64 = 4096;
 
 /// What the machine is doing just before a block runs.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BlockState {
     /// The active G codes, one per modal group (`G01`, `G17`, `G90`, `G21`, `G54` …).
     pub codes: Vec<String>,

@@ -8,14 +8,17 @@ use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 use crate::grid::grid_points_at;
 use crate::path::{Kind, PathPoint};
 
-/// What is drawn of a toolpath, in f32 relative to `origin` (the centre of its bounds).
-#[derive(Clone, Debug, Default, PartialEq)]
+/// What is drawn of a toolpath, in f32 relative to `origin` (the centre of its bounds). Its
+/// serialized form leaves out the points and marks, which a web worker sends beside it.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Drawing {
     /// The start point (pen up), then one point per segment end with the segment's kind and
     /// its tool's number in order of first use as colour index.
+    #[serde(skip)]
     pub points: Vec<PathPoint>,
     /// Reference marks drawn with the grid (not picked, not played back); pen-up points
     /// separate them.
+    #[serde(skip)]
     pub marks: Vec<PathPoint>,
     /// Bounds of the path, `None` when it has no segment.
     pub bounds: Option<(Vec3, Vec3)>,

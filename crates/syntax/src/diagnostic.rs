@@ -45,7 +45,7 @@ pub fn excerpt(text: &str) -> Cow<'_, str> {
 }
 
 /// How bad a diagnostic is: errors stop the affected block from running.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Severity {
     /// Information for the programmer; nothing is wrong.
     Note,

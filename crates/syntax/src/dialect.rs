@@ -10,7 +10,7 @@ use crate::Word;
 macro_rules! dialects {
     ($($(#[$attr:meta])* $variant:ident $name:literal $label:literal $doc:literal;)*) => {
         /// A controller family whose reading of G-code Swarf reproduces.
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize)]
         pub enum Dialect {
             $(#[doc = $doc] $(#[$attr])* $variant,)*
         }

@@ -21,7 +21,7 @@ pub struct LinkedSource {
 }
 
 /// A file linked into a program: where its text lies among the program's byte offsets and lines.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct LinkedFile {
     /// The file's name (as the caller gave it, e.g. its path).
     pub name: String,

@@ -1,7 +1,7 @@
 //! When each segment runs: the end times and the dwells between segments.
 
 /// A dwell (G04) before a segment.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Dwell {
     /// The segment it comes before (the segment count when it follows the last segment).
     pub segment: usize,
@@ -9,9 +9,11 @@ pub struct Dwell {
     pub secs: f64,
 }
 
-/// When each segment runs, in seconds from the program start.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// When each segment runs, in seconds from the program start (serialized without its times,
+/// which a web worker sends beside the rest).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Timeline {
+    #[serde(skip)]
     end_times: Vec<f64>,
     dwells: Vec<Dwell>,
 }
