@@ -16,13 +16,14 @@ pub struct Source {
 }
 
 /// A plane normal: the axis an arc turns around.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Axis {
     /// G19 (YZ plane).
     X,
     /// G18 (ZX plane).
     Y,
-    /// G17 (XY plane).
+    /// G17 (XY plane), the power-on plane.
+    #[default]
     Z,
 }
 
@@ -37,9 +38,8 @@ impl Axis {
     }
 }
 
-/// The length of the vector (`du`, `dv`): what `du.hypot(dv)` gives, to within an ulp, a few
-/// times faster where the sum of the squares neither overflows nor underflows (every arc is
-/// measured with it; the library's `hypot` guards against both at every call).
+/// The length of (`du`, `dv`): `du.hypot(dv)` to within an ulp, a few times faster where the sum of
+/// the squares neither overflows nor underflows (every arc is measured with it).
 #[inline]
 pub fn plane_length(du: f64, dv: f64) -> f64 {
     let squared = du * du + dv * dv;
@@ -50,11 +50,8 @@ pub fn plane_length(du: f64, dv: f64) -> f64 {
     }
 }
 
-/// The signed angle (radians, positive counter-clockwise) an arc turns through in its plane,
-/// from its start's offset from the centre to its end's: an end at the start is a full turn,
-/// and each of `turns` adds one. One arctangent, of the offsets' cross and dot products,
-/// unless an end is the centre (each end's angle is then taken on its own, a zero offset's as
-/// `atan2` gives it). The interpreter and the toolpath both sweep arcs with it.
+/// The signed angle (radians, counter-clockwise positive) an arc turns through, an end at the start
+/// a full turn, plus `turns` more; shared with the toolpath.
 #[inline]
 pub fn plane_sweep(start: (f64, f64), end: (f64, f64), ccw: bool, turns: u32) -> f64 {
     let ((su, sv), (eu, ev)) = (start, end);
@@ -74,9 +71,8 @@ pub fn plane_sweep(start: (f64, f64), end: (f64, f64), ccw: bool, turns: u32) ->
     sweep + f64::from(turns) * tau * sweep.signum()
 }
 
-/// An arc event's geometry in its plane: the centre, both ends' radii and offsets, and the
-/// sweep. The interpreter walks it for the stroke limits and the toolpath for its chords, so
-/// both put the points between the ends in the same places.
+/// An arc event's geometry in its plane (centre, both ends' radii and offsets, sweep), shared by
+/// the stroke checks and the toolpath's chords so both put the points in the same places.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlaneArc {
     /// The plane's first axis (0 = X, 1 = Y, 2 = Z): angles are measured from it.
@@ -100,8 +96,7 @@ pub struct PlaneArc {
 }
 
 impl PlaneArc {
-    /// The arc from `from` to `to` about `center`, turning about `axis` the programmed way with
-    /// `turns` extra full turns.
+    /// The arc from `from` to `to` about `center` and `axis`, with `turns` extra turns.
     #[inline]
     pub fn new(from: DVec3, to: DVec3, center: DVec3, axis: Axis, ccw: bool, turns: u32) -> Self {
         let (iu, iv) = plane_axes(axis);
@@ -121,31 +116,14 @@ impl PlaneArc {
         }
     }
 
-    /// The start's angle in the plane, which only the points between the ends need (an arc
-    /// walked in one step spares the arctangent).
+    /// The start's angle in the plane (only the points between the ends need it).
     #[inline]
     pub fn start_angle(&self) -> f64 {
         let (su, sv) = self.start_offset;
         sv.atan2(su)
     }
 
-    /// The end of step `k` (from 1) of `n` other than the last (which ends exactly at `to`),
-    /// the start being at angle `a0` ([`PlaneArc::start_angle`]): the angle, the radius and
-    /// the rise along the normal each change evenly with the step.
-    #[inline]
-    pub fn between(&self, a0: f64, k: usize, n: usize, from: DVec3, to: DVec3) -> DVec3 {
-        let t = k as f64 / n as f64;
-        let a = a0 + self.sweep * t;
-        let r = self.radius + (self.end_radius - self.radius) * t;
-        let mut p = DVec3::ZERO;
-        p[self.iu] = self.center[self.iu] + r * a.cos();
-        p[self.iv] = self.center[self.iv] + r * a.sin();
-        p[self.iw] = from[self.iw] + (to[self.iw] - from[self.iw]) * t;
-        p
-    }
-
-    /// How many even steps keep every chord within `tolerance` mm of the arc: at least one,
-    /// and at most 100 000 however large the radius or many the turns.
+    /// How many even steps keep every chord within `tolerance` mm of the arc (1 to 100 000).
     pub fn chords(&self, tolerance: f64) -> usize {
         let step = if self.radius > tolerance {
             2.0 * (1.0 - tolerance / self.radius).acos()
@@ -155,14 +133,22 @@ impl PlaneArc {
         ((self.sweep.abs() / step.max(1e-3)).ceil() as usize).clamp(1, 100_000)
     }
 
-    /// The ends of `n` even steps along the arc (at least one): `from` excluded, the last
-    /// exactly `to`.
+    /// The ends of `n` even steps along the arc (at least one), the last exactly `to`.
     pub fn points(&self, from: DVec3, to: DVec3, n: usize) -> impl Iterator<Item = DVec3> + use<> {
         let (arc, n) = (*self, n.max(1));
         let a0 = if n > 1 { self.start_angle() } else { 0.0 };
-        (1..n)
-            .map(move |k| arc.between(a0, k, n, from, to))
-            .chain(std::iter::once(to))
+        // Angle, radius and rise each change evenly with the step.
+        let between = move |k: usize| {
+            let t = k as f64 / n as f64;
+            let a = a0 + arc.sweep * t;
+            let r = arc.radius + (arc.end_radius - arc.radius) * t;
+            let mut p = DVec3::ZERO;
+            p[arc.iu] = arc.center[arc.iu] + r * a.cos();
+            p[arc.iv] = arc.center[arc.iv] + r * a.sin();
+            p[arc.iw] = from[arc.iw] + (to[arc.iw] - from[arc.iw]) * t;
+            p
+        };
+        (1..n).map(between).chain(std::iter::once(to))
     }
 }
 
@@ -225,11 +211,9 @@ pub enum Canon {
         /// Programmed speed.
         rpm: f64,
     },
-    /// Oriented spindle stop (the boring cycles G76 and G87): the spindle stands at its fixed
-    /// angle so the boring bar can shift away from the wall.
+    /// Oriented spindle stop (G76, G87), so the boring bar can shift away from the wall.
     Orient,
-    /// The start of one hole of a canned cycle: the motions that follow, up to the next `Hole`
-    /// or the next block, drill it. For hole markers and the hole count.
+    /// The start of a canned cycle's hole: the motions up to the next `Hole` or block drill it.
     Hole {
         /// The cycle's G code in tenths (810 for G81, 831 for G83.1).
         cycle: u32,

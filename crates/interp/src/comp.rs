@@ -1,32 +1,20 @@
-//! Cutter radius compensation (G41/G42/G40): a filter on the motion events, after `,C`/`,R`
-//! corners (which shape the programmed path). Each move in the selected plane is held back
-//! until the next one is known, then its compensated end is decided by the corner between them:
-//! inside corners end at the intersection of the two offset paths; outside corners get an arc
-//! about the programmed corner (LinuxCNC, and the `arc` corner mode) or the intersection of the
-//! offset paths, with two extra vectors when the corner is sharper than 90° (Fanuc's way, the
-//! `intersection` mode). Moves without plane motion and other events wait behind the held move
-//! (LinuxCNC any number of blocks, the Fanuc family one). Geometry is done in the machine frame,
-//! so compensation follows G68 rotation, G16 polar input and scaling.
+//! Cutter radius compensation (G41/G42/G40): a filter on the motion events after `,C`/`,R`
+//! corners. Each move in the plane is held back until the next is known; the corner between
+//! them decides its compensated end: inside corners end where the offset paths meet; outside
+//! corners get an arc about the corner (LinuxCNC, the `arc` mode) or the offset paths'
+//! intersection, with two extra vectors when sharper than 90° (Fanuc, `intersection`). Other
+//! events wait behind the held move (LinuxCNC any number of blocks, the Fanuc family one).
+//! Geometry is in the machine frame, so it follows G68, G16 and scaling.
 //!
-//! Changes while compensating (the Fanuc family; LinuxCNC refuses both, see `exec/tools.rs`): a new
-//! side (G41 <-> G42) ends the held move where its offset path meets the next move's on the new
-//! side, or, where they do not meet, square to its end with a move across to the next move's
-//! start vector; a new radius (a D word) counts from the end of the block that gives it, so the
-//! corner before it keeps the old radius and the block runs from the old offset to the new.
-//!
-//! A mirror of one plane axis reverses the direction of the path, and with it the side the
-//! material is on. Fanuc's control swaps G41 and G42 itself; Syntec's mirrored flower (§1.29)
-//! swaps them in the program, so there the side is taken as written (`[machine]
-//! mirror_swaps_comp_side`).
-//!
-//! A lathe tool (a register's `orientation` 1–8, in G18) is compensated as LinuxCNC does: the
-//! offset path is the nose centre's, and every compensated position is then reported at the
-//! imaginary tip, off the centre by the radius in X and Z.
-//!
-//! Gouges (a groove narrower than the tool, a step smaller than the radius, an inside arc
-//! smaller than the tool) show as a compensated move that runs backwards or an intersection that
-//! does not exist, and are reported naming both blocks; the drawn path stays what the control
-//! computes.
+//! A new side (G41 <-> G42; the Fanuc family, LinuxCNC refuses it) ends the held move where its
+//! offset path meets the next move's, else square to its end; a new radius (a D word) counts
+//! from the end of the block that gives it. A mirror of one plane axis reverses the material
+//! side: Fanuc swaps G41/G42 itself, Syntec's programs do (`mirror_swaps_comp_side`). A lathe
+//! tool (`orientation` 1–8, in G18) is reported at its imaginary tip, as LinuxCNC does.
+//! Gouges (a move run backwards, corner paths that do not meet) are reported naming both
+//! blocks; the path drawn stays what the control computes.
+
+use std::f64::consts::{PI, TAU};
 
 use glam::{DVec2, DVec3};
 use swarf_syntax::{Diagnostic, Dialect, Span};
@@ -37,7 +25,7 @@ use crate::{Arc, Axis, Canon, CornerMode, Sink, Source};
 /// LinuxCNC's angle below which a corner is taken as straight (TOLERANCE_CONCAVE_CORNER).
 const LINUXCNC_SMALL: f64 = 0.05;
 /// The angle below which a corner is straight in the other dialects (exact geometry).
-const EXACT_SMALL: f64 = 1e-9;
+const SMALL: f64 = 1e-9;
 /// Lengths below this (mm) are zero.
 const EPS: f64 = 1e-9;
 
@@ -46,8 +34,7 @@ const EPS: f64 = 1e-9;
 pub(crate) struct Comp {
     /// The programmed position (machine frame) at the end of the last motion event.
     pub prog: DVec3,
-    /// Where the tool is (the end of the last event sent on), when it is off the programmed
-    /// position.
+    /// Where the tool is (the end of the last event sent), when off the programmed position.
     pub tool: Option<DVec3>,
     /// The move held back until the next move in the plane decides its end.
     held: Option<Held>,
@@ -55,11 +42,9 @@ pub(crate) struct Comp {
     behind: Vec<(Source, Canon)>,
     /// The number of the block (in execution order) of the held move.
     held_run: u64,
-    /// Whether the corner before the next move moved its start back along it (intersection
-    /// mode, outside corners).
+    /// Whether the corner before the next move moved its start back (intersection mode).
     start_extended: bool,
-    /// The tip direction of the lathe tool compensating (0: a mill; see
-    /// [`crate::Register::orientation`]).
+    /// The tip direction of the lathe tool (0: a mill; see [`crate::Register::orientation`]).
     pub orientation: u8,
 }
 
@@ -97,16 +82,14 @@ struct Held {
     tangent: DVec2,
     /// The signed offset (positive: the tool left of the path).
     offset: f64,
-    /// The programmed direction of a line (unit), or the programmed sweep of an arc (radians),
-    /// for the reversal check.
+    /// The programmed line direction (unit) or arc sweep (radians), for the reversal check.
     prog_dir: DVec2,
     prog_sweep: f64,
     /// Whether the end was moved past the programmed one (intersection mode, outside corners).
     extended: bool,
     /// The line of the move before, whose corner decided the start.
     prev_line: u32,
-    /// A Fanuc type-A start-up move: its end goes to the next move's start vector on an
-    /// outside corner.
+    /// A Fanuc type-A start-up: an outside corner ends it at the next move's start vector.
     startup: bool,
 }
 
@@ -150,14 +133,13 @@ fn with_uv(mut p: DVec3, q: DVec2, (u, v): (usize, usize)) -> DVec3 {
 
 /// The angle from `a` to `b` about `c` in the arc's direction, in [0, 2π).
 fn sweep(a: DVec2, b: DVec2, c: DVec2, ccw: bool) -> f64 {
-    let tau = std::f64::consts::TAU;
     let (pa, pb) = (a - c, b - c);
     let mut s = pb.y.atan2(pb.x) - pa.y.atan2(pa.x);
     if !ccw {
         s = -s;
     }
-    s = s.rem_euclid(tau);
-    if s >= tau - 1e-12 { 0.0 } else { s }
+    s = s.rem_euclid(TAU);
+    if s >= TAU - 1e-12 { 0.0 } else { s }
 }
 
 impl Elem {
@@ -204,8 +186,8 @@ impl Elem {
         match self.arc {
             Some((c, ccw, turns)) => {
                 let s = sweep(uv(self.from, plane), uv(self.to, plane), c, ccw);
-                let s = if s < 1e-12 { std::f64::consts::TAU } else { s };
-                s + f64::from(turns) * std::f64::consts::TAU
+                let s = if s < 1e-12 { TAU } else { s };
+                s + f64::from(turns) * TAU
             }
             None => 0.0,
         }
@@ -213,8 +195,7 @@ impl Elem {
 }
 
 impl Held {
-    /// `elem` held back compensated by `s` from `start` to `end` (its offset end, plane
-    /// coordinates), after the move of line `prev_line`.
+    /// `elem` held back offset by `s` from `start` to `end` (plane), after line `prev_line`.
     fn of(
         elem: &Elem,
         s: f64,
@@ -223,6 +204,10 @@ impl Held {
         plane: (usize, usize),
         prev_line: u32,
     ) -> Held {
+        let shape = match elem.arc {
+            Some((center, ccw, turns)) => Shape::Arc { center, ccw, turns },
+            None => Shape::Line,
+        };
         Held {
             source: elem.source,
             span: elem.span,
@@ -230,13 +215,7 @@ impl Held {
             feed: elem.feed,
             start,
             end: with_uv(elem.to, end, plane),
-            shape: elem
-                .arc
-                .map_or(Shape::Line, |(center, ccw, turns)| Shape::Arc {
-                    center,
-                    ccw,
-                    turns,
-                }),
+            shape,
             corner: uv(elem.to, plane),
             tangent: elem.end_tangent(plane),
             offset: s,
@@ -311,9 +290,8 @@ fn on_curve(p: DVec2, c: Curve) -> bool {
     }
 }
 
-/// The signed offset compensation asks for now: positive to the left of the path in the
-/// machine frame, `None` when off (or inside a canned cycle, which ignores it). Under a mirror
-/// of one plane axis the side is swapped where the control does so (`mirror_swaps_comp_side`).
+/// The signed offset asked for now (positive: left of the path, machine frame); `None` when off or
+/// in a canned cycle. A one-axis mirror swaps the side where `mirror_swaps_comp_side` says.
 fn wanted(st: &State) -> Option<f64> {
     if matches!(st.motion, Some(MotionMode::Cycle(_))) || st.cutter_comp == 400 {
         return None;
@@ -326,8 +304,7 @@ fn wanted(st: &State) -> Option<f64> {
     (s.abs() > EPS).then_some(s)
 }
 
-/// Whether a mirror of one plane axis swaps G41 and G42: Fanuc's programmable mirror image
-/// does; Syntec's §1.29 example swaps them in the program, so there the side is as written.
+/// Whether a one-axis mirror swaps G41 and G42 (Fanuc does; Syntec's programs swap them).
 fn mirror_swaps_side(st: &State) -> bool {
     st.setup
         .machine
@@ -335,10 +312,8 @@ fn mirror_swaps_side(st: &State) -> bool {
         .unwrap_or(!matches!(st.dialect, Dialect::Syntec | Dialect::LinuxCnc))
 }
 
-/// Where the controlled point of a lathe tool is from the centre of its nose, in the machine
-/// frame: compensation moves the nose centre along the offset path, and the position reported
-/// is the imaginary tip, off the centre by the radius in X and Z as the tool's orientation
-/// says (LinuxCNC's tool table `Q`). Zero for mills (0), orientation 9, and outside G18.
+/// The imaginary tip of a lathe tool from its nose centre (which compensation moves along the
+/// offset path), by the radius in X and Z as `orientation` says; zero for mills, 9 and outside G18.
 fn tip_shift(st: &State) -> DVec3 {
     let r = st.comp_radius.abs();
     if st.plane != Axis::Y || r < EPS {
@@ -358,8 +333,7 @@ fn tip_shift(st: &State) -> DVec3 {
     DVec3::new(x, 0.0, z)
 }
 
-/// Sends a compensated event on: a lathe tool's moves (and arc centres) go to its imaginary
-/// tip.
+/// Sends a compensated event on: a lathe tool's moves (and arc centres) go to its imaginary tip.
 fn put(st: &State, sink: &mut dyn Sink, source: Source, event: &Canon) {
     let d = tip_shift(st);
     if d == DVec3::ZERO {
@@ -399,8 +373,7 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
         Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) => {
             st.comp.prog = *to;
             if st.comp.held.is_none() && wanted(st).is_none() {
-                // Compensation off and nothing held: the move goes on as it is (what the
-                // cancel branch of `motion` does with nothing to cancel).
+                // Compensation off and nothing held: the move goes on as it is.
                 st.comp.tool = None;
                 sink.emit(source, event);
                 return;
@@ -408,17 +381,12 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
             motion(st, sink, source, from, event);
         }
         Canon::End => {
-            flush(st, sink);
+            close(st, sink, None);
             sink.emit(source, event);
         }
         _ if st.comp.held.is_some() => st.comp.behind.push((source, event.clone())),
         _ => sink.emit(source, event),
     }
-}
-
-/// Sends on the held move at the end of the run.
-pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
-    close(st, sink, None);
 }
 
 // Kept out of `emit`, so that a move with compensation off skips its setup.
@@ -436,12 +404,10 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
             to,
             feed_mm_per_min,
         } => (to, false, feed_mm_per_min, None),
-        Canon::Arc(a) => (
-            a.to,
-            false,
-            a.feed_mm_per_min,
-            Some((uv(a.center, plane), a.ccw, a.turns)),
-        ),
+        Canon::Arc(a) => {
+            let arc = (uv(a.center, plane), a.ccw, a.turns);
+            (a.to, false, a.feed_mm_per_min, Some(arc))
+        }
         _ => return,
     };
     let elem = Elem {
@@ -464,11 +430,10 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
                 } else {
                     "G40 is cancelled only in a G00/G01 move, not in G02/G03"
                 };
-                alarm(st, elem.span, "E-COMP-CANCEL", message.into());
+                alarm(st, elem.span, "E-COMP-CANCEL", message);
             }
             if in_plane && arc.is_none() && !linuxcnc {
-                // Fanuc type A: an inside corner ends the last move at the intersection with
-                // the cancel move's offset; the cancel move goes to the programmed point.
+                // Fanuc type A: an inside corner ends the last move on the cancel move's offset.
                 close(st, sink, Some((&elem, f64::NAN)));
             } else {
                 close(st, sink, None);
@@ -497,9 +462,8 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
                 "{between} blocks without motion in the plane between line {} and line {}: the control cannot look ahead that far, so the compensated path of line {} ends square to it and line {} starts from there (an overcut or undercut is possible)",
                 h.source.line, source.line, h.source.line, source.line
             );
-            st.diagnostics
-                .push(Diagnostic::warning(elem.span, "W-COMP-LOOKAHEAD", message));
             let prev_line = h.source.line;
+            st.warning(elem.span, "W-COMP-LOOKAHEAD", message);
             let end = close(st, sink, None);
             start_from(st, elem, s, end, prev_line);
             return;
@@ -528,13 +492,9 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
         }
         // LinuxCNC: an arc through the compensated end, tangent to the tool where it is.
         if (p - t).length() <= s.abs() {
-            alarm(
-                st,
-                elem.span,
-                "E-COMP-START",
-                "the radius of the compensation entry arc is not greater than the tool radius"
-                    .into(),
-            );
+            let message =
+                "the radius of the compensation entry arc is not greater than the tool radius";
+            alarm(st, elem.span, "E-COMP-START", message);
         }
         let end = elem.offset_end(s, plane);
         let u = (c - end).normalize_or_zero();
@@ -555,12 +515,8 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
     let (dir, startup) = if linuxcnc {
         let d = p - t;
         if d.length() <= s.abs() {
-            alarm(
-                st,
-                elem.span,
-                "E-COMP-START",
-                "the compensation entry move is not longer than the tool radius".into(),
-            );
+            let message = "the compensation entry move is not longer than the tool radius";
+            alarm(st, elem.span, "E-COMP-START", message);
         }
         (d.normalize_or_zero(), false)
     } else {
@@ -590,13 +546,12 @@ fn hold(st: &mut State, held: Held) {
 
 /// Compensation cannot start in `elem`: the alarm, and the move itself uncompensated.
 fn refuse_start(st: &mut State, sink: &mut dyn Sink, elem: &Elem, message: &str) {
-    alarm(st, elem.span, "E-COMP-START", message.into());
+    alarm(st, elem.span, "E-COMP-START", message);
     st.comp.tool = None;
     sink.emit(elem.source, &as_event(elem, st.plane));
 }
 
-/// Holds `elem` compensated by `s`, starting at `start` (plane coordinates) after the move of
-/// line `prev_line`.
+/// Holds `elem` offset by `s` from `start` (plane coordinates), after line `prev_line`.
 fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_line: u32) {
     let plane = plane_axes(st.plane);
     let tool = st.comp.tool.unwrap_or(elem.from);
@@ -619,19 +574,18 @@ fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_lin
     hold(st, held);
 }
 
-/// Ends the held move against the next move in the plane (`next`, with its offset; a NaN
-/// offset is the G40 cancel move), sends it on with the events behind it and the moves that go
-/// round the corner, and returns where the next move starts (plane coordinates).
+/// Sends on the held move at the end of the run.
+pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
+    close(st, sink, None);
+}
+
+/// Ends the held move against `next` (NaN offset: G40) and sends it on; the next start.
 fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Option<DVec2> {
     let mut h = st.comp.held.take()?;
     let plane = plane_axes(st.plane);
     let mode = corner_mode(st);
     let linuxcnc = st.dialect == Dialect::LinuxCnc;
-    let small = if linuxcnc {
-        LINUXCNC_SMALL
-    } else {
-        EXACT_SMALL
-    };
+    let small = if linuxcnc { LINUXCNC_SMALL } else { SMALL };
     // Moves round the corner: (point, arc centre when it is an arc about the corner).
     let mut links: Vec<(DVec2, Option<(DVec2, bool)>)> = Vec::new();
     let mut start = None;
@@ -642,9 +596,8 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
         let t2 = n.start_tangent(plane);
         let t1 = h.tangent;
         let turn = cross(t1, t2).atan2(t1.dot(t2));
-        // Straight back: an inside corner only where the tool is outside an arc on either side
-        // (LinuxCNC's "h" and "m" shapes); otherwise the tool goes round the end.
-        let reversal = turn.abs() > std::f64::consts::PI - small.max(1e-9);
+        // Straight back: inside only where the tool is outside an arc (LinuxCNC's h and m shapes).
+        let reversal = turn.abs() > PI - small.max(1e-9);
         let outside_arc = |ccw: bool| (s > 0.0) != ccw;
         let inside = if reversal {
             match (h.shape, n.arc) {
@@ -656,35 +609,19 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
             turn * s > 0.0 && turn.abs() > small
         };
         let straight = turn.abs() <= small;
-        // A new side (G41 <-> G42, or a register of the other sign) offsets the next move to
-        // its side from its start. A new radius on the same side (a D word, the Fanuc family)
-        // counts from the end of the next move: the corner is still the old radius's, and the
-        // next move runs from the old offset to the new one.
+        // A new side offsets the next move from its start; a new radius counts from its end.
         let side_change = !cancel && s * s2 < 0.0;
         let s2v = if side_change { s2 } else { s };
         let s2p = n.offset_start(s2v, plane);
         if cancel {
-            if inside
-                && let Some(x) = first_met(
-                    intersect(h.curve(plane), Curve::Line { p: s2p, d: t2 }),
-                    &h,
-                    n,
-                    s,
-                    plane,
-                )
-            {
+            let line = Curve::Line { p: s2p, d: t2 };
+            if inside && let Some(x) = first_met(intersect(h.curve(plane), line), &h, n, s, plane) {
                 h.end = with_uv(h.end, x, plane);
             }
         } else if side_change || (linuxcnc && (s - s2).abs() > EPS) {
-            // The Fanuc family: the tool goes to where the held move's offset path meets the
-            // next move's on the new side; where they do not meet, the held move ends square
-            // to its end and the tool crosses to the next move's start vector.
-            let crossing = if linuxcnc {
-                None
-            } else {
-                side_change_point(&h, n, s2, plane)
-            };
-            if let Some(x) = crossing {
+            // The Fanuc family: to where the paths meet on the new side, else square across.
+            let crossing = (!linuxcnc).then(|| side_change_point(&h, n, s2, plane));
+            if let Some(x) = crossing.flatten() {
                 h.end = with_uv(h.end, x, plane);
                 h.extended = true;
                 st.comp.start_extended = true;
@@ -722,11 +659,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
         } else {
             match mode {
                 CornerMode::Arc => {
-                    if n.rapid {
-                        links.push((s2p, None));
-                    } else {
-                        links.push((s2p, Some((h.corner, s < 0.0))));
-                    }
+                    links.push((s2p, (!n.rapid).then_some((h.corner, s < 0.0))));
                     start = Some(s2p);
                 }
                 CornerMode::Intersection => {
@@ -816,9 +749,7 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
     start.or(Some(uv(at, plane)))
 }
 
-/// The intersection where the tool leaves the held move for the next one at an inside corner:
-/// the first one met going back along the held move from its end and forward along the next
-/// move from its start.
+/// The inside corner's intersection nearest both the held move's end and the next's start.
 fn first_met(
     points: Vec<DVec2>,
     h: &Held,
@@ -842,9 +773,7 @@ fn first_met(
         .min_by(|p, q| (back(*p) + forward(*p)).total_cmp(&(back(*q) + forward(*q))))
 }
 
-/// Where the held move's offset path (offset `h.offset`) meets the next move's on the other
-/// side (offset `s2`), when the held move reaches it going forwards and the next move leaves it
-/// towards its end; `None` when the paths do not meet so (parallel lines, say).
+/// Where the held move's path meets the next move's on the other side, both going forwards.
 fn side_change_point(h: &Held, n: &Elem, s2: f64, plane: (usize, usize)) -> Option<DVec2> {
     let c2 = n.offset_curve(s2, plane)?;
     let x = first_met(intersect(h.curve(plane), c2), h, n, s2, plane)?;
@@ -868,22 +797,16 @@ fn nearest(points: Vec<DVec2>, a: DVec2, b: DVec2) -> Option<DVec2> {
     })
 }
 
-/// Sends the held move on, after checking its direction against the programmed one (`next`:
-/// the line of the move that decided its end).
+/// Sends the held move on, checked against its programmed direction (`next`: the next line).
 fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
     let plane = plane_axes(st.plane);
     let (a, b) = (uv(h.start, plane), uv(h.end, plane));
     let reversed = match h.shape {
         Shape::Line => h.prog_dir != DVec2::ZERO && (b - a).dot(h.prog_dir) < -1e-7,
         Shape::Arc { center, ccw, turns } => {
-            let s = sweep(a, b, center, ccw) + f64::from(turns) * std::f64::consts::TAU;
+            let s = sweep(a, b, center, ccw) + f64::from(turns) * TAU;
             // Trimming shortens an arc; one that crossed itself wraps round to nearly a turn.
-            // (Near-tangent corners may leave a start a little before the programmed one.)
-            let limit = if h.extended {
-                h.prog_sweep + std::f64::consts::PI
-            } else {
-                h.prog_sweep + 0.1
-            };
+            let limit = h.prog_sweep + if h.extended { PI } else { 0.1 };
             (a - b).length() > 1e-7 && s > limit
         }
     };
@@ -899,7 +822,7 @@ fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
     let event = match h.shape {
         Shape::Line => Canon::line(h.rapid, h.end, h.feed),
         Shape::Arc { center, ccw, turns } => {
-            let full = h.prog_sweep >= std::f64::consts::TAU - 1e-9;
+            let full = h.prog_sweep >= TAU - 1e-9;
             if (a - b).length() < 1e-9 && !full && turns == 0 {
                 Canon::line(false, h.end, h.feed)
             } else {
@@ -917,20 +840,17 @@ fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
     put(st, sink, h.source, &event);
 }
 
-/// A gouge: a warning, or an alarm that stops the run where the control alarms (LinuxCNC,
-/// Syntec with parameter 3819).
+/// A gouge: a warning, or an alarm where the control alarms (LinuxCNC, Syntec's 3819).
 fn gouge(st: &mut State, span: Span, message: String) {
-    let alarms = st.dialect == Dialect::LinuxCnc || st.setup.machine.overcut_alarm;
-    if alarms {
+    if st.dialect == Dialect::LinuxCnc || st.setup.machine.overcut_alarm {
         alarm(st, span, "E-COMP-GOUGE", message);
     } else {
-        st.diagnostics
-            .push(Diagnostic::warning(span, "W-COMP-GOUGE", message));
+        st.warning(span, "W-COMP-GOUGE", message);
     }
 }
 
 /// An alarm: the run stops before the next block.
-fn alarm(st: &mut State, span: Span, code: &'static str, message: String) {
+fn alarm(st: &mut State, span: Span, code: &'static str, message: impl Into<String>) {
     let d = Diagnostic::error(span, code, message);
     if st.alarm.is_none() {
         st.alarm = Some(d);

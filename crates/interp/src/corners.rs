@@ -1,11 +1,9 @@
-//! `,C` chamfers and `,R` corner rounding: a G01 move that ends in a corner word is held back by
-//! one block (the interpreter's lookahead), and when the next block's move is known the corner
-//! is cut between them, as LNC documents (§4.2 of the reference): equal legs of length C from
-//! the corner for a chamfer, a tangent arc of radius R for rounding, the inserted move at the
-//! corner block's feed, and the extension of a move used when the leg is longer than the move.
+//! `,C` chamfers and `,R` corner rounding (LNC, §4.2): a G01 move ending in a corner word is held
+//! back one block, then the corner is cut against the next move: equal legs of C for a chamfer, a
+//! tangent arc of R for rounding, at the corner block's feed.
 
 use glam::DVec3;
-use swarf_syntax::{Diagnostic, Span};
+use swarf_syntax::Span;
 
 use crate::state::{State, plane_axes};
 use crate::{Arc, Canon, Sink, Source};
@@ -39,8 +37,7 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
     crate::comp::emit(st, sink, source, event);
 }
 
-/// Cuts the corner of a held-back move against `event`, the next thing the machine does (or
-/// draws it sharp when that is not a cutting move), without sending `event` itself.
+/// Cuts a held move's corner against `event` (sharp for no cutting move), not sending it.
 #[inline]
 pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
     let moves = matches!(
@@ -49,35 +46,26 @@ pub(crate) fn resolve(st: &mut State, sink: &mut dyn Sink, event: &Canon) {
     );
     if moves && let Some(pending) = st.pending.take() {
         match event {
-            Canon::Feed { to, .. } => corner(st, sink, &pending, *to),
+            Canon::Feed { to, .. } => return corner(st, sink, &pending, *to),
             Canon::Arc(_) => {
-                st.diagnostics.push(Diagnostic::warning(
-                    pending.span,
-                    "W-NOT-INTERPRETED",
-                    "a corner before an arc is not drawn yet: the corner is drawn sharp",
-                ));
-                feed(st, sink, &pending, pending.to);
+                let message = "a corner before an arc is not drawn yet: the corner is drawn sharp";
+                st.warning(pending.span, "W-NOT-INTERPRETED", message);
             }
             _ => {
-                st.diagnostics.push(Diagnostic::error(
-                    pending.span,
-                    "E-CORNER-NEXT",
-                    "a `,C`/`,R` corner needs a cutting move (G01–G03) in the next block; the corner is drawn sharp",
-                ));
-                feed(st, sink, &pending, pending.to);
+                let message = "a `,C`/`,R` corner needs a cutting move (G01–G03) in the next block; the corner is drawn sharp";
+                st.error(pending.span, "E-CORNER-NEXT", message);
             }
         }
+        feed(st, sink, &pending, pending.to);
     }
 }
 
 /// Emits a held-back move at the end of the run.
 pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
     if let Some(pending) = st.pending.take() {
-        st.diagnostics.push(Diagnostic::error(
-            pending.span,
-            "E-CORNER-NEXT",
-            "a `,C`/`,R` corner needs a cutting move in the next block; the program ends first",
-        ));
+        let message =
+            "a `,C`/`,R` corner needs a cutting move in the next block; the program ends first";
+        st.error(pending.span, "E-CORNER-NEXT", message);
         feed(st, sink, &pending, pending.to);
     }
     crate::comp::flush(st, sink);
@@ -85,15 +73,8 @@ pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
 
 /// A feed of the held-back move to `to` (its own end where the corner stays sharp).
 fn feed(st: &mut State, sink: &mut dyn Sink, p: &Pending, to: DVec3) {
-    crate::comp::emit(
-        st,
-        sink,
-        p.source,
-        &Canon::Feed {
-            to,
-            feed_mm_per_min: p.feed_mm_per_min,
-        },
-    );
+    let event = Canon::line(false, to, p.feed_mm_per_min);
+    crate::comp::emit(st, sink, p.source, &event);
 }
 
 /// Cuts the corner between the held-back move and a feed to `next`.
@@ -104,11 +85,8 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
     let (l1, l2) = (d1.length(), d2.length());
     let in_plane = |d: DVec3| d[3 - u - v].abs() < 1e-9;
     if l1 < 1e-9 || l2 < 1e-9 || !in_plane(d1) || !in_plane(d2) {
-        st.diagnostics.push(Diagnostic::warning(
-            p.span,
-            "W-CORNER-SKIPPED",
-            "a corner is cut only between two moves in the selected plane: drawn sharp",
-        ));
+        let message = "a corner is cut only between two moves in the selected plane: drawn sharp";
+        st.warning(p.span, "W-CORNER-SKIPPED", message);
         feed(st, sink, p, p.to);
         return;
     }
@@ -122,10 +100,8 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
     }
     match p.corner {
         Corner::Chamfer(c) => {
-            let start = p.to - a * c;
-            let end = p.to + b * c;
-            feed(st, sink, p, start);
-            feed(st, sink, p, end);
+            feed(st, sink, p, p.to - a * c);
+            feed(st, sink, p, p.to + b * c);
         }
         Corner::Round(r) => {
             // The turn angle between the moves; the tangent points are r·tan(θ/2) from the corner.
@@ -139,19 +115,15 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
             normal[v] = a[u];
             let center = start + normal * if left { r } else { -r };
             feed(st, sink, p, start);
-            crate::comp::emit(
-                st,
-                sink,
-                p.source,
-                &Canon::Arc(Arc {
-                    to: end,
-                    center,
-                    axis: st.plane,
-                    ccw: left,
-                    turns: 0,
-                    feed_mm_per_min: p.feed_mm_per_min,
-                }),
-            );
+            let arc = Canon::Arc(Arc {
+                to: end,
+                center,
+                axis: st.plane,
+                ccw: left,
+                turns: 0,
+                feed_mm_per_min: p.feed_mm_per_min,
+            });
+            crate::comp::emit(st, sink, p.source, &arc);
         }
     }
 }

@@ -1,20 +1,18 @@
-//! Canned drilling cycles (G73, G74, G76, G81–G89) and Syntec's hole patterns (G134–G137.1): the modal hole data and
-//! the expansion of one cycle block into canonical motions, as the reference documents them
-//! (§4.37–§4.51 and §4.59 of the G-code reference; LinuxCNC as rs274ngc runs them).
+//! Canned drilling cycles (G73, G74, G76, G81–G89) and Syntec's hole patterns (G134–G137.1): the
+//! modal hole data and each cycle block's motions (§4.37–§4.51, §4.59; LinuxCNC as rs274ngc).
 //!
-//! All levels are kept in the program frame along the drilling axis (the normal of the selected
-//! plane: Z in G17, Y in G18, X in G19); every point goes through [`State::to_machine`], so
-//! rotation, scaling, polar coordinates and the offsets apply to the holes as to any move.
+//! Levels are kept in the program frame along the drilling axis (the plane's normal); every point
+//! goes through [`State::to_machine`], so rotation, scaling, polar input and offsets apply.
 //!
-//! Fanuc family: R in G91 is measured from the initial level (captured when the cycle mode is
-//! entered), Z in G91 from R; G98 returns to the initial level, G99 to R; K (KT: L, the holes
-//! along a line) repeats, K0 stores the data only. LinuxCNC: R in G91 is measured from the
-//! current level, a current level below R moves up to R first, G98 returns to the higher of the
-//! level at the block's start and R, and L repeats with the G91 increments.
+//! Fanuc family: R in G91 is from the initial level, Z in G91 from R; G98 returns to the initial
+//! level, G99 to R; K (KT: L) repeats, K0 stores the data only. LinuxCNC: R in G91 is from the
+//! current level, below R it moves up to R first, G98 returns to the higher of the start and R, and
+//! L repeats with the G91 increments.
 
 use glam::DVec3;
-use swarf_syntax::{Block, Diagnostic, Dialect, Quantity, Word, WordForm};
+use swarf_syntax::{Block, Dialect, Quantity, Word, WordForm};
 
+use crate::exec::move_feed;
 use crate::machine::find;
 use crate::state::{MotionMode, State, plane_axes};
 use crate::{Canon, Sink, Source};
@@ -30,8 +28,7 @@ const DEFAULT_Q_MM: f64 = 0.1;
 pub(crate) struct CycleData {
     /// R as last programmed (mm), with whether it was incremental (G91).
     pub r: Option<(f64, bool)>,
-    /// Z (the bottom along the drilling axis) as last programmed (mm), with whether it was
-    /// incremental.
+    /// Z (the bottom along the drilling axis) as last programmed (mm), and whether incremental.
     pub z: Option<(f64, bool)>,
     /// Peck depth (G73/G83), mm, positive.
     pub q: Option<f64>,
@@ -45,13 +42,11 @@ pub(crate) struct CycleData {
     pub retract_feed: Option<f64>,
     /// GSK's slant angle E (degrees) and the drilling axis it was given for.
     pub slant: Option<(f64, usize)>,
-    /// The program position when the cycle mode was entered (the slanted cycles' initial plane
-    /// lies across their own drilling axis, not the plane's).
+    /// The program position when the cycle mode was entered (the slanted cycles' start).
     pub entry: Option<DVec3>,
 }
 
-/// Whether a G code (tenths) is a canned cycle the interpreter expands in `dialect` (LinuxCNC's
-/// G76 is the lathe threading cycle, not fine boring).
+/// Whether G code `tenths` is a canned cycle run in `dialect` (LinuxCNC's G76 threads).
 pub(crate) fn runs(dialect: Dialect, tenths: u32) -> bool {
     match tenths {
         730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => true,
@@ -61,9 +56,7 @@ pub(crate) fn runs(dialect: Dialect, tenths: u32) -> bool {
     }
 }
 
-/// Forgets the hole data and the initial level (G80 and group-01 codes in the Fanuc family);
-/// returns the motion mode after G80: the group-01 mode from before the cycle in the Fanuc
-/// family (the cycles are a group of their own there), none in LinuxCNC.
+/// Forgets the hole data (G80); the motion mode after: the one before (Fanuc family) or none.
 pub(crate) fn cancel(st: &mut State) -> Option<MotionMode> {
     if st.dialect == Dialect::LinuxCnc {
         // rs274ngc keeps the last R and Z; it asks for them again when a cycle starts.
@@ -84,30 +77,26 @@ pub(crate) fn enter(st: &mut State) {
     st.cycle.before = st.motion;
 }
 
-/// Runs one block in cycle mode `tenths`: stores the hole data and drills where the block has an
-/// axis word. Returns whether the tool moved.
-#[allow(clippy::too_many_arguments)]
+/// Runs one block in cycle mode `tenths`: keeps the hole data, drills; whether it moved.
 pub(crate) fn run(
     st: &mut State,
     block: &Block,
     words: &[Word],
     tenths: u32,
     target: &dyn Fn(&State) -> DVec3,
-    feed: &dyn Fn(&mut State, &Block, f64) -> f64,
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
     if tenths % 10 == 1 {
-        return slanted(st, block, words, tenths, feed, source, sink);
+        return slanted(st, block, words, tenths, source, sink);
     }
     let (u, v) = plane_axes(st.plane);
     let n = 3 - u - v;
     let plain = |letter: u8| find(words, letter);
-    let axis_letter = |i: usize| b"XYZ"[i];
-    let drills = [u, v, n].iter().any(|&i| plain(axis_letter(i)).is_some());
+    let drills = b"XYZ".iter().any(|&l| plain(l).is_some());
     // The hole data of the block (Syntec: Q and R only from blocks that drill).
     let keeps = drills || st.dialect != Dialect::Syntec;
-    if let Some(w) = plain(axis_letter(n)) {
+    if let Some(w) = plain(b"XYZ"[n]) {
         st.cycle.z = Some((st.length(w), !st.absolute));
     }
     if keeps && let Some(w) = plain(b'R') {
@@ -117,11 +106,8 @@ pub(crate) fn run(
         st.cycle.q = Some(st.length(w).abs());
     }
     if let Some(w) = plain(b'P') {
-        st.cycle.p = Some(
-            st.dialect
-                .read(w, Quantity::CycleDwellP, false, false)
-                .max(0.0),
-        );
+        let secs = st.dialect.read(w, Quantity::CycleDwellP, false, false);
+        st.cycle.p = Some(secs.max(0.0));
     }
     if let Some(w) = words
         .iter()
@@ -138,27 +124,18 @@ pub(crate) fn run(
         _ => b'K',
     };
     let repeats = match plain(repeat_letter) {
-        // The Fanuc family's K counts 0 to 9999 (LinuxCNC's and KT's L has no bound: the
-        // run's limit on moves stops a runaway one).
+        // The Fanuc family's K counts 0 to 9999 (an L runs until the run's limit on moves).
         Some(w) if repeat_letter == b'K' && w.value > f64::from(MAX_K_REPEATS) => {
-            st.diagnostics.push(Diagnostic::error(
-                w.span,
-                "E-NUMBER-RANGE",
-                format!("the repeat count K is 0 to {MAX_K_REPEATS}"),
-            ));
-            return false;
+            let message = format!("the repeat count K is 0 to {MAX_K_REPEATS}");
+            return st.fail(w.span, "E-NUMBER-RANGE", message);
         }
         Some(w) if w.value >= 0.0 && w.value.fract() == 0.0 => w.value as u32,
         Some(w) => {
-            st.diagnostics.push(Diagnostic::error(
-                w.span,
-                "E-NUMBER-RANGE",
-                format!(
-                    "the repeat count `{}` must be a whole number, 0 or more",
-                    w.letter()
-                ),
-            ));
-            return false;
+            let message = format!(
+                "the repeat count `{}` must be a whole number, 0 or more",
+                w.letter()
+            );
+            return st.fail(w.span, "E-NUMBER-RANGE", message);
         }
         None => 1,
     };
@@ -175,7 +152,7 @@ pub(crate) fn run(
         Some(step) => start + step * f64::from(i) / f64::from(repeats),
         None => target(st),
     };
-    drill(st, block, &plan, repeats, &mut next, feed, source, sink);
+    drill(st, block, &plan, repeats, &mut next, source, sink);
     true
 }
 
@@ -185,14 +162,11 @@ const MAX_K_REPEATS: u32 = 9999;
 /// Most holes one pattern block may drill (a runaway guard: G137.1 allows 9999 × 9999).
 const MAX_PATTERN_HOLES: usize = 100_000;
 
-/// Syntec's hole patterns (§4.63): the canned cycle stored with K0 runs at each point. G134: K
-/// holes on a circle of radius I about the point, the first at angle J (a negative K goes
-/// clockwise); G135: K holes from the point at spacing I along the angle J; G136: K holes on an
-/// arc of radius I from angle J at pitch P (P without a decimal point in 0.001°); G137.1: P
-/// holes at spacing I along the first plane axis times K rows at spacing J along the second,
-/// row after row and each row back the way the last one came (the manual does not give the
-/// order; this one travels least). `origin` is the block's point (centre or start, G90/G91
-/// applied) in the program frame.
+/// Syntec's hole patterns (§4.63), the cycle stored with K0 at each point. G134: K holes on a
+/// circle of radius I from angle J (negative K: clockwise); G135: K holes at spacing I along angle
+/// J; G136: K holes on radius I from angle J at pitch P (0.001° without a point); G137.1: P holes
+/// at spacing I times K rows at spacing J, each row back the way the last came (the least travel).
+/// `origin` is the block's point (G90/G91 applied) in the program frame.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pattern(
     st: &mut State,
@@ -201,17 +175,12 @@ pub(crate) fn pattern(
     words: &[Word],
     tenths: u32,
     origin: DVec3,
-    feed: &dyn Fn(&mut State, &Block, f64) -> f64,
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
     let Some(MotionMode::Cycle(cycle)) = st.motion else {
-        st.diagnostics.push(Diagnostic::error(
-            code.span,
-            "E-PATTERN-NO-CYCLE",
-            "a hole pattern runs the stored canned cycle: give the cycle first (e.g. `G81 Z_ R_ F_ K0`)",
-        ));
-        return false;
+        let message = "a hole pattern runs the stored canned cycle: give the cycle first (e.g. `G81 Z_ R_ F_ K0`)";
+        return st.fail(code.span, "E-PATTERN-NO-CYCLE", message);
     };
     let (u, v) = plane_axes(st.plane);
     let n = 3 - u - v;
@@ -222,27 +191,19 @@ pub(crate) fn pattern(
     // A count word: a whole number from 1 to 9999 (sign kept for G134's direction).
     let count = |st: &mut State, letter: u8| -> Option<i64> {
         let Some(w) = find(words, letter) else {
-            st.diagnostics.push(Diagnostic::error(
-                code.span,
-                "E-WORD-MISSING",
-                format!(
-                    "this hole pattern needs the number of holes `{}`",
-                    char::from(letter)
-                ),
-            ));
-            return None;
+            let message = format!(
+                "this hole pattern needs the number of holes `{}`",
+                char::from(letter)
+            );
+            return st.fail(code.span, "E-WORD-MISSING", message);
         };
         let k = w.value;
         if k.fract() != 0.0 || k == 0.0 || k.abs() > 9999.0 {
-            st.diagnostics.push(Diagnostic::error(
-                w.span,
-                "E-NUMBER-RANGE",
-                format!(
-                    "the number of holes `{}` must be a whole number from 1 to 9999",
-                    w.letter()
-                ),
-            ));
-            return None;
+            let message = format!(
+                "the number of holes `{}` must be a whole number from 1 to 9999",
+                w.letter()
+            );
+            return st.fail(w.span, "E-NUMBER-RANGE", message);
         }
         Some(k as i64)
     };
@@ -256,14 +217,11 @@ pub(crate) fn pattern(
     let radius = |st: &mut State| -> Option<f64> {
         match length(st, b'I') {
             Some(r) if r > 0.0 => Some(r),
-            _ => {
-                st.diagnostics.push(Diagnostic::error(
-                    code.span,
-                    "E-WORD-MISSING",
-                    "this hole pattern needs a positive radius `I`",
-                ));
-                None
-            }
+            _ => st.fail(
+                code.span,
+                "E-WORD-MISSING",
+                "this hole pattern needs a positive radius `I`",
+            ),
         }
     };
     let points: Vec<DVec3> = match tenths {
@@ -300,15 +258,11 @@ pub(crate) fn pattern(
             };
             let (nx, ny) = (nx.unsigned_abs() as usize, ny.unsigned_abs() as usize);
             if nx.saturating_mul(ny) > MAX_PATTERN_HOLES {
-                st.diagnostics.push(Diagnostic::error(
-                    code.span,
-                    "E-PATTERN-SIZE",
-                    format!(
-                        "this grid has {} holes; more than {MAX_PATTERN_HOLES} are not drawn",
-                        nx * ny
-                    ),
-                ));
-                return false;
+                let message = format!(
+                    "this grid has {} holes; more than {MAX_PATTERN_HOLES} are not drawn",
+                    nx * ny
+                );
+                return st.fail(code.span, "E-PATTERN-SIZE", message);
             }
             let (di, dj) = (
                 length(st, b'I').unwrap_or(0.0),
@@ -339,28 +293,20 @@ pub(crate) fn pattern(
             .copied()
             .unwrap_or(origin)
     };
-    drill(st, block, &plan, count, &mut next, feed, source, sink);
+    drill(st, block, &plan, count, &mut next, source, sink);
     true
 }
 
-/// GSK's slanted-hole cycles (§4.52): G83.1 (drilling), G84.1 (tapping) and G85.1 (boring)
-/// into the end face along Z, G87.1, G88.1 and G89.1 into the side along X. The tool leans by
-/// E from the drilling axis towards the associated axis (X for the end face, Z for the side);
-/// E > 0 moves the associated axis the same way as the drilling axis.
-///
-/// The manual does not give the geometry; Swarf reads R (from the initial plane) and the depth
-/// word (from R) as distances along the tilted tool, so a point at distance d from the initial
-/// point is d·(cos E along the drilling axis + sin E along the associated axis). The return is
-/// always to the initial plane (as the manual requires for slanted holes). Q pecks (in least
-/// input increments without a decimal point) go back to R between pecks (parameter RTR = 1, as
-/// the manual's example) — the C-axis position of the holes is not drawn.
-#[allow(clippy::too_many_arguments)]
+/// GSK's slanted-hole cycles (§4.52): G83.1, G84.1, G85.1 into the end face along Z, G87.1–G89.1
+/// into the side along X, the tool leaning by E towards the associated axis (X, or Z for the side).
+/// The manual gives no geometry: R (from the initial plane) and the depth (from R) are read as
+/// distances along the tilted tool; the return is to the initial plane; Q pecks (0.001 mm without a
+/// point) go back to R (RTR = 1); the C-axis position is not drawn.
 fn slanted(
     st: &mut State,
     block: &Block,
     words: &[Word],
     tenths: u32,
-    feed: &dyn Fn(&mut State, &Block, f64) -> f64,
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
@@ -386,11 +332,8 @@ fn slanted(
         st.cycle.q = Some(st.mm(thousandths(w)).abs());
     }
     if let Some(w) = find(words, b'P') {
-        st.cycle.p = Some(
-            st.dialect
-                .read(w, Quantity::CycleDwellP, false, false)
-                .max(0.0),
-        );
+        let secs = st.dialect.read(w, Quantity::CycleDwellP, false, false);
+        st.cycle.p = Some(secs.max(0.0));
     }
     if let Some(w) = find(words, b'E') {
         st.cycle.slant = Some((w.value, drill_axis));
@@ -399,12 +342,8 @@ fn slanted(
     let repeats = match find(words, b'K') {
         Some(w) if w.value >= 0.0 && w.value <= 9999.0 && w.value.fract() == 0.0 => w.value as u32,
         Some(w) => {
-            st.diagnostics.push(Diagnostic::error(
-                w.span,
-                "E-NUMBER-RANGE",
-                "the repeat count K must be 0 or a whole number up to 9999",
-            ));
-            return false;
+            let message = "the repeat count K must be 0 or a whole number up to 9999";
+            return st.fail(w.span, "E-NUMBER-RANGE", message);
         }
         None => 1,
     };
@@ -416,44 +355,33 @@ fn slanted(
     let angle = match st.cycle.slant {
         Some((e, axis)) if axis == drill_axis => e,
         Some(_) => {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-SLANT-ANGLE",
-                format!("{name} drills along another axis than the slant angle E was given for: give E again"),
-            ));
-            return false;
+            let message =
+                "drills along another axis than the slant angle E was given for: give E again";
+            return st.fail(block.span, "E-SLANT-ANGLE", format!("{name} {message}"));
         }
         None => 0.0,
     };
     if angle == 0.0 || angle.abs() > 60.0 {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-SLANT-ANGLE",
-            if angle == 0.0 {
-                format!("{name} needs the slant angle E (E0 is an alarm: use the straight cycle for a straight hole)")
-            } else {
-                format!("the slant angle E{angle} is out of range: −60° ≤ E ≤ 60°")
-            },
-        ));
-        return false;
+        let message = if angle == 0.0 {
+            format!(
+                "{name} needs the slant angle E (E0 is an alarm: use the straight cycle for a straight hole)"
+            )
+        } else {
+            format!("the slant angle E{angle} is out of range: −60° ≤ E ≤ 60°")
+        };
+        return st.fail(block.span, "E-SLANT-ANGLE", message);
     }
     let (Some((r_dist, _)), Some((depth_dist, _))) = (st.cycle.r, st.cycle.z) else {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-WORD-MISSING",
-            format!(
-                "{name} needs R and the depth `{}` before it drills",
-                char::from(depth_letters.0)
-            ),
-        ));
-        return false;
+        let message = format!(
+            "{name} needs R and the depth `{}` before it drills",
+            char::from(depth_letters.0)
+        );
+        return st.fail(block.span, "E-WORD-MISSING", message);
     };
-    if c_word.is_some() {
-        st.diagnostics.push(Diagnostic::note(
-            c_word.map_or(block.span, |w| w.span),
-            "N-C-AXIS",
-            "the C-axis angle of the hole is not drawn: the backplot shows X, Y and Z only",
-        ));
+    if let Some(c) = c_word {
+        let message =
+            "the C-axis angle of the hole is not drawn: the backplot shows X, Y and Z only";
+        st.note(c.span, "N-C-AXIS", message);
     }
     let mut along = DVec3::ZERO;
     along[drill_axis] = angle.to_radians().cos();
@@ -471,12 +399,9 @@ fn slanted(
         initial,
         peck,
         retract: st.setup.machine.peck_retract_mm.max(0.0),
-        tap_feed: None,
-        retract_feed: None,
-        shift: DVec3::ZERO,
-        back: None,
+        ..Plan::default()
     };
-    let mut d = Drill::new(st, block, feed, &plan, source, sink);
+    let mut d = Drill::new(st, block, &plan, source, sink);
     for _ in 0..repeats {
         if d.stops() {
             break;
@@ -548,6 +473,7 @@ fn thousandths(w: &Word) -> f64 {
 }
 
 /// Everything about the holes of one cycle block that does not change from hole to hole.
+#[derive(Default)]
 struct Plan {
     tenths: u32,
     /// The drilling axis (program frame).
@@ -563,8 +489,7 @@ struct Plan {
     retract_feed: Option<f64>,
     /// The shift of G76/G87 at the oriented stop (machine frame).
     shift: DVec3,
-    /// LinuxCNC's G87: the in-plane offset I/J/K of the entry (program frame) and the level the
-    /// back bore starts from.
+    /// LinuxCNC's G87: the entry offset I/J/K (program frame) and the back bore's start.
     back: Option<(DVec3, f64)>,
 }
 
@@ -574,64 +499,38 @@ impl Plan {
         let linuxcnc = st.dialect == Dialect::LinuxCnc;
         let (u, v) = plane_axes(st.plane);
         let n = 3 - u - v;
-        let axis_letter = |i: usize| char::from(b"XYZ"[i]);
         let Some((z_word, z_inc)) = st.cycle.z else {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-WORD-MISSING",
-                format!(
-                    "a canned cycle needs the hole bottom ({}) before it drills",
-                    axis_letter(n)
-                ),
-            ));
-            return None;
+            let letter = char::from(b"XYZ"[n]);
+            let message =
+                format!("a canned cycle needs the hole bottom ({letter}) before it drills");
+            return st.fail(block.span, "E-WORD-MISSING", message);
         };
         let Some((r_word, r_inc)) = st.cycle.r else {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-WORD-MISSING",
-                "a canned cycle needs the R level before it drills",
-            ));
-            return None;
+            let message = "a canned cycle needs the R level before it drills";
+            return st.fail(block.span, "E-WORD-MISSING", message);
         };
-        // rs274ngc keeps the numbers of R and Z and reads them in the distance mode in effect
-        // (a Z given under G90 is from R once G91 is on).
-        let (r_inc, z_inc) = if linuxcnc {
-            (!st.absolute, !st.absolute)
-        } else {
-            (r_inc, z_inc)
-        };
+        // rs274ngc reads the kept R and Z in the distance mode in effect.
+        let inc = |given: bool| if linuxcnc { !st.absolute } else { given };
         // The initial level: captured when the cycle mode was entered (rs274ngc's `cycle_il`).
         let initial = st.cycle.initial.unwrap_or(st.program_pos[n]);
-        let r = if r_inc { initial + r_word } else { r_word };
-        let bottom = if z_inc { r + z_word } else { z_word };
+        let r = if inc(r_inc) { initial + r_word } else { r_word };
+        let bottom = if inc(z_inc) { r + z_word } else { z_word };
         let back_boring = tenths == 870 && !linuxcnc;
         if back_boring && bottom < r - 1e-9 {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-CYCLE-LEVELS",
-                "G87 bores upwards from R: the end level Z must be above the R level",
-            ));
-            return None;
+            let message = "G87 bores upwards from R: the end level Z must be above the R level";
+            return st.fail(block.span, "E-CYCLE-LEVELS", message);
         }
         if !back_boring && bottom > r + 1e-9 {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-CYCLE-LEVELS",
-                "the hole bottom is above the R level: a canned cycle drills towards the bottom",
-            ));
-            return None;
+            let message =
+                "the hole bottom is above the R level: a canned cycle drills towards the bottom";
+            return st.fail(block.span, "E-CYCLE-LEVELS", message);
         }
         let peck = match tenths {
             730 | 830 => {
                 let q = st.cycle.q.filter(|q| *q > 0.0);
                 if linuxcnc && q.is_none() {
-                    st.diagnostics.push(Diagnostic::error(
-                        block.span,
-                        "E-WORD-MISSING",
-                        "G73/G83 need a positive peck depth Q",
-                    ));
-                    return None;
+                    let message = "G73/G83 need a positive peck depth Q";
+                    return st.fail(block.span, "E-WORD-MISSING", message);
                 }
                 q.or(Some(DEFAULT_Q_MM))
             }
@@ -645,17 +544,13 @@ impl Plan {
             st.setup.machine.peck_retract_mm.max(0.0)
         };
         if matches!(tenths, 740 | 760 | 840 | 860 | 870 | 880) && st.spindle_dir.is_none() {
-            st.diagnostics.push(Diagnostic::warning(
-                block.span,
-                "W-SPINDLE-STOPPED",
-                format!(
-                    "G{} needs the spindle turning (M03/M04 before the cycle); the control alarms here",
-                    tenths / 10
-                ),
-            ));
+            let message = format!(
+                "G{} needs the spindle turning (M03/M04 before the cycle); the control alarms here",
+                tenths / 10
+            );
+            st.warning(block.span, "W-SPINDLE-STOPPED", message);
         }
-        // Tapping feed: KT's F is the pitch, Syntec's E the threads per inch (F wins when given);
-        // under G94 the feed is the pitch times the spindle speed.
+        // Tapping feed: KT's F the pitch, Syntec's E threads per inch; under G94 pitch times rpm.
         let per_minute = st.feed_mode == crate::state::FeedMode::PerMinute;
         let pitch = match (tenths, st.dialect) {
             // KT: F is the pitch in mm, or I the threads per inch.
@@ -674,11 +569,8 @@ impl Plan {
                 if st.setup.machine.fast_drilling {
                     Some(st.mm(f))
                 } else {
-                    st.diagnostics.push(Diagnostic::note(
-                        block.span,
-                        "N-F2-IGNORED",
-                        "`F2=` has no effect in normal drilling (Pr4008 = 0, the setup's `fast_drilling = false`): the tool retracts at rapid",
-                    ));
+                    let message = "`F2=` has no effect in normal drilling (Pr4008 = 0, the setup's `fast_drilling = false`): the tool retracts at rapid";
+                    st.note(block.span, "N-F2-IGNORED", message);
                     None
                 }
             }
@@ -710,8 +602,7 @@ impl Plan {
     }
 }
 
-/// The G76/G87 shift at the oriented spindle stop (machine frame): Q (KT: 0.1 mm when Q is
-/// absent or zero) along the setup's shift direction.
+/// The G76/G87 shift at the oriented stop (machine frame): Q along `shift_direction`.
 fn shift_vector(st: &mut State, block: &Block, n: usize) -> DVec3 {
     let q = match st.cycle.q.filter(|q| *q > 0.0) {
         Some(q) => q,
@@ -721,27 +612,17 @@ fn shift_vector(st: &mut State, block: &Block, n: usize) -> DVec3 {
     let direction = st.setup.machine.shift_direction;
     let along = direction.vector();
     if q > 0.0 && along[n].abs() > 0.5 {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-SHIFT-DIRECTION",
-            "the G76/G87 shift direction of the setup (`shift_direction`) lies along the drilling axis: no shift is made",
-        ));
-        return DVec3::ZERO;
+        let message = "the G76/G87 shift direction of the setup (`shift_direction`) lies along the drilling axis: no shift is made";
+        return st.fail(block.span, "E-SHIFT-DIRECTION", message);
     }
     if q > 0.0 && st.dialect == Dialect::Kt && along.z != 0.0 {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-SHIFT-DIRECTION",
-            "KT shifts G76/G87 along ±X or ±Y only (status parameter P018 bits 4–5): no shift is made",
-        ));
-        return DVec3::ZERO;
+        let message = "KT shifts G76/G87 along ±X or ±Y only (status parameter P018 bits 4–5): no shift is made";
+        return st.fail(block.span, "E-SHIFT-DIRECTION", message);
     }
     along * q
 }
 
-/// LinuxCNC's G87 words: the in-plane entry offset (I, J, K for X, Y, Z; always incremental)
-/// and the level the back bore starts from (the drilling axis's I/J/K word: absolute in G90,
-/// from the bottom in G91).
+/// LinuxCNC's G87 words: the entry offset I, J, K (incremental) and the back bore's start level.
 fn linuxcnc_back(
     st: &mut State,
     block: &Block,
@@ -759,30 +640,23 @@ fn linuxcnc_back(
         }
     }
     let Some(level) = find(words, offset_letter(n)) else {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-WORD-MISSING",
-            format!(
-                "G87 needs `{}`, the level the back bore starts from",
-                char::from(offset_letter(n))
-            ),
-        ));
-        return None;
+        let message = format!(
+            "G87 needs `{}`, the level the back bore starts from",
+            char::from(offset_letter(n))
+        );
+        return st.fail(block.span, "E-WORD-MISSING", message);
     };
     let level = st.length(level);
     Some((offset, if st.absolute { level } else { bottom + level }))
 }
 
-/// Drills `count` holes, the i-th (from 1) at `next(st, i)` (its in-plane coordinates; program
-/// frame), from the current position.
-#[allow(clippy::too_many_arguments)]
+/// Drills `count` holes, the i-th (from 1) at `next(st, i)` (program frame).
 fn drill(
     st: &mut State,
     block: &Block,
     plan: &Plan,
     count: u32,
     next: &mut dyn FnMut(&State, u32) -> DVec3,
-    feed: &dyn Fn(&mut State, &Block, f64) -> f64,
     source: Source,
     sink: &mut dyn Sink,
 ) {
@@ -791,7 +665,7 @@ fn drill(
     let r = plan.r;
     let mut current = st.program_pos[n];
     let mut initial = plan.initial;
-    let mut d = Drill::new(st, block, feed, plan, source, sink);
+    let mut d = Drill::new(st, block, plan, source, sink);
     if linuxcnc && initial < r {
         // rs274ngc: below the R level, straight up to it first.
         let mut p = d.st.program_pos;
@@ -833,7 +707,6 @@ fn drill(
 struct Drill<'a, 's> {
     st: &'a mut State,
     block: &'a Block,
-    feed: &'a dyn Fn(&mut State, &Block, f64) -> f64,
     plan: &'a Plan,
     source: Source,
     sink: &'s mut dyn Sink,
@@ -847,7 +720,6 @@ impl<'a, 's> Drill<'a, 's> {
     fn new(
         st: &'a mut State,
         block: &'a Block,
-        feed: &'a dyn Fn(&mut State, &Block, f64) -> f64,
         plan: &'a Plan,
         source: Source,
         sink: &'s mut dyn Sink,
@@ -855,7 +727,6 @@ impl<'a, 's> Drill<'a, 's> {
         Drill {
             st,
             block,
-            feed,
             plan,
             source,
             sink,
@@ -864,24 +735,18 @@ impl<'a, 's> Drill<'a, 's> {
         }
     }
 
-    /// Whether the cycle stops making moves: the sink holds all it may (the run's limit on
-    /// moves, or the toolpath's memory), so a repeat count or a peck depth that would make
-    /// millions of them ends here, with a diagnostic, and the run stops after the block.
+    /// Whether the cycle stops making moves: the sink is full (reported once).
     fn stops(&mut self) -> bool {
         if !self.halted && self.sink.full() {
             self.halted = true;
-            self.st.diagnostics.push(Diagnostic::error(
-                self.block.span,
-                "E-MOTION-LIMIT",
-                "the canned cycle stops here: its holes and pecks would make more moves than the run may ([machine] max_motions), and they would not fit in memory",
-            ));
+            let message = "the canned cycle stops here: its holes and pecks would make more moves than the run may ([machine] max_motions), and they would not fit in memory";
+            self.st.error(self.block.span, "E-MOTION-LIMIT", message);
         }
         self.halted
     }
 
-    /// The next peck's depth from `depth`, `q` further towards the bottom (`down`: the depth
-    /// decreases), or `None` where the peck is too small to change it (a `Q` far below the
-    /// number's resolution at that depth, reported once): the loop would never end.
+    /// The next peck's depth, `q` past `depth`, or `None` (reported once) where `q` changes
+    /// nothing.
     fn next_peck(&mut self, depth: f64, q: f64, down: bool) -> Option<f64> {
         let next = if down { depth - q } else { depth + q };
         if next != depth {
@@ -889,13 +754,10 @@ impl<'a, 's> Drill<'a, 's> {
         }
         if !self.stuck {
             self.stuck = true;
-            self.st.diagnostics.push(Diagnostic::error(
-                self.block.span,
-                "E-CYCLE-PECK",
-                format!(
-                    "the peck depth Q ({q:.3e} mm) is too small to go any deeper from {depth} mm: the rest of the hole is cut in one feed"
-                ),
-            ));
+            let message = format!(
+                "the peck depth Q ({q:.3e} mm) is too small to go any deeper from {depth} mm: the rest of the hole is cut in one feed"
+            );
+            self.st.error(self.block.span, "E-CYCLE-PECK", message);
         }
         None
     }
@@ -904,8 +766,7 @@ impl<'a, 's> Drill<'a, 's> {
         crate::corners::emit(self.st, self.sink, self.source, event);
     }
 
-    /// A move to `p` (program frame): at rapid without `feed`; `shifted`, moved by the G76/G87
-    /// shift (the position is the shifted point; the next unshifted move brings it back).
+    /// A move to `p` (program frame), at rapid without `feed`; `shifted` by the G76/G87 shift.
     fn go(&mut self, p: DVec3, shifted: bool, feed: Option<f64>) {
         let mut to = self.st.to_machine(p);
         if shifted {
@@ -928,7 +789,7 @@ impl<'a, 's> Drill<'a, 's> {
         let length = self.st.position.distance(self.st.to_machine(p));
         let feed = match self.plan.tap_feed {
             Some(f) => f,
-            None => (self.feed)(self.st, self.block, length),
+            None => move_feed(self.st, self.block, length, None),
         };
         self.go(p, false, Some(feed));
     }
@@ -954,11 +815,7 @@ impl<'a, 's> Drill<'a, 's> {
 
     fn spindle(&mut self, clockwise: Option<bool>) {
         self.st.spindle_dir = clockwise;
-        let rpm = if clockwise.is_some() {
-            self.st.spindle_rpm
-        } else {
-            0.0
-        };
+        let rpm = clockwise.map_or(0.0, |_| self.st.spindle_rpm);
         self.emit(&Canon::Spindle { clockwise, rpm });
     }
 
@@ -979,9 +836,19 @@ impl<'a, 's> Drill<'a, 's> {
         self.go(p, false, self.plan.retract_feed);
     }
 
-    /// The Fanuc family's G87 back boring, from the initial level over the hole: oriented stop,
-    /// shift away, down to R (below the part) at rapid, shift back, spindle forward, bore up to
-    /// Z, dwell, oriented stop, shift away, up to the initial level, shift back, spindle on.
+    /// Taps to `depth` and back out to `out`, stopping and dwelling at each reversal.
+    fn tap(&mut self, hole: DVec3, depth: f64, out: f64, forward: bool) {
+        self.feed_to(self.level(hole, depth));
+        self.spindle(None);
+        self.dwell();
+        self.spindle(Some(!forward));
+        self.feed_to(self.level(hole, out));
+        self.spindle(None);
+        self.dwell();
+        self.spindle(Some(forward));
+    }
+
+    /// The Fanuc family's G87 back boring: oriented stop, shift, down to R, back, bore up to Z.
     fn back_bore(&mut self, hole: DVec3, current: f64, clear: f64) {
         let (r, bottom) = (self.plan.r, self.plan.bottom);
         let dir = self.st.spindle_dir;
@@ -993,8 +860,7 @@ impl<'a, 's> Drill<'a, 's> {
         self.bore_out_shifted(hole, bottom, clear, dir);
     }
 
-    /// Bores to `end`, dwells, stops oriented, shifts away from the wall, leaves at rapid to
-    /// `clear`, shifts back and restarts the spindle as it was (`dir`): the end of G76 and G87.
+    /// Bores to `end`, dwells, stops oriented, shifts out to `clear`, restarts: G76/G87's end.
     fn bore_out_shifted(&mut self, hole: DVec3, end: f64, clear: f64, dir: Option<bool>) {
         self.feed_to(self.level(hole, end));
         self.dwell();
@@ -1044,29 +910,16 @@ impl<'a, 's> Drill<'a, 's> {
                 }
             }
             740 | 840 => {
-                // Tapping: in with the spindle forward (G84 clockwise, G74 counter-clockwise),
-                // stop, dwell, reverse and feed out, stop, (dwell,) forward again.
+                // Tapping: in, stop, dwell, reverse out, stop, forward again.
                 let forward = self.plan.tenths == 840;
                 if let Some(q) = self.plan.peck {
-                    // Syntec's peck tapping: down a Q at a time, reversing out by d (TYPE II,
-                    // Pr4001 = 1) or to R (TYPE III) between pecks, a dwell at each reversal.
-                    let out = |depth: f64, d: &Self| {
-                        if d.st.setup.machine.high_speed_peck_tapping {
-                            (depth + d.plan.retract).min(r)
-                        } else {
-                            r
-                        }
-                    };
+                    // Syntec's peck tapping: a Q at a time, out by d (Pr4001 = 1) or to R.
+                    let fast = self.st.setup.machine.high_speed_peck_tapping;
+                    let step_back = fast.then_some(self.plan.retract);
                     let mut depth = r - q;
                     while depth > bottom + 1e-9 && !self.stops() {
-                        self.feed_to(self.level(hole, depth));
-                        self.spindle(None);
-                        self.dwell();
-                        self.spindle(Some(!forward));
-                        self.feed_to(self.level(hole, out(depth, self)));
-                        self.spindle(None);
-                        self.dwell();
-                        self.spindle(Some(forward));
+                        let out = step_back.map_or(r, |d| (depth + d).min(r));
+                        self.tap(hole, depth, out, forward);
                         let Some(deeper) = self.next_peck(depth, q, true) else {
                             break;
                         };
@@ -1074,10 +927,7 @@ impl<'a, 's> Drill<'a, 's> {
                     }
                 }
                 if linuxcnc {
-                    // LinuxCNC's G84 outside the XY plane feeds to points with their axes
-                    // rotated — (Y, Z, X) in G18, (Z, X, Y) in G19 — as rs274ngc does and
-                    // LinuxCNC's own test suite expects: drawn where the machine will go, with
-                    // a warning.
+                    // LinuxCNC's G84 outside XY rotates its points' axes, as rs274ngc does.
                     let plane = self.st.plane;
                     let swap = plane != crate::Axis::Z && self.plan.tenths == 840;
                     let out = |p: DVec3| match plane {
@@ -1086,11 +936,9 @@ impl<'a, 's> Drill<'a, 's> {
                         _ => DVec3::new(p.z, p.x, p.y),
                     };
                     if swap {
-                        self.st.diagnostics.push(Diagnostic::warning(
-                            self.block.span,
-                            "W-LINUXCNC-G84-PLANE",
-                            "LinuxCNC runs G84 outside the XY plane with the axes of its feed moves rotated; they are drawn where the machine will go",
-                        ));
+                        let message = "LinuxCNC runs G84 outside the XY plane with the axes of its feed moves rotated; they are drawn where the machine will go";
+                        self.st
+                            .warning(self.block.span, "W-LINUXCNC-G84-PLANE", message);
                     }
                     let (down, up) = (self.level(hole, bottom), self.level(hole, clear));
                     self.feed_to(out(down));
@@ -1098,29 +946,20 @@ impl<'a, 's> Drill<'a, 's> {
                     self.spindle(Some(!forward));
                     self.dwell();
                     self.feed_to(out(up));
-                    // rs274ngc only emits the points rotated: it goes on from where it meant to
-                    // be.
+                    // rs274ngc only emits the points rotated: it goes on from where it meant to be.
                     self.st.program_pos = up;
                     self.st.position = self.st.to_machine(up);
                     self.spindle(None);
                     self.spindle(Some(forward));
                     return;
                 }
-                self.feed_to(self.level(hole, bottom));
-                self.spindle(None);
-                self.dwell();
-                self.spindle(Some(!forward));
-                self.feed_to(self.level(hole, r));
-                self.spindle(None);
-                self.dwell();
-                self.spindle(Some(forward));
+                self.tap(hole, bottom, r, forward);
                 if clear != r {
                     self.rapid(self.level(hole, clear));
                 }
             }
             760 => {
-                // Fine boring: bore, dwell, oriented stop, shift away from the wall, out at
-                // rapid, shift back, spindle on as before.
+                // Fine boring: bore, dwell, oriented stop, shift away, out at rapid, shift back.
                 let dir = self.st.spindle_dir;
                 self.bore_out_shifted(hole, bottom, clear, dir);
             }
@@ -1137,9 +976,7 @@ impl<'a, 's> Drill<'a, 's> {
             }
             870 => self.linuxcnc_back_bore(hole, clear),
             880 => {
-                // Manual return: dwell, spindle stop, a program stop where the operator
-                // retracts; the tool is drawn back at the return level before the spindle
-                // restarts (rs274ngc leaves it at the bottom).
+                // Manual return: dwell, spindle stop, program stop, drawn back at the return level.
                 let dir = self.st.spindle_dir;
                 self.feed_to(self.level(hole, bottom));
                 self.dwell();
@@ -1166,10 +1003,8 @@ impl<'a, 's> Drill<'a, 's> {
         }
     }
 
-    /// LinuxCNC's G87 as rs274ngc runs it (from R over the hole): over to the offset entry,
-    /// oriented stop, down to Z, over the hole, spindle on, bore to the back-bore level and
-    /// back to Z, oriented stop, over to the entry, up to the clear level, back over the hole,
-    /// spindle on.
+    /// LinuxCNC's G87 as rs274ngc runs it: by the offset entry, oriented, down to Z, bore up and
+    /// back, out by the entry.
     fn linuxcnc_back_bore(&mut self, hole: DVec3, clear: f64) {
         let Some((offset, level)) = self.plan.back else {
             return;

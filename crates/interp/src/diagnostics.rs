@@ -1,6 +1,5 @@
-//! The run's diagnostics, kept bounded: a diagnostic met again at the same place (a block run
-//! over and over in a loop) is counted rather than repeated, at most [`MAX_KEPT`] different
-//! ones are kept, and the alarms that stop a real control stop the run.
+//! The run's diagnostics, kept bounded: one met again at the same place is counted, at most
+//! [`MAX_KEPT`] different ones are kept, and the alarms that stop a real control stop the run.
 
 use std::collections::HashMap;
 
@@ -9,18 +8,15 @@ use swarf_syntax::{Diagnostic, Severity, Span};
 /// Most different diagnostics a run keeps; the ones after are counted in a last note.
 pub const MAX_KEPT: usize = 1000;
 
-/// Errors that stop the machine itself (an overtravel alarm), however the run goes on after
-/// other errors.
+/// Errors that stop the machine itself (overtravel), where the run goes on after others.
 const MACHINE_ALARMS: [&str; 2] = ["E-OVERTRAVEL", "E-STROKE-LIMIT"];
 
 /// The diagnostics of a run, each code and place once with how often it was met.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Diagnostics {
-    /// The number of the block being run (counted by the run): a diagnostic given twice by
-    /// one run of a block is met once.
+    /// The number of the block run under way: a diagnostic given twice by it is met once.
     pub(crate) block: u64,
-    /// The diagnostics kept, in the order first met, with how often and in which block run
-    /// each was last met.
+    /// The diagnostics kept, in order first met, with how often and in which run last met.
     kept: Vec<(Diagnostic, u64, u64)>,
     /// Code and place → index into `kept`.
     places: HashMap<(&'static str, Span), usize>,
@@ -29,9 +25,7 @@ pub(crate) struct Diagnostics {
     /// Diagnostics met after `kept` was full, and where the first of them was.
     left_out: u64,
     first_left_out: Span,
-    /// The diagnostic (index into `kept`) that stops the run: a machine alarm, or an error
-    /// met again, which only a loop back to a failing block does (a control stops at the
-    /// first; going on would only repeat it).
+    /// The diagnostic (in `kept`) that stops the run: a machine alarm, or an error met again.
     stop: Option<usize>,
 }
 
@@ -71,8 +65,7 @@ impl Diagnostics {
         self.stop.is_some()
     }
 
-    /// The diagnostics so far, each with how often it was met and whether the run stopped
-    /// at it in its message, then a note of how many were left out; none are left.
+    /// The diagnostics so far with their counts, then a note of those left out; none are left.
     pub(crate) fn take(&mut self) -> Vec<Diagnostic> {
         // The run stays stopped; no later diagnostic is the one it stopped at.
         let stop = self.stop;
@@ -95,13 +88,11 @@ impl Diagnostics {
             })
             .collect();
         if left_out > 0 {
-            out.push(Diagnostic::note(
-                self.first_left_out,
-                "N-DIAGNOSTICS-LEFT-OUT",
-                format!(
-                    "{left_out} more diagnostics of the run from here on are left out: only the first {MAX_KEPT} different ones are kept"
-                ),
-            ));
+            let message = format!(
+                "{left_out} more diagnostics of the run from here on are left out: only the first {MAX_KEPT} different ones are kept"
+            );
+            let at = self.first_left_out;
+            out.push(Diagnostic::note(at, "N-DIAGNOSTICS-LEFT-OUT", message));
         }
         out
     }

@@ -1,6 +1,5 @@
-//! Executing one block's words, in the controls' order: feed/speed/tool, then the modal codes
-//! (units first, so the block's numbers are read in the new unit), coordinate-system codes,
-//! one-shot codes, motion, then M codes.
+//! Executing one block's words in the controls' order: feed, speed and tool, the modal codes (units
+//! first), coordinate-system and one-shot codes, motion, then M codes.
 
 mod actions;
 mod calls;
@@ -23,13 +22,13 @@ use crate::state::{MotionMode, State, plane_axes};
 use crate::{Sink, Source};
 use actions::{Action, Actions};
 
+pub(crate) use feeds::move_feed;
 pub(crate) use plain::{Shortcut, plain_block};
 
 /// The axis words of a block, in millimetres where given.
 type Axes<'w> = [Option<&'w Word>; 3];
 
-/// What a block asks of the program's flow. The machine carries the requests out after the
-/// block, in the block's order; the last decides where the run goes.
+/// What a block asks of the program's flow, carried out after it in order; the last decides.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Request {
     /// Stop the run (M02/M30, an alarm).
@@ -38,15 +37,13 @@ pub(crate) enum Request {
     Subprogram,
     /// `M99`: return from the call (to the block its P word names).
     Return,
-    /// `G65`: call macro program `number`, `repeats` times, with `args` (letter's local
-    /// variable, value) as its local variables.
+    /// `G65`: call macro `number`, `repeats` times, with `args` as its locals.
     Macro {
         number: f64,
         repeats: u32,
         args: Vec<(u8, f64)>,
     },
-    /// After a move under G66, where nothing before it changed the flow: call the modal
-    /// macro (not from inside it).
+    /// After a move under G66 that kept the flow: call the modal macro (not from inside it).
     ModalMacro,
 }
 
@@ -63,20 +60,16 @@ pub(crate) const MAX_COUNT: f64 = 9999.0;
 
 /// The diagnostic for a count word out of 1–9999 (the count is clamped into the range).
 pub(crate) fn count_range(w: &Word, what: &str) -> Diagnostic {
-    Diagnostic::error(
-        w.span,
-        "E-NUMBER-RANGE",
-        format!(
-            "`{}{}` is out of range: the number of {what} is 1 to 9999 (it is clamped)",
-            w.letter(),
-            w.value
-        ),
-    )
+    let message = format!(
+        "`{}{}` is out of range: the number of {what} is 1 to 9999 (it is clamped)",
+        w.letter(),
+        w.value
+    );
+    Diagnostic::error(w.span, "E-NUMBER-RANGE", message)
 }
 
-/// Executes `words` (the block's words with expressions evaluated): its G codes sorted into
-/// actions, then each stage in the controls' order; with a G22 stroke limit or the machine's
-/// travel, every move of the block is checked against them.
+/// Executes `words` (expressions evaluated): the G codes as actions, each stage in the controls'
+/// order, every move checked against a G22 stroke limit or the machine's travel.
 pub(crate) fn execute(
     st: &mut State,
     block: &Block,
@@ -95,9 +88,8 @@ pub(crate) fn execute(
         if !modal_codes(st, words, &actions, source, sink) {
             return stop();
         }
-        let axes = axis_words(words);
-        // In a block that runs a canned cycle (the block's motion code is already the mode), K is
-        // the repeat count, not a length.
+        let axes = axis_words(words, b'X');
+        // In a block that runs a canned cycle K is the repeat count, not a length.
         let lengths = if matches!(st.motion, Some(MotionMode::Cycle(_))) {
             CYCLE_LENGTH_LETTERS
         } else {
@@ -123,9 +115,8 @@ pub(crate) fn execute(
     })
 }
 
-/// The block's settings and modal codes, units first (the block's numbers are read in the new
-/// unit): T, D and H words, the modes, S and F, work offset, tool length and radius
-/// compensation, the G22 limits and the motion mode. `false` when the run stops.
+/// The block's settings and modal codes, units first: T, D, H, the modes, S and F, work offset,
+/// length and radius compensation, G22 and the motion mode. `false` when the run stops.
 fn modal_codes(
     st: &mut State,
     words: &[Word],
@@ -165,9 +156,7 @@ fn modal_codes(
                 let zone = st.stroke_zone.filter(|_| st.stroke_check);
                 sink.stroke_zone(source, zone.as_ref());
             }
-            Action::CutterComp(t) if !tools::cutter_comp(st, w, words, t) => {
-                return false;
-            }
+            Action::CutterComp(t) if !tools::cutter_comp(st, w, words, t) => return false,
             Action::Motion(m) => motion::set_mode(st, m),
             _ => {}
         }
@@ -175,9 +164,8 @@ fn modal_codes(
     tools::new_registers(st, words, actions)
 }
 
-/// The codes that take the block's axis words as their data (frames, reference points, G10,
-/// G22, dwell, hole patterns, G53 …): whether they did (the words are then no move); `None`
-/// when the run stops.
+/// The codes that take the block's axis words as their data (frames, G28, G10, G22, G04, patterns,
+/// G53 …): whether they did (the words are then no move); `None` when the run stops.
 fn axis_codes(
     st: &mut State,
     block: &Block,
@@ -199,15 +187,8 @@ fn axis_codes(
             Action::SetPosition => frames::set_position(st, axes),
             Action::PresetZero => frames::preset_zero(st, words),
             Action::Pattern(t) => {
-                let (u, v) = plane_axes(st.plane);
-                let mut plane_words: Axes<'_> = [None; 3];
-                plane_words[u] = axes[u];
-                plane_words[v] = axes[v];
-                let origin = motion::target(st, &plane_words);
-                let feed = |st: &mut State, block: &Block, length: f64| {
-                    feeds::move_feed(st, block, length, None)
-                };
-                crate::cycles::pattern(st, block, w, words, t, origin, &feed, source, sink);
+                let origin = motion::target(st, &plane_words(st, axes));
+                crate::cycles::pattern(st, block, w, words, t, origin, source, sink);
             }
             Action::Measure(second) => {
                 references::measure(st, block, w, words, second, source, sink);
@@ -263,14 +244,33 @@ fn axis_codes(
     Some(consumed)
 }
 
-fn axis_words(words: &[Word]) -> Axes<'_> {
+/// The first plain words of the three letters from `first` (X, Y, Z or I, J, K), by axis.
+fn axis_words(words: &[Word], first: u8) -> Axes<'_> {
     let mut axes: Axes<'_> = [None; 3];
     for w in words.iter().filter(|w| w.form == WordForm::Plain) {
-        if let b'X' | b'Y' | b'Z' = w.letter {
-            axes[usize::from(w.letter - b'X')] = Some(w);
+        if let Some(i) = w.letter.checked_sub(first).filter(|i| *i < 3) {
+            axes[usize::from(i)].get_or_insert(w);
         }
     }
     axes
+}
+
+/// `p` with each coordinate that `axes` gives replaced by its word's length (mm).
+fn given(st: &State, axes: &Axes<'_>, mut p: DVec3) -> DVec3 {
+    for (i, w) in axes.iter().enumerate() {
+        if let Some(w) = w {
+            p[i] = st.length(w);
+        }
+    }
+    p
+}
+
+/// The in-plane words of `axes` (a hole's position: the normal word is its bottom).
+fn plane_words<'w>(st: &State, axes: &Axes<'w>) -> Axes<'w> {
+    let (u, v) = plane_axes(st.plane);
+    let mut plane: Axes<'w> = [None; 3];
+    (plane[u], plane[v]) = (axes[u], axes[v]);
+    plane
 }
 
 /// The letters whose plain words are lengths (read in least input increments without a point).
@@ -279,8 +279,7 @@ const LENGTH_LETTERS: &[u8] = b"XYZIJKRQ";
 /// [`LENGTH_LETTERS`] in a block that runs a canned cycle, where K is the repeat count.
 const CYCLE_LENGTH_LETTERS: &[u8] = b"XYZIJRQ";
 
-/// Notes, once per run, that a length (a word of `lengths`) without a decimal point is read in
-/// least increments.
+/// Notes, once per run, that a length of `lengths` without a point is read in increments.
 fn note_least_increment(st: &mut State, lengths: &[u8], words: &[Word]) {
     if st.noted_least_increment || st.calculator() {
         return;
@@ -301,17 +300,14 @@ fn note_least_increment(st: &mut State, lengths: &[u8], words: &[Word]) {
         ("0.0001 inch", "inch")
     };
     let read = st.dialect.read(w, Quantity::Length, false, !st.metric);
-    st.diagnostics.push(Diagnostic::note(
-        w.span,
-        "N-LEAST-INCREMENT",
-        format!(
-            "`{}{}` has no decimal point: {} reads it in least input increments ({unit}) as {read} {units}; write `{}{}.` for {} {units} (or set `calculator_input = true` under [machine])",
-            w.letter(),
-            w.value,
-            st.dialect.label(),
-            w.letter(),
-            w.value,
-            w.value
-        ),
-    ));
+    let message = format!(
+        "`{}{}` has no decimal point: {} reads it in least input increments ({unit}) as {read} {units}; write `{}{}.` for {} {units} (or set `calculator_input = true` under [machine])",
+        w.letter(),
+        w.value,
+        st.dialect.label(),
+        w.letter(),
+        w.value,
+        w.value
+    );
+    st.note(w.span, "N-LEAST-INCREMENT", message);
 }

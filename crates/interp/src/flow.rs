@@ -1,6 +1,5 @@
-//! The program's structure, indexed once before it runs: `O` programs, `N` labels per program,
-//! Macro B loops (`WHILE … DOm` ↔ `ENDm`) and LinuxCNC O-word lines, so that calls, jumps and
-//! loops find their targets without rescanning the text.
+//! The program's structure, indexed once before it runs (`O` programs, `N` labels, Macro B loops
+//! and LinuxCNC O-word lines), so calls, jumps and loops find their targets without a rescan.
 
 use std::collections::HashMap;
 
@@ -11,8 +10,7 @@ use swarf_syntax::{
 
 use crate::diagnostics::Diagnostics;
 
-/// A LinuxCNC O-word label as a map key (`o100` or `o<name>`; computed labels are looked up by
-/// their value at run time).
+/// A LinuxCNC O-word label as a map key (`o100`, `o<name>`; computed ones by value).
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub(crate) enum LabelKey {
     Number(u32),
@@ -64,9 +62,7 @@ pub(crate) struct Index {
     numbers: HashMap<u32, usize>,
     /// `O<name>` → index into `starts`.
     names: HashMap<Box<str>, usize>,
-    /// (program, N, block index) of every numbered block, sorted: a jump to `N` goes to the
-    /// first block with that number in the program. (A sorted array rather than a map: CAM
-    /// output numbers every line, and the array costs a third of the memory and no hashing.)
+    /// (program, N, block) of every numbered block, sorted: a jump goes to the first.
     labels: Vec<(u32, u32, u32)>,
     /// `WHILE … DOm` / `DOm` block → its `ENDm` block, and back.
     loop_end: HashMap<usize, usize>,
@@ -77,8 +73,7 @@ pub(crate) struct Index {
     first_program: Option<usize>,
     /// The expression terms of each block (see [`terms`]), up to the last block that has any.
     terms: Vec<u32>,
-    /// The calls whose program's file was found and not linked, and why
-    /// ([`Program::unlinked`]).
+    /// Why the files of the calls found but not linked were not ([`Program::unlinked`]).
     unlinked: Vec<(Missing, String)>,
 }
 
@@ -107,8 +102,7 @@ impl Index {
                     ProgramNumber::Number(n) => *index.numbers.entry(*n).or_insert(slot),
                     ProgramNumber::Name(name) => *index.names.entry(name.clone()).or_insert(slot),
                 };
-                // A second program of the same number: calls go to the first, so the second
-                // would never run.
+                // A second program of the same number: calls go to the first, so it never runs.
                 if first != slot
                     && let Some(earlier) =
                         index.starts.get(first).and_then(|&b| program.blocks.get(b))
@@ -117,14 +111,11 @@ impl Index {
                         ProgramNumber::Number(n) => format!("O{n:04}"),
                         ProgramNumber::Name(name) => format!("O<{}>", excerpt(name)),
                     };
-                    diagnostics.push(Diagnostic::error(
-                        block.span,
-                        "E-PROGRAM-TWICE",
-                        format!(
-                            "{name} is defined twice in this program: at line {} and here; a call runs the first",
-                            earlier.line + 1
-                        ),
-                    ));
+                    let message = format!(
+                        "{name} is defined twice in this program: at line {} and here; a call runs the first",
+                        earlier.line + 1
+                    );
+                    diagnostics.push(Diagnostic::error(block.span, "E-PROGRAM-TWICE", message));
                 }
             }
             let slot = index.starts.len() - 1;
@@ -172,11 +163,8 @@ impl Index {
         index.unlinked.clone_from(&program.unlinked);
         for (label, head) in open_loops {
             if let Some(block) = program.blocks.get(head) {
-                diagnostics.push(Diagnostic::error(
-                    block.span,
-                    "E-MACRO-LOOP",
-                    format!("DO{label} has no END{label} after it"),
-                ));
+                let message = format!("DO{label} has no END{label} after it");
+                diagnostics.push(Diagnostic::error(block.span, "E-MACRO-LOOP", message));
             }
         }
         index
@@ -190,8 +178,7 @@ impl Index {
         }
     }
 
-    /// Whether block `at` starts a program other than the main one (the first `O` line of the
-    /// text heads the main program; later ones start programs that run only when called).
+    /// Whether block `at` starts a program other than the main (first) one.
     pub(crate) fn starts_other_program(&self, at: usize) -> bool {
         self.first_program.is_some_and(|first| first != at)
     }
@@ -244,8 +231,7 @@ impl Index {
         self.terms.get(at).map_or(0, |&t| u64::from(t))
     }
 
-    /// The nearest line of `label` after block `at` (`forward`) or before it whose kind is in
-    /// `kinds`; the lines of the label looked at are added to `searched` (the run's work).
+    /// The nearest line of `label` after or before `at` of `kinds`, counting lines in `searched`.
     pub(crate) fn near_oword(
         &self,
         label: &LabelKey,
@@ -277,9 +263,7 @@ fn first_of<'a>(
         .copied()
 }
 
-/// How many expression terms (numbers, variables, operators, functions) running `block`
-/// evaluates at most: the work a block does besides its words, which the runaway limit
-/// `[machine] max_work` counts.
+/// How many expression terms `block` evaluates at most (counted by `max_work`).
 pub(crate) fn terms(program: &Program, block: &Block) -> u64 {
     if !block.has_macro() {
         return 0;

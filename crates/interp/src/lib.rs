@@ -9,7 +9,7 @@ mod diagnostics;
 mod exec;
 mod flow;
 mod machine;
-pub mod macros;
+mod macros;
 mod position;
 mod setup;
 mod state;
@@ -25,11 +25,8 @@ pub trait Sink {
     /// One event caused by the block at `source`.
     fn emit(&mut self, source: Source, event: &Canon);
 
-    /// A straight move to (`x`, `y`, `z`): a rapid ([`Canon::Rapid`]) when `rapid`, else a
-    /// feed ([`Canon::Feed`]) at `feed_mm_per_min`. The same as emitting the event, which is
-    /// what it does unless a sink takes moves this way: the numbers then come in registers, not
-    /// in an event written just before the call and read back at its start (a read that
-    /// spans two of those writes waits for them to reach the cache, on every move).
+    /// A straight move to (`x`, `y`, `z`), rapid when `rapid`: emitting the event, with the numbers
+    /// in registers for sinks that take moves this way.
     fn straight(
         &mut self,
         source: Source,
@@ -43,21 +40,18 @@ pub trait Sink {
         self.emit(source, &Canon::line(rapid, to, feed_mm_per_min));
     }
 
-    /// Whether the sink holds all it may (a recorder whose memory has a limit): the run then
-    /// stops before the next block with a diagnostic, and a block that makes many moves (a
-    /// canned cycle's holes and pecks) makes no more. `false` for a sink without a limit.
+    /// Whether the sink holds all it may: the run then stops before the next block with a
+    /// diagnostic, and a canned cycle makes no more holes. `false` for a sink without a limit.
     fn full(&self) -> bool {
         false
     }
 
-    /// The program zero (work offset with its G52/G92 shifts, machine frame) that the moves
-    /// just emitted were programmed from; told once per change, for the backplot's origin
-    /// marks. Not part of the canonical stream: sinks that do not draw may ignore it.
+    /// The program zero (machine frame) the moves just emitted were programmed from, told once per
+    /// change for the backplot's origin marks; not part of the canonical stream.
     fn origin(&mut self, _at: glam::DVec3) {}
 
-    /// The programmed motion of a block run under cutter radius compensation, before its
-    /// compensated events are emitted: the contour the part program describes, so a backplot
-    /// can draw it next to the tool centre's path. Ignored unless a sink wants it.
+    /// The programmed motion of a block under cutter radius compensation, before its compensated
+    /// events, so a backplot can draw the contour beside the tool centre's path.
     fn programmed(&mut self, source: Source, event: &Canon) {
         let _ = (source, event);
     }
@@ -69,9 +63,8 @@ pub trait Sink {
     }
 }
 
-/// A programmable stroke limit (G22) in machine coordinates (mm): the box the tool must stay
-/// inside (LNC's soft limits) or out of (Syntec's protected zone). An axis without a limit
-/// spans from negative to positive infinity.
+/// A programmable stroke limit (G22) in machine coordinates (mm): the box the tool must stay inside
+/// (LNC) or out of (Syntec); an axis without a limit spans all numbers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StrokeZone {
     /// Lower limit per axis (negative infinity where the axis has none).

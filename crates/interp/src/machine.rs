@@ -1,6 +1,5 @@
-//! The modal machine: runs blocks in bounded steps, follows the program's flow (subprograms,
-//! macro calls, Macro B jumps and loops, LinuxCNC O-words) and hands each block's words to
-//! [`exec`](crate::exec).
+//! The modal machine: runs blocks in bounded steps, follows the program's flow (calls, Macro B
+//! jumps and loops, LinuxCNC O-words) and hands each block's words to [`exec`](crate::exec).
 
 use std::borrow::Cow;
 use std::collections::HashMap;
@@ -38,28 +37,23 @@ pub enum Piece {
     NeedsWhole,
 }
 
-/// The farthest from the machine origin a position may be, in mm along each axis: no machine
-/// reaches it, so a move, arc centre or hole past it (or at a number that is not finite) is an
-/// error of the block that computed it (`E-COORDINATE-RANGE`), which ends the run.
+/// The farthest from the machine origin a position may be, in mm per axis: a move, arc centre or
+/// hole past it (or not finite) is an error of its block (`E-COORDINATE-RANGE`) that ends the run.
 pub const MAX_COORDINATE_MM: f64 = 1.0e9;
 
-/// The longest dwell, in seconds (about 32 years), and the lowest feed other than zero, in
-/// mm/min, that a run accepts: only a variable gone astray gives more or less, and the time
-/// estimate would not be a finite number.
+/// The longest dwell (s, about 32 years) and lowest feed other than zero (mm/min) a run accepts:
+/// only a variable gone astray gives more or less, and the time estimate would not be finite.
 const MAX_DWELL_SECS: f64 = 1.0e9;
 const MIN_FEED_MM_PER_MIN: f64 = 1.0e-100;
 
-/// The work an arc's extra full turn counts (see `[machine] max_work`): the points a turn is
-/// checked at against the stroke limits and the machine's travel.
+/// The work of an arc's extra turn: the points it is checked at (see `max_work`).
 const TURN_WORK: u64 = 64;
 
-/// The work a diagnostic met again counts (see `[machine] max_work`): its message is made
-/// again, which takes about as long as that many expression terms.
+/// The work of a diagnostic met again (its message is made again; see `max_work`).
 const REPEAT_WORK: u64 = 8;
 
-/// Passes events on and counts the motions among them (for `[machine] max_motions`), the arc
-/// turns (for `[machine] max_work`), and holds back every event from the first whose numbers
-/// are out of range on (see [`MAX_COORDINATE_MM`]).
+/// Passes events on, counting motions (`max_motions`) and arc turns (`max_work`), and holds back
+/// every event from the first whose numbers are out of range on (see [`MAX_COORDINATE_MM`]).
 pub(crate) struct MotionCounter<'s> {
     inner: &'s mut dyn Sink,
     motions: u64,
@@ -167,8 +161,7 @@ impl Sink for MotionCounter<'_> {
     }
 }
 
-/// Subprogram and macro nesting the controls allow (Fanuc 0i: 10 subprogram levels; a few
-/// more here so that macro calls inside them still fit), beyond which a run stops.
+/// Call nesting the controls allow (Fanuc 0i: 10, and macro calls), past which a run stops.
 const MAX_CALL_DEPTH: usize = 16;
 
 /// What a block asks the run to do next.
@@ -203,8 +196,7 @@ struct Frame {
     start: usize,
     /// Further runs left (`M98 P… L3` runs three times).
     repeats_left: u32,
-    /// Whether this is the G66 modal macro, called after a move (its own moves do not call it
-    /// again).
+    /// Whether this is the G66 modal macro, called after a move (its own moves do not call it).
     modal: bool,
 }
 
@@ -217,8 +209,7 @@ pub struct Interpreter {
     /// The next block to run (progress through the program).
     pub(crate) next_block: usize,
     executed: u64,
-    /// Work done inside the blocks (for `[machine] max_work`): expression terms evaluated and
-    /// O-word lines searched (arc turns and diagnostics met again are counted apart).
+    /// Work done inside the blocks: expression terms and O-word lines searched.
     work: u64,
     /// The last jump back (from block, to block): the loop a runaway run is in.
     back_jump: Option<(usize, usize)>,
@@ -242,12 +233,9 @@ pub struct Interpreter {
     unvisited: usize,
     /// Whether plain motion blocks take the short path (see [`Interpreter::general_path_only`]).
     shortcut: bool,
-    /// Whether `origin` is the program zero of the current frame: only blocks that took the
-    /// short path leave the frame as it was, so only after them can the check be skipped.
+    /// Whether `origin` is the current program zero (only short-path blocks keep it).
     origin_current: bool,
-    /// What the short path for plain motion blocks may take (see `exec::Shortcut`), and whether
-    /// it was made after the last block that could change it (only blocks change the state, so
-    /// it holds from one step to the next).
+    /// The short path's data (see `exec::Shortcut`), and whether it is current.
     short: Option<crate::exec::Shortcut>,
     short_current: bool,
 }
@@ -280,11 +268,8 @@ impl Interpreter {
         }
     }
 
-    /// Runs the next piece of a program read piece by piece: `program` holds only the blocks
-    /// read since the last piece (the reader dropped the earlier ones; see
-    /// `swarf_syntax::ParseRun::clear_blocks`) and the state carries over from the pieces
-    /// before. A long program without jumps then never has all its blocks in memory at once.
-    /// Call [`Interpreter::finish_pieces`] after the last piece.
+    /// Runs the next piece of a program read piece by piece (see `ParseRun::clear_blocks`), the
+    /// state carrying over; call [`Interpreter::finish_pieces`] last.
     pub fn run_piece(&mut self, program: &Program, sink: &mut dyn Sink) -> Piece {
         if self.jumped || (self.executed > 0 && !self.piecewise) {
             return Piece::NeedsWhole;
@@ -296,15 +281,13 @@ impl Interpreter {
         self.index = None;
         self.next_block = 0;
         self.unvisited = 0;
-        // A block that needs the whole program (see `needs_whole`) or a jump ends the piece:
-        // the program then runs whole, from its start.
+        // A block that needs the whole program or a jump ends the piece (the program runs whole).
         while self.step(program, sink, 4096) == Status::Running
             && !self.jumped
             && self.next_block < program.blocks.len()
         {}
         if self.finished && !self.jumped {
-            // The blocks after the end were not run; they still decide, as they would have
-            // before the piece ran.
+            // The blocks after the end were not run; they still decide, as before the piece ran.
             for block in program.blocks.get(self.unvisited..).unwrap_or_default() {
                 if self.needs_whole(block) {
                     self.jumped = true;
@@ -322,14 +305,11 @@ impl Interpreter {
         }
     }
 
-    /// Whether `block`, met running piece by piece, needs what only the whole program's index
-    /// knows: a loop or O-word line, a call, or a second program. Each block of a piece is
-    /// asked once, in order, except the plain moves of the shortest path, which never do.
+    /// Whether `block`, met piece by piece, needs the whole index (a loop, call, program).
     fn needs_whole(&mut self, block: &Block) -> bool {
         let several_programs = block.program().is_some() && self.program_seen;
         self.program_seen |= block.program().is_some();
-        // A code the code table marks `whole`; one the dialect lacks is taken as Fanuc's (an
-        // M198 runs as a call in every dialect).
+        // A code the table marks `whole`, in the dialect or else in Fanuc's (M198 calls in all).
         let dialect = self.st.dialect;
         let calls = block.words.iter().any(|w| {
             matches!(w.letter, b'G' | b'M')
@@ -347,8 +327,7 @@ impl Interpreter {
         several_programs || calls || control
     }
 
-    /// Ends a program run piece by piece (the end of its text), as [`Interpreter::step`] does
-    /// at the end of a program run whole.
+    /// Ends a program run piece by piece, as [`Interpreter::step`] ends one run whole.
     pub fn finish_pieces(&mut self, sink: &mut dyn Sink) {
         if !self.finished {
             self.finished = true;
@@ -356,15 +335,12 @@ impl Interpreter {
         }
     }
 
-    /// Runs every block through the general path, without the shorter one plain motion blocks
-    /// otherwise take; the two must give the same events and diagnostics, which this checks.
+    /// Runs every block through the general path, to check the short path gives the same.
     pub fn general_path_only(&mut self) {
         self.shortcut = false;
     }
 
-    /// Takes the diagnostics found so far, leaving none: each code and place once, a repeated
-    /// one saying how often it was met, and at most `MAX_KEPT` different ones (then a note of
-    /// how many more there were).
+    /// Takes the diagnostics so far: each code and place once with its count (at most `MAX_KEPT`).
     pub fn take_diagnostics(&mut self) -> Vec<Diagnostic> {
         self.st.diagnostics.take()
     }
@@ -379,9 +355,7 @@ impl Interpreter {
         self.executed
     }
 
-    /// A copy of the interpreter without the diagnostics found so far (for [`States`]).
-    ///
-    /// [`States`]: crate::States
+    /// A copy of the interpreter without the diagnostics found so far (for [`crate::States`]).
     pub(crate) fn snapshot(&mut self) -> Interpreter {
         let diagnostics = std::mem::take(&mut self.st.diagnostics);
         let copy = self.clone();
@@ -407,13 +381,10 @@ impl Interpreter {
 
     /// Executes at most `budget` blocks of `program`, sending events to `sink`.
     pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
-        // A program run piece by piece needs no index: a block that would use it (a jump, a
-        // loop, a call) has the program run whole (see `needs_whole`), which makes it.
+        // Piece by piece there is no index: a block that needs it has the program run whole.
         if self.index.is_none() && !self.piecewise {
-            self.index = Some(std::sync::Arc::new(Index::build(
-                program,
-                &mut self.st.diagnostics,
-            )));
+            let index = Index::build(program, &mut self.st.diagnostics);
+            self.index = Some(std::sync::Arc::new(index));
         }
         let mut counted = MotionCounter {
             inner: sink,
@@ -442,8 +413,7 @@ impl Interpreter {
                 self.end_of_text();
                 continue;
             };
-            // The runaway limits: blocks run, the work inside them, and moves made (the
-            // toolpath's memory).
+            // The runaway limits: blocks run, the work inside them, and moves made (memory).
             let machine = &self.st.setup.machine;
             if self.executed >= machine.max_blocks
                 || self.work(&counted) >= machine.max_work
@@ -511,8 +481,7 @@ impl Interpreter {
         }
     }
 
-    /// Whether the run has ended, or must end now: a diagnostic that stops it (see
-    /// `Diagnostics::push`), or an event whose numbers are out of range, reported at its block.
+    /// Whether the run has ended or must end now (a stopping diagnostic, numbers out of range).
     fn stopped(&mut self, program: &Program, counted: &mut MotionCounter<'_>) -> bool {
         if let Some((source, problem)) = counted.out_of_range.take() {
             let at = (source.block as usize).saturating_sub(self.block_base);
@@ -533,52 +502,34 @@ impl Interpreter {
         self.finished
     }
 
-    /// Ends the run at one of its limits (see the block loop in [`Interpreter::step`]), with
-    /// the diagnostic that names it and the loop the run is in.
+    /// Ends the run at one of its limits, naming it and the loop the run is in.
     fn limit_reached(&mut self, program: &Program, block: &Block, counted: &MotionCounter<'_>) {
         let machine = &self.st.setup.machine;
         let (in_loop, loop_span) = self.in_loop(program);
         let work = self.work(counted);
-        let (code, span, message) = if self.executed >= machine.max_blocks {
-            (
-                "E-RUNAWAY",
-                loop_span,
-                format!(
-                    "execution stopped after {} blocks (the limit in [machine] max_blocks){in_loop}: an endless loop?",
-                    self.executed
-                ),
-            )
+        let (blocks, moves) = (self.executed, counted.motions);
+        let (runaway, after, why) = if blocks >= machine.max_blocks {
+            let after = format!("{blocks} blocks (the limit in [machine] max_blocks)");
+            (true, after, "an endless loop?")
         } else if work >= machine.max_work {
-            (
-                "E-RUNAWAY",
-                loop_span,
-                format!(
-                    "execution stopped after {} blocks and {work} steps of work in them: expression terms, O-word lines searched, arc turns, diagnostics met again (the limit in [machine] max_work){in_loop}: an endless loop?",
-                    self.executed
-                ),
-            )
-        } else if counted.motions >= machine.max_motions {
-            (
-                "E-MOTION-LIMIT",
-                None,
-                format!(
-                    "execution stopped after {} moves (the limit in [machine] max_motions){in_loop}: the toolpath would not fit in memory",
-                    counted.motions
-                ),
-            )
+            let after = format!(
+                "{blocks} blocks and {work} steps of work in them: expression terms, O-word lines searched, arc turns, diagnostics met again (the limit in [machine] max_work)"
+            );
+            (true, after, "an endless loop?")
+        } else if moves >= machine.max_motions {
+            let after = format!("{moves} moves (the limit in [machine] max_motions)");
+            (false, after, "the toolpath would not fit in memory")
         } else {
-            (
-                "E-MOTION-LIMIT",
-                None,
-                format!(
-                    "execution stopped after {} moves{in_loop}: their toolpath holds as much as [machine] max_motions allows (an arc is drawn as many segments; holes, dwells and changes of feed or tool count too), more would not fit in memory",
-                    counted.motions
-                ),
-            )
+            let why = "their toolpath holds as much as [machine] max_motions allows (an arc is drawn as many segments; holes, dwells and changes of feed or tool count too), more would not fit in memory";
+            (false, format!("{moves} moves"), why)
         };
-        self.st
-            .diagnostics
-            .push(Diagnostic::error(span.unwrap_or(block.span), code, message));
+        let (code, span) = if runaway {
+            ("E-RUNAWAY", loop_span)
+        } else {
+            ("E-MOTION-LIMIT", None)
+        };
+        let message = format!("execution stopped after {after}{in_loop}: {why}");
+        self.st.error(span.unwrap_or(block.span), code, message);
         self.finished = true;
     }
 
@@ -587,8 +538,7 @@ impl Interpreter {
         self.work + counted.turns + REPEAT_WORK * self.st.diagnostics.repeats
     }
 
-    /// The loop the run is in, for a runaway's diagnostic: its words for the message and the
-    /// span of the block that jumps back (`None` when the run has not jumped back).
+    /// The loop the run is in, for a runaway's message, and the span of its jump back.
     fn in_loop(&self, program: &Program) -> (String, Option<Span>) {
         let Some((from, to)) = self.back_jump else {
             return (String::new(), None);
@@ -596,20 +546,12 @@ impl Interpreter {
         let (Some(from), Some(to)) = (program.blocks.get(from), program.blocks.get(to)) else {
             return (String::new(), None);
         };
-        (
-            format!(
-                ", in the loop from line {} to the jump back at line {}",
-                to.line + 1,
-                from.line + 1
-            ),
-            Some(from.span),
-        )
+        let (head, back) = (to.line + 1, from.line + 1);
+        let words = format!(", in the loop from line {head} to the jump back at line {back}");
+        (words, Some(from.span))
     }
 
-    /// Runs the plain motion blocks from the next block on through the short path (see
-    /// `exec::plain_block`), at most `left` of them and short of the runaway limits, with none
-    /// of the checks the block loop makes between other blocks (they change nothing for such
-    /// blocks); how many ran, 0 where the next block is not one or the short path is closed.
+    /// Runs the plain motion blocks from the next one through the short path; how many ran.
     fn short_run(&mut self, program: &Program, left: usize, sink: &mut MotionCounter<'_>) -> usize {
         // An alarm raised by the block before is reported by the block loop, as is a full sink.
         if !self.shortcut || self.st.alarm.is_some() || sink.full() {
@@ -649,8 +591,7 @@ impl Interpreter {
                 block: u32::try_from(self.block_base + at + ran).unwrap_or(u32::MAX),
                 line: block.line.saturating_add(1),
             };
-            // What the block loop sets before a block: cutter compensation and the
-            // diagnostics read them.
+            // What the block loop sets before a block, which compensation and diagnostics read.
             self.st.block_span = block.span;
             self.st.blocks_run += 1;
             self.st.diagnostics.block = self.st.blocks_run;
@@ -664,9 +605,7 @@ impl Interpreter {
             if !self.origin_current && sink.motions != before {
                 self.report_origin(sink.inner);
             }
-            // An arc may add many segments: a full sink ends the run here, as do an alarm, a
-            // diagnostic that stops the run and a move out of range (the block loop reports
-            // them).
+            // An arc may add many segments: a full sink ends the run here, as do alarms.
             if (!one_segment && sink.full())
                 || self.st.alarm.is_some()
                 || self.st.diagnostics.stops()
@@ -682,8 +621,7 @@ impl Interpreter {
         ran
     }
 
-    /// After moves from a program zero not reported since the frame last changed, reports it
-    /// for the origin marks.
+    /// Reports the program zero of the moves for the origin marks when it is not current.
     fn report_origin(&mut self, sink: &mut dyn Sink) {
         let origin = self.st.to_machine(DVec3::ZERO);
         self.origin_current = true;
@@ -706,8 +644,7 @@ impl Interpreter {
         }
     }
 
-    /// Runs one block: its words are read (expressions evaluated), its assignments made, its
-    /// codes executed, then its control statements decide where to go.
+    /// Runs one block: reads its words, makes its assignments, runs its codes and statements.
     fn run_block(
         &mut self,
         program: &Program,
@@ -716,8 +653,7 @@ impl Interpreter {
         source: Source,
         sink: &mut dyn Sink,
     ) -> Flow {
-        // Each `O` program is a program of its own: the main program running into the next
-        // one's `O` line has ended (it is only run when called).
+        // Running into another `O` program's line ends the main program (it runs only when called).
         if block.program().is_some()
             && self.calls.is_empty()
             && self
@@ -725,11 +661,10 @@ impl Interpreter {
                 .as_ref()
                 .is_some_and(|i| i.starts_other_program(at))
         {
-            self.st.diagnostics.push(Diagnostic::note(
-                block.span,
-                "N-PROGRAM-END",
-                "the main program ends here, where the next program starts (it runs only when called)",
-            ));
+            let message = "the main program ends here, where the next program starts (it runs only when called)";
+            self.st
+                .diagnostics
+                .push(Diagnostic::note(block.span, "N-PROGRAM-END", message));
             return Flow::Stop;
         }
         let words = match self.resolve_words(program, block) {
@@ -739,29 +674,22 @@ impl Interpreter {
                 return Flow::Next;
             }
         };
-        // Every assignment of the block reads the values from before the block (LinuxCNC's
-        // rule; the Fanuc family has one assignment per block).
-        let mut prepared = Vec::new();
-        for statement in block.statements() {
-            if let Statement::Assign { target, value } = statement {
-                match macros::prepare_assign(program, *target, *value, &self.vars, &self.st) {
-                    Ok(a) => prepared.push(a),
-                    Err(e) => {
-                        self.st.diagnostics.push(e.into());
-                        return Flow::Stop;
-                    }
-                }
-            }
-        }
-        for assignment in prepared {
-            if let Err(e) = assignment.apply(&mut self.vars, &mut self.st) {
-                self.st.diagnostics.push(e.into());
-                return Flow::Stop;
-            }
-        }
-        if let Some(alarm) = self.st.alarm.take() {
-            self.st.diagnostics.push(alarm);
-            return Flow::Stop;
+        // Each assignment reads the values from before the block (LinuxCNC's rule).
+        let assigned = block
+            .statements()
+            .iter()
+            .filter_map(|s| match s {
+                Statement::Assign { target, value } => Some((*target, *value)),
+                _ => None,
+            })
+            .map(|(t, v)| macros::prepare_assign(program, t, v, &self.vars, &self.st))
+            .collect::<Result<Vec<_>, _>>()
+            .and_then(|all| {
+                all.iter()
+                    .try_for_each(|a| a.apply(&mut self.vars, &mut self.st))
+            });
+        if let Some(e) = assigned.err().or_else(|| self.st.alarm.take()) {
+            return self.stop_with(e);
         }
         let mut flow = Flow::Next;
         if !words.is_empty() {
@@ -776,17 +704,13 @@ impl Interpreter {
             match self.control(program, at, block, statement) {
                 Ok(Flow::Next) => {}
                 Ok(other) => return other,
-                Err(e) => {
-                    self.st.diagnostics.push(e);
-                    return Flow::Stop;
-                }
+                Err(e) => return self.stop_with(e),
             }
         }
         flow
     }
 
-    /// Carries out what a block asks of the program's flow (after `flow`, what its requests
-    /// before asked): where the run goes next.
+    /// Carries out a block's request after the ones before (`flow`): where the run goes next.
     fn carry_out(
         &mut self,
         at: usize,
@@ -818,14 +742,16 @@ impl Interpreter {
                 _ => return flow,
             },
         };
-        next.unwrap_or_else(|e| {
-            self.st.diagnostics.push(e);
-            Flow::Stop
-        })
+        next.unwrap_or_else(|e| self.stop_with(e))
     }
 
-    /// Reads the block's words: expressions are evaluated, and a word whose variable is vacant
-    /// is left out, as the Fanuc family does.
+    /// Reports the diagnostic that stops the run.
+    fn stop_with(&mut self, e: Diagnostic) -> Flow {
+        self.st.diagnostics.push(e);
+        Flow::Stop
+    }
+
+    /// Reads the block's words: expressions evaluated, a word of a vacant variable left out.
     fn resolve_words<'b>(
         &self,
         program: &Program,
@@ -852,15 +778,12 @@ impl Interpreter {
                             .and_then(|c| swarf_syntax::codes::lookup(self.st.dialect, c))
                             .is_none()
                         {
-                            return Err(Diagnostic::error(
-                                word.span,
-                                "E-UNKNOWN-CODE",
-                                format!(
-                                    "{}{value} (from a variable) is not a code of {}",
-                                    w.letter(),
-                                    self.st.dialect.label()
-                                ),
-                            ));
+                            let message = format!(
+                                "{}{value} (from a variable) is not a code of {}",
+                                w.letter(),
+                                self.st.dialect.label()
+                            );
+                            return Err(Diagnostic::error(word.span, "E-UNKNOWN-CODE", message));
                         }
                         // Codes are read as plain numbers from here on.
                         w.expr = None;
@@ -868,18 +791,18 @@ impl Interpreter {
                     out.push(w);
                 }
                 Ok(None) => {}
-                Err(e) => return Err(e.into()),
+                Err(e) => return Err(e),
             }
         }
         Ok(Cow::Owned(out))
     }
 
     fn eval(&self, program: &Program, id: ExprId) -> Result<Value, Diagnostic> {
-        Ok(macros::eval(program, id, &self.vars, &self.st)?)
+        macros::eval(program, id, &self.vars, &self.st)
     }
 
     fn condition(&self, program: &Program, id: ExprId) -> Result<bool, Diagnostic> {
-        Ok(macros::eval_condition(program, id, &self.vars, &self.st)?)
+        macros::eval_condition(program, id, &self.vars, &self.st)
     }
 
     /// The block a `GOTO n` (or `M99 Pn`) in block `at` goes to.
@@ -892,17 +815,12 @@ impl Interpreter {
         label
             .and_then(|n| self.index.as_ref().and_then(|i| i.label(at, n)))
             .ok_or_else(|| {
-                Diagnostic::error(
-                    span,
-                    "E-MACRO-GOTO",
-                    format!("there is no block N{n} in this program to jump to"),
-                )
+                let message = format!("there is no block N{n} in this program to jump to");
+                Diagnostic::error(span, "E-MACRO-GOTO", message)
             })
     }
 
-    /// What a block that needs the program's index does without one: running piece by piece
-    /// (which makes none), a jump, which has the program run whole; else nothing (a program
-    /// run whole has its index from its first step).
+    /// What a block that needs the index does without one: piece by piece, a jump.
     fn without_index(&self, at: usize) -> Flow {
         if self.piecewise {
             Flow::Jump(at)
@@ -937,10 +855,7 @@ impl Interpreter {
                     return Ok(Flow::Next);
                 }
                 match &**then {
-                    Statement::Goto { target } => {
-                        let n = self.eval(program, *target)?.unwrap_or(0.0);
-                        self.goto(at, n, block.span).map(Flow::Jump)
-                    }
+                    Statement::Goto { .. } => self.control(program, at, block, then),
                     Statement::Assign { target, value } => {
                         macros::assign(program, *target, *value, &mut self.vars, &mut self.st)?;
                         Ok(Flow::Next)
@@ -979,11 +894,9 @@ impl Interpreter {
                 if v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
                     Ok(LabelKey::Number(v as u32))
                 } else {
-                    Err(Diagnostic::error(
-                        program.expr(*id).map_or(Span::default(), |n| n.span),
-                        "E-OWORD",
-                        format!("O-word number {v} is not a whole number"),
-                    ))
+                    let span = program.expr(*id).map_or(Span::default(), |n| n.span);
+                    let message = format!("O-word number {v} is not a whole number");
+                    Err(Diagnostic::error(span, "E-OWORD", message))
                 }
             }
         }
@@ -999,17 +912,14 @@ impl Interpreter {
         kind: &OWord,
     ) -> Result<Flow, Diagnostic> {
         let key = self.label_key(program, label)?;
-        // A copy of the index's handle, so that the O-word lines searched to find where to go
-        // can be counted as the run's work.
+        let shown = show_label(&key);
+        // A copy of the index's handle, so the O-word lines searched count as work.
         let Some(index) = self.index.clone() else {
             return Ok(self.without_index(at));
         };
         let missing = |what: &str| {
-            Diagnostic::error(
-                block.span,
-                "E-OWORD",
-                format!("{} has no matching `{what}`", show_label(&key)),
-            )
+            let message = format!("{shown} has no matching `{what}`");
+            Diagnostic::error(block.span, "E-OWORD", message)
         };
         // The nearest line of the label after or before this one whose kind is in `kinds`.
         let after = |work: &mut u64, kinds: &[OKind]| index.near_oword(&key, at, true, kinds, work);
@@ -1034,11 +944,10 @@ impl Interpreter {
                         Ok(Flow::Jump(frame))
                     }
                     _ if matches!(kind, OWord::EndSub(_)) => Ok(Flow::Next),
-                    _ => Err(Diagnostic::error(
-                        block.span,
-                        "E-OWORD",
-                        format!("`{} return` outside its subroutine", show_label(&key)),
-                    )),
+                    _ => {
+                        let message = format!("`{shown} return` outside its subroutine");
+                        Err(Diagnostic::error(block.span, "E-OWORD", message))
+                    }
                 }
             }
             OWord::Call(args) => {
@@ -1055,16 +964,14 @@ impl Interpreter {
                         let message = match (&key, why) {
                             (LabelKey::Name(name), _) if !swarf_syntax::is_plain_file_name(name) => {
                                 format!(
-                                    "{}: a called subroutine is looked for only beside the program, so its name may not hold a folder, `..` or a root",
-                                    show_label(&key)
+                                    "{shown}: a called subroutine is looked for only beside the program, so its name may not hold a folder, `..` or a root"
                                 )
                             }
                             (_, Some(why)) => {
-                                format!("no `{} sub` in this program: {why}", show_label(&key))
+                                format!("no `{shown} sub` in this program: {why}")
                             }
                             _ => format!(
-                                "no `{} sub` in this program nor in a file beside it (name.ngc)",
-                                show_label(&key)
+                                "no `{shown} sub` in this program nor in a file beside it (name.ngc)"
                             ),
                         };
                         Diagnostic::error(block.span, "E-OWORD", message)
@@ -1176,13 +1083,10 @@ impl Interpreter {
         repeats: u32,
     ) -> Result<(), Diagnostic> {
         if self.calls.len() >= MAX_CALL_DEPTH {
-            return Err(Diagnostic::error(
-                block.span,
-                "E-NESTING",
-                format!(
-                    "calls nested more than {MAX_CALL_DEPTH} deep: a subprogram that calls itself?"
-                ),
-            ));
+            let message = format!(
+                "calls nested more than {MAX_CALL_DEPTH} deep: a subprogram that calls itself?"
+            );
+            return Err(Diagnostic::error(block.span, "E-NESTING", message));
         }
         self.calls.push(Frame {
             kind,
@@ -1234,19 +1138,13 @@ impl Interpreter {
                 .label(at, n as u32)
                 .filter(|_| n >= 0.0 && n.fract() == 0.0)
                 .ok_or_else(|| {
-                    Diagnostic::error(
-                        h.span,
-                        "E-SUBPROGRAM",
-                        format!("there is no block N{n} in this program for M98 H{n}"),
-                    )
+                    let message = format!("there is no block N{n} in this program for M98 H{n}");
+                    Diagnostic::error(h.span, "E-SUBPROGRAM", message)
                 })?
         } else {
             if !number.is_finite() {
-                return Err(Diagnostic::error(
-                    block.span,
-                    "E-WORD-MISSING",
-                    "M98 needs the program number in P",
-                ));
+                let message = "M98 needs the program number in P";
+                return Err(Diagnostic::error(block.span, "E-WORD-MISSING", message));
             }
             index
                 .program_start(number as u32)
@@ -1291,8 +1189,7 @@ impl Interpreter {
         Ok(Flow::Jump(start))
     }
 
-    /// `M99` (and `M99 Pn`): returns from a subprogram or macro; in the main program it goes back
-    /// to the start (or to N n), as the controls do.
+    /// `M99` (`M99 Pn`): returns from a call; in the main program back to its start (or N n).
     fn return_from(
         &mut self,
         at: usize,
@@ -1300,8 +1197,7 @@ impl Interpreter {
         target: Option<&Word>,
     ) -> Result<Flow, Diagnostic> {
         let Some(frame) = self.calls.last_mut() else {
-            // The control runs the program again, endlessly (LinuxCNC's task too; its
-            // standalone interpreter ends here): one pass is drawn.
+            // The control runs the program again, endlessly: one pass is drawn.
             let from = match target {
                 Some(p) => {
                     self.goto(at, p.value, p.span)?;
@@ -1309,13 +1205,12 @@ impl Interpreter {
                 }
                 None => "from its start".to_string(),
             };
-            self.st.diagnostics.push(Diagnostic::note(
-                block.span,
-                "N-M99-MAIN-REPEATS",
-                format!(
-                    "M99 in the main program: the control runs it again {from}, over and over until it is stopped; one pass is run here. (A subprogram opened on its own returns here.)"
-                ),
-            ));
+            let message = format!(
+                "M99 in the main program: the control runs it again {from}, over and over until it is stopped; one pass is run here. (A subprogram opened on its own returns here.)"
+            );
+            self.st
+                .diagnostics
+                .push(Diagnostic::note(block.span, "N-M99-MAIN-REPEATS", message));
             return Ok(Flow::Stop);
         };
         if frame.repeats_left > 0 {
@@ -1335,9 +1230,8 @@ impl Interpreter {
     }
 }
 
-/// Whether `block` is a plain `M99` (without P, another call, a statement or a program
-/// number). Met piece by piece, where no call is open, it ends the main program (see
-/// [`Interpreter::return_from`]), which needs no more of the program than the pieces run.
+/// Whether `block` is a plain `M99` (no P, other call, statement or program number): met piece by
+/// piece with no call open, it ends the main program, which needs no more than the pieces run.
 fn ends_main_program(block: &Block, dialect: Dialect) -> bool {
     let mut m99 = false;
     let no_other_call = block
@@ -1370,8 +1264,7 @@ pub(crate) fn find(words: &[Word], letter: u8) -> Option<&Word> {
         .find(|w| w.letter == letter && w.form == WordForm::Plain)
 }
 
-/// The error of a call to program `O number` (`what`: a program or a macro program) that the
-/// program does not hold: why its file was not linked, when it was found.
+/// The error of a call to `O number` not in the program: why its file was not linked.
 fn not_found(index: &Index, block: &Block, what: &str, number: f64) -> Diagnostic {
     let why = (number >= 0.0 && number.fract() == 0.0)
         .then(|| index.unlinked(&Missing::Number(number as u32)))

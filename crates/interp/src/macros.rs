@@ -1,9 +1,5 @@
-//! Macro variables and expression evaluation: Fanuc Macro B (local, common and system
-//! variables, the vacant value) and LinuxCNC numbered and named parameters.
-//!
-//! Expressions are evaluated with an explicit stack, so a left-associative chain of any length
-//! (`#1=1+1+1+…`, which the parser nests on the left without a depth limit) cannot overflow the
-//! call stack.
+//! Macro variables and expressions: Fanuc Macro B (local, common and system variables, the vacant
+//! value) and LinuxCNC parameters, evaluated on an explicit stack so no chain overflows the stack.
 
 use std::borrow::Cow;
 use std::collections::HashMap;
@@ -22,63 +18,17 @@ pub const CODE_DOMAIN: &str = "E-MACRO-DOMAIN";
 /// Diagnostic code for any other value the control rejects (overflow, `BIN` of a non-BCD value).
 pub const CODE_VALUE: &str = "E-MACRO-VALUE";
 
-/// Why an expression could not be evaluated (becomes a diagnostic with the node's span).
-#[derive(Debug, Clone, PartialEq)]
-pub struct EvalError {
-    /// The expression node (or assignment target) at fault.
-    pub span: Span,
-    /// One of the `E-MACRO-*` codes above.
-    pub code: &'static str,
-    /// A sentence for the programmer.
-    pub message: String,
-}
-
-impl EvalError {
-    /// An error at `span` with one of the `E-MACRO-*` codes.
-    pub fn new(span: Span, code: &'static str, message: impl Into<String>) -> Self {
-        EvalError {
-            span,
-            code,
-            message: message.into(),
-        }
-    }
-}
-
-impl From<EvalError> for Diagnostic {
-    fn from(e: EvalError) -> Self {
-        Diagnostic::error(e.span, e.code, e.message)
-    }
-}
-
-/// What the machine exposes as system variables (#1000+, #2001…, #3000, #4001…, #5001…,
-/// #5221…); the machine implements it. The store asks it first for every number, so it can also
-/// claim numbers inside LinuxCNC's parameter range (#5221 G54 X, #5420 current X).
+/// The system variables (#1000+, #2001…, #3000, #4001…, #5001…, #5221…), which the machine gives;
+/// asked first for every number, so it may claim numbers in LinuxCNC's parameter range.
 pub trait SystemVariables {
-    /// `None` when `n` is not a system variable it knows (then the variable store decides),
-    /// `Some(value)` otherwise.
+    /// `None` when `n` is not a system variable it knows, `Some(value)` otherwise.
     fn read(&self, n: u32) -> Option<Value>;
 
-    /// `Err(message)` for a read-only variable, `Ok(true)` when handled, `Ok(false)` when `n` is
-    /// not a system variable.
+    /// `Err` for a read-only variable, `Ok(true)` when handled, `Ok(false)` if not one.
     fn write(&mut self, n: u32, v: Value) -> Result<bool, String>;
-
-    /// LinuxCNC predefined named parameters (`#<_x>`, `#<_metric>`, …): `None` when `name`
-    /// (lowercase, without `#<>`) is not one, so the store decides.
-    fn read_named(&self, name: &str) -> Option<Value> {
-        let _ = name;
-        None
-    }
-
-    /// Writing a named parameter: `Err(message)` for a read-only predefined one, `Ok(true)` when
-    /// handled, `Ok(false)` to let the store keep it.
-    fn write_named(&mut self, name: &str, v: Value) -> Result<bool, String> {
-        let _ = (name, v);
-        Ok(false)
-    }
 }
 
-/// Local variables per call level: #1–#33 in the Fanuc family (#1–#30 used in LinuxCNC), and
-/// LinuxCNC's local named parameters.
+/// Local variables per call level (#1–#33; #1–#30 in LinuxCNC) and named locals.
 #[derive(Debug, Clone, PartialEq)]
 struct Frame {
     locals: [Value; FANUC_LOCALS],
@@ -107,11 +57,8 @@ const LINUXCNC_PARAMETERS: u32 = 5602;
 /// LinuxCNC compares `EQ`, `NE`, `LE`, `GE` with this tolerance (`TOLERANCE_EQUAL`).
 const LINUXCNC_EQUAL: f64 = 1e-6;
 
-/// The macro variable store: local variables (#1–#33, one frame per macro call level), common
-/// variables (#100–#199 cleared at reset, #500–#999 kept), and LinuxCNC's numbered parameters
-/// (#1–#5601, all global except #1–#30 which are local to an o-word call) and named parameters
-/// (`#<name>` local to the call level, `#<_name>` global). System variables are delegated to a
-/// [`SystemVariables`].
+/// The macro variable store: locals (a frame per call level), commons, and LinuxCNC's numbered and
+/// named parameters; system variables come from a [`SystemVariables`].
 #[derive(Debug, Clone)]
 pub struct Variables {
     dialect: Dialect,
@@ -119,17 +66,14 @@ pub struct Variables {
     main: Frame,
     /// The macro / o-word call levels entered, innermost last.
     calls: Vec<Frame>,
-    /// Fanuc: #100–#199 then #500–#999. LinuxCNC: every numbered parameter by its number
-    /// (#1–#30 of the current level live in the frame instead). Grown as variables are set:
-    /// a slot past its end holds the dialect's initial value ([`Variables::initial`]), so a
-    /// program that sets none writes none of the store's 90 KB (LinuxCNC's 5,602 parameters).
+    /// Fanuc: #100–#199 then #500–#999; LinuxCNC: each parameter by its number. Grown as variables
+    /// are set, so an unused store costs nothing.
     store: Vec<Value>,
     /// LinuxCNC global named parameters (`#<_name>`).
     globals: HashMap<Box<str>, f64>,
 }
 
-/// Equal when every variable reads the same: a store grown further holds the initial value
-/// in the slots that the other has not grown to.
+/// Equal when every variable reads the same, however far each store has grown.
 impl PartialEq for Variables {
     fn eq(&self, other: &Self) -> bool {
         let len = self.store.len().max(other.store.len());
@@ -146,26 +90,16 @@ impl Variables {
     pub fn new(dialect: Dialect) -> Self {
         Variables {
             dialect,
-            main: Frame::new(Self::initial_in(dialect)),
+            main: Frame::new(is_linuxcnc(dialect).then_some(0.0)),
             calls: Vec::new(),
             store: Vec::new(),
             globals: HashMap::new(),
         }
     }
 
-    /// A variable's value before it is set in `dialect`: vacant in the Fanuc family, 0 in
-    /// LinuxCNC.
-    fn initial_in(dialect: Dialect) -> Value {
-        if is_linuxcnc(dialect) {
-            Some(0.0)
-        } else {
-            None
-        }
-    }
-
-    /// A variable's value before it is set, in this store's dialect.
+    /// A variable's value before it is set: vacant in the Fanuc family, 0 in LinuxCNC.
     fn initial(&self) -> Value {
-        Self::initial_in(self.dialect)
+        is_linuxcnc(self.dialect).then_some(0.0)
     }
 
     /// The stored value at `i` (a slot the store has, see [`Variables::slot`]).
@@ -173,14 +107,8 @@ impl Variables {
         self.store.get(i).copied().unwrap_or(self.initial())
     }
 
-    /// The dialect whose rules the store follows.
-    pub fn dialect(&self) -> Dialect {
-        self.dialect
-    }
-
-    /// Enters a call level (G65/G66 macro call, LinuxCNC o-word call) with its arguments as
-    /// (local number, value) pairs: Fanuc locals #1–#33 start vacant, LinuxCNC #1–#30 start at
-    /// 0. Numbers outside the local range are ignored.
+    /// Enters a call level (G65/G66, LinuxCNC o-word call) with (local number, value) arguments;
+    /// other locals start as `Variables::initial`, numbers outside the local range are ignored.
     pub fn push_frame(&mut self, args: &[(u8, f64)]) {
         let mut frame = Frame::new(self.initial());
         let count = if is_linuxcnc(self.dialect) {
@@ -204,27 +132,7 @@ impl Variables {
         self.calls.pop();
     }
 
-    /// How many call levels are entered (0 in the main program).
-    pub fn depth(&self) -> usize {
-        self.calls.len()
-    }
-
-    /// Reset: back to the main level with its locals cleared, and in the Fanuc family #100–#199
-    /// vacant (parameter CCV = 0, the default); #500–#999 and LinuxCNC's numbered and global
-    /// parameters are kept.
-    pub fn reset(&mut self) {
-        self.calls.clear();
-        self.main = Frame::new(self.initial());
-        if !is_linuxcnc(self.dialect) {
-            let cleared = COMMON_CLEARED.clone().count();
-            for slot in self.store.iter_mut().take(cleared) {
-                *slot = None;
-            }
-        }
-    }
-
-    /// The value of variable `n` (as computed: it must be a whole number). System variables are
-    /// asked of `sys` first.
+    /// The value of variable `n` (a computed whole number), asking `sys` first.
     pub fn get(&self, n: f64, sys: &dyn SystemVariables) -> Result<Value, String> {
         let n = self.number(n)?;
         if let Some(v) = sys.read(n) {
@@ -240,8 +148,7 @@ impl Variables {
         }
     }
 
-    /// Sets variable `n` to `v`: `sys` handles system variables (and refuses read-only ones);
-    /// #0 cannot be assigned.
+    /// Sets variable `n` to `v`: `sys` handles system variables; #0 cannot be assigned.
     pub fn set(&mut self, n: f64, v: Value, sys: &mut dyn SystemVariables) -> Result<(), String> {
         let n = self.number(n)?;
         if n == 0 && !is_linuxcnc(self.dialect) {
@@ -270,14 +177,7 @@ impl Variables {
         }
     }
 
-    /// Whether variable `n` exists (LinuxCNC `EXISTS[#n]`; in the Fanuc family, whether it may
-    /// be read).
-    pub fn exists(&self, n: f64, sys: &dyn SystemVariables) -> bool {
-        self.get(n, sys).is_ok()
-    }
-
-    /// The named parameter `name` (`"abc"` for `#<abc>`, `"_abc"` for the global `#<_abc>`) from
-    /// the store only; `None` when it is not defined.
+    /// The stored named parameter `name` (`_abc` global, `abc` local), `None` if not defined.
     pub fn get_named(&self, name: &str) -> Value {
         let name = lower(name);
         if name.starts_with('_') {
@@ -287,8 +187,7 @@ impl Variables {
         }
     }
 
-    /// Stores the named parameter `name`: global when it starts with `_`, else local to the
-    /// current call level. `None` removes it (LinuxCNC has no vacant value).
+    /// Stores `#<name>`: global when it starts with `_`, else local; `None` removes it.
     pub fn set_named(&mut self, name: &str, v: Value) {
         let name = lower(name);
         let map = if name.starts_with('_') {
@@ -306,39 +205,15 @@ impl Variables {
         }
     }
 
-    /// Reads `#<name>` as the program does: predefined parameters from `sys`, then the store;
-    /// a name never assigned is an error.
-    pub fn read_named(&self, name: &str, sys: &dyn SystemVariables) -> Result<Value, String> {
-        let name = lower(name);
-        if let Some(v) = sys.read_named(&name) {
-            return Ok(v);
-        }
-        match self.get_named(&name) {
+    /// Reads `#<name>` as the program does: a name never assigned is an error.
+    pub fn read_named(&self, name: &str) -> Result<Value, String> {
+        match self.get_named(name) {
             Some(v) => Ok(Some(v)),
             None => Err(format!(
                 "named parameter #<{}> is not defined",
-                swarf_syntax::excerpt(&name)
+                swarf_syntax::excerpt(&lower(name))
             )),
         }
-    }
-
-    /// Assigns `#<name>` as the program does: `sys` may refuse a read-only predefined one.
-    pub fn write_named(
-        &mut self,
-        name: &str,
-        v: Value,
-        sys: &mut dyn SystemVariables,
-    ) -> Result<(), String> {
-        let name = lower(name);
-        if !sys.write_named(&name, v)? {
-            self.set_named(&name, v);
-        }
-        Ok(())
-    }
-
-    /// Whether `#<name>` is defined (LinuxCNC `EXISTS[#<name>]`).
-    pub fn named_exists(&self, name: &str, sys: &dyn SystemVariables) -> bool {
-        self.read_named(name, sys).is_ok()
     }
 
     fn frame(&self) -> &Frame {
@@ -351,11 +226,8 @@ impl Variables {
 
     /// Checks a computed variable number and makes it an integer.
     fn number(&self, n: f64) -> Result<u32, String> {
-        let tolerance = if is_linuxcnc(self.dialect) {
-            1e-4
-        } else {
-            1e-6
-        };
+        let linuxcnc = is_linuxcnc(self.dialect);
+        let tolerance = if linuxcnc { 1e-4 } else { 1e-6 };
         if !n.is_finite() {
             return Err(format!("variable number {n} is not a number"));
         }
@@ -367,7 +239,7 @@ impl Variables {
             return Err(format!("variable number must not be negative (#[{}])", n));
         }
         if r > f64::from(u32::MAX) {
-            return Err(self.missing_text(&r.to_string()));
+            return Err(self.missing(r));
         }
         // In range and whole: the conversion is exact.
         Ok(r as u32)
@@ -396,11 +268,7 @@ impl Variables {
         }
     }
 
-    fn missing(&self, n: u32) -> String {
-        self.missing_text(&n.to_string())
-    }
-
-    fn missing_text(&self, n: &str) -> String {
+    fn missing(&self, n: impl std::fmt::Display) -> String {
         format!("variable #{n} does not exist on {}", self.dialect.label())
     }
 }
@@ -425,9 +293,8 @@ fn lower(name: &str) -> Cow<'_, str> {
     }
 }
 
-/// Fanuc argument specification I: the local variable a G65/G66 address letter sets (A→#1,
-/// B→#2, C→#3, I→#4, J→#5, K→#6, D→#7, E→#8, F→#9, H→#11, M→#13, Q→#17, R→#18, S→#19, T→#20,
-/// U→#21, V→#22, W→#23, X→#24, Y→#25, Z→#26); G, L, N, O and P are not arguments.
+/// Fanuc argument specification I: the local variable a G65/G66 address letter sets (A→#1, B→#2,
+/// C→#3, I→#4 … Z→#26); G, L, N, O and P are not arguments.
 pub fn argument_variable(letter: u8) -> Option<u8> {
     // Each letter at its variable's place from #1; `_` where no letter sets the variable.
     const LETTERS: &[u8] = b"ABCIJKDEF_H_M___QRSTUVWXYZ";
@@ -436,25 +303,23 @@ pub fn argument_variable(letter: u8) -> Option<u8> {
     u8::try_from(i + 1).ok()
 }
 
-/// Evaluates expression `id` of `program`: `Ok(None)` when it is a vacant variable read as it
-/// is (`#1=#0` keeps #1 vacant; a word `X#0` is left out of its block).
+/// Evaluates expression `id`: `Ok(None)` for a vacant variable read as it is.
 pub fn eval(
     program: &Program,
     id: ExprId,
     vars: &Variables,
     sys: &dyn SystemVariables,
-) -> Result<Value, EvalError> {
+) -> Result<Value, Diagnostic> {
     Evaluator { program, vars, sys }.run(id)
 }
 
-/// Evaluates a condition (`IF […]`, `WHILE […]`, LinuxCNC `if`/`while`): nonzero is true, and
-/// vacant counts as false.
+/// Evaluates a condition (`IF`, `WHILE`, `if`, `while`): nonzero is true, vacant false.
 pub fn eval_condition(
     program: &Program,
     id: ExprId,
     vars: &Variables,
     sys: &dyn SystemVariables,
-) -> Result<bool, EvalError> {
+) -> Result<bool, Diagnostic> {
     Ok(eval(program, id, vars, sys)?.is_some_and(|v| v != 0.0))
 }
 
@@ -467,9 +332,8 @@ pub enum Target {
     Named(Box<str>),
 }
 
-/// An assignment whose target and value are evaluated but not yet stored. LinuxCNC sets every
-/// parameter of a line only after reading the whole line (`#1=1 #2=#1` gives #2 the old #1):
-/// prepare each assignment of the block, then [`apply`](Assignment::apply) them in order.
+/// An assignment evaluated but not yet stored: LinuxCNC sets a line's parameters only after reading
+/// the whole line, so each is prepared, then [`apply`](Assignment::apply)ed in order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Assignment {
     /// Where the value goes.
@@ -486,12 +350,16 @@ impl Assignment {
         &self,
         vars: &mut Variables,
         sys: &mut dyn SystemVariables,
-    ) -> Result<(), EvalError> {
-        let result = match &self.target {
-            Target::Number(n) => vars.set(*n, self.value, sys),
-            Target::Named(name) => vars.write_named(name, self.value, sys),
-        };
-        result.map_err(|m| EvalError::new(self.span, CODE_VARIABLE, m))
+    ) -> Result<(), Diagnostic> {
+        match &self.target {
+            Target::Number(n) => vars
+                .set(*n, self.value, sys)
+                .map_err(|m| Diagnostic::error(self.span, CODE_VARIABLE, m)),
+            Target::Named(name) => {
+                vars.set_named(name, self.value);
+                Ok(())
+            }
+        }
     }
 }
 
@@ -502,18 +370,15 @@ pub fn prepare_assign(
     value: ExprId,
     vars: &Variables,
     sys: &dyn SystemVariables,
-) -> Result<Assignment, EvalError> {
+) -> Result<Assignment, Diagnostic> {
     let node = lookup(program, target)?;
     let span = node.span;
     let target = match &node.expr {
         Expr::Var(index) => Target::Number(eval(program, *index, vars, sys)?.unwrap_or(0.0)),
         Expr::Named(name) => Target::Named(name.clone()),
         _ => {
-            return Err(EvalError::new(
-                span,
-                CODE_VARIABLE,
-                "only a variable can be assigned",
-            ));
+            let message = "only a variable can be assigned";
+            return Err(Diagnostic::error(span, CODE_VARIABLE, message));
         }
     };
     let value = eval(program, value, vars, sys)?;
@@ -524,25 +389,21 @@ pub fn prepare_assign(
     })
 }
 
-/// Executes `Statement::Assign { target, value }`: `target` is a `Var` node (its index
-/// expression gives the number) or a `Named` node; the value keeps full precision.
+/// Executes `#target = value` (a `Var` or `Named` target) at full precision.
 pub fn assign(
     program: &Program,
     target: ExprId,
     value: ExprId,
     vars: &mut Variables,
     sys: &mut dyn SystemVariables,
-) -> Result<(), EvalError> {
+) -> Result<(), Diagnostic> {
     prepare_assign(program, target, value, vars, sys)?.apply(vars, sys)
 }
 
-fn lookup(program: &Program, id: ExprId) -> Result<&ExprNode, EvalError> {
+fn lookup(program: &Program, id: ExprId) -> Result<&ExprNode, Diagnostic> {
     program.expr(id).ok_or_else(|| {
-        EvalError::new(
-            Span::default(),
-            CODE_VALUE,
-            "internal error: the expression is not in this program",
-        )
+        let message = "internal error: the expression is not in this program";
+        Diagnostic::error(Span::default(), CODE_VALUE, message)
     })
 }
 
@@ -569,7 +430,7 @@ struct Evaluator<'a> {
 }
 
 impl Evaluator<'_> {
-    fn run(&self, root: ExprId) -> Result<Value, EvalError> {
+    fn run(&self, root: ExprId) -> Result<Value, Diagnostic> {
         // The common cases (`X12.5` from a macro, `X#24`) need no stacks.
         let node = lookup(self.program, root)?;
         match &node.expr {
@@ -592,18 +453,15 @@ impl Evaluator<'_> {
                             let arg_node = lookup(self.program, *arg)?;
                             match &arg_node.expr {
                                 Expr::Named(name) => {
-                                    values.push(Some(flag(self.vars.named_exists(name, self.sys))));
+                                    values.push(Some(flag(self.vars.get_named(name).is_some())));
                                 }
                                 Expr::Var(index) => {
                                     steps.push(Step::Apply(id));
                                     steps.push(Step::Visit(*index));
                                 }
                                 _ => {
-                                    return Err(EvalError::new(
-                                        node.span,
-                                        CODE_VALUE,
-                                        "`EXISTS` takes a parameter: `EXISTS[#<name>]`",
-                                    ));
+                                    let message = "`EXISTS` takes a parameter: `EXISTS[#<name>]`";
+                                    return Err(Diagnostic::error(node.span, CODE_VALUE, message));
                                 }
                             }
                         }
@@ -630,13 +488,14 @@ impl Evaluator<'_> {
                         Expr::Binary(op, _, _) => {
                             let b = pop(&mut values, span)?;
                             let a = pop(&mut values, span)?;
-                            let r = binary(self.vars.dialect, *op, a, b)
-                                .map_err(|(code, message)| EvalError::new(span, code, message))?;
+                            let r = binary(self.vars.dialect, *op, a, b).map_err(
+                                |(code, message)| Diagnostic::error(span, code, message),
+                            )?;
                             Some(finite(r, span)?)
                         }
                         Expr::Call(Func::Exists, _, _) => {
                             let n = pop(&mut values, span)?;
-                            Some(flag(self.vars.exists(n.unwrap_or(0.0), self.sys)))
+                            Some(flag(self.variable(num(n), span).is_ok()))
                         }
                         Expr::Call(func, _, second) => {
                             let b = match second {
@@ -644,8 +503,9 @@ impl Evaluator<'_> {
                                 None => None,
                             };
                             let a = pop(&mut values, span)?;
-                            let r = call(self.vars.dialect, *func, a, b)
-                                .map_err(|(code, message)| EvalError::new(span, code, message))?;
+                            let r = call(self.vars.dialect, *func, a, b).map_err(
+                                |(code, message)| Diagnostic::error(span, code, message),
+                            )?;
                             Some(finite(r, span)?)
                         }
                         Expr::Num(_) | Expr::Named(_) => return Err(internal(span)),
@@ -662,33 +522,30 @@ impl Evaluator<'_> {
         }
     }
 
-    fn variable(&self, n: f64, span: Span) -> Result<Value, EvalError> {
+    fn variable(&self, n: f64, span: Span) -> Result<Value, Diagnostic> {
         self.vars
             .get(n, self.sys)
-            .map_err(|m| EvalError::new(span, CODE_VARIABLE, m))
+            .map_err(|m| Diagnostic::error(span, CODE_VARIABLE, m))
     }
 
-    fn named(&self, name: &str, span: Span) -> Result<Value, EvalError> {
+    fn named(&self, name: &str, span: Span) -> Result<Value, Diagnostic> {
         self.vars
-            .read_named(name, self.sys)
-            .map_err(|m| EvalError::new(span, CODE_VARIABLE, m))
+            .read_named(name)
+            .map_err(|m| Diagnostic::error(span, CODE_VARIABLE, m))
     }
 }
 
-fn node_expr(program: &Program, id: ExprId) -> Result<&Expr, EvalError> {
+fn node_expr(program: &Program, id: ExprId) -> Result<&Expr, Diagnostic> {
     lookup(program, id).map(|n| &n.expr)
 }
 
-fn pop(values: &mut Vec<Value>, span: Span) -> Result<Value, EvalError> {
+fn pop(values: &mut Vec<Value>, span: Span) -> Result<Value, Diagnostic> {
     values.pop().ok_or_else(|| internal(span))
 }
 
-fn internal(span: Span) -> EvalError {
-    EvalError::new(
-        span,
-        CODE_VALUE,
-        "internal error: malformed expression tree",
-    )
+fn internal(span: Span) -> Diagnostic {
+    let message = "internal error: malformed expression tree";
+    Diagnostic::error(span, CODE_VALUE, message)
 }
 
 /// A vacant operand counts as 0 in arithmetic and functions.
@@ -700,15 +557,12 @@ fn flag(b: bool) -> f64 {
     if b { 1.0 } else { 0.0 }
 }
 
-fn finite(v: f64, span: Span) -> Result<f64, EvalError> {
+fn finite(v: f64, span: Span) -> Result<f64, Diagnostic> {
     if v.is_finite() {
         Ok(v)
     } else {
-        Err(EvalError::new(
-            span,
-            CODE_VALUE,
-            "the result is too large (overflow)",
-        ))
+        let message = "the result is too large (overflow)";
+        Err(Diagnostic::error(span, CODE_VALUE, message))
     }
 }
 
@@ -720,16 +574,9 @@ fn binary(dialect: Dialect, op: BinOp, a: Value, b: Value) -> Result<f64, Fault>
         BinOp::Add => x + y,
         BinOp::Sub => x - y,
         BinOp::Mul => x * y,
-        BinOp::Div => {
-            if y == 0.0 {
-                return Err(divide());
-            }
-            x / y
-        }
+        BinOp::Div | BinOp::Mod if y == 0.0 => return Err(divide()),
+        BinOp::Div => x / y,
         BinOp::Mod => {
-            if y == 0.0 {
-                return Err(divide());
-            }
             let r = x % y;
             if linuxcnc && r < 0.0 {
                 // LinuxCNC: `fmod`, then made non-negative.
@@ -782,14 +629,11 @@ fn bits(x: f64, op: BinOp) -> Result<i64, Fault> {
     const LIMIT: f64 = 9_007_199_254_740_992.0; // 2^53
     let r = x.round();
     if r.abs() > LIMIT {
-        return Err((
-            CODE_VALUE,
-            format!(
-                "{} works on integers up to 2^53; {} is too large",
-                op.symbol(),
-                x
-            ),
-        ));
+        let message = format!(
+            "{} works on integers up to 2^53; {x} is too large",
+            op.symbol()
+        );
+        return Err((CODE_VALUE, message));
     }
     Ok(r as i64)
 }
@@ -797,13 +641,9 @@ fn bits(x: f64, op: BinOp) -> Result<i64, Fault> {
 /// `a ** b` and `POW[a,b]`.
 fn power(x: f64, y: f64) -> Result<f64, Fault> {
     if x < 0.0 && y.fract() != 0.0 {
-        return Err((
-            CODE_DOMAIN,
-            format!(
-                "a negative number ({}) cannot be raised to a fractional power ({})",
-                x, y
-            ),
-        ));
+        let message =
+            format!("a negative number ({x}) cannot be raised to a fractional power ({y})");
+        return Err((CODE_DOMAIN, message));
     }
     if x == 0.0 && y < 0.0 {
         return Err(divide());
@@ -845,20 +685,17 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         Func::Tan => {
             let c = cos_deg(x);
             if c == 0.0 {
-                return Err((CODE_DOMAIN, format!("TAN[{}] is infinite", x)));
+                return Err((CODE_DOMAIN, format!("TAN[{x}] is infinite")));
             }
             sin_deg(x) / c
         }
         Func::Asin | Func::Acos => {
             if !(-1.0..=1.0).contains(&x) {
-                return Err((
-                    CODE_DOMAIN,
-                    format!(
-                        "{}[{}] is undefined: the argument must be between -1 and 1",
-                        func.name(),
-                        x
-                    ),
-                ));
+                let message = format!(
+                    "{}[{x}] is undefined: the argument must be between -1 and 1",
+                    func.name()
+                );
+                return Err((CODE_DOMAIN, message));
             }
             if func == Func::Acos {
                 x.acos().to_degrees()
@@ -878,7 +715,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         }
         Func::Sqrt => {
             if x < 0.0 {
-                return Err((CODE_DOMAIN, format!("SQRT of a negative number ({})", x)));
+                return Err((CODE_DOMAIN, format!("SQRT of a negative number ({x})")));
             }
             x.sqrt()
         }
@@ -895,10 +732,8 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         }
         Func::Ln => {
             if x <= 0.0 {
-                return Err((
-                    CODE_DOMAIN,
-                    format!("LN of zero or a negative number ({})", x),
-                ));
+                let message = format!("LN of zero or a negative number ({x})");
+                return Err((CODE_DOMAIN, message));
             }
             x.ln()
         }
@@ -915,10 +750,8 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
 fn whole(x: f64, func: &str, max: f64) -> Result<u64, Fault> {
     let r = x.round();
     if (x - r).abs() > 1e-6 || r < 0.0 || r > max {
-        return Err((
-            CODE_VALUE,
-            format!("{func} needs a whole number from 0 to {max}, not {}", x),
-        ));
+        let message = format!("{func} needs a whole number from 0 to {max}, not {x}");
+        return Err((CODE_VALUE, message));
     }
     Ok(r as u64)
 }
@@ -930,10 +763,8 @@ fn bin(x: f64) -> Result<f64, Fault> {
     while v > 0 {
         let digit = v & 0xF;
         if digit > 9 {
-            return Err((
-                CODE_VALUE,
-                format!("BIN[{}] is not a BCD value (a 4-bit group is over 9)", x),
-            ));
+            let message = format!("BIN[{x}] is not a BCD value (a 4-bit group is over 9)");
+            return Err((CODE_VALUE, message));
         }
         out += digit * scale;
         scale *= 10;
@@ -996,18 +827,6 @@ mod tests {
                 _ => Ok(false),
             }
         }
-
-        fn read_named(&self, name: &str) -> Option<Value> {
-            (name == "_metric").then_some(Some(1.0))
-        }
-
-        fn write_named(&mut self, name: &str, _v: Value) -> Result<bool, String> {
-            if name == "_metric" {
-                Err("#<_metric> is read-only".to_string())
-            } else {
-                Ok(false)
-            }
-        }
     }
 
     /// Runs every assignment (also those after `IF … THEN`) of `text` in order; the first error
@@ -1017,7 +836,7 @@ mod tests {
         dialect: Dialect,
         vars: &mut Variables,
         sys: &mut TestSys,
-    ) -> Result<(), (EvalError, String)> {
+    ) -> Result<(), (Diagnostic, String)> {
         let program = parse(text, dialect);
         assert!(
             program.diagnostics.is_empty(),
@@ -1408,8 +1227,8 @@ mod tests {
         for n in [34.0, 99.0, 200.0, 499.0, 1001.0] {
             assert!(vars.get(n, &sys).is_err(), "#{n}");
         }
-        assert!(vars.exists(500.0, &sys));
-        assert!(!vars.exists(300.0, &sys));
+        assert!(vars.get(500.0, &sys).is_ok());
+        assert!(vars.get(300.0, &sys).is_err());
     }
 
     #[test]
@@ -1457,10 +1276,8 @@ mod tests {
             &mut sys,
         )
         .unwrap();
-        assert_eq!(vars.depth(), 0);
 
         vars.push_frame(&[(1, 2.0), (24, 10.0), (40, 1.0)]);
-        assert_eq!(vars.depth(), 1);
         assert_eq!(vars.get(1.0, &sys).unwrap(), Some(2.0));
         assert_eq!(vars.get(24.0, &sys).unwrap(), Some(10.0));
         assert_eq!(vars.get(2.0, &sys).unwrap(), None, "locals start vacant");
@@ -1474,26 +1291,21 @@ mod tests {
         .unwrap();
 
         vars.push_frame(&[]);
-        assert_eq!(vars.depth(), 2);
         assert_eq!(vars.get(1.0, &sys).unwrap(), None);
         vars.pop_frame();
 
         assert_eq!(vars.get(1.0, &sys).unwrap(), Some(3.0));
         assert_eq!(vars.get(2.0, &sys).unwrap(), Some(3.0));
         vars.pop_frame();
-        assert_eq!(vars.depth(), 0);
         assert_eq!(vars.get(1.0, &sys).unwrap(), Some(5.0));
         assert_eq!(vars.get(2.0, &sys).unwrap(), None);
         assert_eq!(vars.get(100.0, &sys).unwrap(), Some(8.0));
         vars.pop_frame();
-        assert_eq!(vars.depth(), 0, "the main level is never left");
-
-        vars.push_frame(&[(1, 1.0)]);
-        vars.reset();
-        assert_eq!(vars.depth(), 0);
-        assert_eq!(vars.get(1.0, &sys).unwrap(), None);
-        assert_eq!(vars.get(100.0, &sys).unwrap(), None, "#100–#199 cleared");
-        assert_eq!(vars.get(500.0, &sys).unwrap(), Some(9.0), "#500– kept");
+        assert_eq!(
+            vars.get(1.0, &sys).unwrap(),
+            Some(5.0),
+            "the main level is never left"
+        );
     }
 
     #[test]
@@ -1585,8 +1397,8 @@ mod tests {
         let mut sys = TestSys::new();
         let mut vars = Variables::new(Dialect::LinuxCnc);
         exec(
-            "#<Depth> = 2\n#<_Safe> = 5\n#1 = [#<depth> + #<_safe>]\n#2 = #<_metric>\n\
-             #3 = EXISTS[#<depth>]\n#4 = EXISTS[#<nothing>]\n#5 = EXISTS[#<_metric>]\n\
+            "#<Depth> = 2\n#<_Safe> = 5\n#1 = [#<depth> + #<_safe>]\n\
+             #3 = EXISTS[#<depth>]\n#4 = EXISTS[#<nothing>]\n\
              #6 = EXISTS[#31]\n#7 = EXISTS[#6000]",
             Dialect::LinuxCnc,
             &mut vars,
@@ -1595,10 +1407,8 @@ mod tests {
         .unwrap();
         let get = |vars: &Variables, n: f64| vars.get(n, &TestSys::new()).unwrap();
         assert_eq!(get(&vars, 1.0), Some(7.0));
-        assert_eq!(get(&vars, 2.0), Some(1.0));
         assert_eq!(get(&vars, 3.0), Some(1.0));
         assert_eq!(get(&vars, 4.0), Some(0.0));
-        assert_eq!(get(&vars, 5.0), Some(1.0));
         assert_eq!(get(&vars, 6.0), Some(1.0));
         assert_eq!(get(&vars, 7.0), Some(0.0));
         assert_eq!(vars.get_named("depth"), Some(2.0));
@@ -1621,10 +1431,6 @@ mod tests {
         vars.pop_frame();
         assert_eq!(vars.get_named("depth"), Some(2.0));
         assert_eq!(vars.get_named("_safe"), Some(6.0));
-
-        let err = exec("#<_metric> = 0", Dialect::LinuxCnc, &mut vars, &mut sys).unwrap_err();
-        assert_eq!(err.0.message, "#<_metric> is read-only");
-        assert_eq!(err.1, "#<_metric>");
 
         vars.set_named("_value", Some(3.0));
         assert_eq!(vars.get_named("_value"), Some(3.0));
@@ -1670,10 +1476,6 @@ mod tests {
 
     #[test]
     fn errors_become_diagnostics() {
-        let e = EvalError::new(Span::new(1, 3), CODE_DIVIDE, "division by zero");
-        let d = Diagnostic::from(e.clone());
-        assert_eq!(d.code, CODE_DIVIDE);
-        assert_eq!(d.span, Span::new(1, 3));
         let program = parse("#1 = 1 / 0", Dialect::Fanuc);
         let mut sys = TestSys::default();
         let mut vars = Variables::new(Dialect::Fanuc);

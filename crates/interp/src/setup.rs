@@ -28,24 +28,19 @@ impl Units {
 
 /// One offset register (addressed by H for length and D for radius), in millimetres.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct Register {
     /// Tool length geometry.
-    #[serde(default)]
     pub length: f64,
     /// Tool radius geometry.
-    #[serde(default)]
     pub radius: f64,
     /// Tool length wear (added to the geometry).
-    #[serde(default)]
     pub length_wear: f64,
     /// Tool radius wear (added to the geometry).
-    #[serde(default)]
     pub radius_wear: f64,
-    /// The tip direction of a lathe tool (LinuxCNC's tool table `Q`, Fanuc's imaginary tool
-    /// nose number): 1–8 put the controlled point on the nose circle, off its centre, so that
-    /// compensation in G18 reports that imaginary tip; 0 (a mill) and 9 control the centre.
-    #[serde(default, skip_serializing_if = "is_zero")]
+    /// The tip direction of a lathe tool (LinuxCNC's `Q`, Fanuc's imaginary tool nose): 1–8 report
+    /// compensation in G18 at the imaginary tip; 0 (a mill) and 9 at the nose centre.
+    #[serde(skip_serializing_if = "is_zero")]
     pub orientation: u8,
 }
 
@@ -61,8 +56,7 @@ fn is_zero(v: &u8) -> bool {
 pub enum CornerMode {
     /// An arc of the tool radius about the programmed corner (LinuxCNC).
     Arc,
-    /// The intersection of the offset paths, with two extra vectors of the radius when the
-    /// corner is sharper than 90° (the Fanuc family).
+    /// The offset paths' intersection, with two extra vectors past 90° (the Fanuc family).
     Intersection,
 }
 
@@ -73,51 +67,38 @@ pub struct Machine {
     /// Rapid traverse rate in mm/min, for the time estimate: the speed along the path of a
     /// G00 move (linear interpolated) unless `rapid_xyz_mm_per_min` limits an axis further.
     pub rapid_mm_per_min: f64,
-    /// Rapid traverse rate of each axis X, Y, Z in mm/min, for machines whose axes differ (often
-    /// a slower Z). A rapid move then runs as fast as its slowest participating axis allows.
-    /// Unset: every axis at `rapid_mm_per_min`.
+    /// Rapid rate of each axis X, Y, Z in mm/min where they differ (often a slower Z): a rapid runs
+    /// as fast as its slowest axis allows. Unset: every axis at `rapid_mm_per_min`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rapid_xyz_mm_per_min: Option<[f64; 3]>,
-    /// Acceleration and deceleration along the path in mm/s², for the time estimate: each move
-    /// speeds up from its entry speed to its feed (or rapid rate) and slows down to its exit
-    /// speed with a trapezoidal velocity profile. Zero: no acceleration is modelled (every move
-    /// runs at its feed from end to end).
+    /// Acceleration along the path in mm/s², for the time estimate (trapezoidal velocity profiles).
+    /// Zero: none is modelled (every move runs at its feed from end to end).
     pub acceleration_mm_per_s2: f64,
     /// Most blocks executed before a run is stopped as runaway.
     pub max_blocks: u64,
-    /// Most work a run does inside its blocks before it is stopped as runaway: each macro
-    /// expression term evaluated (number, variable, operator, function), each O-word line
-    /// searched for where a LinuxCNC `if`, `while` or `repeat` goes count one, a diagnostic met
-    /// again 8 and an extra turn of an arc 64 (the points it is checked at), so a loop of
-    /// long expressions ends as quickly as a loop of short blocks.
+    /// Most work a run does inside its blocks before it stops as runaway: each expression term and
+    /// O-word line searched counts one, a diagnostic met again 8, an arc's extra turn 64.
     pub max_work: u64,
-    /// The machine's travel in machine coordinates, mm: the lowest and highest X, Y, Z the axes
-    /// reach (the gauge line, as the machine's own limits). A move past it is an overtravel
-    /// alarm (`E-OVERTRAVEL`), and the backplot draws the box. Unset: not checked.
+    /// The machine's travel (gauge line) in machine coordinates, mm, lowest and highest X, Y, Z: a
+    /// move past it is an overtravel alarm (`E-OVERTRAVEL`). Unset: not checked.
     pub travel_mm: Option<[[f64; 3]; 2]>,
-    /// Most motion events (moves and arcs) a run may produce before it is stopped: a bound on
-    /// the toolpath's memory (about 50 bytes a segment), so a runaway program cannot exhaust a
-    /// browser tab. The toolpath holds at most as many segments (an arc's chords and a dwell
-    /// count one each, a hole and a compensated block's programmed motion two, a change of
-    /// feed or tool a half), and a canned cycle stops making holes and pecks at either limit.
+    /// Most motion events a run may produce before it stops: a bound on the toolpath's memory
+    /// (about 50 bytes a segment), so a runaway program cannot exhaust a browser tab.
     pub max_motions: u64,
     /// Largest difference between an arc's start and end radius before it is an alarm (mm).
     pub arc_tolerance_mm: f64,
-    /// Calculator-type input: numbers without a decimal point are mm (inch, degrees) instead of
-    /// least input increments. Unset: the dialect's manual default.
+    /// Numbers without a decimal point are mm (not least increments). Unset: the dialect's.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub calculator_input: Option<bool>,
-    /// Reference points in machine coordinates, mm: P1 (G28, the machine's reference position)
-    /// and P2–P4 (G30); missing ones are the machine origin.
+    /// Reference points P1 (G28) to P4 (G30) in machine coordinates, mm; missing: the origin.
     pub reference_points: Vec<[f64; 3]>,
     /// Measured angles in degrees (LNC G168 Q1–Q4 rotates by them), from the machine's probing.
     pub measured_angles: Vec<f64>,
     /// The retract d between pecks of G73 and G83 in mm (KT data parameter P230, Syntec Pr4002;
     /// the manuals' default 1.000 mm). LinuxCNC's rs274ngc retracts a fixed 0.010 inch instead.
     pub peck_retract_mm: f64,
-    /// The direction the boring bar shifts away from the wall at the oriented spindle stop of
-    /// G76 and G87 (Syntec Pr4020: 0 +X, 1 −X, 2 +Y, 3 −Y, 4 +Z, 5 −Z; KT P018 bits 4–5, ±X or
-    /// ±Y only). Written `"+X"`, `"-Y"` …
+    /// The way the boring bar shifts from the wall at G76/G87's oriented stop (Syntec Pr4020, KT
+    /// P018 bits 4–5: ±X or ±Y only), written `"+X"`, `"-Y"` …
     pub shift_direction: ShiftDirection,
     /// Syntec Pr4001 = 1: peck tapping (G74/G84 with Q) backs out by `peck_retract_mm` between
     /// pecks (high-speed, TYPE II); Pr4001 = 0 (the default here) backs out to R (TYPE III).
@@ -125,17 +106,12 @@ pub struct Machine {
     /// Syntec Pr4008 = 1 (fast drilling, TYPE II): G81 retracts at the `F2=` feed when one is
     /// given. Pr4008 = 0 (normal drilling) ignores `F2=` and retracts at rapid.
     pub fast_drilling: bool,
-    /// How cutter radius compensation cuts outside corners. Unset: `arc` for LinuxCNC,
-    /// `intersection` for the Fanuc family.
+    /// How compensation cuts outside corners. Unset: `arc` for LinuxCNC, else `intersection`.
     pub corner_mode: Option<CornerMode>,
-    /// Gouges under cutter radius compensation stop the run with an alarm (Syntec parameter
-    /// 3819, the overcut check) instead of a warning. LinuxCNC always alarms.
+    /// Gouges under compensation alarm (Syntec 3819, the overcut check) rather than warn.
     pub overcut_alarm: bool,
-    /// Under a mirror of one plane axis (G51.1, or G51 with a negative factor) the control
-    /// swaps G41 and G42 itself, so the mirrored pass is cut on the mirrored side (Fanuc's
-    /// programmable mirror image). `false`: the side is taken as written (Syntec's §1.29
-    /// example swaps G41/G42 in the program). Unset: `false` for Syntec and LinuxCNC, `true`
-    /// for the others.
+    /// Whether the control swaps G41 and G42 under a mirror of one plane axis (Fanuc's mirror
+    /// image); `false` takes the side as written (Syntec). Unset: `false` for Syntec and LinuxCNC.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mirror_swaps_comp_side: Option<bool>,
 }
@@ -212,8 +188,7 @@ pub struct Setup {
     pub work_offsets: BTreeMap<String, DVec3>,
     /// Machine parameters.
     pub machine: Machine,
-    /// The `[stock]` table as written (machine coordinates, mm, whatever `units` says): the
-    /// stock crate reads and checks it, as it depends on this one.
+    /// The `[stock]` table as written, for the stock crate to read and check.
     pub stock: Option<toml::Table>,
     /// The `[tools.N]` tables as written (mm), by tool number, read and checked like `stock`.
     pub tools: BTreeMap<u32, toml::Table>,
@@ -255,8 +230,7 @@ pub const MAX_LENGTH: f64 = 1.0e6;
 /// The largest rate a setup may give (mm/min, mm/s²).
 pub const MAX_RATE: f64 = 1.0e7;
 
-/// The highest `[machine] max_work` a setup may give: at some ten million terms a second, a
-/// run that long would take days.
+/// The highest `[machine] max_work` (at ten million terms a second, days of running).
 const MAX_WORK: f64 = 1.0e13;
 
 /// `value` for `key` when it lies in `min..=max`; a range error naming the key otherwise.
@@ -281,20 +255,16 @@ fn lengths_in_range(key: &str, values: &[f64]) -> Result<(), SetupError> {
     Ok(())
 }
 
-#[derive(Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
 struct SetupFile {
-    #[serde(default)]
     units: Units,
-    #[serde(default)]
     registers: BTreeMap<u32, Register>,
-    #[serde(default)]
     work_offsets: BTreeMap<String, [f64; 3]>,
-    #[serde(default)]
     machine: Machine,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     stock: Option<toml::Table>,
-    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     tools: BTreeMap<u32, toml::Table>,
 }
 
@@ -358,20 +328,15 @@ impl Setup {
             }
         }
         let m = &setup.machine;
-        // A rate of zero would make every move take forever, and a work limit of zero would
-        // stop every run before its first block.
+        // A rate of zero would make moves take forever, a work limit of zero stop every run.
         let rapids = m.rapid_xyz_mm_per_min.iter().flatten();
         let angles = m.measured_angles.iter();
         let rapid = ("rapid_mm_per_min", m.rapid_mm_per_min, 1.0, MAX_RATE);
+        let acc = m.acceleration_mm_per_s2;
         for (key, value, min, max) in std::iter::once(rapid)
             .chain(rapids.map(|&v| ("rapid_xyz_mm_per_min", v, 1.0, MAX_RATE)))
             .chain([
-                (
-                    "acceleration_mm_per_s2",
-                    m.acceleration_mm_per_s2,
-                    0.0,
-                    MAX_RATE,
-                ),
+                ("acceleration_mm_per_s2", acc, 0.0, MAX_RATE),
                 ("arc_tolerance_mm", m.arc_tolerance_mm, 0.0, 1000.0),
                 ("max_work", m.max_work as f64, 1.0, MAX_WORK),
                 ("peck_retract_mm", m.peck_retract_mm, 0.0, 1000.0),
@@ -401,12 +366,17 @@ impl Setup {
         Ok(toml::to_string(&file)?)
     }
 
-    /// Reference point `n` (1 = the G28 reference position, 2–4 for G30) in machine
-    /// coordinates, mm; the machine origin when the setup does not give it.
+    /// Reference point `n` (1: G28, 2–4: G30) in machine coordinates, mm (else the origin).
     pub fn reference_point(&self, n: usize) -> DVec3 {
         n.checked_sub(1)
             .and_then(|i| self.machine.reference_points.get(i))
             .map_or(DVec3::ZERO, |p| DVec3::from_array(*p))
+    }
+
+    /// Register `n`'s length and radius, geometry plus wear (zeros when the setup lacks it).
+    pub(crate) fn offsets(&self, n: u32) -> (f64, f64) {
+        let r = self.registers.get(&n).copied().unwrap_or_default();
+        (r.length + r.length_wear, r.radius + r.radius_wear)
     }
 
     /// The offset of a work coordinate system by canonical name (zero when not set).

@@ -1,14 +1,10 @@
-//! The machine's state between blocks: modal codes, positions, the coordinate-system chain and
-//! the system variables a macro program can read.
-//!
-//! A programmed point goes from the program frame through mirroring, scaling and rotation, then
-//! the G52 local offset, the G92 shift and the work offset (G54…) to the machine frame.
-//! `program_pos` keeps the current point in the program frame so that incremental moves (G91)
-//! add up there, as the controls do under rotation and scaling. Turning rotation, scaling or
-//! mirroring on or off does not move the tool: the new frame applies to the next end point.
+//! The machine's state between blocks: modal codes, positions, the coordinate chain and the system
+//! variables. A point goes from the program frame through mirror, scaling and rotation, then G52,
+//! G92 and the work offset to the machine frame; `program_pos` keeps the current point in the
+//! program frame, so G91 moves add up there, and a new frame applies from the next end point on.
 
 use glam::{DVec2, DVec3};
-use swarf_syntax::{Diagnostic, Dialect, Quantity, Word};
+use swarf_syntax::{Diagnostic, Dialect, Quantity, Span, Word};
 
 use crate::Setup;
 use crate::macros::Value;
@@ -30,8 +26,9 @@ pub(crate) enum MotionMode {
 }
 
 /// Feed-rate mode (group 05).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) enum FeedMode {
+    #[default]
     PerMinute,
     PerRevolution,
     InverseTime,
@@ -106,7 +103,7 @@ pub(crate) struct Polar {
 }
 
 /// Everything the machine remembers between blocks, apart from macro variables.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct State {
     pub setup: Setup,
     pub dialect: Dialect,
@@ -143,8 +140,7 @@ pub(crate) struct State {
     pub block_has_feed: bool,
     /// The spindle speed in rpm (under G96 computed from the surface speed and the tool).
     pub spindle_rpm: f64,
-    /// The spindle's direction: `Some(true)` clockwise (M03), `Some(false)` counter-clockwise
-    /// (M04), `None` stopped.
+    /// The spindle: `Some(true)` clockwise (M03), `Some(false)` (M04), `None` stopped.
     pub spindle_dir: Option<bool>,
     pub css: bool,
     /// The surface speed of G96 (m/min, or ft/min in inch).
@@ -152,14 +148,11 @@ pub(crate) struct State {
     /// The spindle-speed clamp (`G92 S`) for G96.
     pub spindle_clamp: Option<f64>,
     pub tool: u32,
-    /// The tool `M06` last put in the spindle (LinuxCNC's G43 without H and G41/G42 without D
-    /// take its offsets; `tool` is the one the last T word selected).
+    /// The tool `M06` last put in the spindle (whose offsets LinuxCNC's G43/G41 take).
     pub spindle_tool: u32,
-    /// Whether the setup listed offset registers (a LinuxCNC tool table) before the run: the
-    /// registers a program then names must be among them (those G10 writes do not count).
+    /// Whether the setup listed registers, which the program's must then be among.
     pub registers_listed: bool,
-    /// LinuxCNC G90.1: arc centres I/J/K are positions in the program frame rather than
-    /// distances from the arc's start (G91.1, the power-on mode).
+    /// LinuxCNC G90.1: arc centres are program positions, not offsets from the start (G91.1).
     pub arc_centres_absolute: bool,
     /// Active length compensation: register number and signed offset (mm).
     pub length_comp: Option<(u32, f64)>,
@@ -181,8 +174,7 @@ pub(crate) struct State {
     pub return_initial: bool,
     /// G22 on.
     pub stroke_check: bool,
-    /// The limits given on the last G22 (`None`: the machine's parameters, which the setup does
-    /// not hold).
+    /// The limits of the last G22 (`None`: the machine's parameters, not in the setup).
     pub stroke_zone: Option<StrokeZone>,
     /// Modal macro call (G66).
     pub modal_macro: Option<ModalMacro>,
@@ -211,70 +203,57 @@ impl State {
     /// Power-on state.
     pub fn new(setup: Setup, dialect: Dialect) -> State {
         let wcs_offset = setup.work_offset("G54");
-        let registers_listed = !setup.registers.is_empty();
         // Syntec cuts at 1000 mm/min until an F is programmed (§5.2).
-        let feed = if dialect == Dialect::Syntec {
-            1000.0
-        } else {
-            0.0
-        };
+        let syntec = dialect == Dialect::Syntec;
+        let feed = if syntec { 1000.0 } else { 0.0 };
         State {
+            registers_listed: !setup.registers.is_empty(),
             setup,
             dialect,
-            position: DVec3::ZERO,
             program_pos: -wcs_offset,
             // G00 at power-on in the Fanuc family; LinuxCNC starts in G80 (no motion mode).
             motion: (dialect != Dialect::LinuxCnc).then_some(MotionMode::Rapid),
-            plane: Axis::Z,
             absolute: true,
             metric: true,
             wcs: "G54".into(),
             wcs_offset,
-            wcs_rotation: 0.0,
-            wcs_rotations: std::collections::HashMap::new(),
-            local: DVec3::ZERO,
-            shift: DVec3::ZERO,
-            rotation: None,
-            scaling: None,
             mirror: DVec3::ONE,
-            mirror_center: DVec3::ZERO,
-            polar: None,
-            feed_mode: FeedMode::PerMinute,
             feed_mm_per_min: feed,
             feed_word: feed,
-            block_has_feed: false,
-            spindle_rpm: 0.0,
-            spindle_dir: None,
-            css: false,
-            surface_speed: 0.0,
-            spindle_clamp: None,
-            tool: 0,
-            spindle_tool: 0,
-            registers_listed,
-            arc_centres_absolute: false,
-            length_comp: None,
             length_plus: true,
             cutter_comp: 400,
-            comp_radius: 0.0,
-            comp: crate::comp::Comp::default(),
-            block_span: swarf_syntax::Span::default(),
-            blocks_run: 0,
             path_mode: 640,
             return_initial: true,
-            stroke_check: false,
-            stroke_zone: None,
-            modal_macro: None,
-            cycle: crate::cycles::CycleData::default(),
-            holes: 0,
-            preset_rotation: 0.0,
-            intermediate: [None; 3],
-            d_word: 0,
-            h_word: 0,
-            pending: None,
-            alarm: None,
-            diagnostics: crate::diagnostics::Diagnostics::default(),
-            noted_least_increment: false,
+            ..State::default()
         }
+    }
+
+    /// Reports a warning of the block being run.
+    pub fn warning(&mut self, span: Span, code: &'static str, message: impl Into<String>) {
+        self.diagnostics
+            .push(Diagnostic::warning(span, code, message));
+    }
+
+    /// Reports a note on the block being run.
+    pub fn note(&mut self, span: Span, code: &'static str, message: impl Into<String>) {
+        self.diagnostics.push(Diagnostic::note(span, code, message));
+    }
+
+    /// Reports an error of the block being run.
+    pub fn error(&mut self, span: Span, code: &'static str, message: impl Into<String>) {
+        self.diagnostics
+            .push(Diagnostic::error(span, code, message));
+    }
+
+    /// Reports an error refusing the block; gives a refused block's result (`false`, `None`).
+    pub fn fail<T: Default>(
+        &mut self,
+        span: Span,
+        code: &'static str,
+        msg: impl Into<String>,
+    ) -> T {
+        self.error(span, code, msg);
+        T::default()
     }
 
     /// Millimetres from a value in the active unit.
@@ -327,8 +306,7 @@ impl State {
         q
     }
 
-    /// A mirrored and scaled point → machine frame: G68 rotation, Syntec's G92.1 rotation, then
-    /// the offsets (and LinuxCNC's rotated coordinate systems).
+    /// A mirrored and scaled point → machine frame: G68, Syntec's G92.1 rotation, the offsets.
     #[inline]
     pub fn place(&self, q: DVec3) -> DVec3 {
         let q = self.rotated(q, 1.0);
@@ -418,8 +396,7 @@ impl State {
         out
     }
 
-    /// The number of the active code of a modal group as system variables #4001–#4017 give it
-    /// (#4001 motion, #4002 plane, …), or `None` for a number that is not one of them.
+    /// The number of a modal group's active code as #4001–#4017 give it, `None` for others.
     fn modal_code(&self, n: u32) -> Option<f64> {
         let pick = |on: bool, yes: f64, no: f64| if on { yes } else { no };
         Some(match n {
@@ -457,8 +434,7 @@ impl State {
         })
     }
 
-    /// A system variable (Fanuc numbering; LinuxCNC's own where it differs), or `None` when
-    /// `n` is not one.
+    /// A system variable (Fanuc numbering; LinuxCNC's where it differs), `None` if not one.
     pub fn system_variable(&self, n: u32) -> Option<Value> {
         let work = self.program_pos;
         let unit = |mm: f64| if self.metric { mm } else { mm / 25.4 };
@@ -493,10 +469,7 @@ impl State {
                 Some(Some(if i < 3 { unit(self.shift[i]) } else { 0.0 }))
             }
             1930 if syntec => Some(Some(self.preset_rotation)),
-            2001..=2400 => {
-                let r = self.setup.registers.get(&(n - 2000));
-                Some(Some(unit(r.map_or(0.0, |r| r.length + r.length_wear))))
-            }
+            2001..=2400 => Some(Some(unit(self.setup.offsets(n - 2000).0))),
             3000 | 3006 => Some(None),
             4001..=4017 => self.modal_code(n).map(Some),
             4107 => Some(Some(f64::from(self.d_word))),
@@ -528,11 +501,9 @@ impl State {
         match n {
             3000 => {
                 let number = v.unwrap_or(0.0);
-                self.alarm = Some(Diagnostic::error(
-                    swarf_syntax::Span::default(),
-                    "E-MACRO-ALARM",
-                    format!("the program raised macro alarm {number} (#3000) and stops here"),
-                ));
+                let message =
+                    format!("the program raised macro alarm {number} (#3000) and stops here");
+                self.alarm = Some(Diagnostic::error(Span::default(), "E-MACRO-ALARM", message));
                 Ok(true)
             }
             3006 => Ok(true),

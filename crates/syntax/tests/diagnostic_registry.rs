@@ -197,6 +197,11 @@ fn each_constructor_gives_its_codes_registered_severity() {
             ("Diagnostic::error(", Severity::Error),
             ("Diagnostic::warning(", Severity::Warning),
             ("Diagnostic::note(", Severity::Note),
+            // The interpreter's `State` reports through these, the code second as well.
+            ("st.error(", Severity::Error),
+            ("st.fail(", Severity::Error),
+            ("st.warning(", Severity::Warning),
+            ("st.note(", Severity::Note),
         ] {
             for (at, _) in text.match_indices(name) {
                 let open = at + name.len();

@@ -2,7 +2,7 @@
 
 use smallvec::SmallVec;
 use swarf_syntax::codes::{self, Code, Group};
-use swarf_syntax::{Diagnostic, Dialect, Word, WordForm};
+use swarf_syntax::{Dialect, Word, WordForm};
 
 use crate::Axis;
 use crate::state::{FeedMode, MotionMode, State};
@@ -44,9 +44,7 @@ pub(super) enum Action {
     ModalMacro(bool),
     /// G31 skip: drawn as the full programmed move.
     Probe,
-    /// Syntec G37 (`false`, Z in program coordinates) and G37.1 (`true`, Z in machine
-    /// coordinates): tool-length measurement, drawn as the return to the reference point and
-    /// the full measuring move.
+    /// Syntec G37 (`false`) / G37.1 (`true`, Z in machine coordinates): tool-length measurement.
     Measure(bool),
     /// Syntec G92.1: the program zero preset at X Y Z from the work origin, the plane turned by R.
     PresetZero,
@@ -146,8 +144,7 @@ pub(super) fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Acti
 /// The block's G codes with the actions they take, in the block's order.
 pub(super) type Actions<'w> = SmallVec<[(Action, &'w Word); 4]>;
 
-/// The actions of the block's G codes, and warnings for the words not interpreted; `None` when
-/// a code is not run, and with it the block.
+/// The actions of the block's G codes, warning of words not run; `None`: the block is not run.
 pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<'w>> {
     let dialect = st.dialect;
     let mut actions: Actions<'w> = SmallVec::new();
@@ -162,8 +159,7 @@ pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<
         };
         match action(dialect, def.group, def.code.tenths) {
             Some(a) => {
-                // Two codes of one group: the last one wins (the parser has warned, or refused
-                // the block where the dialect alarms).
+                // Two codes of one group: the last one wins (the parser has warned or refused).
                 if def.group.exclusive()
                     && let Some(i) = actions.iter().position(|(b, w)| {
                         Code::from_value(b'G', w.value)
@@ -177,29 +173,22 @@ pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<
                 actions.push((a, word));
             }
             None if def.documented != codes::Documented::Full => {
-                // LNC's two-stage cycles, G36–G39, G77/G78 …: the manual lists the code but
-                // not its format, so nothing can be drawn from it.
-                st.diagnostics.push(Diagnostic::warning(
-                    word.span,
-                    "W-NOT-DOCUMENTED",
-                    format!(
-                        "{} ({}) is only listed in the {} manual, which does not document its format or motion; this block is not run",
-                        def.code,
-                        def.name,
-                        dialect.label()
-                    ),
-                ));
+                // The manual lists the code but not its format: nothing can be drawn from it.
+                let message = format!(
+                    "{} ({}) is only listed in the {} manual, which does not document its format or motion; this block is not run",
+                    def.code,
+                    def.name,
+                    dialect.label()
+                );
+                st.warning(word.span, "W-NOT-DOCUMENTED", message);
                 runnable = false;
             }
             None => {
-                st.diagnostics.push(Diagnostic::warning(
-                    word.span,
-                    "W-NOT-INTERPRETED",
-                    format!(
-                        "{} ({}) is not interpreted yet; this block is not run",
-                        def.code, def.name
-                    ),
-                ));
+                let message = format!(
+                    "{} ({}) is not interpreted yet; this block is not run",
+                    def.code, def.name
+                );
+                st.warning(word.span, "W-NOT-INTERPRETED", message);
                 runnable = false;
             }
         }
@@ -207,24 +196,22 @@ pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<
     for word in words {
         match word.form {
             WordForm::Comma if matches!(word.letter, b'C' | b'R') => {}
-            WordForm::Comma => st.diagnostics.push(Diagnostic::warning(
-                word.span,
-                "W-NOT-INTERPRETED",
-                format!(
+            WordForm::Comma => {
+                let message = format!(
                     "`,{}` (chamfer/corner rounding) is not drawn yet: the corner is drawn sharp",
                     word.letter()
-                ),
-            )),
+                );
+                st.warning(word.span, "W-NOT-INTERPRETED", message);
+            }
             // Syntec's `F2=`: the retract feed of G81 (read by the cycle).
             WordForm::Indexed(2) if word.letter == b'F' && dialect == Dialect::Syntec => {}
-            WordForm::Indexed(n) => st.diagnostics.push(Diagnostic::warning(
-                word.span,
-                "W-NOT-INTERPRETED",
-                format!(
+            WordForm::Indexed(n) => {
+                let message = format!(
                     "`{}{n}=` is not interpreted yet and is ignored",
                     word.letter()
-                ),
-            )),
+                );
+                st.warning(word.span, "W-NOT-INTERPRETED", message);
+            }
             WordForm::Plain => {}
         }
     }

@@ -1,6 +1,6 @@
 //! G65 and G66 macro calls: the repeat count and the arguments, for the machine to call.
 
-use swarf_syntax::{Diagnostic, Quantity, Word, WordForm};
+use swarf_syntax::{Quantity, Word, WordForm};
 
 use super::actions::{Action, Actions};
 use super::{MAX_COUNT, Request, Requests, count_range};
@@ -22,23 +22,17 @@ fn repeat_count(st: &mut State, l: Option<&Word>) -> u32 {
 /// G65 P L args: the call, or nothing without P.
 fn macro_call(st: &mut State, words: &[Word], g65: &Word) -> Requests {
     let Some(p) = find(words, b'P') else {
-        st.diagnostics.push(Diagnostic::error(
-            g65.span,
-            "E-WORD-MISSING",
-            "G65 needs the macro program number in P",
-        ));
-        return Requests::new();
+        let message = "G65 needs the macro program number in P";
+        return st.fail(g65.span, "E-WORD-MISSING", message);
     };
     let repeats = repeat_count(st, find(words, b'L'));
     let args = arguments(st, words);
-    Requests::from_elem(
-        Request::Macro {
-            number: p.value,
-            repeats,
-            args,
-        },
-        1,
-    )
+    let call = Request::Macro {
+        number: p.value,
+        repeats,
+        args,
+    };
+    Requests::from_elem(call, 1)
 }
 
 /// Macro-call arguments (argument specification I): letter → local variable, value as read.
@@ -58,8 +52,7 @@ fn arguments(st: &State, words: &[Word]) -> Vec<(u8, f64)> {
         .collect()
 }
 
-/// G65 (a macro call, the block's words its arguments) and G66 (the modal macro from here on):
-/// the block does nothing else. `None` for a block without them.
+/// G65 (a macro call) and G66 (the modal macro): the block does nothing else; `None` without.
 pub(super) fn macro_codes(
     st: &mut State,
     words: &[Word],
@@ -75,19 +68,14 @@ pub(super) fn macro_codes(
     let args = arguments(st, words);
     // L: how many times the macro runs after each move.
     let repeats = repeat_count(st, find(words, b'L'));
-    match find(words, b'P') {
-        Some(p) => {
-            st.modal_macro = Some(ModalMacro {
-                number: p.value,
-                repeats,
-                args,
-            });
-        }
-        None => st.diagnostics.push(Diagnostic::error(
-            g66.span,
-            "E-WORD-MISSING",
-            "G66 needs the macro program number in P",
-        )),
-    }
+    let Some(p) = find(words, b'P') else {
+        let message = "G66 needs the macro program number in P";
+        return Some(st.fail(g66.span, "E-WORD-MISSING", message));
+    };
+    st.modal_macro = Some(ModalMacro {
+        number: p.value,
+        repeats,
+        args,
+    });
     Some(Requests::new())
 }

@@ -1,8 +1,9 @@
 //! G10 data input: work offsets (L2, L20) and offset registers (L1, L10–L13).
 
-use swarf_syntax::{Diagnostic, Dialect, Word};
+use swarf_syntax::{Dialect, Word};
 
 use super::tools::known_register;
+use super::{axis_words, given};
 use crate::machine::find;
 use crate::state::State;
 
@@ -23,11 +24,8 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
                     (Dialect::LinuxCnc, 7..=9) => format!("G59.{}", p - 6),
                     (_, 1..=6) => format!("G{}", 53 + p),
                     _ => {
-                        st.diagnostics.push(Diagnostic::error(
-                            w.span,
-                            "E-NUMBER-RANGE",
-                            format!("G10 L2 P{p} is not a work coordinate system"),
-                        ));
+                        let message = format!("G10 L2 P{p} is not a work coordinate system");
+                        st.error(w.span, "E-NUMBER-RANGE", message);
                         return true;
                     }
                 }
@@ -38,33 +36,24 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
                 rotation = r.value;
             }
             if linuxcnc && l == Some(20) {
-                // LinuxCNC L20: the offset that makes the current position read the given
-                // coordinates.
-                let mut wanted = st.program_pos;
-                for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
-                    if let Some(v) = find(words, *letter) {
-                        wanted[i] = st.length(v);
-                    }
-                }
+                // LinuxCNC L20: the offset that makes the current position read as given.
+                let axes = axis_words(words, b'X');
+                let wanted = given(st, &axes, st.program_pos);
                 let full =
                     st.position - crate::state::rotate_xy(wanted + st.local + st.shift, rotation);
-                let given = |l: u8| find(words, l).is_some();
                 // Under rotation X and Y are coupled: both are set when either is given.
-                let xy = given(b'X') || given(b'Y');
-                for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
-                    if given(*letter) || (i < 2 && xy && rotation != 0.0) {
+                let xy = axes[0].is_some() || axes[1].is_some();
+                for (i, w) in axes.iter().enumerate() {
+                    if w.is_some() || (i < 2 && xy && rotation != 0.0) {
                         offset[i] = full[i];
                     }
                 }
             } else {
-                for (i, letter) in [b'X', b'Y', b'Z'].iter().enumerate() {
-                    if let Some(v) = find(words, *letter) {
-                        let v = st.length(v);
-                        offset[i] = if absolute || linuxcnc {
-                            v
-                        } else {
-                            offset[i] + v
-                        };
+                let set = absolute || linuxcnc;
+                for (i, w) in axis_words(words, b'X').iter().enumerate() {
+                    if let Some(w) = w {
+                        let v = st.length(w);
+                        offset[i] = if set { v } else { offset[i] + v };
                     }
                 }
             }
@@ -88,10 +77,8 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
             let mm = |x: f64| if metric { x } else { x * 25.4 };
             let r = find(words, b'R').map(|r| mm(r.value));
             let z = find(words, b'Z').map(|z| mm(z.value));
-            // LinuxCNC L10 and L11: the length that makes the current position read Z with
-            // this tool's offset, in the current coordinate system (L10) or in G59.3's, the
-            // tool setter's, with no G52/G92 (L11). The gauge line is the tip plus the offset
-            // in effect.
+            // LinuxCNC L10/L11: the length that makes the current position read Z with this tool,
+            // in the current system (L10) or the tool setter's G59.3 without G52/G92 (L11).
             let gauge = st.length_comp.map_or(0.0, |(_, o)| o);
             let length_for = |z: f64| match l {
                 Some(10) => st.program_pos.z + gauge - z,
@@ -119,11 +106,10 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
                 *slot = if absolute { r } else { *slot + r };
             }
         }
-        _ => st.diagnostics.push(Diagnostic::warning(
-            w.span,
-            "W-NOT-INTERPRETED",
-            "this G10 data type is not interpreted yet and is ignored",
-        )),
+        _ => {
+            let message = "this G10 data type is not interpreted yet and is ignored";
+            st.warning(w.span, "W-NOT-INTERPRETED", message);
+        }
     }
     true
 }

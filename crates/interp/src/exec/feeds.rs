@@ -1,6 +1,6 @@
 //! F and S words: the feed of each move and the spindle speed.
 
-use swarf_syntax::{Block, Diagnostic, Dialect, Word};
+use swarf_syntax::{Block, Dialect, Word};
 
 use crate::state::{FeedMode, State};
 
@@ -11,15 +11,13 @@ pub(super) fn feed_word(st: &mut State, f: Option<&Word>) {
         st.feed_word = f.value;
         st.feed_mm_per_min = match st.feed_mode {
             FeedMode::PerMinute => st.mm(f.value),
-            // Per revolution and inverse time are kept as given; each move's feed in mm/min
-            // comes from them (`move_feed`).
+            // Per revolution and inverse time are kept as given (see `move_feed`).
             FeedMode::PerRevolution | FeedMode::InverseTime => f.value,
         };
     }
 }
 
-/// The S word: the spindle speed (rpm under G97, surface speed under G96), or with G92 the
-/// most rpm G96 may reach (the Fanuc family's `G92 S`).
+/// The S word: rpm (G97) or surface speed (G96), or with G92 the rpm G96 may reach.
 pub(super) fn spindle_speed(st: &mut State, s: Option<&Word>, g92: bool) {
     let s = s.filter(|s| s.value >= 0.0);
     if let Some(s) = s {
@@ -42,24 +40,16 @@ pub(super) fn spindle_speed(st: &mut State, s: Option<&Word>, g92: bool) {
         st.spindle_rpm = st.surface_speed;
         return;
     }
-    // A milling cutter cuts at its diameter: the radius in the D register (or the tool's own
-    // register when no D has been given).
+    // A cutter cuts at its diameter: the D register's radius (or the tool's own).
     let register = if st.d_word > 0 { st.d_word } else { st.tool };
-    let radius = st
-        .setup
-        .registers
-        .get(&register)
-        .map_or(0.0, |r| r.radius + r.radius_wear);
+    let radius = st.setup.offsets(register).1;
     if radius <= 0.0 {
         if let Some(s) = s {
-            st.diagnostics.push(Diagnostic::note(
-                s.span,
-                "N-CSS-DIAMETER",
-                format!(
-                    "G96: the tool's diameter is not known (no radius in offset register {register}), so the spindle speed for S{} is not known",
-                    s.value
-                ),
-            ));
+            let message = format!(
+                "G96: the tool's diameter is not known (no radius in offset register {register}), so the spindle speed for S{} is not known",
+                s.value
+            );
+            st.note(s.span, "N-CSS-DIAMETER", message);
         }
         st.spindle_rpm = st.spindle_clamp.unwrap_or(0.0);
         return;
@@ -74,11 +64,10 @@ pub(super) fn spindle_speed(st: &mut State, s: Option<&Word>, g92: bool) {
     st.spindle_rpm = st.spindle_clamp.map_or(rpm, |c| rpm.min(c));
 }
 
-/// The feed of one cutting move in mm/min, from the feed mode: F per minute as programmed; F
-/// per revolution times the spindle speed; under G93 F times the move's length (LinuxCNC and
-/// Fanuc: the move takes 1/F minutes), or as Syntec's manual defines it, F times the length of
-/// a line and F times the radius of an arc (`radius`). Reports a move that cannot feed.
-pub(super) fn move_feed(st: &mut State, block: &Block, length: f64, radius: Option<f64>) -> f64 {
+/// The feed of one cutting move in mm/min: F per minute; F per revolution times the speed; under
+/// G93 F times the length (Syntec: of a line, or the arc's `radius`). Reports one that cannot feed.
+pub(crate) fn move_feed(st: &mut State, block: &Block, length: f64, radius: Option<f64>) -> f64 {
+    let syntec = st.dialect == Dialect::Syntec;
     let (feed, problem) = match st.feed_mode {
         FeedMode::PerMinute => (
             st.feed_mm_per_min,
@@ -87,12 +76,8 @@ pub(super) fn move_feed(st: &mut State, block: &Block, length: f64, radius: Opti
         FeedMode::PerRevolution => {
             let per_rev = st.mm(st.feed_mm_per_min);
             if per_rev > 0.0 && st.spindle_rpm <= 0.0 {
-                st.diagnostics.push(Diagnostic::error(
-                    block.span,
-                    "E-NO-FEED",
-                    "a feed per revolution (G95) needs a spindle speed: program S before or in this block",
-                ));
-                return 0.0;
+                let message = "a feed per revolution (G95) needs a spindle speed: program S before or in this block";
+                return st.fail(block.span, "E-NO-FEED", message);
             }
             (
                 per_rev * st.spindle_rpm,
@@ -101,23 +86,15 @@ pub(super) fn move_feed(st: &mut State, block: &Block, length: f64, radius: Opti
         }
         FeedMode::InverseTime => {
             if !st.block_has_feed {
-                let alarm = if st.dialect == Dialect::Syntec {
-                    " (alarm Cor85)"
-                } else {
-                    ""
-                };
-                st.diagnostics.push(Diagnostic::error(
-                    block.span,
-                    "E-NO-FEED",
-                    format!(
-                        "in inverse-time mode (G93) every cutting block needs its own F{alarm}"
-                    ),
-                ));
-                return 0.0;
+                let alarm = if syntec { " (alarm Cor85)" } else { "" };
+                let message = format!(
+                    "in inverse-time mode (G93) every cutting block needs its own F{alarm}"
+                );
+                return st.fail(block.span, "E-NO-FEED", message);
             }
             let f = st.feed_mm_per_min;
             let feed = match radius {
-                Some(r) if st.dialect == Dialect::Syntec => f * r,
+                Some(r) if syntec => f * r,
                 _ => f * length,
             };
             (feed, "F must be positive in inverse-time mode (G93)")
@@ -126,9 +103,7 @@ pub(super) fn move_feed(st: &mut State, block: &Block, length: f64, radius: Opti
     // A move of no length under G93 takes no time whatever its F.
     let inverse_nothing = st.feed_mode == FeedMode::InverseTime && st.feed_mm_per_min > 0.0;
     if feed <= 0.0 && !inverse_nothing {
-        st.diagnostics
-            .push(Diagnostic::error(block.span, "E-NO-FEED", problem));
-        return 0.0;
+        return st.fail(block.span, "E-NO-FEED", problem);
     }
     feed.max(0.0)
 }

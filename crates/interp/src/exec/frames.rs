@@ -3,9 +3,9 @@
 
 use glam::{DVec2, DVec3};
 use swarf_syntax::codes::Code;
-use swarf_syntax::{Diagnostic, Dialect, Word};
+use swarf_syntax::{Dialect, Word};
 
-use super::Axes;
+use super::{Axes, axis_words, given};
 use crate::machine::find;
 use crate::state::{Polar, Rotation, Scaling, State, plane_axes};
 
@@ -33,16 +33,12 @@ pub(super) fn polar(st: &mut State, on: bool) {
     }
     let (u, v) = plane_axes(st.plane);
     // G90 G16: the pole is the work origin (with G52); G91 G16: the current position.
-    let pole = if st.absolute {
-        DVec2::ZERO
-    } else {
-        DVec2::new(st.program_pos[u], st.program_pos[v])
-    };
+    let current = DVec2::new(st.program_pos[u], st.program_pos[v]);
+    let pole = if st.absolute { DVec2::ZERO } else { current };
     st.polar = Some(Polar { pole });
 }
 
-/// LNC G168 X Y Q: rotation about the centre (or the current point) by measurement result Q
-/// (1–4, default 1) from `[machine] measured_angles`.
+/// LNC G168 X Y Q: rotation about X Y by measured angle Q (1–4) of `measured_angles`.
 pub(super) fn measured_rotation(st: &mut State, w: &Word, words: &[Word]) {
     let q = find(words, b'Q').map_or(1.0, |q| q.value.round());
     let Some(degrees) = (1.0..=4.0)
@@ -56,51 +52,34 @@ pub(super) fn measured_rotation(st: &mut State, w: &Word, words: &[Word]) {
         })
         .flatten()
     else {
-        st.diagnostics.push(Diagnostic::error(
-            w.span,
-            "E-MEASUREMENT",
-            format!(
-                "G168 Q{q} needs measurement result {q} in the setup (`[machine] measured_angles`)"
-            ),
-        ));
-        return;
+        let message = format!(
+            "G168 Q{q} needs measurement result {q} in the setup (`[machine] measured_angles`)"
+        );
+        return st.fail(w.span, "E-MEASUREMENT", message);
     };
-    let (u, v) = plane_axes(st.plane);
-    let letters = [b'X', b'Y', b'Z'];
-    let center_of = |i: usize| find(words, letters[i]).map_or(st.program_pos[i], |c| st.length(c));
+    let center = plane_center(st, words);
     st.rotation = Some(Rotation {
         plane: st.plane,
-        center: DVec2::new(center_of(u), center_of(v)),
+        center,
         degrees,
     });
 }
 
-/// G68 X Y R (centre from the words, or the current position; angle absolute or, under G91,
-/// added to the active rotation).
+/// G68 X Y R (centre, or the current point; angle absolute, or under G91 added).
 pub(super) fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
     if !on {
         st.rotation = None;
         return;
     }
-    let (u, v) = plane_axes(st.plane);
-    let letters = [b'X', b'Y', b'Z'];
-    // The centre is absolute in either mode; without it, the current position.
-    let center_of = |i: usize| find(words, letters[i]).map_or(st.program_pos[i], |c| st.length(c));
-    let center = DVec2::new(center_of(u), center_of(v));
+    let center = plane_center(st, words);
     let Some(r) = find(words, b'R') else {
         if st.dialect == Dialect::Lnc {
-            st.diagnostics.push(Diagnostic::error(
-                w.span,
-                "E-WORD-MISSING",
-                "LNC alarms on G68 without the angle R: the rotation is not turned on",
-            ));
-            return;
+            let message = "LNC alarms on G68 without the angle R: the rotation is not turned on";
+            return st.fail(w.span, "E-WORD-MISSING", message);
         }
-        st.diagnostics.push(Diagnostic::warning(
-            w.span,
-            "W-WORD-MISSING",
-            "G68 without R rotates by 0° (the angle in the control's parameter is not known)",
-        ));
+        let message =
+            "G68 without R rotates by 0° (the angle in the control's parameter is not known)";
+        st.warning(w.span, "W-WORD-MISSING", message);
         st.rotation = Some(Rotation {
             plane: st.plane,
             center,
@@ -121,19 +100,20 @@ pub(super) fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
     });
 }
 
+/// The centre of a rotation in the plane: X Y Z, absolute in either mode, or the current point.
+fn plane_center(st: &State, words: &[Word]) -> DVec2 {
+    let (u, v) = plane_axes(st.plane);
+    let c = given(st, &axis_words(words, b'X'), st.program_pos);
+    DVec2::new(c[u], c[v])
+}
+
 /// G51 X Y Z P (or I J K per axis) / G50.
 pub(super) fn scaling(st: &mut State, w: &Word, words: &[Word], on: bool) {
     if !on {
         st.scaling = None;
         return;
     }
-    let letters = [b'X', b'Y', b'Z'];
-    let mut center = st.program_pos;
-    for (i, l) in letters.iter().enumerate() {
-        if let Some(c) = find(words, *l) {
-            center[i] = st.length(c);
-        }
-    }
+    let center = given(st, &axis_words(words, b'X'), st.program_pos);
     // Scale factors: P for all axes, or I/J/K per axis (read as written, e.g. P2.0 or P0.5).
     let p = find(words, b'P').map(|p| p.value);
     let mut factors = DVec3::splat(p.unwrap_or(1.0));
@@ -143,31 +123,21 @@ pub(super) fn scaling(st: &mut State, w: &Word, words: &[Word], on: bool) {
         }
     }
     if p.is_none() && [b'I', b'J', b'K'].iter().all(|l| find(words, *l).is_none()) {
-        st.diagnostics.push(Diagnostic::warning(
-            w.span,
-            "W-WORD-MISSING",
-            "G51 without P or I/J/K scales by 1",
-        ));
+        let message = "G51 without P or I/J/K scales by 1";
+        st.warning(w.span, "W-WORD-MISSING", message);
     }
     st.scaling = Some(Scaling { center, factors });
 }
 
-/// G51.1 X Y Z: mirror about the given axis positions / G50.1 X Y Z: cancel (all axes when none
-/// is given).
+/// G51.1 X Y Z: mirror about the given positions / G50.1 X Y Z: cancel (all axes if none).
 pub(super) fn mirror(st: &mut State, words: &[Word], on: bool) {
-    let letters = [b'X', b'Y', b'Z'];
-    let given: Vec<usize> = (0..3)
-        .filter(|i| find(words, letters[*i]).is_some())
-        .collect();
-    for (i, letter) in letters.iter().enumerate() {
-        if let Some(w) = find(words, *letter) {
-            if on {
-                st.mirror_center[i] = st.length(w);
-                st.mirror[i] = -1.0;
-            } else {
-                st.mirror[i] = 1.0;
-            }
-        } else if !on && given.is_empty() {
+    let axes = axis_words(words, b'X');
+    let none = axes.iter().all(Option::is_none);
+    for (i, w) in axes.iter().enumerate() {
+        if let (true, Some(w)) = (on, w) {
+            st.mirror_center[i] = st.length(w);
+            st.mirror[i] = -1.0;
+        } else if !on && (none || w.is_some()) {
             st.mirror[i] = 1.0;
         }
     }
@@ -175,26 +145,16 @@ pub(super) fn mirror(st: &mut State, words: &[Word], on: bool) {
 
 /// G52 X Y Z: the local coordinate system (relative to the work system; `G52 X0 Y0 Z0` cancels).
 pub(super) fn local(st: &mut State, axes: &Axes<'_>) {
-    for (i, w) in axes.iter().enumerate() {
-        if let Some(w) = w {
-            st.local[i] = st.length(w);
-        }
-    }
+    st.local = given(st, axes, st.local);
     st.resync();
 }
 
 /// G92 X Y Z: the current position becomes the given coordinates.
 pub(super) fn set_position(st: &mut State, axes: &Axes<'_>) {
     if st.preset_rotation != 0.0 {
-        // Under Syntec's G92.1 rotation the offsets are in the machine's axes: the shift that
-        // puts the given program point (unrotated, unscaled) at the current position.
-        let mut wanted = st.program_pos;
-        for (i, w) in axes.iter().enumerate() {
-            if let Some(w) = w {
-                wanted[i] = st.length(w);
-            }
-        }
-        let q = crate::state::rotate_xy(st.scaled(wanted), st.preset_rotation);
+        // Under Syntec's G92.1 rotation the offsets are in the machine's axes.
+        let wanted = st.scaled(given(st, axes, st.program_pos));
+        let q = crate::state::rotate_xy(wanted, st.preset_rotation);
         st.shift = st.position - st.wcs_offset - st.local - q;
         st.resync();
         return;
@@ -208,15 +168,10 @@ pub(super) fn set_position(st: &mut State, axes: &Axes<'_>) {
     st.resync();
 }
 
-/// G92.1 X Y Z R (Syntec): the program zero is preset at X Y Z from the work origin (the G92
-/// offsets #1901…) and the program XY plane turned by R degrees about it (#1930). K is not
-/// explained by the manual and is not used.
+/// Syntec G92.1 X Y Z R: the program zero preset at X Y Z from the work origin (#1901…), the XY
+/// plane turned by R degrees about it (#1930); K, not explained by the manual, is not used.
 pub(super) fn preset_zero(st: &mut State, words: &[Word]) {
-    for (i, l) in [b'X', b'Y', b'Z'].iter().enumerate() {
-        if let Some(w) = find(words, *l) {
-            st.shift[i] = st.length(w);
-        }
-    }
+    st.shift = given(st, &axis_words(words, b'X'), st.shift);
     if let Some(r) = find(words, b'R') {
         st.preset_rotation = st.angle(r);
     }

@@ -1,14 +1,13 @@
 //! M codes: pauses, spindle, coolant, tool change, program end, subprogram calls and returns.
 
 use swarf_syntax::codes::{self, Code};
-use swarf_syntax::{Diagnostic, Dialect, Word, WordForm};
+use swarf_syntax::{Dialect, Word, WordForm};
 
 use super::{Request, Requests};
 use crate::state::State;
 use crate::{Canon, Sink, Source};
 
-/// M codes, and the flow they ask for (subprogram calls and returns, program end), in the
-/// block's order.
+/// M codes, and the flow they ask for (calls, returns, program end), in the block's order.
 pub(super) fn m_codes(
     st: &mut State,
     words: &[Word],
@@ -31,40 +30,30 @@ pub(super) fn m_codes(
                 Canon::End
             }
             600 if st.dialect == Dialect::LinuxCnc => Canon::Pause { optional: false },
-            30 => Canon::Spindle {
-                clockwise: Some(true),
-                rpm: st.spindle_rpm,
-            },
-            40 => Canon::Spindle {
-                clockwise: Some(false),
-                rpm: st.spindle_rpm,
-            },
-            50 => Canon::Spindle {
-                clockwise: None,
-                rpm: 0.0,
-            },
+            30 | 40 | 50 => {
+                let clockwise = (code.tenths != 50).then_some(code.tenths == 30);
+                let rpm = clockwise.map_or(0.0, |_| st.spindle_rpm);
+                Canon::Spindle { clockwise, rpm }
+            }
             60 => Canon::ToolChange { tool: st.tool },
             70 | 80 => Canon::Coolant { on: true },
             90 => Canon::Coolant { on: false },
             190 => continue,
-            // M198: a program from outside the control's memory (the files linked to the
-            // program), called as M98 calls one.
-            980 | 1980 => {
-                requests.push(Request::Subprogram);
-                continue;
-            }
-            990 => {
-                requests.push(Request::Return);
+            // M198: a program from outside the control's memory (a linked file), called as M98.
+            980 | 1980 | 990 => {
+                let call = code.tenths != 990;
+                requests.push(if call {
+                    Request::Subprogram
+                } else {
+                    Request::Return
+                });
                 continue;
             }
             _ => {
                 // Codes outside the dialect's list were reported by the parser.
                 if let Some(def) = codes::lookup(st.dialect, code) {
-                    st.diagnostics.push(Diagnostic::warning(
-                        word.span,
-                        "W-NOT-INTERPRETED",
-                        format!("{} ({}) is not interpreted yet", def.code, def.name),
-                    ));
+                    let message = format!("{} ({}) is not interpreted yet", def.code, def.name);
+                    st.warning(word.span, "W-NOT-INTERPRETED", message);
                 }
                 continue;
             }

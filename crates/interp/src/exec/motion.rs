@@ -1,11 +1,10 @@
-//! The block's move in its motion mode (rapid, feed, arc, thread, canned cycle) and G04 dwell,
-//! from the program frame to the machine's.
+//! The block's move in its motion mode (rapid, feed, arc, thread, cycle) and G04 dwell.
 
 use glam::{DVec2, DVec3};
-use swarf_syntax::{Block, Diagnostic, Dialect, Quantity, Word, WordForm};
+use swarf_syntax::{Block, Dialect, Quantity, Word, WordForm};
 
 use super::feeds::move_feed;
-use super::{Axes, MAX_COUNT, count_range};
+use super::{Axes, MAX_COUNT, axis_words, count_range, plane_words};
 use crate::machine::find;
 use crate::state::{FeedMode, MotionMode, State, plane_axes};
 use crate::{Arc, Axis, Canon, PlaneArc, Sink, Source, plane_length};
@@ -13,31 +12,23 @@ use crate::{Arc, Axis, Canon, PlaneArc, Sink, Source, plane_length};
 /// The program-frame end point of a move programmed with `axes` (G90/G91, polar).
 pub(super) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
     let mut p = st.program_pos;
+    let mut axes = *axes;
     if let Some(pole) = st.polar {
+        // The plane's words are the radius and angle about the pole.
         let (u, v) = plane_axes(st.plane);
         let rel = DVec2::new(p[u] - pole.pole.x, p[v] - pole.pole.y);
         let (mut r, mut a) = (rel.length(), rel.y.atan2(rel.x).to_degrees());
-        if let Some(w) = axes[u] {
+        if let Some(w) = axes[u].take() {
             let given = st.length(w);
             r = if st.absolute { given.abs() } else { r + given };
         }
-        if let Some(w) = axes[v] {
+        if let Some(w) = axes[v].take() {
             let given = st.angle(w);
             a = if st.absolute { given } else { a + given };
         }
         let (sin, cos) = a.to_radians().sin_cos();
         p[u] = pole.pole.x + r * cos;
         p[v] = pole.pole.y + r * sin;
-        let normal = 3 - u - v;
-        if let Some(w) = axes[normal] {
-            let given = st.length(w);
-            p[normal] = if st.absolute {
-                given
-            } else {
-                p[normal] + given
-            };
-        }
-        return p;
     }
     for (i, w) in axes.iter().enumerate() {
         if let Some(w) = w {
@@ -56,9 +47,7 @@ fn arc_full_circle(st: &State, words: &[Word]) -> bool {
             .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'I' | b'J' | b'K'))
 }
 
-/// The block's move in the current motion mode, where its words make one: axis words, rotary
-/// words alone, a canned cycle or a full circle. Returns whether the tool moved.
-#[allow(clippy::too_many_arguments)]
+/// The block's move in the current mode, where its words make one; whether it moved.
 pub(super) fn motion(
     st: &mut State,
     block: &Block,
@@ -77,20 +66,13 @@ pub(super) fn motion(
         return false;
     }
     if probe {
-        st.diagnostics.push(Diagnostic::note(
-            block.span,
-            "N-PROBE",
-            "a skip or measuring move is drawn as its full programmed move (where the signal stops it is not known)",
-        ));
+        let message = "a skip or measuring move is drawn as its full programmed move (where the signal stops it is not known)";
+        st.note(block.span, "N-PROBE", message);
     }
     let Some(mode) = st.motion else {
         let span = axes.iter().flatten().next().map_or(block.span, |w| w.span);
-        st.diagnostics.push(Diagnostic::error(
-            span,
-            "E-NO-MOTION-MODE",
-            "axis words with no motion mode active (after G80): add G00 or G01",
-        ));
-        return false;
+        let message = "axis words with no motion mode active (after G80): add G00 or G01";
+        return st.fail(span, "E-NO-MOTION-MODE", message);
     };
     let mut p = target(st, axes);
     if matches!(mode, MotionMode::Rapid | MotionMode::Linear) {
@@ -101,30 +83,17 @@ pub(super) fn motion(
     let event = match mode {
         MotionMode::Rapid if !probe => Canon::Rapid { to },
         MotionMode::Arc { ccw } => {
-            let offsets: Axes<'_> = {
-                let mut o: Axes<'_> = [None; 3];
-                for w in words.iter().filter(|w| w.form == WordForm::Plain) {
-                    if let b'I' | b'J' | b'K' = w.letter {
-                        o[usize::from(w.letter - b'I')] = Some(w);
-                    }
-                }
-                o
-            };
+            let offsets = axis_words(words, b'I');
             let radius = find(words, b'R');
             if offsets.iter().all(Option::is_none) && radius.is_none() {
                 if st.dialect == Dialect::Syntec {
                     // Documented: no R and no I/J/K runs as G01 (the parser has said so).
                     return feed_to(st, block, p, to, source, sink);
                 }
-                st.diagnostics.push(Diagnostic::error(
-                    block.span,
-                    "E-ARC-CENTER",
-                    "G02/G03 needs the centre (I, J, K) or the radius (R)",
-                ));
-                return false;
+                let message = "G02/G03 needs the centre (I, J, K) or the radius (R)";
+                return st.fail(block.span, "E-ARC-CENTER", message);
             }
-            // Syntec's L: the number of turns of a spiral (or of a multi-turn arc); LinuxCNC's
-            // P: the number of turns of a multi-turn arc or helix.
+            // The turns of a spiral or multi-turn arc: Syntec's L, LinuxCNC's P.
             let turns = match st.dialect {
                 Dialect::Syntec => find(words, b'L'),
                 Dialect::LinuxCnc => find(words, b'P'),
@@ -132,20 +101,11 @@ pub(super) fn motion(
             };
             return arc(st, block, p, (offsets, radius, turns), ccw, source, sink);
         }
-        MotionMode::Thread => Canon::Feed {
-            to,
-            feed_mm_per_min: thread_feed(st, block, words),
-        },
+        MotionMode::Thread => Canon::line(false, to, thread_feed(st, block, words)),
         MotionMode::Cycle(t) => {
-            // The hole position: the block's in-plane words only (the normal word is the bottom).
-            let (u, v) = plane_axes(st.plane);
-            let mut plane_words: Axes<'_> = [None; 3];
-            plane_words[u] = axes[u];
-            plane_words[v] = axes[v];
-            let hole = move |st: &State| target(st, &plane_words);
-            let feed =
-                |st: &mut State, block: &Block, length: f64| move_feed(st, block, length, None);
-            return crate::cycles::run(st, block, words, t, &hole, &feed, source, sink);
+            let plane = plane_words(st, axes);
+            let hole = move |st: &State| target(st, &plane);
+            return crate::cycles::run(st, block, words, t, &hole, source, sink);
         }
         MotionMode::Linear if st.dialect.rules().comma_words => {
             if let Some(corner) = corner_word(st, block) {
@@ -153,14 +113,7 @@ pub(super) fn motion(
                 let from = st.position;
                 let feed = move_feed(st, block, from.distance(to), None);
                 // A corner held from the block before is cut against this move first.
-                crate::corners::resolve(
-                    st,
-                    sink,
-                    &Canon::Feed {
-                        to,
-                        feed_mm_per_min: feed,
-                    },
-                );
+                crate::corners::resolve(st, sink, &Canon::line(false, to, feed));
                 st.position = to;
                 st.program_pos = p;
                 st.pending = Some(crate::corners::Pending {
@@ -204,11 +157,8 @@ fn thread_feed(st: &mut State, block: &Block, words: &[Word]) -> f64 {
     };
     let feed_mm_per_min = lead * st.spindle_rpm;
     if feed_mm_per_min <= 0.0 {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-NO-FEED",
-            "G33 feeds the lead once per spindle revolution: it needs the lead and a spindle speed (S)",
-        ));
+        let message = "G33 feeds the lead once per spindle revolution: it needs the lead and a spindle speed (S)";
+        st.error(block.span, "E-NO-FEED", message);
     }
     feed_mm_per_min.max(0.0)
 }
@@ -233,27 +183,15 @@ pub(super) fn feed_to(
     sink: &mut dyn Sink,
 ) -> bool {
     let length = st.position.distance(to);
-    let feed_mm_per_min = move_feed(st, block, length, None);
-    end_move(
-        st,
-        p,
-        to,
-        source,
-        sink,
-        &Canon::Feed {
-            to,
-            feed_mm_per_min,
-        },
-    )
+    let feed = move_feed(st, block, length, None);
+    end_move(st, p, to, source, sink, &Canon::line(false, to, feed))
 }
 
 /// The words that shape an arc: centre offsets I/J/K, radius R and Syntec's turns L.
 type ArcWords<'w> = (Axes<'w>, Option<&'w Word>, Option<&'w Word>);
 
-/// G02/G03 in the program frame (centre from I/J/K or from R), then through the transform.
-/// With Syntec's L the arc is a spiral (or conical spiral) of L turns, a partial turn counting
-/// as one, and its end need not lie on the start's circle; LNC changes the radius progressively
-/// when the end is off the circle.
+/// G02/G03 in the program frame (centre from I/J/K or R), then through the transform. Syntec's L
+/// makes a spiral of L turns whose end may be off the start's circle; LNC spirals to an end off it.
 pub(super) fn arc(
     st: &mut State,
     block: &Block,
@@ -278,24 +216,17 @@ pub(super) fn arc(
         let (du, dv) = (p[u] - from[u], p[v] - from[v]);
         let chord = plane_length(du, dv);
         if chord < 1e-9 {
-            st.diagnostics.push(Diagnostic::error(
-                r.span,
-                "E-ARC-CENTER",
-                "an arc programmed with R cannot end where it starts: use I/J/K for a full circle",
-            ));
-            return false;
+            let message =
+                "an arc programmed with R cannot end where it starts: use I/J/K for a full circle";
+            return st.fail(r.span, "E-ARC-CENTER", message);
         }
         let half = chord / 2.0;
         if r_mm.abs() + st.setup.machine.arc_tolerance_mm < half {
-            st.diagnostics.push(Diagnostic::error(
-                r.span,
-                "E-ARC-RADIUS",
-                format!(
-                    "R{} is smaller than half the distance to the end point ({half:.4} mm)",
-                    r.value
-                ),
-            ));
-            return false;
+            let message = format!(
+                "R{} is smaller than half the distance to the end point ({half:.4} mm)",
+                r.value
+            );
+            return st.fail(r.span, "E-ARC-RADIUS", message);
         }
         let h = (r_mm * r_mm - half * half).max(0.0).sqrt();
         // Left of the chord for a short counter-clockwise arc, right for a short clockwise one.
@@ -316,75 +247,49 @@ pub(super) fn arc(
                     let at = st.length(w);
                     center[i] = if absolute { at } else { from[i] + at };
                 } else if st.dialect == Dialect::LinuxCnc {
-                    st.diagnostics.push(Diagnostic::error(
-                        w.span,
-                        "E-ARC-WORD",
-                        format!(
-                            "`{}` is not a centre word of an arc in the {plane}: LinuxCNC refuses the block, which is not run",
-                            w.letter()
-                        ),
-                    ));
-                    return false;
+                    let message = format!(
+                        "`{}` is not a centre word of an arc in the {plane}: LinuxCNC refuses the block, which is not run",
+                        w.letter()
+                    );
+                    return st.fail(w.span, "E-ARC-WORD", message);
                 } else {
-                    st.diagnostics.push(Diagnostic::warning(
-                        w.span,
-                        "W-WORD-IGNORED",
-                        format!(
-                            "`{}` is not a centre offset in the selected plane and is ignored",
-                            w.letter()
-                        ),
-                    ));
+                    let message = format!(
+                        "`{}` is not a centre offset in the selected plane and is ignored",
+                        w.letter()
+                    );
+                    st.warning(w.span, "W-WORD-IGNORED", message);
                 }
             }
         }
         if absolute && let Some(i) = [u, v].into_iter().find(|&i| offsets[i].is_none()) {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-ARC-CENTER",
-                format!(
-                    "under G90.1 (absolute arc centres) an arc in the {plane} needs both centre words: `{}` is missing",
-                    char::from(b"IJK"[i])
-                ),
-            ));
-            return false;
+            let message = format!(
+                "under G90.1 (absolute arc centres) an arc in the {plane} needs both centre words: `{}` is missing",
+                char::from(b"IJK"[i])
+            );
+            return st.fail(block.span, "E-ARC-CENTER", message);
         }
         let r0 = plane_length(from[u] - center[u], from[v] - center[v]);
         let r1 = plane_length(p[u] - center[u], p[v] - center[v]);
         if r0 < 1e-9 {
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-ARC-CENTER",
-                "the arc's centre is at its start point",
-            ));
-            return false;
+            let message = "the arc's centre is at its start point";
+            return st.fail(block.span, "E-ARC-CENTER", message);
         }
-        if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm && turns_word.is_some() {
-            // A spiral: the radius goes from the start's to the end's.
-        } else if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm && st.dialect == Dialect::Lnc
-        {
-            st.diagnostics.push(Diagnostic::warning(
-                block.span,
-                "W-ARC-SPIRAL",
-                format!(
-                    "the end point is {:.4} mm off the arc: LNC changes the radius progressively from {r0:.4} mm to {r1:.4} mm",
-                    (r0 - r1).abs()
-                ),
-            ));
-        } else if (r0 - r1).abs() > st.setup.machine.arc_tolerance_mm {
-            let alarm = if st.dialect == Dialect::Syntec {
-                " (alarm COR-006)"
+        // Off the circle (a spiral's radius goes from the start's to the end's).
+        let off = (r0 - r1).abs();
+        if off > st.setup.machine.arc_tolerance_mm && turns_word.is_none() {
+            if st.dialect == Dialect::Lnc {
+                let message = format!(
+                    "the end point is {off:.4} mm off the arc: LNC changes the radius progressively from {r0:.4} mm to {r1:.4} mm"
+                );
+                st.warning(block.span, "W-ARC-SPIRAL", message);
             } else {
-                ""
-            };
-            st.diagnostics.push(Diagnostic::error(
-                block.span,
-                "E-ARC-RADIUS",
-                format!(
-                    "the end point is {:.4} mm off the arc: start radius {r0:.4} mm, end radius {r1:.4} mm{alarm}",
-                    (r0 - r1).abs()
-                ),
-            ));
-            return false;
+                let syntec = st.dialect == Dialect::Syntec;
+                let alarm = if syntec { " (alarm COR-006)" } else { "" };
+                let message = format!(
+                    "the end point is {off:.4} mm off the arc: start radius {r0:.4} mm, end radius {r1:.4} mm{alarm}"
+                );
+                return st.fail(block.span, "E-ARC-RADIUS", message);
+            }
         }
     }
     // G45–G48 on an arc: the centre stays, the end moves along its radius by the offset.
@@ -407,8 +312,7 @@ pub(super) fn arc(
         machine_center[normal] = st.position[normal];
     }
     let from_machine = st.position;
-    // The arc's length and radius count only for a feed in inverse time: most arcs spare the
-    // angles and radii they take.
+    // Only a feed in inverse time needs the arc's length and radius.
     let feed_mm_per_min = if st.feed_mode == FeedMode::InverseTime {
         let arc = PlaneArc::new(from_machine, to, machine_center, st.plane, ccw, turns);
         let length = (arc.sweep.abs() * (arc.radius + arc.end_radius) / 2.0)
@@ -417,26 +321,19 @@ pub(super) fn arc(
     } else {
         move_feed(st, block, 0.0, None)
     };
-    end_move(
-        st,
-        p,
+    let arc = Canon::Arc(Arc {
         to,
-        source,
-        sink,
-        &Canon::Arc(Arc {
-            to,
-            center: machine_center,
-            axis: st.plane,
-            ccw,
-            turns,
-            feed_mm_per_min,
-        }),
-    )
+        center: machine_center,
+        axis: st.plane,
+        ccw,
+        turns,
+        feed_mm_per_min,
+    });
+    end_move(st, p, to, source, sink, &arc)
 }
 
-/// Syntec scales an arc's radius by the largest of the plane's two factors when G51 scales them
-/// unequally (`G51 I2. J1.` cuts arcs like `G51 P2.`): the machine centre for the scaled end
-/// points, on the same side as the programmed arc's. `None` when the scaling is equal.
+/// Syntec scales an arc's radius by the larger plane factor when G51 scales them unequally: the
+/// machine centre for the scaled ends, on the programmed arc's side; `None` for equal scaling.
 fn unequal_scaling_center(
     st: &State,
     from: DVec3,
@@ -459,8 +356,7 @@ fn unequal_scaling_center(
     let chord = plane_length(du, dv);
     let mut c = a;
     if chord < 1e-9 {
-        // A full circle: the centre offset, scaled by the largest factor (with the signs of
-        // the factors, so a mirrored one still points the right way).
+        // A full circle: the centre offset scaled by the largest factor, with the factors' signs.
         c[u] = a[u] + offset.x * factor * s.factors[u].signum();
         c[v] = a[v] + offset.y * factor * s.factors[v].signum();
     } else {
@@ -491,20 +387,11 @@ pub(super) fn dwell(
     } else if let Some(x) = find(words, b'X').or(find(words, b'U')) {
         st.dialect.read(x, Quantity::DwellX, false, false)
     } else {
-        st.diagnostics.push(Diagnostic::error(
-            g4.span,
-            "E-WORD-MISSING",
-            "G04 needs the dwell time in P or X",
-        ));
-        return;
+        let message = "G04 needs the dwell time in P or X";
+        return st.fail(g4.span, "E-WORD-MISSING", message);
     };
     if secs < 0.0 {
-        st.diagnostics.push(Diagnostic::error(
-            g4.span,
-            "E-NUMBER-RANGE",
-            "a dwell time cannot be negative",
-        ));
-        return;
+        return st.fail(g4.span, "E-NUMBER-RANGE", "a dwell time cannot be negative");
     }
     crate::corners::emit(st, sink, source, &Canon::Dwell { secs });
 }
@@ -514,8 +401,7 @@ pub(super) fn rapid_to(st: &mut State, to: DVec3, source: Source, sink: &mut dyn
     end_move(st, p, to, source, sink, &Canon::Rapid { to });
 }
 
-/// The motion mode a G code sets: entering or leaving a canned cycle mode takes the cycle's
-/// steps; G80 in the Fanuc family leaves the group-01 mode as it is.
+/// The motion mode a G code sets, entering or leaving a canned cycle mode.
 pub(super) fn set_mode(st: &mut State, m: Option<MotionMode>) {
     let was_cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
     st.motion = match m {
@@ -549,13 +435,10 @@ pub(super) fn unused_arc_words(st: &mut State, words: &[Word]) {
         .iter()
         .filter(|w| w.form == WordForm::Plain && matches!(w.letter, b'I' | b'J' | b'K' | b'R'))
     {
-        st.diagnostics.push(Diagnostic::warning(
-            w.span,
-            "W-WORD-IGNORED",
-            format!(
-                "address `{}` is only used by G02/G03 here and is ignored",
-                w.letter()
-            ),
-        ));
+        let message = format!(
+            "address `{}` is only used by G02/G03 here and is ignored",
+            w.letter()
+        );
+        st.warning(w.span, "W-WORD-IGNORED", message);
     }
 }

@@ -1,7 +1,7 @@
-//! Reference points and machine coordinates: G28/G30 and G29, G53, and Syntec's G37 tool
-//! measurement.
+//! Reference points and machine coordinates: G28/G30, G29, G53 and Syntec's G37 measuring.
 
-use swarf_syntax::{Block, Diagnostic, Dialect, Word};
+use glam::DVec3;
+use swarf_syntax::{Block, Dialect, Word};
 
 use super::Axes;
 use super::motion::{feed_to, rapid_to, target};
@@ -10,8 +10,7 @@ use crate::machine::find;
 use crate::state::{MotionMode, State};
 use crate::{Sink, Source};
 
-/// G28 (n = 1) / G30 Pn: rapid to the intermediate point, then to the reference point, for the
-/// axes given.
+/// G28 (n = 1) / G30 Pn: rapid to the intermediate, then the reference point, axes given.
 pub(super) fn reference(
     st: &mut State,
     words: &[Word],
@@ -20,10 +19,9 @@ pub(super) fn reference(
     source: Source,
     sink: &mut dyn Sink,
 ) {
-    let point = if n == 1 {
-        1
-    } else {
-        find(words, b'P').map_or(2, |p| p.value.round().clamp(1.0, 4.0) as usize)
+    let point = match n {
+        1 => 1,
+        _ => find(words, b'P').map_or(2, |p| p.value.round().clamp(1.0, 4.0) as usize),
     };
     let reference = st.setup.reference_point(point) - tool_tip_shift(st);
     if axes.iter().all(Option::is_none) {
@@ -41,12 +39,8 @@ pub(super) fn reference(
     }
     let mid_machine = st.to_machine(mid);
     rapid_to(st, mid_machine, source, sink);
-    let mut end = st.position;
-    for (i, w) in axes.iter().enumerate() {
-        if w.is_some() {
-            end[i] = reference[i];
-        }
-    }
+    let given = glam::BVec3::from(axes.map(|w| w.is_some()));
+    let end = DVec3::select(given, reference, st.position);
     rapid_to(st, end, source, sink);
 }
 
@@ -68,8 +62,7 @@ pub(super) fn from_reference(st: &mut State, axes: &Axes<'_>, source: Source, si
     rapid_to(st, end_machine, source, sink);
 }
 
-/// G53: a one-shot move in machine coordinates, in the block's motion mode (G00 or G01).
-/// Returns whether the block's axis words were used (`false`: they are an ordinary move).
+/// G53: a one-shot machine-coordinate move in G00 or G01; whether the axis words were used.
 pub(super) fn machine_move(
     st: &mut State,
     block: &Block,
@@ -80,28 +73,20 @@ pub(super) fn machine_move(
 ) -> bool {
     if !st.absolute {
         if st.dialect == Dialect::LinuxCnc {
-            st.diagnostics.push(Diagnostic::error(
-                g53.span,
-                "E-G53-INCREMENTAL",
-                "G53 cannot be used in G91: the block is not run",
-            ));
+            let message = "G53 cannot be used in G91: the block is not run";
+            st.error(g53.span, "E-G53-INCREMENTAL", message);
             return true;
         }
-        // Syntec: "only effective in G90; in G91 a plain incremental move"; LNC: "invalid in
-        // G91"; Fanuc ignores it there too.
-        st.diagnostics.push(Diagnostic::warning(
-            g53.span,
-            "W-G53-INCREMENTAL",
-            format!(
-                "{} ignores G53 in G91: the block is an ordinary incremental move",
-                st.dialect.label()
-            ),
-        ));
+        // Syntec, LNC and Fanuc all ignore G53 in G91.
+        let message = format!(
+            "{} ignores G53 in G91: the block is an ordinary incremental move",
+            st.dialect.label()
+        );
+        st.warning(g53.span, "W-G53-INCREMENTAL", message);
         return false;
     }
     let mut to = st.position;
-    // Machine coordinates place the spindle's gauge line: the tool tip is the active length
-    // offset below it.
+    // Machine coordinates place the gauge line: the tip is the length offset below it.
     let tip = tool_tip_shift(st);
     for (i, w) in axes.iter().enumerate() {
         if let Some(w) = w {
@@ -118,11 +103,8 @@ pub(super) fn machine_move(
     true
 }
 
-/// G37 / G37.1 (Syntec): with P, the return to reference point P (G30 style, all axes); G37
-/// then rapids to R above Z when R is given; the measuring move is drawn in full to Z (a program
-/// coordinate for G37, a machine coordinate for G37.1), and G37.1 retracts Z to the safety point
-/// Q (machine coordinate) or the machine zero.
-#[allow(clippy::too_many_arguments)]
+/// Syntec G37 / G37.1: with P, the return to that reference point; G37 rapids to R above Z; the
+/// measuring move is drawn in full to Z (G37.1: in machine coordinates, then back to Q or zero).
 pub(super) fn measure(
     st: &mut State,
     block: &Block,
@@ -133,19 +115,12 @@ pub(super) fn measure(
     sink: &mut dyn Sink,
 ) {
     let Some(z) = find(words, b'Z') else {
-        st.diagnostics.push(Diagnostic::error(
-            g37.span,
-            "E-WORD-MISSING",
-            "tool measurement needs the measuring position in Z (alarm MAR-330)",
-        ));
-        return;
+        let message = "tool measurement needs the measuring position in Z (alarm MAR-330)";
+        return st.fail(g37.span, "E-WORD-MISSING", message);
     };
     let z = st.length(z);
-    st.diagnostics.push(Diagnostic::note(
-        block.span,
-        "N-PROBE",
-        "a measuring move is drawn as its full programmed move (where the signal stops it is not known)",
-    ));
+    let message = "a measuring move is drawn as its full programmed move (where the signal stops it is not known)";
+    st.note(block.span, "N-PROBE", message);
     let tip = tool_tip_shift(st);
     if let Some(p) = find(words, b'P') {
         let n = p.value.round();

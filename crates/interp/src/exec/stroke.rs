@@ -1,8 +1,7 @@
-//! G22 stroke limits and the machine's travel: the zone, and the check of every move against
-//! them.
+//! G22 stroke limits and the machine's travel: the zone, and the check of every move.
 
 use glam::DVec3;
-use swarf_syntax::{Block, Diagnostic, Dialect, Word};
+use swarf_syntax::{Block, Dialect, Word};
 
 use super::Requests;
 use super::tools::tool_tip_shift;
@@ -10,8 +9,7 @@ use crate::machine::find;
 use crate::state::State;
 use crate::{Canon, Sink, Source, StrokeZone};
 
-/// Runs a block (`run`) with its moves checked against the G22 stroke limit and the machine's
-/// travel where they apply, and reports a move that breaks them.
+/// Runs a block (`run`) with its moves checked against G22 and the travel, reporting breaks.
 pub(super) fn checked(
     st: &mut State,
     block: &Block,
@@ -41,30 +39,22 @@ pub(super) fn checked(
         } else {
             "leaves the G22 stroke limits"
         };
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-STROKE-LIMIT",
-            format!(
-                "this move {what} (machine coordinates); the control stops with an overtravel alarm"
-            ),
-        ));
+        let message = format!(
+            "this move {what} (machine coordinates); the control stops with an overtravel alarm"
+        );
+        st.error(block.span, "E-STROKE-LIMIT", message);
     }
     if guard.broken[1] {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-OVERTRAVEL",
-            "this move leaves the machine's travel (the setup's `travel_mm`); the machine stops with an overtravel alarm",
-        ));
+        let message = "this move leaves the machine's travel (the setup's `travel_mm`); the machine stops with an overtravel alarm";
+        st.error(block.span, "E-OVERTRAVEL", message);
     }
     requests
 }
 
-/// How close the checked chords keep to an arc, in mm: a micrometre, the finest step a position
-/// is programmed in, so that an arc crossing a limit by more is caught.
+/// How close the checked chords keep to an arc, mm: the finest programmed step.
 const ARC_TOLERANCE_MM: f64 = 0.001;
 
-/// Checks the moves of one block against the G22 stroke limit and the machine's travel before
-/// passing them on.
+/// Checks the moves of one block against the G22 limit and the machine's travel.
 struct StrokeGuard<'s> {
     inner: &'s mut dyn Sink,
     /// The G22 zone and the machine's travel, where they apply.
@@ -129,8 +119,7 @@ impl Sink for StrokeGuard<'_> {
     }
 }
 
-/// Whether no move within the box from `lo` to `hi` can break `zones`: the box lies inside each
-/// zone that keeps the tool in and outside each that keeps it out.
+/// Whether no move within the box `lo`–`hi` can break `zones`.
 fn clear(zones: &[Option<StrokeZone>], lo: DVec3, hi: DVec3) -> bool {
     zones.iter().flatten().all(|z| {
         if z.inside_forbidden {
@@ -141,11 +130,9 @@ fn clear(zones: &[Option<StrokeZone>], lo: DVec3, hi: DVec3) -> bool {
     })
 }
 
-/// G22 X Y Z I J K: the programmable stroke limit (machine coordinates) / G23: off. Syntec pairs
-/// X with I (either may be the larger), protects the zone between them and refuses an axis given
-/// without its pair (COR-109); an axis whose pair is equal is not protected. LNC keeps the tool
-/// inside the limits (X Y Z the + limits, I J K the − limits); an axis not given is not limited
-/// here (its user parameter is not in the setup).
+/// G22 X Y Z I J K: the stroke limit (machine coordinates) / G23: off. Syntec protects the zone
+/// between X and I (each axis needs its pair, COR-109); LNC keeps the tool inside (X Y Z + limits,
+/// I J K − limits).
 pub(super) fn stroke_limit(st: &mut State, w: &Word, words: &[Word], on: bool) {
     st.stroke_check = on;
     if !on {
@@ -171,24 +158,17 @@ pub(super) fn stroke_limit(st: &mut State, w: &Word, words: &[Word], on: bool) {
             }
             (None, None) => {}
             _ if syntec => {
-                st.diagnostics.push(Diagnostic::error(
-                    w.span,
-                    "E-WORD-MISSING",
-                    format!(
-                        "G22 needs both limits of an axis ({} with {}): alarm COR-109, the protection is not activated",
-                        *plus as char, *minus as char
-                    ),
-                ));
+                let message = format!(
+                    "G22 needs both limits of an axis ({} with {}): alarm COR-109, the protection is not activated",
+                    *plus as char, *minus as char
+                );
+                st.error(w.span, "E-WORD-MISSING", message);
                 st.stroke_check = false;
                 return;
             }
             (hi, lo) => {
-                if let Some(hi) = hi {
-                    max[i] = hi;
-                }
-                if let Some(lo) = lo {
-                    min[i] = lo;
-                }
+                max[i] = hi.unwrap_or(max[i]);
+                min[i] = lo.unwrap_or(min[i]);
             }
         }
     }

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use swarf_syntax::codes::Code;
-use swarf_syntax::{Diagnostic, Dialect, Word, WordForm};
+use swarf_syntax::{Dialect, Word, WordForm};
 
 use super::actions::{Action, Actions};
 use super::axis_words;
@@ -11,8 +11,7 @@ use crate::Axis;
 use crate::machine::find;
 use crate::state::{MotionMode, State, plane_axes};
 
-/// S and T, D and H words; with M06 in the block, the selected tool is the one in the spindle
-/// from here on (LinuxCNC changes the tool before it applies G43 or G41/G42). Returns `false`
+/// S and T, D and H words (with M06, the selected tool is in the spindle from here on); `false`
 /// when the run stops: LinuxCNC selects only the tools of its table.
 pub(super) fn settings(st: &mut State, words: &[Word]) -> bool {
     for w in words.iter().filter(|w| w.form == WordForm::Plain) {
@@ -35,47 +34,34 @@ pub(super) fn settings(st: &mut State, words: &[Word]) -> bool {
     true
 }
 
-/// Whether offset register (or LinuxCNC tool) `n`, named by the word at `span`, is one the
-/// setup holds; `what` is what is read from it (`length`, `radius`, or `tool` for a LinuxCNC T
-/// word). Number 0 is no register. One the setup does not hold reads as zeros: with a note when
-/// the setup listed no registers at all (nothing is known of the machine's), with a warning in
-/// the Fanuc family when it listed others, and in LinuxCNC, whose tool table must hold every
-/// tool a program names, with an error: the run stops there (`false`), as LinuxCNC's does.
+/// Whether register (or LinuxCNC tool) `n` is in the setup (0 is none); one it lacks reads as
+/// zeros, with a note or warning, or in LinuxCNC an error (`false`).
 pub(super) fn known_register(st: &mut State, n: u32, span: swarf_syntax::Span, what: &str) -> bool {
     if n == 0 || st.setup.registers.contains_key(&n) {
         return true;
     }
     if !st.registers_listed {
         if what != "tool" {
-            st.diagnostics.push(Diagnostic::note(
-                span,
-                "N-OFFSET-UNSET",
-                format!("offset register {n} is not in the setup: its {what} is taken as 0"),
-            ));
+            let message =
+                format!("offset register {n} is not in the setup: its {what} is taken as 0");
+            st.note(span, "N-OFFSET-UNSET", message);
         }
         return true;
     }
     if st.dialect == Dialect::LinuxCnc {
-        st.diagnostics.push(Diagnostic::error(
-            span,
-            "E-TOOL-UNKNOWN",
-            format!(
-                "tool {n} is not in the setup's tool table (its registers): LinuxCNC stops here (requested tool not found in the tool table)"
-            ),
-        ));
-        return false;
+        let message = format!(
+            "tool {n} is not in the setup's tool table (its registers): LinuxCNC stops here (requested tool not found in the tool table)"
+        );
+        return st.fail(span, "E-TOOL-UNKNOWN", message);
     }
-    st.diagnostics.push(Diagnostic::warning(
-        span,
-        "W-OFFSET-UNSET",
-        format!("offset register {n} is not among the setup's registers: its {what} is taken as 0"),
-    ));
+    let message =
+        format!("offset register {n} is not among the setup's registers: its {what} is taken as 0");
+    st.warning(span, "W-OFFSET-UNSET", message);
     true
 }
 
-/// G40/G41/G42 (LinuxCNC also G41.1/G42.1): the side, and the radius from the D register
-/// (geometry plus wear; LinuxCNC: the tool table's radius of tool D, or of the tool in the
-/// spindle, and for G41.1/G42.1 half the diameter D). Returns `false` when the control alarms.
+/// G40/G41/G42 (LinuxCNC also G41.1/G42.1 with a diameter D): the side, and the radius from the D
+/// register (LinuxCNC: tool D's, or the spindle tool's). `false` when the control alarms.
 pub(super) fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32) -> bool {
     let linuxcnc = st.dialect == Dialect::LinuxCnc;
     if tenths == 400 {
@@ -84,48 +70,34 @@ pub(super) fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32)
     }
     if linuxcnc {
         if st.cutter_comp != 400 {
-            st.diagnostics.push(Diagnostic::error(
-                w.span,
-                "E-COMP-ON",
-                "cutter radius compensation cannot be turned on when it is already on",
-            ));
-            return false;
+            let message = "cutter radius compensation cannot be turned on when it is already on";
+            return st.fail(w.span, "E-COMP-ON", message);
         }
         if st.plane == Axis::X {
-            st.diagnostics.push(Diagnostic::error(
-                w.span,
-                "E-COMP-PLANE",
-                "LinuxCNC has cutter radius compensation in the XY and XZ planes only",
-            ));
-            return false;
+            let message = "LinuxCNC has cutter radius compensation in the XY and XZ planes only";
+            return st.fail(w.span, "E-COMP-PLANE", message);
         }
     }
     let d = find(words, b'D');
     if tenths == 411 || tenths == 421 {
         // LinuxCNC: G41.1/G42.1 D<diameter> [L<orientation>], L only in G18.
-        let orientation = match find(words, b'L') {
-            Some(l) if st.plane != Axis::Y => {
-                st.diagnostics.push(Diagnostic::error(
+        let orientation =
+            match find(words, b'L') {
+                Some(l) if st.plane != Axis::Y => return st.fail(
                     l.span,
                     "E-COMP-PLANE",
                     format!(
                         "G{}.1 with an L word (a lathe tool orientation) needs the XZ plane (G18)",
                         tenths / 10
                     ),
-                ));
-                return false;
-            }
-            Some(l) if !(0.0..=9.0).contains(&l.value.round()) => {
-                st.diagnostics.push(Diagnostic::error(
-                    l.span,
-                    "E-COMP-ORIENTATION",
-                    "a lathe tool orientation is 0 to 9",
-                ));
-                return false;
-            }
-            Some(l) => l.value.round() as u8,
-            None => 0,
-        };
+                ),
+                Some(l) if !(0.0..=9.0).contains(&l.value.round()) => {
+                    let message = "a lathe tool orientation is 0 to 9";
+                    return st.fail(l.span, "E-COMP-ORIENTATION", message);
+                }
+                Some(l) => l.value.round() as u8,
+                None => 0,
+            };
         st.cutter_comp = if tenths == 421 { 420 } else { 410 };
         st.comp_radius = d.map_or(0.0, |d| st.mm(d.value)) / 2.0;
         st.comp.orientation = orientation;
@@ -141,58 +113,40 @@ pub(super) fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32)
     }
     let orientation = st.setup.registers.get(&n).map_or(0, |r| r.orientation);
     if linuxcnc && st.plane != Axis::Y && !matches!(orientation, 0 | 9) {
-        st.diagnostics.push(Diagnostic::error(
-            d.map_or(w.span, |d| d.span),
-            "E-COMP-PLANE",
-            format!(
-                "G{} with a lathe tool (orientation {orientation}) needs the XZ plane (G18)",
-                tenths / 10
-            ),
-        ));
-        return false;
+        let message = format!(
+            "G{} with a lathe tool (orientation {orientation}) needs the XZ plane (G18)",
+            tenths / 10
+        );
+        return st.fail(d.map_or(w.span, |d| d.span), "E-COMP-PLANE", message);
     }
     st.cutter_comp = if tenths == 420 { 420 } else { 410 };
     st.comp.orientation = orientation;
-    st.comp_radius = st
-        .setup
-        .registers
-        .get(&n)
-        .map_or(0.0, |r| r.radius + r.radius_wear);
+    st.comp_radius = st.setup.offsets(n).1;
     true
 }
 
-/// A D word in a block without G41/G42: while cutter compensation is on, the Fanuc family
-/// takes the new register's radius (from the end of this block's move); LinuxCNC has no use for
-/// it outside G41/G42 and G96 and stops with an error. Returns `false` when the run stops.
+/// A D word without G41/G42: under compensation the Fanuc family takes the new radius (from the end
+/// of this block's move); LinuxCNC stops with an error (`false`) unless G96 uses it.
 fn new_radius_register(st: &mut State, words: &[Word], css: bool) -> bool {
     let Some(d) = find(words, b'D') else {
         return true;
     };
     if st.dialect == Dialect::LinuxCnc {
-        if css {
-            return true;
-        }
-        st.diagnostics.push(Diagnostic::error(
-            d.span,
-            "E-WORD-UNUSED",
-            "a D word without G41, G41.1, G42, G42.1 or G96 to use it (LinuxCNC changes the radius only with G40 and a new G41/G42)",
-        ));
-        return false;
+        let message = "a D word without G41, G41.1, G42, G42.1 or G96 to use it (LinuxCNC changes the radius only with G40 and a new G41/G42)";
+        return css || st.fail(d.span, "E-WORD-UNUSED", message);
     }
     if st.cutter_comp == 400 {
         return true;
     }
     let n = d.value.round().max(0.0) as u32;
     known_register(st, n, d.span, "radius");
-    let r = st.setup.registers.get(&n).copied().unwrap_or_default();
-    st.comp_radius = r.radius + r.radius_wear;
-    st.comp.orientation = r.orientation;
+    st.comp_radius = st.setup.offsets(n).1;
+    st.comp.orientation = st.setup.registers.get(&n).map_or(0, |r| r.orientation);
     true
 }
 
-/// An H word in a block without G43/G44/G49 while length compensation is on selects the new
-/// register at once (H00 cancels, as KT documents); Syntec's H names the tool to measure and
-/// LinuxCNC applies H only with G43.
+/// An H word without G43/G44/G49 under length compensation selects the new register at once (H00
+/// cancels, as KT documents); not in Syntec (H names the tool to measure) or LinuxCNC.
 fn new_length_register(st: &mut State, words: &[Word], has_code: bool) {
     if has_code
         || st.length_comp.is_none()
@@ -209,18 +163,12 @@ fn new_length_register(st: &mut State, words: &[Word], has_code: bool) {
         return;
     }
     known_register(st, n, h.span, "length");
-    let length = st
-        .setup
-        .registers
-        .get(&n)
-        .map_or(0.0, |r| r.length + r.length_wear);
+    let length = st.setup.offsets(n).0;
     st.length_comp = Some((n, if st.length_plus { length } else { -length }));
 }
 
-/// G43/G44 H / G49: the tool tip still follows the programmed Z; the offset is recorded.
-/// G43/G44 H (`sign`: whether it adds) and G49 (`None`). Without H the Fanuc family takes the
-/// last H word, LinuxCNC the tool in the spindle. Returns `false` when the run stops (LinuxCNC:
-/// a tool its table does not hold).
+/// G43/G44 H (`sign`: whether it adds) / G49 (`None`): the offset is recorded. Without H the Fanuc
+/// family takes the last H word, LinuxCNC the spindle tool. `false` when the run stops.
 pub(super) fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option<bool>) -> bool {
     let Some(plus) = sign else {
         st.length_comp = None;
@@ -240,18 +188,13 @@ pub(super) fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option
     if !known_register(st, h, w.span, "length") {
         return false;
     }
-    let length = st
-        .setup
-        .registers
-        .get(&h)
-        .map_or(0.0, |r| r.length + r.length_wear);
+    let length = st.setup.offsets(h).0;
     st.length_comp = Some((h, if plus { length } else { -length }));
     st.length_plus = plus;
     true
 }
 
-/// Where the tool tip is relative to the gauge line under the active length offset (along the
-/// plane's normal axis).
+/// The tool tip's shift from the gauge line under the length offset (along the normal).
 pub(super) fn tool_tip_shift(st: &State) -> DVec3 {
     let mut shift = DVec3::ZERO;
     if let Some((_, offset)) = st.length_comp {
@@ -261,8 +204,7 @@ pub(super) fn tool_tip_shift(st: &State) -> DVec3 {
     shift
 }
 
-/// H and D words in a block without their codes, and a cutter compensation code in an arc
-/// block (the Fanuc family alarms). `false` when the run stops.
+/// H and D words without their codes, and G40–G42 in an arc block; `false` when it stops.
 pub(super) fn new_registers(st: &mut State, words: &[Word], actions: &Actions<'_>) -> bool {
     let has = |a: fn(&Action) -> bool| actions.iter().any(|(x, _)| a(x));
     new_length_register(st, words, has(|a| matches!(a, Action::LengthComp(_))));
@@ -277,25 +219,19 @@ pub(super) fn new_registers(st: &mut State, words: &[Word], actions: &Actions<'_
     if let Some((_, w)) = comp_code
         && st.dialect != Dialect::LinuxCnc
         && matches!(st.motion, Some(MotionMode::Arc { .. }))
-        && axis_words(words).iter().any(Option::is_some)
+        && axis_words(words, b'X').iter().any(Option::is_some)
     {
-        st.diagnostics.push(Diagnostic::error(
-            w.span,
-            "E-COMP-ARC",
-            format!(
-                "{} starts or cancels cutter compensation only in a G00/G01 block, not with G02/G03: the control alarms and stops",
-                Code::from_value(b'G', w.value).map_or_else(|| "G40–G42".to_string(), |c| c.to_string())
-            ),
-        ));
-        return false;
+        let message = format!(
+            "{} starts or cancels cutter compensation only in a G00/G01 block, not with G02/G03: the control alarms and stops",
+            Code::from_value(b'G', w.value)
+                .map_or_else(|| "G40–G42".to_string(), |c| c.to_string())
+        );
+        return st.fail(w.span, "E-COMP-ARC", message);
     }
     true
 }
 
-/// LinuxCNC: a new length offset does not move the machine, but the point it controls is now
-/// the tip, that much further from the gauge line, so the current coordinate changes at once (a
-/// G91 move in the block starts from it). The Fanuc family adds the offset to the block's move
-/// instead (`G91 G43 Z-32. H1` ends 32 below the old coordinate).
+/// LinuxCNC moves the current point to the new tip; the Fanuc family adds it to the move.
 pub(super) fn follow_length_change(st: &mut State, length_before: f64) {
     let length_after = st.length_comp.map_or(0.0, |(_, o)| o);
     if length_after != length_before && st.dialect == Dialect::LinuxCnc {
