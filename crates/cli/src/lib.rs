@@ -7,7 +7,7 @@ mod explain;
 mod render;
 
 use std::ffi::OsString;
-use std::io::{Read as _, Write};
+use std::io::{BufRead as _, Read as _, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -16,8 +16,8 @@ use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
 use swarf_stock::{StockRun, StockSetup};
 use swarf_syntax::{
-    Decoded, Diagnostic, Dialect, LineIndex, LinkedSource, Lookup, MAX_FILE_BYTES, Program,
-    Severity, Span, decode_owned, parse,
+    Decoded, Diagnostic, Dialect, LineIndex, LineSource, LinkedSource, Lookup, MAX_FILE_BYTES,
+    Program, Severity, Span, decode_owned, parse,
 };
 use swarf_toolpath::Toolpath;
 
@@ -395,22 +395,22 @@ fn merged(mut reading: Vec<Diagnostic>, run: Vec<Diagnostic>) -> Vec<Diagnostic>
 /// parsed blocks of a long program are never held all at once.
 const PIECE_LINES: usize = 2048;
 
-/// Parses and runs `text` piece by piece into `sink`, keeping none of the blocks it has run,
+/// Parses and runs `source` piece by piece into `sink`, keeping none of the blocks it has run,
 /// for a program that runs straight through: the parsed program (without blocks), how many
 /// blocks it had and the run's diagnostics. `None` when the program needs all its blocks at
 /// once (it jumps, loops or calls); `sink` then has the first events of the run.
 fn run_pieces(
-    text: &str,
+    source: &mut dyn LineSource,
     dialect: Dialect,
     setup: &Setup,
     sink: &mut dyn Sink,
 ) -> Option<(Program, usize, Vec<Diagnostic>)> {
-    let mut reader = swarf_syntax::ParseRun::new(text, dialect);
+    let mut reader = swarf_syntax::ParseRun::reading(source.len(), dialect);
     let mut interp = swarf_interp::Interpreter::new(setup.clone(), dialect);
     let mut blocks = 0;
     let mut ended = false;
     loop {
-        let done = reader.step(text, PIECE_LINES);
+        let done = reader.step_from(source, PIECE_LINES);
         blocks += reader.program().blocks.len();
         if !ended {
             match interp.run_piece(reader.program(), sink) {
@@ -450,7 +450,7 @@ fn read_run(
     sink: &mut dyn Sink,
 ) -> Read {
     let pieces = (!whole)
-        .then(|| run_pieces(&decoded.text, opts.dialect, setup, sink))
+        .then(|| run_pieces(&mut decoded.text.as_str(), opts.dialect, setup, sink))
         .flatten();
     match pieces {
         Some((program, blocks, run)) => {
@@ -460,6 +460,99 @@ fn read_run(
             Read::Ran(loaded, blocks, diags)
         }
         None => Read::Whole(load_decoded(file, decoded, opts)),
+    }
+}
+
+/// Runs a plain UTF-8 program file into `sink` piece by piece as it reads it ([`FileLines`]),
+/// holding neither its text nor its blocks whole; `None` where it is read whole instead (`sink`
+/// having the first events of the run).
+fn stream_run(
+    file: &Path,
+    opts: &RunOptions,
+    setup: &Setup,
+    sink: &mut dyn Sink,
+) -> anyhow::Result<Option<Read>> {
+    let Some(mut lines) = FileLines::open(file, opts.max_file_bytes()) else {
+        return Ok(None);
+    };
+    let ran = run_pieces(&mut lines, opts.dialect, setup, sink).filter(|_| !lines.failed);
+    let Some((program, blocks, run)) = ran else {
+        return Ok(None);
+    };
+    let after = std::fs::metadata(file).map(|m| (m.len(), m.modified().ok()));
+    let changed = (after.ok() != Some(lines.opened))
+        .then(|| changed_warning(&file.display().to_string(), Span::default()));
+    let decoding = changed.into_iter().collect();
+    let mut loaded = Loaded::new(file, decoding, String::new(), program, Vec::new());
+    let diags = loaded.all_diagnostics(run);
+    // The text is read again only for the lines and columns of the diagnostics.
+    if !diags.is_empty() {
+        loaded.text = read_decoded(file, opts)?.text;
+    }
+    Ok(Some(Read::Ran(loaded, blocks, diags)))
+}
+
+/// A program file read a piece at a time as it is parsed: the text held is the piece last read,
+/// which ends at a line end (or the file's end).
+struct FileLines {
+    reader: std::io::BufReader<std::fs::File>,
+    /// The file's length and time of change when it was opened.
+    opened: (u64, Option<std::time::SystemTime>),
+    /// The piece last read, from byte `at` on.
+    text: String,
+    at: usize,
+    /// Whether the file is to be read whole instead: it is not plain UTF-8 (or opens with a
+    /// byte-order mark), grew, or could not be read.
+    failed: bool,
+}
+
+impl FileLines {
+    fn open(path: &Path, max: u64) -> Option<Self> {
+        let file = std::fs::File::open(path).ok()?;
+        let fits = |m: &std::fs::Metadata| m.is_file() && m.len() <= max;
+        let meta = file.metadata().ok().filter(fits)?;
+        Some(FileLines {
+            reader: std::io::BufReader::new(file),
+            opened: (meta.len(), meta.modified().ok()),
+            text: String::new(),
+            at: 0,
+            failed: false,
+        })
+    }
+}
+
+impl LineSource for FileLines {
+    fn len(&self) -> usize {
+        usize::try_from(self.opened.0).unwrap_or(usize::MAX)
+    }
+
+    fn line(&mut self, start: usize, end: usize) -> &str {
+        if self.at + self.text.len() < end {
+            self.failed |= self.reader.read_to_string(&mut self.text).is_err();
+        }
+        let (from, to) = (start.saturating_sub(self.at), end.saturating_sub(self.at));
+        self.text
+            .get(from..to.min(self.text.len()))
+            .unwrap_or_default()
+    }
+
+    fn rest(&mut self, start: usize) -> &str {
+        // The lines are asked for in order: past the piece held, the next 64 KiB are read, and
+        // the rest of their last line.
+        if start >= self.at + self.text.len() && !self.failed {
+            self.at += self.text.len();
+            let mut bytes = Vec::with_capacity(68 << 10);
+            let piece = (&mut self.reader).take(64 << 10).read_to_end(&mut bytes);
+            let line = self.reader.read_until(b'\n', &mut bytes);
+            match (piece, line, String::from_utf8(bytes)) {
+                (Ok(_), Ok(_), Ok(text)) => self.text = text,
+                _ => self.failed = true,
+            }
+            let bom = self.at == 0 && self.text.starts_with('\u{feff}');
+            self.failed |= bom || self.at + self.text.len() > self.len();
+        }
+        let from = start.saturating_sub(self.at);
+        self.text.get(from..).unwrap_or_default()
     }
 }
 
@@ -688,7 +781,6 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
     } = *args;
     let (setup, stock) = read_setup(opts, err)?;
     let started = Instant::now();
-    let decoded = read_decoded(file, opts)?;
     // The report takes only the path's measures: its segments are kept only to cut the stock,
     // with room made for `moves` of them.
     let keep = cut || stock.stock.is_some();
@@ -702,9 +794,17 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
         }
     };
     // About a move a line, and a line is rarely under sixteen bytes.
-    let mut path = new_path(decoded.text.len() / 16);
-    let (loaded, blocks, mut diags) = match read_run(file, decoded, opts, &setup, whole, &mut path)
-    {
+    let len = std::fs::metadata(file).map_or(0, |m| m.len() as usize);
+    let mut path = new_path(len / 16);
+    let streamed = (!whole).then(|| stream_run(file, opts, &setup, &mut path));
+    let read = if let Some(read) = streamed.transpose()?.flatten() {
+        read
+    } else {
+        path = new_path(len / 16);
+        let decoded = read_decoded(file, opts)?;
+        read_run(file, decoded, opts, &setup, whole, &mut path)
+    };
+    let (loaded, blocks, mut diags) = match read {
         Read::Ran(loaded, blocks, diags) => (loaded, blocks, diags),
         Read::Whole(mut loaded) => {
             path = new_path(loaded.program.blocks.len());
@@ -844,7 +944,8 @@ mod tests {
     fn runs_in_pieces(text: &str) -> bool {
         let setup = Setup::default();
         let mut pieces = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
-        let Some((_, blocks, _)) = run_pieces(text, Dialect::Fanuc, &setup, &mut pieces) else {
+        let Some((_, blocks, _)) = run_pieces(&mut { text }, Dialect::Fanuc, &setup, &mut pieces)
+        else {
             return false;
         };
         let program = parse(text, Dialect::Fanuc);
@@ -874,6 +975,45 @@ mod tests {
         assert!(!runs_in_pieces("N1 G0 X1.\nGOTO 1\n"));
         assert!(!runs_in_pieces("G65 P9000 A1.\nM30\n"));
         assert!(!runs_in_pieces("O1\nX1.\nM30\nO2\nX2.\nM99\n"));
+    }
+
+    /// A file read a piece at a time as it runs reports as the file read whole does, whatever
+    /// its line ends and wherever the pieces cut it; one that is not plain UTF-8 is read whole.
+    #[test]
+    fn a_file_read_in_pieces_reports_as_the_whole_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let half = "G1 X1.5 Y2 F100\r\nX2\rY3 @\n".repeat(3000);
+        let body = format!("%\n{half}%\n{half}G1 X$");
+        let bom = [b"\xef\xbb\xbf".as_slice(), body.as_bytes()].concat();
+        let latin = [body.as_bytes(), b"(\xe9)\n"].concat();
+        for (name, bytes) in [("a.nc", body.as_bytes()), ("b.nc", &bom), ("c.nc", &latin)] {
+            let file = dir.path().join(name);
+            std::fs::write(&file, bytes).unwrap();
+            let report = |whole| {
+                let opts = RunOptions {
+                    dialect: Dialect::Fanuc,
+                    setup: None,
+                    max_file_mb: 256,
+                };
+                let (file, json, stock) = (file.clone(), false, false);
+                let args = StatsArgs {
+                    file,
+                    opts,
+                    json,
+                    whole,
+                    stock,
+                };
+                let (mut out, mut err) = (Vec::new(), Vec::new());
+                let status = stats(&args, &mut out, &mut err).unwrap();
+                let out = String::from_utf8(out).unwrap();
+                let out: Vec<_> = out.lines().filter(|l| !l.starts_with("interp")).collect();
+                (status, out.join("\n"), String::from_utf8(err).unwrap())
+            };
+            let (pieces, whole) = (report(false), report(true));
+            assert_eq!(pieces, whole, "{name}");
+            assert!(pieces.2.lines().count() > 3000, "{name}");
+            assert!(pieces.2.contains("N-AFTER-TAPE-END"), "{name}");
+        }
     }
 
     /// A long program run in pieces reports its diagnostics at their lines.

@@ -3,7 +3,7 @@
 /// The byte offset where each line starts, so diagnostics can be reported as line and column.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct LineIndex {
-    starts: Vec<u32>,
+    pub(crate) starts: Vec<u32>,
 }
 
 impl LineIndex {
@@ -16,13 +16,21 @@ impl LineIndex {
     /// Builds the table for the first `max` lines of `text` (at least one), so that a text of
     /// more lines than a reader takes costs no more table than it reads.
     pub fn at_most(text: &str, max: usize) -> Self {
-        let bytes = text.as_bytes();
+        let mut index = LineIndex { starts: vec![0] };
+        index.index_from(text, 0, max);
+        index
+    }
+
+    /// Adds the lines that follow the first line of `rest`, the text from byte `from` (the start
+    /// of the table's last line) on, up to `max` lines in all.
+    pub(crate) fn index_from(&mut self, rest: &str, from: usize, max: usize) {
+        let bytes = rest.as_bytes();
+        let starts = &mut self.starts;
         // A line is rarely under sixteen bytes, so the table seldom grows.
-        let mut starts = Vec::with_capacity((bytes.len() / 16 + 2).min(max));
-        starts.push(0);
+        starts.reserve((bytes.len() / 16 + 1).min(max.saturating_sub(starts.len())));
         let push = |at| {
             if starts.len() < max {
-                starts.push(line_after(0, at));
+                starts.push(line_after(from, at));
             }
         };
         // Most texts have no `\r` (a search for one is quick): then only line feeds end lines.
@@ -33,7 +41,6 @@ impl LineIndex {
                 |word: &[u8; 8], _| byte_mask(u64::from_le_bytes(*word), u64::from(b'\n'));
             for_each_marked(bytes, line_feeds, push);
         }
-        LineIndex { starts }
     }
 
     /// Builds the table for a text given as consecutive pieces (the chunks of a rope), as

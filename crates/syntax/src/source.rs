@@ -17,9 +17,21 @@ pub trait LineSource {
     /// is outside the text or not on `char` boundaries).
     fn line(&mut self, start: usize, end: usize) -> &str;
 
+    /// The text from byte `start` on, or as much of it as holds the whole line there (a source
+    /// read a piece at a time), for a run that indexes the text as it reads it.
+    fn rest(&mut self, start: usize) -> &str {
+        self.line(start, self.len())
+    }
+
     /// The byte range of the text from `offset` on with its leading and trailing whitespace
     /// (as `str::trim` sees it) left out; `None` when that is blank.
-    fn trimmed_rest(&mut self, offset: usize) -> Option<(usize, usize)>;
+    fn trimmed_rest(&mut self, offset: usize) -> Option<(usize, usize)> {
+        let (len, offset) = (self.len(), offset.min(self.len()));
+        let rest = self.line(offset, len);
+        let trimmed = rest.trim_start();
+        let start = offset + rest.len() - trimmed.len();
+        (!trimmed.is_empty()).then(|| (start, start + trimmed.trim_end().len()))
+    }
 }
 
 impl LineSource for &str {
@@ -31,15 +43,5 @@ impl LineSource for &str {
     #[inline]
     fn line(&mut self, start: usize, end: usize) -> &str {
         self.get(start..end).unwrap_or_default()
-    }
-
-    fn trimmed_rest(&mut self, offset: usize) -> Option<(usize, usize)> {
-        let rest = self.get(offset.min(str::len(self))..).unwrap_or_default();
-        let trimmed = rest.trim_start();
-        if trimmed.is_empty() {
-            return None;
-        }
-        let start = str::len(self) - trimmed.len();
-        Some((start, start + trimmed.trim_end().len()))
     }
 }

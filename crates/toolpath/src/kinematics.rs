@@ -52,23 +52,18 @@ impl Kinematics {
         })
     }
 
-    /// Seconds to run `length` mm with a trapezoidal velocity profile: from `entry` speed up
-    /// towards `cruise` and down to `exit` (mm/s) at this acceleration. A move too short to
-    /// reach `cruise` peaks where acceleration and deceleration meet. Zero for an empty move
-    /// and for a move without a feed (`cruise <= 0`).
-    pub fn move_secs(&self, length: f64, cruise: f64, entry: f64, exit: f64) -> f64 {
-        self.move_secs_per(length, cruise, entry, exit, self.per_acceleration())
-    }
-
     /// One over the acceleration, which [`Kinematics::move_secs_per`] takes: worked out once
     /// for a run of moves rather than a division each.
     pub(crate) fn per_acceleration(&self) -> f64 {
         1.0 / self.acceleration_mm_per_s2
     }
 
-    /// [`Kinematics::move_secs`] given `per_a`, [`Kinematics::per_acceleration`]: one division
-    /// by the acceleration for every move of a run rather than four a move (the planner's
-    /// passes time every move, and divisions take turns on one unit of the processor).
+    /// Seconds to run `length` mm with a trapezoidal velocity profile: from `entry` speed up
+    /// towards `cruise` and down to `exit` (mm/s) at this acceleration, given as `per_a`
+    /// ([`Kinematics::per_acceleration`]: one division for a run of moves rather than four a
+    /// move, as divisions take turns on one unit of the processor). A move too short to reach
+    /// `cruise` peaks where acceleration and deceleration meet. Zero for an empty move and for
+    /// a move without a feed (`cruise <= 0`).
     #[inline]
     pub(crate) fn move_secs_per(
         &self,

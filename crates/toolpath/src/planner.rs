@@ -374,7 +374,14 @@ mod tests {
             .zip(entries.windows(2))
             .take(count)
             .map(|(p, speeds)| {
-                t += p.dwell + k.move_secs(p.length, p.cruise, speeds[0], speeds[1]);
+                t += p.dwell
+                    + k.move_secs_per(
+                        p.length,
+                        p.cruise,
+                        speeds[0],
+                        speeds[1],
+                        k.per_acceleration(),
+                    );
                 t
             })
             .collect()

@@ -393,11 +393,6 @@ impl Toolpath {
         Timeline::from_parts(end_times, self.dwells.clone())
     }
 
-    /// The limits the times are computed with.
-    pub fn kinematics(&self) -> Kinematics {
-        self.timer.kinematics
-    }
-
     /// The box containing every point of the path (`None` when nothing moved).
     pub fn bounds(&self) -> Option<Bounds> {
         self.timer.bounds

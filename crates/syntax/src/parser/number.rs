@@ -32,21 +32,33 @@ pub(super) struct Decimal {
 /// Scans a decimal number at `pos` in one pass (the hot path of the parser: every word).
 ///
 /// Up to 15 digits the mantissa and the power of ten are exact f64s, so one correctly rounded
-/// division gives the correctly rounded value (Clinger's fast path); longer numbers go to the
-/// standard library.
+/// division gives the correctly rounded value (Clinger's fast path), and a whole number (a G or
+/// M code, most often) needs none; longer numbers go to the standard library.
+#[inline(always)]
 pub(super) fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
-    let Digits {
-        mantissa,
-        end,
-        digits,
-        frac_digits,
-        has_point,
-    } = scan_digits(bytes, pos);
+    // The digits as one integer, the point left out (wrapping: past 15 digits it is unused).
+    let mut mantissa: u64 = 0;
+    let mut digits_from = |mut end: usize| {
+        while let Some(&b) = bytes.get(end)
+            && b.is_ascii_digit()
+        {
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b - b'0'));
+            end += 1;
+        }
+        end
+    };
+    let int_end = digits_from(pos);
+    let has_point = bytes.get(int_end) == Some(&b'.');
+    let end = digits_from(int_end + usize::from(has_point));
+    let frac_digits = end - int_end - usize::from(has_point);
+    let digits = int_end - pos + frac_digits;
     if digits == 0 {
         return None;
     }
     let value = match POW10.get(frac_digits) {
-        Some(&scale) if digits <= 15 => decimal_value(mantissa, frac_digits, scale),
+        // Below 10^15 the mantissa converts as a signed integer, exactly as unsigned.
+        Some(_) if digits <= 15 && frac_digits == 0 => mantissa as i64 as f64,
+        Some(&scale) if digits <= 15 => mantissa as i64 as f64 / scale,
         _ => std::str::from_utf8(&bytes[pos..end])
             .ok()
             .and_then(|t| t.parse::<f64>().ok())
@@ -60,73 +72,10 @@ pub(super) fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
     })
 }
 
-/// The value of a mantissa of at most 15 digits, `frac_digits` of them after the point (`scale`
-/// is ten to that power): below 10^15 the mantissa converts as a signed integer, exactly as
-/// unsigned, and one correctly rounded division gives the value; a whole number (a G or M code,
-/// most often) spares the division.
-#[inline(always)]
-pub(super) fn decimal_value(mantissa: u64, frac_digits: usize, scale: f64) -> f64 {
-    let magnitude = mantissa as i64 as f64;
-    if frac_digits == 0 {
-        magnitude
-    } else {
-        magnitude / scale
-    }
-}
-
 /// The powers of ten that are exact f64s, by number of fraction digits.
-pub(super) const POW10: [f64; 16] = [
+const POW10: [f64; 16] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
 ];
-
-/// The digits of an unsigned decimal number (`12`, `12.5`, `.5`, `12.`) at `pos`.
-pub(super) struct Digits {
-    /// The digits as one integer, point left out (wrapping: past 19 digits it is unused).
-    pub(super) mantissa: u64,
-    /// Where the number ends.
-    pub(super) end: usize,
-    /// Digits in all.
-    pub(super) digits: usize,
-    /// Digits after the point.
-    pub(super) frac_digits: usize,
-    pub(super) has_point: bool,
-}
-
-/// Scans the digits of a number at `pos` (none: `digits` is 0), for [`scan_decimal`] and the
-/// short reader of plain lines.
-#[inline(always)]
-pub(super) fn scan_digits(bytes: &[u8], pos: usize) -> Digits {
-    let n = bytes.len();
-    let mut end = pos;
-    let mut mantissa: u64 = 0;
-    while end < n && bytes[end].is_ascii_digit() {
-        mantissa = mantissa
-            .wrapping_mul(10)
-            .wrapping_add(u64::from(bytes[end] - b'0'));
-        end += 1;
-    }
-    let int_digits = end - pos;
-    let has_point = end < n && bytes[end] == b'.';
-    let mut frac_digits = 0;
-    if has_point {
-        end += 1;
-        let frac_start = end;
-        while end < n && bytes[end].is_ascii_digit() {
-            mantissa = mantissa
-                .wrapping_mul(10)
-                .wrapping_add(u64::from(bytes[end] - b'0'));
-            end += 1;
-        }
-        frac_digits = end - frac_start;
-    }
-    Digits {
-        mantissa,
-        end,
-        digits: int_digits + frac_digits,
-        frac_digits,
-        has_point,
-    }
-}
 
 /// The sign at `pos` before a number: whether it is `-`, and where the number starts.
 #[inline(always)]

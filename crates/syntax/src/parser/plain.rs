@@ -2,30 +2,8 @@
 //! the parser is. Its blocks and diagnostics are held to the general reader's by the tests.
 
 use super::MAX_LINE_BYTES;
-use super::number::{Digits, POW10, decimal_value, scan_digits, scan_sign, with_sign};
+use super::number::{Decimal, scan_decimal, scan_sign, with_sign};
 use crate::{Block, Rules, Span, Word, WordForm};
-
-/// The dialect's limits that [`read_plain_line`] applies, looked up once a step.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct PlainLimits {
-    /// The number of digits the general reader takes without a diagnostic and that one
-    /// division reads exactly (see `scan_decimal`).
-    max_digits: usize,
-    /// The largest sequence number.
-    max_sequence_number: u32,
-}
-
-impl PlainLimits {
-    pub(super) fn of(rules: &Rules) -> Self {
-        PlainLimits {
-            max_digits: match usize::from(rules.max_digits) {
-                0 => 15,
-                max => max.min(15),
-            },
-            max_sequence_number: rules.max_sequence_number,
-        }
-    }
-}
 
 /// Reads a line made only of plain words — a letter, an optional sign and a decimal number of
 /// at most 15 digits (within the dialect's limit), separated by blanks — and optionally a
@@ -36,17 +14,18 @@ impl PlainLimits {
 /// `bytes` is the text from the line's start on: the line ends at its `\n` (a `\r` just before
 /// it is not part of it), at a `\r` alone or at the end of `bytes` (as
 /// [`LineIndex`](crate::LineIndex) ends lines), and is found as it is read. Returns whether the
-/// line gave a block (a blank line gives none), or `None`, having read nothing, for any other
-/// line (or one over [`MAX_LINE_BYTES`]): the general reader reads it.
+/// line gave a block (a blank line gives none) and its length without its ending, or `None`,
+/// having read nothing, for any other line (or one over [`MAX_LINE_BYTES`]): the general reader
+/// reads it.
 #[inline]
 pub(super) fn read_plain_line(
     bytes: &[u8],
     base: usize,
     line_no: u32,
-    limits: PlainLimits,
+    rules: &Rules,
     blocks: &mut Vec<Block>,
     checker: &mut crate::checks::Checker,
-) -> Option<bool> {
+) -> Option<(bool, usize)> {
     // A line longer than the longest read whole is left to the general reader, which cuts it:
     // it is read no further than that here, and goes there at its end.
     let bytes = bytes.get(..MAX_LINE_BYTES + 2).unwrap_or(bytes);
@@ -57,17 +36,18 @@ pub(super) fn read_plain_line(
         pos += 1;
     }
     if ends(pos) {
-        return (pos <= MAX_LINE_BYTES).then_some(false);
+        return (pos <= MAX_LINE_BYTES).then_some((false, pos));
     }
     // The spans' offsets, when the longest line read here lies in the 4 GiB a span addresses
     // (the general reader clamps the offsets past them).
     let reach = bytes.len();
     let base = u32::try_from(base + reach).ok()? - reach as u32;
     let first = pos;
-    let PlainLimits {
-        max_digits,
-        max_sequence_number,
-    } = limits;
+    // As many digits as the general reader takes quietly and one division reads exactly.
+    let max_digits = match usize::from(rules.max_digits) {
+        0 => 15,
+        max => max.min(15),
+    };
     let mut number = None;
     // One past the block's last significant byte.
     let mut last = pos;
@@ -84,7 +64,7 @@ pub(super) fn read_plain_line(
             pos += 1;
         }
         if pos == start
-            || value > max_sequence_number
+            || value > rules.max_sequence_number
             || matches!(bytes.get(pos), Some(b'0'..=b'9' | b'.'))
         {
             return None;
@@ -115,26 +95,19 @@ pub(super) fn read_plain_line(
             return None;
         }
         let (negative, at) = scan_sign(bytes, pos + 1);
-        // A mantissa of too many digits is not used.
-        let Digits {
-            mantissa,
+        let number = scan_decimal(bytes, at);
+        let Some(Decimal {
             end,
-            digits,
-            frac_digits,
+            value,
             has_point,
-        } = scan_digits(bytes, at);
-        pos = end;
-        // At most 15 digits, so at most 15 after the point.
-        let scale = POW10.get(frac_digits);
-        let (Some(scale), 1..) = (scale, digits) else {
+            ..
+        }) = number.filter(|d| d.digits <= max_digits && bytes.get(d.end) != Some(&b'='))
+        else {
             blocks.pop();
             return None;
         };
-        if digits > max_digits || bytes.get(pos) == Some(&b'=') {
-            blocks.pop();
-            return None;
-        }
-        let value = with_sign(decimal_value(mantissa, frac_digits, *scale), negative);
+        pos = end;
+        let value = with_sign(value, negative);
         scan.word(letter, value);
         block.words.push(Word {
             letter,
@@ -161,7 +134,7 @@ pub(super) fn read_plain_line(
         end: base + last as u32,
     };
     checker.check_scanned(block, &scan);
-    Some(true)
+    Some((true, pos))
 }
 
 /// For each byte, the address letter (uppercase) of a word of a plain line that it starts, or 0:

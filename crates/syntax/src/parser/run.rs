@@ -2,7 +2,7 @@
 //! each line read by the short reader of plain lines or by the general one.
 
 use super::block::LineReader;
-use super::plain::{PlainLimits, read_plain_line};
+use super::plain::read_plain_line;
 use super::{MAX_LINE_BYTES, MAX_PARSED_BYTES, is_blank};
 use crate::{Block, Diagnostic, Dialect, LineIndex, LineSource, Program, Span};
 
@@ -34,6 +34,8 @@ struct Held {
     max: usize,
     /// Blocks, expressions, diagnostics and the checker's diagnostics counted so far.
     blocks: usize,
+    /// Bytes of the line table (counted as it grows where the lines are indexed as read).
+    table: usize,
     exprs: usize,
     diagnostics: usize,
     checked: usize,
@@ -61,7 +63,8 @@ impl Held {
             checked: 0,
             block_bytes: 0,
             expr_bytes: 0,
-            other_bytes: lines.min(max_lines(max) + 1) * size_of::<u32>(),
+            table: lines.min(max_lines(max) + 1) * size_of::<u32>(),
+            other_bytes: 0,
             count_at: 0,
         }
     }
@@ -69,11 +72,12 @@ impl Held {
     /// The most blocks the program can come to hold: as many as fit beside its line table,
     /// and the lines of the text read past the bound before the count that finds it.
     fn most_blocks(&self) -> usize {
-        self.max.saturating_sub(self.other_bytes) / size_of::<Block>() + Self::COUNT_EVERY / 2 + 1
+        self.max.saturating_sub(self.table) / size_of::<Block>() + Self::COUNT_EVERY / 2 + 1
     }
 
     /// Counts what was read since the last count; the total.
     fn count(&mut self, program: &Program, checker: &crate::checks::Checker) -> usize {
+        self.table = program.lines.line_count().min(max_lines(self.max) + 1) * size_of::<u32>();
         let new_blocks = program.blocks.get(self.blocks..).unwrap_or_default();
         self.block_bytes += new_blocks.iter().map(Block::held_bytes).sum::<usize>();
         self.blocks = program.blocks.len();
@@ -91,7 +95,7 @@ impl Held {
             self.other_bytes += new.iter().map(Diagnostic::held_bytes).sum::<usize>();
             *counted = diagnostics.len();
         }
-        self.block_bytes + self.expr_bytes + self.other_bytes
+        self.block_bytes + self.expr_bytes + self.other_bytes + self.table
     }
 }
 
@@ -99,23 +103,20 @@ impl ParseRun {
     /// Indexes the lines of `text` (every later step must be given the same text); nothing is
     /// read yet.
     pub fn new(text: &str, dialect: Dialect) -> Self {
-        let mut program = Program {
-            dialect,
-            blocks: Vec::new(),
-            exprs: Vec::new(),
-            diagnostics: Vec::new(),
-            lines: LineIndex::at_most(text, max_lines(MAX_PARSED_BYTES) + 1),
-            syntec_macro: false,
-            linked: Vec::new(),
-            unlinked: Vec::new(),
-        };
-        let held = Held::new(MAX_PARSED_BYTES, program.lines.line_count());
-        // Most lines are one block: reserving for them spares the copies of a growing array.
-        program
-            .blocks
-            .reserve_exact(program.lines.line_count().min(held.most_blocks()));
-        ParseRun {
-            program,
+        let lines = LineIndex::at_most(text, max_lines(MAX_PARSED_BYTES) + 1);
+        ParseRun::with_lines(lines, dialect)
+    }
+
+    /// Starts a parse over a text whose line index is already made (e.g. from the pieces of a
+    /// rope, [`LineIndex::from_chunks`]); the lines are then read with
+    /// [`ParseRun::step_from`]. Nothing is read yet.
+    pub fn with_lines(lines: LineIndex, dialect: Dialect) -> Self {
+        let mut run = ParseRun {
+            program: Program {
+                dialect,
+                lines,
+                ..Program::default()
+            },
             checker: crate::checks::Checker::new(dialect),
             // A program that opens with a `%` line (the first line that is not blank) ends at
             // the next `%` line: what follows the closing tape mark is not read (LinuxCNC
@@ -125,8 +126,21 @@ impl ParseRun {
             line_no: 0,
             done: false,
             plain_lines: true,
-            held,
-        }
+            held: Held::new(MAX_PARSED_BYTES, 0),
+        };
+        run.set_max_bytes(MAX_PARSED_BYTES);
+        run
+    }
+
+    /// Starts a parse of a text of `len` bytes that indexes its lines as it reads them, sparing
+    /// a pass over the text, for a reader that wants no count of its lines beforehand
+    /// ([`ParseRun::progress`] counts those found so far).
+    pub fn reading(len: usize, dialect: Dialect) -> Self {
+        let mut run = ParseRun::with_lines(LineIndex::new(""), dialect);
+        // About a block a line, and a line is rarely under sixteen bytes.
+        let blocks = (len / 16 + 1).min(run.held.most_blocks());
+        run.program.blocks.reserve_exact(blocks);
+        run
     }
 
     /// Lowers the most the parsed program may hold (bytes, see [`MAX_PARSED_BYTES`]) before
@@ -134,12 +148,13 @@ impl ParseRun {
     pub fn set_max_bytes(&mut self, max: usize) {
         let lines = self.program.lines.line_count();
         self.held = Held::new(max.min(self.held.max), lines);
+        // Most lines are one block: reserving for them spares the copies of a growing array.
         self.program.blocks = Vec::with_capacity(lines.min(self.held.most_blocks()));
     }
 
     /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
     pub fn held_bytes(&self) -> usize {
-        self.held.block_bytes + self.held.expr_bytes + self.held.other_bytes
+        self.held.block_bytes + self.held.expr_bytes + self.held.other_bytes + self.held.table
     }
 
     /// Lines read so far and lines in the text.
@@ -150,94 +165,70 @@ impl ParseRun {
     /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
     /// whether the whole text is read.
     pub fn step(&mut self, text: &str, lines: usize) -> bool {
-        self.read_lines(Some(text), &mut &*text, lines)
+        self.step_from(&mut &*text, lines)
     }
 
     /// Reads at most `lines` more lines from `source` (the same text the run's line index was
     /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
     pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
-        self.read_lines(None, source, lines)
-    }
-
-    /// The loop of [`ParseRun::step`] and [`ParseRun::step_from`]: the lines come from `text`
-    /// when the whole text is at hand, else from `source` (one dynamic call a line).
-    ///
-    /// One loop serves every source: made once, it keeps the line reader inlined into it as the
-    /// string-only loop did.
-    fn read_lines(
-        &mut self,
-        text: Option<&str>,
-        source: &mut dyn LineSource,
-        lines: usize,
-    ) -> bool {
         let program = &mut self.program;
-        let dialect = program.dialect;
-        // The lines come from the line index; a text of more lines than a parse indexes is read
-        // up to that many.
-        let line_count = program.lines.line_count();
-        let readable = line_count.min(max_lines(self.held.max));
-        let stop = self.line_no.saturating_add(lines).min(readable);
+        // A text of more lines than a parse indexes is read up to that many.
+        let most = max_lines(self.held.max);
+        let stop = self.line_no.saturating_add(lines).min(most);
         // The run's state, kept here while the lines are read (stored at the end).
         let mut next = self.line_no;
         let mut offset = self.offset;
         let mut tape = self.tape;
         let mut done = self.done;
-        let plain_lines = self.plain_lines;
-        let limits = PlainLimits::of(dialect.rules());
+        let rules = program.dialect.rules();
         while !done && next < stop {
-            let line_no = next;
-            let start = program.lines.line_start(line_no) as usize;
-            let end = if line_no + 1 < line_count {
-                (program.lines.line_start(line_no + 1) as usize).saturating_sub(1)
-            } else {
-                source.len()
+            // Where the next line starts, where the text is indexed; else the line is read from
+            // the rest of the text and its end found as it is read.
+            let next_start = (next + 1 < program.lines.line_count())
+                .then(|| program.lines.line_start(next + 1) as usize);
+            let line = match next_start {
+                Some(start) => source.line(offset, start - 1),
+                None => source.rest(offset),
             };
-            // The short reader reads bytes: a line of the whole text is taken as bytes, sparing
-            // the checks that a `str` is cut between characters (at a newline it always is), and
-            // from the line's start on (it finds the same end).
-            let (raw, whole, onward) = if let Some(text) = text {
-                let onward = text.as_bytes().get(start..).unwrap_or_default();
-                (onward.get(..end - start).unwrap_or_default(), None, onward)
+            let onward = line.as_bytes();
+            let line_no = u32::try_from(next).unwrap_or(u32::MAX);
+            let plain = self.plain_lines.then(|| {
+                let (blocks, checker) = (&mut program.blocks, &mut self.checker);
+                read_plain_line(onward, offset, line_no, rules, blocks, checker)
+            });
+            // Whether the line is blank and whether it is a `%` line (for the tape marks), and
+            // its length without its ending.
+            let (blank, percent, len) = if let Some((block, len)) = plain.flatten() {
+                (!block, false, len)
             } else {
-                let line = source.line(start, end);
-                (line.as_bytes(), Some(line), line.as_bytes())
+                let len = onward.iter().position(|&b| b == b'\n' || b == b'\r');
+                let len = len.unwrap_or(onward.len());
+                let raw = line.get(..len).unwrap_or_default();
+                let (blank, percent) =
+                    read_general_line(program, &mut self.checker, raw, offset, line_no);
+                (blank, percent, len)
             };
-            let raw_len = raw.len();
-            let bytes = raw.strip_suffix(b"\r").unwrap_or(raw);
-            let line_no = u32::try_from(line_no).unwrap_or(u32::MAX);
-            // A runaway line is cut by the general reader (which reads a plain line as the short
-            // one does).
-            let plain = if plain_lines && bytes.len() <= MAX_LINE_BYTES {
-                read_plain_line(
-                    onward,
-                    offset,
-                    line_no,
-                    limits,
-                    &mut program.blocks,
-                    &mut self.checker,
-                )
-            } else {
-                None
+            // The line ends at a `\n`, a `\r\n` or a `\r`, or else at the end of the text.
+            let ending = match onward.get(len..) {
+                Some([b'\r', b'\n', ..]) => 2,
+                Some([_, ..]) => 1,
+                _ => 0,
             };
-            // Whether the line is blank, and whether it is a `%` line, for the tape marks.
-            let (blank, percent) = if let Some(block) = plain {
-                (!block, false)
-            } else {
-                let raw = whole
-                    .or_else(|| text.and_then(|text| text.get(start..end)))
-                    .unwrap_or_default();
-                read_general_line(program, &mut self.checker, raw, offset, line_no)
-            };
-            offset += raw_len + 1;
+            let last = next_start.is_none() && ending == 0;
+            offset = next_start.unwrap_or(offset + len + ending);
             next += 1;
+            if next_start.is_none() && !last {
+                let start = u32::try_from(offset).unwrap_or(u32::MAX);
+                program.lines.starts.push(start);
+            }
             let closed;
             (tape, closed) = tape.after(blank, percent);
             if closed {
                 ignore_after_tape_end(program, source, offset);
-                done = true;
             }
+            done = closed || last;
             let held = &mut self.held;
-            if offset >= held.count_at || done || next == readable {
+            if offset >= held.count_at || done || next == most {
                 held.count_at = offset.saturating_add(Held::COUNT_EVERY);
                 if held.count(program, &self.checker) > held.max {
                     too_large(program, source.len(), offset, held.max);
@@ -245,18 +236,20 @@ impl ParseRun {
                 }
             }
         }
-        if !done && next == readable && readable < line_count {
+        if !done && next == most && program.lines.line_count() > most {
             too_large(program, source.len(), offset, self.held.max);
             done = true;
+        }
+        // A run stopped before the end of a text indexed as it is read indexes the rest.
+        if done && program.lines.line_count() == next + 1 {
+            let rest = source.line(offset, source.len());
+            program.lines.index_from(rest, offset, most + 1);
         }
         self.line_no = next;
         self.offset = offset;
         self.tape = tape;
         self.done = done;
-        if self.line_no >= readable {
-            self.done = true;
-        }
-        self.done
+        done
     }
 
     /// The program as read so far.
@@ -285,19 +278,6 @@ impl ParseRun {
     }
 }
 
-impl ParseRun {
-    /// Starts a parse over a text whose line index is already made (e.g. from the pieces of a
-    /// rope, [`LineIndex::from_chunks`]); the lines are then read with
-    /// [`ParseRun::step_from`]. Nothing is read yet.
-    pub fn with_lines(lines: LineIndex, dialect: Dialect) -> Self {
-        let mut run = ParseRun::new("", dialect);
-        run.held = Held::new(MAX_PARSED_BYTES, lines.line_count());
-        run.program.blocks = Vec::with_capacity(lines.line_count().min(run.held.most_blocks()));
-        run.program.lines = lines;
-        run
-    }
-}
-
 /// Where the reader is with respect to `%` tape marks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Tape {
@@ -323,17 +303,16 @@ impl Tape {
     }
 }
 
-/// Reads `raw` (a line without its `\n`, at byte `offset`) with the general reader: whether it
+/// Reads `line` (without its ending, at byte `offset`) with the general reader: whether it
 /// is blank and whether it is a `%` line, for the tape marks.
 fn read_general_line(
     program: &mut Program,
     checker: &mut crate::checks::Checker,
-    raw: &str,
+    mut line: &str,
     offset: usize,
     line_no: u32,
 ) -> (bool, bool) {
     let dialect = program.dialect;
-    let mut line = raw.strip_suffix('\r').unwrap_or(raw);
     if line.len() > MAX_LINE_BYTES {
         // A runaway line (a binary file, a generator gone wrong): read its start only.
         let mut cut = MAX_LINE_BYTES;
@@ -418,6 +397,47 @@ mod tests {
             rest = &rest[end + 1..];
         }
         out + rest
+    }
+
+    /// A run that indexes its text as it reads it gives the program, line table included, of
+    /// one that indexes it first: read to the end or stopped at a closing tape mark; stopped at
+    /// the most lines a parse indexes, it indexes as many as that one would.
+    #[test]
+    fn a_run_indexing_as_it_reads_gives_the_program_of_one_indexed_first() {
+        let read = |mut run: ParseRun, text: &str, max: usize| {
+            run.set_max_bytes(max);
+            while !run.step(text, 7) {}
+            run.finish()
+        };
+        for text in [
+            format!("%\nG0 X1\r\n%\r\r\nX$\n{}", "G1 X2\r\n".repeat(100)),
+            format!("G1 X1\rX2\r\n\r\r\n{}\nM30\r", "(c) X3.5 Y-1\n".repeat(50)),
+        ] {
+            let first = read(
+                ParseRun::new(&text, Dialect::Fanuc),
+                &text,
+                MAX_PARSED_BYTES,
+            );
+            let reading = read(
+                ParseRun::reading(text.len(), Dialect::Fanuc),
+                &text,
+                MAX_PARSED_BYTES,
+            );
+            assert!(
+                reading == first && first.lines.line_count() > 50,
+                "{text:?}"
+            );
+        }
+        let text = "\n".repeat(1 << 18);
+        let program = read(
+            ParseRun::reading(text.len(), Dialect::Fanuc),
+            &text,
+            1 << 19,
+        );
+        let most = max_lines(1 << 19);
+        assert!(program.lines == LineIndex::at_most(&text, most + 1));
+        let stop = program.diagnostics.last().map(|d| (d.code, d.span.start));
+        assert_eq!(stop, Some(("E-PROGRAM-SIZE", most as u32)));
     }
 
     #[test]
