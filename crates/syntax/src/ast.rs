@@ -55,10 +55,8 @@ impl ExprId {
     }
 
     pub(crate) fn from_index(index: usize) -> Option<ExprId> {
-        u32::try_from(index + 1)
-            .ok()
-            .and_then(NonZeroU32::new)
-            .map(ExprId)
+        let number = u32::try_from(index + 1).ok()?;
+        NonZeroU32::new(number).map(ExprId)
     }
 }
 
@@ -73,6 +71,9 @@ macro_rules! bin_ops {
         }
 
         impl BinOp {
+            /// Every operator.
+            pub const ALL: &[BinOp] = &[$(BinOp::$variant),*];
+
             /// The operator as written.
             pub fn symbol(self) -> &'static str {
                 match self {
@@ -101,77 +102,48 @@ bin_ops! {
     Le  "LE"  "";
 }
 
-/// A function applied to bracketed arguments.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Func {
-    /// Sine of degrees.
-    Sin,
-    /// Cosine of degrees.
-    Cos,
-    /// Tangent of degrees.
-    Tan,
-    /// Arc sine, degrees.
-    Asin,
-    /// Arc cosine, degrees.
-    Acos,
-    /// Arc tangent, degrees; two arguments (`ATAN[a]/[b]` or `ATAN[a,b]`) give atan2.
-    Atan,
-    /// Square root.
-    Sqrt,
-    /// Absolute value.
-    Abs,
-    /// Round to the nearest integer.
-    Round,
-    /// Round towards zero (Fanuc FIX rounds down: towards −∞ for negatives in LinuxCNC).
-    Fix,
-    /// Round up (away from zero in the Fanuc family).
-    Fup,
-    /// Natural logarithm.
-    Ln,
-    /// e to the power.
-    Exp,
-    /// `POW[a,b]`.
-    Pow,
-    /// BCD → binary.
-    Bin,
-    /// Binary → BCD.
-    Bcd,
-    /// LinuxCNC `EXISTS[#<name>]`.
-    Exists,
+/// Declares [`Func`] from one row a function: the variant, the names the controls spell it
+/// with (the usual one first), and what it computes.
+macro_rules! funcs {
+    ($($variant:ident [$($name:literal)+] $doc:literal;)*) => {
+        /// A function applied to bracketed arguments.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Func {
+            $(#[doc = $doc] $variant,)*
+        }
+
+        impl Func {
+            /// Every function with the names the controls spell it with.
+            pub const NAMES: &[(&str, Func)] = &[$($(($name, Func::$variant),)+)*];
+
+            /// The function's usual name.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Func::$variant => [$($name),+][0],)*
+                }
+            }
+        }
+    };
 }
 
-impl Func {
-    /// Every function with the names the controls spell it with (longest first where one name
-    /// starts another).
-    pub const NAMES: [(&'static str, Func); 19] = [
-        ("ASIN", Func::Asin),
-        ("ACOS", Func::Acos),
-        ("ATAN", Func::Atan),
-        ("SIN", Func::Sin),
-        ("COS", Func::Cos),
-        ("TAN", Func::Tan),
-        ("SQRT", Func::Sqrt),
-        ("SQR", Func::Sqrt),
-        ("ABS", Func::Abs),
-        ("ROUND", Func::Round),
-        ("RND", Func::Round),
-        ("FIX", Func::Fix),
-        ("FUP", Func::Fup),
-        ("LN", Func::Ln),
-        ("EXP", Func::Exp),
-        ("POW", Func::Pow),
-        ("BIN", Func::Bin),
-        ("BCD", Func::Bcd),
-        ("EXISTS", Func::Exists),
-    ];
-
-    /// The function's usual name.
-    pub fn name(self) -> &'static str {
-        Func::NAMES
-            .iter()
-            .find(|(_, f)| *f == self)
-            .map_or("?", |(n, _)| n)
-    }
+funcs! {
+    Asin   ["ASIN"]         "Arc sine, degrees.";
+    Acos   ["ACOS"]         "Arc cosine, degrees.";
+    Atan   ["ATAN"]         "Arc tangent, degrees; two arguments (`ATAN[a]/[b]` or `ATAN[a,b]`) give atan2.";
+    Sin    ["SIN"]          "Sine of degrees.";
+    Cos    ["COS"]          "Cosine of degrees.";
+    Tan    ["TAN"]          "Tangent of degrees.";
+    Sqrt   ["SQRT" "SQR"]   "Square root.";
+    Abs    ["ABS"]          "Absolute value.";
+    Round  ["ROUND" "RND"]  "Round to the nearest integer.";
+    Fix    ["FIX"]          "Round towards zero (Fanuc FIX rounds down: towards −∞ for negatives in LinuxCNC).";
+    Fup    ["FUP"]          "Round up (away from zero in the Fanuc family).";
+    Ln     ["LN"]           "Natural logarithm.";
+    Exp    ["EXP"]          "e to the power.";
+    Pow    ["POW"]          "`POW[a,b]`.";
+    Bin    ["BIN"]          "BCD → binary.";
+    Bcd    ["BCD"]          "Binary → BCD.";
+    Exists ["EXISTS"]       "LinuxCNC `EXISTS[#<name>]`.";
 }
 
 /// One expression node.
@@ -311,10 +283,8 @@ pub struct Block {
     /// The address words in the order written (without `N` and `O`); up to four are stored in
     /// the block itself, so a typical CAM line needs no allocation of its own.
     pub words: SmallVec<[Word; 4]>,
-    /// The program number, statements and comments, which few blocks have: boxed together, so
-    /// that every other block pays one pointer for them ([`Block::program`],
-    /// [`Block::statements`], [`Block::comments`]), with the block-delete level and the mark
-    /// of an error. `None` when the block has none of them.
+    /// What few blocks have (program number, statements, comments, block-delete level, error
+    /// mark), boxed so that every other block pays one pointer for it; `None`: none of them.
     pub(crate) extras: Option<Box<Extras>>,
 }
 
@@ -438,25 +408,16 @@ impl Block {
     /// The bytes the block holds, its own and those it points to (for the parse's memory bound,
     /// [`MAX_PARSED_BYTES`](crate::MAX_PARSED_BYTES)).
     pub(crate) fn held_bytes(&self) -> usize {
-        let words = if self.words.spilled() {
-            self.words.capacity() * size_of::<Word>()
-        } else {
-            0
-        };
+        let spilled = usize::from(self.words.spilled()) * self.words.capacity();
         let extras = self.extras.as_deref().map_or(0, |e| {
-            let program = match &e.program {
+            let statements: usize = e.statements.iter().map(Statement::held_bytes).sum();
+            let name = match &e.program {
                 Some(ProgramNumber::Name(name)) => name.len(),
                 _ => 0,
             };
-            size_of::<Extras>()
-                + program
-                + e.statements
-                    .iter()
-                    .map(Statement::held_bytes)
-                    .sum::<usize>()
-                + size_of_val::<[Span]>(&e.comments)
+            size_of::<Extras>() + name + statements + size_of_val::<[Span]>(&e.comments)
         });
-        size_of::<Block>() + words + extras
+        size_of::<Block>() + spilled * size_of::<Word>() + extras
     }
 }
 
@@ -524,13 +485,10 @@ impl Program {
     /// The bytes the parsed program holds, estimated from the sizes of its parts: its line
     /// table, blocks, expressions and diagnostics (see [`MAX_PARSED_BYTES`](crate::MAX_PARSED_BYTES)).
     pub(crate) fn held_bytes(&self) -> usize {
+        let diagnostics: usize = self.diagnostics.iter().map(Diagnostic::held_bytes).sum();
         self.lines.line_count() * size_of::<u32>()
             + self.blocks.iter().map(Block::held_bytes).sum::<usize>()
             + self.exprs.iter().map(ExprNode::held_bytes).sum::<usize>()
-            + self
-                .diagnostics
-                .iter()
-                .map(Diagnostic::held_bytes)
-                .sum::<usize>()
+            + diagnostics
     }
 }

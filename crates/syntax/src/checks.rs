@@ -103,10 +103,8 @@ impl Checker {
     fn check_fully(&mut self, block: &mut Block) {
         let before = self.out.len();
         check_block(self.dialect, block, &mut self.scratch, &mut self.out);
-        if self.out[before..]
-            .iter()
-            .any(|d| d.severity == Severity::Error)
-        {
+        let found = &self.out[before..];
+        if found.iter().any(|d| d.severity == Severity::Error) {
             block.set_error();
         }
     }
@@ -235,11 +233,8 @@ fn unknown_code(dialect: Dialect, code: Code, span: Span) -> Diagnostic {
         .collect::<Vec<_>>()
         .join("; ");
     if code.letter == b'M' {
-        let also = if elsewhere.is_empty() {
-            String::new()
-        } else {
-            format!(" (it is {elsewhere})")
-        };
+        let it_is = (!elsewhere.is_empty()).then(|| format!(" (it is {elsewhere})"));
+        let also = it_is.unwrap_or_default();
         let message = format!(
             "{code} is not in the {label} code list: a machine-specific M code, not drawn{also}"
         );
@@ -282,13 +277,12 @@ fn modal_conflicts(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>)
             continue;
         };
         let (a, b, group) = (earlier.code, def.code, def.group.name());
+        let both = format!("{a} and {b} are both in the {group} group");
         out.push(if dialect == Dialect::LinuxCnc {
-            let message =
-                format!("{a} and {b} are both in the {group} group and cannot share a block");
+            let message = format!("{both} and cannot share a block");
             Diagnostic::error(*span, "E-MODAL-CONFLICT", message)
         } else {
-            let message =
-                format!("{a} and {b} are both in the {group} group: {b}, the last one, is used");
+            let message = format!("{both}: {b}, the last one, is used");
             Diagnostic::warning(*span, "W-MODAL-LAST", message)
         });
     }
@@ -391,11 +385,9 @@ fn required_words(block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
                 continue;
             }
             let letters: Vec<String> = group.chars().map(|c| format!("`{c}`")).collect();
-            out.push(Diagnostic::error(
-                *span,
-                "E-WORD-MISSING",
-                format!("{} ({}) needs {}", def.code, def.name, letters.join(" or ")),
-            ));
+            let (code, name, letters) = (def.code, def.name, letters.join(" or "));
+            let message = format!("{code} ({name}) needs {letters}");
+            out.push(Diagnostic::error(*span, "E-WORD-MISSING", message));
         }
     }
 }
@@ -413,11 +405,8 @@ fn arcs(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnost
     if has_r && has_ijk {
         let r = block.word(b'R').map_or(span, |w| w.span);
         out.push(if dialect == Dialect::LinuxCnc {
-            Diagnostic::error(
-                r,
-                "E-ARC-R-AND-IJK",
-                "an arc takes either R or I/J/K, not both",
-            )
+            let message = "an arc takes either R or I/J/K, not both";
+            Diagnostic::error(r, "E-ARC-R-AND-IJK", message)
         } else {
             let message = "R and I/J/K in one arc: R takes precedence and I/J/K are ignored";
             Diagnostic::warning(r, "W-ARC-R-AND-IJK", message)
@@ -457,11 +446,8 @@ fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagno
                 format!("`{text}` takes a whole number that is not negative")
             }
             (b'P', WordForm::Plain) if has(541) => {
-                let max = if dialect == Dialect::Fanuc {
-                    300.0
-                } else {
-                    48.0
-                };
+                let fanuc = dialect == Dialect::Fanuc;
+                let max = if fanuc { 300.0 } else { 48.0 };
                 if whole_in(v, 1.0..=max) {
                     continue;
                 }
@@ -487,8 +473,8 @@ fn ranges(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagno
     }
 }
 
-// proptest is a native-only dev-dependency.
-#[cfg(all(test, not(target_arch = "wasm32")))]
+#[cfg(test)]
+#[cfg(not(target_arch = "wasm32"))] // proptest is a native-only dev-dependency.
 mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 

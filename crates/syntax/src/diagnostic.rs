@@ -5,6 +5,8 @@ mod registry;
 use std::borrow::Cow;
 use std::fmt;
 
+use serde::{Deserialize, Serialize};
+
 pub use registry::{DIAGNOSTICS, DiagnosticDef};
 
 /// A byte range `start..end` into the program text.
@@ -45,7 +47,7 @@ pub fn excerpt(text: &str) -> Cow<'_, str> {
 }
 
 /// How bad a diagnostic is: errors stop the affected block from running.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 pub enum Severity {
     /// Information for the programmer; nothing is wrong.
     Note,

@@ -1,10 +1,7 @@
-//! Programs from other files appended to a program, so its subprogram and macro calls (`M98 P`,
-//! `M198 P`, `G65 P`, LinuxCNC `o<name> call`) reach programs kept in files of their own, as a
-//! control reaches the programs in its memory.
-//!
-//! A linked program's blocks, expressions and diagnostics keep their meaning; their byte spans
-//! and lines are moved past everything before them (as if the texts followed each other), and
-//! [`Program::linked`] tells which file a span or a line belongs to.
+//! Programs from other files appended to a program, so its calls (`M98 P`, `M198 P`, `G65 P`,
+//! LinuxCNC `o<name> call`) reach programs kept in files of their own, as a control reaches the
+//! programs in its memory. A linked program's spans and lines are moved past everything before
+//! them (as if the texts followed each other); [`Program::linked`] tells whose they are.
 
 use crate::ast::{Expr, ExprId, OLabel, OWord, Statement};
 use crate::{Dialect, LineIndex, MAX_PARSED_BYTES, ParseRun, Program, ProgramNumber, Span};
@@ -104,11 +101,10 @@ impl Missing {
 impl Program {
     /// Links the programs this program calls and does not hold, until nothing more is found or
     /// `max` files are linked: `find` names the file (name, text) a missing call's program may
-    /// be in (the CLI looks beside the program, the editor among its open tabs), or why the
-    /// file it found cannot be linked. Each file is linked once, read as `dialect`; `main_len`
-    /// is this program's own text's length. The linked files' texts and parsed programs hold
-    /// at most what this program leaves of [`MAX_PARSED_BYTES`]. A call whose file is refused,
-    /// or not looked for past `max` files, is in [`Program::unlinked`] with the reason.
+    /// be in, or why the file it found cannot be linked. Each file is linked once, read as
+    /// `dialect`; `main_len` is this program's own text's length. The linked files hold at most
+    /// what this program leaves of [`MAX_PARSED_BYTES`]. A call whose file is refused, or not
+    /// looked for past `max` files, is in [`Program::unlinked`] with the reason.
     pub fn link_calls<L: Into<Lookup>>(
         &mut self,
         main_len: usize,
@@ -175,19 +171,15 @@ impl Program {
     /// its spans moved past `self_len` bytes of this program's own text and everything linked
     /// before, its lines past all lines before, and its expressions after this program's.
     pub fn link(&mut self, other: Program, name: &str, self_len: usize, len: usize) {
-        let main_lines = u32::try_from(self.lines.line_count()).unwrap_or(u32::MAX);
-        let (first_byte, first_line) = match self.linked.last() {
+        let clamp = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        let (end, first_line) = match self.linked.last() {
             Some(l) => (
-                l.first_byte.saturating_add(l.len).saturating_add(1),
+                l.first_byte.saturating_add(l.len),
                 l.first_line.saturating_add(l.lines),
             ),
-            None => (
-                u32::try_from(self_len)
-                    .unwrap_or(u32::MAX)
-                    .saturating_add(1),
-                main_lines,
-            ),
+            None => (clamp(self_len), clamp(self.lines.line_count())),
         };
+        let first_byte = end.saturating_add(1);
         let shift = |s: Span| Span {
             start: s.start.saturating_add(first_byte),
             end: s.end.saturating_add(first_byte),
@@ -230,8 +222,8 @@ impl Program {
             name: name.to_string(),
             first_byte,
             first_line,
-            len: u32::try_from(len).unwrap_or(u32::MAX),
-            lines: u32::try_from(other.lines.line_count()).unwrap_or(u32::MAX),
+            len: clamp(len),
+            lines: clamp(other.lines.line_count()),
         });
     }
 
@@ -250,38 +242,16 @@ impl Program {
     /// The subprogram numbers and O-word names this program calls with literal targets but
     /// does not define (in the order first called).
     pub fn missing_calls(&self) -> Vec<Missing> {
-        let mut defined: Vec<Missing> = Vec::new();
+        let (mut defined, mut called) = (Vec::new(), Vec::new());
         for block in &self.blocks {
             match block.program() {
                 Some(ProgramNumber::Number(n)) => defined.push(Missing::Number(*n)),
                 Some(ProgramNumber::Name(n)) => defined.push(Missing::Name(n.to_string())),
                 None => {}
             }
-            for s in block.statements() {
-                if let Statement::OWord {
-                    label: OLabel::Name(n),
-                    kind: OWord::Sub,
-                } = s
-                {
-                    defined.push(Missing::Name(n.to_string()));
-                }
-            }
-        }
-        let mut missing: Vec<Missing> = Vec::new();
-        let mut add = |m: Missing| {
-            if !defined.contains(&m) && !missing.contains(&m) {
-                missing.push(m);
-            }
-        };
-        for block in &self.blocks {
-            let code = |letter: u8, v: f64| {
-                block
-                    .words
-                    .iter()
-                    .any(|w| w.letter == letter && w.expr.is_none() && w.value == v)
-            };
-            let calls =
-                code(b'M', 98.0) || code(b'M', 198.0) || code(b'G', 65.0) || code(b'G', 66.0);
+            let call = [(b'M', 98.0), (b'M', 198.0), (b'G', 65.0), (b'G', 66.0)];
+            let calls = (block.words.iter())
+                .any(|w| w.expr.is_none() && call.contains(&(w.letter, w.value)));
             if calls
                 && let Some(p) = block.word(b'P').filter(|p| p.expr.is_none())
                 && p.value >= 0.0
@@ -293,27 +263,36 @@ impl Program {
                 } else {
                     p.value
                 };
-                add(Missing::Number(number as u32));
+                called.push(Missing::Number(number as u32));
             }
             for s in block.statements() {
-                if let Statement::OWord {
-                    label: OLabel::Name(n),
-                    kind: OWord::Call(_),
-                } = s
-                {
-                    add(Missing::Name(n.to_string()));
+                match s {
+                    Statement::OWord {
+                        label: OLabel::Name(n),
+                        kind: OWord::Sub,
+                    } => defined.push(Missing::Name(n.to_string())),
+                    Statement::OWord {
+                        label: OLabel::Name(n),
+                        kind: OWord::Call(_),
+                    } => called.push(Missing::Name(n.to_string())),
+                    _ => {}
                 }
+            }
+        }
+        let mut missing: Vec<Missing> = Vec::new();
+        for m in called {
+            if !defined.contains(&m) && !missing.contains(&m) {
+                missing.push(m);
             }
         }
         missing
     }
 }
 
-/// Makes `sub`, read from the file `name` found by its name for program `O n`, that program
-/// when it does not hold it: a file found by its name is the program, as a control that loads
-/// it under that number runs it, whether it opens with an `O` line or not. A file without one
-/// gets an empty block numbered `O n` before its first (a call runs the blocks after its `O`
-/// block); a file that opens with another program's number is taken as `O n`, with a warning.
+/// Makes `sub` (the file `name`, found by its name for `O n`) program `O n`, as a control that
+/// loads it under that number runs it: a file without an `O` line gets an empty `O n` block
+/// first (a call runs the blocks after it); one that opens with another number is taken as
+/// `O n`, with a warning.
 fn number_by_file_name(sub: &mut Program, n: u32, name: &str) {
     let defines = |b: &crate::Block| b.program() == Some(&ProgramNumber::Number(n));
     if sub.blocks.iter().any(defines) {
@@ -326,13 +305,11 @@ fn number_by_file_name(sub: &mut Program, n: u32, name: &str) {
             ProgramNumber::Number(m) => format!("O{m:04}"),
             ProgramNumber::Name(s) => format!("O<{}>", crate::excerpt(s)),
         };
-        sub.diagnostics.push(crate::Diagnostic::warning(
-            first.span,
-            "W-PROGRAM-NUMBER",
-            format!(
-                "{name} is found by its name for O{n:04} but opens with {other}: it runs as O{n:04}"
-            ),
-        ));
+        let message = format!(
+            "{name} is found by its name for O{n:04} but opens with {other}: it runs as O{n:04}"
+        );
+        let warning = crate::Diagnostic::warning(first.span, "W-PROGRAM-NUMBER", message);
+        sub.diagnostics.push(warning);
         first.set_program(ProgramNumber::Number(n));
         return;
     }

@@ -1,13 +1,10 @@
-//! The fault-tolerant block parser.
+//! The fault-tolerant block parser: each line is read on its own (the newline is the recovery
+//! point), by the dialect's [`Rules`](crate::Rules); a problem inside a line becomes a
+//! diagnostic, the offending characters are skipped, and reading goes on.
 //!
-//! Each line is read on its own (the newline is the recovery point); a problem inside a line
-//! becomes a diagnostic, the offending characters are skipped, and reading goes on. The lexical
-//! rules come from the dialect's [`Rules`](crate::Rules) table.
-//!
-//! `run.rs` holds [`ParseRun`], which reads a text in steps of a bounded number of lines; each
-//! line goes to the short reader of plain CAM lines (`plain.rs`) or to the general reader
-//! (`block.rs`: blocks and words, with `statement.rs` for O-word lines, macro keywords and
-//! assignments, and `expr.rs` for expressions); `number.rs` scans the numbers of both.
+//! [`ParseRun`] (`run.rs`) reads a text a bounded number of lines a step, each line with the
+//! short reader of plain CAM lines (`plain.rs`) or the general one (`block.rs`; `statement.rs`
+//! for O-words, macro keywords and assignments; `expr.rs`); `number.rs` scans both's numbers.
 
 mod block;
 mod expr;
@@ -22,7 +19,7 @@ use crate::{Dialect, Program};
 
 /// Parses `text` as read by `dialect`. Never fails: problems are in `Program::diagnostics`.
 pub fn parse(text: &str, dialect: Dialect) -> Program {
-    let mut run = ParseRun::new(text, dialect);
+    let mut run = ParseRun::reading(text.len(), dialect);
     while !run.step(text, usize::MAX) {}
     run.finish()
 }

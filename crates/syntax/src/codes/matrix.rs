@@ -15,13 +15,9 @@ pub fn markdown_table() -> String {
             groups.push(def.group);
         }
     }
-    let mut out = String::from("| group |");
-    for d in Dialect::ALL {
-        out.push_str(&format!(" {} |", d.name()));
-    }
-    out.push_str("\n|---|");
-    out.push_str(&"---|".repeat(Dialect::ALL.len()));
-    out.push('\n');
+    let names: String = Dialect::ALL.map(|d| format!(" {} |", d.name())).concat();
+    let rule = "---|".repeat(Dialect::ALL.len());
+    let mut out = format!("| group |{names}\n|---|{rule}\n");
     for group in groups {
         out.push_str(&format!("| {} |", group.name()));
         for dialect in Dialect::ALL {

@@ -43,10 +43,8 @@ impl Code {
     #[inline]
     pub fn from_value(letter: u8, value: f64) -> Option<Code> {
         let scaled = value * 10.0;
-        // Tenths rounded to nearest (half away from zero) must lie in 0..100000: `scaled` in
-        // (-0.5, 99999.5), NaN excluded. There `scaled + 0.5` is positive and truncating it
-        // rounds without a libm call on every G and M word; next to a half, where the sum may
-        // round differently, the value is far from a whole tenth and refused below anyway.
+        // The nearest tenth must lie in 0..100000 (NaN refused); there truncating the positive
+        // `scaled + 0.5` rounds without a libm call (near a half it is refused below anyway).
         if !(scaled > -0.5 && scaled < 99_999.5) {
             return None;
         }
@@ -234,9 +232,8 @@ pub struct CodeDef {
     pub power_on: DialectSet,
     /// How well the manual documents it.
     pub documented: Documented,
-    /// Whether a block with the code needs the whole program to run: the code calls a program
-    /// or a macro (G65, G66, M98, M198) or returns from one (M99), so a reader that runs a
-    /// program piece by piece runs it whole instead.
+    /// Whether a block with the code needs the whole program to run: it calls a program or a
+    /// macro (G65, G66, M98, M198) or returns from one (M99).
     pub whole: bool,
     /// Short name, e.g. "Peck drilling cycle".
     pub name: &'static str,
@@ -266,15 +263,11 @@ pub struct AddressDef {
     pub meaning: &'static str,
 }
 
-/// A dialect's codes (the first definition of each it has) as entries of [`CODES`]: sorted by
-/// code, and for each code below [`DENSE`] per letter (G, M; `u16::MAX`: none), for the lookup
-/// every G and M word makes.
-struct Index {
-    sorted: Vec<(Code, u16)>,
-    dense: [Vec<u16>; 2],
-}
+/// A dialect's codes as entries of [`CODES`] (`u16::MAX`: none), per letter (G, M) and number in
+/// tenths: the first definition of each it has, for the lookup every G and M word makes.
+type Index = [Vec<u16>; 2];
 
-/// Codes below this number (in tenths) are found by direct indexing.
+/// The code numbers (in tenths) an [`Index`] covers: every code of [`CODES`] is below it.
 const DENSE: usize = 2000;
 
 /// The dialect's [`Index`], built on its first use (each dialect's apart: a run reads one
@@ -282,31 +275,26 @@ const DENSE: usize = 2000;
 fn index(dialect: Dialect) -> &'static Index {
     static INDEX: [OnceLock<Index>; 6] = [const { OnceLock::new() }; 6];
     INDEX[dialect as usize].get_or_init(|| {
+        let mut index = [vec![u16::MAX; DENSE], vec![u16::MAX; DENSE]];
         // Each code's first definition the dialect has, else (in a [`FANUC_READING`] dialect)
         // its first Fanuc definition when it is a standard code.
         let reads_fanuc = FANUC_READING.contains(&dialect);
-        let mut slot: Vec<(Code, bool, u16)> = CODES
-            .iter()
-            .enumerate()
-            .filter_map(|(i, def)| {
-                let own = def.dialects.contains(dialect);
-                let standard = reads_fanuc
-                    && def.dialects.contains(Dialect::Fanuc)
-                    && is_fanuc_standard(def.code);
-                (own || standard).then(|| (def.code, !own, u16::try_from(i).unwrap_or(u16::MAX)))
-            })
-            .collect();
-        slot.sort_unstable();
-        slot.dedup_by_key(|(c, _, _)| *c);
-        let mut dense = [vec![u16::MAX; DENSE], vec![u16::MAX; DENSE]];
-        for &(code, _, i) in &slot {
-            let letter = usize::from(code.letter == b'M');
-            if let Some(cell) = dense[letter].get_mut(code.tenths as usize) {
-                *cell = i;
+        let entries = CODES.iter().enumerate();
+        let own = entries
+            .clone()
+            .filter(|(_, d)| d.dialects.contains(dialect));
+        let fanuc = entries.filter(|(_, d)| {
+            reads_fanuc && d.dialects.contains(Dialect::Fanuc) && is_fanuc_standard(d.code)
+        });
+        for (i, def) in own.chain(fanuc) {
+            let letter = usize::from(def.code.letter == b'M');
+            if let Some(cell) = index[letter].get_mut(def.code.tenths as usize)
+                && *cell == u16::MAX
+            {
+                *cell = u16::try_from(i).unwrap_or(u16::MAX);
             }
         }
-        let sorted = slot.into_iter().map(|(c, _, i)| (c, i)).collect();
-        Index { sorted, dense }
+        index
     })
 }
 
@@ -353,32 +341,24 @@ pub(crate) const fn letter_mask(letters: &[u8]) -> u32 {
 /// The meaning of `code` in `dialect`, if the dialect has it.
 #[inline]
 pub fn lookup(dialect: Dialect, code: Code) -> Option<&'static CodeDef> {
-    let index = index(dialect);
-    let i = if (code.letter == b'G' || code.letter == b'M') && (code.tenths as usize) < DENSE {
-        *index.dense[usize::from(code.letter == b'M')].get(code.tenths as usize)?
-    } else {
-        let at = index.sorted.binary_search_by_key(&code, |(c, _)| *c).ok()?;
-        index.sorted[at].1
+    let letter = match code.letter {
+        b'G' => 0,
+        b'M' => 1,
+        _ => return None,
     };
+    let i = *index(dialect)[letter].get(code.tenths as usize)?;
     CODES.get(usize::from(i))
 }
 
 /// Every code `dialect` has, sorted by code.
 pub fn codes_of(dialect: Dialect) -> impl Iterator<Item = &'static CodeDef> {
-    index(dialect)
-        .sorted
-        .iter()
-        .filter_map(|(_, i)| CODES.get(usize::from(*i)))
+    let entries = index(dialect).iter().flatten();
+    entries.filter_map(|&i| CODES.get(usize::from(i)))
 }
 
 /// Every meaning `code` has across the dialects (for "G134 means … on Syntec but … on LNC").
 pub fn meanings(code: Code) -> impl Iterator<Item = &'static CodeDef> {
     CODES.iter().filter(move |d| d.code == code)
-}
-
-/// The codes in effect at power-on in `dialect`.
-pub fn power_on(dialect: Dialect) -> impl Iterator<Item = &'static CodeDef> {
-    codes_of(dialect).filter(move |d| d.power_on.contains(dialect))
 }
 
 /// What `letter` means in `dialect` (every reading that applies).
@@ -418,9 +398,13 @@ mod tests {
 
     #[test]
     fn the_index_is_its_plain_definition() {
+        assert!(CODES.iter().all(|d| (d.code.tenths as usize) < DENSE));
         for dialect in Dialect::ALL {
-            let slot = &index(dialect).sorted;
-            assert_eq!(*slot, plain_index(dialect), "{dialect:?}");
+            let entry = |d: &CodeDef| CODES.iter().position(|c| std::ptr::eq(c, d));
+            let slot: Vec<(Code, u16)> = codes_of(dialect)
+                .map(|d| (d.code, u16::try_from(entry(d).unwrap()).unwrap()))
+                .collect();
+            assert_eq!(slot, plain_index(dialect), "{dialect:?}");
             assert!(!slot.is_empty());
         }
     }

@@ -1,19 +1,13 @@
-//! The code and address tables, derived from the G-code reference (`gcode-reference.md`, §2–§5
-//! and §8) for KT, LNC, GSK and Syntec, and from the Fanuc 0i-M and LinuxCNC code lists for the
-//! `fanuc` and `linuxcnc` dialects.
+//! The code and address tables, from the G-code reference (`gcode-reference.md`, §2–§5 and §8)
+//! for KT, LNC, GSK and Syntec, and from the Fanuc 0i-M and LinuxCNC code lists.
 //!
-//! Conventions:
-//! * One entry per meaning: where dialects agree on the meaning, the group and the words of a
-//!   code they share an entry, and the summary names the dialect specifics. A dialect never
-//!   appears in two entries of one code.
-//! * `words` lists every address the code consumes in that dialect. Where the manual gives no
-//!   format (list-only and mentioned codes), `words` is deliberately permissive so that a real
-//!   block is not flagged for words the manual simply does not describe.
-//! * `required` is conservative: only words whose absence the manual (or the control) treats as
-//!   an error.
-//! * Each table is written one row an entry, in the columns its macro names (`codes!`,
-//!   `addresses!`); a set of dialects is one name (`ALL`, `FANUC`), `[FANUC LNC]` for several,
-//!   or `-` for none.
+//! * One entry per meaning: dialects that agree on a code's meaning, group and words share an
+//!   entry, whose summary names their specifics; a dialect is in at most one entry of a code.
+//! * `words`: every address the code takes there; permissive where the manual gives no format
+//!   (list-only and mentioned codes), so a real block is not flagged for words it does not describe.
+//! * `required`: only words whose absence the manual (or the control) treats as an error.
+//! * One row an entry, in the columns its macro (`codes!`, `addresses!`) names; a set of
+//!   dialects is one name (`ALL`, `FANUC`), `[FANUC LNC]` for several, or `-` for none.
 
 use super::{AddressDef, Code, CodeDef, DialectSet, Documented, Group, Modality};
 
@@ -29,15 +23,9 @@ const MACRO: &str = "PLABCDEFHIJKMQRSTUVWXYZ";
 
 /// A set of dialects as a table writes it: `-`, one name, or `[NAME NAME …]`.
 macro_rules! dialects {
-    (-) => {
-        DialectSet::NONE
-    };
-    ($one:ident) => {
-        DialectSet::$one
-    };
-    ([$($name:ident)+]) => {
-        DialectSet::NONE$(.or(DialectSet::$name))+
-    };
+    (-) => { DialectSet::NONE };
+    ($one:ident) => { DialectSet::$one };
+    ([$($name:ident)+]) => { DialectSet::NONE$(.or(DialectSet::$name))+ };
 }
 
 /// The `whole` column: `whole` for a code that needs the whole program, `-` for the others.
@@ -637,7 +625,8 @@ mod tests {
     #[test]
     fn fanuc_and_linuxcnc_power_on_states() {
         let on = |dialect: Dialect| -> Vec<String> {
-            let mut v: Vec<String> = crate::codes::power_on(dialect)
+            let mut v: Vec<String> = codes_of(dialect)
+                .filter(|d| d.power_on.contains(dialect))
                 .map(|d| d.code.to_string())
                 .collect();
             v.sort();

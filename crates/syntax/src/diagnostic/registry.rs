@@ -134,10 +134,8 @@ registry! {
 impl DiagnosticDef {
     /// The registered entry of `code`, if it is one.
     pub fn lookup(code: &str) -> Option<&'static DiagnosticDef> {
-        DIAGNOSTICS
-            .binary_search_by(|d| d.code.cmp(code))
-            .ok()
-            .map(|i| &DIAGNOSTICS[i])
+        let i = DIAGNOSTICS.binary_search_by(|d| d.code.cmp(code)).ok()?;
+        DIAGNOSTICS.get(i)
     }
 }
 

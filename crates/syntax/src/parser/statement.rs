@@ -2,7 +2,7 @@
 //! `WHILE`, `DO`, `END`) and assignments.
 
 use super::block::{Fail, LineReader, PResult};
-use crate::ast::{OLabel, OWord, Statement};
+use crate::ast::{ExprId, OLabel, OWord, Statement};
 use crate::{Block, excerpt};
 
 impl LineReader<'_> {
@@ -33,84 +33,35 @@ impl LineReader<'_> {
         let kw_start = self.skip_blanks(after_label);
         let (kw, kw_end) = self.alpha_run(kw_start);
         if kw.is_empty() && matches!(label, OLabel::Expr(_)) {
-            self.error(
-                block,
-                pos,
-                after_label,
-                "E-OWORD",
-                "an O-word with a computed number must be followed by a keyword such as `call`"
-                    .into(),
-            );
+            let message =
+                "an O-word with a computed number must be followed by a keyword such as `call`";
+            self.error(block, pos, after_label, "E-OWORD", message.into());
             return Some(after_label);
         }
-        let kind = match kw.as_str() {
-            "SUB" => Some(OWord::Sub),
-            "ELSE" => Some(OWord::Else),
-            "ENDIF" => Some(OWord::EndIf),
-            "ENDWHILE" => Some(OWord::EndWhile),
-            "DO" => Some(OWord::Do),
-            "ENDREPEAT" => Some(OWord::EndRepeat),
-            "BREAK" => Some(OWord::Break),
-            "CONTINUE" => Some(OWord::Continue),
+        let result: PResult<OWord> = match kw.as_str() {
             "" => return None,
-            _ => None,
-        };
-        let result: PResult<OWord> = match (kind, kw.as_str()) {
-            (Some(k), _) => Ok((k, kw_end)),
-            (None, "IF" | "ELSEIF" | "WHILE" | "REPEAT") => {
-                self.bracketed(kw_end, 0).map(|(e, end)| {
-                    let k = match kw.as_str() {
-                        "IF" => OWord::If(e),
-                        "ELSEIF" => OWord::ElseIf(e),
-                        "WHILE" => OWord::While(e),
-                        _ => OWord::Repeat(e),
-                    };
-                    (k, end)
-                })
-            }
-            (None, "ENDSUB" | "RETURN") => {
-                let at = self.skip_blanks(kw_end);
-                let value = if self.bytes.get(at) == Some(&b'[') {
-                    self.bracketed(at, 0).map(|(e, end)| (Some(e), end))
-                } else {
-                    Ok((None, kw_end))
-                };
-                value.map(|(e, end)| {
-                    let k = if kw == "ENDSUB" {
-                        OWord::EndSub(e)
-                    } else {
-                        OWord::Return(e)
-                    };
-                    (k, end)
-                })
-            }
-            (None, "CALL") => {
-                let mut args = Vec::new();
-                let mut at = self.skip_blanks(kw_end);
-                let mut outcome = Ok(());
-                while self.bytes.get(at) == Some(&b'[') {
-                    match self.bracketed(at, 0) {
-                        Ok((e, end)) => {
-                            args.push(e);
-                            at = self.skip_blanks(end);
-                        }
-                        Err(f) => {
-                            outcome = Err(f);
-                            break;
-                        }
-                    }
-                }
-                outcome.map(|()| (OWord::Call(args), at))
-            }
-            _ => Err(Fail::new(
-                kw_start,
-                kw_end,
-                "E-OWORD",
-                format!(
+            "SUB" => Ok((OWord::Sub, kw_end)),
+            "ELSE" => Ok((OWord::Else, kw_end)),
+            "ENDIF" => Ok((OWord::EndIf, kw_end)),
+            "ENDWHILE" => Ok((OWord::EndWhile, kw_end)),
+            "DO" => Ok((OWord::Do, kw_end)),
+            "ENDREPEAT" => Ok((OWord::EndRepeat, kw_end)),
+            "BREAK" => Ok((OWord::Break, kw_end)),
+            "CONTINUE" => Ok((OWord::Continue, kw_end)),
+            "IF" => made(self.bracketed(kw_end, 0), OWord::If),
+            "ELSEIF" => made(self.bracketed(kw_end, 0), OWord::ElseIf),
+            "WHILE" => made(self.bracketed(kw_end, 0), OWord::While),
+            "REPEAT" => made(self.bracketed(kw_end, 0), OWord::Repeat),
+            "ENDSUB" => made(self.optional_bracketed(kw_end), OWord::EndSub),
+            "RETURN" => made(self.optional_bracketed(kw_end), OWord::Return),
+            "CALL" => self.call_args(kw_end),
+            _ => {
+                let message = format!(
                     "`{}` is not an O-word keyword (sub, endsub, call, return, if, elseif, else, endif, while, endwhile, do, repeat, endrepeat, break, continue)",
                     excerpt(&kw)
-                ),
-            )),
+                );
+                Err(Fail::new(kw_start, kw_end, "E-OWORD", message))
+            }
         };
         Some(match result {
             Ok((kind, end)) => {
@@ -123,6 +74,26 @@ impl LineReader<'_> {
                 end
             }
         })
+    }
+
+    /// `[expr]` after the blanks at `pos`, if one is there.
+    fn optional_bracketed(&mut self, pos: usize) -> PResult<Option<ExprId>> {
+        let at = self.skip_blanks(pos);
+        if self.bytes.get(at) != Some(&b'[') {
+            return Ok((None, pos));
+        }
+        self.bracketed(at, 0).map(|(e, end)| (Some(e), end))
+    }
+
+    /// The bracketed arguments of an O-word `call`, from `pos`.
+    fn call_args(&mut self, pos: usize) -> PResult<OWord> {
+        let (mut args, mut at) = (Vec::new(), self.skip_blanks(pos));
+        while self.bytes.get(at) == Some(&b'[') {
+            let (e, end) = self.bracketed(at, 0)?;
+            args.push(e);
+            at = self.skip_blanks(end);
+        }
+        Ok((OWord::Call(args), at))
     }
 
     /// `IF`, `GOTO`, `WHILE`, `DO`, `END` statements (Fanuc Macro B).
@@ -141,64 +112,36 @@ impl LineReader<'_> {
                 let (cond, end) = self.bracketed(after, 0)?;
                 let at = self.skip_blanks(end);
                 let (next, next_end) = self.alpha_run(at);
-                match next.as_str() {
-                    "GOTO" => {
-                        let (target, end) = self.word_value(next_end, 0)?;
-                        Ok((
-                            Statement::If {
-                                cond,
-                                then: Box::new(Statement::Goto { target }),
-                            },
-                            end,
-                        ))
-                    }
+                let then_at = self.skip_blanks(next_end);
+                let (then, end) = match next.as_str() {
+                    "GOTO" => self.keyword_statement("GOTO", at, next_end)?,
+                    "THEN" if self.bytes.get(then_at) == Some(&b'#') => self.assignment(then_at)?,
                     "THEN" => {
-                        let at = self.skip_blanks(next_end);
-                        if self.bytes.get(at) != Some(&b'#') {
-                            return Err(Fail::new(
-                                at,
-                                self.block_end(at),
-                                "E-MACRO-SYNTAX",
-                                "`THEN` must be followed by an assignment `#i=…`",
-                            ));
-                        }
-                        let (stmt, end) = self.assignment(at)?;
-                        Ok((
-                            Statement::If {
-                                cond,
-                                then: Box::new(stmt),
-                            },
-                            end,
-                        ))
+                        let stop = self.block_end(then_at);
+                        let message = "`THEN` must be followed by an assignment `#i=…`";
+                        return Err(Fail::new(then_at, stop, "E-MACRO-SYNTAX", message));
                     }
-                    _ => Err(Fail::new(
-                        at,
-                        next_end.max(at + 1),
-                        "E-MACRO-SYNTAX",
-                        "`IF […]` must be followed by `GOTO n` or `THEN #i=…`",
-                    )),
-                }
+                    _ => {
+                        let stop = next_end.max(at + 1);
+                        let message = "`IF […]` must be followed by `GOTO n` or `THEN #i=…`";
+                        return Err(Fail::new(at, stop, "E-MACRO-SYNTAX", message));
+                    }
+                };
+                let then = Box::new(then);
+                Ok((Statement::If { cond, then }, end))
             }
             "WHILE" => {
                 let (cond, end) = self.bracketed(after, 0)?;
                 let at = self.skip_blanks(end);
                 let (next, next_end) = self.alpha_run(at);
                 if next != "DO" {
-                    return Err(Fail::new(
-                        at,
-                        next_end.max(at + 1),
-                        "E-MACRO-SYNTAX",
-                        "`WHILE […]` must be followed by `DOm`",
-                    ));
+                    let stop = next_end.max(at + 1);
+                    let message = "`WHILE […]` must be followed by `DOm`";
+                    return Err(Fail::new(at, stop, "E-MACRO-SYNTAX", message));
                 }
                 let (label, end) = self.loop_label(at, next_end)?;
-                Ok((
-                    Statement::While {
-                        cond: Some(cond),
-                        label,
-                    },
-                    end,
-                ))
+                let cond = Some(cond);
+                Ok((Statement::While { cond, label }, end))
             }
             "DO" => {
                 let (label, end) = self.loop_label(pos, after)?;
@@ -208,12 +151,10 @@ impl LineReader<'_> {
                 let (label, end) = self.loop_label(pos, after)?;
                 Ok((Statement::End { label }, end))
             }
-            _ => Err(Fail::new(
-                pos,
-                after,
-                "E-MACRO-SYNTAX",
-                format!("`{kw}` must follow `IF […]`"),
-            )),
+            _ => {
+                let message = format!("`{kw}` must follow `IF […]`");
+                Err(Fail::new(pos, after, "E-MACRO-SYNTAX", message))
+            }
         }
     }
 
@@ -222,15 +163,16 @@ impl LineReader<'_> {
         let start = self.skip_blanks(at);
         let rest = &self.line[start..];
         let n = rest.bytes().take_while(u8::is_ascii_digit).count();
-        match rest[..n].parse::<u8>() {
-            Ok(label @ 1..=3) => Ok((label, start + n)),
-            _ => Err(Fail::new(
-                keyword,
-                (start + n).max(at),
-                "E-LOOP-NUMBER",
-                "`DO` and `END` take a loop number from 1 to 3",
-            )),
+        if let Ok(label @ 1..=3) = rest[..n].parse::<u8>() {
+            return Ok((label, start + n));
         }
+        let message = "`DO` and `END` take a loop number from 1 to 3";
+        Err(Fail::new(
+            keyword,
+            (start + n).max(at),
+            "E-LOOP-NUMBER",
+            message,
+        ))
     }
 
     /// `#i = expr` (Syntec also `:=`), starting at the `#`.
@@ -243,17 +185,16 @@ impl LineReader<'_> {
         } else if rest.starts_with('=') {
             at + 1
         } else {
-            return Err(Fail::new(
-                pos,
-                after,
-                "E-MACRO-SYNTAX",
-                format!(
-                    "variable `{}` must be followed by `=` to assign it",
-                    excerpt(self.line[pos..after].trim())
-                ),
-            ));
+            let variable = excerpt(self.line[pos..after].trim());
+            let message = format!("variable `{variable}` must be followed by `=` to assign it");
+            return Err(Fail::new(pos, after, "E-MACRO-SYNTAX", message));
         };
         let (value, end) = self.expression(value_at, 0)?;
         Ok((Statement::Assign { target, value }, end))
     }
+}
+
+/// `result` with its value made into another by `make`.
+fn made<T, U>(result: PResult<T>, make: impl FnOnce(T) -> U) -> PResult<U> {
+    result.map(|(v, end)| (make(v), end))
 }
