@@ -31,9 +31,8 @@ pub struct SwarfApp {
     title: String,
     /// Callbacks waiting until a frame shows the finished analysis of the current text.
     idle_waiting: Vec<IdleWaiter>,
-    /// Callbacks whose wait a frame ended, with the text generation that frame showed: called
-    /// at the start of the next frame (the frame was painted by then) if the text is still
-    /// that one.
+    /// Callbacks whose wait a frame ended, with the text generation it showed: called at the
+    /// start of the next frame (once that one is painted) if the text is still that one.
     idle_drawn: Vec<(u64, IdleWaiter)>,
 }
 
@@ -65,24 +64,17 @@ impl SwarfApp {
             Ok(worker) => app.workbench.set_analyst(Box::new(worker)),
             Err(error) => log::warn!("no analysis worker ({error:?}): it runs in the frames"),
         }
+        // The dialect kept is the one new tabs start in; the example shown keeps its own.
         if let Some(storage) = cc.storage {
-            app.load_settings(storage);
+            let (active, shown) = (app.workbench.active_tab(), app.workbench.dialect());
+            app.host.recent = files::restore_settings(storage, &mut app.workbench);
+            app.workbench.set_tab_dialect(active, shown);
         }
         #[cfg(target_arch = "wasm32")]
         app.host.recover();
         #[cfg(not(target_arch = "wasm32"))]
         app.host.recover(&mut app.workbench);
         app
-    }
-
-    /// Restores the dialect, machine setup and recent files saved by [`eframe::App::save`].
-    /// The dialect kept is the one new tabs and opened files start in; the tab already open
-    /// (the example shown at start) keeps its own.
-    pub fn load_settings(&mut self, storage: &dyn eframe::Storage) {
-        let active = self.workbench.active_tab();
-        let shown = self.workbench.dialect();
-        self.host.recent = files::restore_settings(storage, &mut self.workbench);
-        self.workbench.set_tab_dialect(active, shown);
     }
 
     /// Runs `hook` after every frame with the number of frames shown so far.
@@ -115,9 +107,8 @@ impl SwarfApp {
         }
     }
 
-    /// After the workbench's frame: when it began with no analysis pending and the text did not
-    /// change during it, the frame shows the current text's analysis, and the waiting callbacks
-    /// are called at the start of the next one.
+    /// After the workbench's frame: one that began with no analysis pending and kept its text
+    /// shows the current analysis, so the waiting callbacks are called at the next one's start.
     fn note_idle(&mut self, ctx: &egui::Context, idle_before: bool, generation_before: u64) {
         if self.idle_waiting.is_empty() {
             return;
@@ -131,36 +122,15 @@ impl SwarfApp {
         ctx.request_repaint();
     }
 
-    /// Replaces the program text and schedules a repaint (for the JS API).
-    pub fn set_text(&mut self, text: impl Into<String>) {
-        self.workbench.set_text(text);
+    /// Runs `f` on the workbench and schedules a repaint (for the JS API).
+    pub fn edit<R>(&mut self, f: impl FnOnce(&mut Workbench) -> R) -> R {
+        let out = f(&mut self.workbench);
         self.ctx.request_repaint();
+        out
     }
 
-    /// Opens `text` as the program file `name` in a tab (no unsaved changes) and schedules a
-    /// repaint.
-    pub fn open(&mut self, name: &str, text: impl Into<String>) {
-        self.workbench
-            .open_document(name, text, swarf_syntax::Encoding::Utf8);
-        self.ctx.request_repaint();
-    }
-
-    /// Switches the interface language (a Chinese one fetches or reads its font) and
-    /// schedules a repaint.
-    pub fn set_language(&mut self, lang: swarf_ui::i18n::Lang) {
-        self.workbench.set_language(lang);
-        self.ctx.request_repaint();
-    }
-
-    /// Selects 1-based `line` in the editor and schedules a repaint.
-    pub fn select_line(&mut self, line: u32) {
-        self.workbench.select_line(line);
-        self.ctx.request_repaint();
-    }
-
-    /// Where the machine point `p` (mm, the frame of the analysis' bounds) was drawn in the
-    /// backplot at the last frame, in CSS pixels from the canvas's top left; `None` before
-    /// the first frame, without geometry, or behind the eye.
+    /// Where the machine point `p` (mm) was drawn in the backplot at the last frame, in CSS
+    /// pixels from the canvas's top left; `None` before it, without geometry or behind the eye.
     #[cfg(target_arch = "wasm32")]
     pub fn project(&self, p: glam::DVec3) -> Option<[f64; 2]> {
         let scene = &self.workbench.analysis().scene;
@@ -173,8 +143,7 @@ impl SwarfApp {
     }
 
     /// Where the workbench's widget `name` (or `stock`, the backplot's Stock button) was drawn
-    /// at the last frame, as `[x, y, width, height]` in CSS pixels from the canvas's top left;
-    /// `None` when it was not drawn.
+    /// at the last frame, as `[x, y, width, height]` in CSS pixels from the canvas's top left.
     #[cfg(target_arch = "wasm32")]
     pub fn widget_rect(&self, name: &str) -> Option<[f64; 4]> {
         let rect = match name {

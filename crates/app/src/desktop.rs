@@ -1,6 +1,5 @@
-//! Files on the desktop: native open and save dialogs (rfd), atomic writes in the file's own
-//! encoding, recent files, and crash recovery in the platform data folder: a file per tab whose
-//! text must be kept and an index of the tabs.
+//! Files on the desktop: native dialogs (rfd), atomic writes in the file's own encoding, recent
+//! files, and crash recovery in the platform data folder (a file per tab to keep, an index).
 
 use std::path::{Path, PathBuf};
 
@@ -77,9 +76,8 @@ impl Host {
         self.data.as_ref().map(|d| d.join(RECOVERY_FOLDER))
     }
 
-    /// Shows the tabs a previous run left when any had unsaved changes: unsaved texts as
-    /// changes still to save, the other files read again from disk where they still are; the
-    /// status bar names the tabs recovered and any whose changes could not be read.
+    /// Shows the tabs a previous run left with unsaved changes (the other files read again from
+    /// disk); the status bar names the tabs recovered and any whose changes could not be read.
     pub fn recover(&mut self, wb: &mut Workbench) -> bool {
         let Some(dir) = self.recovery_folder() else {
             return false;
@@ -114,13 +112,8 @@ impl Host {
     pub fn open_path(&mut self, wb: &mut Workbench, path: &Path) {
         match read_bounded(path) {
             Ok(bytes) => {
-                let decoded = swarf_syntax::decode(&bytes);
-                wb.open_file(
-                    &file_name(path),
-                    decoded.text,
-                    decoded.encoding,
-                    Some(path.display().to_string()),
-                );
+                let (decoded, at) = (swarf_syntax::decode(&bytes), path.display().to_string());
+                wb.open_file(&file_name(path), decoded.text, decoded.encoding, Some(at));
                 files::push_recent(&mut self.recent, path.display().to_string());
                 wb.set_recent(self.recent.clone());
             }
@@ -153,6 +146,7 @@ impl Host {
         ctx: &egui::Context,
         request: HostRequest,
     ) -> bool {
+        let setup_dialog = || rfd::FileDialog::new().add_filter("Setup", &["toml"]);
         match request {
             HostRequest::Open => {
                 let dialog = rfd::FileDialog::new()
@@ -177,10 +171,7 @@ impl Host {
             },
             HostRequest::SaveAs => return self.save_as(wb),
             HostRequest::ImportSetup => {
-                let Some(path) = rfd::FileDialog::new()
-                    .add_filter("Setup", &["toml"])
-                    .pick_file()
-                else {
+                let Some(path) = setup_dialog().pick_file() else {
                     return false;
                 };
                 let result = read_bounded(&path)
@@ -193,11 +184,7 @@ impl Host {
                 });
             }
             HostRequest::ExportSetup => {
-                let Some(path) = rfd::FileDialog::new()
-                    .set_file_name("SETUP.toml")
-                    .add_filter("Setup", &["toml"])
-                    .save_file()
-                else {
+                let Some(path) = setup_dialog().set_file_name("SETUP.toml").save_file() else {
                     return false;
                 };
                 let result = wb
@@ -279,11 +266,9 @@ impl Host {
         }
     }
 
-    /// Brings the recovery folder up to date now (also on exit with unsaved changes): a file
-    /// for each tab whose text changed since it was written and must be kept (unsaved, or with
-    /// no file to read it again from), then the index of the tabs, then the files it no longer
-    /// names are removed; with nothing unsaved, it is emptied. A tab whose text could not be
-    /// written is named in the status bar, and written again at the next change.
+    /// Brings the recovery folder up to date now (also on exit): a file for each tab to keep
+    /// whose text changed, then the index, then the files it no longer names go (all of them
+    /// with nothing unsaved). A tab not written is named in the status bar and tried again.
     pub fn write_recovery(&mut self, wb: &mut Workbench) {
         self.clock.restart();
         if !wb.any_dirty() {
@@ -385,9 +370,8 @@ fn read_program(path: &str) -> Option<(String, swarf_syntax::Encoding)> {
 /// Environment variable naming a CJK font file to use for the Chinese interface languages.
 pub const CJK_FONT_VARIABLE: &str = "SWARF_CJK_FONT";
 
-/// Where the systems keep CJK fonts egui can read (TrueType or OpenType, collections too), in
-/// the order they are tried: WenQuanYi Micro Hei and Noto Sans CJK on Linux, Microsoft YaHei
-/// and JhengHei on Windows, PingFang and Heiti on macOS.
+/// Where Linux, Windows and macOS keep CJK fonts egui can read (TrueType or OpenType, collections
+/// too), in the order they are tried.
 const CJK_FONT_FILES: &[&str] = &[
     "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc",
     "/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc",
@@ -423,9 +407,8 @@ fn file_name(path: &Path) -> String {
     )
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
-/// crash or a full disk never leaves a half-written program in place of the old one. A file
-/// that exists keeps its permissions, and a symbolic link keeps pointing at the file written.
+/// Writes `bytes` to `path` through a temporary file and a rename, so a crash never leaves a
+/// half-written program; the file keeps its permissions, and a symbolic link its target.
 pub fn atomic_write(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     use std::io::Write as _;
     let resolved = std::fs::canonicalize(path).ok();

@@ -74,15 +74,9 @@ pub fn restore_settings(storage: &dyn eframe::Storage, wb: &mut Workbench) -> Ve
             Err(e) => log::warn!("the saved setup is not readable: {e}"),
         }
     }
-    let recent: Vec<String> = storage
-        .get_string(KEY_RECENT)
-        .map(|r| {
-            r.lines()
-                .filter(|l| !l.is_empty())
-                .map(str::to_string)
-                .collect()
-        })
-        .unwrap_or_default();
+    let stored = storage.get_string(KEY_RECENT).unwrap_or_default();
+    let lines = stored.lines().filter(|l| !l.is_empty());
+    let recent: Vec<String> = lines.map(str::to_string).collect();
     wb.set_recent(recent.clone());
     recent
 }
@@ -278,26 +272,21 @@ impl RecoveryIndex {
             if i == self.active {
                 out.active = out.tabs.len();
             }
+            let mut record = || {
+                let text = read_record(entry.record.as_deref()?)?;
+                Some((text, entry.encoding, entry.dirty, entry.record.clone()))
+            };
+            let mut file = || {
+                let (text, encoding) = read_file(entry.path.as_deref()?)?;
+                Some((text, encoding, false, None))
+            };
             let found = if entry.dirty {
-                if let Some(text) = entry.record.as_deref().and_then(&mut read_record) {
-                    Some((text, entry.encoding, true, entry.record.clone()))
-                } else {
+                record().or_else(|| {
                     out.lost.push(entry.name.clone());
-                    entry
-                        .path
-                        .as_deref()
-                        .and_then(&mut read_file)
-                        .map(|(text, enc)| (text, enc, false, None))
-                }
+                    file()
+                })
             } else {
-                match entry.path.as_deref().and_then(&mut read_file) {
-                    Some((text, enc)) => Some((text, enc, false, None)),
-                    None => entry
-                        .record
-                        .as_deref()
-                        .and_then(&mut read_record)
-                        .map(|text| (text, entry.encoding, false, entry.record.clone())),
-                }
+                file().or_else(record)
             };
             if let Some((text, encoding, dirty, key)) = found {
                 out.tabs.push(TabRecord {
@@ -323,22 +312,13 @@ pub struct TabState {
     pub id: u64,
     /// The revision of its text ([`swarf_ui::Document::revision`]).
     pub revision: u64,
-    /// The document's name.
-    pub name: String,
-    /// Its file, where it can be read again after a restart.
-    pub path: Option<String>,
-    /// The file's encoding.
-    pub encoding: Encoding,
-    /// Whether the text has unsaved changes.
-    pub dirty: bool,
-    /// The tab's dialect.
-    pub dialect: Dialect,
+    /// The tab as the index lists it, no record chosen yet.
+    pub entry: IndexEntry,
 }
 
 impl TabState {
-    /// The workbench's tabs in order, and the index of the active one. `with_paths`: whether
-    /// a tab's path can be read again after a restart (a file on the desktop; on the web page
-    /// it names a file handle, which does not outlive the page).
+    /// The workbench's tabs in order, and the index of the active one. `with_paths`: whether a
+    /// tab's path can be read again after a restart (not the web page's file handles).
     pub fn of(wb: &Workbench, with_paths: bool) -> (Vec<TabState>, usize) {
         let tabs = wb
             .tab_documents()
@@ -347,11 +327,14 @@ impl TabState {
             .map(|(i, d)| TabState {
                 id: d.id(),
                 revision: d.revision(),
-                name: d.name.clone(),
-                path: if with_paths { d.path.clone() } else { None },
-                encoding: d.encoding,
-                dirty: d.is_unsaved(),
-                dialect: wb.tab_dialect(i).unwrap_or_default(),
+                entry: IndexEntry {
+                    name: d.name.clone(),
+                    path: if with_paths { d.path.clone() } else { None },
+                    encoding: d.encoding,
+                    dirty: d.is_unsaved(),
+                    record: None,
+                    dialect: Some(wb.tab_dialect(i).unwrap_or_default()),
+                },
             })
             .collect();
         (tabs, wb.active_tab())
@@ -360,7 +343,7 @@ impl TabState {
     /// Whether the tab's text must be kept in a record: it has unsaved changes, or there is
     /// no file to read it again from.
     pub fn needs_record(&self) -> bool {
-        self.dirty || self.path.is_none()
+        self.entry.dirty || self.entry.path.is_none()
     }
 }
 
@@ -390,10 +373,8 @@ pub struct Round {
     written: Vec<String>,
 }
 
-/// What the recovery records hold, as far as this host wrote or read them: which record keeps
-/// which revision of which tab, the index last stored, and the tabs last reported not kept. It
-/// decides which records a round writes (those of tabs whose text changed since) and which
-/// may go (those the stored index no longer names).
+/// What the recovery records hold, as far as this host wrote or read them: which records a round
+/// writes (tabs whose text changed) and which may go (those the stored index no longer names).
 #[derive(Debug, Clone, Default)]
 pub struct RecoveryBook {
     /// Starts every key this host makes, unique to the run (records of another run keep
@@ -442,9 +423,8 @@ impl RecoveryBook {
             .collect()
     }
 
-    /// The index once `writes` (from [`RecoveryBook::plan`] for the same `tabs`) ended with
-    /// `results`, in the same order: a tab whose write failed keeps the record of an earlier
-    /// text where it has one, and is named in [`Round::failed`].
+    /// The index once `writes` ([`RecoveryBook::plan`] of `tabs`) ended with `results`: a tab
+    /// whose write failed keeps an earlier record if any, and is named in [`Round::failed`].
     pub fn compose(
         &self,
         tabs: &[TabState],
@@ -464,22 +444,16 @@ impl RecoveryBook {
                 Some(w) => match results.get(w) {
                     Some(Ok(())) => Some((t.revision, writes[w].key.clone())),
                     result => {
-                        let why = match result {
-                            Some(Err(e)) => e.clone(),
-                            _ => "not written".to_string(),
-                        };
-                        failed.push((t.name.clone(), why));
+                        let why = result.and_then(|r| r.clone().err());
+                        let why = why.unwrap_or_else(|| "not written".to_string());
+                        failed.push((t.entry.name.clone(), why));
                         earlier.cloned()
                     }
                 },
             };
             entries.push(IndexEntry {
-                name: t.name.clone(),
-                path: t.path.clone(),
-                encoding: t.encoding,
-                dirty: t.dirty,
                 record: record.as_ref().map(|(_, key)| key.clone()),
-                dialect: Some(t.dialect),
+                ..t.entry.clone()
             });
             if let Some(record) = record {
                 kept.insert(t.id, record);
@@ -505,13 +479,12 @@ impl RecoveryBook {
     pub fn all_failed(tabs: &[TabState], why: &str) -> Vec<(String, String)> {
         tabs.iter()
             .filter(|t| t.needs_record())
-            .map(|t| (t.name.clone(), why.to_string()))
+            .map(|t| (t.entry.name.clone(), why.to_string()))
             .collect()
     }
 
-    /// The round is over: `stored` when its index is stored (or was already), and the records
-    /// it names are the ones kept from now on; otherwise the stored index is the earlier one
-    /// and the records just written are not needed.
+    /// The round is over: `stored` when its index is stored (or was already), and its records
+    /// are the ones kept; otherwise the earlier index stands and the records written are stale.
     pub fn commit(&mut self, round: Round, stored: bool) {
         self.owned.extend(round.written);
         if stored {
@@ -525,8 +498,7 @@ impl RecoveryBook {
         self.kept.values().any(|(_, k)| k == key)
     }
 
-    /// The records this host wrote or read that the stored index no longer names (an earlier
-    /// text of a tab, a tab closed or saved, a write the index never came to name), to remove;
+    /// The records this host wrote or read that the stored index no longer names, to remove;
     /// each is handed out once.
     pub fn take_stale(&mut self) -> Vec<String> {
         let mut stale: Vec<String> = self
@@ -555,11 +527,9 @@ impl RecoveryBook {
         self.failing.clear();
     }
 
-    /// The tabs just restored (`tabs`, as [`TabState::of`] gives them) came from `records`
-    /// (one per tab, [`Restored::records`]) named by the stored `index`: their texts are kept
-    /// already and are not written again until they change. The records `index` names are
-    /// this host's from now on, removed once no index names them (all of them, when `tabs`
-    /// is empty: the tabs were opened some other way and are written anew).
+    /// The tabs just restored (`tabs`, [`TabState::of`]) came from `records` (one per tab) named
+    /// by the stored `index`: they are not written again until they change, and the records
+    /// `index` names are this host's, removed once no index names them (all, if `tabs` is empty).
     pub fn adopt(&mut self, tabs: &[TabState], records: &[Option<String>], index: &str) {
         self.kept = tabs
             .iter()
@@ -584,7 +554,7 @@ impl RecoveryBook {
         let again: Vec<&str> = self
             .failing
             .iter()
-            .filter(|name| tabs.iter().any(|t| t.name == **name && t.needs_record()))
+            .filter(|name| (tabs.iter()).any(|t| t.entry.name == **name && t.needs_record()))
             .map(String::as_str)
             .collect();
         let message =
@@ -668,11 +638,14 @@ mod tests {
         TabState {
             id,
             revision,
-            name: name.into(),
-            path: path.map(str::to_string),
-            encoding: Encoding::Utf8,
-            dirty,
-            dialect: Dialect::Fanuc,
+            entry: IndexEntry {
+                name: name.into(),
+                path: path.map(str::to_string),
+                encoding: Encoding::Utf8,
+                dirty,
+                record: None,
+                dialect: Some(Dialect::Fanuc),
+            },
         }
     }
 
@@ -780,7 +753,7 @@ mod tests {
         book.commit(next, true);
         assert_eq!(book.take_stale(), ["tab-run1-30"]);
         // Saved to its file: no record any more. Closed: neither.
-        tabs[2].dirty = false;
+        tabs[2].entry.dirty = false;
         tabs.remove(0);
         let (saved, keys) = round(&mut book, &tabs, 1, |_| Ok(()));
         assert!(keys.is_empty());

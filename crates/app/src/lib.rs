@@ -1,6 +1,5 @@
-//! The Swarf application host: wires the [`swarf_ui::Workbench`] into eframe for the desktop
-//! binary and the web page, handles files (dialogs, saving, recovery, settings kept between
-//! runs) and exposes the page's JavaScript API.
+//! The Swarf application host: the [`swarf_ui::Workbench`] in eframe for the desktop and the web
+//! page, with files (dialogs, saving, recovery, settings kept) and the page's JavaScript API.
 
 mod app;
 #[cfg(not(target_arch = "wasm32"))]

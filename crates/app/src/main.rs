@@ -23,48 +23,38 @@ mod native {
     /// Frames drawn before the screenshot is taken, so layout and the backplot have settled.
     const SCREENSHOT_AFTER_FRAMES: u64 = 8;
 
-    struct Args {
-        file: Option<PathBuf>,
-        screenshot: Option<PathBuf>,
-    }
-
-    fn parse_args() -> anyhow::Result<Args> {
-        let mut args = Args {
-            file: None,
-            screenshot: None,
-        };
+    /// The file to open and the screenshot to save, from the command line.
+    fn parse_args() -> anyhow::Result<(Option<PathBuf>, Option<PathBuf>)> {
+        let (mut file, mut screenshot) = (None, None);
         let mut it = std::env::args_os().skip(1);
         while let Some(a) = it.next() {
             match a.to_str() {
                 Some("--screenshot") => {
-                    args.screenshot =
-                        Some(it.next().context("--screenshot needs a file name")?.into());
+                    screenshot = Some(it.next().context("--screenshot needs a file name")?.into());
                 }
                 Some("--help" | "-h") => {
                     println!("usage: swarf-app [FILE] [--screenshot OUT.png]");
                     std::process::exit(0);
                 }
                 Some(s) if s.starts_with("--") => bail!("unknown option {s}"),
-                _ => args.file = Some(a.into()),
+                _ => file = Some(a.into()),
             }
         }
-        Ok(args)
+        Ok((file, screenshot))
     }
 
     pub fn main() -> anyhow::Result<()> {
-        let args = parse_args()?;
-        if let Some(p) = &args.file {
+        let (file, screenshot) = parse_args()?;
+        if let Some(p) = &file {
             std::fs::metadata(p).with_context(|| format!("cannot read {}", p.display()))?;
         }
-        let file = args.file.clone();
-        let ok = Arc::new(AtomicBool::new(args.screenshot.is_none()));
+        let ok = Arc::new(AtomicBool::new(screenshot.is_none()));
         let options = eframe::NativeOptions {
             viewport: egui::ViewportBuilder::default()
                 .with_title("Swarf — G-code editor and backplot")
                 .with_inner_size([1280.0, 800.0]),
             ..Default::default()
         };
-        let screenshot = args.screenshot.clone();
         let ok_in_app = ok.clone();
         eframe::run_native(
             swarf_app::desktop::APP_ID,

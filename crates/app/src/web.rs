@@ -95,19 +95,21 @@ impl SwarfApi {
     /// Replaces the program text; diagnostics and the backplot follow once its analysis, in
     /// the page's worker, is finished (see [`SwarfApi::idle`]).
     pub fn set_text(&self, text: String) -> Result<(), JsValue> {
-        self.with_app(|app| app.set_text(text))
+        self.with_app(|app| app.edit(|wb| wb.set_text(text)))
     }
 
     /// Opens `text` as the program file `name` in a tab (a fresh undo history, nothing
     /// unsaved); the other API calls act on the active tab.
     pub fn open(&self, name: String, text: String) -> Result<(), JsValue> {
-        self.with_app(|app| app.open(&name, text))
+        self.with_app(|app| {
+            app.edit(|wb| wb.open_document(&name, text, swarf_syntax::Encoding::Utf8));
+        })
     }
 
     /// Selects the whole of 1-based `line` in the editor (clamped to the program) and scrolls
     /// to it.
     pub fn select(&self, line: u32) -> Result<(), JsValue> {
-        self.with_app(|app| app.select_line(line))
+        self.with_app(|app| app.edit(|wb| wb.select_line(line)))
     }
 
     /// `{start, end, text, start_line, end_line}`: the editor's selection in characters, the
@@ -189,9 +191,7 @@ impl SwarfApi {
     }
 
     /// A Promise that resolves once the analysis of the current text is finished and a frame
-    /// showing it has been painted: then `diagnostics()` and `stats()` describe the current
-    /// text. The analysis runs in the page's worker, as it does for typing; nothing here
-    /// hurries it.
+    /// showing it painted, so `diagnostics()` and `stats()` describe it (nothing hurries it).
     pub fn idle(&self) -> Result<js_sys::Promise, JsValue> {
         let mut resolver = None;
         let promise = js_sys::Promise::new(&mut |resolve, _reject| resolver = Some(resolve));
@@ -218,7 +218,7 @@ impl SwarfApi {
         let Some(lang) = swarf_ui::i18n::Lang::from_code(&code) else {
             return Ok(false);
         };
-        self.with_app(|app| app.set_language(lang))?;
+        self.with_app(|app| app.edit(|wb| wb.set_language(lang)))?;
         Ok(true)
     }
 
@@ -253,10 +253,5 @@ impl SwarfApi {
     /// Frames painted so far (the page waits for the first one before it is ready).
     pub fn frames(&self) -> Result<f64, JsValue> {
         self.with_app(|app| app.frames() as f64)
-    }
-
-    /// The message of a panic inside the app, if one happened.
-    pub fn panic_message(&self) -> Option<String> {
-        self.runner.panic_summary().map(|p| p.message())
     }
 }

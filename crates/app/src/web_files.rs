@@ -9,6 +9,7 @@ use std::rc::Rc;
 
 use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
+use wasm_bindgen_futures::JsFuture;
 
 use swarf_ui::{HostRequest, Workbench};
 
@@ -39,34 +40,16 @@ enum Arrival {
     /// The CJK font fetched, or why it was not.
     Font(Result<Vec<u8>, String>),
     /// A file read for `Purpose`, with its handle when it came from the File System Access API.
-    File(
-        Purpose,
-        String,
-        Vec<u8>,
-        Option<web_sys::FileSystemFileHandle>,
-    ),
-    /// A program picked with the File System Access API that is the file kept under `key`.
-    Reopened {
-        name: String,
-        bytes: Vec<u8>,
-        key: String,
-    },
-    /// A save that was written (to `handle` when there is one), for the tab that was active
-    /// at `generation`.
-    Saved {
-        name: String,
-        handle: Option<web_sys::FileSystemFileHandle>,
-        tab: usize,
-        generation: u64,
-    },
-    /// The save picker refused to open (no user action just before): download instead, for
-    /// the tab that was active at `generation`.
-    Download {
-        name: String,
-        bytes: Vec<u8>,
-        tab: usize,
-        generation: u64,
-    },
+    File(Purpose, String, Vec<u8>, Option<Handle>),
+    /// A program `name` picked with the File System Access API that is the file kept under
+    /// the key (its tab's path).
+    Reopened(String, Vec<u8>, String),
+    /// A save of the file `name` that was written (to the handle, when there is one to keep),
+    /// for the tab that was active then: (tab, generation).
+    Saved(String, Option<Handle>, (usize, u64)),
+    /// The save picker refused to open (no user action just before): download `name` instead,
+    /// for the tab that was active then: (tab, generation).
+    Download(String, Vec<u8>, (usize, u64)),
     /// Something to tell the user.
     Message(String),
     /// The recovery records read at the start: the index and the texts it names (`None` when
@@ -75,6 +58,9 @@ enum Arrival {
     /// A round of recovery writes ended.
     Autosaved(Box<WrittenRound>),
 }
+
+/// A file's handle in the File System Access API.
+type Handle = web_sys::FileSystemFileHandle;
 
 /// The recovery index as stored, and the texts of the records it names, by key.
 type StoredTabs = (String, HashMap<String, String>);
@@ -88,20 +74,11 @@ struct WrittenRound {
     failed: Vec<(String, String)>,
 }
 
-/// Where the recovery records stand.
-#[derive(Debug, Default, Clone, Copy, PartialEq, Eq)]
-enum Recovery {
-    /// Nothing is being read or written.
-    #[default]
-    Idle,
-    /// Being read at the start: nothing is written until they are in.
-    Reading,
-    /// A round of writes is under way.
-    Writing,
-}
+/// The recovery database.
+type Db = web_sys::IdbDatabase;
 
 /// The recovery database once opened.
-type DbSlot = Rc<RefCell<Option<web_sys::IdbDatabase>>>;
+type DbSlot = Rc<RefCell<Option<Db>>>;
 
 /// What the browser finished, waiting for the next frame, and the context to wake for it (set
 /// by the first frame; the recovery read starts before it).
@@ -140,13 +117,12 @@ pub struct Host {
     inbox: Inbox,
     clock: AutosaveClock,
     /// File handles by the key kept as their tab's document path.
-    handles: HashMap<String, web_sys::FileSystemFileHandle>,
-    /// Handles given out so far, for unique keys.
-    handle_count: u64,
+    handles: HashMap<String, Handle>,
     /// Which recovery records are written, and which tabs are not kept.
     book: RecoveryBook,
-    /// Whether the recovery records are being read or written.
-    recovery: Recovery,
+    /// Whether the recovery records are being read (at the start: nothing is written until
+    /// they are in) or a round of writes is under way.
+    busy: bool,
     /// The recovery database once opened.
     db: DbSlot,
     /// Whether the records must be brought up to date once the read or write under way is
@@ -170,11 +146,10 @@ impl Host {
         }
     }
 
-    /// Starts reading the tabs this browser kept when any had unsaved changes; they replace
-    /// the workbench's tabs when they are in (see [`Host::poll`]), and nothing is written
-    /// until then.
+    /// Starts reading the tabs this browser kept with unsaved changes; they replace the
+    /// workbench's when they are in (see [`Host::poll`]), and nothing is written until then.
     pub fn recover(&mut self) {
-        self.recovery = Recovery::Reading;
+        self.busy = true;
         let db = self.db.clone();
         self.inbox
             .spawn(async move { Arrival::Recovered(read_recovery(&db).await) });
@@ -183,7 +158,7 @@ impl Host {
     /// Shows the tabs read from the recovery records: in place of the workbench's, or beside
     /// them when they were changed meanwhile.
     fn recovered(&mut self, wb: &mut Workbench, result: Result<Option<StoredTabs>, String>) {
-        self.recovery = Recovery::Idle;
+        self.busy = false;
         self.show_recovered(wb, result);
         self.catch_up(wb);
     }
@@ -266,7 +241,7 @@ impl Host {
                     let key = handle.map(|h| self.keep_handle(&name, h));
                     wb.open_file(&name, decoded.text, decoded.encoding, key);
                 }
-                Arrival::Reopened { name, bytes, key } => {
+                Arrival::Reopened(name, bytes, key) => {
                     // The tab that has the file comes back (re-read when nothing is unsaved).
                     let decoded = swarf_syntax::decode_owned(bytes);
                     wb.open_file(&name, decoded.text, decoded.encoding, Some(key));
@@ -278,12 +253,7 @@ impl Host {
                         Err(e) => wb.set_message(format!("Cannot import {name}: {e}")),
                     }
                 }
-                Arrival::Saved {
-                    name,
-                    handle,
-                    tab,
-                    generation,
-                } => {
+                Arrival::Saved(name, handle, (tab, generation)) => {
                     if wb.active_tab() == tab && wb.generation() == generation {
                         if let Some(handle) = handle {
                             let key = self.keep_handle(&name, handle);
@@ -297,12 +267,7 @@ impl Host {
                         ));
                     }
                 }
-                Arrival::Download {
-                    name,
-                    bytes,
-                    tab,
-                    generation,
-                } => {
+                Arrival::Download(name, bytes, (tab, generation)) => {
                     if wb.active_tab() == tab && wb.generation() == generation {
                         self.download_program(wb, &name, &bytes);
                     } else if let Err(e) = download(&name, &bytes) {
@@ -317,9 +282,9 @@ impl Host {
     }
 
     /// Keeps a file handle under a new key, which becomes its tab's document path.
-    fn keep_handle(&mut self, name: &str, handle: web_sys::FileSystemFileHandle) -> String {
-        self.handle_count += 1;
-        let key = format!("{name} (browser file {})", self.handle_count);
+    fn keep_handle(&mut self, name: &str, handle: Handle) -> String {
+        // Handles are never dropped: their count numbers the keys.
+        let key = format!("{name} (browser file {})", self.handles.len() + 1);
         self.handles.insert(key.clone(), handle);
         key
     }
@@ -344,17 +309,12 @@ impl Host {
 
     /// Saves the active tab: to its file handle when it has one, else as [`Host::save_as`].
     fn save(&mut self, wb: &mut Workbench) {
-        let handle = wb
-            .document()
-            .path
-            .as_ref()
-            .and_then(|key| self.handles.get(key))
-            .cloned();
-        match handle {
+        let key = wb.document().path.as_deref().unwrap_or_default();
+        match self.handles.get(key).cloned() {
             // The tab keeps its handle (and key).
             Some(handle) => {
-                let written = save_to(handle, encoded(wb), wb.active_tab(), wb.generation(), false);
-                self.inbox.spawn(written);
+                let at = (wb.active_tab(), wb.generation());
+                self.inbox.spawn(save_to(handle, encoded(wb), at, false));
             }
             None => self.save_as(wb),
         }
@@ -373,26 +333,20 @@ impl Host {
         let (tab, generation) = (wb.active_tab(), wb.generation());
         self.inbox.spawn(async move {
             let handle = match call_picker(&picker, &options).await {
-                Ok(handle) => handle.unchecked_into::<web_sys::FileSystemFileHandle>(),
+                Ok(handle) => handle.unchecked_into::<Handle>(),
                 Err(e) => {
                     return match js_error_name(&e).as_str() {
                         // Cancelled: nothing to say.
                         "AbortError" => None,
                         // Refused without a user action just before: download instead.
-                        "SecurityError" | "NotAllowedError" => Some(Arrival::Download {
-                            name,
-                            bytes,
-                            tab,
-                            generation,
-                        }),
-                        _ => Some(Arrival::Message(format!(
-                            "Cannot save {name}: {}",
-                            js_error(&e)
-                        ))),
+                        "SecurityError" | "NotAllowedError" => {
+                            Some(Arrival::Download(name, bytes, (tab, generation)))
+                        }
+                        _ => Some(failed(&format!("Cannot save {name}"), &e)),
                     };
                 }
             };
-            Some(save_to(handle, bytes, tab, generation, true).await)
+            Some(save_to(handle, bytes, (tab, generation), true).await)
         });
     }
 
@@ -425,62 +379,41 @@ impl Host {
         }
     }
 
-    /// Opens the browser's file picker for a program; the chosen file arrives through
-    /// [`Host::poll`]. Where the browser has the File System Access API its picker is used and
-    /// the file's handle kept, so Save writes back to the file. Browsers show a picker only
-    /// shortly after a user's action (transient activation), so the page also calls this
-    /// straight from the Ctrl+O key event.
+    /// Opens the browser's picker for a program (the File System Access API's, keeping the
+    /// handle for Save, where the browser has it); the file arrives through [`Host::poll`]. A
+    /// picker opens only just after a user's action, so Ctrl+O's key event calls this too.
     pub fn pick_program(&self) {
         let Some(picker) = window_function("showOpenFilePicker") else {
             self.pick(Purpose::Program, &PROGRAM_EXTENSIONS.join(","));
             return;
         };
-        let extensions: js_sys::Array = PROGRAM_EXTENSIONS
-            .iter()
-            .map(|e| JsValue::from_str(e))
-            .collect();
+        let extensions = js_sys::Array::from_iter(PROGRAM_EXTENSIONS.map(JsValue::from));
+        let accept = js_object(&[("text/plain", extensions.into())]);
         let program_type = js_object(&[
             ("description", JsValue::from_str("G-code programs")),
-            (
-                "accept",
-                js_object(&[("text/plain", extensions.into())]).into(),
-            ),
+            ("accept", accept.into()),
         ]);
         let options = js_object(&[("types", js_sys::Array::of1(&program_type).into())]);
-        let known: Vec<_> = self
-            .handles
-            .iter()
-            .map(|(key, handle)| (key.clone(), handle.clone()))
-            .collect();
+        let known = self.handles.clone();
         self.inbox.spawn(async move {
             let picked = match call_picker(&picker, &options).await {
                 Ok(picked) => picked,
                 Err(e) if js_error_name(&e) == "AbortError" => return None,
-                Err(e) => {
-                    return Some(Arrival::Message(format!(
-                        "Cannot open a file: {}",
-                        js_error(&e)
-                    )));
-                }
+                Err(e) => return Some(failed("Cannot open a file", &e)),
             };
             let first = js_sys::Array::from(&picked).get(0);
             if !first.is_object() {
                 return None;
             }
-            let handle = first.unchecked_into::<web_sys::FileSystemFileHandle>();
+            let handle = first.unchecked_into::<Handle>();
             let name = handle.name();
             let bytes = match read_handle(&handle).await {
                 Ok(bytes) => bytes,
-                Err(e) => {
-                    return Some(Arrival::Message(format!(
-                        "Cannot read {name}: {}",
-                        js_error(&e)
-                    )));
-                }
+                Err(e) => return Some(failed(&format!("Cannot read {name}"), &e)),
             };
             for (key, other) in known {
                 if same_entry(&handle, &other).await {
-                    return Some(Arrival::Reopened { name, bytes, key });
+                    return Some(Arrival::Reopened(name, bytes, key));
                 }
             }
             Some(Arrival::File(Purpose::Program, name, bytes, Some(handle)))
@@ -512,7 +445,7 @@ impl Host {
                 if let Some(why) = files::too_large(file.size() as u64) {
                     return Some(Arrival::Message(format!("Cannot open {name}: {why}")));
                 }
-                match wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await {
+                match JsFuture::from(file.array_buffer()).await {
                     Ok(buffer) => {
                         let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
                         Some(Arrival::File(purpose, name, bytes, None))
@@ -538,11 +471,10 @@ impl Host {
         input.click();
     }
 
-    /// Keeps unsaved changes in IndexedDB a moment after they are made, and removes the
-    /// records once nothing is unsaved (not while they are being read or written: the
-    /// change is taken up once that is done).
+    /// Keeps unsaved changes in IndexedDB a moment after they are made, and removes the records
+    /// once nothing is unsaved (later while they are being read or written).
     pub fn autosave(&mut self, wb: &mut Workbench, now: f64) {
-        if self.recovery != Recovery::Idle {
+        if self.busy {
             return;
         }
         match self.clock.step(wb.generation(), wb.any_dirty(), now) {
@@ -552,13 +484,11 @@ impl Host {
         }
     }
 
-    /// Starts a round of recovery writes now, when any tab has unsaved changes: a record for
-    /// each tab whose text changed since it was written (every tab's text is kept, as the
-    /// page cannot read a file again after a reload), each in a transaction of its own so
-    /// that one too large for the browser's quota spares the others, then the index. How it
-    /// went arrives through [`Host::poll`].
+    /// Starts a round of recovery writes when any tab has unsaved changes: a record for each
+    /// tab whose text changed (the page cannot read a file again), each in a transaction of its
+    /// own so one past the quota spares the others, then the index; [`Host::poll`] takes the end.
     pub fn write_recovery(&mut self, wb: &mut Workbench) {
-        if self.recovery != Recovery::Idle {
+        if self.busy {
             self.again = true;
             return;
         }
@@ -575,25 +505,20 @@ impl Host {
             .collect();
         let book = self.book.clone();
         let db = self.db.clone();
-        self.recovery = Recovery::Writing;
+        self.busy = true;
         self.inbox.spawn(async move {
             let opened = open_db(&db).await;
             let mut results = Vec::with_capacity(writes.len());
             for (write, value) in writes.iter().zip(&values) {
-                results.push(match &opened {
-                    Ok(db) => put(db, &write.key, value).await,
-                    Err(e) => Err(e.clone()),
-                });
+                results.push(put(&opened, &write.key, value).await);
             }
             let round = book.compose(&tabs, active, &writes, &results);
             let mut failed = round.failed.clone();
             let stored = !round.changed
-                || match &opened {
-                    Ok(db) => put(db, INDEX_KEY, &JsValue::from_str(&round.record)).await,
-                    Err(e) => Err(e.clone()),
-                }
-                .map_err(|e| failed = RecoveryBook::all_failed(&tabs, &e))
-                .is_ok();
+                || put(&opened, INDEX_KEY, &JsValue::from_str(&round.record))
+                    .await
+                    .map_err(|e| failed = RecoveryBook::all_failed(&tabs, &e))
+                    .is_ok();
             Arrival::Autosaved(Box::new(WrittenRound {
                 round,
                 stored,
@@ -605,16 +530,11 @@ impl Host {
     /// Takes a round of recovery writes in: removes the records no longer needed, and tells
     /// the user which tabs are not kept (or are again).
     fn autosaved(&mut self, wb: &mut Workbench, written: WrittenRound) {
-        self.recovery = Recovery::Idle;
+        self.busy = false;
         self.book.commit(written.round, written.stored);
         let stale = self.book.take_stale();
         if !stale.is_empty() {
-            let db = self.db.clone();
-            wasm_bindgen_futures::spawn_local(async move {
-                if let Err(e) = delete(&db, Some(&stale)).await {
-                    log::warn!("cannot remove recovery records: {e}");
-                }
-            });
+            self.remove(Some(stale));
         }
         let (tabs, _) = TabState::of(wb, false);
         if let Some(message) = self.book.report(&written.failed, &tabs) {
@@ -629,40 +549,34 @@ impl Host {
         let stored = self.book.holds_records();
         self.book.cleared();
         if stored {
-            let db = self.db.clone();
-            wasm_bindgen_futures::spawn_local(async move {
-                if let Err(e) = delete(&db, None).await {
-                    log::warn!("cannot remove the recovery records: {e}");
-                }
-            });
+            self.remove(None);
         }
+    }
+
+    /// Removes the records `keys`, or every record and the index when `None`, in the background.
+    fn remove(&self, keys: Option<Vec<String>>) {
+        let db = self.db.clone();
+        wasm_bindgen_futures::spawn_local(async move {
+            if let Err(e) = delete(&db, keys.as_deref()).await {
+                log::warn!("cannot remove recovery records: {e}");
+            }
+        });
     }
 }
 
-/// Writes `bytes` to the file behind `handle` for the tab `tab` active at `generation`; the
-/// tab is to keep the handle when `keep` (a file just picked).
-async fn save_to(
-    handle: web_sys::FileSystemFileHandle,
-    bytes: Vec<u8>,
-    tab: usize,
-    generation: u64,
-    keep: bool,
-) -> Arrival {
+/// Writes `bytes` to the file behind `handle` for the tab active `at` (tab, generation), which
+/// is to keep the handle when `keep` (a file just picked).
+async fn save_to(handle: Handle, bytes: Vec<u8>, at: (usize, u64), keep: bool) -> Arrival {
     let name = handle.name();
     match write_file(&handle, &bytes).await {
-        Ok(()) => Arrival::Saved {
-            name,
-            handle: keep.then_some(handle),
-            tab,
-            generation,
-        },
-        Err(e) => Arrival::Message(format!("Cannot save {name}: {}", js_error(&e))),
+        Ok(()) => Arrival::Saved(name, keep.then_some(handle), at),
+        Err(e) => failed(&format!("Cannot save {name}"), &e),
     }
 }
 
 /// Opens the recovery database (once: it is kept in `slot`), making its store the first time
 /// (or in a new version of the database, should one without it be there).
-async fn open_db(slot: &DbSlot) -> Result<web_sys::IdbDatabase, String> {
+async fn open_db(slot: &DbSlot) -> Result<Db, String> {
     if let Some(db) = slot.borrow().as_ref() {
         return Ok(db.clone());
     }
@@ -678,25 +592,25 @@ async fn open_db(slot: &DbSlot) -> Result<web_sys::IdbDatabase, String> {
 
 /// Opens the recovery database at `version` (at the version it has when `None`, or 1 when
 /// it is new), making its store when it upgrades.
-async fn open_version(version: Option<u32>) -> Result<web_sys::IdbDatabase, String> {
+async fn open_version(version: Option<u32>) -> Result<Db, String> {
     let factory = web_sys::window()
         .ok_or("no window")?
         .indexed_db()
-        .map_err(|e| dom_error(&e))?
+        .map_err(dom_error)?
         .ok_or("this browser has no IndexedDB")?;
     let request = match version {
         Some(version) => factory.open_with_u32(DB_NAME, version),
         None => factory.open(DB_NAME),
     }
-    .map_err(|e| dom_error(&e))?;
+    .map_err(dom_error)?;
     let opening = request.clone();
     let upgrade = Closure::<dyn FnMut(web_sys::Event)>::new(move |_event: web_sys::Event| {
         if let Ok(db) = opening.result() {
-            let db = db.unchecked_into::<web_sys::IdbDatabase>();
+            let db = db.unchecked_into::<Db>();
             if !db.object_store_names().contains(STORE)
                 && let Err(e) = db.create_object_store(STORE)
             {
-                log::warn!("cannot make the recovery store: {}", dom_error(&e));
+                log::warn!("cannot make the recovery store: {}", dom_error(e));
             }
         }
     });
@@ -704,9 +618,7 @@ async fn open_version(version: Option<u32>) -> Result<web_sys::IdbDatabase, Stri
     let opened = request_done(&request).await;
     request.set_onupgradeneeded(None);
     drop(upgrade);
-    Ok(opened
-        .map_err(|e| dom_error(&e))?
-        .unchecked_into::<web_sys::IdbDatabase>())
+    Ok(opened.map_err(dom_error)?.unchecked_into::<Db>())
 }
 
 /// The result of an IndexedDB request once it succeeded, or its error.
@@ -715,7 +627,7 @@ async fn request_done(request: &web_sys::IdbRequest) -> Result<JsValue, JsValue>
         request.set_onsuccess(Some(&resolve));
         request.set_onerror(Some(&reject));
     });
-    let done = wasm_bindgen_futures::JsFuture::from(promise).await;
+    let done = JsFuture::from(promise).await;
     request.set_onsuccess(None);
     request.set_onerror(None);
     match done {
@@ -736,7 +648,7 @@ async fn transaction_done(tx: &web_sys::IdbTransaction) -> Result<(), JsValue> {
         tx.set_onerror(Some(&reject));
         tx.set_onabort(Some(&reject));
     });
-    let done = wasm_bindgen_futures::JsFuture::from(promise).await;
+    let done = JsFuture::from(promise).await;
     match done {
         Ok(_) => Ok(()),
         Err(_) => Err(tx.error().map_or_else(
@@ -749,22 +661,23 @@ async fn transaction_done(tx: &web_sys::IdbTransaction) -> Result<(), JsValue> {
 /// Makes the changes `issue` asks of the store in a transaction of its own, committed when
 /// this returns Ok (aborted when a change cannot be asked).
 async fn write(
-    db: &web_sys::IdbDatabase,
+    db: &Db,
     issue: impl FnOnce(&web_sys::IdbObjectStore) -> Result<(), JsValue>,
 ) -> Result<(), String> {
     let tx = db
         .transaction_with_str_and_mode(STORE, web_sys::IdbTransactionMode::Readwrite)
-        .map_err(|e| dom_error(&e))?;
+        .map_err(dom_error)?;
     if let Err(e) = tx.object_store(STORE).and_then(|store| issue(&store)) {
         let _ = tx.abort();
-        return Err(dom_error(&e));
+        return Err(dom_error(e));
     }
-    transaction_done(&tx).await.map_err(|e| dom_error(&e))
+    transaction_done(&tx).await.map_err(dom_error)
 }
 
-/// Stores `value` under `key` in a transaction of its own, committed when this returns Ok.
-async fn put(db: &web_sys::IdbDatabase, key: &str, value: &JsValue) -> Result<(), String> {
-    write(db, |store| {
+/// Stores `value` under `key` in the database `opened` (or says why it could not be opened), in a
+/// transaction of its own, committed when this returns Ok.
+async fn put(opened: &Result<Db, String>, key: &str, value: &JsValue) -> Result<(), String> {
+    write(opened.as_ref().map_err(String::clone)?, |store| {
         store
             .put_with_key(value, &JsValue::from_str(key))
             .map(|_| ())
@@ -784,23 +697,19 @@ async fn delete(slot: &DbSlot, keys: Option<&[String]>) -> Result<(), String> {
     .await
 }
 
-/// Reads the recovery index and the records it names (a record that cannot be read is left
-/// out), and removes the records it does not name: left over from a round whose index was
-/// never stored. `None` when no index is stored.
+/// Reads the recovery index (`None`: none stored) and the records it names that can be read,
+/// and removes those it does not name (left over from a round whose index was not stored).
 async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
     let db = open_db(slot).await?;
-    let store = |db: &web_sys::IdbDatabase| {
+    let store = |db: &Db| {
         db.transaction_with_str(STORE)
             .and_then(|tx| tx.object_store(STORE))
-            .map_err(|e| dom_error(&e))
+            .map_err(dom_error)
     };
     let index = store(&db)?
         .get(&JsValue::from_str(INDEX_KEY))
-        .map_err(|e| dom_error(&e))?;
-    let record = request_done(&index)
-        .await
-        .map_err(|e| dom_error(&e))?
-        .as_string();
+        .map_err(dom_error)?;
+    let record = request_done(&index).await.map_err(dom_error)?.as_string();
     let index = record.as_deref().and_then(RecoveryIndex::from_record);
     let named: Vec<String> = index
         .as_ref()
@@ -826,9 +735,9 @@ async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
             _ => log::warn!("the recovery record {key} cannot be read"),
         }
     }
-    let all = request_done(&store(&db)?.get_all_keys().map_err(|e| dom_error(&e))?)
+    let all = request_done(&store(&db)?.get_all_keys().map_err(dom_error)?)
         .await
-        .map_err(|e| dom_error(&e))?;
+        .map_err(dom_error)?;
     let left_over: Vec<String> = js_sys::Array::from(&all)
         .iter()
         .filter_map(|k| k.as_string())
@@ -843,9 +752,9 @@ async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
 }
 
 /// A DOM exception (or any JavaScript error) as `Name: message` for the status bar.
-fn dom_error(error: &JsValue) -> String {
-    let name = js_error_name(error);
-    let message = js_error(error);
+fn dom_error(error: JsValue) -> String {
+    let name = js_error_name(&error);
+    let message = js_error(&error);
     if name.is_empty() || message.starts_with(&name) {
         message
     } else {
@@ -856,7 +765,7 @@ fn dom_error(error: &JsValue) -> String {
 /// The body of `url`, fetched.
 async fn fetch_bytes(url: &str) -> Result<Vec<u8>, String> {
     let window = web_sys::window().ok_or("no window")?;
-    let response = wasm_bindgen_futures::JsFuture::from(window.fetch_with_str(url))
+    let response = JsFuture::from(window.fetch_with_str(url))
         .await
         .map_err(|e| format!("{e:?}"))?
         .dyn_into::<web_sys::Response>()
@@ -865,9 +774,7 @@ async fn fetch_bytes(url: &str) -> Result<Vec<u8>, String> {
         return Err(format!("HTTP {}", response.status()));
     }
     let buffer = response.array_buffer().map_err(|e| format!("{e:?}"))?;
-    let buffer = wasm_bindgen_futures::JsFuture::from(buffer)
-        .await
-        .map_err(|e| format!("{e:?}"))?;
+    let buffer = JsFuture::from(buffer).await.map_err(|e| format!("{e:?}"))?;
     Ok(js_sys::Uint8Array::new(&buffer).to_vec())
 }
 
@@ -911,24 +818,24 @@ async fn call_picker(
         .call1(&window, options)?
         .dyn_into::<js_sys::Promise>()
         .map_err(|_| JsValue::from_str("the picker returned no promise"))?;
-    wasm_bindgen_futures::JsFuture::from(promise).await
+    JsFuture::from(promise).await
 }
 
 /// The bytes of the file behind `handle`.
-async fn read_handle(handle: &web_sys::FileSystemFileHandle) -> Result<Vec<u8>, JsValue> {
-    let file = wasm_bindgen_futures::JsFuture::from(handle.get_file())
+async fn read_handle(handle: &Handle) -> Result<Vec<u8>, JsValue> {
+    let file = JsFuture::from(handle.get_file())
         .await?
         .unchecked_into::<web_sys::File>();
     if let Some(why) = files::too_large(file.size() as u64) {
         return Err(JsValue::from_str(&why));
     }
-    let buffer = wasm_bindgen_futures::JsFuture::from(file.array_buffer()).await?;
+    let buffer = JsFuture::from(file.array_buffer()).await?;
     Ok(js_sys::Uint8Array::new(&buffer).to_vec())
 }
 
 /// Whether two handles are the same file (false when the browser cannot tell).
-async fn same_entry(a: &web_sys::FileSystemFileHandle, b: &web_sys::FileSystemFileHandle) -> bool {
-    wasm_bindgen_futures::JsFuture::from(a.is_same_entry(b))
+async fn same_entry(a: &Handle, b: &Handle) -> bool {
+    JsFuture::from(a.is_same_entry(b))
         .await
         .ok()
         .and_then(|same| same.as_bool())
@@ -937,14 +844,14 @@ async fn same_entry(a: &web_sys::FileSystemFileHandle, b: &web_sys::FileSystemFi
 
 /// Replaces the content of the file behind `handle` with `bytes` (the browser writes a
 /// temporary file and swaps it in on close).
-async fn write_file(handle: &web_sys::FileSystemFileHandle, bytes: &[u8]) -> Result<(), JsValue> {
-    let stream = wasm_bindgen_futures::JsFuture::from(handle.create_writable())
+async fn write_file(handle: &Handle, bytes: &[u8]) -> Result<(), JsValue> {
+    let stream = JsFuture::from(handle.create_writable())
         .await?
         .unchecked_into::<web_sys::FileSystemWritableFileStream>();
     // A copy owned by JavaScript: the write completes after this call returns.
     let data = js_sys::Uint8Array::from(bytes);
-    wasm_bindgen_futures::JsFuture::from(stream.write_with_js_u8_array(&data)?).await?;
-    wasm_bindgen_futures::JsFuture::from(stream.close()).await?;
+    JsFuture::from(stream.write_with_js_u8_array(&data)?).await?;
+    JsFuture::from(stream.close()).await?;
     Ok(())
 }
 
@@ -954,6 +861,11 @@ fn js_error_name(error: &JsValue) -> String {
         .ok()
         .and_then(|n| n.as_string())
         .unwrap_or_default()
+}
+
+/// The status bar's `what: error`.
+fn failed(what: &str, error: &JsValue) -> Arrival {
+    Arrival::Message(format!("{what}: {}", js_error(error)))
 }
 
 /// A JavaScript error as a line for the status bar.

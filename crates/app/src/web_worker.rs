@@ -1,6 +1,5 @@
-//! The page's analysis in a web worker (`web/worker.js` running crates/worker): the
-//! workbench's requests are posted to it and its replies taken as they come, each one asking
-//! for a frame. Should the worker fail, the analysis goes on in the page's own frames.
+//! The page's analysis in a web worker (`web/worker.js` running crates/worker), each reply asking
+//! for a frame; should the worker fail, the analysis goes on in the page's own frames.
 
 use std::cell::RefCell;
 use std::collections::VecDeque;

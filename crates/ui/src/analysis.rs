@@ -62,9 +62,8 @@ impl Analysis {
         }
     }
 
-    /// Takes a cut of the stock for the scene shown (one of another analysis is dropped): its
-    /// progress, or the cut, whose problems replace the stock's in the list when it covers
-    /// the whole toolpath.
+    /// Takes a cut of the stock for the scene shown (another analysis' is dropped): its progress,
+    /// or the cut, whose problems replace the stock's when it covers the whole toolpath.
     pub fn take_stock(&mut self, mut cut: StockCut) {
         if cut.generation != self.scene.generation {
             return;
@@ -119,28 +118,19 @@ pub fn scene_of(path: &Toolpath, setup: &Setup, generation: u64) -> Scene {
 
 /// The backplot's scene of a plot (its arrays moved, not copied).
 fn scene(plot: Plot, generation: u64) -> Scene {
-    let Plot {
-        drawing,
-        lines,
-        feeds,
-        timeline,
-        tools,
-        tool_radii,
-    } = plot;
+    let drawing = plot.drawing;
     Scene {
         generation,
-        lines: Arc::new(lines),
-        feeds: Arc::new(feeds),
-        timeline: Arc::new(timeline),
-        tools: Arc::new(tools),
-        tool_radii: Arc::new(tool_radii),
+        lines: Arc::new(plot.lines),
+        feeds: Arc::new(plot.feeds),
+        timeline: Arc::new(plot.timeline),
+        tools: Arc::new(plot.tools),
+        tool_radii: Arc::new(plot.tool_radii),
         points: Arc::new(drawing.points),
         marks: Arc::new(drawing.marks),
         bounds: drawing.bounds,
         zero: drawing.zero,
         origin: drawing.origin,
-        source: None,
-        stock: None,
-        stock_progress: None,
+        ..Scene::default()
     }
 }

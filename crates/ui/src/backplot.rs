@@ -1,14 +1,9 @@
-//! The 3D backplot widget: an egui area painted by `swarf_render` through an `egui_wgpu`
-//! paint callback, with orbit/pan/zoom input, standard-view buttons, picking (click a
-//! segment to select its block, hover for its line, position and feed) and playback dimming.
-//!
-//! GPU side: [`Backplot::install`] puts a [`BackplotResources`] into egui-wgpu's
-//! `callback_resources` type map. Each frame [`Backplot::show`] adds a paint callback carrying
-//! the scene's `Arc` and the view parameters. Its `prepare` uploads the points (simplified to
-//! what the zoom shows, see [`PathLod`]) only when the scene, the zoom or the highlight
-//! changed, and draws the 3D view (with its own depth buffer) into an offscreen target only
-//! when something visible changed; its `paint` composites that target into egui's render pass,
-//! which has no depth buffer. So the app needs no depth setting.
+//! The 3D backplot widget: orbit/pan/zoom, standard views, picking (click a segment to select
+//! its block, hover for its line, position and feed) and playback, painted by `swarf_render`
+//! through an `egui_wgpu` paint callback. Its `prepare` uploads the points (at the zoom's level
+//! of detail, [`PathLod`]) when the scene, zoom or highlight changed, and draws the view with its
+//! own depth buffer into an offscreen target when anything visible changed; `paint` composites
+//! that target into egui's render pass, so the app needs no depth setting.
 
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
@@ -86,13 +81,11 @@ pub struct SourceText {
 
 impl SourceText {
     /// Indexes `text` (lines end at `\n`; a trailing `\r` is dropped from each line).
-    #[must_use]
     pub fn new(text: &str) -> Self {
         Self::shared(Arc::new(text.to_owned()))
     }
 
     /// Indexes a text already held in an `Arc` (not copied).
-    #[must_use]
     pub fn shared(text: Arc<String>) -> Self {
         Self {
             text,
@@ -102,7 +95,6 @@ impl SourceText {
     }
 
     /// The text of a rope (not copied; a clone of a rope shares its chunks).
-    #[must_use]
     pub fn from_rope(rope: ropey::Rope) -> Self {
         Self {
             rope: Some(rope),
@@ -111,19 +103,15 @@ impl SourceText {
     }
 
     /// The text of 1-based `line` without its line ending, if the text has that line.
-    #[must_use]
     pub fn line(&self, line: u32) -> Option<std::borrow::Cow<'_, str>> {
         let index = usize::try_from(line).ok()?.checked_sub(1)?;
         if let Some(rope) = &self.rope {
             let slice = rope.get_line(index)?;
-            let mut n = slice.len_chars();
-            if n > 0 && slice.char(n - 1) == '\n' {
-                n -= 1;
-            }
-            if n > 0 && slice.char(n - 1) == '\r' {
-                n -= 1;
-            }
-            return Some(slice.slice(..n).into());
+            return Some(
+                slice
+                    .slice(..crate::buffer::chars_before_ending(slice))
+                    .into(),
+            );
         }
         let starts = self.starts.get_or_init(|| {
             let mut starts = Vec::with_capacity(self.text.len() / 24 + 1);
@@ -140,9 +128,8 @@ impl SourceText {
     }
 }
 
-/// What the view shows: a [`swarf_render::Drawing`] (the path and its marks relative to
-/// `origin`) shared for cheap clones, with the source line and feed of every segment for
-/// picking and its times and tool for playback.
+/// What the view shows: a [`swarf_render::Drawing`] shared for cheap clones, with each segment's
+/// source line and feed for picking, and its times and tool for playback.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     /// Changes whenever the geometry changes; the GPU upload happens only then.
@@ -180,15 +167,12 @@ pub struct Scene {
 
 impl Scene {
     /// Number of segments (one fewer than points).
-    #[must_use]
     pub fn segment_count(&self) -> usize {
         self.points.len().saturating_sub(1)
     }
 
-    /// The segments caused by source `line`: every run of consecutive segments whose line it
-    /// is, in order (several when the line runs more than once, as in a subprogram called
-    /// twice or a loop); empty when the line moved nothing. Exactly these are highlighted.
-    #[must_use]
+    /// The segments of source `line`, as runs of consecutive segments in order (several when
+    /// the line runs more than once, as in a loop): exactly these are highlighted.
     pub fn segments_of_line(&self, line: u32) -> Vec<Range<usize>> {
         let mut runs: Vec<Range<usize>> = Vec::new();
         for (i, _) in self.lines.iter().enumerate().filter(|(_, l)| **l == line) {
@@ -200,18 +184,10 @@ impl Scene {
         runs
     }
 
-    /// The box that framing the view shows: the toolpath and the reference marks drawn with
-    /// it (holes, pecks, the programmed contour, program zeros, stroke limits), but not the
-    /// machine's travel box; `None` when there is nothing.
-    #[must_use]
+    /// The box framing the view shows: the toolpath and the marks drawn with it (holes, zeros,
+    /// the programmed contour …), not the machine's travel box; `None` when there is nothing.
     pub fn view_bounds(&self) -> Option<(Vec3, Vec3)> {
         view_bounds(self.bounds, &self.marks)
-    }
-
-    /// Machine coordinates (mm) of a point in the scene's frame.
-    #[must_use]
-    pub fn machine_position(&self, p: Vec3) -> DVec3 {
-        self.origin + p.as_dvec3()
     }
 
     /// Whether the timeline covers every segment (otherwise each takes one second).
@@ -220,7 +196,6 @@ impl Scene {
     }
 
     /// Seconds from the program start to the end of the last segment's move or dwell.
-    #[must_use]
     pub fn total_secs(&self) -> f64 {
         if self.timed() {
             self.timeline.total_secs()
@@ -230,7 +205,6 @@ impl Scene {
     }
 
     /// When segment `i` starts and ends moving, in seconds from the program start.
-    #[must_use]
     pub fn segment_span(&self, i: usize) -> Option<(f64, f64)> {
         if self.timed() {
             self.timeline.span(i)
@@ -240,7 +214,6 @@ impl Scene {
     }
 
     /// How many segments have finished at time `t` (the executed part of the path).
-    #[must_use]
     pub fn finished_at(&self, t: f64) -> usize {
         if self.timed() {
             self.timeline.finished_at(t)
@@ -251,7 +224,6 @@ impl Scene {
 
     /// The segment running at time `t` (at the very end of a segment, that segment; the last
     /// after the end); `None` without segments.
-    #[must_use]
     pub fn segment_at(&self, t: f64) -> Option<usize> {
         let last = self.segment_count().checked_sub(1)?;
         if self.timed() {
@@ -263,7 +235,6 @@ impl Scene {
 
     /// Where the tool is at time `t`, in the scene's frame (moving linearly in time along
     /// the running segment).
-    #[must_use]
     pub fn position_at(&self, t: f64) -> Option<Vec3> {
         let i = self.segment_at(t)?;
         let (start, end) = self.segment_span(i)?;
@@ -366,16 +337,12 @@ pub struct Backplot {
 
 impl Backplot {
     /// A backplot in the isometric view that fits to the first geometry it is shown.
-    #[must_use]
     pub fn new() -> Self {
         Self::default()
     }
 
-    /// Registers the GPU resources; call once with eframe's `cc.wgpu_render_state`.
-    ///
-    /// Assumes egui-wgpu's default render pass (as eframe configures it with the default
-    /// `multisampling: 0`): one sample. The 3D view brings its own depth buffer, so eframe's
-    /// `depth_buffer` may stay 0.
+    /// Registers the GPU resources; call once with eframe's `cc.wgpu_render_state`. Assumes one
+    /// sample (eframe's default); the view has its own depth buffer.
     pub fn install(ctx: &egui::Context, render_state: &egui_wgpu::RenderState) {
         let resources = BackplotResources {
             compositor: Compositor::new(&render_state.device, render_state.target_format, 1),
@@ -389,9 +356,8 @@ impl Backplot {
         ctx.data_mut(|d| d.insert_temp(installed_key(), true));
     }
 
-    /// Frames everything drawn (see [`Scene::view_bounds`]) once: on the next frame, or, while
-    /// the scene of a new text is still being made (see [`Self::set_coming_generation`]), as
-    /// soon as it is shown. For a program opened, replaced or chosen; edits do not call it.
+    /// Frames everything drawn once, for a program opened or replaced: on the next frame, or
+    /// once the scene of a new text being made ([`Self::set_coming_generation`]) is shown.
     pub fn fit(&mut self) {
         self.fitted = false;
         self.fit_waits = true;
@@ -422,7 +388,6 @@ impl Backplot {
     }
 
     /// The camera, e.g. to persist it.
-    #[must_use]
     pub fn camera(&self) -> &OrbitCamera {
         &self.camera
     }
@@ -434,7 +399,6 @@ impl Backplot {
     }
 
     /// The block (1-based source line) whose segments are highlighted.
-    #[must_use]
     pub fn selected_line(&self) -> Option<u32> {
         self.selected_line
     }
@@ -451,14 +415,7 @@ impl Backplot {
         self.executed = executed;
     }
 
-    /// The playback position set by [`Self::set_playback`].
-    #[must_use]
-    pub fn playback(&self) -> Option<usize> {
-        self.executed
-    }
-
     /// The playback bar's state (time, speed, block).
-    #[must_use]
     pub fn player(&self) -> &Playback {
         &self.playback
     }
@@ -468,11 +425,8 @@ impl Backplot {
         &mut self.playback
     }
 
-    /// The playback bar (show it under the view, before [`Self::show`] in the same frame):
-    /// play/pause, one block back or forward, stop, speed and sliders over time and blocks.
-    /// While playback is on, the executed part of the path is drawn normally and the rest
-    /// dimmed, a tool marker stands at the current position, and the current block is
-    /// highlighted and reported through [`Self::take_playback_line`].
+    /// The playback bar (show it under the view, before [`Self::show`] in the same frame); the
+    /// current block is highlighted and reported through [`Self::take_playback_line`].
     pub fn playback_bar(&mut self, ui: &mut egui::Ui, scene: &Scene) {
         self.playback.ui(ui, scene);
         if let Some(line) = self.playback.take_line() {
@@ -487,23 +441,12 @@ impl Backplot {
         self.playback_line.take()
     }
 
-    /// Shows or hides one kind of segment (e.g. rapids); hidden segments are not picked.
-    pub fn set_kind_visible(&mut self, kind: Kind, visible: bool) {
-        if visible {
-            self.hidden_kinds &= !kind.mask();
-        } else {
-            self.hidden_kinds |= kind.mask();
-        }
-    }
-
     /// Whether segments of `kind` are drawn.
-    #[must_use]
     pub fn kind_visible(&self, kind: Kind) -> bool {
         self.hidden_kinds & kind.mask() == 0
     }
 
     /// The colouring in use: by kind of move or by tool.
-    #[must_use]
     pub fn color_mode(&self) -> ColorMode {
         self.color_mode
     }
@@ -524,20 +467,18 @@ impl Backplot {
         };
     }
 
-    /// Shows `kind` if hidden, hides it if shown.
+    /// Shows `kind` if hidden, hides it if shown (hidden segments are not picked).
     fn toggle_kind(&mut self, kind: Kind) {
-        self.set_kind_visible(kind, !self.kind_visible(kind));
+        self.hidden_kinds ^= kind.mask();
     }
 
     /// What the cursor was over at the last frame.
-    #[must_use]
     pub fn hovered(&self) -> Option<&HoverInfo> {
         self.hover.as_ref()
     }
 
     /// Where a point of the scene (its frame, like [`Scene::points`]) appeared on screen at
     /// the last frame; `None` before the first frame or behind the eye.
-    #[must_use]
     pub fn screen_pos(&self, p: Vec3) -> Option<egui::Pos2> {
         let rect = self.last_rect?;
         let clip = self.camera.view_proj(rect.width() / rect.height()) * p.extend(1.0);
@@ -551,12 +492,9 @@ impl Backplot {
         ))
     }
 
-    /// Draws the scene filling the available space; handles input and picking; re-uploads
-    /// when `scene.generation` changes; fits to extents the first time geometry appears.
-    ///
-    /// The view takes the keyboard focus when it is clicked or dragged (and shows it with an
-    /// outline): its keys (see [`Self::handle_keys`]) act only while it has it, so they never
-    /// reach the editor, and the editor's never reach it.
+    /// Draws the scene filling the available space, handles input and picking, and fits to
+    /// extents the first time geometry appears. A click or drag gives the view the keyboard
+    /// (shown by an outline); its keys act only then, so they never reach the editor.
     pub fn show(&mut self, ui: &mut egui::Ui, scene: &Scene) -> egui::Response {
         let size = ui.available_size().max(egui::vec2(64.0, 64.0));
         let (rect, response) = ui.allocate_exact_size(size, egui::Sense::click_and_drag());
@@ -668,15 +606,13 @@ impl Backplot {
     }
 
     /// Whether the view has the keyboard focus (its keys act only then).
-    #[must_use]
     pub fn has_focus(&self, ctx: &egui::Context) -> bool {
         self.last_id
             .is_some_and(|id| ctx.memory(|m| m.has_focus(id)))
     }
 
-    /// A press, click or drag in the view gives it the keyboard focus, taken from whatever had
-    /// it (the editor); while it has it, the arrow keys and Escape stay with it rather than
-    /// move the focus (Tab still does).
+    /// A press, click or drag in the view gives it the keyboard focus; while it has it, the
+    /// arrow keys and Escape stay with it rather than move the focus (Tab still does).
     fn take_focus(&mut self, ui: &egui::Ui, response: &egui::Response) {
         self.last_id = Some(response.id);
         let pressed = response.is_pointer_button_down_on()
@@ -688,17 +624,7 @@ impl Backplot {
             response.request_focus();
         }
         if response.has_focus() {
-            ui.memory_mut(|m| {
-                m.set_focus_lock_filter(
-                    response.id,
-                    egui::EventFilter {
-                        tab: false,
-                        horizontal_arrows: true,
-                        vertical_arrows: true,
-                        escape: true,
-                    },
-                );
-            });
+            crate::editor::keep_keys(ui, response.id, false, true);
         }
     }
 
@@ -792,7 +718,6 @@ impl Backplot {
 
     /// The segments highlighted at the last frame: those of the selected block (the editor's
     /// line, a clicked segment's, or playback's current block), as runs.
-    #[must_use]
     pub fn highlighted_segments(&self) -> Vec<Range<usize>> {
         match (&self.selection, self.selected_line) {
             (Some((_, line, runs)), Some(selected)) if *line == selected => runs.to_vec(),
@@ -815,15 +740,14 @@ impl Backplot {
         Some(HoverInfo {
             segment: hit.segment,
             line: *scene.lines.get(hit.segment)?,
-            position: scene.machine_position(hit.position(&scene.points)?),
+            position: scene.origin + hit.position(&scene.points)?.as_dvec3(),
             feed: scene.feeds.get(hit.segment).copied().unwrap_or(0.0),
             kind: scene.points.get(hit.segment + 1).and_then(PathPoint::kind),
         })
     }
 
-    /// A click selects the block under the cursor (or clears the selection on empty space)
-    /// and reports it through [`Self::take_picked_line`]; hovering finds what is under the
-    /// cursor for the tooltip, only when the pointer, camera or scene changed.
+    /// A click selects the block under the cursor (or none) for [`Self::take_picked_line`];
+    /// hovering picks for the tooltip when the pointer, camera or scene changed.
     fn handle_picking(&mut self, response: &egui::Response, rect: egui::Rect, scene: &Scene) {
         if response.clicked()
             && let Some(pointer) = response.interact_pointer_pos()
@@ -907,10 +831,9 @@ impl Backplot {
         }
     }
 
-    /// Keys while the view has the keyboard focus (click it first): arrows orbit (with Shift
-    /// they pan), `+`/`-` zoom, `F` fits, `S` zooms to the selection, `1`–`4` pick the iso,
-    /// top, front and right views, `P` toggles perspective, `R` rapids, `T` colours by tool,
-    /// and Escape clears the selection.
+    /// Keys while the view has the keyboard: arrows orbit (pan with Shift), `+`/`-` zoom, `F`
+    /// fits, `S` zooms to the selection, `1`–`4` standard views, `P` perspective, `R` rapids, `T`
+    /// colours by tool, Escape clears the selection.
     fn handle_keys(&mut self, ui: &egui::Ui, viewport: Vec2) {
         use egui::Key;
         let (shift, pressed) = ui.input(|i| {
@@ -922,32 +845,25 @@ impl Backplot {
             let pressed: Vec<Key> = keys.into_iter().filter(|k| i.key_pressed(*k)).collect();
             (i.modifiers.shift, pressed)
         });
+        let views = [Key::Num1, Key::Num2, Key::Num3, Key::Num4];
         for key in pressed {
             let step = match key {
-                Key::ArrowLeft => Some(Vec2::new(-1.0, 0.0)),
-                Key::ArrowRight => Some(Vec2::new(1.0, 0.0)),
-                Key::ArrowUp => Some(Vec2::new(0.0, -1.0)),
-                Key::ArrowDown => Some(Vec2::new(0.0, 1.0)),
-                _ => None,
+                Key::ArrowLeft => Vec2::new(-1.0, 0.0),
+                Key::ArrowRight => Vec2::new(1.0, 0.0),
+                Key::ArrowUp => Vec2::new(0.0, -1.0),
+                Key::ArrowDown => Vec2::new(0.0, 1.0),
+                _ => Vec2::ZERO,
             };
-            if let Some(step) = step {
-                if shift {
-                    self.camera.pan(step * KEY_PAN_POINTS, viewport);
-                } else {
-                    self.camera.orbit(step * KEY_ORBIT_POINTS);
-                }
-                continue;
-            }
+            let moved = step != Vec2::ZERO;
             match key {
+                _ if moved && shift => self.camera.pan(step * KEY_PAN_POINTS, viewport),
+                _ if moved => self.camera.orbit(step * KEY_ORBIT_POINTS),
                 Key::Plus | Key::Equals => self.camera.zoom(KEY_ZOOM),
                 Key::Minus => self.camera.zoom(1.0 / KEY_ZOOM),
                 Key::F => self.fit_now(),
                 Key::S => self.zoom_to_selection(),
-                Key::Num1 | Key::Num2 | Key::Num3 | Key::Num4 => {
-                    let n = [Key::Num1, Key::Num2, Key::Num3, Key::Num4]
-                        .iter()
-                        .position(|k| *k == key);
-                    self.set_view(STANDARD_VIEWS[n.unwrap_or(0)].1);
+                _ if let Some(n) = views.iter().position(|k| *k == key) => {
+                    self.set_view(STANDARD_VIEWS[n].1);
                 }
                 Key::P => self.toggle_projection(),
                 Key::R => self.toggle_kind(Kind::Rapid),
@@ -990,11 +906,8 @@ impl Backplot {
             hit
         };
         let perspective = self.camera.projection == Projection::Perspective;
-        if toggle(
-            perspective,
-            "Persp",
-            "Perspective / orthographic projection",
-        ) {
+        let hint = "Perspective / orthographic projection";
+        if toggle(perspective, "Persp", hint) {
             self.toggle_projection();
         }
         let by_tool = self.color_mode == ColorMode::ByIndex;
@@ -1008,11 +921,8 @@ impl Backplot {
         if toggle(contour, "Contour", hint) {
             self.toggle_kind(Kind::Programmed);
         }
-        if toggle(
-            self.kind_visible(Kind::Rapid),
-            "Rapids",
-            "Show or hide rapid moves",
-        ) {
+        let rapids = self.kind_visible(Kind::Rapid);
+        if toggle(rapids, "Rapids", "Show or hide rapid moves") {
             self.toggle_kind(Kind::Rapid);
         }
         if self.selected_line.is_some()
@@ -1027,9 +937,8 @@ impl Backplot {
         (child.min_rect(), clicked)
     }
 
-    /// The stock's buttons in the view's bottom-left corner: Stock on/off and, while on, the
-    /// path over it or not and how far its cut has got (or why there is none); whether one was
-    /// clicked.
+    /// The stock's buttons in the view's bottom-left corner: Stock, and while on, Path and how
+    /// far its cut has got (or why there is none); whether one was clicked.
     fn stock_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect, scene: &Scene) -> bool {
         let mut clicked = false;
         let mut child = ui.new_child(
@@ -1211,10 +1120,8 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             last_frame: self.frame,
         });
         view.last_frame = self.frame;
-        let same_stock = match (&view.stock, &self.stock) {
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-            (a, b) => a.is_none() && b.is_none(),
-        };
+        let same_stock =
+            view.stock.as_ref().map(Arc::as_ptr) == self.stock.as_ref().map(Arc::as_ptr);
         let scene = &self.scene;
         if !same_stock || view.generation != Some(scene.generation) {
             let surface = self.stock.as_ref().and_then(|c| c.field.as_ref());
@@ -1299,28 +1206,20 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         else {
             return;
         };
-        // egui-wgpu has already set the scissor to the clip rect and the viewport to the
-        // callback rect clamped to the screen (what `prepare` sized the target to); set that
-        // viewport explicitly so we do not depend on that courtesy.
+        // The callback rect clamped to the screen, as `prepare` sized the target (egui-wgpu sets
+        // it too; set here so as not to depend on that).
         let vp = info.viewport_in_pixels();
         if vp.width_px <= 0 || vp.height_px <= 0 {
             return;
         }
-        render_pass.set_viewport(
-            vp.left_px as f32,
-            vp.top_px as f32,
-            vp.width_px as f32,
-            vp.height_px as f32,
-            0.0,
-            1.0,
-        );
+        let [x, y, w, h] = [vp.left_px, vp.top_px, vp.width_px, vp.height_px].map(|v| v as f32);
+        render_pass.set_viewport(x, y, w, h, 0.0, 1.0);
         resources.compositor.paint(render_pass, bind_group);
     }
 }
 
-/// Maps NDC of the whole callback rectangle `full` (pixels, may extend off screen) onto NDC
-/// of the on-screen viewport `visible`, which egui clamps to the screen. Without it a
-/// partly off-screen view would be squashed. `None` when nothing is visible.
+/// Maps NDC of the whole callback rectangle `full` (pixels) onto NDC of its on-screen part
+/// `visible`, so a partly off-screen view is not squashed; `None` when nothing is visible.
 fn ndc_remap(full: egui::Rect, visible: &ViewportInPixels) -> Option<Mat4> {
     if visible.width_px <= 0
         || visible.height_px <= 0

@@ -1,10 +1,6 @@
-//! The program text as a rope: an edit costs a walk down a balanced tree of small chunks, not a
-//! copy of the text, and a copy of the buffer (an undo step) shares every chunk it did not
-//! change. Lines end at `\n`, `\r\n` or a lone `\r`, as the parser reads them.
-//!
-//! Code that wants the text as one `str` (the parser, find, save) gets it through
-//! [`Buffer::as_str`] (or `Deref`): the flat copy is made on the first such call after an edit
-//! and kept until the next edit, so it is made at most once per change, never per frame.
+//! The program text as a rope: an edit copies no text, and a copy of the buffer (an undo step)
+//! shares the chunks it did not change. Lines end at `\n`, `\r\n` or a lone `\r`, as the parser
+//! reads them. [`Buffer::as_str`] makes a flat copy at most once per change, never per frame.
 
 use std::borrow::Cow;
 use std::cell::OnceCell;
@@ -12,6 +8,13 @@ use std::ops::Range;
 use std::sync::Arc;
 
 use ropey::Rope;
+
+/// Characters of the rope line `slice` without its line ending (`\n`, `\r\n` or `\r`).
+pub(crate) fn chars_before_ending(slice: ropey::RopeSlice<'_>) -> usize {
+    let n = slice.len_chars();
+    let n = n - usize::from(n > 0 && slice.char(n - 1) == '\n');
+    n - usize::from(n > 0 && slice.char(n - 1) == '\r')
+}
 
 /// A rope holding the program text, with a flat copy made on demand.
 #[derive(Clone, Default)]
@@ -134,16 +137,7 @@ impl Buffer {
         if line >= self.len_lines() {
             return 0;
         }
-        let slice = self.rope.line(line);
-        let mut n = slice.len_chars();
-        // `\n`, `\r\n` or `\r`: a `\r` is dropped after a `\n` or alone.
-        if n > 0 && slice.char(n - 1) == '\n' {
-            n -= 1;
-        }
-        if n > 0 && slice.char(n - 1) == '\r' {
-            n -= 1;
-        }
-        n
+        chars_before_ending(self.rope.line(line))
     }
 
     /// The text of 0-based `line` without its line ending (empty past the end).

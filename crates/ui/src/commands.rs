@@ -1,8 +1,7 @@
-//! Editor commands as pure text transformations: find and replace, go to line, comment toggling,
-//! block renumbering and code completion. The workbench applies them and records them for undo;
-//! keeping them free of UI makes each one testable on plain strings.
+//! Editor commands as pure text transformations, testable on plain strings: find and replace,
+//! go to line, comment toggling, block renumbering and code completion.
 
-use std::ops::Range;
+use std::ops::{Range, RangeInclusive};
 
 use swarf_syntax::Dialect;
 
@@ -191,28 +190,15 @@ pub fn parse_line_number(input: &str, text: &str) -> Option<u32> {
     (n >= 1).then(|| n.min(line_count(text)))
 }
 
-/// Comments out the 1-based lines `lines` (inclusive) in the dialect's comment form or, when
-/// every non-blank one is already commented, uncomments them. Fanuc-family controls take
-/// `( … )` (a trailing comment stays after the wrapped code: `G01 X1 (cut)` becomes
-/// `(G01 X1) (cut)`); LinuxCNC takes `; `. Lines that hold only a comment are left as they are
-/// when commenting.
-pub fn toggle_comment(
-    text: &str,
-    lines: std::ops::RangeInclusive<u32>,
-    dialect: Dialect,
-) -> String {
+/// Comments out the 1-based lines `lines` (inclusive) in the dialect's form (`G01 X1 (cut)` →
+/// `(G01 X1) (cut)`, or `; ` for LinuxCNC) or, when every non-blank one is commented, uncomments.
+pub fn toggle_comment(text: &str, lines: RangeInclusive<u32>, dialect: Dialect) -> String {
     let semicolon = dialect.semicolon_is_comment();
     // The lines to change: selected and not blank.
     let chosen = |(i, l): &(usize, &str)| lines.contains(&(*i as u32 + 1)) && !l.trim().is_empty();
-    let commented = |l: &str| {
-        l.trim_start()
-            .starts_with(if semicolon { ';' } else { '(' })
-    };
-    let uncomment_all = text
-        .split('\n')
-        .enumerate()
-        .filter(chosen)
-        .all(|(_, l)| commented(l));
+    let mark = if semicolon { ';' } else { '(' };
+    let commented = |l: &str| l.trim_start().starts_with(mark);
+    let uncomment_all = (text.split('\n').enumerate().filter(chosen)).all(|(_, l)| commented(l));
     let out: Vec<String> = (text.split('\n').enumerate())
         .map(|(i, line)| {
             let chosen = chosen(&(i, line));
@@ -317,10 +303,8 @@ pub struct Renumbered {
     pub targets: usize,
 }
 
-/// Renumbers N words: blocks that have one get `start`, `start + step`, … in text order (with
-/// `all_blocks`, every block gets one, after a block delete `/`). Lines that are not blocks —
-/// blank, comment-only, `%`, program numbers `O…`/`:…` and LinuxCNC O-words — are skipped.
-/// Literal `GOTO n` and `M99 Pn` targets follow their block's new number.
+/// Renumbers N words `start`, `start + step`, … in text order (every block's with `all_blocks`;
+/// blank, comment, `%` and `O…`/`:…` lines are no blocks); `GOTO n` and `M99 Pn` targets follow.
 pub fn renumber(text: &str, options: RenumberOptions, dialect: Dialect) -> Renumbered {
     let step = options.step.max(1);
     let mut next = options.start;
@@ -333,33 +317,26 @@ pub fn renumber(text: &str, options: RenumberOptions, dialect: Dialect) -> Renum
             continue;
         };
         let (head, body) = line.split_at(at);
-        let digits = n_word(body);
-        let new_line = match digits {
+        // The rest of the block, and what starting it needs no space after the new number.
+        let (rest, spaced): (&str, &[char]) = match n_word(body) {
             Some((len, old)) => {
                 if let Some(old) = old {
                     map.entry(old).or_insert(next);
                 }
-                let rest = &body[len..];
-                let sep = if rest.starts_with([' ', '\t']) || rest.is_empty() {
-                    ""
-                } else {
-                    " "
-                };
-                format!("{head}N{next}{sep}{rest}")
+                (&body[len..], &[' ', '\t'])
             }
-            None if options.all_blocks => {
-                let sep = if body.starts_with([' ', '\t', '\r']) {
-                    ""
-                } else {
-                    " "
-                };
-                format!("{head}N{next}{sep}{body}")
-            }
+            None if options.all_blocks => (body, &[' ', '\t', '\r']),
             None => {
                 lines.push(line.to_string());
                 continue;
             }
         };
+        let sep = if rest.is_empty() || rest.starts_with(spaced) {
+            ""
+        } else {
+            " "
+        };
+        let new_line = format!("{head}N{next}{sep}{rest}");
         numbered += 1;
         next = next.saturating_add(step);
         lines.push(new_line);
@@ -418,19 +395,21 @@ fn n_word(body: &str) -> Option<(usize, Option<u64>)> {
     if !matches!(bytes.first(), Some(b'N' | b'n')) {
         return None;
     }
-    let mut i = 1;
-    while bytes.get(i) == Some(&b' ') {
-        i += 1;
-    }
-    let digits_start = i;
-    while bytes.get(i).is_some_and(u8::is_ascii_digit) {
-        i += 1;
-    }
-    if i == digits_start {
-        return None;
-    }
-    let value = body[digits_start..i].parse().ok();
-    Some((i, value))
+    let digits = digits_after(bytes, 1);
+    (!digits.is_empty()).then(|| (digits.end, body[digits].parse().ok()))
+}
+
+/// The digits after `from` in `bytes`, past any spaces (empty where there are none).
+fn digits_after(bytes: &[u8], from: usize) -> Range<usize> {
+    let start = from
+        + bytes[from.min(bytes.len())..]
+            .iter()
+            .take_while(|b| **b == b' ')
+            .count();
+    let digits = bytes[start.min(bytes.len())..]
+        .iter()
+        .take_while(|b| b.is_ascii_digit());
+    start..start + digits.count()
 }
 
 /// Rewrites literal `GOTO n` and `M99 Pn` targets of one line through `map` (old → new).
@@ -446,19 +425,11 @@ fn retarget(
     let code_end = upper.find('(').unwrap_or(upper.len());
     let mut edits: Vec<(Range<usize>, u32)> = Vec::new();
     let mut target_after = |key_end: usize| {
-        let bytes = upper.as_bytes();
-        let mut i = key_end;
-        while bytes.get(i) == Some(&b' ') {
-            i += 1;
-        }
-        let start = i;
-        while bytes.get(i).is_some_and(u8::is_ascii_digit) {
-            i += 1;
-        }
-        if i > start && i <= code_end {
-            let old: Option<u64> = upper[start..i].parse().ok();
+        let digits = digits_after(upper.as_bytes(), key_end);
+        if !digits.is_empty() && digits.end <= code_end {
+            let old: Option<u64> = upper[digits.clone()].parse().ok();
             if let Some(new) = old.and_then(|o| map.get(&o)) {
-                edits.push((start..i, *new));
+                edits.push((digits, *new));
             }
         }
     };

@@ -1,9 +1,6 @@
-//! The editor's G/M code completion popup: when it opens, the keys that drive it, and the list.
-//!
-//! The list never puts in a code the user did not choose: Tab takes the highlighted code, Enter
-//! takes it only after an arrow key picked it (otherwise Enter ends the line, as after a code
-//! typed in full), and a code is put in only where the text still holds the prefix the list was
-//! made for.
+//! The editor's G/M code completion popup. It never puts in a code the user did not choose: Tab
+//! takes the highlighted code, Enter only one an arrow key picked (else it ends the line), and
+//! only where the text still holds the prefix the list was made for.
 
 use std::ops::Range;
 
@@ -46,9 +43,8 @@ pub(crate) enum PopupKey {
 }
 
 impl Popup {
-    /// The popup for the G or M code prefix ending at byte `caret_byte` of `text` (which is
-    /// also character `caret_char` of the whole program), if it has matches. `text` may be the
-    /// whole program or only the caret's line.
+    /// The popup for the G or M code prefix ending at byte `caret_byte` of `text` (the program or
+    /// the caret's line), which is character `caret_char` of the program, if it has matches.
     pub fn at(text: &str, caret_byte: usize, caret_char: usize, dialect: Dialect) -> Option<Popup> {
         let (range, prefix) = commands::completion_prefix(text, caret_byte)?;
         let items = commands::completions(dialect, &prefix, COMPLETIONS_SHOWN);
@@ -71,13 +67,9 @@ impl Popup {
     pub fn key(&mut self, key: Key) -> PopupKey {
         let n = self.items.len().max(1);
         match key {
-            Key::ArrowDown => {
-                self.selected = (self.selected + 1) % n;
-                self.chosen = true;
-                PopupKey::Handled
-            }
-            Key::ArrowUp => {
-                self.selected = (self.selected + n - 1) % n;
+            Key::ArrowDown | Key::ArrowUp => {
+                let step = if key == Key::ArrowDown { 1 } else { n - 1 };
+                self.selected = (self.selected + step) % n;
                 self.chosen = true;
                 PopupKey::Handled
             }

@@ -1,17 +1,15 @@
-//! The code editor: G-code highlighting, hover help and diagnostic underlines, over the row
-//! editor ([`RowEditor`]) that edits every program.
+//! What the code editor ([`crate::rows::CodeEditor`]) draws: G-code highlighting, hover help and
+//! diagnostic underlines.
 
 use egui::text::LayoutJob;
-use egui::{Color32, FontId, Stroke, TextFormat, Ui};
+use egui::{Color32, FontId, Stroke, TextFormat};
 use swarf_syntax::{Dialect, Severity};
 
 use crate::analysis::Problem;
-use crate::buffer::Buffer;
-use crate::commands::{self, Completion};
-use crate::rows::{RowEditor, RowInput};
+use crate::commands;
 
-/// Colours of the token classes, for a dark background.
-mod palette {
+/// Colours of the token classes (and of line numbers), for a dark background.
+pub(crate) mod palette {
     use egui::Color32;
     pub const TEXT: Color32 = Color32::from_rgb(220, 220, 220);
     pub const G_CODE: Color32 = Color32::from_rgb(110, 170, 255);
@@ -27,11 +25,6 @@ mod palette {
     pub const KEYWORD: Color32 = Color32::from_rgb(230, 120, 200);
     pub const VARIABLE: Color32 = Color32::from_rgb(100, 210, 210);
 }
-
-/// The colour of plain text.
-pub(crate) const TEXT_COLOR: Color32 = palette::TEXT;
-/// The colour of line numbers.
-pub(crate) const NUMBER_COLOR: Color32 = palette::NUMBER;
 
 /// The colour a diagnostic of `severity` is drawn in.
 pub fn severity_color(severity: Severity) -> Color32 {
@@ -53,39 +46,32 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
             job.append(s, 0.0, fmt(color));
         }
     };
+    // Past `close` from `i` on (before a line break, which it never goes past).
+    let past = |i: usize, close: u8| {
+        let end = memchr::memchr2(close, b'\n', &bytes[i..]).map_or(bytes.len(), |j| i + j);
+        end + usize::from(close != b'\n' && bytes.get(end) == Some(&close))
+    };
     while i < bytes.len() {
         let c = bytes[i];
         let start = i;
         let color = match c {
             b'(' => {
-                i = text[i..].find([')', '\n']).map_or(bytes.len(), |j| {
-                    if bytes[i + j] == b')' {
-                        i + j + 1
-                    } else {
-                        i + j
-                    }
-                });
+                i = past(i, b')');
                 palette::COMMENT
             }
             b';' if dialect.semicolon_is_comment() => {
-                i = text[i..].find('\n').map_or(bytes.len(), |j| i + j);
+                i = past(i, b'\n');
                 palette::COMMENT
             }
             b'/' if dialect == Dialect::Syntec && bytes.get(i + 1) == Some(&b'/') => {
-                i = text[i..].find('\n').map_or(bytes.len(), |j| i + j);
+                i = past(i, b'\n');
                 palette::COMMENT
             }
             b'#' => {
                 // A variable: `#12`, `#<name>` (the index of `#[…]` is coloured as it comes).
                 i += 1;
                 if bytes.get(i) == Some(&b'<') {
-                    i = text[i..].find(['>', '\n']).map_or(bytes.len(), |j| {
-                        if bytes[i + j] == b'>' {
-                            i + j + 1
-                        } else {
-                            i + j
-                        }
-                    });
+                    i = past(i, b'>');
                 } else {
                     while i < bytes.len() && bytes[i].is_ascii_digit() {
                         i += 1;
@@ -165,85 +151,6 @@ pub struct EditorOutput {
 /// Most find matches marked in the text at once.
 pub const HIGHLIGHTS_SHOWN: usize = 5000;
 
-/// The G-code editor widget's state (the text itself is owned by the caller). Every program,
-/// short or a million lines long, is edited by the same [`RowEditor`], which lays out only the
-/// rows on screen.
-#[derive(Debug, Clone)]
-pub struct CodeEditor {
-    id: egui::Id,
-    /// A selection to show next frame, and whether the editor takes the keyboard with it.
-    jump: Option<(std::ops::Range<usize>, bool)>,
-    /// Character ranges marked in the text (the find bar's matches).
-    highlights: Vec<std::ops::Range<usize>>,
-    /// The caret, selection, view and completion list.
-    rows: RowEditor,
-}
-
-impl Default for CodeEditor {
-    fn default() -> Self {
-        CodeEditor {
-            id: egui::Id::unique("swarf-code-editor"),
-            jump: None,
-            highlights: Vec::new(),
-            rows: RowEditor::default(),
-        }
-    }
-}
-
-impl CodeEditor {
-    /// Selects the character range on the next frame, scrolls to it and gives the editor the
-    /// keyboard.
-    pub fn jump_to(&mut self, chars: std::ops::Range<usize>) {
-        self.jump = Some((chars, true));
-    }
-
-    /// Selects the character range on the next frame and scrolls to it, leaving the keyboard
-    /// where it is (the find bar's field keeps it while it steps through the matches).
-    pub fn show_range(&mut self, chars: std::ops::Range<usize>) {
-        self.jump = Some((chars, false));
-    }
-
-    /// Marks these character ranges in the text (at most [`HIGHLIGHTS_SHOWN`] are drawn).
-    pub fn set_highlights(&mut self, ranges: &[std::ops::Range<usize>]) {
-        if self.highlights != ranges {
-            self.highlights = ranges.iter().take(HIGHLIGHTS_SHOWN).cloned().collect();
-        }
-    }
-
-    /// The editor's widget id (for focus checks).
-    pub fn id(&self) -> egui::Id {
-        self.id
-    }
-
-    /// The completions on offer (code and meaning), while the popup is open.
-    pub fn completions(&self) -> Option<&[Completion]> {
-        self.rows.completions()
-    }
-
-    /// Shows the editor with a gutter, filling the available space; `label` is the widget that
-    /// names it for screen readers.
-    pub fn show(
-        &mut self,
-        ui: &mut Ui,
-        label: egui::Id,
-        text: &mut Buffer,
-        dialect: Dialect,
-        problems: &[Problem],
-    ) -> EditorOutput {
-        let font = egui::TextStyle::Monospace.resolve(ui.style());
-        let input = RowInput {
-            id: self.id,
-            label,
-            dialect,
-            problems,
-            highlights: &self.highlights,
-            jump: self.jump.take(),
-            font,
-        };
-        self.rows.show(ui, text, input)
-    }
-}
-
 /// The tooltip of the gutter marker on 1-based `line`: each diagnostic there with its code,
 /// and the alarm the control's manual names for it.
 pub fn gutter_tooltip(problems: &[Problem], line: u32) -> Option<String> {
@@ -313,6 +220,18 @@ pub fn hover_text(text: &str, dialect: Dialect, at: usize, problems: &[Problem])
         }
     }
     (!lines.is_empty()).then(|| lines.join("\n\n"))
+}
+
+/// Keeps the arrow keys (and Tab, and Escape, when asked) with the focused widget `id` next
+/// frame rather than moving the focus.
+pub(crate) fn keep_keys(ui: &egui::Ui, id: egui::Id, tab: bool, escape: bool) {
+    let filter = egui::EventFilter {
+        tab,
+        horizontal_arrows: true,
+        vertical_arrows: true,
+        escape,
+    };
+    ui.memory_mut(|m| m.set_focus_lock_filter(id, filter));
 }
 
 /// A wavy underline from `x0` to `x1` at height `y`.

@@ -1,9 +1,6 @@
-//! Undo and redo over the whole program text, shared by typing and the editor commands.
-//!
-//! Each entry is the text and the selection before a change, whether typed in the editor or
-//! made by a command (replace all, renumbering, comment toggling). Consecutive typing is merged into one entry until a line break,
-//! a pause or a command ends it. The text is kept as a rope, so a step of typing shares all but
-//! the few chunks it changed with the steps beside it.
+//! Undo and redo over the whole program text, shared by typing and the editor commands: each
+//! entry is the text (a rope, sharing unchanged chunks) and selection before a change; consecutive
+//! typing is one entry until a line break, a pause or a command ends it.
 
 use std::ops::Range;
 
@@ -44,9 +41,8 @@ const LIMIT: usize = 200;
 /// The most bytes of text the undo steps keep together (the newest step is always kept), so a
 /// long session on a large program does not grow without bound.
 const BYTES_LIMIT: usize = 64 << 20;
-/// What a step of typing is reckoned to keep alive: the rope chunks along the edited path (the
-/// rest is shared with the text after it). A command may replace the whole text, so its step is
-/// reckoned at the text's size.
+/// What a step of typing is reckoned to keep alive: the rope chunks along the edited path (a
+/// command's step is reckoned at the text's size).
 const TYPING_BYTES: usize = 16 << 10;
 /// A pause in typing this long (seconds) starts a new undo step.
 const PAUSE: f64 = 1.5;

@@ -1,10 +1,6 @@
-//! Interface languages: English, Simplified Chinese and Traditional Chinese.
-//!
-//! Every visible string of the interface is written in English in the code and looked up with
-//! [`tr`] (or [`trf`] for one with `{}` placeholders) in one table holding its three forms.
-//! The language is per thread (the interface runs on one), set by the workbench each frame.
-//! egui's built-in fonts have no CJK glyphs: a Chinese language needs a CJK font added with
-//! [`add_cjk_font`] (the web page fetches it, the desktop reads it from the system's fonts).
+//! Interface languages: English, Simplified and Traditional Chinese. Every visible string is
+//! English in the code, looked up with [`tr`] (or [`trf`], with `{}` placeholders) in a table of
+//! its three forms, in the thread's language. Chinese needs a CJK font ([`add_cjk_font`]).
 
 use std::cell::Cell;
 use std::collections::HashMap;
@@ -29,11 +25,7 @@ impl Lang {
 
     /// The BCP 47 tag kept in the settings (`en`, `zh-Hans`, `zh-Hant`).
     pub fn code(self) -> &'static str {
-        match self {
-            Lang::En => "en",
-            Lang::ZhHans => "zh-Hans",
-            Lang::ZhHant => "zh-Hant",
-        }
+        ["en", "zh-Hans", "zh-Hant"][self as usize]
     }
 
     /// The language of a tag written by [`Lang::code`] (also `zh-CN`, `zh-TW` …).
@@ -49,16 +41,7 @@ impl Lang {
 
     /// The language's name in itself, as the language menu shows it.
     pub fn native_name(self) -> &'static str {
-        match self {
-            Lang::En => "English",
-            Lang::ZhHans => "简体中文",
-            Lang::ZhHant => "繁體中文",
-        }
-    }
-
-    /// Whether the language needs a CJK font.
-    pub fn needs_cjk_font(self) -> bool {
-        self != Lang::En
+        ["English", "简体中文", "繁體中文"][self as usize]
     }
 }
 
@@ -86,13 +69,8 @@ pub fn tr_in(lang: Lang, english: &'static str) -> &'static str {
     if lang == Lang::En {
         return english;
     }
-    match index().get(english) {
-        Some(&(hans, hant)) => match lang {
-            Lang::ZhHans => hans,
-            Lang::ZhHant | Lang::En => hant,
-        },
-        None => english,
-    }
+    let (hans, hant) = index().get(english).copied().unwrap_or((english, english));
+    if lang == Lang::ZhHans { hans } else { hant }
 }
 
 /// `template` in the current language with its `{}` placeholders replaced by `args` in order.
@@ -124,28 +102,20 @@ fn index() -> &'static HashMap<&'static str, (&'static str, &'static str)> {
 pub const CJK_FONT_NAME: &str = "swarf-cjk";
 
 /// Adds a CJK font (a `.ttf`, `.otf` or `.ttc` file's bytes) to `ctx` as the last fallback of
-/// the proportional and monospace families, so Chinese text gets glyphs; `false` when the
-/// bytes are no font.
+/// both families, so Chinese text gets glyphs; `false` when the bytes are no font.
 pub fn add_cjk_font(ctx: &egui::Context, bytes: Vec<u8>) -> bool {
     let blob: egui::epaint::text::Blob = Arc::new(bytes);
     let data = egui::FontData::from_blob(blob, 0);
     if data.bytes().len() < 12 || !is_font(data.bytes()) {
         return false;
     }
-    ctx.add_font(egui::epaint::text::FontInsert::new(
-        CJK_FONT_NAME,
-        data,
-        vec![
-            egui::epaint::text::InsertFontFamily {
-                family: egui::FontFamily::Proportional,
-                priority: egui::epaint::text::FontPriority::Lowest,
-            },
-            egui::epaint::text::InsertFontFamily {
-                family: egui::FontFamily::Monospace,
-                priority: egui::epaint::text::FontPriority::Lowest,
-            },
-        ],
-    ));
+    use egui::epaint::text::{FontInsert, FontPriority, InsertFontFamily};
+    let families = [egui::FontFamily::Proportional, egui::FontFamily::Monospace];
+    let last = families.map(|family| InsertFontFamily {
+        family,
+        priority: FontPriority::Lowest,
+    });
+    ctx.add_font(FontInsert::new(CJK_FONT_NAME, data, last.to_vec()));
     true
 }
 
@@ -217,7 +187,7 @@ mod tests {
         ];
         let mut looked_up = 0;
         for source in sources {
-            for call in ["tr(\"", "trf(\n", "trf(\""] {
+            for call in ["tr(\"", "trf(\n", "trf(\"", "Command(\""] {
                 for (at, _) in source.match_indices(call) {
                     let rest = &source[at + call.len()..];
                     let rest = if call == "trf(\n" {

@@ -1,14 +1,9 @@
-//! The editor of every program: the text stays in a rope ([`Buffer`]), and each frame lays out
-//! only the rows on screen (highlighted as [`highlight`] does, numbered, marked by their
-//! diagnostics). The caret and the selection are character indices into the rope; keys, pointer
-//! and clipboard events edit the rope in place, in the order they came, so a keystroke costs the
-//! same in a million-line program as in a short one. It offers G/M code completion ([`Popup`])
-//! and takes input from an input method: the text being composed is drawn at the caret, outside
-//! the rope, until the input method commits it.
-//!
-//! The keyboard reaches the text only while the editor has had the focus since the frame before:
-//! a key that moved the focus here (Enter in the find bar or the go-to-line field, which hands
-//! the selection back) is never also typed into the program.
+//! The editor of every program: the text stays in a rope ([`Buffer`]) edited in place (caret and
+//! selection are character indices), and each frame lays out only the rows on screen, so a
+//! keystroke costs the same in a million-line program as in a short one. It offers G/M code
+//! completion ([`Popup`]); an input method's composed text is drawn at the caret until committed.
+//! Keys reach the text only once the editor has had the focus since the frame before, so a key
+//! that moved the focus here (Enter in the find bar) is never also typed into the program.
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -22,15 +17,23 @@ use crate::buffer::Buffer;
 use crate::commands::{self, Completion};
 use crate::completion::{Popup, PopupKey};
 use crate::editor::{
-    EditorOutput, gutter_tooltip, highlight, hover_text, severity_color, squiggle,
+    EditorOutput, HIGHLIGHTS_SHOWN, gutter_tooltip, highlight, hover_text, keep_keys, palette,
+    severity_color, squiggle,
 };
+use crate::i18n::tr;
 
 /// Space between the gutter and the text, and around the text.
 const PAD: f32 = 6.0;
 
-/// What the row editor keeps between frames.
+/// The G-code editor widget's state (the text itself is owned by the caller): every program,
+/// short or a million lines long, is edited the same way, laying out only the rows on screen.
 #[derive(Debug, Clone, Default)]
-pub struct RowEditor {
+pub struct CodeEditor {
+    /// A selection to show next frame, scrolled into the middle of the view, and whether the
+    /// editor takes the keyboard with it.
+    jump: Option<(Range<usize>, bool)>,
+    /// Character ranges marked in the text (the find bar's matches), sorted.
+    highlights: Vec<Range<usize>>,
     /// The caret, a character index.
     caret: usize,
     /// The other end of the selection (equal to the caret when nothing is selected).
@@ -67,25 +70,6 @@ struct Preedit {
     active: Option<Range<usize>>,
 }
 
-/// One frame's input for [`RowEditor::show`].
-pub struct RowInput<'a> {
-    /// The widget's id (for focus).
-    pub id: egui::Id,
-    /// The widget naming the editor for screen readers.
-    pub label: egui::Id,
-    /// The dialect the text is highlighted as.
-    pub dialect: Dialect,
-    /// Diagnostics, sorted by position.
-    pub problems: &'a [Problem],
-    /// Character ranges marked in the text (find matches), sorted.
-    pub highlights: &'a [Range<usize>],
-    /// A selection to jump to (characters), scrolled into the middle of the view, and whether
-    /// the editor takes the keyboard with it.
-    pub jump: Option<(Range<usize>, bool)>,
-    /// The monospace font.
-    pub font: FontId,
-}
-
 /// What a key or clipboard event does to the text and the caret.
 enum Edit {
     /// Replace the selection with this text.
@@ -96,7 +80,31 @@ enum Edit {
     Delete,
 }
 
-impl RowEditor {
+impl CodeEditor {
+    /// Selects the character range on the next frame, scrolls to it and gives the editor the
+    /// keyboard.
+    pub fn jump_to(&mut self, chars: Range<usize>) {
+        self.jump = Some((chars, true));
+    }
+
+    /// Selects the character range on the next frame and scrolls to it, leaving the keyboard
+    /// where it is (the find bar's field keeps it while it steps through the matches).
+    pub fn show_range(&mut self, chars: Range<usize>) {
+        self.jump = Some((chars, false));
+    }
+
+    /// Marks these character ranges in the text (at most [`HIGHLIGHTS_SHOWN`] are drawn).
+    pub fn set_highlights(&mut self, ranges: &[Range<usize>]) {
+        if self.highlights != ranges {
+            self.highlights = ranges.iter().take(HIGHLIGHTS_SHOWN).cloned().collect();
+        }
+    }
+
+    /// The editor's widget id (for focus checks).
+    pub fn id(&self) -> egui::Id {
+        egui::Id::unique("swarf-code-editor")
+    }
+
     /// The selection as a sorted character range.
     pub fn selection(&self) -> Range<usize> {
         self.caret.min(self.anchor)..self.caret.max(self.anchor)
@@ -135,10 +143,7 @@ impl RowEditor {
         let Some(end) = self.popup.take().and_then(|p| p.accept(index, text)) else {
             return;
         };
-        self.caret = end;
-        self.anchor = end;
-        self.column = None;
-        self.reveal = true;
+        self.place(end);
         output.completed = true;
     }
 
@@ -217,12 +222,13 @@ impl RowEditor {
         if range.is_empty() && insert.is_empty() {
             return false;
         }
-        let after = text.replace(range, insert);
-        self.caret = after;
-        self.anchor = after;
-        self.column = None;
-        self.reveal = true;
+        self.place(text.replace(range, insert));
         true
+    }
+
+    /// Puts the caret at `at`, nothing selected, and brings it into view.
+    fn place(&mut self, at: usize) {
+        (self.caret, self.anchor, self.column, self.reveal) = (at, at, None, true);
     }
 
     /// Moves the caret to `to`, extending the selection when `extend`.
@@ -234,9 +240,8 @@ impl RowEditor {
         self.reveal = true;
     }
 
-    /// Handles the keyboard and clipboard events of this frame, in the order they came: the
-    /// completion list's keys are taken only while it is open for the text as it is then, and it
-    /// is worked out again after each edit, so a key never acts on a list made for older text.
+    /// Handles the keyboard and clipboard events of this frame in order; the completion list is
+    /// worked out again after each edit, so a key never acts on a list made for older text.
     fn keys(
         &mut self,
         ui: &Ui,
@@ -277,8 +282,7 @@ impl RowEditor {
                     }
                 }
             }
-            let changed = self.event(ui, text, event, rows_per_page, output);
-            if changed {
+            if self.event(ui, text, event, rows_per_page, output) {
                 output.changed = true;
                 self.popup = self.popup_here(text, dialect);
             }
@@ -395,21 +399,24 @@ impl RowEditor {
         changed
     }
 
-    /// Shows the text filling `ui`; only the rows on screen are laid out.
-    pub fn show(&mut self, ui: &mut Ui, text: &mut Buffer, input: RowInput<'_>) -> EditorOutput {
-        let RowInput {
-            id,
-            label,
-            dialect,
-            problems,
-            highlights,
-            jump,
-            font,
-        } = input;
+    /// Shows the text in `dialect` with a gutter and its sorted `problems`, filling `ui`; `label`
+    /// is the widget that names it for screen readers.
+    pub fn show(
+        &mut self,
+        ui: &mut Ui,
+        label: egui::Id,
+        text: &mut Buffer,
+        dialect: Dialect,
+        problems: &[Problem],
+    ) -> EditorOutput {
+        let id = self.id();
+        let font = egui::TextStyle::Monospace.resolve(ui.style());
+        // Lent to the frame's painting, which borrows the editor.
+        let highlights = std::mem::take(&mut self.highlights);
         let mut output = EditorOutput::default();
         let row_height = ui.ctx().fonts_mut(|f| f.row_height(&font)).max(1.0);
         let char_width = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
-        if let Some((range, focus)) = jump {
+        if let Some((range, focus)) = self.jump.take() {
             self.select(text, range);
             self.popup = None;
             self.centre = true;
@@ -432,17 +439,7 @@ impl RowEditor {
             // The keys this editor keeps next frame: Escape closes the completion list (or
             // cancels a composition) rather than leaving.
             let escape = self.popup.is_some() || self.preedit.is_some();
-            ui.memory_mut(|m| {
-                m.set_focus_lock_filter(
-                    id,
-                    egui::EventFilter {
-                        tab: true,
-                        horizontal_arrows: true,
-                        vertical_arrows: true,
-                        escape,
-                    },
-                );
-            });
+            keep_keys(ui, id, true, escape);
         } else {
             self.preedit = None;
         }
@@ -483,13 +480,8 @@ impl RowEditor {
                 // The web page shows its on-screen keyboard and input method over editable text.
                 ui.output_mut(|o| o.mutable_text_under_cursor = true);
             }
-            response.widget_info(|| {
-                egui::WidgetInfo::labeled(
-                    egui::Role::MultilineTextInput,
-                    true,
-                    crate::i18n::tr("Program"),
-                )
-            });
+            let role = egui::Role::MultilineTextInput;
+            response.widget_info(|| egui::WidgetInfo::labeled(role, true, tr("Program")));
             ui.ctx().accesskit_node_builder(id, |node| {
                 node.set_role(egui::accesskit::Role::MultilineTextInput);
             });
@@ -550,7 +542,7 @@ impl RowEditor {
                     font: &font,
                     dialect,
                     problems,
-                    highlights,
+                    highlights: &highlights,
                     focused,
                     reveal,
                 },
@@ -609,6 +601,7 @@ impl RowEditor {
         output.cursor_line = u32::try_from(text.char_to_line(self.caret) + 1).ok();
         output.selection = Some(self.selection());
         self.had_focus = ui.memory(|m| m.has_focus(id));
+        self.highlights = highlights;
         output
     }
 
@@ -685,6 +678,10 @@ impl RowEditor {
                 }
             }
             let origin = egui::pos2(rows.text_left, top);
+            let bottom = top + rows.row_height;
+            // The row's height between `x0` and `x1`.
+            let band =
+                |x0: f32, x1: f32| Rect::from_min_max(egui::pos2(x0, top), egui::pos2(x1, bottom));
             let x_at = |col: usize| origin.x + galley.pos_from_cursor(CCursor::new(col)).left();
             // A column of the text: those after the caret sit past the composed text.
             let x_of = |col: usize| x_at(if col > caret_col { col + extra } else { col });
@@ -694,25 +691,12 @@ impl RowEditor {
                 // A range running past the line's end takes the line ending too.
                 let b = if to > start + len { b + 6.0 } else { b };
                 if b > a {
-                    painter.rect_filled(
-                        Rect::from_min_max(
-                            egui::pos2(a, top),
-                            egui::pos2(b, top + rows.row_height),
-                        ),
-                        1.0,
-                        fill,
-                    );
+                    painter.rect_filled(band(a, b), 1.0, fill);
                 }
             };
             if row == caret_line && rows.focused {
-                painter.rect_filled(
-                    Rect::from_min_max(
-                        egui::pos2(rows.rect.left(), top),
-                        egui::pos2(rows.rect.right(), top + rows.row_height),
-                    ),
-                    0.0,
-                    ui.visuals().faint_bg_color,
-                );
+                let line = band(rows.rect.left(), rows.rect.right());
+                painter.rect_filled(line, 0.0, ui.visuals().faint_bg_color);
             }
             if selection.start <= start + len && selection.end > start {
                 span(selection.start, selection.end, sel_fill);
@@ -722,7 +706,7 @@ impl RowEditor {
                     span(m.start, m.end, mark_fill);
                 }
             }
-            painter.galley(origin, galley.clone(), crate::editor::TEXT_COLOR);
+            painter.galley(origin, galley.clone(), palette::TEXT);
             // The line number, coloured (and marked) by the line's worst diagnostic.
             let number = u32::try_from(row + 1).unwrap_or(u32::MAX);
             let worst = on_rows
@@ -730,63 +714,44 @@ impl RowEditor {
                 .filter(|p| p.line == number)
                 .map(|p| p.severity)
                 .max();
-            let digits = rows.digits;
+            let (digits, mark) = (rows.digits, if worst.is_some() { '●' } else { ' ' });
             painter.text(
                 egui::pos2(rows.rect.left(), top),
                 egui::Align2::LEFT_TOP,
-                format!(
-                    "{}{number:>digits$}",
-                    if worst.is_some() { '●' } else { ' ' }
-                ),
+                format!("{mark}{number:>digits$}"),
                 rows.font.clone(),
-                worst.map_or(crate::editor::NUMBER_COLOR, severity_color),
+                worst.map_or(palette::NUMBER, severity_color),
             );
             for p in on_rows.iter().filter(|p| p.line == number) {
                 let from = p.chars.start.clamp(start, start + len) - start;
                 let to = p.chars.end.clamp(start, start + len) - start;
-                squiggle(
-                    painter,
-                    x_of(from),
-                    if to > from {
-                        x_of(to)
-                    } else {
-                        x_of(from) + 8.0
-                    },
-                    top + rows.row_height - 1.0,
-                    p.severity,
-                );
+                let end = if to > from {
+                    x_of(to)
+                } else {
+                    x_of(from) + 8.0
+                };
+                squiggle(painter, x_of(from), end, bottom - 1.0, p.severity);
             }
             if let Some(p) = preedit {
                 // The composed text underlined, the part being converted more heavily.
-                let y = top + rows.row_height - 1.0;
                 let color = ui.visuals().text_color();
-                painter.line_segment(
-                    [
-                        egui::pos2(x_at(caret_col), y),
-                        egui::pos2(x_at(caret_col + extra), y),
-                    ],
-                    Stroke::new(1.0, color),
-                );
+                let underline = |from: usize, to: usize, width: f32| {
+                    let (a, b) = (x_at(caret_col + from), x_at(caret_col + to));
+                    let y = bottom - 1.0;
+                    painter.line_segment([egui::pos2(a, y), egui::pos2(b, y)], (width, color));
+                };
+                underline(0, extra, 1.0);
                 if let Some(active) = p.active.as_ref().filter(|a| a.end > a.start) {
-                    painter.line_segment(
-                        [
-                            egui::pos2(x_at(caret_col + active.start.min(extra)), y),
-                            egui::pos2(x_at(caret_col + active.end.min(extra)), y),
-                        ],
-                        Stroke::new(2.0, color),
-                    );
+                    underline(active.start.min(extra), active.end.min(extra), 2.0);
                 }
             }
             if row == caret_line && rows.focused {
                 // The caret: after the composed text (or its active part) while composing.
                 let composed = preedit.map_or(0, |p| p.active.as_ref().map_or(extra, |a| a.end));
                 let x = x_at(caret_col + composed.min(extra));
-                self.caret_rect = Some(Rect::from_min_max(
-                    egui::pos2(x, top),
-                    egui::pos2(x + 1.0, top + rows.row_height),
-                ));
+                self.caret_rect = Some(band(x, x + 1.0));
                 painter.line_segment(
-                    [egui::pos2(x, top), egui::pos2(x, top + rows.row_height)],
+                    [egui::pos2(x, top), egui::pos2(x, bottom)],
                     Stroke::new(2.0, ui.visuals().text_cursor.stroke.color),
                 );
                 if rows.reveal {
@@ -796,11 +761,7 @@ impl RowEditor {
                     } else {
                         x - 24.0
                     };
-                    let caret = Rect::from_min_max(
-                        egui::pos2(from, top),
-                        egui::pos2(x + 24.0, top + rows.row_height),
-                    );
-                    ui.scroll_to_rect(caret, None);
+                    ui.scroll_to_rect(band(from, x + 24.0), None);
                 }
             }
         }
@@ -844,25 +805,21 @@ fn word_boundary(text: &Buffer, from: usize, forward: bool) -> usize {
     let end = start + text.line_len_chars(line);
     let chars: Vec<char> = text.slice(start..end).chars().collect();
     let mut i = from.clamp(start, end) - start;
-    if forward {
-        if i == chars.len() {
-            return (end + 1).min(text.len_chars());
-        }
-        while i < chars.len() && !is_word(chars[i]) {
-            i += 1;
-        }
-        while i < chars.len() && is_word(chars[i]) {
-            i += 1;
-        }
-    } else {
-        if i == 0 {
-            return start.saturating_sub(1);
-        }
-        while i > 0 && !is_word(chars[i - 1]) {
-            i -= 1;
-        }
-        while i > 0 && is_word(chars[i - 1]) {
-            i -= 1;
+    match forward {
+        true if i == chars.len() => return (end + 1).min(text.len_chars()),
+        false if i == 0 => return start.saturating_sub(1),
+        _ => {}
+    }
+    // The character the caret passes next (none at the line's ends).
+    let next = |i: usize| {
+        chars
+            .get(if forward { i } else { i.wrapping_sub(1) })
+            .copied()
+    };
+    // Past any spaces, then past the word.
+    for word in [false, true] {
+        while next(i).is_some_and(|c| is_word(c) == word) {
+            i = if forward { i + 1 } else { i - 1 };
         }
     }
     start + i

@@ -13,9 +13,8 @@ use crate::workbench::HostRequest;
 /// The fixed work offsets always listed (extended ones are added by name).
 const STANDARD_OFFSETS: [&str; 6] = ["G54", "G55", "G56", "G57", "G58", "G59"];
 
-/// Shows the settings for `dialect` and `setup`, editing them in place; `new_offset` holds the
-/// name typed for an extra work offset. Returns an import or export request when one of those
-/// buttons was pressed.
+/// Shows and edits the settings for `dialect` and `setup` (`new_offset`: the name typed for an
+/// extra work offset); an import or export request when one of those buttons was pressed.
 pub fn settings_ui(
     ui: &mut egui::Ui,
     dialect: &mut Dialect,
@@ -25,7 +24,13 @@ pub fn settings_ui(
     let mut request = None;
     ui.horizontal(|ui| {
         let (id, label) = ("swarf-settings-dialect", tr("Dialect"));
-        choice(ui, id, label, dialect, Dialect::ALL, Dialect::label);
+        choice(
+            ui,
+            id,
+            label,
+            dialect,
+            &Dialect::ALL.map(|d| (d, d.label())),
+        );
     });
     ui.horizontal(|ui| {
         if ui.button(tr("Import SETUP.toml…")).clicked() {
@@ -39,40 +44,43 @@ pub fn settings_ui(
         }
     });
     ui.label(tr("Values in millimetres; they are kept between runs."));
-    egui::CollapsingHeader::new(tr("Offset registers (H length, D radius)"))
-        .default_open(true)
-        .show(ui, |ui| registers_ui(ui, setup));
-    egui::CollapsingHeader::new(tr("Work offsets"))
-        .default_open(true)
-        .show(ui, |ui| work_offsets_ui(ui, setup, new_offset));
-    egui::CollapsingHeader::new(tr("Machine"))
-        .default_open(true)
-        .show(ui, |ui| machine_ui(ui, setup));
-    egui::CollapsingHeader::new(tr("Stock"))
-        .default_open(true)
-        .show(ui, |ui| stock_ui(ui, setup));
-    egui::CollapsingHeader::new(tr("Tools"))
-        .default_open(true)
-        .show(ui, |ui| tools_ui(ui, setup));
+    let registers = tr("Offset registers (H length, D radius)");
+    let sections: [(&str, Section); 5] = [
+        (registers, |ui, s, _| registers_ui(ui, s)),
+        (tr("Work offsets"), work_offsets_ui),
+        (tr("Machine"), |ui, s, _| machine_ui(ui, s)),
+        (tr("Stock"), |ui, s, _| stock_ui(ui, s)),
+        (tr("Tools"), |ui, s, _| tools_ui(ui, s)),
+    ];
+    for (head, section) in sections {
+        egui::CollapsingHeader::new(head)
+            .default_open(true)
+            .show(ui, |ui| section(ui, setup, new_offset));
+    }
     request
 }
 
-/// A combo box named by the label `label` choosing `value` among `options`, each shown as
-/// `text` names it.
+/// A part of the settings window: draws its fields of the setup (and the new offset's name).
+type Section = fn(&mut egui::Ui, &mut Setup, &mut String);
+
+/// A combo box named by the label `label` choosing `value` among `options`, each with its text.
 pub(crate) fn choice<T: PartialEq + Copy>(
     ui: &mut egui::Ui,
     id: &str,
     label: &str,
     value: &mut T,
-    options: impl IntoIterator<Item = T>,
-    text: impl Fn(T) -> &'static str,
+    options: &[(T, &str)],
 ) {
     let label = ui.label(label);
+    let shown = options
+        .iter()
+        .find(|(o, _)| o == value)
+        .map_or("", |(_, text)| *text);
     egui::ComboBox::from_id_salt(id)
-        .selected_text(text(*value))
+        .selected_text(shown)
         .show_ui(ui, |ui| {
-            for option in options {
-                ui.selectable_value(value, option, text(option));
+            for &(option, text) in options {
+                ui.selectable_value(value, option, text);
             }
         })
         .response
@@ -164,15 +172,13 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
 }
 
 fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String) {
-    let mut names: Vec<String> = STANDARD_OFFSETS
-        .iter()
-        .map(std::string::ToString::to_string)
-        .collect();
-    for name in setup.work_offsets.keys() {
-        if !names.contains(name) {
-            names.push(name.clone());
-        }
-    }
+    let mut names = STANDARD_OFFSETS.map(String::from).to_vec();
+    let extended = setup.work_offsets.keys();
+    names.extend(
+        extended
+            .filter(|n| !STANDARD_OFFSETS.contains(&n.as_str()))
+            .cloned(),
+    );
     egui::Grid::new("swarf-work-offsets")
         .num_columns(4)
         .striped(true)
@@ -265,23 +271,8 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             });
             m.travel_mm = travel.then_some(bounds);
             ui.end_row();
-            let directions = [
-                ShiftDirection::PlusX,
-                ShiftDirection::MinusX,
-                ShiftDirection::PlusY,
-                ShiftDirection::MinusY,
-                ShiftDirection::PlusZ,
-                ShiftDirection::MinusZ,
-            ];
             let label = tr("G76/G87 shift direction");
-            choice(
-                ui,
-                "swarf-shift",
-                label,
-                &mut m.shift_direction,
-                directions,
-                shift_name,
-            );
+            choice(ui, "swarf-shift", label, &mut m.shift_direction, &SHIFTS);
             ui.end_row();
             ui.label(tr("Syntec drilling"));
             ui.vertical(|ui| {
@@ -292,53 +283,35 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 );
             });
             ui.end_row();
-            let corner = |c: Option<CornerMode>| match c {
-                None => tr("as the dialect does"),
-                Some(CornerMode::Arc) => tr("arc (LinuxCNC)"),
-                Some(CornerMode::Intersection) => tr("intersection (Fanuc family)"),
-            };
-            let (label, corners) = (
-                tr("Cutter compensation corners"),
-                [None, Some(CornerMode::Arc), Some(CornerMode::Intersection)],
-            );
-            choice(
-                ui,
-                "swarf-corner",
-                label,
-                &mut m.corner_mode,
-                corners,
-                corner,
-            );
+            let corners = [
+                (None, tr("as the dialect does")),
+                (Some(CornerMode::Arc), tr("arc (LinuxCNC)")),
+                (
+                    Some(CornerMode::Intersection),
+                    tr("intersection (Fanuc family)"),
+                ),
+            ];
+            let label = tr("Cutter compensation corners");
+            choice(ui, "swarf-corner", label, &mut m.corner_mode, &corners);
             ui.end_row();
             ui.label(tr("Gouges"));
             ui.checkbox(&mut m.overcut_alarm, tr("stop with an alarm (Syntec 3819)"));
             ui.end_row();
-            let side = |c: Option<bool>| match c {
-                None => tr("the dialect's default"),
-                Some(true) => tr("swapped by the control (Fanuc)"),
-                Some(false) => tr("as written (Syntec's example)"),
-            };
-            let (label, choices) = (
-                tr("G41/G42 under a mirror"),
-                [None, Some(true), Some(false)],
-            );
-            let value = &mut m.mirror_swaps_comp_side;
-            choice(ui, "swarf-mirror-side", label, value, choices, side);
+            let sides = [
+                (None, tr("the dialect's default")),
+                (Some(true), tr("swapped by the control (Fanuc)")),
+                (Some(false), tr("as written (Syntec's example)")),
+            ];
+            let (label, value) = (tr("G41/G42 under a mirror"), &mut m.mirror_swaps_comp_side);
+            choice(ui, "swarf-mirror-side", label, value, &sides);
             ui.end_row();
-            let text = |c: Option<bool>| match c {
-                None => tr("as the dialect's manual says"),
-                Some(true) => tr("millimetres (calculator input)"),
-                Some(false) => tr("least input increments"),
-            };
-            let label = tr("Integers without a point");
-            choice(
-                ui,
-                "swarf-calculator",
-                label,
-                &mut m.calculator_input,
-                choices,
-                text,
-            );
+            let inputs = [
+                (None, tr("as the dialect's manual says")),
+                (Some(true), tr("millimetres (calculator input)")),
+                (Some(false), tr("least input increments")),
+            ];
+            let (label, value) = (tr("Integers without a point"), &mut m.calculator_input);
+            choice(ui, "swarf-calculator", label, value, &inputs);
             ui.end_row();
             for (i, name) in ["G28 reference point", "G30 P2 reference point"]
                 .iter()
@@ -458,19 +431,21 @@ fn stock_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     refusal(ui, read(stock));
 }
 
-/// The shapes a `[tools.N]` table may name, as written there.
-const SHAPES: [&str; 5] = ["flat", "ball", "bull", "drill", "chamfer"];
+/// The shapes a `[tools.N]` table may name, as written there, and as the window shows them.
+const SHAPES: [(&str, &str); 5] = [
+    ("flat", "flat end mill"),
+    ("ball", "ball end mill"),
+    ("bull", "bull nose"),
+    ("drill", "drill"),
+    ("chamfer", "chamfer mill"),
+];
 
 /// A tool shape's name as the window shows it.
 fn shape_label(shape: &str) -> &str {
-    match shape {
-        "flat" => tr("flat end mill"),
-        "ball" => tr("ball end mill"),
-        "bull" => tr("bull nose"),
-        "drill" => tr("drill"),
-        "chamfer" => tr("chamfer mill"),
-        other => other,
-    }
+    SHAPES
+        .iter()
+        .find(|(s, _)| *s == shape)
+        .map_or(shape, |(_, label)| tr(label))
 }
 
 /// The tools the stock is cut with (`[tools.N]`), a row each.
@@ -486,10 +461,8 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
         .show(ui, |ui| {
             let (no, diameter, shape) = (tr("No."), tr("Diameter"), tr("Shape"));
             let (corner, point) = (tr("Corner radius"), tr("Point angle (°)"));
-            heads(
-                ui,
-                &[no, diameter, shape, corner, point, tr("Flute length"), ""],
-            );
+            let flute = tr("Flute length");
+            heads(ui, &[no, diameter, shape, corner, point, flute, ""]);
             for (&n, tool) in &mut setup.tools {
                 let mut to = n;
                 let response = ui.add(egui::DragValue::new(&mut to));
@@ -497,13 +470,8 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                     renumber = Some((n, to));
                 }
                 let diameter = Tool::default().diameter;
-                table_value(
-                    ui,
-                    tool,
-                    "diameter",
-                    diameter,
-                    &format!("Tool {n} diameter"),
-                );
+                let name = format!("Tool {n} diameter");
+                table_value(ui, tool, "diameter", diameter, &name);
                 let shape = tool
                     .get("shape")
                     .and_then(Value::as_str)
@@ -513,8 +481,8 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 let response = egui::ComboBox::from_id_salt(("swarf-tool-shape", n))
                     .selected_text(shape_label(&shape))
                     .show_ui(ui, |ui| {
-                        for s in SHAPES {
-                            ui.selectable_value(&mut chosen, s.to_string(), shape_label(s));
+                        for (s, label) in SHAPES {
+                            ui.selectable_value(&mut chosen, s.to_string(), tr(label));
                         }
                     })
                     .response;
@@ -558,13 +526,8 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                         tool.insert("flute_length".to_string(), Value::Float(3.0 * d));
                     }
                     if given {
-                        table_value(
-                            ui,
-                            tool,
-                            "flute_length",
-                            0.0,
-                            &format!("Tool {n} flute length"),
-                        );
+                        let name = format!("Tool {n} flute length");
+                        table_value(ui, tool, "flute_length", 0.0, &name);
                     } else {
                         tool.remove("flute_length");
                     }
@@ -592,11 +555,9 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     if ui.button(tr("Add tool")).clicked()
         && let Some(next) = next
     {
+        let diameter = Value::Float(Tool::default().diameter);
         let tool = Table::from_iter([
-            (
-                "diameter".to_string(),
-                Value::Float(Tool::default().diameter),
-            ),
+            ("diameter".to_string(), diameter),
             ("shape".to_string(), Value::String("flat".to_string())),
         ]);
         setup.tools.insert(next, tool);
@@ -610,14 +571,12 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     );
 }
 
-/// The shift direction as the setup writes it.
-fn shift_name(d: ShiftDirection) -> &'static str {
-    match d {
-        ShiftDirection::PlusX => "+X",
-        ShiftDirection::MinusX => "-X",
-        ShiftDirection::PlusY => "+Y",
-        ShiftDirection::MinusY => "-Y",
-        ShiftDirection::PlusZ => "+Z",
-        ShiftDirection::MinusZ => "-Z",
-    }
-}
+/// Each shift direction as the setup writes it.
+const SHIFTS: [(ShiftDirection, &str); 6] = [
+    (ShiftDirection::PlusX, "+X"),
+    (ShiftDirection::MinusX, "-X"),
+    (ShiftDirection::PlusY, "+Y"),
+    (ShiftDirection::MinusY, "-Y"),
+    (ShiftDirection::PlusZ, "+Z"),
+    (ShiftDirection::MinusZ, "-Z"),
+];

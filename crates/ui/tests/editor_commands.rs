@@ -165,6 +165,24 @@ fn undo_and_redo_cross_typing_and_commands() {
 }
 
 #[test]
+fn file_shortcuts_ask_the_host_and_shift_picks_save_as() {
+    let mut harness = harness("G0 X1\n");
+    harness.state_mut().take_requests();
+    harness.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::S);
+    harness.run();
+    assert_eq!(harness.state_mut().take_requests(), [HostRequest::SaveAs]);
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::S);
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::O);
+    harness.run();
+    let requests = harness.state_mut().take_requests();
+    assert_eq!(requests, [HostRequest::Save, HostRequest::Open]);
+    let tabs = harness.state().tab_count();
+    harness.key_press_modifiers(Modifiers::COMMAND, Key::N);
+    harness.run();
+    assert_eq!(harness.state().tab_count(), tabs + 1);
+}
+
+#[test]
 fn typing_a_code_offers_completions_with_their_meaning() {
     let mut harness = harness("");
     let editor = harness.get_by_role(Role::MultilineTextInput);

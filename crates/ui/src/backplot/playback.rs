@@ -1,9 +1,6 @@
-//! Playback of a scene: a position in time along the program, played at a chosen speed or
-//! stepped one block at a time, and the bar of controls under the backplot.
-//!
-//! A block here is a run of consecutive segments with the same source line, in execution
-//! order, so a block run twice by a loop is stepped twice; blocks that move nothing (a dwell,
-//! a tool change) are not stops of their own.
+//! Playback of a scene, at a chosen speed or a block at a time, and its bar under the backplot.
+//! A block is a run of consecutive segments of one source line (a block a loop runs twice is
+//! stepped twice; one that moves nothing is no stop of its own).
 
 use std::sync::Arc;
 
@@ -54,7 +51,6 @@ impl Default for Playback {
 
 impl Playback {
     /// Playback off, at real-time speed.
-    #[must_use]
     pub fn new() -> Self {
         Self {
             time: None,
@@ -69,19 +65,16 @@ impl Playback {
     }
 
     /// Seconds from the program start, `None` while playback is off.
-    #[must_use]
     pub fn time(&self) -> Option<f64> {
         self.time
     }
 
     /// Whether it is playing.
-    #[must_use]
     pub fn is_playing(&self) -> bool {
         self.playing
     }
 
     /// Speed as a multiple of real time.
-    #[must_use]
     pub fn speed(&self) -> f64 {
         self.speed
     }
@@ -195,18 +188,13 @@ impl Playback {
     }
 
     /// The segment under way (or just finished), `None` while off.
-    #[must_use]
     pub fn current_segment(&self, scene: &Scene) -> Option<usize> {
         let t = self.time?;
         match (self.pinned, &self.blocks) {
             (Some((at, block)), Some((generation, blocks)))
                 if at == t && *generation == scene.generation =>
             {
-                let next = blocks
-                    .get(block + 1)
-                    .copied()
-                    .unwrap_or(scene.segment_count());
-                next.checked_sub(1)
+                last_segment(scene, blocks, block)
             }
             _ => scene.segment_at(t),
         }
@@ -222,13 +210,11 @@ impl Playback {
     }
 
     /// The source line of the block under way, `None` while off.
-    #[must_use]
     pub fn current_line(&self, scene: &Scene) -> Option<u32> {
         scene.lines.get(self.current_segment(scene)?).copied()
     }
 
     /// How many segments are drawn as executed, `None` while off (everything is).
-    #[must_use]
     pub fn executed(&self, scene: &Scene) -> Option<usize> {
         let t = self.time?;
         let finished = scene.finished_at(t);
@@ -240,7 +226,6 @@ impl Playback {
     }
 
     /// Where the tool is, in the scene's frame, `None` while off.
-    #[must_use]
     pub fn position(&self, scene: &Scene) -> Option<Vec3> {
         let t = self.time?;
         if let Some(segment) = self.current_segment(scene)
@@ -260,9 +245,8 @@ impl Playback {
         self.moved_line.take()
     }
 
-    /// The bar of controls: play/pause, one block back and forward, stop, speed and the
-    /// position on a first row; sliders over the time and over the blocks on a second.
-    /// Advances the position while playing (and asks for the next frame).
+    /// The bar of controls (buttons, speed and position; sliders over time and blocks), which
+    /// advances the position while playing.
     pub fn ui(&mut self, ui: &mut egui::Ui, scene: &Scene) {
         self.sync(scene);
         if self.playing {
@@ -274,31 +258,23 @@ impl Playback {
         let count = self.block_count(scene);
         let has_path = count > 0;
         ui.horizontal(|ui| {
+            let play = (
+                "Play",
+                "Play the program from here (from the start at its end)",
+            );
             let (label, hint) = if self.playing {
                 ("Pause", "Pause playback")
             } else {
-                (
-                    "Play",
-                    "Play the program from here (from the start at its end)",
-                )
+                play
             };
+            let (back, forward) = (tr("Step one block back"), tr("Step one block forward"));
             let stop_hint = tr("Stop playback and draw the whole program");
             let buttons: [Button<'_>; 4] = [
                 (has_path, tr(label), tr(hint), |p, scene| {
                     if p.playing { p.pause() } else { p.play(scene) }
                 }),
-                (
-                    has_path,
-                    tr("« Block"),
-                    tr("Step one block back"),
-                    Self::step_back,
-                ),
-                (
-                    has_path,
-                    tr("Block »"),
-                    tr("Step one block forward"),
-                    Self::step_forward,
-                ),
+                (has_path, tr("« Block"), back, Self::step_back),
+                (has_path, tr("Block »"), forward, Self::step_forward),
                 (self.time.is_some(), tr("Stop"), stop_hint, |p, _| p.stop()),
             ];
             for (enabled, label, hint, run) in buttons {
@@ -410,13 +386,15 @@ impl Playback {
     }
 }
 
+/// The last segment of block `block`, given the first segment of each block.
+fn last_segment(scene: &Scene, blocks: &[usize], block: usize) -> Option<usize> {
+    let next = blocks.get(block + 1).copied();
+    next.unwrap_or(scene.segment_count()).checked_sub(1)
+}
+
 /// When block `block` ends: the end of its last segment.
 fn block_end(scene: &Scene, blocks: &[usize], block: usize) -> f64 {
-    let next = blocks
-        .get(block + 1)
-        .copied()
-        .unwrap_or(scene.segment_count());
-    next.checked_sub(1)
+    last_segment(scene, blocks, block)
         .and_then(|last| scene.segment_span(last))
         .map_or(0.0, |(_, end)| end)
 }

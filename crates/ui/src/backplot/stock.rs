@@ -1,6 +1,5 @@
-//! The cut stock in the view: which cut to ask the analysis for (the whole toolpath's, or up to
-//! playback's position), where the pointer meets the stock's surface, and the rapids into it
-//! marked over the view.
+//! The cut stock in the view: which cut to ask the analysis for, where the pointer meets the
+//! stock's surface, and the rapids into it marked over the view.
 
 use std::sync::Arc;
 
@@ -21,21 +20,18 @@ const MAX_RAY_SAMPLES: f64 = 8192.0;
 
 impl Backplot {
     /// Whether the cut stock is drawn.
-    #[must_use]
     pub fn stock_visible(&self) -> bool {
         self.stock_on
     }
 
     /// Where the view's Stock button was drawn at the last frame.
-    #[must_use]
     pub fn stock_button_rect(&self) -> Option<egui::Rect> {
         self.stock_button
     }
 
-    /// The cut of the stock to ask the analysis for (send it after [`Self::show`]; the answers
-    /// go to the scene, see `Analysis::take_stock`): while the stock is drawn, the whole
-    /// toolpath's cut, or during playback the cut up to its position. One cut is asked at a
-    /// time: a later position waits for the answer, an earlier one or a new analysis does not.
+    /// The cut of the stock to ask the analysis for after [`Self::show`], while it is drawn: the
+    /// whole toolpath's, or up to playback's position. A later position waits for the answer
+    /// to the cut asked; an earlier one or a new analysis does not.
     pub fn stock_request(&mut self, scene: &Scene) -> Option<Request> {
         if !self.stock_on {
             self.stock_asked = None;
@@ -45,7 +41,8 @@ impl Backplot {
             .playback
             .executed(scene)
             .unwrap_or_else(|| scene.segment_count());
-        let want = (scene.generation, upto);
+        let generation = scene.generation;
+        let want = (generation, upto);
         let answered = |(generation, upto): (u64, usize)| {
             scene
                 .stock
@@ -63,10 +60,7 @@ impl Backplot {
             return None;
         }
         self.stock_asked = Some(want);
-        Some(Request::Stock {
-            generation: scene.generation,
-            upto,
-        })
+        Some(Request::Stock { generation, upto })
     }
 
     /// Kinds not drawn: those hidden, and every move of the toolpath when the stock is drawn
@@ -113,13 +107,8 @@ impl Backplot {
             .inverse();
         let x = (pointer.x - rect.min.x) / rect.width() * 2.0 - 1.0;
         let y = 1.0 - (pointer.y - rect.min.y) / rect.height() * 2.0;
-        let near = inverse.project_point3(Vec3::new(x, y, 0.0));
-        let far = inverse.project_point3(Vec3::new(x, y, 0.5));
-        surface_hit(
-            field,
-            scene.origin + near.as_dvec3(),
-            scene.origin + far.as_dvec3(),
-        )
+        let at = |depth| scene.origin + inverse.project_point3(Vec3::new(x, y, depth)).as_dvec3();
+        surface_hit(field, at(0.0), at(0.5))
     }
 
     /// Each rapid into the stock the scene's cut found: its move in the stock's colour for

@@ -8,9 +8,8 @@ use swarf_syntax::Dialect;
 use super::Workbench;
 use crate::analysis::{Analysis, Problem, Stats};
 
-/// How soon after a reply of the analysis the frame that shows it comes: a finished analysis
-/// or an answer at once (replies a moment apart share the frame), `progress` a few times a
-/// second, so that the frames leave the analysis the processor.
+/// How soon after a reply of the analysis the frame that shows it comes: an answer at once,
+/// `progress` a few times a second (so the frames leave the analysis the processor).
 pub fn reply_frame(progress: bool) -> std::time::Duration {
     std::time::Duration::from_millis(if progress { 100 } else { 2 })
 }
@@ -31,7 +30,7 @@ impl Workbench {
         self.analysis
             .hint
             .as_ref()
-            .filter(|h| h.from == self.dialect && self.own_analysis)
+            .filter(|h| h.from == self.tab.dialect && self.own_analysis)
             .map(|h| h.to)
     }
 
@@ -68,11 +67,11 @@ impl Workbench {
             .filter(|(i, _)| *i != self.active)
             .map(|(_, t)| (t.document.name.clone(), t.text.program_text()))
             .collect();
-        let text = self.text.program_text();
+        let text = self.tab.text.program_text();
         self.ask(Request::Analyse(Box::new(Job {
             generation: self.generation,
             text: text.clone(),
-            dialect: self.dialect,
+            dialect: self.tab.dialect,
             setup: self.setup.clone(),
             others: Some(others),
         })));
@@ -149,9 +148,8 @@ impl Workbench {
         }
     }
 
-    /// Progress of the current text's analysis, while it runs, as (different blocks run,
-    /// blocks in the program); (0, 0) while the text is read. `None` when the analysis shown is
-    /// of the current text.
+    /// Progress of the current text's analysis while it runs, as (different blocks run, blocks
+    /// in the program); (0, 0) while the text is read.
     pub fn analysis_progress(&self) -> Option<(usize, usize)> {
         self.pending.map(|p| match p {
             Progress::Running { reached, blocks } => (reached, blocks),
@@ -159,9 +157,8 @@ impl Workbench {
         })
     }
 
-    /// Waits for the analysis of the current text and shows it (for tests and scripts that want
-    /// the current text's results rather than the last finished ones). Where the host cannot
-    /// wait (a web page), it returns at once and the frames show the results as they come.
+    /// Waits for the analysis of the current text and shows it (for tests and scripts); where the
+    /// host cannot wait (a web page), it returns at once.
     pub fn finish_analysis(&mut self) {
         self.take_replies();
         while self.pending.is_some() {
@@ -206,9 +203,8 @@ pub(super) fn no_analysis() -> Analysis {
     )
 }
 
-/// The analysis beside the UI: a thread of its own, which has `waker`'s context repaint with
-/// each reply; where there are no threads, the frames themselves (the web page hands its worker
-/// over with [`Workbench::set_analyst`]).
+/// The analysis beside the UI: a thread of its own, repainting `waker`'s context with each reply,
+/// or where there are none the frames themselves (the page sets its worker with `set_analyst`).
 pub(super) fn default_analyst(waker: &Arc<OnceLock<egui::Context>>) -> Box<dyn Analyst> {
     #[cfg(not(target_arch = "wasm32"))]
     {

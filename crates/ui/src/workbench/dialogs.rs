@@ -10,30 +10,25 @@ impl Workbench {
         if let Some(mut input) = self.goto.take() {
             let mut open = true;
             let mut go = false;
-            egui::Window::new(tr("Go to line"))
-                .open(&mut open)
-                .default_pos([240.0, 80.0])
-                .collapsible(false)
-                .resizable(false)
-                .show(ctx, |ui| {
-                    ui.horizontal(|ui| {
-                        let label = ui.label(tr("Line number"));
-                        let field = ui
-                            .add(egui::TextEdit::singleline(&mut input).desired_width(80.0))
-                            .labelled_by(label.id);
-                        if !field.has_focus() && !field.lost_focus() && input.is_empty() {
-                            field.request_focus();
-                        }
-                        go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                        let button = ui.button(tr("Go"));
-                        self.keep_rect(ui, "goto_field", &field);
-                        self.keep_rect(ui, "goto_button", &button);
-                        go |= button.clicked();
-                    });
-                    ui.label(format!("1 – {}", self.text.line_count()));
+            small_window(tr("Go to line"), &mut open).show(ctx, |ui| {
+                ui.horizontal(|ui| {
+                    let label = ui.label(tr("Line number"));
+                    let field = ui
+                        .add(egui::TextEdit::singleline(&mut input).desired_width(80.0))
+                        .labelled_by(label.id);
+                    if !field.has_focus() && !field.lost_focus() && input.is_empty() {
+                        field.request_focus();
+                    }
+                    go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+                    let button = ui.button(tr("Go"));
+                    self.keep_rect(ui, "goto_field", &field);
+                    self.keep_rect(ui, "goto_button", &button);
+                    go |= button.clicked();
                 });
+                ui.label(format!("1 – {}", self.tab.text.line_count()));
+            });
             let line = input.trim().parse::<u32>().ok().filter(|&n| n >= 1);
-            match line.map(|n| n.min(self.text.line_count())) {
+            match line.map(|n| n.min(self.tab.text.line_count())) {
                 Some(line) if go => self.go_to_line(line),
                 _ if open && !(go || ctx.input(|i| i.key_pressed(egui::Key::Escape))) => {
                     self.goto = Some(input);
@@ -44,23 +39,18 @@ impl Workbench {
         if let Some(mut options) = self.renumber.take() {
             let mut open = true;
             let mut run = false;
-            egui::Window::new(tr("Renumber blocks"))
-                .open(&mut open)
-                .default_pos([240.0, 80.0])
-                .collapsible(false)
-                .resizable(false)
-                .show(ctx, |ui| {
-                    egui::Grid::new("swarf-renumber")
-                        .num_columns(2)
-                        .show(ui, |ui| {
-                            let start = egui::DragValue::new(&mut options.start);
-                            drag_row(ui, tr("Start"), start.range(0..=99_999_999));
-                            let step = egui::DragValue::new(&mut options.step);
-                            drag_row(ui, tr("Step"), step.range(1..=10_000));
-                        });
-                    ui.checkbox(&mut options.all_blocks, tr("Number every block"));
-                    run = ui.button(tr("Renumber")).clicked();
-                });
+            small_window(tr("Renumber blocks"), &mut open).show(ctx, |ui| {
+                egui::Grid::new("swarf-renumber")
+                    .num_columns(2)
+                    .show(ui, |ui| {
+                        let start = egui::DragValue::new(&mut options.start);
+                        drag_row(ui, tr("Start"), start.range(0..=99_999_999));
+                        let step = egui::DragValue::new(&mut options.step);
+                        drag_row(ui, tr("Step"), step.range(1..=10_000));
+                    });
+                ui.checkbox(&mut options.all_blocks, tr("Number every block"));
+                run = ui.button(tr("Renumber")).clicked();
+            });
             if run {
                 self.renumber(options);
             } else if open {
@@ -70,7 +60,7 @@ impl Workbench {
         if self.settings_open {
             let mut open = true;
             let mut setup = self.setup.clone();
-            let mut dialect = self.dialect;
+            let mut dialect = self.tab.dialect;
             let mut request = None;
             egui::Window::new(tr("Settings"))
                 .open(&mut open)
@@ -79,15 +69,12 @@ impl Workbench {
                 .default_height(600.0)
                 .vscroll(true)
                 .show(ctx, |ui| {
-                    request = crate::settings::settings_ui(
-                        ui,
-                        &mut dialect,
-                        &mut setup,
-                        &mut self.new_offset,
-                    );
+                    let new_offset = &mut self.new_offset;
+                    request =
+                        crate::settings::settings_ui(ui, &mut dialect, &mut setup, new_offset);
                 });
             self.settings_open = open;
-            if dialect != self.dialect {
+            if dialect != self.tab.dialect {
                 self.set_dialect(dialect);
             }
             self.set_setup(setup);
@@ -101,17 +88,14 @@ impl Workbench {
                 ui.heading(tr("Unsaved changes"));
                 ui.label(trf(
                     "{} has changes that are not saved.",
-                    &[&self.document.name],
+                    &[&self.tab.document.name],
                 ));
                 ui.horizontal(|ui| {
-                    if ui.button(tr("Save")).clicked() {
-                        answer = Some(0);
-                    }
-                    if ui.button(tr("Discard changes")).clicked() {
-                        answer = Some(1);
-                    }
-                    if ui.button(tr("Cancel")).clicked() {
-                        answer = Some(2);
+                    let buttons = [tr("Save"), tr("Discard changes"), tr("Cancel")];
+                    for (i, label) in buttons.into_iter().enumerate() {
+                        if ui.button(label).clicked() {
+                            answer = Some(i);
+                        }
                     }
                 });
             });
@@ -130,4 +114,13 @@ impl Workbench {
             }
         }
     }
+}
+
+/// A small fixed window titled `title`, closed by its × through `open`.
+fn small_window<'a>(title: &str, open: &'a mut bool) -> egui::Window<'a> {
+    egui::Window::new(title)
+        .open(open)
+        .default_pos([240.0, 80.0])
+        .collapsible(false)
+        .resizable(false)
 }

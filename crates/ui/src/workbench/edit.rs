@@ -6,96 +6,90 @@ use super::Workbench;
 use super::tabs::next_stamp;
 use crate::buffer::Buffer;
 use crate::commands::{self, RenumberOptions};
-use crate::history::{EditKind, Snapshot};
+use crate::history::{EditKind, History, Snapshot};
 use crate::i18n::trf;
 
 impl Workbench {
     /// Selects the whole of 1-based `line` in the editor (clamped to the text) and scrolls to it.
     pub fn select_line(&mut self, line: u32) {
-        let line = line.clamp(1, commands::line_count(&self.text));
-        self.select_chars(lines_chars(&self.text, line, line));
-        self.cursor_line = Some(line);
+        let line = line.clamp(1, commands::line_count(&self.tab.text));
+        self.select_chars(lines_chars(&self.tab.text, line, line));
+        self.tab.cursor_line = Some(line);
     }
 
     /// The editor's selection in characters.
     pub fn selection(&self) -> Range<usize> {
-        self.selection.clone()
+        self.tab.selection.clone()
     }
 
     /// The selected text.
     pub fn selected_text(&self) -> &str {
-        let a = commands::byte_of_char(&self.text, self.selection.start);
-        let b = commands::byte_of_char(&self.text, self.selection.end);
-        self.text.get(a..b).unwrap_or_default()
+        let a = commands::byte_of_char(&self.tab.text, self.tab.selection.start);
+        let b = commands::byte_of_char(&self.tab.text, self.tab.selection.end);
+        self.tab.text.get(a..b).unwrap_or_default()
     }
 
     /// The 1-based lines the selection covers (a selection ending at a line's start does not
     /// take that line).
     pub fn selected_lines(&self) -> std::ops::RangeInclusive<u32> {
-        let a = commands::byte_of_char(&self.text, self.selection.start);
-        let mut b = commands::byte_of_char(&self.text, self.selection.end);
-        if b > a && self.text[..b].ends_with('\n') {
+        let a = commands::byte_of_char(&self.tab.text, self.tab.selection.start);
+        let mut b = commands::byte_of_char(&self.tab.text, self.tab.selection.end);
+        if b > a && self.tab.text[..b].ends_with('\n') {
             b -= 1;
         }
-        commands::line_of_byte(&self.text, a)..=commands::line_of_byte(&self.text, b)
+        commands::line_of_byte(&self.tab.text, a)..=commands::line_of_byte(&self.tab.text, b)
     }
 
     pub(super) fn select_chars(&mut self, chars: Range<usize>) {
-        self.selection = chars.clone();
+        self.tab.selection = chars.clone();
         self.editor.jump_to(chars);
     }
 
     /// Undoes the last change (typing run or command).
     pub fn undo(&mut self) {
-        let current = self.snapshot();
-        if let Some(back) = self.history.undo(current) {
-            self.restore(back);
-        }
+        self.step_history(History::undo);
     }
 
     /// Redoes the last undone change.
     pub fn redo(&mut self) {
-        let current = self.snapshot();
-        if let Some(forward) = self.history.redo(current) {
-            self.restore(forward);
-        }
+        self.step_history(History::redo);
     }
 
-    fn snapshot(&self) -> Snapshot {
-        Snapshot {
-            text: self.text.rope().clone(),
-            selection: self.selection.clone(),
-        }
-    }
-
-    fn restore(&mut self, to: Snapshot) {
-        self.text = Buffer::from(to.text);
-        self.shadow = self.text.rope().clone();
+    /// Goes to the state `step` takes from the history, given the current one.
+    fn step_history(&mut self, step: fn(&mut History, Snapshot) -> Option<Snapshot>) {
+        let current = Snapshot {
+            text: self.tab.text.rope().clone(),
+            selection: self.tab.selection.clone(),
+        };
+        let Some(to) = step(&mut self.tab.history, current) else {
+            return;
+        };
+        self.tab.text = Buffer::from(to.text);
+        self.tab.shadow = self.tab.text.rope().clone();
         self.select_chars(to.selection);
         self.text_changed();
     }
 
     /// Replaces the text as one undoable command and selects `selection` (characters).
     pub(super) fn apply(&mut self, text: String, selection: Range<usize>) {
-        if text == self.text.as_str() {
+        if text == self.tab.text.as_str() {
             return;
         }
         let before = Snapshot {
-            text: std::mem::replace(&mut self.text, Buffer::from(text))
+            text: std::mem::replace(&mut self.tab.text, Buffer::from(text))
                 .rope()
                 .clone(),
-            selection: self.selection.clone(),
+            selection: self.tab.selection.clone(),
         };
-        self.history
-            .record(before, EditKind::Command, true, self.now);
-        self.shadow = self.text.rope().clone();
+        (self.tab.history).record(before, EditKind::Command, true, self.now);
+        self.tab.shadow = self.tab.text.rope().clone();
         self.select_chars(selection);
         self.text_changed();
     }
 
     pub(super) fn text_changed(&mut self) {
-        self.document.dirty = self.text.rope() != &self.document.saved;
-        self.document.revision = next_stamp();
+        self.tab.document.dirty = self.tab.text.rope() != &self.tab.document.saved;
+        self.tab.document.revision = next_stamp();
         self.reanalyse();
     }
 
@@ -103,29 +97,29 @@ impl Workbench {
     pub fn toggle_comment(&mut self) {
         let lines = self.selected_lines();
         let (first, last) = (*lines.start(), *lines.end());
-        let text = commands::toggle_comment(&self.text, lines, self.dialect);
+        let text = commands::toggle_comment(&self.tab.text, lines, self.tab.dialect);
         let chars = lines_chars(&text, first, last);
         self.apply(text, chars);
     }
 
     /// Renumbers the program's N numbers (see [`commands::renumber`]).
     pub fn renumber(&mut self, options: RenumberOptions) {
-        let out = commands::renumber(&self.text, options, self.dialect);
+        let out = commands::renumber(&self.tab.text, options, self.tab.dialect);
         self.message = Some(trf(
             "Renumbered {} blocks, {} jump targets",
             &[&out.numbered, &out.targets],
         ));
-        let keep = self.selection.start.min(out.text.chars().count());
+        let keep = self.tab.selection.start.min(out.text.chars().count());
         self.apply(out.text, keep..keep);
     }
 
     /// Moves the cursor to the start of 1-based `line` (clamped to the text).
     pub fn go_to_line(&mut self, line: u32) {
-        let line = line.clamp(1, commands::line_count(&self.text));
-        let start = commands::line_start(&self.text, line);
-        let chars = commands::char_of_byte(&self.text, start);
+        let line = line.clamp(1, commands::line_count(&self.tab.text));
+        let start = commands::line_start(&self.tab.text, line);
+        let chars = commands::char_of_byte(&self.tab.text, start);
         self.select_chars(chars..chars);
-        self.cursor_line = Some(line);
+        self.tab.cursor_line = Some(line);
     }
 }
 

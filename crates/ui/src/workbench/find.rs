@@ -49,38 +49,35 @@ impl Workbench {
 
     /// Selects the next match of the find field after the selection (wrapping).
     pub fn find_next(&mut self) -> bool {
-        let Some(finder) = self.finder() else {
-            return false;
-        };
-        let from = commands::byte_of_char(&self.text, self.selection.end);
-        let Some(m) = finder.next(&self.text, from) else {
-            return false;
-        };
-        self.show_match(m);
-        true
+        self.find_step(true)
     }
 
     /// Selects the previous match of the find field before the selection (wrapping).
     pub fn find_previous(&mut self) -> bool {
+        self.find_step(false)
+    }
+
+    /// Selects the match after (`forward`) or before the selection and scrolls to it; the
+    /// keyboard stays where it is, so the find field keeps it while Enter steps through them.
+    fn find_step(&mut self, forward: bool) -> bool {
         let Some(finder) = self.finder() else {
             return false;
         };
-        let before = commands::byte_of_char(&self.text, self.selection.start);
-        let Some(m) = finder.previous(&self.text, before) else {
+        let text = &self.tab.text;
+        let found = if forward {
+            finder.next(text, commands::byte_of_char(text, self.tab.selection.end))
+        } else {
+            finder.previous(text, commands::byte_of_char(text, self.tab.selection.start))
+        };
+        let Some(bytes) = found else {
             return false;
         };
-        self.show_match(m);
-        true
-    }
-
-    /// Selects a find match (bytes) and scrolls to it; the keyboard stays where it is, so the
-    /// find field keeps it while Enter steps through the matches.
-    fn show_match(&mut self, bytes: Range<usize>) {
-        let chars = commands::char_of_byte(&self.text, bytes.start)
-            ..commands::char_of_byte(&self.text, bytes.end);
-        self.cursor_line = Some(commands::line_of_byte(&self.text, bytes.start));
-        self.selection = chars.clone();
+        let chars = commands::char_of_byte(&self.tab.text, bytes.start)
+            ..commands::char_of_byte(&self.tab.text, bytes.end);
+        self.tab.cursor_line = Some(commands::line_of_byte(&self.tab.text, bytes.start));
+        self.tab.selection = chars.clone();
         self.editor.show_range(chars);
+        true
     }
 
     /// Replaces the selected match with the replacement field and selects the next match; when
@@ -89,15 +86,14 @@ impl Workbench {
         let Some(finder) = self.finder() else {
             return;
         };
-        let a = commands::byte_of_char(&self.text, self.selection.start);
-        let b = commands::byte_of_char(&self.text, self.selection.end);
-        let with =
-            finder.replacement_at(&self.text, a..b, &self.find.replacement, self.find.options);
-        let Some(with) = with else {
+        let (text, find) = (&self.tab.text, &self.find);
+        let a = commands::byte_of_char(text, self.tab.selection.start);
+        let b = commands::byte_of_char(text, self.tab.selection.end);
+        let Some(with) = finder.replacement_at(text, a..b, &find.replacement, find.options) else {
             self.find_next();
             return;
         };
-        let mut text = self.text.to_string();
+        let mut text = self.tab.text.to_string();
         text.replace_range(a..b, &with);
         let after = commands::char_of_byte(&text, a + with.len());
         self.apply(text, after..after);
@@ -109,9 +105,10 @@ impl Workbench {
         let Some(finder) = self.finder() else {
             return 0;
         };
-        let (text, n) = finder.replace_all(&self.text, &self.find.replacement, self.find.options);
+        let (text, find) = (&self.tab.text, &self.find);
+        let (text, n) = finder.replace_all(text, &find.replacement, find.options);
         if n > 0 {
-            let keep = self.selection.start.min(text.chars().count());
+            let keep = self.tab.selection.start.min(text.chars().count());
             self.apply(text, keep..keep);
         }
         self.message = Some(trf("Replaced {} matches", &[&n]));
@@ -161,7 +158,7 @@ impl Workbench {
                     Ok(Vec::new())
                 } else {
                     Finder::new(&self.find.query, self.find.options)
-                        .map(|f| commands::char_ranges(&self.text, &f.find_all(&self.text)))
+                        .map(|f| commands::char_ranges(&self.tab.text, &f.find_all(&self.tab.text)))
                 };
                 self.find.count = Some((key, count));
             }
@@ -200,7 +197,7 @@ impl Workbench {
         if close {
             // Back to the program, the selection kept.
             self.find.open = false;
-            self.select_chars(self.selection.clone());
+            self.select_chars(self.tab.selection.clone());
         }
         if next {
             self.find_next();

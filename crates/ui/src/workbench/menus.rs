@@ -1,10 +1,13 @@
 //! The top bar, its File, Edit and View menus, the keyboard shortcuts and the actions they run.
 
+use egui::{Key, Modifiers};
 use swarf_syntax::Dialect;
 
-use super::{HostRequest, Workbench};
+use super::HostRequest::{self, ExportSetup, ImportSetup, Open, Save, SaveAs};
+use super::Workbench;
 use crate::commands::RenumberOptions;
 use crate::examples::EXAMPLES;
+use crate::history::History;
 use crate::i18n::{Lang, tr};
 use crate::settings::choice;
 
@@ -23,17 +26,18 @@ impl Workbench {
             ui.strong("Swarf");
             ui.separator();
             ui.menu_button(tr("File"), |ui| self.file_menu(ui));
-            ui.menu_button(tr("Edit"), |ui| self.edit_menu(ui));
+            ui.menu_button(tr("Edit"), |ui| self.menu_items(ui, &EDIT));
             ui.menu_button(tr("View"), |ui| self.view_menu(ui));
             if ui.button(tr("Settings…")).clicked() {
                 self.settings_open = true;
             }
             ui.separator();
-            let mut dialect = self.dialect;
+            let mut dialect = self.tab.dialect;
             let (id, label) = ("swarf-dialect", tr("Dialect"));
-            choice(ui, id, label, &mut dialect, Dialect::ALL, Dialect::label);
+            let dialects = Dialect::ALL.map(|d| (d, d.label()));
+            choice(ui, id, label, &mut dialect, &dialects);
             // The active tab's dialect, and the one new tabs start in.
-            if dialect != self.dialect {
+            if dialect != self.tab.dialect {
                 self.set_dialect(dialect);
             }
             ui.separator();
@@ -46,12 +50,7 @@ impl Workbench {
     }
 
     fn file_menu(&mut self, ui: &mut egui::Ui) {
-        if item(ui, tr("New"), egui::Key::N, true) {
-            self.new_tab();
-        }
-        if item(ui, tr("Open…"), egui::Key::O, true) {
-            self.requests.push(HostRequest::Open);
-        }
+        self.menu_items(ui, &FILE[..1]);
         ui.add_enabled_ui(!self.recent.is_empty(), |ui| {
             ui.menu_button(tr("Open recent"), |ui| {
                 for name in self.recent.clone() {
@@ -70,22 +69,7 @@ impl Workbench {
             }
         });
         ui.separator();
-        if item(ui, tr("Save"), egui::Key::S, true) {
-            self.requests.push(HostRequest::Save);
-        }
-        if ui.button(tr("Save as…")).clicked() {
-            self.requests.push(HostRequest::SaveAs);
-        }
-        if ui.button(tr("Close tab")).clicked() {
-            self.close_tab(self.active);
-        }
-        ui.separator();
-        if ui.button(tr("Import setup…")).clicked() {
-            self.requests.push(HostRequest::ImportSetup);
-        }
-        if ui.button(tr("Export setup…")).clicked() {
-            self.requests.push(HostRequest::ExportSetup);
-        }
+        self.menu_items(ui, &FILE[1..]);
     }
 
     fn view_menu(&mut self, ui: &mut egui::Ui) {
@@ -102,35 +86,29 @@ impl Workbench {
         });
     }
 
-    fn edit_menu(&mut self, ui: &mut egui::Ui) {
-        if item(ui, tr("Undo"), egui::Key::Z, self.history.can_undo()) {
-            self.undo();
-        }
-        if item(ui, tr("Redo"), egui::Key::Y, self.history.can_redo()) {
-            self.redo();
-        }
-        ui.separator();
-        if item(ui, tr("Find…"), egui::Key::F, true) {
-            self.open_find(false);
-        }
-        if item(ui, tr("Replace…"), egui::Key::H, true) {
-            self.open_find(true);
-        }
-        if item(ui, tr("Go to line…"), egui::Key::G, true) {
-            self.goto = Some(String::new());
-        }
-        ui.separator();
-        if item(ui, tr("Toggle comment"), egui::Key::Slash, true) {
-            self.toggle_comment();
-        }
-        if ui.button(tr("Renumber blocks…")).clicked() {
-            self.renumber = Some(RenumberOptions::default());
+    /// The commands of `groups` as menu items showing their first shortcut, with a separator
+    /// between groups.
+    fn menu_items(&mut self, ui: &mut egui::Ui, groups: &[&[Command]]) {
+        for (i, group) in groups.iter().enumerate() {
+            if i > 0 {
+                ui.separator();
+            }
+            for Command(label, keys, allowed, run) in *group {
+                let mut button = egui::Button::new(tr(label));
+                if let Some(&(modifiers, key)) = keys.first() {
+                    let keys = egui::KeyboardShortcut::new(modifiers, key);
+                    button = button.shortcut_text(ui.ctx().format_shortcut(&keys));
+                }
+                let enabled = allowed.is_none_or(|allowed| allowed(&self.tab.history));
+                if ui.add_enabled(enabled, button).clicked() {
+                    run(self);
+                }
+            }
         }
     }
 
-    /// Asks to close the application: at once when nothing is unsaved (the host gets
-    /// [`HostRequest::Quit`]), otherwise after the user saves or discards the changes of each
-    /// tab that has some.
+    /// Asks to close the application ([`HostRequest::Quit`]) once each tab's unsaved changes are
+    /// saved or discarded.
     pub fn request_quit(&mut self) {
         self.run_action(Action::Quit(0));
     }
@@ -151,44 +129,21 @@ impl Workbench {
         }
     }
 
-    /// Keyboard shortcuts of the editor commands, taken before the widgets see them.
+    /// Keyboard shortcuts of the menus' commands, taken before the widgets see them.
     pub(super) fn shortcuts(&mut self, ctx: &egui::Context) {
-        use egui::{Key, Modifiers};
-        let cmd = Modifiers::COMMAND;
-        let cmd_shift = Modifiers::COMMAND | Modifiers::SHIFT;
         // Undo belongs to the program unless another text field has the keyboard.
         let others_typing = ctx
             .memory(egui::Memory::focused)
             .is_some_and(|f| f != self.editor.id() && egui::TextEdit::load_state(ctx, f).is_some());
-        let (redo, undo) = if others_typing {
-            (false, false)
-        } else {
-            ctx.input_mut(|i| {
-                let redo = i.consume_key(cmd_shift, Key::Z) || i.consume_key(cmd, Key::Y);
-                (redo, i.consume_key(cmd, Key::Z))
-            })
-        };
-        if redo {
-            self.redo();
-        }
-        if undo {
-            self.undo();
-        }
+        let mut keys: Vec<_> = (FILE.iter().chain(&EDIT))
+            .flat_map(|group| group.iter())
+            .filter(|Command(_, _, allowed, _)| !(allowed.is_some() && others_typing))
+            .flat_map(|Command(_, keys, _, run)| keys.iter().map(|&(m, key)| (m, key, *run)))
+            .collect();
         // Ctrl+Shift+S before Ctrl+S, which would take it too.
-        let commands: [Shortcut; 8] = [
-            (cmd, Key::F, |wb| wb.open_find(false)),
-            (cmd, Key::H, |wb| wb.open_find(true)),
-            (cmd, Key::G, |wb| wb.goto = Some(String::new())),
-            (cmd, Key::Slash, Workbench::toggle_comment),
-            (cmd_shift, Key::S, |wb| {
-                wb.requests.push(HostRequest::SaveAs);
-            }),
-            (cmd, Key::S, |wb| wb.requests.push(HostRequest::Save)),
-            (cmd, Key::O, |wb| wb.requests.push(HostRequest::Open)),
-            (cmd, Key::N, Workbench::new_tab),
-        ];
+        keys.sort_by_key(|(modifiers, _, _)| !modifiers.shift);
         let pressed: Vec<fn(&mut Workbench)> = ctx.input_mut(|i| {
-            (commands.into_iter())
+            (keys.into_iter())
                 .filter(|(modifiers, key, _)| i.consume_key(*modifiers, *key))
                 .map(|(_, _, run)| run)
                 .collect()
@@ -199,13 +154,54 @@ impl Workbench {
     }
 }
 
-/// A menu item showing its shortcut, Ctrl (Cmd on macOS) and `key`; whether it was clicked.
-fn item(ui: &mut egui::Ui, label: &str, key: egui::Key, enabled: bool) -> bool {
-    let shortcut = egui::KeyboardShortcut::new(egui::Modifiers::COMMAND, key);
-    let text = ui.ctx().format_shortcut(&shortcut);
-    ui.add_enabled(enabled, egui::Button::new(label).shortcut_text(text))
-        .clicked()
-}
+/// A command of the menus and the keyboard: its label (looked up with `tr`), its shortcuts (the
+/// first shown in its menu item), for undo and redo whether the history allows it (their
+/// shortcuts are left to another text field that has the keyboard), and what it does.
+struct Command(
+    &'static str,
+    &'static [(Modifiers, Key)],
+    Option<fn(&History) -> bool>,
+    fn(&mut Workbench),
+);
 
-/// A keyboard shortcut: its modifiers, its key and the command it runs.
-type Shortcut = (egui::Modifiers, egui::Key, fn(&mut Workbench));
+/// Ctrl (Cmd on macOS).
+const CTRL: Modifiers = Modifiers::COMMAND;
+/// Ctrl (Cmd on macOS) and Shift.
+const CTRL_SHIFT: Modifiers = Modifiers::COMMAND.plus(Modifiers::SHIFT);
+
+/// The File menu's commands in groups between separators (Open recent and Examples end the first).
+#[rustfmt::skip]
+const FILE: [&[Command]; 3] = [
+    &[
+        Command("New", &[(CTRL, Key::N)], None, Workbench::new_tab),
+        Command("Open…", &[(CTRL, Key::O)], None, |wb| wb.requests.push(Open)),
+    ],
+    &[
+        Command("Save", &[(CTRL, Key::S)], None, |wb| wb.requests.push(Save)),
+        Command("Save as…", &[(CTRL_SHIFT, Key::S)], None, |wb| wb.requests.push(SaveAs)),
+        Command("Close tab", &[], None, |wb| wb.close_tab(wb.active)),
+    ],
+    &[
+        Command("Import setup…", &[], None, |wb| wb.requests.push(ImportSetup)),
+        Command("Export setup…", &[], None, |wb| wb.requests.push(ExportSetup)),
+    ],
+];
+
+/// The Edit menu's commands in groups between separators.
+#[rustfmt::skip]
+const EDIT: [&[Command]; 3] = [
+    &[
+        Command("Undo", &[(CTRL, Key::Z)], Some(History::can_undo), Workbench::undo),
+        Command("Redo", &[(CTRL, Key::Y), (CTRL_SHIFT, Key::Z)], Some(History::can_redo),
+            Workbench::redo),
+    ],
+    &[
+        Command("Find…", &[(CTRL, Key::F)], None, |wb| wb.open_find(false)),
+        Command("Replace…", &[(CTRL, Key::H)], None, |wb| wb.open_find(true)),
+        Command("Go to line…", &[(CTRL, Key::G)], None, |wb| wb.goto = Some(String::new())),
+    ],
+    &[
+        Command("Toggle comment", &[(CTRL, Key::Slash)], None, Workbench::toggle_comment),
+        Command("Renumber blocks…", &[], None, |wb| wb.renumber = Some(RenumberOptions::default())),
+    ],
+];

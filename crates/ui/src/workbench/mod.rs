@@ -9,10 +9,7 @@ mod panels;
 mod tabs;
 
 use std::collections::VecDeque;
-use std::ops::Range;
 use std::sync::{Arc, OnceLock};
-
-use ropey::Rope;
 
 use swarf_analysis::{Analyst, ProgramText, Progress};
 use swarf_interp::Setup;
@@ -20,11 +17,10 @@ use swarf_syntax::{Dialect, Encoding};
 
 use crate::analysis::Analysis;
 use crate::backplot::Backplot;
-use crate::buffer::Buffer;
 use crate::commands::{self, RenumberOptions};
-use crate::editor::CodeEditor;
-use crate::history::{EditKind, History, Snapshot};
+use crate::history::{EditKind, Snapshot};
 use crate::i18n::{Lang, tr, trf};
+use crate::rows::CodeEditor;
 
 use analyst::{default_analyst, no_analysis};
 use find::FindBar;
@@ -46,20 +42,13 @@ const STATE_PANEL_WIDTH: f32 = 280.0;
 /// Height of the problems list, when there are problems, until the user drags its divider.
 const PROBLEMS_PANEL_HEIGHT: f32 = 140.0;
 
-/// Editor, problems and backplot over the program of the active tab; re-analyses on every edit.
-///
-/// Each tab holds one file (a [`Document`] with its text, undo history and cursor) and the
-/// dialect it is read in. The active tab's program is analysed with the other tabs as the files
-/// its subprogram calls may reach.
-///
-/// The analysis runs beside the UI (a thread of its own, or the web page's worker) and a frame
-/// only takes its replies; until a new one is finished, the tab's last finished analysis
-/// (markers, problems, backplot) stays on screen — a tab with none yet shows an empty view and
-/// its progress, never another tab's — and an edit made meanwhile replaces the unfinished run.
+/// Editor, problems and backplot over the program of the active tab; re-analyses on every edit,
+/// with the other tabs as the files its calls may reach. The analysis runs beside the UI (a
+/// thread, or the page's worker); until a new one is finished the tab's last one stays on screen
+/// (a tab with none yet shows an empty view and its progress, never another tab's).
 pub struct Workbench {
-    text: Buffer,
-    /// The active tab's dialect.
-    dialect: Dialect,
+    /// The active tab's text, document, history, selection and dialect.
+    tab: Tab,
     /// The dialect new tabs and files opened in them start in: the last one chosen in the
     /// dialect selector or the settings.
     default_dialect: Dialect,
@@ -84,17 +73,10 @@ pub struct Workbench {
     waker: Arc<OnceLock<egui::Context>>,
     editor: CodeEditor,
     backplot: Backplot,
-    cursor_line: Option<u32>,
     /// The cursor line last sent to the backplot as its selection.
     synced_line: Option<u32>,
     /// The state shown for ((generation, line)), asked again only when either changes.
     state_cache: Option<((u64, u32), Option<swarf_interp::BlockState>)>,
-    /// Undo and redo over typing and commands.
-    history: History,
-    /// The text as last recorded in the history (the "before" of the next typed change).
-    shadow: Rope,
-    /// The editor's selection in characters, as last reported or set.
-    selection: Range<usize>,
     /// egui time of the current frame, for merging typing into undo steps.
     now: f64,
     find: FindBar,
@@ -105,9 +87,7 @@ pub struct Workbench {
     settings_open: bool,
     /// A new work offset's name typed in the settings window.
     new_offset: String,
-    document: Document,
-    /// Every open tab, in order; the active one's entry is empty while its content lives in
-    /// the fields above.
+    /// Every open tab, in order; the active one's entry is empty while its content is `tab`.
     tabs: Vec<Tab>,
     /// Index of the active tab in `tabs`.
     active: usize,
@@ -163,7 +143,7 @@ impl Default for Workbench {
     /// The example program, named as its file in `assets/examples/`.
     fn default() -> Self {
         let mut wb = Workbench::new(EXAMPLE_PROGRAM.to_string());
-        wb.document.name = "pocket.nc".to_string();
+        wb.tab.document.name = "pocket.nc".to_string();
         wb
     }
 }
@@ -173,12 +153,9 @@ impl Workbench {
     /// first one is waited for; later ones come beside the frames).
     pub fn new(text: String) -> Self {
         let dialect = Dialect::default();
-        let text = Buffer::from(text);
-        let rope = text.rope().clone();
         let waker = Arc::new(OnceLock::new());
         let mut wb = Workbench {
-            text,
-            dialect,
+            tab: Tab::new("untitled.nc", text, Encoding::Utf8, dialect),
             default_dialect: dialect,
             setup: Setup::default(),
             generation: 0,
@@ -192,19 +169,14 @@ impl Workbench {
             waker,
             editor: CodeEditor::default(),
             backplot: Backplot::new(),
-            cursor_line: None,
             synced_line: None,
             state_cache: None,
-            history: History::default(),
-            shadow: rope.clone(),
-            selection: 0..0,
             now: 0.0,
             find: FindBar::default(),
             goto: None,
             renumber: None,
             settings_open: false,
             new_offset: String::new(),
-            document: Document::new("untitled.nc", &rope, Encoding::Utf8),
             tabs: vec![Tab::default()],
             active: 0,
             requests: Vec::new(),
@@ -223,13 +195,13 @@ impl Workbench {
 
     /// The program text.
     pub fn text(&self) -> &str {
-        self.text.as_str()
+        self.tab.text.as_str()
     }
 
     /// Whether the current text is also held as one string (made only where a whole-text
     /// copy is needed; an edit of a long program and its analysis read the rope instead).
     pub fn text_is_flat(&self) -> bool {
-        self.text.is_flat()
+        self.tab.text.is_flat()
     }
 
     /// Replaces the text and re-analyses it (one undo step; the document stays the same file).
@@ -253,7 +225,7 @@ impl Workbench {
     pub fn set_language(&mut self, lang: Lang) {
         self.lang = lang;
         crate::i18n::set_current(lang);
-        if lang.needs_cjk_font() && self.cjk_font == FontState::Absent {
+        if lang != Lang::En && self.cjk_font == FontState::Absent {
             self.cjk_font = FontState::Requested;
             self.requests.push(HostRequest::LoadCjkFont);
             self.message = Some(tr("Loading the Chinese font…").to_string());
@@ -344,12 +316,10 @@ impl Workbench {
         self.editor.completions()
     }
 
-    /// Where the widget `name` was drawn in the last frame, in points; `None` when it was not
-    /// drawn or scrolled out of sight; only the part in sight, where a click reaches it. The
-    /// names: `editor`, `backplot`, `fit_view`, `find_field`, `find_previous`, `find_next`,
-    /// `find_close`, `replace_field`, `replace`, `replace_all`, `goto_field`, `goto_button`,
-    /// `problem_first` (the problems list's first row), `tab N` (the 1-based tab's label),
-    /// `close_tab N` and `new_tab`.
+    /// The part in sight of where widget `name` was drawn in the last frame, in points: `editor`,
+    /// `backplot`, `fit_view`, `find_field`, `find_previous`, `find_next`, `find_close`,
+    /// `replace_field`, `replace`, `replace_all`, `goto_field`, `goto_button`, `problem_first`
+    /// (the problems list's first row), `tab N`, `close_tab N` (1-based) and `new_tab`.
     pub fn widget_rect(&self, name: &str) -> Option<egui::Rect> {
         self.widgets
             .get(name)
@@ -380,7 +350,7 @@ impl Workbench {
         egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
         // The panels keep their size (the user's, once a divider is dragged) whatever they
         // show: their contents wrap or scroll inside, so the view never jumps under the mouse.
-        let problems = if self.problem_count() == 0 {
+        let problems = if self.analysis.problems.is_empty() && self.analysis.elsewhere.is_empty() {
             // Nothing to list: one line, not an empty list's height.
             egui::Panel::bottom("swarf-problems-none").resizable(false)
         } else {
@@ -405,8 +375,8 @@ impl Workbench {
                 self.tab_strip(ui);
                 let title = ui.horizontal(|ui| {
                     let title = ui.strong(tr("Program"));
-                    let dirty = if self.document.dirty { " *" } else { "" };
-                    ui.label(format!("{}{dirty}", self.document.name));
+                    let dirty = if self.tab.document.dirty { " *" } else { "" };
+                    ui.label(format!("{}{dirty}", self.tab.document.name));
                     title
                 });
                 if self.find.open {
@@ -423,34 +393,33 @@ impl Workbench {
                 // The editor fills the rest of the panel.
                 let editor_rect = ui.available_rect_before_wrap();
                 self.widgets.insert("editor".into(), editor_rect);
-                let out = self.editor.show(
-                    ui,
-                    title.inner.id,
-                    &mut self.text,
-                    self.dialect,
-                    &self.analysis.problems,
-                );
+                let (label, problems) = (title.inner.id, &self.analysis.problems);
+                let out =
+                    self.editor
+                        .show(ui, label, &mut self.tab.text, self.tab.dialect, problems);
                 if out.changed || out.completed {
                     let before = Snapshot {
-                        text: std::mem::replace(&mut self.shadow, self.text.rope().clone()),
-                        selection: self.selection.clone(),
+                        text: std::mem::replace(&mut self.tab.shadow, self.tab.text.rope().clone()),
+                        selection: self.tab.selection.clone(),
                     };
                     let kind = if out.completed {
                         EditKind::Command
                     } else {
                         EditKind::Typing
                     };
-                    self.history.record(before, kind, out.ends_line, self.now);
+                    self.tab
+                        .history
+                        .record(before, kind, out.ends_line, self.now);
                     self.text_changed();
                 }
                 if let Some(selection) = out.selection {
-                    if selection != self.selection && !out.changed {
-                        self.history.break_run();
+                    if selection != self.tab.selection && !out.changed {
+                        self.tab.history.break_run();
                     }
-                    self.selection = selection;
+                    self.tab.selection = selection;
                 }
                 if out.cursor_line.is_some() {
-                    self.cursor_line = out.cursor_line;
+                    self.tab.cursor_line = out.cursor_line;
                 }
             });
         self.dialogs(ui.ctx());
@@ -459,9 +428,9 @@ impl Workbench {
             .show(ui, |ui| {
                 // The editor's block is highlighted in the backplot (set only when the cursor
                 // moves, so a click in the backplot is not undone) …
-                if self.cursor_line != self.synced_line {
-                    self.backplot.set_selected_line(self.cursor_line);
-                    self.synced_line = self.cursor_line;
+                if self.tab.cursor_line != self.synced_line {
+                    self.backplot.set_selected_line(self.tab.cursor_line);
+                    self.synced_line = self.tab.cursor_line;
                 }
                 egui::Panel::bottom("swarf-playback").show(ui, |ui| {
                     self.backplot.playback_bar(ui, &self.analysis.scene);
@@ -502,17 +471,16 @@ impl Workbench {
 
     /// The 1-based line of the editor's cursor, as last reported or moved there.
     pub fn cursor_line(&self) -> Option<u32> {
-        self.cursor_line
+        self.tab.cursor_line
     }
 
-    /// Puts the editor's cursor at the start of 1-based `line`.
-    /// Shows the line a click in the view or the playback reached in the editor; the keyboard
-    /// stays with the view or the playback bar, so their keys never type into the program.
+    /// Puts the editor's cursor at the start of 1-based `line`, the keyboard left with the view
+    /// or the playback bar that reached it, so their keys never type into the program.
     fn jump_to_line(&mut self, line: u32) {
-        let chars = self.text.line_to_char(line.saturating_sub(1) as usize);
-        self.selection = chars..chars;
+        let chars = self.tab.text.line_to_char(line.saturating_sub(1) as usize);
+        self.tab.selection = chars..chars;
         self.editor.show_range(chars..chars);
-        self.cursor_line = Some(line);
+        self.tab.cursor_line = Some(line);
         self.synced_line = Some(line);
     }
 }

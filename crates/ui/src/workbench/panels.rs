@@ -11,7 +11,7 @@ impl Workbench {
     /// The "state at cursor" panel.
     pub(super) fn state_view(&mut self, ui: &mut egui::Ui) {
         ui.strong(tr("State at cursor"));
-        let Some(line) = self.cursor_line else {
+        let Some(line) = self.tab.cursor_line else {
             ui.label(tr("Put the cursor on a block."));
             return;
         };
@@ -23,10 +23,8 @@ impl Workbench {
             && self.state_asked != Some(key)
         {
             self.state_asked = Some(key);
-            self.ask(Request::StateAt {
-                generation: key.0,
-                line,
-            });
+            let generation = key.0;
+            self.ask(Request::StateAt { generation, line });
         }
         let Some(((_, line), state)) = &self.state_cache else {
             return;
@@ -61,19 +59,11 @@ impl Workbench {
             .show(ui, |ui| {
                 for (name, value, position) in rows {
                     ui.label(name);
-                    if position {
-                        ui.monospace(value);
-                    } else {
-                        ui.label(value);
-                    }
+                    let value = egui::RichText::new(value);
+                    ui.label(if position { value.monospace() } else { value });
                     ui.end_row();
                 }
             });
-    }
-
-    /// The problems of the active tab's program and of the files it called.
-    pub(super) fn problem_count(&self) -> usize {
-        self.analysis.problems.len() + self.analysis.elsewhere.len()
     }
 
     pub(super) fn status_bar(&self, ui: &mut egui::Ui) {
@@ -92,20 +82,18 @@ impl Workbench {
             ui.separator();
             let errors = self.analysis.count(Severity::Error);
             let warnings = self.analysis.count(Severity::Warning);
-            ui.colored_label(
-                if errors > 0 {
-                    severity_color(Severity::Error)
-                } else {
-                    ui.visuals().text_color()
-                },
-                trf("{} errors, {} warnings", &[&errors, &warnings]),
-            );
-            if let Some(line) = self.cursor_line {
+            let color = if errors > 0 {
+                severity_color(Severity::Error)
+            } else {
+                ui.visuals().text_color()
+            };
+            ui.colored_label(color, trf("{} errors, {} warnings", &[&errors, &warnings]));
+            if let Some(line) = self.tab.cursor_line {
                 ui.separator();
                 ui.label(trf("line {}", &[&line]));
             }
             ui.separator();
-            ui.label(self.document.encoding.name());
+            ui.label(self.tab.document.encoding.name());
             let progress = if let Some(Progress::Reading { read, lines }) = self.pending {
                 let text = format!("{read} / {lines} lines read");
                 Some(("Analysing", read as f32 / lines.max(1) as f32, text))
@@ -203,31 +191,21 @@ impl Workbench {
                 // program's own problems come first, then those in the other tabs it called.
                 let mut clicked = None;
                 for i in rows {
-                    let (text, severity, hover) = if let Some(p) = self.analysis.problems.get(i) {
-                        (
-                            format!(
-                                "{}:{}  {}[{}]  {}",
-                                p.line, p.col, p.severity, p.code, p.message
-                            ),
-                            p.severity,
-                            tr("Go to this position").to_string(),
-                        )
+                    let (file, p, hover) = if let Some(p) = self.analysis.problems.get(i) {
+                        (String::new(), p, tr("Go to this position").to_string())
                     } else if let Some(l) = self.analysis.elsewhere.get(i - own) {
-                        let p = &l.problem;
-                        (
-                            format!(
-                                "{}:{}:{}  {}[{}]  {}",
-                                l.file, p.line, p.col, p.severity, p.code, p.message
-                            ),
-                            p.severity,
-                            trf("Go to this position in {}", &[&l.file]),
-                        )
+                        let hover = trf("Go to this position in {}", &[&l.file]);
+                        (format!("{}:", l.file), &l.problem, hover)
                     } else {
                         continue;
                     };
+                    let text = format!(
+                        "{file}{}:{}  {}[{}]  {}",
+                        p.line, p.col, p.severity, p.code, p.message
+                    );
                     let label = egui::RichText::new(text)
                         .monospace()
-                        .color(severity_color(severity));
+                        .color(severity_color(p.severity));
                     let row = ui.add(egui::Label::new(label).sense(egui::Sense::click()));
                     if i == 0 {
                         self.keep_rect(ui, "problem_first", &row);
@@ -255,18 +233,11 @@ impl Workbench {
 /// `1 h 02 min`, `3 min 04 s` or `12.5 s`.
 pub fn format_duration(secs: f64) -> String {
     let secs = secs.max(0.0);
+    let (hours, minutes) = ((secs / 3600.0).floor(), ((secs % 3600.0) / 60.0).floor());
     if secs >= 3600.0 {
-        format!(
-            "{:.0} h {:02.0} min",
-            (secs / 3600.0).floor(),
-            ((secs % 3600.0) / 60.0).floor()
-        )
+        format!("{hours:.0} h {minutes:02.0} min")
     } else if secs >= 60.0 {
-        format!(
-            "{:.0} min {:02.0} s",
-            (secs / 60.0).floor(),
-            (secs % 60.0).floor()
-        )
+        format!("{minutes:.0} min {:02.0} s", (secs % 60.0).floor())
     } else {
         format!("{secs:.1} s")
     }

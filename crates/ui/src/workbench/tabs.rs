@@ -20,9 +20,8 @@ use crate::i18n::{tr, trf};
 pub struct Document {
     /// The file name shown in the title and status bar (`untitled.nc` before the first save).
     pub name: String,
-    /// Where the file is, as the host names it (a full path on the desktop; on the web page the
-    /// key of the browser's handle to the file, where it has the File System Access API);
-    /// `None` before the first save.
+    /// Where the file is, as the host names it (a full path, or the key of the browser's handle
+    /// to the file); `None` before the first save.
     pub path: Option<String>,
     /// The encoding the file was read with; saving writes it back the same way.
     pub encoding: Encoding,
@@ -44,19 +43,37 @@ impl Default for Document {
     }
 }
 
-/// What a tab holds while another one is active.
+/// A tab's own state: the workbench's `tab` while it is active, its entry in `tabs` otherwise.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Tab {
     pub(super) text: Buffer,
     pub(super) document: Document,
-    history: History,
-    shadow: Rope,
-    selection: Range<usize>,
-    cursor_line: Option<u32>,
+    /// Undo and redo over typing and commands.
+    pub(super) history: History,
+    /// The text as last recorded in the history (the "before" of the next typed change).
+    pub(super) shadow: Rope,
+    /// The editor's selection in characters, as last reported or set.
+    pub(super) selection: Range<usize>,
+    pub(super) cursor_line: Option<u32>,
     /// The dialect the tab's program is read in.
-    dialect: Dialect,
-    /// The tab's last finished analysis (`None` before its first is done).
-    analysis: Option<Analysis>,
+    pub(super) dialect: Dialect,
+    /// The tab's last finished analysis while it is parked (`None` before its first is done;
+    /// the workbench's `analysis` while it is active).
+    pub(super) analysis: Option<Analysis>,
+}
+
+impl Tab {
+    /// A tab showing `text` as file `name` in `dialect`: a fresh undo history, no unsaved changes.
+    pub(super) fn new(name: &str, text: String, encoding: Encoding, dialect: Dialect) -> Self {
+        let text = Buffer::from(text);
+        Tab {
+            document: Document::new(name, text.rope(), encoding),
+            shadow: text.rope().clone(),
+            text,
+            dialect,
+            ..Tab::default()
+        }
+    }
 }
 
 /// One open tab's file and text, for keeping unsaved work over a crash or a reload.
@@ -114,9 +131,8 @@ impl Workbench {
         self.open_file(name, text.into(), encoding, None);
     }
 
-    /// Opens a program read from a file in a tab, as [`Workbench::open_document`]; `path` is
-    /// where it came from, when the host knows. A file already open from the same path gets
-    /// its tab back (re-read when it has no unsaved changes).
+    /// Opens a program read from `path` (when the host knows) as [`Workbench::open_document`]; a
+    /// file open from the same path gets its tab back (re-read when nothing is unsaved).
     pub fn open_file(
         &mut self,
         name: &str,
@@ -145,20 +161,20 @@ impl Workbench {
         match open_at {
             Some(i) => {
                 self.switch_tab(i);
-                if self.document.dirty {
+                if self.tab.document.dirty {
                     self.message = Some(trf("{} is open here with unsaved changes", &[&name]));
                     return;
                 }
             }
             // A new file starts in the default dialect (a tab keeps its own once open).
-            None if self.is_blank() => self.dialect = self.default_dialect,
+            None if self.is_blank() => self.tab.dialect = self.default_dialect,
             None => self.push_tab(),
         }
         if let Some(dialect) = dialect {
-            self.dialect = dialect;
+            self.tab.dialect = dialect;
         }
         self.load(name, text, encoding);
-        self.document.path = path;
+        self.tab.document.path = path;
     }
 
     /// Parks the active tab and makes a new empty one after the others active, in the default
@@ -170,58 +186,48 @@ impl Workbench {
         }
         self.tabs.push(Tab::default());
         self.active = self.tabs.len() - 1;
-        self.dialect = self.default_dialect;
+        self.tab.dialect = self.default_dialect;
     }
 
     /// Replaces the active tab's program with a file's text (no unsaved changes), as after
     /// saving it in another encoding.
     pub fn reload_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
-        let path = self.document.path.take();
+        let path = self.tab.document.path.take();
         self.load(name, text.into(), encoding);
-        self.document.path = path;
+        self.tab.document.path = path;
     }
 
     /// Shows `text` as the active tab's file `name`: a fresh undo history, no unsaved changes.
     fn load(&mut self, name: &str, text: String, encoding: Encoding) {
-        self.text = Buffer::from(text);
-        self.shadow = self.text.rope().clone();
-        self.history.clear();
-        self.document = Document::new(name, self.text.rope(), encoding);
-        self.selection = 0..0;
-        self.cursor_line = None;
+        self.tab = Tab::new(name, text, encoding, self.tab.dialect);
         self.synced_line = None;
         self.editor.jump_to(0..0);
         self.message = None;
-        self.drop_shown_analysis();
+        // The empty stand-in until the next analysis is done: what was shown is of another text.
+        self.own_analysis = false;
+        self.analysis = no_analysis();
+        self.floor = self.generation + 1;
         self.reanalyse();
         self.backplot.fit();
     }
 
-    /// Shows the empty stand-in until the active tab's next analysis is done (its text is
-    /// another file now: what was shown is not of it).
-    fn drop_shown_analysis(&mut self) {
-        self.own_analysis = false;
-        self.analysis = no_analysis();
-        self.floor = self.generation + 1;
-    }
-
     /// Whether the active tab is empty, untitled and unchanged (a file opened replaces it).
     fn is_blank(&self) -> bool {
-        self.text.is_empty() && !self.document.dirty && self.document.path.is_none()
+        self.tab.text.is_empty() && !self.tab.document.dirty && self.tab.document.path.is_none()
     }
 
     /// Records where the open document's file is (after opening or saving it).
     pub fn set_path(&mut self, path: Option<String>) {
-        self.document.path = path;
+        self.tab.document.path = path;
     }
 
     /// Replaces the active tab's program with unsaved `text` recovered after a crash: shown as
     /// a change to `name` that still needs saving.
     pub fn recover(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
         self.load(name, text.into(), encoding);
-        self.document.saved = Rope::new();
-        self.document.dirty = true;
-        self.document.revision = next_stamp();
+        self.tab.document.saved = Rope::new();
+        self.tab.document.dirty = true;
+        self.tab.document.revision = next_stamp();
         self.message = recovered_message(&[name]);
     }
 
@@ -243,10 +249,8 @@ impl Workbench {
         (records, self.active)
     }
 
-    /// Replaces every tab with `records` (kept by [`Workbench::tab_records`]) and activates
-    /// the `active`-th; unsaved texts come back as changes that still need saving, and the
-    /// status bar names them (it says nothing of recovery when none had any). Nothing happens
-    /// for an empty list.
+    /// Replaces every tab with `records` (none: nothing happens) and activates the `active`-th;
+    /// unsaved texts come back as changes still to save, which the status bar names.
     pub fn restore_tabs(&mut self, records: Vec<TabRecord>, active: usize) {
         if records.is_empty() {
             return;
@@ -260,91 +264,69 @@ impl Workbench {
         let message = recovered_message(&unsaved);
         let mut tabs = Vec::with_capacity(records.len());
         for r in records {
-            let text = Buffer::from(r.text);
-            let saved = if r.dirty {
-                Rope::new()
-            } else {
-                text.rope().clone()
-            };
-            let mut document = Document::new(&r.name, &saved, r.encoding);
-            document.path = r.path;
-            document.dirty = r.dirty;
-            tabs.push(Tab {
-                shadow: text.rope().clone(),
-                text,
-                document,
-                dialect: r.dialect.unwrap_or(self.default_dialect),
-                ..Tab::default()
-            });
+            let dialect = r.dialect.unwrap_or(self.default_dialect);
+            let mut tab = Tab::new(&r.name, r.text, r.encoding, dialect);
+            tab.document.path = r.path;
+            if r.dirty {
+                tab.document.saved = Rope::new();
+                tab.document.dirty = true;
+            }
+            tabs.push(tab);
         }
-        let first = std::mem::take(&mut tabs[active]);
         self.tabs = tabs;
-        self.active = active;
-        self.unpark(first);
+        self.activate(active);
         if message.is_some() {
             self.message = message;
         }
-        self.reanalyse();
-        self.backplot.fit();
     }
 
     /// The text of tab `i` (a copy), `None` past the last tab.
     pub fn tab_text(&self, i: usize) -> Option<String> {
+        self.tab_at(i).map(|tab| tab.text.to_text())
+    }
+
+    /// Tab `i` (the active one's state is `tab`), `None` past the last tab.
+    fn tab_at(&self, i: usize) -> Option<&Tab> {
         if i == self.active {
-            Some(self.text.to_text())
+            Some(&self.tab)
         } else {
-            self.tabs.get(i).map(|t| t.text.to_text())
+            self.tabs.get(i)
         }
     }
 
-    /// Takes the active tab's content out of the workbench's fields.
-    ///
-    /// The tab keeps its dialect and last finished analysis; an unfinished one is dropped (it
-    /// starts over when the tab is active again), and the empty stand-in is shown meanwhile.
+    /// Takes the active tab's state out of the workbench, with its last finished analysis (an
+    /// unfinished one starts over when the tab is active again).
     fn park(&mut self) -> Tab {
         self.pending = None;
-        let analysis = if std::mem::take(&mut self.own_analysis) {
-            Some(std::mem::replace(&mut self.analysis, no_analysis()))
-        } else {
-            None
-        };
+        let analysis = std::mem::take(&mut self.own_analysis)
+            .then(|| std::mem::replace(&mut self.analysis, no_analysis()));
         Tab {
-            text: std::mem::take(&mut self.text),
-            document: std::mem::take(&mut self.document),
-            history: std::mem::take(&mut self.history),
-            shadow: std::mem::take(&mut self.shadow),
-            selection: std::mem::take(&mut self.selection),
-            cursor_line: self.cursor_line.take(),
-            dialect: self.dialect,
             analysis,
+            ..std::mem::take(&mut self.tab)
         }
     }
 
-    /// Puts a tab's content into the workbench's fields: its own last analysis is shown (the
-    /// empty stand-in when it has none yet), never the one of the tab before.
-    fn unpark(&mut self, tab: Tab) {
-        self.text = tab.text;
-        self.document = tab.document;
-        self.history = tab.history;
-        self.shadow = tab.shadow;
-        self.cursor_line = tab.cursor_line;
+    /// Makes tab `i` active, its state put into the workbench (the active tab's parked first):
+    /// its own last analysis is shown (the empty stand-in when it has none yet).
+    fn activate(&mut self, i: usize) {
+        self.tab = std::mem::take(&mut self.tabs[i]);
+        self.active = i;
         self.synced_line = None;
         self.state_cache = None;
-        self.select_chars(tab.selection);
-        self.dialect = tab.dialect;
+        self.select_chars(self.tab.selection.clone());
         self.pending = None;
-        self.own_analysis = tab.analysis.is_some();
-        self.analysis = tab.analysis.unwrap_or_else(no_analysis);
+        let analysis = self.tab.analysis.take();
+        self.own_analysis = analysis.is_some();
+        self.analysis = analysis.unwrap_or_else(no_analysis);
         self.floor = self.generation + 1;
+        self.reanalyse();
+        self.backplot.fit();
     }
 
-    /// The document of tab `i` (which may be the active one).
+    /// The document of tab `i` (which may be the active one; the active one's past the last).
     pub(super) fn tab_document(&self, i: usize) -> &Document {
-        if i == self.active {
-            &self.document
-        } else {
-            &self.tabs[i].document
-        }
+        self.tab_at(i)
+            .map_or(&self.tab.document, |tab| &tab.document)
     }
 
     /// Number of open tabs.
@@ -369,11 +351,7 @@ impl Workbench {
         }
         let current = self.park();
         self.tabs[self.active] = current;
-        let next = std::mem::take(&mut self.tabs[i]);
-        self.active = i;
-        self.unpark(next);
-        self.reanalyse();
-        self.backplot.fit();
+        self.activate(i);
     }
 
     /// Closes tab `i`, after asking to save or discard its unsaved changes (the tab is made
@@ -400,16 +378,12 @@ impl Workbench {
     /// Drops the active tab, unsaved changes and all.
     pub(super) fn remove_active_tab(&mut self) {
         if self.tabs.len() <= 1 {
-            self.dialect = self.default_dialect;
+            self.tab.dialect = self.default_dialect;
             self.load("untitled.nc", String::new(), Encoding::Utf8);
             return;
         }
         self.tabs.remove(self.active);
-        self.active = self.active.min(self.tabs.len() - 1);
-        let next = std::mem::take(&mut self.tabs[self.active]);
-        self.unpark(next);
-        self.reanalyse();
-        self.backplot.fit();
+        self.activate(self.active.min(self.tabs.len() - 1));
     }
 
     /// `untitled.nc`, or `untitled-2.nc` … when another tab has that name.
@@ -440,20 +414,20 @@ impl Workbench {
 
     /// The open document (name, encoding).
     pub fn document(&self) -> &Document {
-        &self.document
+        &self.tab.document
     }
 
     /// Whether the text differs from what was last opened or saved.
     pub fn is_dirty(&self) -> bool {
-        self.document.dirty
+        self.tab.document.dirty
     }
 
     /// Records that the active tab's text was saved as `name`; runs an action that waited for
     /// the save.
     pub fn mark_saved(&mut self, name: &str) {
-        self.document.name = name.to_string();
-        self.document.saved = self.text.rope().clone();
-        self.document.dirty = false;
+        self.tab.document.name = name.to_string();
+        self.tab.document.saved = self.tab.text.rope().clone();
+        self.tab.document.dirty = false;
         self.message = Some(trf("Saved {}", &[&name]));
         if let Some(action) = self.after_save.take() {
             self.run_action(action);
@@ -462,12 +436,11 @@ impl Workbench {
 
     /// The dialect the active tab's program is read in.
     pub fn dialect(&self) -> Dialect {
-        self.dialect
+        self.tab.dialect
     }
 
-    /// Reads the active tab's program in `dialect` (re-analysing it) and makes `dialect` the
-    /// one new tabs start in, as choosing it in the dialect selector does; the other open tabs
-    /// keep theirs.
+    /// Reads the active tab's program in `dialect` and makes it the one new tabs start in, as the
+    /// dialect selector does; the other open tabs keep theirs.
     pub fn set_dialect(&mut self, dialect: Dialect) {
         self.default_dialect = dialect;
         self.set_tab_dialect(self.active, dialect);
@@ -475,19 +448,15 @@ impl Workbench {
 
     /// The dialect tab `i`'s program is read in; `None` past the last tab.
     pub fn tab_dialect(&self, i: usize) -> Option<Dialect> {
-        if i == self.active {
-            Some(self.dialect)
-        } else {
-            self.tabs.get(i).map(|t| t.dialect)
-        }
+        self.tab_at(i).map(|tab| tab.dialect)
     }
 
     /// Reads tab `i`'s program in `dialect` (the active one is re-analysed at once, another
     /// when it is next shown); the other tabs and the default for new ones stay as they are.
     pub fn set_tab_dialect(&mut self, i: usize, dialect: Dialect) {
         if i == self.active {
-            if dialect != self.dialect {
-                self.dialect = dialect;
+            if dialect != self.tab.dialect {
+                self.tab.dialect = dialect;
                 self.reanalyse();
             }
         } else if let Some(tab) = self.tabs.get_mut(i) {
@@ -512,13 +481,8 @@ impl Workbench {
         let Some(ex) = EXAMPLES.iter().find(|e| e.name == name) else {
             return false;
         };
-        self.open_in(
-            ex.name,
-            ex.text.to_string(),
-            Encoding::Utf8,
-            None,
-            Some(ex.dialect),
-        );
+        let text = ex.text.to_string();
+        self.open_in(ex.name, text, Encoding::Utf8, None, Some(ex.dialect));
         true
     }
 
