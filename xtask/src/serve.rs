@@ -55,45 +55,44 @@ pub fn serve(root: &Path, port: u16) -> Result<()> {
     Ok(())
 }
 
+type Answer = Response<std::io::Cursor<Vec<u8>>>;
+
 fn handle(root: &Path, request: Request) {
     // tiny_http leaves the body out of answers to HEAD itself.
-    if !matches!(request.method(), Method::Get | Method::Head) {
-        let _ = request.respond(text_response(405, "method not allowed"));
-        return;
-    }
-    let Some(path) = resolve(root, request.url()) else {
-        let _ = request.respond(text_response(404, "not found"));
-        return;
+    let response = if matches!(request.method(), Method::Get | Method::Head) {
+        file_response(root, &request).unwrap_or_else(|| text_response(404, "not found"))
+    } else {
+        text_response(405, "method not allowed")
     };
+    let _ = request.respond(response);
+}
+
+/// The file `request` asks for, as its precompressed copy where the browser accepts one.
+fn file_response(root: &Path, request: &Request) -> Option<Answer> {
+    let path = resolve(root, request.url())?;
     let accept = request
         .headers()
         .iter()
-        .find(|h| h.field.equiv("Accept-Encoding"))
-        .map(|h| h.value.as_str().to_owned())
-        .unwrap_or_default();
-    let (file, encoding) = precompressed(root, &path, &accept).unwrap_or((path.clone(), ""));
-    match std::fs::read(&file) {
-        Ok(body) => {
-            let mut response = Response::from_data(body);
-            let encoding = (!encoding.is_empty()).then_some(("Content-Encoding", encoding));
-            for (name, value) in [
-                ("Content-Type", content_type(&path)),
-                ("Cache-Control", "no-cache"),
-                ("Vary", "Accept-Encoding"),
-            ]
-            .into_iter()
-            .chain(encoding)
-            {
-                if let Ok(header) = Header::from_bytes(name.as_bytes(), value.as_bytes()) {
-                    response.add_header(header);
-                }
-            }
-            let _ = request.respond(response);
-        }
-        Err(_) => {
-            let _ = request.respond(text_response(404, "not found"));
-        }
+        .find(|h| h.field.equiv("Accept-Encoding"));
+    let accept = accept.map_or("", |h| h.value.as_str());
+    let (file, encoding) = precompressed(root, &path, accept).unwrap_or((path.clone(), ""));
+    let response = Response::from_data(std::fs::read(file).ok()?);
+    let encoding = (!encoding.is_empty()).then_some(("Content-Encoding", encoding));
+    let headers = [
+        ("Content-Type", content_type(&path)),
+        ("Cache-Control", "no-cache"),
+        ("Vary", "Accept-Encoding"),
+    ];
+    let all = headers.into_iter().chain(encoding);
+    Some(all.fold(response, with_header))
+}
+
+/// `response` with the header `name: value`.
+fn with_header(mut response: Answer, (name, value): (&str, &str)) -> Answer {
+    if let Ok(header) = Header::from_bytes(name.as_bytes(), value.as_bytes()) {
+        response.add_header(header);
     }
+    response
 }
 
 /// The precompressed copy of `file` to send for the request's `Accept-Encoding` header and its
@@ -126,18 +125,13 @@ fn accepts(accept: &str, coding: &str) -> bool {
         .is_some_and(|q| q > 0.0)
 }
 
-fn text_response(status: u16, text: &str) -> Response<std::io::Cursor<Vec<u8>>> {
-    let mut response = Response::from_string(text).with_status_code(StatusCode(status));
-    if let Ok(header) = Header::from_bytes(&b"Content-Type"[..], &b"text/plain; charset=utf-8"[..])
-    {
-        response.add_header(header);
-    }
-    response
+fn text_response(status: u16, text: &str) -> Answer {
+    let response = Response::from_string(text).with_status_code(StatusCode(status));
+    with_header(response, ("Content-Type", "text/plain; charset=utf-8"))
 }
 
-/// Maps a request URL to a file under `root`, or `None` (404) for anything outside it, any
-/// `..` component and anything that is not a regular file. `/` and directories map to their
-/// `index.html`.
+/// Maps a request URL to a regular file under `root` (a folder to its `index.html`), or `None`
+/// (404) for anything outside it or with a `..` component.
 fn resolve(root: &Path, url: &str) -> Option<PathBuf> {
     let path = url.split(['?', '#']).next().unwrap_or_default();
     let decoded = percent_decode(path)?;

@@ -59,11 +59,10 @@ const FUZZ_TARGETS: [(&str, &[&str]); 5] = [
     ("setup", &["toml"]),
 ];
 
-/// Runs the cargo-fuzz targets briefly from a seed corpus of the repository's own programs
-/// (setups for the setup target), the corpus and any crash kept under `target/` (not in the
-/// tree).
+/// Runs the cargo-fuzz targets briefly, seeded with the repository's programs (setups for the
+/// setup target), keeping the corpus and any crash under `target/`.
 fn fuzz() -> Result<()> {
-    tools::ensure_cargo_fuzz()?;
+    tools::ensure_cargo_tool("fuzz", "cargo-fuzz", "0.13.2", &[])?;
     let root = util::repo_root();
     for (target, seeds) in FUZZ_TARGETS {
         let corpus = root.join("target/fuzz-corpus").join(target);
@@ -159,16 +158,11 @@ pub fn run_all(quick: bool, only: Option<&str>) -> Result<()> {
 
     let count = steps.len();
     for (index, step) in steps.iter().enumerate() {
-        header(&format!(
-            "[{}/{count}] {}. {}",
-            index + 1,
-            step.id,
-            step.title
-        ));
+        let number = index + 1;
+        header(&format!("[{number}/{count}] {}. {}", step.id, step.title));
         let step_started = Instant::now();
         (step.action)().with_context(|| format!("step {}. `{}` failed", step.id, step.title))?;
-        let last = index + 1 == count;
-        if !last {
+        if number < count {
             println!(
                 "-- {}. passed in {:.0} s (total {:.0} s)",
                 step.id,
@@ -184,6 +178,8 @@ pub fn run_all(quick: bool, only: Option<&str>) -> Result<()> {
 }
 
 fn steps(quick: bool) -> Vec<Step> {
+    let clippy_crates = package_args(WASM_CLIPPY_CRATES).join(" ");
+    let test_crates = package_args(WASM_TEST_CRATES).join(" ");
     let mut steps = vec![
         Step::new('a', "format: cargo fmt --all -- --check", || {
             run(cargo().args(["fmt", "--all", "--", "--check"]))
@@ -196,8 +192,7 @@ fn steps(quick: bool) -> Vec<Step> {
         Step::new(
             'c',
             format!(
-                "lint (wasm32): cargo clippy --target {WASM_TARGET} {} -- -D warnings",
-                package_args(WASM_CLIPPY_CRATES).join(" ")
+                "lint (wasm32): cargo clippy --target {WASM_TARGET} {clippy_crates} -- -D warnings"
             ),
             || {
                 let mut cmd = cargo();
@@ -214,10 +209,7 @@ fn steps(quick: bool) -> Vec<Step> {
         ),
         Step::new(
             'e',
-            format!(
-                "wasm tests in Node: cargo test --target {WASM_TARGET} {}",
-                package_args(WASM_TEST_CRATES).join(" ")
-            ),
+            format!("wasm tests in Node: cargo test --target {WASM_TARGET} {test_crates}"),
             || run(&mut wasm_test_command(false)),
         ),
     ];
@@ -225,8 +217,7 @@ fn steps(quick: bool) -> Vec<Step> {
         steps.push(Step::new(
             'f',
             format!(
-                "wasm tests in headless Chromium: WASM_BINDGEN_USE_BROWSER=1 cargo test --target {WASM_TARGET} {}",
-                package_args(WASM_TEST_CRATES).join(" ")
+                "wasm tests in headless Chromium: WASM_BINDGEN_USE_BROWSER=1 cargo test --target {WASM_TARGET} {test_crates}"
             ),
             || run(&mut wasm_test_command(true)),
         ));
@@ -240,7 +231,9 @@ fn steps(quick: bool) -> Vec<Step> {
         'k',
         "dependencies: cargo deny check bans licenses sources (deny.toml)",
         || {
-            tools::ensure_cargo_deny()?;
+            // Without default features: they fetch advisories, and the check runs offline.
+            let options = ["--no-default-features"];
+            tools::ensure_cargo_tool("deny", "cargo-deny", "0.18.9", &options)?;
             // `--offline` reads every platform's crates from the local registry: fetch them
             // first (quick when they are there) so a fresh machine has them.
             run(cargo().args(["fetch"]))?;
@@ -280,11 +273,8 @@ fn package_args(packages: &[&str]) -> Vec<String> {
         .collect()
 }
 
-/// `cargo test` for the core crates on wasm32. The target's runner (`.cargo/config.toml`) is
-/// `wasm-bindgen-test-runner`; it runs tests in Node unless `WASM_BINDGEN_USE_BROWSER` is set,
-/// in which case it starts `$CHROMEDRIVER` with the capabilities read from
-/// `$WASM_BINDGEN_TEST_WEBDRIVER_JSON` (it adds `headless`, `no-sandbox` and
-/// `disable-dev-shm-usage` to Chrome's arguments itself).
+/// `cargo test` for the core crates on wasm32 through `wasm-bindgen-test-runner`: in Node, or
+/// with `browser` in headless Chromium (`$CHROMEDRIVER`, `$WASM_BINDGEN_TEST_WEBDRIVER_JSON`).
 fn wasm_test_command(browser: bool) -> Command {
     let mut cmd = cargo();
     cmd.args(["test", "--target", WASM_TARGET])
@@ -351,12 +341,9 @@ fn check_architecture() -> Result<()> {
             package,
         ]);
         let tree = util::output(&mut cmd)?;
-        let mut names: Vec<&str> = tree
-            .lines()
+        let names: std::collections::BTreeSet<&str> = (tree.lines())
             .filter_map(|line| line.split_whitespace().next())
             .collect();
-        names.sort_unstable();
-        names.dedup();
         let bad: Vec<&str> = names
             .iter()
             .copied()

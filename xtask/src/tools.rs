@@ -39,13 +39,8 @@ fn version_of(cmd: &mut Command) -> Option<String> {
 pub fn ensure_wasm_bindgen() -> Result<()> {
     let wanted = format!("wasm-bindgen {WASM_BINDGEN_VERSION}");
     let bindgen = tool_version("wasm-bindgen");
-    let runner = tool_version("wasm-bindgen-test-runner");
-    let ok = |v: &Option<String>, expected: &str| v.as_deref() == Some(expected);
-    if ok(&bindgen, &wanted)
-        && ok(
-            &runner,
-            &format!("wasm-bindgen-test-runner {WASM_BINDGEN_VERSION}"),
-        )
+    let runner = format!("wasm-bindgen-test-runner {WASM_BINDGEN_VERSION}");
+    if bindgen.as_ref() == Some(&wanted) && tool_version("wasm-bindgen-test-runner") == Some(runner)
     {
         return Ok(());
     }
@@ -68,37 +63,10 @@ pub fn ensure_wasm_bindgen() -> Result<()> {
     }
 }
 
-/// The cargo-deny version the dependency check installs when it is missing.
-const CARGO_DENY_VERSION: &str = "0.18.9";
-
-/// The cargo-fuzz version the fuzz step installs when it is missing.
-const CARGO_FUZZ_VERSION: &str = "0.13.2";
-
-/// Installs cargo-deny (pinned) when `cargo deny` is not available. Without its default
-/// features: they are the TLS roots for fetching advisories, and the check runs offline.
-pub fn ensure_cargo_deny() -> Result<()> {
-    ensure_cargo_tool(
-        "deny",
-        "cargo-deny",
-        CARGO_DENY_VERSION,
-        &["--no-default-features"],
-    )
-}
-
-/// Installs cargo-fuzz (pinned) when `cargo fuzz` is not available.
-pub fn ensure_cargo_fuzz() -> Result<()> {
-    ensure_cargo_tool("fuzz", "cargo-fuzz", CARGO_FUZZ_VERSION, &[])
-}
-
 /// Installs the crate `package` at exactly `version` (with `options` for `cargo install`)
-/// unless `cargo SUBCOMMAND --version` already reports it.
-fn ensure_cargo_tool(
-    subcommand: &str,
-    package: &str,
-    version: &str,
-    options: &[&str],
-) -> Result<()> {
-    let found = version_of(cargo().args([subcommand, "--version"]));
+/// unless `cargo SUB --version` already reports it.
+pub fn ensure_cargo_tool(sub: &str, package: &str, version: &str, options: &[&str]) -> Result<()> {
+    let found = version_of(cargo().args([sub, "--version"]));
     if found.as_deref() == Some(&format!("{package} {version}")) {
         return Ok(());
     }
@@ -113,14 +81,6 @@ fn ensure_cargo_tool(
         ])
         .args(options))
 }
-
-/// Files whose presence shows the apt packages the browser and desktop tests need are there.
-const APT_CHECKS: &[(&str, &str)] = &[
-    ("/usr/bin/chromium", "chromium"),
-    ("/usr/bin/chromedriver", "chromium-driver"),
-    ("xvfb-run", "xvfb"),
-    ("xauth", "xauth"),
-];
 
 /// Debian packages for the browser tests (Chromium, chromedriver) and the desktop smoke test
 /// (Xvfb, Mesa's lavapipe Vulkan driver, the X11 libraries winit loads).
@@ -138,54 +98,41 @@ const APT_PACKAGES: &[&str] = &[
     "libx11-xcb1",
 ];
 
-fn has_lavapipe() -> bool {
-    let dirs = ["/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"];
-    dirs.iter().any(|dir| {
-        std::fs::read_dir(dir).is_ok_and(|entries| {
-            entries.flatten().any(|entry| {
-                let name = entry.file_name();
-                let name = name.to_string_lossy();
-                name.starts_with("lvp_icd") && name.ends_with(".json")
-            })
-        })
-    })
-}
-
-fn has_shared_library(name: &str) -> bool {
-    let dirs = [
-        "/usr/lib/x86_64-linux-gnu",
-        "/lib/x86_64-linux-gnu",
-        "/usr/lib/aarch64-linux-gnu",
-        "/lib/aarch64-linux-gnu",
-        "/usr/lib64",
-        "/usr/lib",
-    ];
-    dirs.iter().any(|dir| Path::new(dir).join(name).exists())
-}
+/// Folders the shared libraries of [`APT_PACKAGES`] are looked for in.
+const LIB_DIRS: [&str; 6] = [
+    "/usr/lib/x86_64-linux-gnu",
+    "/lib/x86_64-linux-gnu",
+    "/usr/lib/aarch64-linux-gnu",
+    "/lib/aarch64-linux-gnu",
+    "/usr/lib64",
+    "/usr/lib",
+];
 
 /// Installs Chromium, chromedriver, Xvfb and Mesa's Vulkan drivers with apt, but only when one
 /// of them is missing (`apt-get update` is slow).
 pub fn ensure_apt_packages() -> Result<()> {
-    let mut missing: Vec<&str> = APT_CHECKS
+    let exists = |path: &str| Path::new(path).exists();
+    let library = |name: &str| LIB_DIRS.iter().any(|dir| exists(&format!("{dir}/{name}")));
+    let icd_dirs = ["/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"];
+    let lavapipe = icd_dirs
         .iter()
-        .filter(|(file, _)| {
-            if file.starts_with('/') {
-                !Path::new(file).exists()
-            } else {
-                util::which(file).is_none()
-            }
-        })
-        .map(|(_, package)| *package)
-        .collect();
-    if !has_lavapipe() {
-        missing.push("mesa-vulkan-drivers");
-    }
-    if !has_shared_library("libvulkan.so.1") {
-        missing.push("libvulkan1");
-    }
-    if !has_shared_library("libxkbcommon-x11.so.0") {
-        missing.push("libxkbcommon-x11-0");
-    }
+        .flat_map(std::fs::read_dir)
+        .flatten()
+        .flatten()
+        .any(|entry| {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            name.starts_with("lvp_icd") && name.ends_with(".json")
+        });
+    let present = [
+        (exists("/usr/bin/chromium"), "chromium"),
+        (exists("/usr/bin/chromedriver"), "chromium-driver"),
+        (util::which("xvfb-run").is_some(), "xvfb"),
+        (util::which("xauth").is_some(), "xauth"),
+        (lavapipe, "mesa-vulkan-drivers"),
+        (library("libvulkan.so.1"), "libvulkan1"),
+        (library("libxkbcommon-x11.so.0"), "libxkbcommon-x11-0"),
+    ];
+    let missing: Vec<&str> = present.iter().filter(|p| !p.0).map(|p| p.1).collect();
     if missing.is_empty() {
         return Ok(());
     }
@@ -211,23 +158,19 @@ fn apt_install(packages: &[&str]) -> Result<()> {
             packages.join(" ")
         );
     };
-    let apt = |args: &[&str]| -> Result<()> {
+    let apt = |args: &[&str]| {
         let mut cmd = command(sudo.unwrap_or("apt-get"));
-        if sudo.is_some() {
-            cmd.arg("apt-get");
-        }
-        cmd.env("DEBIAN_FRONTEND", "noninteractive").args(args);
+        cmd.args(sudo.map(|_| "apt-get"))
+            .env("DEBIAN_FRONTEND", "noninteractive")
+            .args(args);
         run(&mut cmd)
     };
     apt(&["update"])?;
-    let mut install = vec!["install", "-y"];
-    install.extend_from_slice(packages);
-    apt(&install)
+    apt(&[&["install", "-y"][..], packages].concat())
 }
 
-/// The CJK font the web page offers for its Chinese languages: WenQuanYi Micro Hei from
-/// Debian's `fonts-wqy-microhei` (Apache 2.0 or GPLv3 with the font exception), and its
-/// copyright file.
+/// The CJK font the page offers for Chinese: WenQuanYi Micro Hei from Debian's
+/// `fonts-wqy-microhei` (Apache 2.0 or GPLv3 with the font exception).
 pub const CJK_FONT: &str = "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc";
 /// The font package's copyright file.
 pub const CJK_FONT_COPYRIGHT: &str = "/usr/share/doc/fonts-wqy-microhei/copyright";

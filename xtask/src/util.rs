@@ -20,9 +20,8 @@ pub fn target_dir() -> PathBuf {
     repo_root().join(std::env::var_os("CARGO_TARGET_DIR").unwrap_or_else(|| "target".into()))
 }
 
-/// `PATH` with the directory `cargo install` puts binaries in (`$CARGO_HOME/bin`, default
-/// `~/.cargo/bin`) added (at the front) when it is missing, so that freshly installed
-/// `wasm-bindgen` and `wasm-bindgen-test-runner` are found.
+/// `PATH` with `cargo install`'s folder (`$CARGO_HOME/bin`, default `~/.cargo/bin`) in front
+/// when it is missing, so freshly installed tools are found.
 pub fn search_path() -> OsString {
     let current = std::env::var_os("PATH").unwrap_or_default();
     let mut dirs: Vec<PathBuf> = std::env::split_paths(&current).collect();
@@ -63,9 +62,8 @@ pub fn command(program: &str) -> Command {
     cmd
 }
 
-/// `target/xdg-runtime` (mode 0700) when `XDG_RUNTIME_DIR` is unset or unusable, as it is for
-/// root and in containers: Mesa and winit complain on every start without one (the tests that
-/// render through wgpu, the desktop smoke test).
+/// `target/xdg-runtime` (mode 0700) when `XDG_RUNTIME_DIR` is unset or unusable (root,
+/// containers): Mesa and winit complain on every start without one.
 fn fallback_runtime_dir() -> Option<PathBuf> {
     use std::os::unix::fs::PermissionsExt as _;
     if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|dir| Path::new(&dir).is_dir()) {
@@ -82,12 +80,9 @@ pub fn cargo() -> Command {
     command("cargo")
 }
 
-/// `cargo test --workspace` with the workspace's own crates compiled by clippy-driver, the
-/// compiler `cargo clippy` runs them through, with `-D warnings`: with `--all-targets` they
-/// are linted as `cargo clippy --workspace --all-targets -- -D warnings` lints them (the same
-/// targets, the same lint settings from `Cargo.toml` and `clippy.toml`) while they are built
-/// for the tests, so the dependencies are compiled once, for the tests, rather than also
-/// checked by clippy.
+/// `cargo test --workspace` with the workspace's crates compiled by clippy-driver with `-D
+/// warnings`: one build lints them as `cargo clippy --workspace --all-targets -- -D warnings`
+/// would and tests them, so the dependencies are compiled once.
 pub fn linted_cargo_test() -> Result<Command> {
     let driver = sysroot()?.join("bin").join("clippy-driver");
     if !is_executable(&driver) {
@@ -108,9 +103,8 @@ pub fn linted_cargo_test() -> Result<Command> {
     Ok(cmd)
 }
 
-/// The test build of step b (and of the desktop smoke test, which runs its `swarf-app`):
-/// [`linted_cargo_test`] with `--all-targets --no-run`, one command so that the two stay the
-/// same build.
+/// The test build of step b and of the desktop smoke test (which runs its `swarf-app`):
+/// [`linted_cargo_test`] with `--all-targets --no-run`, so the two stay the same build.
 pub fn build_linted_tests() -> Result<()> {
     run(linted_cargo_test()?.args(["--all-targets", "--no-run"]))
 }

@@ -16,10 +16,8 @@ const WORKER_PACKAGE: &str = "swarf-worker";
 /// Its library's file name stem (`swarf_worker.wasm`).
 const WORKER_LIB: &str = "swarf_worker";
 
-/// Wasm SIMD for the page's build, which every browser with WebGL2 or WebGPU has had since
-/// 2023: without it the SIMD code of the rasteriser egui draws text with (`fearless_simd`) is
-/// compiled as scalar code, a fifth of the module. Added to the target's `rustflags` of
-/// `.cargo/config.toml`.
+/// Wasm SIMD for the page's build (every browser with WebGL2 or WebGPU has it): without it egui's
+/// text rasteriser (`fearless_simd`) compiles as scalar code, a fifth of the module.
 const WEB_RUSTFLAGS: &str =
     r#"target.wasm32-unknown-unknown.rustflags=["-Ctarget-feature=+simd128"]"#;
 
@@ -93,14 +91,8 @@ pub fn build(dev: bool, no_opt: bool) -> Result<()> {
 }
 
 /// Runs wasm-bindgen for `target` on `wasm`, writing `NAME.js` and `NAME_bg.wasm` into `site`,
-/// then `wasm_opt` on the latter.
-fn bindgen(
-    wasm: &Path,
-    target: &str,
-    name: &str,
-    site: &Path,
-    wasm_opt: Option<&Path>,
-) -> Result<()> {
+/// then wasm-opt `opt` on the latter.
+fn bindgen(wasm: &Path, target: &str, name: &str, site: &Path, opt: Option<&Path>) -> Result<()> {
     let mut bindgen = command("wasm-bindgen");
     bindgen
         .args(["--target", target, "--no-typescript"])
@@ -108,7 +100,7 @@ fn bindgen(
         .arg(site)
         .arg(wasm);
     run(&mut bindgen)?;
-    match wasm_opt {
+    match opt {
         Some(wasm_opt) => optimize(wasm_opt, &site.join(format!("{name}_bg.wasm"))),
         None => Ok(()),
     }
@@ -131,9 +123,8 @@ fn copy_static_files(site: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Copies the CJK font (and its copyright file) into `fonts/` of the site; the page fetches it
-/// only when a Chinese interface language is chosen. Without apt the page is built without
-/// it (and says so when Chinese is chosen).
+/// Copies the CJK font and its copyright file into the site's `fonts/`, fetched only for a
+/// Chinese interface; without apt the page is built without it (and says so).
 fn copy_cjk_font(site: &Path) -> Result<()> {
     if let Err(e) = tools::ensure_cjk_font() {
         println!("warning: no CJK font for the page ({e:#}); Chinese will show no glyphs");
@@ -159,9 +150,8 @@ fn optimize(wasm_opt: &Path, wasm: &Path) -> Result<()> {
     let optimized = wasm.with_extension("opt.wasm");
     let mut cmd = std::process::Command::new(wasm_opt);
     cmd.current_dir(util::repo_root())
-        // No inlining (it must come before `-Oz` to hold for its passes): rustc has inlined
-        // already, and binaryen's inlining on top leaves a smaller module whose brotli copy is
-        // larger and which the page takes longer to start.
+        // No inlining (before `-Oz`, to hold for its passes): on top of rustc's it makes the
+        // brotli copy larger and the page slower to start.
         .args(["--no-inline=*", "-Oz"])
         // The features rustc enables by default for wasm32-unknown-unknown, and SIMD.
         .args([

@@ -3,6 +3,7 @@
 
 use std::io::Write;
 
+use anyhow::Result;
 use serde_json::json;
 use swarf_syntax::codes::{self, CodeDef, Documented, Modality};
 use swarf_syntax::{Code, DIAGNOSTICS, DiagnosticDef, Dialect};
@@ -19,7 +20,7 @@ pub(crate) fn explain(
     json: bool,
     out: &mut dyn Write,
     err: &mut dyn Write,
-) -> anyhow::Result<i32> {
+) -> Result<i32> {
     let (code, defs): (_, Vec<&CodeDef>) = if list {
         (None, codes::codes_of(dialect.unwrap_or_default()).collect())
     } else {
@@ -80,12 +81,7 @@ pub(crate) fn explain(
 }
 
 /// Explains one diagnostic code: its severity and meaning.
-fn diagnostic(
-    code: &str,
-    json: bool,
-    out: &mut dyn Write,
-    err: &mut dyn Write,
-) -> anyhow::Result<i32> {
+fn diagnostic(code: &str, json: bool, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32> {
     let Some(d) = DiagnosticDef::lookup(code) else {
         writeln!(
             err,
@@ -94,11 +90,8 @@ fn diagnostic(
         return Ok(EXIT_ERRORS);
     };
     if json {
-        writeln!(
-            out,
-            "{}",
-            serde_json::to_string_pretty(&[diagnostic_json(d)])?
-        )?;
+        let items = [diagnostic_json(d)];
+        writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
     } else {
         writeln!(out, "{} — {}\n  {}", d.code, d.severity, d.summary)?;
     }
@@ -107,7 +100,7 @@ fn diagnostic(
 
 /// Lists every diagnostic code: as text, as JSON, or with `table` as the Markdown table of
 /// docs/interpreter.md.
-pub(crate) fn diagnostics(table: bool, json: bool, out: &mut dyn Write) -> anyhow::Result<i32> {
+pub(crate) fn diagnostics(table: bool, json: bool, out: &mut dyn Write) -> Result<i32> {
     if table {
         writeln!(out, "| code | severity | meaning |\n|---|---|---|")?;
         for d in DIAGNOSTICS {
@@ -135,7 +128,7 @@ fn diagnostic_json(d: &DiagnosticDef) -> serde_json::Value {
     })
 }
 
-fn print_def(d: &CodeDef, out: &mut dyn Write) -> anyhow::Result<()> {
+fn print_def(d: &CodeDef, out: &mut dyn Write) -> Result<()> {
     writeln!(out, "{} — {}", d.code, d.name)?;
     writeln!(out, "  dialects:  {}", d.dialects.labels())?;
     writeln!(out, "  format:    {}", d.format)?;
@@ -185,23 +178,12 @@ fn def_json(d: &CodeDef) -> serde_json::Value {
     })
 }
 
-fn address(
-    letter: u8,
-    dialect: Option<Dialect>,
-    json: bool,
-    out: &mut dyn Write,
-) -> anyhow::Result<i32> {
-    let letter = letter.to_ascii_uppercase();
-    let dialects: Vec<Dialect> = match dialect {
-        Some(d) => vec![d],
-        None => Dialect::ALL.to_vec(),
-    };
+fn address(letter: u8, dialect: Option<Dialect>, json: bool, out: &mut dyn Write) -> Result<i32> {
+    let dialects = dialect.map_or(Dialect::ALL.to_vec(), |d| vec![d]);
     let mut seen = Vec::new();
-    for d in dialects {
-        for a in codes::address(d, letter) {
-            if !seen.contains(&a) {
-                seen.push(a);
-            }
+    for a in dialects.into_iter().flat_map(|d| codes::address(d, letter)) {
+        if !seen.contains(&a) {
+            seen.push(a);
         }
     }
     if json {

@@ -5,6 +5,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use anyhow::Result;
 use glam::{DVec3, Vec3};
 use swarf_render::{
     Drawing, HeadlessGpu, OrbitCamera, Projection, StandardView, StockSurface, ViewParams,
@@ -71,13 +72,8 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 /// Runs `swarf render`: interprets the program (diagnostics to `err` as with `check`), draws
-/// it and writes the PNG. The exit status follows the diagnostics; the image is written
-/// even when the program has errors (it shows what runs).
-pub(crate) fn render(
-    args: &RenderArgs,
-    out: &mut dyn Write,
-    err: &mut dyn Write,
-) -> anyhow::Result<i32> {
+/// it and writes the PNG, even when the program has errors; the exit status follows them.
+pub(crate) fn render(args: &RenderArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32> {
     let (setup, stock) = super::read_setup(&args.opts, err)?;
     let mut loaded = super::load(&args.file, &args.opts)?;
     let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
@@ -151,7 +147,7 @@ pub(crate) fn render(
 }
 
 /// Writes tightly packed RGBA8 pixels as a PNG.
-fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> anyhow::Result<()> {
+fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
     let file = std::fs::File::create(path)
         .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", path.display()))?;
     let failed = |e: png::EncodingError| anyhow::anyhow!("cannot write {}: {e}", path.display());

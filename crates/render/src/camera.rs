@@ -185,11 +185,6 @@ impl OrbitCamera {
         self.pitch = pitch;
     }
 
-    /// Frames the box `min..max` for a square viewport; see [`Self::fit_aspect`].
-    pub fn fit(&mut self, min: Vec3, max: Vec3) {
-        self.fit_aspect(min, max, 1.0);
-    }
-
     /// Frames the box `min..max` for a viewport of the given aspect (width / height) so that
     /// it is fully visible with a margin, keeping the current view direction.
     ///
@@ -254,27 +249,20 @@ impl OrbitCamera {
         }
     }
 
-    /// Whether every corner of the box `min..max` is seen inside the pixels `free_min..free_max`
-    /// of a viewport `viewport_px` (half a pixel of slack).
-    fn frames_in(
-        &self,
-        min: Vec3,
-        max: Vec3,
-        viewport_px: Vec2,
-        free_min: Vec2,
-        free_max: Vec2,
-    ) -> bool {
-        let view_proj = self.view_proj(viewport_px.x / viewport_px.y);
+    /// Whether every corner of the box `min..max` is seen inside the pixels `lo..hi` of a
+    /// viewport `view` pixels wide and high (half a pixel of slack).
+    fn frames_in(&self, min: Vec3, max: Vec3, view: Vec2, lo: Vec2, hi: Vec2) -> bool {
+        let view_proj = self.view_proj(view.x / view.y);
         corners(min, max).all(|corner| {
             let clip = view_proj * corner.extend(1.0);
             if clip.w <= 0.0 {
                 return false;
             }
             let px = Vec2::new(
-                (clip.x / clip.w + 1.0) * 0.5 * viewport_px.x,
-                (1.0 - clip.y / clip.w) * 0.5 * viewport_px.y,
+                (clip.x / clip.w + 1.0) * 0.5 * view.x,
+                (1.0 - clip.y / clip.w) * 0.5 * view.y,
             );
-            px.cmpge(free_min - 0.5).all() && px.cmple(free_max + 0.5).all()
+            px.cmpge(lo - 0.5).all() && px.cmple(hi + 0.5).all()
         })
     }
 
@@ -312,10 +300,9 @@ impl OrbitCamera {
         self.scene_radius = radius;
     }
 
-    /// Frames the box `min..max` (e.g. the selected block's segments, see
-    /// [`crate::segment_bounds`]) like [`Self::fit_aspect`], but keeps [`Self::scene_radius`]
-    /// at least what it was so the rest of the scene stays inside the orthographic depth
-    /// range. Invalid boxes leave the camera unchanged.
+    /// Frames the box `min..max` (e.g. [`crate::segment_bounds`]) like [`Self::fit_aspect`], not
+    /// shrinking [`Self::scene_radius`] so the scene stays in the orthographic depth range.
+    /// Invalid boxes leave the camera unchanged.
     pub fn zoom_to_selection(&mut self, min: Vec3, max: Vec3, aspect: f32) {
         if !min.is_finite() || !max.is_finite() || min.cmpgt(max).any() {
             return;
@@ -382,13 +369,6 @@ impl OrbitCamera {
         self.distance = after;
     }
 
-    /// Right-handed view matrix (world to Y-up view space).
-    #[must_use]
-    pub fn view(&self) -> Mat4 {
-        let (_, up, back) = self.basis();
-        look_to_mat4(self.eye(), -back, up)
-    }
-
     /// Projection matrix for a viewport of the given aspect (width / height), NDC depth 0..1.
     #[must_use]
     pub fn projection_matrix(&self, aspect: f32) -> Mat4 {
@@ -419,7 +399,8 @@ impl OrbitCamera {
     /// Combined view-projection matrix (right-handed, Z up, depth 0..1) for wgpu.
     #[must_use]
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
-        self.projection_matrix(aspect) * self.view()
+        let (_, up, back) = self.basis();
+        self.projection_matrix(aspect) * look_to_mat4(self.eye(), -back, up)
     }
 }
 
@@ -597,7 +578,7 @@ mod tests {
                 for projection in PROJECTIONS {
                     let mut camera = OrbitCamera::new(view);
                     camera.projection = projection;
-                    camera.fit(min, max);
+                    camera.fit_aspect(min, max, 1.0);
                     assert_finite(camera.view_proj(1.5));
                     assert!(camera.distance >= MIN_DISTANCE);
                     if min.is_finite() && max.is_finite() && min.cmple(max).all() {

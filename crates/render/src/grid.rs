@@ -58,23 +58,19 @@ pub fn grid_points(min: Vec3, max: Vec3) -> Vec<PathPoint> {
     let mut out = Vec::new();
     let (x0, x1) = (start.x * step, end.x * step);
     let (y0, y1) = (start.y * step, end.y * step);
-    // Grid lines are indexed by integer multiples of the step, so major lines line up.
-    // Counted in integers: far from the origin `i + 1.0` can equal `i` in f32, and a loop that
-    // stepped the float would never end (coordinates of 1e12 are an error elsewhere, but must not
-    // hang the drawing).
+    // Lines are integer multiples of the step (so major lines line up), counted in integers:
+    // far from the origin `i + 1.0` can equal `i` in f32, and a float loop would never end.
     let lines = |from: f32, to: f32| {
         let count = ((to - from).max(0.0) as u32).min(MAX_CELLS as u32 + 2);
         (0..=count).map(move |k| from + k as f32)
     };
     for i in lines(start.x, end.x) {
-        let x = i * step;
-        out.push(PathPoint::pen_up(Vec3::new(x, y0, 0.0)));
-        out.push(PathPoint::new(Vec3::new(x, y1, 0.0), grid_kind(i)));
+        out.push(PathPoint::pen_up(Vec3::new(i * step, y0, 0.0)));
+        out.push(PathPoint::new(Vec3::new(i * step, y1, 0.0), grid_kind(i)));
     }
     for j in lines(start.y, end.y) {
-        let y = j * step;
-        out.push(PathPoint::pen_up(Vec3::new(x0, y, 0.0)));
-        out.push(PathPoint::new(Vec3::new(x1, y, 0.0), grid_kind(j)));
+        out.push(PathPoint::pen_up(Vec3::new(x0, j * step, 0.0)));
+        out.push(PathPoint::new(Vec3::new(x1, j * step, 0.0), grid_kind(j)));
     }
 
     let axis = (size * 0.15).max(step * 2.0);

@@ -1,13 +1,10 @@
-//! Swarf's wgpu renderer: instanced anti-aliased segments with depth, the cut stock as a lit
-//! surface, an orbit camera, grid/axes geometry, CPU picking, offscreen targets and a
-//! compositor for egui.
+//! Swarf's wgpu renderer: anti-aliased segments with depth, the cut stock as a lit surface, an
+//! orbit camera, grid/axes geometry, CPU picking, offscreen targets and a compositor for egui.
 //!
-//! It knows nothing of egui: callers hand it plain [`PathPoint`] slices (positions as f32
-//! relative to an origin they choose, one point per path vertex) and a view-projection matrix
-//! from [`OrbitCamera`]. With the `toolpath` feature, [`Drawing`] turns a recorded toolpath into
-//! those points as the backplot draws it; without it, the crate knows nothing of the
-//! interpreter. Everything works on the WebGL2 fallback (uniform buffers, vertex attributes and
-//! a texture read in the vertex stage; no storage buffers).
+//! It knows nothing of egui: callers hand it [`PathPoint`]s (f32, relative to an origin they
+//! choose) and a view-projection from [`OrbitCamera`]; with the `toolpath` feature, [`Drawing`]
+//! makes those points from a toolpath. Everything works on WebGL2 (uniform buffers and textures
+//! read in the vertex stage; no storage buffers).
 
 mod camera;
 mod composite;

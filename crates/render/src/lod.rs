@@ -1,13 +1,10 @@
-//! Level of detail of the toolpath as drawn: runs of consecutive segments of one kind that stay
-//! within a tolerance of a chord are drawn as that chord, so a dense path costs the GPU what
-//! the screen can show rather than a quad per segment (a million segments take a software
-//! rasteriser about a second).
+//! Level of detail of the toolpath as drawn: runs of segments of one kind within a tolerance of
+//! a chord are drawn as that chord, so a dense path costs the GPU what the screen can show.
 //!
-//! The tolerance is in world units, [`LOD_TOLERANCE_PX`] at the view's largest scale over the
-//! path's bounds, rounded down to a power of two: orbiting and panning keep the simplified path,
-//! and only a zoom by a factor of two or more makes it again. Picking and the segment numbers
-//! (highlight, playback) stay those of the full path: [`PathLod::prepare`] keeps every point
-//! where a highlighted run or the played part begins or ends, and renumbers the ranges.
+//! The tolerance is [`LOD_TOLERANCE_PX`] at the view's largest scale over the path's bounds,
+//! rounded down to a power of two, so only a zoom by two or more simplifies again. Picking and
+//! segment numbers stay the full path's: [`PathLod::prepare`] keeps the points where highlight
+//! and playback begin or end, and renumbers the ranges.
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -43,16 +40,10 @@ fn mergeable(p: &PathPoint) -> bool {
 }
 
 /// Pushes the indices kept in `from + 1..=to` (`from` is already kept) onto `kept`.
-fn simplify_span(
-    points: &[PathPoint],
-    from: usize,
-    to: usize,
-    tolerance: f32,
-    kept: &mut Vec<u32>,
-) {
+fn simplify_span(points: &[PathPoint], from: usize, to: usize, tol: f32, kept: &mut Vec<u32>) {
     let to = to.min(points.len().saturating_sub(1));
-    let tol2 = if tolerance.is_finite() && tolerance > 0.0 {
-        tolerance * tolerance
+    let tol2 = if tol.is_finite() && tol > 0.0 {
+        tol * tol
     } else {
         0.0
     };
@@ -83,11 +74,9 @@ fn simplify_span(
     }
 }
 
-/// The end of a chord from `anchor` (at most `limit`) that every point it stands for is within
-/// `sqrt(tol2)` of: lengths doubling while the chord holds, then halving between the last that
-/// held and the first that did not, so a run of n points costs O(n log n). Not inlined: a
-/// browser's wasm engine optimises a function between calls, so this one, called for every
-/// chord, runs optimised through most of the first simplification (a third faster).
+/// The end of a chord from `anchor` (at most `limit`) within `sqrt(tol2)` of every point it
+/// stands for, by doubling then bisecting (O(n log n)). Not inlined: a browser's wasm engine
+/// optimises a function between calls, so this one runs optimised sooner (a third faster).
 #[inline(never)]
 fn farthest_chord(points: &[PathPoint], anchor: usize, limit: usize, tol2: f32) -> usize {
     let holds = |end: usize| chord_holds(points, anchor, end, tol2);
@@ -136,16 +125,12 @@ fn chord_holds(points: &[PathPoint], a: usize, b: usize, tol2: f32) -> bool {
     between.get(between.len() / 2).is_none_or(off) && between.iter().all(off)
 }
 
-/// The most pixels one world unit spans on a `viewport_px` target through `view_proj` anywhere
+/// The most pixels one world unit spans on a `viewport` target through `view_proj` anywhere
 /// in the box `bounds` (lines project to lines, so a chord within ε of a run is within ε times
 /// this on screen); `None` when part of the box lies at or behind the eye.
 #[must_use]
-pub fn pixels_per_unit(
-    view_proj: Mat4,
-    viewport_px: Vec2,
-    (min, max): (Vec3, Vec3),
-) -> Option<f32> {
-    let half = viewport_px * 0.5;
+pub fn pixels_per_unit(view_proj: Mat4, viewport: Vec2, (min, max): (Vec3, Vec3)) -> Option<f32> {
+    let half = viewport * 0.5;
     let row_x = view_proj.row(0).truncate() * half.x;
     let row_y = view_proj.row(1).truncate() * half.y;
     let row_w = view_proj.row(3);
@@ -253,12 +238,10 @@ impl PathLod {
                 .is_some_and(|u| u.flagged == wanted.flagged);
             // Every point drawn (`drawn` ascends) and none highlighted: the points as they are,
             // not a copy (a path that does not simplify may be tens of millions of points).
-            if (drawn != self.drawn || !same_flags)
-                && flagged.is_empty()
-                && drawn.len() == self.points.len()
-            {
+            let changed = drawn != self.drawn || !same_flags;
+            if changed && flagged.is_empty() && drawn.len() == self.points.len() {
                 renderer.set_path(device, queue, &self.points);
-            } else if drawn != self.drawn || !same_flags {
+            } else if changed {
                 let mut points: Vec<PathPoint> = drawn
                     .iter()
                     .filter_map(|&i| self.points.get(i as usize).copied())
@@ -531,7 +514,7 @@ mod tests {
         assert!((scale - 10.0).abs() < 1e-4, "{scale}");
         let mut camera = OrbitCamera::new(StandardView::Top);
         camera.projection = crate::Projection::Perspective;
-        camera.fit(Vec3::splat(-1.0), Vec3::splat(1.0));
+        camera.fit_aspect(Vec3::splat(-1.0), Vec3::splat(1.0), 1.0);
         let perspective = camera.view_proj(1.0);
         assert!(pixels_per_unit(perspective, Vec2::splat(100.0), bounds).is_some());
         assert_eq!(

@@ -4,21 +4,13 @@
 //! which has no depth buffer.
 
 #[cfg(not(target_arch = "wasm32"))]
-use std::sync::Arc;
-
-#[cfg(not(target_arch = "wasm32"))]
-use glam::Vec2;
-
-#[cfg(not(target_arch = "wasm32"))]
-use crate::lod::PathLod;
-#[cfg(not(target_arch = "wasm32"))]
-use crate::pick::segment_bounds;
+use {
+    crate::{PathLod, PathPoint, StockSurface, ViewParams, segment_bounds},
+    glam::Vec2,
+    std::sync::Arc,
+};
 
 use crate::path::{DEPTH_FORMAT, PathRenderer};
-#[cfg(not(target_arch = "wasm32"))]
-use crate::path::{PathPoint, ViewParams};
-#[cfg(not(target_arch = "wasm32"))]
-use crate::stock::StockSurface;
 
 /// Why an offscreen render failed.
 #[derive(Debug, thiserror::Error)]
@@ -146,6 +138,8 @@ impl HeadlessGpu {
 
 /// A colour texture with a matching [`DEPTH_FORMAT`] depth buffer, one sample.
 pub struct RenderTarget {
+    /// Read back on native targets only.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     color: wgpu::Texture,
     color_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
@@ -172,33 +166,26 @@ impl RenderTarget {
         if width == 0 || height == 0 || width > max || height > max {
             return Err(RenderError::Size { width, height, max });
         }
-        let size = wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
+        let texture = |label, format, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
         };
-        let color = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("swarf_target_color"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
-        let depth = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("swarf_target_depth"),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-            view_formats: &[],
-        });
+        let target = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let copy = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
+        let color = texture("swarf_target_color", format, target | copy);
+        let depth = texture("swarf_target_depth", DEPTH_FORMAT, target);
         let color_view = color.create_view(&wgpu::TextureViewDescriptor::default());
         let depth_view = depth.create_view(&wgpu::TextureViewDescriptor::default());
         Ok(Self {
@@ -214,12 +201,6 @@ impl RenderTarget {
     #[must_use]
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
-    }
-
-    /// Colour format.
-    #[must_use]
-    pub fn format(&self) -> wgpu::TextureFormat {
-        self.color.format()
     }
 
     /// The colour texture's view (e.g. to composite it, see [`crate::Compositor`]).
@@ -302,15 +283,16 @@ impl RenderTarget {
             .map_async(wgpu::MapMode::Read, move |result| {
                 let _ = sender.send(result);
             });
+        let failed = |e: &dyn std::fmt::Display| RenderError::Readback(e.to_string());
         device
             .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
+            .map_err(|e| failed(&e))?;
         receiver
             .recv()
-            .map_err(|e| RenderError::Readback(e.to_string()))?
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
+            .map_err(|e| failed(&e))?
+            .map_err(|e| failed(&e))?;
         let bgra = matches!(
-            self.format(),
+            self.color.format(),
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
         );
         let width_bytes = (self.width * BYTES_PER_PIXEL) as usize;
@@ -319,7 +301,7 @@ impl RenderTarget {
             let data = readback
                 .slice(..)
                 .get_mapped_range()
-                .map_err(|e| RenderError::Readback(e.to_string()))?;
+                .map_err(|e| failed(&e))?;
             for line in data.chunks_exact(row as usize) {
                 pixels.extend_from_slice(&line[..width_bytes]);
             }

@@ -1,17 +1,11 @@
 //! Segment renderer: one 16-byte point per path vertex, one screen-space quad per segment,
 //! anti-aliased, depth-tested, coloured by kind.
 //!
-//! The points lie in a texture, one texel each, and vertices `6i .. 6i + 6` draw the segment
-//! from point `i` to point `i + 1`, so consecutive segments share their points: 16 GPU bytes
-//! per segment, in one draw call without instancing (a software rasteriser such as SwiftShader
-//! spends some 13 µs on each instance). A [`PathPoint::PEN_UP`] flag on a point means "no
-//! segment arrives here", so separate polylines (the grid's lines, several toolpaths) live in
-//! one texture. A path longer than a texture holds (33.5M points at 4096 × 8192) is split over
-//! several sharing one point at each seam, one draw call each. Every texture has a small
-//! uniform of its own (bind group 1): where its points start in the stream, so the highlight
-//! and playback ranges count segments from the path's start, and whether it holds the
-//! toolpath, since those ranges number toolpath segments and never apply to the grid and marks
-//! drawn from the second stream.
+//! The points lie in a texture, one texel each; vertices `6i .. 6i + 6` draw the segment from
+//! point `i` to `i + 1` in one draw call without instancing (software rasterisers pay per
+//! instance). [`PathPoint::PEN_UP`] starts a new polyline, so many share one texture. A path
+//! longer than a texture holds is split over several sharing a point at each seam; each has a
+//! uniform (bind group 1) with its first segment's number and whether it is the toolpath.
 
 use std::ops::Range;
 
@@ -36,9 +30,6 @@ pub const HIGHLIGHT_SLOT: usize = 15;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// What a segment is; selects its colour (palette slot), width and dash pattern.
-///
-/// Kinds the interpreter does not produce yet (cycles, compensation) are reserved so the
-/// shader and palette need no change when it does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[repr(u8)]
 pub enum Kind {
@@ -189,12 +180,6 @@ impl PathPoint {
         self.packed & Self::PEN_UP != 0
     }
 
-    /// Whether the segment ending here carries the highlight flag.
-    #[must_use]
-    pub fn is_highlighted(&self) -> bool {
-        self.packed & Self::HIGHLIGHT != 0
-    }
-
     /// Colour index (bits 16–31).
     #[must_use]
     pub fn color_index(&self) -> u16 {
@@ -259,38 +244,24 @@ impl Default for Palette {
             kinds[kind as usize] = srgba(color);
         }
         kinds[HIGHLIGHT_SLOT] = srgba(HIGHLIGHT_COLOR);
-        // Distinct hues for colouring by tool.
+        // Distinct hues for colouring by tool, as 0xRRGGBB.
         let indexed = [
-            [80, 200, 255, 255],
-            [255, 150, 60, 255],
-            [120, 230, 140, 255],
-            [240, 100, 160, 255],
-            [200, 200, 90, 255],
-            [150, 120, 255, 255],
-            [60, 220, 210, 255],
-            [255, 110, 100, 255],
-            [170, 230, 60, 255],
-            [230, 150, 255, 255],
-            [100, 150, 255, 255],
-            [255, 210, 120, 255],
-            [140, 255, 200, 255],
-            [255, 130, 200, 255],
-            [180, 180, 180, 255],
-            [255, 255, 255, 255],
+            0x50c8ff, 0xff963c, 0x78e68c, 0xf064a0, 0xc8c85a, 0x9678ff, 0x3cdcd2, 0xff6e64,
+            0xaae63c, 0xe696ff, 0x6496ff, 0xffd278, 0x8cffc8, 0xff82c8, 0xb4b4b4, 0xffffff,
         ]
-        .map(srgba);
+        .map(|rgb: u32| srgba(((rgb << 8) | 0xff).to_be_bytes()));
         Self { kinds, indexed }
     }
 }
 
-/// How motion segments are coloured.
+/// How motion segments are coloured (the shader's `color_mode`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ColorMode {
     /// By [`Kind`] (rapid, feed, arc, …).
     #[default]
-    ByKind,
+    ByKind = 0,
     /// By each point's colour index (e.g. the tool), through [`Palette::indexed`].
-    ByIndex,
+    ByIndex = 1,
 }
 
 /// Everything the shader needs for one frame besides the points.
@@ -395,10 +366,8 @@ struct Uniforms {
 /// Size of the uniform buffer in bytes.
 pub const UNIFORMS_SIZE: u64 = size_of::<Uniforms>() as u64;
 
-/// What one draw call (one texture of points) needs besides [`Uniforms`], laid out like the
-/// WGSL `Draw`: where its points start in the whole stream, so segment numbers (highlight,
-/// playback) count from the path's start in every texture, and whether it is the toolpath —
-/// the grid and reference marks are never highlighted or dimmed by segment number.
+/// One draw call's uniforms, laid out like the WGSL `Draw`: its first segment's number in the
+/// stream and whether it is the toolpath (only that is highlighted or dimmed by number).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 struct DrawUniforms {
@@ -442,10 +411,7 @@ impl Uniforms {
             highlight_start: params.highlight.start,
             highlight_end: params.highlight.end,
             hidden_kinds: params.hidden_kinds,
-            color_mode: match params.color_mode {
-                ColorMode::ByKind => 0,
-                ColorMode::ByIndex => 1,
-            },
+            color_mode: params.color_mode as u32,
             _pad0: 0,
             palette,
         }
@@ -522,10 +488,8 @@ fn write_points(queue: &wgpu::Queue, texture: &wgpu::Texture, points: &[PathPoin
     }
 }
 
-/// A growable polyline stream on the GPU, in textures the vertex stage reads (WebGL2 has no
-/// storage buffers). A stream longer than one texture holds is split into several that
-/// overlap by one point, so no segment is lost at a seam and a path of any length (tens of
-/// millions of points) stays resident, one draw call per texture.
+/// A polyline stream on the GPU in textures the vertex stage reads (WebGL2 has no storage
+/// buffers), split into several overlapping by one point when one texture is too small.
 struct PointBatch {
     label: &'static str,
     /// Whether the stream is the toolpath (highlight and playback ranges apply to it).
@@ -652,13 +616,9 @@ impl PointBatch {
 
 /// Draws a toolpath and the grid/axes as anti-aliased segments.
 ///
-/// The path is drawn first: the cores of its lines with depth writes, then their
-/// anti-aliased edges without, so an edge never hides a line behind it. The grid and axes
-/// follow with depth testing but no depth writes, so the translucent grid never punches holes
-/// into the path behind it yet stays hidden behind the path in front of it (and behind a path
-/// lying on it). Uniform
-/// buffers and textures read in the vertex stage only, so it works on WebGPU, native and
-/// WebGL2 alike.
+/// The path's line cores write depth, then their edges do not, so an edge never hides a line
+/// behind it; the grid and axes follow depth-tested without writes, so the translucent grid
+/// never punches holes into the path yet hides behind it. Works on WebGPU and WebGL2 alike.
 pub struct PathRenderer {
     /// The path's cores, which write depth, then its anti-aliased edges, which do not.
     core: wgpu::RenderPipeline,
@@ -666,8 +626,7 @@ pub struct PathRenderer {
     overlay: wgpu::RenderPipeline,
     uniform_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
-    /// Layout of each point texture's per-draw bind group (group 1: [`DrawUniforms`], the
-    /// texture).
+    /// Layout of each point texture's bind group (group 1: [`DrawUniforms`], the texture).
     draw_layout: wgpu::BindGroupLayout,
     path: PointBatch,
     grid: PointBatch,
@@ -840,11 +799,11 @@ mod tests {
             .with_highlight(true);
         assert_eq!(p.kind(), Some(Kind::Arc));
         assert_eq!(p.color_index(), 513);
-        assert!(p.is_highlighted());
+        assert!(p.packed & PathPoint::HIGHLIGHT != 0);
         assert!(!p.is_pen_up());
         assert_eq!(p.position(), Vec3::new(1.0, 2.0, 3.0));
         let p = p.with_highlight(false).with_color_index(7);
-        assert!(!p.is_highlighted());
+        assert!(p.packed & PathPoint::HIGHLIGHT == 0);
         assert_eq!(p.color_index(), 7);
         assert_eq!(p.kind(), Some(Kind::Arc));
         assert!(PathPoint::pen_up(Vec3::ZERO).is_pen_up());

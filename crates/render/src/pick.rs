@@ -46,15 +46,10 @@ struct Projected {
 
 /// The segment drawn nearest to `cursor_px`, within `radius_px` pixels.
 ///
-/// `view_proj` maps world space (relative to the scene origin, like the points) to clip
-/// space with depth 0..1, as [`crate::OrbitCamera::view_proj`] does; `viewport_px` is the
-/// size of the view and `cursor_px` the cursor relative to its top-left corner (y down), both
-/// in the same units (points or pixels; distances come out in those units). Segments are
-/// clipped against the near plane; pen-up points start a new polyline; segments whose kind
-/// is in `hidden_kinds` (see [`crate::Kind::mask`]) are skipped. On (near) ties the segment
-/// nearer to the eye wins, then the later one (drawn last).
-///
-/// One pass, a 4×4 transform per point, no allocation.
+/// `view_proj` is [`crate::OrbitCamera::view_proj`]'s; `viewport_px` and `cursor_px` (from the
+/// top-left, y down) share one unit, which distances come out in. Segments are clipped at the
+/// near plane; kinds in `hidden_kinds` (see [`crate::Kind::mask`]) are skipped; on (near) ties
+/// the segment nearer to the eye wins, then the later one.
 #[must_use]
 pub fn pick_segment(
     points: &[PathPoint],
@@ -114,14 +109,11 @@ pub fn pick_segment(
                 clipped_hit(prev.clip, cur.clip, radius_px)
             };
             if let Some((t, distance_px, depth)) = hit {
-                let better = match &best {
-                    None => true,
-                    Some(b) => {
-                        distance_px < b.distance_px - TIE_PX
-                            || (distance_px <= b.distance_px + TIE_PX && depth <= b.depth)
-                    }
+                let better = |b: &Pick| {
+                    distance_px < b.distance_px - TIE_PX
+                        || (distance_px <= b.distance_px + TIE_PX && depth <= b.depth)
                 };
-                if better {
+                if best.as_ref().is_none_or(better) {
                     best = Some(Pick {
                         segment: i - 1,
                         distance_px,

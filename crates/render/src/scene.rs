@@ -165,9 +165,8 @@ fn origin_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> 
     marks
 }
 
-/// The most holes drawn with a ring and pecks drawn with a cross: past them a hole is a dot
-/// at its top and a peck is not marked, so that a path of millions of holes (a runaway loop)
-/// draws a bounded number of marks.
+/// The most holes ringed and pecks crossed; past them a hole is a dot and a peck unmarked, so
+/// millions of holes (a runaway loop) draw a bounded number of marks.
 const MAX_MARKED: usize = 100_000;
 
 /// A ring at the top of every hole (of the first [`MAX_MARKED`]; a dot past them), across the
@@ -200,10 +199,8 @@ fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Ve
     marks
 }
 
-/// A small cross across the hole's axis at the bottom of every peck (of the first
-/// [`MAX_MARKED`]) of a hole drilled in more than one plunge (G83, G73): each peck's retract
-/// runs back over the plunges, so without them the pecks merge into one line and cannot be
-/// counted.
+/// A small cross at the bottom of every peck (of the first [`MAX_MARKED`]) of a hole drilled in
+/// several plunges (G83, G73), which would otherwise merge into one line.
 fn peck_marks(
     path: &Toolpath,
     cycle_moves: &[(usize, CycleMove)],

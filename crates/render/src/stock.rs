@@ -130,11 +130,8 @@ impl StockPass {
             height: ny as u32,
             depth_or_array_layers: 1,
         };
-        if self
-            .mesh
-            .as_ref()
-            .is_none_or(|m| m.texture.size() != extent)
-        {
+        let mesh = self.mesh.take().filter(|m| m.texture.size() == extent);
+        let mesh = mesh.unwrap_or_else(|| {
             let texture = device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("swarf_stock_heights"),
                 size: extent,
@@ -162,24 +159,23 @@ impl StockPass {
             });
             // Six vertices a quad over the cells and the two rings round them.
             let vertices = u32::try_from((nx + 3) * (ny + 3) * 6).unwrap_or(0);
-            self.mesh = Some(Mesh {
+            Mesh {
                 texture,
                 bind_group,
                 vertices,
-            });
-        }
-        if let Some(mesh) = &self.mesh {
-            queue.write_texture(
-                mesh.texture.as_image_copy(),
-                bytemuck::cast_slice(&heights),
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(nx as u32 * 4),
-                    rows_per_image: None,
-                },
-                extent,
-            );
-        }
+            }
+        });
+        queue.write_texture(
+            mesh.texture.as_image_copy(),
+            bytemuck::cast_slice(&heights),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(nx as u32 * 4),
+                rows_per_image: None,
+            },
+            extent,
+        );
+        self.mesh = Some(mesh);
     }
 
     /// Records the surface's draw; the frame's bind group (group 0) is the caller's.

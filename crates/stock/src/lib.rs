@@ -1,18 +1,13 @@
 //! Stock simulation: the block as a height field (a Z-map over its XY grid) cut by the tool's
-//! swept volume along every segment of a [`swarf_toolpath::Toolpath`], so the machinist sees
-//! what is left after the program and is warned when a rapid plows into material or a feed
-//! buries the tool past its flutes.
+//! swept volume along every segment of a [`swarf_toolpath::Toolpath`], with a warning where a
+//! rapid plows into material or a feed buries the tool past its flutes.
 //!
-//! Everything is in the machine frame, in millimetres, like the toolpath. Each cell keeps one
-//! height, sampled at its centre: the lowest point any tool reached over that centre, never below
-//! the stock's bottom.
+//! Everything is in the machine frame, in mm. Each cell keeps one height, at its centre: the
+//! lowest point any tool reached there, never below the stock's bottom.
 //!
-//! [`Simulation::new`] takes a [`Stock`] and the [`Tool`]s by number (both read from a setup's
-//! `[stock]` and `[tools.N]`), [`Simulation::step`] cuts a bounded number of a toolpath's
-//! segments per call, and [`Simulation::field`] and [`Simulation::findings`] give the
-//! [`HeightField`] and the [`Finding`]s so far. [`StockSetup`] reads those tables from a
-//! [`swarf_interp::Setup`], and [`StockRun`] cuts a toolpath out of them and gives what it
-//! assumed and found as diagnostics at their lines.
+//! [`Simulation`] cuts a toolpath out of a [`Stock`] with [`Tool`]s by number, a bounded number
+//! of segments a step; [`StockSetup`] reads them from a [`swarf_interp::Setup`], and
+//! [`StockRun`] gives what the cut assumed and found as diagnostics at their lines.
 
 mod field;
 mod setup;
@@ -159,10 +154,7 @@ impl Tool {
                 within("point_angle_deg", point_angle_deg, 1.0, 179.0)?;
             }
         }
-        match self.flute_length {
-            Some(flutes) => within("flute_length", flutes, 0.001, MAX_LENGTH),
-            None => Ok(()),
-        }
+        (self.flute_length).map_or(Ok(()), |f| within("flute_length", f, 0.001, MAX_LENGTH))
     }
 }
 

@@ -154,12 +154,9 @@ impl StockRun {
     /// The notes on what was assumed and the findings so far as diagnostics, each at
     /// `line_span` of its 1-based line (the toolpath's line numbers; 0 for none).
     pub fn diagnostics(&self, line_span: impl Fn(u32) -> Span) -> Vec<Diagnostic> {
-        let span = |line: u32| {
-            if line == 0 {
-                Span::default()
-            } else {
-                line_span(line)
-            }
+        let span = |line: u32| match line {
+            0 => Span::default(),
+            _ => line_span(line),
         };
         let notes = self
             .notes
@@ -199,13 +196,12 @@ impl StockRun {
 }
 
 /// The 1-based line of segment `i`.
-fn line_of(toolpath: &Toolpath, i: usize) -> u32 {
+pub(crate) fn line_of(toolpath: &Toolpath, i: usize) -> u32 {
     toolpath.lines().get(i).copied().unwrap_or(0)
 }
 
-/// The box around the feed moves, `margin` wider on every side but the top, which is the
-/// highest feed's start; with that feed's line. `None` without feed moves or when the box is
-/// out of the stock's ranges.
+/// The box around the feed moves, `margin` wider but topped at the highest feed's start, with
+/// that feed's line; `None` without feed moves or when the box is out of the stock's ranges.
 fn assumed_stock(toolpath: &Toolpath, margin: f64) -> Option<(Stock, u32)> {
     let mut min = DVec3::INFINITY;
     let mut max = DVec3::NEG_INFINITY;

@@ -60,9 +60,8 @@ impl Finding {
     }
 }
 
-/// A toolpath being cut out of the stock, resumable so a frame can spend a few milliseconds
-/// on it: rapids are checked for material, feeds (with a flute length) for shank cuts, and
-/// every move removes what its tool sweeps.
+/// A toolpath being cut out of the stock a few milliseconds at a time: rapids are checked for
+/// material, feeds (with a flute length) for shank cuts, and every move removes what it sweeps.
 #[derive(Debug, Clone)]
 pub struct Simulation {
     field: HeightField,
@@ -99,20 +98,12 @@ impl Simulation {
             self.segment_tools = toolpath.segment_tools();
         }
         let end = self.next.saturating_add(max_segments).min(toolpath.len());
-        let mut current: Option<(u32, Tool)> = None;
         // The next segment's cut, planned with this one's so that each may leave the other
         // the cells about their joint that it cuts anyway.
         let mut planned = None;
         for i in self.next..end {
             let number = self.segment_tools.get(i).copied().unwrap_or(0);
-            let tool = match current {
-                Some((n, tool)) if n == number => tool,
-                _ => {
-                    let tool = self.tools.get(&number).copied().unwrap_or_default();
-                    current = Some((number, tool));
-                    tool
-                }
-            };
+            let tool = self.tools.get(&number).copied().unwrap_or_default();
             let (Some(&to), Some(&kind)) = (toolpath.ends().get(i), toolpath.kinds().get(i)) else {
                 break;
             };
@@ -139,8 +130,7 @@ impl Simulation {
             }
             let hit = self.field.apply(&cut, check);
             if let (Some(hit), Some(check)) = (hit, check) {
-                let line = toolpath.lines().get(i).copied().unwrap_or(0);
-                self.report(i, line, &tool, check, hit);
+                self.report(i, crate::setup::line_of(toolpath, i), &tool, check, hit);
             }
         }
         self.next = self.next.max(end);
