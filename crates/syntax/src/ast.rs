@@ -302,16 +302,12 @@ pub(crate) struct Extras {
 impl Block {
     /// The first plain word with address `letter` (uppercase).
     pub fn word(&self, letter: u8) -> Option<&Word> {
-        self.words
-            .iter()
-            .find(|w| w.letter == letter && w.form == WordForm::Plain)
+        (self.words.iter()).find(|w| w.letter == letter && w.form == WordForm::Plain)
     }
 
     /// The comma word `,letter` if given.
     pub fn comma_word(&self, letter: u8) -> Option<&Word> {
-        self.words
-            .iter()
-            .find(|w| w.letter == letter && w.form == WordForm::Comma)
+        (self.words.iter()).find(|w| w.letter == letter && w.form == WordForm::Comma)
     }
 
     /// Whether the block has neither words nor statements (blank, comment or tape mark).
@@ -330,12 +326,8 @@ impl Block {
         self.number.map(|n| n.get() - 1)
     }
 
-    /// Sets the `N` sequence number (`u32::MAX` is out of any control's range and not kept).
-    pub fn set_number(&mut self, number: u32) {
-        self.number = Block::stored_number(number);
-    }
-
-    /// How the field holds sequence number `number`.
+    /// How the field holds sequence number `number` (`u32::MAX`, out of any control's range, is
+    /// not kept).
     #[inline]
     pub(crate) fn stored_number(number: u32) -> Option<NonZeroU32> {
         number.checked_add(1).and_then(NonZeroU32::new)
@@ -347,20 +339,10 @@ impl Block {
         self.extras.as_deref()?.block_delete
     }
 
-    /// Sets the block-delete level.
-    pub fn set_block_delete(&mut self, level: u8) {
-        self.extras_mut().block_delete = Some(level);
-    }
-
     /// Whether the parser found an error in this block (it is not executed).
     #[inline]
     pub fn has_error(&self) -> bool {
         self.extras.as_deref().is_some_and(|e| e.has_error)
-    }
-
-    /// Marks the block as holding an error.
-    pub fn set_error(&mut self) {
-        self.extras_mut().has_error = true;
     }
 
     /// The program number when the block starts a program (`O1234`, `:1234`).
@@ -381,27 +363,8 @@ impl Block {
         self.extras.as_deref().map_or(&[], |e| &e.comments)
     }
 
-    /// Sets the program number the block starts.
-    pub fn set_program(&mut self, program: ProgramNumber) {
-        self.extras_mut().program = Some(program);
-    }
-
-    /// Sets the block's statements (none makes no room for them).
-    pub fn set_statements(&mut self, statements: Vec<Statement>) {
-        if !statements.is_empty() || self.extras.is_some() {
-            self.extras_mut().statements = statements.into_boxed_slice();
-        }
-    }
-
-    /// Sets the block's comments (none makes no room for them).
-    pub fn set_comments(&mut self, comments: Vec<Span>) {
-        if !comments.is_empty() || self.extras.is_some() {
-            self.extras_mut().comments = comments.into_boxed_slice();
-        }
-    }
-
-    /// The extras, made when the block has none yet.
-    fn extras_mut(&mut self) -> &mut Extras {
+    /// The extras, to set one (program number, error mark …); made when the block has none yet.
+    pub(crate) fn extras_mut(&mut self) -> &mut Extras {
         self.extras.get_or_insert_with(Box::default)
     }
 

@@ -105,7 +105,7 @@ impl Checker {
         check_block(self.dialect, block, &mut self.scratch, &mut self.out);
         let found = &self.out[before..];
         if found.iter().any(|d| d.severity == Severity::Error) {
-            block.set_error();
+            block.extras_mut().has_error = true;
         }
     }
 
@@ -320,9 +320,7 @@ fn words_twice(block: &Block, out: &mut Vec<Diagnostic>) {
             seen |= bit;
             again
         } else {
-            block.words[..i]
-                .iter()
-                .any(|w| w.letter == word.letter && w.form == word.form)
+            (block.words[..i].iter()).any(|w| w.letter == word.letter && w.form == word.form)
         };
         if repeated {
             let shown = match word.form {
@@ -346,15 +344,10 @@ fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Di
         return;
     }
     // One bit per letter: what any block may carry and what the block's codes take.
-    let taken = codes
-        .iter()
-        .fold(ALWAYS, |m, (d, _)| m | letter_mask(d.words.as_bytes()));
-    let names = codes
-        .iter()
-        .filter(|(d, _)| d.code.letter == b'G')
-        .map(|(d, _)| d.code.to_string())
-        .collect::<Vec<_>>()
-        .join(" ");
+    let taken = (codes.iter()).fold(ALWAYS, |m, (d, _)| m | letter_mask(d.words.as_bytes()));
+    let names =
+        (codes.iter().filter(|(d, _)| d.code.letter == b'G')).map(|(d, _)| d.code.to_string());
+    let names = names.collect::<Vec<_>>().join(" ");
     for word in block.words.iter().filter(|w| w.form == WordForm::Plain) {
         if taken & letter_bit(word.letter) != 0 {
             continue;
@@ -372,10 +365,7 @@ fn words_used(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Di
 
 fn has_any(block: &Block, letters: &str) -> bool {
     let mask = letter_mask(letters.as_bytes());
-    block
-        .words
-        .iter()
-        .any(|w| w.form == WordForm::Plain && mask & letter_bit(w.letter) != 0)
+    (block.words.iter()).any(|w| w.form == WordForm::Plain && mask & letter_bit(w.letter) != 0)
 }
 
 fn required_words(block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
@@ -393,10 +383,8 @@ fn required_words(block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
 }
 
 fn arcs(dialect: Dialect, block: &Block, codes: &[Found], out: &mut Vec<Diagnostic>) {
-    let Some((def, span)) = codes
-        .iter()
-        .find(|(d, _)| d.code == Code::g(20) || d.code == Code::g(30))
-    else {
+    let is_arc = |(d, _): &&Found| d.code == Code::g(20) || d.code == Code::g(30);
+    let Some((def, span)) = codes.iter().find(is_arc) else {
         return;
     };
     let (span, code) = (*span, def.code);

@@ -180,9 +180,8 @@ impl Decoded {
         let start = self.text.len();
         self.text.push('\u{FFFD}');
         let message = format!("{what}; replaced with U+FFFD");
-        let span = Span::new(start, self.text.len());
-        self.diagnostics
-            .push(Diagnostic::error(span, "E-ENCODING", message));
+        let error = Diagnostic::error(Span::new(start, self.text.len()), "E-ENCODING", message);
+        self.diagnostics.push(error);
     }
 }
 
@@ -198,15 +197,12 @@ fn lossy_utf8(mut bytes: &[u8]) -> Decoded {
                 let (valid, after) = bytes.split_at(err.valid_up_to());
                 decoded.text.push_str(&String::from_utf8_lossy(valid));
                 let bad_len = err.error_len().unwrap_or(after.len()).max(1);
-                let bad: Vec<String> = after
-                    .iter()
-                    .take(bad_len)
-                    .map(|b| format!("0x{b:02X}"))
-                    .collect();
-                decoded.replaced(format!(
-                    "invalid byte sequence {} (not UTF-8, GB18030 or Big5)",
-                    bad.join(" ")
-                ));
+                let bad = after.get(..bad_len).unwrap_or(after);
+                let bad = (bad.iter().map(|b| format!("0x{b:02X}")))
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                let message = format!("invalid byte sequence {bad} (not UTF-8, GB18030 or Big5)");
+                decoded.replaced(message);
                 bytes = after.get(bad_len..).unwrap_or_default();
             }
         }

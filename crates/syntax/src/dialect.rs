@@ -251,9 +251,7 @@ impl FromStr for Dialect {
 
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let lower = s.trim().to_ascii_lowercase();
-        Dialect::ALL
-            .into_iter()
-            .find(|d| d.name() == lower)
-            .ok_or_else(|| UnknownDialect(s.to_string()))
+        let found = Dialect::ALL.into_iter().find(|d| d.name() == lower);
+        found.ok_or_else(|| UnknownDialect(s.to_string()))
     }
 }

@@ -83,18 +83,12 @@ impl LineIndex {
 
     /// The 0-based line that contains byte `offset`.
     pub fn line_of(&self, offset: u32) -> usize {
-        match self.starts.binary_search(&offset) {
-            Ok(i) => i,
-            Err(i) => i.saturating_sub(1),
-        }
+        (self.starts.binary_search(&offset)).unwrap_or_else(|i| i.saturating_sub(1))
     }
 
     /// Byte offset where 0-based `line` starts (the text's end for lines past it).
     pub fn line_start(&self, line: usize) -> u32 {
-        self.starts
-            .get(line)
-            .copied()
-            .unwrap_or_else(|| self.starts.last().copied().unwrap_or(0))
+        (self.starts.get(line).or(self.starts.last())).map_or(0, |&s| s)
     }
 
     /// 1-based line and 1-based column (in characters) of byte `offset` in `text`.
@@ -198,16 +192,10 @@ impl LineCols<'_> {
             Some((l, o, c)) if l == line && o <= end => (o, c),
             _ => (start, 0),
         };
-        let col = col0
-            + self
-                .text
-                .get(from..end)
-                .map_or(end - from, |s| s.chars().count());
+        let col = col0 + (self.text.get(from..end)).map_or(end - from, |s| s.chars().count());
         self.last = Some((line, end, col));
-        (
-            u32::try_from(line + 1).unwrap_or(u32::MAX),
-            u32::try_from(col + 1).unwrap_or(u32::MAX),
-        )
+        let one_based = |n: usize| u32::try_from(n + 1).unwrap_or(u32::MAX);
+        (one_based(line), one_based(col))
     }
 }
 

@@ -310,11 +310,11 @@ fn number_by_file_name(sub: &mut Program, n: u32, name: &str) {
         );
         let warning = crate::Diagnostic::warning(first.span, "W-PROGRAM-NUMBER", message);
         sub.diagnostics.push(warning);
-        first.set_program(ProgramNumber::Number(n));
+        first.extras_mut().program = Some(ProgramNumber::Number(n));
         return;
     }
     let mut header = crate::Block::default();
-    header.set_program(ProgramNumber::Number(n));
+    header.extras_mut().program = Some(ProgramNumber::Number(n));
     sub.blocks.insert(0, header);
 }
 

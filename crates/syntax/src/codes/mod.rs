@@ -127,10 +127,8 @@ impl DialectSet {
 
     /// The dialects' menu labels joined with ", " (for messages).
     pub fn labels(self) -> String {
-        self.iter()
-            .map(Dialect::label)
-            .collect::<Vec<_>>()
-            .join(", ")
+        let labels: Vec<&str> = self.iter().map(Dialect::label).collect();
+        labels.join(", ")
     }
 }
 
@@ -364,9 +362,7 @@ pub fn meanings(code: Code) -> impl Iterator<Item = &'static CodeDef> {
 /// What `letter` means in `dialect` (every reading that applies).
 pub fn address(dialect: Dialect, letter: u8) -> impl Iterator<Item = &'static AddressDef> {
     let letter = letter.to_ascii_uppercase();
-    ADDRESSES
-        .iter()
-        .filter(move |a| a.letter == letter && a.dialects.contains(dialect))
+    (ADDRESSES.iter()).filter(move |a| a.letter == letter && a.dialects.contains(dialect))
 }
 
 #[cfg(test)]

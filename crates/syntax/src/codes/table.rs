@@ -28,16 +28,6 @@ macro_rules! dialects {
     ([$($name:ident)+]) => { DialectSet::NONE$(.or(DialectSet::$name))+ };
 }
 
-/// The `whole` column: `whole` for a code that needs the whole program, `-` for the others.
-macro_rules! whole {
-    (-) => {
-        false
-    };
-    (whole) => {
-        true
-    };
-}
-
 /// The code a table names (`G05` and the tenths after its point, `G05.1`).
 const fn code(name: &str, tenths: u32) -> Code {
     let name = name.as_bytes();
@@ -70,7 +60,7 @@ macro_rules! codes {
             modality: Modality::$modality,
             power_on: dialects!($power_on),
             documented: Documented::$documented,
-            whole: whole!($whole),
+            whole: matches!(stringify!($whole).as_bytes(), b"whole"),
             name: $name,
             format: $format,
             words: $words,

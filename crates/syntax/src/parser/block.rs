@@ -3,7 +3,7 @@
 
 use super::is_blank;
 use super::number::{scan_decimal, scan_sign, with_sign};
-use crate::ast::{Func, ProgramNumber, Statement};
+use crate::ast::{ExprId, Func, ProgramNumber, Statement};
 use crate::{Block, Diagnostic, Dialect, Program, Rules, Span, Word, WordForm, excerpt};
 
 /// Whether `c` can only be a stray character where a block item should start: not a blank, a
@@ -47,17 +47,13 @@ pub(super) struct Fail {
 }
 
 impl Fail {
-    pub(super) fn new(
-        at: usize,
-        end: usize,
-        code: &'static str,
-        message: impl Into<String>,
-    ) -> Fail {
+    pub(super) fn new(at: usize, end: usize, code: &'static str, msg: impl Into<String>) -> Fail {
+        let message = msg.into();
         Fail {
             at,
             end,
             code,
-            message: message.into(),
+            message,
         }
     }
 }
@@ -79,63 +75,71 @@ impl LineReader<'_> {
     pub(super) fn error(
         &mut self,
         block: &mut Block,
-        start: usize,
+        at: usize,
         end: usize,
         code: &'static str,
-        msg: String,
+        msg: impl Into<String>,
     ) {
-        block.set_error();
-        let (start, end) = self.char_range(start, end);
-        let span = self.span(start, end);
-        self.program
-            .diagnostics
-            .push(Diagnostic::error(span, code, msg));
+        block.extras_mut().has_error = true;
+        let (start, end) = self.char_range(at, end);
+        let error = Diagnostic::error(self.span(start, end), code, msg);
+        self.program.diagnostics.push(error);
     }
 
     /// `start..end` kept inside the line and widened to whole characters, so that a span that
     /// was computed a byte past a character's start still covers that character.
     fn char_range(&self, start: usize, end: usize) -> (usize, usize) {
-        let len = self.line.len();
-        let mut start = start.min(len);
-        while !self.line.is_char_boundary(start) {
-            start -= 1;
-        }
-        let mut end = end.clamp(start, len);
-        while !self.line.is_char_boundary(end) {
-            end += 1;
-        }
-        (start, end)
+        let start = self.line.floor_char_boundary(start);
+        (start, self.line.ceil_char_boundary(end.max(start)))
     }
 
-    fn warn(&mut self, start: usize, end: usize, code: &'static str, msg: String) {
-        let span = self.span(start, end);
-        self.program
-            .diagnostics
-            .push(Diagnostic::warning(span, code, msg));
-    }
-
-    pub(super) fn fail(&mut self, block: &mut Block, f: Fail) {
+    /// Reports `f` and returns where to resume: past the failure, or past the rest of the block
+    /// when `whole` (a broken statement owns the rest of the block).
+    pub(super) fn failed(&mut self, block: &mut Block, pos: usize, f: Fail, whole: bool) -> usize {
+        let end = if whole { self.block_end(f.end) } else { f.end };
+        let end = self.recover(pos, end);
         self.error(block, f.at, f.end, f.code, f.message);
+        end
+    }
+
+    /// Keeps what `read` read with `keep`, or reports its failure; returns where to resume.
+    pub(super) fn settle<T>(
+        &mut self,
+        block: &mut Block,
+        pos: usize,
+        read: PResult<T>,
+        whole: bool,
+        keep: impl FnOnce(&mut Self, &mut Block, T),
+    ) -> usize {
+        match read {
+            Ok((t, end)) => {
+                keep(self, block, t);
+                end
+            }
+            Err(f) => self.failed(block, pos, f, whole),
+        }
     }
 
     #[inline]
-    fn finish(&mut self, block: Block, first: Option<usize>, last: usize) {
+    fn finish(&mut self, mut block: Block, first: Option<usize>, last: usize) {
         let statements = std::mem::take(&mut self.statements);
         let comments = std::mem::take(&mut self.comments);
-        if let Some(first) = first {
-            let mut block = block;
-            block.span = self.span(first, last);
-            block.set_statements(statements);
-            block.set_comments(comments);
-            if !block.is_empty()
-                || block.number().is_some()
-                || block.program().is_some()
-                || block.has_error()
-                || block.block_delete().is_some()
-            {
-                self.checker.check(&mut block);
-                self.program.blocks.push(block);
-            }
+        let Some(first) = first else { return };
+        block.span = self.span(first, last);
+        // No statements and no comments make no room for them.
+        if block.extras.is_some() || !(statements.is_empty() && comments.is_empty()) {
+            let extras = block.extras_mut();
+            extras.statements = statements.into_boxed_slice();
+            extras.comments = comments.into_boxed_slice();
+        }
+        if !block.is_empty()
+            || block.number().is_some()
+            || block.program().is_some()
+            || block.has_error()
+            || block.block_delete().is_some()
+        {
+            self.checker.check(&mut block);
+            self.program.blocks.push(block);
         }
     }
 
@@ -198,13 +202,8 @@ impl LineReader<'_> {
                         pos += close + 1;
                     } else {
                         self.comments.push(self.span(pos, bytes.len()));
-                        self.error(
-                            &mut block,
-                            pos,
-                            bytes.len(),
-                            "E-COMMENT-UNCLOSED",
-                            "comment `(` is not closed with `)` on this line".into(),
-                        );
+                        let message = "comment `(` is not closed with `)` on this line";
+                        self.error(&mut block, pos, bytes.len(), "E-COMMENT-UNCLOSED", message);
                         pos = bytes.len();
                     }
                     continue;
@@ -233,7 +232,7 @@ impl LineReader<'_> {
                         }
                         _ => 1,
                     };
-                    block.set_block_delete(level);
+                    block.extras_mut().block_delete = Some(level);
                 }
                 b':' if at_start
                     && self.rules.colon_program_number
@@ -245,38 +244,24 @@ impl LineReader<'_> {
                     && !(block.words.is_empty() && self.statements.is_empty()) =>
                 {
                     // OCR turns `;` into `:` in scanned manuals; read it as the end of the block.
-                    self.warn(
-                        pos,
-                        pos + 1,
-                        "W-STRAY-COLON",
-                        "`:` at the end of a block is read as the end of the block (`;`)".into(),
-                    );
+                    let message = "`:` at the end of a block is read as the end of the block (`;`)";
+                    let warning =
+                        Diagnostic::warning(self.span(pos, pos + 1), "W-STRAY-COLON", message);
+                    self.program.diagnostics.push(warning);
                     pos += 1;
                 }
-                b'#' => match self.assignment(pos) {
-                    Ok((stmt, end)) => {
-                        self.statements.push(stmt);
-                        pos = end;
-                    }
-                    Err(f) => {
-                        // A broken statement: the rest of the block belongs to it.
-                        pos = self.recover(pos, self.block_end(f.end));
-                        self.fail(&mut block, f);
-                    }
-                },
-                b',' => {
-                    pos = self.read_comma_word(&mut block, pos);
+                b'#' => {
+                    let read = self.assignment(pos);
+                    pos = self.settle(&mut block, pos, read, true, |s, _, st| {
+                        s.statements.push(st);
+                    });
                 }
-                c if c.is_ascii_alphabetic() => {
-                    pos = self.read_letters(&mut block, pos);
-                }
+                b',' => pos = self.read_comma_word(&mut block, pos),
+                c if c.is_ascii_alphabetic() => pos = self.read_letters(&mut block, pos),
                 _ => {
                     // One diagnostic for a run of stray characters (`__`, `500`, a remark in
                     // Chinese without a comment marker), not one per character.
-                    let end = pos
-                        + line[pos..]
-                            .find(|c| !is_stray(c))
-                            .unwrap_or(line.len() - pos);
+                    let end = (line[pos..].find(|c| !is_stray(c))).map_or(line.len(), |i| pos + i);
                     let end = self.recover(pos, end);
                     let stray = &line[pos..end];
                     let shown = excerpt(stray);
@@ -301,11 +286,7 @@ impl LineReader<'_> {
     /// Where to resume after an error at `pos` that ended at `end`: at least one byte on, and
     /// on a character boundary.
     pub(super) fn recover(&self, pos: usize, end: usize) -> usize {
-        let mut at = end.max(pos + 1).min(self.bytes.len());
-        while !self.line.is_char_boundary(at) {
-            at += 1;
-        }
-        at
+        self.line.ceil_char_boundary(end.max(pos + 1))
     }
 
     /// Reads what starts with a letter: a word, a sequence or program number, a macro keyword
@@ -322,17 +303,8 @@ impl LineReader<'_> {
             if !KEYWORDS.contains(&run.as_str()) {
                 return self.read_word_at(block, pos);
             }
-            return match self.keyword_statement(&run, pos, run_end) {
-                Ok((stmt, end)) => {
-                    self.statements.push(stmt);
-                    end
-                }
-                Err(f) => {
-                    let end = self.recover(pos, self.block_end(f.end));
-                    self.fail(block, f);
-                    end
-                }
-            };
+            let read = self.keyword_statement(&run, pos, run_end);
+            return self.settle(block, pos, read, true, |s, _, st| s.statements.push(st));
         }
         self.read_word_at(block, pos)
     }
@@ -356,17 +328,8 @@ impl LineReader<'_> {
         {
             return None;
         }
-        Some((
-            Word {
-                letter,
-                value: with_sign(number.value, negative),
-                has_point: number.has_point,
-                span: self.span(pos, end),
-                form: WordForm::Plain,
-                expr: None,
-            },
-            end,
-        ))
+        let value = with_sign(number.value, negative);
+        Some(self.plain(letter, value, number.has_point, pos, end, None))
     }
 
     /// A program or sequence number, an O-word line, or an address word at `pos`.
@@ -383,42 +346,23 @@ impl LineReader<'_> {
         if letter == b'N' {
             return self.read_sequence_number(block, pos);
         }
-        match self.word(pos) {
-            Ok((word, end)) => {
-                block.words.push(word);
-                end
-            }
-            Err(f) => {
-                let end = self.recover(pos, f.end);
-                self.fail(block, f);
-                end
-            }
-        }
+        let read = self.word(pos);
+        self.settle(block, pos, read, false, |_, b, w| b.words.push(w))
     }
 
     /// `N123` at the start of the block.
     fn read_sequence_number(&mut self, block: &mut Block, pos: usize) -> usize {
         let value_start = self.skip_blanks(pos + 1);
         let Some(number) = scan_decimal(self.bytes, value_start) else {
-            self.error(
-                block,
-                pos,
-                pos + 1,
-                "E-WORD-VALUE",
-                "address `N` needs a number after it".into(),
-            );
+            let message = "address `N` needs a number after it";
+            self.error(block, pos, pos + 1, "E-WORD-VALUE", message);
             return pos + 1;
         };
         let end = number.end;
         let digits = &self.line[value_start..end];
         if !block.words.is_empty() || block.number().is_some() || !self.statements.is_empty() {
-            self.error(
-                block,
-                pos,
-                end,
-                "E-SEQUENCE-NUMBER",
-                "a sequence number `N` must come first in the block".into(),
-            );
+            let message = "a sequence number `N` must come first in the block";
+            self.error(block, pos, end, "E-SEQUENCE-NUMBER", message);
             return end;
         }
         // Up to nine digits without a point the scanned value is the number exactly.
@@ -427,34 +371,19 @@ impl LineReader<'_> {
         } else {
             digits.parse::<u32>()
         };
+        let (shown, max) = (excerpt(digits), self.rules.max_sequence_number);
         match parsed {
-            Ok(n) => {
-                if n > self.rules.max_sequence_number {
-                    self.error(
-                        block,
-                        pos,
-                        end,
-                        "E-NUMBER-RANGE",
-                        format!(
-                            "sequence number `N{}` is above the largest this control accepts ({})",
-                            excerpt(digits),
-                            self.rules.max_sequence_number
-                        ),
-                    );
-                } else {
-                    block.set_number(n);
-                }
+            Ok(n) if n <= max => block.number = Block::stored_number(n),
+            Ok(_) => {
+                let message = format!(
+                    "sequence number `N{shown}` is above the largest this control accepts ({max})"
+                );
+                self.error(block, pos, end, "E-NUMBER-RANGE", message);
             }
-            Err(_) => self.error(
-                block,
-                pos,
-                end,
-                "E-SEQUENCE-NUMBER",
-                format!(
-                    "sequence number `N{}` must be a whole number",
-                    excerpt(digits)
-                ),
-            ),
+            Err(_) => {
+                let message = format!("sequence number `N{shown}` must be a whole number");
+                self.error(block, pos, end, "E-SEQUENCE-NUMBER", message);
+            }
         }
         end
     }
@@ -464,56 +393,35 @@ impl LineReader<'_> {
     fn read_program_number(&mut self, block: &mut Block, pos: usize, from: usize) -> usize {
         let value_start = self.skip_blanks(from);
         if self.rules.o_words && self.bytes.get(value_start) == Some(&b'<') {
-            return match self.angle_name(value_start) {
-                Ok((name, end)) => {
-                    block.set_program(ProgramNumber::Name(name));
-                    end
-                }
-                Err(f) => {
-                    let end = self.recover(pos, f.end);
-                    self.fail(block, f);
-                    end
-                }
-            };
+            let read = self.angle_name(value_start);
+            return self.settle(block, pos, read, false, |_, b, name| {
+                b.extras_mut().program = Some(ProgramNumber::Name(name));
+            });
         }
         let rest = &self.line[value_start..];
         let digits_len = rest.bytes().take_while(u8::is_ascii_digit).count();
-        let end = value_start + digits_len;
+        let end = (value_start + digits_len).max(pos + 1);
         match rest[..digits_len].parse::<u32>() {
-            Ok(n) if digits_len <= 8 => block.set_program(ProgramNumber::Number(n)),
-            _ => self.error(
-                block,
-                pos,
-                end.max(pos + 1),
-                "E-PROGRAM-NUMBER",
-                "a program number `O` needs up to 8 digits after it".into(),
-            ),
+            Ok(n) if digits_len <= 8 => block.extras_mut().program = Some(ProgramNumber::Number(n)),
+            _ => {
+                let message = "a program number `O` needs up to 8 digits after it";
+                self.error(block, pos, end, "E-PROGRAM-NUMBER", message);
+            }
         }
-        end.max(pos + 1)
+        end
     }
 
     /// `<name>` at `pos`: the name lowercased without blanks, as LinuxCNC reads it.
     pub(super) fn angle_name(&self, pos: usize) -> PResult<Box<str>> {
         let Some(close) = self.line[pos..].find('>') else {
-            return Err(Fail::new(
-                pos,
-                self.line.len(),
-                "E-MACRO-SYNTAX",
-                "`<` starts a name that is not closed with `>`",
-            ));
+            let message = "`<` starts a name that is not closed with `>`";
+            return Err(Fail::new(pos, self.line.len(), "E-MACRO-SYNTAX", message));
         };
-        let name: String = self.line[pos + 1..pos + close]
-            .chars()
-            .filter(|c| !c.is_whitespace())
-            .collect::<String>()
-            .to_ascii_lowercase();
+        let name = self.line[pos + 1..pos + close].replace(char::is_whitespace, "");
+        let name = name.to_ascii_lowercase();
         if name.is_empty() {
-            return Err(Fail::new(
-                pos,
-                pos + close + 1,
-                "E-MACRO-SYNTAX",
-                "a name in `<>` must not be empty",
-            ));
+            let message = "a name in `<>` must not be empty";
+            return Err(Fail::new(pos, pos + close + 1, "E-MACRO-SYNTAX", message));
         }
         Ok((name.into_boxed_str(), pos + close + 1))
     }
@@ -522,40 +430,25 @@ impl LineReader<'_> {
     fn read_comma_word(&mut self, block: &mut Block, pos: usize) -> usize {
         let at = self.skip_blanks(pos + 1);
         let letter = self.bytes.get(at).map(u8::to_ascii_uppercase);
-        let result = match letter {
-            Some(l @ (b'C' | b'R' | b'A')) => self.word_from(pos, at, l),
+        let read = if let Some(l @ (b'C' | b'R' | b'A')) = letter {
+            self.word_from(pos, at, l)
+        } else {
             // Only the comma is wrong: what follows it (`X10, F500`) is read on its own.
-            _ => Err(Fail::new(
-                pos,
-                pos + 1,
-                "E-COMMA-WORD",
-                "a comma must be followed by `C` (chamfer), `R` (corner rounding) or `A` (angle)",
-            )),
+            let message =
+                "a comma must be followed by `C` (chamfer), `R` (corner rounding) or `A` (angle)";
+            Err(Fail::new(pos, pos + 1, "E-COMMA-WORD", message))
         };
-        match result {
-            Ok((mut word, end)) => {
-                word.form = WordForm::Comma;
-                if !self.rules.comma_words {
-                    self.error(
-                        block,
-                        pos,
-                        end,
-                        "E-COMMA-WORD",
-                        format!(
-                            "{} has no comma words (`,C` chamfer and `,R` corner rounding are LNC and Fanuc syntax)",
-                            self.dialect.label()
-                        ),
-                    );
-                }
-                block.words.push(word);
-                end
-            }
-            Err(f) => {
-                let end = self.recover(pos, f.end);
-                self.fail(block, f);
-                end
-            }
+        if let (Ok((_, end)), false) = (&read, self.rules.comma_words) {
+            let dialect = self.dialect.label();
+            let message = format!(
+                "{dialect} has no comma words (`,C` chamfer and `,R` corner rounding are LNC and Fanuc syntax)"
+            );
+            self.error(block, pos, *end, "E-COMMA-WORD", message);
         }
+        self.settle(block, pos, read, false, |_, b, mut word| {
+            word.form = WordForm::Comma;
+            b.words.push(word);
+        })
     }
 
     /// An address word at `pos` (a letter), including `F2=` indexed words.
@@ -563,30 +456,19 @@ impl LineReader<'_> {
         let letter = self.bytes[pos].to_ascii_uppercase();
         // `F2=1000`, `S1=150`: letter, one or two digits, `=`, value.
         let digit = |i: usize| self.bytes.get(i).is_some_and(u8::is_ascii_digit);
-        let digits = if !digit(pos + 1) {
-            0
-        } else if self.bytes.get(pos + 2) == Some(&b'=') {
-            1
-        } else if digit(pos + 2) && self.bytes.get(pos + 3) == Some(&b'=') {
-            2
-        } else {
-            0
+        let indexed = |n: usize| {
+            (1..=n).all(|i| digit(pos + i)) && self.bytes.get(pos + n + 1) == Some(&b'=')
         };
-        if digits > 0 {
+        if let Some(digits) = (1..=2).find(|&n| indexed(n)) {
             let index: u8 = self.line[pos + 1..pos + 1 + digits].parse().unwrap_or(0);
             let (mut word, end) = self.word_from(pos, pos + digits + 1, letter)?;
             word.form = WordForm::Indexed(index);
             if !self.rules.indexed_words {
-                return Err(Fail::new(
-                    pos,
-                    end,
-                    "E-WORD-INDEXED",
-                    format!(
-                        "`{}` is Syntec syntax (`F2=` retract feed, `S1=` spindle speed); {} does not read it",
-                        excerpt(&self.line[pos..end]),
-                        self.dialect.label()
-                    ),
-                ));
+                let (text, dialect) = (excerpt(&self.line[pos..end]), self.dialect.label());
+                let message = format!(
+                    "`{text}` is Syntec syntax (`F2=` retract feed, `S1=` spindle speed); {dialect} does not read it"
+                );
+                return Err(Fail::new(pos, end, "E-WORD-INDEXED", message));
             }
             return Ok((word, end));
         }
@@ -613,79 +495,59 @@ impl LineReader<'_> {
             });
         if is_expr && (self.rules.macro_b || self.rules.o_words) {
             let (expr, end) = self.word_value(value_start, 0)?;
-            return Ok((
-                Word {
-                    letter,
-                    value: 0.0,
-                    has_point: true,
-                    span: self.span(pos, end),
-                    form: WordForm::Plain,
-                    expr: Some(expr),
-                },
-                end,
-            ));
+            return Ok(self.plain(letter, 0.0, true, pos, end, Some(expr)));
         }
         let Some(number) = scan_decimal(self.bytes, after_sign) else {
             let shown = char::from(letter);
             // A run of three or more letters is text, not words: one diagnostic for all of it.
             let (run, run_end) = self.alpha_run(pos);
             if letter_at == pos && run.len() >= 3 {
-                return Err(Fail::new(
-                    pos,
-                    run_end,
-                    "E-WORD-VALUE",
-                    format!(
-                        "`{}` is not a word: address `{shown}` needs a number after it",
-                        excerpt(&self.line[pos..run_end])
-                    ),
-                ));
+                let text = excerpt(&self.line[pos..run_end]);
+                let message =
+                    format!("`{text}` is not a word: address `{shown}` needs a number after it");
+                return Err(Fail::new(pos, run_end, "E-WORD-VALUE", message));
             }
-            return Err(Fail::new(
-                pos,
-                letter_at + 1,
-                "E-WORD-VALUE",
-                format!("address `{shown}` needs a number after it"),
-            ));
+            let message = format!("address `{shown}` needs a number after it");
+            return Err(Fail::new(pos, letter_at + 1, "E-WORD-VALUE", message));
         };
-        let end = number.end;
-        let has_point = number.has_point;
-        let value = if rest.starts_with('-') {
-            -number.value
-        } else {
-            number.value
-        };
-        let significant = number.digits;
+        let (end, significant) = (number.end, number.digits);
+        let value = with_sign(number.value, rest.starts_with('-'));
         let max = usize::from(self.rules.max_digits);
-        if !value.is_finite() || value.abs() > 1e15 || (max > 0 && significant > max) {
-            return Err(Fail::new(
-                pos,
-                end,
-                "E-NUMBER-RANGE",
-                if max > 0 && significant > max {
-                    format!(
-                        "`{}` has {significant} digits; {} accepts at most {max}",
-                        excerpt(&self.line[pos..end]),
-                        self.dialect.label()
-                    )
-                } else {
-                    format!(
-                        "the number `{}` is out of range",
-                        excerpt(&self.line[pos..end])
-                    )
-                },
-            ));
+        if max > 0 && significant > max {
+            let (text, dialect) = (excerpt(&self.line[pos..end]), self.dialect.label());
+            let message =
+                format!("`{text}` has {significant} digits; {dialect} accepts at most {max}");
+            return Err(Fail::new(pos, end, "E-NUMBER-RANGE", message));
         }
-        Ok((
-            Word {
-                letter,
-                value,
-                has_point,
-                span: self.span(pos, end),
-                form: WordForm::Plain,
-                expr: None,
-            },
-            end,
-        ))
+        if !value.is_finite() || value.abs() > 1e15 {
+            let text = excerpt(&self.line[pos..end]);
+            let message = format!("the number `{text}` is out of range");
+            return Err(Fail::new(pos, end, "E-NUMBER-RANGE", message));
+        }
+        Ok(self.plain(letter, value, number.has_point, pos, end, None))
+    }
+
+    /// A plain-form word spanning `pos..end`, with `end`.
+    #[inline]
+    fn plain(
+        &self,
+        letter: u8,
+        value: f64,
+        has_point: bool,
+        pos: usize,
+        end: usize,
+        expr: Option<ExprId>,
+    ) -> (Word, usize) {
+        let (span, form) = (self.span(pos, end), WordForm::Plain);
+        let word = Word {
+            letter,
+            value,
+            has_point,
+            span,
+            form,
+            expr,
+        };
+        (word, end)
     }
 
     /// End of the current block: the next `;` (Fanuc family) or the end of the line.
@@ -695,9 +557,6 @@ impl LineReader<'_> {
         }
         // `;` is ASCII, so searching the bytes is safe from any offset.
         let from = from.min(self.line.len());
-        self.bytes[from..]
-            .iter()
-            .position(|&b| b == b';')
-            .map_or(self.line.len(), |i| from + i)
+        (self.bytes[from..].iter().position(|&b| b == b';')).map_or(self.line.len(), |i| from + i)
     }
 }

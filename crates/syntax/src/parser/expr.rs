@@ -205,21 +205,17 @@ impl LineReader<'_> {
         }
         let label = self.dialect.label();
         let message = format!("brackets nested {nesting} deep; {label} allows {max}");
-        Err(Fail::new(
-            start,
-            self.block_end(start),
-            "E-EXPR-DEPTH",
-            message,
-        ))
+        let end = self.block_end(start);
+        Err(Fail::new(start, end, "E-EXPR-DEPTH", message))
     }
 
     /// A function call `SIN[…]`, `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
     fn call(&mut self, start: usize, depth: u32) -> PResult<ExprId> {
         let (name, name_end) = self.alpha_run(start);
         let Some(&(_, func)) = Func::NAMES.iter().find(|(n, _)| *n == name) else {
+            let name = excerpt(&name);
             let message = format!(
-                "`{}` is not a function (SIN, COS, TAN, ASIN, ACOS, ATAN, SQRT, ABS, ROUND, FIX, FUP, LN, EXP, POW, BIN, BCD)",
-                excerpt(&name)
+                "`{name}` is not a function (SIN, COS, TAN, ASIN, ACOS, ATAN, SQRT, ABS, ROUND, FIX, FUP, LN, EXP, POW, BIN, BCD)"
             );
             return Err(Fail::new(start, name_end, "E-EXPR", message));
         };

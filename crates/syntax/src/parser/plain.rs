@@ -5,18 +5,15 @@ use super::MAX_LINE_BYTES;
 use super::number::{Decimal, scan_decimal, scan_sign, with_sign};
 use crate::{Block, Rules, Span, Word, WordForm};
 
-/// Reads a line made only of plain words — a letter, an optional sign and a decimal number of
-/// at most 15 digits (within the dialect's limit), separated by blanks — and optionally a
-/// sequence number first: the line every CAM program is made of (`G1 X5.12 Y0.00 S100`,
-/// ` X3.2040 Z-0.1539`, `N20 G0 Z5.`). The block is written in place at the end of `blocks`
-/// and checked, exactly as the general reader would make and check it.
+/// Reads a line of plain words (a letter, an optional sign, a decimal number of at most 15
+/// digits within the dialect's limit, blank-separated), optionally after a sequence number: the
+/// line CAM output is made of (`N20 G0 Z5.`, `G1 X5.12 Y0.00`). The block is written in place at
+/// the end of `blocks` and checked exactly as the general reader would make and check it.
 ///
-/// `bytes` is the text from the line's start on: the line ends at its `\n` (a `\r` just before
-/// it is not part of it), at a `\r` alone or at the end of `bytes` (as
-/// [`LineIndex`](crate::LineIndex) ends lines), and is found as it is read. Returns whether the
-/// line gave a block (a blank line gives none) and its length without its ending, or `None`,
-/// having read nothing, for any other line (or one over [`MAX_LINE_BYTES`]): the general reader
-/// reads it.
+/// `bytes` is the text from the line's start on; the line ends at `\n`, `\r\n`, a lone `\r` or
+/// the end (as [`LineIndex`](crate::LineIndex) ends lines). Returns whether the line gave a
+/// block and its length without its ending, or `None`, having read nothing, for any other line
+/// (or one over [`MAX_LINE_BYTES`]): the general reader reads it.
 #[inline]
 pub(super) fn read_plain_line(
     bytes: &[u8],

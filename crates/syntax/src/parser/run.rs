@@ -4,7 +4,7 @@
 use super::block::LineReader;
 use super::plain::read_plain_line;
 use super::{MAX_LINE_BYTES, MAX_PARSED_BYTES, is_blank};
-use crate::{Block, Diagnostic, Dialect, LineIndex, LineSource, Program, Span};
+use crate::{Block, Diagnostic, Dialect, ExprNode, LineIndex, LineSource, Program, Span};
 
 /// A parse that reads a bounded number of lines per [`step`](ParseRun::step), so an editor can
 /// spread the parse of a long program over frames. Stepped to its end it gives the same
@@ -28,7 +28,7 @@ pub struct ParseRun {
 
 /// The bytes the parsed program holds, counted as its lines are read, so that the reading stops
 /// at [`Held::max`] with `E-PROGRAM-SIZE`.
-#[derive(Debug)]
+#[derive(Debug, Default)]
 struct Held {
     /// The most the program may hold ([`MAX_PARSED_BYTES`] unless set).
     max: usize,
@@ -55,17 +55,11 @@ impl Held {
 
     /// Nothing counted but the line table's first `lines` lines, the most that are read.
     fn new(max: usize, lines: usize) -> Self {
+        let table = lines.min(max_lines(max) + 1) * size_of::<u32>();
         Held {
             max,
-            blocks: 0,
-            exprs: 0,
-            diagnostics: 0,
-            checked: 0,
-            block_bytes: 0,
-            expr_bytes: 0,
-            table: lines.min(max_lines(max) + 1) * size_of::<u32>(),
-            other_bytes: 0,
-            count_at: 0,
+            table,
+            ..Held::default()
         }
     }
 
@@ -82,10 +76,7 @@ impl Held {
         self.block_bytes += new_blocks.iter().map(Block::held_bytes).sum::<usize>();
         self.blocks = program.blocks.len();
         let new_exprs = program.exprs.get(self.exprs..).unwrap_or_default();
-        self.expr_bytes += new_exprs
-            .iter()
-            .map(crate::ExprNode::held_bytes)
-            .sum::<usize>();
+        self.expr_bytes += new_exprs.iter().map(ExprNode::held_bytes).sum::<usize>();
         self.exprs = program.exprs.len();
         for (counted, diagnostics) in [
             (&mut self.diagnostics, program.diagnostics.as_slice()),
@@ -315,18 +306,13 @@ fn read_general_line(
     let dialect = program.dialect;
     if line.len() > MAX_LINE_BYTES {
         // A runaway line (a binary file, a generator gone wrong): read its start only.
-        let mut cut = MAX_LINE_BYTES;
-        while !line.is_char_boundary(cut) {
-            cut -= 1;
-        }
-        program.diagnostics.push(Diagnostic::error(
-            Span::new(offset + cut, offset + line.len()),
-            "E-LINE-LENGTH",
-            format!(
-                "this line is {} bytes long; only its first {MAX_LINE_BYTES} bytes are read",
-                line.len()
-            ),
-        ));
+        let (cut, len) = (line.floor_char_boundary(MAX_LINE_BYTES), line.len());
+        let message = format!(
+            "this line is {len} bytes long; only its first {MAX_LINE_BYTES} bytes are read"
+        );
+        let span = Span::new(offset + cut, offset + len);
+        let error = Diagnostic::error(span, "E-LINE-LENGTH", message);
+        program.diagnostics.push(error);
         line = &line[..cut];
     }
     let mut reader = LineReader {
@@ -355,27 +341,22 @@ fn max_lines(max: usize) -> usize {
 /// Reports that the text from `offset` (of `len` bytes) on is not read: the program read so far
 /// holds more than `max` bytes.
 fn too_large(program: &mut Program, len: usize, offset: usize, max: usize) {
-    program.diagnostics.push(Diagnostic::error(
-        Span::new(offset.min(len), len),
-        "E-PROGRAM-SIZE",
-        format!(
-            "the program is too large to hold whole: what is read up to here passes {} MiB \
-             (its lines, blocks, expressions and diagnostics), so the rest is not read",
-            max.div_ceil(1 << 20)
-        ),
-    ));
+    let message = format!(
+        "the program is too large to hold whole: what is read up to here passes {} MiB \
+         (its lines, blocks, expressions and diagnostics), so the rest is not read",
+        max.div_ceil(1 << 20)
+    );
+    let error = Diagnostic::error(Span::new(offset.min(len), len), "E-PROGRAM-SIZE", message);
+    program.diagnostics.push(error);
 }
 
 /// Notes that the text from `offset` on, after the closing `%`, is not read (if it is not blank).
 fn ignore_after_tape_end(program: &mut Program, source: &mut dyn LineSource, offset: usize) {
-    let Some((start, end)) = source.trimmed_rest(offset) else {
-        return;
-    };
-    program.diagnostics.push(Diagnostic::note(
-        Span::new(start, end),
-        "N-AFTER-TAPE-END",
-        "the program ends at the closing `%`: the text after it is not read",
-    ));
+    if let Some((start, end)) = source.trimmed_rest(offset) {
+        let message = "the program ends at the closing `%`: the text after it is not read";
+        let note = Diagnostic::note(Span::new(start, end), "N-AFTER-TAPE-END", message);
+        program.diagnostics.push(note);
+    }
 }
 
 #[cfg(test)]

@@ -17,11 +17,7 @@ impl LineReader<'_> {
             // A computed number: `o[#2 * 10] call`, `o#<sub> call`.
             Some(b'[' | b'#') => match self.word_value(label_start, 0) {
                 Ok((expr, end)) => (OLabel::Expr(expr), end),
-                Err(f) => {
-                    let end = self.recover(pos, self.block_end(f.end));
-                    self.fail(block, f);
-                    return Some(end);
-                }
+                Err(f) => return Some(self.failed(block, pos, f, true)),
             },
             _ => {
                 let rest = &self.line[label_start..];
@@ -35,7 +31,7 @@ impl LineReader<'_> {
         if kw.is_empty() && matches!(label, OLabel::Expr(_)) {
             let message =
                 "an O-word with a computed number must be followed by a keyword such as `call`";
-            self.error(block, pos, after_label, "E-OWORD", message.into());
+            self.error(block, pos, after_label, "E-OWORD", message);
             return Some(after_label);
         }
         let result: PResult<OWord> = match kw.as_str() {
@@ -63,17 +59,9 @@ impl LineReader<'_> {
                 Err(Fail::new(kw_start, kw_end, "E-OWORD", message))
             }
         };
-        Some(match result {
-            Ok((kind, end)) => {
-                self.statements.push(Statement::OWord { label, kind });
-                end
-            }
-            Err(f) => {
-                let end = self.recover(pos, f.end);
-                self.fail(block, f);
-                end
-            }
-        })
+        let keep =
+            |s: &mut Self, _: &mut Block, kind| s.statements.push(Statement::OWord { label, kind });
+        Some(self.settle(block, pos, result, false, keep))
     }
 
     /// `[expr]` after the blanks at `pos`, if one is there.
