@@ -297,19 +297,14 @@ fn wanted(st: &State) -> Option<f64> {
         return None;
     }
     let mut side = if st.cutter_comp == 420 { -1.0 } else { 1.0 };
-    if mirror_swaps_side(st) && st.reverses_arcs() {
+    // Fanuc swaps G41 and G42 under a one-axis mirror; Syntec's programs swap them.
+    let machine = &st.setup.machine;
+    let swaps = !matches!(st.dialect, Dialect::Syntec | Dialect::LinuxCnc);
+    if machine.mirror_swaps_comp_side.unwrap_or(swaps) && st.reverses_arcs() {
         side = -side;
     }
     let s = st.comp_radius * side;
     (s.abs() > EPS).then_some(s)
-}
-
-/// Whether a one-axis mirror swaps G41 and G42 (Fanuc does; Syntec's programs swap them).
-fn mirror_swaps_side(st: &State) -> bool {
-    st.setup
-        .machine
-        .mirror_swaps_comp_side
-        .unwrap_or(!matches!(st.dialect, Dialect::Syntec | Dialect::LinuxCnc))
 }
 
 /// The imaginary tip of a lathe tool from its nose centre (which compensation moves along the
@@ -351,18 +346,6 @@ fn put(st: &State, sink: &mut dyn Sink, source: Source, event: &Canon) {
         .end_point()
         .map_or(shifted.clone(), |to| with_end(&shifted, to + d));
     sink.emit(source, &shifted);
-}
-
-/// The corner mode in effect.
-fn corner_mode(st: &State) -> CornerMode {
-    st.setup
-        .machine
-        .corner_mode
-        .unwrap_or(if st.dialect == Dialect::LinuxCnc {
-            CornerMode::Arc
-        } else {
-            CornerMode::Intersection
-        })
 }
 
 /// Sends `event` on through cutter compensation.
@@ -558,14 +541,11 @@ fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_lin
     let start = start.unwrap_or_else(|| elem.offset_start(s, plane));
     let end = elem.offset_end(s, plane);
     if elem.arc.is_some() && elem.offset_curve(s, plane).is_none() {
-        gouge(
-            st,
-            elem.span,
-            format!(
-                "the arc of line {} has a smaller radius than the tool: the tool cannot cut inside it",
-                elem.source.line
-            ),
+        let line = elem.source.line;
+        let message = format!(
+            "the arc of line {line} has a smaller radius than the tool: the tool cannot cut inside it"
         );
+        gouge(st, elem.span, message);
     }
     let held = Held {
         extended: std::mem::take(&mut st.comp.start_extended),
@@ -583,9 +563,13 @@ pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
 fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Option<DVec2> {
     let mut h = st.comp.held.take()?;
     let plane = plane_axes(st.plane);
-    let mode = corner_mode(st);
     let linuxcnc = st.dialect == Dialect::LinuxCnc;
-    let small = if linuxcnc { LINUXCNC_SMALL } else { SMALL };
+    let (small, dialect_mode) = if linuxcnc {
+        (LINUXCNC_SMALL, CornerMode::Arc)
+    } else {
+        (SMALL, CornerMode::Intersection)
+    };
+    let mode = st.setup.machine.corner_mode.unwrap_or(dialect_mode);
     // Moves round the corner: (point, arc centre when it is an arc about the corner).
     let mut links: Vec<(DVec2, Option<(DVec2, bool)>)> = Vec::new();
     let mut start = None;
@@ -645,14 +629,11 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                 h.end = with_uv(h.end, x, plane);
                 start = Some(x);
             } else {
-                gouge(
-                    st,
-                    n.span,
-                    format!(
-                        "the tool does not fit in the inside corner between line {} and line {}: their offset paths do not meet",
-                        h.source.line, n.source.line
-                    ),
+                let (a, b) = (h.source.line, n.source.line);
+                let message = format!(
+                    "the tool does not fit in the inside corner between line {a} and line {b}: their offset paths do not meet"
                 );
+                gouge(st, n.span, message);
                 links.push((s2p, None));
                 start = Some(s2p);
             }
@@ -811,11 +792,10 @@ fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
         }
     };
     if reversed {
+        let (line, prev) = (h.source.line, h.prev_line);
+        let next = next.unwrap_or(line);
         let message = format!(
-            "the compensated move of line {} runs backwards against its programmed direction between the corners with line {} and line {}: the tool cuts into the part (a groove or pocket narrower than the tool, or a step smaller than the radius)",
-            h.source.line,
-            h.prev_line,
-            next.unwrap_or(h.source.line)
+            "the compensated move of line {line} runs backwards against its programmed direction between the corners with line {prev} and line {next}: the tool cuts into the part (a groove or pocket narrower than the tool, or a step smaller than the radius)"
         );
         gouge(st, h.span, message);
     }

@@ -214,42 +214,27 @@ pub(crate) fn pattern(
         p[v] += r * a.sin();
         p
     };
-    let radius = |st: &mut State| -> Option<f64> {
-        match length(st, b'I') {
-            Some(r) if r > 0.0 => Some(r),
-            _ => st.fail(
-                code.span,
-                "E-WORD-MISSING",
-                "this hole pattern needs a positive radius `I`",
-            ),
-        }
-    };
     let points: Vec<DVec3> = match tenths {
-        1340 => {
-            let (Some(r), Some(k)) = (radius(st), count(st, b'K')) else {
+        1340 | 1350 | 1360 => {
+            // Round a circle from angle J (G134, G136), or along a line at angle J (G135).
+            let r = match length(st, b'I') {
+                _ if tenths == 1350 => Some(0.0),
+                Some(r) if r > 0.0 => Some(r),
+                _ => {
+                    let message = "this hole pattern needs a positive radius `I`";
+                    st.fail(code.span, "E-WORD-MISSING", message)
+                }
+            };
+            let (Some(r), Some(k)) = (r, count(st, b'K')) else {
                 return false;
             };
-            let step = 360.0 / k as f64;
-            (0..k.abs())
-                .map(|i| at(r, angle(b'J') + step * i as f64))
-                .collect()
-        }
-        1350 => {
-            let Some(k) = count(st, b'K') else {
-                return false;
+            let (dr, da) = match tenths {
+                1340 => (0.0, 360.0 / k as f64),
+                1350 => (length(st, b'I').unwrap_or(0.0), 0.0),
+                _ => (0.0, find(words, b'P').map_or(0.0, thousandths)),
             };
-            let spacing = length(st, b'I').unwrap_or(0.0);
             (0..k.abs())
-                .map(|i| at(spacing * i as f64, angle(b'J')))
-                .collect()
-        }
-        1360 => {
-            let (Some(r), Some(k)) = (radius(st), count(st, b'K')) else {
-                return false;
-            };
-            let pitch = find(words, b'P').map_or(0.0, thousandths);
-            (0..k.abs())
-                .map(|i| at(r, angle(b'J') + pitch * i as f64))
+                .map(|i| at(r + dr * i as f64, angle(b'J') + da * i as f64))
                 .collect()
         }
         _ => {
@@ -465,11 +450,7 @@ fn slanted(
 
 /// A word's value, in thousandths where it has no decimal point.
 fn thousandths(w: &Word) -> f64 {
-    if w.has_point {
-        w.value
-    } else {
-        w.value / 1000.0
-    }
+    w.value / if w.has_point { 1.0 } else { 1000.0 }
 }
 
 /// Everything about the holes of one cycle block that does not change from hole to hole.
@@ -831,11 +812,6 @@ impl<'a, 's> Drill<'a, 's> {
         }
     }
 
-    /// Out of the hole to `p`: at the `F2=` feed where one applies, else at rapid.
-    fn retract(&mut self, p: DVec3) {
-        self.go(p, false, self.plan.retract_feed);
-    }
-
     /// Taps to `depth` and back out to `out`, stopping and dwelling at each reversal.
     fn tap(&mut self, hole: DVec3, depth: f64, out: f64, forward: bool) {
         self.feed_to(self.level(hole, depth));
@@ -998,7 +974,8 @@ impl<'a, 's> Drill<'a, 's> {
                 if self.plan.tenths == 820 {
                     self.dwell();
                 }
-                self.retract(self.level(hole, clear));
+                // Out at the `F2=` feed where one applies, else at rapid.
+                self.go(self.level(hole, clear), false, self.plan.retract_feed);
             }
         }
     }

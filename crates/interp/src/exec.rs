@@ -50,11 +50,6 @@ pub(crate) enum Request {
 /// A block's requests (most blocks have none).
 pub(crate) type Requests = SmallVec<[Request; 1]>;
 
-/// The requests of a block that stops the run.
-fn stop() -> Requests {
-    Requests::from_elem(Request::Stop, 1)
-}
-
 /// The largest repeat or turn count a word may give (the manuals' 9999).
 pub(crate) const MAX_COUNT: f64 = 9999.0;
 
@@ -86,7 +81,7 @@ pub(crate) fn execute(
         }
         let length_before = st.length_comp.map_or(0.0, |(_, o)| o);
         if !modal_codes(st, words, &actions, source, sink) {
-            return stop();
+            return Requests::from_elem(Request::Stop, 1);
         }
         let axes = axis_words(words, b'X');
         // In a block that runs a canned cycle K is the repeat count, not a length.
@@ -97,7 +92,7 @@ pub(crate) fn execute(
         };
         note_least_increment(st, lengths, words);
         let Some(consumed) = axis_codes(st, block, words, &axes, &actions, source, sink) else {
-            return stop();
+            return Requests::from_elem(Request::Stop, 1);
         };
         tools::follow_length_change(st, length_before);
         let probe = actions.iter().any(|(a, _)| matches!(a, Action::Probe));
@@ -300,14 +295,9 @@ fn note_least_increment(st: &mut State, lengths: &[u8], words: &[Word]) {
         ("0.0001 inch", "inch")
     };
     let read = st.dialect.read(w, Quantity::Length, false, !st.metric);
+    let (letter, value, control) = (w.letter(), w.value, st.dialect.label());
     let message = format!(
-        "`{}{}` has no decimal point: {} reads it in least input increments ({unit}) as {read} {units}; write `{}{}.` for {} {units} (or set `calculator_input = true` under [machine])",
-        w.letter(),
-        w.value,
-        st.dialect.label(),
-        w.letter(),
-        w.value,
-        w.value
+        "`{letter}{value}` has no decimal point: {control} reads it in least input increments ({unit}) as {read} {units}; write `{letter}{value}.` for {value} {units} (or set `calculator_input = true` under [machine])"
     );
     st.note(w.span, "N-LEAST-INCREMENT", message);
 }

@@ -65,8 +65,8 @@ pub(crate) struct Index {
     /// (program, N, block) of every numbered block, sorted: a jump goes to the first.
     labels: Vec<(u32, u32, u32)>,
     /// `WHILE … DOm` / `DOm` block → its `ENDm` block, and back.
-    loop_end: HashMap<usize, usize>,
-    loop_head: HashMap<usize, usize>,
+    pub(crate) loop_end: HashMap<usize, usize>,
+    pub(crate) loop_head: HashMap<usize, usize>,
     /// O-word label → its lines in text order.
     owords: HashMap<LabelKey, Vec<(usize, OKind)>>,
     /// The first block with a program number: the main program's header.
@@ -87,10 +87,8 @@ impl Index {
         for (i, block) in program.blocks.iter().enumerate() {
             let terms = terms(program, block);
             if terms > 0 {
-                index.terms.resize(i + 1, 0);
-                if let Some(t) = index.terms.get_mut(i) {
-                    *t = u32::try_from(terms).unwrap_or(u32::MAX);
-                }
+                index.terms.resize(i, 0);
+                index.terms.push(u32::try_from(terms).unwrap_or(u32::MAX));
             }
             if let Some(number) = block.program() {
                 index.first_program.get_or_insert(i);
@@ -209,16 +207,6 @@ impl Index {
             .get(first)
             .filter(|&&(p, m, _)| p == program && m == n)
             .map(|&(_, _, block)| block as usize)
-    }
-
-    /// The `ENDm` block of the loop whose head is `head`.
-    pub(crate) fn loop_end(&self, head: usize) -> Option<usize> {
-        self.loop_end.get(&head).copied()
-    }
-
-    /// The loop head of the `ENDm` block `end`.
-    pub(crate) fn loop_head(&self, end: usize) -> Option<usize> {
-        self.loop_head.get(&end).copied()
     }
 
     /// The lines of O-word `label`, in text order.

@@ -201,7 +201,7 @@ struct Frame {
 }
 
 /// Interprets a parsed program in bounded steps.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Interpreter {
     pub(crate) st: State,
     pub(crate) vars: Variables,
@@ -217,7 +217,7 @@ pub struct Interpreter {
     motions: u64,
     /// The program zero last reported with `Canon::Origin`.
     origin: Option<DVec3>,
-    finished: bool,
+    pub(crate) finished: bool,
     calls: Vec<Frame>,
     /// Remaining passes of LinuxCNC `repeat` loops, by the block of their `repeat` line.
     repeats: HashMap<usize, u64>,
@@ -231,8 +231,8 @@ pub struct Interpreter {
     jumped: bool,
     /// The first block of the piece not run yet (running piece by piece).
     unvisited: usize,
-    /// Whether plain motion blocks take the short path (see [`Interpreter::general_path_only`]).
-    shortcut: bool,
+    /// Whether every block takes the general path (see [`Interpreter::general_path_only`]).
+    general_only: bool,
     /// Whether `origin` is the current program zero (only short-path blocks keep it).
     origin_current: bool,
     /// The short path's data (see `exec::Shortcut`), and whether it is current.
@@ -246,25 +246,7 @@ impl Interpreter {
         Interpreter {
             st: State::new(setup, dialect),
             vars: Variables::new(dialect),
-            index: None,
-            next_block: 0,
-            executed: 0,
-            work: 0,
-            back_jump: None,
-            motions: 0,
-            origin: None,
-            finished: false,
-            calls: Vec::new(),
-            repeats: HashMap::new(),
-            shortcut: true,
-            origin_current: false,
-            short: None,
-            short_current: false,
-            piecewise: false,
-            block_base: 0,
-            program_seen: false,
-            jumped: false,
-            unvisited: 0,
+            ..Interpreter::default()
         }
     }
 
@@ -288,12 +270,8 @@ impl Interpreter {
         {}
         if self.finished && !self.jumped {
             // The blocks after the end were not run; they still decide, as before the piece ran.
-            for block in program.blocks.get(self.unvisited..).unwrap_or_default() {
-                if self.needs_whole(block) {
-                    self.jumped = true;
-                    break;
-                }
-            }
+            let rest = program.blocks.get(self.unvisited..).unwrap_or_default();
+            self.jumped = rest.iter().any(|block| self.needs_whole(block));
         }
         self.block_base += program.blocks.len();
         if self.jumped {
@@ -337,7 +315,7 @@ impl Interpreter {
 
     /// Runs every block through the general path, to check the short path gives the same.
     pub fn general_path_only(&mut self) {
-        self.shortcut = false;
+        self.general_only = true;
     }
 
     /// Takes the diagnostics so far: each code and place once with its count (at most `MAX_KEPT`).
@@ -489,9 +467,7 @@ impl Interpreter {
                 .blocks
                 .get(at)
                 .map_or(self.st.block_span, |b| b.span);
-            self.st
-                .diagnostics
-                .push(Diagnostic::error(span, "E-COORDINATE-RANGE", problem));
+            self.st.error(span, "E-COORDINATE-RANGE", problem);
             // Nothing more is passed on.
             counted.out_of_range = Some((source, String::new()));
             self.finished = true;
@@ -554,7 +530,7 @@ impl Interpreter {
     /// Runs the plain motion blocks from the next one through the short path; how many ran.
     fn short_run(&mut self, program: &Program, left: usize, sink: &mut MotionCounter<'_>) -> usize {
         // An alarm raised by the block before is reported by the block loop, as is a full sink.
-        if !self.shortcut || self.st.alarm.is_some() || sink.full() {
+        if self.general_only || self.st.alarm.is_some() || sink.full() {
             return 0;
         }
         if !self.short_current {
@@ -633,15 +609,19 @@ impl Interpreter {
 
     /// The text ran out: inside a call that is an implicit return; otherwise the end.
     fn end_of_text(&mut self) {
-        match self.calls.pop() {
-            Some(frame) => {
-                if let CallKind::Macro | CallKind::OWord(_) = frame.kind {
-                    self.vars.pop_frame();
-                }
-                self.next_block = frame.return_to;
-            }
+        match self.pop_call() {
+            Some(frame) => self.next_block = frame.return_to,
             None => self.finished = true,
         }
+    }
+
+    /// Leaves the innermost call, and its level of local variables where it has one.
+    fn pop_call(&mut self) -> Option<Frame> {
+        let frame = self.calls.pop()?;
+        if let CallKind::Macro | CallKind::OWord(_) = frame.kind {
+            self.vars.pop_frame();
+        }
+        Some(frame)
     }
 
     /// Runs one block: reads its words, makes its assignments, runs its codes and statements.
@@ -662,9 +642,7 @@ impl Interpreter {
                 .is_some_and(|i| i.starts_other_program(at))
         {
             let message = "the main program ends here, where the next program starts (it runs only when called)";
-            self.st
-                .diagnostics
-                .push(Diagnostic::note(block.span, "N-PROGRAM-END", message));
+            self.st.note(block.span, "N-PROGRAM-END", message);
             return Flow::Stop;
         }
         let words = match self.resolve_words(program, block) {
@@ -729,7 +707,7 @@ impl Interpreter {
                 args,
             } => self.call_macro(at, block, number, repeats, &args),
             Request::ModalMacro => match self.st.modal_macro.clone() {
-                Some(call) if flow == Flow::Next && !self.in_modal_macro() => {
+                Some(call) if flow == Flow::Next && !self.calls.iter().any(|f| f.modal) => {
                     // Like G65, marked so that the macro's own moves do not call it again.
                     let called = self.call_macro(at, block, call.number, call.repeats, &call.args);
                     if called.as_ref().is_ok_and(|f| *f != Flow::Next)
@@ -767,32 +745,29 @@ impl Interpreter {
                 out.push(*word);
                 continue;
             };
-            match macros::eval(program, expr, &self.vars, &self.st) {
-                Ok(Some(value)) => {
-                    let mut w = *word;
-                    w.value = value;
-                    if w.letter == b'G' || w.letter == b'M' {
-                        // A code from a variable is checked like a written one.
-                        let code = Code::from_value(w.letter, value);
-                        if code
-                            .and_then(|c| swarf_syntax::codes::lookup(self.st.dialect, c))
-                            .is_none()
-                        {
-                            let message = format!(
-                                "{}{value} (from a variable) is not a code of {}",
-                                w.letter(),
-                                self.st.dialect.label()
-                            );
-                            return Err(Diagnostic::error(word.span, "E-UNKNOWN-CODE", message));
-                        }
-                        // Codes are read as plain numbers from here on.
-                        w.expr = None;
-                    }
-                    out.push(w);
+            let Some(value) = self.eval(program, expr)? else {
+                continue;
+            };
+            let mut w = *word;
+            w.value = value;
+            if w.letter == b'G' || w.letter == b'M' {
+                // A code from a variable is checked like a written one.
+                let code = Code::from_value(w.letter, value);
+                if code
+                    .and_then(|c| swarf_syntax::codes::lookup(self.st.dialect, c))
+                    .is_none()
+                {
+                    let message = format!(
+                        "{}{value} (from a variable) is not a code of {}",
+                        w.letter(),
+                        self.st.dialect.label()
+                    );
+                    return Err(Diagnostic::error(word.span, "E-UNKNOWN-CODE", message));
                 }
-                Ok(None) => {}
-                Err(e) => return Err(e),
+                // Codes are read as plain numbers from here on.
+                w.expr = None;
             }
+            out.push(w);
         }
         Ok(Cow::Owned(out))
     }
@@ -801,8 +776,9 @@ impl Interpreter {
         macros::eval(program, id, &self.vars, &self.st)
     }
 
+    /// A condition (`IF`, `WHILE`, `if`, `while`): nonzero is true, vacant false.
     fn condition(&self, program: &Program, id: ExprId) -> Result<bool, Diagnostic> {
-        macros::eval_condition(program, id, &self.vars, &self.st)
+        Ok(self.eval(program, id)?.is_some_and(|v| v != 0.0))
     }
 
     /// The block a `GOTO n` (or `M99 Pn`) in block `at` goes to.
@@ -857,7 +833,8 @@ impl Interpreter {
                 match &**then {
                     Statement::Goto { .. } => self.control(program, at, block, then),
                     Statement::Assign { target, value } => {
-                        macros::assign(program, *target, *value, &mut self.vars, &mut self.st)?;
+                        macros::prepare_assign(program, *target, *value, &self.vars, &self.st)?
+                            .apply(&mut self.vars, &mut self.st)?;
                         Ok(Flow::Next)
                     }
                     _ => Ok(Flow::Next),
@@ -871,15 +848,13 @@ impl Interpreter {
                 if holds {
                     return Ok(Flow::Next);
                 }
-                match index.loop_end(at) {
-                    Some(end) => Ok(Flow::Jump(end + 1)),
-                    None => Ok(Flow::Stop),
-                }
+                let end = index.loop_end.get(&at);
+                Ok(end.map_or(Flow::Stop, |end| Flow::Jump(end + 1)))
             }
-            Statement::End { .. } => match index.loop_head(at) {
-                Some(head) => Ok(Flow::Jump(head)),
-                None => Ok(Flow::Stop),
-            },
+            Statement::End { .. } => Ok(index
+                .loop_head
+                .get(&at)
+                .map_or(Flow::Stop, |h| Flow::Jump(*h))),
             Statement::OWord { label, kind } => self.oword(program, at, block, label, kind),
         }
     }
@@ -912,7 +887,10 @@ impl Interpreter {
         kind: &OWord,
     ) -> Result<Flow, Diagnostic> {
         let key = self.label_key(program, label)?;
-        let shown = show_label(&key);
+        let shown = match &key {
+            LabelKey::Number(n) => format!("o{n}"),
+            LabelKey::Name(s) => format!("o<{}>", swarf_syntax::excerpt(s)),
+        };
         // A copy of the index's handle, so the O-word lines searched count as work.
         let Some(index) = self.index.clone() else {
             return Ok(self.without_index(at));
@@ -925,12 +903,21 @@ impl Interpreter {
         let after = |work: &mut u64, kinds: &[OKind]| index.near_oword(&key, at, true, kinds, work);
         let before =
             |work: &mut u64, kinds: &[OKind]| index.near_oword(&key, at, false, kinds, work);
+        // A jump past the next such line, or back to the last one; `what` names it when missing.
+        let past = |work: &mut u64, kinds: &[OKind], what: &str| {
+            after(work, kinds)
+                .map(|l| Flow::Jump(l.0 + 1))
+                .ok_or_else(|| missing(what))
+        };
+        let back = |work: &mut u64, kinds: &[OKind], what: &str| {
+            before(work, kinds)
+                .map(|l| Flow::Jump(l.0))
+                .ok_or_else(|| missing(what))
+        };
         match kind {
             OWord::Sub => {
                 // Reached in sequence: a definition is skipped, not run.
-                let end =
-                    after(&mut self.work, &[OKind::EndSub]).ok_or_else(|| missing("endsub"))?;
-                Ok(Flow::Jump(end.0 + 1))
+                past(&mut self.work, &[OKind::EndSub], "endsub")
             }
             OWord::EndSub(value) | OWord::Return(value) => {
                 if let Some(v) = value {
@@ -939,9 +926,7 @@ impl Interpreter {
                 }
                 match self.calls.last() {
                     Some(frame) if frame.kind == CallKind::OWord(key.clone()) => {
-                        let frame = self.calls.pop().map_or(at + 1, |f| f.return_to);
-                        self.vars.pop_frame();
-                        Ok(Flow::Jump(frame))
+                        Ok(Flow::Jump(self.pop_call().map_or(at + 1, |f| f.return_to)))
                     }
                     _ if matches!(kind, OWord::EndSub(_)) => Ok(Flow::Next),
                     _ => {
@@ -999,8 +984,7 @@ impl Interpreter {
             }
             OWord::Else => {
                 // Reached from a branch that ran: skip to the end.
-                let end = after(&mut self.work, &[OKind::EndIf]).ok_or_else(|| missing("endif"))?;
-                Ok(Flow::Jump(end.0 + 1))
+                past(&mut self.work, &[OKind::EndIf], "endif")
             }
             OWord::EndIf => Ok(Flow::Next),
             OWord::While(cond) => {
@@ -1018,47 +1002,30 @@ impl Interpreter {
                 if holds {
                     return Ok(Flow::Next);
                 }
-                let end =
-                    after(&mut self.work, &[OKind::EndWhile]).ok_or_else(|| missing("endwhile"))?;
-                Ok(Flow::Jump(end.0 + 1))
+                past(&mut self.work, &[OKind::EndWhile], "endwhile")
             }
-            OWord::EndWhile => {
-                let head =
-                    before(&mut self.work, &[OKind::While]).ok_or_else(|| missing("while"))?;
-                Ok(Flow::Jump(head.0))
-            }
+            OWord::EndWhile => back(&mut self.work, &[OKind::While], "while"),
             OWord::Do => Ok(Flow::Next),
             OWord::Repeat(count) => {
-                let remaining = if let Some(n) = self.repeats.get(&at) {
-                    *n
-                } else {
-                    let n = self.eval(program, *count)?.unwrap_or(0.0).max(0.0).round();
-                    n as u64
+                let remaining = match self.repeats.get(&at) {
+                    Some(n) => *n,
+                    None => self.eval(program, *count)?.unwrap_or(0.0).max(0.0).round() as u64,
                 };
                 if remaining == 0 {
                     self.repeats.remove(&at);
-                    let end = after(&mut self.work, &[OKind::EndRepeat])
-                        .ok_or_else(|| missing("endrepeat"))?;
-                    return Ok(Flow::Jump(end.0 + 1));
+                    return past(&mut self.work, &[OKind::EndRepeat], "endrepeat");
                 }
                 self.repeats.insert(at, remaining - 1);
                 Ok(Flow::Next)
             }
-            OWord::EndRepeat => {
-                let head =
-                    before(&mut self.work, &[OKind::Repeat]).ok_or_else(|| missing("repeat"))?;
-                Ok(Flow::Jump(head.0))
-            }
+            OWord::EndRepeat => back(&mut self.work, &[OKind::Repeat], "repeat"),
             OWord::Break => {
-                let end = after(
-                    &mut self.work,
-                    &[OKind::EndWhile, OKind::EndRepeat, OKind::While],
-                )
-                .ok_or_else(|| missing("endwhile"))?;
+                let ends = [OKind::EndWhile, OKind::EndRepeat, OKind::While];
+                let end = past(&mut self.work, &ends, "endwhile")?;
                 if let Some((head, _)) = before(&mut self.work, &[OKind::Repeat]) {
                     self.repeats.remove(&head);
                 }
-                Ok(Flow::Jump(end.0 + 1))
+                Ok(end)
             }
             OWord::Continue => {
                 let head = before(&mut self.work, &[OKind::While, OKind::Repeat, OKind::Do])
@@ -1114,7 +1081,7 @@ impl Interpreter {
                 .push(crate::exec::count_range(w, "repeats"));
         }
         let l = l_word.map(|w| w.value);
-        let (number, mut count) = match (p, l) {
+        let (number, count) = match (p, l) {
             (Some(p), Some(l)) => (p, l),
             // Fanuc: more than four digits in P are the repeat count then the program number.
             (Some(p), None) if p >= 10_000.0 && self.st.dialect != Dialect::LinuxCnc => {
@@ -1123,10 +1090,7 @@ impl Interpreter {
             (Some(p), None) => (p, 1.0),
             (None, l) => (f64::NAN, l.unwrap_or(1.0)),
         };
-        if count < 1.0 {
-            count = 0.0;
-        }
-        let repeats = count.min(9999.0) as u32;
+        let repeats = count.clamp(0.0, 9999.0) as u32;
         if self.index.is_none() && self.piecewise {
             return Ok(self.without_index(at));
         }
@@ -1156,11 +1120,6 @@ impl Interpreter {
         }
         self.push_call(block, CallKind::Subprogram, at + 1, start, repeats)?;
         Ok(Flow::Jump(start))
-    }
-
-    /// Whether the G66 modal macro is running (a move inside it does not call it again).
-    fn in_modal_macro(&self) -> bool {
-        self.calls.iter().any(|f| f.modal)
     }
 
     /// `G65 P… L… args`: a macro call with local variables from the arguments.
@@ -1208,19 +1167,14 @@ impl Interpreter {
             let message = format!(
                 "M99 in the main program: the control runs it again {from}, over and over until it is stopped; one pass is run here. (A subprogram opened on its own returns here.)"
             );
-            self.st
-                .diagnostics
-                .push(Diagnostic::note(block.span, "N-M99-MAIN-REPEATS", message));
+            self.st.note(block.span, "N-M99-MAIN-REPEATS", message);
             return Ok(Flow::Stop);
         };
         if frame.repeats_left > 0 {
             frame.repeats_left -= 1;
             return Ok(Flow::Jump(frame.start));
         }
-        let frame = self.calls.pop().ok_or_else(|| no_index(block))?;
-        if let CallKind::Macro | CallKind::OWord(_) = frame.kind {
-            self.vars.pop_frame();
-        }
+        let frame = self.pop_call().ok_or_else(|| no_index(block))?;
         match target {
             Some(p) => self
                 .goto(frame.return_to.saturating_sub(1), p.value, p.span)
@@ -1276,13 +1230,6 @@ fn not_found(index: &Index, block: &Block, what: &str, number: f64) -> Diagnosti
         ),
     };
     Diagnostic::error(block.span, "E-SUBPROGRAM", message)
-}
-
-fn show_label(key: &LabelKey) -> String {
-    match key {
-        LabelKey::Number(n) => format!("o{n}"),
-        LabelKey::Name(s) => format!("o<{}>", swarf_syntax::excerpt(s)),
-    }
 }
 
 /// Runs a whole program with `setup` and returns the execution diagnostics.

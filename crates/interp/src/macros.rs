@@ -9,15 +9,6 @@ use swarf_syntax::{BinOp, Diagnostic, Dialect, Expr, ExprId, ExprNode, Func, Pro
 /// A macro value: `None` is Fanuc's vacant ("null", #0), distinct from 0.
 pub type Value = Option<f64>;
 
-/// Diagnostic code for a variable that does not exist, is read-only or is badly numbered.
-pub const CODE_VARIABLE: &str = "E-MACRO-VARIABLE";
-/// Diagnostic code for a division (or `MOD`) by zero.
-pub const CODE_DIVIDE: &str = "E-MACRO-DIVIDE";
-/// Diagnostic code for a function argument outside its domain (`SQRT[-1]`, `ASIN[2]`, `LN[0]`).
-pub const CODE_DOMAIN: &str = "E-MACRO-DOMAIN";
-/// Diagnostic code for any other value the control rejects (overflow, `BIN` of a non-BCD value).
-pub const CODE_VALUE: &str = "E-MACRO-VALUE";
-
 /// The system variables (#1000+, #2001…, #3000, #4001…, #5001…, #5221…), which the machine gives;
 /// asked first for every number, so it may claim numbers in LinuxCNC's parameter range.
 pub trait SystemVariables {
@@ -71,6 +62,13 @@ pub struct Variables {
     store: Vec<Value>,
     /// LinuxCNC global named parameters (`#<_name>`).
     globals: HashMap<Box<str>, f64>,
+}
+
+/// An empty store for the default dialect.
+impl Default for Variables {
+    fn default() -> Self {
+        Variables::new(Dialect::default())
+    }
 }
 
 /// Equal when every variable reads the same, however far each store has grown.
@@ -195,25 +193,23 @@ impl Variables {
         } else {
             &mut self.frame_mut().named
         };
-        match v {
-            Some(v) => {
-                map.insert(name.into_owned().into_boxed_str(), v);
-            }
-            None => {
-                map.remove(name.as_ref());
-            }
+        if let Some(v) = v {
+            map.insert(name.into_owned().into_boxed_str(), v);
+        } else {
+            map.remove(name.as_ref());
         }
     }
 
     /// Reads `#<name>` as the program does: a name never assigned is an error.
     pub fn read_named(&self, name: &str) -> Result<Value, String> {
-        match self.get_named(name) {
-            Some(v) => Ok(Some(v)),
-            None => Err(format!(
+        let name = lower(name);
+        let undefined = || {
+            format!(
                 "named parameter #<{}> is not defined",
-                swarf_syntax::excerpt(&lower(name))
-            )),
-        }
+                swarf_syntax::excerpt(&name)
+            )
+        };
+        self.get_named(&name).map(Some).ok_or_else(undefined)
     }
 
     fn frame(&self) -> &Frame {
@@ -313,16 +309,6 @@ pub fn eval(
     Evaluator { program, vars, sys }.run(id)
 }
 
-/// Evaluates a condition (`IF`, `WHILE`, `if`, `while`): nonzero is true, vacant false.
-pub fn eval_condition(
-    program: &Program,
-    id: ExprId,
-    vars: &Variables,
-    sys: &dyn SystemVariables,
-) -> Result<bool, Diagnostic> {
-    Ok(eval(program, id, vars, sys)?.is_some_and(|v| v != 0.0))
-}
-
 /// The variable an assignment writes, once its number is computed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Target {
@@ -354,7 +340,7 @@ impl Assignment {
         match &self.target {
             Target::Number(n) => vars
                 .set(*n, self.value, sys)
-                .map_err(|m| Diagnostic::error(self.span, CODE_VARIABLE, m)),
+                .map_err(|m| Diagnostic::error(self.span, "E-MACRO-VARIABLE", m)),
             Target::Named(name) => {
                 vars.set_named(name, self.value);
                 Ok(())
@@ -378,7 +364,7 @@ pub fn prepare_assign(
         Expr::Named(name) => Target::Named(name.clone()),
         _ => {
             let message = "only a variable can be assigned";
-            return Err(Diagnostic::error(span, CODE_VARIABLE, message));
+            return Err(Diagnostic::error(span, "E-MACRO-VARIABLE", message));
         }
     };
     let value = eval(program, value, vars, sys)?;
@@ -389,21 +375,10 @@ pub fn prepare_assign(
     })
 }
 
-/// Executes `#target = value` (a `Var` or `Named` target) at full precision.
-pub fn assign(
-    program: &Program,
-    target: ExprId,
-    value: ExprId,
-    vars: &mut Variables,
-    sys: &mut dyn SystemVariables,
-) -> Result<(), Diagnostic> {
-    prepare_assign(program, target, value, vars, sys)?.apply(vars, sys)
-}
-
 fn lookup(program: &Program, id: ExprId) -> Result<&ExprNode, Diagnostic> {
     program.expr(id).ok_or_else(|| {
         let message = "internal error: the expression is not in this program";
-        Diagnostic::error(Span::default(), CODE_VALUE, message)
+        Diagnostic::error(Span::default(), "E-MACRO-VALUE", message)
     })
 }
 
@@ -411,7 +386,7 @@ fn lookup(program: &Program, id: ExprId) -> Result<&ExprNode, Diagnostic> {
 type Fault = (&'static str, String);
 
 fn divide() -> Fault {
-    (CODE_DIVIDE, "division by zero".to_string())
+    ("E-MACRO-DIVIDE", "division by zero".to_string())
 }
 
 /// One unit of work of the explicit-stack evaluation.
@@ -435,7 +410,7 @@ impl Evaluator<'_> {
         let node = lookup(self.program, root)?;
         match &node.expr {
             Expr::Num(v) => return Ok(Some(*v)),
-            Expr::Var(index) if let Expr::Num(n) = node_expr(self.program, *index)? => {
+            Expr::Var(index) if let Expr::Num(n) = &lookup(self.program, *index)?.expr => {
                 return self.variable(*n, node.span);
             }
             _ => {}
@@ -461,7 +436,11 @@ impl Evaluator<'_> {
                                 }
                                 _ => {
                                     let message = "`EXISTS` takes a parameter: `EXISTS[#<name>]`";
-                                    return Err(Diagnostic::error(node.span, CODE_VALUE, message));
+                                    return Err(Diagnostic::error(
+                                        node.span,
+                                        "E-MACRO-VALUE",
+                                        message,
+                                    ));
                                 }
                             }
                         }
@@ -515,28 +494,23 @@ impl Evaluator<'_> {
             }
         }
         let result = values.pop().ok_or_else(|| internal(node.span))?;
-        if values.is_empty() {
-            Ok(result)
-        } else {
-            Err(internal(node.span))
-        }
+        values
+            .is_empty()
+            .then_some(result)
+            .ok_or_else(|| internal(node.span))
     }
 
     fn variable(&self, n: f64, span: Span) -> Result<Value, Diagnostic> {
         self.vars
             .get(n, self.sys)
-            .map_err(|m| Diagnostic::error(span, CODE_VARIABLE, m))
+            .map_err(|m| Diagnostic::error(span, "E-MACRO-VARIABLE", m))
     }
 
     fn named(&self, name: &str, span: Span) -> Result<Value, Diagnostic> {
         self.vars
             .read_named(name)
-            .map_err(|m| Diagnostic::error(span, CODE_VARIABLE, m))
+            .map_err(|m| Diagnostic::error(span, "E-MACRO-VARIABLE", m))
     }
-}
-
-fn node_expr(program: &Program, id: ExprId) -> Result<&Expr, Diagnostic> {
-    lookup(program, id).map(|n| &n.expr)
 }
 
 fn pop(values: &mut Vec<Value>, span: Span) -> Result<Value, Diagnostic> {
@@ -545,7 +519,7 @@ fn pop(values: &mut Vec<Value>, span: Span) -> Result<Value, Diagnostic> {
 
 fn internal(span: Span) -> Diagnostic {
     let message = "internal error: malformed expression tree";
-    Diagnostic::error(span, CODE_VALUE, message)
+    Diagnostic::error(span, "E-MACRO-VALUE", message)
 }
 
 /// A vacant operand counts as 0 in arithmetic and functions.
@@ -562,7 +536,7 @@ fn finite(v: f64, span: Span) -> Result<f64, Diagnostic> {
         Ok(v)
     } else {
         let message = "the result is too large (overflow)";
-        Err(Diagnostic::error(span, CODE_VALUE, message))
+        Err(Diagnostic::error(span, "E-MACRO-VALUE", message))
     }
 }
 
@@ -633,7 +607,7 @@ fn bits(x: f64, op: BinOp) -> Result<i64, Fault> {
             "{} works on integers up to 2^53; {x} is too large",
             op.symbol()
         );
-        return Err((CODE_VALUE, message));
+        return Err(("E-MACRO-VALUE", message));
     }
     Ok(r as i64)
 }
@@ -643,7 +617,7 @@ fn power(x: f64, y: f64) -> Result<f64, Fault> {
     if x < 0.0 && y.fract() != 0.0 {
         let message =
             format!("a negative number ({x}) cannot be raised to a fractional power ({y})");
-        return Err((CODE_DOMAIN, message));
+        return Err(("E-MACRO-DOMAIN", message));
     }
     if x == 0.0 && y < 0.0 {
         return Err(divide());
@@ -653,15 +627,11 @@ fn power(x: f64, y: f64) -> Result<f64, Fault> {
 
 /// Sine of `deg` degrees, exact at multiples of 90° (`COS[90]` is 0, not 6e-17).
 fn sin_deg(deg: f64) -> f64 {
-    let r = deg.rem_euclid(360.0);
-    if r == 0.0 || r == 180.0 {
-        0.0
-    } else if r == 90.0 {
-        1.0
-    } else if r == 270.0 {
-        -1.0
-    } else {
-        r.to_radians().sin()
+    match deg.rem_euclid(360.0) {
+        0.0 | 180.0 => 0.0,
+        90.0 => 1.0,
+        270.0 => -1.0,
+        r => r.to_radians().sin(),
     }
 }
 
@@ -685,7 +655,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         Func::Tan => {
             let c = cos_deg(x);
             if c == 0.0 {
-                return Err((CODE_DOMAIN, format!("TAN[{x}] is infinite")));
+                return Err(("E-MACRO-DOMAIN", format!("TAN[{x}] is infinite")));
             }
             sin_deg(x) / c
         }
@@ -695,7 +665,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
                     "{}[{x}] is undefined: the argument must be between -1 and 1",
                     func.name()
                 );
-                return Err((CODE_DOMAIN, message));
+                return Err(("E-MACRO-DOMAIN", message));
             }
             if func == Func::Acos {
                 x.acos().to_degrees()
@@ -715,7 +685,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         }
         Func::Sqrt => {
             if x < 0.0 {
-                return Err((CODE_DOMAIN, format!("SQRT of a negative number ({x})")));
+                return Err(("E-MACRO-DOMAIN", format!("SQRT of a negative number ({x})")));
             }
             x.sqrt()
         }
@@ -733,7 +703,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
         Func::Ln => {
             if x <= 0.0 {
                 let message = format!("LN of zero or a negative number ({x})");
-                return Err((CODE_DOMAIN, message));
+                return Err(("E-MACRO-DOMAIN", message));
             }
             x.ln()
         }
@@ -751,7 +721,7 @@ fn whole(x: f64, func: &str, max: f64) -> Result<u64, Fault> {
     let r = x.round();
     if (x - r).abs() > 1e-6 || r < 0.0 || r > max {
         let message = format!("{func} needs a whole number from 0 to {max}, not {x}");
-        return Err((CODE_VALUE, message));
+        return Err(("E-MACRO-VALUE", message));
     }
     Ok(r as u64)
 }
@@ -764,7 +734,7 @@ fn bin(x: f64) -> Result<f64, Fault> {
         let digit = v & 0xF;
         if digit > 9 {
             let message = format!("BIN[{x}] is not a BCD value (a 4-bit group is over 9)");
-            return Err((CODE_VALUE, message));
+            return Err(("E-MACRO-VALUE", message));
         }
         out += digit * scale;
         scale *= 10;
@@ -790,6 +760,25 @@ fn bcd(x: f64) -> Result<f64, Fault> {
 mod tests {
     use super::*;
     use swarf_syntax::{Statement, parse};
+
+    fn eval_condition(
+        program: &Program,
+        id: ExprId,
+        vars: &Variables,
+        sys: &dyn SystemVariables,
+    ) -> Result<bool, Diagnostic> {
+        Ok(eval(program, id, vars, sys)?.is_some_and(|v| v != 0.0))
+    }
+
+    fn assign(
+        program: &Program,
+        target: ExprId,
+        value: ExprId,
+        vars: &mut Variables,
+        sys: &mut dyn SystemVariables,
+    ) -> Result<(), Diagnostic> {
+        prepare_assign(program, target, value, vars, sys)?.apply(vars, sys)
+    }
 
     /// System variables for tests: #1000–#1015 inputs (read-only), #2001 tool offset
     /// (writable), #3000 alarm (write-only: refuses), #4001 modal G group 1, #5221 G54 X; and
@@ -1136,12 +1125,12 @@ mod tests {
     #[test]
     fn errors_carry_the_node_span() {
         let (code, message, shown) = error("#1 = 2 + 1 / [#2 - #2]", Dialect::Fanuc);
-        assert_eq!(code, CODE_DIVIDE);
+        assert_eq!(code, "E-MACRO-DIVIDE");
         assert_eq!(message, "division by zero");
         assert_eq!(shown, "1 / [#2 - #2]");
 
         let (code, _, shown) = error("#1 = 5 MOD 0", Dialect::Fanuc);
-        assert_eq!((code, shown.as_str()), (CODE_DIVIDE, "5 MOD 0"));
+        assert_eq!((code, shown.as_str()), ("E-MACRO-DIVIDE", "5 MOD 0"));
 
         for (text, shown) in [
             ("#1 = 1 + SQRT[-4]", "SQRT[-4]"),
@@ -1153,10 +1142,10 @@ mod tests {
             ("#1 = POW[-8, 0.5]", "POW[-8, 0.5]"),
         ] {
             let (code, _, got) = error(text, Dialect::Fanuc);
-            assert_eq!((code, got.as_str()), (CODE_DOMAIN, shown), "{text}");
+            assert_eq!((code, got.as_str()), ("E-MACRO-DOMAIN", shown), "{text}");
         }
         let (code, _, shown) = error("#31 = [-8 ** 0.5]", Dialect::LinuxCnc);
-        assert_eq!((code, shown.as_str()), (CODE_DOMAIN, "-8 ** 0.5"));
+        assert_eq!((code, shown.as_str()), ("E-MACRO-DOMAIN", "-8 ** 0.5"));
 
         for (text, shown) in [
             ("#1 = BIN[10]", "BIN[10]"),
@@ -1165,14 +1154,14 @@ mod tests {
             ("#1 = EXP[1000]", "EXP[1000]"),
         ] {
             let (code, _, got) = error(text, Dialect::Fanuc);
-            assert_eq!((code, got.as_str()), (CODE_VALUE, shown), "{text}");
+            assert_eq!((code, got.as_str()), ("E-MACRO-VALUE", shown), "{text}");
         }
     }
 
     #[test]
     fn variable_errors() {
         let (code, message, shown) = error("#1 = 2 * #50", Dialect::Fanuc);
-        assert_eq!(code, CODE_VARIABLE);
+        assert_eq!(code, "E-MACRO-VARIABLE");
         assert_eq!(message, "variable #50 does not exist on Fanuc 0i-M");
         assert_eq!(shown, "#50");
 
@@ -1181,7 +1170,7 @@ mod tests {
         assert_eq!(shown, "#250");
 
         let (code, message, shown) = error("#1 = #[1.5]", Dialect::Fanuc);
-        assert_eq!(code, CODE_VARIABLE);
+        assert_eq!(code, "E-MACRO-VARIABLE");
         assert!(message.contains("whole number"), "{message}");
         assert_eq!(shown, "#[1.5]");
 
@@ -1189,7 +1178,7 @@ mod tests {
         assert!(message.contains("negative"), "{message}");
 
         let (code, message, shown) = error("#0 = 1", Dialect::Fanuc);
-        assert_eq!(code, CODE_VARIABLE);
+        assert_eq!(code, "E-MACRO-VARIABLE");
         assert!(message.contains("#0"), "{message}");
         assert_eq!(shown, "#0");
 
@@ -1330,7 +1319,7 @@ mod tests {
         assert_eq!(sys.values.get(&2001), Some(&Some(0.5)));
 
         let err = exec("#3000 = 12", Dialect::Fanuc, &mut vars, &mut sys).unwrap_err();
-        assert_eq!(err.0.code, CODE_VARIABLE);
+        assert_eq!(err.0.code, "E-MACRO-VARIABLE");
         assert_eq!(err.0.message, "alarm 12");
         assert_eq!(err.1, "#3000");
         let err = exec("#1000 = 1", Dialect::Fanuc, &mut vars, &mut sys).unwrap_err();
@@ -1382,7 +1371,7 @@ mod tests {
         assert_eq!(vars.get(31.0, &sys).unwrap(), Some(5.0));
 
         let (code, message, shown) = error("#1 = #6000", Dialect::LinuxCnc);
-        assert_eq!(code, CODE_VARIABLE);
+        assert_eq!(code, "E-MACRO-VARIABLE");
         assert_eq!(message, "variable #6000 does not exist on LinuxCNC");
         assert_eq!(shown, "#6000");
         let (_, message, _) = error("#1 = #0", Dialect::LinuxCnc);
@@ -1417,7 +1406,7 @@ mod tests {
         // A call level sees the globals but not the caller's locals.
         vars.push_frame(&[]);
         let err = exec("#1 = #<depth>", Dialect::LinuxCnc, &mut vars, &mut sys).unwrap_err();
-        assert_eq!(err.0.code, CODE_VARIABLE);
+        assert_eq!(err.0.code, "E-MACRO-VARIABLE");
         assert_eq!(err.0.message, "named parameter #<depth> is not defined");
         assert_eq!(err.1, "#<depth>");
         exec(

@@ -8,7 +8,7 @@
 //! the next incremental move starts there.
 
 use glam::DVec3;
-use swarf_syntax::{Block, Diagnostic, Dialect, Word, WordForm};
+use swarf_syntax::{Block, Dialect, Word, WordForm};
 
 use crate::state::{State, plane_axes};
 
@@ -35,26 +35,21 @@ fn radius(st: &mut State, block: &Block, code: &str) -> Option<f64> {
     if let Some(r) = st.setup.registers.get(&d) {
         Some(r.radius + r.radius_wear)
     } else {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-OFFSET-REGISTER",
-            format!("{code} needs a D register with the offset (D{d} is not in the setup); the move is not offset"),
-        ));
-        None
+        let message = format!(
+            "{code} needs a D register with the offset (D{d} is not in the setup); the move is not offset"
+        );
+        st.fail(block.span, "E-OFFSET-REGISTER", message)
     }
 }
 
 /// Whether G41/G42 is active, which the offsets may not run with (COR-082).
 fn refused_under_compensation(st: &mut State, block: &Block, code: &str) -> bool {
-    if matches!(st.cutter_comp, 410 | 420) {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-POSITION-OFFSET",
-            format!("{code} cannot run under G41/G42 (COR-082); the move is not offset"),
-        ));
-        return true;
+    let refused = matches!(st.cutter_comp, 410 | 420);
+    if refused {
+        let message = format!("{code} cannot run under G41/G42 (COR-082); the move is not offset");
+        st.error(block.span, "E-POSITION-OFFSET", message);
     }
-    false
+    refused
 }
 
 /// The straight move's target `p` (program frame) with the block's position offset applied to
@@ -83,11 +78,7 @@ pub(crate) fn offset_line(
             travel.signum()
         } else if !st.absolute {
             // A zero under G91: its written sign is the direction.
-            if w.value.is_sign_negative() {
-                -1.0
-            } else {
-                1.0
-            }
+            1f64.copysign(w.value)
         } else {
             0.0
         };
@@ -119,22 +110,14 @@ pub(crate) fn offset_arc(
     let start = st.program_pos;
     let a0 = (start[v] - center[v]).atan2(start[u] - center[u]);
     let a1 = (end[v] - center[v]).atan2(end[u] - center[u]);
-    let mut sweep = (a1 - a0).to_degrees();
-    if ccw {
-        sweep = sweep.rem_euclid(360.0);
-    } else {
-        sweep = (-sweep).rem_euclid(360.0);
-    }
+    let turn = (a1 - a0).to_degrees();
+    let sweep = if ccw { turn } else { -turn }.rem_euclid(360.0);
     let quarter = (sweep - 90.0).abs() < 1e-6 || (sweep - 270.0).abs() < 1e-6;
     if by_radius || !quarter {
-        st.diagnostics.push(Diagnostic::error(
-            block.span,
-            "E-POSITION-OFFSET",
-            format!(
-                "under {code} an arc must be 90° or 270° with its centre in I/J/K (COR-081); this block is not run"
-            ),
-        ));
-        return None;
+        let message = format!(
+            "under {code} an arc must be 90° or 270° with its centre in I/J/K (COR-081); this block is not run"
+        );
+        return st.fail(block.span, "E-POSITION-OFFSET", message);
     }
     let r = radius(st, block, code)?;
     let mut rel = end - center;

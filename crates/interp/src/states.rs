@@ -96,7 +96,6 @@ pub struct StatesRun {
     states: States,
     /// Distinct blocks reached so far (for progress).
     reached: usize,
-    finished: bool,
 }
 
 impl StatesRun {
@@ -109,7 +108,6 @@ impl StatesRun {
                 checkpoints: Vec::new(),
             },
             reached: 0,
-            finished: false,
         }
     }
 
@@ -117,7 +115,7 @@ impl StatesRun {
     /// sending events to `sink`.
     pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
         for _ in 0..budget {
-            if self.finished {
+            if self.interp.finished {
                 break;
             }
             let executed = self.interp.executed_blocks();
@@ -132,11 +130,9 @@ impl StatesRun {
                 *first = u32::try_from(executed).unwrap_or(u32::MAX);
                 self.reached += 1;
             }
-            if self.interp.step(program, sink, 1) == Status::Finished {
-                self.finished = true;
-            }
+            self.interp.step(program, sink, 1);
         }
-        if self.finished {
+        if self.interp.finished {
             Status::Finished
         } else {
             Status::Running

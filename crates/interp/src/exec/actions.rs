@@ -61,6 +61,8 @@ pub(super) enum Action {
 pub(super) fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Action> {
     let syntec = dialect == Dialect::Syntec;
     let linuxcnc = dialect == Dialect::LinuxCnc;
+    let offsets = matches!(dialect, Dialect::Fanuc | Dialect::Syntec);
+    // A pair `t @ (a | b)` sets a mode one way or the other by which of the two `t` is.
     Some(match (group, tenths) {
         (Group::Motion, 0) => Action::Motion(Some(MotionMode::Rapid)),
         (Group::Motion, 10) => Action::Motion(Some(MotionMode::Linear)),
@@ -76,50 +78,31 @@ pub(super) fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Acti
         (Group::Plane, 170) => Action::Plane(Axis::Z),
         (Group::Plane, 180) => Action::Plane(Axis::Y),
         (Group::Plane, 190) => Action::Plane(Axis::X),
-        (Group::Distance, 900) => Action::Absolute(true),
-        (Group::Distance, 910) => Action::Absolute(false),
-        (Group::Units, 200) if !syntec => Action::Metric(false),
-        (Group::Units, 210) if !syntec => Action::Metric(true),
-        (Group::Units, 700) if syntec => Action::Metric(false),
-        (Group::Units, 710) if syntec => Action::Metric(true),
+        (Group::Distance, t @ (900 | 910)) => Action::Absolute(t == 900),
+        (Group::Units, t @ (200 | 210)) if !syntec => Action::Metric(t == 210),
+        (Group::Units, t @ (700 | 710)) if syntec => Action::Metric(t == 710),
         (Group::WorkOffset, _) => Action::WorkOffset,
         (Group::PathMode, t) => Action::PathMode(t),
         (Group::FeedMode, 930) => Action::FeedMode(FeedMode::InverseTime),
-        (Group::FeedMode, 940) => Action::FeedMode(FeedMode::PerMinute),
-        (Group::FeedMode, 950) => Action::FeedMode(FeedMode::PerRevolution),
         // GSK's examples use G98/G99 for feed per minute / per revolution.
-        (Group::FeedMode, 980) => Action::FeedMode(FeedMode::PerMinute),
-        (Group::FeedMode, 990) => Action::FeedMode(FeedMode::PerRevolution),
-        (Group::SpindleMode, 960) => Action::SpindleMode(true),
-        (Group::SpindleMode, 970) => Action::SpindleMode(false),
-        (Group::ReturnLevel, 980) => Action::ReturnLevel(true),
-        (Group::ReturnLevel, 990) => Action::ReturnLevel(false),
-        (Group::Polar, 150) => Action::Polar(false),
-        (Group::Polar, 160) => Action::Polar(true),
-        (Group::Rotation, 680) => Action::Rotation(true),
-        (Group::Rotation, 690) => Action::Rotation(false),
+        (Group::FeedMode, 940 | 980) => Action::FeedMode(FeedMode::PerMinute),
+        (Group::FeedMode, 950 | 990) => Action::FeedMode(FeedMode::PerRevolution),
+        (Group::SpindleMode, t @ (960 | 970)) => Action::SpindleMode(t == 960),
+        (Group::ReturnLevel, t @ (980 | 990)) => Action::ReturnLevel(t == 980),
+        (Group::Polar, t @ (150 | 160)) => Action::Polar(t == 160),
+        (Group::Rotation, t @ (680 | 690)) => Action::Rotation(t == 680),
         (Group::Rotation, 1680) => Action::MeasuredRotation,
-        (Group::Scaling, 500) => Action::Scaling(false),
-        (Group::Scaling, 510) => Action::Scaling(true),
-        (Group::Mirror, 501) => Action::Mirror(false),
-        (Group::Mirror, 511) => Action::Mirror(true),
-        (Group::StrokeLimit, 220) => Action::StrokeLimit(true),
-        (Group::StrokeLimit, 230) => Action::StrokeLimit(false),
-        (Group::LengthComp, 430) => Action::LengthComp(Some(true)),
-        (Group::LengthComp, 440) => Action::LengthComp(Some(false)),
+        (Group::Scaling, t @ (500 | 510)) => Action::Scaling(t == 510),
+        (Group::Mirror, t @ (501 | 511)) => Action::Mirror(t == 511),
+        (Group::StrokeLimit, t @ (220 | 230)) => Action::StrokeLimit(t == 220),
+        (Group::LengthComp, t @ (430 | 440)) => Action::LengthComp(Some(t == 430)),
         (Group::LengthComp, 490) => Action::LengthComp(None),
         (Group::LengthComp, 431 | 432) if linuxcnc => Action::DynamicLength,
         (Group::CutterComp, t) => Action::CutterComp(t),
         // G45–G48 change the block's move (`position::offset_line`, `offset_arc`).
-        (Group::NonModal, 450 | 460 | 470 | 480)
-            if matches!(dialect, Dialect::Fanuc | Dialect::Syntec) =>
-        {
-            Action::Nothing
-        }
-        (Group::MacroModal, 660) => Action::ModalMacro(true),
-        (Group::MacroModal, 670) => Action::ModalMacro(false),
-        (Group::ArcDistance, 901) => Action::ArcCentres(true),
-        (Group::ArcDistance, 911) => Action::ArcCentres(false),
+        (Group::NonModal, 450 | 460 | 470 | 480) if offsets => Action::Nothing,
+        (Group::MacroModal, t @ (660 | 670)) => Action::ModalMacro(t == 660),
+        (Group::ArcDistance, t @ (901 | 911)) => Action::ArcCentres(t == 901),
         (Group::LatheMode, _) => Action::Nothing,
         (Group::NonModal, 520) => Action::Local,
         (Group::NonModal, 530) => Action::Machine,
@@ -128,13 +111,12 @@ pub(super) fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Acti
         (Group::NonModal, 280) => Action::Reference(1),
         (Group::NonModal, 300) => Action::Reference(2),
         (Group::NonModal, 290) => Action::FromReference,
-        (Group::NonModal, 281) if linuxcnc => Action::StoreReference(1),
-        (Group::NonModal, 301) if linuxcnc => Action::StoreReference(2),
+        // G28.1 stores reference point 1, G30.1 point 2.
+        (Group::NonModal, t @ (281 | 301)) if linuxcnc => Action::StoreReference(t as usize / 150),
         (Group::NonModal, 100) => Action::DataInput,
         (Group::NonModal, 650) => Action::MacroCall,
         (Group::NonModal, 310) if !linuxcnc => Action::Probe,
-        (Group::NonModal, 370) if syntec => Action::Measure(false),
-        (Group::NonModal, 371) if syntec => Action::Measure(true),
+        (Group::NonModal, t @ (370 | 371)) if syntec => Action::Measure(t == 371),
         (Group::NonModal, 921) if syntec => Action::PresetZero,
         (Group::NonModal, t @ (1340 | 1350 | 1360 | 1371)) if syntec => Action::Pattern(t),
         _ => return None,
@@ -174,11 +156,9 @@ pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<
             }
             None if def.documented != codes::Documented::Full => {
                 // The manual lists the code but not its format: nothing can be drawn from it.
+                let (code, name, control) = (def.code, def.name, dialect.label());
                 let message = format!(
-                    "{} ({}) is only listed in the {} manual, which does not document its format or motion; this block is not run",
-                    def.code,
-                    def.name,
-                    dialect.label()
+                    "{code} ({name}) is only listed in the {control} manual, which does not document its format or motion; this block is not run"
                 );
                 st.warning(word.span, "W-NOT-DOCUMENTED", message);
                 runnable = false;

@@ -66,7 +66,6 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
             }
         }
         Some(1 | 10 | 11 | 12 | 13) => {
-            let linuxcnc = st.dialect == Dialect::LinuxCnc;
             let n = p.max(0) as u32;
             if linuxcnc
                 && !known_register(st, n, find(words, b'P').map_or(w.span, |p| p.span), "tool")

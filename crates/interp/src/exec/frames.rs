@@ -41,28 +41,14 @@ pub(super) fn polar(st: &mut State, on: bool) {
 /// LNC G168 X Y Q: rotation about X Y by measured angle Q (1–4) of `measured_angles`.
 pub(super) fn measured_rotation(st: &mut State, w: &Word, words: &[Word]) {
     let q = find(words, b'Q').map_or(1.0, |q| q.value.round());
-    let Some(degrees) = (1.0..=4.0)
-        .contains(&q)
-        .then(|| {
-            st.setup
-                .machine
-                .measured_angles
-                .get(q as usize - 1)
-                .copied()
-        })
-        .flatten()
-    else {
+    let i = (1.0..=4.0).contains(&q).then(|| q as usize - 1);
+    let Some(degrees) = i.and_then(|i| st.setup.machine.measured_angles.get(i).copied()) else {
         let message = format!(
             "G168 Q{q} needs measurement result {q} in the setup (`[machine] measured_angles`)"
         );
         return st.fail(w.span, "E-MEASUREMENT", message);
     };
-    let center = plane_center(st, words);
-    st.rotation = Some(Rotation {
-        plane: st.plane,
-        center,
-        degrees,
-    });
+    rotate(st, words, degrees);
 }
 
 /// G68 X Y R (centre, or the current point; angle absolute, or under G91 added).
@@ -71,40 +57,36 @@ pub(super) fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
         st.rotation = None;
         return;
     }
-    let center = plane_center(st, words);
-    let Some(r) = find(words, b'R') else {
-        if st.dialect == Dialect::Lnc {
+    let degrees = match find(words, b'R') {
+        Some(r) => match (st.absolute, st.rotation) {
+            (false, Some(prev)) => prev.degrees + st.angle(r),
+            _ => st.angle(r),
+        },
+        None if st.dialect == Dialect::Lnc => {
             let message = "LNC alarms on G68 without the angle R: the rotation is not turned on";
             return st.fail(w.span, "E-WORD-MISSING", message);
         }
-        let message =
-            "G68 without R rotates by 0° (the angle in the control's parameter is not known)";
-        st.warning(w.span, "W-WORD-MISSING", message);
-        st.rotation = Some(Rotation {
-            plane: st.plane,
-            center,
-            degrees: 0.0,
-        });
-        return;
-    };
-    let angle = st.angle(r);
-    let degrees = match (st.absolute, st.rotation) {
-        (false, Some(prev)) => prev.degrees + angle,
-        _ => angle,
+        None => {
+            let message =
+                "G68 without R rotates by 0° (the angle in the control's parameter is not known)";
+            st.warning(w.span, "W-WORD-MISSING", message);
+            0.0
+        }
     };
     // The tool stays where it is: the new frame applies to the next move's end point.
-    st.rotation = Some(Rotation {
-        plane: st.plane,
-        center,
-        degrees,
-    });
+    rotate(st, words, degrees);
 }
 
-/// The centre of a rotation in the plane: X Y Z, absolute in either mode, or the current point.
-fn plane_center(st: &State, words: &[Word]) -> DVec2 {
+/// Turns the plane by `degrees` about the block's X Y Z (absolute in either mode) or the current
+/// point.
+fn rotate(st: &mut State, words: &[Word], degrees: f64) {
     let (u, v) = plane_axes(st.plane);
     let c = given(st, &axis_words(words, b'X'), st.program_pos);
-    DVec2::new(c[u], c[v])
+    st.rotation = Some(Rotation {
+        plane: st.plane,
+        center: DVec2::new(c[u], c[v]),
+        degrees,
+    });
 }
 
 /// G51 X Y Z P (or I J K per axis) / G50.

@@ -40,13 +40,12 @@ pub(super) fn m_codes(
             90 => Canon::Coolant { on: false },
             190 => continue,
             // M198: a program from outside the control's memory (a linked file), called as M98.
-            980 | 1980 | 990 => {
-                let call = code.tenths != 990;
-                requests.push(if call {
-                    Request::Subprogram
-                } else {
-                    Request::Return
-                });
+            980 | 1980 => {
+                requests.push(Request::Subprogram);
+                continue;
+            }
+            990 => {
+                requests.push(Request::Return);
                 continue;
             }
             _ => {

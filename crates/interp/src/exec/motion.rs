@@ -107,26 +107,26 @@ pub(super) fn motion(
             let hole = move |st: &State| target(st, &plane);
             return crate::cycles::run(st, block, words, t, &hole, source, sink);
         }
-        MotionMode::Linear if st.dialect.rules().comma_words => {
-            if let Some(corner) = corner_word(st, block) {
-                // Held back one block: the next move decides where the corner goes.
-                let from = st.position;
-                let feed = move_feed(st, block, from.distance(to), None);
-                // A corner held from the block before is cut against this move first.
-                crate::corners::resolve(st, sink, &Canon::line(false, to, feed));
-                st.position = to;
-                st.program_pos = p;
-                st.pending = Some(crate::corners::Pending {
-                    from,
-                    to,
-                    feed_mm_per_min: feed,
-                    source,
-                    corner: corner.0,
-                    span: corner.1,
-                });
-                return true;
-            }
-            return feed_to(st, block, p, to, source, sink);
+        MotionMode::Linear
+            if st.dialect.rules().comma_words
+                && let Some((corner, span)) = corner_word(st, block) =>
+        {
+            // Held back one block: the next move decides where the corner goes.
+            let from = st.position;
+            let feed = move_feed(st, block, from.distance(to), None);
+            // A corner held from the block before is cut against this move first.
+            crate::corners::resolve(st, sink, &Canon::line(false, to, feed));
+            st.position = to;
+            st.program_pos = p;
+            st.pending = Some(crate::corners::Pending {
+                from,
+                to,
+                feed_mm_per_min: feed,
+                source,
+                corner,
+                span,
+            });
+            return true;
         }
         MotionMode::Rapid | MotionMode::Linear => return feed_to(st, block, p, to, source, sink),
     };

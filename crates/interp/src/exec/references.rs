@@ -47,11 +47,9 @@ pub(super) fn reference(
 /// G29: from the reference point through the intermediate point to the programmed point.
 pub(super) fn from_reference(st: &mut State, axes: &Axes<'_>, source: Source, sink: &mut dyn Sink) {
     let mut mid = st.program_pos;
-    for i in 0..3 {
-        if axes[i].is_some()
-            && let Some(m) = st.intermediate[i]
-        {
-            mid[i] = m;
+    for (i, m) in st.intermediate.iter().enumerate() {
+        if let (Some(_), Some(m)) = (axes[i], m) {
+            mid[i] = *m;
         }
     }
     let mid_machine = st.to_machine(mid);

@@ -81,23 +81,21 @@ pub(super) fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32)
     let d = find(words, b'D');
     if tenths == 411 || tenths == 421 {
         // LinuxCNC: G41.1/G42.1 D<diameter> [L<orientation>], L only in G18.
-        let orientation =
-            match find(words, b'L') {
-                Some(l) if st.plane != Axis::Y => return st.fail(
-                    l.span,
-                    "E-COMP-PLANE",
-                    format!(
-                        "G{}.1 with an L word (a lathe tool orientation) needs the XZ plane (G18)",
-                        tenths / 10
-                    ),
-                ),
-                Some(l) if !(0.0..=9.0).contains(&l.value.round()) => {
-                    let message = "a lathe tool orientation is 0 to 9";
-                    return st.fail(l.span, "E-COMP-ORIENTATION", message);
-                }
-                Some(l) => l.value.round() as u8,
-                None => 0,
-            };
+        let g = tenths / 10;
+        let orientation = match find(words, b'L') {
+            Some(l) if st.plane != Axis::Y => {
+                let message = format!(
+                    "G{g}.1 with an L word (a lathe tool orientation) needs the XZ plane (G18)"
+                );
+                return st.fail(l.span, "E-COMP-PLANE", message);
+            }
+            Some(l) if !(0.0..=9.0).contains(&l.value.round()) => {
+                let message = "a lathe tool orientation is 0 to 9";
+                return st.fail(l.span, "E-COMP-ORIENTATION", message);
+            }
+            Some(l) => l.value.round() as u8,
+            None => 0,
+        };
         st.cutter_comp = if tenths == 421 { 420 } else { 410 };
         st.comp_radius = d.map_or(0.0, |d| st.mm(d.value)) / 2.0;
         st.comp.orientation = orientation;
