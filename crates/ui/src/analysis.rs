@@ -88,11 +88,9 @@ impl Analysis {
 
     /// Number of problems of `severity`, in the program's own text and in the files it called.
     pub fn count(&self, severity: Severity) -> usize {
-        self.problems
-            .iter()
-            .chain(self.elsewhere.iter().map(|l| &l.problem))
-            .filter(|p| p.severity == severity)
-            .count()
+        let elsewhere = self.elsewhere.iter().map(|l| &l.problem);
+        let all = self.problems.iter().chain(elsewhere);
+        all.filter(|p| p.severity == severity).count()
     }
 
     /// The name of the other open file a 0-based block `line` of the program lies in (`None`:

@@ -51,12 +51,12 @@ const FOCUS_OUTLINE_POINTS: f32 = 2.0;
 /// Space left between the view's buttons and what a fit frames, in points.
 const FIT_GAP_POINTS: f32 = 4.0;
 
-/// The standard views' buttons, in the order of their keys `1`–`4`.
-const STANDARD_VIEWS: [(&str, StandardView); 4] = [
-    ("Iso", StandardView::Iso),
-    ("Top", StandardView::Top),
-    ("Front", StandardView::Front),
-    ("Right", StandardView::Right),
+/// The standard views: their buttons and keys.
+const STANDARD_VIEWS: [(&str, egui::Key, StandardView); 4] = [
+    ("Iso", egui::Key::Num1, StandardView::Iso),
+    ("Top", egui::Key::Num2, StandardView::Top),
+    ("Front", egui::Key::Num3, StandardView::Front),
+    ("Right", egui::Key::Num4, StandardView::Right),
 ];
 
 /// How far from a segment (in points) the cursor may be to pick it.
@@ -107,11 +107,8 @@ impl SourceText {
         let index = usize::try_from(line).ok()?.checked_sub(1)?;
         if let Some(rope) = &self.rope {
             let slice = rope.get_line(index)?;
-            return Some(
-                slice
-                    .slice(..crate::buffer::chars_before_ending(slice))
-                    .into(),
-            );
+            let end = crate::buffer::chars_before_ending(slice);
+            return Some(slice.slice(..end).into());
         }
         let starts = self.starts.get_or_init(|| {
             let mut starts = Vec::with_capacity(self.text.len() / 24 + 1);
@@ -120,9 +117,8 @@ impl SourceText {
             starts
         });
         let start = *starts.get(index)?;
-        let end = starts
-            .get(index + 1)
-            .map_or(self.text.len(), |next| next.saturating_sub(1));
+        let next = starts.get(index + 1);
+        let end = next.map_or(self.text.len(), |next| next.saturating_sub(1));
         let text = self.text.get(start..end.max(start))?;
         Some(text.strip_suffix('\r').unwrap_or(text).into())
     }
@@ -348,11 +344,8 @@ impl Backplot {
             compositor: Compositor::new(&render_state.device, render_state.target_format, 1),
             views: HashMap::new(),
         };
-        render_state
-            .renderer
-            .write()
-            .callback_resources
-            .insert(resources);
+        let mut renderer = render_state.renderer.write();
+        renderer.callback_resources.insert(resources);
         ctx.data_mut(|d| d.insert_temp(installed_key(), true));
     }
 
@@ -501,16 +494,11 @@ impl Backplot {
         let background = ui.visuals().extreme_bg_color;
         ui.painter().rect_filled(rect, 0.0, background);
 
-        if !ui
-            .ctx()
-            .data(|d| d.get_temp::<bool>(installed_key()))
-            .unwrap_or(false)
-        {
+        let installed = ui.ctx().data(|d| d.get_temp::<bool>(installed_key()));
+        if installed != Some(true) {
             // A real label (not painter text) so screen readers and tests can find it.
-            ui.put(
-                rect,
-                egui::Label::new(egui::RichText::new(tr("3D view unavailable")).weak()),
-            );
+            let notice = egui::RichText::new(tr("3D view unavailable")).weak();
+            ui.put(rect, egui::Label::new(notice));
             return response;
         }
 
@@ -659,13 +647,10 @@ impl Backplot {
         let Some(tip) = self.playback.position(scene) else {
             return;
         };
-        let radius = self
-            .playback
-            .current_segment(scene)
-            .and_then(|i| scene.tools.get(i))
-            .and_then(|tool| scene.tool_radii.get(tool))
-            .copied()
-            .filter(|r| r.is_finite() && *r > 0.0);
+        let segment = self.playback.current_segment(scene);
+        let tool = segment.and_then(|i| scene.tools.get(i));
+        let radius = tool.and_then(|t| scene.tool_radii.get(t)).copied();
+        let radius = radius.filter(|r| r.is_finite() && *r > 0.0);
         let outline: Vec<(Vec3, Vec3)> = if let Some(r) = radius {
             tool_outline(tip, r, 0.0, 3.0 * r)
         } else {
@@ -691,9 +676,8 @@ impl Backplot {
         }
         self.last_generation = Some(scene.generation);
         let has_geometry = scene.bounds.is_some();
-        if has_geometry && !self.had_geometry {
-            self.fitted = false;
-        }
+        // Geometry appearing (again) is fitted.
+        self.fitted &= !has_geometry || self.had_geometry;
         self.had_geometry = has_geometry;
     }
 
@@ -752,32 +736,24 @@ impl Backplot {
         if response.clicked()
             && let Some(pointer) = response.interact_pointer_pos()
         {
-            let hit = self.pick(scene, rect, pointer);
-            self.selected_line = hit.as_ref().map(|h| h.line);
-            if let Some(hit) = hit {
-                self.picked_line = Some(hit.line);
-            }
+            let line = self.pick(scene, rect, pointer).map(|h| h.line);
+            self.selected_line = line;
+            self.picked_line = line.or(self.picked_line);
         }
-        let pointer = if response.dragged() {
-            None
-        } else {
-            response.hover_pos()
-        };
-        let Some(pointer) = pointer else {
+        let Some(pointer) = response.hover_pos().filter(|_| !response.dragged()) else {
             self.hover = None;
             self.stock_hover = None;
             self.hover_key = None;
             return;
         };
+        let stock = self.drawn_stock(scene);
         let key = HoverKey {
             generation: scene.generation,
             pointer,
             rect,
             camera: self.camera,
             hidden_kinds: self.hidden(),
-            stock: self
-                .drawn_stock(scene)
-                .map_or(0, |s| Arc::as_ptr(&s) as usize),
+            stock: stock.map_or(0, |s| Arc::as_ptr(&s) as usize),
         };
         if self.hover_key.as_ref() != Some(&key) {
             self.hover = self.pick(scene, rect, pointer);
@@ -793,9 +769,8 @@ impl Backplot {
         let shift = ui.input(|i| i.modifiers.shift);
         let delta = response.drag_delta();
         let delta = Vec2::new(delta.x, delta.y);
-        let touch = ui
-            .input(egui::InputState::multi_touch)
-            .filter(|t| t.num_touches >= 2 && response.hovered());
+        let touch = ui.input(egui::InputState::multi_touch);
+        let touch = touch.filter(|t| t.num_touches >= 2 && response.hovered());
         if let Some(touch) = touch {
             // Two fingers pan; their pinch zooms below (egui's zoom delta).
             let moved = touch.translation_delta;
@@ -845,7 +820,6 @@ impl Backplot {
             let pressed: Vec<Key> = keys.into_iter().filter(|k| i.key_pressed(*k)).collect();
             (i.modifiers.shift, pressed)
         });
-        let views = [Key::Num1, Key::Num2, Key::Num3, Key::Num4];
         for key in pressed {
             let step = match key {
                 Key::ArrowLeft => Vec2::new(-1.0, 0.0),
@@ -862,8 +836,8 @@ impl Backplot {
                 Key::Minus => self.camera.zoom(1.0 / KEY_ZOOM),
                 Key::F => self.fit_now(),
                 Key::S => self.zoom_to_selection(),
-                _ if let Some(n) = views.iter().position(|k| *k == key) => {
-                    self.set_view(STANDARD_VIEWS[n].1);
+                _ if let Some(&(_, _, view)) = STANDARD_VIEWS.iter().find(|v| v.1 == key) => {
+                    self.set_view(view);
                 }
                 Key::P => self.toggle_projection(),
                 Key::R => self.toggle_kind(Kind::Rapid),
@@ -877,22 +851,13 @@ impl Backplot {
     /// Small buttons in the view's top-left corner: Fit, the standard views, the projection,
     /// rapids on/off and zoom to the selected block; where they lie and whether one was clicked.
     fn overlay_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) -> (egui::Rect, bool) {
-        let mut clicked = false;
-        let mut child = ui.new_child(
-            egui::UiBuilder::new()
-                .id_salt("swarf_backplot_buttons")
-                .max_rect(rect.shrink(6.0))
-                .layout(egui::Layout::left_to_right(egui::Align::Min)),
-        );
-        if child
-            .small_button(tr("Fit"))
-            .on_hover_text(tr("Fit to extents (double-click)"))
-            .clicked()
-        {
-            clicked = true;
+        let mut child = button_row(ui, rect, "swarf_backplot_buttons", egui::Align::Min);
+        let hint = tr("Fit to extents (double-click)");
+        let mut clicked = child.small_button(tr("Fit")).on_hover_text(hint).clicked();
+        if clicked {
             self.fit_now();
         }
-        for (label, view) in STANDARD_VIEWS {
+        for (label, _, view) in STANDARD_VIEWS {
             if child.small_button(tr(label)).clicked() {
                 clicked = true;
                 self.set_view(view);
@@ -941,17 +906,11 @@ impl Backplot {
     /// far its cut has got (or why there is none); whether one was clicked.
     fn stock_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect, scene: &Scene) -> bool {
         let mut clicked = false;
-        let mut child = ui.new_child(
-            egui::UiBuilder::new()
-                .id_salt("swarf_backplot_stock_buttons")
-                .max_rect(rect.shrink(6.0))
-                .layout(egui::Layout::left_to_right(egui::Align::Max)),
-        );
-        let stock = child
-            .selectable_label(self.stock_on, tr("Stock"))
-            .on_hover_text(tr(
-                "Show the stock as the program cuts it (up to the playback position while playing)",
-            ));
+        let mut child = button_row(ui, rect, "swarf_backplot_stock_buttons", egui::Align::Max);
+        let stock = child.selectable_label(self.stock_on, tr("Stock"));
+        let stock = stock.on_hover_text(tr(
+            "Show the stock as the program cuts it (up to the playback position while playing)",
+        ));
         self.stock_button = Some(stock.rect);
         if stock.clicked() {
             clicked = true;
@@ -960,22 +919,18 @@ impl Backplot {
         if !self.stock_on {
             return clicked;
         }
-        if child
-            .selectable_label(!self.stock_alone, tr("Path"))
-            .on_hover_text(tr("Draw the toolpath over the stock"))
-            .clicked()
-        {
+        let path = child.selectable_label(!self.stock_alone, tr("Path"));
+        let hint = tr("Draw the toolpath over the stock");
+        if path.on_hover_text(hint).clicked() {
             clicked = true;
             self.stock_alone = !self.stock_alone;
         }
         let error = scene.stock.as_ref().and_then(|c| c.error.as_deref());
         if let Some((done, upto)) = scene.stock_progress {
             let percent = done * 100 / upto.max(1);
-            child.add(
-                egui::ProgressBar::new(done as f32 / upto.max(1) as f32)
-                    .desired_width(110.0)
-                    .text(trf("Stock {}%", &[&percent])),
-            );
+            let fraction = done as f32 / upto.max(1) as f32;
+            let bar = egui::ProgressBar::new(fraction).desired_width(110.0);
+            child.add(bar.text(trf("Stock {}%", &[&percent])));
         } else if let Some(error) = error {
             child
                 .weak(tr("No stock"))
@@ -983,6 +938,13 @@ impl Backplot {
         }
         clicked
     }
+}
+
+/// A row of the view's buttons from its left edge, along its top (`Min`) or bottom (`Max`).
+fn button_row(ui: &mut egui::Ui, rect: egui::Rect, salt: &str, align: egui::Align) -> egui::Ui {
+    let layout = egui::Layout::left_to_right(align);
+    let builder = egui::UiBuilder::new().id_salt(salt).layout(layout);
+    ui.new_child(builder.max_rect(rect.shrink(6.0)))
 }
 
 /// Radius of the tool marker, in points, when the setup gives no tool radius.
@@ -1020,9 +982,9 @@ fn tool_outline(tip: Vec3, radius: f32, cone: f32, shank: f32) -> Vec<(Vec3, Vec
     lines
 }
 
-/// Human name of a kind for the tooltip.
-fn kind_label(kind: Option<Kind>) -> &'static str {
-    tr(match kind {
+/// The hover tooltip: line and block text, position, kind and feed.
+fn hover_tooltip(ui: &mut egui::Ui, hover: &HoverInfo, scene: &Scene) {
+    let kind = tr(match hover.kind {
         Some(Kind::Rapid) => "rapid",
         Some(Kind::Feed) => "feed",
         Some(Kind::Arc) => "arc",
@@ -1032,11 +994,7 @@ fn kind_label(kind: Option<Kind>) -> &'static str {
         Some(Kind::Compensated) => "compensated",
         Some(Kind::Programmed) => "programmed",
         _ => "move",
-    })
-}
-
-/// The hover tooltip: line and block text, position, kind and feed.
-fn hover_tooltip(ui: &mut egui::Ui, hover: &HoverInfo, scene: &Scene) {
+    });
     ui.strong(trf("Line {}", &[&hover.line]));
     if let Some(text) = scene.source.as_ref().and_then(|s| s.line(hover.line)) {
         let text = text.trim();
@@ -1046,7 +1004,6 @@ fn hover_tooltip(ui: &mut egui::Ui, hover: &HoverInfo, scene: &Scene) {
     }
     let p = hover.position;
     ui.label(format!("X{:.3} Y{:.3} Z{:.3}", p.x, p.y, p.z));
-    let kind = kind_label(hover.kind);
     if hover.kind == Some(Kind::Rapid) || hover.feed <= 0.0 {
         ui.label(kind);
     } else {
@@ -1163,14 +1120,10 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         );
         if view.target.as_ref().map(RenderTarget::size) != Some(size) {
             view.drawn = None;
-            if let Ok(target) = RenderTarget::new(device, size.0, size.1, OFFSCREEN_FORMAT) {
-                view.bind_group = Some(compositor.bind(device, &target));
-                view.target = Some(target);
-            } else {
-                view.target = None;
-                view.bind_group = None;
-                return Vec::new();
-            }
+            // Without a target nothing is drawn (nor painted) until one can be made.
+            let target = RenderTarget::new(device, size.0, size.1, OFFSCREEN_FORMAT).ok();
+            view.bind_group = target.as_ref().map(|t| compositor.bind(device, t));
+            view.target = target;
         }
         let params = ViewParams {
             view_proj: remap * self.params.view_proj,
@@ -1199,11 +1152,8 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         let Some(resources) = callback_resources.get::<BackplotResources>() else {
             return;
         };
-        let Some(bind_group) = resources
-            .views
-            .get(&self.id)
-            .and_then(|v| v.bind_group.as_ref())
-        else {
+        let view = resources.views.get(&self.id);
+        let Some(bind_group) = view.and_then(|v| v.bind_group.as_ref()) else {
             return;
         };
         // The callback rect clamped to the screen, as `prepare` sized the target (egui-wgpu sets

@@ -114,12 +114,8 @@ impl Buffer {
     /// the last line rather than starting one), without a pass over the text.
     pub fn line_count(&self) -> u32 {
         let lines = self.len_lines();
-        let n = if lines > 1 && matches!(self.rope.char(self.len_chars() - 1), '\n' | '\r') {
-            lines - 1
-        } else {
-            lines
-        };
-        u32::try_from(n).unwrap_or(u32::MAX)
+        let ends = lines > 1 && matches!(self.rope.char(self.len_chars() - 1), '\n' | '\r');
+        u32::try_from(lines - usize::from(ends)).unwrap_or(u32::MAX)
     }
 
     /// The 0-based line of character `char` (clamped to the text).
@@ -146,9 +142,8 @@ impl Buffer {
             return Cow::Borrowed("");
         }
         let start = self.rope.line_to_char(line);
-        self.rope
-            .slice(start..start + self.line_len_chars(line))
-            .into()
+        let end = start + self.line_len_chars(line);
+        self.rope.slice(start..end).into()
     }
 
     /// The characters `chars` (clamped to the text) as a string.

@@ -39,30 +39,22 @@ impl Finder {
 
     /// Byte ranges of every non-empty match in `text`, in order.
     pub fn find_all(&self, text: &str) -> Vec<Range<usize>> {
-        self.re
-            .find_iter(text)
-            .filter(|m| !m.is_empty())
-            .map(|m| m.range())
-            .collect()
+        let found = self.re.find_iter(text).filter(|m| !m.is_empty());
+        found.map(|m| m.range()).collect()
     }
 
     /// The first non-empty match starting at or after byte `from`, wrapping to the start.
     pub fn next(&self, text: &str, from: usize) -> Option<Range<usize>> {
         let all = self.find_all(text);
-        all.iter()
-            .find(|r| r.start >= from)
-            .or_else(|| all.first())
-            .cloned()
+        let found = all.iter().find(|r| r.start >= from);
+        found.or_else(|| all.first()).cloned()
     }
 
     /// The last non-empty match ending at or before byte `before`, wrapping to the end.
     pub fn previous(&self, text: &str, before: usize) -> Option<Range<usize>> {
         let all = self.find_all(text);
-        all.iter()
-            .rev()
-            .find(|r| r.end <= before)
-            .or_else(|| all.last())
-            .cloned()
+        let found = all.iter().rev().find(|r| r.end <= before);
+        found.or_else(|| all.last()).cloned()
     }
 
     /// `text` with every match replaced (`$1`, `${name}` expand groups in regex mode), and the
@@ -94,10 +86,8 @@ impl Finder {
         replacement: &str,
         options: FindOptions,
     ) -> Option<String> {
-        let caps = self
-            .re
-            .captures_iter(text)
-            .find(|c| c.get(0).is_some_and(|m| m.range() == range))?;
+        let mut all = self.re.captures_iter(text);
+        let caps = all.find(|c| c.get(0).is_some_and(|m| m.range() == range))?;
         if options.regex {
             let mut out = String::new();
             caps.expand(replacement, &mut out);
@@ -138,11 +128,7 @@ pub fn char_ranges(text: &str, bytes: &[Range<usize>]) -> Vec<Range<usize>> {
 
 /// Converts a byte offset into a character index of `text` (clamped to its end).
 pub fn char_of_byte(text: &str, byte: usize) -> usize {
-    let mut byte = byte.min(text.len());
-    while !text.is_char_boundary(byte) {
-        byte -= 1;
-    }
-    text[..byte].chars().count()
+    text[..text.floor_char_boundary(byte)].chars().count()
 }
 
 /// The byte offset where 1-based `line` starts (the end of the text past the last line).
@@ -150,9 +136,8 @@ pub fn line_start(text: &str, line: u32) -> usize {
     if line <= 1 {
         return 0;
     }
-    line_starts(text)
-        .nth(line as usize - 2)
-        .unwrap_or(text.len())
+    let start = line_starts(text).nth(line as usize - 2);
+    start.unwrap_or(text.len())
 }
 
 /// The byte offsets where the lines after the first start: after each `\n`, `\r\n` or lone
@@ -175,12 +160,7 @@ pub fn line_of_byte(text: &str, byte: usize) -> u32 {
 /// Number of lines of `text` (a final newline ends the last line rather than starting one, but
 /// an empty text still has one line).
 pub fn line_count(text: &str) -> u32 {
-    let n = line_starts(text).count();
-    let n = if text.ends_with(['\n', '\r']) || n == 0 {
-        n.max(1)
-    } else {
-        n + 1
-    };
+    let n = line_starts(text).count() + usize::from(!text.ends_with(['\n', '\r']));
     u32::try_from(n).unwrap_or(u32::MAX)
 }
 
@@ -331,15 +311,11 @@ pub fn renumber(text: &str, options: RenumberOptions, dialect: Dialect) -> Renum
                 continue;
             }
         };
-        let sep = if rest.is_empty() || rest.starts_with(spaced) {
-            ""
-        } else {
-            " "
-        };
-        let new_line = format!("{head}N{next}{sep}{rest}");
+        let joined = rest.is_empty() || rest.starts_with(spaced);
+        let sep = if joined { "" } else { " " };
+        lines.push(format!("{head}N{next}{sep}{rest}"));
         numbered += 1;
         next = next.saturating_add(step);
-        lines.push(new_line);
     }
     let mut targets = 0;
     for line in &mut lines {
@@ -375,8 +351,7 @@ fn block_start(line: &str, dialect: Dialect) -> Option<usize> {
     }
     let first = *bytes.get(i)?;
     let no_block = match first {
-        b'\r' | b'%' | b'(' | b':' => true,
-        b';' => true,
+        b'\r' | b'%' | b'(' | b':' | b';' => true,
         b'/' if dialect == Dialect::Syntec => bytes.get(i + 1) == Some(&b'/'),
         b'O' | b'o' => {
             // `O1234` program numbers and LinuxCNC `o100 sub` lines; not `OR`-less macros.
@@ -401,15 +376,9 @@ fn n_word(body: &str) -> Option<(usize, Option<u64>)> {
 
 /// The digits after `from` in `bytes`, past any spaces (empty where there are none).
 fn digits_after(bytes: &[u8], from: usize) -> Range<usize> {
-    let start = from
-        + bytes[from.min(bytes.len())..]
-            .iter()
-            .take_while(|b| **b == b' ')
-            .count();
-    let digits = bytes[start.min(bytes.len())..]
-        .iter()
-        .take_while(|b| b.is_ascii_digit());
-    start..start + digits.count()
+    let rest = |at: usize| bytes.get(at..).unwrap_or_default().iter();
+    let start = from + rest(from).take_while(|b| **b == b' ').count();
+    start..start + rest(start).take_while(|b| b.is_ascii_digit()).count()
 }
 
 /// Rewrites literal `GOTO n` and `M99 Pn` targets of one line through `map` (old → new).
@@ -524,9 +493,8 @@ pub fn completions(dialect: Dialect, prefix: &str, limit: usize) -> Vec<Completi
 /// The alarm a control manual names in a diagnostic message (`COR-006`, `alarm 12`), if any.
 pub fn alarm_in(message: &str) -> Option<&str> {
     if let Some(at) = message.find("COR-") {
-        let end = message[at + 4..]
-            .find(|c: char| !c.is_ascii_digit())
-            .map_or(message.len(), |j| at + 4 + j);
+        let digits = message[at + 4..].find(|c: char| !c.is_ascii_digit());
+        let end = digits.map_or(message.len(), |j| at + 4 + j);
         return (end > at + 4).then(|| &message[at..end]);
     }
     let lower = message.to_ascii_lowercase();

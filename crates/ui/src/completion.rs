@@ -112,10 +112,8 @@ impl Popup {
     /// inserted code, or `None` (nothing changed) when the text no longer holds the prefix there.
     pub fn accept(&self, index: usize, text: &mut Buffer) -> Option<usize> {
         let code = self.items.get(index)?;
-        let holds = self.chars.end <= text.len_chars()
-            && text
-                .slice(self.chars.clone())
-                .eq_ignore_ascii_case(&self.prefix);
+        let typed = text.slice(self.chars.clone());
+        let holds = self.chars.end <= text.len_chars() && typed.eq_ignore_ascii_case(&self.prefix);
         holds.then(|| text.replace(self.chars.clone(), &code.code))
     }
 }

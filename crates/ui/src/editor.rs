@@ -7,6 +7,7 @@ use swarf_syntax::{Dialect, Severity};
 
 use crate::analysis::Problem;
 use crate::commands;
+use crate::i18n::trf;
 
 /// Colours of the token classes (and of line numbers), for a dark background.
 pub(crate) mod palette {
@@ -38,12 +39,11 @@ pub fn severity_color(severity: Severity) -> Color32 {
 /// Lays out `text` with G-code highlighting for `dialect`.
 pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
     let mut job = LayoutJob::default();
-    let fmt = |color: Color32| TextFormat::simple(font.clone(), color);
     let bytes = text.as_bytes();
     let mut i = 0;
     let append = |job: &mut LayoutJob, from: usize, to: usize, color: Color32| {
         if let Some(s) = text.get(from..to) {
-            job.append(s, 0.0, fmt(color));
+            job.append(s, 0.0, TextFormat::simple(font.clone(), color));
         }
     };
     // Past `close` from `i` on (before a line break, which it never goes past).
@@ -51,6 +51,9 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
         let end = memchr::memchr2(close, b'\n', &bytes[i..]).map_or(bytes.len(), |j| i + j);
         end + usize::from(close != b'\n' && bytes.get(end) == Some(&close))
     };
+    // Past the bytes from `from` on that `f` accepts.
+    let run =
+        |from: usize, f: fn(&u8) -> bool| from + bytes[from..].iter().take_while(|b| f(b)).count();
     while i < bytes.len() {
         let c = bytes[i];
         let start = i;
@@ -73,9 +76,7 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
                 if bytes.get(i) == Some(&b'<') {
                     i = past(i, b'>');
                 } else {
-                    while i < bytes.len() && bytes[i].is_ascii_digit() {
-                        i += 1;
-                    }
+                    i = run(i, u8::is_ascii_digit);
                 }
                 palette::VARIABLE
             }
@@ -84,9 +85,7 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
             {
                 // A run of letters: a macro keyword, operator or function (IF, GOTO, WHILE,
                 // DO, END, EQ, AND, SIN, sub, call …).
-                while i < bytes.len() && bytes[i].is_ascii_alphabetic() {
-                    i += 1;
-                }
+                i = run(i, u8::is_ascii_alphabetic);
                 palette::KEYWORD
             }
             c if c.is_ascii_alphabetic() => {
@@ -117,8 +116,7 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
             }
             _ => {
                 // Any other run of characters up to the next interesting one.
-                let len = text[i..].chars().next().map_or(1, char::len_utf8);
-                i += len;
+                i += text[i..].chars().next().map_or(1, char::len_utf8);
                 while i < bytes.len()
                     && !bytes[i].is_ascii_alphabetic()
                     && !b"(;/#".contains(&bytes[i])
@@ -158,14 +156,10 @@ pub fn gutter_tooltip(problems: &[Problem], line: u32) -> Option<String> {
         .iter()
         .filter(|p| p.line == line)
         .map(|p| {
-            let mut s = format!("{} [{}]: {}", p.severity.as_str(), p.code, p.message);
-            if let Some(alarm) = commands::alarm_in(&p.message) {
-                s.push_str(&format!(
-                    "\n{}",
-                    crate::i18n::trf("Control alarm: {}", &[&alarm])
-                ));
-            }
-            s
+            let alarm = commands::alarm_in(&p.message);
+            let alarm = alarm.map(|a| trf("Control alarm: {}", &[&a]));
+            let alarm = alarm.map_or(String::new(), |a| format!("\n{a}"));
+            format!("{} [{}]: {}{alarm}", p.severity.as_str(), p.code, p.message)
         })
         .collect();
     (!lines.is_empty()).then(|| lines.join("\n\n"))
@@ -195,28 +189,19 @@ pub fn hover_text(text: &str, dialect: Dialect, at: usize, problems: &[Problem])
             .chars()
             .take_while(|c| c.is_ascii_digit() || *c == '.')
             .collect();
-        let code = value
-            .parse::<f64>()
-            .ok()
-            .and_then(|v| swarf_syntax::Code::from_value(letter, v))
-            .filter(|_| letter == b'G' || letter == b'M');
-        match code {
-            Some(code) => match swarf_syntax::codes::lookup(dialect, code) {
-                Some(def) => lines.push(format!(
-                    "{} — {}\n{}\n{}",
-                    def.code, def.name, def.format, def.summary
-                )),
-                None => lines.push(crate::i18n::trf(
-                    "{} is not a code of {}",
-                    &[&code, &dialect.label()],
-                )),
-            },
-            None if !value.is_empty() => {
-                if let Some(a) = swarf_syntax::codes::address(dialect, letter).next() {
-                    lines.push(format!("{}: {}", char::from(letter), a.meaning));
-                }
-            }
-            None => {}
+        let gm = letter == b'G' || letter == b'M';
+        let number = value.parse::<f64>().ok().filter(|_| gm);
+        let code = number.and_then(|v| swarf_syntax::Code::from_value(letter, v));
+        let address = swarf_syntax::codes::address(dialect, letter).next();
+        let address = address.filter(|_| !value.is_empty());
+        let label = dialect.label();
+        match code.map(|code| (code, swarf_syntax::codes::lookup(dialect, code))) {
+            Some((_, Some(d))) => lines.push(format!(
+                "{} — {}\n{}\n{}",
+                d.code, d.name, d.format, d.summary
+            )),
+            Some((code, None)) => lines.push(trf("{} is not a code of {}", &[&code, &label])),
+            None => lines.extend(address.map(|a| format!("{}: {}", char::from(letter), a.meaning))),
         }
     }
     (!lines.is_empty()).then(|| lines.join("\n\n"))

@@ -77,11 +77,6 @@ impl History {
         self.undo.drain(..drop);
     }
 
-    /// Number of undo steps kept.
-    pub fn undo_len(&self) -> usize {
-        self.undo.len()
-    }
-
     /// Takes the state to go back to, given the `current` one (which becomes redoable).
     pub fn undo(&mut self, current: Snapshot) -> Option<Snapshot> {
         let (back, bytes) = self.undo.pop()?;
@@ -113,11 +108,6 @@ impl History {
     pub fn break_run(&mut self) {
         self.typing_open = false;
     }
-
-    /// Forgets everything (a new document).
-    pub fn clear(&mut self) {
-        *self = History::default();
-    }
 }
 
 #[cfg(test)]
@@ -137,11 +127,11 @@ mod tests {
         h.record(snap(""), EditKind::Typing, false, 0.0);
         h.record(snap("G"), EditKind::Typing, false, 0.2);
         h.record(snap("G0"), EditKind::Typing, true, 0.4);
-        assert_eq!(h.undo_len(), 1);
+        assert_eq!(h.undo.len(), 1);
         h.record(snap("G0\n"), EditKind::Typing, false, 0.5);
         h.record(snap("G0\nX"), EditKind::Typing, false, 5.0);
         h.record(snap("G0\nX1"), EditKind::Command, true, 5.1);
-        assert_eq!(h.undo_len(), 4);
+        assert_eq!(h.undo.len(), 4);
         assert_eq!(
             h.undo(snap("now")).map(|s| s.text.to_string()),
             Some("G0\nX1".to_string())
@@ -157,13 +147,13 @@ mod tests {
         for i in 0..(LIMIT + 10) {
             h.record(snap(&i.to_string()), EditKind::Command, true, i as f64);
         }
-        assert_eq!(h.undo_len(), LIMIT);
+        assert_eq!(h.undo.len(), LIMIT);
         let big = "x".repeat(BYTES_LIMIT / 2 + 1);
         for _ in 0..3 {
             h.record(snap(&big), EditKind::Command, true, 0.0);
         }
         assert_eq!(
-            h.undo_len(),
+            h.undo.len(),
             1,
             "two copies of the big text would pass the byte limit"
         );
@@ -173,6 +163,6 @@ mod tests {
         for i in 0..LIMIT {
             h.record(big.clone(), EditKind::Typing, true, i as f64);
         }
-        assert_eq!(h.undo_len(), LIMIT);
+        assert_eq!(h.undo.len(), LIMIT);
     }
 }

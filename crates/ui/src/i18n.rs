@@ -75,10 +75,7 @@ pub fn tr_in(lang: Lang, english: &'static str) -> &'static str {
 
 /// `template` in the current language with its `{}` placeholders replaced by `args` in order.
 pub fn trf(template: &'static str, args: &[&dyn Display]) -> String {
-    fill(tr(template), args)
-}
-
-fn fill(template: &str, args: &[&dyn Display]) -> String {
+    let template = tr(template);
     let mut out = String::with_capacity(template.len() + 8 * args.len());
     let mut args = args.iter();
     let mut rest = template;
@@ -106,7 +103,10 @@ pub const CJK_FONT_NAME: &str = "swarf-cjk";
 pub fn add_cjk_font(ctx: &egui::Context, bytes: Vec<u8>) -> bool {
     let blob: egui::epaint::text::Blob = Arc::new(bytes);
     let data = egui::FontData::from_blob(blob, 0);
-    if data.bytes().len() < 12 || !is_font(data.bytes()) {
+    // A TrueType, OpenType or TrueType collection file.
+    let magic = data.bytes().get(..4);
+    let font = matches!(magic, Some([0, 1, 0, 0] | b"OTTO" | b"ttcf" | b"true"));
+    if data.bytes().len() < 12 || !font {
         return false;
     }
     use egui::epaint::text::{FontInsert, FontPriority, InsertFontFamily};
@@ -117,14 +117,6 @@ pub fn add_cjk_font(ctx: &egui::Context, bytes: Vec<u8>) -> bool {
     });
     ctx.add_font(FontInsert::new(CJK_FONT_NAME, data, last.to_vec()));
     true
-}
-
-/// Whether `bytes` start as a TrueType, OpenType or TrueType collection file.
-fn is_font(bytes: &[u8]) -> bool {
-    matches!(
-        bytes.get(..4),
-        Some([0, 1, 0, 0] | b"OTTO" | b"ttcf" | b"true")
-    )
 }
 
 /// The translations, a line each: English, Simplified Chinese and Traditional Chinese,

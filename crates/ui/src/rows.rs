@@ -179,13 +179,11 @@ impl CodeEditor {
                 let sel = self.selection();
                 let from = sel.start.saturating_sub(before_chars);
                 let to = (sel.end + after_chars).min(text.len_chars());
-                if from < to {
-                    self.anchor = from;
-                    self.caret = to;
-                    self.edit(text, Edit::Delete)
-                } else {
-                    false
+                if from >= to {
+                    return false;
                 }
+                (self.anchor, self.caret) = (from, to);
+                self.edit(text, Edit::Delete)
             }
             // The enable and disable notices (no longer sent) change nothing.
             _ => false,
@@ -303,10 +301,8 @@ impl CodeEditor {
         match event {
             Event::Ime(ime) => changed |= self.ime(text, ime),
             // A lone line break comes as the Enter key too.
-            Event::Text(t) if !t.is_empty() && t != "\n" && t != "\r" => {
-                changed |= self.edit(text, Edit::Insert(t));
-            }
-            Event::Paste(t) if !t.is_empty() => {
+            Event::Text(t) if t == "\n" || t == "\r" => {}
+            Event::Text(t) | Event::Paste(t) if !t.is_empty() => {
                 changed |= self.edit(text, Edit::Insert(t));
             }
             Event::Copy | Event::Cut => {
@@ -329,6 +325,7 @@ impl CodeEditor {
                 let line = text.char_to_line(self.caret);
                 let line_start = text.line_to_char(line);
                 let col = self.caret - line_start;
+                let last_line = text.len_lines().saturating_sub(1);
                 let vertical = |this: &mut Self, to_line: usize| {
                     let want = *this.column.get_or_insert(col);
                     let start = text.line_to_char(to_line);
@@ -377,10 +374,7 @@ impl CodeEditor {
                     Key::ArrowDown if line + 1 < text.len_lines() => vertical(self, line + 1),
                     Key::ArrowDown => self.move_to(len, shift),
                     Key::PageUp => vertical(self, line.saturating_sub(rows_per_page)),
-                    Key::PageDown => vertical(
-                        self,
-                        (line + rows_per_page).min(text.len_lines().saturating_sub(1)),
-                    ),
+                    Key::PageDown => vertical(self, (line + rows_per_page).min(last_line)),
                     Key::Home | Key::End => {
                         let to = match (key == Key::End, modifiers.command) {
                             (false, true) => 0,
@@ -473,9 +467,8 @@ impl CodeEditor {
                 lines as f32 * row_height + PAD,
             );
             let (_, rect) = ui.allocate_space(size.max(ui.available_size()));
-            let response = ui
-                .interact(rect, id, Sense::click_and_drag())
-                .labelled_by(label);
+            let response = ui.interact(rect, id, Sense::click_and_drag());
+            let response = response.labelled_by(label);
             if response.hovered() {
                 // The web page shows its on-screen keyboard and input method over editable text.
                 ui.output_mut(|o| o.mutable_text_under_cursor = true);
@@ -505,9 +498,7 @@ impl CodeEditor {
                 let cursor = galley.cursor_from_pos(egui::vec2(pos.x - text_left, 0.0));
                 start + cursor.index.0.min(len)
             };
-            let pointer = response
-                .interact_pointer_pos()
-                .or_else(|| response.hover_pos());
+            let pointer = response.interact_pointer_pos().or(response.hover_pos());
             if response.double_clicked()
                 && let Some(pos) = pointer
             {
@@ -581,19 +572,15 @@ impl CodeEditor {
             // Where the input method's candidate window goes: at the caret, or at the top of the
             // view while the caret's row is scrolled away.
             let view = scroll.inner_rect;
-            let cursor = self
-                .caret_rect
-                .filter(|r| view.intersects(*r))
-                .unwrap_or_else(|| Rect::from_min_size(view.min, egui::vec2(2.0, row_height)));
-            let to_global = ui
-                .ctx()
-                .layer_transform_to_global(ui.layer_id())
-                .unwrap_or_default();
+            let top = Rect::from_min_size(view.min, egui::vec2(2.0, row_height));
+            let cursor = self.caret_rect.filter(|r| view.intersects(*r));
+            let to_global = ui.ctx().layer_transform_to_global(ui.layer_id());
+            let to_global = to_global.unwrap_or_default();
             ui.output_mut(|o| {
                 o.ime = Some(egui::output::IMEOutput {
                     purpose: egui::IMEPurpose::Normal,
                     rect: to_global * view,
-                    cursor_rect: to_global * cursor,
+                    cursor_rect: to_global * cursor.unwrap_or(top),
                     should_interrupt_composition: false,
                 });
             });
@@ -658,10 +645,8 @@ impl CodeEditor {
             let start = text.line_to_char(row);
             let len = text.line_len_chars(row);
             // Text being composed is shown in the caret's row, at the caret.
-            let preedit = self
-                .preedit
-                .as_ref()
-                .filter(|_| row == caret_line && rows.focused && caret_col <= len);
+            let here = row == caret_line && rows.focused && caret_col <= len;
+            let preedit = self.preedit.as_ref().filter(|_| here);
             let mut shown = text.line_text(row);
             if let Some(p) = preedit {
                 let at = commands::byte_of_char(&shown, caret_col);
@@ -709,11 +694,8 @@ impl CodeEditor {
             painter.galley(origin, galley.clone(), palette::TEXT);
             // The line number, coloured (and marked) by the line's worst diagnostic.
             let number = u32::try_from(row + 1).unwrap_or(u32::MAX);
-            let worst = on_rows
-                .iter()
-                .filter(|p| p.line == number)
-                .map(|p| p.severity)
-                .max();
+            let worst = on_rows.iter().filter(|p| p.line == number);
+            let worst = worst.map(|p| p.severity).max();
             let (digits, mark) = (rows.digits, if worst.is_some() { '●' } else { ' ' });
             painter.text(
                 egui::pos2(rows.rect.left(), top),
@@ -756,12 +738,8 @@ impl CodeEditor {
                 );
                 if rows.reveal {
                     // Near the line's start the gutter comes into view with it.
-                    let from = if x - 24.0 < rows.text_left {
-                        rows.rect.left()
-                    } else {
-                        x - 24.0
-                    };
-                    ui.scroll_to_rect(band(from, x + 24.0), None);
+                    let from = Some(x - 24.0).filter(|from| *from >= rows.text_left);
+                    ui.scroll_to_rect(band(from.unwrap_or(rows.rect.left()), x + 24.0), None);
                 }
             }
         }
@@ -793,11 +771,6 @@ fn problems_on_rows(problems: &[Problem], rows: Range<usize>) -> &[Problem] {
     problems.get(from..to.max(from)).unwrap_or_default()
 }
 
-/// Whether `c` belongs to a word (an address word such as `X-12.5`, a name, a number).
-fn is_word(c: char) -> bool {
-    c.is_alphanumeric() || c == '_' || c == '.' || c == '#'
-}
-
 /// The next word boundary after `from` (`forward`) or before it, within `from`'s line.
 fn word_boundary(text: &Buffer, from: usize, forward: bool) -> usize {
     let line = text.char_to_line(from);
@@ -816,7 +789,8 @@ fn word_boundary(text: &Buffer, from: usize, forward: bool) -> usize {
             .get(if forward { i } else { i.wrapping_sub(1) })
             .copied()
     };
-    // Past any spaces, then past the word.
+    // Past any spaces, then past the word (an address word such as `X-12.5`, a name, a number).
+    let is_word = |c: char| c.is_alphanumeric() || "_.#".contains(c);
     for word in [false, true] {
         while next(i).is_some_and(|c| is_word(c) == word) {
             i = if forward { i + 1 } else { i - 1 };

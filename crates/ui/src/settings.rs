@@ -22,16 +22,9 @@ pub fn settings_ui(
     new_offset: &mut String,
 ) -> Option<HostRequest> {
     let mut request = None;
-    ui.horizontal(|ui| {
-        let (id, label) = ("swarf-settings-dialect", tr("Dialect"));
-        choice(
-            ui,
-            id,
-            label,
-            dialect,
-            &Dialect::ALL.map(|d| (d, d.label())),
-        );
-    });
+    let dialects = Dialect::ALL.map(|d| (d, d.label()));
+    let (id, label) = ("swarf-settings-dialect", tr("Dialect"));
+    ui.horizontal(|ui| choice(ui, id, label, dialect, &dialects));
     ui.horizontal(|ui| {
         if ui.button(tr("Import SETUP.toml…")).clicked() {
             request = Some(HostRequest::ImportSetup);
@@ -72,10 +65,8 @@ pub(crate) fn choice<T: PartialEq + Copy>(
     options: &[(T, &str)],
 ) {
     let label = ui.label(label);
-    let shown = options
-        .iter()
-        .find(|(o, _)| o == value)
-        .map_or("", |(_, text)| *text);
+    let shown = options.iter().find(|(o, _)| o == value);
+    let shown = shown.map_or("", |(_, text)| *text);
     egui::ComboBox::from_id_salt(id)
         .selected_text(shown)
         .show_ui(ui, |ui| {
@@ -115,10 +106,10 @@ fn xyz(ui: &mut egui::Ui, values: &mut [f64; 3], name: &str) -> bool {
     changed
 }
 
-/// A grid's row of column heads.
-fn heads(ui: &mut egui::Ui, heads: &[&str]) {
+/// A grid's row of column heads (looked up with `tr`).
+fn heads(ui: &mut egui::Ui, heads: &[&'static str]) {
     for head in heads {
-        ui.strong(*head);
+        ui.strong(tr(head));
     }
     ui.end_row();
 }
@@ -135,9 +126,7 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
         .num_columns(7)
         .striped(true)
         .show(ui, |ui| {
-            let (no, len, len_wear) = (tr("No."), tr("Length"), tr("Length wear"));
-            let (radius, tip) = (tr("Radius"), tr("Tip (lathe)"));
-            heads(ui, &[no, len, len_wear, radius, tr("Radius wear"), tip, ""]);
+            heads(ui, &["No.", "Length", "Length wear", "Radius", "Radius wear", "Tip (lathe)", ""]);
             for (n, r) in &mut setup.registers {
                 ui.label(n.to_string());
                 let fields = [
@@ -150,11 +139,10 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                     let response = ui.add(length(value));
                     named(ui, response, &format!("Register {n} {what}"));
                 }
-                let response = ui
-                    .add(egui::DragValue::new(&mut r.orientation).range(0..=9))
-                    .on_hover_text(tr(
-                        "Lathe tool tip direction 1-8 (LinuxCNC's Q): compensation in G18 reports the imaginary tip; 0 a mill, 9 the nose centre",
-                    ));
+                let drag = egui::DragValue::new(&mut r.orientation).range(0..=9);
+                let response = ui.add(drag).on_hover_text(tr(
+                    "Lathe tool tip direction 1-8 (LinuxCNC's Q): compensation in G18 reports the imaginary tip; 0 a mill, 9 the nose centre",
+                ));
                 named(ui, response, &format!("Register {n} tool orientation"));
                 if remove_button(ui, &format!("Remove register {n}")) {
                     remove = Some(*n);
@@ -172,13 +160,10 @@ fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
 }
 
 fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String) {
+    let extended = setup.work_offsets.keys().cloned();
+    let extended = extended.filter(|n| !STANDARD_OFFSETS.contains(&n.as_str()));
     let mut names = STANDARD_OFFSETS.map(String::from).to_vec();
-    let extended = setup.work_offsets.keys();
-    names.extend(
-        extended
-            .filter(|n| !STANDARD_OFFSETS.contains(&n.as_str()))
-            .cloned(),
-    );
+    names.extend(extended);
     egui::Grid::new("swarf-work-offsets")
         .num_columns(4)
         .striped(true)
@@ -195,12 +180,8 @@ fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String
         });
     ui.horizontal(|ui| {
         let label = ui.label(tr("Add offset"));
-        ui.add(
-            egui::TextEdit::singleline(new_offset)
-                .desired_width(90.0)
-                .hint_text("G54.1P1"),
-        )
-        .labelled_by(label.id);
+        let field = egui::TextEdit::singleline(new_offset).desired_width(90.0);
+        ui.add(field.hint_text("G54.1P1")).labelled_by(label.id);
         if ui.button(tr("Add")).clicked() {
             let toml = format!("[work_offsets]\n{:?} = [0, 0, 0]\n", new_offset.trim());
             if let Ok(parsed) = Setup::from_toml(&toml) {
@@ -223,9 +204,8 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             }
             drag_row(ui, tr("Rapid rate (mm/min)"), rate(&mut m.rapid_mm_per_min));
             let mut per_axis = m.rapid_xyz_mm_per_min.is_some();
-            let per_axis_label = ui
-                .checkbox(&mut per_axis, tr("Rapid rate per axis X Y Z"))
-                .id;
+            let label = tr("Rapid rate per axis X Y Z");
+            let per_axis_label = ui.checkbox(&mut per_axis, label).id;
             let mut xyz = m.rapid_xyz_mm_per_min.unwrap_or([m.rapid_mm_per_min; 3]);
             ui.horizontal(|ui| {
                 ui.add_enabled_ui(per_axis, |ui| {
@@ -252,12 +232,10 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             let moves = egui::DragValue::new(&mut m.max_motions).range(1..=1_000_000_000_u64);
             drag_row(ui, tr("Move limit (moves)"), moves);
             let mut travel = m.travel_mm.is_some();
-            let travel_label = ui
-                .checkbox(&mut travel, tr("Machine travel min / max X Y Z"))
-                .id;
-            let mut bounds = m
-                .travel_mm
-                .unwrap_or([[-500.0, -400.0, -400.0], [0.0, 0.0, 0.0]]);
+            let label = tr("Machine travel min / max X Y Z");
+            let travel_label = ui.checkbox(&mut travel, label).id;
+            let default = [[-500.0, -400.0, -400.0], [0.0, 0.0, 0.0]];
+            let mut bounds = m.travel_mm.unwrap_or(default);
             ui.vertical(|ui| {
                 ui.add_enabled_ui(travel, |ui| {
                     for corner in &mut bounds {
@@ -277,19 +255,15 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             ui.label(tr("Syntec drilling"));
             ui.vertical(|ui| {
                 ui.checkbox(&mut m.fast_drilling, tr("G81 retracts at F2= (Pr4008 = 1)"));
-                ui.checkbox(
-                    &mut m.high_speed_peck_tapping,
-                    tr("Peck tapping backs out by the peck retract (Pr4001 = 1)"),
-                );
+                let text = tr("Peck tapping backs out by the peck retract (Pr4001 = 1)");
+                ui.checkbox(&mut m.high_speed_peck_tapping, text);
             });
             ui.end_row();
+            let fanuc = tr("intersection (Fanuc family)");
             let corners = [
                 (None, tr("as the dialect does")),
                 (Some(CornerMode::Arc), tr("arc (LinuxCNC)")),
-                (
-                    Some(CornerMode::Intersection),
-                    tr("intersection (Fanuc family)"),
-                ),
+                (Some(CornerMode::Intersection), fanuc),
             ];
             let label = tr("Cutter compensation corners");
             choice(ui, "swarf-corner", label, &mut m.corner_mode, &corners);
@@ -313,10 +287,8 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             let (label, value) = (tr("Integers without a point"), &mut m.calculator_input);
             choice(ui, "swarf-calculator", label, value, &inputs);
             ui.end_row();
-            for (i, name) in ["G28 reference point", "G30 P2 reference point"]
-                .iter()
-                .enumerate()
-            {
+            let names = ["G28 reference point", "G30 P2 reference point"];
+            for (i, name) in names.into_iter().enumerate() {
                 let label = ui.label(tr(name)).id;
                 let mut p = m.reference_points.get(i).copied().unwrap_or_default();
                 let mut changed = false;
@@ -338,11 +310,7 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
 
 /// The number `value` holds (a TOML integer too), if it is one.
 fn number(value: &Value) -> Option<f64> {
-    match value {
-        Value::Float(v) => Some(*v),
-        Value::Integer(v) => Some(*v as f64),
-        _ => None,
-    }
+    value.as_float().or(value.as_integer().map(|v| v as f64))
 }
 
 /// Three numbers as a TOML array.
@@ -398,12 +366,8 @@ fn stock_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             for (key, head) in [("min", tr("Min")), ("max", tr("Max"))] {
                 ui.label(head);
                 let numbers = stock.get(key).and_then(Value::as_array);
-                let mut corner: [f64; 3] = std::array::from_fn(|i| {
-                    numbers
-                        .and_then(|a| a.get(i))
-                        .and_then(number)
-                        .unwrap_or_default()
-                });
+                let at = |i: usize| numbers.and_then(|a| a.get(i)).and_then(number);
+                let mut corner: [f64; 3] = std::array::from_fn(|i| at(i).unwrap_or_default());
                 if xyz(ui, &mut corner, &format!("Stock {key}")) {
                     stock.insert(key.to_string(), floats(corner));
                 }
@@ -414,10 +378,8 @@ fn stock_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             ui.checkbox(&mut fixed, tr("Cell size (mm)"));
             if fixed && !had {
                 // Start from the cell the stock crate would choose.
-                let auto = read(stock)
-                    .ok()
-                    .and_then(|s| s.stock?.grid().ok())
-                    .map_or(1.0, |(cell, _, _)| cell);
+                let auto = read(stock).ok().and_then(|s| s.stock?.grid().ok());
+                let auto = auto.map_or(1.0, |(cell, _, _)| cell);
                 stock.insert("cell_mm".to_string(), Value::Float(auto));
             }
             if fixed {
@@ -440,14 +402,6 @@ const SHAPES: [(&str, &str); 5] = [
     ("chamfer", "chamfer mill"),
 ];
 
-/// A tool shape's name as the window shows it.
-fn shape_label(shape: &str) -> &str {
-    SHAPES
-        .iter()
-        .find(|(s, _)| *s == shape)
-        .map_or(shape, |(_, label)| tr(label))
-}
-
 /// The tools the stock is cut with (`[tools.N]`), a row each.
 fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     ui.label(tr(
@@ -459,9 +413,8 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
         .num_columns(7)
         .striped(true)
         .show(ui, |ui| {
-            let (no, diameter, shape) = (tr("No."), tr("Diameter"), tr("Shape"));
-            let (corner, point) = (tr("Corner radius"), tr("Point angle (°)"));
-            let flute = tr("Flute length");
+            let (no, diameter, shape) = ("No.", "Diameter", "Shape");
+            let (corner, point, flute) = ("Corner radius", "Point angle (°)", "Flute length");
             heads(ui, &[no, diameter, shape, corner, point, flute, ""]);
             for (&n, tool) in &mut setup.tools {
                 let mut to = n;
@@ -472,14 +425,12 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
                 let diameter = Tool::default().diameter;
                 let name = format!("Tool {n} diameter");
                 table_value(ui, tool, "diameter", diameter, &name);
-                let shape = tool
-                    .get("shape")
-                    .and_then(Value::as_str)
-                    .unwrap_or("flat")
-                    .to_string();
+                let shape = tool.get("shape").and_then(Value::as_str).unwrap_or("flat");
+                let shape = shape.to_string();
                 let mut chosen = shape.clone();
+                let shown = SHAPES.iter().find(|(s, _)| *s == shape);
                 let response = egui::ComboBox::from_id_salt(("swarf-tool-shape", n))
-                    .selected_text(shape_label(&shape))
+                    .selected_text(shown.map_or(shape.as_str(), |(_, label)| tr(label)))
                     .show_ui(ui, |ui| {
                         for (s, label) in SHAPES {
                             ui.selectable_value(&mut chosen, s.to_string(), tr(label));
@@ -547,11 +498,8 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     {
         setup.tools.insert(to, tool);
     }
-    let next = setup
-        .tools
-        .keys()
-        .next_back()
-        .map_or(Some(1), |n| n.checked_add(1));
+    let next = setup.tools.keys().next_back();
+    let next = next.map_or(Some(1), |n| n.checked_add(1));
     if ui.button(tr("Add tool")).clicked()
         && let Some(next) = next
     {
@@ -562,13 +510,11 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
         ]);
         setup.tools.insert(next, tool);
     }
-    refusal(
-        ui,
-        StockSetup::from_setup(&Setup {
-            tools: setup.tools.clone(),
-            ..Setup::default()
-        }),
-    );
+    let tools = Setup {
+        tools: setup.tools.clone(),
+        ..Setup::default()
+    };
+    refusal(ui, StockSetup::from_setup(&tools));
 }
 
 /// Each shift direction as the setup writes it.

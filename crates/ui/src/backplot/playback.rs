@@ -5,6 +5,7 @@
 use std::sync::Arc;
 
 use glam::Vec3;
+use swarf_render::PathPoint;
 
 use super::Scene;
 use crate::format_duration;
@@ -44,14 +45,8 @@ pub struct Playback {
 type Button<'a> = (bool, &'a str, &'a str, fn(&mut Playback, &Scene));
 
 impl Default for Playback {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl Playback {
     /// Playback off, at real-time speed.
-    pub fn new() -> Self {
+    fn default() -> Self {
         Self {
             time: None,
             pinned: None,
@@ -63,7 +58,9 @@ impl Playback {
             moved_line: None,
         }
     }
+}
 
+impl Playback {
     /// Seconds from the program start, `None` while playback is off.
     pub fn time(&self) -> Option<f64> {
         self.time
@@ -142,12 +139,8 @@ impl Playback {
             self.seek_block(scene, 0);
             return;
         };
-        let target = if t >= block_end(scene, &blocks, block) - SAME_TIME {
-            block + 1
-        } else {
-            block
-        };
-        self.seek_block(scene, target);
+        let done = t >= block_end(scene, &blocks, block) - SAME_TIME;
+        self.seek_block(scene, block + usize::from(done));
     }
 
     /// Pauses and moves to the end of the previous block (the start of the program from the
@@ -175,9 +168,7 @@ impl Playback {
         let total = scene.total_secs();
         let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
         let t = self.time.unwrap_or(0.0) + dt * self.speed;
-        if t >= total {
-            self.playing = false;
-        }
+        self.playing = t < total;
         self.set_time(t.min(total));
         self.report(scene);
     }
@@ -231,10 +222,7 @@ impl Playback {
         if let Some(segment) = self.current_segment(scene)
             && self.pinned.is_some()
         {
-            return scene
-                .points
-                .get(segment + 1)
-                .map(swarf_render::PathPoint::position);
+            return scene.points.get(segment + 1).map(PathPoint::position);
         }
         scene.position_at(t)
     }
@@ -258,14 +246,10 @@ impl Playback {
         let count = self.block_count(scene);
         let has_path = count > 0;
         ui.horizontal(|ui| {
-            let play = (
-                "Play",
-                "Play the program from here (from the start at its end)",
-            );
-            let (label, hint) = if self.playing {
-                ("Pause", "Pause playback")
-            } else {
-                play
+            let play = "Play the program from here (from the start at its end)";
+            let (label, hint) = match self.playing {
+                true => ("Pause", "Pause playback"),
+                false => ("Play", play),
             };
             let (back, forward) = (tr("Step one block back"), tr("Step one block forward"));
             let stop_hint = tr("Stop playback and draw the whole program");
@@ -297,16 +281,12 @@ impl Playback {
                 .labelled_by(speed_label.id);
             self.set_speed(speed);
             ui.separator();
-            ui.label(format!(
-                "{} / {}",
-                format_duration(self.time.unwrap_or(total)),
-                format_duration(total)
-            ));
+            let now = format_duration(self.time.unwrap_or(total));
+            ui.label(format!("{now} / {}", format_duration(total)));
             ui.separator();
             let current = self.current_block(scene).map_or(count, |b| b + 1);
-            let line = self
-                .current_line(scene)
-                .map_or(String::new(), |l| trf(", line {}", &[&l]));
+            let line = self.current_line(scene);
+            let line = line.map_or(String::new(), |l| trf(", line {}", &[&l]));
             ui.label(trf("block {} of {}{}", &[&current, &count, &line]));
         });
         ui.horizontal(|ui| {
@@ -315,12 +295,8 @@ impl Playback {
                 ((ui.available_width() - SLIDER_LABELS_POINTS) / 2.0).max(40.0);
             let time_label = ui.label(tr("Time"));
             let mut t = self.time.unwrap_or(total);
-            let slider = ui
-                .add_enabled(
-                    has_path,
-                    egui::Slider::new(&mut t, 0.0..=total.max(SAME_TIME)).show_value(false),
-                )
-                .labelled_by(time_label.id);
+            let slider = egui::Slider::new(&mut t, 0.0..=total.max(SAME_TIME)).show_value(false);
+            let slider = ui.add_enabled(has_path, slider).labelled_by(time_label.id);
             if slider.changed() {
                 self.seek(scene, t);
             }
@@ -328,12 +304,8 @@ impl Playback {
             let block_label = ui.label(tr("Block"));
             let current = self.current_block(scene).map_or(count, |b| b + 1);
             let mut block = current;
-            let slider = ui
-                .add_enabled(
-                    has_path,
-                    egui::Slider::new(&mut block, 1..=count.max(1)).show_value(false),
-                )
-                .labelled_by(block_label.id);
+            let slider = egui::Slider::new(&mut block, 1..=count.max(1)).show_value(false);
+            let slider = ui.add_enabled(has_path, slider).labelled_by(block_label.id);
             if slider.changed() && block != current {
                 self.seek_block(scene, block.saturating_sub(1));
             }
@@ -345,14 +317,10 @@ impl Playback {
         if self.generation == Some(scene.generation) {
             return;
         }
-        if self.generation.is_some() {
-            self.playing = false;
-        }
+        self.playing &= self.generation.is_none();
         self.generation = Some(scene.generation);
         self.pinned = None;
-        if let Some(t) = self.time {
-            self.time = Some(t.min(scene.total_secs()));
-        }
+        self.time = self.time.map(|t| t.min(scene.total_secs()));
     }
 
     fn set_time(&mut self, t: f64) {
@@ -377,10 +345,8 @@ impl Playback {
             return Arc::clone(blocks);
         }
         let lines = &scene.lines[..scene.lines.len().min(scene.segment_count())];
-        let starts: Vec<usize> = (0..lines.len())
-            .filter(|&i| i == 0 || lines[i] != lines[i - 1])
-            .collect();
-        let blocks = Arc::new(starts);
+        let starts = (0..lines.len()).filter(|&i| i == 0 || lines[i] != lines[i - 1]);
+        let blocks = Arc::new(starts.collect::<Vec<_>>());
         self.blocks = Some((scene.generation, Arc::clone(&blocks)));
         blocks
     }
@@ -420,7 +386,7 @@ mod tests {
     #[test]
     fn steps_through_blocks_and_back() {
         let scene = scene();
-        let mut p = Playback::new();
+        let mut p = Playback::default();
         assert_eq!(p.block_count(&scene), 4);
         assert_eq!(p.executed(&scene), None);
         p.step_forward(&scene);
@@ -450,7 +416,7 @@ mod tests {
     #[test]
     fn plays_at_speed_and_stops_at_the_end() {
         let scene = scene();
-        let mut p = Playback::new();
+        let mut p = Playback::default();
         p.set_speed(2.0);
         p.play(&scene);
         p.advance(&scene, 0.75);

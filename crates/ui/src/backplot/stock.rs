@@ -37,18 +37,12 @@ impl Backplot {
             self.stock_asked = None;
             return None;
         }
-        let upto = self
-            .playback
-            .executed(scene)
-            .unwrap_or_else(|| scene.segment_count());
+        let upto = self.playback.executed(scene);
+        let upto = upto.unwrap_or_else(|| scene.segment_count());
         let generation = scene.generation;
         let want = (generation, upto);
-        let answered = |(generation, upto): (u64, usize)| {
-            scene
-                .stock
-                .as_ref()
-                .is_some_and(|c| c.generation == generation && c.upto == upto)
-        };
+        let cut = scene.stock.as_ref();
+        let answered = |asked| cut.is_some_and(|c| (c.generation, c.upto) == asked);
         if answered(want) || self.stock_asked == Some(want) {
             return None;
         }
@@ -101,10 +95,8 @@ impl Backplot {
         pointer: egui::Pos2,
     ) -> Option<DVec3> {
         let field = self.shown_field()?;
-        let inverse = self
-            .camera
-            .view_proj(rect.width() / rect.height())
-            .inverse();
+        let aspect = rect.width() / rect.height();
+        let inverse = self.camera.view_proj(aspect).inverse();
         let x = (pointer.x - rect.min.x) / rect.width() * 2.0 - 1.0;
         let y = 1.0 - (pointer.y - rect.min.y) / rect.height() * 2.0;
         let at = |depth| scene.origin + inverse.project_point3(Vec3::new(x, y, depth)).as_dvec3();
@@ -191,11 +183,7 @@ fn surface_hit(field: &StockField, a: DVec3, b: DVec3) -> Option<DVec3> {
         if k > 0 {
             for _ in 0..32 {
                 let mid = f64::midpoint(above, hit);
-                if below(mid) {
-                    hit = mid;
-                } else {
-                    above = mid;
-                }
+                *if below(mid) { &mut hit } else { &mut above } = mid;
             }
         }
         let p = a + d * hit;

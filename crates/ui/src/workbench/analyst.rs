@@ -27,11 +27,9 @@ impl Workbench {
     /// The dialect offered for the active tab's program: one whose codes, by the code tables,
     /// leave strictly fewer errors than its own dialect (see the notice over the problems).
     pub fn suggested_dialect(&self) -> Option<Dialect> {
-        self.analysis
-            .hint
-            .as_ref()
-            .filter(|h| h.from == self.tab.dialect && self.own_analysis)
-            .map(|h| h.to)
+        let hint = self.analysis.hint.as_ref();
+        let hint = hint.filter(|h| h.from == self.tab.dialect && self.own_analysis);
+        hint.map(|h| h.to)
     }
 
     /// Whether the analysis shown is the active tab's own; false while the first analysis of
@@ -60,20 +58,16 @@ impl Workbench {
         self.generation += 1;
         // The texts are shared, not copied: a keystroke costs no copy of them (a rope is parsed
         // in place, another tab's text is copied only when the program calls into it).
-        let others = self
-            .tabs
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != self.active)
-            .map(|(_, t)| (t.document.name.clone(), t.text.program_text()))
-            .collect();
+        let active = self.active;
+        let others = self.tabs.iter().enumerate().filter(|(i, _)| *i != active);
+        let others = others.map(|(_, t)| (t.document.name.clone(), t.text.program_text()));
         let text = self.tab.text.program_text();
         self.ask(Request::Analyse(Box::new(Job {
             generation: self.generation,
             text: text.clone(),
             dialect: self.tab.dialect,
             setup: self.setup.clone(),
-            others: Some(others),
+            others: Some(others.collect()),
         })));
         self.sent.push_back((self.generation, text));
         self.pending = Some(Progress::Reading { read: 0, lines: 0 });
@@ -112,15 +106,10 @@ impl Workbench {
             Reply::Done(results) => {
                 let generation = results.generation;
                 // The jobs sent before this one were replaced.
-                while self.sent.front().is_some_and(|(g, _)| *g < generation) {
-                    self.sent.pop_front();
-                }
-                let text = match self.sent.front() {
-                    Some((g, _)) if *g == generation => self.sent.pop_front().map(|(_, t)| t),
-                    _ => None,
-                };
+                while self.sent.pop_front_if(|(g, _)| *g < generation).is_some() {}
+                let sent = self.sent.pop_front_if(|(g, _)| *g == generation);
                 let newer = !self.own_analysis || generation > self.analysis.scene.generation;
-                if let Some(text) = text
+                if let Some((_, text)) = sent
                     && generation >= self.floor
                     && newer
                 {
@@ -197,10 +186,8 @@ impl Workbench {
 
 /// What a tab shows before its first analysis is done: no path, no problems, no counts.
 pub(super) fn no_analysis() -> Analysis {
-    Analysis::of(
-        swarf_analysis::Results::default(),
-        &ProgramText::from(String::new()),
-    )
+    let empty = ProgramText::from(String::new());
+    Analysis::of(swarf_analysis::Results::default(), &empty)
 }
 
 /// The analysis beside the UI: a thread of its own, repainting `waker`'s context with each reply,

@@ -13,9 +13,8 @@ impl Workbench {
             small_window(tr("Go to line"), &mut open).show(ctx, |ui| {
                 ui.horizontal(|ui| {
                     let label = ui.label(tr("Line number"));
-                    let field = ui
-                        .add(egui::TextEdit::singleline(&mut input).desired_width(80.0))
-                        .labelled_by(label.id);
+                    let edit = egui::TextEdit::singleline(&mut input).desired_width(80.0);
+                    let field = ui.add(edit).labelled_by(label.id);
                     if !field.has_focus() && !field.lost_focus() && input.is_empty() {
                         field.request_focus();
                     }
@@ -27,12 +26,11 @@ impl Workbench {
                 });
                 ui.label(format!("1 – {}", self.tab.text.line_count()));
             });
-            let line = input.trim().parse::<u32>().ok().filter(|&n| n >= 1);
-            match line.map(|n| n.min(self.tab.text.line_count())) {
+            let escape = ctx.input(|i| i.key_pressed(egui::Key::Escape));
+            // `go_to_line` clamps to the text.
+            match input.trim().parse::<u32>().ok().filter(|&n| n >= 1) {
                 Some(line) if go => self.go_to_line(line),
-                _ if open && !(go || ctx.input(|i| i.key_pressed(egui::Key::Escape))) => {
-                    self.goto = Some(input);
-                }
+                _ if open && !(go || escape) => self.goto = Some(input),
                 _ => {}
             }
         }
@@ -78,18 +76,14 @@ impl Workbench {
                 self.set_dialect(dialect);
             }
             self.set_setup(setup);
-            if let Some(r) = request {
-                self.requests.push(r);
-            }
+            self.requests.extend(request);
         }
         if let Some(action) = self.confirm.clone() {
             let mut answer = None;
             egui::Modal::new(egui::Id::unique("swarf-unsaved")).show(ctx, |ui| {
                 ui.heading(tr("Unsaved changes"));
-                ui.label(trf(
-                    "{} has changes that are not saved.",
-                    &[&self.tab.document.name],
-                ));
+                let name = &self.tab.document.name;
+                ui.label(trf("{} has changes that are not saved.", &[name]));
                 ui.horizontal(|ui| {
                     let buttons = [tr("Save"), tr("Discard changes"), tr("Cancel")];
                     for (i, label) in buttons.into_iter().enumerate() {
@@ -99,18 +93,16 @@ impl Workbench {
                     }
                 });
             });
+            if answer.is_some() {
+                self.confirm = None;
+            }
             match answer {
                 Some(0) => {
-                    self.confirm = None;
                     self.after_save = Some(action);
                     self.requests.push(HostRequest::Save);
                 }
-                Some(1) => {
-                    self.confirm = None;
-                    self.run_action(action);
-                }
-                Some(_) => self.confirm = None,
-                None => {}
+                Some(1) => self.run_action(action),
+                _ => {}
             }
         }
     }

@@ -123,15 +123,10 @@ impl Workbench {
         let mut close = false;
         ui.horizontal_wrapped(|ui| {
             let label = ui.label(tr("Find"));
-            let field = ui.add(
-                egui::TextEdit::singleline(&mut self.find.query)
-                    .desired_width(160.0)
-                    .hint_text(if self.find.options.regex {
-                        tr("regular expression")
-                    } else {
-                        tr("text")
-                    }),
-            );
+            let regex = self.find.options.regex;
+            let hint = tr(if regex { "regular expression" } else { "text" });
+            let field = egui::TextEdit::singleline(&mut self.find.query).desired_width(160.0);
+            let field = ui.add(field.hint_text(hint));
             let field = field.labelled_by(label.id);
             self.keep_rect(ui, "find_field", &field);
             if std::mem::take(&mut self.find.focus) {
@@ -141,9 +136,7 @@ impl Workbench {
                 next = true;
                 field.request_focus();
             }
-            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
-                close = true;
-            }
+            close = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape));
             ui.checkbox(&mut self.find.options.regex, tr("Regex"));
             ui.checkbox(&mut self.find.options.match_case, tr("Match case"));
             let previous_button = ui.button(tr("Previous"));
@@ -180,11 +173,8 @@ impl Workbench {
         if self.find.replace {
             ui.horizontal_wrapped(|ui| {
                 let label = ui.label(tr("Replace"));
-                let field = ui
-                    .add(
-                        egui::TextEdit::singleline(&mut self.find.replacement).desired_width(160.0),
-                    )
-                    .labelled_by(label.id);
+                let field = egui::TextEdit::singleline(&mut self.find.replacement);
+                let field = ui.add(field.desired_width(160.0)).labelled_by(label.id);
                 let one = ui.button(tr("Replace"));
                 let all = ui.button(tr("Replace all"));
                 self.keep_rect(ui, "replace_field", &field);

@@ -27,7 +27,17 @@ impl Workbench {
             ui.separator();
             ui.menu_button(tr("File"), |ui| self.file_menu(ui));
             ui.menu_button(tr("Edit"), |ui| self.menu_items(ui, &EDIT));
-            ui.menu_button(tr("View"), |ui| self.view_menu(ui));
+            ui.menu_button(tr("View"), |ui| {
+                ui.menu_button(tr("Language"), |ui| {
+                    for lang in Lang::ALL {
+                        let on = self.lang == lang;
+                        if ui.selectable_label(on, lang.native_name()).clicked() {
+                            self.set_language(lang);
+                            ui.close();
+                        }
+                    }
+                });
+            });
             if ui.button(tr("Settings…")).clicked() {
                 self.settings_open = true;
             }
@@ -70,20 +80,6 @@ impl Workbench {
         });
         ui.separator();
         self.menu_items(ui, &FILE[1..]);
-    }
-
-    fn view_menu(&mut self, ui: &mut egui::Ui) {
-        ui.menu_button(tr("Language"), |ui| {
-            for lang in Lang::ALL {
-                if ui
-                    .selectable_label(self.lang == lang, lang.native_name())
-                    .clicked()
-                {
-                    self.set_language(lang);
-                    ui.close();
-                }
-            }
-        });
     }
 
     /// The commands of `groups` as menu items showing their first shortcut, with a separator
@@ -142,13 +138,8 @@ impl Workbench {
             .collect();
         // Ctrl+Shift+S before Ctrl+S, which would take it too.
         keys.sort_by_key(|(modifiers, _, _)| !modifiers.shift);
-        let pressed: Vec<fn(&mut Workbench)> = ctx.input_mut(|i| {
-            (keys.into_iter())
-                .filter(|(modifiers, key, _)| i.consume_key(*modifiers, *key))
-                .map(|(_, _, run)| run)
-                .collect()
-        });
-        for run in pressed {
+        ctx.input_mut(|i| keys.retain(|(m, key, _)| i.consume_key(*m, *key)));
+        for (_, _, run) in keys {
             run(self);
         }
     }

@@ -321,10 +321,8 @@ impl Workbench {
     /// `replace_field`, `replace`, `replace_all`, `goto_field`, `goto_button`, `problem_first`
     /// (the problems list's first row), `tab N`, `close_tab N` (1-based) and `new_tab`.
     pub fn widget_rect(&self, name: &str) -> Option<egui::Rect> {
-        self.widgets
-            .get(name)
-            .copied()
-            .filter(egui::Rect::is_positive)
+        let rect = self.widgets.get(name).copied();
+        rect.filter(egui::Rect::is_positive)
     }
 
     /// Keeps where `widget` was drawn, the part in sight, as `name` for
@@ -407,9 +405,7 @@ impl Workbench {
                     } else {
                         EditKind::Typing
                     };
-                    self.tab
-                        .history
-                        .record(before, kind, out.ends_line, self.now);
+                    (self.tab.history).record(before, kind, out.ends_line, self.now);
                     self.text_changed();
                 }
                 if let Some(selection) = out.selection {
@@ -418,9 +414,7 @@ impl Workbench {
                     }
                     self.tab.selection = selection;
                 }
-                if out.cursor_line.is_some() {
-                    self.tab.cursor_line = out.cursor_line;
-                }
+                self.tab.cursor_line = out.cursor_line.or(self.tab.cursor_line);
             });
         self.dialogs(ui.ctx());
         egui::CentralPanel::default()
@@ -450,9 +444,7 @@ impl Workbench {
                 if let Some(line) = self.backplot.take_picked_line().or(played) {
                     // A move of a subprogram in another tab is named, not jumped to.
                     match self.analysis.linked_line(line.saturating_sub(1)) {
-                        Some((file, at)) => {
-                            self.message = Some(trf("{}, line {}", &[&file, &at]));
-                        }
+                        Some((file, at)) => self.message = Some(trf("{}, line {}", &[&file, &at])),
                         None => self.jump_to_line(line),
                     }
                 }

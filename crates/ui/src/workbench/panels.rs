@@ -140,10 +140,8 @@ impl Workbench {
             }
         };
         let at = egui::Rect::from_center_size(view.center(), egui::vec2(260.0, 40.0));
-        ui.put(
-            at,
-            egui::Label::new(egui::RichText::new(text).heading().weak()),
-        );
+        let text = egui::RichText::new(text).heading().weak();
+        ui.put(at, egui::Label::new(text));
     }
 
     /// The offer to read the active tab's program in the dialect its codes point to, over the
@@ -163,10 +161,8 @@ impl Workbench {
                 None => trf("This program looks like {}", &[&to.label()]),
             };
             ui.colored_label(severity_color(Severity::Warning), text);
-            switch = ui
-                .button(tr("Switch"))
-                .on_hover_text(trf("Read this tab's program as {}", &[&to.label()]))
-                .clicked();
+            let hint = trf("Read this tab's program as {}", &[&to.label()]);
+            switch = ui.button(tr("Switch")).on_hover_text(hint).clicked();
         });
         if switch {
             self.set_tab_dialect(self.active, to);

@@ -256,12 +256,8 @@ impl Workbench {
             return;
         }
         let active = active.min(records.len() - 1);
-        let unsaved: Vec<&str> = records
-            .iter()
-            .filter(|r| r.dirty)
-            .map(|r| r.name.as_str())
-            .collect();
-        let message = recovered_message(&unsaved);
+        let unsaved = records.iter().filter(|r| r.dirty).map(|r| r.name.as_str());
+        let message = recovered_message(&unsaved.collect::<Vec<_>>());
         let mut tabs = Vec::with_capacity(records.len());
         for r in records {
             let dialect = r.dialect.unwrap_or(self.default_dialect);
@@ -275,9 +271,7 @@ impl Workbench {
         }
         self.tabs = tabs;
         self.activate(active);
-        if message.is_some() {
-            self.message = message;
-        }
+        self.message = message.or(self.message.take());
     }
 
     /// The text of tab `i` (a copy), `None` past the last tab.
@@ -367,9 +361,7 @@ impl Workbench {
             self.remove_active_tab();
         } else {
             self.tabs.remove(i);
-            if i < self.active {
-                self.active -= 1;
-            }
+            self.active -= usize::from(i < self.active);
             // The active program's calls may have reached the tab closed.
             self.reanalyse();
         }
@@ -386,8 +378,10 @@ impl Workbench {
         self.activate(self.active.min(self.tabs.len() - 1));
     }
 
-    /// `untitled.nc`, or `untitled-2.nc` … when another tab has that name.
-    fn untitled_name(&self) -> String {
+    /// Opens a new tab with an empty untitled program: `untitled.nc`, or `untitled-2.nc` … when
+    /// another tab has that name.
+    pub fn new_tab(&mut self) {
+        self.push_tab();
         let taken = |name: &str| {
             (0..self.tabs.len()).any(|i| i != self.active && self.tab_document(i).name == name)
         };
@@ -397,13 +391,6 @@ impl Workbench {
             n += 1;
             name = format!("untitled-{n}.nc");
         }
-        name
-    }
-
-    /// Opens a new tab with an empty untitled program.
-    pub fn new_tab(&mut self) {
-        self.push_tab();
-        let name = self.untitled_name();
         self.load(&name, String::new(), Encoding::Utf8);
     }
 
