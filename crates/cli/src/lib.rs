@@ -464,8 +464,9 @@ fn read_run(
 }
 
 /// Runs a plain UTF-8 program file into `sink` piece by piece as it reads it ([`FileLines`]),
-/// holding neither its text nor its blocks whole; `None` where it is read whole instead (`sink`
-/// having the first events of the run).
+/// holding neither its text nor its blocks whole, or parses it whole when it jumps, loops or
+/// calls; `None` where the file is not plain UTF-8 (or could not be read so), to be read whole
+/// and decoded (`sink` having the first events of the run).
 fn stream_run(
     file: &Path,
     opts: &RunOptions,
@@ -475,9 +476,12 @@ fn stream_run(
     let Some(mut lines) = FileLines::open(file, opts.max_file_bytes()) else {
         return Ok(None);
     };
-    let ran = run_pieces(&mut lines, opts.dialect, setup, sink).filter(|_| !lines.failed);
-    let Some((program, blocks, run)) = ran else {
+    let ran = run_pieces(&mut lines, opts.dialect, setup, sink);
+    if lines.failed {
         return Ok(None);
+    }
+    let Some((program, blocks, run)) = ran else {
+        return Ok(Some(Read::Whole(load(file, opts)?)));
     };
     let after = std::fs::metadata(file).map(|m| (m.len(), m.modified().ok()));
     let changed = (after.ok() != Some(lines.opened))
