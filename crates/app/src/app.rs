@@ -1,5 +1,4 @@
-//! The eframe application: one workbench filling the window, plus the host's file handling and
-//! the settings kept between runs.
+//! The eframe application: one workbench filling the window, its host's files and settings.
 
 use swarf_ui::Workbench;
 use swarf_ui::backplot::Backplot;
@@ -31,8 +30,7 @@ pub struct SwarfApp {
     title: String,
     /// Callbacks waiting until a frame shows the finished analysis of the current text.
     idle_waiting: Vec<IdleWaiter>,
-    /// Callbacks whose wait a frame ended, with the text generation it showed: called at the
-    /// start of the next frame (once that one is painted) if the text is still that one.
+    /// Callbacks a frame ended, with its text generation: called next frame if that still holds.
     idle_drawn: Vec<(u64, IdleWaiter)>,
 }
 
@@ -57,8 +55,7 @@ impl SwarfApp {
             idle_waiting: Vec::new(),
             idle_drawn: Vec::new(),
         };
-        // The page analyses in a worker of its own, beside its frames (the desktop's workbench
-        // has a thread of its own).
+        // The page analyses in a worker (the desktop in a thread of its own).
         #[cfg(target_arch = "wasm32")]
         match crate::web_worker::WorkerAnalyst::start(&cc.egui_ctx) {
             Ok(worker) => app.workbench.set_analyst(Box::new(worker)),
@@ -94,8 +91,7 @@ impl SwarfApp {
         self.ctx.request_repaint();
     }
 
-    /// Calls the idle callbacks whose frame was painted (the previous one showed the current
-    /// text's analysis); those whose text changed since wait again.
+    /// Calls the idle callbacks whose frame was painted; those whose text changed wait again.
     fn wake_idle(&mut self) {
         let generation = self.workbench.generation();
         for (shown, done) in std::mem::take(&mut self.idle_drawn) {
@@ -133,13 +129,10 @@ impl SwarfApp {
     /// pixels from the canvas's top left; `None` before it, without geometry or behind the eye.
     #[cfg(target_arch = "wasm32")]
     pub fn project(&self, p: glam::DVec3) -> Option<[f64; 2]> {
-        let scene = &self.workbench.analysis().scene;
-        let pos = self
-            .workbench
-            .backplot()
-            .screen_pos((p - scene.origin).as_vec3())?;
+        let p = (p - self.workbench.analysis().scene.origin).as_vec3();
+        let pos = self.workbench.backplot().screen_pos(p)?;
         let zoom = f64::from(self.ctx.zoom_factor());
-        Some([f64::from(pos.x) * zoom, f64::from(pos.y) * zoom])
+        Some([pos.x, pos.y].map(|v| f64::from(v) * zoom))
     }
 
     /// Where the workbench's widget `name` (or `stock`, the backplot's Stock button) was drawn
@@ -151,23 +144,20 @@ impl SwarfApp {
             _ => self.workbench.widget_rect(name),
         }?;
         let zoom = f64::from(self.ctx.zoom_factor());
-        Some([
-            f64::from(rect.min.x) * zoom,
-            f64::from(rect.min.y) * zoom,
-            f64::from(rect.width()) * zoom,
-            f64::from(rect.height()) * zoom,
-        ])
+        Some([rect.min.x, rect.min.y, rect.width(), rect.height()].map(|v| f64::from(v) * zoom))
     }
 
     fn update_title(&mut self, ctx: &egui::Context) {
         let doc = self.workbench.document();
-        let dirty = if self.workbench.is_dirty() { "*" } else { "" };
+        let dirty = if doc.is_unsaved() { "*" } else { "" };
         let title = format!("{}{dirty} — Swarf", doc.name);
         if title != self.title {
             #[cfg(not(target_arch = "wasm32"))]
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             #[cfg(target_arch = "wasm32")]
-            crate::web_files::set_document_title(&title);
+            if let Some(doc) = web_sys::window().and_then(|w| w.document()) {
+                doc.set_title(&title);
+            }
             let _ = ctx;
             self.title = title;
         }
@@ -214,11 +204,6 @@ impl eframe::App for SwarfApp {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         files::store_settings(storage, &self.workbench, &self.host.recent);
-        // The dialect kept is the default for new tabs, not the active tab's own.
-        storage.set_string(
-            files::KEY_DIALECT,
-            self.workbench.default_dialect().name().to_string(),
-        );
         self.host.write_recovery(&mut self.workbench);
     }
 

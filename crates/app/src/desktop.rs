@@ -7,8 +7,7 @@ use swarf_ui::{HostRequest, Workbench};
 
 use crate::files::{self, Autosave, AutosaveClock, RecoveryBook, RecoveryIndex, TabState};
 
-/// The file at `path`, refused past [`swarf_syntax::MAX_FILE_BYTES`] before more of it is read
-/// (a file that grows, or a device, is read no further than one byte past it).
+/// The file at `path`, refused past [`swarf_syntax::MAX_FILE_BYTES`] (and read no further).
 fn read_bounded(path: &Path) -> std::io::Result<Vec<u8>> {
     use std::io::Read as _;
     let file = std::fs::File::open(path)?;
@@ -30,9 +29,6 @@ const RECOVERY_FOLDER: &str = "recovery";
 /// The application id: names the data folder (`~/.local/share/swarf` on Linux).
 pub const APP_ID: &str = "Swarf";
 
-/// File name extensions offered in the program dialogs.
-const PROGRAM_EXTENSIONS: &[&str] = &["nc", "ngc", "tap", "gcode", "cnc", "txt", "ptp", "mpf"];
-
 /// Desktop file state: the open file's path, the recent files and where recovery goes.
 #[derive(Debug, Default)]
 pub struct Host {
@@ -51,21 +47,16 @@ pub struct Host {
 impl Host {
     /// A host whose recovery records are in the platform's data folder for Swarf.
     pub fn new() -> Host {
-        Host::in_data_folder(eframe::storage_dir(APP_ID))
+        Host::with_data_folder(eframe::storage_dir(APP_ID))
     }
 
-    /// A host whose recovery records are in the folder `recovery` of `data` (tests use a
-    /// folder of their own).
-    pub fn with_data_folder(data: PathBuf) -> Host {
-        Host::in_data_folder(Some(data))
-    }
-
-    fn in_data_folder(data: Option<PathBuf>) -> Host {
+    /// A host whose recovery records are in the folder `recovery` of `data` (none without one).
+    pub fn with_data_folder(data: impl Into<Option<PathBuf>>) -> Host {
         let run = std::time::SystemTime::now()
             .duration_since(std::time::UNIX_EPOCH)
             .map_or(0, |d| d.as_nanos());
         Host {
-            data,
+            data: data.into(),
             book: RecoveryBook::new(&format!("{run:x}{:x}", std::process::id())),
             ..Host::default()
         }
@@ -92,8 +83,7 @@ impl Host {
             |key| std::fs::read_to_string(dir.join(record_file(key))).ok(),
             read_program,
         );
-        // Records of earlier runs that the index does not name are left over from a write
-        // that never came to be named.
+        // Records the index does not name are left over from a write never named.
         let named: Vec<String> = index.keys().map(record_file).collect();
         remove_records(&dir, |name| !named.iter().any(|n| n == name));
         if restored.tabs.is_empty() {
@@ -126,8 +116,7 @@ impl Host {
         self.open_path(wb, file.path());
     }
 
-    /// Nothing arrives later on the desktop (dialogs answer at once); the web host reads picked
-    /// files here.
+    /// Nothing arrives later on the desktop (dialogs answer at once).
     pub fn poll(&mut self, _wb: &mut Workbench) {}
 
     /// Carries out the workbench's file requests; stops at one the user cancels.
@@ -150,7 +139,7 @@ impl Host {
         match request {
             HostRequest::Open => {
                 let dialog = rfd::FileDialog::new()
-                    .add_filter("G-code programs", PROGRAM_EXTENSIONS)
+                    .add_filter("G-code programs", &files::PROGRAM_EXTENSIONS)
                     .add_filter("All files", &["*"]);
                 match dialog.pick_file() {
                     Some(path) => self.open_path(wb, &path),
@@ -213,13 +202,9 @@ impl Host {
     fn save_as(&mut self, wb: &mut Workbench) -> bool {
         let mut dialog = rfd::FileDialog::new()
             .set_file_name(&wb.document().name)
-            .add_filter("G-code programs", PROGRAM_EXTENSIONS);
-        if let Some(dir) = wb
-            .document()
-            .path
-            .as_ref()
-            .and_then(|p| Path::new(p).parent())
-        {
+            .add_filter("G-code programs", &files::PROGRAM_EXTENSIONS);
+        let path = wb.document().path.as_ref();
+        if let Some(dir) = path.and_then(|p| Path::new(p).parent()) {
             dialog = dialog.set_directory(dir);
         }
         match dialog.save_file() {
@@ -256,8 +241,7 @@ impl Host {
         }
     }
 
-    /// Keeps unsaved changes in the recovery folder a moment after they are made, and empties
-    /// it once nothing is unsaved.
+    /// Keeps unsaved changes in the recovery folder a moment after an edit; empties it after.
     pub fn autosave(&mut self, wb: &mut Workbench, now: f64) {
         match self.clock.step(wb.generation(), wb.any_dirty(), now) {
             Autosave::Wait => {}
@@ -301,20 +285,12 @@ impl Host {
         let round = self.book.compose(&tabs, active, &writes, &results);
         let mut failed = round.failed.clone();
         let stored = !round.changed
-            || match atomic_write(&dir.join(INDEX_FILE), round.record.as_bytes()) {
-                Ok(()) => true,
-                Err(e) => {
-                    failed = RecoveryBook::all_failed(&tabs, &e.to_string());
-                    false
-                }
-            };
+            || atomic_write(&dir.join(INDEX_FILE), round.record.as_bytes())
+                .map_err(|e| failed = RecoveryBook::all_failed(&tabs, &e.to_string()))
+                .is_ok();
         self.book.commit(round, stored);
-        let stale: Vec<String> = self
-            .book
-            .take_stale()
-            .iter()
-            .map(|k| record_file(k))
-            .collect();
+        let stale = self.book.take_stale();
+        let stale: Vec<String> = stale.iter().map(|k| record_file(k)).collect();
         remove_records(&dir, |name| stale.iter().any(|s| s == name));
         if let Some(message) = self.book.report(&failed, &tabs) {
             wb.set_message(message);
@@ -342,8 +318,7 @@ fn record_file(key: &str) -> String {
     format!("{key}.nc")
 }
 
-/// Removes the tab records in `dir` whose file names `remove` picks (a record's file name is
-/// a record key and `.nc`; nothing else in the folder is touched).
+/// Removes the tab records (`{key}.nc`, nothing else) in `dir` whose file names `remove` picks.
 fn remove_records(dir: &Path, remove: impl Fn(&str) -> bool) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
@@ -370,8 +345,7 @@ fn read_program(path: &str) -> Option<(String, swarf_syntax::Encoding)> {
 /// Environment variable naming a CJK font file to use for the Chinese interface languages.
 pub const CJK_FONT_VARIABLE: &str = "SWARF_CJK_FONT";
 
-/// Where Linux, Windows and macOS keep CJK fonts egui can read (TrueType or OpenType, collections
-/// too), in the order they are tried.
+/// Where Linux, Windows and macOS keep CJK fonts egui can read, in the order they are tried.
 const CJK_FONT_FILES: &[&str] = &[
     "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc",
     "/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc",
@@ -389,8 +363,7 @@ const CJK_FONT_FILES: &[&str] = &[
     "/Library/Fonts/Arial Unicode.ttf",
 ];
 
-/// The bytes of a CJK font: the file named by [`CJK_FONT_VARIABLE`], else the first of the
-/// system's that can be read.
+/// The bytes of the CJK font [`CJK_FONT_VARIABLE`] names, else of the system's first readable.
 pub fn find_cjk_font() -> Option<Vec<u8>> {
     let named = std::env::var_os(CJK_FONT_VARIABLE).map(PathBuf::from);
     named
@@ -401,10 +374,8 @@ pub fn find_cjk_font() -> Option<Vec<u8>> {
 
 /// The last component of `path` for titles and the status bar.
 fn file_name(path: &Path) -> String {
-    path.file_name().map_or_else(
-        || path.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    )
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    name.unwrap_or_else(|| path.display().to_string())
 }
 
 /// Writes `bytes` to `path` through a temporary file and a rename, so a crash never leaves a
@@ -414,10 +385,8 @@ pub fn atomic_write(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let resolved = std::fs::canonicalize(path).ok();
     let path = resolved.as_deref().unwrap_or(path);
     let permissions = std::fs::metadata(path).ok().map(|m| m.permissions());
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
+    let dir = dir.unwrap_or(Path::new("."));
     let name = path
         .file_name()
         .ok_or_else(|| std::io::Error::other("no file name"))?;

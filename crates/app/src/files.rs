@@ -8,6 +8,9 @@ use swarf_syntax::{Dialect, Encoding};
 use swarf_ui::i18n::{Lang, trf};
 use swarf_ui::{TabRecord, Workbench};
 
+/// File name extensions the open dialogs offer for programs.
+pub const PROGRAM_EXTENSIONS: [&str; 8] = ["nc", "ngc", "tap", "gcode", "cnc", "txt", "ptp", "mpf"];
+
 /// Most recent files remembered.
 pub const RECENT_MAX: usize = 10;
 
@@ -20,17 +23,11 @@ pub const KEY_SETUP: &str = "swarf.setup";
 /// Storage key of the interface language (`en`, `zh-Hans`, `zh-Hant`).
 pub const KEY_LANGUAGE: &str = "swarf.language";
 
-/// Why a file of `len` bytes is not opened: it is larger than [`swarf_syntax::MAX_FILE_BYTES`],
-/// past which its text and analysis would not fit in memory.
+/// Why a file of `len` bytes is not opened: past [`swarf_syntax::MAX_FILE_BYTES`].
 pub fn too_large(len: u64) -> Option<String> {
-    let max = swarf_syntax::MAX_FILE_BYTES;
-    (len > max).then(|| {
-        format!(
-            "it is {} MiB; Swarf opens files up to {} MiB",
-            len.div_ceil(1 << 20),
-            max >> 20
-        )
-    })
+    let (max, size) = (swarf_syntax::MAX_FILE_BYTES >> 20, len.div_ceil(1 << 20));
+    let why = || format!("it is {size} MiB; Swarf opens files up to {max} MiB");
+    (len > swarf_syntax::MAX_FILE_BYTES).then(why)
 }
 
 /// Puts `item` first in `list`, without duplicates, keeping at most [`RECENT_MAX`].
@@ -40,10 +37,9 @@ pub fn push_recent(list: &mut Vec<String>, item: String) {
     list.truncate(RECENT_MAX);
 }
 
-/// Keeps the dialect, the machine setup (as `SETUP.toml`), the interface language and the
-/// recent files in `storage`.
+/// Keeps the default dialect, the setup (`SETUP.toml`), the language and recent files.
 pub fn store_settings(storage: &mut dyn eframe::Storage, wb: &Workbench, recent: &[String]) {
-    storage.set_string(KEY_DIALECT, wb.dialect().name().to_string());
+    storage.set_string(KEY_DIALECT, wb.default_dialect().name().to_string());
     storage.set_string(KEY_LANGUAGE, wb.language().code().to_string());
     match wb.setup_toml() {
         Ok(toml) => storage.set_string(KEY_SETUP, toml),
@@ -52,8 +48,7 @@ pub fn store_settings(storage: &mut dyn eframe::Storage, wb: &Workbench, recent:
     storage.set_string(KEY_RECENT, recent.join("\n"));
 }
 
-/// Restores what [`store_settings`] kept into `wb`; returns the recent files. Anything
-/// unreadable is skipped with a warning in the log.
+/// Restores what [`store_settings`] kept (skipping what is unreadable); the recent files.
 pub fn restore_settings(storage: &dyn eframe::Storage, wb: &mut Workbench) -> Vec<String> {
     if let Some(dialect) = storage
         .get_string(KEY_DIALECT)
@@ -81,8 +76,7 @@ pub fn restore_settings(storage: &dyn eframe::Storage, wb: &mut Workbench) -> Ve
     recent
 }
 
-/// `text` encoded as `encoding` when that gives the same text back, else as UTF-8 (a character
-/// the file's encoding cannot hold must not be lost); the encoding actually used comes with it.
+/// `text` in `encoding` when that gives the same text back, else in UTF-8; and the one used.
 pub fn encode(text: &str, encoding: Encoding) -> (Vec<u8>, Encoding) {
     let bytes = encoding.encode(text);
     let back = swarf_syntax::decode(&bytes);
@@ -96,8 +90,7 @@ pub fn encode(text: &str, encoding: Encoding) -> (Vec<u8>, Encoding) {
 /// Seconds an edit waits before it is written to the recovery copy.
 pub const AUTOSAVE_DELAY: f64 = 1.0;
 
-/// When the recovery copy of unsaved changes is written or cleared, the same on the desktop
-/// (files) and the web (IndexedDB): a moment after an edit, once per workbench generation.
+/// When the recovery copy is written or cleared: a moment after an edit, once a generation.
 #[derive(Debug, Default, Clone, Copy)]
 pub struct AutosaveClock {
     /// The text generation last written (or cleared).
@@ -152,8 +145,7 @@ const INDEX_MAGIC: &str = "swarf-recovery 3";
 /// The key of the recovery index among the recovery records.
 pub const INDEX_KEY: &str = "index";
 
-/// Whether `key` can name a tab's recovery record: `tab-` and ASCII letters, digits and `-`,
-/// as [`RecoveryBook`] makes them, so that a damaged index never names a file elsewhere.
+/// Whether `key` can name a tab's record (`tab-`, letters, digits, `-`): never a path elsewhere.
 pub fn is_record_key(key: &str) -> bool {
     key.len() <= 64
         && key.strip_prefix("tab-").is_some_and(|rest| {
@@ -172,15 +164,13 @@ pub struct IndexEntry {
     pub encoding: Encoding,
     /// Whether the text had changes that were not saved.
     pub dirty: bool,
-    /// The key of the record that holds the tab's text; `None` for a tab read again from its
-    /// file, or one whose text could not be kept.
+    /// The key of the record of the tab's text; `None`: read from its file, or not kept.
     pub record: Option<String>,
     /// The tab's dialect; `None` in an index that names none.
     pub dialect: Option<Dialect>,
 }
 
-/// The small record that lists the open tabs in order, the active one, and which record holds
-/// each one's text (every tab's text is a record of its own, written only when it changed).
+/// The record listing the open tabs in order, the active one, and the record of each one's text.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct RecoveryIndex {
     /// The tabs, in order.
@@ -222,8 +212,7 @@ impl RecoveryIndex {
         out
     }
 
-    /// Reads an index written by [`RecoveryIndex::to_record`]; `None` for anything else. A
-    /// record key that [`is_record_key`] refuses is read as no record.
+    /// Reads an index [`RecoveryIndex::to_record`] wrote (a key [`is_record_key`] refuses: none).
     pub fn from_record(record: &str) -> Option<RecoveryIndex> {
         let mut lines = record.lines();
         let mut head = lines.next()?.split('\t');
@@ -258,10 +247,8 @@ impl RecoveryIndex {
         self.tabs.iter().filter_map(|t| t.record.as_deref())
     }
 
-    /// The tabs to restore: a tab with unsaved changes from its record, one without from its
-    /// file where `read_file` can read it (it may have changed since) and else from its record.
-    /// A tab with unsaved changes whose record cannot be read is named in `lost` and comes
-    /// back from its file without them, or not at all; a tab with nothing to read is left out.
+    /// The tabs to restore: an unsaved one from its record (else named in `lost`, from its file),
+    /// a saved one from its file where `read_file` can read it, else its record; or left out.
     pub fn restore(
         &self,
         mut read_record: impl FnMut(&str) -> Option<String>,
@@ -317,31 +304,25 @@ pub struct TabState {
 }
 
 impl TabState {
-    /// The workbench's tabs in order, and the index of the active one. `with_paths`: whether a
-    /// tab's path can be read again after a restart (not the web page's file handles).
+    /// The workbench's tabs and the active one; `with_paths`: whether a path can be read again.
     pub fn of(wb: &Workbench, with_paths: bool) -> (Vec<TabState>, usize) {
-        let tabs = wb
-            .tab_documents()
-            .into_iter()
-            .enumerate()
-            .map(|(i, d)| TabState {
-                id: d.id(),
-                revision: d.revision(),
-                entry: IndexEntry {
-                    name: d.name.clone(),
-                    path: if with_paths { d.path.clone() } else { None },
-                    encoding: d.encoding,
-                    dirty: d.is_unsaved(),
-                    record: None,
-                    dialect: Some(wb.tab_dialect(i).unwrap_or_default()),
-                },
-            })
-            .collect();
-        (tabs, wb.active_tab())
+        let docs = wb.tab_documents().into_iter().enumerate();
+        let tabs = docs.map(|(i, d)| TabState {
+            id: d.id(),
+            revision: d.revision(),
+            entry: IndexEntry {
+                name: d.name.clone(),
+                path: if with_paths { d.path.clone() } else { None },
+                encoding: d.encoding,
+                dirty: d.is_unsaved(),
+                record: None,
+                dialect: Some(wb.tab_dialect(i).unwrap_or_default()),
+            },
+        });
+        (tabs.collect(), wb.active_tab())
     }
 
-    /// Whether the tab's text must be kept in a record: it has unsaved changes, or there is
-    /// no file to read it again from.
+    /// Whether the tab's text needs a record: it is unsaved, or has no file to read again.
     pub fn needs_record(&self) -> bool {
         self.entry.dirty || self.entry.path.is_none()
     }
@@ -373,12 +354,10 @@ pub struct Round {
     written: Vec<String>,
 }
 
-/// What the recovery records hold, as far as this host wrote or read them: which records a round
-/// writes (tabs whose text changed) and which may go (those the stored index no longer names).
+/// What this host knows the recovery records hold: which a round writes, which may go.
 #[derive(Debug, Clone, Default)]
 pub struct RecoveryBook {
-    /// Starts every key this host makes, unique to the run (records of another run keep
-    /// their keys).
+    /// Starts every key this host makes, unique to the run.
     prefix: String,
     /// Document id → (revision, key) of the record the stored index names for it.
     kept: HashMap<u64, (u64, String)>,
@@ -391,35 +370,23 @@ pub struct RecoveryBook {
 }
 
 impl RecoveryBook {
-    /// A book for a run whose keys start with `run` (letters and digits of it only: a time
-    /// stamp, say, unique to the run).
+    /// A book for a run whose keys start with `run`'s letters and digits (a time stamp, say).
     pub fn new(run: &str) -> RecoveryBook {
-        let run: String = run
-            .chars()
-            .filter(char::is_ascii_alphanumeric)
-            .take(24)
-            .collect();
+        let run = run.chars().filter(char::is_ascii_alphanumeric);
+        let run: String = run.take(24).collect();
         RecoveryBook {
             prefix: format!("tab-{run}"),
             ..RecoveryBook::default()
         }
     }
 
-    /// The records to write for `tabs`: those of the tabs that need one whose text changed
-    /// since their record was written (or that have none yet).
+    /// The records to write for `tabs`: of those that need one, whose text changed since.
     pub fn plan(&self, tabs: &[TabState]) -> Vec<RecordWrite> {
-        tabs.iter()
-            .enumerate()
-            .filter(|(_, t)| t.needs_record())
-            .filter(|(_, t)| {
-                self.kept
-                    .get(&t.id)
-                    .is_none_or(|(rev, _)| *rev != t.revision)
-            })
-            .map(|(tab, t)| RecordWrite {
-                tab,
-                key: format!("{}-{}", self.prefix, t.revision),
-            })
+        let kept = |t: &TabState| self.kept.get(&t.id).map(|(rev, _)| *rev);
+        let due = tabs.iter().enumerate();
+        let due = due.filter(|(_, t)| t.needs_record() && kept(t) != Some(t.revision));
+        let key = |t: &TabState| format!("{}-{}", self.prefix, t.revision);
+        due.map(|(tab, t)| RecordWrite { tab, key: key(t) })
             .collect()
     }
 
@@ -474,17 +441,14 @@ impl RecoveryBook {
         }
     }
 
-    /// The tabs that need a record, named with `why`: what is not kept when the index itself
-    /// could not be stored.
+    /// The tabs that need a record, with `why` (none is kept when the index is not stored).
     pub fn all_failed(tabs: &[TabState], why: &str) -> Vec<(String, String)> {
-        tabs.iter()
-            .filter(|t| t.needs_record())
-            .map(|t| (t.entry.name.clone(), why.to_string()))
+        let due = tabs.iter().filter(|t| t.needs_record());
+        due.map(|t| (t.entry.name.clone(), why.to_string()))
             .collect()
     }
 
-    /// The round is over: `stored` when its index is stored (or was already), and its records
-    /// are the ones kept; otherwise the earlier index stands and the records written are stale.
+    /// Ends a round: when its index is `stored` its records are kept, else those written are stale.
     pub fn commit(&mut self, round: Round, stored: bool) {
         self.owned.extend(round.written);
         if stored {
@@ -498,15 +462,10 @@ impl RecoveryBook {
         self.kept.values().any(|(_, k)| k == key)
     }
 
-    /// The records this host wrote or read that the stored index no longer names, to remove;
-    /// each is handed out once.
+    /// The records of this host the stored index no longer names, to remove (each once).
     pub fn take_stale(&mut self) -> Vec<String> {
-        let mut stale: Vec<String> = self
-            .owned
-            .iter()
-            .filter(|key| !self.keeps(key))
-            .cloned()
-            .collect();
+        let owned = self.owned.iter().cloned();
+        let mut stale: Vec<String> = owned.filter(|key| !self.keeps(key)).collect();
         for key in &stale {
             self.owned.remove(key);
         }
@@ -527,9 +486,8 @@ impl RecoveryBook {
         self.failing.clear();
     }
 
-    /// The tabs just restored (`tabs`, [`TabState::of`]) came from `records` (one per tab) named
-    /// by the stored `index`: they are not written again until they change, and the records
-    /// `index` names are this host's, removed once no index names them (all, if `tabs` is empty).
+    /// The restored `tabs` came from `records` named by the stored `index`: not written again till
+    /// they change; the records `index` names are this host's, to remove once none names them.
     pub fn adopt(&mut self, tabs: &[TabState], records: &[Option<String>], index: &str) {
         self.kept = tabs
             .iter()
@@ -542,8 +500,7 @@ impl RecoveryBook {
         self.stored = Some(index.to_string());
     }
 
-    /// What the status bar says after a round that left `failed` not kept, with `tabs` open:
-    /// the tabs not kept and why, or, once every tab is kept again, those that were not.
+    /// The status bar's message after a round: the tabs `failed` and why, or those kept again.
     pub fn report(&mut self, failed: &[(String, String)], tabs: &[TabState]) -> Option<String> {
         if let Some((_, why)) = failed.first() {
             let names: Vec<String> = failed.iter().map(|(name, _)| name.clone()).collect();
@@ -551,12 +508,9 @@ impl RecoveryBook {
             self.failing = names;
             return Some(message);
         }
-        let again: Vec<&str> = self
-            .failing
-            .iter()
-            .filter(|name| (tabs.iter()).any(|t| t.entry.name == **name && t.needs_record()))
-            .map(String::as_str)
-            .collect();
+        let open = |n: &str| tabs.iter().any(|t| t.entry.name == n && t.needs_record());
+        let failing = self.failing.iter().map(String::as_str);
+        let again: Vec<&str> = failing.filter(|name| open(name)).collect();
         let message =
             (!again.is_empty()).then(|| trf("Kept for recovery again: {}", &[&again.join(", ")]));
         self.failing.clear();
@@ -590,10 +544,8 @@ const ENCODINGS: [(Encoding, &str); 8] = [
 ];
 
 fn encoding_name(e: Encoding) -> &'static str {
-    ENCODINGS
-        .iter()
-        .find(|(x, _)| *x == e)
-        .map_or("utf8", |(_, n)| *n)
+    let found = ENCODINGS.iter().find(|(x, _)| *x == e);
+    found.map_or("utf8", |(_, n)| *n)
 }
 
 fn encoding_of(name: &str) -> Option<Encoding> {

@@ -89,16 +89,11 @@ mod native {
                 let ok = ok.clone();
                 ctx.request_screenshot(move |image| {
                     let [w, h] = image.size;
-                    let rgba: Vec<u8> = image
-                        .pixels
-                        .iter()
-                        .flat_map(egui::Color32::to_array)
-                        .collect();
-                    let saved = u32::try_from(w)
-                        .ok()
-                        .zip(u32::try_from(h).ok())
-                        .and_then(|(w, h)| image::RgbaImage::from_raw(w, h, rgba))
-                        .map(|img| img.save(&out));
+                    let pixels = image.pixels.iter();
+                    let rgba: Vec<u8> = pixels.flat_map(egui::Color32::to_array).collect();
+                    let wh = u32::try_from(w).ok().zip(u32::try_from(h).ok());
+                    let img = wh.and_then(|(w, h)| image::RgbaImage::from_raw(w, h, rgba));
+                    let saved = img.map(|img| img.save(&out));
                     match saved {
                         Some(Ok(())) => {
                             eprintln!("saved {w}x{h} screenshot to {}", out.display());

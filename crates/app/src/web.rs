@@ -75,16 +75,12 @@ fn to_js(value: &Value) -> Result<JsValue, JsValue> {
 #[wasm_bindgen]
 impl SwarfApi {
     fn with_app<R>(&self, f: impl FnOnce(&mut SwarfApp) -> R) -> Result<R, JsValue> {
-        match self.runner.app_mut::<SwarfApp>() {
-            Some(mut app) => Ok(f(&mut app)),
-            None => Err(JsValue::from_str(
-                self.runner
-                    .panic_summary()
-                    .map(|p| p.message())
-                    .as_deref()
-                    .unwrap_or("Swarf is not running"),
-            )),
+        if let Some(mut app) = self.runner.app_mut::<SwarfApp>() {
+            return Ok(f(&mut app));
         }
+        let panic = self.runner.panic_summary().map(|p| p.message());
+        let why = panic.as_deref().unwrap_or("Swarf is not running");
+        Err(JsValue::from_str(why))
     }
 
     /// What `f` makes of the app, as a JavaScript value.
@@ -174,15 +170,9 @@ impl SwarfApi {
         let bounds = s
             .bounds
             .map(|(min, max)| json!({"min": min.to_array(), "max": max.to_array()}));
-        let page = wasm_bindgen::memory()
-            .dyn_into::<js_sys::WebAssembly::Memory>()
-            .map_or(0.0, |m| {
-                f64::from(
-                    m.buffer()
-                        .unchecked_into::<js_sys::ArrayBuffer>()
-                        .byte_length(),
-                )
-            });
+        let memory = wasm_bindgen::memory().dyn_into::<js_sys::WebAssembly::Memory>();
+        let buffer = memory.map(|m| m.buffer().unchecked_into::<js_sys::ArrayBuffer>());
+        let page = buffer.map_or(0.0, |b| f64::from(b.byte_length()));
         to_js(&json!({
             "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
             "estimated_secs": s.estimated_secs,
@@ -236,11 +226,8 @@ impl SwarfApi {
     pub fn tabs(&self) -> Result<JsValue, JsValue> {
         self.json(|app| {
             let wb = &app.workbench;
-            let tabs: Vec<Value> = wb
-                .tab_documents()
-                .iter()
-                .map(|d| json!({"name": d.name, "unsaved": d.is_unsaved()}))
-                .collect();
+            let tab = |d: &&swarf_ui::Document| json!({"name": d.name, "unsaved": d.is_unsaved()});
+            let tabs: Vec<Value> = wb.tab_documents().iter().map(tab).collect();
             json!({"tabs": tabs, "active": wb.active_tab()})
         })
     }

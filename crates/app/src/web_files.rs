@@ -19,8 +19,7 @@ use crate::files::{
 
 /// The IndexedDB database of the recovery records (made at version 1, with its store).
 const DB_NAME: &str = "swarf-recovery";
-/// Its object store: the index under [`INDEX_KEY`] (a string) and each tab's text under its
-/// record key (UTF-8 bytes).
+/// Its object store: the index under [`INDEX_KEY`], each tab's text (UTF-8) under its key.
 const STORE: &str = "records";
 /// Where the page's CJK font is, relative to the page (`cargo xtask web` puts it there). It is
 /// fetched only when a Chinese language is chosen; the service worker keeps it once fetched.
@@ -41,19 +40,15 @@ enum Arrival {
     Font(Result<Vec<u8>, String>),
     /// A file read for `Purpose`, with its handle when it came from the File System Access API.
     File(Purpose, String, Vec<u8>, Option<Handle>),
-    /// A program `name` picked with the File System Access API that is the file kept under
-    /// the key (its tab's path).
+    /// A program `name` picked that is the file kept under the key (its tab's path).
     Reopened(String, Vec<u8>, String),
-    /// A save of the file `name` that was written (to the handle, when there is one to keep),
-    /// for the tab that was active then: (tab, generation).
+    /// The file `name` written (its handle to keep, if new) for the (tab, generation) then.
     Saved(String, Option<Handle>, (usize, u64)),
-    /// The save picker refused to open (no user action just before): download `name` instead,
-    /// for the tab that was active then: (tab, generation).
+    /// The save picker refused to open: download `name` instead, for the (tab, generation).
     Download(String, Vec<u8>, (usize, u64)),
     /// Something to tell the user.
     Message(String),
-    /// The recovery records read at the start: the index and the texts it names (`None` when
-    /// there is no index), or why they could not be read.
+    /// The recovery records read at the start (`None`: no index), or why they could not be.
     Recovered(Result<Option<StoredTabs>, String>),
     /// A round of recovery writes ended.
     Autosaved(Box<WrittenRound>),
@@ -62,8 +57,8 @@ enum Arrival {
 /// A file's handle in the File System Access API.
 type Handle = web_sys::FileSystemFileHandle;
 
-/// The recovery index as stored, and the texts of the records it names, by key.
-type StoredTabs = (String, HashMap<String, String>);
+/// The recovery index as stored and read, and the texts of the records it names, by key.
+type StoredTabs = (String, RecoveryIndex, HashMap<String, String>);
 
 /// What a round of recovery writes did.
 struct WrittenRound {
@@ -80,8 +75,7 @@ type Db = web_sys::IdbDatabase;
 /// The recovery database once opened.
 type DbSlot = Rc<RefCell<Option<Db>>>;
 
-/// What the browser finished, waiting for the next frame, and the context to wake for it (set
-/// by the first frame; the recovery read starts before it).
+/// What the browser finished, waiting for the next frame, and the context to wake for it.
 #[derive(Clone, Default)]
 struct Inbox {
     arrivals: Rc<RefCell<Vec<Arrival>>>,
@@ -108,8 +102,7 @@ impl Inbox {
     }
 }
 
-/// Web file state: files read asynchronously, the handles of files opened or saved through
-/// the File System Access API, and the autosave bookkeeping.
+/// Web file state: files read asynchronously, the files' handles, the autosave bookkeeping.
 #[derive(Default)]
 pub struct Host {
     /// Recent files (none on the web: the page cannot reopen a file by name).
@@ -120,21 +113,12 @@ pub struct Host {
     handles: HashMap<String, Handle>,
     /// Which recovery records are written, and which tabs are not kept.
     book: RecoveryBook,
-    /// Whether the recovery records are being read (at the start: nothing is written until
-    /// they are in) or a round of writes is under way.
+    /// Whether the recovery records are being read (at the start) or written.
     busy: bool,
     /// The recovery database once opened.
     db: DbSlot,
-    /// Whether the records must be brought up to date once the read or write under way is
-    /// done (a save came meanwhile).
+    /// Whether the records are to be brought up to date once `busy` ends (a save came).
     again: bool,
-}
-
-/// Sets the page's title (the document name and whether it has unsaved changes).
-pub fn set_document_title(title: &str) {
-    if let Some(doc) = web_sys::window().and_then(|w| w.document()) {
-        doc.set_title(title);
-    }
 }
 
 impl Host {
@@ -155,8 +139,7 @@ impl Host {
             .spawn(async move { Arrival::Recovered(read_recovery(&db).await) });
     }
 
-    /// Shows the tabs read from the recovery records: in place of the workbench's, or beside
-    /// them when they were changed meanwhile.
+    /// Shows the recovered tabs: in place of the workbench's, or beside them if changed since.
     fn recovered(&mut self, wb: &mut Workbench, result: Result<Option<StoredTabs>, String>) {
         self.busy = false;
         self.show_recovered(wb, result);
@@ -164,15 +147,8 @@ impl Host {
     }
 
     fn show_recovered(&mut self, wb: &mut Workbench, result: Result<Option<StoredTabs>, String>) {
-        let (record, mut texts) = match result {
-            Ok(Some(stored)) => stored,
-            Ok(None) => return,
-            Err(e) => {
-                log::warn!("cannot read the recovery records: {e}");
-                return;
-            }
-        };
-        let Some(index) = RecoveryIndex::from_record(&record) else {
+        let stored = result.inspect_err(|e| log::warn!("cannot read the recovery records: {e}"));
+        let Ok(Some((record, index, mut texts))) = stored else {
             return;
         };
         let restored = index.restore(|key| texts.remove(key), |_| None);
@@ -181,8 +157,7 @@ impl Host {
             return;
         }
         if wb.any_dirty() {
-            // Changed before the records were in: the recovered tabs open beside, and are
-            // kept as records of their own at the next autosave (the stored ones then go).
+            // Changed before the records were in: the recovered tabs open beside, kept anew.
             self.book.adopt(&[], &[], &record);
             for tab in restored.tabs {
                 if tab.dirty {
@@ -205,10 +180,8 @@ impl Host {
     pub fn open_dropped(&mut self, _wb: &mut Workbench, file: &egui::DroppedFileHandle) {
         let file = file.clone();
         self.inbox.spawn(async move {
-            let name = file.path().file_name().map_or_else(
-                || "dropped.nc".to_string(),
-                |n| n.to_string_lossy().into_owned(),
-            );
+            let name = file.path().file_name().unwrap_or("dropped.nc".as_ref());
+            let name = name.to_string_lossy().into_owned();
             match file.bytes_async().await {
                 Ok(bytes) => Some(match files::too_large(bytes.len() as u64) {
                     Some(why) => Arrival::Message(format!("Cannot open {name}: {why}")),
@@ -222,8 +195,7 @@ impl Host {
         });
     }
 
-    /// Hands what the browser has finished (files read, saves written or refused) to the
-    /// workbench.
+    /// Hands what the browser has finished (files read, saves done or refused) to `wb`.
     pub fn poll(&mut self, wb: &mut Workbench) {
         let arrived: Vec<_> = self.inbox.arrivals.borrow_mut().drain(..).collect();
         for arrival in arrived {
@@ -320,8 +292,7 @@ impl Host {
         }
     }
 
-    /// Asks for a file with the browser's save picker and writes the active tab there; where
-    /// the browser has no such picker, downloads the program.
+    /// Writes the active tab to a file the save picker asks for (without one, a download).
     fn save_as(&mut self, wb: &mut Workbench) {
         let name = wb.document().name.clone();
         let bytes = encoded(wb);
@@ -383,11 +354,12 @@ impl Host {
     /// handle for Save, where the browser has it); the file arrives through [`Host::poll`]. A
     /// picker opens only just after a user's action, so Ctrl+O's key event calls this too.
     pub fn pick_program(&self) {
+        let extensions = files::PROGRAM_EXTENSIONS.map(|e| format!(".{e}"));
         let Some(picker) = window_function("showOpenFilePicker") else {
-            self.pick(Purpose::Program, &PROGRAM_EXTENSIONS.join(","));
+            self.pick(Purpose::Program, &extensions.join(","));
             return;
         };
-        let extensions = js_sys::Array::from_iter(PROGRAM_EXTENSIONS.map(JsValue::from));
+        let extensions = js_sys::Array::from_iter(extensions.iter().map(JsValue::from));
         let accept = js_object(&[("text/plain", extensions.into())]);
         let program_type = js_object(&[
             ("description", JsValue::from_str("G-code programs")),
@@ -458,8 +430,7 @@ impl Host {
             });
         });
         input.set_onchange(Some(on_change.unchecked_ref()));
-        // Attached (hidden) while it is in use: some browsers open no picker for a detached
-        // input. The next Open replaces it.
+        // Attached (hidden) till the next Open: some browsers open no picker for a detached one.
         if let Some(previous) = doc.get_element_by_id(PICKER_ID) {
             previous.remove();
         }
@@ -527,8 +498,7 @@ impl Host {
         });
     }
 
-    /// Takes a round of recovery writes in: removes the records no longer needed, and tells
-    /// the user which tabs are not kept (or are again).
+    /// Ends a round of recovery writes: removes stale records, says which tabs are not kept.
     fn autosaved(&mut self, wb: &mut Workbench, written: WrittenRound) {
         self.busy = false;
         self.book.commit(written.round, written.stored);
@@ -564,8 +534,7 @@ impl Host {
     }
 }
 
-/// Writes `bytes` to the file behind `handle` for the tab active `at` (tab, generation), which
-/// is to keep the handle when `keep` (a file just picked).
+/// Writes `bytes` to `handle`'s file for the (tab, generation) `at`, keeping it when `keep`.
 async fn save_to(handle: Handle, bytes: Vec<u8>, at: (usize, u64), keep: bool) -> Arrival {
     let name = handle.name();
     match write_file(&handle, &bytes).await {
@@ -574,8 +543,7 @@ async fn save_to(handle: Handle, bytes: Vec<u8>, at: (usize, u64), keep: bool) -
     }
 }
 
-/// Opens the recovery database (once: it is kept in `slot`), making its store the first time
-/// (or in a new version of the database, should one without it be there).
+/// Opens the recovery database once (kept in `slot`), upgrading it if it lacks its store.
 async fn open_db(slot: &DbSlot) -> Result<Db, String> {
     if let Some(db) = slot.borrow().as_ref() {
         return Ok(db.clone());
@@ -590,8 +558,7 @@ async fn open_db(slot: &DbSlot) -> Result<Db, String> {
     Ok(db)
 }
 
-/// Opens the recovery database at `version` (at the version it has when `None`, or 1 when
-/// it is new), making its store when it upgrades.
+/// Opens the recovery database at `version` (`None`: as it is), making its store on upgrade.
 async fn open_version(version: Option<u32>) -> Result<Db, String> {
     let factory = web_sys::window()
         .ok_or("no window")?
@@ -618,11 +585,11 @@ async fn open_version(version: Option<u32>) -> Result<Db, String> {
     let opened = request_done(&request).await;
     request.set_onupgradeneeded(None);
     drop(upgrade);
-    Ok(opened.map_err(dom_error)?.unchecked_into::<Db>())
+    Ok(opened?.unchecked_into::<Db>())
 }
 
 /// The result of an IndexedDB request once it succeeded, or its error.
-async fn request_done(request: &web_sys::IdbRequest) -> Result<JsValue, JsValue> {
+async fn request_done(request: &web_sys::IdbRequest) -> Result<JsValue, String> {
     let promise = js_sys::Promise::new(&mut |resolve, reject| {
         request.set_onsuccess(Some(&resolve));
         request.set_onerror(Some(&reject));
@@ -631,35 +598,17 @@ async fn request_done(request: &web_sys::IdbRequest) -> Result<JsValue, JsValue>
     request.set_onsuccess(None);
     request.set_onerror(None);
     match done {
-        Ok(_) => request.result(),
+        Ok(_) => request.result().map_err(dom_error),
         Err(_) => Err(request
             .error()
             .ok()
             .flatten()
-            .map_or_else(|| JsValue::from_str("the request failed"), JsValue::from)),
-    }
-}
-
-/// Waits for an IndexedDB transaction to be committed; its error when it was aborted (a
-/// quota exceeded, say).
-async fn transaction_done(tx: &web_sys::IdbTransaction) -> Result<(), JsValue> {
-    let promise = js_sys::Promise::new(&mut |resolve, reject| {
-        tx.set_oncomplete(Some(&resolve));
-        tx.set_onerror(Some(&reject));
-        tx.set_onabort(Some(&reject));
-    });
-    let done = JsFuture::from(promise).await;
-    match done {
-        Ok(_) => Ok(()),
-        Err(_) => Err(tx.error().map_or_else(
-            || JsValue::from_str("the transaction was aborted"),
-            JsValue::from,
-        )),
+            .map_or_else(|| "the request failed".to_string(), |e| dom_error(e.into()))),
     }
 }
 
 /// Makes the changes `issue` asks of the store in a transaction of its own, committed when
-/// this returns Ok (aborted when a change cannot be asked).
+/// this returns Ok (aborted when a change cannot be asked; its error, a quota exceeded say).
 async fn write(
     db: &Db,
     issue: impl FnOnce(&web_sys::IdbObjectStore) -> Result<(), JsValue>,
@@ -671,11 +620,21 @@ async fn write(
         let _ = tx.abort();
         return Err(dom_error(e));
     }
-    transaction_done(&tx).await.map_err(dom_error)
+    let promise = js_sys::Promise::new(&mut |resolve, reject| {
+        tx.set_oncomplete(Some(&resolve));
+        tx.set_onerror(Some(&reject));
+        tx.set_onabort(Some(&reject));
+    });
+    match JsFuture::from(promise).await {
+        Ok(_) => Ok(()),
+        Err(_) => Err(tx.error().map_or_else(
+            || "the transaction was aborted".to_string(),
+            |e| dom_error(e.into()),
+        )),
+    }
 }
 
-/// Stores `value` under `key` in the database `opened` (or says why it could not be opened), in a
-/// transaction of its own, committed when this returns Ok.
+/// Stores `value` under `key` in the database `opened`, in a transaction of its own.
 async fn put(opened: &Result<Db, String>, key: &str, value: &JsValue) -> Result<(), String> {
     write(opened.as_ref().map_err(String::clone)?, |store| {
         store
@@ -706,38 +665,27 @@ async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
             .and_then(|tx| tx.object_store(STORE))
             .map_err(dom_error)
     };
-    let index = store(&db)?
-        .get(&JsValue::from_str(INDEX_KEY))
-        .map_err(dom_error)?;
-    let record = request_done(&index).await.map_err(dom_error)?.as_string();
+    let index = store(&db)?.get(&INDEX_KEY.into()).map_err(dom_error)?;
+    let record = request_done(&index).await?.as_string();
     let index = record.as_deref().and_then(RecoveryIndex::from_record);
-    let named: Vec<String> = index
-        .as_ref()
-        .map(|i| i.keys().map(str::to_string).collect())
-        .unwrap_or_default();
+    let keys = index.iter().flat_map(RecoveryIndex::keys);
+    let named: Vec<String> = keys.map(str::to_string).collect();
     // Every request in one transaction, made before the first is awaited.
     let records = store(&db)?;
-    let requests: Vec<(String, web_sys::IdbRequest)> = named
-        .iter()
-        .filter_map(|key| Some((key.clone(), records.get(&JsValue::from_str(key)).ok()?)))
-        .collect();
+    let request = |key: &String| Some((key.clone(), records.get(&key.into()).ok()?));
+    let requests: Vec<_> = named.iter().filter_map(request).collect();
     let mut texts = HashMap::new();
     for (key, request) in requests {
-        let bytes = request_done(&request)
-            .await
-            .ok()
-            .and_then(|v| v.dyn_into::<js_sys::Uint8Array>().ok())
-            .map(|a| a.to_vec());
-        match bytes.map(String::from_utf8) {
+        let value = request_done(&request).await.ok();
+        let array = value.and_then(|v| v.dyn_into::<js_sys::Uint8Array>().ok());
+        match array.map(|a| String::from_utf8(a.to_vec())) {
             Some(Ok(text)) => {
                 texts.insert(key, text);
             }
             _ => log::warn!("the recovery record {key} cannot be read"),
         }
     }
-    let all = request_done(&store(&db)?.get_all_keys().map_err(dom_error)?)
-        .await
-        .map_err(dom_error)?;
+    let all = request_done(&store(&db)?.get_all_keys().map_err(dom_error)?).await?;
     let left_over: Vec<String> = js_sys::Array::from(&all)
         .iter()
         .filter_map(|k| k.as_string())
@@ -748,7 +696,9 @@ async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
     {
         log::warn!("cannot remove left-over recovery records: {e}");
     }
-    Ok(record.filter(|_| index.is_some()).map(|r| (r, texts)))
+    Ok(record
+        .zip(index)
+        .map(|(record, index)| (record, index, texts)))
 }
 
 /// A DOM exception (or any JavaScript error) as `Name: message` for the status bar.
@@ -778,13 +728,7 @@ async fn fetch_bytes(url: &str) -> Result<Vec<u8>, String> {
     Ok(js_sys::Uint8Array::new(&buffer).to_vec())
 }
 
-/// The extensions the open picker offers for programs.
-const PROGRAM_EXTENSIONS: [&str; 8] = [
-    ".nc", ".ngc", ".tap", ".gcode", ".cnc", ".txt", ".ptp", ".mpf",
-];
-
-/// The active tab's program in its file's encoding (as UTF-8 when an edit added a character
-/// the encoding cannot hold).
+/// The active tab's program in its file's encoding (or UTF-8 if that cannot hold it).
 fn encoded(wb: &Workbench) -> Vec<u8> {
     crate::files::encode(wb.text(), wb.document().encoding).0
 }
@@ -798,14 +742,11 @@ fn js_object(entries: &[(&str, JsValue)]) -> js_sys::Object {
     object
 }
 
-/// `window[name]` when the browser has such a function (the File System Access API's pickers
-/// exist in Chromium-based browsers only).
+/// `window[name]` when the browser has it (the File System Access API: Chromium only).
 fn window_function(name: &str) -> Option<js_sys::Function> {
     let window = web_sys::window()?;
-    js_sys::Reflect::get(&window, &JsValue::from_str(name))
-        .ok()?
-        .dyn_into::<js_sys::Function>()
-        .ok()
+    let value = js_sys::Reflect::get(&window, &name.into()).ok()?;
+    value.dyn_into().ok()
 }
 
 /// Calls a picker of the File System Access API with `options` and waits for its answer.
@@ -835,15 +776,11 @@ async fn read_handle(handle: &Handle) -> Result<Vec<u8>, JsValue> {
 
 /// Whether two handles are the same file (false when the browser cannot tell).
 async fn same_entry(a: &Handle, b: &Handle) -> bool {
-    JsFuture::from(a.is_same_entry(b))
-        .await
-        .ok()
-        .and_then(|same| same.as_bool())
-        .unwrap_or(false)
+    let same = JsFuture::from(a.is_same_entry(b)).await.ok();
+    same.is_some_and(|same| same.as_bool() == Some(true))
 }
 
-/// Replaces the content of the file behind `handle` with `bytes` (the browser writes a
-/// temporary file and swaps it in on close).
+/// Replaces the content of `handle`'s file with `bytes` (swapped in on close).
 async fn write_file(handle: &Handle, bytes: &[u8]) -> Result<(), JsValue> {
     let stream = JsFuture::from(handle.create_writable())
         .await?
@@ -857,10 +794,8 @@ async fn write_file(handle: &Handle, bytes: &[u8]) -> Result<(), JsValue> {
 
 /// The `name` of a JavaScript error (`AbortError` …), empty for anything else.
 fn js_error_name(error: &JsValue) -> String {
-    js_sys::Reflect::get(error, &JsValue::from_str("name"))
-        .ok()
-        .and_then(|n| n.as_string())
-        .unwrap_or_default()
+    let name = js_sys::Reflect::get(error, &"name".into()).ok();
+    name.and_then(|n| n.as_string()).unwrap_or_default()
 }
 
 /// The status bar's `what: error`.

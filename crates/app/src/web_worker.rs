@@ -69,10 +69,8 @@ impl WorkerAnalyst {
         let on_error = {
             let (inbox, ctx) = (Rc::clone(&inbox), ctx.clone());
             Closure::<dyn FnMut(web_sys::ErrorEvent)>::new(move |event: web_sys::ErrorEvent| {
-                log::error!(
-                    "the analysis worker failed ({}); it goes on in the page",
-                    event.message()
-                );
+                let why = event.message();
+                log::error!("the analysis worker failed ({why}); it goes on in the page");
                 inbox.borrow_mut().failed = true;
                 ctx.request_repaint();
             })

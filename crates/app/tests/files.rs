@@ -34,13 +34,13 @@ fn a_gb18030_program_is_saved_back_byte_for_byte_and_edits_keep_the_encoding() {
     assert_eq!(wb.document().encoding, Encoding::Gb18030);
     assert_eq!(wb.document().name, "零件.nc");
     assert_eq!(wb.document().path, Some(path.display().to_string()));
-    assert!(!wb.is_dirty());
+    assert!(!wb.document().is_unsaved());
     assert!(host.save_to(&mut wb, &path));
     assert_eq!(std::fs::read(&path).unwrap(), original);
     wb.set_text("(銑削 平面)\nG01 X20. F200\n");
-    assert!(wb.is_dirty());
+    assert!(wb.document().is_unsaved());
     assert!(host.save_to(&mut wb, &path));
-    assert!(!wb.is_dirty());
+    assert!(!wb.document().is_unsaved());
     let saved = std::fs::read(&path).unwrap();
     let decoded = swarf_syntax::decode(&saved);
     assert_eq!(decoded.encoding, Encoding::Gb18030);
@@ -161,9 +161,9 @@ fn unsaved_edits_are_recovered_after_a_crash_and_cleared_by_saving() {
     let mut host2 = Host::with_data_folder(data.clone());
     let mut wb2 = Workbench::default();
     assert!(host2.recover(&mut wb2));
-    assert_eq!(wb2.tab_count(), 2);
+    assert_eq!(wb2.tab_documents().len(), 2);
     assert_eq!(wb2.text(), "G0 X1\nG1 X5 F100\n");
-    assert!(wb2.is_dirty());
+    assert!(wb2.document().is_unsaved());
     assert_eq!(wb2.document().name, "part.nc");
     assert_eq!(wb2.document().path, Some(path.display().to_string()));
     assert_eq!(wb2.message(), Some("Recovered unsaved changes of part.nc"));
@@ -217,14 +217,14 @@ fn every_tab_comes_back_after_a_crash_with_clean_files_read_again() {
     // The tab active when the index was written is active again.
     assert_eq!(next.document().name, "O1234.nc");
     assert_eq!(next.text(), "O1234\nG1 X7. F100\nM99\n");
-    assert!(!next.is_dirty());
+    assert!(!next.document().is_unsaved());
     // Each tab keeps its dialect.
     assert_eq!(next.tab_dialect(2), Some(Dialect::Syntec));
     assert_eq!(next.tab_dialect(1), Some(Dialect::default()));
     next.switch_tab(2);
     assert_eq!(next.document().name, "a.nc");
     assert_eq!(next.text(), "G0 X1\nM98 P1234\nM30\n");
-    assert!(next.is_dirty());
+    assert!(next.document().is_unsaved());
     next.finish_analysis();
     // The call reaches the sub's tab: its move ends at X7.
     let bounds = next.stats().bounds.unwrap();

@@ -3,9 +3,9 @@
 
 use std::sync::Arc;
 
-use swarf_analysis::{Job, Plot, Results, StockCut};
+use swarf_analysis::{Plot, Results, StockCut};
 use swarf_interp::Setup;
-use swarf_syntax::{Dialect, LinkedFile, Severity};
+use swarf_syntax::{LinkedFile, Severity};
 use swarf_toolpath::Toolpath;
 
 pub use swarf_analysis::{DialectHint, LinkedProblem, Problem, ProgramText, Stats};
@@ -31,27 +31,10 @@ pub struct Analysis {
 }
 
 impl Analysis {
-    /// Analyses `text` in one call, here and now (the editor has it done beside the UI);
-    /// `generation` tags the scene so the GPU copy is refreshed.
-    pub fn run(text: &str, dialect: Dialect, setup: &Setup, generation: u64) -> Self {
-        let text = ProgramText::from(text.to_string());
-        let job = Job {
-            generation,
-            text: text.clone(),
-            dialect,
-            setup: setup.clone(),
-            others: None,
-        };
-        Analysis::of(swarf_analysis::analyse(job).0, &text)
-    }
-
     /// The analysis shown of `results`, those of `text`.
     pub fn of(results: Results, text: &ProgramText) -> Self {
         let mut scene = scene(results.plot, results.generation);
-        scene.source = Some(Arc::new(match text {
-            ProgramText::Flat(text) => SourceText::shared(Arc::clone(text)),
-            ProgramText::Rope(rope) => SourceText::from_rope(rope.clone()),
-        }));
+        scene.source = Some(Arc::new(SourceText::new(text.clone())));
         Analysis {
             problems: results.problems,
             elsewhere: results.elsewhere,
@@ -79,11 +62,6 @@ impl Analysis {
             self.problems.sort_by_key(|p| (p.chars.start, p.chars.end));
         }
         self.scene.stock = Some(Arc::new(cut));
-    }
-
-    /// Summary numbers for the status bar and the JS API.
-    pub fn stats(&self) -> Stats {
-        self.stats
     }
 
     /// Number of problems of `severity`, in the program's own text and in the files it called.

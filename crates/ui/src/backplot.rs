@@ -1,9 +1,7 @@
-//! The 3D backplot widget: orbit/pan/zoom, standard views, picking (click a segment to select
-//! its block, hover for its line, position and feed) and playback, painted by `swarf_render`
-//! through an `egui_wgpu` paint callback. Its `prepare` uploads the points (at the zoom's level
-//! of detail, [`PathLod`]) when the scene, zoom or highlight changed, and draws the view with its
-//! own depth buffer into an offscreen target when anything visible changed; `paint` composites
-//! that target into egui's render pass, so the app needs no depth setting.
+//! The 3D backplot widget: orbit/pan/zoom, standard views, picking and playback, painted by
+//! `swarf_render` through an `egui_wgpu` callback. `prepare` uploads the points ([`PathLod`])
+//! and draws with its own depth buffer into an offscreen target when anything visible changed;
+//! `paint` composites that target into egui's render pass, so the app needs no depth setting.
 
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
@@ -11,7 +9,7 @@ use std::sync::Arc;
 
 use egui::epaint::ViewportInPixels;
 use glam::{DVec3, Mat4, Vec2, Vec3};
-use swarf_analysis::StockCut;
+use swarf_analysis::{ProgramText, StockCut};
 use swarf_render::{
     ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathLod, PathPoint, PathRenderer,
     Projection, RenderTarget, StandardView, StockSurface, ViewParams, pick_segment,
@@ -26,8 +24,7 @@ mod stock;
 pub use playback::{PLAYBACK_SPEEDS, Playback};
 pub use stock::RAPID_INTO_STOCK_COLOR;
 
-/// Key of the flag [`Backplot::install`] leaves in the egui context's memory; without it `show`
-/// draws a notice instead of a paint callback nobody would execute (e.g. on the glow backend).
+/// The flag [`Backplot::install`] leaves in egui's memory; without it `show` draws a notice.
 fn installed_key() -> egui::Id {
     egui::Id::unique("swarf-backplot-installed")
 }
@@ -62,70 +59,54 @@ const STANDARD_VIEWS: [(&str, egui::Key, StandardView); 4] = [
 /// How far from a segment (in points) the cursor may be to pick it.
 pub const PICK_RADIUS: f32 = 6.0;
 
-/// Colour format of the offscreen target the 3D view is drawn into (gamma-encoded and
-/// premultiplied, like egui's own blending).
+/// Colour format of the offscreen target (gamma-encoded, premultiplied, as egui blends).
 const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// Longest block text shown in the hover tooltip, in characters.
 const TOOLTIP_TEXT_CHARS: usize = 120;
 
 /// The program text with its line starts, so tooltips can show a block's text.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct SourceText {
-    text: Arc<String>,
-    /// The line starts of `text`, found on the first look-up (not when the analysis finishes).
+    text: ProgramText,
+    /// The line starts of a flat text, found on the first look-up (not when the analysis ends).
     starts: std::sync::OnceLock<Vec<usize>>,
-    /// The text as a rope (which knows its lines), instead of `text`.
-    rope: Option<ropey::Rope>,
 }
 
 impl SourceText {
-    /// Indexes `text` (lines end at `\n`; a trailing `\r` is dropped from each line).
-    pub fn new(text: &str) -> Self {
-        Self::shared(Arc::new(text.to_owned()))
-    }
-
-    /// Indexes a text already held in an `Arc` (not copied).
-    pub fn shared(text: Arc<String>) -> Self {
-        Self {
-            text,
-            starts: std::sync::OnceLock::new(),
-            rope: None,
-        }
-    }
-
-    /// The text of a rope (not copied; a clone of a rope shares its chunks).
-    pub fn from_rope(rope: ropey::Rope) -> Self {
-        Self {
-            rope: Some(rope),
-            ..Self::default()
-        }
+    /// Indexes `text` (not copied; lines end at `\n`, and a trailing `\r` is dropped from each).
+    pub fn new(text: impl Into<ProgramText>) -> Self {
+        let (text, starts) = (text.into(), std::sync::OnceLock::new());
+        Self { text, starts }
     }
 
     /// The text of 1-based `line` without its line ending, if the text has that line.
     pub fn line(&self, line: u32) -> Option<std::borrow::Cow<'_, str>> {
         let index = usize::try_from(line).ok()?.checked_sub(1)?;
-        if let Some(rope) = &self.rope {
-            let slice = rope.get_line(index)?;
-            let end = crate::buffer::chars_before_ending(slice);
-            return Some(slice.slice(..end).into());
-        }
+        let text = match &self.text {
+            ProgramText::Flat(text) => text,
+            ProgramText::Rope(rope) => {
+                let slice = rope.get_line(index)?;
+                let end = crate::buffer::chars_before_ending(slice);
+                return Some(slice.slice(..end).into());
+            }
+        };
         let starts = self.starts.get_or_init(|| {
-            let mut starts = Vec::with_capacity(self.text.len() / 24 + 1);
+            let mut starts = Vec::with_capacity(text.len() / 24 + 1);
             starts.push(0);
-            starts.extend(memchr::memchr_iter(b'\n', self.text.as_bytes()).map(|i| i + 1));
+            starts.extend(memchr::memchr_iter(b'\n', text.as_bytes()).map(|i| i + 1));
             starts
         });
         let start = *starts.get(index)?;
         let next = starts.get(index + 1);
-        let end = next.map_or(self.text.len(), |next| next.saturating_sub(1));
-        let text = self.text.get(start..end.max(start))?;
+        let end = next.map_or(text.len(), |next| next.saturating_sub(1));
+        let text = text.get(start..end.max(start))?;
         Some(text.strip_suffix('\r').unwrap_or(text).into())
     }
 }
 
-/// What the view shows: a [`swarf_render::Drawing`] shared for cheap clones, with each segment's
-/// source line and feed for picking, and its times and tool for playback.
+/// What the view shows: a [`swarf_render::Drawing`] (shared) with each segment's line, feed,
+/// time and tool.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     /// Changes whenever the geometry changes; the GPU upload happens only then.
@@ -137,8 +118,7 @@ pub struct Scene {
     pub lines: Arc<Vec<u32>>,
     /// Feed of each segment in mm/min (0 for rapids).
     pub feeds: Arc<Vec<f32>>,
-    /// When each segment runs, for playback. When it does not cover every segment (e.g. a
-    /// scene built by hand), playback gives each segment one second.
+    /// When each segment runs (one not covered takes a second, as in a scene built by hand).
     pub timeline: Arc<Timeline>,
     /// The tool in the spindle during each segment (may be empty).
     pub tools: Arc<Vec<u32>>,
@@ -152,8 +132,7 @@ pub struct Scene {
     pub origin: DVec3,
     /// The program text, for the hover tooltip (`None` when not known).
     pub source: Option<Arc<SourceText>>,
-    /// Reference marks drawn with the grid (not picked, not played back), see
-    /// [`swarf_render::Drawing::marks`].
+    /// Reference marks drawn with the grid, not picked ([`swarf_render::Drawing::marks`]).
     pub marks: Arc<Vec<PathPoint>>,
     /// The last cut of the stock received for this scene (see [`Backplot::stock_request`]).
     pub stock: Option<Arc<StockCut>>,
@@ -167,8 +146,7 @@ impl Scene {
         self.points.len().saturating_sub(1)
     }
 
-    /// The segments of source `line`, as runs of consecutive segments in order (several when
-    /// the line runs more than once, as in a loop): exactly these are highlighted.
+    /// The segments of source `line` as runs in order (several if it ran more than once).
     pub fn segments_of_line(&self, line: u32) -> Vec<Range<usize>> {
         let mut runs: Vec<Range<usize>> = Vec::new();
         for (i, _) in self.lines.iter().enumerate().filter(|(_, l)| **l == line) {
@@ -180,8 +158,7 @@ impl Scene {
         runs
     }
 
-    /// The box framing the view shows: the toolpath and the marks drawn with it (holes, zeros,
-    /// the programmed contour …), not the machine's travel box; `None` when there is nothing.
+    /// The box a fit frames: the toolpath and its marks, not the machine's travel box.
     pub fn view_bounds(&self) -> Option<(Vec3, Vec3)> {
         view_bounds(self.bounds, &self.marks)
     }
@@ -218,8 +195,7 @@ impl Scene {
         }
     }
 
-    /// The segment running at time `t` (at the very end of a segment, that segment; the last
-    /// after the end); `None` without segments.
+    /// The segment running at time `t` (at a segment's end, it; past the end, the last).
     pub fn segment_at(&self, t: f64) -> Option<usize> {
         let last = self.segment_count().checked_sub(1)?;
         if self.timed() {
@@ -229,8 +205,7 @@ impl Scene {
         }
     }
 
-    /// Where the tool is at time `t`, in the scene's frame (moving linearly in time along
-    /// the running segment).
+    /// Where the tool is at time `t`, in the scene's frame (linear along the running segment).
     pub fn position_at(&self, t: f64) -> Option<Vec3> {
         let i = self.segment_at(t)?;
         let (start, end) = self.segment_span(i)?;
@@ -275,7 +250,8 @@ struct HoverKey {
     stock: usize,
 }
 
-/// State of one backplot view: camera, selection, playback position and display options.
+/// State of one backplot view: camera, selection, playback and display options (by default
+/// the isometric view, fitting the first geometry shown).
 #[derive(Clone, Debug, Default)]
 pub struct Backplot {
     camera: OrbitCamera,
@@ -283,11 +259,9 @@ pub struct Backplot {
     last_generation: Option<u64>,
     /// Whether the last scene shown had geometry (fit again when it reappears).
     had_geometry: bool,
-    /// Whether the last fit asked for is done; if not, fit to the scene's extents on the next
-    /// frame …
+    /// Whether the last fit asked for is done; if not, fit on the next frame …
     fitted: bool,
-    /// … or, when set, once the scene has caught up with [`Self::coming`] (a program just
-    /// opened or replaced: the scene on screen is still the one before it).
+    /// … or once the scene has caught up with [`Self::coming`] (a program just opened).
     fit_waits: bool,
     /// The generation of a scene still being made for the text shown, if any.
     coming: Option<u64>,
@@ -297,9 +271,6 @@ pub struct Backplot {
     selected_line: Option<u32>,
     /// A line clicked in the view and not yet taken by [`Self::take_picked_line`].
     picked_line: Option<u32>,
-    /// Playback position set from outside: segments before it are executed, the rest drawn
-    /// dimmed (the playback bar's own position takes precedence while it is on).
-    executed: Option<usize>,
     /// The playback bar's state.
     playback: Playback,
     /// A line playback moved to and not yet taken by [`Self::take_playback_line`].
@@ -332,13 +303,7 @@ pub struct Backplot {
 }
 
 impl Backplot {
-    /// A backplot in the isometric view that fits to the first geometry it is shown.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Registers the GPU resources; call once with eframe's `cc.wgpu_render_state`. Assumes one
-    /// sample (eframe's default); the view has its own depth buffer.
+    /// Registers the GPU resources; call once with eframe's `cc.wgpu_render_state` (one sample).
     pub fn install(ctx: &egui::Context, render_state: &egui_wgpu::RenderState) {
         let resources = BackplotResources {
             compositor: Compositor::new(&render_state.device, render_state.target_format, 1),
@@ -349,15 +314,13 @@ impl Backplot {
         ctx.data_mut(|d| d.insert_temp(installed_key(), true));
     }
 
-    /// Frames everything drawn once, for a program opened or replaced: on the next frame, or
-    /// once the scene of a new text being made ([`Self::set_coming_generation`]) is shown.
+    /// Frames everything drawn once the scene of a text being made is shown (a program opened).
     pub fn fit(&mut self) {
         self.fitted = false;
         self.fit_waits = true;
     }
 
-    /// Frames everything drawn on the next frame, whatever is being made (the view's own
-    /// Fit button, keys and standard views).
+    /// Frames everything drawn on the next frame, whatever is being made (Fit, keys, views).
     fn fit_now(&mut self) {
         self.fitted = false;
         self.fit_waits = false;
@@ -369,8 +332,7 @@ impl Backplot {
         self.fit_now();
     }
 
-    /// The generation of the scene being made for the text shown (an analysis still running),
-    /// or `None` when the scene shown is the latest: a [`Self::fit`] waits for that scene.
+    /// The generation of the scene being made for the text shown, which [`Self::fit`] awaits.
     pub fn set_coming_generation(&mut self, generation: Option<u64>) {
         self.coming = generation;
     }
@@ -385,8 +347,7 @@ impl Backplot {
         &self.camera
     }
 
-    /// The 1-based source line the user clicked in the view since the last call, if any:
-    /// the editor should move its cursor there.
+    /// The 1-based source line clicked in the view since the last call (the editor goes there).
     pub fn take_picked_line(&mut self) -> Option<u32> {
         self.picked_line.take()
     }
@@ -396,16 +357,9 @@ impl Backplot {
         self.selected_line
     }
 
-    /// Highlights the segments of 1-based source `line` (e.g. the editor's cursor line), or
-    /// nothing.
+    /// Highlights the segments of 1-based source `line` (the editor's cursor line), or none.
     pub fn set_selected_line(&mut self, line: Option<u32>) {
         self.selected_line = line;
-    }
-
-    /// Playback position in segments: the first `executed` segments are drawn normally, the
-    /// remainder dimmed; `None` draws everything normally.
-    pub fn set_playback(&mut self, executed: Option<usize>) {
-        self.executed = executed;
     }
 
     /// The playback bar's state (time, speed, block).
@@ -418,8 +372,7 @@ impl Backplot {
         &mut self.playback
     }
 
-    /// The playback bar (show it under the view, before [`Self::show`] in the same frame); the
-    /// current block is highlighted and reported through [`Self::take_playback_line`].
+    /// The playback bar (before [`Self::show`]); its block is highlighted and reported.
     pub fn playback_bar(&mut self, ui: &mut egui::Ui, scene: &Scene) {
         self.playback.ui(ui, scene);
         if let Some(line) = self.playback.take_line() {
@@ -428,8 +381,7 @@ impl Backplot {
         }
     }
 
-    /// The 1-based source line playback moved to since the last call, if any: the editor
-    /// should move its cursor there.
+    /// The 1-based source line playback moved to since the last call (the editor goes there).
     pub fn take_playback_line(&mut self) -> Option<u32> {
         self.playback_line.take()
     }
@@ -470,8 +422,7 @@ impl Backplot {
         self.hover.as_ref()
     }
 
-    /// Where a point of the scene (its frame, like [`Scene::points`]) appeared on screen at
-    /// the last frame; `None` before the first frame or behind the eye.
+    /// Where a point of the scene appeared on screen at the last frame; `None` if it did not.
     pub fn screen_pos(&self, p: Vec3) -> Option<egui::Pos2> {
         let rect = self.last_rect?;
         let clip = self.camera.view_proj(rect.width() / rect.height()) * p.extend(1.0);
@@ -505,8 +456,7 @@ impl Backplot {
         self.track_scene(scene);
         self.take_focus(ui, &response);
         self.handle_input(ui, &response, rect);
-        // Reserve the paint slot now so the overlay buttons land on top of the 3D lines, but
-        // build the callback last so button clicks take effect this very frame.
+        // The paint slot now (buttons on top of it), the callback last (clicks act at once).
         let slot = ui.painter().add(egui::Shape::Noop);
         let (buttons, clicked) = self.overlay_buttons(ui, rect);
         if self.stock_buttons(ui, rect, scene) || clicked {
@@ -520,8 +470,7 @@ impl Backplot {
             self.fit_waits = false;
             self.frame_scene(scene, rect, buttons);
         }
-        // Pick with the camera as it is drawn this frame, before the highlight is chosen so
-        // a click shows its selection at once.
+        // Picked with this frame's camera, before the highlight, so a click shows at once.
         self.handle_picking(&response, rect, scene);
         self.last_rect = Some(rect);
         let selection = self.selection_runs(scene);
@@ -545,7 +494,7 @@ impl Backplot {
         };
         let params = ViewParams {
             view_proj: self.camera.view_proj(aspect),
-            executed_segments: self.playback.executed(scene).or(self.executed).map(to_u32),
+            executed_segments: self.playback.executed(scene).map(to_u32),
             highlight,
             hidden_kinds: self.hidden(),
             color_mode: self.color_mode,
@@ -587,8 +536,7 @@ impl Backplot {
         })
     }
 
-    /// Whether a fit asked for is to be done with `scene`: at once, or once the scene being
-    /// made when it was asked for is shown.
+    /// Whether a fit asked for is due with `scene` (at once, or once the awaited scene is shown).
     fn fit_due(&self, scene: &Scene) -> bool {
         !self.fitted && (!self.fit_waits || self.coming.is_none_or(|g| g <= scene.generation))
     }
@@ -599,8 +547,7 @@ impl Backplot {
             .is_some_and(|id| ctx.memory(|m| m.has_focus(id)))
     }
 
-    /// A press, click or drag in the view gives it the keyboard focus; while it has it, the
-    /// arrow keys and Escape stay with it rather than move the focus (Tab still does).
+    /// A press, click or drag gives the view the keyboard; the arrows and Escape then stay.
     fn take_focus(&mut self, ui: &egui::Ui, response: &egui::Response) {
         self.last_id = Some(response.id);
         let pressed = response.is_pointer_button_down_on()
@@ -616,8 +563,7 @@ impl Backplot {
         }
     }
 
-    /// Frames [`Scene::view_bounds`] in the part of `rect` below the view's buttons (`buttons`),
-    /// so nothing fitted lies under them.
+    /// Frames [`Scene::view_bounds`] in the part of `rect` below the view's `buttons`.
     fn frame_scene(&mut self, scene: &Scene, rect: egui::Rect, buttons: egui::Rect) {
         let top = if buttons.is_positive() {
             (buttons.max.y + FIT_GAP_POINTS).min(rect.max.y - 1.0)
@@ -641,8 +587,7 @@ impl Backplot {
         }
     }
 
-    /// The tool marker at the playback position: a cylinder of the tool's radius when the
-    /// setup gives one, else a small cone with a shank, drawn as lines over the view.
+    /// The tool marker at the playback position: the tool's cylinder, or a small cone and shank.
     fn paint_tool(&self, ui: &egui::Ui, rect: egui::Rect, scene: &Scene) {
         let Some(tip) = self.playback.position(scene) else {
             return;
@@ -700,8 +645,7 @@ impl Backplot {
         }
     }
 
-    /// The segments highlighted at the last frame: those of the selected block (the editor's
-    /// line, a clicked segment's, or playback's current block), as runs.
+    /// The segments of the selected block highlighted at the last frame, as runs.
     pub fn highlighted_segments(&self) -> Vec<Range<usize>> {
         match (&self.selection, self.selected_line) {
             (Some((_, line, runs)), Some(selected)) if *line == selected => runs.to_vec(),
@@ -730,8 +674,7 @@ impl Backplot {
         })
     }
 
-    /// A click selects the block under the cursor (or none) for [`Self::take_picked_line`];
-    /// hovering picks for the tooltip when the pointer, camera or scene changed.
+    /// A click selects the block under the cursor; hovering picks for the tooltip on a change.
     fn handle_picking(&mut self, response: &egui::Response, rect: egui::Rect, scene: &Scene) {
         if response.clicked()
             && let Some(pointer) = response.interact_pointer_pos()
@@ -848,8 +791,7 @@ impl Backplot {
         }
     }
 
-    /// Small buttons in the view's top-left corner: Fit, the standard views, the projection,
-    /// rapids on/off and zoom to the selected block; where they lie and whether one was clicked.
+    /// The buttons in the view's top-left corner; where they lie and whether one was clicked.
     fn overlay_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect) -> (egui::Rect, bool) {
         let mut child = button_row(ui, rect, "swarf_backplot_buttons", egui::Align::Min);
         let hint = tr("Fit to extents (double-click)");
@@ -864,9 +806,8 @@ impl Backplot {
             }
         }
         let mut toggle = |on: bool, label: &'static str, hint: &'static str| {
-            let hit = (child.selectable_label(on, tr(label)))
-                .on_hover_text(tr(hint))
-                .clicked();
+            let label = child.selectable_label(on, tr(label));
+            let hit = label.on_hover_text(tr(hint)).clicked();
             clicked |= hit;
             hit
         };
@@ -902,8 +843,7 @@ impl Backplot {
         (child.min_rect(), clicked)
     }
 
-    /// The stock's buttons in the view's bottom-left corner: Stock, and while on, Path and how
-    /// far its cut has got (or why there is none); whether one was clicked.
+    /// The stock's buttons and progress in the bottom-left corner; whether one was clicked.
     fn stock_buttons(&mut self, ui: &mut egui::Ui, rect: egui::Rect, scene: &Scene) -> bool {
         let mut clicked = false;
         let mut child = button_row(ui, rect, "swarf_backplot_stock_buttons", egui::Align::Max);
@@ -932,9 +872,8 @@ impl Backplot {
             let bar = egui::ProgressBar::new(fraction).desired_width(110.0);
             child.add(bar.text(trf("Stock {}%", &[&percent])));
         } else if let Some(error) = error {
-            child
-                .weak(tr("No stock"))
-                .on_hover_text(trf("Stock: {}", &[&error]));
+            let hint = trf("Stock: {}", &[&error]);
+            child.weak(tr("No stock")).on_hover_text(hint);
         }
         clicked
     }
@@ -982,19 +921,13 @@ fn tool_outline(tip: Vec3, radius: f32, cone: f32, shank: f32) -> Vec<(Vec3, Vec
     lines
 }
 
+/// The names of the kinds of motion, in [`Kind`]'s order.
+const KIND_NAMES: &str = "rapid feed arc plunge retract cycle compensated programmed";
+
 /// The hover tooltip: line and block text, position, kind and feed.
 fn hover_tooltip(ui: &mut egui::Ui, hover: &HoverInfo, scene: &Scene) {
-    let kind = tr(match hover.kind {
-        Some(Kind::Rapid) => "rapid",
-        Some(Kind::Feed) => "feed",
-        Some(Kind::Arc) => "arc",
-        Some(Kind::Plunge) => "plunge",
-        Some(Kind::Retract) => "retract",
-        Some(Kind::Cycle) => "cycle",
-        Some(Kind::Compensated) => "compensated",
-        Some(Kind::Programmed) => "programmed",
-        _ => "move",
-    });
+    let kind = hover.kind.map_or(usize::MAX, |k| k as usize);
+    let kind = tr(KIND_NAMES.split(' ').nth(kind).unwrap_or("move"));
     ui.strong(trf("Line {}", &[&hover.line]));
     if let Some(text) = scene.source.as_ref().and_then(|s| s.line(hover.line)) {
         let text = text.trim();
@@ -1040,8 +973,7 @@ struct BackplotCallback {
     frame: u64,
     /// The scene drawn (its arrays shared, not copied).
     scene: Scene,
-    /// Runs of segments to highlight by flagging their points (a block that ran several
-    /// times); a single run goes through `params.highlight` instead.
+    /// Runs of segments to highlight by flagging their points (a single run: `params.highlight`).
     flagged: Runs,
     /// The cut stock drawn under the path, if any.
     stock: Option<Arc<StockCut>>,
@@ -1156,8 +1088,7 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         let Some(bind_group) = view.and_then(|v| v.bind_group.as_ref()) else {
             return;
         };
-        // The callback rect clamped to the screen, as `prepare` sized the target (egui-wgpu sets
-        // it too; set here so as not to depend on that).
+        // The callback rect clamped to the screen, as `prepare` sized the target.
         let vp = info.viewport_in_pixels();
         if vp.width_px <= 0 || vp.height_px <= 0 {
             return;
@@ -1240,7 +1171,7 @@ mod tests {
 
     #[test]
     fn first_geometry_triggers_fit_later_edits_do_not() {
-        let mut plot = Backplot::new();
+        let mut plot = Backplot::default();
         let empty = Scene::default();
         plot.track_scene(&empty);
         plot.fitted = true;
@@ -1274,7 +1205,7 @@ mod tests {
 
     #[test]
     fn a_fit_for_a_new_program_waits_for_its_scene() {
-        let mut plot = Backplot::new();
+        let mut plot = Backplot::default();
         let old = Scene {
             generation: 4,
             bounds: Some((Vec3::ZERO, Vec3::ONE)),
@@ -1324,7 +1255,7 @@ mod tests {
 
     #[test]
     fn source_lines_and_segments_of_a_line() {
-        let text = SourceText::new("G0 X1\r\nG1 X2\n\nM30");
+        let text = SourceText::new("G0 X1\r\nG1 X2\n\nM30".to_string());
         assert_eq!(text.line(1).as_deref(), Some("G0 X1"));
         assert_eq!(text.line(2).as_deref(), Some("G1 X2"));
         assert_eq!(text.line(3).as_deref(), Some(""));

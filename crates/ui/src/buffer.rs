@@ -33,12 +33,6 @@ impl std::fmt::Debug for Buffer {
     }
 }
 
-impl PartialEq for Buffer {
-    fn eq(&self, other: &Self) -> bool {
-        self.rope == other.rope
-    }
-}
-
 impl From<String> for Buffer {
     /// The rope of `text`; the string is not kept beside it (a long program is held once).
     fn from(text: String) -> Self {
@@ -69,8 +63,7 @@ impl Buffer {
         &self.rope
     }
 
-    /// The whole text as one string: made on the first call after an edit (a copy of the
-    /// text), then kept until the next edit.
+    /// The whole text as one string, copied on the first call after an edit and kept.
     pub fn as_str(&self) -> &str {
         self.flat.get_or_init(|| Arc::new(self.rope.to_string()))
     }
@@ -84,8 +77,7 @@ impl Buffer {
         }
     }
 
-    /// The whole text as a new string, copied from the flat copy when it exists and from the
-    /// rope otherwise (one copy; the flat copy is not made and kept for it).
+    /// The whole text as a new string (from the flat copy if any; none is kept for it).
     pub fn to_text(&self) -> String {
         match self.flat.get() {
             Some(flat) => flat.as_ref().clone(),
@@ -93,8 +85,7 @@ impl Buffer {
         }
     }
 
-    /// Whether the flat copy of the current text exists (for measuring that edits do not make
-    /// one).
+    /// Whether the flat copy of the current text exists (edits are not to make one).
     pub fn is_flat(&self) -> bool {
         self.flat.get().is_some()
     }

@@ -1,5 +1,4 @@
-//! Editor commands as pure text transformations, testable on plain strings: find and replace,
-//! go to line, comment toggling, block renumbering and code completion.
+//! Editor commands as pure text transformations: find, replace, lines, comments, renumbering.
 
 use std::ops::{Range, RangeInclusive};
 
@@ -57,8 +56,7 @@ impl Finder {
         found.or_else(|| all.last()).cloned()
     }
 
-    /// `text` with every match replaced (`$1`, `${name}` expand groups in regex mode), and the
-    /// number of replacements.
+    /// `text` with every match replaced (`$1`, `${name}` in regex mode), and how many.
     pub fn replace_all(
         &self,
         text: &str,
@@ -77,8 +75,7 @@ impl Finder {
         (out.into_owned(), count)
     }
 
-    /// The replacement for the match at exactly `range` (group references expanded in regex
-    /// mode); `None` when no match is there.
+    /// The replacement for the match at exactly `range` (groups expanded); `None` if none.
     pub fn replacement_at(
         &self,
         text: &str,
@@ -100,9 +97,8 @@ impl Finder {
 
 /// Converts a character index into a byte offset of `text` (clamped to its end).
 pub fn byte_of_char(text: &str, chars: usize) -> usize {
-    text.char_indices()
-        .nth(chars)
-        .map_or(text.len(), |(b, _)| b)
+    let at = text.char_indices().nth(chars);
+    at.map_or(text.len(), |(b, _)| b)
 }
 
 /// Converts sorted, non-overlapping byte ranges into character ranges in one pass over `text`.
@@ -140,8 +136,7 @@ pub fn line_start(text: &str, line: u32) -> usize {
     start.unwrap_or(text.len())
 }
 
-/// The byte offsets where the lines after the first start: after each `\n`, `\r\n` or lone
-/// `\r`, the line endings the parser reads.
+/// Where the lines after the first start: after each `\n`, `\r\n` or lone `\r` (as parsed).
 fn line_starts(text: &str) -> impl Iterator<Item = usize> + '_ {
     let bytes = text.as_bytes();
     memchr::memchr2_iter(b'\n', b'\r', bytes).filter_map(move |i| {
@@ -162,12 +157,6 @@ pub fn line_of_byte(text: &str, byte: usize) -> u32 {
 pub fn line_count(text: &str) -> u32 {
     let n = line_starts(text).count() + usize::from(!text.ends_with(['\n', '\r']));
     u32::try_from(n).unwrap_or(u32::MAX)
-}
-
-/// Parses the go-to-line field: a positive line number, clamped to the text's lines.
-pub fn parse_line_number(input: &str, text: &str) -> Option<u32> {
-    let n: u32 = input.trim().parse().ok()?;
-    (n >= 1).then(|| n.min(line_count(text)))
 }
 
 /// Comments out the 1-based lines `lines` (inclusive) in the dialect's form (`G01 X1 (cut)` →
@@ -202,8 +191,7 @@ fn comment_line(line: &str, semicolon: bool) -> String {
     if semicolon {
         return format!("{indent}; {rest}{cr}");
     }
-    // The code before the first comment is wrapped; Fanuc comments do not nest, so what follows
-    // (a comment, perhaps more code) has its code pieces wrapped the same way.
+    // Each piece of code between comments is wrapped (Fanuc comments do not nest).
     let mut out = String::from(indent);
     let mut rest = rest;
     while !rest.is_empty() {
@@ -331,8 +319,7 @@ pub fn renumber(text: &str, options: RenumberOptions, dialect: Dialect) -> Renum
     }
 }
 
-/// Where the block's words start on `line` (after indentation and a block delete `/`, `/1`–`/9`),
-/// or `None` when the line is no block.
+/// Where the block's words start on `line` (past indentation and `/`, `/1`–`/9`); `None`: none.
 fn block_start(line: &str, dialect: Dialect) -> Option<usize> {
     let bytes = line.as_bytes();
     let mut i = 0;

@@ -80,8 +80,7 @@ impl Popup {
         }
     }
 
-    /// Whether the pointer is over the list (a click on it takes the keyboard focus for a
-    /// moment, so the pointer keeps the list open).
+    /// Whether the pointer is over the list (which a click takes the focus to for a moment).
     pub fn pointer_over(&self, ctx: &egui::Context) -> bool {
         ctx.pointer_hover_pos()
             .is_some_and(|pos| self.rect.is_some_and(|r| r.expand(4.0).contains(pos)))

@@ -1,5 +1,4 @@
-//! What the code editor ([`crate::rows::CodeEditor`]) draws: G-code highlighting, hover help and
-//! diagnostic underlines.
+//! What the code editor ([`crate::rows::CodeEditor`]) draws: highlighting, hover help, squiggles.
 
 use egui::text::LayoutJob;
 use egui::{Color32, FontId, Stroke, TextFormat};
@@ -83,8 +82,7 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
             c if c.is_ascii_alphabetic()
                 && bytes.get(i + 1).is_some_and(u8::is_ascii_alphabetic) =>
             {
-                // A run of letters: a macro keyword, operator or function (IF, GOTO, WHILE,
-                // DO, END, EQ, AND, SIN, sub, call …).
+                // A run of letters: a macro keyword, operator or function (IF, GOTO, SIN …).
                 i = run(i, u8::is_ascii_alphabetic);
                 palette::KEYWORD
             }
@@ -93,11 +91,8 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
                 while i < bytes.len() && (bytes[i].is_ascii_digit() || b".+- ".contains(&bytes[i]))
                 {
                     // Stop before the spaces that separate words.
-                    if bytes[i] == b' '
-                        && !bytes
-                            .get(i + 1)
-                            .is_some_and(|n| n.is_ascii_digit() || *n == b'.')
-                    {
+                    let next = bytes.get(i + 1);
+                    if bytes[i] == b' ' && !next.is_some_and(|n| n.is_ascii_digit() || *n == b'.') {
                         break;
                     }
                     i += 1;
@@ -207,8 +202,7 @@ pub fn hover_text(text: &str, dialect: Dialect, at: usize, problems: &[Problem])
     (!lines.is_empty()).then(|| lines.join("\n\n"))
 }
 
-/// Keeps the arrow keys (and Tab, and Escape, when asked) with the focused widget `id` next
-/// frame rather than moving the focus.
+/// Keeps the arrow keys (and Tab, Escape, when asked) with the focused widget `id` next frame.
 pub(crate) fn keep_keys(ui: &egui::Ui, id: egui::Id, tab: bool, escape: bool) {
     let filter = egui::EventFilter {
         tab,

@@ -38,11 +38,9 @@ pub struct History {
 
 /// The most undo steps kept.
 const LIMIT: usize = 200;
-/// The most bytes of text the undo steps keep together (the newest step is always kept), so a
-/// long session on a large program does not grow without bound.
+/// The most bytes of text the undo steps keep together (the newest step is always kept).
 const BYTES_LIMIT: usize = 64 << 20;
-/// What a step of typing is reckoned to keep alive: the rope chunks along the edited path (a
-/// command's step is reckoned at the text's size).
+/// What a step of typing is reckoned to keep alive (a command's: the text's size).
 const TYPING_BYTES: usize = 16 << 10;
 /// A pause in typing this long (seconds) starts a new undo step.
 const PAUSE: f64 = 1.5;

@@ -119,8 +119,7 @@ pub fn add_cjk_font(ctx: &egui::Context, bytes: Vec<u8>) -> bool {
     true
 }
 
-/// The translations, a line each: English, Simplified Chinese and Traditional Chinese,
-/// separated by tabs (lines starting with `#` are comments).
+/// The translations, a line each: English, Simplified, Traditional Chinese, tab-separated.
 const TABLE: &str = include_str!("i18n.tsv");
 
 /// Every entry of the translation table: (English, Simplified Chinese, Traditional Chinese).

@@ -1,9 +1,8 @@
-//! The editor of every program: the text stays in a rope ([`Buffer`]) edited in place (caret and
-//! selection are character indices), and each frame lays out only the rows on screen, so a
-//! keystroke costs the same in a million-line program as in a short one. It offers G/M code
-//! completion ([`Popup`]); an input method's composed text is drawn at the caret until committed.
-//! Keys reach the text only once the editor has had the focus since the frame before, so a key
-//! that moved the focus here (Enter in the find bar) is never also typed into the program.
+//! The editor of every program: a rope ([`Buffer`]) edited in place (caret and selection in
+//! characters); each frame lays out only the rows on screen, so a keystroke costs the same in a
+//! million-line program as in a short one. G/M code completion ([`Popup`]); input method text at
+//! the caret. Keys reach the text only after a frame with the focus (Enter in the find bar is
+//! never typed into the program).
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -25,12 +24,10 @@ use crate::i18n::tr;
 /// Space between the gutter and the text, and around the text.
 const PAD: f32 = 6.0;
 
-/// The G-code editor widget's state (the text itself is owned by the caller): every program,
-/// short or a million lines long, is edited the same way, laying out only the rows on screen.
+/// The G-code editor widget's state (the text itself is owned by the caller).
 #[derive(Debug, Clone, Default)]
 pub struct CodeEditor {
-    /// A selection to show next frame, scrolled into the middle of the view, and whether the
-    /// editor takes the keyboard with it.
+    /// A selection to show centred next frame, and whether the editor takes the keyboard.
     jump: Option<(Range<usize>, bool)>,
     /// Character ranges marked in the text (the find bar's matches), sorted.
     highlights: Vec<Range<usize>>,
@@ -51,8 +48,7 @@ pub struct CodeEditor {
     width: f32,
     /// The completion list, while it is open.
     popup: Option<Popup>,
-    /// Where the caret was drawn this frame (screen coordinates), if its row is on screen: the
-    /// completion list opens under it and the input method's candidate window beside it.
+    /// Where the caret was drawn this frame, if on screen (for the completion and IME windows).
     caret_rect: Option<Rect>,
     /// Where the completion list goes: under the caret, where it was last drawn.
     popup_pos: Pos2,
@@ -81,14 +77,12 @@ enum Edit {
 }
 
 impl CodeEditor {
-    /// Selects the character range on the next frame, scrolls to it and gives the editor the
-    /// keyboard.
+    /// Selects the character range on the next frame, scrolls to it and takes the keyboard.
     pub fn jump_to(&mut self, chars: Range<usize>) {
         self.jump = Some((chars, true));
     }
 
-    /// Selects the character range on the next frame and scrolls to it, leaving the keyboard
-    /// where it is (the find bar's field keeps it while it steps through the matches).
+    /// Selects the character range on the next frame and scrolls to it, keyboard left alone.
     pub fn show_range(&mut self, chars: Range<usize>) {
         self.jump = Some((chars, false));
     }
@@ -253,8 +247,7 @@ impl CodeEditor {
             let len = text.len_chars();
             self.caret = self.caret.min(len);
             self.anchor = self.anchor.min(len);
-            // While an input method composes, its keys (Enter to choose, arrows through the
-            // candidates) are its own, not the text's.
+            // While an input method composes, its keys are its own, not the text's.
             if self.preedit.is_some() && matches!(event, Event::Key { .. } | Event::Text(_)) {
                 continue;
             }
@@ -393,8 +386,7 @@ impl CodeEditor {
         changed
     }
 
-    /// Shows the text in `dialect` with a gutter and its sorted `problems`, filling `ui`; `label`
-    /// is the widget that names it for screen readers.
+    /// Shows the text with a gutter and its sorted `problems`, filling `ui`, named by `label`.
     pub fn show(
         &mut self,
         ui: &mut Ui,
@@ -430,8 +422,7 @@ impl CodeEditor {
             self.keys(ui, text, dialect, rows_per_page, &mut output);
         }
         if focused {
-            // The keys this editor keeps next frame: Escape closes the completion list (or
-            // cancels a composition) rather than leaving.
+            // Keys kept next frame: Escape closes the list or a composition rather than leaving.
             let escape = self.popup.is_some() || self.preedit.is_some();
             keep_keys(ui, id, true, escape);
         } else {
@@ -538,8 +529,7 @@ impl CodeEditor {
                     reveal,
                 },
             );
-            // Tooltips: a gutter marker's diagnostics; over the text, the code and problems
-            // under the pointer.
+            // Tooltips: a gutter marker's diagnostics; over the text, the code and problems.
             if let Some(pos) = response.hover_pos() {
                 let row = ((pos.y - rect.top()) / row_height).floor().max(0.0) as usize;
                 if row < lines {
@@ -569,8 +559,7 @@ impl CodeEditor {
         self.view_height = scroll.inner_rect.height();
         self.completion_list(ui, id, text, &mut output);
         if ui.memory(|m| m.owns_ime_events(id)) {
-            // Where the input method's candidate window goes: at the caret, or at the top of the
-            // view while the caret's row is scrolled away.
+            // The input method's window: at the caret, or atop the view when it is scrolled away.
             let view = scroll.inner_rect;
             let top = Rect::from_min_size(view.min, egui::vec2(2.0, row_height));
             let cursor = self.caret_rect.filter(|r| view.intersects(*r));
@@ -622,8 +611,7 @@ impl CodeEditor {
         }
     }
 
-    /// Paints the gutter, the text, the selection, the caret, the find matches and the
-    /// diagnostics of the visible rows.
+    /// Paints the visible rows: gutter, text, selection, caret, find matches and diagnostics.
     fn paint_rows(&mut self, ui: &Ui, text: &Buffer, rows: &Rows<'_>) {
         let painter = ui.painter();
         let selection = self.selection();
@@ -633,10 +621,8 @@ impl CodeEditor {
         let first_char = text.line_to_char(rows.rows.start);
         let last_char = text.line_to_char(rows.rows.end);
         let marks_from = rows.highlights.partition_point(|r| r.end < first_char);
-        let marks = rows.highlights[marks_from..]
-            .iter()
-            .take_while(|r| r.start <= last_char);
-        let marks: Vec<&Range<usize>> = marks.collect();
+        let marks = rows.highlights[marks_from..].iter();
+        let marks: Vec<&Range<usize>> = marks.take_while(|r| r.start <= last_char).collect();
         let caret_line = text.char_to_line(self.caret);
         let caret_col = self.caret - text.line_to_char(caret_line);
         self.caret_rect = None;
@@ -656,8 +642,7 @@ impl CodeEditor {
             let galley = painter.layout_job(highlight(&shown, rows.dialect, rows.font));
             if galley.size().x > self.width {
                 self.width = galley.size().x;
-                // The view is only as wide as the rows laid out before: bring the caret into
-                // view again next frame, when its row fits.
+                // The view was narrower: bring the caret into view again next frame.
                 if row == caret_line && rows.reveal {
                     self.reveal = true;
                 }
@@ -784,11 +769,8 @@ fn word_boundary(text: &Buffer, from: usize, forward: bool) -> usize {
         _ => {}
     }
     // The character the caret passes next (none at the line's ends).
-    let next = |i: usize| {
-        chars
-            .get(if forward { i } else { i.wrapping_sub(1) })
-            .copied()
-    };
+    let at = |i: usize| if forward { i } else { i.wrapping_sub(1) };
+    let next = |i: usize| chars.get(at(i)).copied();
     // Past any spaces, then past the word (an address word such as `X-12.5`, a name, a number).
     let is_word = |c: char| c.is_alphanumeric() || "_.#".contains(c);
     for word in [false, true] {

@@ -216,17 +216,18 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             });
             m.rapid_xyz_mm_per_min = per_axis.then_some(xyz);
             ui.end_row();
-            let acceleration =
-                egui::DragValue::new(&mut m.acceleration_mm_per_s2).range(0.0..=100_000.0);
+            fn upto(v: &mut f64, max: f64, speed: f64) -> egui::DragValue<'_> {
+                egui::DragValue::new(v).range(0.0..=max).speed(speed)
+            }
+            let acceleration = upto(&mut m.acceleration_mm_per_s2, 100_000.0, 1.0);
             drag_row(ui, tr("Acceleration (mm/s²)"), acceleration);
-            let retract = egui::DragValue::new(&mut m.peck_retract_mm)
-                .range(0.0..=100.0)
-                .speed(0.01);
-            drag_row(ui, tr("Peck retract (mm)"), retract);
-            let tolerance = egui::DragValue::new(&mut m.arc_tolerance_mm)
-                .range(0.0..=10.0)
-                .speed(0.001);
-            drag_row(ui, tr("Arc tolerance (mm)"), tolerance.max_decimals(4));
+            drag_row(
+                ui,
+                tr("Peck retract (mm)"),
+                upto(&mut m.peck_retract_mm, 100.0, 0.01),
+            );
+            let tolerance = upto(&mut m.arc_tolerance_mm, 10.0, 0.001).max_decimals(4);
+            drag_row(ui, tr("Arc tolerance (mm)"), tolerance);
             let blocks = egui::DragValue::new(&mut m.max_blocks).range(1..=1_000_000_000_u64);
             drag_row(ui, tr("Runaway limit (blocks)"), blocks);
             let moves = egui::DragValue::new(&mut m.max_motions).range(1..=1_000_000_000_u64);
@@ -335,8 +336,7 @@ fn refusal<T>(ui: &mut egui::Ui, checked: Result<T, swarf_stock::StockError>) {
     }
 }
 
-/// The stock box (`[stock]`, machine coordinates); without one a box around the feed moves is
-/// assumed.
+/// The stock box (`[stock]`, machine coordinates; without one, one around the feed moves).
 fn stock_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     let mut on = setup.stock.is_some();
     ui.checkbox(&mut on, tr("Stock box"));

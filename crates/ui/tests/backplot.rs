@@ -39,7 +39,7 @@ fn scene() -> Scene {
         zero: Vec3::ZERO,
         origin: DVec3::new(1000.0, 0.0, 0.0),
         source: Some(Arc::new(SourceText::new(
-            "%\nG1 X100 F300\nY60\nG0 X0\nG3 Y0 R30\n\nG1 Z5 Y70 F500\nG3 X110\n",
+            "%\nG1 X100 F300\nY60\nG0 X0\nG3 Y0 R30\n\nG1 Z5 Y70 F500\nG3 X110\n".to_string(),
         ))),
         ..Scene::default()
     }
@@ -70,7 +70,7 @@ fn harness(render_state: &egui_wgpu::RenderState) -> Harness<'static, State> {
         .with_size(egui::vec2(320.0, 240.0))
         .with_render_cursor(false)
         .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
-        .build_ui_state(app, (Backplot::new(), scene()));
+        .build_ui_state(app, (Backplot::default(), scene()));
     Backplot::install(&harness.ctx, render_state);
     harness
 }
@@ -119,7 +119,7 @@ fn backplot_paints_lines_or_says_unavailable() {
     // 1. Without `install`, the widget shows a notice and never panics.
     let mut plain = Harness::builder()
         .with_size(egui::vec2(320.0, 240.0))
-        .build_ui_state(app, (Backplot::new(), scene()));
+        .build_ui_state(app, (Backplot::default(), scene()));
     plain.run();
     plain.get_by_label("3D view unavailable");
 
@@ -278,8 +278,9 @@ fn click_picks_a_block_hover_describes_it_and_playback_dims() {
     assert_eq!(harness.state_mut().0.take_picked_line(), None);
     assert_eq!(harness.state().0.selected_line(), None);
 
-    // Playback after the first segment: the rest of the path is drawn dimmed.
-    harness.state_mut().0.set_playback(Some(1));
+    // Playback after the first segment (a second per segment): the rest is drawn dimmed.
+    let scene = harness.state().1.clone();
+    harness.state_mut().0.player_mut().seek(&scene, 1.0);
     harness.run();
     let image = shot(&mut harness);
     let executed = at(&image, pixel_of(&harness, Vec3::new(25.0, 0.0, 0.0)));
@@ -291,7 +292,7 @@ fn click_picks_a_block_hover_describes_it_and_playback_dims() {
     );
 
     // Zoom to a selected block frames it: its segment fills much of the view.
-    harness.state_mut().0.set_playback(None);
+    harness.state_mut().0.player_mut().stop();
     harness.state_mut().0.set_selected_line(Some(7));
     harness.run();
     harness.get_by_label("Zoom sel").click();
@@ -532,7 +533,7 @@ fn scene_points_carry_their_tool_for_colouring_by_tool() {
     // T3 is the first tool used (0), T7 the second (1).
     assert_eq!(indices, [0, 0, 1, 0]);
     assert_eq!(scene.points[2].kind(), Some(Kind::Feed));
-    let mut plot = Backplot::new();
+    let mut plot = Backplot::default();
     assert_eq!(plot.color_mode(), swarf_render::ColorMode::ByKind);
     plot.toggle_color_by_tool();
     assert_eq!(plot.color_mode(), swarf_render::ColorMode::ByIndex);

@@ -128,9 +128,6 @@ fn lines_and_alarms() {
     assert_eq!(line_of_byte(text, 4), 2);
     assert_eq!(line_count(text), 3);
     assert_eq!(line_count("a\n"), 1);
-    assert_eq!(parse_line_number("99", text), Some(3));
-    assert_eq!(parse_line_number("0", text), None);
-    assert_eq!(parse_line_number("x", text), None);
     assert_eq!(char_of_byte("銑a", 3), 1);
     assert_eq!(char_ranges("銑G1 銑G1", &[3..5, 9..11]), [1..3, 5..7]);
     assert_eq!(byte_of_char("銑a", 1), 3);
@@ -175,7 +172,6 @@ mod never_panic {
             let line = line_of_byte(&text, byte);
             prop_assert!(line_start(&text, line) <= byte);
             let _ = alarm_in(&text);
-            let _ = parse_line_number(&text, &text);
             if let Ok(f) = Finder::new(&text, FindOptions { regex: true, match_case: false }) {
                 let _ = f.replace_all(&text, "$1x", FindOptions { regex: true, match_case: false });
             }

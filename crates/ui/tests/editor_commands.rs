@@ -161,7 +161,7 @@ fn undo_and_redo_cross_typing_and_commands() {
     harness.key_press_modifiers(Modifiers::COMMAND, Key::Y);
     harness.run();
     assert_eq!(harness.state().text(), "(G0 X1)\n");
-    assert!(harness.state().is_dirty());
+    assert!(harness.state().document().is_unsaved());
 }
 
 #[test]
@@ -176,10 +176,10 @@ fn file_shortcuts_ask_the_host_and_shift_picks_save_as() {
     harness.run();
     let requests = harness.state_mut().take_requests();
     assert_eq!(requests, [HostRequest::Save, HostRequest::Open]);
-    let tabs = harness.state().tab_count();
+    let tabs = harness.state().tab_documents().len();
     harness.key_press_modifiers(Modifiers::COMMAND, Key::N);
     harness.run();
-    assert_eq!(harness.state().tab_count(), tabs + 1);
+    assert_eq!(harness.state().tab_documents().len(), tabs + 1);
 }
 
 #[test]
@@ -234,7 +234,7 @@ fn gutter_markers_explain_the_problem_on_hover() {
 fn unsaved_changes_are_confirmed_before_their_tab_closes() {
     let mut harness = harness("G0 X1\n");
     harness.state_mut().set_text("G0 X2\n");
-    assert!(harness.state().is_dirty());
+    assert!(harness.state().document().is_unsaved());
     // New and Open leave the program where it is: a tab of their own.
     click_menu(&mut harness, "File", "New Ctrl+N");
     assert_eq!(harness.state().text(), "");
@@ -247,16 +247,16 @@ fn unsaved_changes_are_confirmed_before_their_tab_closes() {
     harness.get_by_label("Cancel").click();
     harness.run();
     assert_eq!(harness.state().text(), "G0 X2\n");
-    let tabs = harness.state().tab_count();
+    let tabs = harness.state().tab_documents().len();
     // Save first: the host is asked to save, and the tab closes once it reports the save.
     click_menu(&mut harness, "File", "Close tab");
     harness.get_by_label("Save").click();
     harness.run();
     assert_eq!(harness.state_mut().take_requests(), [HostRequest::Save]);
-    assert_eq!(harness.state().tab_count(), tabs);
+    assert_eq!(harness.state().tab_documents().len(), tabs);
     harness.state_mut().mark_saved("test.nc");
     harness.run();
-    assert_eq!(harness.state().tab_count(), tabs - 1);
+    assert_eq!(harness.state().tab_documents().len(), tabs - 1);
     assert!(
         harness
             .state()
@@ -270,7 +270,7 @@ fn unsaved_changes_are_confirmed_before_their_tab_closes() {
     click_menu(&mut harness, "File", "Close tab");
     harness.get_by_label("Discard changes").click();
     harness.run();
-    assert_eq!(harness.state().tab_count(), tabs - 2);
+    assert_eq!(harness.state().tab_documents().len(), tabs - 2);
     assert!(
         harness
             .state()

@@ -5,24 +5,27 @@
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use swarf_syntax::{Dialect, Severity};
+use swarf_ui::Workbench;
 use swarf_ui::examples::EXAMPLES;
-use swarf_ui::{Analysis, Workbench};
 
 #[test]
 fn every_example_interprets_cleanly_in_its_dialect() {
     for ex in EXAMPLES {
-        let analysis = Analysis::run(ex.text, ex.dialect, &swarf_interp::Setup::default(), 1);
+        let job = swarf_analysis::Job {
+            generation: 1,
+            text: ex.text.to_string().into(),
+            dialect: ex.dialect,
+            setup: swarf_interp::Setup::default(),
+            others: None,
+        };
+        let analysis = swarf_analysis::analyse(job).0;
         let bad: Vec<_> = analysis
             .problems
             .iter()
             .filter(|p| p.severity >= Severity::Warning)
             .collect();
         assert!(bad.is_empty(), "{}: {bad:#?}", ex.name);
-        assert!(
-            analysis.stats().motions >= 5,
-            "{} draws too little",
-            ex.name
-        );
+        assert!(analysis.stats.motions >= 5, "{} draws too little", ex.name);
     }
     for d in Dialect::ALL {
         assert!(
@@ -55,7 +58,7 @@ fn the_examples_menu_opens_a_program_in_its_dialect() {
     assert_eq!(wb.dialect(), Dialect::LinuxCnc);
     assert_eq!(wb.document().name, "linuxcnc-engrave-sub.ngc");
     assert!(wb.text().contains("o100 sub"));
-    assert!(!wb.is_dirty());
+    assert!(!wb.document().is_unsaved());
     assert!(wb.problems().iter().all(|p| p.severity < Severity::Warning));
 }
 

@@ -42,8 +42,14 @@ fn hover_explains_the_code_and_the_problem_under_the_pointer() {
     let help = hover_text(text, Dialect::Syntec, at, &[]).unwrap();
     assert!(help.contains("Bolt-hole"), "{help}");
     // On Fanuc the same code is not one of its codes; with the parser's problem shown too.
-    let analysis =
-        swarf_ui::Analysis::run(text, Dialect::Fanuc, &swarf_interp::Setup::default(), 1);
+    let job = swarf_analysis::Job {
+        generation: 1,
+        text: text.to_string().into(),
+        dialect: Dialect::Fanuc,
+        setup: swarf_interp::Setup::default(),
+        others: None,
+    };
+    let analysis = swarf_analysis::analyse(job).0;
     let help = hover_text(text, Dialect::Fanuc, at, &analysis.problems).unwrap();
     assert!(help.contains("E-CODE-DIALECT"), "{help}");
     assert!(help.contains("not a code of Fanuc"), "{help}");

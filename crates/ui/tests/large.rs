@@ -100,15 +100,15 @@ fn typing_in_a_large_program_edits_it_and_marks_the_error() {
     // The edit and its analysis (parse, markers, problems) read the rope: no flat copy made.
     assert!(!wb.text_is_flat());
     // The record kept for recovery is copied from the rope, once, without keeping a flat copy.
-    let (records, active) = wb.tab_records();
-    assert!(records[active].text.starts_with("G01 X$ G90 G21 G17\n"));
-    assert_eq!(records[active].text.len(), text.len() + 7);
+    let kept = wb.tab_text(wb.active_tab()).unwrap();
+    assert!(kept.starts_with("G01 X$ G90 G21 G17\n"));
+    assert_eq!(kept.len(), text.len() + 7);
     assert!(!wb.text_is_flat());
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert!(codes.contains(&(1, "E-SYNTAX-CHAR")), "{codes:?}");
     assert_eq!(line(wb, 1), "G01 X$ G90 G21 G17");
     assert_eq!(wb.text().len(), text.len() + 7);
-    assert!(wb.is_dirty());
+    assert!(wb.document().is_unsaved());
     let codes: Vec<_> = wb.problems().iter().map(|p| (p.line, p.code)).collect();
     assert!(codes.contains(&(1, "E-SYNTAX-CHAR")), "{codes:?}");
     assert_eq!(wb.selection(), 7..7);
@@ -118,7 +118,7 @@ fn typing_in_a_large_program_edits_it_and_marks_the_error() {
     settle(&mut harness);
     assert_eq!(harness.state().text(), text);
     assert!(harness.state().problems().is_empty());
-    assert!(!harness.state().is_dirty());
+    assert!(!harness.state().document().is_unsaved());
     // The whole program runs.
     assert_eq!(harness.state().stats().motions, n + 1);
     harness.key_press_modifiers(Modifiers::COMMAND, Key::Y);

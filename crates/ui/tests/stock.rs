@@ -34,10 +34,9 @@ fn until(harness: &mut Harness<'_, Workbench>, what: &str, done: impl Fn(&Workbe
         let wb = harness.state();
         assert!(
             start.elapsed() < Duration::from_secs(60),
-            "never: {what}; {:?} {:?} {} {} {:?} {:?}",
+            "never: {what}; {:?} {:?} {} {:?} {:?}",
             wb.widget_rect("backplot"),
             wb.backplot().stock_button_rect(),
-            wb.backplot().stock_visible(),
             wb.analysis().scene.generation,
             wb.problems(),
             wb.analysis().scene.stock
@@ -80,7 +79,8 @@ fn the_stock_button_cuts_draws_and_reports_the_stock() {
     };
     let mut harness = harness(&render_state);
     harness.run();
-    assert!(!harness.state().backplot().stock_visible());
+    // The stock's Path button is there only while the stock is drawn.
+    assert!(harness.query_by_label("Path").is_none());
     assert!(problems(harness.state()).is_empty());
     let before = pixels(&mut harness, TOP);
 
@@ -89,7 +89,7 @@ fn the_stock_button_cuts_draws_and_reports_the_stock() {
     until(&mut harness, "the rapid into the stock listed", |wb| {
         problems(wb).contains(&(7, "W-RAPID-INTO-STOCK"))
     });
-    assert!(harness.state().backplot().stock_visible());
+    assert!(harness.query_by_label("Path").is_some());
     assert_eq!(
         problems(harness.state()),
         [
@@ -164,7 +164,7 @@ fn the_stock_button_cuts_draws_and_reports_the_stock() {
     harness.get_by_label("Stop").click();
     harness.get_by_label("Stock").click();
     harness.run();
-    assert!(!harness.state().backplot().stock_visible());
+    assert!(harness.query_by_label("Path").is_none());
     let off = pixels(&mut harness, TOP);
     assert!(
         off < before + 100,

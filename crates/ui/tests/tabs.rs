@@ -5,10 +5,24 @@
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT as _, Queryable as _};
 use swarf_syntax::{Dialect, Encoding, Severity};
-use swarf_ui::{HostRequest, Workbench};
+use swarf_ui::{HostRequest, TabRecord, Workbench};
 
 const MAIN: &str = "G90 G21\nG0 X0 Y0 Z5\nM98 P1234\nM30\n";
 const SUB: &str = "O1234\nG1 X5 F100\nG1 Y5\nM99\n";
+
+/// Every tab's file and text, as a host keeps them for recovery, and the active tab.
+fn tab_records(wb: &Workbench) -> (Vec<TabRecord>, usize) {
+    let docs = wb.tab_documents().into_iter().enumerate();
+    let records = docs.map(|(i, d)| TabRecord {
+        name: d.name.clone(),
+        path: d.path.clone(),
+        encoding: d.encoding,
+        text: wb.tab_text(i).unwrap(),
+        dirty: d.is_unsaved(),
+        dialect: wb.tab_dialect(i),
+    });
+    (records.collect(), wb.active_tab())
+}
 
 fn harness(wb: Workbench) -> Harness<'static, Workbench> {
     let mut harness = Harness::builder()
@@ -34,7 +48,7 @@ fn two_tabs_keep_their_text_history_and_program() {
     wb.open_document("a.nc", "G0 X1\n", Encoding::Utf8);
     wb.set_text("G0 X1\nG1 X2 F100\n");
     wb.finish_analysis();
-    assert_eq!(wb.tab_count(), 2);
+    assert_eq!(wb.tab_documents().len(), 2);
     assert_eq!(wb.active_tab(), 1);
     assert_eq!(wb.stats().motions, 2);
     let mut harness = harness(wb);
@@ -45,7 +59,7 @@ fn two_tabs_keep_their_text_history_and_program() {
     assert_eq!(harness.state().active_tab(), 0);
     assert_eq!(harness.state().document().name, "pocket.nc");
     assert_eq!(harness.state().stats().motions, example_motions);
-    assert!(!harness.state().is_dirty());
+    assert!(!harness.state().document().is_unsaved());
     assert!(harness.state().any_dirty());
     harness.get_by_label("a.nc *").click();
     harness.run();
@@ -55,16 +69,16 @@ fn two_tabs_keep_their_text_history_and_program() {
     // Undo belongs to the tab.
     harness.state_mut().undo();
     assert_eq!(harness.state().text(), "G0 X1\n");
-    assert!(!harness.state().is_dirty());
+    assert!(!harness.state().document().is_unsaved());
     // + opens an empty untitled tab; a file opened next takes its place.
     harness.get_by_label("New tab").click();
     harness.run();
-    assert_eq!(harness.state().tab_count(), 3);
+    assert_eq!(harness.state().tab_documents().len(), 3);
     assert_eq!(harness.state().document().name, "untitled.nc");
     harness
         .state_mut()
         .open_document("b.nc", "G0 Y1\n", Encoding::Utf8);
-    assert_eq!(harness.state().tab_count(), 3);
+    assert_eq!(harness.state().tab_documents().len(), 3);
     assert_eq!(harness.state().document().name, "b.nc");
     // A file opened again from the same path gets its tab back.
     harness.state_mut().set_path(Some("/work/b.nc".into()));
@@ -75,7 +89,7 @@ fn two_tabs_keep_their_text_history_and_program() {
         Encoding::Utf8,
         Some("/work/b.nc".into()),
     );
-    assert_eq!(harness.state().tab_count(), 3);
+    assert_eq!(harness.state().tab_documents().len(), 3);
     assert_eq!(harness.state().active_tab(), 2);
     assert_eq!(harness.state().text(), "G0 Y2\n");
 }
@@ -95,7 +109,7 @@ fn a_call_resolves_in_another_tab_and_says_so_when_no_tab_has_it() {
     harness.get_by_label("Close O1234.nc").click();
     harness.run();
     harness.state_mut().finish_analysis();
-    assert_eq!(harness.state().tab_count(), 2);
+    assert_eq!(harness.state().tab_documents().len(), 2);
     assert_eq!(harness.state().document().name, "main.nc");
     let wb = harness.state();
     let p = wb
@@ -139,7 +153,7 @@ fn a_linuxcnc_subroutine_file_is_found_among_the_tabs() {
     wb.close_tab(0);
     wb.close_tab(0);
     wb.finish_analysis();
-    assert_eq!(wb.tab_count(), 1);
+    assert_eq!(wb.tab_documents().len(), 1);
     let p = wb
         .problems()
         .iter()
@@ -198,7 +212,7 @@ fn closing_a_changed_tab_asks_and_quitting_asks_for_each() {
     harness.get_by_label("Unsaved changes");
     harness.get_by_label("Cancel").click();
     harness.run();
-    assert_eq!(harness.state().tab_count(), 3);
+    assert_eq!(harness.state().tab_documents().len(), 3);
     // Quitting asks for a.nc, then for b.nc, then quits.
     harness.state_mut().request_quit();
     harness.run();
@@ -214,7 +228,7 @@ fn closing_a_changed_tab_asks_and_quitting_asks_for_each() {
     // Closing the last tab leaves an empty untitled one.
     let mut wb = Workbench::default();
     wb.close_tab(0);
-    assert_eq!(wb.tab_count(), 1);
+    assert_eq!(wb.tab_documents().len(), 1);
     assert_eq!(wb.text(), "");
     assert_eq!(wb.document().name, "untitled.nc");
 }
@@ -226,22 +240,22 @@ fn every_tab_is_kept_and_restored() {
     wb.set_path(Some("/work/O1234.nc".into()));
     wb.open_document("main.nc", MAIN, Encoding::Utf8);
     wb.set_text(format!("{MAIN}(changed)\n"));
-    let (records, active) = wb.tab_records();
+    let (records, active) = tab_records(&wb);
     assert_eq!(records.len(), 3);
     assert_eq!(active, 2);
     assert!(records[2].dirty && !records[1].dirty);
     let mut back = Workbench::default();
     back.restore_tabs(records.clone(), active);
     back.finish_analysis();
-    assert_eq!(back.tab_records(), (records, 2));
+    assert_eq!(tab_records(&back), (records, 2));
     assert_eq!(back.text(), format!("{MAIN}(changed)\n"));
-    assert!(back.is_dirty());
+    assert!(back.document().is_unsaved());
     // The call still reaches the restored sub.
     assert!(errors(&back).is_empty(), "{:?}", back.problems());
     back.switch_tab(1);
     assert_eq!(back.document().encoding, Encoding::Gb18030);
     assert_eq!(back.document().path.as_deref(), Some("/work/O1234.nc"));
-    assert!(!back.is_dirty());
+    assert!(!back.document().is_unsaved());
 }
 
 /// The dialect the top bar's selector shows.
@@ -311,8 +325,9 @@ fn each_tab_keeps_its_dialect_and_the_selector_follows_the_active_one() {
 #[test]
 fn a_file_opens_in_the_default_dialect_and_a_reopened_one_keeps_its_tabs() {
     let mut wb = Workbench::default();
-    wb.set_default_dialect(Dialect::Syntec);
-    // The tab already open keeps its own.
+    // As a host restoring its settings: the default changes, the tab already open keeps its own.
+    wb.set_dialect(Dialect::Syntec);
+    wb.set_tab_dialect(0, Dialect::Fanuc);
     assert_eq!(wb.dialect(), Dialect::Fanuc);
     wb.open_file(
         "flange.nc",

@@ -28,7 +28,15 @@ fn setup() -> swarf_interp::Setup {
 }
 
 fn scene_of(text: &str) -> Scene {
-    let analysis = Analysis::run(text, Dialect::Fanuc, &setup(), 1);
+    let text = swarf_analysis::ProgramText::from(text.to_string());
+    let job = swarf_analysis::Job {
+        generation: 1,
+        text: text.clone(),
+        dialect: Dialect::Fanuc,
+        setup: setup(),
+        others: None,
+    };
+    let analysis = Analysis::of(swarf_analysis::analyse(job).0, &text);
     assert!(
         analysis
             .problems
@@ -83,7 +91,7 @@ fn harness(render_state: &egui_wgpu::RenderState, scene: Scene) -> Harness<'stat
         .renderer(WgpuTestRenderer::from_render_state(render_state.clone()))
         .build_ui_state(
             |ui, s: &mut State| drop(s.0.show(ui, &s.1)),
-            (Backplot::new(), scene),
+            (Backplot::default(), scene),
         );
     Backplot::install(&harness.ctx, render_state);
     harness

@@ -78,16 +78,20 @@ fn typing_in_the_editor_re_plots_and_marks_errors() {
 #[test]
 fn state_at_a_line_shows_modes_position_and_tool() {
     let mut wb = Workbench::default();
-    wb.set_text("G90 G21 G17\nT2 M06\nG00 X10. Y5.\nG01 Z-1. F300.\nM30\n");
-    let s = wb.state_at_line(4).unwrap();
-    assert_eq!((s.work.x, s.work.y), (10.0, 5.0));
-    assert_eq!(s.tool, 2);
-    assert!(s.codes.iter().any(|c| c == "G00"), "{:?}", s.codes);
-    assert!(wb.state_at_line(99).is_none());
-    // The panel shows it for the cursor's line.
+    wb.set_text("G90 G21 G17\nT2 M06\nG00 X10. Y5.\nG01 Z-1. F300.\nM30\nG00 X99.\n");
+    wb.finish_analysis();
+    wb.go_to_line(4);
+    // The panel shows the state just before the cursor's block runs.
     let mut harness = Harness::builder()
         .with_size(egui::vec2(1200.0, 700.0))
         .build_ui_state(|ui, wb: &mut Workbench| wb.ui(ui), wb);
     harness.run();
     harness.get_by_label("State at cursor");
+    assert!(harness.get_all_by_label("X10.000 Y5.000 Z0.000").count() >= 1);
+    harness.get_by_label("T2");
+    assert!(harness.get_all_by_label_contains("G00").count() >= 1);
+    // A block past the program's end never runs.
+    harness.state_mut().go_to_line(6);
+    harness.run();
+    harness.get_by_label("Line 6 does not run.");
 }

@@ -23,8 +23,7 @@ const SAME_TIME: f64 = 1e-9;
 /// Where playback is and how it runs.
 #[derive(Clone, Debug)]
 pub struct Playback {
-    /// Seconds from the program start; `None` while playback is off (the whole path drawn
-    /// as executed, no tool marker).
+    /// Seconds from the program start; `None` while playback is off.
     time: Option<f64>,
     /// The block last stepped or slid to, at that time: blocks that take no time share an
     /// end time with their neighbour, and this keeps stepping through them one by one.
@@ -64,11 +63,6 @@ impl Playback {
     /// Seconds from the program start, `None` while playback is off.
     pub fn time(&self) -> Option<f64> {
         self.time
-    }
-
-    /// Whether it is playing.
-    pub fn is_playing(&self) -> bool {
-        self.playing
     }
 
     /// Speed as a multiple of real time.
@@ -194,10 +188,10 @@ impl Playback {
     /// The block under way (or just finished), 0-based, `None` while off.
     pub fn current_block(&mut self, scene: &Scene) -> Option<usize> {
         let segment = self.current_segment(scene)?;
-        let blocks = self.blocks(scene);
-        blocks
-            .partition_point(|&start| start <= segment)
-            .checked_sub(1)
+        let begun = self
+            .blocks(scene)
+            .partition_point(|&start| start <= segment);
+        begun.checked_sub(1)
     }
 
     /// The source line of the block under way, `None` while off.
@@ -227,14 +221,12 @@ impl Playback {
         scene.position_at(t)
     }
 
-    /// The source line playback moved to since the last call, if any: the editor should
-    /// follow it.
+    /// The source line playback moved to since the last call (the editor follows it).
     pub fn take_line(&mut self) -> Option<u32> {
         self.moved_line.take()
     }
 
-    /// The bar of controls (buttons, speed and position; sliders over time and blocks), which
-    /// advances the position while playing.
+    /// The bar of controls (buttons, speed, sliders), which advances the position while playing.
     pub fn ui(&mut self, ui: &mut egui::Ui, scene: &Scene) {
         self.sync(scene);
         if self.playing {
@@ -425,7 +417,7 @@ mod tests {
         assert_eq!(p.executed(&scene), Some(1));
         p.advance(&scene, 10.0);
         assert_eq!(p.time(), Some(5.0));
-        assert!(!p.is_playing());
+        assert!(!p.playing);
         // Play at the end starts over; an edit (new generation) pauses.
         p.play(&scene);
         assert_eq!(p.time(), Some(0.0));
@@ -434,7 +426,7 @@ mod tests {
             ..scene
         };
         p.advance(&edited, 1.0);
-        assert!(!p.is_playing());
+        assert!(!p.playing);
         assert_eq!(p.time(), Some(0.0));
     }
 }

@@ -19,11 +19,6 @@ const MAX_RAPID_MARKS: usize = 1000;
 const MAX_RAY_SAMPLES: f64 = 8192.0;
 
 impl Backplot {
-    /// Whether the cut stock is drawn.
-    pub fn stock_visible(&self) -> bool {
-        self.stock_on
-    }
-
     /// Where the view's Stock button was drawn at the last frame.
     pub fn stock_button_rect(&self) -> Option<egui::Rect> {
         self.stock_button
@@ -57,21 +52,14 @@ impl Backplot {
         Some(Request::Stock { generation, upto })
     }
 
-    /// Kinds not drawn: those hidden, and every move of the toolpath when the stock is drawn
-    /// alone.
+    /// Kinds not drawn: those hidden, and every move when the stock is drawn alone.
     pub(super) fn hidden(&self) -> u32 {
-        if self.stock_on && self.stock_alone {
-            Kind::ALL
-                .iter()
-                .filter(|k| k.is_motion())
-                .fold(self.hidden_kinds, |m, k| m | k.mask())
-        } else {
-            self.hidden_kinds
-        }
+        let alone = self.stock_on && self.stock_alone;
+        let hide = Kind::ALL.iter().filter(|k| alone && k.is_motion());
+        hide.fold(self.hidden_kinds, |m, k| m | k.mask())
     }
 
-    /// The stock to draw: the scene's cut, or until it comes the last one received (an edit's
-    /// new cut takes a moment); `None` while the stock is not drawn.
+    /// The stock to draw: the scene's cut, or until it comes the last one; `None` when off.
     pub(super) fn drawn_stock(&mut self, scene: &Scene) -> Option<Arc<StockCut>> {
         if let Some(cut) = &scene.stock
             && (cut.field.is_some() || cut.error.is_some())
@@ -103,8 +91,7 @@ impl Backplot {
         surface_hit(field, at(0.0), at(0.5))
     }
 
-    /// Each rapid into the stock the scene's cut found: its move in the stock's colour for
-    /// them, and a dot where it meets material.
+    /// Each rapid into the stock the cut found, in their colour, a dot where it meets material.
     pub(super) fn paint_rapids_into_stock(&self, ui: &egui::Ui, rect: egui::Rect, scene: &Scene) {
         let Some(cut) = scene.stock.as_ref().filter(|_| self.stock_on) else {
             return;
@@ -168,8 +155,7 @@ fn surface_hit(field: &StockField, a: DVec3, b: DVec3) -> Option<DVec3> {
         let p = a + d * t;
         field.height_at(p.x, p.y).is_some_and(|h| p.z <= h)
     };
-    // Half a cell apart across the grid, then halves between the last sample above and the
-    // first below.
+    // Half a cell apart across the grid, then bisection between the last above and first below.
     let across = (d.truncate() * (t1 - t0)).length() / (field.cell_mm * 0.5);
     let samples = across.ceil().clamp(1.0, MAX_RAY_SAMPLES) as usize;
     let mut above = t0;

@@ -15,8 +15,7 @@ pub fn reply_frame(progress: bool) -> std::time::Duration {
 }
 
 impl Workbench {
-    /// Has `analyst` run the analysis from now on (the web page's worker), starting with the
-    /// current text.
+    /// Has `analyst` (the web page's worker) run the analysis from now on, from the current text.
     pub fn set_analyst(&mut self, analyst: Box<dyn Analyst>) {
         self.analyst = analyst;
         self.sent.clear();
@@ -50,14 +49,13 @@ impl Workbench {
 
     /// Summary numbers of the current text.
     pub fn stats(&self) -> Stats {
-        self.analysis.stats()
+        self.analysis.stats
     }
 
     /// Sends the current text to the analysis (replacing an unfinished run there).
     pub(super) fn reanalyse(&mut self) {
         self.generation += 1;
-        // The texts are shared, not copied: a keystroke costs no copy of them (a rope is parsed
-        // in place, another tab's text is copied only when the program calls into it).
+        // The texts are shared, not copied: a keystroke costs no copy of them.
         let active = self.active;
         let others = self.tabs.iter().enumerate().filter(|(i, _)| *i != active);
         let others = others.map(|(_, t)| (t.document.name.clone(), t.text.program_text()));
@@ -80,8 +78,7 @@ impl Workbench {
         }
     }
 
-    /// Takes the replies the analysis has sent since the last look (each frame does so first;
-    /// a host may before it, to know what the frame will show); whether any came.
+    /// Takes the replies the analysis has sent since the last look; whether any came.
     pub fn take_replies(&mut self) -> bool {
         let mut any = false;
         while let Some(reply) = self.analyst.try_reply() {
@@ -91,8 +88,7 @@ impl Workbench {
         any
     }
 
-    /// Takes one reply: progress of the current text's analysis, a finished analysis of the
-    /// active tab (shown unless a newer one is), or the state at cursor asked for.
+    /// Takes one reply: progress, a finished analysis (shown unless a newer one is), a state.
     fn receive(&mut self, reply: Reply) {
         match reply {
             Reply::Progress {
@@ -146,8 +142,7 @@ impl Workbench {
         })
     }
 
-    /// Waits for the analysis of the current text and shows it (for tests and scripts); where the
-    /// host cannot wait (a web page), it returns at once.
+    /// Waits for the analysis of the current text and shows it (a web page cannot wait).
     pub fn finish_analysis(&mut self) {
         self.take_replies();
         while self.pending.is_some() {
@@ -158,29 +153,9 @@ impl Workbench {
         }
     }
 
-    /// A number bumped by every change of the text, dialect or setup (the analysis shown
-    /// carries it in its scene once it has caught up).
+    /// A number bumped by every change of the text, dialect or setup (see the scene's).
     pub fn generation(&self) -> u64 {
         self.generation
-    }
-
-    /// The machine state just before the block on 1-based `line` first runs (modal codes,
-    /// position, offsets, tool, feed, speed), asked of the current text's analysis once it is
-    /// finished; `None` when no block there runs, or where the host cannot wait for the answer.
-    pub fn state_at_line(&mut self, line: u32) -> Option<swarf_interp::BlockState> {
-        self.finish_analysis();
-        let generation = self.analysis.scene.generation;
-        let mut now = self.analyst.send(Request::StateAt { generation, line });
-        loop {
-            match now.take().or_else(|| self.analyst.wait_reply())? {
-                Reply::State {
-                    generation: g,
-                    line: l,
-                    state,
-                } if (g, l) == (generation, line) => return state.flatten(),
-                other => self.receive(other),
-            }
-        }
     }
 }
 
@@ -190,8 +165,7 @@ pub(super) fn no_analysis() -> Analysis {
     Analysis::of(swarf_analysis::Results::default(), &empty)
 }
 
-/// The analysis beside the UI: a thread of its own, repainting `waker`'s context with each reply,
-/// or where there are none the frames themselves (the page sets its worker with `set_analyst`).
+/// The analysis beside the UI: a thread repainting `waker`'s context, else the frames themselves.
 pub(super) fn default_analyst(waker: &Arc<OnceLock<egui::Context>>) -> Box<dyn Analyst> {
     #[cfg(not(target_arch = "wasm32"))]
     {

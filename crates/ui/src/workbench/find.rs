@@ -57,8 +57,7 @@ impl Workbench {
         self.find_step(false)
     }
 
-    /// Selects the match after (`forward`) or before the selection and scrolls to it; the
-    /// keyboard stays where it is, so the find field keeps it while Enter steps through them.
+    /// Selects the match after (`forward`) or before the selection, keyboard left where it is.
     fn find_step(&mut self, forward: bool) -> bool {
         let Some(finder) = self.finder() else {
             return false;
@@ -116,11 +115,8 @@ impl Workbench {
     }
 
     pub(super) fn find_bar(&mut self, ui: &mut egui::Ui) {
-        let mut next = false;
-        let mut previous = false;
-        let mut replace = false;
-        let mut replace_all = false;
-        let mut close = false;
+        let (mut next, mut previous) = (false, false);
+        let (mut replace, mut replace_all, mut close) = (false, false, false);
         ui.horizontal_wrapped(|ui| {
             let label = ui.label(tr("Find"));
             let regex = self.find.options.regex;

@@ -82,8 +82,7 @@ impl Workbench {
         self.menu_items(ui, &FILE[1..]);
     }
 
-    /// The commands of `groups` as menu items showing their first shortcut, with a separator
-    /// between groups.
+    /// The commands of `groups` as menu items with their first shortcut, groups separated.
     fn menu_items(&mut self, ui: &mut egui::Ui, groups: &[&[Command]]) {
         for (i, group) in groups.iter().enumerate() {
             if i > 0 {
@@ -103,8 +102,7 @@ impl Workbench {
         }
     }
 
-    /// Asks to close the application ([`HostRequest::Quit`]) once each tab's unsaved changes are
-    /// saved or discarded.
+    /// Asks to quit ([`HostRequest::Quit`]) once each tab's changes are saved or discarded.
     pub fn request_quit(&mut self) {
         self.run_action(Action::Quit(0));
     }

@@ -36,21 +36,17 @@ pub const EXAMPLE_PROGRAM: &str = include_str!("../../../../assets/examples/pock
 
 /// Width of the editor's panel until the user drags its divider, in points.
 const EDITOR_PANEL_WIDTH: f32 = 460.0;
-/// Width of the "state at cursor" panel until the user drags its divider, in points: room for
-/// a position in millimetres; longer contents wrap or scroll inside it.
+/// Width of the "state at cursor" panel until the user drags its divider: room for a position.
 const STATE_PANEL_WIDTH: f32 = 280.0;
 /// Height of the problems list, when there are problems, until the user drags its divider.
 const PROBLEMS_PANEL_HEIGHT: f32 = 140.0;
 
-/// Editor, problems and backplot over the program of the active tab; re-analyses on every edit,
-/// with the other tabs as the files its calls may reach. The analysis runs beside the UI (a
-/// thread, or the page's worker); until a new one is finished the tab's last one stays on screen
-/// (a tab with none yet shows an empty view and its progress, never another tab's).
+/// Editor, problems and backplot over the active tab's program, re-analysed (beside the UI) on
+/// every edit with the other tabs as the files its calls reach; the last analysis stays shown.
 pub struct Workbench {
     /// The active tab's text, document, history, selection and dialect.
     tab: Tab,
-    /// The dialect new tabs and files opened in them start in: the last one chosen in the
-    /// dialect selector or the settings.
+    /// The dialect new tabs start in: the last one chosen in the selector or the settings.
     default_dialect: Dialect,
     setup: Setup,
     generation: u64,
@@ -60,8 +56,7 @@ pub struct Workbench {
     own_analysis: bool,
     /// Where the analysis runs: the workbench sends it jobs and questions, takes its replies.
     analyst: Box<dyn Analyst>,
-    /// The jobs sent and not yet answered, by generation, with their texts (a finished one's
-    /// text goes with its scene, for the tooltips).
+    /// The jobs sent and not yet answered, with their texts (which go with their scenes).
     sent: VecDeque<(u64, ProgramText)>,
     /// How far the analysis of the current text has got, while it runs.
     pending: Option<Progress>,
@@ -103,8 +98,7 @@ pub struct Workbench {
     lang: Lang,
     /// Whether the CJK font the Chinese languages need is added, asked for, or neither.
     cjk_font: FontState,
-    /// Where the named widgets were drawn in the last frame, the part in sight, in points (see
-    /// [`Workbench::widget_rect`]): the page's test API finds what to click through it.
+    /// Where the named widgets were drawn in the last frame (see [`Workbench::widget_rect`]).
     widgets: std::collections::BTreeMap<std::borrow::Cow<'static, str>, egui::Rect>,
 }
 
@@ -116,8 +110,7 @@ enum FontState {
     Ready,
 }
 
-/// Something the workbench asks its host to do: file dialogs, reading and writing files, which
-/// differ between the desktop and the web page.
+/// Something the workbench asks its host to do (dialogs, files: they differ on the web page).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum HostRequest {
     /// Show an open dialog and [`Workbench::open_document`] the chosen file.
@@ -134,8 +127,7 @@ pub enum HostRequest {
     ExportSetup,
     /// Close the application (unsaved changes were saved or discarded).
     Quit,
-    /// Get a CJK font for the Chinese interface languages and hand its bytes to
-    /// [`Workbench::add_cjk_font`] (or say why not with [`Workbench::cjk_font_failed`]).
+    /// Get a CJK font's bytes for [`Workbench::add_cjk_font`] (or [`Workbench::cjk_font_failed`]).
     LoadCjkFont,
 }
 
@@ -149,8 +141,7 @@ impl Default for Workbench {
 }
 
 impl Workbench {
-    /// A workbench showing `text`, read as Fanuc with a default setup, and its analysis (the
-    /// first one is waited for; later ones come beside the frames).
+    /// A workbench showing `text`, read as Fanuc with a default setup, its analysis waited for.
     pub fn new(text: String) -> Self {
         let dialect = Dialect::default();
         let waker = Arc::new(OnceLock::new());
@@ -168,7 +159,7 @@ impl Workbench {
             state_asked: None,
             waker,
             editor: CodeEditor::default(),
-            backplot: Backplot::new(),
+            backplot: Backplot::default(),
             synced_line: None,
             state_cache: None,
             now: 0.0,
@@ -198,8 +189,7 @@ impl Workbench {
         self.tab.text.as_str()
     }
 
-    /// Whether the current text is also held as one string (made only where a whole-text
-    /// copy is needed; an edit of a long program and its analysis read the rope instead).
+    /// Whether the current text is also held as one string (an edit reads the rope instead).
     pub fn text_is_flat(&self) -> bool {
         self.tab.text.is_flat()
     }
@@ -220,8 +210,7 @@ impl Workbench {
         self.lang
     }
 
-    /// Switches the interface language (at once); a Chinese one asks the host for the CJK
-    /// font the first time.
+    /// Switches the interface language; a Chinese one asks the host for the CJK font once.
     pub fn set_language(&mut self, lang: Lang) {
         self.lang = lang;
         crate::i18n::set_current(lang);
@@ -232,8 +221,7 @@ impl Workbench {
         }
     }
 
-    /// Adds the CJK font's bytes (a `.ttf`, `.otf` or `.ttc` file) to the interface's fonts;
-    /// `false` (with a message) when they are no font.
+    /// Adds the CJK font's bytes (`.ttf`, `.otf`, `.ttc`); `false` (with a message) if no font.
     pub fn add_cjk_font(&mut self, ctx: &egui::Context, bytes: Vec<u8>) -> bool {
         if crate::i18n::add_cjk_font(ctx, bytes) {
             self.cjk_font = FontState::Ready;
@@ -247,15 +235,13 @@ impl Workbench {
         }
     }
 
-    /// Says that the CJK font could not be had (`why`); choosing a Chinese language again
-    /// asks for it again.
+    /// Says why the CJK font could not be had; choosing a Chinese language asks for it again.
     pub fn cjk_font_failed(&mut self, why: &str) {
         self.cjk_font = FontState::Absent;
         self.message = Some(trf("The Chinese font could not be loaded: {}", &[&why]));
     }
 
-    /// Says that no CJK font is to be had here (the desktop found none among the system's
-    /// fonts), with what to install.
+    /// Says that the system has no CJK font (on the desktop), and what to install.
     pub fn cjk_font_missing(&mut self) {
         self.cjk_font = FontState::Absent;
         self.message = Some(
@@ -302,8 +288,7 @@ impl Workbench {
         self.setup.to_toml().map_err(|e| e.to_string())
     }
 
-    /// Reads a `SETUP.toml` text into the setup; on error (the CLI's: a value out of range, a
-    /// stock or tool the stock crate refuses) the setup is unchanged.
+    /// Reads a `SETUP.toml` text into the setup; on the CLI's errors the setup is unchanged.
     pub fn import_setup(&mut self, toml: &str) -> Result<(), String> {
         let setup = Setup::from_toml(toml).map_err(|e| format!("SETUP.toml: {e}"))?;
         swarf_stock::StockSetup::from_setup(&setup).map_err(|e| format!("SETUP.toml: {e}"))?;
@@ -325,8 +310,7 @@ impl Workbench {
         rect.filter(egui::Rect::is_positive)
     }
 
-    /// Keeps where `widget` was drawn, the part in sight, as `name` for
-    /// [`Workbench::widget_rect`].
+    /// Keeps where `widget` was drawn, the part in sight, as `name` ([`Self::widget_rect`]).
     fn keep_rect(
         &mut self,
         ui: &egui::Ui,
@@ -346,8 +330,7 @@ impl Workbench {
         self.shortcuts(ui.ctx());
         egui::Panel::top("swarf-top").show(ui, |ui| self.top_bar(ui));
         egui::Panel::bottom("swarf-status").show(ui, |ui| self.status_bar(ui));
-        // The panels keep their size (the user's, once a divider is dragged) whatever they
-        // show: their contents wrap or scroll inside, so the view never jumps under the mouse.
+        // The panels keep their size whatever they show, so the view never jumps under the mouse.
         let problems = if self.analysis.problems.is_empty() && self.analysis.elsewhere.is_empty() {
             // Nothing to list: one line, not an empty list's height.
             egui::Panel::bottom("swarf-problems-none").resizable(false)
@@ -420,8 +403,7 @@ impl Workbench {
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
             .show(ui, |ui| {
-                // The editor's block is highlighted in the backplot (set only when the cursor
-                // moves, so a click in the backplot is not undone) …
+                // The editor's block is highlighted in the backplot when the cursor moves …
                 if self.tab.cursor_line != self.synced_line {
                     self.backplot.set_selected_line(self.tab.cursor_line);
                     self.synced_line = self.tab.cursor_line;
@@ -438,8 +420,7 @@ impl Workbench {
                 }
                 self.keep_rect(ui, "backplot", &view);
                 self.loading_overlay(ui, view.rect);
-                // … a click on a segment moves the editor to its block, and so does playback
-                // (the backplot highlights the block itself).
+                // … and a click on a segment, or playback, moves the editor to its block.
                 let played = self.backplot.take_playback_line();
                 if let Some(line) = self.backplot.take_picked_line().or(played) {
                     // A move of a subprogram in another tab is named, not jumped to.
@@ -449,8 +430,7 @@ impl Workbench {
                     }
                 }
             });
-        // Each reply asks for a frame as it comes; those taken here (an analysis run in the
-        // frames, where there are no threads and no worker, answers now) are shown by the next.
+        // Replies taken here (an analysis run in the frames answers now) show in the next frame.
         if self.take_replies() {
             ui.ctx().request_repaint_after(reply_frame(false));
         }
@@ -466,8 +446,7 @@ impl Workbench {
         self.tab.cursor_line
     }
 
-    /// Puts the editor's cursor at the start of 1-based `line`, the keyboard left with the view
-    /// or the playback bar that reached it, so their keys never type into the program.
+    /// Puts the editor's cursor at the start of 1-based `line`, the keyboard left where it is.
     fn jump_to_line(&mut self, line: u32) {
         let chars = self.tab.text.line_to_char(line.saturating_sub(1) as usize);
         self.tab.selection = chars..chars;

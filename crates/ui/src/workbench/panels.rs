@@ -15,8 +15,7 @@ impl Workbench {
             ui.label(tr("Put the cursor on a block."));
             return;
         };
-        // Asked of the analysis, which holds the program (answered at once where it is kept
-        // on this side of the thread); the last answer stays until the next one comes.
+        // Asked of the analysis, which holds the program; the last answer stays till the next.
         let key = (self.analysis.scene.generation, line);
         if self.own_analysis
             && self.state_cache.as_ref().map(|(k, _)| *k) != Some(key)
@@ -35,8 +34,7 @@ impl Workbench {
             return;
         };
         let mm = |v: glam::DVec3| format!("X{:.3} Y{:.3} Z{:.3}", v.x, v.y, v.z);
-        // The modal codes, many on some lines, wrap within the panel's width (first, before
-        // anything wider than the panel that scrolls).
+        // The modal codes wrap within the panel's width (first, before what scrolls).
         ui.label(tr("modes"));
         ui.add(egui::Label::new(s.codes.join(" ")).wrap());
         let tool = match s.length_offset {
@@ -183,8 +181,7 @@ impl Workbench {
             .id_salt("swarf-problems-scroll")
             .auto_shrink([false, false])
             .show_rows(ui, row_height, total, |ui, rows| {
-                // Only the rows on screen are laid out: a program can have many thousands. The
-                // program's own problems come first, then those in the other tabs it called.
+                // Only the rows on screen are laid out; the program's own problems come first.
                 let mut clicked = None;
                 for i in rows {
                     let (file, p, hover) = if let Some(p) = self.analysis.problems.get(i) {

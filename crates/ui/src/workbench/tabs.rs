@@ -20,19 +20,16 @@ use crate::i18n::{tr, trf};
 pub struct Document {
     /// The file name shown in the title and status bar (`untitled.nc` before the first save).
     pub name: String,
-    /// Where the file is, as the host names it (a full path, or the key of the browser's handle
-    /// to the file); `None` before the first save.
+    /// Where the file is, as the host names it (a path, a browser handle's key); `None` if new.
     pub path: Option<String>,
     /// The encoding the file was read with; saving writes it back the same way.
     pub encoding: Encoding,
     /// The text as last opened or saved.
     pub(super) saved: Rope,
     pub(super) dirty: bool,
-    /// Names this document while it is open (unique in the process), so a host can follow
-    /// a tab over switches, moves and closes.
+    /// Names this document while it is open (unique in the process).
     id: u64,
-    /// Moves with every change of the text (unique in the process): a host keeping a copy of
-    /// the text writes it again only when this moved.
+    /// Moves with every change of the text (unique in the process).
     pub(super) revision: u64,
 }
 
@@ -57,8 +54,7 @@ pub(super) struct Tab {
     pub(super) cursor_line: Option<u32>,
     /// The dialect the tab's program is read in.
     pub(super) dialect: Dialect,
-    /// The tab's last finished analysis while it is parked (`None` before its first is done;
-    /// the workbench's `analysis` while it is active).
+    /// The tab's last finished analysis while it is parked (`None` before its first is done).
     pub(super) analysis: Option<Analysis>,
 }
 
@@ -111,28 +107,24 @@ impl Document {
         self.dirty
     }
 
-    /// Names the document while it is open: the same over tab switches, moves and closes of
-    /// other tabs, never shared with another document of this process.
+    /// Names the document while it is open, never shared with another of this process.
     pub fn id(&self) -> u64 {
         self.id
     }
 
-    /// Changes with every change of the text, never to a value another text had in this
-    /// process: a copy kept of a revision is a copy of that text.
+    /// Changes with every change of the text, never to a value another text had.
     pub fn revision(&self) -> u64 {
         self.revision
     }
 }
 
 impl Workbench {
-    /// Opens a program read from a file in a new tab (or in the active one when that is
-    /// empty, untitled and unchanged): a fresh undo history, no unsaved changes.
+    /// Opens a program read from a file in a new tab (or the blank active one), nothing unsaved.
     pub fn open_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
         self.open_file(name, text.into(), encoding, None);
     }
 
-    /// Opens a program read from `path` (when the host knows) as [`Workbench::open_document`]; a
-    /// file open from the same path gets its tab back (re-read when nothing is unsaved).
+    /// Opens a program read from `path` as [`Workbench::open_document`]; one open has its tab back.
     pub fn open_file(
         &mut self,
         name: &str,
@@ -145,8 +137,7 @@ impl Workbench {
         self.open_in(name, text, encoding, path, dialect);
     }
 
-    /// Opens a file in a tab as [`Workbench::open_file`] does, in `dialect` when given (a file
-    /// opened again keeps its tab's dialect otherwise, a new one starts in the default).
+    /// Opens a file as [`Workbench::open_file`] does, in `dialect` when given.
     fn open_in(
         &mut self,
         name: &str,
@@ -177,8 +168,7 @@ impl Workbench {
         self.tab.document.path = path;
     }
 
-    /// Parks the active tab and makes a new empty one after the others active, in the default
-    /// dialect, with no analysis yet.
+    /// Parks the active tab and makes a new empty one at the end active, in the default dialect.
     fn push_tab(&mut self) {
         let current = self.park();
         if let Some(slot) = self.tabs.get_mut(self.active) {
@@ -189,8 +179,7 @@ impl Workbench {
         self.tab.dialect = self.default_dialect;
     }
 
-    /// Replaces the active tab's program with a file's text (no unsaved changes), as after
-    /// saving it in another encoding.
+    /// Replaces the active tab's program with a file's text, as after saving it as UTF-8.
     pub fn reload_document(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
         let path = self.tab.document.path.take();
         self.load(name, text.into(), encoding);
@@ -221,32 +210,13 @@ impl Workbench {
         self.tab.document.path = path;
     }
 
-    /// Replaces the active tab's program with unsaved `text` recovered after a crash: shown as
-    /// a change to `name` that still needs saving.
+    /// Replaces the active tab's program with `text` recovered after a crash, still unsaved.
     pub fn recover(&mut self, name: &str, text: impl Into<String>, encoding: Encoding) {
         self.load(name, text.into(), encoding);
         self.tab.document.saved = Rope::new();
         self.tab.document.dirty = true;
         self.tab.document.revision = next_stamp();
         self.message = recovered_message(&[name]);
-    }
-
-    /// Every tab's file and text, in order, with the index of the active one.
-    pub fn tab_records(&self) -> (Vec<TabRecord>, usize) {
-        let records = (0..self.tabs.len())
-            .map(|i| {
-                let doc = self.tab_document(i);
-                TabRecord {
-                    name: doc.name.clone(),
-                    path: doc.path.clone(),
-                    encoding: doc.encoding,
-                    text: self.tab_text(i).unwrap_or_default(),
-                    dirty: doc.dirty,
-                    dialect: self.tab_dialect(i),
-                }
-            })
-            .collect();
-        (records, self.active)
     }
 
     /// Replaces every tab with `records` (none: nothing happens) and activates the `active`-th;
@@ -288,8 +258,7 @@ impl Workbench {
         }
     }
 
-    /// Takes the active tab's state out of the workbench, with its last finished analysis (an
-    /// unfinished one starts over when the tab is active again).
+    /// Takes the active tab's state out of the workbench, with its last finished analysis.
     fn park(&mut self) -> Tab {
         self.pending = None;
         let analysis = std::mem::take(&mut self.own_analysis)
@@ -300,8 +269,7 @@ impl Workbench {
         }
     }
 
-    /// Makes tab `i` active, its state put into the workbench (the active tab's parked first):
-    /// its own last analysis is shown (the empty stand-in when it has none yet).
+    /// Makes tab `i` active (the active one parked first), showing its own last analysis.
     fn activate(&mut self, i: usize) {
         self.tab = std::mem::take(&mut self.tabs[i]);
         self.active = i;
@@ -321,11 +289,6 @@ impl Workbench {
     pub(super) fn tab_document(&self, i: usize) -> &Document {
         self.tab_at(i)
             .map_or(&self.tab.document, |tab| &tab.document)
-    }
-
-    /// Number of open tabs.
-    pub fn tab_count(&self) -> usize {
-        self.tabs.len()
     }
 
     /// Index of the active tab.
@@ -348,8 +311,7 @@ impl Workbench {
         self.activate(i);
     }
 
-    /// Closes tab `i`, after asking to save or discard its unsaved changes (the tab is made
-    /// active for the question). The last tab closed leaves an empty untitled one.
+    /// Closes tab `i`, asking about its unsaved changes first; the last leaves an untitled one.
     pub fn close_tab(&mut self, i: usize) {
         if i >= self.tabs.len() {
             return;
@@ -378,8 +340,7 @@ impl Workbench {
         self.activate(self.active.min(self.tabs.len() - 1));
     }
 
-    /// Opens a new tab with an empty untitled program: `untitled.nc`, or `untitled-2.nc` … when
-    /// another tab has that name.
+    /// Opens a new tab with an empty program: `untitled.nc` (`untitled-2.nc` … if taken).
     pub fn new_tab(&mut self) {
         self.push_tab();
         let taken = |name: &str| {
@@ -404,13 +365,7 @@ impl Workbench {
         &self.tab.document
     }
 
-    /// Whether the text differs from what was last opened or saved.
-    pub fn is_dirty(&self) -> bool {
-        self.tab.document.dirty
-    }
-
-    /// Records that the active tab's text was saved as `name`; runs an action that waited for
-    /// the save.
+    /// Records that the active tab's text was saved as `name`; runs an action waiting for it.
     pub fn mark_saved(&mut self, name: &str) {
         self.tab.document.name = name.to_string();
         self.tab.document.saved = self.tab.text.rope().clone();
@@ -426,8 +381,7 @@ impl Workbench {
         self.tab.dialect
     }
 
-    /// Reads the active tab's program in `dialect` and makes it the one new tabs start in, as the
-    /// dialect selector does; the other open tabs keep theirs.
+    /// Reads the active tab's program in `dialect`, the one new tabs start in (as the selector).
     pub fn set_dialect(&mut self, dialect: Dialect) {
         self.default_dialect = dialect;
         self.set_tab_dialect(self.active, dialect);
@@ -438,8 +392,7 @@ impl Workbench {
         self.tab_at(i).map(|tab| tab.dialect)
     }
 
-    /// Reads tab `i`'s program in `dialect` (the active one is re-analysed at once, another
-    /// when it is next shown); the other tabs and the default for new ones stay as they are.
+    /// Reads tab `i`'s program in `dialect` (another tab's when next shown), nothing else's.
     pub fn set_tab_dialect(&mut self, i: usize, dialect: Dialect) {
         if i == self.active {
             if dialect != self.tab.dialect {
@@ -456,14 +409,7 @@ impl Workbench {
         self.default_dialect
     }
 
-    /// Sets the dialect new tabs start in (the open tabs keep theirs), as a host restoring
-    /// its settings does.
-    pub fn set_default_dialect(&mut self, dialect: Dialect) {
-        self.default_dialect = dialect;
-    }
-
-    /// Opens the built-in example `name` (see [`EXAMPLES`]) in its dialect; false when there is
-    /// no such example.
+    /// Opens the built-in example `name` ([`EXAMPLES`]) in its dialect; false if there is none.
     pub fn open_example(&mut self, name: &str) -> bool {
         let Some(ex) = EXAMPLES.iter().find(|e| e.name == name) else {
             return false;
@@ -473,8 +419,7 @@ impl Workbench {
         true
     }
 
-    /// The tabs over the editor: one per open file (click to switch, × to close) and + for a
-    /// new one.
+    /// The tabs over the editor: one per open file (click to switch, × to close) and +.
     pub(super) fn tab_strip(&mut self, ui: &mut egui::Ui) {
         let mut switch = None;
         let mut close = None;
@@ -514,8 +459,7 @@ impl Workbench {
         }
     }
 
-    /// A small button named `label` for screen readers and its hover text, kept in
-    /// [`Workbench::widget_rect`] as `widget`; whether it was clicked.
+    /// A small button named and hinted `label`, kept as `widget`; whether it was clicked.
     fn small_button(&mut self, ui: &mut egui::Ui, text: &str, label: &str, widget: String) -> bool {
         let button = ui.small_button(text);
         button
@@ -525,8 +469,7 @@ impl Workbench {
     }
 }
 
-/// What the status bar says after unsaved changes of the tabs `names` were recovered; `None`
-/// when there were none.
+/// What the status bar says after the unsaved changes of tabs `names` were recovered.
 fn recovered_message(names: &[&str]) -> Option<String> {
     match names {
         [] => None,
