@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 use serde_json::{Value, json};
+use swarf_syntax::codes::Code;
 
 use crate::Sink;
 use crate::state::plane_axes;
@@ -15,7 +16,7 @@ pub struct Source {
     pub line: u32,
 }
 
-/// A plane normal: the axis an arc turns around.
+/// A plane normal: the axis an arc turns around (`as usize`, its index: X 0, Y 1, Z 2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Axis {
     /// G19 (YZ plane).
@@ -30,11 +31,7 @@ pub enum Axis {
 impl Axis {
     /// Lowercase name as used in the canonical JSON.
     pub fn name(self) -> &'static str {
-        match self {
-            Axis::X => "x",
-            Axis::Y => "y",
-            Axis::Z => "z",
-        }
+        ["x", "y", "z"][self as usize]
     }
 }
 
@@ -293,7 +290,7 @@ impl Canon {
                 top,
                 bottom,
             } => json!({
-                "line": line, "kind": "hole", "cycle": code_name(*cycle), "index": index,
+                "line": line, "kind": "hole", "cycle": Code::g(*cycle).to_string(), "index": index,
                 "top": p(*top), "bottom": p(*bottom),
             }),
             Canon::Pause { optional } => {
@@ -301,15 +298,6 @@ impl Canon {
             }
             Canon::End => json!({"line": line, "kind": "end"}),
         }
-    }
-}
-
-/// `G81`, `G83.1` from a G code in tenths.
-fn code_name(tenths: u32) -> String {
-    if tenths.is_multiple_of(10) {
-        format!("G{}", tenths / 10)
-    } else {
-        format!("G{}.{}", tenths / 10, tenths % 10)
     }
 }
 

@@ -55,27 +55,11 @@ impl Comp {
     }
 }
 
-/// The shape of a compensated move.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Shape {
-    Line,
-    Arc {
-        center: DVec2,
-        ccw: bool,
-        turns: u32,
-    },
-}
-
-/// A compensated move held back: its start is fixed, its end in the plane still moves.
+/// A compensated move held back.
 #[derive(Debug, Clone)]
 struct Held {
-    source: Source,
-    span: Span,
-    rapid: bool,
-    feed: f64,
-    start: DVec3,
-    end: DVec3,
-    shape: Shape,
+    /// The compensated move: its start is fixed, its end in the plane still moves.
+    elem: Elem,
     /// The programmed corner at the end (plane coordinates).
     corner: DVec2,
     /// The direction of travel at the end, used for the corner (unit).
@@ -95,7 +79,7 @@ struct Held {
 
 /// A programmed move in the plane.
 #[derive(Debug, Clone, Copy)]
-struct Elem {
+pub(crate) struct Elem {
     source: Source,
     span: Span,
     rapid: bool,
@@ -134,22 +118,15 @@ fn with_uv(mut p: DVec3, q: DVec2, (u, v): (usize, usize)) -> DVec3 {
 /// The angle from `a` to `b` about `c` in the arc's direction, in [0, 2π).
 fn sweep(a: DVec2, b: DVec2, c: DVec2, ccw: bool) -> f64 {
     let (pa, pb) = (a - c, b - c);
-    let mut s = pb.y.atan2(pb.x) - pa.y.atan2(pa.x);
-    if !ccw {
-        s = -s;
-    }
-    s = s.rem_euclid(TAU);
+    let s = pb.y.atan2(pb.x) - pa.y.atan2(pa.x);
+    let s = if ccw { s } else { -s }.rem_euclid(TAU);
     if s >= TAU - 1e-12 { 0.0 } else { s }
 }
 
 impl Elem {
     fn tangent_at(&self, p: DVec2, plane: (usize, usize)) -> DVec2 {
         match self.arc {
-            Some((c, ccw, _)) => {
-                let r = p - c;
-                let t = left(r).normalize_or_zero();
-                if ccw { t } else { -t }
-            }
+            Some((c, ccw, _)) => left(p - c).normalize_or_zero() * if ccw { 1.0 } else { -1.0 },
             None => (uv(self.to, plane) - uv(self.from, plane)).normalize_or_zero(),
         }
     }
@@ -195,47 +172,34 @@ impl Elem {
 }
 
 impl Held {
-    /// `elem` held back offset by `s` from `start` to `end` (plane), after line `prev_line`.
-    fn of(
-        elem: &Elem,
-        s: f64,
-        start: DVec3,
-        end: DVec2,
-        plane: (usize, usize),
-        prev_line: u32,
-    ) -> Held {
-        let shape = match elem.arc {
-            Some((center, ccw, turns)) => Shape::Arc { center, ccw, turns },
-            None => Shape::Line,
-        };
+    /// `elem` held back offset by `s` from `start` to `end` (plane), after line `prev`.
+    fn of(elem: &Elem, s: f64, start: DVec3, end: DVec2, plane: (usize, usize), prev: u32) -> Held {
+        let to = with_uv(elem.to, end, plane);
         Held {
-            source: elem.source,
-            span: elem.span,
-            rapid: elem.rapid,
-            feed: elem.feed,
-            start,
-            end: with_uv(elem.to, end, plane),
-            shape,
+            elem: Elem {
+                from: start,
+                to,
+                ..*elem
+            },
             corner: uv(elem.to, plane),
             tangent: elem.end_tangent(plane),
             offset: s,
             prog_dir: (uv(elem.to, plane) - uv(elem.from, plane)).normalize_or_zero(),
             prog_sweep: elem.prog_sweep(plane),
             extended: false,
-            prev_line,
+            prev_line: prev,
             startup: false,
         }
     }
 
+    /// The held move's path through its end, for intersections.
     fn curve(&self, plane: (usize, usize)) -> Curve {
-        match self.shape {
-            Shape::Line => Curve::Line {
-                p: uv(self.end, plane),
-                d: self.tangent,
-            },
-            Shape::Arc { center, .. } => Curve::Circle {
-                c: center,
-                r: (uv(self.end, plane) - center).length(),
+        let p = uv(self.elem.to, plane);
+        match self.elem.arc {
+            None => Curve::Line { p, d: self.tangent },
+            Some((c, ..)) => Curve::Circle {
+                c,
+                r: (p - c).length(),
             },
         }
     }
@@ -314,37 +278,25 @@ fn tip_shift(st: &State) -> DVec3 {
     if st.plane != Axis::Y || r < EPS {
         return DVec3::ZERO;
     }
-    let o = st.comp.orientation;
-    let x = match o {
-        1 | 2 | 6 => -r,
-        3 | 4 | 8 => r,
-        _ => 0.0,
-    };
-    let z = match o {
-        2 | 3 | 7 => -r,
-        1 | 4 | 5 => r,
-        _ => 0.0,
-    };
-    DVec3::new(x, 0.0, z)
+    // The side of the nose centre the tip is on in X and Z, by orientation (0 and 9: none).
+    const X: [i8; 10] = [0, -1, -1, 1, 1, 0, -1, 0, 1, 0];
+    const Z: [i8; 10] = [0, 1, -1, -1, 1, 1, 0, -1, 0, 0];
+    let o = usize::from(st.comp.orientation).min(9);
+    DVec3::new(f64::from(X[o]) * r, 0.0, f64::from(Z[o]) * r)
 }
 
 /// Sends a compensated event on: a lathe tool's moves (and arc centres) go to its imaginary tip.
 fn put(st: &State, sink: &mut dyn Sink, source: Source, event: &Canon) {
     let d = tip_shift(st);
     if d == DVec3::ZERO {
-        sink.emit(source, event);
-        return;
+        return sink.emit(source, event);
     }
-    let shifted = match event {
-        Canon::Arc(a) => Canon::Arc(Arc {
-            center: a.center + d,
-            ..*a
-        }),
-        other => other.clone(),
-    };
-    let shifted = shifted
-        .end_point()
-        .map_or(shifted.clone(), |to| with_end(&shifted, to + d));
+    let mut shifted = event.clone();
+    match &mut shifted {
+        Canon::Rapid { to } | Canon::Feed { to, .. } => *to += d,
+        Canon::Arc(a) => (a.to, a.center) = (a.to + d, a.center + d),
+        _ => {}
+    }
     sink.emit(source, &shifted);
 }
 
@@ -358,8 +310,7 @@ pub(crate) fn emit(st: &mut State, sink: &mut dyn Sink, source: Source, event: &
             if st.comp.held.is_none() && wanted(st).is_none() {
                 // Compensation off and nothing held: the move goes on as it is.
                 st.comp.tool = None;
-                sink.emit(source, event);
-                return;
+                return sink.emit(source, event);
             }
             motion(st, sink, source, from, event);
         }
@@ -423,8 +374,7 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
             }
         }
         st.comp.tool = None;
-        sink.emit(source, event);
-        return;
+        return sink.emit(source, event);
     };
     if !in_plane {
         if st.comp.held.is_some() {
@@ -437,27 +387,22 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
         }
         return;
     }
+    let Some(h) = &st.comp.held else {
+        return startup(st, sink, elem, s);
+    };
+    let prev_line = h.elem.source.line;
     let tolerated = if linuxcnc { u64::MAX } else { 1 };
-    if let Some(h) = &st.comp.held {
-        let between = st.blocks_run.saturating_sub(st.comp.held_run + 1);
-        if between > tolerated {
-            let message = format!(
-                "{between} blocks without motion in the plane between line {} and line {}: the control cannot look ahead that far, so the compensated path of line {} ends square to it and line {} starts from there (an overcut or undercut is possible)",
-                h.source.line, source.line, h.source.line, source.line
-            );
-            let prev_line = h.source.line;
-            st.warning(elem.span, "W-COMP-LOOKAHEAD", message);
-            let end = close(st, sink, None);
-            start_from(st, elem, s, end, prev_line);
-            return;
-        }
-    }
-    if st.comp.held.is_none() {
-        startup(st, sink, elem, s);
-        return;
-    }
-    let prev_line = st.comp.held.as_ref().map_or(source.line, |h| h.source.line);
-    let start = close(st, sink, Some((&elem, s)));
+    let between = st.blocks_run.saturating_sub(st.comp.held_run + 1);
+    let start = if between > tolerated {
+        let (a, b) = (prev_line, source.line);
+        let message = format!(
+            "{between} blocks without motion in the plane between line {a} and line {b}: the control cannot look ahead that far, so the compensated path of line {a} ends square to it and line {b} starts from there (an overcut or undercut is possible)"
+        );
+        st.warning(elem.span, "W-COMP-LOOKAHEAD", message);
+        close(st, sink, None)
+    } else {
+        close(st, sink, Some((&elem, s)))
+    };
     start_from(st, elem, s, start, prev_line);
 }
 
@@ -487,12 +432,12 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
             return refuse_start(st, sink, &elem, message);
         }
         let center = end + u * ((t - end).length_squared() / den);
-        let held = Held {
-            shape: Shape::Arc { center, ccw, turns },
+        let mut held = Held {
             prog_dir: DVec2::ZERO,
             prog_sweep: f64::INFINITY,
             ..Held::of(&elem, s, tool, end, plane, elem.source.line)
         };
+        held.elem.arc = Some((center, ccw, turns));
         return hold(st, held);
     }
     let (dir, startup) = if linuxcnc {
@@ -508,8 +453,7 @@ fn startup(st: &mut State, sink: &mut dyn Sink, elem: Elem, s: f64) {
         (d.normalize_or_zero(), true)
     };
     if dir == DVec2::ZERO {
-        sink.emit(elem.source, &as_event(&elem, st.plane));
-        return;
+        return sink.emit(elem.source, &as_event(&elem, st.plane));
     }
     let end = p + left(dir) * s;
     let held = Held {
@@ -554,13 +498,13 @@ fn start_from(st: &mut State, elem: Elem, s: f64, start: Option<DVec2>, prev_lin
     hold(st, held);
 }
 
-/// Sends on the held move at the end of the run.
-pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
-    close(st, sink, None);
-}
-
-/// Ends the held move against `next` (NaN offset: G40) and sends it on; the next start.
-fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Option<DVec2> {
+/// Ends the held move against `next` (NaN offset: G40; `None`: the run's end) and sends it on;
+/// where the next move starts.
+pub(crate) fn close(
+    st: &mut State,
+    sink: &mut dyn Sink,
+    next: Option<(&Elem, f64)>,
+) -> Option<DVec2> {
     let mut h = st.comp.held.take()?;
     let plane = plane_axes(st.plane);
     let linuxcnc = st.dialect == Dialect::LinuxCnc;
@@ -576,19 +520,16 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
     if let Some((n, s2)) = next {
         let cancel = s2.is_nan();
         let s = h.offset;
-        let e1 = uv(h.end, plane);
+        let e1 = uv(h.elem.to, plane);
         let t2 = n.start_tangent(plane);
         let t1 = h.tangent;
         let turn = cross(t1, t2).atan2(t1.dot(t2));
         // Straight back: inside only where the tool is outside an arc (LinuxCNC's h and m shapes).
         let reversal = turn.abs() > PI - small.max(1e-9);
-        let outside_arc = |ccw: bool| (s > 0.0) != ccw;
         let inside = if reversal {
-            match (h.shape, n.arc) {
-                (Shape::Arc { ccw, .. }, None) => outside_arc(ccw),
-                (_, Some((_, ccw, _))) => outside_arc(ccw),
-                _ => false,
-            }
+            n.arc
+                .or(h.elem.arc)
+                .is_some_and(|(_, ccw, _)| (s > 0.0) != ccw)
         } else {
             turn * s > 0.0 && turn.abs() > small
         };
@@ -597,56 +538,64 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
         let side_change = !cancel && s * s2 < 0.0;
         let s2v = if side_change { s2 } else { s };
         let s2p = n.offset_start(s2v, plane);
+        // The next move starts at its offset start unless a branch below finds otherwise.
+        start = (!cancel).then_some(s2p);
         if cancel {
             let line = Curve::Line { p: s2p, d: t2 };
             if inside && let Some(x) = first_met(intersect(h.curve(plane), line), &h, n, s, plane) {
-                h.end = with_uv(h.end, x, plane);
+                h.elem.to = with_uv(h.elem.to, x, plane);
             }
         } else if side_change || (linuxcnc && (s - s2).abs() > EPS) {
             // The Fanuc family: to where the paths meet on the new side, else square across.
             let crossing = (!linuxcnc).then(|| side_change_point(&h, n, s2, plane));
             if let Some(x) = crossing.flatten() {
-                h.end = with_uv(h.end, x, plane);
+                h.elem.to = with_uv(h.elem.to, x, plane);
                 h.extended = true;
                 st.comp.start_extended = true;
                 start = Some(x);
             } else {
                 links.push((s2p, None));
-                start = Some(s2p);
             }
         } else if straight {
             // LinuxCNC starts the next move where the last one ended.
-            start = Some(if linuxcnc { e1 } else { s2p });
+            if linuxcnc {
+                start = Some(e1);
+            }
         } else if h.startup && !inside {
             // Fanuc type A start-up: to the next move's start vector.
-            h.end = with_uv(h.end, s2p, plane);
-            start = Some(s2p);
+            h.elem.to = with_uv(h.elem.to, s2p, plane);
         } else if inside {
             let found = n
                 .offset_curve(s, plane)
                 .and_then(|c| first_met(intersect(h.curve(plane), c), &h, n, s, plane));
             if let Some(x) = found {
-                h.end = with_uv(h.end, x, plane);
+                h.elem.to = with_uv(h.elem.to, x, plane);
                 start = Some(x);
             } else {
-                let (a, b) = (h.source.line, n.source.line);
+                let (a, b) = (h.elem.source.line, n.source.line);
                 let message = format!(
                     "the tool does not fit in the inside corner between line {a} and line {b}: their offset paths do not meet"
                 );
                 gouge(st, n.span, message);
                 links.push((s2p, None));
-                start = Some(s2p);
             }
         } else {
             match mode {
-                CornerMode::Arc => {
-                    links.push((s2p, (!n.rapid).then_some((h.corner, s < 0.0))));
-                    start = Some(s2p);
-                }
+                CornerMode::Arc => links.push((s2p, (!n.rapid).then_some((h.corner, s < 0.0)))),
                 CornerMode::Intersection => {
                     let r = s.abs();
-                    if t1.dot(t2) >= -1e-9 {
-                        // 90° or wider: the offset paths meet (extended where needed).
+                    let sharp = t1.dot(t2) < -1e-9;
+                    // Where the held move ends and the next starts, each on its path (extended)
+                    // or linked to it: sharper than 90°, two extra vectors of the radius along
+                    // the moves; else where the offset paths meet.
+                    let (x1, on1, x2, on2) = if sharp {
+                        (
+                            e1 + t1 * r,
+                            h.elem.arc.is_none(),
+                            s2p - t2 * r,
+                            n.arc.is_none(),
+                        )
+                    } else {
                         let c2 = n.offset_curve(s, plane);
                         let x = c2
                             .and_then(|c| {
@@ -656,44 +605,34 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                             .unwrap_or_else(|| {
                                 h.corner + (left(t1) + left(t2)) * (s / (1.0 + t1.dot(t2)))
                             });
-                        if on_curve(x, h.curve(plane)) {
-                            h.end = with_uv(h.end, x, plane);
-                            h.extended = true;
-                        } else {
-                            links.push((x, None));
-                        }
-                        if c2.is_some_and(|c| on_curve(x, c)) {
-                            start = Some(x);
-                            st.comp.start_extended = true;
-                        } else {
-                            links.push((s2p, None));
-                            start = Some(s2p);
-                        }
+                        (
+                            x,
+                            on_curve(x, h.curve(plane)),
+                            x,
+                            c2.is_some_and(|c| on_curve(x, c)),
+                        )
+                    };
+                    if on1 {
+                        h.elem.to = with_uv(h.elem.to, x1, plane);
+                        h.extended = true;
                     } else {
-                        // Sharper than 90°: two extra vectors of the radius along the moves.
-                        let v1 = e1 + t1 * r;
-                        let v2 = s2p - t2 * r;
-                        if h.shape == Shape::Line {
-                            h.end = with_uv(h.end, v1, plane);
-                            h.extended = true;
-                        } else {
-                            links.push((v1, None));
-                        }
-                        links.push((v2, None));
-                        if n.arc.is_none() {
-                            start = Some(v2);
-                            st.comp.start_extended = true;
-                        } else {
-                            links.push((s2p, None));
-                            start = Some(s2p);
-                        }
+                        links.push((x1, None));
+                    }
+                    if sharp {
+                        links.push((x2, None));
+                    }
+                    if on2 {
+                        start = Some(x2);
+                        st.comp.start_extended = true;
+                    } else {
+                        links.push((s2p, None));
                     }
                 }
             }
         }
     }
     send(st, sink, &h, next.map(|(n, _)| n.source.line));
-    let end = h.end;
+    let end = h.elem.to;
     let behind = std::mem::take(&mut st.comp.behind);
     let mut at = end;
     for (source, event) in behind {
@@ -711,18 +650,9 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
                 continue;
             }
             let to = with_uv(at, p, plane);
-            let event = match arc {
-                Some((c, ccw)) => Canon::Arc(Arc {
-                    to,
-                    center: with_uv(at, c, plane),
-                    axis: st.plane,
-                    ccw,
-                    turns: 0,
-                    feed_mm_per_min: n.feed,
-                }),
-                None => Canon::line(n.rapid, to, n.feed),
-            };
-            put(st, sink, n.source, &event);
+            let mut link = *n;
+            (link.from, link.to, link.arc) = (at, to, arc.map(|(c, ccw)| (c, ccw, 0)));
+            put(st, sink, n.source, &as_event(&link, st.plane));
             at = to;
         }
     }
@@ -731,25 +661,18 @@ fn close(st: &mut State, sink: &mut dyn Sink, next: Option<(&Elem, f64)>) -> Opt
 }
 
 /// The inside corner's intersection nearest both the held move's end and the next's start.
-fn first_met(
-    points: Vec<DVec2>,
-    h: &Held,
-    n: &Elem,
-    s: f64,
-    plane: (usize, usize),
-) -> Option<DVec2> {
-    let e1 = uv(h.end, plane);
+fn first_met(xs: Vec<DVec2>, h: &Held, n: &Elem, s: f64, plane: (usize, usize)) -> Option<DVec2> {
+    let e1 = uv(h.elem.to, plane);
     let s2 = n.offset_start(s, plane);
-    let back = |x: DVec2| match h.shape {
-        Shape::Line => (e1 - x).dot(h.tangent).abs(),
-        Shape::Arc { center, ccw, .. } => (x - center).length() * sweep(x, e1, center, ccw),
+    let back = |x: DVec2| match h.elem.arc {
+        None => (e1 - x).dot(h.tangent).abs(),
+        Some((center, ccw, _)) => (x - center).length() * sweep(x, e1, center, ccw),
     };
     let forward = |x: DVec2| match n.arc {
         None => (x - s2).dot(n.start_tangent(plane)).abs(),
         Some((c, ccw, _)) => (x - c).length() * sweep(s2, x, c, ccw),
     };
-    points
-        .into_iter()
+    xs.into_iter()
         .filter(|p| p.is_finite())
         .min_by(|p, q| (back(*p) + forward(*p)).total_cmp(&(back(*q) + forward(*q))))
 }
@@ -758,14 +681,9 @@ fn first_met(
 fn side_change_point(h: &Held, n: &Elem, s2: f64, plane: (usize, usize)) -> Option<DVec2> {
     let c2 = n.offset_curve(s2, plane)?;
     let x = first_met(intersect(h.curve(plane), c2), h, n, s2, plane)?;
-    let held_forward = match h.shape {
-        Shape::Line => (x - uv(h.start, plane)).dot(h.tangent) > EPS,
-        Shape::Arc { .. } => true,
-    };
-    let next_forward = match n.arc {
-        None => (n.offset_end(s2, plane) - x).dot(n.start_tangent(plane)) > EPS,
-        Some(_) => true,
-    };
+    let held_forward = h.elem.arc.is_some() || (x - uv(h.elem.from, plane)).dot(h.tangent) > EPS;
+    let next_forward =
+        n.arc.is_some() || (n.offset_end(s2, plane) - x).dot(n.start_tangent(plane)) > EPS;
     (held_forward && next_forward).then_some(x)
 }
 
@@ -781,10 +699,10 @@ fn nearest(points: Vec<DVec2>, a: DVec2, b: DVec2) -> Option<DVec2> {
 /// Sends the held move on, checked against its programmed direction (`next`: the next line).
 fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
     let plane = plane_axes(st.plane);
-    let (a, b) = (uv(h.start, plane), uv(h.end, plane));
-    let reversed = match h.shape {
-        Shape::Line => h.prog_dir != DVec2::ZERO && (b - a).dot(h.prog_dir) < -1e-7,
-        Shape::Arc { center, ccw, turns } => {
+    let (a, b) = (uv(h.elem.from, plane), uv(h.elem.to, plane));
+    let reversed = match h.elem.arc {
+        None => h.prog_dir != DVec2::ZERO && (b - a).dot(h.prog_dir) < -1e-7,
+        Some((center, ccw, turns)) => {
             let s = sweep(a, b, center, ccw) + f64::from(turns) * TAU;
             // Trimming shortens an arc; one that crossed itself wraps round to nearly a turn.
             let limit = h.prog_sweep + if h.extended { PI } else { 0.1 };
@@ -792,32 +710,19 @@ fn send(st: &mut State, sink: &mut dyn Sink, h: &Held, next: Option<u32>) {
         }
     };
     if reversed {
-        let (line, prev) = (h.source.line, h.prev_line);
+        let (line, prev) = (h.elem.source.line, h.prev_line);
         let next = next.unwrap_or(line);
         let message = format!(
             "the compensated move of line {line} runs backwards against its programmed direction between the corners with line {prev} and line {next}: the tool cuts into the part (a groove or pocket narrower than the tool, or a step smaller than the radius)"
         );
-        gouge(st, h.span, message);
+        gouge(st, h.elem.span, message);
     }
-    let event = match h.shape {
-        Shape::Line => Canon::line(h.rapid, h.end, h.feed),
-        Shape::Arc { center, ccw, turns } => {
-            let full = h.prog_sweep >= TAU - 1e-9;
-            if (a - b).length() < 1e-9 && !full && turns == 0 {
-                Canon::line(false, h.end, h.feed)
-            } else {
-                Canon::Arc(Arc {
-                    to: h.end,
-                    center: with_uv(h.start, center, plane),
-                    axis: st.plane,
-                    ccw,
-                    turns,
-                    feed_mm_per_min: h.feed,
-                })
-            }
-        }
-    };
-    put(st, sink, h.source, &event);
+    let mut elem = h.elem;
+    // An arc trimmed to nothing (no full turn) goes on as a straight feed.
+    if (a - b).length() < 1e-9 && h.prog_sweep < TAU - 1e-9 && elem.arc.is_some_and(|c| c.2 == 0) {
+        (elem.arc, elem.rapid) = (None, false);
+    }
+    put(st, sink, elem.source, &as_event(&elem, st.plane));
 }
 
 /// A gouge: a warning, or an alarm where the control alarms (LinuxCNC, Syntec's 3819).
@@ -839,16 +744,13 @@ fn alarm(st: &mut State, span: Span, code: &'static str, message: impl Into<Stri
     }
 }
 
-/// `event` with its end point moved to `to`.
-fn with_end(event: &Canon, to: DVec3) -> Canon {
-    match *event {
-        Canon::Rapid { .. } => Canon::Rapid { to },
-        Canon::Feed {
-            feed_mm_per_min, ..
-        } => Canon::line(false, to, feed_mm_per_min),
-        Canon::Arc(a) => Canon::Arc(Arc { to, ..a }),
-        ref other => other.clone(),
+/// `event` with its end point moved to `end`.
+fn with_end(event: &Canon, end: DVec3) -> Canon {
+    let mut event = event.clone();
+    if let Canon::Rapid { to } | Canon::Feed { to, .. } | Canon::Arc(Arc { to, .. }) = &mut event {
+        *to = end;
     }
+    event
 }
 
 /// The programmed move as an event, in the plane with normal `axis`.

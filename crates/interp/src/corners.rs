@@ -68,7 +68,7 @@ pub(crate) fn flush(st: &mut State, sink: &mut dyn Sink) {
         st.error(pending.span, "E-CORNER-NEXT", message);
         feed(st, sink, &pending, pending.to);
     }
-    crate::comp::flush(st, sink);
+    crate::comp::close(st, sink, None);
 }
 
 /// A feed of the held-back move to `to` (its own end where the corner stays sharp).
@@ -87,16 +87,14 @@ fn corner(st: &mut State, sink: &mut dyn Sink, p: &Pending, next: DVec3) {
     if l1 < 1e-9 || l2 < 1e-9 || !in_plane(d1) || !in_plane(d2) {
         let message = "a corner is cut only between two moves in the selected plane: drawn sharp";
         st.warning(p.span, "W-CORNER-SKIPPED", message);
-        feed(st, sink, p, p.to);
-        return;
+        return feed(st, sink, p, p.to);
     }
     let (a, b) = (d1 / l1, d2 / l2);
     let cross = a[u] * b[v] - a[v] * b[u];
     let cos = a.dot(b).clamp(-1.0, 1.0);
     if cross.abs() < 1e-9 {
         // Straight on (or straight back): there is no corner to cut.
-        feed(st, sink, p, p.to);
-        return;
+        return feed(st, sink, p, p.to);
     }
     match p.corner {
         Corner::Chamfer(c) => {

@@ -71,8 +71,7 @@ pub(crate) fn cancel(st: &mut State) -> Option<MotionMode> {
 
 /// The cycle mode is entered in this block: remember the initial level and the motion mode.
 pub(crate) fn enter(st: &mut State) {
-    let (u, v) = plane_axes(st.plane);
-    st.cycle.initial = Some(st.program_pos[3 - u - v]);
+    st.cycle.initial = Some(st.program_pos[st.plane as usize]);
     st.cycle.entry = Some(st.program_pos);
     st.cycle.before = st.motion;
 }
@@ -87,12 +86,15 @@ pub(crate) fn run(
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
+    let plain = |letter: u8| find(words, letter);
+    if let Some(w) = plain(b'P') {
+        let secs = st.dialect.read(w, Quantity::CycleDwellP, false, false);
+        st.cycle.p = Some(secs.max(0.0));
+    }
     if tenths % 10 == 1 {
         return slanted(st, block, words, tenths, source, sink);
     }
-    let (u, v) = plane_axes(st.plane);
-    let n = 3 - u - v;
-    let plain = |letter: u8| find(words, letter);
+    let n = st.plane as usize;
     let drills = b"XYZ".iter().any(|&l| plain(l).is_some());
     // The hole data of the block (Syntec: Q and R only from blocks that drill).
     let keeps = drills || st.dialect != Dialect::Syntec;
@@ -105,19 +107,11 @@ pub(crate) fn run(
     if keeps && let Some(w) = plain(b'Q') {
         st.cycle.q = Some(st.length(w).abs());
     }
-    if let Some(w) = plain(b'P') {
-        let secs = st.dialect.read(w, Quantity::CycleDwellP, false, false);
-        st.cycle.p = Some(secs.max(0.0));
-    }
-    if let Some(w) = words
+    let f2 = words
         .iter()
-        .find(|w| w.letter == b'F' && w.form == WordForm::Indexed(2))
-    {
-        st.cycle.retract_feed = Some(w.value);
-    }
-    if st.cycle.initial.is_none() {
-        st.cycle.initial = Some(st.program_pos[n]);
-    }
+        .find(|w| w.letter == b'F' && w.form == WordForm::Indexed(2));
+    st.cycle.retract_feed = f2.map(|w| w.value).or(st.cycle.retract_feed);
+    st.cycle.initial.get_or_insert(st.program_pos[n]);
     // Repeats: K (L in KT and LinuxCNC), not modal.
     let repeat_letter = match st.dialect {
         Dialect::Kt | Dialect::LinuxCnc => b'L',
@@ -249,10 +243,8 @@ pub(crate) fn pattern(
                 );
                 return st.fail(code.span, "E-PATTERN-SIZE", message);
             }
-            let (di, dj) = (
-                length(st, b'I').unwrap_or(0.0),
-                length(st, b'J').unwrap_or(0.0),
-            );
+            let di = length(st, b'I').unwrap_or(0.0);
+            let dj = length(st, b'J').unwrap_or(0.0);
             let mut points = Vec::with_capacity(nx * ny);
             for j in 0..ny {
                 for step in 0..nx {
@@ -315,10 +307,6 @@ fn slanted(
     if let Some(w) = find(words, b'Q') {
         // Q is in least input increments (0.001 mm) unless written with a decimal point.
         st.cycle.q = Some(st.mm(thousandths(w)).abs());
-    }
-    if let Some(w) = find(words, b'P') {
-        let secs = st.dialect.read(w, Quantity::CycleDwellP, false, false);
-        st.cycle.p = Some(secs.max(0.0));
     }
     if let Some(w) = find(words, b'E') {
         st.cycle.slant = Some((w.value, drill_axis));
@@ -478,8 +466,7 @@ impl Plan {
     /// The plan of a cycle block, or `None` (with a diagnostic) when its data are incomplete.
     fn new(st: &mut State, block: &Block, words: &[Word], tenths: u32) -> Option<Plan> {
         let linuxcnc = st.dialect == Dialect::LinuxCnc;
-        let (u, v) = plane_axes(st.plane);
-        let n = 3 - u - v;
+        let n = st.plane as usize;
         let Some((z_word, z_inc)) = st.cycle.z else {
             let letter = char::from(b"XYZ"[n]);
             let message =
@@ -590,8 +577,7 @@ fn shift_vector(st: &mut State, block: &Block, n: usize) -> DVec3 {
         None if st.dialect == Dialect::Kt => DEFAULT_Q_MM,
         None => 0.0,
     };
-    let direction = st.setup.machine.shift_direction;
-    let along = direction.vector();
+    let along = st.setup.machine.shift_direction.vector();
     if q > 0.0 && along[n].abs() > 0.5 {
         let message = "the G76/G87 shift direction of the setup (`shift_direction`) lies along the drilling axis: no shift is made";
         return st.fail(block.span, "E-SHIFT-DIRECTION", message);
@@ -649,9 +635,7 @@ fn drill(
     let mut d = Drill::new(st, block, plan, source, sink);
     if linuxcnc && initial < r {
         // rs274ngc: below the R level, straight up to it first.
-        let mut p = d.st.program_pos;
-        p[n] = r;
-        d.rapid(p);
+        d.rapid(d.level(d.st.program_pos, r));
         initial = r;
         current = r;
     }
@@ -775,10 +759,9 @@ impl<'a, 's> Drill<'a, 's> {
         self.go(p, false, Some(feed));
     }
 
-    fn level(&self, hole: DVec3, level: f64) -> DVec3 {
-        let mut p = hole;
-        p[self.plan.n] = level;
-        p
+    fn level(&self, mut hole: DVec3, level: f64) -> DVec3 {
+        hole[self.plan.n] = level;
+        hole
     }
 
     /// Tags the motions that follow as the next hole, from `top` to `bottom` (program frame).
@@ -877,8 +860,7 @@ impl<'a, 's> Drill<'a, 's> {
                 }
                 if self.plan.tenths == 890 && linuxcnc {
                     // rs274ngc feeds G89 straight out to the clear level.
-                    self.feed_to(self.level(hole, clear));
-                    return;
+                    return self.feed_to(self.level(hole, clear));
                 }
                 self.feed_to(self.level(hole, r));
                 if clear != r {
@@ -926,8 +908,7 @@ impl<'a, 's> Drill<'a, 's> {
                     self.st.program_pos = up;
                     self.st.position = self.st.to_machine(up);
                     self.spindle(None);
-                    self.spindle(Some(forward));
-                    return;
+                    return self.spindle(Some(forward));
                 }
                 self.tap(hole, bottom, r, forward);
                 if clear != r {

@@ -37,12 +37,8 @@ pub(crate) enum Request {
     Subprogram,
     /// `M99`: return from the call (to the block its P word names).
     Return,
-    /// `G65`: call macro `number`, `repeats` times, with `args` as its locals.
-    Macro {
-        number: f64,
-        repeats: u32,
-        args: Vec<(u8, f64)>,
-    },
+    /// `G65`: call the macro.
+    Macro(crate::state::MacroCall),
     /// After a move under G66 that kept the flow: call the modal macro (not from inside it).
     ModalMacro,
 }
@@ -122,9 +118,7 @@ fn modal_codes(
     if !tools::settings(st, words) {
         return false;
     }
-    let presets_spindle = actions
-        .iter()
-        .any(|(a, _)| matches!(a, Action::SetPosition));
+    let presets_spindle = actions.iter().any(|(a, _)| *a == Action::SetPosition);
     // Units first: the block's numbers are read in the new unit.
     for (a, _) in actions {
         match *a {
@@ -193,7 +187,11 @@ fn axis_codes(
                 st.resync();
             }
             // G10 refused stops the run.
-            Action::DataInput if !data_input::data_input(st, w, words) => return None,
+            Action::DataInput => {
+                if !data_input::data_input(st, w, words) {
+                    return None;
+                }
+            }
             Action::Dwell => motion::dwell(st, w, words, source, sink),
             Action::Reference(n) => references::reference(st, words, axes, n, source, sink),
             Action::FromReference => references::from_reference(st, axes, source, sink),
@@ -213,27 +211,15 @@ fn axis_codes(
                 st.length_comp = Some((0, z));
                 st.length_plus = true;
             }
-            _ => {}
+            // Its limits are the G22 block's words (set with the modes).
+            Action::StrokeLimit(_) => {}
+            _ => continue,
         }
-        // The codes whose words are their data, not a move (the G22 limits among them).
+        // The codes above take the words as their data, not a move (G53 says whether it did).
         consumed |= match *a {
             Action::Rotation(on) | Action::Scaling(on) => on,
-            Action::MeasuredRotation
-            | Action::Mirror(_)
-            | Action::Local
-            | Action::SetPosition
-            | Action::PresetZero
-            | Action::Pattern(_)
-            | Action::StrokeLimit(_)
-            | Action::Measure(_)
-            | Action::ResetShift
-            | Action::DataInput
-            | Action::Dwell
-            | Action::Reference(_)
-            | Action::FromReference
-            | Action::StoreReference(_)
-            | Action::DynamicLength => true,
-            _ => false,
+            Action::Polar(_) | Action::Machine => false,
+            _ => true,
         };
     }
     Some(consumed)

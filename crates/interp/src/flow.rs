@@ -17,42 +17,6 @@ pub(crate) enum LabelKey {
     Name(Box<str>),
 }
 
-/// What kind of O-word line a block is (for searching forward and back).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum OKind {
-    Sub,
-    EndSub,
-    If,
-    ElseIf,
-    Else,
-    EndIf,
-    While,
-    EndWhile,
-    Do,
-    Repeat,
-    EndRepeat,
-    Other,
-}
-
-impl OKind {
-    fn of(kind: &OWord) -> OKind {
-        match kind {
-            OWord::Sub => OKind::Sub,
-            OWord::EndSub(_) => OKind::EndSub,
-            OWord::If(_) => OKind::If,
-            OWord::ElseIf(_) => OKind::ElseIf,
-            OWord::Else => OKind::Else,
-            OWord::EndIf => OKind::EndIf,
-            OWord::While(_) => OKind::While,
-            OWord::EndWhile => OKind::EndWhile,
-            OWord::Do => OKind::Do,
-            OWord::Repeat(_) => OKind::Repeat,
-            OWord::EndRepeat => OKind::EndRepeat,
-            _ => OKind::Other,
-        }
-    }
-}
-
 /// The index of one parsed program.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Index {
@@ -68,9 +32,9 @@ pub(crate) struct Index {
     pub(crate) loop_end: HashMap<usize, usize>,
     pub(crate) loop_head: HashMap<usize, usize>,
     /// O-word label → its lines in text order.
-    owords: HashMap<LabelKey, Vec<(usize, OKind)>>,
+    owords: HashMap<LabelKey, Vec<(usize, OWord)>>,
     /// The first block with a program number: the main program's header.
-    first_program: Option<usize>,
+    pub(crate) first_program: Option<usize>,
     /// The expression terms of each block (see [`terms`]), up to the last block that has any.
     terms: Vec<u32>,
     /// Why the files of the calls found but not linked were not ([`Program::unlinked`]).
@@ -146,11 +110,7 @@ impl Index {
                             OLabel::Name(s) => LabelKey::Name(s.clone()),
                             OLabel::Expr(_) => continue,
                         };
-                        index
-                            .owords
-                            .entry(key)
-                            .or_default()
-                            .push((i, OKind::of(kind)));
+                        index.owords.entry(key).or_default().push((i, kind.clone()));
                     }
                     _ => {}
                 }
@@ -166,19 +126,6 @@ impl Index {
             }
         }
         index
-    }
-
-    /// The program (index into the program table) that block `at` belongs to.
-    pub(crate) fn program_of(&self, at: usize) -> usize {
-        match self.starts.binary_search(&at) {
-            Ok(i) => i,
-            Err(i) => i.saturating_sub(1),
-        }
-    }
-
-    /// Whether block `at` starts a program other than the main (first) one.
-    pub(crate) fn starts_other_program(&self, at: usize) -> bool {
-        self.first_program.is_some_and(|first| first != at)
     }
 
     /// Why the file holding the called program `missing` was not linked, if it was found.
@@ -199,7 +146,9 @@ impl Index {
 
     /// The block numbered `N n` in the program that block `at` belongs to.
     pub(crate) fn label(&self, at: usize, n: u32) -> Option<usize> {
-        let program = u32::try_from(self.program_of(at)).ok()?;
+        // The program (index into `starts`) that block `at` belongs to.
+        let program = self.starts.partition_point(|&s| s <= at).saturating_sub(1);
+        let program = u32::try_from(program).ok()?;
         let first = self
             .labels
             .partition_point(|&(p, m, _)| (p, m) < (program, n));
@@ -210,7 +159,7 @@ impl Index {
     }
 
     /// The lines of O-word `label`, in text order.
-    pub(crate) fn owords(&self, label: &LabelKey) -> &[(usize, OKind)] {
+    pub(crate) fn owords(&self, label: &LabelKey) -> &[(usize, OWord)] {
         self.owords.get(label).map_or(&[], Vec::as_slice)
     }
 
@@ -219,15 +168,16 @@ impl Index {
         self.terms.get(at).map_or(0, |&t| u64::from(t))
     }
 
-    /// The nearest line of `label` after or before `at` of `kinds`, counting lines in `searched`.
+    /// The nearest line of `label` after or before `at` that is one of `kinds`, counting lines in
+    /// `searched`.
     pub(crate) fn near_oword(
         &self,
         label: &LabelKey,
         at: usize,
         forward: bool,
-        kinds: &[OKind],
+        kinds: fn(&OWord) -> bool,
         searched: &mut u64,
-    ) -> Option<(usize, OKind)> {
+    ) -> Option<(usize, &OWord)> {
         let lines = self.owords(label);
         if forward {
             let after = lines.get(lines.partition_point(|(b, _)| *b <= at)..)?;
@@ -239,16 +189,16 @@ impl Index {
     }
 }
 
-/// The first of `lines` whose kind is in `kinds`, counting the lines looked at in `searched`.
+/// The first of `lines` that is one of `kinds`, counting the lines looked at in `searched`.
 fn first_of<'a>(
-    lines: impl Iterator<Item = &'a (usize, OKind)>,
-    kinds: &[OKind],
+    lines: impl Iterator<Item = &'a (usize, OWord)>,
+    kinds: fn(&OWord) -> bool,
     searched: &mut u64,
-) -> Option<(usize, OKind)> {
+) -> Option<(usize, &'a OWord)> {
     lines
         .inspect(|_| *searched += 1)
-        .find(|line| kinds.contains(&line.1))
-        .copied()
+        .find(|line| kinds(&line.1))
+        .map(|(b, k)| (*b, k))
 }
 
 /// How many expression terms `block` evaluates at most (counted by `max_work`).
@@ -312,12 +262,13 @@ mod tests {
         let index = Index::build(&program, &mut Diagnostics::default());
         let key = LabelKey::Number(1);
         let mut searched = 0;
-        let found = index.near_oword(&key, 1998, true, &[OKind::EndIf], &mut searched);
-        assert_eq!((found, searched), (Some((1999, OKind::EndIf)), 1));
-        let found = index.near_oword(&key, 1999, false, &[OKind::If], &mut searched);
-        assert_eq!((found, searched), (Some((1998, OKind::If)), 2));
+        let if_line = |k: &OWord| matches!(k, OWord::If(_));
+        let found = index.near_oword(&key, 1998, true, |k| *k == OWord::EndIf, &mut searched);
+        assert_eq!((found, searched), (Some((1999, &OWord::EndIf)), 1));
+        let found = index.near_oword(&key, 1999, false, if_line, &mut searched);
+        assert_eq!((found.map(|f| f.0), searched), (Some(1998), 2));
         assert_eq!(
-            index.near_oword(&key, 1999, true, &[OKind::If], &mut searched),
+            index.near_oword(&key, 1999, true, if_line, &mut searched),
             None
         );
         assert_eq!(searched, 2);

@@ -27,17 +27,9 @@ pub trait Sink {
 
     /// A straight move to (`x`, `y`, `z`), rapid when `rapid`: emitting the event, with the numbers
     /// in registers for sinks that take moves this way.
-    fn straight(
-        &mut self,
-        source: Source,
-        rapid: bool,
-        x: f64,
-        y: f64,
-        z: f64,
-        feed_mm_per_min: f64,
-    ) {
+    fn straight(&mut self, source: Source, rapid: bool, x: f64, y: f64, z: f64, feed: f64) {
         let to = glam::DVec3::new(x, y, z);
-        self.emit(source, &Canon::line(rapid, to, feed_mm_per_min));
+        self.emit(source, &Canon::line(rapid, to, feed));
     }
 
     /// Whether the sink holds all it may: the run then stops before the next block with a
@@ -52,15 +44,11 @@ pub trait Sink {
 
     /// The programmed motion of a block under cutter radius compensation, before its compensated
     /// events, so a backplot can draw the contour beside the tool centre's path.
-    fn programmed(&mut self, source: Source, event: &Canon) {
-        let _ = (source, event);
-    }
+    fn programmed(&mut self, _source: Source, _event: &Canon) {}
 
     /// A G22 stroke limit switched on (`Some`, as the block at `source` set it) or off by G23
     /// (`None`), so a backplot can draw the zone. Not part of the canonical stream.
-    fn stroke_zone(&mut self, source: Source, zone: Option<&StrokeZone>) {
-        let _ = (source, zone);
-    }
+    fn stroke_zone(&mut self, _source: Source, _zone: Option<&StrokeZone>) {}
 }
 
 /// A programmable stroke limit (G22) in machine coordinates (mm): the box the tool must stay inside

@@ -10,16 +10,17 @@ use swarf_syntax::{
     WordForm, codes::Code,
 };
 
-use crate::exec::Request;
-use crate::flow::{Index, LabelKey, OKind};
-use crate::macros::{self, SystemVariables, Value, Variables};
-use crate::state::State;
+use crate::exec::{MAX_COUNT, Request, count_range};
+use crate::flow::{Index, LabelKey};
+use crate::macros::{self, Value, Variables};
+use crate::state::{MacroCall, State};
 use crate::{Canon, Setup, Sink, Source};
 
 /// Whether a run has more blocks to execute.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Status {
     /// The budget ran out; call [`Interpreter::step`] again to go on.
+    #[default]
     Running,
     /// The program ended (M02/M30, end of text, or a limit was hit).
     Finished,
@@ -53,7 +54,8 @@ const TURN_WORK: u64 = 64;
 const REPEAT_WORK: u64 = 8;
 
 /// Passes events on, counting motions (`max_motions`) and arc turns (`max_work`), and holds back
-/// every event from the first whose numbers are out of range on (see [`MAX_COORDINATE_MM`]).
+/// every event from the first whose numbers are out of range on (see [`MAX_COORDINATE_MM`]). The
+/// program zero goes to `inner` directly (`Interpreter::report_origin`).
 pub(crate) struct MotionCounter<'s> {
     inner: &'s mut dyn Sink,
     motions: u64,
@@ -132,10 +134,6 @@ impl Sink for MotionCounter<'_> {
         self.motions >= self.max_motions || self.out_of_range.is_some() || self.inner.full()
     }
 
-    fn origin(&mut self, at: DVec3) {
-        self.inner.origin(at);
-    }
-
     fn programmed(&mut self, source: Source, event: &Canon) {
         if self.out_of_range.is_none() {
             self.inner.programmed(source, event);
@@ -174,6 +172,9 @@ pub(crate) enum Flow {
     /// Stop the run (M02/M30, an alarm).
     Stop,
 }
+
+/// Where the run goes next, or the diagnostic that stops it.
+type FlowResult = Result<Flow, Diagnostic>;
 
 /// Why a call frame was pushed, which decides how it returns.
 #[derive(Debug, Clone, PartialEq)]
@@ -217,7 +218,7 @@ pub struct Interpreter {
     motions: u64,
     /// The program zero last reported with `Canon::Origin`.
     origin: Option<DVec3>,
-    pub(crate) finished: bool,
+    pub(crate) status: Status,
     calls: Vec<Frame>,
     /// Remaining passes of LinuxCNC `repeat` loops, by the block of their `repeat` line.
     repeats: HashMap<usize, u64>,
@@ -256,19 +257,16 @@ impl Interpreter {
         if self.jumped || (self.executed > 0 && !self.piecewise) {
             return Piece::NeedsWhole;
         }
-        if self.finished {
+        if self.status == Status::Finished {
             return Piece::Ended;
         }
-        self.piecewise = true;
-        self.index = None;
-        self.next_block = 0;
-        self.unvisited = 0;
+        self.start_piece();
         // A block that needs the whole program or a jump ends the piece (the program runs whole).
         while self.step(program, sink, 4096) == Status::Running
             && !self.jumped
             && self.next_block < program.blocks.len()
         {}
-        if self.finished && !self.jumped {
+        if self.status == Status::Finished && !self.jumped {
             // The blocks after the end were not run; they still decide, as before the piece ran.
             let rest = program.blocks.get(self.unvisited..).unwrap_or_default();
             self.jumped = rest.iter().any(|block| self.needs_whole(block));
@@ -276,11 +274,19 @@ impl Interpreter {
         self.block_base += program.blocks.len();
         if self.jumped {
             Piece::NeedsWhole
-        } else if self.finished {
+        } else if self.status == Status::Finished {
             Piece::Ended
         } else {
             Piece::Ran
         }
+    }
+
+    /// Makes the next block the first of a new piece.
+    pub(crate) fn start_piece(&mut self) {
+        self.piecewise = true;
+        self.index = None;
+        self.next_block = 0;
+        self.unvisited = 0;
     }
 
     /// Whether `block`, met piece by piece, needs the whole index (a loop, call, program).
@@ -307,8 +313,8 @@ impl Interpreter {
 
     /// Ends a program run piece by piece, as [`Interpreter::step`] ends one run whole.
     pub fn finish_pieces(&mut self, sink: &mut dyn Sink) {
-        if !self.finished {
-            self.finished = true;
+        if self.status == Status::Running {
+            self.status = Status::Finished;
             crate::corners::flush(&mut self.st, sink);
         }
     }
@@ -388,7 +394,11 @@ impl Interpreter {
                     // The end of a piece, not of the program.
                     break;
                 }
-                self.end_of_text();
+                // The text ran out: inside a call that is an implicit return; otherwise the end.
+                match self.pop_call() {
+                    Some(frame) => self.next_block = frame.return_to,
+                    None => self.status = Status::Finished,
+                }
                 continue;
             };
             // The runaway limits: blocks run, the work inside them, and moves made (memory).
@@ -443,20 +453,16 @@ impl Interpreter {
                     }
                     self.next_block = to;
                 }
-                Flow::Stop => self.finished = true,
+                Flow::Stop => self.status = Status::Finished,
             }
         }
         self.stopped(program, &mut counted);
-        if self.finished {
+        if self.status == Status::Finished {
             crate::corners::flush(&mut self.st, &mut counted);
         }
         self.motions = counted.motions;
         self.work += counted.turns;
-        if self.finished {
-            Status::Finished
-        } else {
-            Status::Running
-        }
+        self.status
     }
 
     /// Whether the run has ended or must end now (a stopping diagnostic, numbers out of range).
@@ -470,12 +476,12 @@ impl Interpreter {
             self.st.error(span, "E-COORDINATE-RANGE", problem);
             // Nothing more is passed on.
             counted.out_of_range = Some((source, String::new()));
-            self.finished = true;
+            self.status = Status::Finished;
         }
         if self.st.diagnostics.stops() {
-            self.finished = true;
+            self.status = Status::Finished;
         }
-        self.finished
+        self.status == Status::Finished
     }
 
     /// Ends the run at one of its limits, naming it and the loop the run is in.
@@ -506,7 +512,7 @@ impl Interpreter {
         };
         let message = format!("execution stopped after {after}{in_loop}: {why}");
         self.st.error(span.unwrap_or(block.span), code, message);
-        self.finished = true;
+        self.status = Status::Finished;
     }
 
     /// The work done so far (see `[machine] max_work`).
@@ -607,14 +613,6 @@ impl Interpreter {
         }
     }
 
-    /// The text ran out: inside a call that is an implicit return; otherwise the end.
-    fn end_of_text(&mut self) {
-        match self.pop_call() {
-            Some(frame) => self.next_block = frame.return_to,
-            None => self.finished = true,
-        }
-    }
-
     /// Leaves the innermost call, and its level of local variables where it has one.
     fn pop_call(&mut self) -> Option<Frame> {
         let frame = self.calls.pop()?;
@@ -639,7 +637,7 @@ impl Interpreter {
             && self
                 .index
                 .as_ref()
-                .is_some_and(|i| i.starts_other_program(at))
+                .is_some_and(|i| i.first_program.is_some_and(|first| first != at))
         {
             let message = "the main program ends here, where the next program starts (it runs only when called)";
             self.st.note(block.span, "N-PROGRAM-END", message);
@@ -701,15 +699,11 @@ impl Interpreter {
             Request::Stop => return Flow::Stop,
             Request::Subprogram => self.call_subprogram(at, block, words),
             Request::Return => self.return_from(at, block, find(words, b'P')),
-            Request::Macro {
-                number,
-                repeats,
-                args,
-            } => self.call_macro(at, block, number, repeats, &args),
+            Request::Macro(call) => self.call_macro(at, block, &call),
             Request::ModalMacro => match self.st.modal_macro.clone() {
                 Some(call) if flow == Flow::Next && !self.calls.iter().any(|f| f.modal) => {
                     // Like G65, marked so that the macro's own moves do not call it again.
-                    let called = self.call_macro(at, block, call.number, call.repeats, &call.args);
+                    let called = self.call_macro(at, block, &call);
                     if called.as_ref().is_ok_and(|f| *f != Flow::Next)
                         && let Some(frame) = self.calls.last_mut()
                     {
@@ -783,26 +777,15 @@ impl Interpreter {
 
     /// The block a `GOTO n` (or `M99 Pn`) in block `at` goes to.
     fn goto(&self, at: usize, n: f64, span: Span) -> Result<usize, Diagnostic> {
-        if self.index.is_none() && self.piecewise {
-            // No index while running piece by piece: the jump has the program run whole.
+        // No index while running piece by piece: the jump has the program run whole.
+        let Some(index) = &self.index else {
             return Ok(at);
-        }
+        };
         let label = (n >= 0.0 && n.fract() == 0.0 && n <= f64::from(u32::MAX)).then_some(n as u32);
-        label
-            .and_then(|n| self.index.as_ref().and_then(|i| i.label(at, n)))
-            .ok_or_else(|| {
-                let message = format!("there is no block N{n} in this program to jump to");
-                Diagnostic::error(span, "E-MACRO-GOTO", message)
-            })
-    }
-
-    /// What a block that needs the index does without one: piece by piece, a jump.
-    fn without_index(&self, at: usize) -> Flow {
-        if self.piecewise {
-            Flow::Jump(at)
-        } else {
-            Flow::Next
-        }
+        label.and_then(|n| index.label(at, n)).ok_or_else(|| {
+            let message = format!("there is no block N{n} in this program to jump to");
+            Diagnostic::error(span, "E-MACRO-GOTO", message)
+        })
     }
 
     /// Macro B and O-word control statements.
@@ -812,12 +795,12 @@ impl Interpreter {
         at: usize,
         block: &Block,
         statement: &Statement,
-    ) -> Result<Flow, Diagnostic> {
+    ) -> FlowResult {
+        // No index piece by piece: an assignment runs, anything else has the program run whole.
         let Some(index) = self.index.as_ref() else {
-            // An assignment needs no index (it runs piece by piece as well).
             return Ok(match statement {
                 Statement::Assign { .. } => Flow::Next,
-                _ => self.without_index(at),
+                _ => Flow::Jump(at),
             });
         };
         match statement {
@@ -859,24 +842,6 @@ impl Interpreter {
         }
     }
 
-    /// The key of an O-word label (computed labels are evaluated).
-    fn label_key(&self, program: &Program, label: &OLabel) -> Result<LabelKey, Diagnostic> {
-        match label {
-            OLabel::Number(n) => Ok(LabelKey::Number(*n)),
-            OLabel::Name(s) => Ok(LabelKey::Name(s.clone())),
-            OLabel::Expr(id) => {
-                let v = self.eval(program, *id)?.unwrap_or(0.0);
-                if v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
-                    Ok(LabelKey::Number(v as u32))
-                } else {
-                    let span = program.expr(*id).map_or(Span::default(), |n| n.span);
-                    let message = format!("O-word number {v} is not a whole number");
-                    Err(Diagnostic::error(span, "E-OWORD", message))
-                }
-            }
-        }
-    }
-
     /// LinuxCNC O-word control lines.
     fn oword(
         &mut self,
@@ -885,31 +850,44 @@ impl Interpreter {
         block: &Block,
         label: &OLabel,
         kind: &OWord,
-    ) -> Result<Flow, Diagnostic> {
-        let key = self.label_key(program, label)?;
+    ) -> FlowResult {
+        // The label's key (a computed label by its value).
+        let key = match label {
+            OLabel::Number(n) => LabelKey::Number(*n),
+            OLabel::Name(s) => LabelKey::Name(s.clone()),
+            OLabel::Expr(id) => {
+                let v = self.eval(program, *id)?.unwrap_or(0.0);
+                if !(v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX)) {
+                    let span = program.expr(*id).map_or(Span::default(), |n| n.span);
+                    let message = format!("O-word number {v} is not a whole number");
+                    return Err(Diagnostic::error(span, "E-OWORD", message));
+                }
+                LabelKey::Number(v as u32)
+            }
+        };
         let shown = match &key {
             LabelKey::Number(n) => format!("o{n}"),
             LabelKey::Name(s) => format!("o<{}>", swarf_syntax::excerpt(s)),
         };
         // A copy of the index's handle, so the O-word lines searched count as work.
         let Some(index) = self.index.clone() else {
-            return Ok(self.without_index(at));
+            return Ok(Flow::Jump(at));
         };
         let missing = |what: &str| {
             let message = format!("{shown} has no matching `{what}`");
             Diagnostic::error(block.span, "E-OWORD", message)
         };
-        // The nearest line of the label after or before this one whose kind is in `kinds`.
-        let after = |work: &mut u64, kinds: &[OKind]| index.near_oword(&key, at, true, kinds, work);
-        let before =
-            |work: &mut u64, kinds: &[OKind]| index.near_oword(&key, at, false, kinds, work);
+        // The nearest line of the label after or before this one that is one of `kinds`.
+        type Kinds = fn(&OWord) -> bool;
+        let after = |work: &mut u64, kinds: Kinds| index.near_oword(&key, at, true, kinds, work);
+        let before = |work: &mut u64, kinds: Kinds| index.near_oword(&key, at, false, kinds, work);
         // A jump past the next such line, or back to the last one; `what` names it when missing.
-        let past = |work: &mut u64, kinds: &[OKind], what: &str| {
+        let past = |work: &mut u64, kinds: Kinds, what: &str| {
             after(work, kinds)
                 .map(|l| Flow::Jump(l.0 + 1))
                 .ok_or_else(|| missing(what))
         };
-        let back = |work: &mut u64, kinds: &[OKind], what: &str| {
+        let back = |work: &mut u64, kinds: Kinds, what: &str| {
             before(work, kinds)
                 .map(|l| Flow::Jump(l.0))
                 .ok_or_else(|| missing(what))
@@ -917,7 +895,7 @@ impl Interpreter {
         match kind {
             OWord::Sub => {
                 // Reached in sequence: a definition is skipped, not run.
-                past(&mut self.work, &[OKind::EndSub], "endsub")
+                past(&mut self.work, |k| matches!(k, OWord::EndSub(_)), "endsub")
             }
             OWord::EndSub(value) | OWord::Return(value) => {
                 if let Some(v) = value {
@@ -939,7 +917,7 @@ impl Interpreter {
                 let start = index
                     .owords(&key)
                     .iter()
-                    .find(|(_, k)| *k == OKind::Sub)
+                    .find(|(_, k)| *k == OWord::Sub)
                     .map(|(b, _)| *b)
                     .ok_or_else(|| {
                         let why = match &key {
@@ -974,23 +952,26 @@ impl Interpreter {
                 if self.condition(program, *cond)? {
                     return Ok(Flow::Next);
                 }
-                let next = after(&mut self.work, &[OKind::ElseIf, OKind::Else, OKind::EndIf])
-                    .ok_or_else(|| missing("endif"))?;
-                Ok(match next.1 {
+                let next = after(&mut self.work, |k| {
+                    matches!(k, OWord::ElseIf(_) | OWord::Else | OWord::EndIf)
+                });
+                Ok(match next.ok_or_else(|| missing("endif"))? {
                     // The elseif line evaluates its own condition.
-                    OKind::ElseIf => Flow::Jump(next.0),
-                    _ => Flow::Jump(next.0 + 1),
+                    (line, OWord::ElseIf(_)) => Flow::Jump(line),
+                    (line, _) => Flow::Jump(line + 1),
                 })
             }
             OWord::Else => {
                 // Reached from a branch that ran: skip to the end.
-                past(&mut self.work, &[OKind::EndIf], "endif")
+                past(&mut self.work, |k| *k == OWord::EndIf, "endif")
             }
             OWord::EndIf => Ok(Flow::Next),
             OWord::While(cond) => {
                 // The tail of a `do … while` loop, or the head of a `while … endwhile` one.
-                let do_head = before(&mut self.work, &[OKind::Do, OKind::EndWhile, OKind::While])
-                    .filter(|(_, k)| *k == OKind::Do);
+                let do_head = before(&mut self.work, |k| {
+                    matches!(k, OWord::Do | OWord::EndWhile | OWord::While(_))
+                })
+                .filter(|(_, k)| **k == OWord::Do);
                 let holds = self.condition(program, *cond)?;
                 if let Some((head, _)) = do_head {
                     return Ok(if holds {
@@ -1002,9 +983,9 @@ impl Interpreter {
                 if holds {
                     return Ok(Flow::Next);
                 }
-                past(&mut self.work, &[OKind::EndWhile], "endwhile")
+                past(&mut self.work, |k| *k == OWord::EndWhile, "endwhile")
             }
-            OWord::EndWhile => back(&mut self.work, &[OKind::While], "while"),
+            OWord::EndWhile => back(&mut self.work, |k| matches!(k, OWord::While(_)), "while"),
             OWord::Do => Ok(Flow::Next),
             OWord::Repeat(count) => {
                 let remaining = match self.repeats.get(&at) {
@@ -1013,34 +994,37 @@ impl Interpreter {
                 };
                 if remaining == 0 {
                     self.repeats.remove(&at);
-                    return past(&mut self.work, &[OKind::EndRepeat], "endrepeat");
+                    return past(&mut self.work, |k| *k == OWord::EndRepeat, "endrepeat");
                 }
                 self.repeats.insert(at, remaining - 1);
                 Ok(Flow::Next)
             }
-            OWord::EndRepeat => back(&mut self.work, &[OKind::Repeat], "repeat"),
+            OWord::EndRepeat => back(&mut self.work, |k| matches!(k, OWord::Repeat(_)), "repeat"),
             OWord::Break => {
-                let ends = [OKind::EndWhile, OKind::EndRepeat, OKind::While];
-                let end = past(&mut self.work, &ends, "endwhile")?;
-                if let Some((head, _)) = before(&mut self.work, &[OKind::Repeat]) {
+                let ends =
+                    |k: &OWord| matches!(k, OWord::EndWhile | OWord::EndRepeat | OWord::While(_));
+                let end = past(&mut self.work, ends, "endwhile")?;
+                if let Some((head, _)) = before(&mut self.work, |k| matches!(k, OWord::Repeat(_))) {
                     self.repeats.remove(&head);
                 }
                 Ok(end)
             }
             OWord::Continue => {
-                let head = before(&mut self.work, &[OKind::While, OKind::Repeat, OKind::Do])
-                    .ok_or_else(|| missing("while"))?;
-                Ok(match head.1 {
-                    OKind::Do => {
-                        let tail = after(&mut self.work, &[OKind::While]);
-                        tail.map_or(Flow::Jump(head.0 + 1), |(t, _)| Flow::Jump(t))
+                let head = before(&mut self.work, |k| {
+                    matches!(k, OWord::While(_) | OWord::Repeat(_) | OWord::Do)
+                });
+                Ok(match head.ok_or_else(|| missing("while"))? {
+                    (head, OWord::Do) => {
+                        let tail = after(&mut self.work, |k| matches!(k, OWord::While(_)));
+                        tail.map_or(Flow::Jump(head + 1), |(t, _)| Flow::Jump(t))
                     }
-                    _ => Flow::Jump(head.0),
+                    (head, _) => Flow::Jump(head),
                 })
             }
         }
     }
 
+    /// Calls the code at `start` `repeats` times (none: the run goes on), returning to `return_to`.
     fn push_call(
         &mut self,
         block: &Block,
@@ -1048,7 +1032,10 @@ impl Interpreter {
         return_to: usize,
         start: usize,
         repeats: u32,
-    ) -> Result<(), Diagnostic> {
+    ) -> FlowResult {
+        if repeats == 0 {
+            return Ok(Flow::Next);
+        }
         if self.calls.len() >= MAX_CALL_DEPTH {
             let message = format!(
                 "calls nested more than {MAX_CALL_DEPTH} deep: a subprogram that calls itself?"
@@ -1059,26 +1046,19 @@ impl Interpreter {
             kind,
             return_to,
             start,
-            repeats_left: repeats.saturating_sub(1),
+            repeats_left: repeats - 1,
             modal: false,
         });
-        Ok(())
+        Ok(Flow::Jump(start))
     }
 
     /// `M98 P… L…` (or `M98 Pllllpppp`, or Syntec `M98 H…`): runs a subprogram.
-    fn call_subprogram(
-        &mut self,
-        at: usize,
-        block: &Block,
-        words: &[Word],
-    ) -> Result<Flow, Diagnostic> {
+    fn call_subprogram(&mut self, at: usize, block: &Block, words: &[Word]) -> FlowResult {
         let p = find(words, b'P').map(|w| w.value);
         let h = find(words, b'H').filter(|_| self.st.dialect == Dialect::Syntec);
         let l_word = find(words, b'L').or_else(|| find(words, b'K'));
-        if let Some(w) = l_word.filter(|w| w.value > crate::exec::MAX_COUNT) {
-            self.st
-                .diagnostics
-                .push(crate::exec::count_range(w, "repeats"));
+        if let Some(w) = l_word.filter(|w| w.value > MAX_COUNT) {
+            self.st.diagnostics.push(count_range(w, "repeats"));
         }
         let l = l_word.map(|w| w.value);
         let (number, count) = match (p, l) {
@@ -1091,10 +1071,9 @@ impl Interpreter {
             (None, l) => (f64::NAN, l.unwrap_or(1.0)),
         };
         let repeats = count.clamp(0.0, 9999.0) as u32;
-        if self.index.is_none() && self.piecewise {
-            return Ok(self.without_index(at));
-        }
-        let index = self.index.as_ref().ok_or_else(|| no_index(block))?;
+        let Some(index) = self.index.as_ref() else {
+            return Ok(Flow::Jump(at));
+        };
         let start = if let Some(h) = h {
             // Syntec `M98 H n`: the block N n of this program, as a local subprogram.
             let n = h.value;
@@ -1115,46 +1094,29 @@ impl Interpreter {
                 .map(|s| s + 1)
                 .ok_or_else(|| not_found(index, block, "program", number))?
         };
-        if repeats == 0 {
-            return Ok(Flow::Next);
-        }
-        self.push_call(block, CallKind::Subprogram, at + 1, start, repeats)?;
-        Ok(Flow::Jump(start))
+        self.push_call(block, CallKind::Subprogram, at + 1, start, repeats)
     }
 
     /// `G65 P… L… args`: a macro call with local variables from the arguments.
-    fn call_macro(
-        &mut self,
-        at: usize,
-        block: &Block,
-        number: f64,
-        repeats: u32,
-        args: &[(u8, f64)],
-    ) -> Result<Flow, Diagnostic> {
-        if self.index.is_none() && self.piecewise {
-            return Ok(self.without_index(at));
-        }
-        let index = self.index.as_ref().ok_or_else(|| no_index(block))?;
+    fn call_macro(&mut self, at: usize, block: &Block, call: &MacroCall) -> FlowResult {
+        let number = call.number;
+        let Some(index) = self.index.as_ref() else {
+            return Ok(Flow::Jump(at));
+        };
         let start = index
             .program_start(number as u32)
             .filter(|_| number >= 0.0 && number.fract() == 0.0)
             .map(|s| s + 1)
             .ok_or_else(|| not_found(index, block, "macro program", number))?;
-        if repeats == 0 {
-            return Ok(Flow::Next);
+        let flow = self.push_call(block, CallKind::Macro, at + 1, start, call.repeats)?;
+        if flow != Flow::Next {
+            self.vars.push_frame(&call.args);
         }
-        self.push_call(block, CallKind::Macro, at + 1, start, repeats)?;
-        self.vars.push_frame(args);
-        Ok(Flow::Jump(start))
+        Ok(flow)
     }
 
     /// `M99` (`M99 Pn`): returns from a call; in the main program back to its start (or N n).
-    fn return_from(
-        &mut self,
-        at: usize,
-        block: &Block,
-        target: Option<&Word>,
-    ) -> Result<Flow, Diagnostic> {
+    fn return_from(&mut self, at: usize, block: &Block, target: Option<&Word>) -> FlowResult {
         let Some(frame) = self.calls.last_mut() else {
             // The control runs the program again, endlessly: one pass is drawn.
             let from = match target {
@@ -1174,12 +1136,13 @@ impl Interpreter {
             frame.repeats_left -= 1;
             return Ok(Flow::Jump(frame.start));
         }
-        let frame = self.pop_call().ok_or_else(|| no_index(block))?;
+        let return_to = frame.return_to;
+        self.pop_call();
         match target {
             Some(p) => self
-                .goto(frame.return_to.saturating_sub(1), p.value, p.span)
+                .goto(return_to.saturating_sub(1), p.value, p.span)
                 .map(Flow::Jump),
-            None => Ok(Flow::Jump(frame.return_to)),
+            None => Ok(Flow::Jump(return_to)),
         }
     }
 }
@@ -1205,10 +1168,6 @@ fn ends_main_program(block: &Block, dialect: Dialect) -> bool {
         && block.program().is_none()
         && block.statements().is_empty()
         && block.word(b'P').is_none()
-}
-
-fn no_index(block: &Block) -> Diagnostic {
-    Diagnostic::error(block.span, "E-INTERNAL", "the program index is missing")
 }
 
 /// The first plain word with address `letter`.
@@ -1237,14 +1196,4 @@ pub fn run(program: &Program, setup: Setup, sink: &mut dyn Sink) -> Vec<Diagnost
     let mut interp = Interpreter::new(setup, program.dialect);
     while interp.step(program, sink, 4096) == Status::Running {}
     interp.take_diagnostics()
-}
-
-impl SystemVariables for State {
-    fn read(&self, n: u32) -> Option<Value> {
-        self.system_variable(n)
-    }
-
-    fn write(&mut self, n: u32, v: Value) -> Result<bool, String> {
-        self.set_system_variable(n, v)
-    }
 }

@@ -35,10 +35,8 @@ impl Frame {
     }
 }
 
-/// Fanuc local variables #1–#33.
+/// Fanuc local variables #1–#33 (LinuxCNC's subroutine parameters are #1–#30 of them).
 const FANUC_LOCALS: usize = 33;
-/// LinuxCNC subroutine parameters #1–#30.
-const LINUXCNC_LOCALS: usize = 30;
 /// Fanuc common variables cleared at reset: #100–#199.
 const COMMON_CLEARED: std::ops::RangeInclusive<u32> = 100..=199;
 /// Fanuc common variables kept through reset and power-off: #500–#999.
@@ -109,16 +107,9 @@ impl Variables {
     /// other locals start as `Variables::initial`, numbers outside the local range are ignored.
     pub fn push_frame(&mut self, args: &[(u8, f64)]) {
         let mut frame = Frame::new(self.initial());
-        let count = if is_linuxcnc(self.dialect) {
-            LINUXCNC_LOCALS
-        } else {
-            FANUC_LOCALS
-        };
         for &(i, v) in args {
-            let i = usize::from(i);
-            if (1..=count).contains(&i)
-                && let Some(slot) = frame.locals.get_mut(i - 1)
-            {
+            // Local #i is at i - 1 (0 wraps round to no local).
+            if let Some(slot) = frame.locals.get_mut(usize::from(i).wrapping_sub(1)) {
                 *slot = Some(v);
             }
         }
@@ -166,13 +157,11 @@ impl Variables {
             }
             None => None,
         };
-        match slot {
-            Some(slot) => {
-                *slot = v;
-                Ok(())
-            }
-            None => Err(self.missing(n)),
-        }
+        let Some(slot) = slot else {
+            return Err(self.missing(n));
+        };
+        *slot = v;
+        Ok(())
     }
 
     /// The stored named parameter `name` (`_abc` global, `abc` local), `None` if not defined.
@@ -198,18 +187,6 @@ impl Variables {
         } else {
             map.remove(name.as_ref());
         }
-    }
-
-    /// Reads `#<name>` as the program does: a name never assigned is an error.
-    pub fn read_named(&self, name: &str) -> Result<Value, String> {
-        let name = lower(name);
-        let undefined = || {
-            format!(
-                "named parameter #<{}> is not defined",
-                swarf_syntax::excerpt(&name)
-            )
-        };
-        self.get_named(&name).map(Some).ok_or_else(undefined)
     }
 
     fn frame(&self) -> &Frame {
@@ -467,25 +444,16 @@ impl Evaluator<'_> {
                         Expr::Binary(op, _, _) => {
                             let b = pop(&mut values, span)?;
                             let a = pop(&mut values, span)?;
-                            let r = binary(self.vars.dialect, *op, a, b).map_err(
-                                |(code, message)| Diagnostic::error(span, code, message),
-                            )?;
-                            Some(finite(r, span)?)
+                            finite(binary(self.vars.dialect, *op, a, b), span)?
                         }
                         Expr::Call(Func::Exists, _, _) => {
                             let n = pop(&mut values, span)?;
                             Some(flag(self.variable(num(n), span).is_ok()))
                         }
                         Expr::Call(func, _, second) => {
-                            let b = match second {
-                                Some(_) => Some(pop(&mut values, span)?),
-                                None => None,
-                            };
+                            let b = second.map(|_| pop(&mut values, span)).transpose()?;
                             let a = pop(&mut values, span)?;
-                            let r = call(self.vars.dialect, *func, a, b).map_err(
-                                |(code, message)| Diagnostic::error(span, code, message),
-                            )?;
-                            Some(finite(r, span)?)
+                            finite(call(self.vars.dialect, *func, a, b), span)?
                         }
                         Expr::Num(_) | Expr::Named(_) => return Err(internal(span)),
                     };
@@ -506,10 +474,13 @@ impl Evaluator<'_> {
             .map_err(|m| Diagnostic::error(span, "E-MACRO-VARIABLE", m))
     }
 
+    /// Reads `#<name>` as the program does: a name never assigned is an error.
     fn named(&self, name: &str, span: Span) -> Result<Value, Diagnostic> {
-        self.vars
-            .read_named(name)
-            .map_err(|m| Diagnostic::error(span, "E-MACRO-VARIABLE", m))
+        self.vars.get_named(name).map(Some).ok_or_else(|| {
+            let name = swarf_syntax::excerpt(&lower(name)).to_string();
+            let message = format!("named parameter #<{name}> is not defined");
+            Diagnostic::error(span, "E-MACRO-VARIABLE", message)
+        })
     }
 }
 
@@ -531,13 +502,17 @@ fn flag(b: bool) -> f64 {
     if b { 1.0 } else { 0.0 }
 }
 
-fn finite(v: f64, span: Span) -> Result<f64, Diagnostic> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        let message = "the result is too large (overflow)";
-        Err(Diagnostic::error(span, "E-MACRO-VALUE", message))
-    }
+/// An operation's result as a value; its fault, or an overflow, is an error at `span`.
+fn finite(result: Result<f64, Fault>, span: Span) -> Result<Value, Diagnostic> {
+    let (code, message) = match result {
+        Ok(v) if v.is_finite() => return Ok(Some(v)),
+        Ok(_) => (
+            "E-MACRO-VALUE",
+            "the result is too large (overflow)".to_string(),
+        ),
+        Err(fault) => fault,
+    };
+    Err(Diagnostic::error(span, code, message))
 }
 
 /// A binary operation with the dialect's rules.
@@ -550,15 +525,9 @@ fn binary(dialect: Dialect, op: BinOp, a: Value, b: Value) -> Result<f64, Fault>
         BinOp::Mul => x * y,
         BinOp::Div | BinOp::Mod if y == 0.0 => return Err(divide()),
         BinOp::Div => x / y,
-        BinOp::Mod => {
-            let r = x % y;
-            if linuxcnc && r < 0.0 {
-                // LinuxCNC: `fmod`, then made non-negative.
-                r + y.abs()
-            } else {
-                r
-            }
-        }
+        // LinuxCNC: `fmod`, then made non-negative.
+        BinOp::Mod if linuxcnc && x % y < 0.0 => x % y + y.abs(),
+        BinOp::Mod => x % y,
         BinOp::Pow => power(x, y)?,
         BinOp::And | BinOp::Or | BinOp::Xor if linuxcnc => {
             let (p, q) = (x != 0.0, y != 0.0);
@@ -649,33 +618,27 @@ fn full_turn(deg: f64) -> f64 {
 fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64, Fault> {
     let linuxcnc = is_linuxcnc(dialect);
     let x = num(a);
+    let outside_domain = match func {
+        Func::Tan if cos_deg(x) == 0.0 => Some(format!("TAN[{x}] is infinite")),
+        Func::Asin | Func::Acos if !(-1.0..=1.0).contains(&x) => Some(format!(
+            "{}[{x}] is undefined: the argument must be between -1 and 1",
+            func.name()
+        )),
+        Func::Sqrt if x < 0.0 => Some(format!("SQRT of a negative number ({x})")),
+        Func::Ln if x <= 0.0 => Some(format!("LN of zero or a negative number ({x})")),
+        _ => None,
+    };
+    if let Some(message) = outside_domain {
+        return Err(("E-MACRO-DOMAIN", message));
+    }
     Ok(match func {
         Func::Sin => sin_deg(x),
         Func::Cos => cos_deg(x),
-        Func::Tan => {
-            let c = cos_deg(x);
-            if c == 0.0 {
-                return Err(("E-MACRO-DOMAIN", format!("TAN[{x}] is infinite")));
-            }
-            sin_deg(x) / c
-        }
-        Func::Asin | Func::Acos => {
-            if !(-1.0..=1.0).contains(&x) {
-                let message = format!(
-                    "{}[{x}] is undefined: the argument must be between -1 and 1",
-                    func.name()
-                );
-                return Err(("E-MACRO-DOMAIN", message));
-            }
-            if func == Func::Acos {
-                x.acos().to_degrees()
-            } else if linuxcnc {
-                x.asin().to_degrees()
-            } else {
-                // Fanuc (NAT = 0): 270°–90°.
-                full_turn(x.asin().to_degrees())
-            }
-        }
+        Func::Tan => sin_deg(x) / cos_deg(x),
+        Func::Acos => x.acos().to_degrees(),
+        Func::Asin if linuxcnc => x.asin().to_degrees(),
+        // Fanuc (NAT = 0): 270°–90°.
+        Func::Asin => full_turn(x.asin().to_degrees()),
         Func::Atan => {
             let deg = match b {
                 Some(b) => x.atan2(num(b)).to_degrees(),
@@ -683,12 +646,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
             };
             if linuxcnc { deg } else { full_turn(deg) }
         }
-        Func::Sqrt => {
-            if x < 0.0 {
-                return Err(("E-MACRO-DOMAIN", format!("SQRT of a negative number ({x})")));
-            }
-            x.sqrt()
-        }
+        Func::Sqrt => x.sqrt(),
         Func::Abs => x.abs(),
         // Half away from zero, in every dialect.
         Func::Round => x.round(),
@@ -700,13 +658,7 @@ fn call(dialect: Dialect, func: Func, a: Value, b: Option<Value>) -> Result<f64,
             let t = x.trunc();
             if t == x { t } else { t + x.signum() }
         }
-        Func::Ln => {
-            if x <= 0.0 {
-                let message = format!("LN of zero or a negative number ({x})");
-                return Err(("E-MACRO-DOMAIN", message));
-            }
-            x.ln()
-        }
+        Func::Ln => x.ln(),
         Func::Exp => x.exp(),
         Func::Pow => power(x, num(b.flatten()))?,
         Func::Bin => bin(x)?,

@@ -12,12 +12,13 @@ use swarf_syntax::{Block, Dialect, Word, WordForm};
 
 use crate::state::{State, plane_axes};
 
-/// The G45–G48 code of a block, as the factor of the radius added to the travel.
-pub(crate) fn factor(st: &State, words: &[Word]) -> Option<(f64, &'static str)> {
+/// The G45–G48 code of a block, as the factor of the radius added to the travel; `None` without
+/// one, or (reported) under G41/G42, which the offsets may not run with (COR-082).
+fn factor(st: &mut State, block: &Block, words: &[Word]) -> Option<(f64, &'static str)> {
     if !matches!(st.dialect, Dialect::Fanuc | Dialect::Syntec) {
         return None;
     }
-    words
+    let (k, code) = words
         .iter()
         .filter(|w| w.letter == b'G' && w.form == WordForm::Plain && w.expr.is_none())
         .find_map(|w| match w.value {
@@ -26,7 +27,12 @@ pub(crate) fn factor(st: &State, words: &[Word]) -> Option<(f64, &'static str)> 
             47.0 => Some((2.0, "G47")),
             48.0 => Some((-2.0, "G48")),
             _ => None,
-        })
+        })?;
+    if matches!(st.cutter_comp, 410 | 420) {
+        let message = format!("{code} cannot run under G41/G42 (COR-082); the move is not offset");
+        return st.fail(block.span, "E-POSITION-OFFSET", message);
+    }
+    Some((k, code))
 }
 
 /// The offset radius of the block's D register (geometry + wear), or `None` with a diagnostic.
@@ -42,16 +48,6 @@ fn radius(st: &mut State, block: &Block, code: &str) -> Option<f64> {
     }
 }
 
-/// Whether G41/G42 is active, which the offsets may not run with (COR-082).
-fn refused_under_compensation(st: &mut State, block: &Block, code: &str) -> bool {
-    let refused = matches!(st.cutter_comp, 410 | 420);
-    if refused {
-        let message = format!("{code} cannot run under G41/G42 (COR-082); the move is not offset");
-        st.error(block.span, "E-POSITION-OFFSET", message);
-    }
-    refused
-}
-
 /// The straight move's target `p` (program frame) with the block's position offset applied to
 /// every axis with a word in `axes`.
 pub(crate) fn offset_line(
@@ -61,12 +57,9 @@ pub(crate) fn offset_line(
     axes: &[Option<&Word>; 3],
     p: DVec3,
 ) -> DVec3 {
-    let Some((k, code)) = factor(st, words) else {
+    let Some((k, code)) = factor(st, block, words) else {
         return p;
     };
-    if refused_under_compensation(st, block, code) {
-        return p;
-    }
     let Some(r) = radius(st, block, code) else {
         return p;
     };
@@ -100,12 +93,9 @@ pub(crate) fn offset_arc(
     end: DVec3,
     ccw: bool,
 ) -> Option<Option<DVec3>> {
-    let Some((k, code)) = factor(st, words) else {
+    let Some((k, code)) = factor(st, block, words) else {
         return Some(None);
     };
-    if refused_under_compensation(st, block, code) {
-        return Some(None);
-    }
     let (u, v) = plane_axes(st.plane);
     let start = st.program_pos;
     let a0 = (start[v] - center[v]).atan2(start[u] - center[u]);

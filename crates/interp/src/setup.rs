@@ -247,10 +247,10 @@ fn in_range(key: impl Into<String>, value: f64, min: f64, max: f64) -> Result<f6
     }
 }
 
-/// Every coordinate of `values` within ±[`MAX_LENGTH`].
-fn lengths_in_range(key: &str, values: &[f64]) -> Result<(), SetupError> {
-    for &v in values {
-        in_range(key, v, -MAX_LENGTH, MAX_LENGTH)?;
+/// Checks every length of `values` is within ±[`MAX_LENGTH`], and scales it by `k` (to mm).
+fn lengths_in_range(key: &str, values: &mut [f64], k: f64) -> Result<(), SetupError> {
+    for v in values {
+        *v = in_range(key, *v, -MAX_LENGTH, MAX_LENGTH)? * k;
     }
     Ok(())
 }
@@ -279,42 +279,28 @@ impl Setup {
             tools: file.tools,
             ..Setup::default()
         };
-        for (n, r) in file.registers {
+        for (n, mut r) in file.registers {
             for (name, v) in [
-                ("length", r.length),
-                ("radius", r.radius),
-                ("length_wear", r.length_wear),
-                ("radius_wear", r.radius_wear),
+                ("length", &mut r.length),
+                ("radius", &mut r.radius),
+                ("length_wear", &mut r.length_wear),
+                ("radius_wear", &mut r.radius_wear),
             ] {
-                in_range(format!("registers.{n}.{name}"), v, -MAX_LENGTH, MAX_LENGTH)?;
+                lengths_in_range(&format!("registers.{n}.{name}"), std::slice::from_mut(v), k)?;
             }
             if r.orientation > 9 {
                 return Err(SetupError::Orientation(n));
             }
-            setup.registers.insert(
-                n,
-                Register {
-                    length: r.length * k,
-                    radius: r.radius * k,
-                    length_wear: r.length_wear * k,
-                    radius_wear: r.radius_wear * k,
-                    orientation: r.orientation,
-                },
-            );
+            setup.registers.insert(n, r);
         }
-        for (name, v) in file.work_offsets {
+        for (name, mut v) in file.work_offsets {
             let canonical =
                 canonical_work_offset(&name).ok_or_else(|| SetupError::WorkOffset(name.clone()))?;
-            lengths_in_range(&format!("work_offsets.{name}"), &v)?;
-            setup
-                .work_offsets
-                .insert(canonical, DVec3::from_array(v) * k);
+            lengths_in_range(&format!("work_offsets.{name}"), &mut v, k)?;
+            setup.work_offsets.insert(canonical, DVec3::from_array(v));
         }
         if let Some(travel) = &mut setup.machine.travel_mm {
-            lengths_in_range("machine.travel_mm", travel.as_flattened())?;
-            for c in travel.iter_mut().flatten() {
-                *c *= k;
-            }
+            lengths_in_range("machine.travel_mm", travel.as_flattened_mut(), k)?;
             let [lo, hi] = *travel;
             *travel = [
                 std::array::from_fn(|i| lo[i].min(hi[i])),
@@ -322,10 +308,7 @@ impl Setup {
             ];
         }
         for point in &mut setup.machine.reference_points {
-            lengths_in_range("machine.reference_points", point)?;
-            for c in point.iter_mut() {
-                *c *= k;
-            }
+            lengths_in_range("machine.reference_points", point, k)?;
         }
         let m = &setup.machine;
         // A rate of zero would make moves take forever, a work limit of zero stop every run.

@@ -85,21 +85,15 @@ impl StrokeZone {
     }
 }
 
-/// The G66 modal macro call: called after each move until G67.
+/// A macro call: G65's, or G66's, called after each move until G67.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct ModalMacro {
+pub(crate) struct MacroCall {
     /// Program number (P).
     pub number: f64,
-    /// Calls after each move (L).
+    /// How many times it runs (L).
     pub repeats: u32,
     /// The arguments, as local variable number and value.
     pub args: Vec<(u8, f64)>,
-}
-
-/// G16 polar coordinates: the pole in the program frame (plane coordinates).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Polar {
-    pub pole: DVec2,
 }
 
 /// Everything the machine remembers between blocks, apart from macro variables.
@@ -131,7 +125,8 @@ pub(crate) struct State {
     /// Mirror factors (±1 per axis) of G51.1, about `mirror_center`.
     pub mirror: DVec3,
     pub mirror_center: DVec3,
-    pub polar: Option<Polar>,
+    /// G16 polar coordinates: the pole in the program frame (plane coordinates).
+    pub polar: Option<DVec2>,
     pub feed_mode: FeedMode,
     pub feed_mm_per_min: f64,
     /// The last F word as written (program units; the lead of G33).
@@ -177,7 +172,7 @@ pub(crate) struct State {
     /// The limits of the last G22 (`None`: the machine's parameters, not in the setup).
     pub stroke_zone: Option<StrokeZone>,
     /// Modal macro call (G66).
-    pub modal_macro: Option<ModalMacro>,
+    pub modal_macro: Option<MacroCall>,
     /// The canned cycles' modal hole data.
     pub cycle: crate::cycles::CycleData,
     /// Holes drilled so far in the run (the next hole's number is one more).
@@ -229,9 +224,8 @@ impl State {
     }
 
     /// Reports a warning of the block being run.
-    pub fn warning(&mut self, span: Span, code: &'static str, message: impl Into<String>) {
-        self.diagnostics
-            .push(Diagnostic::warning(span, code, message));
+    pub fn warning(&mut self, span: Span, code: &'static str, m: impl Into<String>) {
+        self.diagnostics.push(Diagnostic::warning(span, code, m));
     }
 
     /// Reports a note on the block being run.
@@ -240,19 +234,13 @@ impl State {
     }
 
     /// Reports an error of the block being run.
-    pub fn error(&mut self, span: Span, code: &'static str, message: impl Into<String>) {
-        self.diagnostics
-            .push(Diagnostic::error(span, code, message));
+    pub fn error(&mut self, span: Span, code: &'static str, m: impl Into<String>) {
+        self.diagnostics.push(Diagnostic::error(span, code, m));
     }
 
     /// Reports an error refusing the block; gives a refused block's result (`false`, `None`).
-    pub fn fail<T: Default>(
-        &mut self,
-        span: Span,
-        code: &'static str,
-        msg: impl Into<String>,
-    ) -> T {
-        self.error(span, code, msg);
+    pub fn fail<T: Default>(&mut self, span: Span, code: &'static str, m: impl Into<String>) -> T {
+        self.error(span, code, m);
         T::default()
     }
 
@@ -375,23 +363,15 @@ impl State {
             _ => self.modal_code(4001).unwrap_or(80.0),
         };
         let on_off = |on: bool, yes: &str, no: &str| if on { yes } else { no }.to_string();
-        let mut out = vec![
-            format!("G{motion:02}"),
-            g(4002),
-            g(4003),
-            g(4006),
-            g(4005),
-            g(4007),
-            g(4008),
-            self.wcs.clone(),
-            format!("G{}", self.path_mode / 10),
-            g(4010),
-            g(4017),
-            g(4016),
+        let mut out = vec![format!("G{motion:02}")];
+        out.extend([4002, 4003, 4006, 4005, 4007, 4008].map(g));
+        out.extend([self.wcs.clone(), format!("G{}", self.path_mode / 10)]);
+        out.extend([4010, 4017, 4016].map(g));
+        out.extend([
             on_off(self.scaling.is_some(), "G51", "G50"),
             on_off(self.mirror != DVec3::ONE, "G51.1", "G50.1"),
             on_off(self.css, "G96", "G97"),
-        ];
+        ]);
         out.dedup();
         out
     }
@@ -409,11 +389,8 @@ impl State {
                 Some(MotionMode::Cycle(t)) => f64::from(t) / 10.0,
                 None => 80.0,
             },
-            4002 => match self.plane {
-                Axis::Z => 17.0,
-                Axis::Y => 18.0,
-                Axis::X => 19.0,
-            },
+            // G19 for the normal X, G18 for Y, G17 for Z.
+            4002 => 19.0 - f64::from(self.plane as u8),
             4003 => pick(self.absolute, 90.0, 91.0),
             4005 => match self.feed_mode {
                 FeedMode::InverseTime => 93.0,
@@ -433,9 +410,11 @@ impl State {
             _ => return None,
         })
     }
+}
 
+impl crate::macros::SystemVariables for State {
     /// A system variable (Fanuc numbering; LinuxCNC's where it differs), `None` if not one.
-    pub fn system_variable(&self, n: u32) -> Option<Value> {
+    fn read(&self, n: u32) -> Option<Value> {
         let work = self.program_pos;
         let unit = |mm: f64| if self.metric { mm } else { mm / 25.4 };
         if self.dialect == Dialect::LinuxCnc {
@@ -496,8 +475,8 @@ impl State {
     }
 
     /// Writes a system variable: `Ok(false)` when `n` is not one, an error for read-only ones.
-    pub fn set_system_variable(&mut self, n: u32, v: Value) -> Result<bool, String> {
-        let mm = |x: f64| if self.metric { x } else { x * 25.4 };
+    fn write(&mut self, n: u32, v: Value) -> Result<bool, String> {
+        let mm = self.mm(v.unwrap_or(0.0));
         match n {
             3000 => {
                 let number = v.unwrap_or(0.0);
@@ -509,7 +488,7 @@ impl State {
             3006 => Ok(true),
             2001..=2400 => {
                 let r = self.setup.registers.entry(n - 2000).or_default();
-                r.length = mm(v.unwrap_or(0.0));
+                r.length = mm;
                 r.length_wear = 0.0;
                 Ok(true)
             }
@@ -521,7 +500,7 @@ impl State {
                 }
                 let name = format!("G{}", 54 + k);
                 let mut o = self.setup.work_offset(&name);
-                o[axis] = mm(v.unwrap_or(0.0));
+                o[axis] = mm;
                 self.setup.work_offsets.insert(name.clone(), o);
                 if name == self.wcs {
                     self.wcs_offset = o;
@@ -560,9 +539,5 @@ fn wcs_number(name: &str) -> u32 {
 
 /// The two in-plane axes (first, second) of the plane with normal `normal`.
 pub(crate) fn plane_axes(normal: Axis) -> (usize, usize) {
-    match normal {
-        Axis::Z => (0, 1),
-        Axis::Y => (2, 0),
-        Axis::X => (1, 2),
-    }
+    [(1, 2), (2, 0), (0, 1)][normal as usize]
 }

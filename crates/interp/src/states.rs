@@ -63,6 +63,22 @@ impl States {
         Some(interp.block_state())
     }
 
+    /// The state just before block `block` of piece `piece` (its blocks read again as they
+    /// were run, see [`StatesRun::run_piece`]) first runs, or `None` when it never runs.
+    pub fn in_piece(&self, piece: usize, blocks: &Program, block: usize) -> Option<BlockState> {
+        let (_, from) = self.checkpoints.get(piece)?;
+        let mut interp = from.clone();
+        interp.start_piece();
+        while interp.next_block < block {
+            let before = interp.next_block;
+            interp.step(blocks, &mut Discard, 1);
+            if interp.status == Status::Finished || interp.next_block == before {
+                return None;
+            }
+        }
+        (interp.next_block == block).then(|| interp.block_state())
+    }
+
     /// How many copies of the interpreter are kept.
     pub fn checkpoints(&self) -> usize {
         self.checkpoints.len()
@@ -115,7 +131,7 @@ impl StatesRun {
     /// sending events to `sink`.
     pub fn step(&mut self, program: &Program, sink: &mut dyn Sink, budget: usize) -> Status {
         for _ in 0..budget {
-            if self.interp.finished {
+            if self.interp.status == Status::Finished {
                 break;
             }
             let executed = self.interp.executed_blocks();
@@ -132,11 +148,24 @@ impl StatesRun {
             }
             self.interp.step(program, sink, 1);
         }
-        if self.interp.finished {
-            Status::Finished
-        } else {
-            Status::Running
-        }
+        self.interp.status
+    }
+
+    /// Runs the next piece of a program read piece by piece like [`Interpreter::run_piece`],
+    /// keeping a copy of the interpreter before it: the state at a block of a piece is then a
+    /// re-run of that piece alone ([`States::in_piece`]).
+    pub fn run_piece(&mut self, piece: &Program, sink: &mut dyn Sink) -> crate::Piece {
+        let executed = self.interp.executed_blocks();
+        self.states
+            .checkpoints
+            .push((executed, self.interp.snapshot()));
+        self.reached += piece.blocks.len();
+        self.interp.run_piece(piece, sink)
+    }
+
+    /// Ends a program run piece by piece (see [`Interpreter::finish_pieces`]).
+    pub fn finish_pieces(&mut self, sink: &mut dyn Sink) {
+        self.interp.finish_pieces(sink);
     }
 
     /// How many different blocks have run so far (at most the program's block count; loops

@@ -6,7 +6,7 @@ use super::actions::{Action, Actions};
 use super::{MAX_COUNT, Request, Requests, count_range};
 use crate::machine::find;
 use crate::macros::argument_variable;
-use crate::state::{ModalMacro, State};
+use crate::state::{MacroCall, State};
 
 /// A macro call's repeat count L (1 when absent), clamped to 0–9999 with a diagnostic.
 fn repeat_count(st: &mut State, l: Option<&Word>) -> u32 {
@@ -17,22 +17,6 @@ fn repeat_count(st: &mut State, l: Option<&Word>) -> u32 {
         st.diagnostics.push(count_range(l, "repeats"));
     }
     l.value.clamp(0.0, MAX_COUNT) as u32
-}
-
-/// G65 P L args: the call, or nothing without P.
-fn macro_call(st: &mut State, words: &[Word], g65: &Word) -> Requests {
-    let Some(p) = find(words, b'P') else {
-        let message = "G65 needs the macro program number in P";
-        return st.fail(g65.span, "E-WORD-MISSING", message);
-    };
-    let repeats = repeat_count(st, find(words, b'L'));
-    let args = arguments(st, words);
-    let call = Request::Macro {
-        number: p.value,
-        repeats,
-        args,
-    };
-    Requests::from_elem(call, 1)
 }
 
 /// Macro-call arguments (argument specification I): letter → local variable, value as read.
@@ -52,30 +36,33 @@ fn arguments(st: &State, words: &[Word]) -> Vec<(u8, f64)> {
         .collect()
 }
 
-/// G65 (a macro call) and G66 (the modal macro): the block does nothing else; `None` without.
+/// G65 (a macro call) and G66 (the modal macro, called after each move) with P, L and the
+/// arguments: the block does nothing else; `None` without either.
 pub(super) fn macro_codes(
     st: &mut State,
     words: &[Word],
     actions: &Actions<'_>,
 ) -> Option<Requests> {
-    // G65: a macro call takes the block's words as arguments.
-    if let Some((_, g65)) = actions.iter().find(|(a, _)| matches!(a, Action::MacroCall)) {
-        return Some(macro_call(st, words, g65));
-    }
-    let (_, g66) = actions
-        .iter()
-        .find(|(a, _)| matches!(a, Action::ModalMacro(true)))?;
-    let args = arguments(st, words);
-    // L: how many times the macro runs after each move.
-    let repeats = repeat_count(st, find(words, b'L'));
-    let Some(p) = find(words, b'P') else {
-        let message = "G66 needs the macro program number in P";
-        return Some(st.fail(g66.span, "E-WORD-MISSING", message));
+    let g65 = actions.iter().find(|(a, _)| *a == Action::MacroCall);
+    let g66 = || actions.iter().find(|(a, _)| *a == Action::ModalMacro(true));
+    let (action, code) = g65.or_else(g66)?;
+    let modal = *action != Action::MacroCall;
+    let p = find(words, b'P');
+    // L: the repeat count (G66: runs after each move), read unless G65 lacks P.
+    let repeats = (p.is_some() || modal).then(|| repeat_count(st, find(words, b'L')));
+    let Some(p) = p else {
+        let name = if modal { "G66" } else { "G65" };
+        let message = format!("{name} needs the macro program number in P");
+        return Some(st.fail(code.span, "E-WORD-MISSING", message));
     };
-    st.modal_macro = Some(ModalMacro {
+    let call = MacroCall {
         number: p.value,
-        repeats,
-        args,
-    });
+        repeats: repeats.unwrap_or(1),
+        args: arguments(st, words),
+    };
+    if !modal {
+        return Some(Requests::from_elem(Request::Macro(call), 1));
+    }
+    st.modal_macro = Some(call);
     Some(Requests::new())
 }

@@ -72,10 +72,8 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
             {
                 return false;
             }
-            let metric = st.metric;
-            let mm = |x: f64| if metric { x } else { x * 25.4 };
-            let r = find(words, b'R').map(|r| mm(r.value));
-            let z = find(words, b'Z').map(|z| mm(z.value));
+            let r = find(words, b'R').map(|r| st.mm(r.value));
+            let z = find(words, b'Z').map(|z| st.mm(z.value));
             // LinuxCNC L10/L11: the length that makes the current position read Z with this tool,
             // in the current system (L10) or the tool setter's G59.3 without G52/G92 (L11).
             let gauge = st.length_comp.map_or(0.0, |(_, o)| o);

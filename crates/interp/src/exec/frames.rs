@@ -7,17 +7,16 @@ use swarf_syntax::{Dialect, Word};
 
 use super::{Axes, axis_words, given};
 use crate::machine::find;
-use crate::state::{Polar, Rotation, Scaling, State, plane_axes};
+use crate::state::{Rotation, Scaling, State, plane_axes};
 
 /// G54–G59, G54.1 Pn, G59.n.
 pub(super) fn work_offset(st: &mut State, w: &Word, words: &[Word]) {
-    let name = match Code::from_value(b'G', w.value).map(|c| c.tenths) {
-        Some(541) => {
+    let name = match Code::from_value(b'G', w.value) {
+        Some(c) if c.tenths == 541 => {
             let p = find(words, b'P').map_or(1.0, |p| p.value);
             format!("G54.1P{}", p.round())
         }
-        Some(t) if t % 10 == 0 => format!("G{}", t / 10),
-        Some(t) => format!("G{}.{}", t / 10, t % 10),
+        Some(c) => c.to_string(),
         None => return,
     };
     st.wcs_offset = st.setup.work_offset(&name);
@@ -34,8 +33,7 @@ pub(super) fn polar(st: &mut State, on: bool) {
     let (u, v) = plane_axes(st.plane);
     // G90 G16: the pole is the work origin (with G52); G91 G16: the current position.
     let current = DVec2::new(st.program_pos[u], st.program_pos[v]);
-    let pole = if st.absolute { DVec2::ZERO } else { current };
-    st.polar = Some(Polar { pole });
+    st.polar = Some(if st.absolute { DVec2::ZERO } else { current });
 }
 
 /// LNC G168 X Y Q: rotation about X Y by measured angle Q (1–4) of `measured_angles`.

@@ -7,7 +7,7 @@ use super::feeds::move_feed;
 use super::{Axes, MAX_COUNT, axis_words, count_range, plane_words};
 use crate::machine::find;
 use crate::state::{FeedMode, MotionMode, State, plane_axes};
-use crate::{Arc, Axis, Canon, PlaneArc, Sink, Source, plane_length};
+use crate::{Arc, Canon, PlaneArc, Sink, Source, plane_length};
 
 /// The program-frame end point of a move programmed with `axes` (G90/G91, polar).
 pub(super) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
@@ -16,7 +16,7 @@ pub(super) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
     if let Some(pole) = st.polar {
         // The plane's words are the radius and angle about the pole.
         let (u, v) = plane_axes(st.plane);
-        let rel = DVec2::new(p[u] - pole.pole.x, p[v] - pole.pole.y);
+        let rel = DVec2::new(p[u] - pole.x, p[v] - pole.y);
         let (mut r, mut a) = (rel.length(), rel.y.atan2(rel.x).to_degrees());
         if let Some(w) = axes[u].take() {
             let given = st.length(w);
@@ -27,8 +27,8 @@ pub(super) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
             a = if st.absolute { given } else { a + given };
         }
         let (sin, cos) = a.to_radians().sin_cos();
-        p[u] = pole.pole.x + r * cos;
-        p[v] = pole.pole.y + r * sin;
+        p[u] = pole.x + r * cos;
+        p[v] = pole.y + r * sin;
     }
     for (i, w) in axes.iter().enumerate() {
         if let Some(w) = w {
@@ -37,14 +37,6 @@ pub(super) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
         }
     }
     p
-}
-
-/// Whether an arc block has no end point but I/J/K (a full circle).
-fn arc_full_circle(st: &State, words: &[Word]) -> bool {
-    matches!(st.motion, Some(MotionMode::Arc { .. }))
-        && words
-            .iter()
-            .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'I' | b'J' | b'K'))
 }
 
 /// The block's move in the current mode, where its words make one; whether it moved.
@@ -57,12 +49,16 @@ pub(super) fn motion(
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
-    // Rotary axis words alone still make a move (the rotary position itself is not drawn).
-    let rotary = words
-        .iter()
-        .any(|w| w.form == WordForm::Plain && matches!(w.letter, b'A' | b'B' | b'C'));
+    // Rotary axis words alone still make a move (the rotary position itself is not drawn), as do
+    // I/J/K alone in an arc mode (a full circle).
+    let arc_mode = matches!(st.motion, Some(MotionMode::Arc { .. }));
+    let rotary_or_centre = words.iter().any(|w| {
+        w.form == WordForm::Plain
+            && (matches!(w.letter, b'A' | b'B' | b'C')
+                || (arc_mode && matches!(w.letter, b'I' | b'J' | b'K')))
+    });
     let cycle = matches!(st.motion, Some(MotionMode::Cycle(_)));
-    if !(axes.iter().any(Option::is_some) || rotary || cycle || arc_full_circle(st, words)) {
+    if !(axes.iter().any(Option::is_some) || rotary_or_centre || cycle) {
         return false;
     }
     if probe {
@@ -165,13 +161,11 @@ fn thread_feed(st: &mut State, block: &Block, words: &[Word]) -> f64 {
 
 /// The block's `,C` or `,R` word as a corner in millimetres.
 fn corner_word(st: &State, block: &Block) -> Option<(crate::corners::Corner, swarf_syntax::Span)> {
-    let c = block.comma_word(b'C');
-    let r = block.comma_word(b'R');
-    match (c, r) {
-        (Some(c), _) => Some((crate::corners::Corner::Chamfer(st.length(c).abs()), c.span)),
-        (None, Some(r)) => Some((crate::corners::Corner::Round(st.length(r).abs()), r.span)),
-        _ => None,
+    if let Some(c) = block.comma_word(b'C') {
+        return Some((crate::corners::Corner::Chamfer(st.length(c).abs()), c.span));
     }
+    let r = block.comma_word(b'R')?;
+    Some((crate::corners::Corner::Round(st.length(r).abs()), r.span))
 }
 
 pub(super) fn feed_to(
@@ -236,11 +230,7 @@ pub(super) fn arc(
     } else {
         // LinuxCNC G90.1: the centre words are the centre's program coordinates.
         let absolute = st.arc_centres_absolute;
-        let plane = match st.plane {
-            Axis::Z => "XY plane (G17)",
-            Axis::Y => "XZ plane (G18)",
-            Axis::X => "YZ plane (G19)",
-        };
+        let plane = ["YZ plane (G19)", "XZ plane (G18)", "XY plane (G17)"][st.plane as usize];
         for (i, w) in offsets.iter().enumerate() {
             if let Some(w) = w {
                 if i == u || i == v {
@@ -375,23 +365,17 @@ fn unequal_scaling_center(
     Some(st.place(c))
 }
 
-pub(super) fn dwell(
-    st: &mut State,
-    g4: &Word,
-    words: &[Word],
-    source: Source,
-    sink: &mut dyn Sink,
-) {
+pub(super) fn dwell(st: &mut State, w: &Word, words: &[Word], source: Source, sink: &mut dyn Sink) {
     let secs = if let Some(p) = find(words, b'P') {
         st.dialect.read(p, Quantity::DwellP, false, false)
     } else if let Some(x) = find(words, b'X').or(find(words, b'U')) {
         st.dialect.read(x, Quantity::DwellX, false, false)
     } else {
         let message = "G04 needs the dwell time in P or X";
-        return st.fail(g4.span, "E-WORD-MISSING", message);
+        return st.fail(w.span, "E-WORD-MISSING", message);
     };
     if secs < 0.0 {
-        return st.fail(g4.span, "E-NUMBER-RANGE", "a dwell time cannot be negative");
+        return st.fail(w.span, "E-NUMBER-RANGE", "a dwell time cannot be negative");
     }
     crate::corners::emit(st, sink, source, &Canon::Dwell { secs });
 }

@@ -128,9 +128,7 @@ pub(super) fn measure(
         }
     }
     let end = if machine_z {
-        let mut end = st.position;
-        end.z = z - tip.z;
-        end
+        st.position.with_z(z - tip.z)
     } else {
         let mut p = st.program_pos;
         if let Some(r) = find(words, b'R') {

@@ -106,10 +106,6 @@ impl Sink for StrokeGuard<'_> {
         self.inner.full()
     }
 
-    fn origin(&mut self, at: DVec3) {
-        self.inner.origin(at);
-    }
-
     fn programmed(&mut self, source: Source, event: &Canon) {
         self.inner.programmed(source, event);
     }

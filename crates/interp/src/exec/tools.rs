@@ -9,7 +9,7 @@ use super::actions::{Action, Actions};
 use super::axis_words;
 use crate::Axis;
 use crate::machine::find;
-use crate::state::{MotionMode, State, plane_axes};
+use crate::state::{MotionMode, State};
 
 /// S and T, D and H words (with M06, the selected tool is in the spindle from here on); `false`
 /// when the run stops: LinuxCNC selects only the tools of its table.
@@ -79,9 +79,9 @@ pub(super) fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32)
         }
     }
     let d = find(words, b'D');
+    let g = tenths / 10;
     if tenths == 411 || tenths == 421 {
         // LinuxCNC: G41.1/G42.1 D<diameter> [L<orientation>], L only in G18.
-        let g = tenths / 10;
         let orientation = match find(words, b'L') {
             Some(l) if st.plane != Axis::Y => {
                 let message = format!(
@@ -111,10 +111,8 @@ pub(super) fn cutter_comp(st: &mut State, w: &Word, words: &[Word], tenths: u32)
     }
     let orientation = st.setup.registers.get(&n).map_or(0, |r| r.orientation);
     if linuxcnc && st.plane != Axis::Y && !matches!(orientation, 0 | 9) {
-        let message = format!(
-            "G{} with a lathe tool (orientation {orientation}) needs the XZ plane (G18)",
-            tenths / 10
-        );
+        let message =
+            format!("G{g} with a lathe tool (orientation {orientation}) needs the XZ plane (G18)");
         return st.fail(d.map_or(w.span, |d| d.span), "E-COMP-PLANE", message);
     }
     st.cutter_comp = if tenths == 420 { 420 } else { 410 };
@@ -196,8 +194,7 @@ pub(super) fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option
 pub(super) fn tool_tip_shift(st: &State) -> DVec3 {
     let mut shift = DVec3::ZERO;
     if let Some((_, offset)) = st.length_comp {
-        let (u, v) = plane_axes(st.plane);
-        shift[3 - u - v] = offset;
+        shift[st.plane as usize] = offset;
     }
     shift
 }
@@ -233,8 +230,7 @@ pub(super) fn new_registers(st: &mut State, words: &[Word], actions: &Actions<'_
 pub(super) fn follow_length_change(st: &mut State, length_before: f64) {
     let length_after = st.length_comp.map_or(0.0, |(_, o)| o);
     if length_after != length_before && st.dialect == Dialect::LinuxCnc {
-        let (u, v) = plane_axes(st.plane);
-        st.position[3 - u - v] -= length_after - length_before;
+        st.position[st.plane as usize] -= length_after - length_before;
         st.resync();
     }
 }
