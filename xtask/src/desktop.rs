@@ -37,9 +37,8 @@ pub fn smoke_test() -> Result<()> {
         // A process group of its own, so a hang can be ended with Xvfb and all.
         .process_group(0);
     println!("$ {}", util::display(&cmd));
-    let child = cmd
-        .spawn()
-        .with_context(|| format!("could not start `{}`", util::display(&cmd)))?;
+    let child = cmd.spawn();
+    let child = util::started(&cmd, child)?;
     let status = wait_with_timeout(child, TIMEOUT)?;
     util::check_status(&cmd, status)?;
 
@@ -71,24 +70,16 @@ fn wait_with_timeout(mut child: Child, timeout: Duration) -> Result<std::process
 
 /// Checks that `path` is a PNG that is not one flat colour.
 pub fn check_screenshot(path: &Path) -> Result<()> {
+    let shown = path.display();
     let file = std::fs::File::open(path).with_context(|| {
-        format!(
-            "the app exited 0 but did not write {} (is --screenshot implemented?)",
-            path.display()
-        )
+        format!("the app exited 0 but did not write {shown} (is --screenshot implemented?)")
     })?;
     let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
     decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
-    let mut reader = decoder
-        .read_info()
-        .with_context(|| format!("{} is not a PNG", path.display()))?;
-    let size = reader
-        .output_buffer_size()
-        .context("PNG dimensions too large")?;
+    let mut reader = (decoder.read_info()).with_context(|| format!("{shown} is not a PNG"))?;
+    let size = (reader.output_buffer_size()).context("PNG dimensions too large")?;
     let mut pixels = vec![0; size];
-    let frame = reader
-        .next_frame(&mut pixels)
-        .with_context(|| format!("decoding {}", path.display()))?;
+    let frame = (reader.next_frame(&mut pixels)).with_context(|| format!("decoding {shown}"))?;
     let channels = frame.color_type.samples();
     let data = pixels.get(..frame.buffer_size()).unwrap_or(&pixels);
     let mut counts: HashMap<&[u8], usize> = HashMap::new();
@@ -98,18 +89,12 @@ pub fn check_screenshot(path: &Path) -> Result<()> {
     let total: usize = counts.values().sum();
     let dominant = counts.values().copied().max().unwrap_or(0);
     let others = total - dominant;
+    let (width, height, colours) = (frame.width, frame.height, counts.len());
     println!(
-        "screenshot {}: {}x{}, {} distinct colours, {others} pixels differ from the dominant colour",
-        path.display(),
-        frame.width,
-        frame.height,
-        counts.len()
+        "screenshot {shown}: {width}x{height}, {colours} distinct colours, {others} pixels differ from the dominant colour"
     );
-    if counts.len() < 2 || others < 100 {
-        bail!(
-            "the desktop screenshot {} is (nearly) a single colour: nothing was drawn",
-            path.display()
-        );
+    if colours < 2 || others < 100 {
+        bail!("the desktop screenshot {shown} is (nearly) a single colour: nothing was drawn");
     }
     Ok(())
 }

@@ -106,7 +106,7 @@ struct Options {
     port: Option<u16>,
     only: Option<String>,
     dir: Option<String>,
-    seen: Vec<&'static str>,
+    seen: Vec<String>,
 }
 
 impl Options {
@@ -124,44 +124,33 @@ impl Options {
                     Some(value) => Ok(value),
                     None => Err(anyhow::anyhow!("{flag} needs {example}")),
                 };
-            let name = [
-                "--dev",
-                "--no-opt",
-                "--no-build",
-                "--quick",
-                "--only",
-                "--dir",
-                "--port",
-            ]
-            .into_iter()
-            .find(|name| *name == flag)
-            .ok_or_else(|| anyhow::anyhow!("unknown option `{flag}`\n\n{USAGE}"))?;
-            match name {
+            match flag {
                 "--dev" => opts.dev = true,
                 "--no-opt" => opts.no_opt = true,
                 "--no-build" => opts.no_build = true,
                 "--quick" => opts.quick = true,
                 "--only" => opts.only = Some(value("step letters, e.g. --only a,g")?),
                 "--dir" => opts.dir = Some(value("a folder, e.g. --dir target/web")?),
-                _ => {
+                "--port" => {
                     let value = value("a value, e.g. --port 8080")?;
                     let port = value
                         .parse::<u16>()
                         .map_err(|e| anyhow::anyhow!("invalid port `{value}`: {e}"))?;
                     opts.port = Some(port);
                 }
+                _ => bail!("unknown option `{flag}`\n\n{USAGE}"),
             }
-            if inline_value.is_some() && !matches!(name, "--port" | "--only" | "--dir") {
-                bail!("option `{name}` takes no value");
+            if inline_value.is_some() && !matches!(flag, "--port" | "--only" | "--dir") {
+                bail!("option `{flag}` takes no value");
             }
-            opts.seen.push(name);
+            opts.seen.push(flag.to_owned());
         }
         Ok(opts)
     }
 
     fn reject_unused(&self, allowed: &[&str]) -> Result<()> {
         for flag in &self.seen {
-            if !allowed.contains(flag) {
+            if !allowed.contains(&flag.as_str()) {
                 bail!("option `{flag}` does not apply to this command\n\n{USAGE}");
             }
         }

@@ -15,24 +15,17 @@ const WORKERS: usize = 4;
 
 /// Serves `root` on `127.0.0.1:port` (port 0: a free one) until the process is interrupted.
 pub fn serve(root: &Path, port: u16) -> Result<()> {
+    let shown = root.display();
     if !root.join("index.html").exists() {
-        bail!(
-            "{} has no index.html; run `cargo xtask web` first (or drop --no-build)",
-            root.display()
-        );
+        bail!("{shown} has no index.html; run `cargo xtask web` first (or drop --no-build)");
     }
-    let root = root
-        .canonicalize()
-        .with_context(|| format!("resolving {}", root.display()))?;
+    let root = (root.canonicalize()).with_context(|| format!("resolving {shown}"))?;
     let address = format!("127.0.0.1:{port}");
     let server = Server::http(&address)
         .map_err(|e| anyhow!("cannot listen on {address}: {e}"))
         .map(Arc::new)?;
     // The browser tests read the address, the port chosen for port 0, from this line.
-    let address = server
-        .server_addr()
-        .to_ip()
-        .map_or(address, |ip| ip.to_string());
+    let address = (server.server_addr().to_ip()).map_or(address, |ip| ip.to_string());
     println!("Swarf is running at http://{address}/");
     println!("(serving {}; press Ctrl-C to stop)", root.display());
 
@@ -70,10 +63,7 @@ fn handle(root: &Path, request: Request) {
 /// The file `request` asks for, as its precompressed copy where the browser accepts one.
 fn file_response(root: &Path, request: &Request) -> Option<Answer> {
     let path = resolve(root, request.url())?;
-    let accept = request
-        .headers()
-        .iter()
-        .find(|h| h.field.equiv("Accept-Encoding"));
+    let accept = (request.headers().iter()).find(|h| h.field.equiv("Accept-Encoding"));
     let accept = accept.map_or("", |h| h.value.as_str());
     let (file, encoding) = precompressed(root, &path, accept).unwrap_or((path.clone(), ""));
     let response = Response::from_data(std::fs::read(file).ok()?);
@@ -101,10 +91,14 @@ fn precompressed(root: &Path, file: &Path, accept: &str) -> Option<(PathBuf, &'s
     [("br", ".br"), ("gzip", ".gz")]
         .into_iter()
         .filter(|(coding, _)| accepts(accept, coding))
-        .find_map(|(coding, suffix)| {
-            let real = web::with_suffix(file, suffix).canonicalize().ok()?;
-            (real.starts_with(root) && real.is_file()).then_some((real, coding))
-        })
+        .find_map(|(coding, suffix)| Some((inside(root, &web::with_suffix(file, suffix))?, coding)))
+}
+
+/// The real path of `file` when it is a regular file under `root` (links inside the site could
+/// still point elsewhere).
+fn inside(root: &Path, file: &Path) -> Option<PathBuf> {
+    let real = file.canonicalize().ok()?;
+    (real.starts_with(root) && real.is_file()).then_some(real)
 }
 
 /// Whether an `Accept-Encoding` value allows `coding`: named, or else `*`, with a q above 0.
@@ -120,9 +114,7 @@ fn accepts(accept: &str, coding: &str) -> bool {
             })
         })
     };
-    quality(coding)
-        .or_else(|| quality("*"))
-        .is_some_and(|q| q > 0.0)
+    (quality(coding).or_else(|| quality("*"))).is_some_and(|q| q > 0.0)
 }
 
 fn text_response(status: u16, text: &str) -> Answer {
@@ -146,9 +138,7 @@ fn resolve(root: &Path, url: &str) -> Option<PathBuf> {
     if file.is_dir() {
         file.push("index.html");
     }
-    // Links inside the site could still point elsewhere: compare the real paths.
-    let real = file.canonicalize().ok()?;
-    (real.starts_with(root) && real.is_file()).then_some(real)
+    inside(root, &file)
 }
 
 /// Decodes `%XX` escapes; `None` for malformed escapes, non-UTF-8 results, NUL or backslash.
@@ -172,10 +162,7 @@ fn percent_decode(input: &str) -> Option<String> {
 
 /// The MIME type for a file, from its extension.
 fn content_type(path: &Path) -> &'static str {
-    let extension = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
+    let extension = (path.extension().and_then(|e| e.to_str())).map(str::to_ascii_lowercase);
     match extension.as_deref() {
         Some("html" | "htm") => "text/html; charset=utf-8",
         Some("js" | "mjs") => "text/javascript; charset=utf-8",

@@ -72,9 +72,7 @@ fn fuzz() -> Result<()> {
         for dir in ["assets/examples", "tests/golden"] {
             for entry in std::fs::read_dir(root.join(dir))?.flatten() {
                 let path = entry.path();
-                let seed = path
-                    .extension()
-                    .is_some_and(|e| seeds.iter().any(|s| e == *s));
+                let seed = (path.extension()).is_some_and(|e| seeds.iter().any(|s| e == *s));
                 if seed && let Some(name) = path.file_name() {
                     std::fs::copy(&path, corpus.join(name))?;
                 }
@@ -127,11 +125,8 @@ pub fn run_all(quick: bool, only: Option<&str>) -> Result<()> {
     let started = Instant::now();
     let mut steps = steps(quick);
     if let Some(only) = only {
-        let wanted: Vec<char> = only
-            .chars()
-            .filter(char::is_ascii_alphabetic)
-            .map(|c| c.to_ascii_lowercase())
-            .collect();
+        let letters = only.chars().filter(char::is_ascii_alphabetic);
+        let wanted: Vec<char> = letters.map(|c| c.to_ascii_lowercase()).collect();
         if let Some(unknown) = wanted.iter().find(|c| !steps.iter().any(|s| s.id == **c)) {
             bail!(
                 "--only: there is no step `{unknown}` (steps: a to k; f, h, i and j not with --quick)"
@@ -267,8 +262,7 @@ fn steps(quick: bool) -> Vec<Step> {
 }
 
 fn package_args(packages: &[&str]) -> Vec<String> {
-    packages
-        .iter()
+    (packages.iter())
         .flat_map(|p| ["-p".to_owned(), (*p).to_owned()])
         .collect()
 }
@@ -344,45 +338,35 @@ fn check_architecture() -> Result<()> {
         let names: std::collections::BTreeSet<&str> = (tree.lines())
             .filter_map(|line| line.split_whitespace().next())
             .collect();
-        let bad: Vec<&str> = names
-            .iter()
-            .copied()
-            .filter(|name| forbidden.iter().any(|f| in_family(name, f)))
-            .collect();
+        let ruled_out = |name: &&str| forbidden.iter().any(|f| in_family(name, f));
+        let bad: Vec<&str> = (names.iter().copied()).filter(ruled_out).collect();
         let verdict = if bad.is_empty() {
             "ok".to_owned()
         } else {
             format!("FORBIDDEN: {}", bad.join(", "))
         };
+        let (count, rules) = (names.len(), forbidden.join(", "));
         println!(
-            "{package:<15} {:>3} crates in its tree; must not contain {:<32} {verdict}",
-            names.len(),
-            forbidden.join(", "),
+            "{package:<15} {count:>3} crates in its tree; must not contain {rules:<32} {verdict}"
         );
-        if !bad.is_empty() {
+        if let Some(first) = bad.first() {
+            let list = bad.join(", ");
             violations.push(format!(
-                "{package} depends on {} (see `cargo tree -e normal --target all -p {package} -i {}`)",
-                bad.join(", "),
-                bad.first().copied().unwrap_or_default()
+                "{package} depends on {list} (see `cargo tree -e normal --target all -p {package} -i {first}`)"
             ));
         }
     }
+    let broken = violations.join("\n  ");
     if violations.is_empty() {
         Ok(())
     } else {
-        bail!(
-            "dependency rules of ARCHITECTURE.md broken:\n  {}",
-            violations.join("\n  ")
-        )
+        bail!("dependency rules of ARCHITECTURE.md broken:\n  {broken}")
     }
 }
 
 /// `name` is `family` or a crate of that family (`egui-wgpu`, `egui_kittest`, `wgpu-core`).
 fn in_family(name: &str, family: &str) -> bool {
-    name == family
-        || name
-            .strip_prefix(family)
-            .is_some_and(|rest| rest.starts_with(['-', '_']))
+    name == family || (name.strip_prefix(family)).is_some_and(|rest| rest.starts_with(['-', '_']))
 }
 
 #[cfg(test)]

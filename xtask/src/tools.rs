@@ -48,12 +48,8 @@ pub fn ensure_wasm_bindgen() -> Result<()> {
         "wasm-bindgen-cli {WASM_BINDGEN_VERSION} is needed (found: {}); installing it (takes a few minutes)",
         bindgen.as_deref().unwrap_or("none")
     );
-    run(cargo().args([
-        "install",
-        "wasm-bindgen-cli",
-        "--version",
-        &format!("={WASM_BINDGEN_VERSION}"),
-    ]))?;
+    let version = format!("={WASM_BINDGEN_VERSION}");
+    run(cargo().args(["install", "wasm-bindgen-cli", "--version", &version]))?;
     match tool_version("wasm-bindgen") {
         Some(v) if v == wanted => Ok(()),
         found => bail!(
@@ -71,15 +67,9 @@ pub fn ensure_cargo_tool(sub: &str, package: &str, version: &str, options: &[&st
         return Ok(());
     }
     println!("{package} {version} is needed; installing it (takes a few minutes)");
-    run(cargo()
-        .args([
-            "install",
-            package,
-            "--locked",
-            "--version",
-            &format!("={version}"),
-        ])
-        .args(options))
+    let (mut cmd, version) = (cargo(), format!("={version}"));
+    cmd.args(["install", package, "--locked", "--version", &version]);
+    run(cmd.args(options))
 }
 
 /// Debian packages for the browser tests (Chromium, chromedriver) and the desktop smoke test
@@ -114,15 +104,13 @@ pub fn ensure_apt_packages() -> Result<()> {
     let exists = |path: &str| Path::new(path).exists();
     let library = |name: &str| LIB_DIRS.iter().any(|dir| exists(&format!("{dir}/{name}")));
     let icd_dirs = ["/usr/share/vulkan/icd.d", "/etc/vulkan/icd.d"];
-    let lavapipe = icd_dirs
+    let entries = icd_dirs
         .iter()
         .flat_map(std::fs::read_dir)
         .flatten()
-        .flatten()
-        .any(|entry| {
-            let name = entry.file_name().to_string_lossy().into_owned();
-            name.starts_with("lvp_icd") && name.ends_with(".json")
-        });
+        .flatten();
+    let mut names = entries.map(|entry| entry.file_name().to_string_lossy().into_owned());
+    let lavapipe = names.any(|name| name.starts_with("lvp_icd") && name.ends_with(".json"));
     let present = [
         (exists("/usr/bin/chromium"), "chromium"),
         (exists("/usr/bin/chromedriver"), "chromium-driver"),
@@ -142,21 +130,16 @@ pub fn ensure_apt_packages() -> Result<()> {
 
 /// `apt-get update` then `apt-get install -y packages` (through sudo when not root).
 fn apt_install(packages: &[&str]) -> Result<()> {
+    let list = packages.join(" ");
     if util::which("apt-get").is_none() {
-        bail!(
-            "apt-get is not available; install by hand: {}",
-            packages.join(" ")
-        );
+        bail!("apt-get is not available; install by hand: {list}");
     }
     let sudo = if is_root() {
         None
     } else if util::which("sudo").is_some() {
         Some("sudo")
     } else {
-        bail!(
-            "not root and no sudo: install by hand with `apt-get install {}`",
-            packages.join(" ")
-        );
+        bail!("not root and no sudo: install by hand with `apt-get install {list}`");
     };
     let apt = |args: &[&str]| {
         let mut cmd = command(sudo.unwrap_or("apt-get"));
@@ -231,9 +214,8 @@ pub fn ensure_node_modules() -> Result<()> {
     }
     let e2e = e2e_dir();
     let modules = e2e.join("node_modules");
-    let complete = NPM_PACKAGES
-        .iter()
-        .all(|name| modules.join(name).join("package.json").exists());
+    let complete =
+        (NPM_PACKAGES.iter()).all(|name| modules.join(name).join("package.json").exists());
     if complete {
         return Ok(());
     }

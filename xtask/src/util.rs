@@ -9,9 +9,7 @@ use anyhow::{Context, Result, bail};
 /// The repository root (the parent of the `xtask` crate).
 pub fn repo_root() -> PathBuf {
     let manifest_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    manifest_dir
-        .parent()
-        .map_or_else(|| manifest_dir.to_path_buf(), Path::to_path_buf)
+    (manifest_dir.parent()).map_or_else(|| manifest_dir.to_path_buf(), Path::to_path_buf)
 }
 
 /// Cargo's target folder: `CARGO_TARGET_DIR` (relative to the repository root) or `target/`.
@@ -119,11 +117,8 @@ pub fn sysroot() -> Result<PathBuf> {
 /// `PATH` and `XDG_RUNTIME_DIR`, which [`command`] sets for every command).
 pub fn display(cmd: &Command) -> String {
     let program = cmd.get_program();
-    let name = Path::new(program)
-        .file_name()
-        .unwrap_or(program)
-        .to_string_lossy()
-        .into_owned();
+    let name = Path::new(program).file_name().unwrap_or(program);
+    let name = name.to_string_lossy().into_owned();
     let mut parts: Vec<String> = cmd
         .get_envs()
         .filter(|(key, _)| *key != "PATH" && *key != "XDG_RUNTIME_DIR")
@@ -151,10 +146,13 @@ fn quote(arg: &OsStr) -> String {
 /// Runs a command to completion, echoing it first; fails on a non-zero exit.
 pub fn run(cmd: &mut Command) -> Result<()> {
     println!("$ {}", display(cmd));
-    let status = cmd
-        .status()
-        .with_context(|| format!("could not start `{}`", display(cmd)))?;
-    check_status(cmd, status)
+    let status = cmd.status();
+    check_status(cmd, started(cmd, status)?)
+}
+
+/// `result` of starting `cmd`, its error naming the command.
+pub fn started<T>(cmd: &Command, result: std::io::Result<T>) -> Result<T> {
+    result.with_context(|| format!("could not start `{}`", display(cmd)))
 }
 
 /// Fails with a readable message when `status` is not success.
@@ -168,10 +166,8 @@ pub fn check_status(cmd: &Command, status: ExitStatus) -> Result<()> {
 
 /// Runs a command and returns its standard output (standard error goes to the terminal).
 pub fn output(cmd: &mut Command) -> Result<String> {
-    let out = cmd
-        .stderr(std::process::Stdio::inherit())
-        .output()
-        .with_context(|| format!("could not start `{}`", display(cmd)))?;
+    let out = cmd.stderr(std::process::Stdio::inherit()).output();
+    let out = started(cmd, out)?;
     check_status(cmd, out.status)?;
     Ok(String::from_utf8_lossy(&out.stdout).into_owned())
 }
@@ -180,6 +176,12 @@ pub fn output(cmd: &mut Command) -> Result<String> {
 pub fn header(title: &str) {
     let bar = "=".repeat(78);
     println!("\n{bar}\n== {title}\n{bar}");
+}
+
+/// Copies the file `from` to `to`.
+pub fn copy(from: &Path, to: &Path) -> Result<()> {
+    let context = || format!("copying {} to {}", from.display(), to.display());
+    std::fs::copy(from, to).map(drop).with_context(context)
 }
 
 /// Copies a directory tree (files and sub-directories; links are followed).
@@ -192,8 +194,7 @@ pub fn copy_dir(from: &Path, to: &Path) -> Result<()> {
         if src.is_dir() {
             copy_dir(&src, &dst)?;
         } else {
-            std::fs::copy(&src, &dst)
-                .with_context(|| format!("copying {} to {}", src.display(), dst.display()))?;
+            copy(&src, &dst)?;
         }
     }
     Ok(())

@@ -36,11 +36,10 @@ pub fn site_dir() -> PathBuf {
 pub fn build(dev: bool, no_opt: bool) -> Result<()> {
     tools::ensure_wasm_target()?;
     tools::ensure_wasm_bindgen()?;
-    let wasm_opt = if dev || no_opt {
-        None
-    } else {
-        Some(tools::ensure_wasm_opt().context("wasm-opt is needed (or pass --no-opt)")?)
-    };
+    let wasm_opt = (!(dev || no_opt)).then(tools::ensure_wasm_opt);
+    let wasm_opt = wasm_opt
+        .transpose()
+        .context("wasm-opt is needed (or pass --no-opt)")?;
 
     let profile = if dev { "debug" } else { "web" };
     let mut build = cargo();
@@ -51,15 +50,11 @@ pub fn build(dev: bool, no_opt: bool) -> Result<()> {
     }
     run(&mut build)?;
 
-    let wasm = util::target_dir()
-        .join(WASM_TARGET)
-        .join(profile)
-        .join(format!("{APP_LIB}.wasm"));
+    let wasm = util::target_dir().join(WASM_TARGET).join(profile);
+    let wasm = wasm.join(format!("{APP_LIB}.wasm"));
     if !wasm.exists() {
-        bail!(
-            "the build did not produce {}; is `{APP_PACKAGE}` a cdylib?",
-            wasm.display()
-        );
+        let shown = wasm.display();
+        bail!("the build did not produce {shown}; is `{APP_PACKAGE}` a cdylib?");
     }
 
     let site = site_dir();
@@ -110,8 +105,7 @@ fn bindgen(wasm: &Path, target: &str, name: &str, site: &Path, opt: Option<&Path
 fn copy_static_files(site: &Path) -> Result<()> {
     let root = util::repo_root();
     let index = root.join("index.html");
-    std::fs::copy(&index, site.join("index.html"))
-        .with_context(|| format!("copying {}", index.display()))?;
+    util::copy(&index, &site.join("index.html"))?;
     let web = root.join("web");
     if web.is_dir() {
         util::copy_dir(&web, site)?;
@@ -132,14 +126,10 @@ fn copy_cjk_font(site: &Path) -> Result<()> {
     }
     let fonts = site.join("fonts");
     std::fs::create_dir_all(&fonts).with_context(|| format!("creating {}", fonts.display()))?;
-    std::fs::copy(tools::CJK_FONT, fonts.join("wqy-microhei.ttc"))
-        .with_context(|| format!("copying {}", tools::CJK_FONT))?;
-    if Path::new(tools::CJK_FONT_COPYRIGHT).exists() {
-        std::fs::copy(
-            tools::CJK_FONT_COPYRIGHT,
-            fonts.join("wqy-microhei.copyright.txt"),
-        )
-        .with_context(|| format!("copying {}", tools::CJK_FONT_COPYRIGHT))?;
+    util::copy(Path::new(tools::CJK_FONT), &fonts.join("wqy-microhei.ttc"))?;
+    let copyright = Path::new(tools::CJK_FONT_COPYRIGHT);
+    if copyright.exists() {
+        util::copy(copyright, &fonts.join("wqy-microhei.copyright.txt"))?;
     }
     Ok(())
 }
@@ -177,16 +167,12 @@ fn optimize(wasm_opt: &Path, wasm: &Path) -> Result<()> {
 /// site's top folder whose extension is in [`COMPRESSED`].
 fn compress(site: &Path) -> Result<()> {
     let entries = std::fs::read_dir(site).with_context(|| format!("reading {}", site.display()))?;
-    let files: Vec<PathBuf> = entries
-        .flatten()
-        .map(|entry| entry.path())
-        .filter(|path| {
-            path.is_file()
-                && path
-                    .extension()
-                    .and_then(|e| e.to_str())
-                    .is_some_and(|e| COMPRESSED.contains(&e))
-        })
+    let listed = |path: &PathBuf| {
+        (path.extension().and_then(|e| e.to_str())).is_some_and(|e| COMPRESSED.contains(&e))
+    };
+    let files = entries.flatten().map(|entry| entry.path());
+    let files: Vec<PathBuf> = files
+        .filter(|path| path.is_file() && listed(path))
         .collect();
     // One thread a file: the wasm takes most of the time, the others finish beside it.
     std::thread::scope(|scope| {

@@ -138,11 +138,7 @@ impl OrbitCamera {
 
     /// Sanitised target.
     fn tgt(&self) -> Vec3 {
-        if self.target.is_finite() {
-            self.target
-        } else {
-            Vec3::ZERO
-        }
+        (Some(self.target).filter(|t| t.is_finite())).unwrap_or(Vec3::ZERO)
     }
 
     /// Camera basis `(right, up, back)`: `back` points from the target towards the eye.

@@ -148,6 +148,30 @@ pub(crate) fn texture_2d(sample_type: TextureSampleType) -> BindingType {
     }
 }
 
+/// A single-sampled 2D texture of one mip level, `[width, height]` texels.
+pub(crate) fn texture(
+    device: &Device,
+    label: &str,
+    [width, height]: [u32; 2],
+    format: TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
+}
+
 /// A uniform buffer of `size` bytes, written with `Queue::write_buffer`.
 pub(crate) fn uniform_buffer(device: &Device, label: &str, size: u64) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {

@@ -7,6 +7,13 @@ use crate::path::{Kind, PathPoint};
 /// At most this many grid cells per side, whatever the bounds.
 const MAX_CELLS: f32 = 200.0;
 
+/// The X, Y and Z axes with the kind each is drawn as.
+pub(crate) const AXES: [(Vec3, Kind); 3] = [
+    (Vec3::X, Kind::AxisX),
+    (Vec3::Y, Kind::AxisY),
+    (Vec3::Z, Kind::AxisZ),
+];
+
 /// Smallest "nice" step (1, 2 or 5 × 10ⁿ) that is at least `raw`.
 #[must_use]
 pub fn nice_step(raw: f32) -> f32 {
@@ -74,11 +81,7 @@ pub fn grid_points(min: Vec3, max: Vec3) -> Vec<PathPoint> {
     }
 
     let axis = (size * 0.15).max(step * 2.0);
-    for (dir, kind) in [
-        (Vec3::X, Kind::AxisX),
-        (Vec3::Y, Kind::AxisY),
-        (Vec3::Z, Kind::AxisZ),
-    ] {
+    for (dir, kind) in AXES {
         out.push(PathPoint::pen_up(Vec3::ZERO));
         out.push(PathPoint::new(dir * axis, kind));
     }

@@ -214,10 +214,7 @@ impl PathLod {
         let mut breaks: Vec<u32> = flagged
             .iter()
             .flat_map(|run| [point(run.start), point(run.end)])
-            .chain([
-                params.highlight.start.min(last),
-                params.highlight.end.min(last),
-            ])
+            .chain([params.highlight.start, params.highlight.end].map(|i| i.min(last)))
             .chain(params.executed_segments.map(|e| e.min(last)))
             .collect();
         breaks.sort_unstable();
@@ -232,10 +229,7 @@ impl PathLod {
             let base = self.base.as_deref().unwrap_or_default();
             let drawn = with_breaks(&self.points, base, &wanted.breaks, tolerance);
             // A highlight moved to points already kept changes no point.
-            let same_flags = self
-                .uploaded
-                .as_ref()
-                .is_some_and(|u| u.flagged == wanted.flagged);
+            let same_flags = (self.uploaded.as_ref()).is_some_and(|u| u.flagged == wanted.flagged);
             // Every point drawn (`drawn` ascends) and none highlighted: the points as they are,
             // not a copy (a path that does not simplify may be tens of millions of points).
             let changed = drawn != self.drawn || !same_flags;
@@ -275,14 +269,9 @@ impl PathLod {
         if !needed.is_finite() {
             return None;
         }
+        let keeps = |l: i32| self.base.is_some() && (l as f32) <= needed && needed < (l + 2) as f32;
         match self.level {
-            Some(level)
-                if self.base.is_some()
-                    && (level as f32) <= needed
-                    && needed < (level + 2) as f32 =>
-            {
-                Some(level)
-            }
+            Some(level) if keeps(level) => Some(level),
             _ => Some(needed.floor().clamp(-60.0, 60.0) as i32),
         }
     }

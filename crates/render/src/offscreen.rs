@@ -123,11 +123,9 @@ impl HeadlessGpu {
             &[],
         );
         renderer.prepare(&self.queue, &params);
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("swarf_render_rgba8"),
-            });
+        let label = Some("swarf_render_rgba8");
+        let mut encoder =
+            (self.device).create_command_encoder(&wgpu::CommandEncoderDescriptor { label });
         // Gamma-space target: the clear colour is stored as given.
         let [r, g, b, a] = background.map(|c| f64::from(c) / 255.0);
         target.draw(&mut encoder, wgpu::Color { r, g, b, a }, &renderer);
@@ -167,20 +165,7 @@ impl RenderTarget {
             return Err(RenderError::Size { width, height, max });
         }
         let texture = |label, format, usage| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
+            crate::gpu::texture(device, label, [width, height], format, usage)
         };
         let target = wgpu::TextureUsages::RENDER_ATTACHMENT;
         let copy = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC;
@@ -278,19 +263,16 @@ impl RenderTarget {
         );
         queue.submit([encoder.finish()]);
         let (sender, receiver) = std::sync::mpsc::channel();
-        readback
-            .slice(..)
-            .map_async(wgpu::MapMode::Read, move |result| {
-                let _ = sender.send(result);
-            });
-        let failed = |e: &dyn std::fmt::Display| RenderError::Readback(e.to_string());
+        (readback.slice(..)).map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
+        fn failed(e: impl std::fmt::Display) -> RenderError {
+            RenderError::Readback(e.to_string())
+        }
         device
             .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| failed(&e))?;
-        receiver
-            .recv()
-            .map_err(|e| failed(&e))?
-            .map_err(|e| failed(&e))?;
+            .map_err(failed)?;
+        receiver.recv().map_err(failed)?.map_err(failed)?;
         let bgra = matches!(
             self.color.format(),
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
@@ -298,10 +280,7 @@ impl RenderTarget {
         let width_bytes = (self.width * BYTES_PER_PIXEL) as usize;
         let mut pixels = Vec::with_capacity(width_bytes * self.height as usize);
         {
-            let data = readback
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| failed(&e))?;
+            let data = readback.slice(..).get_mapped_range().map_err(failed)?;
             for line in data.chunks_exact(row as usize) {
                 pixels.extend_from_slice(&line[..width_bytes]);
             }

@@ -29,62 +29,46 @@ pub const HIGHLIGHT_SLOT: usize = 15;
 /// everywhere, WebGL2 included.
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// What a segment is; selects its colour (palette slot), width and dash pattern.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[repr(u8)]
-pub enum Kind {
-    /// Rapid positioning (G00): thin and dashed.
-    Rapid = 0,
-    /// Straight cutting move (G01).
-    Feed = 1,
-    /// Chord of a circular or helical cutting move (G02/G03).
-    Arc = 2,
-    /// Drilling plunge into the hole.
-    Plunge = 3,
-    /// Retract out of a hole.
-    Retract = 4,
-    /// Any other move of a canned cycle.
-    Cycle = 5,
-    /// Contour with cutter-radius compensation applied (where the tool centre goes).
-    Compensated = 6,
-    /// Contour as programmed (the overlay shown beside the compensated one).
-    Programmed = 7,
-    /// Ordinary grid line.
-    Grid = 8,
-    /// Every tenth grid line.
-    GridMajor = 9,
-    /// The X axis.
-    AxisX = 10,
-    /// The Y axis.
-    AxisY = 11,
-    /// The Z axis.
-    AxisZ = 12,
-    /// Machine travel box and other reference outlines.
-    Boundary = 13,
-    /// A programmable stroke limit (G22): protected zone or soft limits.
-    Zone = 14,
+/// Declares [`Kind`] from one row a kind, in palette order: the variant, what it is and its
+/// default colour.
+macro_rules! kinds {
+    ($($variant:ident $doc:literal $color:expr;)*) => {
+        /// What a segment is; selects its colour (palette slot), width and dash pattern.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        #[repr(u8)]
+        pub enum Kind {
+            $(#[doc = $doc] $variant,)*
+        }
+
+        impl Kind {
+            /// Every kind, in palette order.
+            pub const ALL: [Kind; [$($doc),*].len()] = [$(Kind::$variant),*];
+
+            /// The default colour of each kind, in palette order.
+            const COLORS: [[u8; 4]; [$($doc),*].len()] = [$($color),*];
+        }
+    };
+}
+
+kinds! {
+    Rapid       "Rapid positioning (G00): thin and dashed."                            RAPID_COLOR;
+    Feed        "Straight cutting move (G01)."                                         FEED_COLOR;
+    Arc         "Chord of a circular or helical cutting move (G02/G03)."               ARC_COLOR;
+    Plunge      "Drilling plunge into the hole."                                       [255, 90, 90, 255];
+    Retract     "Retract out of a hole."                                               [255, 160, 210, 255];
+    Cycle       "Any other move of a canned cycle."                                    [190, 130, 255, 255];
+    Compensated "Contour with cutter-radius compensation applied (where the tool centre goes)." [240, 240, 240, 255];
+    Programmed  "Contour as programmed (the overlay shown beside the compensated one)." PROGRAMMED_COLOR;
+    Grid        "Ordinary grid line."                                                  [128, 128, 128, 60];
+    GridMajor   "Every tenth grid line."                                               GRID_MAJOR_COLOR;
+    AxisX       "The X axis."                                                          [230, 60, 60, 255];
+    AxisY       "The Y axis."                                                          [60, 200, 60, 255];
+    AxisZ       "The Z axis."                                                          Z_AXIS_COLOR;
+    Boundary    "Machine travel box and other reference outlines."                     [200, 200, 200, 110];
+    Zone        "A programmable stroke limit (G22): protected zone or soft limits."    ZONE_COLOR;
 }
 
 impl Kind {
-    /// Every kind, in palette order.
-    pub const ALL: [Kind; 15] = [
-        Kind::Rapid,
-        Kind::Feed,
-        Kind::Arc,
-        Kind::Plunge,
-        Kind::Retract,
-        Kind::Cycle,
-        Kind::Compensated,
-        Kind::Programmed,
-        Kind::Grid,
-        Kind::GridMajor,
-        Kind::AxisX,
-        Kind::AxisY,
-        Kind::AxisZ,
-        Kind::Boundary,
-        Kind::Zone,
-    ];
-
     /// The kind stored as `bits`, if any.
     #[must_use]
     pub fn from_bits(bits: u8) -> Option<Kind> {
@@ -154,11 +138,7 @@ impl PathPoint {
     /// The same point with the highlight flag set or cleared.
     #[must_use]
     pub fn with_highlight(self, on: bool) -> Self {
-        let packed = if on {
-            self.packed | Self::HIGHLIGHT
-        } else {
-            self.packed & !Self::HIGHLIGHT
-        };
+        let packed = (self.packed & !Self::HIGHLIGHT) | (u32::from(on) * Self::HIGHLIGHT);
         Self { packed, ..self }
     }
 
@@ -224,24 +204,8 @@ pub const HIGHLIGHT_COLOR: [u8; 4] = [255, 250, 170, 255];
 impl Default for Palette {
     fn default() -> Self {
         let mut kinds = [srgba([255, 0, 255, 255]); 16];
-        for (kind, color) in [
-            (Kind::Rapid, RAPID_COLOR),
-            (Kind::Feed, FEED_COLOR),
-            (Kind::Arc, ARC_COLOR),
-            (Kind::Plunge, [255, 90, 90, 255]),
-            (Kind::Retract, [255, 160, 210, 255]),
-            (Kind::Cycle, [190, 130, 255, 255]),
-            (Kind::Compensated, [240, 240, 240, 255]),
-            (Kind::Programmed, PROGRAMMED_COLOR),
-            (Kind::Grid, [128, 128, 128, 60]),
-            (Kind::GridMajor, GRID_MAJOR_COLOR),
-            (Kind::AxisX, [230, 60, 60, 255]),
-            (Kind::AxisY, [60, 200, 60, 255]),
-            (Kind::AxisZ, Z_AXIS_COLOR),
-            (Kind::Boundary, [200, 200, 200, 110]),
-            (Kind::Zone, ZONE_COLOR),
-        ] {
-            kinds[kind as usize] = srgba(color);
+        for (kind, color) in kinds.iter_mut().zip(Kind::COLORS) {
+            *kind = srgba(color);
         }
         kinds[HIGHLIGHT_SLOT] = srgba(HIGHLIGHT_COLOR);
         // Distinct hues for colouring by tool, as 0xRRGGBB.
@@ -325,9 +289,11 @@ impl ViewParams {
     /// Multiplies every width and the dash pattern by `scale` (pixels per point on HiDPI).
     #[must_use]
     pub fn scaled(self, scale: f32) -> Self {
-        let scale = Some(scale)
-            .filter(|s| s.is_finite() && *s > 0.0)
-            .unwrap_or(1.0);
+        let scale = if scale.is_finite() && scale > 0.0 {
+            scale
+        } else {
+            1.0
+        };
         Self {
             line_width_px: self.line_width_px * scale,
             rapid_width_px: self.rapid_width_px * scale,
@@ -388,17 +354,13 @@ impl Uniforms {
         let mut palette = [[0.0; 4]; 32];
         palette[..16].copy_from_slice(&params.palette.kinds);
         palette[16..].copy_from_slice(&params.palette.indexed);
-        let view_proj = if params.view_proj.is_finite() {
-            params.view_proj
-        } else {
-            Mat4::ZERO
-        };
+        let view_proj = (Some(params.view_proj).filter(Mat4::is_finite)).unwrap_or(Mat4::ZERO);
         Self {
             view_proj: view_proj.to_cols_array_2d(),
-            viewport: [
-                finite_or(params.viewport_px.x, 1.0).max(1.0),
-                finite_or(params.viewport_px.y, 1.0).max(1.0),
-            ],
+            viewport: params
+                .viewport_px
+                .to_array()
+                .map(|v| finite_or(v, 1.0).max(1.0)),
             line_width: finite_or(params.line_width_px, 1.0).clamp(0.0, 64.0),
             rapid_width: finite_or(params.rapid_width_px, 1.0).clamp(0.0, 64.0),
             grid_width: finite_or(params.grid_width_px, 1.0).clamp(0.0, 64.0),
@@ -553,20 +515,11 @@ impl PointBatch {
             let chunk = if let Some(c) = reuse {
                 Chunk { count, ..c }
             } else {
-                let texture = device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some(self.label),
-                    size: wgpu::Extent3d {
-                        width: u32::try_from(width).unwrap_or(u32::MAX),
-                        height: u32::try_from(count.div_ceil(width)).unwrap_or(u32::MAX),
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: wgpu::TextureFormat::Rgba32Uint,
-                    usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                    view_formats: &[],
-                });
+                let size =
+                    [width, count.div_ceil(width)].map(|n| u32::try_from(n).unwrap_or(u32::MAX));
+                let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+                let format = wgpu::TextureFormat::Rgba32Uint;
+                let texture = gpu::texture(device, self.label, size, format, usage);
                 let draw_buffer =
                     gpu::uniform_buffer(device, "swarf_draw_uniforms", DRAW_UNIFORMS_SIZE);
                 let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
@@ -758,9 +711,7 @@ impl PathRenderer {
     /// Bytes of GPU memory allocated for the toolpath points.
     #[must_use]
     pub fn path_buffer_bytes(&self) -> u64 {
-        self.path
-            .chunks
-            .iter()
+        (self.path.chunks.iter())
             .map(|c| c.capacity() * POINT_SIZE)
             .sum()
     }

@@ -34,16 +34,6 @@ impl Pick {
 /// Distances closer than this (pixels) count as a tie, broken by depth (the nearer wins).
 const TIE_PX: f32 = 0.25;
 
-/// A point projected into "cursor space": homogeneous coordinates whose `x / w`, `y / w` are
-/// pixel offsets from the cursor (y down) and `z / w` is the depth.
-#[derive(Clone, Copy)]
-struct Projected {
-    clip: Vec4,
-    /// `clip.xy / clip.w` when the point is in front of the near plane.
-    screen: Vec2,
-    in_front: bool,
-}
-
 /// The segment drawn nearest to `cursor_px`, within `radius_px` pixels.
 ///
 /// `view_proj` is [`crate::OrbitCamera::view_proj`]'s; `viewport_px` and `cursor_px` (from the
@@ -76,20 +66,14 @@ pub fn pick_segment(
     let px = row_x * half.x + row_w * (half.x - cursor_px.x);
     let py = row_y * (-half.y) + row_w * (half.y - cursor_px.y);
     let (pz, pw) = (row_z, row_w);
+    // A point in "cursor space": homogeneous coordinates whose `x / w`, `y / w` are pixel
+    // offsets from the cursor (y down) and `z / w` the depth, and those offsets when the point
+    // is in front of the near plane.
     let project = |p: &PathPoint| {
         let v = Vec4::new(p.position[0], p.position[1], p.position[2], 1.0);
         let clip = Vec4::new(px.dot(v), py.dot(v), pz.dot(v), pw.dot(v));
         let in_front = clip.z >= 0.0 && clip.w > 0.0;
-        let screen = if in_front {
-            Vec2::new(clip.x, clip.y) / clip.w
-        } else {
-            Vec2::ZERO
-        };
-        Projected {
-            clip,
-            screen,
-            in_front,
-        }
+        (clip, in_front.then(|| Vec2::new(clip.x, clip.y) / clip.w))
     };
 
     let mut best: Option<Pick> = None;
@@ -98,15 +82,16 @@ pub fn pick_segment(
         let cur = project(point);
         let skip = point.is_pen_up() || (hidden_kinds >> (point.packed & 0xff)) & 1 != 0;
         if !skip {
-            let hit = if prev.in_front && cur.in_front {
-                nearest_on_screen(prev.screen, cur.screen, radius_px).map(|(t, d)| {
+            let ((a, on_a), (b, on_b)) = (prev, cur);
+            let hit = if let (Some(on_a), Some(on_b)) = (on_a, on_b) {
+                nearest_on_screen(on_a, on_b, radius_px).map(|(t, d)| {
                     // Screen-space t to the world-space parameter (perspective divide).
-                    let s = world_t(t, prev.clip.w, cur.clip.w);
-                    let clip = prev.clip.lerp(cur.clip, s);
+                    let s = world_t(t, a.w, b.w);
+                    let clip = a.lerp(b, s);
                     (s, d, clip.z / clip.w)
                 })
             } else {
-                clipped_hit(prev.clip, cur.clip, radius_px)
+                clipped_hit(a, b, radius_px)
             };
             if let Some((t, distance_px, depth)) = hit {
                 let better = |b: &Pick| {

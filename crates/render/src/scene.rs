@@ -5,7 +5,7 @@
 use glam::{DVec3, Vec3};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
-use crate::grid::grid_points_at;
+use crate::grid::{AXES, grid_points_at};
 use crate::path::{Kind, PathPoint};
 
 /// What is drawn of a toolpath, in f32 relative to `origin` (the centre of its bounds). Its
@@ -108,11 +108,9 @@ pub fn view_bounds(bounds: Option<(Vec3, Vec3)>, marks: &[PathPoint]) -> Option<
     let (mut min, mut max) = bounds.unwrap_or((Vec3::INFINITY, Vec3::NEG_INFINITY));
     for (i, p) in marks.iter().enumerate() {
         // A pen-up point starts the segment after it, and is of that segment's kind.
+        let next = (marks.get(i + 1)).filter(|next| !next.is_pen_up());
         let kind = if p.is_pen_up() {
-            marks
-                .get(i + 1)
-                .filter(|next| !next.is_pen_up())
-                .and_then(PathPoint::kind)
+            next.and_then(PathPoint::kind)
         } else {
             p.kind()
         };
@@ -153,13 +151,9 @@ fn origin_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> 
     let length = (diagonal / 20.0).clamp(2.0, 50.0);
     let mut marks = Vec::with_capacity(path.origins().len() * 6);
     for &at in path.origins() {
-        for (axis, kind) in [
-            (DVec3::X, Kind::AxisX),
-            (DVec3::Y, Kind::AxisY),
-            (DVec3::Z, Kind::AxisZ),
-        ] {
+        for (axis, kind) in AXES {
             marks.push(PathPoint::pen_up(rel(at)));
-            marks.push(PathPoint::new(rel(at + axis * length), kind));
+            marks.push(PathPoint::new(rel(at + axis.as_dvec3() * length), kind));
         }
     }
     marks

@@ -132,16 +132,9 @@ impl StockPass {
         };
         let mesh = self.mesh.take().filter(|m| m.texture.size() == extent);
         let mesh = mesh.unwrap_or_else(|| {
-            let texture = device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("swarf_stock_heights"),
-                size: extent,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::R32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            });
+            let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+            let (size, format) = ([extent.width, extent.height], wgpu::TextureFormat::R32Float);
+            let texture = gpu::texture(device, "swarf_stock_heights", size, format, usage);
             let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
             let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("swarf_stock_bind_group"),

@@ -172,7 +172,7 @@ impl<const N: usize> Group<N> {
 
 /// Cells of a cut gathered to be searched: `n` of them, by their index in the heights, the
 /// along-coordinate of the centre and its squared offset from the line.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct Batch {
     index: [usize; GROUP],
     sc: [f32; GROUP],
@@ -181,13 +181,6 @@ struct Batch {
 }
 
 impl Batch {
-    const EMPTY: Batch = Batch {
-        index: [0; GROUP],
-        sc: [0.0; GROUP],
-        hh: [0.0; GROUP],
-        n: 0,
-    };
-
     /// Adds a cell; true once the batch is full.
     fn push(&mut self, index: usize, sc: f32, hh: f32) -> bool {
         if let (Some(i), Some(s), Some(h)) = (
@@ -478,7 +471,7 @@ impl HeightField {
     ) -> Option<Cut> {
         let origin = DVec3::new(self.stock.min[0], self.stock.min[1], 0.0);
         let (a, b) = (from - origin, to - origin);
-        if !(a.is_finite() && b.is_finite() && tool.check().is_ok()) {
+        if !(a.is_finite() && b.is_finite() && tool.validate(0).is_ok()) {
             return None;
         }
         let d = b - a;
@@ -601,7 +594,7 @@ impl HeightField {
             bottom,
             threshold,
             clear: lowest + threshold,
-            later: check.is_none().then_some(Batch::EMPTY),
+            later: check.is_none().then(Batch::default),
             found: None,
         };
         // A level move of a flat end lowers everything it covers to its height.
@@ -743,32 +736,23 @@ impl Reach {
     /// so that it cuts and checks every other cell as a lone move would.
     fn of(profile: AnyProfile, r: f64, m: f32, len: f64, checked: bool) -> Reach {
         let all = f64::INFINITY;
+        let reach = |back, front, start, end| Reach {
+            back,
+            front,
+            start,
+            end,
+        };
         // Descending, the tool is lowest at the start over cells more than `lead` behind it,
         // and at the end over cells past it or within `near` of it; climbing, the other way.
         let ends = |lead: f64, near: f64| {
             if m < 0.0 {
-                Reach {
-                    back: lead,
-                    front: 0.0,
-                    start: 0.0,
-                    end: near,
-                }
+                reach(lead, 0.0, 0.0, near)
             } else {
-                Reach {
-                    back: 0.0,
-                    front: lead,
-                    start: near,
-                    end: 0.0,
-                }
+                reach(0.0, lead, near, 0.0)
             }
         };
-        let reach = match profile {
-            _ if len == 0.0 => Reach {
-                back: all,
-                front: all,
-                start: 0.0,
-                end: 0.0,
-            },
+        let free = match profile {
+            _ if len == 0.0 => reach(all, all, 0.0, 0.0),
             // On a level move the closest point is lowest.
             _ if m == 0.0 => ends(0.0, 0.0),
             // The tip is lowest where the tool first (climbing) or last covers a cell.
@@ -791,14 +775,9 @@ impl Reach {
         };
         if checked {
             let bull_down = matches!(profile, AnyProfile::Bull(_)) && m < 0.0;
-            Reach {
-                back: if bull_down { all } else { reach.back },
-                front: all,
-                start: 0.0,
-                end: 0.0,
-            }
+            reach(if bull_down { all } else { free.back }, all, 0.0, 0.0)
         } else {
-            reach
+            free
         }
     }
 }
@@ -857,13 +836,8 @@ impl Cut {
     /// the neighbour's hole.
     fn keep(&self, side: usize, s: f64) -> f64 {
         let r = f64::from(self.r);
-        let taper = match self.taper {
-            Some(taper) => taper
-                .iter()
-                .find(|&&(_, beta)| beta <= s)
-                .map_or(r, |&(r, _)| r),
-            None => r,
-        };
+        let taper = (self.taper.iter().flatten()).find(|&&(_, beta)| beta <= s);
+        let taper = taper.map_or(r, |&(r, _)| r);
         taper.max(self.disc[side]) + MARGIN
     }
 

@@ -126,34 +126,19 @@ impl Tool {
     /// Checks every value of tool `number` against its range, naming `tools.N.key` when one is
     /// out.
     pub fn validate(&self, number: u32) -> Result<(), StockError> {
-        self.check()
-            .map_err(|(name, min, max, value)| StockError::Range {
-                key: format!("tools.{number}.{name}"),
-                min,
-                max,
-                value,
-            })
-    }
-
-    /// The first value outside its range: (key, lowest, highest, value).
-    pub(crate) fn check(&self) -> Result<(), (&'static str, f64, f64, f64)> {
-        let within = |name, value: f64, min, max| {
-            if (min..=max).contains(&value) {
-                Ok(())
-            } else {
-                Err((name, min, max, value))
-            }
+        let within = |name: &str, value: f64, min: f64, max: f64| {
+            in_range(format_args!("tools.{number}.{name}"), value, min, max).map(drop)
         };
         within("diameter", self.diameter, 0.001, 1000.0)?;
         match self.shape {
-            Shape::Flat | Shape::Ball => {}
+            Shape::Flat | Shape::Ball => Ok(()),
             Shape::Bull { corner_radius } => {
-                within("corner_radius", corner_radius, 0.0, self.diameter / 2.0)?;
+                within("corner_radius", corner_radius, 0.0, self.diameter / 2.0)
             }
             Shape::Drill { point_angle_deg } | Shape::Chamfer { point_angle_deg } => {
-                within("point_angle_deg", point_angle_deg, 1.0, 179.0)?;
+                within("point_angle_deg", point_angle_deg, 1.0, 179.0)
             }
-        }
+        }?;
         (self.flute_length).map_or(Ok(()), |f| within("flute_length", f, 0.001, MAX_LENGTH))
     }
 }
@@ -256,12 +241,17 @@ pub enum StockError {
 }
 
 /// `value` for `key` when it lies in `min..=max`; a range error naming the key otherwise.
-fn in_range(key: impl Into<String>, value: f64, min: f64, max: f64) -> Result<f64, StockError> {
+fn in_range(
+    key: impl std::fmt::Display,
+    value: f64,
+    min: f64,
+    max: f64,
+) -> Result<f64, StockError> {
     if (min..=max).contains(&value) {
         Ok(value)
     } else {
         Err(StockError::Range {
-            key: key.into(),
+            key: key.to_string(),
             min,
             max,
             value,

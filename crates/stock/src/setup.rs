@@ -27,14 +27,9 @@ impl StockSetup {
     /// Reads the setup's `[stock]` and `[tools.N]` tables; refuses a key, shape or value out of
     /// place, naming it.
     pub fn from_setup(setup: &Setup) -> Result<Self, StockError> {
-        let stock = match &setup.stock {
-            Some(table) => {
-                let stock: Stock = from_table("stock", table)?;
-                stock.grid()?;
-                Some(stock)
-            }
-            None => None,
-        };
+        let stock = (setup.stock.as_ref())
+            .map(|table| from_table::<Stock>("stock", table).and_then(|s| s.grid().map(|_| s)))
+            .transpose()?;
         let mut tools = BTreeMap::new();
         for (&number, table) in &setup.tools {
             let tool: Tool = from_table(&format!("tools.{number}"), table)?;
@@ -64,7 +59,7 @@ impl StockSetup {
             diameter,
             ..Tool::default()
         });
-        let (tool, how) = match from_register.filter(|tool| tool.check().is_ok()) {
+        let (tool, how) = match from_register.filter(|tool| tool.validate(0).is_ok()) {
             Some(tool) => (tool, format!(", twice register {number}'s radius")),
             None => (Tool::default(), String::new()),
         };
@@ -78,7 +73,8 @@ impl StockSetup {
 
 /// `table` read as `T`, a mistake in it named by the table's `key`.
 fn from_table<T: DeserializeOwned>(key: &str, table: &toml::Table) -> Result<T, StockError> {
-    toml::Value::Table(table.clone())
+    let value = toml::Value::Table(table.clone());
+    value
         .try_into()
         .map_err(|e: toml::de::Error| StockError::Table {
             key: key.to_string(),

@@ -158,14 +158,11 @@ impl Simulation {
                 flute_length: tool.flute_length.unwrap_or(0.0),
             },
         };
-        if self
-            .findings
-            .last()
-            .is_some_and(|last| discriminant(last) == discriminant(&finding) && last.line() == line)
-        {
-            return;
+        let same =
+            |last: &Finding| discriminant(last) == discriminant(&finding) && last.line() == line;
+        if !self.findings.last().is_some_and(same) {
+            self.findings.push(finding);
         }
-        self.findings.push(finding);
     }
 
     /// The stock as cut so far.
