@@ -60,90 +60,88 @@ impl ExprId {
     }
 }
 
-/// Declares [`BinOp`] from one row an operator: the variant, the operator as written, and
-/// what to know of it besides.
-macro_rules! bin_ops {
-    ($($variant:ident $symbol:literal $note:literal;)*) => {
-        /// A binary operator in an expression.
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-        pub enum BinOp {
-            $(#[doc = concat!("`", $symbol, "`", $note)] $variant,)*
+/// Declares an enum from one row a variant (the variant, its name, its documentation), with
+/// `ALL` (every variant, in order) and the function that names each.
+macro_rules! named_enum {
+    (
+        $(#[$meta:meta])* pub enum $enum:ident;
+        $(#[$fn_meta:meta])* fn $fn:ident;
+        $($(#[$attr:meta])* $variant:ident $name:literal $doc:literal;)*
+    ) => {
+        $(#[$meta])*
+        pub enum $enum {
+            $(#[doc = $doc] $(#[$attr])* $variant,)*
         }
 
-        impl BinOp {
-            /// Every operator.
-            pub const ALL: &[BinOp] = &[$(BinOp::$variant),*];
+        impl $enum {
+            /// Every variant, in order.
+            pub const ALL: [$enum; [$($name),*].len()] = [$($enum::$variant),*];
 
-            /// The operator as written.
-            pub fn symbol(self) -> &'static str {
+            $(#[$fn_meta])*
+            pub fn $fn(self) -> &'static str {
                 match self {
-                    $(BinOp::$variant => $symbol,)*
+                    $($enum::$variant => $name,)*
                 }
             }
         }
     };
 }
+pub(crate) use named_enum;
 
-bin_ops! {
-    Add "+"   "";
-    Sub "-"   "";
-    Mul "*"   "";
-    Div "/"   "";
-    Mod "MOD" " (remainder)";
-    Pow "**"  " (LinuxCNC power)";
-    And "AND" " (bitwise on integers in the Fanuc family, logical in LinuxCNC)";
-    Or  "OR"  "";
-    Xor "XOR" "";
-    Eq  "EQ"  "";
-    Ne  "NE"  "";
-    Gt  "GT"  "";
-    Ge  "GE"  "";
-    Lt  "LT"  "";
-    Le  "LE"  "";
+named_enum! {
+    /// A binary operator in an expression.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum BinOp;
+    /// The operator as written.
+    fn symbol;
+    Add "+"   "`+`";
+    Sub "-"   "`-`";
+    Mul "*"   "`*`";
+    Div "/"   "`/`";
+    Mod "MOD" "`MOD` (remainder)";
+    Pow "**"  "`**` (LinuxCNC power)";
+    And "AND" "`AND` (bitwise on integers in the Fanuc family, logical in LinuxCNC)";
+    Or  "OR"  "`OR`";
+    Xor "XOR" "`XOR`";
+    Eq  "EQ"  "`EQ`";
+    Ne  "NE"  "`NE`";
+    Gt  "GT"  "`GT`";
+    Ge  "GE"  "`GE`";
+    Lt  "LT"  "`LT`";
+    Le  "LE"  "`LE`";
 }
 
-/// Declares [`Func`] from one row a function: the variant, the names the controls spell it
-/// with (the usual one first), and what it computes.
-macro_rules! funcs {
-    ($($variant:ident [$($name:literal)+] $doc:literal;)*) => {
-        /// A function applied to bracketed arguments.
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-        pub enum Func {
-            $(#[doc = $doc] $variant,)*
-        }
-
-        impl Func {
-            /// Every function with the names the controls spell it with.
-            pub const NAMES: &[(&str, Func)] = &[$($(($name, Func::$variant),)+)*];
-
-            /// The function's usual name.
-            pub fn name(self) -> &'static str {
-                match self {
-                    $(Func::$variant => [$($name),+][0],)*
-                }
-            }
-        }
-    };
+named_enum! {
+    /// A function applied to bracketed arguments.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Func;
+    /// The function's usual name.
+    fn name;
+    Asin   "ASIN"   "Arc sine, degrees.";
+    Acos   "ACOS"   "Arc cosine, degrees.";
+    Atan   "ATAN"   "Arc tangent, degrees; two arguments (`ATAN[a]/[b]` or `ATAN[a,b]`) give atan2.";
+    Sin    "SIN"    "Sine of degrees.";
+    Cos    "COS"    "Cosine of degrees.";
+    Tan    "TAN"    "Tangent of degrees.";
+    Sqrt   "SQRT"   "Square root (also `SQR`).";
+    Abs    "ABS"    "Absolute value.";
+    Round  "ROUND"  "Round to the nearest integer (also `RND`).";
+    Fix    "FIX"    "Round towards zero (Fanuc FIX rounds down: towards −∞ for negatives in LinuxCNC).";
+    Fup    "FUP"    "Round up (away from zero in the Fanuc family).";
+    Ln     "LN"     "Natural logarithm.";
+    Exp    "EXP"    "e to the power.";
+    Pow    "POW"    "`POW[a,b]`.";
+    Bin    "BIN"    "BCD → binary.";
+    Bcd    "BCD"    "Binary → BCD.";
+    Exists "EXISTS" "LinuxCNC `EXISTS[#<name>]`.";
 }
 
-funcs! {
-    Asin   ["ASIN"]         "Arc sine, degrees.";
-    Acos   ["ACOS"]         "Arc cosine, degrees.";
-    Atan   ["ATAN"]         "Arc tangent, degrees; two arguments (`ATAN[a]/[b]` or `ATAN[a,b]`) give atan2.";
-    Sin    ["SIN"]          "Sine of degrees.";
-    Cos    ["COS"]          "Cosine of degrees.";
-    Tan    ["TAN"]          "Tangent of degrees.";
-    Sqrt   ["SQRT" "SQR"]   "Square root.";
-    Abs    ["ABS"]          "Absolute value.";
-    Round  ["ROUND" "RND"]  "Round to the nearest integer.";
-    Fix    ["FIX"]          "Round towards zero (Fanuc FIX rounds down: towards −∞ for negatives in LinuxCNC).";
-    Fup    ["FUP"]          "Round up (away from zero in the Fanuc family).";
-    Ln     ["LN"]           "Natural logarithm.";
-    Exp    ["EXP"]          "e to the power.";
-    Pow    ["POW"]          "`POW[a,b]`.";
-    Bin    ["BIN"]          "BCD → binary.";
-    Bcd    ["BCD"]          "Binary → BCD.";
-    Exists ["EXISTS"]       "LinuxCNC `EXISTS[#<name>]`.";
+impl Func {
+    /// Every function with each name the controls spell it with.
+    pub fn names() -> impl Iterator<Item = (&'static str, Func)> {
+        let aliases = [("SQR", Func::Sqrt), ("RND", Func::Round)];
+        Func::ALL.into_iter().map(|f| (f.name(), f)).chain(aliases)
+    }
 }
 
 /// One expression node.

@@ -245,11 +245,9 @@ fn unknown_code(dialect: Dialect, code: Code, span: Span) -> Diagnostic {
         Diagnostic::error(span, "E-UNKNOWN-CODE", message)
     } else {
         let inch_metric = code == Code::g(200) || code == Code::g(210);
-        let hint = if inch_metric && dialect == Dialect::Syntec {
-            " — Syntec selects inch/metric with G70/G71"
-        } else {
-            ""
-        };
+        let hint = (inch_metric && dialect == Dialect::Syntec)
+            .then_some(" — Syntec selects inch/metric with G70/G71");
+        let hint = hint.unwrap_or_default();
         let message = format!("{code} is not a code of {label}; it is {elsewhere}{hint}");
         Diagnostic::error(span, "E-CODE-DIALECT", message)
     }
@@ -290,9 +288,7 @@ fn modal_conflicts(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>)
 
 fn forbidden_pairs(dialect: Dialect, codes: &[Found], out: &mut Vec<Diagnostic>) {
     let g = |t: &[u32]| {
-        codes
-            .iter()
-            .find(|(d, _)| d.code.letter == b'G' && t.contains(&d.code.tenths))
+        (codes.iter()).find(|(d, _)| d.code.letter == b'G' && t.contains(&d.code.tenths))
     };
     if codes.len() < 2 {
         return;

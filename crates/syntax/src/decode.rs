@@ -7,26 +7,21 @@ use crate::{Diagnostic, Span};
 /// refused before it is read (the CLI's `--max-file-mb`, the app's open).
 pub const MAX_FILE_BYTES: u64 = 256 << 20;
 
-/// The character encoding a program file was read with (and should be written back with).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum Encoding {
-    /// UTF-8 (ASCII files are UTF-8 too).
+crate::ast::named_enum! {
+    /// The character encoding a program file was read with (and should be written back with).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+    pub enum Encoding;
+    /// The name shown in the status bar and CLI.
+    fn name;
     #[default]
-    Utf8,
-    /// UTF-8 with a byte-order mark.
-    Utf8Bom,
-    /// GBK / GB18030 (Simplified Chinese).
-    Gb18030,
-    /// Big5 (Traditional Chinese).
-    Big5,
-    /// UTF-16, little-endian, with a byte-order mark (Windows "Unicode").
-    Utf16Le,
-    /// UTF-16, big-endian, with a byte-order mark.
-    Utf16Be,
-    /// UTF-32, little-endian, with a byte-order mark.
-    Utf32Le,
-    /// UTF-32, big-endian, with a byte-order mark.
-    Utf32Be,
+    Utf8    "UTF-8"     "UTF-8 (ASCII files are UTF-8 too).";
+    Utf8Bom "UTF-8 BOM" "UTF-8 with a byte-order mark.";
+    Gb18030 "GB18030"   "GBK / GB18030 (Simplified Chinese).";
+    Big5    "Big5"      "Big5 (Traditional Chinese).";
+    Utf16Le "UTF-16LE"  "UTF-16, little-endian, with a byte-order mark (Windows \"Unicode\").";
+    Utf16Be "UTF-16BE"  "UTF-16, big-endian, with a byte-order mark.";
+    Utf32Le "UTF-32LE"  "UTF-32, little-endian, with a byte-order mark.";
+    Utf32Be "UTF-32BE"  "UTF-32, big-endian, with a byte-order mark.";
 }
 
 /// The byte-order marks of the UTF-16 and UTF-32 encodings, longest first (UTF-32LE's starts
@@ -39,20 +34,6 @@ const WIDE_BOMS: [(&[u8], Encoding); 4] = [
 ];
 
 impl Encoding {
-    /// The name shown in the status bar and CLI.
-    pub fn name(self) -> &'static str {
-        match self {
-            Encoding::Utf8 => "UTF-8",
-            Encoding::Utf8Bom => "UTF-8 BOM",
-            Encoding::Gb18030 => "GB18030",
-            Encoding::Big5 => "Big5",
-            Encoding::Utf16Le => "UTF-16LE",
-            Encoding::Utf16Be => "UTF-16BE",
-            Encoding::Utf32Le => "UTF-32LE",
-            Encoding::Utf32Be => "UTF-32BE",
-        }
-    }
-
     /// Encodes `text` back to bytes in this encoding.
     pub fn encode(self, text: &str) -> Vec<u8> {
         match self {

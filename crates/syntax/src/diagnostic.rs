@@ -46,22 +46,15 @@ pub fn excerpt(text: &str) -> Cow<'_, str> {
     }
 }
 
-/// How bad a diagnostic is: errors stop the affected block from running.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub enum Severity {
-    /// Information for the programmer; nothing is wrong.
-    Note,
-    /// The program runs, but probably not as intended.
-    Warning,
-    /// The control would alarm or the block cannot be run.
-    Error,
-}
-
-impl Severity {
+crate::ast::named_enum! {
+    /// How bad a diagnostic is: errors stop the affected block from running.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+    pub enum Severity;
     /// The lowercase name used in CLI output and the JS API.
-    pub fn as_str(self) -> &'static str {
-        ["note", "warning", "error"][self as usize]
-    }
+    fn as_str;
+    Note    "note"    "Information for the programmer; nothing is wrong.";
+    Warning "warning" "The program runs, but probably not as intended.";
+    Error   "error"   "The control would alarm or the block cannot be run.";
 }
 
 impl fmt::Display for Severity {

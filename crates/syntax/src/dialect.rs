@@ -5,48 +5,34 @@ use std::str::FromStr;
 
 use crate::Word;
 
-/// Declares [`Dialect`] from one row a dialect, in menu order: the variant, its name on the
-/// command line and in settings files, its label for menus, and what it is.
-macro_rules! dialects {
-    ($($(#[$attr:meta])* $variant:ident $name:literal $label:literal $doc:literal;)*) => {
-        /// A controller family whose reading of G-code Swarf reproduces.
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize)]
-        pub enum Dialect {
-            $(#[doc = $doc] $(#[$attr])* $variant,)*
-        }
-
-        impl Dialect {
-            /// Every dialect, in menu order.
-            pub const ALL: [Dialect; 6] = [$(Dialect::$variant),*];
-
-            /// The name used on the command line and in settings files.
-            pub fn name(self) -> &'static str {
-                match self {
-                    $(Dialect::$variant => $name,)*
-                }
-            }
-
-            /// A human-readable label for menus.
-            pub fn label(self) -> &'static str {
-                match self {
-                    $(Dialect::$variant => $label,)*
-                }
-            }
-        }
-    };
-}
-
-dialects! {
+crate::ast::named_enum! {
+    /// A controller family whose reading of G-code Swarf reproduces, in menu order.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize)]
+    pub enum Dialect;
+    /// The name used on the command line and in settings files.
+    fn name;
     #[default]
-    Fanuc    "fanuc"    "Fanuc 0i-M"    "Generic Fanuc 0i-M style milling control.";
-    Syntec   "syntec"   "Syntec 900M"   "Syntec 900M.";
-    Lnc      "lnc"      "LNC / Baoyuan" "LNC / Baoyuan.";
-    Kt       "kt"       "KT"            "KT.";
-    Gsk      "gsk"      "GSK 988TD"     "GSK 988TD (slanted-hole cycles).";
-    LinuxCnc "linuxcnc" "LinuxCNC"      "LinuxCNC rs274ngc.";
+    Fanuc    "fanuc"    "Generic Fanuc 0i-M style milling control.";
+    Syntec   "syntec"   "Syntec 900M.";
+    Lnc      "lnc"      "LNC / Baoyuan.";
+    Kt       "kt"       "KT.";
+    Gsk      "gsk"      "GSK 988TD (slanted-hole cycles).";
+    LinuxCnc "linuxcnc" "LinuxCNC rs274ngc.";
 }
 
 impl Dialect {
+    /// A human-readable label for menus.
+    pub fn label(self) -> &'static str {
+        [
+            "Fanuc 0i-M",
+            "Syntec 900M",
+            "LNC / Baoyuan",
+            "KT",
+            "GSK 988TD",
+            "LinuxCNC",
+        ][self as usize]
+    }
+
     /// Whether `;` starts a comment (LinuxCNC) rather than ending the block (Fanuc family).
     pub fn semicolon_is_comment(self) -> bool {
         self.rules().semicolon_comment

@@ -28,5 +28,5 @@ pub use line_index::{LineCols, LineIndex};
 pub use link::{
     CALLED_FILE_EXTENSIONS, LinkedFile, LinkedSource, Lookup, Missing, is_plain_file_name,
 };
-pub use parser::{MAX_PARSED_BYTES, ParseRun, parse};
+pub use parser::{MAX_PARSED_BYTES, ParseRun, ReadPoint, parse};
 pub use source::LineSource;

@@ -13,7 +13,7 @@ mod plain;
 mod run;
 mod statement;
 
-pub use run::ParseRun;
+pub use run::{ParseRun, ReadPoint};
 
 use crate::{Dialect, Program};
 

@@ -17,8 +17,8 @@ pub trait LineSource {
     /// is outside the text or not on `char` boundaries).
     fn line(&mut self, start: usize, end: usize) -> &str;
 
-    /// The text from byte `start` on, or as much of it as holds the whole line there (a source
-    /// read a piece at a time), for a run that indexes the text as it reads it.
+    /// The text from byte `start` on, or as much of it as ends at a line end (a source read a
+    /// piece at a time: each line in it whole), for a run that indexes the text as it reads it.
     fn rest(&mut self, start: usize) -> &str {
         self.line(start, self.len())
     }

@@ -323,7 +323,7 @@ fn sequence_number_range() {
 
 #[test]
 fn functions_and_operators_are_known() {
-    for (name, f) in Func::NAMES {
+    for (name, f) in Func::names() {
         assert!(!f.name().is_empty());
         let text = if matches!(f, Func::Pow) {
             format!("#1={name}[2,3]\n")

@@ -132,30 +132,14 @@ impl DialectSet {
     }
 }
 
-/// Declares [`Group`] from one row a group: the variant, its name for messages and
-/// documentation, and what it holds.
-macro_rules! groups {
-    ($($variant:ident $name:literal $doc:literal;)*) => {
-        /// The modal group of a code: codes of one group replace each other, and two of one group
-        /// in a block is an error. Named after the Fanuc 0i-M groups; LinuxCNC's groups map onto
-        /// them.
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-        pub enum Group {
-            $(#[doc = $doc] $variant,)*
-        }
-
-        impl Group {
-            /// The group's name for messages and documentation.
-            pub fn name(self) -> &'static str {
-                match self {
-                    $(Group::$variant => $name,)*
-                }
-            }
-        }
-    };
-}
-
-groups! {
+crate::ast::named_enum! {
+    /// The modal group of a code: codes of one group replace each other, and two of one group
+    /// in a block is an error. Named after the Fanuc 0i-M groups; LinuxCNC's groups map onto
+    /// them.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Group;
+    /// The group's name for messages and documentation.
+    fn name;
     NonModal    "one-shot (group 00)"                 "Group 00: one-shot codes (dwell, G10, G28, G53, G92 …).";
     Motion      "motion (group 01)"                   "Group 01: G00–G03 and other motions (in LinuxCNC also the canned cycles and G80).";
     Plane       "plane (group 02)"                    "Group 02: plane selection G17/G18/G19.";
@@ -195,24 +179,25 @@ impl Group {
     }
 }
 
-/// Whether a code stays in effect after its block.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Modality {
-    /// Stays in effect until another code of its group (常态 / 模态 / 模式).
-    Modal,
-    /// Effective only in its block (一次通过 / 單節有效).
-    OneShot,
+crate::ast::named_enum! {
+    /// Whether a code stays in effect after its block.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Modality;
+    /// The name `swarf explain` shows.
+    fn name;
+    Modal   "modal"    "Stays in effect until another code of its group (常态 / 模态 / 模式).";
+    OneShot "one-shot" "Effective only in its block (一次通过 / 單節有效).";
 }
 
-/// How completely the dialect's manual documents a code.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Documented {
-    /// Format and behaviour are documented.
-    Full,
-    /// Only in the manual's code list: the format is not documented.
-    ListOnly,
-    /// Mentioned in passing: neither format nor behaviour is documented.
-    Mentioned,
+crate::ast::named_enum! {
+    /// How completely the dialect's manual documents a code.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+    pub enum Documented;
+    /// The name `swarf explain --json` gives.
+    fn name;
+    Full      "full"      "Format and behaviour are documented.";
+    ListOnly  "list"      "Only in the manual's code list: the format is not documented.";
+    Mentioned "mentioned" "Mentioned in passing: neither format nor behaviour is documented.";
 }
 
 /// One meaning of one code, shared by the dialects in `dialects`.
@@ -278,9 +263,7 @@ fn index(dialect: Dialect) -> &'static Index {
         // its first Fanuc definition when it is a standard code.
         let reads_fanuc = FANUC_READING.contains(&dialect);
         let entries = CODES.iter().enumerate();
-        let own = entries
-            .clone()
-            .filter(|(_, d)| d.dialects.contains(dialect));
+        let own = (entries.clone()).filter(|(_, d)| d.dialects.contains(dialect));
         let fanuc = entries.filter(|(_, d)| {
             reads_fanuc && d.dialects.contains(Dialect::Fanuc) && is_fanuc_standard(d.code)
         });

@@ -52,7 +52,6 @@ registry! {
     "E-EXPR-BRACKET" Error "A `[` is not closed with `]`."
     "E-EXPR-DEPTH" Error "Brackets nested deeper than the control (or the parser's bound) allows."
     "E-G53-INCREMENTAL" Error "G53 under G91: the control refuses the block, which is not run."
-    "E-INTERNAL" Error "The interpreter lost track of the program's structure; the block is not run."
     "E-LINE-LENGTH" Error "A line too long to read in full: only its first bytes are read."
     "E-LOOP-NUMBER" Error "`DO` or `END` with a loop number other than 1 to 3."
     "E-MACRO-ALARM" Error "The program raised a macro alarm (`#3000`) and stops there."

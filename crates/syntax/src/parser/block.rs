@@ -491,7 +491,7 @@ impl LineReader<'_> {
         let is_expr = matches!(next, Some(b'#' | b'['))
             || (next.is_some_and(|c| c.is_ascii_alphabetic()) && {
                 let (run, _) = self.alpha_run(after_sign);
-                Func::NAMES.iter().any(|(n, _)| *n == run)
+                Func::names().any(|(n, _)| n == run)
             });
         if is_expr && (self.rules.macro_b || self.rules.o_words) {
             let (expr, end) = self.word_value(value_start, 0)?;

@@ -166,12 +166,8 @@ impl LineReader<'_> {
             Some(c) if c.is_ascii_digit() => self.primary(at, depth + 1)?,
             _ => {
                 let message = "`#` must be followed by a variable number, `[expression]` or `#`";
-                return Err(Fail::new(
-                    start,
-                    at.max(start + 1),
-                    "E-MACRO-SYNTAX",
-                    message,
-                ));
+                let end = at.max(start + 1);
+                return Err(Fail::new(start, end, "E-MACRO-SYNTAX", message));
             }
         };
         self.push(Expr::Var(index), start, end)
@@ -212,7 +208,7 @@ impl LineReader<'_> {
     /// A function call `SIN[…]`, `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
     fn call(&mut self, start: usize, depth: u32) -> PResult<ExprId> {
         let (name, name_end) = self.alpha_run(start);
-        let Some(&(_, func)) = Func::NAMES.iter().find(|(n, _)| *n == name) else {
+        let Some((_, func)) = Func::names().find(|(n, _)| *n == name) else {
             let name = excerpt(&name);
             let message = format!(
                 "`{name}` is not a function (SIN, COS, TAN, ASIN, ACOS, ATAN, SQRT, ABS, ROUND, FIX, FUP, LN, EXP, POW, BIN, BCD)"

@@ -3,7 +3,7 @@
 
 use super::MAX_LINE_BYTES;
 use super::number::{Decimal, scan_decimal, scan_sign, with_sign};
-use crate::{Block, Rules, Span, Word, WordForm};
+use crate::{Block, Program, Rules, Span, Word, WordForm};
 
 /// Reads a line of plain words (a letter, an optional sign, a decimal number of at most 15
 /// digits within the dialect's limit, blank-separated), optionally after a sequence number: the
@@ -72,41 +72,28 @@ pub(super) fn read_plain_line(
             pos += 1;
         }
     }
-    // Made by the iterator after the array has room for it, the block is written straight into
-    // the array (a `push` of a made block copies it there).
-    blocks.extend(std::iter::once_with(|| Block {
-        line: line_no,
-        number: number.and_then(Block::stored_number),
-        ..Block::default()
-    }));
-    let block = blocks.last_mut()?;
+    let mut words = smallvec::SmallVec::<[Word; 4]>::new();
     let mut scan = crate::checks::PlainScan::default();
     while let Some(&b) = bytes.get(pos) {
         let start = pos;
         let letter = PLAIN_LETTERS[usize::from(b)];
         if letter == 0 {
-            if ends(pos) {
+            if b == b'\n' || b == b'\r' {
                 break;
             }
-            blocks.pop();
             return None;
         }
         let (negative, at) = scan_sign(bytes, pos + 1);
-        let number = scan_decimal(bytes, at);
-        let Some(Decimal {
+        let Decimal {
             end,
             value,
             has_point,
             ..
-        }) = number.filter(|d| d.digits <= max_digits && bytes.get(d.end) != Some(&b'='))
-        else {
-            blocks.pop();
-            return None;
-        };
+        } = scan_decimal(bytes, at).filter(|d| d.digits <= max_digits)?;
         pos = end;
         let value = with_sign(value, negative);
         scan.word(letter, value);
-        block.words.push(Word {
+        words.push(Word {
             letter,
             value,
             has_point,
@@ -123,15 +110,82 @@ pub(super) fn read_plain_line(
         }
     }
     if pos > MAX_LINE_BYTES {
-        blocks.pop();
         return None;
     }
-    block.span = Span {
-        start: base + first as u32,
-        end: base + last as u32,
-    };
+    blocks.push(Block {
+        span: Span {
+            start: base + first as u32,
+            end: base + last as u32,
+        },
+        line: line_no,
+        number: number.and_then(Block::stored_number),
+        words,
+        extras: None,
+    });
+    let block = blocks.last_mut()?;
     checker.check_scanned(block, &scan);
     Some((true, pos))
+}
+
+/// What [`read_plain_lines`] read: bytes and lines, whether a line gave a block, and whether
+/// the last line read ends the text (it has no line ending).
+#[derive(Debug, Default)]
+pub(super) struct PlainLines {
+    pub(super) bytes: usize,
+    pub(super) lines: usize,
+    pub(super) block: bool,
+    pub(super) last: bool,
+}
+
+/// Reads the lines at the start of `bytes` (the text from byte `base` on, whole lines; the
+/// first is 0-based line `line_no`) with [`read_plain_line`] while they are plain, up to `most`
+/// lines, the one that ends at or past byte `until` and the end of `bytes`, and indexes them as
+/// it goes: the start of each line after one read goes to the program's line table. Not
+/// inlined: the loop over the lines, where the parse spends its time, is faster on its own.
+#[inline(never)]
+pub(super) fn read_plain_lines(
+    bytes: &[u8],
+    base: usize,
+    line_no: usize,
+    most: usize,
+    until: usize,
+    program: &mut Program,
+    checker: &mut crate::checks::Checker,
+) -> PlainLines {
+    let rules = program.dialect.rules();
+    let mut read = PlainLines::default();
+    while read.lines < most {
+        let onward = bytes.get(read.bytes..).unwrap_or_default();
+        let line = u32::try_from(line_no + read.lines).unwrap_or(u32::MAX);
+        let blocks = &mut program.blocks;
+        let Some((block, len)) =
+            read_plain_line(onward, base + read.bytes, line, rules, blocks, checker)
+        else {
+            break;
+        };
+        read.lines += 1;
+        read.block |= block;
+        // The line ends at a `\n`, a `\r\n` or a `\r`, or else at the end of the text.
+        let ending = match onward.get(len..) {
+            Some([b'\r', b'\n', ..]) => 2,
+            Some([_, ..]) => 1,
+            _ => 0,
+        };
+        read.bytes += len + ending;
+        read.last = ending == 0;
+        let start = base + read.bytes;
+        if read.last {
+            break;
+        }
+        program
+            .lines
+            .starts
+            .push(u32::try_from(start).unwrap_or(u32::MAX));
+        if start >= until || read.bytes == bytes.len() {
+            break;
+        }
+    }
+    read
 }
 
 /// For each byte, the address letter (uppercase) of a word of a plain line that it starts, or 0:
@@ -168,11 +222,24 @@ mod tests {
         run.finish()
     }
 
+    /// `text` read a few lines a step, its lines indexed first.
+    fn parse_indexed(text: &str, dialect: Dialect) -> Program {
+        let mut run = ParseRun::new(text, dialect);
+        while !run.step(text, 3) {}
+        run.finish()
+    }
+
     /// The short reader of plain lines gives what the general reader gives: the same blocks
-    /// (values to the bit) and the same diagnostics.
+    /// (values to the bit) and the same diagnostics, whether the lines are indexed as they are
+    /// read (runs of plain lines read at once) or first.
     fn assert_same_as_general(text: &str, dialect: Dialect) {
-        let fast = parse(text, dialect);
         let general = parse_general(text, dialect);
+        let indexed = parse_indexed(text, dialect);
+        assert!(
+            indexed == general && same_values(&indexed, &general),
+            "{dialect:?}: {text:?}"
+        );
+        let fast = parse(text, dialect);
         assert_eq!(
             fast.blocks.len(),
             general.blocks.len(),

@@ -2,7 +2,7 @@
 //! each line read by the short reader of plain lines or by the general one.
 
 use super::block::LineReader;
-use super::plain::read_plain_line;
+use super::plain::{PlainLines, read_plain_line, read_plain_lines};
 use super::{MAX_LINE_BYTES, MAX_PARSED_BYTES, is_blank};
 use crate::{Block, Diagnostic, Dialect, ExprNode, LineIndex, LineSource, Program, Span};
 
@@ -88,6 +88,27 @@ impl Held {
         }
         self.block_bytes + self.expr_bytes + self.other_bytes + self.table
     }
+
+    /// Counts what was read up to `offset` where a count is due there (or `now`), and reports
+    /// a program of `len` bytes that holds more than the most from there on: whether it does.
+    fn count_due(
+        &mut self,
+        program: &mut Program,
+        checker: &crate::checks::Checker,
+        offset: usize,
+        len: usize,
+        now: bool,
+    ) -> bool {
+        if offset < self.count_at && !now {
+            return false;
+        }
+        self.count_at = offset.saturating_add(Held::COUNT_EVERY);
+        let over = self.count(program, checker) > self.max;
+        if over {
+            too_large(program, len, offset, self.max);
+        }
+        over
+    }
 }
 
 impl ParseRun {
@@ -134,6 +155,24 @@ impl ParseRun {
         run
     }
 
+    /// Where the parse has read to: the next line, its byte offset and the tape marks met, so
+    /// that [`ParseRun::resume`] reads the same lines again later without the ones before.
+    pub fn read_point(&self) -> ReadPoint {
+        ReadPoint {
+            offset: self.offset,
+            line_no: self.line_no,
+            tape: self.tape,
+        }
+    }
+
+    /// Starts a parse at `at` (a [`ParseRun::read_point`] of a parse of the same text), its
+    /// lines indexed as they are read; the blocks read are those the first parse read there.
+    pub fn resume(at: ReadPoint, dialect: Dialect) -> Self {
+        let mut run = ParseRun::with_lines(LineIndex::new(""), dialect);
+        (run.offset, run.line_no, run.tape) = (at.offset, at.line_no, at.tape);
+        run
+    }
+
     /// Lowers the most the parsed program may hold (bytes, see [`MAX_PARSED_BYTES`]) before
     /// anything is read: a reader with less memory, or a test.
     pub fn set_max_bytes(&mut self, max: usize) {
@@ -172,63 +211,88 @@ impl ParseRun {
         let mut tape = self.tape;
         let mut done = self.done;
         let rules = program.dialect.rules();
+        let text_len = source.len();
         while !done && next < stop {
             // Where the next line starts, where the text is indexed; else the line is read from
             // the rest of the text and its end found as it is read.
             let next_start = (next + 1 < program.lines.line_count())
                 .then(|| program.lines.line_start(next + 1) as usize);
-            let line = match next_start {
+            // The line alone where the text is indexed, else the text from it on as far as the
+            // source holds it (whole lines): its lines are read in turn without asking again.
+            let text = match next_start {
                 Some(start) => source.line(offset, start - 1),
                 None => source.rest(offset),
             };
-            let onward = line.as_bytes();
-            let line_no = u32::try_from(next).unwrap_or(u32::MAX);
-            let plain = self.plain_lines.then(|| {
-                let (blocks, checker) = (&mut program.blocks, &mut self.checker);
-                read_plain_line(onward, offset, line_no, rules, blocks, checker)
-            });
-            // Whether the line is blank and whether it is a `%` line (for the tape marks), and
-            // its length without its ending.
-            let (blank, percent, len) = if let Some((block, len)) = plain.flatten() {
-                (!block, false, len)
-            } else {
-                let len = onward.iter().position(|&b| b == b'\n' || b == b'\r');
-                let len = len.unwrap_or(onward.len());
-                let raw = line.get(..len).unwrap_or_default();
-                let (blank, percent) =
-                    read_general_line(program, &mut self.checker, raw, offset, line_no);
-                (blank, percent, len)
-            };
-            // The line ends at a `\n`, a `\r\n` or a `\r`, or else at the end of the text.
-            let ending = match onward.get(len..) {
-                Some([b'\r', b'\n', ..]) => 2,
-                Some([_, ..]) => 1,
-                _ => 0,
-            };
-            let last = next_start.is_none() && ending == 0;
-            offset = next_start.unwrap_or(offset + len + ending);
-            next += 1;
-            if next_start.is_none() && !last {
-                let start = u32::try_from(offset).unwrap_or(u32::MAX);
-                program.lines.starts.push(start);
+            let text_at = offset;
+            let mut closed;
+            loop {
+                let from = offset - text_at;
+                let onward = text.as_bytes().get(from..).unwrap_or_default();
+                // Where the lines are indexed as read, a run of plain lines is read at once.
+                let run = if next_start.is_none() && self.plain_lines {
+                    let (lines, until) = (stop - next, self.held.count_at);
+                    let checker = &mut self.checker;
+                    read_plain_lines(onward, offset, next, lines, until, program, checker)
+                } else {
+                    PlainLines::default()
+                };
+                let last;
+                if run.lines > 0 {
+                    (offset, next, last) = (offset + run.bytes, next + run.lines, run.last);
+                    (tape, closed) = tape.after(!run.block, false);
+                } else {
+                    let line_no = u32::try_from(next).unwrap_or(u32::MAX);
+                    let plain = (self.plain_lines && next_start.is_some()).then(|| {
+                        let (blocks, checker) = (&mut program.blocks, &mut self.checker);
+                        read_plain_line(onward, offset, line_no, rules, blocks, checker)
+                    });
+                    // Whether the line is blank and whether it is a `%` line (for the tape
+                    // marks), and its length without its ending.
+                    let (blank, percent, len) = if let Some((block, len)) = plain.flatten() {
+                        (!block, false, len)
+                    } else {
+                        let len = onward.iter().position(|&b| b == b'\n' || b == b'\r');
+                        let len = len.unwrap_or(onward.len());
+                        let raw = text.get(from..from + len).unwrap_or_default();
+                        let (blank, percent) =
+                            read_general_line(program, &mut self.checker, raw, offset, line_no);
+                        (blank, percent, len)
+                    };
+                    // The line ends at a `\n`, a `\r\n` or a `\r`, or else at the end of the text.
+                    let ending = match onward.get(len..) {
+                        Some([b'\r', b'\n', ..]) => 2,
+                        Some([_, ..]) => 1,
+                        _ => 0,
+                    };
+                    last = next_start.is_none() && ending == 0;
+                    offset = next_start.unwrap_or(offset + len + ending);
+                    next += 1;
+                    if next_start.is_none() && !last {
+                        let start = u32::try_from(offset).unwrap_or(u32::MAX);
+                        program.lines.starts.push(start);
+                    }
+                    (tape, closed) = tape.after(blank, percent);
+                }
+                if closed {
+                    break;
+                }
+                done = last;
+                let now = done || next == most;
+                let held = &mut self.held;
+                done |= held.count_due(program, &self.checker, offset, text_len, now);
+                if done || next >= stop || next_start.is_some() || offset - text_at >= text.len() {
+                    break;
+                }
             }
-            let closed;
-            (tape, closed) = tape.after(blank, percent);
             if closed {
                 ignore_after_tape_end(program, source, offset);
-            }
-            done = closed || last;
-            let held = &mut self.held;
-            if offset >= held.count_at || done || next == most {
-                held.count_at = offset.saturating_add(Held::COUNT_EVERY);
-                if held.count(program, &self.checker) > held.max {
-                    too_large(program, source.len(), offset, held.max);
-                    done = true;
-                }
+                let held = &mut self.held;
+                held.count_due(program, &self.checker, offset, text_len, true);
+                done = true;
             }
         }
         if !done && next == most && program.lines.line_count() > most {
-            too_large(program, source.len(), offset, self.held.max);
+            too_large(program, text_len, offset, self.held.max);
             done = true;
         }
         // A run stopped before the end of a text indexed as it is read indexes the rest.
@@ -269,6 +333,14 @@ impl ParseRun {
     }
 }
 
+/// Where a [`ParseRun`] has read to (see [`ParseRun::read_point`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReadPoint {
+    offset: usize,
+    line_no: usize,
+    tape: Tape,
+}
+
 /// Where the reader is with respect to `%` tape marks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Tape {
@@ -295,7 +367,9 @@ impl Tape {
 }
 
 /// Reads `line` (without its ending, at byte `offset`) with the general reader: whether it
-/// is blank and whether it is a `%` line, for the tape marks.
+/// is blank and whether it is a `%` line, for the tape marks. Not inlined: the line loop it
+/// is called from reads the plain lines, and is faster without it.
+#[inline(never)]
 fn read_general_line(
     program: &mut Program,
     checker: &mut crate::checks::Checker,

@@ -154,13 +154,11 @@ impl LineReader<'_> {
         if let Ok(label @ 1..=3) = rest[..n].parse::<u8>() {
             return Ok((label, start + n));
         }
-        let message = "`DO` and `END` take a loop number from 1 to 3";
-        Err(Fail::new(
-            keyword,
+        let (message, end) = (
+            "`DO` and `END` take a loop number from 1 to 3",
             (start + n).max(at),
-            "E-LOOP-NUMBER",
-            message,
-        ))
+        );
+        Err(Fail::new(keyword, end, "E-LOOP-NUMBER", message))
     }
 
     /// `#i = expr` (Syntec also `:=`), starting at the `#`.
