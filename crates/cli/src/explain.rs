@@ -5,7 +5,7 @@ use std::io::Write;
 
 use anyhow::Result;
 use serde_json::json;
-use swarf_syntax::codes::{self, CodeDef, Documented, Modality};
+use swarf_syntax::codes::{self, AddressDef, CodeDef, Documented, Modality};
 use swarf_syntax::{Code, DIAGNOSTICS, DiagnosticDef, Dialect};
 
 use crate::{EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
@@ -134,11 +134,8 @@ fn print_def(d: &CodeDef, out: &mut dyn Write) -> Result<()> {
     writeln!(out, "  format:    {}", d.format)?;
     let words: Vec<String> = d.words.chars().map(String::from).collect();
     writeln!(out, "  words:     {}", words.join(" "))?;
-    let modal = match d.modality {
-        Modality::Modal => "modal",
-        Modality::OneShot => "one-shot",
-    };
-    writeln!(out, "  group:     {}, {modal}", d.group.name())?;
+    let (group, modal) = (d.group.name(), d.modality.name());
+    writeln!(out, "  group:     {group}, {modal}")?;
     if !d.power_on.is_empty() {
         writeln!(out, "  power-on:  {}", d.power_on.labels())?;
     }
@@ -168,11 +165,7 @@ fn def_json(d: &CodeDef) -> serde_json::Value {
         "group": d.group.name(),
         "modal": d.modality == Modality::Modal,
         "power_on": d.power_on.iter().map(Dialect::name).collect::<Vec<_>>(),
-        "documented": match d.documented {
-            Documented::Full => "full",
-            Documented::ListOnly => "list",
-            Documented::Mentioned => "mentioned",
-        },
+        "documented": d.documented.name(),
         "summary": d.summary,
         "section": d.section,
     })
@@ -187,16 +180,14 @@ fn address(letter: u8, dialect: Option<Dialect>, json: bool, out: &mut dyn Write
         }
     }
     if json {
-        let items: Vec<_> = seen
-            .iter()
-            .map(|a| {
-                json!({
-                    "address": char::from(a.letter).to_string(),
-                    "dialects": a.dialects.iter().map(Dialect::name).collect::<Vec<_>>(),
-                    "meaning": a.meaning,
-                })
+        let item = |a: &&AddressDef| {
+            json!({
+                "address": char::from(a.letter).to_string(),
+                "dialects": a.dialects.iter().map(Dialect::name).collect::<Vec<_>>(),
+                "meaning": a.meaning,
             })
-            .collect();
+        };
+        let items: Vec<_> = seen.iter().map(item).collect();
         writeln!(out, "{}", serde_json::to_string_pretty(&items)?)?;
     } else {
         for a in &seen {

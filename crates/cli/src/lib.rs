@@ -14,10 +14,10 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use serde_json::json;
 use swarf_interp::{Canon, Setup, Sink, Source};
-use swarf_stock::{StockRun, StockSetup};
+use swarf_stock::{Finding, StockRun, StockSetup};
 use swarf_syntax::{
-    Decoded, Diagnostic, Dialect, LineIndex, LineSource, LinkedSource, Lookup, MAX_FILE_BYTES,
-    Program, Severity, Span, decode_owned, parse,
+    Decoded, Diagnostic, Dialect, LineIndex, LineSource, LinkedFile, LinkedSource, Lookup,
+    MAX_FILE_BYTES, Program, Severity, Span, decode_owned, parse,
 };
 use swarf_toolpath::Toolpath;
 
@@ -140,14 +140,9 @@ fn parse_args(
     Cli::try_parse_from(args)
         .map(|cli| cli.command)
         .map_err(|e| {
-            let text = e.render().to_string();
-            if e.use_stderr() {
-                let _ = err.write_all(text.as_bytes());
-                EXIT_USAGE
-            } else {
-                let _ = out.write_all(text.as_bytes());
-                EXIT_OK
-            }
+            let to: &mut dyn Write = if e.use_stderr() { err } else { out };
+            let _ = to.write_all(e.render().to_string().as_bytes());
+            if e.use_stderr() { EXIT_USAGE } else { EXIT_OK }
         })
 }
 
@@ -250,26 +245,18 @@ fn link_external(
             Err(why) => Lookup::Refused(why),
         }
     });
-    let warnings = changed
-        .iter()
-        .filter_map(|name| program.linked.iter().find(|l| l.name == *name))
-        .map(|l| {
-            changed_warning(
-                &l.name,
-                Span::new(l.first_byte as usize, l.first_byte as usize),
-            )
-        })
-        .collect();
+    let linked_file = |name: &String| program.linked.iter().find(|l| l.name == *name);
+    let found = changed.iter().filter_map(linked_file);
+    let at = |l: &LinkedFile| Span::new(l.first_byte as usize, l.first_byte as usize);
+    let warnings = found.map(|l| changed_warning(&l.name, at(l))).collect();
     (linked, warnings)
 }
 
 /// The warning that file `name` changed while it was read, at `span`.
-fn changed_warning(name: &str, span: Span) -> Diagnostic {
-    Diagnostic::warning(
-        span,
-        "W-FILE-CHANGED",
-        format!("{name} changed while it was read: what was read may be part old, part new"),
-    )
+fn changed_warning(name: impl std::fmt::Display, span: Span) -> Diagnostic {
+    let message =
+        format!("{name} changed while it was read: what was read may be part old, part new");
+    Diagnostic::warning(span, "W-FILE-CHANGED", message)
 }
 
 /// The bytes of the file at `path`, refused past `max` bytes before more is read (a file that
@@ -278,12 +265,8 @@ fn changed_warning(name: &str, span: Span) -> Diagnostic {
 fn read_file(path: &Path, max: u64) -> Result<(Vec<u8>, bool), String> {
     let shown = path.display();
     let cannot = |e: std::io::Error| format!("cannot read {shown}: {e}");
-    let too_large = || {
-        format!(
-            "{shown} is larger than {} MiB, the most read (--max-file-mb)",
-            max >> 20
-        )
-    };
+    let mib = max >> 20;
+    let too_large = || format!("{shown} is larger than {mib} MiB, the most read (--max-file-mb)");
     let mut file = std::fs::File::open(path).map_err(cannot)?;
     let before = file.metadata().map_err(cannot)?;
     if before.is_dir() {
@@ -293,19 +276,22 @@ fn read_file(path: &Path, max: u64) -> Result<(Vec<u8>, bool), String> {
         return Err(too_large());
     }
     let mut bytes = Vec::with_capacity(usize::try_from(before.len()).unwrap_or(0));
-    (&mut file)
-        .take(max.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(cannot)?;
+    let mut limited = (&mut file).take(max.saturating_add(1));
+    limited.read_to_end(&mut bytes).map_err(cannot)?;
     if bytes.len() as u64 > max {
         return Err(too_large());
     }
-    let after = std::fs::metadata(path).ok();
-    let same = !before.is_file()
-        || (bytes.len() as u64 == before.len()
-            && after.as_ref().map(std::fs::Metadata::len) == Some(before.len())
-            && after.and_then(|a| a.modified().ok()) == before.modified().ok());
+    let same =
+        !before.is_file() || (bytes.len() as u64 == before.len() && unchanged(path, &before));
     Ok((bytes, same))
+}
+
+/// Whether the file at `path` still has `before`'s length and time of change.
+fn unchanged(path: &Path, before: &std::fs::Metadata) -> bool {
+    let same = |m: std::fs::Metadata| {
+        (m.len(), m.modified().ok()) == (before.len(), before.modified().ok())
+    };
+    std::fs::metadata(path).is_ok_and(same)
 }
 
 /// The setup named by `--setup`, or the default one, with its stock and tools; a setup that
@@ -317,15 +303,8 @@ fn read_setup(opts: &RunOptions, err: &mut dyn Write) -> anyhow::Result<(Setup, 
     let (bytes, same) =
         read_file(p, opts.max_file_bytes()).map_err(|e| anyhow::anyhow!("setup: {e}"))?;
     if !same {
-        let w = changed_warning(&p.display().to_string(), Span::default());
-        writeln!(
-            err,
-            "{}: {}[{}]: {}",
-            p.display(),
-            w.severity,
-            w.code,
-            w.message
-        )?;
+        let (path, w) = (p.display(), changed_warning(p.display(), Span::default()));
+        writeln!(err, "{path}: {}[{}]: {}", w.severity, w.code, w.message)?;
     }
     let text = String::from_utf8(bytes)
         .map_err(|e| anyhow::anyhow!("cannot read setup {}: {e}", p.display()))?;
@@ -362,10 +341,7 @@ fn read_decoded(path: &Path, opts: &RunOptions) -> anyhow::Result<Decoded> {
     let (bytes, same) = read_file(path, opts.max_file_bytes()).map_err(anyhow::Error::msg)?;
     let mut decoded = decode_owned(bytes);
     if !same {
-        let name = path.display().to_string();
-        decoded
-            .diagnostics
-            .push(changed_warning(&name, Span::default()));
+        (decoded.diagnostics).push(changed_warning(path.display(), Span::default()));
     }
     Ok(decoded)
 }
@@ -373,13 +349,8 @@ fn read_decoded(path: &Path, opts: &RunOptions) -> anyhow::Result<Decoded> {
 /// Parses a decoded program file and links the programs it calls from files beside it.
 fn load_decoded(path: &Path, mut decoded: Decoded, opts: &RunOptions) -> Loaded {
     let mut program = parse(&decoded.text, opts.dialect);
-    let (linked, warnings) = link_external(
-        &mut program,
-        path,
-        decoded.text.len(),
-        opts.dialect,
-        opts.max_file_bytes(),
-    );
+    let (len, max) = (decoded.text.len(), opts.max_file_bytes());
+    let (linked, warnings) = link_external(&mut program, path, len, opts.dialect, max);
     decoded.diagnostics.extend(warnings);
     Loaded::new(path, decoded.diagnostics, decoded.text, program, linked)
 }
@@ -483,9 +454,8 @@ fn stream_run(
     let Some((program, blocks, run)) = ran else {
         return Ok(Some(Read::Whole(load(file, opts)?)));
     };
-    let after = std::fs::metadata(file).map(|m| (m.len(), m.modified().ok()));
-    let changed = (after.ok() != Some(lines.opened))
-        .then(|| changed_warning(&file.display().to_string(), Span::default()));
+    let changed =
+        (!unchanged(file, &lines.opened)).then(|| changed_warning(file.display(), Span::default()));
     let decoding = changed.into_iter().collect();
     let mut loaded = Loaded::new(file, decoding, String::new(), program, Vec::new());
     let diags = loaded.all_diagnostics(run);
@@ -500,8 +470,8 @@ fn stream_run(
 /// which ends at a line end (or the file's end).
 struct FileLines {
     reader: std::io::BufReader<std::fs::File>,
-    /// The file's length and time of change when it was opened.
-    opened: (u64, Option<std::time::SystemTime>),
+    /// The file's metadata when it was opened.
+    opened: std::fs::Metadata,
     /// The piece last read, from byte `at` on.
     text: String,
     at: usize,
@@ -517,7 +487,7 @@ impl FileLines {
         let meta = file.metadata().ok().filter(fits)?;
         Some(FileLines {
             reader: std::io::BufReader::new(file),
-            opened: (meta.len(), meta.modified().ok()),
+            opened: meta,
             text: String::new(),
             at: 0,
             failed: false,
@@ -527,7 +497,7 @@ impl FileLines {
 
 impl LineSource for FileLines {
     fn len(&self) -> usize {
-        usize::try_from(self.opened.0).unwrap_or(usize::MAX)
+        usize::try_from(self.opened.len()).unwrap_or(usize::MAX)
     }
 
     fn line(&mut self, start: usize, end: usize) -> &str {
@@ -535,9 +505,7 @@ impl LineSource for FileLines {
             self.failed |= self.reader.read_to_string(&mut self.text).is_err();
         }
         let (from, to) = (start.saturating_sub(self.at), end.saturating_sub(self.at));
-        self.text
-            .get(from..to.min(self.text.len()))
-            .unwrap_or_default()
+        (self.text.get(from..to.min(self.text.len()))).unwrap_or_default()
     }
 
     fn rest(&mut self, start: usize) -> &str {
@@ -582,12 +550,6 @@ impl Loaded {
         }
     }
 
-    /// Interprets the program into `sink`; returns the run's diagnostics (see
-    /// [`Loaded::all_diagnostics`]).
-    fn interpret(&self, setup: &Setup, sink: &mut dyn Sink) -> Vec<Diagnostic> {
-        swarf_interp::run(&self.program, setup.clone(), sink)
-    }
-
     /// The reading diagnostics (moved out) and the run's `run`, sorted by position.
     fn all_diagnostics(&mut self, run: Vec<Diagnostic>) -> Vec<Diagnostic> {
         merged(std::mem::take(&mut self.diagnostics), run)
@@ -604,10 +566,8 @@ impl Loaded {
         match linked {
             Some((at, l)) => {
                 let span = swarf_stock::line_span(&l.lines, line0 - at.first_line + 1);
-                Span::new(
-                    (at.first_byte + span.start) as usize,
-                    (at.first_byte + span.end) as usize,
-                )
+                let first = at.first_byte as usize;
+                Span::new(first + span.start as usize, first + span.end as usize)
             }
             None => swarf_stock::line_span(&self.program.lines, line),
         }
@@ -674,7 +634,7 @@ fn check(
             Read::Whole(mut loaded) => {
                 path = Toolpath::for_machine(glam::DVec3::ZERO, &setup.machine);
                 let sink: &mut dyn Sink = if cuts { &mut path } else { &mut null };
-                let run = loaded.interpret(&setup, sink);
+                let run = swarf_interp::run(&loaded.program, setup.clone(), sink);
                 let diags = loaded.all_diagnostics(run);
                 (loaded, diags)
             }
@@ -682,10 +642,8 @@ fn check(
         if let Some((_, more)) = cut_stock(&path, &stock, cut, &loaded) {
             diags = merged(diags, more);
         }
-        let s = loaded.print(&diags, err)?;
-        if status == EXIT_OK {
-            status = s;
-        }
+        // The worst status of all: a usage error, then errors in a program.
+        status = status.max(loaded.print(&diags, err)?);
     }
     Ok(status)
 }
@@ -709,6 +667,19 @@ struct JsonLines<'a> {
     skip: u64,
 }
 
+impl<'a> JsonLines<'a> {
+    fn new(out: &'a mut dyn Write, program: Option<&'a Program>, skip: u64) -> Self {
+        let (error, written) = (None, 0);
+        JsonLines {
+            out,
+            error,
+            program,
+            written,
+            skip,
+        }
+    }
+}
+
 impl Sink for JsonLines<'_> {
     fn emit(&mut self, source: Source, event: &Canon) {
         if self.skip > 0 {
@@ -718,10 +689,7 @@ impl Sink for JsonLines<'_> {
         self.written += 1;
         let mut value = event.to_json(source);
         let line0 = source.line.saturating_sub(1);
-        if let Some(file) = self
-            .program
-            .and_then(|p| p.linked.get(p.linked_at_line(line0)?))
-        {
+        if let Some(file) = (self.program).and_then(|p| p.linked.get(p.linked_at_line(line0)?)) {
             value["file"] = json!(file.name);
             value["line"] = json!(line0 - file.first_line + 1);
         }
@@ -742,27 +710,15 @@ fn canon(
     let (setup, _) = read_setup(opts, err)?;
     let decoded = read_decoded(file, opts)?;
     let mut buffered = std::io::BufWriter::new(out);
-    let mut pieces = JsonLines {
-        program: None,
-        out: &mut buffered,
-        error: None,
-        written: 0,
-        skip: 0,
-    };
+    let mut pieces = JsonLines::new(&mut buffered, None, 0);
     let read = read_run(file, decoded, opts, &setup, false, &mut pieces);
     let (written, mut error) = (pieces.written, pieces.error.take());
     let (loaded, diags) = match read {
         Read::Ran(loaded, _, diags) => (loaded, diags),
         Read::Whole(mut loaded) => {
             // The whole run makes the same first events as the run tried piece by piece.
-            let mut sink = JsonLines {
-                program: Some(&loaded.program),
-                out: &mut buffered,
-                error: None,
-                written: 0,
-                skip: written,
-            };
-            let run = loaded.interpret(&setup, &mut sink);
+            let mut sink = JsonLines::new(&mut buffered, Some(&loaded.program), written);
+            let run = swarf_interp::run(&loaded.program, setup.clone(), &mut sink);
             error = error.or(sink.error);
             let diags = loaded.all_diagnostics(run);
             (loaded, diags)
@@ -812,7 +768,7 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
         Read::Ran(loaded, blocks, diags) => (loaded, blocks, diags),
         Read::Whole(mut loaded) => {
             path = new_path(loaded.program.blocks.len());
-            let run = loaded.interpret(&setup, &mut path);
+            let run = swarf_interp::run(&loaded.program, setup.clone(), &mut path);
             let diags = loaded.all_diagnostics(run);
             let blocks = loaded.program.blocks.len();
             (loaded, blocks, diags)
@@ -824,27 +780,14 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
     if let Some((cut, more)) = cut_stock(&path, &stock, cut, &loaded) {
         diags = merged(diags, more);
         let findings = cut.findings();
-        let rapids = findings
-            .iter()
-            .filter(|f| matches!(f, swarf_stock::Finding::RapidIntoStock { .. }))
-            .count();
-        cut_figures = Some((
-            cut.field().removed_volume(),
-            rapids,
-            findings.len() - rapids,
-        ));
+        let rapid = |f: &&Finding| matches!(f, Finding::RapidIntoStock { .. });
+        let rapids = findings.iter().filter(rapid).count();
+        let (removed, shanks) = (cut.field().removed_volume(), findings.len() - rapids);
+        cut_figures = Some((removed, rapids, shanks));
     }
-    let errors = diags
-        .iter()
-        .filter(|d| d.severity == Severity::Error)
-        .count();
-    let warnings = diags
-        .iter()
-        .filter(|d| d.severity == Severity::Warning)
-        .count();
-    let bounds = path
-        .bounds()
-        .map(|b| json!({"min": b.min.to_array(), "max": b.max.to_array()}));
+    let count = |s: Severity| diags.iter().filter(|d| d.severity == s).count();
+    let (errors, warnings) = (count(Severity::Error), count(Severity::Warning));
+    let bounds = (path.bounds()).map(|b| json!({"min": b.min.to_array(), "max": b.max.to_array()}));
     let report = json!({
         "file": loaded.path,
         "dialect": opts.dialect.name(),
@@ -874,56 +817,37 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
     if as_json {
         writeln!(out, "{report:#}")?;
     } else {
-        writeln!(out, "file            {}", loaded.path)?;
-        writeln!(out, "dialect         {}", opts.dialect.name())?;
-        writeln!(out, "blocks          {blocks}")?;
-        writeln!(out, "motions         {}", path.len())?;
-        match path.bounds() {
-            Some(b) => writeln!(
-                out,
-                "bounds          X {:.3}..{:.3}  Y {:.3}..{:.3}  Z {:.3}..{:.3} mm",
-                b.min.x, b.max.x, b.min.y, b.max.y, b.min.z, b.max.z
-            )?,
-            None => writeln!(out, "bounds          (no motion)")?,
-        }
-        writeln!(out, "rapid length    {:.3} mm", path.rapid_length_mm())?;
-        writeln!(out, "feed length     {:.3} mm", path.feed_length_mm())?;
-        writeln!(
-            out,
-            "estimated time  {}",
-            format_secs(path.estimated_secs())
-        )?;
+        let mut row = |label: &str, value: String| writeln!(out, "{label:<16}{value}");
+        row("file", loaded.path.clone())?;
+        row("dialect", opts.dialect.name().to_string())?;
+        row("blocks", blocks.to_string())?;
+        row("motions", path.len().to_string())?;
+        let bounds = path.bounds().map_or("(no motion)".into(), |b| {
+            let ([x0, y0, z0], [x1, y1, z1]) = (b.min.to_array(), b.max.to_array());
+            format!("X {x0:.3}..{x1:.3}  Y {y0:.3}..{y1:.3}  Z {z0:.3}..{z1:.3} mm")
+        });
+        row("bounds", bounds)?;
+        row("rapid length", format!("{:.3} mm", path.rapid_length_mm()))?;
+        row("feed length", format!("{:.3} mm", path.feed_length_mm()))?;
+        row("estimated time", format_secs(path.estimated_secs()))?;
         let tools: Vec<String> = path.tools().iter().map(|t| format!("T{t}")).collect();
-        writeln!(
-            out,
-            "tools           {}",
-            if tools.is_empty() {
-                "(none)".to_string()
-            } else {
-                tools.join(" ")
-            }
-        )?;
-        let holes: Vec<String> = path
-            .holes_per_tool()
-            .iter()
+        let none = tools.is_empty().then(|| "(none)".to_string());
+        row("tools", none.unwrap_or_else(|| tools.join(" ")))?;
+        let holes: Vec<String> = (path.holes_per_tool().iter())
             .map(|(tool, n)| format!("T{tool}: {n}"))
             .collect();
         if !holes.is_empty() {
-            writeln!(
-                out,
-                "holes           {} ({})",
-                path.holes().len(),
-                holes.join(", ")
-            )?;
+            let n = path.holes().len();
+            row("holes", format!("{n} ({})", holes.join(", ")))?;
         }
         if let Some((removed, rapids, shanks)) = cut_figures {
-            writeln!(
-                out,
-                "stock           {removed:.3} mm³ removed, {rapids} rapids into it, {shanks} shank cuts"
-            )?;
+            let cut =
+                format!("{removed:.3} mm³ removed, {rapids} rapids into it, {shanks} shank cuts");
+            row("stock", cut)?;
         }
-        writeln!(out, "diagnostics     {errors} errors, {warnings} warnings")?;
-        writeln!(out, "interpretation  {interp_ms:.1} ms")?;
+        let counts = format!("{errors} errors, {warnings} warnings");
+        row("diagnostics", counts)?;
+        row("interpretation", format!("{interp_ms:.1} ms"))?;
     }
     out.flush()?;
     Ok(loaded.print(&diags, err)?)

@@ -78,7 +78,7 @@ pub(crate) fn render(args: &RenderArgs, out: &mut dyn Write, err: &mut dyn Write
     let mut loaded = super::load(&args.file, &args.opts)?;
     let mut path = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
     path.reserve(loaded.program.blocks.len());
-    let run = loaded.interpret(&setup, &mut path);
+    let run = swarf_interp::run(&loaded.program, setup.clone(), &mut path);
     let mut diags = loaded.all_diagnostics(run);
     let cut = super::cut_stock(&path, &stock, args.stock, &loaded).map(|(cut, more)| {
         diags = super::merged(std::mem::take(&mut diags), more);
@@ -126,22 +126,14 @@ pub(crate) fn render(args: &RenderArgs, out: &mut dyn Write, err: &mut dyn Write
     .scaled((height as f32 / 768.0).clamp(1.0, 4.0));
 
     let gpu = pollster::block_on(HeadlessGpu::new())?;
-    let pixels = gpu.render_rgba8(
-        surface.as_ref(),
-        points,
-        &reference,
-        &params,
-        args.size,
-        BACKGROUND,
-    )?;
+    let (stock, size) = (surface.as_ref(), args.size);
+    let pixels = gpu.render_rgba8(stock, points, &reference, &params, size, BACKGROUND)?;
     write_png(&args.output, width, height, &pixels)?;
+    let (shown, segments, gpu) = (args.output.display(), path.len(), gpu.info);
+    let (name, backend) = (gpu.name, gpu.backend);
     writeln!(
         out,
-        "{}: {width}x{height}, {} segments ({} on {:?})",
-        args.output.display(),
-        path.len(),
-        gpu.info.name,
-        gpu.info.backend
+        "{shown}: {width}x{height}, {segments} segments ({name} on {backend:?})"
     )?;
     Ok(status)
 }
