@@ -4,7 +4,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use swarf_syntax::{Dialect, Program, Severity, codes};
+use swarf_syntax::{Block, Dialect, Program, Severity, codes};
 
 use crate::run::Problem;
 use crate::text::ProgramText;
@@ -56,12 +56,45 @@ fn differs(code: codes::Code) -> bool {
     have > 0 && have < Dialect::ALL.len()
 }
 
+/// The lines past the head with a code not every dialect has (at most [`MORE_LINES`]), noted
+/// as the blocks are read.
+#[derive(Debug, Default)]
+pub struct Sensitive {
+    lines: Vec<usize>,
+    /// Whether each code seen differs between dialects, looked up once (a program uses few).
+    seen: HashMap<codes::Code, bool>,
+}
+
+impl Sensitive {
+    /// Notes the lines of `blocks` (read in order) with such a code.
+    pub fn note(&mut self, blocks: &[Block]) {
+        for block in blocks {
+            if self.lines.len() >= MORE_LINES {
+                return;
+            }
+            let seen = &mut self.seen;
+            let mut differ = |code| *seen.entry(code).or_insert_with(|| differs(code));
+            let line = block.line as usize;
+            if line >= HEAD_LINES
+                && (block.words.iter()).any(|w| codes::Code::of_word(w).is_some_and(&mut differ))
+            {
+                self.lines.push(line);
+            }
+        }
+    }
+}
+
 /// The dialect `program` (of `text`, with its located `problems`) would read with strictly fewer
 /// errors, if any: the lines that may read differently (the head of the program, the lines with
-/// a problem, those with a code not every dialect has) are parsed again in every dialect and
+/// a problem, the `sensitive` ones with a code not every dialect has) are parsed again in every dialect and
 /// the one with the fewest errors, then the fewest unknown M codes, wins (the menu's order
 /// breaks ties).
-pub fn suggest(text: &ProgramText, program: &Program, problems: &[Problem]) -> Option<DialectHint> {
+pub fn suggest(
+    text: &ProgramText,
+    program: &Program,
+    problems: &[Problem],
+    sensitive: &Sensitive,
+) -> Option<DialectHint> {
     let from = program.dialect;
     // A program with nothing wrong reads no better elsewhere.
     if !problems.iter().any(telling) {
@@ -83,22 +116,7 @@ pub fn suggest(text: &ProgramText, program: &Program, problems: &[Problem]) -> O
             .filter(|&l| l >= HEAD_LINES && l < last)
             .take(MORE_LINES),
     );
-    // Whether each code seen differs between dialects, looked up once (a program uses few).
-    let mut seen = HashMap::new();
-    let mut sensitive = |code: codes::Code| *seen.entry(code).or_insert_with(|| differs(code));
-    lines.extend(
-        program
-            .blocks
-            .iter()
-            .filter(|b| {
-                b.words
-                    .iter()
-                    .any(|w| codes::Code::of_word(w).is_some_and(&mut sensitive))
-            })
-            .map(|b| b.line as usize)
-            .filter(|&l| l >= HEAD_LINES && l < last)
-            .take(MORE_LINES),
-    );
+    lines.extend(sensitive.lines.iter().filter(|&&l| l < last));
     lines.sort_unstable();
     lines.dedup();
     let mut sample = String::new();

@@ -5,15 +5,15 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use glam::DVec3;
-use swarf_interp::{BlockState, Setup, States, StatesRun, Status};
+use swarf_interp::{BlockState, Piece, Setup, States, StatesRun, Status};
 use swarf_render::Drawing;
 use swarf_syntax::{
     Diagnostic, DiagnosticDef, Dialect, LineIndex, LinkedFile, LinkedSource, ParseRun, Program,
-    Severity,
+    ReadPoint, Severity,
 };
 use swarf_toolpath::{Timeline, Toolpath};
 
-use crate::hint::{DialectHint, suggest};
+use crate::hint::{DialectHint, Sensitive, suggest};
 use crate::text::{ProgramText, RopeLines, Text};
 
 /// What to analyse: a program's text, how to read and run it, and the files its calls may reach.
@@ -159,6 +159,18 @@ pub struct Kept {
     pub setup: Setup,
     /// The toolpath the stock is cut with.
     pub toolpath: Arc<Toolpath>,
+    /// Where each piece of a program run piece by piece starts, to read it again for a state
+    /// (empty: the program is held whole).
+    pieces: Vec<PieceAt>,
+}
+
+/// Where a piece of a program read and run piece by piece starts: its first line, how many
+/// lines it has and where the parse was, so that it can be read again alone.
+#[derive(Debug, Clone, Copy)]
+struct PieceAt {
+    first_line: usize,
+    lines: usize,
+    at: ReadPoint,
 }
 
 impl Kept {
@@ -168,12 +180,25 @@ impl Kept {
     /// the nearest one kept: the cost does not grow with the program.
     pub fn state_at(&self, line: u32) -> Option<BlockState> {
         let row = line.checked_sub(1)?;
-        let blocks = &self.program.blocks;
-        let block = blocks.partition_point(|b| b.line < row);
-        if blocks.get(block)?.line != row {
-            return None;
+        let block_on = |blocks: &[swarf_syntax::Block]| {
+            let block = blocks.partition_point(|b| b.line < row);
+            (blocks.get(block)?.line == row).then_some(block)
+        };
+        if self.pieces.is_empty() {
+            return self
+                .states
+                .at(&self.program, block_on(&self.program.blocks)?);
         }
-        self.states.at(&self.program, block)
+        // Run piece by piece: the piece the line is in is read again and re-run alone.
+        let i = (self
+            .pieces
+            .partition_point(|p| p.first_line <= row as usize))
+        .checked_sub(1)?;
+        let piece = self.pieces.get(i)?;
+        let mut parse = ParseRun::resume(piece.at, self.program.dialect);
+        read_lines(&self.text, &mut parse, &mut String::new(), piece.lines);
+        let blocks = parse.program();
+        self.states.in_piece(i, blocks, block_on(&blocks.blocks)?)
     }
 }
 
@@ -204,9 +229,47 @@ const MAX_LINKED: usize = 64;
 /// a block.
 pub const PARSE_LINES_PER_BLOCK: usize = 2;
 
-/// An analysis under way: the text is read and then run by the interpreter, a bounded amount
-/// of each per [`step`](PendingAnalysis::step), so that whoever runs it can stop between
-/// pieces (a newer job replaces it) and answer other questions. Dropping it cancels the run.
+/// Most lines of a piece of a program read and run piece by piece (see [`PendingAnalysis`]):
+/// the blocks held at once, and the most a state at a line is re-run over.
+const PIECE_LINES: usize = 4096;
+
+/// A parse of `text`, nothing read yet (a rope's lines indexed from its chunks).
+fn parse_run(text: &ProgramText, dialect: Dialect) -> ParseRun {
+    match text {
+        ProgramText::Flat(text) => ParseRun::new(text, dialect),
+        ProgramText::Rope(rope) => {
+            ParseRun::with_lines(LineIndex::from_chunks(rope.chunks()), dialect)
+        }
+    }
+}
+
+/// Reads at most `lines` more lines of `text` into `parse`; whether the whole text is read.
+fn read_lines(text: &ProgramText, parse: &mut ParseRun, joined: &mut String, lines: usize) -> bool {
+    match text {
+        ProgramText::Flat(text) => parse.step(text, lines),
+        ProgramText::Rope(rope) => parse.step_from(&mut RopeLines::new(rope, joined), lines),
+    }
+}
+
+/// A program being read and run a piece at a time, so that its blocks are never all held at
+/// once: until it jumps, loops or calls, which needs it whole.
+#[derive(Debug, Default)]
+struct Pieces {
+    /// Where each piece run starts (a state at a line reads its piece again).
+    starts: Vec<PieceAt>,
+    /// Blocks read.
+    blocks: usize,
+    /// Whether the program has ended (the pieces after are read, not run).
+    ended: bool,
+    /// The lines with a code whose meaning differs between dialects (for the hint).
+    sensitive: Sensitive,
+}
+
+/// An analysis under way: the text is read and run by the interpreter, a bounded amount of each
+/// per [`step`](PendingAnalysis::step), so that whoever runs it can stop between pieces (a
+/// newer job replaces it) and answer other questions. A program that runs straight through is
+/// read and run a piece of lines at a time, its blocks dropped once run; one that jumps, loops
+/// or calls is then read again whole, linked and run. Dropping it cancels the run.
 #[derive(Debug)]
 pub struct PendingAnalysis {
     text: ProgramText,
@@ -214,6 +277,8 @@ pub struct PendingAnalysis {
     joined: String,
     /// The parse, until the whole text is read.
     parse: Option<ParseRun>,
+    /// The pieces read and run, while the program is read piece by piece.
+    pieces: Option<Pieces>,
     program: Program,
     toolpath: Toolpath,
     /// The interpreter's run, once the text is read.
@@ -241,19 +306,18 @@ impl PendingAnalysis {
             setup,
             others,
         } = job;
-        let parse = match &text {
-            ProgramText::Flat(text) => ParseRun::new(text, dialect),
-            ProgramText::Rope(rope) => {
-                ParseRun::with_lines(LineIndex::from_chunks(rope.chunks()), dialect)
-            }
-        };
+        let parse = parse_run(&text, dialect);
+        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+        // About a move a line.
+        toolpath.reserve(parse.progress().1);
         PendingAnalysis {
+            run: Some(StatesRun::new(parse.program(), setup.clone())),
             text,
             joined: String::new(),
             parse: Some(parse),
+            pieces: Some(Pieces::default()),
             program: Program::default(),
-            toolpath: Toolpath::for_machine(DVec3::ZERO, &setup.machine),
-            run: None,
+            toolpath,
             setup,
             generation,
             dialect,
@@ -269,24 +333,51 @@ impl PendingAnalysis {
     /// wraps up.
     pub fn step(&mut self, budget: usize) -> bool {
         let mut budget = budget;
-        if let Some(parse) = &mut self.parse {
-            let (before, _) = parse.progress();
-            let lines = budget.saturating_mul(PARSE_LINES_PER_BLOCK);
-            let done = match &self.text {
-                ProgramText::Flat(text) => parse.step(text, lines),
-                ProgramText::Rope(rope) => {
-                    parse.step_from(&mut RopeLines::new(rope, &mut self.joined), lines)
-                }
-            };
-            let (after, _) = parse.progress();
-            budget = budget.saturating_sub((after - before).div_ceil(PARSE_LINES_PER_BLOCK));
-            if !done {
+        while let Some(parse) = &mut self.parse {
+            if budget == 0 {
                 return false;
             }
-            if let Some(parse) = self.parse.take() {
-                self.program = parse.finish();
+            let mut lines = budget.saturating_mul(PARSE_LINES_PER_BLOCK);
+            if self.pieces.is_some() {
+                lines = lines.min(PIECE_LINES);
             }
-            self.link_and_start();
+            let at = parse.read_point();
+            let (before, _) = parse.progress();
+            let done = read_lines(&self.text, parse, &mut self.joined, lines);
+            let (after, _) = parse.progress();
+            let read = (after - before).div_ceil(PARSE_LINES_PER_BLOCK).max(1);
+            budget = budget.saturating_sub(read);
+            if let (Some(pieces), Some(run)) = (&mut self.pieces, &mut self.run) {
+                let piece = parse.program();
+                pieces.blocks += piece.blocks.len();
+                pieces.sensitive.note(&piece.blocks);
+                if !pieces.ended {
+                    budget = budget.saturating_sub(piece.blocks.len());
+                    let first_line = before;
+                    let lines = after - before;
+                    pieces.starts.push(PieceAt {
+                        first_line,
+                        lines,
+                        at,
+                    });
+                    match run.run_piece(piece, &mut self.toolpath) {
+                        Piece::Ran => {}
+                        Piece::Ended => pieces.ended = true,
+                        Piece::NeedsWhole => {
+                            self.read_whole();
+                            continue;
+                        }
+                    }
+                }
+                parse.clear_blocks();
+            }
+            if done {
+                self.program = self.parse.take().map(ParseRun::finish).unwrap_or_default();
+                match &mut self.run {
+                    Some(run) if self.pieces.is_some() => run.finish_pieces(&mut self.toolpath),
+                    _ => self.link_and_start(),
+                }
+            }
         }
         match &mut self.run {
             Some(run) if budget > 0 => {
@@ -295,6 +386,14 @@ impl PendingAnalysis {
             Some(_) => false,
             None => true,
         }
+    }
+
+    /// Starts reading the text again, whole, for a program found to jump, loop or call.
+    fn read_whole(&mut self) {
+        self.parse = Some(parse_run(&self.text, self.dialect));
+        self.pieces = None;
+        self.run = None;
+        self.toolpath = Toolpath::for_machine(DVec3::ZERO, &self.setup.machine);
     }
 
     /// Links the program's calls from the other open files (when there are any) and starts
@@ -346,8 +445,7 @@ impl PendingAnalysis {
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         // Diagnostics past the program's own text belong to the files linked after it.
         let program = &self.program;
-        let own_end = program.linked.first().map_or(u32::MAX, |l| l.first_byte);
-        let split = diags.partition_point(|d| d.span.start < own_end);
+        let split = diags.partition_point(|d| d.span.start < own_end(program));
         let others = diags.split_off(split);
         if self.among_open_files {
             for d in &mut diags {
@@ -356,11 +454,7 @@ impl PendingAnalysis {
                 }
             }
         }
-        let mut sweep = Sweep::default();
-        let problems: Vec<Problem> = diags
-            .iter()
-            .map(|d| locate_one(self.text.as_text(), &program.lines, &mut sweep, d))
-            .collect();
+        let problems = locate(self.text.as_text(), &program.lines, &diags);
         let mut elsewhere = Vec::new();
         for (i, (at, file)) in program.linked.iter().zip(&self.linked).enumerate() {
             let mut sweep = Sweep::default();
@@ -378,13 +472,16 @@ impl PendingAnalysis {
         }
         self.toolpath.shrink_to_fit();
         let toolpath = &self.toolpath;
+        let pieces = self.pieces.take().unwrap_or_default();
         let stats = Stats {
-            blocks: program.blocks.len(),
+            blocks: program.blocks.len() + pieces.blocks,
             motions: toolpath.len(),
             bounds: toolpath.bounds().map(|b| (b.min, b.max)),
             estimated_secs: toolpath.estimated_secs(),
         };
-        let hint = suggest(&self.text, program, &problems);
+        let mut sensitive = pieces.sensitive;
+        sensitive.note(&program.blocks);
+        let hint = suggest(&self.text, program, &problems, &sensitive);
         let results = Results {
             generation: self.generation,
             plot: Plot::of(toolpath, &self.setup),
@@ -401,6 +498,7 @@ impl PendingAnalysis {
             text: self.text,
             setup: self.setup,
             toolpath: Arc::new(self.toolpath),
+            pieces: pieces.starts,
         };
         (results, kept)
     }
@@ -414,17 +512,21 @@ pub fn analyse(job: Job) -> (Results, Kept) {
 /// `diags` of the program's own text located as [`PendingAnalysis::finish`] locates them
 /// (those in linked files are left out), sorted by position.
 pub(crate) fn locate_own(kept: &Kept, mut diags: Vec<Diagnostic>) -> Vec<Problem> {
-    let own_end = kept
-        .program
-        .linked
-        .first()
-        .map_or(u32::MAX, |l| l.first_byte);
-    diags.retain(|d| d.span.start < own_end);
+    diags.retain(|d| d.span.start < own_end(&kept.program));
     diags.sort_by_key(|d| (d.span.start, d.span.end));
+    locate(kept.text.as_text(), &kept.program.lines, &diags)
+}
+
+/// Where the program's own text ends among its spans: the files linked after it lie past it.
+fn own_end(program: &Program) -> u32 {
+    program.linked.first().map_or(u32::MAX, |l| l.first_byte)
+}
+
+/// `diags` of a text, sorted by position, located in it.
+fn locate(text: Text<'_>, lines: &LineIndex, diags: &[Diagnostic]) -> Vec<Problem> {
     let mut sweep = Sweep::default();
-    diags
-        .iter()
-        .map(|d| locate_one(kept.text.as_text(), &kept.program.lines, &mut sweep, d))
+    (diags.iter())
+        .map(|d| locate_one(text, lines, &mut sweep, d))
         .collect()
 }
 

@@ -14,10 +14,8 @@ use crate::stock::{StockCut, StockJob};
 pub const PIECE: usize = 20_000;
 
 /// What the UI asks of the analysis.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub enum Request {
-    /// Analyse a program, dropping any unfinished analysis.
-    Analyse(Box<Job>),
     /// The machine state before the block on 1-based `line` of the program analysed in
     /// `generation`.
     StateAt {
@@ -35,6 +33,10 @@ pub enum Request {
         /// Segments to cut.
         upto: usize,
     },
+    /// Analyse a program, dropping any unfinished analysis. Sent apart (see [`crate::wire`]),
+    /// and last: serde numbers the variants it reads without it.
+    #[serde(skip)]
+    Analyse(Box<Job>),
 }
 
 /// What the analysis answers.
@@ -77,12 +79,20 @@ impl Reply {
 /// What the last finished analysis keeps, shared with whoever answers questions about it.
 pub type Held = Arc<Mutex<Option<Kept>>>;
 
-/// The answer to [`Request::StateAt`] from what `held` keeps (see [`Reply::State`]).
-pub fn state_at(held: &Held, generation: u64, line: u32) -> Option<Option<BlockState>> {
+/// `f` of what `held` keeps of the analysis of `generation`, while it is held.
+pub(crate) fn with_kept<T>(held: &Held, generation: u64, f: impl FnOnce(&Kept) -> T) -> Option<T> {
     let kept = held.lock().ok()?;
-    kept.as_ref()
-        .filter(|k| k.generation == generation)
-        .map(|k| k.state_at(line))
+    kept.as_ref().filter(|k| k.generation == generation).map(f)
+}
+
+/// The answer to [`Request::StateAt`] from what `held` keeps.
+fn state_of(held: &Held, generation: u64, line: u32) -> Reply {
+    let state = with_kept(held, generation, |k| k.state_at(line));
+    Reply::State {
+        generation,
+        line,
+        state,
+    }
 }
 
 /// The analysis side's state: the analysis under way, what the last finished one keeps, and
@@ -105,11 +115,7 @@ impl Service {
                 None
             }
             Request::Stock { generation, upto } => {
-                if self
-                    .stock
-                    .as_mut()
-                    .is_some_and(|job| job.extend(generation, upto))
-                {
+                if (self.stock.as_mut()).is_some_and(|job| job.extend(generation, upto)) {
                     return None;
                 }
                 self.stock = None;
@@ -127,11 +133,7 @@ impl Service {
                     }))),
                 }
             }
-            Request::StateAt { generation, line } => Some(Reply::State {
-                generation,
-                line,
-                state: state_at(&self.held, generation, line),
-            }),
+            Request::StateAt { generation, line } => Some(state_of(&self.held, generation, line)),
         }
     }
 
@@ -193,12 +195,7 @@ impl Analyst for Inline {
     }
 
     fn try_reply(&mut self) -> Option<Reply> {
-        while let Some(reply) = self.service.step() {
-            if !reply.is_progress() {
-                return Some(reply);
-            }
-        }
-        None
+        std::iter::from_fn(|| self.service.step()).find(|reply| !reply.is_progress())
     }
 
     fn wait_reply(&mut self) -> Option<Reply> {
@@ -278,12 +275,7 @@ fn serve(
 impl Analyst for Thread {
     fn send(&mut self, request: Request) -> Option<Reply> {
         if let Request::StateAt { generation, line } = request {
-            let state = state_at(&self.held, generation, line);
-            return Some(Reply::State {
-                generation,
-                line,
-                state,
-            });
+            return Some(state_of(&self.held, generation, line));
         }
         // A thread that ended (it never panics) leaves nothing to send to.
         let _ = self.requests.send(request);

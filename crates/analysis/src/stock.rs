@@ -9,8 +9,8 @@ use glam::DVec3;
 use swarf_stock::{Finding, StockRun, StockSetup};
 use swarf_toolpath::Toolpath;
 
-use crate::run::{Problem, locate_own};
-use crate::service::Held;
+use crate::run::{Kept, Problem, locate_own};
+use crate::service::{Held, with_kept};
 
 /// Cells of tool travel per piece (a segment counts one more): a few milliseconds, so that
 /// a newer request replaces the cut at once.
@@ -42,9 +42,7 @@ impl StockField {
         if !(0.0..nx as f64).contains(&i) || !(0.0..ny as f64).contains(&j) {
             return None;
         }
-        self.heights
-            .get(j as usize * nx + i as usize)
-            .map(|&h| f64::from(h))
+        (self.heights.get(j as usize * nx + i as usize)).map(|&h| f64::from(h))
     }
 }
 
@@ -94,15 +92,10 @@ pub(crate) struct StockJob {
 impl StockJob {
     /// A cut of the held analysis `generation` up to segment `upto`, or why there is none.
     pub(crate) fn start(held: &Held, generation: u64, upto: usize) -> Result<Self, String> {
-        let kept = held
-            .lock()
-            .map_err(|_| "the analysis is not held".to_string())?;
-        let kept = kept
-            .as_ref()
-            .filter(|k| k.generation == generation)
-            .ok_or("the analysis is no longer held")?;
-        let setup = StockSetup::from_setup(&kept.setup).map_err(|e| format!("the setup: {e}"))?;
-        let toolpath = Arc::clone(&kept.toolpath);
+        let kept = |k: &Kept| (StockSetup::from_setup(&k.setup), Arc::clone(&k.toolpath));
+        let (setup, toolpath) =
+            with_kept(held, generation, kept).ok_or("the analysis is no longer held")?;
+        let setup = setup.map_err(|e| format!("the setup: {e}"))?;
         let run = StockRun::new(&toolpath, &setup)
             .ok_or("no [stock] in the setup and no feed move to assume one around")?;
         Ok(StockJob {
@@ -153,32 +146,25 @@ impl StockJob {
                 top: f.stock().max[2],
             }
         });
-        let rapids = self
-            .run
-            .findings()
-            .iter()
-            .filter_map(|f| match *f {
-                Finding::RapidIntoStock {
-                    segment, cell_xy, ..
-                } => Some((segment, cell_xy)),
-                Finding::ShankCut { .. } => None,
-            })
-            .collect();
-        let problems = if finished && whole {
-            held.lock()
-                .ok()
-                .and_then(|kept| {
-                    let kept = kept.as_ref().filter(|k| k.generation == self.generation)?;
-                    let lines = &kept.program.lines;
-                    let diags = self
-                        .run
-                        .diagnostics(|line| swarf_stock::line_span(lines, line));
-                    Some(locate_own(kept, diags))
-                })
-                .unwrap_or_default()
-        } else {
-            Vec::new()
+        let rapid = |f: &Finding| match *f {
+            Finding::RapidIntoStock {
+                segment, cell_xy, ..
+            } => Some((segment, cell_xy)),
+            Finding::ShankCut { .. } => None,
         };
+        let rapids = self.run.findings().iter().filter_map(rapid).collect();
+        let located = |kept: &Kept| {
+            let lines = &kept.program.lines;
+            locate_own(
+                kept,
+                self.run
+                    .diagnostics(|line| swarf_stock::line_span(lines, line)),
+            )
+        };
+        let problems = (finished && whole)
+            .then(|| with_kept(held, self.generation, located))
+            .flatten()
+            .unwrap_or_default();
         StockCut {
             generation: self.generation,
             upto: self.upto,

@@ -23,14 +23,8 @@ enum RequestHead {
         /// The other open files' names; their texts follow the program's, in order.
         others: Option<Vec<String>>,
     },
-    StateAt {
-        generation: u64,
-        line: u32,
-    },
-    Stock {
-        generation: u64,
-        upto: usize,
-    },
+    /// Any other request, whole.
+    Other(Request),
 }
 
 /// The head of `request` and the texts that go beside it (the program's, then the other
@@ -49,10 +43,7 @@ pub fn request_parts(request: &Request) -> (Vec<u8>, Vec<&ProgramText>) {
             };
             (head, texts.collect())
         }
-        &Request::StateAt { generation, line } => {
-            (RequestHead::StateAt { generation, line }, vec![])
-        }
-        &Request::Stock { generation, upto } => (RequestHead::Stock { generation, upto }, vec![]),
+        other => (RequestHead::Other(other.clone()), vec![]),
     };
     (postcard::to_allocvec(&head).unwrap_or_default(), texts)
 }
@@ -85,8 +76,7 @@ pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
                 others,
             }))
         }
-        RequestHead::StateAt { generation, line } => Request::StateAt { generation, line },
-        RequestHead::Stock { generation, upto } => Request::Stock { generation, upto },
+        RequestHead::Other(request) => request,
     })
 }
 
@@ -104,9 +94,7 @@ pub fn reply_parts(reply: &Reply) -> (Vec<u8>, Vec<&[u8]>) {
                 bytemuck::cast_slice(&plot.tools),
             ]
         }
-        Reply::Stock(cut) => cut
-            .field
-            .iter()
+        Reply::Stock(cut) => (cut.field.iter())
             .map(|f| bytemuck::cast_slice(&f.heights))
             .collect(),
         Reply::Progress { .. } | Reply::State { .. } => Vec::new(),
