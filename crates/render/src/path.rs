@@ -567,16 +567,38 @@ impl PointBatch {
     }
 }
 
+/// The pipeline drawing `part` of the segments ("main": all, "core" or "edge", see the shader);
+/// the grid and axes ("main") lose depth ties, so a path lying on them shows, and only the
+/// cores write depth.
+fn line_pipeline(
+    device: &wgpu::Device,
+    program: &Program,
+    targets: Targets,
+    part: &str,
+) -> wgpu::RenderPipeline {
+    let compare = if part == "main" {
+        wgpu::CompareFunction::Less
+    } else {
+        wgpu::CompareFunction::LessEqual
+    };
+    let depth = Some((part == "core", compare, wgpu::DepthBiasState::default()));
+    let blend = Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING);
+    program.pipeline(device, part, targets, blend, depth)
+}
+
 /// Draws a toolpath and the grid/axes as anti-aliased segments.
 ///
 /// The path's line cores write depth, then their edges do not, so an edge never hides a line
 /// behind it; the grid and axes follow depth-tested without writes, so the translucent grid
 /// never punches holes into the path yet hides behind it. Works on WebGPU and WebGL2 alike.
 pub struct PathRenderer {
-    /// The path's cores, which write depth, then its anti-aliased edges, which do not.
-    core: wgpu::RenderPipeline,
-    edge: wgpu::RenderPipeline,
+    /// The path's cores, which write depth, then its anti-aliased edges, which do not: made
+    /// with the first path, so that a view with none (the page's first frame) compiles only
+    /// the grid's shaders.
+    lines: Option<(wgpu::RenderPipeline, wgpu::RenderPipeline)>,
     overlay: wgpu::RenderPipeline,
+    program: Program,
+    targets: Targets,
     uniform_buffer: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     /// Layout of each point texture's bind group (group 1: [`DrawUniforms`], the texture).
@@ -634,23 +656,12 @@ impl PathRenderer {
             depth: depth_format,
             samples: sample_count,
         };
-        // `part`: the fragments drawn ("main": all, "core" or "edge", see the shader); the
-        // grid and axes ("main") lose depth ties, so a path lying on them shows.
-        let pipeline = |part: &str, depth_write: bool| {
-            let compare = if part == "main" {
-                wgpu::CompareFunction::Less
-            } else {
-                wgpu::CompareFunction::LessEqual
-            };
-            let depth = Some((depth_write, compare, wgpu::DepthBiasState::default()));
-            let blend = Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING);
-            program.pipeline(device, part, targets, blend, depth)
-        };
         Self {
-            core: pipeline("core", true),
-            edge: pipeline("edge", false),
-            overlay: pipeline("main", false),
+            lines: None,
+            overlay: line_pipeline(device, &program, targets, "main"),
             stock: StockPass::new(device, &bind_group_layout, targets),
+            program,
+            targets,
             uniform_buffer,
             bind_group,
             draw_layout,
@@ -662,6 +673,11 @@ impl PathRenderer {
     /// Replaces the toolpath points, reusing the textures whose size fits. Fewer than two
     /// points draw nothing; any number more is kept (split over several textures if needed).
     pub fn set_path(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, points: &[PathPoint]) {
+        if points.len() >= 2 && self.lines.is_none() {
+            let (program, targets) = (&self.program, self.targets);
+            let core = line_pipeline(device, program, targets, "core");
+            self.lines = Some((core, line_pipeline(device, program, targets, "edge")));
+        }
         self.path.upload(device, queue, &self.draw_layout, points);
     }
 
@@ -730,10 +746,12 @@ impl PathRenderer {
     pub fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_bind_group(0, &self.bind_group, &[]);
         self.stock.paint(pass);
-        pass.set_pipeline(&self.core);
-        self.path.draw(pass);
-        pass.set_pipeline(&self.edge);
-        self.path.draw(pass);
+        if let Some((core, edge)) = &self.lines {
+            pass.set_pipeline(core);
+            self.path.draw(pass);
+            pass.set_pipeline(edge);
+            self.path.draw(pass);
+        }
         pass.set_pipeline(&self.overlay);
         self.grid.draw(pass);
     }

@@ -58,16 +58,21 @@ struct Mesh {
 
 /// The stock's pipeline, uniforms and, once given, its heights.
 pub(crate) struct StockPass {
-    pipeline: wgpu::RenderPipeline,
+    /// Made with the first surface, so that a view that never shows the stock compiles no
+    /// shader for it.
+    pipeline: Option<wgpu::RenderPipeline>,
+    /// The path renderer's frame uniforms (group 0) and targets, for the pipeline.
+    frame_layout: wgpu::BindGroupLayout,
+    targets: Targets,
     layout: wgpu::BindGroupLayout,
     uniforms: wgpu::Buffer,
     mesh: Option<Mesh>,
 }
 
 impl StockPass {
-    /// The pipeline for the path renderer's frame uniforms (`frame_layout`, group 0) and its
-    /// targets; the surface lies a little behind lines drawn on it, so a path along a cut floor
-    /// shows.
+    /// The pass for the path renderer's frame uniforms (`frame_layout`, group 0) and its
+    /// targets, its pipeline made with the first surface; the surface lies a little behind
+    /// lines drawn on it, so a path along a cut floor shows.
     pub(crate) fn new(
         device: &wgpu::Device,
         frame_layout: &wgpu::BindGroupLayout,
@@ -82,16 +87,10 @@ impl StockPass {
                 gpu::texture_2d(wgpu::TextureSampleType::Float { filterable: false }),
             ],
         );
-        let bias = wgpu::DepthBiasState {
-            constant: 8,
-            slope_scale: 1.0,
-            clamp: 0.0,
-        };
-        let depth = Some((true, wgpu::CompareFunction::LessEqual, bias));
-        let pipeline = Program::new(device, "swarf_stock", STOCK_WGSL, &[frame_layout, &layout])
-            .pipeline(device, "main", targets, None, depth);
         StockPass {
-            pipeline,
+            pipeline: None,
+            frame_layout: frame_layout.clone(),
+            targets,
             layout,
             uniforms: gpu::uniform_buffer(device, "swarf_stock_uniforms", STOCK_UNIFORMS_SIZE),
             mesh: None,
@@ -112,6 +111,18 @@ impl StockPass {
             self.mesh = None;
             return;
         };
+        if self.pipeline.is_none() {
+            let bias = wgpu::DepthBiasState {
+                constant: 8,
+                slope_scale: 1.0,
+                clamp: 0.0,
+            };
+            let depth = Some((true, wgpu::CompareFunction::LessEqual, bias));
+            let groups = [&self.frame_layout, &self.layout];
+            let program = Program::new(device, "swarf_stock", STOCK_WGSL, &groups);
+            let pipeline = program.pipeline(device, "main", self.targets, None, depth);
+            self.pipeline = Some(pipeline);
+        }
         let side = MAX_STOCK_CELLS.min(device.limits().max_texture_dimension_2d as usize);
         let step = s.size.0.max(s.size.1).div_ceil(side.max(1));
         let (heights, (nx, ny)) = coarsened(s.heights, s.size, step);
@@ -173,8 +184,8 @@ impl StockPass {
 
     /// Records the surface's draw; the frame's bind group (group 0) is the caller's.
     pub(crate) fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
-        if let Some(mesh) = &self.mesh {
-            pass.set_pipeline(&self.pipeline);
+        if let (Some(mesh), Some(pipeline)) = (&self.mesh, &self.pipeline) {
+            pass.set_pipeline(pipeline);
             pass.set_bind_group(1, &mesh.bind_group, &[]);
             pass.draw(0..mesh.vertices, 0..1);
         }
