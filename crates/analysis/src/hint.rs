@@ -172,11 +172,8 @@ pub fn suggest(
         let what: String = what.trim().chars().take(WHAT_CHARS).collect();
         (!what.is_empty()).then_some((what, p.line))
     });
-    Some(DialectHint {
-        from,
-        to: *to,
-        first,
-    })
+    let to = *to;
+    Some(DialectHint { from, to, first })
 }
 
 #[cfg(test)]

@@ -118,20 +118,13 @@ impl Service {
                 if (self.stock.as_mut()).is_some_and(|job| job.extend(generation, upto)) {
                     return None;
                 }
-                self.stock = None;
-                match StockJob::start(&self.held, generation, upto) {
-                    Ok(job) => {
-                        self.stock = Some(job);
-                        None
-                    }
-                    Err(error) => Some(Reply::Stock(Box::new(StockCut {
-                        generation,
-                        upto,
-                        done: upto,
-                        error: Some(error),
-                        ..StockCut::default()
-                    }))),
-                }
+                let started = StockJob::start(&self.held, generation, upto);
+                let error = started.as_ref().err().cloned();
+                self.stock = started.ok();
+                let mut cut = StockCut::default();
+                (cut.generation, cut.upto, cut.done, cut.error) =
+                    (generation, upto, upto, Some(error?));
+                Some(Reply::Stock(Box::new(cut)))
             }
             Request::StateAt { generation, line } => Some(state_of(&self.held, generation, line)),
         }

@@ -154,12 +154,8 @@ impl StockJob {
         };
         let rapids = self.run.findings().iter().filter_map(rapid).collect();
         let located = |kept: &Kept| {
-            let lines = &kept.program.lines;
-            locate_own(
-                kept,
-                self.run
-                    .diagnostics(|line| swarf_stock::line_span(lines, line)),
-            )
+            let span = |line| swarf_stock::line_span(&kept.program.lines, line);
+            locate_own(kept, self.run.diagnostics(span))
         };
         let problems = (finished && whole)
             .then(|| with_kept(held, self.generation, located))

@@ -59,13 +59,9 @@ pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
         } => {
             let mut texts = texts.into_iter().map(ProgramText::from);
             let text = texts.next()?;
+            let with_text = |n| Some((n, texts.next()?));
             let others = match others {
-                Some(names) => Some(
-                    names
-                        .into_iter()
-                        .map(|n| Some((n, texts.next()?)))
-                        .collect::<Option<_>>()?,
-                ),
+                Some(names) => Some(names.into_iter().map(with_text).collect::<Option<_>>()?),
                 None => None,
             };
             Request::Analyse(Box::new(Job {

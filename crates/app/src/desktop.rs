@@ -185,9 +185,7 @@ impl Host {
                 });
             }
             HostRequest::LoadCjkFont => match find_cjk_font() {
-                Some(bytes) => {
-                    wb.add_cjk_font(ctx, bytes);
-                }
+                Some(bytes) => _ = wb.add_cjk_font(ctx, bytes),
                 None => wb.cjk_font_missing(),
             },
             HostRequest::Quit => {

@@ -50,16 +50,12 @@ pub fn store_settings(storage: &mut dyn eframe::Storage, wb: &Workbench, recent:
 
 /// Restores what [`store_settings`] kept (skipping what is unreadable); the recent files.
 pub fn restore_settings(storage: &dyn eframe::Storage, wb: &mut Workbench) -> Vec<String> {
-    if let Some(dialect) = storage
-        .get_string(KEY_DIALECT)
-        .and_then(|d| d.parse::<Dialect>().ok())
-    {
+    let dialect = storage.get_string(KEY_DIALECT);
+    if let Some(dialect) = dialect.and_then(|d| d.parse::<Dialect>().ok()) {
         wb.set_dialect(dialect);
     }
-    if let Some(lang) = storage
-        .get_string(KEY_LANGUAGE)
-        .and_then(|l| Lang::from_code(&l))
-    {
+    let lang = storage.get_string(KEY_LANGUAGE);
+    if let Some(lang) = lang.and_then(|l| Lang::from_code(&l)) {
         wb.set_language(lang);
     }
     // Read as the settings window left it: a stock or tool it shows refused stays to be mended.
@@ -524,11 +520,8 @@ pub fn report_lost(wb: &mut Workbench, lost: &[String]) {
         return;
     }
     let line = trf("Could not recover {}", &[&lost.join(", ")]);
-    let message = match wb.message() {
-        Some(m) => format!("{m}; {line}"),
-        None => line,
-    };
-    wb.set_message(message);
+    let message = wb.message().map(|m| format!("{m}; {line}"));
+    wb.set_message(message.unwrap_or(line));
 }
 
 /// Each encoding's name in the recovery index.

@@ -26,13 +26,9 @@ pub async fn start(canvas_id: String) -> Result<SwarfApi, JsValue> {
         .dyn_into::<web_sys::HtmlCanvasElement>()
         .map_err(|_| JsValue::from_str(&format!("`{canvas_id}` is not a canvas")))?;
     let runner = eframe::WebRunner::new();
-    runner
-        .start(
-            canvas,
-            eframe::WebOptions::default(),
-            Box::new(|cc| Ok(Box::new(SwarfApp::new(cc)))),
-        )
-        .await?;
+    let app: eframe::AppCreator<'static> = Box::new(|cc| Ok(Box::new(SwarfApp::new(cc))));
+    let options = eframe::WebOptions::default();
+    runner.start(canvas, options, app).await?;
     install_open_shortcut(&runner)?;
     Ok(SwarfApi { runner })
 }
@@ -58,11 +54,8 @@ fn install_open_shortcut(runner: &eframe::WebRunner) -> Result<(), JsValue> {
                 app.host.pick_program();
             }
         });
-    window.add_event_listener_with_callback_and_bool(
-        "keydown",
-        on_key.as_ref().unchecked_ref(),
-        true,
-    )?;
+    let listener = on_key.as_ref().unchecked_ref();
+    window.add_event_listener_with_callback_and_bool("keydown", listener, true)?;
     // The listener lives as long as the page.
     on_key.forget();
     Ok(())

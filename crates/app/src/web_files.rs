@@ -201,9 +201,7 @@ impl Host {
         for arrival in arrived {
             match arrival {
                 Arrival::Font(Ok(bytes)) => match self.inbox.wake.borrow().as_ref() {
-                    Some(ctx) => {
-                        wb.add_cjk_font(ctx, bytes);
-                    }
+                    Some(ctx) => _ = wb.add_cjk_font(ctx, bytes),
                     None => wb.cjk_font_failed("no context"),
                 },
                 Arrival::Font(Err(e)) => wb.cjk_font_failed(&e),
@@ -397,11 +395,8 @@ impl Host {
         let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
             return;
         };
-        let Some(input) = doc
-            .create_element("input")
-            .ok()
-            .and_then(|e| e.dyn_into::<web_sys::HtmlInputElement>().ok())
-        else {
+        let input = doc.create_element("input").ok();
+        let Some(input) = input.and_then(|e| e.dyn_into::<web_sys::HtmlInputElement>().ok()) else {
             return;
         };
         input.set_type("file");
@@ -597,14 +592,11 @@ async fn request_done(request: &web_sys::IdbRequest) -> Result<JsValue, String> 
     let done = JsFuture::from(promise).await;
     request.set_onsuccess(None);
     request.set_onerror(None);
-    match done {
-        Ok(_) => request.result().map_err(dom_error),
-        Err(_) => Err(request
-            .error()
-            .ok()
-            .flatten()
-            .map_or_else(|| "the request failed".to_string(), |e| dom_error(e.into()))),
+    if done.is_ok() {
+        return request.result().map_err(dom_error);
     }
+    let error = request.error().ok().flatten();
+    Err(error.map_or_else(|| "the request failed".into(), |e| dom_error(e.into())))
 }
 
 /// Makes the changes `issue` asks of the store in a transaction of its own, committed when
@@ -625,23 +617,18 @@ async fn write(
         tx.set_onerror(Some(&reject));
         tx.set_onabort(Some(&reject));
     });
-    match JsFuture::from(promise).await {
-        Ok(_) => Ok(()),
-        Err(_) => Err(tx.error().map_or_else(
-            || "the transaction was aborted".to_string(),
-            |e| dom_error(e.into()),
-        )),
+    if JsFuture::from(promise).await.is_ok() {
+        return Ok(());
     }
+    let why = tx.error().map(|e| dom_error(e.into()));
+    Err(why.unwrap_or_else(|| "the transaction was aborted".into()))
 }
 
 /// Stores `value` under `key` in the database `opened`, in a transaction of its own.
 async fn put(opened: &Result<Db, String>, key: &str, value: &JsValue) -> Result<(), String> {
-    write(opened.as_ref().map_err(String::clone)?, |store| {
-        store
-            .put_with_key(value, &JsValue::from_str(key))
-            .map(|_| ())
-    })
-    .await
+    let db = opened.as_ref().map_err(String::clone)?;
+    let key = JsValue::from_str(key);
+    write(db, |store| store.put_with_key(value, &key).map(|_| ())).await
 }
 
 /// Removes the records `keys`, or every record and the index when `None`.
@@ -679,9 +666,7 @@ async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
         let value = request_done(&request).await.ok();
         let array = value.and_then(|v| v.dyn_into::<js_sys::Uint8Array>().ok());
         match array.map(|a| String::from_utf8(a.to_vec())) {
-            Some(Ok(text)) => {
-                texts.insert(key, text);
-            }
+            Some(Ok(text)) => _ = texts.insert(key, text),
             _ => log::warn!("the recovery record {key} cannot be read"),
         }
     }
@@ -696,9 +681,8 @@ async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
     {
         log::warn!("cannot remove left-over recovery records: {e}");
     }
-    Ok(record
-        .zip(index)
-        .map(|(record, index)| (record, index, texts)))
+    let stored = record.zip(index);
+    Ok(stored.map(|(record, index)| (record, index, texts)))
 }
 
 /// A DOM exception (or any JavaScript error) as `Name: message` for the status bar.
@@ -805,10 +789,8 @@ fn failed(what: &str, error: &JsValue) -> Arrival {
 
 /// A JavaScript error as a line for the status bar.
 fn js_error(error: &JsValue) -> String {
-    let message = js_sys::Reflect::get(error, &JsValue::from_str("message"))
-        .ok()
-        .and_then(|m| m.as_string());
-    match message {
+    let message = js_sys::Reflect::get(error, &JsValue::from_str("message")).ok();
+    match message.and_then(|m| m.as_string()) {
         Some(m) if !m.is_empty() => m,
         _ => error.as_string().unwrap_or_else(|| format!("{error:?}")),
     }

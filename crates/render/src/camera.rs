@@ -176,9 +176,7 @@ impl OrbitCamera {
 
     /// Jumps to one of the standard views, keeping target and distance.
     pub fn set_view(&mut self, view: StandardView) {
-        let (yaw, pitch) = view.angles();
-        self.yaw = yaw;
-        self.pitch = pitch;
+        (self.yaw, self.pitch) = view.angles();
     }
 
     /// Frames the box `min..max` for a viewport of the given aspect (width / height) so that
@@ -216,10 +214,8 @@ impl OrbitCamera {
         let free = (free_max - free_min).max(Vec2::ONE);
         // The frustum through the free part: its share of the viewport's field of view.
         let tan_y = (self.fov() * 0.5).tan();
-        let (tan_x, tan_y) = (
-            tan_y * free.x / viewport_px.y,
-            tan_y * free.y / viewport_px.y,
-        );
+        let tan_x = tan_y * free.x / viewport_px.y;
+        let tan_y = tan_y * free.y / viewport_px.y;
         self.fit_tangents(min, max, tan_x, tan_y);
         if !min.is_finite() || !max.is_finite() || min.cmpgt(max).any() {
             return;
@@ -375,19 +371,12 @@ impl OrbitCamera {
                 directx::perspective_infinite(self.fov(), aspect, distance * NEAR_FRACTION)
             }
             Projection::Orthographic => {
-                let half_h = distance * (self.fov() * 0.5).tan();
-                let half_w = half_h * aspect;
+                let h = distance * (self.fov() * 0.5).tan();
+                let w = h * aspect;
                 // A generous slab so nothing is clipped; Depth32Float keeps enough precision.
                 let radius = finite_or(self.scene_radius, DEFAULT_DISTANCE).abs();
-                let depth = 10.0 * (radius + distance) + 1.0;
-                directx::orthographic(
-                    -half_w,
-                    half_w,
-                    -half_h,
-                    half_h,
-                    distance - depth,
-                    distance + depth,
-                )
+                let d = 10.0 * (radius + distance) + 1.0;
+                directx::orthographic(-w, w, -h, h, distance - d, distance + d)
             }
         }
     }

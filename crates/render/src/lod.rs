@@ -42,11 +42,8 @@ fn mergeable(p: &PathPoint) -> bool {
 /// Pushes the indices kept in `from + 1..=to` (`from` is already kept) onto `kept`.
 fn simplify_span(points: &[PathPoint], from: usize, to: usize, tol: f32, kept: &mut Vec<u32>) {
     let to = to.min(points.len().saturating_sub(1));
-    let tol2 = if tol.is_finite() && tol > 0.0 {
-        tol * tol
-    } else {
-        0.0
-    };
+    let merges = tol.is_finite() && tol > 0.0;
+    let tol2 = if merges { tol * tol } else { 0.0 };
     let push = |kept: &mut Vec<u32>, i: usize| kept.push(u32::try_from(i).unwrap_or(u32::MAX));
     // The end of the run of mergeable points with one packed word that the anchor lies in.
     let mut run_end = from;
@@ -80,28 +77,19 @@ fn simplify_span(points: &[PathPoint], from: usize, to: usize, tol: f32, kept: &
 #[inline(never)]
 fn farthest_chord(points: &[PathPoint], anchor: usize, limit: usize, tol2: f32) -> usize {
     let holds = |end: usize| chord_holds(points, anchor, end, tol2);
-    let mut good = anchor + 1;
-    let mut bad = None;
-    let mut step = 2;
+    // `bad` past `limit` until a chord fails; then `good` is `limit` unless one did.
+    let (mut good, mut bad, mut step) = (anchor + 1, limit + 1, 2);
     while good < limit {
         let end = (anchor + step).min(limit);
-        if holds(end) {
-            good = end;
-            step *= 2;
-        } else {
-            bad = Some(end);
+        if !holds(end) {
+            bad = end;
             break;
         }
+        (good, step) = (end, step * 2);
     }
-    if let Some(mut bad) = bad {
-        while bad - good > 1 {
-            let mid = good + (bad - good) / 2;
-            if holds(mid) {
-                good = mid;
-            } else {
-                bad = mid;
-            }
-        }
+    while bad - good > 1 {
+        let mid = good + (bad - good) / 2;
+        *if holds(mid) { &mut good } else { &mut bad } = mid;
     }
     good
 }

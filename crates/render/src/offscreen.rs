@@ -115,13 +115,8 @@ impl HeadlessGpu {
             ..params.clone()
         };
         let bounds = segment_bounds(path, 0..path.len());
-        let params = PathLod::new(Arc::new(path.to_vec()), bounds).prepare(
-            &mut renderer,
-            &self.device,
-            &self.queue,
-            &params,
-            &[],
-        );
+        let mut lod = PathLod::new(Arc::new(path.to_vec()), bounds);
+        let params = lod.prepare(&mut renderer, &self.device, &self.queue, &params, &[]);
         renderer.prepare(&self.queue, &params);
         let label = Some("swarf_render_rgba8");
         let mut encoder =

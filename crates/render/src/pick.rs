@@ -154,13 +154,9 @@ fn clipped_hit(a: Vec4, b: Vec4, radius: f32) -> Option<(f32, f32, f32)> {
     if a.z < 0.0 && b.z < 0.0 {
         return None;
     }
-    let (mut s0, mut s1) = (0.0_f32, 1.0_f32);
-    if a.z < 0.0 {
-        s0 = a.z / (a.z - b.z);
-    }
-    if b.z < 0.0 {
-        s1 = a.z / (a.z - b.z);
-    }
+    let cross = a.z / (a.z - b.z);
+    let s0 = if a.z < 0.0 { cross } else { 0.0 };
+    let s1 = if b.z < 0.0 { cross } else { 1.0 };
     let ca = a.lerp(b, s0);
     let cb = a.lerp(b, s1);
     if ca.w <= 0.0 || cb.w <= 0.0 {
@@ -180,8 +176,7 @@ fn clipped_hit(a: Vec4, b: Vec4, radius: f32) -> Option<(f32, f32, f32)> {
 pub fn segment_bounds(points: &[PathPoint], segments: Range<usize>) -> Option<(Vec3, Vec3)> {
     let end = segments.end.saturating_add(1).min(points.len());
     let selected = points.get(segments.start..end).filter(|s| s.len() >= 2)?;
-    let mut min = Vec3::splat(f32::INFINITY);
-    let mut max = Vec3::splat(f32::NEG_INFINITY);
+    let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
     for p in selected {
         let v = p.position();
         min = min.min(v);

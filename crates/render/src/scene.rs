@@ -176,15 +176,12 @@ fn hole_marks(path: &Toolpath, rel: impl Fn(DVec3) -> Vec3, diagonal: f64) -> Ve
         let axis = (hole.bottom - hole.top).normalize_or(DVec3::NEG_Z);
         let u = axis.any_orthonormal_vector();
         let v = axis.cross(u);
-        for k in 0..=SIDES {
+        let ring = |k: usize| {
             let a = std::f64::consts::TAU * k as f64 / SIDES as f64;
-            let p = rel(hole.top + (u * a.cos() + v * a.sin()) * radius);
-            marks.push(if k == 0 {
-                PathPoint::pen_up(p)
-            } else {
-                PathPoint::new(p, Kind::Cycle)
-            });
-        }
+            rel(hole.top + (u * a.cos() + v * a.sin()) * radius)
+        };
+        marks.push(PathPoint::pen_up(ring(0)));
+        marks.extend((1..=SIDES).map(|k| PathPoint::new(ring(k), Kind::Cycle)));
     }
     for hole in dotted {
         let top = rel(hole.top);
@@ -202,14 +199,11 @@ fn peck_marks(
     diagonal: f64,
 ) -> Vec<PathPoint> {
     let half = (diagonal / 150.0).clamp(0.5, 5.0) * 0.6;
-    let mut plunges: Vec<(usize, usize)> = Vec::new();
-    for &(segment, role) in cycle_moves {
-        if role == CycleMove::Plunge
-            && let Some(hole) = path.hole_of_segment(segment)
-        {
-            plunges.push((hole, segment));
-        }
-    }
+    let plunges: Vec<(usize, usize)> = cycle_moves
+        .iter()
+        .filter(|(_, role)| *role == CycleMove::Plunge)
+        .filter_map(|&(segment, _)| Some((path.hole_of_segment(segment)?, segment)))
+        .collect();
     let mut marks = Vec::new();
     for group in plunges.chunk_by(|a, b| a.0 == b.0) {
         if group.len() < 2 {
@@ -242,11 +236,8 @@ fn mark_compensated(path: &Toolpath, points: &mut [PathPoint]) {
         return;
     }
     let lines: std::collections::HashSet<u32> = path.programmed().iter().map(|(l, _)| *l).collect();
-    for (point, (line, kind)) in points
-        .iter_mut()
-        .skip(1)
-        .zip(path.lines().iter().zip(path.kinds()))
-    {
+    let blocks = path.lines().iter().zip(path.kinds());
+    for (point, (line, kind)) in points.iter_mut().skip(1).zip(blocks) {
         if lines.contains(line) && *kind != SegmentKind::Rapid {
             *point = PathPoint::new(point.position(), Kind::Compensated)
                 .with_color_index(point.color_index());

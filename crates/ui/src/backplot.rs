@@ -316,14 +316,12 @@ impl Backplot {
 
     /// Frames everything drawn once the scene of a text being made is shown (a program opened).
     pub fn fit(&mut self) {
-        self.fitted = false;
-        self.fit_waits = true;
+        (self.fitted, self.fit_waits) = (false, true);
     }
 
     /// Frames everything drawn on the next frame, whatever is being made (Fit, keys, views).
     fn fit_now(&mut self) {
-        self.fitted = false;
-        self.fit_waits = false;
+        (self.fitted, self.fit_waits) = (false, false);
     }
 
     /// Looks from a standard direction, framing everything drawn.
@@ -466,8 +464,7 @@ impl Backplot {
 
         let aspect = rect.width() / rect.height();
         if self.fit_due(scene) {
-            self.fitted = true;
-            self.fit_waits = false;
+            (self.fitted, self.fit_waits) = (true, false);
             self.frame_scene(scene, rect, buttons);
         }
         // Picked with this frame's camera, before the highlight, so a click shows at once.
@@ -631,18 +628,14 @@ impl Backplot {
         let Some(line) = self.selected_line else {
             return Arc::new(Vec::new());
         };
-        match &self.selection {
-            Some((generation, cached, runs))
-                if *generation == scene.generation && *cached == line =>
-            {
-                Arc::clone(runs)
-            }
-            _ => {
-                let runs = Arc::new(scene.segments_of_line(line));
-                self.selection = Some((scene.generation, line, Arc::clone(&runs)));
-                runs
-            }
+        if let Some((generation, cached, runs)) = &self.selection
+            && (*generation, *cached) == (scene.generation, line)
+        {
+            return Arc::clone(runs);
         }
+        let runs = Arc::new(scene.segments_of_line(line));
+        self.selection = Some((scene.generation, line, Arc::clone(&runs)));
+        runs
     }
 
     /// The segments of the selected block highlighted at the last frame, as runs.
@@ -684,9 +677,7 @@ impl Backplot {
             self.picked_line = line.or(self.picked_line);
         }
         let Some(pointer) = response.hover_pos().filter(|_| !response.dragged()) else {
-            self.hover = None;
-            self.stock_hover = None;
-            self.hover_key = None;
+            (self.hover, self.stock_hover, self.hover_key) = (None, None, None);
             return;
         };
         let stock = self.drawn_stock(scene);
@@ -1046,20 +1037,17 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             return Vec::new();
         };
         // `ndc_remap` checked both sides are positive.
-        let size = (
-            visible.width_px.unsigned_abs(),
-            visible.height_px.unsigned_abs(),
-        );
-        if view.target.as_ref().map(RenderTarget::size) != Some(size) {
+        let [w, h] = [visible.width_px, visible.height_px].map(i32::unsigned_abs);
+        if view.target.as_ref().map(RenderTarget::size) != Some((w, h)) {
             view.drawn = None;
             // Without a target nothing is drawn (nor painted) until one can be made.
-            let target = RenderTarget::new(device, size.0, size.1, OFFSCREEN_FORMAT).ok();
+            let target = RenderTarget::new(device, w, h, OFFSCREEN_FORMAT).ok();
             view.bind_group = target.as_ref().map(|t| compositor.bind(device, t));
             view.target = target;
         }
         let params = ViewParams {
             view_proj: remap * self.params.view_proj,
-            viewport_px: Vec2::new(size.0 as f32, size.1 as f32),
+            viewport_px: Vec2::new(w as f32, h as f32),
             ..self.params.clone().scaled(ppp)
         };
         if view.drawn.as_ref() != Some(&params)

@@ -53,20 +53,17 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
     // Past the bytes from `from` on that `f` accepts.
     let run =
         |from: usize, f: fn(&u8) -> bool| from + bytes[from..].iter().take_while(|b| f(b)).count();
+    let syntec = dialect == Dialect::Syntec;
     while i < bytes.len() {
         let c = bytes[i];
         let start = i;
         let color = match c {
-            b'(' => {
-                i = past(i, b')');
-                palette::COMMENT
-            }
-            b';' if dialect.semicolon_is_comment() => {
-                i = past(i, b'\n');
-                palette::COMMENT
-            }
-            b'/' if dialect == Dialect::Syntec && bytes.get(i + 1) == Some(&b'/') => {
-                i = past(i, b'\n');
+            b'(' | b';' | b'/'
+                if c == b'('
+                    || (c == b';' && dialect.semicolon_is_comment())
+                    || (c == b'/' && syntec && bytes.get(i + 1) == Some(&b'/')) =>
+            {
+                i = past(i, if c == b'(' { b')' } else { b'\n' });
                 palette::COMMENT
             }
             b'#' => {
@@ -100,9 +97,7 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
                 match c.to_ascii_uppercase() {
                     b'G' => palette::G_CODE,
                     b'M' => palette::M_CODE,
-                    b'X' | b'Y' | b'Z' | b'A' | b'B' | b'C' | b'I' | b'J' | b'K' | b'R' => {
-                        palette::AXIS
-                    }
+                    u if b"XYZABCIJKR".contains(&u) => palette::AXIS,
                     b'F' | b'S' => palette::FEED,
                     b'T' | b'D' | b'H' => palette::TOOL,
                     b'N' | b'O' => palette::NUMBER,

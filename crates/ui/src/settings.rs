@@ -221,11 +221,8 @@ fn machine_ui(ui: &mut egui::Ui, setup: &mut Setup) {
             }
             let acceleration = upto(&mut m.acceleration_mm_per_s2, 100_000.0, 1.0);
             drag_row(ui, tr("Acceleration (mm/s²)"), acceleration);
-            drag_row(
-                ui,
-                tr("Peck retract (mm)"),
-                upto(&mut m.peck_retract_mm, 100.0, 0.01),
-            );
+            let peck = upto(&mut m.peck_retract_mm, 100.0, 0.01);
+            drag_row(ui, tr("Peck retract (mm)"), peck);
             let tolerance = upto(&mut m.arc_tolerance_mm, 10.0, 0.001).max_decimals(4);
             drag_row(ui, tr("Arc tolerance (mm)"), tolerance);
             let blocks = egui::DragValue::new(&mut m.max_blocks).range(1..=1_000_000_000_u64);

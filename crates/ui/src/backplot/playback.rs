@@ -94,11 +94,8 @@ impl Playback {
 
     /// Turns playback off: the whole path is drawn as executed again.
     pub fn stop(&mut self) {
-        self.time = None;
-        self.pinned = None;
+        (self.time, self.pinned, self.line, self.moved_line) = (None, None, None, None);
         self.playing = false;
-        self.line = None;
-        self.moved_line = None;
     }
 
     /// Moves to `t` seconds from the start (clamped to the program).
