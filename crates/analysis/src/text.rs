@@ -171,6 +171,35 @@ impl swarf_syntax::LineSource for RopeLines<'_> {
         self.joined.as_str()
     }
 
+    fn rest(&mut self, start: usize) -> &str {
+        // The chunk's whole lines from `start` on, or else the line that straddles chunks.
+        if start >= self.rope.len_bytes() {
+            return "";
+        }
+        if self.chunks.is_none() || start < self.chunk_start {
+            self.seek(start);
+        }
+        while start >= self.chunk_start + self.chunk.len() {
+            if !self.advance() {
+                return "";
+            }
+        }
+        let tail = self.chunk.get(start - self.chunk_start..).unwrap_or("");
+        if let Some(end) = tail.rfind('\n') {
+            return tail.get(..=end).unwrap_or("");
+        }
+        self.joined.clear();
+        self.joined.push_str(tail);
+        while self.advance() {
+            let end = self.chunk.find('\n').map_or(self.chunk.len(), |i| i + 1);
+            self.joined.push_str(self.chunk.get(..end).unwrap_or(""));
+            if end < self.chunk.len() || self.chunk.ends_with('\n') {
+                break;
+            }
+        }
+        self.joined.as_str()
+    }
+
     fn trimmed_rest(&mut self, offset: usize) -> Option<(usize, usize)> {
         let len = self.rope.len_bytes();
         let first = self.rope.try_byte_to_char(offset.min(len)).ok()?;

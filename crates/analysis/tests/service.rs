@@ -108,6 +108,13 @@ fn a_straight_program_read_in_pieces_gives_what_it_gives_read_whole() {
     // A jump after the end, which never runs, has the program read and run whole.
     let (pieces, in_pieces) = analyse(job(1, format!("{body}M30\nG01 X1.\n")));
     let (whole, held_whole) = analyse(job(1, format!("{body}M30\nGOTO1\n")));
+    // The editor's rope, whose lines straddle its chunks: a piece is read again from it alone.
+    let rope = ropey::Rope::from_str(&format!("{body}M30\nG01 X1.\n"));
+    let (from_rope, in_rope) = analyse(Job {
+        text: ProgramText::Rope(rope),
+        ..job(1, String::new())
+    });
+    assert_eq!(from_rope, pieces);
     assert!(pieces.stats.blocks > 8_192, "{}", pieces.stats.blocks);
     assert_eq!(pieces.stats, whole.stats);
     assert_eq!(pieces.plot, whole.plot);
@@ -119,6 +126,7 @@ fn a_straight_program_read_in_pieces_gives_what_it_gives_read_whole() {
     let ran = asked.filter(|&line| {
         let state = in_pieces.state_at(line);
         assert_eq!(state, held_whole.state_at(line), "line {line}");
+        assert_eq!(state, in_rope.state_at(line), "line {line} of the rope");
         state.is_some()
     });
     let ran = ran.count();
