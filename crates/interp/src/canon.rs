@@ -259,45 +259,41 @@ impl Canon {
     /// The event as one JSON object of the `swarf canon` stream.
     pub fn to_json(&self, source: Source) -> Value {
         let p = |v: DVec3| json!([round(v.x), round(v.y), round(v.z)]);
-        let line = source.line;
-        match self {
-            Canon::Rapid { to } => json!({"line": line, "kind": "rapid", "to": p(*to)}),
+        let fields = match self {
+            Canon::Rapid { to } => json!({"kind": "rapid", "to": p(*to)}),
             Canon::Feed {
                 to,
-                feed_mm_per_min,
-            } => {
-                json!({"line": line, "kind": "feed", "to": p(*to), "feed": round(*feed_mm_per_min)})
-            }
+                feed_mm_per_min: f,
+            } => json!({"kind": "feed", "to": p(*to), "feed": round(*f)}),
             Canon::Arc(a) => json!({
-                "line": line, "kind": "arc", "to": p(a.to), "center": p(a.center),
-                "axis": a.axis.name(), "dir": if a.ccw { "ccw" } else { "cw" },
-                "turns": a.turns, "feed": round(a.feed_mm_per_min),
+                "kind": "arc", "to": p(a.to), "center": p(a.center), "axis": a.axis.name(),
+                "dir": if a.ccw { "ccw" } else { "cw" }, "turns": a.turns, "feed": round(a.feed_mm_per_min),
             }),
-            Canon::Dwell { secs } => json!({"line": line, "kind": "dwell", "secs": round(*secs)}),
-            Canon::ToolChange { tool } => {
-                json!({"line": line, "kind": "tool_change", "tool": tool})
-            }
+            Canon::Dwell { secs } => json!({"kind": "dwell", "secs": round(*secs)}),
+            Canon::ToolChange { tool } => json!({"kind": "tool_change", "tool": tool}),
             Canon::Spindle { clockwise, rpm } => json!({
-                "line": line, "kind": "spindle",
+                "kind": "spindle",
                 "dir": match clockwise { Some(true) => "cw", Some(false) => "ccw", None => "off" },
                 "rpm": round(*rpm),
             }),
-            Canon::Coolant { on } => json!({"line": line, "kind": "coolant", "on": on}),
-            Canon::Orient => json!({"line": line, "kind": "orient"}),
+            Canon::Coolant { on } => json!({"kind": "coolant", "on": on}),
+            Canon::Orient => json!({"kind": "orient"}),
             Canon::Hole {
-                cycle,
-                index,
-                top,
-                bottom,
+                cycle: c,
+                index: i,
+                top: t,
+                bottom: b,
             } => json!({
-                "line": line, "kind": "hole", "cycle": Code::g(*cycle).to_string(), "index": index,
-                "top": p(*top), "bottom": p(*bottom),
+                "kind": "hole", "cycle": Code::g(*c).to_string(), "index": i, "top": p(*t), "bottom": p(*b),
             }),
-            Canon::Pause { optional } => {
-                json!({"line": line, "kind": "pause", "optional": optional})
-            }
-            Canon::End => json!({"line": line, "kind": "end"}),
+            Canon::Pause { optional } => json!({"kind": "pause", "optional": optional}),
+            Canon::End => json!({"kind": "end"}),
+        };
+        let mut out = json!({ "line": source.line });
+        if let (Some(out), Value::Object(fields)) = (out.as_object_mut(), fields) {
+            out.extend(fields);
         }
+        out
     }
 }
 

@@ -527,9 +527,7 @@ pub(crate) fn close(
         // Straight back: inside only where the tool is outside an arc (LinuxCNC's h and m shapes).
         let reversal = turn.abs() > PI - small.max(1e-9);
         let inside = if reversal {
-            n.arc
-                .or(h.elem.arc)
-                .is_some_and(|(_, ccw, _)| (s > 0.0) != ccw)
+            (n.arc.or(h.elem.arc)).is_some_and(|(_, ccw, _)| (s > 0.0) != ccw)
         } else {
             turn * s > 0.0 && turn.abs() > small
         };

@@ -107,9 +107,7 @@ pub(crate) fn run(
     if keeps && let Some(w) = plain(b'Q') {
         st.cycle.q = Some(st.length(w).abs());
     }
-    let f2 = words
-        .iter()
-        .find(|w| w.letter == b'F' && w.form == WordForm::Indexed(2));
+    let f2 = (words.iter()).find(|w| w.letter == b'F' && w.form == WordForm::Indexed(2));
     st.cycle.retract_feed = f2.map(|w| w.value).or(st.cycle.retract_feed);
     st.cycle.initial.get_or_insert(st.program_pos[n]);
     // Repeats: K (L in KT and LinuxCNC), not modal.
@@ -125,10 +123,8 @@ pub(crate) fn run(
         }
         Some(w) if w.value >= 0.0 && w.value.fract() == 0.0 => w.value as u32,
         Some(w) => {
-            let message = format!(
-                "the repeat count `{}` must be a whole number, 0 or more",
-                w.letter()
-            );
+            let l = w.letter();
+            let message = format!("the repeat count `{l}` must be a whole number, 0 or more");
             return st.fail(w.span, "E-NUMBER-RANGE", message);
         }
         None => 1,
@@ -185,18 +181,15 @@ pub(crate) fn pattern(
     // A count word: a whole number from 1 to 9999 (sign kept for G134's direction).
     let count = |st: &mut State, letter: u8| -> Option<i64> {
         let Some(w) = find(words, letter) else {
-            let message = format!(
-                "this hole pattern needs the number of holes `{}`",
-                char::from(letter)
-            );
+            let l = char::from(letter);
+            let message = format!("this hole pattern needs the number of holes `{l}`");
             return st.fail(code.span, "E-WORD-MISSING", message);
         };
         let k = w.value;
         if k.fract() != 0.0 || k == 0.0 || k.abs() > 9999.0 {
-            let message = format!(
-                "the number of holes `{}` must be a whole number from 1 to 9999",
-                w.letter()
-            );
+            let l = w.letter();
+            let message =
+                format!("the number of holes `{l}` must be a whole number from 1 to 9999");
             return st.fail(w.span, "E-NUMBER-RANGE", message);
         }
         Some(k as i64)
@@ -264,12 +257,8 @@ pub(crate) fn pattern(
     let Ok(count) = u32::try_from(points.len()) else {
         return false;
     };
-    let mut next = |_: &State, i: u32| {
-        points
-            .get(i.saturating_sub(1) as usize)
-            .copied()
-            .unwrap_or(origin)
-    };
+    let mut next =
+        |_: &State, i: u32| (points.get(i.saturating_sub(1) as usize).copied()).unwrap_or(origin);
     drill(st, block, &plan, count, &mut next, source, sink);
     true
 }
@@ -345,10 +334,8 @@ fn slanted(
         return st.fail(block.span, "E-SLANT-ANGLE", message);
     }
     let (Some((r_dist, _)), Some((depth_dist, _))) = (st.cycle.r, st.cycle.z) else {
-        let message = format!(
-            "{name} needs R and the depth `{}` before it drills",
-            char::from(depth_letters.0)
-        );
+        let l = char::from(depth_letters.0);
+        let message = format!("{name} needs R and the depth `{l}` before it drills");
         return st.fail(block.span, "E-WORD-MISSING", message);
     };
     if let Some(c) = c_word {
@@ -607,10 +594,8 @@ fn linuxcnc_back(
         }
     }
     let Some(level) = find(words, offset_letter(n)) else {
-        let message = format!(
-            "G87 needs `{}`, the level the back bore starts from",
-            char::from(offset_letter(n))
-        );
+        let l = char::from(offset_letter(n));
+        let message = format!("G87 needs `{l}`, the level the back bore starts from");
         return st.fail(block.span, "E-WORD-MISSING", message);
     };
     let level = st.length(level);

@@ -51,11 +51,9 @@ pub(crate) const MAX_COUNT: f64 = 9999.0;
 
 /// The diagnostic for a count word out of 1–9999 (the count is clamped into the range).
 pub(crate) fn count_range(w: &Word, what: &str) -> Diagnostic {
-    let message = format!(
-        "`{}{}` is out of range: the number of {what} is 1 to 9999 (it is clamped)",
-        w.letter(),
-        w.value
-    );
+    let (l, v) = (w.letter(), w.value);
+    let message =
+        format!("`{l}{v}` is out of range: the number of {what} is 1 to 9999 (it is clamped)");
     Diagnostic::error(w.span, "E-NUMBER-RANGE", message)
 }
 
@@ -237,13 +235,9 @@ fn axis_words(words: &[Word], first: u8) -> Axes<'_> {
 }
 
 /// `p` with each coordinate that `axes` gives replaced by its word's length (mm).
-fn given(st: &State, axes: &Axes<'_>, mut p: DVec3) -> DVec3 {
-    for (i, w) in axes.iter().enumerate() {
-        if let Some(w) = w {
-            p[i] = st.length(w);
-        }
-    }
-    p
+fn given(st: &State, axes: &Axes<'_>, p: DVec3) -> DVec3 {
+    let coordinate = |i: usize| axes[i].map_or(p[i], |w| st.length(w));
+    DVec3::new(coordinate(0), coordinate(1), coordinate(2))
 }
 
 /// The in-plane words of `axes` (a hole's position: the normal word is its bottom).

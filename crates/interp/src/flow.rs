@@ -130,18 +130,12 @@ impl Index {
 
     /// Why the file holding the called program `missing` was not linked, if it was found.
     pub(crate) fn unlinked(&self, missing: &Missing) -> Option<&str> {
-        self.unlinked
-            .iter()
-            .find(|(m, _)| m == missing)
-            .map(|(_, why)| why.as_str())
+        (self.unlinked.iter().find(|(m, _)| m == missing)).map(|(_, why)| why.as_str())
     }
 
     /// The first block of program `O number`.
     pub(crate) fn program_start(&self, number: u32) -> Option<usize> {
-        self.numbers
-            .get(&number)
-            .and_then(|p| self.starts.get(*p))
-            .copied()
+        (self.numbers.get(&number).and_then(|p| self.starts.get(*p))).copied()
     }
 
     /// The block numbered `N n` in the program that block `at` belongs to.
@@ -195,10 +189,8 @@ fn first_of<'a>(
     kinds: fn(&OWord) -> bool,
     searched: &mut u64,
 ) -> Option<(usize, &'a OWord)> {
-    lines
-        .inspect(|_| *searched += 1)
-        .find(|line| kinds(&line.1))
-        .map(|(b, k)| (*b, k))
+    let mut lines = lines.inspect(|_| *searched += 1);
+    lines.find(|line| kinds(&line.1)).map(|(b, k)| (*b, k))
 }
 
 /// How many expression terms `block` evaluates at most (counted by `max_work`).

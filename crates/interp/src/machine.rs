@@ -304,10 +304,7 @@ impl Interpreter {
                             .is_some_and(|def| def.whole)
                     }))
         });
-        let control = block
-            .statements()
-            .iter()
-            .any(|s| !matches!(s, Statement::Assign { .. }));
+        let control = (block.statements().iter()).any(|s| !matches!(s, Statement::Assign { .. }));
         several_programs || calls || control
     }
 
@@ -469,10 +466,7 @@ impl Interpreter {
     fn stopped(&mut self, program: &Program, counted: &mut MotionCounter<'_>) -> bool {
         if let Some((source, problem)) = counted.out_of_range.take() {
             let at = (source.block as usize).saturating_sub(self.block_base);
-            let span = program
-                .blocks
-                .get(at)
-                .map_or(self.st.block_span, |b| b.span);
+            let span = (program.blocks.get(at)).map_or(self.st.block_span, |b| b.span);
             self.st.error(span, "E-COORDINATE-RANGE", problem);
             // Nothing more is passed on.
             counted.out_of_range = Some((source, String::new()));
@@ -555,13 +549,7 @@ impl Interpreter {
         let room = usize::try_from(room).unwrap_or(usize::MAX).min(left);
         let at = self.next_block;
         let mut ran = 0;
-        for block in program
-            .blocks
-            .get(at..)
-            .unwrap_or_default()
-            .iter()
-            .take(room)
-        {
+        for block in (program.blocks.get(at..).unwrap_or_default().iter()).take(room) {
             if block.has_error()
                 || block.words.is_empty()
                 || block.program().is_some()
@@ -651,9 +639,7 @@ impl Interpreter {
             }
         };
         // Each assignment reads the values from before the block (LinuxCNC's rule).
-        let assigned = block
-            .statements()
-            .iter()
+        let assigned = (block.statements().iter())
             .filter_map(|s| match s {
                 Statement::Assign { target, value } => Some((*target, *value)),
                 _ => None,
@@ -747,15 +733,10 @@ impl Interpreter {
             if w.letter == b'G' || w.letter == b'M' {
                 // A code from a variable is checked like a written one.
                 let code = Code::from_value(w.letter, value);
-                if code
-                    .and_then(|c| swarf_syntax::codes::lookup(self.st.dialect, c))
-                    .is_none()
-                {
-                    let message = format!(
-                        "{}{value} (from a variable) is not a code of {}",
-                        w.letter(),
-                        self.st.dialect.label()
-                    );
+                if (code.and_then(|c| swarf_syntax::codes::lookup(self.st.dialect, c))).is_none() {
+                    let (l, control) = (w.letter(), self.st.dialect.label());
+                    let message =
+                        format!("{l}{value} (from a variable) is not a code of {control}");
                     return Err(Diagnostic::error(word.span, "E-UNKNOWN-CODE", message));
                 }
                 // Codes are read as plain numbers from here on.
@@ -834,10 +815,9 @@ impl Interpreter {
                 let end = index.loop_end.get(&at);
                 Ok(end.map_or(Flow::Stop, |end| Flow::Jump(end + 1)))
             }
-            Statement::End { .. } => Ok(index
-                .loop_head
-                .get(&at)
-                .map_or(Flow::Stop, |h| Flow::Jump(*h))),
+            Statement::End { .. } => {
+                Ok((index.loop_head.get(&at)).map_or(Flow::Stop, |h| Flow::Jump(*h)))
+            }
             Statement::OWord { label, kind } => self.oword(program, at, block, label, kind),
         }
     }
@@ -883,14 +863,10 @@ impl Interpreter {
         let before = |work: &mut u64, kinds: Kinds| index.near_oword(&key, at, false, kinds, work);
         // A jump past the next such line, or back to the last one; `what` names it when missing.
         let past = |work: &mut u64, kinds: Kinds, what: &str| {
-            after(work, kinds)
-                .map(|l| Flow::Jump(l.0 + 1))
-                .ok_or_else(|| missing(what))
+            (after(work, kinds).map(|l| Flow::Jump(l.0 + 1))).ok_or_else(|| missing(what))
         };
         let back = |work: &mut u64, kinds: Kinds, what: &str| {
-            before(work, kinds)
-                .map(|l| Flow::Jump(l.0))
-                .ok_or_else(|| missing(what))
+            (before(work, kinds).map(|l| Flow::Jump(l.0))).ok_or_else(|| missing(what))
         };
         match kind {
             OWord::Sub => {
@@ -1077,13 +1053,11 @@ impl Interpreter {
         let start = if let Some(h) = h {
             // Syntec `M98 H n`: the block N n of this program, as a local subprogram.
             let n = h.value;
-            index
-                .label(at, n as u32)
-                .filter(|_| n >= 0.0 && n.fract() == 0.0)
-                .ok_or_else(|| {
-                    let message = format!("there is no block N{n} in this program for M98 H{n}");
-                    Diagnostic::error(h.span, "E-SUBPROGRAM", message)
-                })?
+            let label = (index.label(at, n as u32)).filter(|_| n >= 0.0 && n.fract() == 0.0);
+            label.ok_or_else(|| {
+                let message = format!("there is no block N{n} in this program for M98 H{n}");
+                Diagnostic::error(h.span, "E-SUBPROGRAM", message)
+            })?
         } else {
             if !number.is_finite() {
                 let message = "M98 needs the program number in P";
@@ -1139,9 +1113,7 @@ impl Interpreter {
         let return_to = frame.return_to;
         self.pop_call();
         match target {
-            Some(p) => self
-                .goto(return_to.saturating_sub(1), p.value, p.span)
-                .map(Flow::Jump),
+            Some(p) => (self.goto(return_to.saturating_sub(1), p.value, p.span)).map(Flow::Jump),
             None => Ok(Flow::Jump(return_to)),
         }
     }
@@ -1151,19 +1123,13 @@ impl Interpreter {
 /// piece with no call open, it ends the main program, which needs no more than the pieces run.
 fn ends_main_program(block: &Block, dialect: Dialect) -> bool {
     let mut m99 = false;
-    let no_other_call = block
-        .words
-        .iter()
-        .filter(|w| matches!(w.letter, b'G' | b'M'))
-        .all(|w| {
-            let code = Code::from_value(w.letter, w.value);
-            m99 |= w.letter == b'M' && w.value == 99.0;
-            w.expr.is_none()
-                && (w.value == 99.0
-                    || !code
-                        .and_then(|c| swarf_syntax::codes::lookup(dialect, c))
-                        .is_some_and(|def| def.whole))
-        });
+    let mut codes = (block.words.iter()).filter(|w| matches!(w.letter, b'G' | b'M'));
+    let no_other_call = codes.all(|w| {
+        let code = Code::from_value(w.letter, w.value);
+        m99 |= w.letter == b'M' && w.value == 99.0;
+        let def = code.and_then(|c| swarf_syntax::codes::lookup(dialect, c));
+        w.expr.is_none() && (w.value == 99.0 || !def.is_some_and(|def| def.whole))
+    });
     m99 && no_other_call
         && block.program().is_none()
         && block.statements().is_empty()
@@ -1172,9 +1138,7 @@ fn ends_main_program(block: &Block, dialect: Dialect) -> bool {
 
 /// The first plain word with address `letter`.
 pub(crate) fn find(words: &[Word], letter: u8) -> Option<&Word> {
-    words
-        .iter()
-        .find(|w| w.letter == letter && w.form == WordForm::Plain)
+    (words.iter()).find(|w| w.letter == letter && w.form == WordForm::Plain)
 }
 
 /// The error of a call to `O number` not in the program: why its file was not linked.

@@ -412,12 +412,8 @@ impl Evaluator<'_> {
                                     steps.push(Step::Visit(*index));
                                 }
                                 _ => {
-                                    let message = "`EXISTS` takes a parameter: `EXISTS[#<name>]`";
-                                    return Err(Diagnostic::error(
-                                        node.span,
-                                        "E-MACRO-VALUE",
-                                        message,
-                                    ));
+                                    let m = "`EXISTS` takes a parameter: `EXISTS[#<name>]`";
+                                    return Err(Diagnostic::error(node.span, "E-MACRO-VALUE", m));
                                 }
                             }
                         }
@@ -462,16 +458,11 @@ impl Evaluator<'_> {
             }
         }
         let result = values.pop().ok_or_else(|| internal(node.span))?;
-        values
-            .is_empty()
-            .then_some(result)
-            .ok_or_else(|| internal(node.span))
+        (values.is_empty().then_some(result)).ok_or_else(|| internal(node.span))
     }
 
     fn variable(&self, n: f64, span: Span) -> Result<Value, Diagnostic> {
-        self.vars
-            .get(n, self.sys)
-            .map_err(|m| Diagnostic::error(span, "E-MACRO-VARIABLE", m))
+        (self.vars.get(n, self.sys)).map_err(|m| Diagnostic::error(span, "E-MACRO-VARIABLE", m))
     }
 
     /// Reads `#<name>` as the program does: a name never assigned is an error.
@@ -506,10 +497,7 @@ fn flag(b: bool) -> f64 {
 fn finite(result: Result<f64, Fault>, span: Span) -> Result<Value, Diagnostic> {
     let (code, message) = match result {
         Ok(v) if v.is_finite() => return Ok(Some(v)),
-        Ok(_) => (
-            "E-MACRO-VALUE",
-            "the result is too large (overflow)".to_string(),
-        ),
+        Ok(_) => ("E-MACRO-VALUE", "the result is too large (overflow)".into()),
         Err(fault) => fault,
     };
     Err(Diagnostic::error(span, code, message))
@@ -572,10 +560,8 @@ fn bits(x: f64, op: BinOp) -> Result<i64, Fault> {
     const LIMIT: f64 = 9_007_199_254_740_992.0; // 2^53
     let r = x.round();
     if r.abs() > LIMIT {
-        let message = format!(
-            "{} works on integers up to 2^53; {x} is too large",
-            op.symbol()
-        );
+        let op = op.symbol();
+        let message = format!("{op} works on integers up to 2^53; {x} is too large");
         return Err(("E-MACRO-VALUE", message));
     }
     Ok(r as i64)

@@ -19,10 +19,7 @@ pub enum Units {
 impl Units {
     /// Millimetres per unit.
     pub fn mm(self) -> f64 {
-        match self {
-            Units::Mm => 1.0,
-            Units::Inch => 25.4,
-        }
+        [1.0, 25.4][self as usize]
     }
 }
 
@@ -143,14 +140,9 @@ pub enum ShiftDirection {
 impl ShiftDirection {
     /// The unit vector of the direction (machine axes).
     pub fn vector(self) -> DVec3 {
-        match self {
-            ShiftDirection::PlusX => DVec3::X,
-            ShiftDirection::MinusX => DVec3::NEG_X,
-            ShiftDirection::PlusY => DVec3::Y,
-            ShiftDirection::MinusY => DVec3::NEG_Y,
-            ShiftDirection::PlusZ => DVec3::Z,
-            ShiftDirection::MinusZ => DVec3::NEG_Z,
-        }
+        let mut v = DVec3::ZERO;
+        v[self as usize / 2] = [1.0, -1.0][self as usize % 2];
+        v
     }
 }
 

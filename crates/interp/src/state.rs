@@ -251,10 +251,7 @@ impl State {
 
     /// Whether numbers without a decimal point are read in mm (calculator-type input).
     pub fn calculator(&self) -> bool {
-        self.setup
-            .machine
-            .calculator_input
-            .unwrap_or(self.dialect.rules().calculator_input)
+        (self.setup.machine.calculator_input).unwrap_or(self.dialect.rules().calculator_input)
     }
 
     /// A coordinate or distance word in millimetres, read with the dialect's decimal-point rule.
@@ -531,10 +528,7 @@ const WCS_NAMES: [&str; 9] = [
 
 /// 1 for G54 … 6 for G59, 7–9 for G59.1–G59.3 (1 for the extended systems G54.1 Pn).
 fn wcs_number(name: &str) -> u32 {
-    WCS_NAMES
-        .iter()
-        .position(|n| *n == name)
-        .map_or(1, |i| i as u32 + 1)
+    (WCS_NAMES.iter().position(|n| *n == name)).map_or(1, |i| i as u32 + 1)
 }
 
 /// The two in-plane axes (first, second) of the plane with normal `normal`.

@@ -131,10 +131,7 @@ pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<
     let dialect = st.dialect;
     let mut actions: Actions<'w> = SmallVec::new();
     let mut runnable = true;
-    for word in words
-        .iter()
-        .filter(|w| w.letter == b'G' && w.form == WordForm::Plain)
-    {
+    for word in (words.iter()).filter(|w| w.letter == b'G' && w.form == WordForm::Plain) {
         let Some(def) = Code::from_value(b'G', word.value).and_then(|c| codes::lookup(dialect, c))
         else {
             continue;
@@ -164,10 +161,9 @@ pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<
                 runnable = false;
             }
             None => {
-                let message = format!(
-                    "{} ({}) is not interpreted yet; this block is not run",
-                    def.code, def.name
-                );
+                let (code, name) = (def.code, def.name);
+                let message =
+                    format!("{code} ({name}) is not interpreted yet; this block is not run");
                 st.warning(word.span, "W-NOT-INTERPRETED", message);
                 runnable = false;
             }
@@ -186,10 +182,8 @@ pub(super) fn of_block<'w>(st: &mut State, words: &'w [Word]) -> Option<Actions<
             // Syntec's `F2=`: the retract feed of G81 (read by the cycle).
             WordForm::Indexed(2) if word.letter == b'F' && dialect == Dialect::Syntec => {}
             WordForm::Indexed(n) => {
-                let message = format!(
-                    "`{}{n}=` is not interpreted yet and is ignored",
-                    word.letter()
-                );
+                let l = word.letter();
+                let message = format!("`{l}{n}=` is not interpreted yet and is ignored");
                 st.warning(word.span, "W-NOT-INTERPRETED", message);
             }
             WordForm::Plain => {}

@@ -86,12 +86,7 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
             let reg = st.setup.registers.entry(n).or_default();
             let slot = match (linuxcnc, l) {
                 (true, _) => {
-                    if let Some(z) = z {
-                        reg.length = z;
-                    }
-                    if let Some(r) = r {
-                        reg.radius = r;
-                    }
+                    (reg.length, reg.radius) = (z.unwrap_or(reg.length), r.unwrap_or(reg.radius));
                     return true;
                 }
                 (_, Some(10)) => &mut reg.length,

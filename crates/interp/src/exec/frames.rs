@@ -96,13 +96,9 @@ pub(super) fn scaling(st: &mut State, w: &Word, words: &[Word], on: bool) {
     let center = given(st, &axis_words(words, b'X'), st.program_pos);
     // Scale factors: P for all axes, or I/J/K per axis (read as written, e.g. P2.0 or P0.5).
     let p = find(words, b'P').map(|p| p.value);
-    let mut factors = DVec3::splat(p.unwrap_or(1.0));
-    for (i, l) in [b'I', b'J', b'K'].iter().enumerate() {
-        if let Some(f) = find(words, *l) {
-            factors[i] = f.value;
-        }
-    }
-    if p.is_none() && [b'I', b'J', b'K'].iter().all(|l| find(words, *l).is_none()) {
+    let ijk = [b'I', b'J', b'K'].map(|l| find(words, l).map(|f| f.value));
+    let factors = DVec3::from_array(ijk.map(|f| f.or(p).unwrap_or(1.0)));
+    if p.is_none() && ijk.iter().all(Option::is_none) {
         let message = "G51 without P or I/J/K scales by 1";
         st.warning(w.span, "W-WORD-MISSING", message);
     }
@@ -152,8 +148,6 @@ pub(super) fn set_position(st: &mut State, axes: &Axes<'_>) {
 /// plane turned by R degrees about it (#1930); K, not explained by the manual, is not used.
 pub(super) fn preset_zero(st: &mut State, words: &[Word]) {
     st.shift = given(st, &axis_words(words, b'X'), st.shift);
-    if let Some(r) = find(words, b'R') {
-        st.preset_rotation = st.angle(r);
-    }
+    st.preset_rotation = find(words, b'R').map_or(st.preset_rotation, |r| st.angle(r));
     st.resync();
 }

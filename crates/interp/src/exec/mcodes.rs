@@ -15,10 +15,7 @@ pub(super) fn m_codes(
     sink: &mut dyn Sink,
 ) -> Requests {
     let mut requests = Requests::new();
-    for word in words
-        .iter()
-        .filter(|w| w.letter == b'M' && w.form == WordForm::Plain)
-    {
+    for word in (words.iter()).filter(|w| w.letter == b'M' && w.form == WordForm::Plain) {
         let Some(code) = Code::from_value(b'M', word.value) else {
             continue;
         };

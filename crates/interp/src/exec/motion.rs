@@ -216,10 +216,9 @@ pub(super) fn arc(
         }
         let half = chord / 2.0;
         if r_mm.abs() + st.setup.machine.arc_tolerance_mm < half {
-            let message = format!(
-                "R{} is smaller than half the distance to the end point ({half:.4} mm)",
-                r.value
-            );
+            let v = r.value;
+            let message =
+                format!("R{v} is smaller than half the distance to the end point ({half:.4} mm)");
             return st.fail(r.span, "E-ARC-RADIUS", message);
         }
         let h = (r_mm * r_mm - half * half).max(0.0).sqrt();
@@ -243,9 +242,9 @@ pub(super) fn arc(
                     );
                     return st.fail(w.span, "E-ARC-WORD", message);
                 } else {
+                    let l = w.letter();
                     let message = format!(
-                        "`{}` is not a centre offset in the selected plane and is ignored",
-                        w.letter()
+                        "`{l}` is not a centre offset in the selected plane and is ignored"
                     );
                     st.warning(w.span, "W-WORD-IGNORED", message);
                 }
@@ -419,10 +418,8 @@ pub(super) fn unused_arc_words(st: &mut State, words: &[Word]) {
         .iter()
         .filter(|w| w.form == WordForm::Plain && matches!(w.letter, b'I' | b'J' | b'K' | b'R'))
     {
-        let message = format!(
-            "address `{}` is only used by G02/G03 here and is ignored",
-            w.letter()
-        );
+        let l = w.letter();
+        let message = format!("address `{l}` is only used by G02/G03 here and is ignored");
         st.warning(w.span, "W-WORD-IGNORED", message);
     }
 }

@@ -76,10 +76,9 @@ pub(super) fn machine_move(
             return true;
         }
         // Syntec, LNC and Fanuc all ignore G53 in G91.
-        let message = format!(
-            "{} ignores G53 in G91: the block is an ordinary incremental move",
-            st.dialect.label()
-        );
+        let control = st.dialect.label();
+        let message =
+            format!("{control} ignores G53 in G91: the block is an ordinary incremental move");
         st.warning(g53.span, "W-G53-INCREMENTAL", message);
         return false;
     }

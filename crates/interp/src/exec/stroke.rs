@@ -138,10 +138,7 @@ pub(super) fn stroke_limit(st: &mut State, w: &Word, words: &[Word], on: bool) {
     let mut min = DVec3::NEG_INFINITY;
     let mut max = DVec3::INFINITY;
     let mut given = false;
-    for (i, (plus, minus)) in [(b'X', b'I'), (b'Y', b'J'), (b'Z', b'K')]
-        .iter()
-        .enumerate()
-    {
+    for (i, (plus, minus)) in ([(b'X', b'I'), (b'Y', b'J'), (b'Z', b'K')].iter()).enumerate() {
         let hi = find(words, *plus).map(|x| st.length(x));
         let lo = find(words, *minus).map(|x| st.length(x));
         given |= hi.is_some() || lo.is_some();

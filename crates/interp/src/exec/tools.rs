@@ -203,9 +203,7 @@ pub(super) fn tool_tip_shift(st: &State) -> DVec3 {
 pub(super) fn new_registers(st: &mut State, words: &[Word], actions: &Actions<'_>) -> bool {
     let has = |a: fn(&Action) -> bool| actions.iter().any(|(x, _)| a(x));
     new_length_register(st, words, has(|a| matches!(a, Action::LengthComp(_))));
-    let comp_code = actions
-        .iter()
-        .find(|(a, _)| matches!(a, Action::CutterComp(_)));
+    let comp_code = (actions.iter()).find(|(a, _)| matches!(a, Action::CutterComp(_)));
     if comp_code.is_none()
         && !new_radius_register(st, words, has(|a| *a == Action::SpindleMode(true)))
     {
@@ -216,10 +214,9 @@ pub(super) fn new_registers(st: &mut State, words: &[Word], actions: &Actions<'_
         && matches!(st.motion, Some(MotionMode::Arc { .. }))
         && axis_words(words, b'X').iter().any(Option::is_some)
     {
+        let code = Code::from_value(b'G', w.value).map_or("G40–G42".into(), |c| c.to_string());
         let message = format!(
-            "{} starts or cancels cutter compensation only in a G00/G01 block, not with G02/G03: the control alarms and stops",
-            Code::from_value(b'G', w.value)
-                .map_or_else(|| "G40–G42".to_string(), |c| c.to_string())
+            "{code} starts or cancels cutter compensation only in a G00/G01 block, not with G02/G03: the control alarms and stops"
         );
         return st.fail(w.span, "E-COMP-ARC", message);
     }

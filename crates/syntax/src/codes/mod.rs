@@ -322,11 +322,7 @@ pub(crate) const fn letter_mask(letters: &[u8]) -> u32 {
 /// The meaning of `code` in `dialect`, if the dialect has it.
 #[inline]
 pub fn lookup(dialect: Dialect, code: Code) -> Option<&'static CodeDef> {
-    let letter = match code.letter {
-        b'G' => 0,
-        b'M' => 1,
-        _ => return None,
-    };
+    let letter = [b'G', b'M'].iter().position(|&l| l == code.letter)?;
     let i = *index(dialect)[letter].get(code.tenths as usize)?;
     CODES.get(usize::from(i))
 }
