@@ -128,6 +128,20 @@ impl<'a> RopeLines<'a> {
         }
     }
 
+    /// Moves to the chunk holding byte `at`, forward from the one at hand where it can; whether
+    /// there is one.
+    fn reach(&mut self, at: usize) -> bool {
+        if self.chunks.is_none() || at < self.chunk_start {
+            self.seek(at);
+        }
+        while at >= self.chunk_start + self.chunk.len() {
+            if !self.advance() {
+                return false;
+            }
+        }
+        true
+    }
+
     /// Moves to the next chunk; whether there is one.
     fn advance(&mut self) -> bool {
         match self.chunks.as_mut().and_then(Iterator::next) {
@@ -150,13 +164,8 @@ impl swarf_syntax::LineSource for RopeLines<'_> {
         if start >= end || end > self.rope.len_bytes() {
             return "";
         }
-        if self.chunks.is_none() || start < self.chunk_start {
-            self.seek(start);
-        }
-        while start >= self.chunk_start + self.chunk.len() {
-            if !self.advance() {
-                return "";
-            }
+        if !self.reach(start) {
+            return "";
         }
         let from = start - self.chunk_start;
         if end <= self.chunk_start + self.chunk.len() {
@@ -176,13 +185,8 @@ impl swarf_syntax::LineSource for RopeLines<'_> {
         if start >= self.rope.len_bytes() {
             return "";
         }
-        if self.chunks.is_none() || start < self.chunk_start {
-            self.seek(start);
-        }
-        while start >= self.chunk_start + self.chunk.len() {
-            if !self.advance() {
-                return "";
-            }
+        if !self.reach(start) {
+            return "";
         }
         let tail = self.chunk.get(start - self.chunk_start..).unwrap_or("");
         if let Some(end) = tail.rfind('\n') {
