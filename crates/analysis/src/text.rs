@@ -56,7 +56,7 @@ impl ProgramText {
     pub fn to_owned_string(&self) -> String {
         match self {
             ProgramText::Flat(text) => text.as_ref().clone(),
-            ProgramText::Rope(rope) => rope.to_string(),
+            ProgramText::Rope(rope) => String::from(rope),
         }
     }
 

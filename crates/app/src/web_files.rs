@@ -467,7 +467,10 @@ impl Host {
         let writes = self.book.plan(&tabs);
         let values: Vec<js_sys::Uint8Array> = writes
             .iter()
-            .map(|w| js_sys::Uint8Array::from(wb.tab_text(w.tab).unwrap_or_default().as_bytes()))
+            .map(|w| {
+                let text = wb.tab_source(w.tab).unwrap_or_else(|| String::new().into());
+                js_sys::Uint8Array::new(&crate::web_worker::text_buffer(&text))
+            })
             .collect();
         let book = self.book.clone();
         let db = self.db.clone();

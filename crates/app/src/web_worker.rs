@@ -140,7 +140,7 @@ impl Analyst for WorkerAnalyst {
 }
 
 /// A text as UTF-8 in a new `ArrayBuffer`, its pieces copied straight into place.
-fn text_buffer(text: &ProgramText) -> ArrayBuffer {
+pub(crate) fn text_buffer(text: &ProgramText) -> ArrayBuffer {
     let len = u32::try_from(text.len()).unwrap_or(u32::MAX);
     let array = Uint8Array::new_with_length(len);
     let mut at = 0u32;

@@ -65,7 +65,7 @@ impl Buffer {
 
     /// The whole text as one string, copied on the first call after an edit and kept.
     pub fn as_str(&self) -> &str {
-        self.flat.get_or_init(|| Arc::new(self.rope.to_string()))
+        self.flat.get_or_init(|| Arc::new(String::from(&self.rope)))
     }
 
     /// The text for an analysis: the flat copy when it exists (small programs, edited as one
@@ -81,7 +81,7 @@ impl Buffer {
     pub fn to_text(&self) -> String {
         match self.flat.get() {
             Some(flat) => flat.as_ref().clone(),
-            None => self.rope.to_string(),
+            None => String::from(&self.rope),
         }
     }
 
@@ -141,7 +141,7 @@ impl Buffer {
     pub fn slice(&self, chars: Range<usize>) -> String {
         let end = chars.end.min(self.len_chars());
         let start = chars.start.min(end);
-        self.rope.slice(start..end).to_string()
+        String::from(self.rope.slice(start..end))
     }
 
     /// Inserts `text` at character `at` (clamped to the text).

@@ -9,7 +9,7 @@ use swarf_syntax::{Dialect, Encoding};
 use super::Workbench;
 use super::analyst::no_analysis;
 use super::menus::Action;
-use crate::analysis::Analysis;
+use crate::analysis::{Analysis, ProgramText};
 use crate::buffer::Buffer;
 use crate::examples::EXAMPLES;
 use crate::history::History;
@@ -247,6 +247,11 @@ impl Workbench {
     /// The text of tab `i` (a copy), `None` past the last tab.
     pub fn tab_text(&self, i: usize) -> Option<String> {
         self.tab_at(i).map(|tab| tab.text.to_text())
+    }
+
+    /// The text of tab `i` shared, not copied (to write it out a piece at a time).
+    pub fn tab_source(&self, i: usize) -> Option<ProgramText> {
+        self.tab_at(i).map(|tab| tab.text.program_text())
     }
 
     /// Tab `i` (the active one's state is `tab`), `None` past the last tab.
