@@ -12,6 +12,7 @@
 //   node tests/e2e/bench-web.mjs [LINES]        (default 1000000)
 // Prints a Markdown table row per figure.
 
+import { readFileSync } from "node:fs";
 import { stat } from "node:fs/promises";
 import path from "node:path";
 
@@ -107,16 +108,26 @@ async function emptyPageGap(session) {
 }
 
 /**
- * Resident megabytes of this session's renderer processes: the page and its worker (a dedicated
- * worker is a thread of its page's renderer), not the GPU process.
+ * Megabytes of the page's renderer process, which runs the page and its analysis worker (a
+ * dedicated worker is a thread of its page's renderer): resident, and private (its own pages,
+ * without the browser's code it shares with the other processes, as Chromium's task manager
+ * counts a process's footprint). The session's other renderers (the spare one Chromium keeps
+ * ready, the service worker's) are left out: the page's is the largest, holding both wasm
+ * memories.
  */
 function rendererMb(session) {
-  const ps = execFileSync("ps", ["-eo", "rss=,args="], { encoding: "utf8", maxBuffer: 1 << 26 });
-  const kb = ps
+  const ps = execFileSync("ps", ["-eo", "pid=,rss=,args="], { encoding: "utf8", maxBuffer: 1 << 26 });
+  const [pid, rssKb] = ps
     .split("\n")
     .filter((l) => l.includes("--type=renderer") && l.includes(session.userDataDir))
-    .reduce((sum, l) => sum + Number.parseInt(l.trim(), 10), 0);
-  return kb / 1024;
+    .map((l) => l.trim().split(/\s+/).slice(0, 2).map(Number))
+    .reduce((a, b) => (b[1] > a[1] ? b : a), [0, 0]);
+  const rollup = readFileSync(`/proc/${pid}/smaps_rollup`, "utf8");
+  const privateKb = [...rollup.matchAll(/^Private_(?:Clean|Dirty):\s+(\d+)/gm)].reduce(
+    (sum, m) => sum + Number(m[1]),
+    0,
+  );
+  return { resident: rssKb / 1024, private: privateKb / 1024 };
 }
 
 const session = await BrowserSession.start({
@@ -136,6 +147,7 @@ try {
   const wasmSizes = [sent, await onDisk(".gz"), await onDisk("")].map((b) => (b / 1e6).toFixed(2));
   await recordFrames(session.page);
   const emptyGap = await emptyPageGap(session);
+  const emptyMb = rendererMb(session);
   const shortKeyMs = await keystroke(session, 20, KEYSTROKES);
   const keyMs = await keystroke(session, 10_000, KEYSTROKES);
   const text = surfacing(lines);
@@ -191,13 +203,16 @@ try {
     `| longest gap between frames: the empty page repainting / after that open() returned (the call: ${Math.round(result.call)} ms) | ${Math.round(emptyGap)} ms / ${Math.round(openGap)} ms |`,
   );
   console.log(
-    `| page and worker resident memory with that program open (the renderer process) | ${Math.round(memoryMb)} MB |`,
+    `| the empty page's renderer process: resident / private | ${Math.round(emptyMb.resident)} MB / ${Math.round(emptyMb.private)} MB |`,
+  );
+  console.log(
+    `| the page's renderer process (page and worker) with that program open: resident / private | ${Math.round(memoryMb.resident)} MB / ${Math.round(memoryMb.private)} MB |`,
   );
   console.log(
     `| of which: the page's wasm memory / the worker's / the page's JavaScript heap in use | ${partsMb.join(" MB / ")} MB |`,
   );
   console.log(
-    `| the same once the page's garbage is collected: resident / the page's JavaScript heap | ${Math.round(collectedMb)} MB / ${Math.round(collectedJs / 2 ** 20)} MB |`,
+    `| the same once the page's garbage is collected: resident / private / the page's JavaScript heap | ${Math.round(collectedMb.resident)} MB / ${Math.round(collectedMb.private)} MB / ${Math.round(collectedJs / 2 ** 20)} MB |`,
   );
   console.log(
     `| npm gcode-preview 2.18 (three.js) on the same program, to its first frame | ${Math.round(peerMs)} ms (${(peerMs / result.ms).toFixed(1)}× Swarf's time) |`,
