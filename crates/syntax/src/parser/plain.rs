@@ -165,12 +165,7 @@ pub(super) fn read_plain_lines(
         };
         read.lines += 1;
         read.block |= block;
-        // The line ends at a `\n`, a `\r\n` or a `\r`, or else at the end of the text.
-        let ending = match onward.get(len..) {
-            Some([b'\r', b'\n', ..]) => 2,
-            Some([_, ..]) => 1,
-            _ => 0,
-        };
+        let ending = ending_len(onward.get(len..));
         read.bytes += len + ending;
         read.last = ending == 0;
         let start = base + read.bytes;
@@ -186,6 +181,17 @@ pub(super) fn read_plain_lines(
         }
     }
     read
+}
+
+/// The length of the line ending at the start of `after` (what follows a line's text): a line
+/// ends at a `\n`, a `\r\n` or a `\r`, or else (0) at the end of the text.
+#[inline(always)]
+pub(super) fn ending_len(after: Option<&[u8]>) -> usize {
+    match after {
+        Some([b'\r', b'\n', ..]) => 2,
+        Some([_, ..]) => 1,
+        _ => 0,
+    }
 }
 
 /// For each byte, the address letter (uppercase) of a word of a plain line that it starts, or 0:

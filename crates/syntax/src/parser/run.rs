@@ -2,7 +2,7 @@
 //! each line read by the short reader of plain lines or by the general one.
 
 use super::block::LineReader;
-use super::plain::{PlainLines, read_plain_line, read_plain_lines};
+use super::plain::{PlainLines, ending_len, read_plain_line, read_plain_lines};
 use super::{MAX_LINE_BYTES, MAX_PARSED_BYTES, is_blank};
 use crate::{Block, Diagnostic, Dialect, ExprNode, LineIndex, LineSource, Program, Span};
 
@@ -165,8 +165,9 @@ impl ParseRun {
         }
     }
 
-    /// Starts a parse at `at` (a [`ParseRun::read_point`] of a parse of the same text), its
-    /// lines indexed as they are read; the blocks read are those the first parse read there.
+    /// Starts a parse at `at` (a [`ParseRun::read_point`] of a parse of the same text): the
+    /// blocks read are those the first parse read there, with their lines and spans, but the
+    /// program's line table counts from `at`, not from the text's first line.
     pub fn resume(at: ReadPoint, dialect: Dialect) -> Self {
         let mut run = ParseRun::with_lines(LineIndex::new(""), dialect);
         (run.offset, run.line_no, run.tape) = (at.offset, at.line_no, at.tape);
@@ -258,12 +259,7 @@ impl ParseRun {
                             read_general_line(program, &mut self.checker, raw, offset, line_no);
                         (blank, percent, len)
                     };
-                    // The line ends at a `\n`, a `\r\n` or a `\r`, or else at the end of the text.
-                    let ending = match onward.get(len..) {
-                        Some([b'\r', b'\n', ..]) => 2,
-                        Some([_, ..]) => 1,
-                        _ => 0,
-                    };
+                    let ending = ending_len(onward.get(len..));
                     last = next_start.is_none() && ending == 0;
                     offset = next_start.unwrap_or(offset + len + ending);
                     next += 1;
