@@ -144,15 +144,11 @@ impl ParseRun {
         run
     }
 
-    /// Starts a parse of a text of `len` bytes that indexes its lines as it reads them, sparing
-    /// a pass over the text, for a reader that wants no count of its lines beforehand
-    /// ([`ParseRun::progress`] counts those found so far).
-    pub fn reading(len: usize, dialect: Dialect) -> Self {
-        let mut run = ParseRun::with_lines(LineIndex::new(""), dialect);
-        // About a block a line, and a line is rarely under sixteen bytes.
-        let blocks = (len / 16 + 1).min(run.held.most_blocks());
-        run.program.blocks.reserve_exact(blocks);
-        run
+    /// Starts a parse that indexes the text's lines as it reads them, sparing a pass over the
+    /// text, for a reader that wants no count of its lines beforehand ([`ParseRun::progress`]
+    /// counts those found so far).
+    pub fn reading(dialect: Dialect) -> Self {
+        ParseRun::with_lines(LineIndex::new(""), dialect)
     }
 
     /// Where the parse has read to: the next line, its byte offset and the tape marks met, so
@@ -179,8 +175,6 @@ impl ParseRun {
     pub fn set_max_bytes(&mut self, max: usize) {
         let lines = self.program.lines.line_count();
         self.held = Held::new(max.min(self.held.max), lines);
-        // Most lines are one block: reserving for them spares the copies of a growing array.
-        self.program.blocks = Vec::with_capacity(lines.min(self.held.most_blocks()));
     }
 
     /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
@@ -206,6 +200,15 @@ impl ParseRun {
         // A text of more lines than a parse indexes is read up to that many.
         let most = max_lines(self.held.max);
         let stop = self.line_no.saturating_add(lines).min(most);
+        // Room for a block a line read in this step (a line is rarely under sixteen bytes where
+        // the lines are not indexed yet), reserved once: a run read in pieces reuses it.
+        if program.blocks.capacity() == 0 {
+            let indexed = program.lines.line_count().saturating_sub(self.line_no);
+            let unread = source.len().saturating_sub(self.offset) / 16 + 1;
+            let ahead = if indexed > 1 { indexed } else { unread };
+            let room = ahead.min(stop - self.line_no).min(self.held.most_blocks());
+            program.blocks.reserve_exact(room);
+        }
         // The run's state, kept here while the lines are read (stored at the end).
         let mut next = self.line_no;
         let mut offset = self.offset;
@@ -470,7 +473,7 @@ mod tests {
                 MAX_PARSED_BYTES,
             );
             let reading = read(
-                ParseRun::reading(text.len(), Dialect::Fanuc),
+                ParseRun::reading(Dialect::Fanuc),
                 &text,
                 MAX_PARSED_BYTES,
             );
@@ -481,7 +484,7 @@ mod tests {
         }
         let text = "\n".repeat(1 << 18);
         let program = read(
-            ParseRun::reading(text.len(), Dialect::Fanuc),
+            ParseRun::reading(Dialect::Fanuc),
             &text,
             1 << 19,
         );
