@@ -390,7 +390,9 @@ impl PendingAnalysis {
 
     /// Starts reading the text again, whole, for a program found to jump, loop or call.
     fn read_whole(&mut self) {
-        self.parse = Some(parse_run(&self.text, self.dialect));
+        let mut parse = parse_run(&self.text, self.dialect);
+        parse.reserve_all();
+        self.parse = Some(parse);
         self.pieces = None;
         self.run = None;
         self.toolpath = Toolpath::for_machine(DVec3::ZERO, &self.setup.machine);

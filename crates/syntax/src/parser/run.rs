@@ -177,6 +177,15 @@ impl ParseRun {
         self.held = Held::new(max.min(self.held.max), lines);
     }
 
+    /// Reserves room for a block on each line of the text not read yet, up to the most the
+    /// program may hold: a reader that holds the whole program is spared a growing array's
+    /// copies (the first step of any other reserves for the lines it reads).
+    pub fn reserve_all(&mut self) {
+        let ahead = self.program.lines.line_count().saturating_sub(self.line_no);
+        let room = ahead.min(self.held.most_blocks());
+        self.program.blocks.reserve_exact(room);
+    }
+
     /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
     pub fn held_bytes(&self) -> usize {
         self.held.block_bytes + self.held.expr_bytes + self.held.other_bytes + self.held.table
