@@ -144,10 +144,13 @@ impl Sink for MotionCounter<'_> {
         if self.out_of_range.is_some() {
             return;
         }
-        let problem = point_out_of_range("the end point", DVec3::new(x, y, z))
-            .or_else(|| (!rapid).then(|| feed_out_of_range(feed)).flatten());
-        if let Some(problem) = problem {
-            self.out_of_range = Some((source, problem));
+        // The common move in range tested without a branch an axis; the message only when not.
+        let within = |c: f64| c.abs() <= MAX_COORDINATE_MM;
+        let usable_feed = rapid || feed == 0.0 || (MIN_FEED_MM_PER_MIN..=f64::MAX).contains(&feed);
+        if !(within(x) & within(y) & within(z) & usable_feed) {
+            let problem = point_out_of_range("the end point", DVec3::new(x, y, z))
+                .or_else(|| (!rapid).then(|| feed_out_of_range(feed)).flatten());
+            self.out_of_range = problem.map(|p| (source, p));
             return;
         }
         self.motions += 1;
