@@ -164,11 +164,10 @@ pub struct Kept {
     pieces: Vec<PieceAt>,
 }
 
-/// Where a piece of a program read and run piece by piece starts: its first line, how many
-/// lines it has and where the parse was, so that it can be read again alone.
+/// Where a piece of a program read and run piece by piece starts (where the parse was, its
+/// first line with it) and how many lines it has, so that it can be read again alone.
 #[derive(Debug, Clone, Copy)]
 struct PieceAt {
-    first_line: usize,
     lines: usize,
     at: ReadPoint,
 }
@@ -192,7 +191,7 @@ impl Kept {
         // Run piece by piece: the piece the line is in is read again and re-run alone.
         let i = (self
             .pieces
-            .partition_point(|p| p.first_line <= row as usize))
+            .partition_point(|p| p.at.line() <= row as usize))
         .checked_sub(1)?;
         let piece = self.pieces.get(i)?;
         let mut parse = ParseRun::resume(piece.at, self.program.dialect);
@@ -353,13 +352,8 @@ impl PendingAnalysis {
                 pieces.sensitive.note(&piece.blocks);
                 if !pieces.ended {
                     budget = budget.saturating_sub(piece.blocks.len());
-                    let first_line = before;
                     let lines = after - before;
-                    pieces.starts.push(PieceAt {
-                        first_line,
-                        lines,
-                        at,
-                    });
+                    pieces.starts.push(PieceAt { lines, at });
                     match run.run_piece(piece, &mut self.toolpath) {
                         Piece::Ran => {}
                         Piece::Ended => pieces.ended = true,

@@ -349,6 +349,13 @@ pub struct ReadPoint {
     tape: Tape,
 }
 
+impl ReadPoint {
+    /// The 0-based number of the line read next from here.
+    pub fn line(&self) -> usize {
+        self.line_no
+    }
+}
+
 /// Where the reader is with respect to `%` tape marks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Tape {
