@@ -7,8 +7,8 @@ use crate::{Block, Program, Rules, Span, Word, WordForm};
 
 /// Reads a line of plain words (a letter, an optional sign, a decimal number of at most 15
 /// digits within the dialect's limit, blank-separated), optionally after a sequence number: the
-/// line CAM output is made of (`N20 G0 Z5.`, `G1 X5.12 Y0.00`). The block is written in place at
-/// the end of `blocks` and checked exactly as the general reader would make and check it.
+/// line CAM output is made of (`N20 G0 Z5.`, `G1 X5.12 Y0.00`). The block is pushed at the end
+/// of `blocks` and checked exactly as the general reader would make and check it.
 ///
 /// `bytes` is the text from the line's start on; the line ends at `\n`, `\r\n`, a lone `\r` or
 /// the end (as [`LineIndex`](crate::LineIndex) ends lines). Returns whether the line gave a
@@ -72,7 +72,18 @@ pub(super) fn read_plain_line(
             pos += 1;
         }
     }
-    let mut words = smallvec::SmallVec::<[Word; 4]>::new();
+    // The block, its words written straight into it as they are read: it is moved once, into
+    // `blocks`, rather than the words into it and then it there.
+    let mut block = Block {
+        span: Span {
+            start: base + first as u32,
+            end: base + last as u32,
+        },
+        line: line_no,
+        number: number.and_then(Block::stored_number),
+        words: smallvec::SmallVec::new(),
+        extras: None,
+    };
     let mut scan = crate::checks::PlainScan::default();
     while let Some(&b) = bytes.get(pos) {
         let start = pos;
@@ -93,7 +104,7 @@ pub(super) fn read_plain_line(
         pos = end;
         let value = with_sign(value, negative);
         scan.word(letter, value);
-        words.push(Word {
+        block.words.push(Word {
             letter,
             value,
             has_point,
@@ -104,7 +115,7 @@ pub(super) fn read_plain_line(
             form: WordForm::Plain,
             expr: None,
         });
-        last = pos;
+        block.span.end = base + pos as u32;
         while matches!(bytes.get(pos), Some(b' ' | b'\t')) {
             pos += 1;
         }
@@ -112,18 +123,8 @@ pub(super) fn read_plain_line(
     if pos > MAX_LINE_BYTES {
         return None;
     }
-    blocks.push(Block {
-        span: Span {
-            start: base + first as u32,
-            end: base + last as u32,
-        },
-        line: line_no,
-        number: number.and_then(Block::stored_number),
-        words,
-        extras: None,
-    });
-    let block = blocks.last_mut()?;
-    checker.check_scanned(block, &scan);
+    blocks.push(block);
+    checker.check_scanned(blocks.last_mut()?, &scan);
     Some((true, pos))
 }
 
