@@ -82,6 +82,13 @@ impl Kinematics {
         }
         let u = entry.clamp(0.0, cruise);
         let w = exit.clamp(0.0, cruise);
+        // A move through both joins at its feed (most of a smooth run) is all steady, as below:
+        // the peak is the feed (the root of at least its square, where that square does not
+        // underflow), the ramps take 0 · `per_a` (0 where that is finite) and the steady part
+        // is `length.max(0.0)`.
+        if per_a.is_finite() && cruise > 1e-100 && u == cruise && w == cruise {
+            return length.max(0.0) / cruise;
+        }
         let squared = (2.0 * a * length + u * u + w * w) / 2.0;
         // Without the square root where the move clearly reaches its feed (as in
         // `reach_capped`): the passes time every move, and square roots and divisions take
@@ -287,6 +294,37 @@ mod tests {
         for (entry, exit) in [(0.0, 0.0), (-1.0, 0.0), (0.0, -0.0)] {
             let got = k.move_secs_per(5e-324, 1.0, entry, exit, k.per_acceleration());
             assert!((0.0..1e-150).contains(&got), "{entry} {exit}: {got}");
+        }
+    }
+
+    /// A move through both joins at its feed is timed as all steady, to the bit of the plain
+    /// formula: feeds and lengths over their whole ranges, the move's own ramps negligible or
+    /// not, and accelerations down to a subnormal one (whose moves take no finite time).
+    #[test]
+    fn a_move_at_its_feed_throughout_is_timed_as_the_plain_formula() {
+        let mut seed = 0x5851_f42d_4c95_7f2d_u64;
+        let mut magnitude = move |least: i32, most: i32| {
+            let r = xorshift(&mut seed);
+            let exponent = least + (r % (most - least + 1) as u64) as i32;
+            (1.0 + (r >> 11) as f64 / (1u64 << 53) as f64) * 10f64.powi(exponent)
+        };
+        for acceleration in [1000.0, 1e-3, 1e9, 1e-310, f64::INFINITY] {
+            let k = Kinematics {
+                acceleration_mm_per_s2: acceleration,
+                ..Kinematics::default()
+            };
+            for _ in 0..50_000 {
+                let (cruise, length) = (magnitude(-99, 150), magnitude(-300, 6));
+                for (entry, exit) in [(cruise, cruise), (2.0 * cruise, f64::INFINITY)] {
+                    let got = k.move_secs_per(length, cruise, entry, exit, k.per_acceleration());
+                    let want = plain_move_secs(&k, length, cruise, entry, exit);
+                    assert_eq!(
+                        got.to_bits(),
+                        want.to_bits(),
+                        "length {length} cruise {cruise} a {acceleration}"
+                    );
+                }
+            }
         }
     }
 }

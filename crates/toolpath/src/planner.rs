@@ -20,25 +20,27 @@ pub(crate) struct Timer {
     pub(crate) kinematics: Kinematics,
     /// One over its acceleration ([`Kinematics::per_acceleration`]).
     per_acceleration: f64,
-    /// The settled end times (a prefix of the segments), or only the last of them where
-    /// `keeps_times` is off.
+    /// The settled end times (a prefix of the segments), kept where `keeps_times` is on.
     pub(crate) end_times: Vec<f64>,
     /// Whether every settled end time is kept (a path that keeps its segments) or only the
-    /// last, which the next count from (a path that only measures them).
+    /// last, `settled_secs` (a path that only measures them).
     pub(crate) keeps_times: bool,
+    /// The end time of the last settled segment (0 before any), from which the next are timed.
+    pub(crate) settled_secs: f64,
     /// The segments after the settled ones, whose join speeds may still change.
     pub(crate) window: Vec<Plan>,
-    /// Where the path starts, and where its last segment ends.
-    start: DVec3,
+    /// Where the last segment ends (the start before any).
     pub(crate) last_end: DVec3,
-    /// The last segment's kind, and its direction at the end (of the last non-empty one), as
-    /// a vector and its length ([`Heading`]).
-    last_kind: Option<SegmentKind>,
+    /// Whether the last segment is a rapid.
+    after_rapid: bool,
+    /// The direction at the end of the last non-empty segment, as a vector and its length
+    /// ([`Heading`]).
     last_direction: Option<Heading>,
     /// The last straight feed in mm/min and its cruise speed in mm/s: a run of moves at one
     /// feed divides once.
     last_feed: (f64, f64),
-    pub(crate) bounds: Option<Bounds>,
+    /// The box of the start and every segment's end.
+    pub(crate) bounds: Bounds,
     pub(crate) rapid_mm: f64,
     pub(crate) feed_mm: f64,
 }
@@ -66,13 +68,16 @@ impl Timer {
             per_acceleration: kinematics.per_acceleration(),
             end_times: Vec::new(),
             keeps_times: true,
+            settled_secs: 0.0,
             window: Vec::new(),
-            start,
             last_end: start,
-            last_kind: None,
+            after_rapid: false,
             last_direction: None,
             last_feed: (0.0, 0.0),
-            bounds: None,
+            bounds: Bounds {
+                min: start,
+                max: start,
+            },
             rapid_mm: 0.0,
             feed_mm: 0.0,
         }
@@ -133,24 +138,13 @@ impl Timer {
             SegmentKind::Feed | SegmentKind::Arc => self.feed_mm += length,
         }
         // Each segment starts where the last one ended, already inside the box.
-        if let Some(bounds) = &mut self.bounds {
-            bounds.include(to);
-        } else {
-            let mut bounds = Bounds {
-                min: self.start,
-                max: self.start,
-            };
-            bounds.include(to);
-            self.bounds = Some(bounds);
-        }
+        self.bounds.include(to);
         // `entry`: `None` for the next chord of an arc, else the new move's direction (`None`
         // inside for an empty move).
         let smooth = match entry {
             _ if stop => false,
             None => true,
-            Some(_) if kind == SegmentKind::Rapid || self.last_kind == Some(SegmentKind::Rapid) => {
-                false
-            }
+            Some(_) if kind == SegmentKind::Rapid || self.after_rapid => false,
             Some(None) => true,
             Some(Some(entry)) => self
                 .last_direction
@@ -160,7 +154,7 @@ impl Timer {
             self.last_direction = Some(exit);
         }
         self.last_end = to;
-        self.last_kind = Some(kind);
+        self.after_rapid = kind == SegmentKind::Rapid;
         self.add(length, cruise, smooth, dwell);
     }
 
@@ -183,11 +177,12 @@ impl Timer {
             // Nothing before a stop changes any more.
             if let [lone] = self.window[..] {
                 // A program that stops at every corner settles each move on its own.
-                let start = self.end_times.last().copied().unwrap_or(0.0);
-                self.end_times
-                    .push(lone_end_time(&lone, k, self.per_acceleration, start));
+                self.settled_secs =
+                    lone_end_time(&lone, k, self.per_acceleration, self.settled_secs);
+                if self.keeps_times {
+                    self.end_times.push(self.settled_secs);
+                }
                 self.window.clear();
-                self.forget_settled();
             } else {
                 self.settle(self.window.len());
             }
@@ -214,7 +209,7 @@ impl Timer {
     /// forward speed.
     pub(crate) fn window_end_times(&self, count: usize) -> Vec<f64> {
         let mut times = Vec::with_capacity(count.min(self.window.len()));
-        let start = self.end_times.last().copied().unwrap_or(0.0);
+        let start = self.settled_secs;
         window_end_times(&self.window, self.kinematics, start, count, &mut times);
         times
     }
@@ -225,28 +220,23 @@ impl Timer {
         if count == 0 {
             return;
         }
-        let start = self.end_times.last().copied().unwrap_or(0.0);
+        // A path that only measures its segments keeps none of the times but the last.
+        let times = &mut self.end_times;
         window_end_times(
             &self.window,
             self.kinematics,
-            start,
+            self.settled_secs,
             count,
-            &mut self.end_times,
+            times,
         );
+        self.settled_secs = times.last().copied().unwrap_or(self.settled_secs);
+        if !self.keeps_times {
+            times.clear();
+        }
         if count == self.window.len() {
             self.window.clear();
         } else {
             self.window.drain(..count);
-        }
-        self.forget_settled();
-    }
-
-    /// Where `keeps_times` is off, forgets the settled end times but the last.
-    #[inline(always)]
-    fn forget_settled(&mut self) {
-        let settled = self.end_times.len();
-        if !self.keeps_times && settled > 1 {
-            self.end_times.drain(..settled - 1);
         }
     }
 }

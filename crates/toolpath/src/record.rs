@@ -395,7 +395,7 @@ impl Toolpath {
 
     /// The box containing every point of the path (`None` when nothing moved).
     pub fn bounds(&self) -> Option<Bounds> {
-        self.timer.bounds
+        (self.segments > 0).then_some(self.timer.bounds)
     }
 
     /// Total rapid distance in mm.
@@ -411,13 +411,9 @@ impl Toolpath {
     /// Estimated run time in seconds: every move with acceleration, plus the dwells.
     pub fn estimated_secs(&self) -> f64 {
         let timer = &self.timer;
-        let last = timer
-            .window_end_times(timer.window.len())
-            .last()
-            .or(timer.end_times.last())
-            .copied()
-            .unwrap_or(0.0);
-        last + dwell_before(&self.dwells, self.segments)
+        let window = timer.window_end_times(timer.window.len());
+        window.last().copied().unwrap_or(timer.settled_secs)
+            + dwell_before(&self.dwells, self.segments)
     }
 
     /// Tools used, in order of first use.
@@ -441,10 +437,7 @@ impl Toolpath {
     /// an axis a limit leaves open reaches a tenth of the toolpath's diagonal (at least 1 mm)
     /// past its bounds on that side.
     pub fn zone_boxes(&self) -> Vec<(DVec3, DVec3)> {
-        let bounds = self.timer.bounds.unwrap_or(Bounds {
-            min: self.start,
-            max: self.start,
-        });
+        let bounds = self.timer.bounds;
         let margin = ((bounds.max - bounds.min).length() * 0.1).max(1.0);
         let or = |limit: f64, open: f64| if limit.is_finite() { limit } else { open };
         self.zones
