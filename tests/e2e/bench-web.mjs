@@ -5,8 +5,8 @@
 // and a frame showing it painted, with the longest gap between frames meanwhile against the
 // longest while the empty page repaints; and before it, the same keystroke in a 20-line and in
 // a 10,000-line program, timed the same way; the page and worker's memory with the long program
-// open (with the two wasm memories and the page's JavaScript heap apart, again ten seconds later
-// and once the page's garbage is collected), and npm's gcode-preview given it in the same browser (`peer.mjs`). Headless Chromium
+// open (with the two wasm memories and the page's JavaScript heap apart, and again once the
+// page's garbage is collected), and npm's gcode-preview given it in the same browser (`peer.mjs`). Headless Chromium
 // (WebGL2 through SwiftShader).
 // Build first with `cargo xtask web`, then run:
 //   node tests/e2e/bench-web.mjs [LINES]        (default 1000000)
@@ -170,11 +170,7 @@ try {
     js: performance.memory.usedJSHeapSize,
   }));
   const partsMb = [parts.page, parts.worker, parts.js].map((b) => Math.round(b / 2 ** 20));
-  // Settled: ten seconds later, the page left alone (its garbage collected as the browser
-  // sees fit: the text as the caller's string, its copies on the way in).
-  await session.page.waitForTimeout(10_000);
-  const settledMb = rendererMb(session);
-  // The page's garbage collected at once.
+  // The page's garbage (the text as the caller's string, its copies on the way in) collected.
   const cdp = await session.page.context().newCDPSession(session.page);
   await cdp.send("HeapProfiler.collectGarbage");
   await session.page.waitForTimeout(1000);
@@ -214,9 +210,6 @@ try {
   );
   console.log(
     `| of which: the page's wasm memory / the worker's / the page's JavaScript heap in use | ${partsMb.join(" MB / ")} MB |`,
-  );
-  console.log(
-    `| the same ten seconds later, the page left alone: resident / private | ${Math.round(settledMb.resident)} MB / ${Math.round(settledMb.private)} MB |`,
   );
   console.log(
     `| the same once the page's garbage is collected: resident / private / the page's JavaScript heap | ${Math.round(collectedMb.resident)} MB / ${Math.round(collectedMb.private)} MB / ${Math.round(collectedJs / 2 ** 20)} MB |`,
