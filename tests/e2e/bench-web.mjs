@@ -5,15 +5,17 @@
 // and a frame showing it painted, with the longest gap between frames meanwhile against the
 // longest while the empty page repaints; and before it, the same keystroke in a 20-line and in
 // a 10,000-line program, timed the same way; the page and worker's memory with the long program
-// open (with the two wasm memories and the page's JavaScript heap apart, and again once the
-// page's garbage is collected), and npm's gcode-preview given it in the same browser (`peer.mjs`). Headless Chromium
-// (WebGL2 through SwiftShader).
+// open (with the two wasm memories and the page's JavaScript heap apart, again once the page's
+// garbage is collected, and in a fresh page that opened it as a file with Ctrl+O), and npm's
+// gcode-preview given it in the same browser (`peer.mjs`). Headless Chromium (WebGL2 through
+// SwiftShader).
 // Build first with `cargo xtask web`, then run:
 //   node tests/e2e/bench-web.mjs [LINES]        (default 1000000)
 // Prints a Markdown table row per figure.
 
-import { readFileSync } from "node:fs";
+import { readFileSync, rmSync, writeFileSync } from "node:fs";
 import { stat } from "node:fs/promises";
+import { tmpdir } from "node:os";
 import path from "node:path";
 
 import { execFileSync } from "node:child_process";
@@ -130,9 +132,46 @@ function rendererMb(session) {
   return { resident: rssKb / 1024, private: privateKb / 1024 };
 }
 
+/**
+ * The page's renderer process with `text` opened as a person opens a file, in a fresh page:
+ * Ctrl+O and the file picked in the file input (the page then holds no caller's string).
+ */
+async function pickedFileMb(text) {
+  const file = path.join(tmpdir(), `swarf-bench-${process.pid}.nc`);
+  writeFileSync(file, text);
+  const session = await BrowserSession.start({ headless: true, args: BROWSER_ARGS });
+  try {
+    session.interceptFileChoosers();
+    await session.loadUntilReady("bench-not-ready.png");
+    const { page } = session;
+    // As in a browser without the File System Access API: Ctrl+O opens the file input.
+    await page.evaluate(() => {
+      window.showOpenFilePicker = undefined;
+    });
+    const chooser = session.nextFileChooser(60_000);
+    const editor = await page.evaluate(() => window.swarf.widget("editor"));
+    await page.mouse.click(editor.x + editor.width / 2, editor.y + editor.height / 2);
+    await page.keyboard.press("Control+O");
+    await (await chooser).setFiles(file);
+    await session.eventually(
+      () => window.swarf.stats().motions,
+      null,
+      (motions) => motions >= lines,
+      "the picked program's moves should all be shown",
+      120_000,
+    );
+    await session.idle();
+    return rendererMb(session);
+  } finally {
+    await session.close();
+    rmSync(file, { force: true });
+  }
+}
+
+const BROWSER_ARGS = ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader", "--enable-precise-memory-info"];
 const session = await BrowserSession.start({
   headless: true,
-  args: ["--headless", "--disable-gpu", "--enable-unsafe-swiftshader", "--enable-precise-memory-info"],
+  args: BROWSER_ARGS,
 });
 try {
   const wasm = session.page.waitForResponse((r) => r.url().endsWith("/swarf_app_bg.wasm"));
@@ -177,6 +216,7 @@ try {
   const collectedMb = rendererMb(session);
   const collectedJs = await session.page.evaluate(() => performance.memory.usedJSHeapSize);
   const peerMs = await gcodePreviewMs(session.context, text);
+  const pickedMb = await pickedFileMb(text);
   if (result.ms >= 0 && result.motions < lines) {
     throw new Error(`idle() resolved with ${result.motions} moves shown, not ${lines}`);
   }
@@ -213,6 +253,9 @@ try {
   );
   console.log(
     `| the same once the page's garbage is collected: resident / private / the page's JavaScript heap | ${Math.round(collectedMb.resident)} MB / ${Math.round(collectedMb.private)} MB / ${Math.round(collectedJs / 2 ** 20)} MB |`,
+  );
+  console.log(
+    `| the same program opened with Ctrl+O and the file picked, in a fresh page: resident / private | ${Math.round(pickedMb.resident)} MB / ${Math.round(pickedMb.private)} MB |`,
   );
   console.log(
     `| npm gcode-preview 2.18 (three.js) on the same program, to its first frame | ${Math.round(peerMs)} ms (${(peerMs / result.ms).toFixed(1)}× Swarf's time) |`,
