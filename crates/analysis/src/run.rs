@@ -189,10 +189,7 @@ impl Kept {
                 .at(&self.program, block_on(&self.program.blocks)?);
         }
         // Run piece by piece: the piece the line is in is read again and re-run alone.
-        let i = (self
-            .pieces
-            .partition_point(|p| p.at.line() <= row as usize))
-        .checked_sub(1)?;
+        let i = (self.pieces.partition_point(|p| p.at.line() <= row as usize)).checked_sub(1)?;
         let piece = self.pieces.get(i)?;
         let mut parse = ParseRun::resume(piece.at, self.program.dialect);
         read_lines(&self.text, &mut parse, &mut String::new(), piece.lines);

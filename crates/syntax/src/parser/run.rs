@@ -488,22 +488,14 @@ mod tests {
                 &text,
                 MAX_PARSED_BYTES,
             );
-            let reading = read(
-                ParseRun::reading(Dialect::Fanuc),
-                &text,
-                MAX_PARSED_BYTES,
-            );
+            let reading = read(ParseRun::reading(Dialect::Fanuc), &text, MAX_PARSED_BYTES);
             assert!(
                 reading == first && first.lines.line_count() > 50,
                 "{text:?}"
             );
         }
         let text = "\n".repeat(1 << 18);
-        let program = read(
-            ParseRun::reading(Dialect::Fanuc),
-            &text,
-            1 << 19,
-        );
+        let program = read(ParseRun::reading(Dialect::Fanuc), &text, 1 << 19);
         let most = max_lines(1 << 19);
         assert!(program.lines == LineIndex::at_most(&text, most + 1));
         let stop = program.diagnostics.last().map(|d| (d.code, d.span.start));
