@@ -6,8 +6,8 @@
 //! Every frame is a real egui frame of the whole workbench (editor with its markers, problems,
 //! state panel, status bar; no GPU upload, there is no GPU context). The edit is a real one
 //! through the editor: a `Text` event typed at the start of the first line (an error in), then
-//! Ctrl+Z (the error out again). The 10,000-line program is edited in egui's `TextEdit`, the
-//! million-line one in the row editor, which lays out only the rows on screen.
+//! Ctrl+Z (the error out again). Both programs are edited in the row editor, which lays out
+//! only the rows on screen.
 //!
 //! Run: `cargo bench -p swarf-ui --bench latency` (add `-- --quick` for fewer repetitions).
 //! Prints Markdown tables for docs/performance.md. Memory figures are read from `/proc/self/status`
