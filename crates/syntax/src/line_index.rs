@@ -33,14 +33,7 @@ impl LineIndex {
                 starts.push(line_after(from, at));
             }
         };
-        // Most texts have no `\r` (a search for one is quick): then only line feeds end lines.
-        if bytes.contains(&b'\r') {
-            for_each_marked(bytes, line_end_mask, push);
-        } else {
-            let line_feeds =
-                |word: &[u8; 8], _| byte_mask(u64::from_le_bytes(*word), u64::from(b'\n'));
-            for_each_marked(bytes, line_feeds, push);
-        }
+        for_each_line_end(bytes, push);
     }
 
     /// Builds the table for a text given as consecutive pieces (the chunks of a rope), as
@@ -67,7 +60,7 @@ impl LineIndex {
             } else {
                 bytes
             };
-            for_each_marked(body, line_end_mask, |at| starts.push(line_after(base, at)));
+            for_each_line_end(body, |at| starts.push(line_after(base, at)));
             base += bytes.len();
         }
         if let Some(at) = cr_at {
@@ -130,6 +123,19 @@ fn line_end_mask(word: &[u8; 8], next: u8) -> u64 {
     // A `\n` after each byte: the next byte's mark moved down one lane, the last from `next`.
     let lf_after = (lf >> 8) | (u64::from(next == b'\n') << 63);
     lf | (cr & !lf_after)
+}
+
+/// Calls `found` with the offset of every byte of `bytes` that ends a line (see
+/// [`line_end_mask`]; a `\r` at the end of `bytes` is one). Most texts have no `\r` (a search
+/// for one is quick): then only line feeds end lines.
+#[inline(always)]
+fn for_each_line_end(bytes: &[u8], found: impl FnMut(usize)) {
+    if bytes.contains(&b'\r') {
+        for_each_marked(bytes, line_end_mask, found);
+    } else {
+        let line_feeds = |word: &[u8; 8], _| byte_mask(u64::from_le_bytes(*word), u64::from(b'\n'));
+        for_each_marked(bytes, line_feeds, found);
+    }
 }
 
 /// Calls `found` with the offset of every byte of `bytes` that `marks` marks (the top bit of
