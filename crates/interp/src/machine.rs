@@ -67,9 +67,18 @@ pub(crate) struct MotionCounter<'s> {
     out_of_range: Option<(Source, String)>,
 }
 
+/// Whether a coordinate is within [`MAX_COORDINATE_MM`] (a NaN is not).
+fn within(c: f64) -> bool {
+    c.abs() <= MAX_COORDINATE_MM
+}
+
+/// Whether a feed rate is usable: zero, or at least [`MIN_FEED_MM_PER_MIN`] and finite.
+fn usable_feed(feed: f64) -> bool {
+    feed == 0.0 || (MIN_FEED_MM_PER_MIN..=f64::MAX).contains(&feed)
+}
+
 /// What is out of range in a point (see [`MAX_COORDINATE_MM`]), if anything.
 fn point_out_of_range(what: &str, p: DVec3) -> Option<String> {
-    let within = |c: f64| c.abs() <= MAX_COORDINATE_MM;
     (!(within(p.x) && within(p.y) && within(p.z))).then(|| {
         format!(
             "{what} X{} Y{} Z{} mm (machine frame) is beyond the ±{MAX_COORDINATE_MM:e} mm any machine reaches: a variable or scale out of range? The run stops here",
@@ -80,7 +89,7 @@ fn point_out_of_range(what: &str, p: DVec3) -> Option<String> {
 
 /// What is out of range in a feed rate, if anything.
 fn feed_out_of_range(feed: f64) -> Option<String> {
-    (!(feed == 0.0 || (MIN_FEED_MM_PER_MIN..=f64::MAX).contains(&feed))).then(|| {
+    (!usable_feed(feed)).then(|| {
         format!(
             "the feed {feed} mm/min is not a usable number (a move would take forever): a variable out of range? The run stops here"
         )
@@ -145,9 +154,7 @@ impl Sink for MotionCounter<'_> {
             return;
         }
         // The common move in range tested without a branch an axis; the message only when not.
-        let within = |c: f64| c.abs() <= MAX_COORDINATE_MM;
-        let usable_feed = rapid || feed == 0.0 || (MIN_FEED_MM_PER_MIN..=f64::MAX).contains(&feed);
-        if !(within(x) & within(y) & within(z) & usable_feed) {
+        if !(within(x) & within(y) & within(z) & (rapid || usable_feed(feed))) {
             let problem = point_out_of_range("the end point", DVec3::new(x, y, z))
                 .or_else(|| (!rapid).then(|| feed_out_of_range(feed)).flatten());
             self.out_of_range = problem.map(|p| (source, p));
