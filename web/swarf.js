@@ -205,6 +205,24 @@ function firstFrame(appApi) {
   });
 }
 
+// Software WebGL (SwiftShader, which Chromium uses on a PC without a usable GPU driver) runs
+// both sides of every branch for each pixel. egui's fragment shader keeps a software texture
+// filtering branch behind a uniform Swarf never sets; reading that uniform as 0 in the GLSL
+// wgpu hands to WebGL lets the compiler drop the branch, and a repaint there costs about a
+// third. Every other shader passes unchanged.
+const SOFTWARE_FILTERING = /(\w+) = \w+\.predictable_texture_filtering;/g;
+
+function dropSoftwareFiltering() {
+  const context = globalThis.WebGL2RenderingContext?.prototype;
+  if (!context) {
+    return;
+  }
+  const shaderSource = context.shaderSource;
+  context.shaderSource = function (shader, source) {
+    return shaderSource.call(this, shader, String(source).replace(SOFTWARE_FILTERING, "$1 = 0u;"));
+  };
+}
+
 async function main() {
   if (!document.getElementById(CANVAS_ID)) {
     throw new Error(`the page has no <canvas id="${CANVAS_ID}">`);
@@ -214,6 +232,7 @@ async function main() {
   }
   // A dynamic import, so that a missing or broken file is reported here (a static import
   // would keep this module from running at all).
+  dropSoftwareFiltering();
   const bindings = await import("./swarf_app.js");
   await bindings.default();
   const appApi = await bindings.start(CANVAS_ID);

@@ -32,6 +32,16 @@ before(async () => {
   page = session.page;
   // From the start, long before the first Ctrl+O (see interceptFileChoosers).
   session.interceptFileChoosers();
+  // The GLSL each WebGL shader is compiled from, as the page hands it over.
+  await page.addInitScript(() => {
+    const context = WebGL2RenderingContext.prototype;
+    const shaderSource = context.shaderSource;
+    window.swarfTestShaders = [];
+    context.shaderSource = function (shader, source) {
+      window.swarfTestShaders.push(source);
+      return shaderSource.call(this, shader, source);
+    };
+  });
 });
 
 // "(銑) G0 X7." in GB18030.
@@ -106,6 +116,14 @@ test("the page loads, becomes ready and shows the example program", { timeout: T
     );
   }
   exampleMotions = stats.motions;
+});
+
+test("egui's shader reaches WebGL without its software texture filtering", { timeout: TEST_TIMEOUT_MS }, async () => {
+  const shaders = await page.evaluate(() => window.swarfTestShaders);
+  const egui = shaders.filter((source) => /uint predictable_texture_filtering;/.test(source));
+  assert.ok(egui.length > 0, "no WebGL shader declares egui's predictable_texture_filtering");
+  const reads = shaders.filter((source) => /\.predictable_texture_filtering\b/.test(source));
+  assert.deepEqual(reads, [], "a WebGL shader still reads predictable_texture_filtering");
 });
 
 test("the backplot canvas is not blank", { timeout: TEST_TIMEOUT_MS }, async () => {
