@@ -85,7 +85,9 @@ self.addEventListener("fetch", (event) => {
       const cache = await caches.open(CACHE);
       try {
         const response = await fetch(request);
-        await store(cache, request, response.clone()).catch(() => undefined);
+        // Stored beside the answer, which reaches the page as it arrives (the wasm is
+        // compiled while it streams in).
+        event.waitUntil(store(cache, request, response.clone()).catch(() => undefined));
         return response;
       } catch (error) {
         const cached =

@@ -240,10 +240,23 @@ async function main() {
   api = appApi;
 }
 
+// Keeps the page, its script and the wasm app cached so that a reload works offline
+// (web/sw.js). Registered once the app runs: installing it fetches and stores every file of
+// the page, which would otherwise compete with the page's own first load. Browsers only allow
+// service workers on https and localhost.
+function keepForOffline() {
+  if ("serviceWorker" in navigator && window.isSecureContext) {
+    navigator.serviceWorker
+      .register("./sw.js")
+      .catch((error) => console.warn("Swarf works online only:", error));
+  }
+}
+
 main().then(
   () => {
     hideStatus();
     resolveReady();
+    keepForOffline();
   },
   (error) => {
     console.error("Swarf failed to start:", error);
