@@ -318,8 +318,9 @@ fn node_test_command() -> Command {
         .args(["-a", "node", "--test", "tests/e2e/"])
         .env("SWARF_CHROMIUM", CHROMIUM)
         .env("SWARF_WEB_DIR", web::site_dir());
-    // The tests serve the page with this program itself rather than through cargo.
-    if let Ok(xtask) = std::env::current_exe() {
+    // The tests serve the page with this program itself rather than through cargo, unless a
+    // build during the run replaced it (then cargo runs the new one).
+    if let Some(xtask) = std::env::current_exe().ok().filter(|p| p.exists()) {
         cmd.env("SWARF_XTASK", xtask);
     }
     cmd
