@@ -45,8 +45,19 @@ impl SwarfApp {
         }
         // The editor palette is made for a dark background, whatever the system theme.
         cc.egui_ctx.set_theme(egui::Theme::Dark);
+        // The page analyses in a worker (the desktop in a thread of its own).
+        #[cfg(target_arch = "wasm32")]
+        let workbench = match crate::web_worker::WorkerAnalyst::start(&cc.egui_ctx) {
+            Ok(worker) => Workbench::example(Box::new(worker)),
+            Err(error) => {
+                log::warn!("no analysis worker ({error:?}): it runs in the frames");
+                Workbench::default()
+            }
+        };
+        #[cfg(not(target_arch = "wasm32"))]
+        let workbench = Workbench::default();
         let mut app = SwarfApp {
-            workbench: Workbench::default(),
+            workbench,
             host: Host::new(),
             ctx: cc.egui_ctx.clone(),
             frames: 0,
@@ -55,12 +66,6 @@ impl SwarfApp {
             idle_waiting: Vec::new(),
             idle_drawn: Vec::new(),
         };
-        // The page analyses in a worker (the desktop in a thread of its own).
-        #[cfg(target_arch = "wasm32")]
-        match crate::web_worker::WorkerAnalyst::start(&cc.egui_ctx) {
-            Ok(worker) => app.workbench.set_analyst(Box::new(worker)),
-            Err(error) => log::warn!("no analysis worker ({error:?}): it runs in the frames"),
-        }
         // The dialect kept is the one new tabs start in; the example shown keeps its own.
         if let Some(storage) = cc.storage {
             let (active, shown) = (app.workbench.active_tab(), app.workbench.dialect());

@@ -30,7 +30,7 @@ struct Inbox {
     failed: bool,
 }
 
-/// The analysis in a web worker (an [`Analyst`] for [`swarf_ui::Workbench::set_analyst`]).
+/// The analysis in a web worker (an [`Analyst`] for [`swarf_ui::Workbench::example`]).
 pub struct WorkerAnalyst {
     worker: web_sys::Worker,
     inbox: Rc<RefCell<Inbox>>,

@@ -132,19 +132,45 @@ pub enum HostRequest {
 }
 
 impl Default for Workbench {
-    /// The example program, named as its file in `assets/examples/`.
+    /// The example program, named as its file in `assets/examples/`, its analysis waited for.
     fn default() -> Self {
         let mut wb = Workbench::new(EXAMPLE_PROGRAM.to_string());
-        wb.tab.document.name = "pocket.nc".to_string();
+        wb.tab.document.name = EXAMPLE_NAME.to_string();
         wb
     }
 }
 
+/// The example program's file name in `assets/examples/`.
+const EXAMPLE_NAME: &str = "pocket.nc";
+
 impl Workbench {
     /// A workbench showing `text`, read as Fanuc with a default setup, its analysis waited for.
     pub fn new(text: String) -> Self {
-        let dialect = Dialect::default();
         let waker = Arc::new(OnceLock::new());
+        let analyst = default_analyst(&waker);
+        let mut wb = Workbench::with_analyst(text, analyst, waker);
+        wb.finish_analysis();
+        wb
+    }
+
+    /// The example program (as [`Workbench::default`]) analysed by `analyst`, shown and framed
+    /// when it replies: the page starts without waiting for a run its worker makes anyway.
+    pub fn example(analyst: Box<dyn Analyst>) -> Self {
+        let text = EXAMPLE_PROGRAM.to_string();
+        let mut wb = Workbench::with_analyst(text, analyst, Arc::new(OnceLock::new()));
+        wb.tab.document.name = EXAMPLE_NAME.to_string();
+        wb.backplot.fit();
+        wb
+    }
+
+    /// A workbench showing `text`, its analysis asked of `analyst` (`waker` is the context a
+    /// thread of [`default_analyst`] repaints).
+    fn with_analyst(
+        text: String,
+        analyst: Box<dyn Analyst>,
+        waker: Arc<OnceLock<egui::Context>>,
+    ) -> Self {
+        let dialect = Dialect::default();
         let mut wb = Workbench {
             tab: Tab::new("untitled.nc", text, Encoding::Utf8, dialect),
             default_dialect: dialect,
@@ -152,7 +178,7 @@ impl Workbench {
             generation: 0,
             analysis: no_analysis(),
             own_analysis: false,
-            analyst: default_analyst(&waker),
+            analyst,
             sent: VecDeque::new(),
             pending: None,
             floor: 0,
@@ -180,7 +206,6 @@ impl Workbench {
             widgets: std::collections::BTreeMap::new(),
         };
         wb.reanalyse();
-        wb.finish_analysis();
         wb
     }
 
