@@ -230,9 +230,9 @@ async function main() {
   if (typeof WebAssembly !== "object") {
     throw new Error("this browser does not support WebAssembly");
   }
+  dropSoftwareFiltering();
   // A dynamic import, so that a missing or broken file is reported here (a static import
   // would keep this module from running at all).
-  dropSoftwareFiltering();
   const bindings = await import("./swarf_app.js");
   await bindings.default();
   const appApi = await bindings.start(CANVAS_ID);
