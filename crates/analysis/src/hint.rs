@@ -188,6 +188,7 @@ mod tests {
             dialect,
             setup: swarf_interp::Setup::default(),
             others: None,
+            lod: None,
         };
         crate::analyse(job).0.hint
     }

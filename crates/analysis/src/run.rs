@@ -30,6 +30,33 @@ pub struct Job {
     /// The other open files (name, text) whose programs its calls may reach, named as the CLI
     /// looks for them beside a program; `None` when calls are not looked for among open files.
     pub others: Option<Vec<(String, ProgramText)>>,
+    /// The level of detail the results' path is simplified at too (the view's, when it keeps
+    /// its zoom); `None`: not simplified (the UI asks with [`crate::Request::Lod`]).
+    pub lod: Option<LodLevel>,
+}
+
+/// A level of detail of the drawn path: log2 of the tolerance in world units, `None` for every
+/// point (see [`swarf_render::simplify_at`]).
+pub type LodLevel = Option<i32>;
+
+/// The drawn path's points kept at a level of detail, simplified beside the UI's frames.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Lod {
+    /// The level.
+    pub level: LodLevel,
+    /// The indices of the points kept, ascending (sent beside, see [`crate::wire`]).
+    #[serde(skip)]
+    pub kept: Arc<Vec<u32>>,
+}
+
+impl Lod {
+    /// The points of `points` kept at `level`.
+    pub fn of(points: &[swarf_render::PathPoint], level: LodLevel) -> Self {
+        Lod {
+            level,
+            kept: Arc::new(swarf_render::simplify_at(points, level)),
+        }
+    }
 }
 
 /// One diagnostic, located for display.
@@ -103,6 +130,8 @@ pub struct Plot {
     pub tools: Vec<u32>,
     /// Radius in mm of the tools the setup knows, by number.
     pub tool_radii: BTreeMap<u32, f32>,
+    /// The path's points kept at the job's level of detail, if it asked for one.
+    pub lod: Option<Lod>,
 }
 
 impl Plot {
@@ -119,6 +148,7 @@ impl Plot {
                 .iter()
                 .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
                 .collect(),
+            lod: None,
         }
     }
 }
@@ -159,6 +189,8 @@ pub struct Kept {
     pub setup: Setup,
     /// The toolpath the stock is cut with.
     pub toolpath: Arc<Toolpath>,
+    /// The points the backplot draws, simplified here for the view's zoom ([`Kept::lod`]).
+    pub points: Arc<Vec<swarf_render::PathPoint>>,
     /// Where each piece of a program run piece by piece starts, to read it again for a state
     /// (empty: the program is held whole).
     pieces: Vec<PieceAt>,
@@ -288,6 +320,8 @@ pub struct PendingAnalysis {
     others: Option<Vec<(String, ProgramText)>>,
     /// Whether calls were looked for among open files (rather than files beside the program).
     among_open_files: bool,
+    /// The level of detail the path is simplified at.
+    lod: Option<LodLevel>,
 }
 
 impl PendingAnalysis {
@@ -301,6 +335,7 @@ impl PendingAnalysis {
             dialect,
             setup,
             others,
+            lod,
         } = job;
         let parse = parse_run(&text, dialect);
         let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
@@ -320,6 +355,7 @@ impl PendingAnalysis {
             linked: Vec::new(),
             among_open_files: others.is_some(),
             others,
+            lod,
         }
     }
 
@@ -475,9 +511,11 @@ impl PendingAnalysis {
         let mut sensitive = pieces.sensitive;
         sensitive.note(&program.blocks);
         let hint = suggest(&self.text, program, &problems, &sensitive);
+        let mut plot = Plot::of(toolpath, &self.setup);
+        plot.lod = self.lod.map(|level| Lod::of(&plot.drawing.points, level));
         let results = Results {
             generation: self.generation,
-            plot: Plot::of(toolpath, &self.setup),
+            plot,
             problems,
             elsewhere,
             stats,
@@ -491,6 +529,7 @@ impl PendingAnalysis {
             text: self.text,
             setup: self.setup,
             toolpath: Arc::new(self.toolpath),
+            points: Arc::clone(&results.plot.drawing.points),
             pieces: pieces.starts,
         };
         (results, kept)

@@ -33,6 +33,14 @@ pub enum Request {
         /// Segments to cut.
         upto: usize,
     },
+    /// The points the backplot draws of the analysis of `generation` at a zoom's level of
+    /// detail (see [`swarf_render::simplify_at`]): simplified here, beside the frames.
+    Lod {
+        /// The analysis whose path is drawn.
+        generation: u64,
+        /// The level.
+        level: crate::LodLevel,
+    },
     /// Analyse a program, dropping any unfinished analysis. Sent apart (see [`crate::wire`]),
     /// and last: serde numbers the variants it reads without it.
     #[serde(skip)]
@@ -63,6 +71,18 @@ pub enum Reply {
     },
     /// The stock asked for by [`Request::Stock`]: its progress (no heights yet), then the cut.
     Stock(Box<StockCut>),
+    /// The answer to [`Request::Lod`].
+    Lod {
+        /// The analysis asked about.
+        generation: u64,
+        /// The level asked for.
+        level: crate::LodLevel,
+        /// The indices of the points kept, ascending; `None` when that analysis is no longer
+        /// held (the asker simplifies its own copy). Sent beside the head (see
+        /// [`crate::wire`]).
+        #[serde(skip)]
+        kept: Option<Arc<Vec<u32>>>,
+    },
 }
 
 impl Reply {
@@ -71,7 +91,7 @@ impl Reply {
         match self {
             Reply::Progress { .. } => true,
             Reply::Stock(cut) => !cut.finished(),
-            Reply::Done(_) | Reply::State { .. } => false,
+            Reply::Done(_) | Reply::State { .. } | Reply::Lod { .. } => false,
         }
     }
 }
@@ -127,6 +147,16 @@ impl Service {
                 Some(Reply::Stock(Box::new(cut)))
             }
             Request::StateAt { generation, line } => Some(state_of(&self.held, generation, line)),
+            Request::Lod { generation, level } => {
+                // Simplified outside the lock, which a thread's caller takes for a state.
+                let points = with_kept(&self.held, generation, |k| Arc::clone(&k.points));
+                let kept = points.map(|p| crate::Lod::of(&p, level).kept);
+                Some(Reply::Lod {
+                    generation,
+                    level,
+                    kept,
+                })
+            }
         }
     }
 

@@ -22,6 +22,7 @@ enum RequestHead {
         setup: String,
         /// The other open files' names; their texts follow the program's, in order.
         others: Option<Vec<String>>,
+        lod: Option<crate::LodLevel>,
     },
     /// Any other request, whole.
     Other(Request),
@@ -40,6 +41,7 @@ pub fn request_parts(request: &Request) -> (Vec<u8>, Vec<&ProgramText>) {
                 dialect: job.dialect,
                 setup: job.setup.to_toml().unwrap_or_default(),
                 others: others.map(|o| o.iter().map(|(name, _)| name.clone()).collect()),
+                lod: job.lod,
             };
             (head, texts.collect())
         }
@@ -56,6 +58,7 @@ pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
             dialect,
             setup,
             others,
+            lod,
         } => {
             let mut texts = texts.into_iter().map(ProgramText::from);
             let text = texts.next()?;
@@ -70,6 +73,7 @@ pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
                 dialect,
                 setup: Setup::from_toml(&setup).unwrap_or_default(),
                 others,
+                lod,
             }))
         }
         RequestHead::Other(request) => request,
@@ -88,11 +92,13 @@ pub fn reply_parts(reply: &Reply) -> (Vec<u8>, Vec<&[u8]>) {
                 bytemuck::cast_slice(&plot.feeds),
                 bytemuck::cast_slice(plot.timeline.end_times()),
                 bytemuck::cast_slice(&plot.tools),
+                bytemuck::cast_slice(plot.lod.as_ref().map_or(&[][..], |l| &l.kept[..])),
             ]
         }
         Reply::Stock(cut) => (cut.field.iter())
             .map(|f| bytemuck::cast_slice(&f.heights))
             .collect(),
+        Reply::Lod { kept, .. } => kept.iter().map(|k| bytemuck::cast_slice(&k[..])).collect(),
         Reply::Progress { .. } | Reply::State { .. } => Vec::new(),
     };
     (postcard::to_allocvec(reply).unwrap_or_default(), arrays)
@@ -113,13 +119,16 @@ pub fn reply_from(
     match &mut reply {
         Reply::Done(results) => {
             let plot = &mut results.plot;
-            plot.drawing.points = array.take(0)?;
+            plot.drawing.points = std::sync::Arc::new(array.take(0)?);
             plot.drawing.marks = array.take(1)?;
             plot.lines = array.take(2)?;
             plot.feeds = array.take(3)?;
             let dwells = plot.timeline.dwells().to_vec();
             plot.timeline = Timeline::from_parts(array.take(4)?, dwells);
             plot.tools = array.take(5)?;
+            if let Some(lod) = &mut plot.lod {
+                lod.kept = std::sync::Arc::new(array.take(6)?);
+            }
         }
         Reply::Stock(cut) => {
             if let Some(field) = &mut cut.field {
@@ -127,6 +136,11 @@ pub fn reply_from(
                 if field.heights.len() != field.size.0.checked_mul(field.size.1)? {
                     return None;
                 }
+            }
+        }
+        Reply::Lod { kept, .. } => {
+            if !sizes.is_empty() {
+                *kept = Some(std::sync::Arc::new(array.take(0)?));
             }
         }
         Reply::Progress { .. } | Reply::State { .. } => {}
@@ -191,6 +205,7 @@ mod tests {
             dialect: Dialect::Fanuc,
             setup,
             others,
+            lod: None,
         }
     }
 
@@ -229,6 +244,40 @@ mod tests {
             },
         };
         assert_eq!(again(&progress), Some(progress));
+    }
+
+    #[test]
+    fn the_path_simplified_reads_back_with_its_level() {
+        let text = "G0 X0 Y0\nG1 X1 F100\nG1 X2\nG1 X3 Y0.001\nG1 X4 Y5\nM30\n";
+        let mut lod_job = job(text, None);
+        lod_job.lod = Some(Some(-2));
+        let (results, kept) = analyse(lod_job.clone());
+        let lod = results.plot.lod.clone().expect("the job asked for a level");
+        assert_eq!(lod.level, Some(-2));
+        assert_eq!(*lod.kept, swarf_render::simplify_at(&kept.points, Some(-2)));
+        // The collinear feeds merge: fewer points are kept than drawn.
+        assert!(lod.kept.len() < kept.points.len());
+        let done = Reply::Done(Box::new(results));
+        assert_eq!(again(&done), Some(done));
+        for kept in [
+            None,
+            Some(std::sync::Arc::new(vec![0, 3, 5])),
+            Some(std::sync::Arc::default()),
+        ] {
+            let reply = Reply::Lod {
+                generation: 9,
+                level: None,
+                kept,
+            };
+            assert_eq!(again(&reply), Some(reply));
+        }
+        let request = Request::Analyse(Box::new(lod_job));
+        let (head, texts) = request_parts(&request);
+        let texts = texts.iter().map(|t| t.to_owned_string()).collect();
+        let Some(Request::Analyse(back)) = request_from(&head, texts) else {
+            panic!("not read back");
+        };
+        assert_eq!(back.lod, Some(Some(-2)));
     }
 
     #[test]

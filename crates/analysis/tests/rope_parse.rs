@@ -127,6 +127,7 @@ fn analyse_in_steps(
         dialect: Dialect::Fanuc,
         setup: Setup::default(),
         others: Some(others),
+        lod: None,
     });
     while !pending.step(50) {}
     pending.finish()

@@ -25,6 +25,7 @@ fn job(generation: u64, text: String) -> Job {
         dialect: Dialect::Fanuc,
         setup: Setup::default(),
         others: None,
+        lod: None,
     }
 }
 
@@ -246,4 +247,54 @@ fn inline_gives_the_thread_s_replies_when_asked() {
         })
     ));
     assert!(inline.wait_reply().is_none());
+}
+
+#[test]
+fn the_path_is_simplified_for_the_view_from_what_the_analysis_keeps() {
+    let mut inline = Inline::default();
+    assert!(
+        inline
+            .send(Request::Analyse(Box::new(job(3, program(500, "M30\n")))))
+            .is_none()
+    );
+    let (_, results) = until_done(&mut inline);
+    let points = &results.plot.drawing.points;
+    for level in [Some(-3), Some(4), None] {
+        let reply = inline.send(Request::Lod {
+            generation: 3,
+            level,
+        });
+        let Some(Reply::Lod {
+            generation: 3,
+            level: answered,
+            kept: Some(kept),
+        }) = reply
+        else {
+            panic!("{reply:?}");
+        };
+        assert_eq!(answered, level);
+        assert_eq!(*kept, swarf_render::simplify_at(points, level));
+    }
+    // A coarser level keeps fewer points; every point without one.
+    let mut count = |level| match inline.send(Request::Lod {
+        generation: 3,
+        level,
+    }) {
+        Some(Reply::Lod { kept: Some(k), .. }) => k.len(),
+        other => panic!("{other:?}"),
+    };
+    assert!(count(Some(6)) < count(Some(-6)));
+    assert_eq!(count(None), points.len());
+    // An analysis no longer held is said to be so: the asker simplifies its own copy.
+    assert!(matches!(
+        inline.send(Request::Lod {
+            generation: 2,
+            level: Some(0)
+        }),
+        Some(Reply::Lod {
+            generation: 2,
+            kept: None,
+            ..
+        })
+    ));
 }

@@ -19,6 +19,7 @@ fn job(generation: u64, setup: Setup) -> Job {
         dialect: Dialect::Fanuc,
         setup,
         others: None,
+        lod: None,
     }
 }
 

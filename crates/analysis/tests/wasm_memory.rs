@@ -31,6 +31,7 @@ fn analyse(text: String, setup: Setup) -> (Vec<&'static str>, usize) {
         dialect: Dialect::Fanuc,
         setup,
         others: Some(Vec::new()),
+        lod: None,
     };
     assert!(service.handle(Request::Analyse(Box::new(job))).is_none());
     loop {

@@ -118,9 +118,10 @@ impl SwarfApp {
         if idle_before && generation == generation_before {
             self.idle_drawn
                 .extend(self.idle_waiting.drain(..).map(|done| (generation, done)));
+            // The next frame, which calls them, comes at once.
+            ctx.request_repaint();
         }
-        // The next frame comes at once, whether it calls them or goes on waiting.
-        ctx.request_repaint();
+        // Those still waiting are woken by the analysis's answer: waiting paints no frame.
     }
 
     /// Runs `f` on the workbench and schedules a repaint (for the JS API).
@@ -189,7 +190,8 @@ impl eframe::App for SwarfApp {
         self.wake_idle();
         // A finished analysis that has come is shown by this frame.
         self.workbench.take_replies();
-        let idle_before = self.workbench.analysis_progress().is_none();
+        let idle_before =
+            self.workbench.analysis_progress().is_none() && !self.workbench.drawing_pending();
         let generation_before = self.workbench.generation();
         self.workbench.ui(ui);
         self.note_idle(&ctx, idle_before, generation_before);

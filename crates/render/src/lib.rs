@@ -21,7 +21,7 @@ mod stock;
 pub use camera::{MAX_DISTANCE, MIN_DISTANCE, OrbitCamera, Projection, StandardView};
 pub use composite::{COMPOSITE_WGSL, Compositor};
 pub use grid::{grid_points, grid_points_at, nice_step};
-pub use lod::{LOD_TOLERANCE_PX, PathLod, pixels_per_unit, simplify};
+pub use lod::{LOD_TOLERANCE_PX, PathLod, lod_level, pixels_per_unit, simplify, simplify_at};
 pub use offscreen::{HeadlessGpu, RenderError, RenderTarget};
 pub use path::{
     ARC_COLOR, ColorMode, DEPTH_FORMAT, DRAW_UNIFORMS_SIZE, FEED_COLOR, GRID_MAJOR_COLOR,

@@ -134,6 +134,34 @@ pub fn pixels_per_unit(view_proj: Mat4, viewport: Vec2, (min, max): (Vec3, Vec3)
     (w_min > 0.0 && scale.is_finite()).then_some(scale)
 }
 
+/// The level (log2 of the tolerance in world units) at which `params` shows a path within
+/// `bounds`, keeping `current` while it is between a quarter and all of the tolerance needed;
+/// `None`: every point is drawn (part of the box lies at or behind the eye).
+#[must_use]
+pub fn lod_level(params: &ViewParams, bounds: (Vec3, Vec3), current: Option<i32>) -> Option<i32> {
+    let scale = pixels_per_unit(params.view_proj, params.viewport_px, bounds)?;
+    let needed = (LOD_TOLERANCE_PX / scale).log2();
+    if !needed.is_finite() {
+        return None;
+    }
+    let keeps = |l: i32| (l as f32) <= needed && needed < (l + 2) as f32;
+    match current {
+        Some(level) if keeps(level) => Some(level),
+        _ => Some(needed.floor().clamp(-60.0, 60.0) as i32),
+    }
+}
+
+/// The indices [`simplify`] keeps at `level` (log2 of the tolerance; `None`: every point).
+#[must_use]
+pub fn simplify_at(points: &[PathPoint], level: Option<i32>) -> Vec<u32> {
+    match level {
+        Some(level) => simplify(points, (level as f32).exp2()),
+        None => (0..points.len())
+            .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
+            .collect(),
+    }
+}
+
 /// What the renderer holds of the path: made with a level, highlight breaks and flagged runs.
 #[derive(Clone, Debug, PartialEq)]
 struct Uploaded {
@@ -151,7 +179,9 @@ pub struct PathLod {
     /// Tolerance of `base` as a power of two (world units); `None`: every point is kept.
     level: Option<i32>,
     /// Indices kept at `level`, before the highlight and playback breaks are added.
-    base: Option<Vec<u32>>,
+    base: Option<Arc<Vec<u32>>>,
+    /// Whether `base` is given ([`PathLod::given`]) rather than made here for the view.
+    given: bool,
     /// Indices of the points the renderer holds, ascending.
     drawn: Vec<u32>,
     uploaded: Option<Uploaded>,
@@ -167,6 +197,24 @@ impl PathLod {
             bounds,
             ..Self::default()
         }
+    }
+
+    /// The toolpath's points, simplified elsewhere (by the analysis, beside the frames) and
+    /// given with [`Self::set_base`]: [`Self::prepare`] then never simplifies, and draws
+    /// nothing of the path until a base is given.
+    #[must_use]
+    pub fn given(points: Arc<Vec<PathPoint>>, bounds: Option<(Vec3, Vec3)>) -> Self {
+        Self {
+            given: true,
+            ..Self::new(points, bounds)
+        }
+    }
+
+    /// Gives the indices [`simplify_at`] keeps of the points at `level` (see [`Self::given`]).
+    pub fn set_base(&mut self, level: Option<i32>, base: Arc<Vec<u32>>) {
+        self.level = level;
+        self.base = Some(base);
+        self.uploaded = None;
     }
 
     /// Segments the renderer draws of the path (one fewer than the points it holds).
@@ -187,16 +235,15 @@ impl PathLod {
         params: &ViewParams,
         flagged: &[Range<usize>],
     ) -> ViewParams {
-        let level = self.level_for(params);
-        if self.base.is_none() || level != self.level {
-            self.level = level;
-            self.base = Some(match level {
-                Some(level) => simplify(&self.points, (level as f32).exp2()),
-                None => (0..self.points.len())
-                    .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-                    .collect(),
-            });
+        if !self.given {
+            let current = self.base.as_ref().and(self.level);
+            let level = self.bounds.and_then(|b| lod_level(params, b, current));
+            if self.base.is_none() || level != self.level {
+                self.level = level;
+                self.base = Some(Arc::new(simplify_at(&self.points, level)));
+            }
         }
+        let level = self.level;
         let last = u32::try_from(self.points.len().saturating_sub(1)).unwrap_or(u32::MAX);
         let point = |i: usize| u32::try_from(i).unwrap_or(u32::MAX).min(last);
         let mut breaks: Vec<u32> = flagged
@@ -214,7 +261,7 @@ impl PathLod {
         };
         if self.uploaded.as_ref() != Some(&wanted) {
             let tolerance = level.map_or(0.0, |l| (l as f32).exp2());
-            let base = self.base.as_deref().unwrap_or_default();
+            let base = self.base.as_deref().map_or(&[][..], Vec::as_slice);
             let drawn = with_breaks(&self.points, base, &wanted.breaks, tolerance);
             // A highlight moved to points already kept changes no point.
             let same_flags = (self.uploaded.as_ref()).is_some_and(|u| u.flagged == wanted.flagged);
@@ -246,21 +293,6 @@ impl PathLod {
             highlight: renumber(params.highlight.start)..renumber(params.highlight.end),
             executed_segments: params.executed_segments.map(renumber),
             ..params.clone()
-        }
-    }
-
-    /// The level (log2 of the tolerance in world units) `params` needs, keeping the current
-    /// one while it is between a quarter and all of the tolerance needed.
-    fn level_for(&self, params: &ViewParams) -> Option<i32> {
-        let scale = pixels_per_unit(params.view_proj, params.viewport_px, self.bounds?)?;
-        let needed = (LOD_TOLERANCE_PX / scale).log2();
-        if !needed.is_finite() {
-            return None;
-        }
-        let keeps = |l: i32| self.base.is_some() && (l as f32) <= needed && needed < (l + 2) as f32;
-        match self.level {
-            Some(level) if keeps(level) => Some(level),
-            _ => Some(needed.floor().clamp(-60.0, 60.0) as i32),
         }
     }
 }

@@ -2,6 +2,8 @@
 //! marks beside it (hole rings, pecks, the programmed contour, program zeros, G22 zones, the
 //! travel box). The app's view and `swarf render` both draw this, so they show the same.
 
+use std::sync::Arc;
+
 use glam::{DVec3, Vec3};
 use swarf_toolpath::{CycleMove, SegmentKind, Toolpath, box_edges};
 
@@ -14,8 +16,9 @@ use crate::path::{Kind, PathPoint};
 pub struct Drawing {
     /// The start point (pen up), then one point per segment end with the segment's kind and
     /// its tool's number in order of first use as colour index.
+    /// Shared: the analysis keeps them to simplify for the view (see [`crate::simplify`]).
     #[serde(skip)]
-    pub points: Vec<PathPoint>,
+    pub points: Arc<Vec<PathPoint>>,
     /// Reference marks drawn with the grid (not picked, not played back); pen-up points
     /// separate them.
     #[serde(skip)]
@@ -92,7 +95,7 @@ impl Drawing {
         ]
         .concat();
         Self {
-            points,
+            points: Arc::new(points),
             marks,
             bounds: Some((rel(bounds.min), rel(bounds.max))),
             zero: rel(DVec3::ZERO),

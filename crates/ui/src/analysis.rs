@@ -102,11 +102,12 @@ fn scene(plot: Plot, generation: u64) -> Scene {
         timeline: Arc::new(plot.timeline),
         tools: Arc::new(plot.tools),
         tool_radii: Arc::new(plot.tool_radii),
-        points: Arc::new(drawing.points),
+        points: drawing.points,
         marks: Arc::new(drawing.marks),
         bounds: drawing.bounds,
         zero: drawing.zero,
         origin: drawing.origin,
+        lod: plot.lod,
         ..Scene::default()
     }
 }

@@ -9,10 +9,10 @@ use std::sync::Arc;
 
 use egui::epaint::ViewportInPixels;
 use glam::{DVec3, Mat4, Vec2, Vec3};
-use swarf_analysis::{ProgramText, StockCut};
+use swarf_analysis::{Lod, LodLevel, ProgramText, Request, StockCut};
 use swarf_render::{
     ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathLod, PathPoint, PathRenderer,
-    Projection, RenderTarget, StandardView, StockSurface, ViewParams, pick_segment,
+    Projection, RenderTarget, StandardView, StockSurface, ViewParams, lod_level, pick_segment,
     reference_points, segment_bounds, view_bounds,
 };
 use swarf_toolpath::Timeline;
@@ -138,6 +138,11 @@ pub struct Scene {
     pub stock: Option<Arc<StockCut>>,
     /// (segments cut, segments to cut) while a cut of the stock is under way.
     pub stock_progress: Option<(usize, usize)>,
+    /// Whether the analysis simplifies the path for the view (see [`Backplot::lod_request`]);
+    /// otherwise the view does, in its frames (a scene made by hand).
+    pub lod_from_analysis: bool,
+    /// The path's points kept at the level of detail last received from the analysis.
+    pub lod: Option<Lod>,
 }
 
 impl Scene {
@@ -300,6 +305,10 @@ pub struct Backplot {
     last_rect: Option<egui::Rect>,
     /// The view's widget id at the last frame (whose keyboard focus [`Self::has_focus`] asks).
     last_id: Option<egui::Id>,
+    /// The level of detail the last frame's view needs of the scene of a generation.
+    lod_wanted: Option<(u64, LodLevel)>,
+    /// The level of detail last asked of the analysis.
+    lod_asked: Option<(u64, LodLevel)>,
 }
 
 impl Backplot {
@@ -448,6 +457,7 @@ impl Backplot {
             // A real label (not painter text) so screen readers and tests can find it.
             let notice = egui::RichText::new(tr("3D view unavailable")).weak();
             ui.put(rect, egui::Label::new(notice));
+            self.lod_wanted = None;
             return response;
         }
 
@@ -489,8 +499,19 @@ impl Backplot {
             [run] => (to_u32(run.start)..to_u32(run.end), Arc::new(Vec::new())),
             _ => (0..0, Arc::clone(&selection)),
         };
+        let view_proj = self.camera.view_proj(aspect);
+        if scene.lod_from_analysis {
+            let view = ViewParams {
+                view_proj,
+                viewport_px: Vec2::new(rect.width(), rect.height()) * ui.ctx().pixels_per_point(),
+                ..ViewParams::default()
+            };
+            let shown = scene.lod.as_ref().and_then(|l| l.level);
+            let level = scene.bounds.and_then(|b| lod_level(&view, b, shown));
+            self.lod_wanted = Some((scene.generation, level));
+        }
         let params = ViewParams {
-            view_proj: self.camera.view_proj(aspect),
+            view_proj,
             executed_segments: self.playback.executed(scene).map(to_u32),
             highlight,
             hidden_kinds: self.hidden(),
@@ -531,6 +552,46 @@ impl Backplot {
                 ui.label(trf("Stock X{} Y{} Z{}", &[&x, &y, &z]));
             }
         })
+    }
+
+    /// The level of detail to ask the analysis for after [`Self::show`], when the view needs
+    /// one the scene does not have: a dense path is simplified beside the frames, and the
+    /// level received last is drawn until the new one comes.
+    pub fn lod_request(&mut self, scene: &Scene) -> Option<Request> {
+        let (generation, level) = self.lod_wanted?;
+        let due = scene.lod_from_analysis
+            && generation == scene.generation
+            && scene.segment_count() > 0
+            && scene.lod.as_ref().is_none_or(|l| l.level != level)
+            && self.lod_asked != Some((generation, level));
+        if !due {
+            return None;
+        }
+        self.lod_asked = Some((generation, level));
+        Some(Request::Lod { generation, level })
+    }
+
+    /// Whether the view still waits for the path of `scene` at the level of detail it needs
+    /// (a view that draws nothing waits for none).
+    pub fn lod_pending(&self, scene: &Scene) -> bool {
+        let Some((generation, level)) = self.lod_wanted else {
+            return false;
+        };
+        let shown = scene.lod.as_ref().map(|l| l.level);
+        scene.lod_from_analysis
+            && scene.segment_count() > 0
+            && if generation == scene.generation {
+                shown != Some(level)
+            } else {
+                shown.is_none()
+            }
+    }
+
+    /// The level of detail an analysis of the text shown should simplify its path at: the
+    /// view's, unless it is about to frame a new program (its zoom then changes).
+    pub fn lod_for_job(&self, scene: &Scene) -> Option<LodLevel> {
+        let level = scene.lod.as_ref().map(|l| l.level)?;
+        (self.fitted || !self.fit_waits).then_some(level)
     }
 
     /// Whether a fit asked for is due with `scene` (at once, or once the awaited scene is shown).
@@ -946,6 +1007,8 @@ struct GpuView {
     renderer: PathRenderer,
     /// The scene's path at the level of detail of the last image.
     path: PathLod,
+    /// The points kept that `path` was given by the analysis.
+    base: Option<Arc<Vec<u32>>>,
     target: Option<RenderTarget>,
     bind_group: Option<wgpu::BindGroup>,
     generation: Option<u64>,
@@ -991,6 +1054,7 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         let view = views.entry(self.id).or_insert_with(|| GpuView {
             renderer: PathRenderer::new(device, OFFSCREEN_FORMAT, Some(DEPTH_FORMAT), 1),
             path: PathLod::default(),
+            base: None,
             target: None,
             bind_group: None,
             generation: None,
@@ -1018,10 +1082,26 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             view.drawn = None;
         }
         if view.generation != Some(scene.generation) {
-            view.path = PathLod::new(Arc::clone(&scene.points), scene.bounds);
+            let points = Arc::clone(&scene.points);
+            view.path = if scene.lod_from_analysis {
+                PathLod::given(points, scene.bounds)
+            } else {
+                PathLod::new(points, scene.bounds)
+            };
+            view.base = None;
             let reference = reference_points(scene.zero, scene.bounds, &scene.marks);
             view.renderer.set_grid(device, queue, &reference);
             view.generation = Some(scene.generation);
+            view.drawn = None;
+        }
+        if let Some(lod) = scene.lod.as_ref().filter(|_| scene.lod_from_analysis)
+            && !view
+                .base
+                .as_ref()
+                .is_some_and(|b| Arc::ptr_eq(b, &lod.kept))
+        {
+            view.path.set_base(lod.level, Arc::clone(&lod.kept));
+            view.base = Some(Arc::clone(&lod.kept));
             view.drawn = None;
         }
         if !Arc::ptr_eq(&view.flagged, &self.flagged) && view.flagged != self.flagged {

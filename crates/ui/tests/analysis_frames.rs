@@ -3,6 +3,8 @@
 //! an unfinished run.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+mod support;
+
 use std::cell::RefCell;
 use std::collections::VecDeque;
 use std::rc::Rc;
@@ -58,7 +60,7 @@ impl Scripted {
             .rev()
             .find_map(|r| match r {
                 Request::Analyse(job) => Some(job.as_ref().clone()),
-                Request::StateAt { .. } | Request::Stock { .. } => None,
+                Request::StateAt { .. } | Request::Stock { .. } | Request::Lod { .. } => None,
             })
             .expect("a job was sent")
     }
@@ -235,4 +237,57 @@ fn finishing_the_analysis_gives_the_current_texts_results() {
     assert_eq!(wb.stats().blocks, 60_001);
     assert!(wb.problems().iter().any(|p| p.code == "E-SYNTAX-CHAR"));
     assert_eq!(wb.analysis().scene.generation, wb.generation());
+}
+
+#[test]
+fn the_path_is_simplified_beside_the_frames_at_the_views_level() {
+    let Some(render_state) = support::render_state() else {
+        eprintln!("SKIPPED: no wgpu adapter available for the level of detail test");
+        return;
+    };
+    let mut wb = Workbench::default();
+    wb.set_text(program(2000, "M30\n"));
+    wb.finish_analysis();
+    let analyst = Scripted::default();
+    wb.set_analyst(Box::new(analyst.clone()));
+    let job = analyst.last_job();
+    assert_eq!(
+        job.lod, None,
+        "a first program is framed: its level is not known yet"
+    );
+    let generation = job.generation;
+    let (results, kept) = analyse(job);
+    analyst.reply(Reply::Done(Box::new(results)));
+    let mut harness = support::drawn_workbench(&render_state, wb, egui::vec2(1200.0, 700.0));
+    for _ in 0..4 {
+        harness.step();
+    }
+    // The frames asked for the framed view's level once, and wait for it.
+    let asked: Vec<_> = (analyst.0.borrow().0.iter())
+        .filter_map(|r| match r {
+            Request::Lod { generation, level } => Some((*generation, *level)),
+            _ => None,
+        })
+        .collect();
+    let [(asked_generation, level)] = asked[..] else {
+        panic!("{asked:?}");
+    };
+    assert_eq!(asked_generation, generation);
+    assert!(level.is_some());
+    assert!(harness.state().drawing_pending());
+    let simplified = swarf_render::simplify_at(&kept.points, level);
+    assert!(simplified.len() < kept.points.len());
+    analyst.reply(Reply::Lod {
+        generation,
+        level,
+        kept: Some(std::sync::Arc::new(simplified.clone())),
+    });
+    harness.run();
+    assert!(!harness.state().drawing_pending());
+    let lod = harness.state().analysis().scene.lod.clone().unwrap();
+    assert_eq!((lod.level, &*lod.kept), (level, &simplified));
+    // An edit keeps the zoom: its job asks for the level shown, whose points then come with
+    // its results.
+    harness.state_mut().set_text(program(2001, "M30\n"));
+    assert_eq!(analyst.last_job().lod, Some(level));
 }

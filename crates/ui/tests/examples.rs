@@ -17,6 +17,7 @@ fn every_example_interprets_cleanly_in_its_dialect() {
             dialect: ex.dialect,
             setup: swarf_interp::Setup::default(),
             others: None,
+            lod: None,
         };
         let analysis = swarf_analysis::analyse(job).0;
         let bad: Vec<_> = analysis

@@ -48,6 +48,7 @@ fn hover_explains_the_code_and_the_problem_under_the_pointer() {
         dialect: Dialect::Fanuc,
         setup: swarf_interp::Setup::default(),
         others: None,
+        lod: None,
     };
     let analysis = swarf_analysis::analyse(job).0;
     let help = hover_text(text, Dialect::Fanuc, at, &analysis.problems).unwrap();

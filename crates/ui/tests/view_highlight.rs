@@ -35,6 +35,7 @@ fn scene_of(text: &str) -> Scene {
         dialect: Dialect::Fanuc,
         setup: setup(),
         others: None,
+        lod: None,
     };
     let analysis = Analysis::of(swarf_analysis::analyse(job).0, &text);
     assert!(

@@ -9,9 +9,10 @@ use super::Workbench;
 use crate::analysis::{Analysis, Problem, Stats};
 
 /// How soon after a reply of the analysis the frame that shows it comes: an answer at once,
-/// `progress` a few times a second (so the frames leave the analysis the processor).
+/// `progress` twice a second. Without a GPU a frame of the whole window takes a core for tens
+/// of milliseconds, taken from the analysis on a machine of two cores.
 pub fn reply_frame(progress: bool) -> std::time::Duration {
-    std::time::Duration::from_millis(if progress { 100 } else { 2 })
+    std::time::Duration::from_millis(if progress { 500 } else { 2 })
 }
 
 impl Workbench {
@@ -66,6 +67,7 @@ impl Workbench {
             dialect: self.tab.dialect,
             setup: self.setup.clone(),
             others: Some(others.collect()),
+            lod: self.backplot.lod_for_job(&self.analysis.scene),
         })));
         self.sent.push_back((self.generation, text));
         self.pending = Some(Progress::Reading { read: 0, lines: 0 });
@@ -110,6 +112,8 @@ impl Workbench {
                     && newer
                 {
                     self.analysis = Analysis::of(*results, &text);
+                    // The analysis simplifies the path for the view, beside the frames.
+                    self.analysis.scene.lod_from_analysis = true;
                     self.own_analysis = true;
                     if generation == self.generation {
                         self.pending = None;
@@ -130,6 +134,21 @@ impl Workbench {
                 }
             }
             Reply::Stock(cut) => self.analysis.take_stock(*cut),
+            Reply::Lod {
+                generation,
+                level,
+                kept,
+            } => {
+                let scene = &mut self.analysis.scene;
+                if generation == scene.generation && scene.lod_from_analysis {
+                    // An analysis no longer held leaves it to this side, once.
+                    let lod = match kept {
+                        Some(kept) => swarf_analysis::Lod { level, kept },
+                        None => swarf_analysis::Lod::of(&scene.points, level),
+                    };
+                    scene.lod = Some(lod);
+                }
+            }
         }
     }
 
@@ -140,6 +159,11 @@ impl Workbench {
             Progress::Running { reached, blocks } => (reached, blocks),
             Progress::Reading { .. } => (0, 0),
         })
+    }
+
+    /// Whether the backplot waits for the analysis to simplify the path for its view.
+    pub fn drawing_pending(&self) -> bool {
+        self.backplot.lod_pending(&self.analysis.scene)
     }
 
     /// Waits for the analysis of the current text and shows it (a web page cannot wait).

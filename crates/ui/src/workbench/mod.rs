@@ -221,8 +221,9 @@ impl Workbench {
 
     /// Replaces the text and re-analyses it (one undo step; the document stays the same file).
     pub fn set_text(&mut self, text: impl Into<String>) {
-        self.apply(text.into(), 0..0);
+        // Framed anew: its analysis simplifies the path once the view's zoom is known.
         self.backplot.fit();
+        self.apply(text.into(), 0..0);
     }
 
     /// The status bar's message, when it shows one.
@@ -442,6 +443,13 @@ impl Workbench {
                 let view = self.backplot.show(ui, &self.analysis.scene);
                 if let Some(request) = self.backplot.stock_request(&self.analysis.scene) {
                     self.ask(request);
+                }
+                if let Some(request) = self.backplot.lod_request(&self.analysis.scene) {
+                    self.ask(request);
+                    // One answered at once is drawn by the next frame (a later one wakes it).
+                    if !self.backplot.lod_pending(&self.analysis.scene) {
+                        ui.ctx().request_repaint();
+                    }
                 }
                 self.keep_rect(ui, "backplot", &view);
                 self.loading_overlay(ui, view.rect);
