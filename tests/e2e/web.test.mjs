@@ -368,6 +368,39 @@ test("a click in the backplot selects the segment's line", { timeout: TEST_TIMEO
   assert.ok(refused, "project([1, 2]) should throw a TypeError");
 });
 
+test("the wheel zooms into a dense path, drawn finer once the worker simplifies it again", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+  // Rows of 200 feeds of 0.25 mm, 0.5 mm apart, over a gentle wave: far more moves than the
+  // fitted view can show apart.
+  const lines = ["G90 G21 G17", "G00 X0 Y0 Z5.", "G01 Z0. F1500."];
+  for (let n = 0; n < 40_000; n++) {
+    const x = (n % 200) * 0.25;
+    const y = Math.floor(n / 200) * 0.5;
+    lines.push(`G01 X${x.toFixed(3)} Y${y.toFixed(3)} Z${(-Math.abs(Math.sin(x * 0.07)) * 3).toFixed(4)}`);
+  }
+  lines.push("M30", "");
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["dense.nc", lines.join("\n")]);
+  await session.idle();
+  const fitted = await page.evaluate(() => window.swarf.stats());
+  assert.ok(
+    fitted.drawn_points !== null && fitted.drawn_points > 1 && fitted.drawn_points < fitted.motions / 4,
+    `the fitted view should draw the path simplified: ${JSON.stringify(fitted)}`,
+  );
+  const view = await page.evaluate(() => window.swarf.widget("backplot"));
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
+  for (let i = 0; i < 8; i++) {
+    await page.mouse.wheel(0, -240);
+    await page.waitForTimeout(50);
+  }
+  const finer = await session.eventually(
+    () => window.swarf.stats().drawn_points,
+    null,
+    (drawn) => drawn > fitted.drawn_points,
+    `zoomed in, the path should be drawn with more of its points than the ${fitted.drawn_points} fitted`,
+  );
+  assert.ok(finer <= fitted.motions + 1, `${finer} points drawn of ${fitted.motions + 1}`);
+});
+
 test("with the File System Access API, Save writes back to the opened file in its encoding", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
 
@@ -498,10 +531,15 @@ test("unsaved edits survive a reload of the page", { timeout: TEST_TIMEOUT_MS },
 
   const edited = "G90 G21\nG00 X0 Y0 Z5.\nG01 X42. F100\nM30\n";
   await page.evaluate((text) => window.swarf.setText(text), edited);
-  // Kept in IndexedDB (a record a tab) a moment after the edit.
+  // Kept in IndexedDB a moment after the edit: a record a tab, then the index naming the
+  // active tab's record (a reload before the index is written finds the round before).
+  const activeRecord = (stored) => {
+    const [head, ...tabs] = (stored?.index ?? "").split("\n");
+    const active = Number(head.split("\t")[2]);
+    return stored?.records[tabs[active]?.split("\t")[2]] ?? "";
+  };
   for (let waited = 0; ; waited += 250) {
-    const stored = await recoveryRecords(page);
-    if (stored && Object.values(stored.records).some((text) => text.includes("X42."))) {
+    if (activeRecord(await recoveryRecords(page)).includes("X42.")) {
       break;
     }
     assert.ok(waited < 30_000, "the unsaved program should be kept in IndexedDB within 30 s");

@@ -155,11 +155,14 @@ impl SwarfApi {
         })
     }
 
-    /// `{blocks, motions, bounds: {min, max} | null, estimated_secs, wasm_bytes}`: the numbers
-    /// the page shows now, those of the last finished analysis (see [`SwarfApi::idle`]), and
-    /// the sizes of the page's and the worker's wasm memories (`{page, worker}`, bytes).
+    /// `{blocks, motions, bounds: {min, max} | null, estimated_secs, drawn_points,
+    /// wasm_bytes}`: the numbers the page shows now, those of the last finished analysis (see
+    /// [`SwarfApi::idle`]), the points of the path the backplot draws at its zoom's level of
+    /// detail, and the sizes of the page's and the worker's wasm memories (`{page, worker}`,
+    /// bytes).
     pub fn stats(&self) -> Result<JsValue, JsValue> {
-        let s = self.with_app(|app| app.workbench.stats())?;
+        let (s, drawn) =
+            self.with_app(|app| (app.workbench.stats(), app.workbench.drawn_points()))?;
         let bounds = s
             .bounds
             .map(|(min, max)| json!({"min": min.to_array(), "max": max.to_array()}));
@@ -168,7 +171,7 @@ impl SwarfApi {
         let page = buffer.map_or(0.0, |b| f64::from(b.byte_length()));
         to_js(&json!({
             "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
-            "estimated_secs": s.estimated_secs,
+            "estimated_secs": s.estimated_secs, "drawn_points": drawn,
             "wasm_bytes": {"page": page, "worker": crate::web_worker::memory_bytes()},
         }))
     }

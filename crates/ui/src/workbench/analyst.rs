@@ -53,6 +53,14 @@ impl Workbench {
         self.analysis.stats
     }
 
+    /// Points of the path the backplot draws at the level of detail the analysis last sent
+    /// (`None` before one came).
+    pub fn drawn_points(&self) -> Option<usize> {
+        let lod = self.analysis.scene.lod.as_ref();
+        lod.filter(|_| self.analysis.scene.lod_from_analysis)
+            .map(|l| l.kept.len())
+    }
+
     /// Sends the current text to the analysis (replacing an unfinished run there).
     pub(super) fn reanalyse(&mut self) {
         self.generation += 1;
