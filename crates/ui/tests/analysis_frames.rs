@@ -286,8 +286,20 @@ fn the_path_is_simplified_beside_the_frames_at_the_views_level() {
     assert!(!harness.state().drawing_pending());
     let lod = harness.state().analysis().scene.lod.clone().unwrap();
     assert_eq!((lod.level, &*lod.kept), (level, &simplified));
-    // An edit keeps the zoom: its job asks for the level shown, whose points then come with
-    // its results.
+    // A keystroke keeps the zoom: its job asks for the level shown, whose points then come
+    // with its results.
+    harness
+        .get_by_role(egui::accesskit::Role::MultilineTextInput)
+        .focus();
+    harness.run();
+    harness
+        .get_by_role(egui::accesskit::Role::MultilineTextInput)
+        .type_text("G01 X1.\n");
+    harness.step();
+    let job = analyst.last_job();
+    assert!(job.text.to_owned_string().starts_with("G01 X1.\n"));
+    assert_eq!(job.lod, Some(level));
+    // Text replaced whole is framed anew: its job asks for no level.
     harness.state_mut().set_text(program(2001, "M30\n"));
-    assert_eq!(analyst.last_job().lod, Some(level));
+    assert_eq!(analyst.last_job().lod, None);
 }
