@@ -29,7 +29,7 @@ pub use path::{
     PathPoint, PathRenderer, RAPID_COLOR, UNIFORMS_SIZE, ViewParams, Z_AXIS_COLOR, ZONE_COLOR,
     srgba,
 };
-pub use pick::{Pick, pick_segment, segment_bounds};
+pub use pick::{Pick, pick_kept_segment, pick_segment, segment_bounds};
 #[cfg(feature = "toolpath")]
 pub use scene::{Drawing, reference_points, view_bounds};
 pub use stock::{MAX_STOCK_CELLS, STOCK_UNIFORMS_SIZE, STOCK_WGSL, StockSurface};

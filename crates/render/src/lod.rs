@@ -535,4 +535,58 @@ mod tests {
             None
         );
     }
+
+    #[test]
+    fn picking_over_the_chords_drawn_finds_what_picking_every_segment_finds() {
+        use crate::{Projection, pick_kept_segment, pick_segment};
+        let viewport = Vec2::new(800.0, 600.0);
+        let cases = [
+            (surfacing(60), Projection::Orthographic, 1.0),
+            (surfacing(60), Projection::Orthographic, 3.0),
+            (mixed(2000), Projection::Perspective, 1.0),
+            (mixed(2000), Projection::Orthographic, 2.5),
+        ];
+        for (points, projection, zoom) in cases {
+            let finite = points
+                .iter()
+                .map(PathPoint::position)
+                .filter(|p| p.is_finite());
+            let (min, max) = finite.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p), hi.max(p))
+            });
+            let mut camera = OrbitCamera::new(StandardView::Iso);
+            camera.projection = projection;
+            camera.fit_aspect(min, max, viewport.x / viewport.y);
+            let fitted = ViewParams {
+                view_proj: camera.view_proj(viewport.x / viewport.y),
+                viewport_px: viewport,
+                ..ViewParams::default()
+            };
+            let level = lod_level(&fitted, (min, max), None);
+            let kept = simplify_at(&points, level);
+            assert!(
+                kept.len() < points.len(),
+                "{} of {}",
+                kept.len(),
+                points.len()
+            );
+            // Zoomed in since that level was made (as while the next one is on its way).
+            camera.zoom(zoom);
+            let view_proj = camera.view_proj(viewport.x / viewport.y);
+            let scale = pixels_per_unit(view_proj, viewport, (min, max)).unwrap();
+            let slack = (level.unwrap() as f32).exp2() * scale + 0.01;
+            let mut hits = 0;
+            for (x, y) in (0..48).flat_map(|x| (0..36).map(move |y| (x, y))) {
+                let cursor = Vec2::new(x as f32 + 0.37, y as f32 + 0.61) * 16.7;
+                for hidden in [0, Kind::Feed.mask()] {
+                    let all = pick_segment(&points, view_proj, viewport, cursor, 6.0, hidden);
+                    let drawn = (view_proj, viewport, cursor);
+                    let over = pick_kept_segment(&points, &kept, drawn, 6.0, hidden, slack);
+                    assert_eq!(over, all, "{cursor} zoom {zoom} hidden {hidden}");
+                    hits += usize::from(all.is_some());
+                }
+            }
+            assert!(hits > 50, "{hits} hits");
+        }
+    }
 }

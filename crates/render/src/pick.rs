@@ -1,5 +1,6 @@
 //! Picking on the CPU: the segment nearest to the cursor on screen, in one pass over the
-//! points with no allocation, and the bounds of a run of segments for "zoom to selection".
+//! points (or over the chords drawn, then the segments of those near the cursor), and the
+//! bounds of a run of segments for "zoom to selection".
 
 use std::ops::Range;
 
@@ -49,68 +50,151 @@ pub fn pick_segment(
     radius_px: f32,
     hidden_kinds: u32,
 ) -> Option<Pick> {
-    let valid = view_proj.is_finite()
-        && viewport_px.is_finite()
-        && viewport_px.min_element() > 0.0
-        && cursor_px.is_finite()
-        && radius_px.is_finite()
-        && radius_px >= 0.0;
-    if !valid || points.len() < 2 {
+    let view = CursorView::new(view_proj, viewport_px, cursor_px, radius_px, hidden_kinds)?;
+    let mut best = None;
+    view.hits(points, 0, radius_px, |hit| keep_better(&mut best, hit));
+    best
+}
+
+/// As [`pick_segment`], in time that follows what is drawn rather than the path's length: the
+/// chords between the points `kept` (ascending indices, as [`crate::simplify`] keeps them, each
+/// within `slack_px` on screen of the segments it stands for) are looked at first, then the
+/// segments of those that pass within `radius_px + slack_px`. The same segment is found.
+#[must_use]
+pub fn pick_kept_segment(
+    points: &[PathPoint],
+    kept: &[u32],
+    (view_proj, viewport_px, cursor_px): (Mat4, Vec2, Vec2),
+    radius_px: f32,
+    hidden_kinds: u32,
+    slack_px: f32,
+) -> Option<Pick> {
+    let view = CursorView::new(view_proj, viewport_px, cursor_px, radius_px, hidden_kinds)?;
+    if !slack_px.is_finite() || slack_px < 0.0 {
         return None;
     }
-    // Rows of the matrix taking a world point to (pixel offset from the cursor) × w:
-    // px = (ndc.x + 1) / 2 · W − cx  and  py = (1 − ndc.y) / 2 · H − cy.
-    let m = view_proj.transpose();
-    let (row_x, row_y, row_z, row_w) = (m.x_axis, m.y_axis, m.z_axis, m.w_axis);
-    let half = viewport_px * 0.5;
-    let px = row_x * half.x + row_w * (half.x - cursor_px.x);
-    let py = row_y * (-half.y) + row_w * (half.y - cursor_px.y);
-    let (pz, pw) = (row_z, row_w);
-    // A point in "cursor space": homogeneous coordinates whose `x / w`, `y / w` are pixel
-    // offsets from the cursor (y down) and `z / w` the depth, and those offsets when the point
-    // is in front of the near plane.
-    let project = |p: &PathPoint| {
-        let v = Vec4::new(p.position[0], p.position[1], p.position[2], 1.0);
-        let clip = Vec4::new(px.dot(v), py.dot(v), pz.dot(v), pw.dot(v));
-        let in_front = clip.z >= 0.0 && clip.w > 0.0;
-        (clip, in_front.then(|| Vec2::new(clip.x, clip.y) / clip.w))
-    };
+    let chords: Vec<PathPoint> = kept
+        .iter()
+        .map_while(|&i| points.get(i as usize).copied())
+        .collect();
+    let mut near = Vec::new();
+    view.hits(&chords, 0, radius_px + slack_px, |hit| {
+        near.push(hit.segment);
+    });
+    let mut best = None;
+    for chord in near {
+        let (Some(&from), Some(&to)) = (kept.get(chord), kept.get(chord + 1)) else {
+            continue;
+        };
+        let (from, to) = (from as usize, to as usize);
+        if let Some(run) = points.get(from..=to) {
+            view.hits(run, from, radius_px, |hit| keep_better(&mut best, hit));
+        }
+    }
+    best
+}
 
-    let mut best: Option<Pick> = None;
-    let mut prev = project(&points[0]);
-    for (i, point) in points.iter().enumerate().skip(1) {
-        let cur = project(point);
-        let skip = point.is_pen_up() || (hidden_kinds >> (point.packed & 0xff)) & 1 != 0;
-        if !skip {
-            let ((a, on_a), (b, on_b)) = (prev, cur);
-            let hit = if let (Some(on_a), Some(on_b)) = (on_a, on_b) {
-                nearest_on_screen(on_a, on_b, radius_px).map(|(t, d)| {
-                    // Screen-space t to the world-space parameter (perspective divide).
-                    let s = world_t(t, a.w, b.w);
-                    let clip = a.lerp(b, s);
-                    (s, d, clip.z / clip.w)
-                })
-            } else {
-                clipped_hit(a, b, radius_px)
-            };
-            if let Some((t, distance_px, depth)) = hit {
-                let better = |b: &Pick| {
-                    distance_px < b.distance_px - TIE_PX
-                        || (distance_px <= b.distance_px + TIE_PX && depth <= b.depth)
+/// Makes `hit` the best unless `best` is nearer (ties within [`TIE_PX`]: the nearer to the
+/// eye, then the later).
+fn keep_better(best: &mut Option<Pick>, hit: Pick) {
+    let better = |b: &Pick| {
+        hit.distance_px < b.distance_px - TIE_PX
+            || (hit.distance_px <= b.distance_px + TIE_PX && hit.depth <= b.depth)
+    };
+    if best.as_ref().is_none_or(better) {
+        *best = Some(hit);
+    }
+}
+
+/// A view and a cursor to measure segments against, in "cursor space".
+struct CursorView {
+    px: Vec4,
+    py: Vec4,
+    pz: Vec4,
+    pw: Vec4,
+    hidden_kinds: u32,
+}
+
+impl CursorView {
+    /// `None` for a view, cursor or radius that is not finite (or an empty viewport).
+    fn new(
+        view_proj: Mat4,
+        viewport_px: Vec2,
+        cursor_px: Vec2,
+        radius_px: f32,
+        hidden_kinds: u32,
+    ) -> Option<Self> {
+        let valid = view_proj.is_finite()
+            && viewport_px.is_finite()
+            && viewport_px.min_element() > 0.0
+            && cursor_px.is_finite()
+            && radius_px.is_finite()
+            && radius_px >= 0.0;
+        if !valid {
+            return None;
+        }
+        // Rows of the matrix taking a world point to (pixel offset from the cursor) × w:
+        // px = (ndc.x + 1) / 2 · W − cx  and  py = (1 − ndc.y) / 2 · H − cy.
+        let m = view_proj.transpose();
+        let (row_x, row_y, row_z, row_w) = (m.x_axis, m.y_axis, m.z_axis, m.w_axis);
+        let half = viewport_px * 0.5;
+        Some(CursorView {
+            px: row_x * half.x + row_w * (half.x - cursor_px.x),
+            py: row_y * (-half.y) + row_w * (half.y - cursor_px.y),
+            pz: row_z,
+            pw: row_w,
+            hidden_kinds,
+        })
+    }
+
+    /// Calls `hit` with each segment of `points` drawn within `radius_px` of the cursor, in
+    /// order, numbered from `first` (the index in the whole path of `points[0]`).
+    fn hits(&self, points: &[PathPoint], first: usize, radius_px: f32, mut hit: impl FnMut(Pick)) {
+        // A point in "cursor space": homogeneous coordinates whose `x / w`, `y / w` are pixel
+        // offsets from the cursor (y down) and `z / w` the depth, and those offsets when the
+        // point is in front of the near plane.
+        let project = |p: &PathPoint| {
+            let v = Vec4::new(p.position[0], p.position[1], p.position[2], 1.0);
+            let clip = Vec4::new(
+                self.px.dot(v),
+                self.py.dot(v),
+                self.pz.dot(v),
+                self.pw.dot(v),
+            );
+            let in_front = clip.z >= 0.0 && clip.w > 0.0;
+            (clip, in_front.then(|| Vec2::new(clip.x, clip.y) / clip.w))
+        };
+        let Some(start) = points.first() else {
+            return;
+        };
+        let mut prev = project(start);
+        for (i, point) in points.iter().enumerate().skip(1) {
+            let cur = project(point);
+            let skip = point.is_pen_up() || (self.hidden_kinds >> (point.packed & 0xff)) & 1 != 0;
+            if !skip {
+                let ((a, on_a), (b, on_b)) = (prev, cur);
+                let found = if let (Some(on_a), Some(on_b)) = (on_a, on_b) {
+                    nearest_on_screen(on_a, on_b, radius_px).map(|(t, d)| {
+                        // Screen-space t to the world-space parameter (perspective divide).
+                        let s = world_t(t, a.w, b.w);
+                        let clip = a.lerp(b, s);
+                        (s, d, clip.z / clip.w)
+                    })
+                } else {
+                    clipped_hit(a, b, radius_px)
                 };
-                if best.as_ref().is_none_or(better) {
-                    best = Some(Pick {
-                        segment: i - 1,
+                if let Some((t, distance_px, depth)) = found {
+                    hit(Pick {
+                        segment: first + i - 1,
                         distance_px,
                         t,
                         depth,
                     });
                 }
             }
+            prev = cur;
         }
-        prev = cur;
     }
-    best
 }
 
 /// `(t, distance)` of the point of screen segment `a..b` nearest to the origin (the cursor),

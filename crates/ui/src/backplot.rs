@@ -12,8 +12,8 @@ use glam::{DVec3, Mat4, Vec2, Vec3};
 use swarf_analysis::{Lod, LodLevel, ProgramText, Request, StockCut};
 use swarf_render::{
     ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathLod, PathPoint, PathRenderer,
-    Projection, RenderTarget, StandardView, StockSurface, ViewParams, lod_level, pick_segment,
-    reference_points, segment_bounds, view_bounds,
+    Projection, RenderTarget, StandardView, StockSurface, ViewParams, lod_level, pick_kept_segment,
+    pick_segment, pixels_per_unit, reference_points, segment_bounds, view_bounds,
 };
 use swarf_toolpath::Timeline;
 
@@ -58,6 +58,10 @@ const STANDARD_VIEWS: [(&str, egui::Key, StandardView); 4] = [
 
 /// How far from a segment (in points) the cursor may be to pick it.
 pub const PICK_RADIUS: f32 = 6.0;
+
+/// Points added to a chord's tolerance on screen when picking over the chords drawn, for the
+/// rounding of the two measures.
+const PICK_SLACK_ROUNDING: f32 = 0.01;
 
 /// Colour format of the offscreen target (gamma-encoded, premultiplied, as egui blends).
 const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -711,14 +715,36 @@ impl Backplot {
     fn pick(&self, scene: &Scene, rect: egui::Rect, pointer: egui::Pos2) -> Option<HoverInfo> {
         let viewport = Vec2::new(rect.width(), rect.height());
         let cursor = pointer - rect.min;
-        let hit = pick_segment(
-            &scene.points,
-            self.camera.view_proj(rect.width() / rect.height()),
-            viewport,
-            Vec2::new(cursor.x, cursor.y),
-            PICK_RADIUS,
-            self.hidden(),
-        )?;
+        let cursor = Vec2::new(cursor.x, cursor.y);
+        let view_proj = self.camera.view_proj(rect.width() / rect.height());
+        // Over the chords drawn first, each within its tolerance on screen of what it stands
+        // for, so a hover costs what is drawn rather than the path's length.
+        let drawn = scene.lod.as_ref().filter(|_| scene.lod_from_analysis);
+        let slack = drawn.and_then(|lod| {
+            let scale = pixels_per_unit(view_proj, viewport, scene.bounds?)?;
+            Some((
+                &lod.kept,
+                (lod.level? as f32).exp2() * scale + PICK_SLACK_ROUNDING,
+            ))
+        });
+        let hit = match slack {
+            Some((kept, slack)) => pick_kept_segment(
+                &scene.points,
+                kept,
+                (view_proj, viewport, cursor),
+                PICK_RADIUS,
+                self.hidden(),
+                slack,
+            ),
+            None => pick_segment(
+                &scene.points,
+                view_proj,
+                viewport,
+                cursor,
+                PICK_RADIUS,
+                self.hidden(),
+            ),
+        }?;
         Some(HoverInfo {
             segment: hit.segment,
             line: *scene.lines.get(hit.segment)?,
