@@ -39,6 +39,8 @@ pub struct WorkerAnalyst {
     _on_error: Closure<dyn FnMut(web_sys::ErrorEvent)>,
     /// The last job sent: run here should the worker fail before it answers.
     last_job: Option<Job>,
+    /// The level of detail last asked and not yet answered: asked here should the worker fail.
+    last_lod: Option<Request>,
     /// The analysis in the frames, once the worker has failed.
     fallback: Option<Inline>,
 }
@@ -82,6 +84,7 @@ impl WorkerAnalyst {
             _on_message: on_message,
             _on_error: on_error,
             last_job: None,
+            last_lod: None,
             fallback: None,
         })
     }
@@ -93,6 +96,12 @@ impl WorkerAnalyst {
         if let Some(job) = self.last_job.take() {
             // A job is answered later, from the frames.
             let _ = inline.send(Request::Analyse(Box::new(job)));
+        }
+        if let Some(lod) = self.last_lod.take()
+            && let Some(reply) = inline.send(lod)
+        {
+            // Answered at once: taken with the replies that came before.
+            self.inbox.borrow_mut().replies.push_back(reply);
         }
         self.fallback = Some(inline);
     }
@@ -106,8 +115,10 @@ impl Drop for WorkerAnalyst {
 
 impl Analyst for WorkerAnalyst {
     fn send(&mut self, request: Request) -> Option<Reply> {
-        if let Request::Analyse(job) = &request {
-            self.last_job = Some(job.as_ref().clone());
+        match &request {
+            Request::Analyse(job) => self.last_job = Some(job.as_ref().clone()),
+            Request::Lod { .. } => self.last_lod = Some(request.clone()),
+            Request::StateAt { .. } | Request::Stock { .. } => {}
         }
         if let Some(inline) = &mut self.fallback {
             return inline.send(request);
@@ -127,10 +138,16 @@ impl Analyst for WorkerAnalyst {
         if self.fallback.is_none() && self.inbox.borrow().failed {
             self.fail();
         }
-        match &mut self.fallback {
-            Some(inline) => inline.try_reply(),
-            None => self.inbox.borrow_mut().replies.pop_front(),
+        // Replies that came before a failure are taken first.
+        let reply = self.inbox.borrow_mut().replies.pop_front();
+        let reply = match &mut self.fallback {
+            Some(inline) => reply.or_else(|| inline.try_reply()),
+            None => reply,
+        };
+        if matches!(reply, Some(Reply::Lod { .. })) {
+            self.last_lod = None;
         }
+        reply
     }
 
     /// The page's main thread cannot wait: the reply that has come, if any.
