@@ -210,11 +210,16 @@ impl PathLod {
         }
     }
 
-    /// Gives the indices [`simplify_at`] keeps of the points at `level` (see [`Self::given`]).
-    pub fn set_base(&mut self, level: Option<i32>, base: Arc<Vec<u32>>) {
+    /// Gives the indices [`simplify_at`] keeps of the points at `level` (see [`Self::given`]);
+    /// whether they are other than those it holds (the same `Arc` changes nothing).
+    pub fn set_base(&mut self, level: Option<i32>, base: &Arc<Vec<u32>>) -> bool {
+        if self.base.as_ref().is_some_and(|b| Arc::ptr_eq(b, base)) {
+            return false;
+        }
         self.level = level;
-        self.base = Some(base);
+        self.base = Some(Arc::clone(base));
         self.uploaded = None;
+        true
     }
 
     /// Segments the renderer draws of the path (one fewer than the points it holds).

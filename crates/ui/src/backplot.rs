@@ -1033,8 +1033,6 @@ struct GpuView {
     renderer: PathRenderer,
     /// The scene's path at the level of detail of the last image.
     path: PathLod,
-    /// The points kept that `path` was given by the analysis.
-    base: Option<Arc<Vec<u32>>>,
     target: Option<RenderTarget>,
     bind_group: Option<wgpu::BindGroup>,
     generation: Option<u64>,
@@ -1080,7 +1078,6 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
         let view = views.entry(self.id).or_insert_with(|| GpuView {
             renderer: PathRenderer::new(device, OFFSCREEN_FORMAT, Some(DEPTH_FORMAT), 1),
             path: PathLod::default(),
-            base: None,
             target: None,
             bind_group: None,
             generation: None,
@@ -1114,20 +1111,14 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             } else {
                 PathLod::new(points, scene.bounds)
             };
-            view.base = None;
             let reference = reference_points(scene.zero, scene.bounds, &scene.marks);
             view.renderer.set_grid(device, queue, &reference);
             view.generation = Some(scene.generation);
             view.drawn = None;
         }
         if let Some(lod) = scene.lod.as_ref().filter(|_| scene.lod_from_analysis)
-            && !view
-                .base
-                .as_ref()
-                .is_some_and(|b| Arc::ptr_eq(b, &lod.kept))
+            && view.path.set_base(lod.level, &lod.kept)
         {
-            view.path.set_base(lod.level, Arc::clone(&lod.kept));
-            view.base = Some(Arc::clone(&lod.kept));
             view.drawn = None;
         }
         if !Arc::ptr_eq(&view.flagged, &self.flagged) && view.flagged != self.flagged {
