@@ -24,10 +24,10 @@ pub use grid::{grid_points, grid_points_at, nice_step};
 pub use lod::{LOD_TOLERANCE_PX, PathLod, lod_level, pixels_per_unit, simplify, simplify_at};
 pub use offscreen::{HeadlessGpu, RenderError, RenderTarget};
 pub use path::{
-    ARC_COLOR, ColorMode, DEPTH_FORMAT, DRAW_UNIFORMS_SIZE, FEED_COLOR, GRID_MAJOR_COLOR,
-    HIGHLIGHT_COLOR, HIGHLIGHT_SLOT, Kind, PATH_WGSL, POINT_SIZE, PROGRAMMED_COLOR, Palette,
-    PathPoint, PathRenderer, RAPID_COLOR, UNIFORMS_SIZE, ViewParams, Z_AXIS_COLOR, ZONE_COLOR,
-    srgba,
+    ARC_COLOR, ColorMode, DEPTH_FORMAT, DRAW_UNIFORMS_SIZE, FEED_COLOR, FRAME_WORK,
+    GRID_MAJOR_COLOR, HIGHLIGHT_COLOR, HIGHLIGHT_SLOT, Kind, PATH_WGSL, POINT_SIZE,
+    PROGRAMMED_COLOR, Palette, PathPoint, PathRenderer, RAPID_COLOR, UNIFORMS_SIZE, ViewParams,
+    Z_AXIS_COLOR, ZONE_COLOR, srgba,
 };
 pub use pick::{Pick, pick_kept_segment, pick_segment, segment_bounds};
 #[cfg(feature = "toolpath")]

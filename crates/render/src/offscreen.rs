@@ -10,6 +10,8 @@ use {
     std::sync::Arc,
 };
 
+use std::ops::Range;
+
 use crate::path::{DEPTH_FORMAT, PathRenderer};
 
 /// Why an offscreen render failed.
@@ -198,6 +200,29 @@ impl RenderTarget {
         background: wgpu::Color,
         renderer: &PathRenderer,
     ) {
+        self.draw_part(encoder, Some(background), renderer, 0..renderer.work());
+    }
+
+    /// Records a pass that paints the part `part` of `renderer`'s work (see
+    /// [`PathRenderer::paint_part`]), clearing colour to `clear` and depth to 1 first when
+    /// `clear` is given (the first part), else drawing over what earlier parts drew.
+    pub fn draw_part(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        clear: Option<wgpu::Color>,
+        renderer: &PathRenderer,
+        part: Range<u64>,
+    ) {
+        let (load, depth_load) = match clear {
+            Some(background) => (wgpu::LoadOp::Clear(background), wgpu::LoadOp::Clear(1.0)),
+            None => (wgpu::LoadOp::Load, wgpu::LoadOp::Load),
+        };
+        // Depth is kept only for the parts still to come.
+        let depth_store = if part.end >= renderer.work() {
+            wgpu::StoreOp::Discard
+        } else {
+            wgpu::StoreOp::Store
+        };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("swarf_offscreen_pass"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -205,21 +230,21 @@ impl RenderTarget {
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(background),
+                    load,
                     store: wgpu::StoreOp::Store,
                 },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &self.depth_view,
                 depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
+                    load: depth_load,
+                    store: depth_store,
                 }),
                 stencil_ops: None,
             }),
             ..Default::default()
         });
-        renderer.paint(&mut pass);
+        renderer.paint_part(&mut pass, part);
     }
 
     /// Copies the colour texture into tightly packed RGBA8 rows (top row first), waiting for

@@ -386,8 +386,16 @@ const ROW_POINTS: u64 = 4096;
 /// Vertices of one segment's quad: two triangles (a list, so no segment joins the next).
 const QUAD_VERTICES: u32 = 6;
 
+/// Work of a picture one frame draws when it is drawn over several frames (see
+/// [`PathRenderer::paint_part`]): a path segment counts once in each of its two passes. A
+/// software rasteriser (what a browser on a PC without a usable GPU draws with) draws this
+/// many in a few milliseconds, so such a frame stays about as short as one drawing nothing.
+pub const FRAME_WORK: u64 = 4096;
+
 /// One texture of a [`PointBatch`], holding `count` points of the stream, a row at a time.
 struct Chunk {
+    /// The stream's index of the texture's first point (and first segment).
+    first: u64,
     texture: wgpu::Texture,
     /// The chunk's [`DrawUniforms`] and the bind group (group 1) that binds them and the
     /// texture.
@@ -403,14 +411,22 @@ impl Chunk {
         u64::from(self.texture.width()) * u64::from(self.texture.height())
     }
 
-    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        let segments = u32::try_from(self.count.saturating_sub(1)).unwrap_or(0);
-        if segments == 0 {
+    /// Draws the stream's segments `part` that this texture holds.
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>, part: &Range<u64>) {
+        let end = self.first + self.count.saturating_sub(1);
+        let local = |i: u64| {
+            let i = i.clamp(self.first, end) - self.first;
+            u32::try_from(i)
+                .unwrap_or(u32::MAX)
+                .saturating_mul(QUAD_VERTICES)
+        };
+        let vertices = local(part.start)..local(part.end);
+        if vertices.is_empty() {
             return;
         }
         pass.set_bind_group(1, &self.draw_bind_group, &[]);
         // Vertex v draws a corner of segment v / 6, which reads points v / 6 and v / 6 + 1.
-        pass.draw(0..segments.saturating_mul(QUAD_VERTICES), 0..1);
+        pass.draw(vertices, 0..1);
     }
 }
 
@@ -513,7 +529,7 @@ impl PointBatch {
                     && c.capacity() <= 2 * count + width
             });
             let chunk = if let Some(c) = reuse {
-                Chunk { count, ..c }
+                Chunk { first, count, ..c }
             } else {
                 let size =
                     [width, count.div_ceil(width)].map(|n| u32::try_from(n).unwrap_or(u32::MAX));
@@ -538,6 +554,7 @@ impl PointBatch {
                     ],
                 });
                 Chunk {
+                    first,
                     texture,
                     draw_buffer,
                     draw_bind_group,
@@ -560,9 +577,15 @@ impl PointBatch {
         self.count = total;
     }
 
-    fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+    /// Segments in the stream.
+    fn segments(&self) -> u64 {
+        self.count.saturating_sub(1)
+    }
+
+    /// Draws the segments `part` of the stream.
+    fn draw(&self, pass: &mut wgpu::RenderPass<'_>, part: &Range<u64>) {
         for chunk in &self.chunks {
-            chunk.draw(pass);
+            chunk.draw(pass, part);
         }
     }
 }
@@ -741,19 +764,49 @@ impl PathRenderer {
         queue.write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&uniforms));
     }
 
+    /// The work of one whole [`Self::paint`], as [`Self::paint_part`] counts it: each path
+    /// segment once in each of its two passes.
+    #[must_use]
+    pub fn work(&self) -> u64 {
+        if self.lines.is_some() {
+            2 * self.path.segments()
+        } else {
+            0
+        }
+    }
+
     /// Records the draws (stock, path, then grid and axes) into `pass`; viewport and scissor
     /// are the caller's.
     pub fn paint(&self, pass: &mut wgpu::RenderPass<'_>) {
+        self.paint_part(pass, 0..self.work());
+    }
+
+    /// Records the part `part` of [`Self::work`] of [`Self::paint`]: the stock with the part
+    /// starting at 0, the path's cores then its edges, the grid and axes with the part ending
+    /// at the end. Painting consecutive parts into the same target (its depth kept between
+    /// them) draws what one whole paint draws, a piece a frame.
+    pub fn paint_part(&self, pass: &mut wgpu::RenderPass<'_>, part: Range<u64>) {
+        let segments = self.path.segments();
         pass.set_bind_group(0, &self.bind_group, &[]);
-        self.stock.paint(pass);
-        if let Some((core, edge)) = &self.lines {
-            pass.set_pipeline(core);
-            self.path.draw(pass);
-            pass.set_pipeline(edge);
-            self.path.draw(pass);
+        if part.start == 0 {
+            self.stock.paint(pass);
         }
-        pass.set_pipeline(&self.overlay);
-        self.grid.draw(pass);
+        if let Some((core, edge)) = &self.lines {
+            let cores = part.start.min(segments)..part.end.min(segments);
+            if !cores.is_empty() {
+                pass.set_pipeline(core);
+                self.path.draw(pass, &cores);
+            }
+            let edges = part.start.max(segments) - segments..part.end.max(segments) - segments;
+            if !edges.is_empty() {
+                pass.set_pipeline(edge);
+                self.path.draw(pass, &edges);
+            }
+        }
+        if part.end >= self.work() {
+            pass.set_pipeline(&self.overlay);
+            self.grid.draw(pass, &(0..self.grid.segments()));
+        }
     }
 }
 

@@ -391,15 +391,18 @@ fn render_split(
     per_buffer: Option<u64>,
     highlight: std::ops::Range<usize>,
 ) -> (Image, usize) {
-    render_split_with(gpu, path, per_buffer, highlight, 0..0)
+    render_split_with(gpu, path, per_buffer, highlight, 0..0, None)
 }
 
+/// [`render_split`] with the segments `by_range` highlighted too, drawn in one pass or, with
+/// `piece`, in passes of that much work each (as a picture drawn over several frames).
 fn render_split_with(
     gpu: &HeadlessGpu,
     path: &[PathPoint],
     per_buffer: Option<u64>,
     highlight: std::ops::Range<usize>,
     by_range: std::ops::Range<u32>,
+    piece: Option<u64>,
 ) -> (Image, usize) {
     let (device, queue) = (&gpu.device, &gpu.queue);
     let format = wgpu::TextureFormat::Rgba8Unorm;
@@ -425,9 +428,18 @@ fn render_split_with(
             ..ViewParams::default()
         },
     );
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    target.draw(&mut encoder, wgpu::Color::BLACK, &renderer);
-    queue.submit([encoder.finish()]);
+    let work = renderer.work();
+    assert_eq!(work, 2 * u64::from(renderer.path_segment_count()));
+    let piece = piece.unwrap_or(work).max(1);
+    let mut done = 0;
+    while done == 0 || done < work {
+        let part = done..(done + piece).min(work);
+        let clear = (done == 0).then_some(wgpu::Color::BLACK);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        target.draw_part(&mut encoder, clear, &renderer, part.clone());
+        queue.submit([encoder.finish()]);
+        done = part.end.max(1);
+    }
     let buffers = renderer.path_buffer_count();
     (
         Image {
@@ -472,13 +484,22 @@ fn a_path_split_over_several_buffers_draws_like_one() {
         "a path split over {many} buffers draws differently"
     );
     // A highlighted range of segment numbers counts from the path's start in every buffer.
-    let (whole, _) = render_split_with(&gpu, &path, None, 0..0, 399..529);
-    let (split, _) = render_split_with(&gpu, &path, Some(7), 0..0, 399..529);
+    let (whole, _) = render_split_with(&gpu, &path, None, 0..0, 399..529, None);
+    let (split, _) = render_split_with(&gpu, &path, Some(7), 0..0, 399..529, None);
     assert!(whole.count(|p| close(p, HIGHLIGHT_COLOR, 40)) > 20);
     assert_eq!(
         whole.pixels, split.pixels,
         "a highlighted range over {many} buffers draws differently"
     );
+    // Drawn a piece at a time (pieces crossing the buffers' seams and the switch from the
+    // cores to the edges), the picture is the same.
+    for piece in [1, 5, 333, 998, 1000] {
+        let (pieces, _) = render_split_with(&gpu, &path, Some(7), 0..0, 399..529, Some(piece));
+        assert!(
+            whole.pixels == pieces.pixels,
+            "drawn {piece} at a time, the path draws differently"
+        );
+    }
     // Two points per buffer is the smallest split: one segment each.
     let (tiny, n) = render_split(&gpu, &path[..50], Some(1), 0..0);
     assert_eq!(n, 49);

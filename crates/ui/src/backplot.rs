@@ -6,14 +6,16 @@
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use egui::epaint::ViewportInPixels;
 use glam::{DVec3, Mat4, Vec2, Vec3};
 use swarf_analysis::{Lod, LodLevel, ProgramText, Request, StockCut};
 use swarf_render::{
-    ColorMode, Compositor, DEPTH_FORMAT, Kind, OrbitCamera, PathLod, PathPoint, PathRenderer,
-    Projection, RenderTarget, StandardView, StockSurface, ViewParams, lod_level, pick_kept_segment,
-    pick_segment, pixels_per_unit, reference_points, segment_bounds, view_bounds,
+    ColorMode, Compositor, DEPTH_FORMAT, FRAME_WORK, Kind, OrbitCamera, PathLod, PathPoint,
+    PathRenderer, Projection, RenderTarget, StandardView, StockSurface, ViewParams, lod_level,
+    pick_kept_segment, pick_segment, pixels_per_unit, reference_points, segment_bounds,
+    view_bounds,
 };
 use swarf_toolpath::Timeline;
 
@@ -313,6 +315,9 @@ pub struct Backplot {
     lod_wanted: Option<(u64, LodLevel)>,
     /// The level of detail last asked of the analysis.
     lod_asked: Option<(u64, LodLevel)>,
+    /// Whether the GPU view is still drawing a picture over several frames (set by its paint
+    /// callback).
+    painting: Arc<AtomicBool>,
 }
 
 impl Backplot {
@@ -530,6 +535,8 @@ impl Backplot {
             stock: self.drawn_stock(scene),
             rect,
             params,
+            ctx: ui.ctx().clone(),
+            painting: Arc::clone(&self.painting),
         };
         ui.painter().set(
             slot,
@@ -573,6 +580,12 @@ impl Backplot {
         }
         self.lod_asked = Some((generation, level));
         Some(Request::Lod { generation, level })
+    }
+
+    /// Whether the view's picture is not complete on screen yet: it waits for the path of
+    /// `scene` at the level of detail it needs, or is still drawing it over several frames.
+    pub fn drawing_pending(&self, scene: &Scene) -> bool {
+        self.lod_pending(scene) || self.painting.load(Ordering::Relaxed)
     }
 
     /// Whether the view still waits for the path of `scene` at the level of detail it needs
@@ -1033,16 +1046,32 @@ struct GpuView {
     renderer: PathRenderer,
     /// The scene's path at the level of detail of the last image.
     path: PathLod,
-    target: Option<RenderTarget>,
-    bind_group: Option<wgpu::BindGroup>,
+    /// The picture shown, and the bind group that composites it.
+    target: Option<(RenderTarget, wgpu::BindGroup)>,
+    /// A picture of new points drawn a piece a frame while `target` keeps showing the last
+    /// one, or the target it will be drawn into next.
+    next: Option<Next>,
     generation: Option<u64>,
-    /// Parameters of the image in `target`; drawing again is skipped while they hold.
+    /// Parameters of the picture in `target` (or being drawn into `next`); drawing again is
+    /// skipped while they hold.
     drawn: Option<ViewParams>,
+    /// Whether the points changed since `drawn`: the next picture is then drawn over several
+    /// frames when it is more than [`FRAME_WORK`].
+    new_points: bool,
     /// The runs of segments whose points carry the highlight flag on the GPU.
     flagged: Runs,
     /// The stock on the GPU.
     stock: Option<Arc<StockCut>>,
     last_frame: u64,
+}
+
+/// A picture drawn into its own target a piece a frame.
+struct Next {
+    target: RenderTarget,
+    bind_group: wgpu::BindGroup,
+    /// The work drawn so far (see [`PathRenderer::paint_part`]); `None`: nothing is being
+    /// drawn, the target waits to be used.
+    done: Option<u64>,
 }
 
 /// The per-frame paint callback: what to draw and from where.
@@ -1058,6 +1087,10 @@ struct BackplotCallback {
     rect: egui::Rect,
     /// View parameters in points, for the whole rectangle.
     params: ViewParams,
+    /// To ask for the next frame while a picture is drawn over several.
+    ctx: egui::Context,
+    /// Set while a picture is drawn over several frames.
+    painting: Arc<AtomicBool>,
 }
 
 impl egui_wgpu::CallbackTrait for BackplotCallback {
@@ -1079,9 +1112,10 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             renderer: PathRenderer::new(device, OFFSCREEN_FORMAT, Some(DEPTH_FORMAT), 1),
             path: PathLod::default(),
             target: None,
-            bind_group: None,
+            next: None,
             generation: None,
             drawn: None,
+            new_points: false,
             flagged: Arc::new(Vec::new()),
             stock: None,
             last_frame: self.frame,
@@ -1102,6 +1136,7 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             });
             view.renderer.set_stock(device, queue, surface.as_ref());
             view.stock.clone_from(&self.stock);
+            // A cut of the stock (one a playback step) is drawn at once.
             view.drawn = None;
         }
         if view.generation != Some(scene.generation) {
@@ -1114,12 +1149,12 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             let reference = reference_points(scene.zero, scene.bounds, &scene.marks);
             view.renderer.set_grid(device, queue, &reference);
             view.generation = Some(scene.generation);
-            view.drawn = None;
+            view.new_points = true;
         }
         if let Some(lod) = scene.lod.as_ref().filter(|_| scene.lod_from_analysis)
             && view.path.set_base(lod.level, &lod.kept)
         {
-            view.drawn = None;
+            (view.drawn, view.new_points) = (None, true);
         }
         if !Arc::ptr_eq(&view.flagged, &self.flagged) && view.flagged != self.flagged {
             view.flagged = Arc::clone(&self.flagged);
@@ -1131,16 +1166,20 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             ViewportInPixels::from_points(&self.rect, ppp, screen_descriptor.size_in_pixels);
         let full = self.rect * ppp;
         let Some(remap) = ndc_remap(full, &visible) else {
+            self.painting.store(false, Ordering::Relaxed);
             return Vec::new();
         };
         // `ndc_remap` checked both sides are positive.
         let [w, h] = [visible.width_px, visible.height_px].map(i32::unsigned_abs);
-        if view.target.as_ref().map(RenderTarget::size) != Some((w, h)) {
-            view.drawn = None;
+        let new_target = || {
             // Without a target nothing is drawn (nor painted) until one can be made.
-            let target = RenderTarget::new(device, w, h, OFFSCREEN_FORMAT).ok();
-            view.bind_group = target.as_ref().map(|t| compositor.bind(device, t));
-            view.target = target;
+            let target = RenderTarget::new(device, w, h, OFFSCREEN_FORMAT).ok()?;
+            let bind_group = compositor.bind(device, &target);
+            Some((target, bind_group))
+        };
+        if view.target.as_ref().map(|(t, _)| t.size()) != Some((w, h)) {
+            (view.drawn, view.next) = (None, None);
+            view.target = new_target();
         }
         let params = ViewParams {
             view_proj: remap * self.params.view_proj,
@@ -1148,15 +1187,56 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             ..self.params.clone().scaled(ppp)
         };
         if view.drawn.as_ref() != Some(&params)
-            && let Some(target) = &view.target
+            && let Some((target, _)) = &view.target
         {
             let drawn =
                 view.path
                     .prepare(&mut view.renderer, device, queue, &params, &view.flagged);
             view.renderer.prepare(queue, &drawn);
-            target.draw(egui_encoder, wgpu::Color::TRANSPARENT, &view.renderer);
+            // New points too many for one frame are drawn a piece a frame beside the picture
+            // shown; anything else (the camera, the highlight, playback) at once, so the view
+            // answers the hand that moves it.
+            let piecewise = view.new_points && view.renderer.work() > FRAME_WORK;
+            if piecewise && view.next.is_none() {
+                view.next = new_target().map(|(target, bind_group)| Next {
+                    target,
+                    bind_group,
+                    done: None,
+                });
+            }
+            if let Some(next) = view.next.as_mut().filter(|_| piecewise) {
+                next.done = Some(0);
+            } else {
+                target.draw(egui_encoder, wgpu::Color::TRANSPARENT, &view.renderer);
+                if let Some(next) = &mut view.next {
+                    next.done = None;
+                }
+            }
             view.drawn = Some(params);
+            view.new_points = false;
         }
+        if let Some(next) = &mut view.next
+            && let Some(done) = next.done
+        {
+            let work = view.renderer.work();
+            let part = done..(done + FRAME_WORK).min(work);
+            let clear = (done == 0).then_some(wgpu::Color::TRANSPARENT);
+            next.target
+                .draw_part(egui_encoder, clear, &view.renderer, part.clone());
+            next.done = Some(part.end);
+            if part.end >= work {
+                // Complete: shown from now on; the picture it replaces takes its place.
+                next.done = None;
+                if let Some((target, bind_group)) = &mut view.target {
+                    std::mem::swap(target, &mut next.target);
+                    std::mem::swap(bind_group, &mut next.bind_group);
+                }
+            } else {
+                self.ctx.request_repaint();
+            }
+        }
+        let painting = view.next.as_ref().is_some_and(|n| n.done.is_some());
+        self.painting.store(painting, Ordering::Relaxed);
         Vec::new()
     }
 
@@ -1170,7 +1250,7 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             return;
         };
         let view = resources.views.get(&self.id);
-        let Some(bind_group) = view.and_then(|v| v.bind_group.as_ref()) else {
+        let Some((_, bind_group)) = view.and_then(|v| v.target.as_ref()) else {
             return;
         };
         // The callback rect clamped to the screen, as `prepare` sized the target.

@@ -652,3 +652,92 @@ fn holes_past_the_hundred_thousandth_are_dots_not_rings() {
         assert_eq!(dot[1].position(), dot[0].position());
     }
 }
+
+/// The rectangle's box filled with a raster of `rows` feed rows: every row's ends turn back, so
+/// nothing simplifies and the view draws every segment.
+fn raster(generation: u64, rows: usize) -> Scene {
+    let mut points = vec![PathPoint::pen_up(Vec3::ZERO)];
+    for row in 0..rows {
+        let y = 60.0 * row as f32 / rows as f32;
+        let (from, to) = if row % 2 == 0 {
+            (0.0, 100.0)
+        } else {
+            (100.0, 0.0)
+        };
+        points.push(PathPoint::new(Vec3::new(from, y, 0.0), Kind::Feed));
+        points.push(PathPoint::new(Vec3::new(to, y, 0.0), Kind::Feed));
+    }
+    let segments = points.len() - 1;
+    Scene {
+        generation,
+        points: Arc::new(points),
+        lines: Arc::new((2..).take(segments).collect()),
+        feeds: Arc::new(vec![300.0; segments]),
+        ..scene()
+    }
+}
+
+#[test]
+fn new_points_too_many_for_a_frame_are_drawn_over_several_beside_the_picture_shown() {
+    let Some(render_state) = render_state() else {
+        eprintln!("SKIPPED: no wgpu adapter available for the backplot render test");
+        return;
+    };
+    let mut harness = harness(&render_state);
+    harness.run();
+    let before = shot(&mut harness);
+    let pending = |h: &Harness<'_, State>| h.state().0.drawing_pending(&h.state().1);
+    assert!(!pending(&harness));
+
+    harness.state_mut().1 = raster(2, 3000);
+    harness.step();
+    let first = shot(&mut harness);
+    assert!(pending(&harness), "a dense raster was drawn in one frame");
+    assert!(
+        first.rgba == before.rgba,
+        "the picture shown changed before the new one was complete"
+    );
+    let mut frames = 1;
+    while pending(&harness) {
+        assert!(frames < 20, "the drawing never ends");
+        harness.step();
+        shot(&mut harness);
+        frames += 1;
+    }
+    // The view keeps one end of each turn (the rows lie under a pixel apart): about 6,000
+    // pieces of work, two frames' worth.
+    assert!(frames >= 2, "drawn in {frames} frame");
+    let done = shot(&mut harness);
+    assert!(
+        count(&done.rgba, FEED_COLOR, 10) > count(&before.rgba, FEED_COLOR, 10) * 4,
+        "the raster is not shown"
+    );
+
+    // What was drawn a piece a frame is what one frame draws: a resize (and back) draws the
+    // same view at once.
+    harness.set_size(egui::vec2(300.0, 240.0));
+    harness.run();
+    shot(&mut harness);
+    harness.set_size(egui::vec2(320.0, 240.0));
+    harness.run();
+    let whole = shot(&mut harness);
+    assert!(!pending(&harness), "a resize is drawn at once");
+    assert!(
+        whole.rgba == done.rgba,
+        "the picture drawn over several frames differs from the one drawn at once"
+    );
+
+    // The hand that moves the view is answered at once: a view changed while new points are
+    // being drawn shows them whole in that frame.
+    harness.state_mut().1 = raster(3, 2999);
+    harness.step();
+    shot(&mut harness);
+    assert!(pending(&harness));
+    harness.get_by_label("Top").click();
+    harness.run();
+    shot(&mut harness);
+    assert!(
+        !pending(&harness),
+        "a view change waited for the drawing in pieces"
+    );
+}

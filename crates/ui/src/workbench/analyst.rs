@@ -169,9 +169,10 @@ impl Workbench {
         })
     }
 
-    /// Whether the backplot waits for the analysis to simplify the path for its view.
+    /// Whether the backplot's picture is not complete on screen yet (it waits for the
+    /// analysis to simplify the path for its view, or draws it over several frames).
     pub fn drawing_pending(&self) -> bool {
-        self.backplot.lod_pending(&self.analysis.scene)
+        self.backplot.drawing_pending(&self.analysis.scene)
     }
 
     /// Waits for the analysis of the current text and shows it (a web page cannot wait).
