@@ -96,11 +96,13 @@ impl SwarfApp {
         self.ctx.request_repaint();
     }
 
-    /// Calls the idle callbacks whose frame was painted; those whose text changed wait again.
+    /// Calls the idle callbacks whose frame was painted; those whose text changed, or whose
+    /// picture that frame began to draw over several, wait again.
     fn wake_idle(&mut self) {
         let generation = self.workbench.generation();
+        let drawing = self.workbench.drawing_pending();
         for (shown, done) in std::mem::take(&mut self.idle_drawn) {
-            if shown == generation {
+            if shown == generation && !drawing {
                 done();
             } else {
                 self.idle_waiting.push(done);
