@@ -155,14 +155,16 @@ impl SwarfApi {
         })
     }
 
-    /// `{blocks, motions, bounds: {min, max} | null, estimated_secs, drawn_points,
+    /// `{blocks, motions, bounds: {min, max} | null, estimated_secs, drawn_points, drawing,
     /// wasm_bytes}`: the numbers the page shows now, those of the last finished analysis (see
     /// [`SwarfApi::idle`]), the points of the path the backplot draws at its zoom's level of
-    /// detail, and the sizes of the page's and the worker's wasm memories (`{page, worker}`,
-    /// bytes).
+    /// detail, whether its picture is not complete yet, and the sizes of the page's and the
+    /// worker's wasm memories (`{page, worker}`, bytes).
     pub fn stats(&self) -> Result<JsValue, JsValue> {
-        let (s, drawn) =
-            self.with_app(|app| (app.workbench.stats(), app.workbench.drawn_points()))?;
+        let (s, drawn, drawing) = self.with_app(|app| {
+            let wb = &app.workbench;
+            (wb.stats(), wb.drawn_points(), wb.drawing_pending())
+        })?;
         let bounds = s
             .bounds
             .map(|(min, max)| json!({"min": min.to_array(), "max": max.to_array()}));
@@ -172,7 +174,7 @@ impl SwarfApi {
         to_js(&json!({
             "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
             "estimated_secs": s.estimated_secs, "drawn_points": drawn,
-            "wasm_bytes": {"page": page, "worker": crate::web_worker::memory_bytes()},
+            "drawing": drawing, "wasm_bytes": {"page": page, "worker": crate::web_worker::memory_bytes()},
         }))
     }
 
