@@ -407,6 +407,21 @@ function analyse(image) {
   return { total, distinct: counts.size, differing: total - dominantCount, dominant };
 }
 
+/**
+ * A program of `moves` feeds in rows of `perRow`, 0.25 mm apart along X and rows 0.5 mm apart,
+ * over a gentle wave in Z: far more moves than a fitted view can show apart.
+ */
+export function rasterProgram(moves, perRow) {
+  const lines = ["G90 G21 G17", "G00 X0 Y0 Z5.", "G01 Z0. F1500."];
+  for (let n = 0; n < moves; n++) {
+    const x = (n % perRow) * 0.25;
+    const y = Math.floor(n / perRow) * 0.5;
+    lines.push(`G01 X${x.toFixed(2)} Y${y.toFixed(1)} Z${(-Math.abs(Math.sin(x * 0.07)) * 3).toFixed(3)}`);
+  }
+  lines.push("M30", "");
+  return lines.join("\n");
+}
+
 /** Whether a `window.swarf.diagnostics()` entry is an error (the severity in any case). */
 export function isError(diagnostic) {
   return String(diagnostic.severity).toLowerCase() === "error";

@@ -17,6 +17,7 @@ import {
   TEST_TIMEOUT_MS,
   checkPrerequisites,
   isError,
+  rasterProgram,
   recoveryRecords,
 } from "./harness.mjs";
 
@@ -370,16 +371,8 @@ test("a click in the backplot selects the segment's line", { timeout: TEST_TIMEO
 
 test("the wheel zooms into a dense path, drawn finer once the worker simplifies it again", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
-  // Rows of 200 feeds of 0.25 mm, 0.5 mm apart, over a gentle wave: far more moves than the
-  // fitted view can show apart.
-  const lines = ["G90 G21 G17", "G00 X0 Y0 Z5.", "G01 Z0. F1500."];
-  for (let n = 0; n < 40_000; n++) {
-    const x = (n % 200) * 0.25;
-    const y = Math.floor(n / 200) * 0.5;
-    lines.push(`G01 X${x.toFixed(3)} Y${y.toFixed(3)} Z${(-Math.abs(Math.sin(x * 0.07)) * 3).toFixed(4)}`);
-  }
-  lines.push("M30", "");
-  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["dense.nc", lines.join("\n")]);
+  // Rows of 200 feeds: far more moves than the fitted view can show apart.
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["dense.nc", rasterProgram(40_000, 200)]);
   await session.idle();
   const fitted = await page.evaluate(() => window.swarf.stats());
   assert.ok(
@@ -403,16 +396,9 @@ test("the wheel zooms into a dense path, drawn finer once the worker simplifies 
 
 test("idle() resolves once a path too dense for one frame is drawn whole", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
-  // 2,000 rows of 400 feeds over a wave: the fitted view draws some 12,000 segments, which
-  // take several frames (`FRAME_WORK` a frame) while the last picture stays on screen.
-  const lines = ["G90 G21 G17", "G00 X0 Y0 Z5.", "G01 Z0. F1500."];
-  for (let n = 0; n < 800_000; n++) {
-    const x = (n % 400) * 0.25;
-    const y = Math.floor(n / 400) * 0.5;
-    lines.push(`G01 X${x.toFixed(2)} Y${y.toFixed(1)} Z${(-Math.abs(Math.sin(x * 0.07)) * 3).toFixed(3)}`);
-  }
-  lines.push("M30", "");
-  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["rows.nc", lines.join("\n")]);
+  // 2,000 rows of 400 feeds: the fitted view draws some 12,000 segments, which take several
+  // frames (`FRAME_WORK` a frame) while the last picture stays on screen.
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["rows.nc", rasterProgram(800_000, 400)]);
   // What the page says the moment idle() resolves, in the same task.
   const atIdle = await page.evaluate(async () => {
     await window.swarf.idle();

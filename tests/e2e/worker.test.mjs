@@ -7,7 +7,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 
-import { TEST_TIMEOUT_MS, headlessSession } from "./harness.mjs";
+import { TEST_TIMEOUT_MS, headlessSession, rasterProgram } from "./harness.mjs";
 
 const startedSession = headlessSession();
 
@@ -21,13 +21,7 @@ test("without its worker the page analyses in its frames and still draws simplif
   assert.ok(example.motions > 0, `the example should be analysed in the page: ${JSON.stringify(example)}`);
   assert.equal(example.wasm_bytes.worker, 0, "no worker should have run");
 
-  const lines = ["G90 G21 G17", "G00 X0 Y0 Z5.", "G01 Z0. F1500."];
-  for (let n = 0; n < 20_000; n++) {
-    const x = (n % 200) * 0.25;
-    lines.push(`G01 X${x.toFixed(3)} Y${(Math.floor(n / 200) * 0.5).toFixed(3)} Z${(-Math.sin(x * 0.07) * 3).toFixed(4)}`);
-  }
-  lines.push("M30", "");
-  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["dense.nc", lines.join("\n")]);
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["dense.nc", rasterProgram(20_000, 200)]);
   const drawn = await session.eventually(
     () => window.swarf.stats(),
     null,

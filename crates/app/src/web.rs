@@ -174,7 +174,8 @@ impl SwarfApi {
         to_js(&json!({
             "blocks": s.blocks, "motions": s.motions, "bounds": bounds,
             "estimated_secs": s.estimated_secs, "drawn_points": drawn,
-            "drawing": drawing, "wasm_bytes": {"page": page, "worker": crate::web_worker::memory_bytes()},
+            "drawing": drawing,
+            "wasm_bytes": {"page": page, "worker": crate::web_worker::memory_bytes()},
         }))
     }
 
