@@ -7,8 +7,9 @@
 #   gcode-toolpath  npm, cncjs's interpreter (Node.js), moves counted
 #   pygcode PyPI, its Machine over every line (Python), moves counted
 # Prints a Markdown table: best of RUNS wall-clock runs (one run where a run takes over 10 s;
-# TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's. Swarf is measured in rounds, before the peers and after each of them, and its best
-# counts.
+# TIMEOUT seconds at most), MB/s, peak RSS, and each peer's time over Swarf's; Swarf's
+# throughput also over its time beyond starting the process (that of `swarf --version`). Swarf
+# is measured in rounds, before the peers and after each of them, and its best counts.
 #   scripts/bench-peers.sh            (RUNS=10, TIMEOUT=600; needs ../shared for the corpus files)
 # It ends with the wasm32 build's figure on the generated program (Node, in-process; `cargo xtask
 # wasm-tools` installs the wasm32 target and wasm-bindgen-cli it needs where they are missing).
@@ -117,11 +118,17 @@ cell() {
   esac
 }
 
-# Swarf's cell: "0.0650 s, 61 MB/s, 18 MB".
+# Swarf's cell: "0.0650 s, 61 MB/s, 18 MB / 66 MB/s": its time and throughput with the process
+# start, its peak RSS, and its throughput over the time beyond its start ($start_secs: `swarf
+# --version` measured the same way).
 swarf_cell() {
-  awk "BEGIN{printf \"%.4f s, %.0f MB/s, %d MB\", $1, $3/1e6/$1, $2/1024}"
+  awk "BEGIN{printf \"%.4f s, %.0f MB/s, %d MB / %.0f MB/s\", $1, $3/1e6/$1, $2/1024, $3/1e6/($1-$start_secs)}"
 }
 
+read -r start_secs _ < <(measure "$swarf" --version)
+
+echo "start of the process (swarf --version): $(awk "BEGIN{printf \"%.2f ms\", $start_secs*1000}")"
+echo
 echo "| program | size | lines | Swarf | rs274 | gcode-toolpath (npm) | pygcode (PyPI) |"
 echo "|---|---|---|---|---|---|---|"
 for prog in "${programs[@]}"; do

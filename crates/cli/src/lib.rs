@@ -513,7 +513,9 @@ impl LineSource for FileLines {
         // the rest of their last line.
         if start >= self.at + self.text.len() && !self.failed {
             self.at += self.text.len();
-            let mut bytes = Vec::with_capacity(68 << 10);
+            // The last piece's buffer is read into again.
+            let mut bytes = std::mem::take(&mut self.text).into_bytes();
+            bytes.clear();
             let piece = (&mut self.reader).take(64 << 10).read_to_end(&mut bytes);
             let line = self.reader.read_until(b'\n', &mut bytes);
             match (piece, line, String::from_utf8(bytes)) {
