@@ -1,5 +1,10 @@
 //! The page's analysis in a web worker (`web/worker.js` running crates/worker), each reply asking
 //! for a frame; should the worker fail, the analysis goes on in the page's own frames.
+//!
+//! Requests about a large program wait for the first animation frame in which the page paints
+//! nothing: the worker's long runs then never share the processor with a frame being painted,
+//! which on a machine of two cores without a GPU (the browser rasterising on the processor)
+//! makes the frames painted meanwhile late.
 
 use std::cell::RefCell;
 use std::collections::VecDeque;
@@ -23,6 +28,27 @@ pub fn memory_bytes() -> f64 {
     WORKER_MEMORY.get()
 }
 
+/// Programs of more than this many bytes hold their requests back until the page paints nothing
+/// (about 30,000 lines: a run of the worker on one takes longer than a frame).
+const HOLD_BYTES: usize = 1 << 20;
+
+/// The most animation frames a held request waits through for one in which the page paints
+/// nothing (while the view is orbited or played back, say).
+const HOLD_FRAMES: u32 = 8;
+
+/// Requests held back for a frame in which the page paints nothing, in the order they were made.
+#[derive(Default)]
+struct Held {
+    requests: Vec<Request>,
+    /// The app's frame count at the last look, and how many looks there have been.
+    frame: u64,
+    looks: u32,
+    /// Whether a look is scheduled.
+    scheduled: bool,
+    /// Schedules the look after the next animation frame.
+    on_frame: Option<js_sys::Function>,
+}
+
 /// What the worker's events leave for the next frame.
 #[derive(Default)]
 struct Inbox {
@@ -34,9 +60,16 @@ struct Inbox {
 pub struct WorkerAnalyst {
     worker: web_sys::Worker,
     inbox: Rc<RefCell<Inbox>>,
+    held: Rc<RefCell<Held>>,
+    /// Whether the last program sent is large enough to hold requests back ([`HOLD_BYTES`]).
+    large: bool,
+    ctx: egui::Context,
     /// The worker's handlers, which live as long as it does.
     _on_message: Closure<dyn FnMut(web_sys::MessageEvent)>,
     _on_error: Closure<dyn FnMut(web_sys::ErrorEvent)>,
+    /// At an animation frame, and after it, the look at whether the page painted ([`look`]).
+    _on_frame: Closure<dyn FnMut()>,
+    _after_frame: Closure<dyn FnMut()>,
     /// The last job sent: run here should the worker fail before it answers.
     last_job: Option<Job>,
     /// The level of detail last asked and not yet answered: asked here should the worker fail.
@@ -78,11 +111,33 @@ impl WorkerAnalyst {
             })
         };
         worker.set_onerror(Some(on_error.as_ref().unchecked_ref()));
+        let held = Rc::new(RefCell::new(Held::default()));
+        // The look runs in a task after the animation frame's (where the app paints and the
+        // browser then draws), so it sees whether that frame painted.
+        let after_frame = {
+            let (held, inbox) = (Rc::clone(&held), Rc::clone(&inbox));
+            let (worker, ctx) = (worker.clone(), ctx.clone());
+            Closure::<dyn FnMut()>::new(move || look(&held, &inbox, &worker, &ctx))
+        };
+        let on_frame = {
+            let after: js_sys::Function = after_frame.as_ref().clone().unchecked_into();
+            Closure::<dyn FnMut()>::new(move || {
+                if let Some(window) = web_sys::window() {
+                    let _ = window.set_timeout_with_callback(&after);
+                }
+            })
+        };
+        held.borrow_mut().on_frame = Some(on_frame.as_ref().clone().unchecked_into());
         Ok(WorkerAnalyst {
             worker,
             inbox,
+            held,
+            large: false,
+            ctx: ctx.clone(),
             _on_message: on_message,
             _on_error: on_error,
+            _on_frame: on_frame,
+            _after_frame: after_frame,
             last_job: None,
             last_lod: None,
             fallback: None,
@@ -92,6 +147,7 @@ impl WorkerAnalyst {
     /// Leaves the worker for the frames, starting with the last job sent.
     fn fail(&mut self) {
         self.worker.terminate();
+        self.held.borrow_mut().requests.clear();
         let mut inline = Inline::default();
         if let Some(job) = self.last_job.take() {
             // A job is answered later, from the frames.
@@ -123,11 +179,30 @@ impl Analyst for WorkerAnalyst {
         if let Some(inline) = &mut self.fallback {
             return inline.send(request);
         }
-        let (head, texts) = wire::request_parts(&request);
-        let message: Array = std::iter::once(Uint8Array::from(head.as_slice()).buffer())
-            .chain(texts.into_iter().map(text_buffer))
-            .collect();
-        if let Err(error) = self.worker.post_message_with_transfer(&message, &message) {
+        if let Request::Analyse(job) = &request {
+            self.large = job.text.len() > HOLD_BYTES;
+        }
+        let mut held = self.held.borrow_mut();
+        if self.large || !held.requests.is_empty() {
+            // A job not sent yet is replaced by a newer one.
+            if matches!(request, Request::Analyse(_)) {
+                held.requests.retain(|r| !matches!(r, Request::Analyse(_)));
+            }
+            held.requests.push(request);
+            if !held.scheduled {
+                held.looks = 0;
+                held.frame = self.ctx.cumulative_frame_nr();
+                held.scheduled = request_frame(held.on_frame.as_ref());
+                if !held.scheduled {
+                    // No frame to wait for: sent at once.
+                    drop(held);
+                    look(&self.held, &self.inbox, &self.worker, &self.ctx);
+                }
+            }
+            return None;
+        }
+        drop(held);
+        if let Err(error) = post(&self.worker, &request) {
             log::error!("the analysis worker takes no message ({error:?}); it goes on in the page");
             self.fail();
         }
@@ -154,6 +229,56 @@ impl Analyst for WorkerAnalyst {
     fn wait_reply(&mut self) -> Option<Reply> {
         self.try_reply()
     }
+}
+
+/// After an animation frame: sends the held requests when the app painted nothing since the
+/// last look (or they have waited [`HOLD_FRAMES`]), or else looks again after the next frame.
+fn look(
+    held: &RefCell<Held>,
+    inbox: &RefCell<Inbox>,
+    worker: &web_sys::Worker,
+    ctx: &egui::Context,
+) {
+    let frame = ctx.cumulative_frame_nr();
+    let mut waiting = held.borrow_mut();
+    waiting.looks += 1;
+    if frame != waiting.frame
+        && waiting.looks < HOLD_FRAMES
+        && request_frame(waiting.on_frame.as_ref())
+    {
+        waiting.frame = frame;
+        return;
+    }
+    waiting.scheduled = false;
+    let requests = std::mem::take(&mut waiting.requests);
+    drop(waiting);
+    for request in &requests {
+        if inbox.borrow().failed {
+            return;
+        }
+        if let Err(error) = post(worker, request) {
+            log::error!("the analysis worker takes no message ({error:?}); it goes on in the page");
+            inbox.borrow_mut().failed = true;
+            ctx.request_repaint();
+        }
+    }
+}
+
+/// Asks the browser to call `callback` at its next animation frame; whether it will.
+fn request_frame(callback: Option<&js_sys::Function>) -> bool {
+    let window = web_sys::window();
+    window
+        .zip(callback)
+        .is_some_and(|(window, callback)| window.request_animation_frame(callback).is_ok())
+}
+
+/// Posts `request` to the worker, its texts as UTF-8 in buffers it takes over.
+fn post(worker: &web_sys::Worker, request: &Request) -> Result<(), JsValue> {
+    let (head, texts) = wire::request_parts(request);
+    let message: Array = std::iter::once(Uint8Array::from(head.as_slice()).buffer())
+        .chain(texts.into_iter().map(text_buffer))
+        .collect();
+    worker.post_message_with_transfer(&message, &message)
 }
 
 /// A text as UTF-8 in a new `ArrayBuffer`, its pieces copied straight into place.
