@@ -242,7 +242,7 @@ test("a tab the browser refuses to keep is named, and the others are still kept"
   await page.addInitScript(() => {
     const put = IDBObjectStore.prototype.put;
     IDBObjectStore.prototype.put = function (value, key) {
-      if (value && value.byteLength > 1_000_000) {
+      if ((value?.byteLength ?? value?.size) > 1_000_000) {
         throw new DOMException("The quota has been exceeded.", "QuotaExceededError");
       }
       return put.call(this, value, key);

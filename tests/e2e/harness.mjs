@@ -455,14 +455,16 @@ export function recoveryRecords(page) {
       const [keys, values] = await Promise.all([all(store.getAllKeys()), all(store.getAll())]);
       let index = null;
       const records = {};
-      keys.forEach((key, i) => {
+      for (const [i, key] of keys.entries()) {
         const value = values[i];
         if (key === "index") {
           index = typeof value === "string" ? value : null;
+        } else if (value instanceof Blob) {
+          records[key] = await value.text();
         } else {
           records[key] = typeof value === "string" ? value : new TextDecoder().decode(value);
         }
-      });
+      }
       return { index, records };
     } finally {
       db.close();

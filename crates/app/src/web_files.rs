@@ -11,6 +11,7 @@ use wasm_bindgen::JsCast as _;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen_futures::JsFuture;
 
+use swarf_analysis::ProgramText;
 use swarf_ui::{HostRequest, Workbench};
 
 use crate::files::{
@@ -465,12 +466,10 @@ impl Host {
         }
         let (tabs, active) = TabState::of(wb, false);
         let writes = self.book.plan(&tabs);
-        let values: Vec<js_sys::Uint8Array> = writes
+        // The texts are shared, not copied: they are copied out piece by piece below.
+        let texts: Vec<ProgramText> = writes
             .iter()
-            .map(|w| {
-                let text = wb.tab_source(w.tab).unwrap_or_else(|| String::new().into());
-                js_sys::Uint8Array::new(&crate::web_worker::text_buffer(&text))
-            })
+            .map(|w| wb.tab_source(w.tab).unwrap_or_else(|| String::new().into()))
             .collect();
         let book = self.book.clone();
         let db = self.db.clone();
@@ -478,8 +477,13 @@ impl Host {
         self.inbox.spawn(async move {
             let opened = open_db(&db).await;
             let mut results = Vec::with_capacity(writes.len());
-            for (write, value) in writes.iter().zip(&values) {
-                results.push(put(&opened, &write.key, value).await);
+            for (write, text) in writes.iter().zip(&texts) {
+                let value = text_blob(text).await.map_err(dom_error);
+                let stored = match value {
+                    Ok(blob) => put(&opened, &write.key, &blob).await,
+                    Err(why) => Err(why),
+                };
+                results.push(stored);
             }
             let round = book.compose(&tabs, active, &writes, &results);
             let mut failed = round.failed.clone();
@@ -627,6 +631,54 @@ async fn write(
     Err(why.unwrap_or_else(|| "the transaction was aborted".into()))
 }
 
+/// The most bytes of a text copied out of the app in one task when it is kept for recovery.
+const RECOVERY_PIECE_BYTES: usize = 1 << 20;
+
+/// `text` as UTF-8 in a `Blob`, copied [`RECOVERY_PIECE_BYTES`] at a time, each piece in a task
+/// of its own, so that keeping a long program never holds up a frame (a blob of blobs copies
+/// none of their bytes, and the database keeps a blob without copying it in the page).
+async fn text_blob(text: &ProgramText) -> Result<web_sys::Blob, JsValue> {
+    let pieces = js_sys::Array::new();
+    let mut chunks = text.chunks().map(str::as_bytes);
+    let mut rest: &[u8] = &[];
+    let mut left = text.len();
+    while left > 0 {
+        let len = left.min(RECOVERY_PIECE_BYTES);
+        left -= len;
+        let array = js_sys::Uint8Array::new_with_length(u32::try_from(len).unwrap_or(u32::MAX));
+        let mut at = 0;
+        while at < len {
+            if rest.is_empty() {
+                match chunks.next() {
+                    Some(chunk) => rest = chunk,
+                    None => break,
+                }
+            }
+            let (head, tail) = rest.split_at(rest.len().min(len - at));
+            let (start, end) = (at, at + head.len());
+            let range = |i: usize| u32::try_from(i).unwrap_or(u32::MAX);
+            array.subarray(range(start), range(end)).copy_from(head);
+            (rest, at) = (tail, end);
+        }
+        let blob = web_sys::Blob::new_with_u8_array_sequence(&js_sys::Array::of1(&array))?;
+        pieces.push(&blob);
+        next_task().await;
+    }
+    web_sys::Blob::new_with_blob_sequence(&pieces)
+}
+
+/// Waits for a task of its own (after the frames and events already due).
+async fn next_task() {
+    let promise = js_sys::Promise::new(&mut |resolve, _| {
+        let window = web_sys::window();
+        let later = window.map(|w| w.set_timeout_with_callback(&resolve));
+        if !matches!(later, Some(Ok(_))) {
+            let _ = resolve.call0(&JsValue::NULL);
+        }
+    });
+    let _ = JsFuture::from(promise).await;
+}
+
 /// Stores `value` under `key` in the database `opened`, in a transaction of its own.
 async fn put(opened: &Result<Db, String>, key: &str, value: &JsValue) -> Result<(), String> {
     let db = opened.as_ref().map_err(String::clone)?;
@@ -664,10 +716,23 @@ async fn read_recovery(slot: &DbSlot) -> Result<Option<StoredTabs>, String> {
     let records = store(&db)?;
     let request = |key: &String| Some((key.clone(), records.get(&key.into()).ok()?));
     let requests: Vec<_> = named.iter().filter_map(request).collect();
-    let mut texts = HashMap::new();
+    // Each request's result is taken as it comes, before anything else is awaited.
+    let mut values = Vec::with_capacity(requests.len());
     for (key, request) in requests {
-        let value = request_done(&request).await.ok();
-        let array = value.and_then(|v| v.dyn_into::<js_sys::Uint8Array>().ok());
+        values.push((key, request_done(&request).await.ok()));
+    }
+    let mut texts = HashMap::new();
+    for (key, value) in values {
+        let bytes = match value.map(JsCast::dyn_into::<web_sys::Blob>) {
+            Some(Ok(blob)) => JsFuture::from(blob.array_buffer()).await.ok(),
+            // Records kept as a byte array by an earlier version.
+            Some(Err(value)) => Some(value),
+            None => None,
+        };
+        let array = bytes.and_then(|v| match v.dyn_into::<js_sys::ArrayBuffer>() {
+            Ok(buffer) => Some(js_sys::Uint8Array::new(&buffer)),
+            Err(v) => v.dyn_into::<js_sys::Uint8Array>().ok(),
+        });
         match array.map(|a| String::from_utf8(a.to_vec())) {
             Some(Ok(text)) => _ = texts.insert(key, text),
             _ => log::warn!("the recovery record {key} cannot be read"),
