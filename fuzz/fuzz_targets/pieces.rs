@@ -26,7 +26,7 @@ fuzz_target!(|bytes: &[u8]| {
     let whole = parse(&text, dialect);
     let (stepped, _) = parse_runs::stepped(&text, dialect, lines);
     assert_same(&stepped, &whole, &format!("{lines} lines a step"));
-    let mut run = ParseRun::new(&text, dialect);
+    let mut run = ParseRun::new(dialect);
     while !run.step_from(&mut text.as_str(), lines) {}
     assert_same(
         &run.finish(),

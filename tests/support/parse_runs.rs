@@ -9,14 +9,13 @@ fn step_limit(text: &str) -> usize {
     2 * text.len() + 16
 }
 
-/// `text` read `lines` at a time by a run that indexes the whole text first (as the editor
-/// reads it), and the number of steps it took.
+/// `text` read `lines` at a time (as the editor reads it), and the number of steps it took.
 pub fn stepped(text: &str, dialect: Dialect, lines: usize) -> (Program, usize) {
-    let mut run = ParseRun::new(text, dialect);
+    let mut run = ParseRun::new(dialect);
     let mut steps = 0;
     loop {
-        let (read, total) = run.progress();
-        assert!(read <= total, "{read} of {total} lines read");
+        let (_, read) = run.progress();
+        assert!(read <= text.len(), "{read} of {} bytes read", text.len());
         steps += 1;
         if run.step(text, lines) {
             break;

@@ -233,12 +233,12 @@ impl Kept {
 /// How far an analysis has got.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Progress {
-    /// Reading the text: lines read, lines in the text.
+    /// Reading the text: bytes read, bytes in the text.
     Reading {
-        /// Lines read.
+        /// Bytes read.
         read: usize,
-        /// Lines in the text.
-        lines: usize,
+        /// Bytes in the text.
+        bytes: usize,
     },
     /// Running the program: different blocks reached, blocks in the program (a program that
     /// stops early, at an M30 before its end, finishes short of the total).
@@ -260,16 +260,6 @@ pub const PARSE_LINES_PER_BLOCK: usize = 2;
 /// Most lines of a piece of a program read and run piece by piece (see [`PendingAnalysis`]):
 /// the blocks held at once, and the most a state at a line is re-run over.
 const PIECE_LINES: usize = 4096;
-
-/// A parse of `text`, nothing read yet (a rope's lines indexed from its chunks).
-fn parse_run(text: &ProgramText, dialect: Dialect) -> ParseRun {
-    match text {
-        ProgramText::Flat(text) => ParseRun::new(text, dialect),
-        ProgramText::Rope(rope) => {
-            ParseRun::with_lines(LineIndex::from_chunks(rope.chunks()), dialect)
-        }
-    }
-}
 
 /// Reads at most `lines` more lines of `text` into `parse`; whether the whole text is read.
 fn read_lines(text: &ProgramText, parse: &mut ParseRun, joined: &mut String, lines: usize) -> bool {
@@ -337,10 +327,10 @@ impl PendingAnalysis {
             others,
             lod,
         } = job;
-        let parse = parse_run(&text, dialect);
+        let parse = ParseRun::new(dialect);
         let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
-        // About a move a line.
-        toolpath.reserve(parse.progress().1);
+        // About a move a line, of some 24 bytes.
+        toolpath.reserve(text.len() / 24);
         PendingAnalysis {
             run: Some(StatesRun::new(parse.program(), setup.clone())),
             text,
@@ -417,9 +407,7 @@ impl PendingAnalysis {
 
     /// Starts reading the text again, whole, for a program found to jump, loop or call.
     fn read_whole(&mut self) {
-        let mut parse = parse_run(&self.text, self.dialect);
-        parse.reserve_all();
-        self.parse = Some(parse);
+        self.parse = Some(ParseRun::new(self.dialect));
         self.pieces = None;
         self.run = None;
         self.toolpath = Toolpath::for_machine(DVec3::ZERO, &self.setup.machine);
@@ -441,10 +429,10 @@ impl PendingAnalysis {
     /// How far the analysis has got.
     pub fn progress(&self) -> Progress {
         match (&self.parse, &self.run) {
-            (Some(parse), _) => {
-                let (read, lines) = parse.progress();
-                Progress::Reading { read, lines }
-            }
+            (Some(parse), _) => Progress::Reading {
+                read: parse.progress().1,
+                bytes: self.text.len(),
+            },
             (None, run) => Progress::Running {
                 reached: run.as_ref().map_or(0, StatesRun::blocks_reached),
                 blocks: self.program.blocks.len(),

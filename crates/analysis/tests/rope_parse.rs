@@ -9,7 +9,7 @@ use proptest::prelude::*;
 use ropey::{Rope, RopeBuilder};
 use swarf_analysis::{Job, PendingAnalysis, ProgramText, RopeLines};
 use swarf_interp::Setup;
-use swarf_syntax::{Dialect, LineIndex, ParseRun, Program};
+use swarf_syntax::{Dialect, ParseRun, Program};
 
 /// The rope of `text` built from pieces of `piece` bytes (cut at character boundaries), so its
 /// chunk boundaries fall inside lines, multibyte characters' neighbours and `\r\n` pairs alike.
@@ -29,7 +29,7 @@ fn rope_in_pieces(text: &str, piece: usize) -> Rope {
 
 /// Parses the rope's lines in place, `per_step` lines per step.
 fn parse_rope(rope: &Rope, dialect: Dialect, per_step: usize) -> Program {
-    let mut run = ParseRun::with_lines(LineIndex::from_chunks(rope.chunks()), dialect);
+    let mut run = ParseRun::new(dialect);
     let mut joined = String::new();
     while !run.step_from(&mut RopeLines::new(rope, &mut joined), per_step) {}
     run.finish()

@@ -376,7 +376,7 @@ fn run_pieces(
     setup: &Setup,
     sink: &mut dyn Sink,
 ) -> Option<(Program, usize, Vec<Diagnostic>)> {
-    let mut reader = swarf_syntax::ParseRun::reading(dialect);
+    let mut reader = swarf_syntax::ParseRun::new(dialect);
     let mut interp = swarf_interp::Interpreter::new(setup.clone(), dialect);
     let mut blocks = 0;
     let mut ended = false;

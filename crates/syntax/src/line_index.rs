@@ -36,39 +36,6 @@ impl LineIndex {
         for_each_line_end(bytes, push);
     }
 
-    /// Builds the table for a text given as consecutive pieces (the chunks of a rope), as
-    /// [`LineIndex::new`] would for their concatenation, without joining them.
-    pub fn from_chunks<'a>(chunks: impl IntoIterator<Item = &'a str>) -> Self {
-        let mut starts = vec![0];
-        let mut base = 0usize;
-        // A `\r` that ended the chunks so far: a line end unless the next byte is `\n`.
-        let mut cr_at: Option<usize> = None;
-        for chunk in chunks {
-            let bytes = chunk.as_bytes();
-            let Some((&last, init)) = bytes.split_last() else {
-                continue;
-            };
-            if let Some(at) = cr_at.take()
-                && bytes.first() != Some(&b'\n')
-            {
-                starts.push(line_after(0, at));
-            }
-            // A last `\r` waits for the next chunk; before it, the chunk's own bytes tell.
-            let body = if last == b'\r' {
-                cr_at = Some(base + init.len());
-                init
-            } else {
-                bytes
-            };
-            for_each_line_end(body, |at| starts.push(line_after(base, at)));
-            base += bytes.len();
-        }
-        if let Some(at) = cr_at {
-            starts.push(line_after(0, at));
-        }
-        LineIndex { starts }
-    }
-
     /// Number of lines (an empty text has one empty line).
     pub fn line_count(&self) -> usize {
         self.starts.len()
@@ -252,14 +219,6 @@ mod tests {
     fn a_carriage_return_alone_ends_a_line_and_before_a_line_feed_does_not() {
         let index = LineIndex::new("G21\r\r\nG0 X1\rM2\r\n");
         assert_eq!(index.starts, [0, 4, 6, 12, 16]);
-        // Split between the `\r` and the `\n`, or after a last `\r`, the pieces agree.
-        for chunks in [
-            &["G21\r", "\r", "\nG0 X1\r", "M2\r", "\n"][..],
-            &["G21\r\r", "", "\nG0 X1", "\rM2\r\n"],
-        ] {
-            assert_eq!(LineIndex::from_chunks(chunks.iter().copied()), index);
-        }
-        assert_eq!(LineIndex::from_chunks(["G0\r", ""]).starts, [0, 3]);
     }
 
     // proptest is a native-only dev-dependency.
@@ -277,25 +236,10 @@ mod tests {
                     prop::sample::select(&["\n", "\r\n", "\r", "\r\r\n", "G1", " X3.2040", "\u{e9}", "", "\n\n", "12345678"][..]),
                     0..40,
                 ),
-                cuts in prop::collection::vec(0usize..200, 0..5),
             ) {
                 let text = pieces.concat();
                 let index = LineIndex::new(&text);
                 prop_assert_eq!(&index.starts, &simple_starts(&text), "{:?}", text);
-                // The same text in pieces cut anywhere (on character boundaries).
-                let mut cuts: Vec<usize> = cuts
-                    .into_iter()
-                    .map(|c| c.min(text.len()))
-                    .filter(|&c| text.is_char_boundary(c))
-                    .collect();
-                cuts.sort_unstable();
-                let mut chunks = Vec::new();
-                let mut from = 0;
-                for cut in cuts.into_iter().chain([text.len()]) {
-                    chunks.push(&text[from..cut]);
-                    from = cut;
-                }
-                prop_assert_eq!(&LineIndex::from_chunks(chunks), &index, "{:?}", text);
             }
         }
     }

@@ -148,7 +148,7 @@ impl Program {
                     self.unlinked.push((missing, reason));
                     continue;
                 };
-                let mut run = ParseRun::new(&text, dialect);
+                let mut run = ParseRun::new(dialect);
                 run.set_max_bytes(room);
                 while !run.step(&text, usize::MAX) {}
                 left = Some(room.saturating_sub(run.held_bytes()));

@@ -19,7 +19,7 @@ use crate::{Dialect, Program};
 
 /// Parses `text` as read by `dialect`. Never fails: problems are in `Program::diagnostics`.
 pub fn parse(text: &str, dialect: Dialect) -> Program {
-    let mut run = ParseRun::reading(dialect);
+    let mut run = ParseRun::new(dialect);
     while !run.step(text, usize::MAX) {}
     run.finish()
 }

@@ -285,18 +285,14 @@ fn a_carriage_return_ends_a_line_alone_or_before_a_line_feed() {
         .find(|d| d.severity == Severity::Error)
         .unwrap();
     assert_eq!(p.lines.line_col(text, bad.span.start), (2, 4));
-    // Lines read from a text in pieces (an editor's rope) end where the text's do.
+    // Lines read a few at a time end where the text's do (a rope's chunks cut anywhere:
+    // crates/analysis/tests/rope_parse.rs).
     let text = "G90\r\r\nG0 X1.\rY2.\r\nM30\r";
     let whole = parse(text, Dialect::LinuxCnc);
-    for cut in 1..text.len() {
-        let (a, b) = text.split_at(cut);
-        let index = swarf_syntax::LineIndex::from_chunks([a, b]);
-        assert_eq!(index, whole.lines, "cut at {cut}");
-        let mut run = swarf_syntax::ParseRun::with_lines(index, Dialect::LinuxCnc);
-        let mut source: &str = text;
-        while !run.step_from(&mut source, 2) {}
-        assert_eq!(run.finish(), whole, "cut at {cut}");
-    }
+    assert_eq!(whole.lines, swarf_syntax::LineIndex::new(text));
+    let mut run = swarf_syntax::ParseRun::new(Dialect::LinuxCnc);
+    while !run.step(text, 2) {}
+    assert_eq!(run.finish(), whole);
 }
 
 #[test]

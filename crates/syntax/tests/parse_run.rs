@@ -42,7 +42,7 @@ fn a_stepped_run_stops_at_the_closing_tape_mark() {
             .iter()
             .any(|d| d.code == "N-AFTER-TAPE-END")
     );
-    let mut run = ParseRun::new("", Dialect::Fanuc);
+    let mut run = ParseRun::new(Dialect::Fanuc);
     assert!(run.step("", 0) || run.step("", 1));
     assert!(run.finish().blocks.is_empty());
 }
@@ -60,7 +60,7 @@ fn lines_from_a_source_give_the_program_of_the_text() {
     for dialect in Dialect::ALL {
         let whole = parse(&text, dialect);
         for lines in [1, 9, 1000] {
-            let mut run = ParseRun::new(&text, dialect);
+            let mut run = ParseRun::new(dialect);
             // The lines come through the `LineSource` calls, not from the text at hand.
             let mut source: &str = &text;
             let mut steps = 0;
@@ -92,7 +92,7 @@ fn line_ends_read_in_steps_equal_the_whole_parse() {
             for lines in [1, 3, 1000] {
                 let (program, _) = stepped(text, dialect, lines);
                 assert_eq!(program, whole, "{dialect:?} in steps of {lines}");
-                let mut run = ParseRun::new(text, dialect);
+                let mut run = ParseRun::new(dialect);
                 while !run.step_from(&mut text.as_str(), lines) {}
                 assert_eq!(run.finish(), whole, "{dialect:?} from a source by {lines}");
             }

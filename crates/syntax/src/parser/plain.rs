@@ -223,27 +223,26 @@ mod tests {
 
     /// `text` read by the general line reader alone.
     fn parse_general(text: &str, dialect: Dialect) -> Program {
-        let mut run = ParseRun::new(text, dialect);
+        let mut run = ParseRun::new(dialect);
         run.plain_lines = false;
         while !run.step(text, usize::MAX) {}
         run.finish()
     }
 
-    /// `text` read a few lines a step, its lines indexed first.
-    fn parse_indexed(text: &str, dialect: Dialect) -> Program {
-        let mut run = ParseRun::new(text, dialect);
+    /// `text` read a few lines a step.
+    fn parse_stepped(text: &str, dialect: Dialect) -> Program {
+        let mut run = ParseRun::new(dialect);
         while !run.step(text, 3) {}
         run.finish()
     }
 
     /// The short reader of plain lines gives what the general reader gives: the same blocks
-    /// (values to the bit) and the same diagnostics, whether the lines are indexed as they are
-    /// read (runs of plain lines read at once) or first.
+    /// (values to the bit) and the same diagnostics, whether read a few lines a step or at once.
     fn assert_same_as_general(text: &str, dialect: Dialect) {
         let general = parse_general(text, dialect);
-        let indexed = parse_indexed(text, dialect);
+        let stepped = parse_stepped(text, dialect);
         assert!(
-            indexed == general && same_values(&indexed, &general),
+            stepped == general && same_values(&stepped, &general),
             "{dialect:?}: {text:?}"
         );
         let fast = parse(text, dialect);

@@ -2,7 +2,7 @@
 //! each line read by the short reader of plain lines or by the general one.
 
 use super::block::LineReader;
-use super::plain::{PlainLines, ending_len, read_plain_line, read_plain_lines};
+use super::plain::{PlainLines, ending_len, read_plain_lines};
 use super::{MAX_LINE_BYTES, MAX_PARSED_BYTES, is_blank};
 use crate::{Block, Diagnostic, Dialect, ExprNode, LineIndex, LineSource, Program, Span};
 
@@ -112,21 +112,12 @@ impl Held {
 }
 
 impl ParseRun {
-    /// Indexes the lines of `text` (every later step must be given the same text); nothing is
-    /// read yet.
-    pub fn new(text: &str, dialect: Dialect) -> Self {
-        let lines = LineIndex::at_most(text, max_lines(MAX_PARSED_BYTES) + 1);
-        ParseRun::with_lines(lines, dialect)
-    }
-
-    /// Starts a parse over a text whose line index is already made (e.g. from the pieces of a
-    /// rope, [`LineIndex::from_chunks`]); the lines are then read with
-    /// [`ParseRun::step_from`]. Nothing is read yet.
-    pub fn with_lines(lines: LineIndex, dialect: Dialect) -> Self {
+    /// Starts a parse that indexes the text's lines as it reads them; nothing is read yet.
+    pub fn new(dialect: Dialect) -> Self {
         let mut run = ParseRun {
             program: Program {
                 dialect,
-                lines,
+                lines: LineIndex::new(""),
                 ..Program::default()
             },
             checker: crate::checks::Checker::new(dialect),
@@ -144,13 +135,6 @@ impl ParseRun {
         run
     }
 
-    /// Starts a parse that indexes the text's lines as it reads them, sparing a pass over the
-    /// text, for a reader that wants no count of its lines beforehand ([`ParseRun::progress`]
-    /// counts those found so far).
-    pub fn reading(dialect: Dialect) -> Self {
-        ParseRun::with_lines(LineIndex::new(""), dialect)
-    }
-
     /// Where the parse has read to: the next line, its byte offset and the tape marks met, so
     /// that [`ParseRun::resume`] reads the same lines again later without the ones before.
     pub fn read_point(&self) -> ReadPoint {
@@ -165,7 +149,7 @@ impl ParseRun {
     /// blocks read are those the first parse read there, with their lines and spans, but the
     /// program's line table counts from `at`, not from the text's first line.
     pub fn resume(at: ReadPoint, dialect: Dialect) -> Self {
-        let mut run = ParseRun::with_lines(LineIndex::new(""), dialect);
+        let mut run = ParseRun::new(dialect);
         (run.offset, run.line_no, run.tape) = (at.offset, at.line_no, at.tape);
         run
     }
@@ -177,45 +161,34 @@ impl ParseRun {
         self.held = Held::new(max.min(self.held.max), lines);
     }
 
-    /// Reserves room for a block on each line of the text not read yet, up to the most the
-    /// program may hold: a reader that holds the whole program is spared a growing array's
-    /// copies (the first step of any other reserves for the lines it reads).
-    pub fn reserve_all(&mut self) {
-        let ahead = self.program.lines.line_count().saturating_sub(self.line_no);
-        let room = ahead.min(self.held.most_blocks());
-        self.program.blocks.reserve_exact(room);
-    }
-
     /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
     pub fn held_bytes(&self) -> usize {
         self.held.block_bytes + self.held.expr_bytes + self.held.other_bytes + self.held.table
     }
 
-    /// Lines read so far and lines in the text.
+    /// Lines and bytes read so far.
     pub fn progress(&self) -> (usize, usize) {
-        (self.line_no, self.program.lines.line_count())
+        (self.line_no, self.offset)
     }
 
-    /// Reads at most `lines` more lines of `text` (the text given to [`ParseRun::new`]);
-    /// whether the whole text is read.
+    /// Reads at most `lines` more lines of `text` (the same text at every step); whether the
+    /// whole text is read.
     pub fn step(&mut self, text: &str, lines: usize) -> bool {
         self.step_from(&mut &*text, lines)
     }
 
-    /// Reads at most `lines` more lines from `source` (the same text the run's line index was
-    /// made from, see [`ParseRun::with_lines`]); whether the whole text is read.
+    /// Reads at most `lines` more lines from `source` (the same text at every step); whether
+    /// the whole text is read.
     pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
         let program = &mut self.program;
         // A text of more lines than a parse indexes is read up to that many.
         let most = max_lines(self.held.max);
         let stop = self.line_no.saturating_add(lines).min(most);
-        // Room for a block a line read in this step (a line is rarely under sixteen bytes where
-        // the lines are not indexed yet), reserved once: a run read in pieces reuses it.
+        // Room for a block a line read in this step (a line is rarely under sixteen bytes),
+        // reserved once: a run read in pieces reuses it.
         if program.blocks.capacity() == 0 {
-            let indexed = program.lines.line_count().saturating_sub(self.line_no);
             let unread = source.len().saturating_sub(self.offset) / 16 + 1;
-            let ahead = if indexed > 1 { indexed } else { unread };
-            let room = ahead.min(stop - self.line_no).min(self.held.most_blocks());
+            let room = unread.min(stop - self.line_no).min(self.held.most_blocks());
             program.blocks.reserve_exact(room);
         }
         // The run's state, kept here while the lines are read (stored at the end).
@@ -223,26 +196,18 @@ impl ParseRun {
         let mut offset = self.offset;
         let mut tape = self.tape;
         let mut done = self.done;
-        let rules = program.dialect.rules();
         let text_len = source.len();
         while !done && next < stop {
-            // Where the next line starts, where the text is indexed; else the line is read from
-            // the rest of the text and its end found as it is read.
-            let next_start = (next + 1 < program.lines.line_count())
-                .then(|| program.lines.line_start(next + 1) as usize);
-            // The line alone where the text is indexed, else the text from it on as far as the
-            // source holds it (whole lines): its lines are read in turn without asking again.
-            let text = match next_start {
-                Some(start) => source.line(offset, start - 1),
-                None => source.rest(offset),
-            };
+            // The text from the next line on, as far as the source holds it (whole lines): its
+            // lines are read in turn, each line's end found as it is read.
+            let text = source.rest(offset);
             let text_at = offset;
             let mut closed;
             loop {
                 let from = offset - text_at;
                 let onward = text.as_bytes().get(from..).unwrap_or_default();
-                // Where the lines are indexed as read, a run of plain lines is read at once.
-                let run = if next_start.is_none() && self.plain_lines {
+                // A run of plain lines is read at once.
+                let run = if self.plain_lines {
                     let (lines, until) = (stop - next, self.held.count_at);
                     let checker = &mut self.checker;
                     read_plain_lines(onward, offset, next, lines, until, program, checker)
@@ -255,27 +220,18 @@ impl ParseRun {
                     (tape, closed) = tape.after(!run.block, false);
                 } else {
                     let line_no = u32::try_from(next).unwrap_or(u32::MAX);
-                    let plain = (self.plain_lines && next_start.is_some()).then(|| {
-                        let (blocks, checker) = (&mut program.blocks, &mut self.checker);
-                        read_plain_line(onward, offset, line_no, rules, blocks, checker)
-                    });
                     // Whether the line is blank and whether it is a `%` line (for the tape
                     // marks), and its length without its ending.
-                    let (blank, percent, len) = if let Some((block, len)) = plain.flatten() {
-                        (!block, false, len)
-                    } else {
-                        let len = onward.iter().position(|&b| b == b'\n' || b == b'\r');
-                        let len = len.unwrap_or(onward.len());
-                        let raw = text.get(from..from + len).unwrap_or_default();
-                        let (blank, percent) =
-                            read_general_line(program, &mut self.checker, raw, offset, line_no);
-                        (blank, percent, len)
-                    };
+                    let len = onward.iter().position(|&b| b == b'\n' || b == b'\r');
+                    let len = len.unwrap_or(onward.len());
+                    let raw = text.get(from..from + len).unwrap_or_default();
+                    let (blank, percent) =
+                        read_general_line(program, &mut self.checker, raw, offset, line_no);
                     let ending = ending_len(onward.get(len..));
-                    last = next_start.is_none() && ending == 0;
-                    offset = next_start.unwrap_or(offset + len + ending);
+                    last = ending == 0;
+                    offset += len + ending;
                     next += 1;
-                    if next_start.is_none() && !last {
+                    if !last {
                         let start = u32::try_from(offset).unwrap_or(u32::MAX);
                         program.lines.starts.push(start);
                     }
@@ -288,7 +244,7 @@ impl ParseRun {
                 let now = done || next == most;
                 let held = &mut self.held;
                 done |= held.count_due(program, &self.checker, offset, text_len, now);
-                if done || next >= stop || next_start.is_some() || offset - text_at >= text.len() {
+                if done || next >= stop || offset - text_at >= text.len() {
                     break;
                 }
             }
@@ -303,7 +259,7 @@ impl ParseRun {
             too_large(program, text_len, offset, self.held.max);
             done = true;
         }
-        // A run stopped before the end of a text indexed as it is read indexes the rest.
+        // A run stopped before the end of the text indexes the rest.
         if done && program.lines.line_count() == next + 1 {
             let rest = source.line(offset, source.len());
             program.lines.index_from(rest, offset, most + 1);
@@ -469,11 +425,11 @@ mod tests {
         out + rest
     }
 
-    /// A run that indexes its text as it reads it gives the program, line table included, of
-    /// one that indexes it first: read to the end or stopped at a closing tape mark; stopped at
-    /// the most lines a parse indexes, it indexes as many as that one would.
+    /// A run read a few lines a step gives the whole parse's program, its line table the text's:
+    /// read to the end or stopped at a closing tape mark; stopped at the most lines a parse
+    /// indexes, it indexes as many as that.
     #[test]
-    fn a_run_indexing_as_it_reads_gives_the_program_of_one_indexed_first() {
+    fn a_run_in_steps_indexes_the_lines_as_it_reads_them() {
         let read = |mut run: ParseRun, text: &str, max: usize| {
             run.set_max_bytes(max);
             while !run.step(text, 7) {}
@@ -483,19 +439,13 @@ mod tests {
             format!("%\nG0 X1\r\n%\r\r\nX$\n{}", "G1 X2\r\n".repeat(100)),
             format!("G1 X1\rX2\r\n\r\r\n{}\nM30\r", "(c) X3.5 Y-1\n".repeat(50)),
         ] {
-            let first = read(
-                ParseRun::new(&text, Dialect::Fanuc),
-                &text,
-                MAX_PARSED_BYTES,
-            );
-            let reading = read(ParseRun::reading(Dialect::Fanuc), &text, MAX_PARSED_BYTES);
-            assert!(
-                reading == first && first.lines.line_count() > 50,
-                "{text:?}"
-            );
+            let stepped = read(ParseRun::new(Dialect::Fanuc), &text, MAX_PARSED_BYTES);
+            assert!(stepped == parse(&text, Dialect::Fanuc), "{text:?}");
+            assert!(stepped.lines == LineIndex::new(&text), "{text:?}");
+            assert!(stepped.lines.line_count() > 50, "{text:?}");
         }
         let text = "\n".repeat(1 << 18);
-        let program = read(ParseRun::reading(Dialect::Fanuc), &text, 1 << 19);
+        let program = read(ParseRun::new(Dialect::Fanuc), &text, 1 << 19);
         let most = max_lines(1 << 19);
         assert!(program.lines == LineIndex::at_most(&text, most + 1));
         let stop = program.diagnostics.last().map(|d| (d.code, d.span.start));
@@ -514,7 +464,7 @@ mod tests {
                 .iter()
                 .map(|b| resolved(&format!("{b:?}"), &whole.exprs))
                 .collect();
-            let mut run = ParseRun::new(&text, dialect);
+            let mut run = ParseRun::new(dialect);
             let mut blocks = Vec::new();
             loop {
                 let done = run.step(&text, 3);

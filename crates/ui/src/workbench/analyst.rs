@@ -78,7 +78,7 @@ impl Workbench {
             lod: self.backplot.lod_for_job(&self.analysis.scene),
         })));
         self.sent.push_back((self.generation, text));
-        self.pending = Some(Progress::Reading { read: 0, lines: 0 });
+        self.pending = Some(Progress::Reading { read: 0, bytes: 0 });
     }
 
     /// Sends a request to the analysis, taking an answer given at once.

@@ -92,9 +92,10 @@ impl Workbench {
             }
             ui.separator();
             ui.label(self.tab.document.encoding.name());
-            let progress = if let Some(Progress::Reading { read, lines }) = self.pending {
-                let text = format!("{read} / {lines} lines read");
-                Some(("Analysing", read as f32 / lines.max(1) as f32, text))
+            let progress = if let Some(Progress::Reading { read, bytes }) = self.pending {
+                let mb = |b: usize| format!("{:.1}", b as f64 / 1e6);
+                let text = trf("{} / {} MB read", &[&mb(read), &mb(bytes)]);
+                Some((tr("Analysing"), read as f32 / bytes.max(1) as f32, text))
             } else if let Some((done, total)) = self.analysis_progress() {
                 let fraction = if total == 0 {
                     1.0
@@ -132,7 +133,7 @@ impl Workbench {
             done.min(total) * 100 / total
         };
         let text = match progress {
-            Progress::Reading { read, lines } => trf("Reading… {} %", &[&percent(read, lines)]),
+            Progress::Reading { read, bytes } => trf("Reading… {} %", &[&percent(read, bytes)]),
             Progress::Running { reached, blocks } => {
                 trf("Analysing… {} %", &[&percent(reached, blocks)])
             }
