@@ -142,18 +142,16 @@ fn a_straight_program_read_in_pieces_gives_what_it_gives_read_whole() {
 #[test]
 fn a_newer_job_replaces_one_under_way_on_the_thread() {
     let mut thread = Thread::spawn(|_| {}).unwrap();
-    thread.send(Request::Analyse(Box::new(job(
-        1,
-        program(400_000, "M30\n"),
-    ))));
-    thread.send(Request::Analyse(Box::new(job(
-        2,
-        "G0 X1\nG01 X$\n".to_string(),
-    ))));
+    let long = Request::Analyse(Box::new(job(1, program(400_000, "M30\n"))));
+    let newer = Request::Analyse(Box::new(job(2, "G0 X1\nG01 X$\n".to_string())));
+    thread.send(long);
+    thread.send(newer);
     let (before, results) = until_done(&mut thread);
     assert_eq!(results.generation, 2, "the long job never finishes");
     assert_eq!(results.stats.blocks, 2);
-    assert!(before.len() <= 2, "{before:?}");
+    // The long job, some 26 steps of reading, gives way within the few the thread may take
+    // before the newer one comes.
+    assert!(before.len() < 8, "{before:?}");
     let codes: Vec<_> = results.problems.iter().map(|p| (p.line, p.code)).collect();
     assert!(codes.contains(&(2, "E-SYNTAX-CHAR")), "{codes:?}");
 }
