@@ -646,20 +646,7 @@ async fn text_blob(text: &ProgramText) -> Result<web_sys::Blob, JsValue> {
         let len = left.min(RECOVERY_PIECE_BYTES);
         left -= len;
         let array = js_sys::Uint8Array::new_with_length(u32::try_from(len).unwrap_or(u32::MAX));
-        let mut at = 0;
-        while at < len {
-            if rest.is_empty() {
-                match chunks.next() {
-                    Some(chunk) => rest = chunk,
-                    None => break,
-                }
-            }
-            let (head, tail) = rest.split_at(rest.len().min(len - at));
-            let (start, end) = (at, at + head.len());
-            let range = |i: usize| u32::try_from(i).unwrap_or(u32::MAX);
-            array.subarray(range(start), range(end)).copy_from(head);
-            (rest, at) = (tail, end);
-        }
+        crate::web_worker::copy_chunks(&array, &mut rest, &mut chunks);
         let blob = web_sys::Blob::new_with_u8_array_sequence(&js_sys::Array::of1(&array))?;
         pieces.push(&blob);
         next_task().await;

@@ -282,19 +282,34 @@ fn post(worker: &web_sys::Worker, request: &Request) -> Result<(), JsValue> {
 }
 
 /// A text as UTF-8 in a new `ArrayBuffer`, its pieces copied straight into place.
-pub(crate) fn text_buffer(text: &ProgramText) -> ArrayBuffer {
-    let len = u32::try_from(text.len()).unwrap_or(u32::MAX);
-    let array = Uint8Array::new_with_length(len);
-    let mut at = 0u32;
-    for chunk in text.chunks() {
-        let n = u32::try_from(chunk.len()).unwrap_or(u32::MAX);
-        let end = at.saturating_add(n).min(len);
-        if let Some(bytes) = chunk.as_bytes().get(..(end - at) as usize) {
-            array.subarray(at, end).copy_from(bytes);
-        }
-        at = end;
-    }
+fn text_buffer(text: &ProgramText) -> ArrayBuffer {
+    let array = Uint8Array::new_with_length(u32::try_from(text.len()).unwrap_or(u32::MAX));
+    copy_chunks(&array, &mut &[][..], &mut text.chunks().map(str::as_bytes));
     array.buffer()
+}
+
+/// Fills `array` with the next bytes of a text in pieces: what is left of the piece before
+/// (`rest`), then `chunks`, whose last piece's rest is left in `rest` for the next array.
+pub(crate) fn copy_chunks<'a>(
+    array: &Uint8Array,
+    rest: &mut &'a [u8],
+    chunks: &mut impl Iterator<Item = &'a [u8]>,
+) {
+    let len = array.length();
+    let mut at = 0u32;
+    while at < len {
+        if rest.is_empty() {
+            match chunks.next() {
+                Some(chunk) => *rest = chunk,
+                None => break,
+            }
+        }
+        let room = usize::try_from(len - at).unwrap_or(usize::MAX);
+        let (head, tail) = rest.split_at(rest.len().min(room));
+        let end = at + u32::try_from(head.len()).unwrap_or(len - at);
+        array.subarray(at, end).copy_from(head);
+        (*rest, at) = (tail, end);
+    }
 }
 
 /// A reply of the worker (`[head, ...arrays]`), its arrays copied straight into place.
