@@ -15,7 +15,7 @@ use crate::{Block, Program, Rules, Span, Word, WordForm};
 /// block and its length without its ending, or `None`, having read nothing, for any other line
 /// (or one over [`MAX_LINE_BYTES`]): the general reader reads it.
 #[inline]
-pub(super) fn read_plain_line(
+fn read_plain_line(
     bytes: &[u8],
     base: usize,
     line_no: u32,

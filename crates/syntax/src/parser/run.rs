@@ -34,7 +34,7 @@ struct Held {
     max: usize,
     /// Blocks, expressions, diagnostics and the checker's diagnostics counted so far.
     blocks: usize,
-    /// Bytes of the line table (counted as it grows where the lines are indexed as read).
+    /// Bytes of the line table (counted as it grows).
     table: usize,
     exprs: usize,
     diagnostics: usize,
@@ -53,12 +53,11 @@ struct Held {
 impl Held {
     const COUNT_EVERY: usize = 16 << 10;
 
-    /// Nothing counted but the line table's first `lines` lines, the most that are read.
-    fn new(max: usize, lines: usize) -> Self {
-        let table = lines.min(max_lines(max) + 1) * size_of::<u32>();
+    /// Nothing counted but the line table's first line.
+    fn new(max: usize) -> Self {
         Held {
             max,
-            table,
+            table: size_of::<u32>(),
             ..Held::default()
         }
     }
@@ -114,7 +113,7 @@ impl Held {
 impl ParseRun {
     /// Starts a parse that indexes the text's lines as it reads them; nothing is read yet.
     pub fn new(dialect: Dialect) -> Self {
-        let mut run = ParseRun {
+        ParseRun {
             program: Program {
                 dialect,
                 lines: LineIndex::new(""),
@@ -129,10 +128,8 @@ impl ParseRun {
             line_no: 0,
             done: false,
             plain_lines: true,
-            held: Held::new(MAX_PARSED_BYTES, 0),
-        };
-        run.set_max_bytes(MAX_PARSED_BYTES);
-        run
+            held: Held::new(MAX_PARSED_BYTES),
+        }
     }
 
     /// Where the parse has read to: the next line, its byte offset and the tape marks met, so
@@ -157,8 +154,7 @@ impl ParseRun {
     /// Lowers the most the parsed program may hold (bytes, see [`MAX_PARSED_BYTES`]) before
     /// anything is read: a reader with less memory, or a test.
     pub fn set_max_bytes(&mut self, max: usize) {
-        let lines = self.program.lines.line_count();
-        self.held = Held::new(max.min(self.held.max), lines);
+        self.held = Held::new(max.min(self.held.max));
     }
 
     /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
