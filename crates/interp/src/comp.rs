@@ -37,7 +37,7 @@ pub(crate) struct Comp {
     /// Where the tool is (the end of the last event sent), when off the programmed position.
     pub tool: Option<DVec3>,
     /// The move held back until the next move in the plane decides its end.
-    held: Option<Held>,
+    pub held: Option<Held>,
     /// Events after the held move, sent on when it is.
     behind: Vec<(Source, Canon)>,
     /// The number of the block (in execution order) of the held move.
@@ -48,16 +48,9 @@ pub(crate) struct Comp {
     pub orientation: u8,
 }
 
-impl Comp {
-    /// Whether no move is held back (compensation has nothing pending).
-    pub(crate) fn is_idle(&self) -> bool {
-        self.held.is_none()
-    }
-}
-
 /// A compensated move held back.
 #[derive(Debug, Clone)]
-struct Held {
+pub(crate) struct Held {
     /// The compensated move: its start is fixed, its end in the plane still moves.
     elem: Elem,
     /// The programmed corner at the end (plane coordinates).
@@ -213,8 +206,7 @@ fn intersect(a: Curve, b: Curve) -> Vec<DVec2> {
             if den.abs() < 1e-12 {
                 return Vec::new();
             }
-            let t = cross(p2 - p1, d2) / den;
-            vec![p1 + d1 * t]
+            vec![p1 + d1 * (cross(p2 - p1, d2) / den)]
         }
         (Curve::Line { p, d }, Curve::Circle { c, r })
         | (Curve::Circle { c, r }, Curve::Line { p, d }) => {
@@ -366,12 +358,9 @@ fn motion(st: &mut State, sink: &mut dyn Sink, source: Source, from: DVec3, even
                 };
                 alarm(st, elem.span, "E-COMP-CANCEL", message);
             }
-            if in_plane && arc.is_none() && !linuxcnc {
-                // Fanuc type A: an inside corner ends the last move on the cancel move's offset.
-                close(st, sink, Some((&elem, f64::NAN)));
-            } else {
-                close(st, sink, None);
-            }
+            // Fanuc type A: an inside corner ends the last move on the cancel move's offset.
+            let cancel = (in_plane && arc.is_none() && !linuxcnc).then_some((&elem, f64::NAN));
+            close(st, sink, cancel);
         }
         st.comp.tool = None;
         return sink.emit(source, event);
@@ -567,8 +556,7 @@ pub(crate) fn close(
                 .offset_curve(s, plane)
                 .and_then(|c| first_met(intersect(h.curve(plane), c), &h, n, s, plane));
             if let Some(x) = found {
-                h.elem.to = with_uv(h.elem.to, x, plane);
-                start = Some(x);
+                (h.elem.to, start) = (with_uv(h.elem.to, x, plane), Some(x));
             } else {
                 let (a, b) = (h.elem.source.line, n.source.line);
                 let message = format!(
@@ -611,8 +599,7 @@ pub(crate) fn close(
                         )
                     };
                     if on1 {
-                        h.elem.to = with_uv(h.elem.to, x1, plane);
-                        h.extended = true;
+                        (h.elem.to, h.extended) = (with_uv(h.elem.to, x1, plane), true);
                     } else {
                         links.push((x1, None));
                     }
@@ -620,8 +607,7 @@ pub(crate) fn close(
                         links.push((x2, None));
                     }
                     if on2 {
-                        start = Some(x2);
-                        st.comp.start_extended = true;
+                        (start, st.comp.start_extended) = (Some(x2), true);
                     } else {
                         links.push((s2p, None));
                     }
@@ -735,10 +721,9 @@ fn gouge(st: &mut State, span: Span, message: String) {
 /// An alarm: the run stops before the next block.
 fn alarm(st: &mut State, span: Span, code: &'static str, message: impl Into<String>) {
     let d = Diagnostic::error(span, code, message);
-    if st.alarm.is_none() {
-        st.alarm = Some(d);
-    } else {
-        st.diagnostics.push(d);
+    match st.alarm {
+        None => st.alarm = Some(d),
+        Some(_) => st.diagnostics.push(d),
     }
 }
 

@@ -12,7 +12,7 @@
 use glam::DVec3;
 use swarf_syntax::{Block, Dialect, Quantity, Word, WordForm};
 
-use crate::exec::move_feed;
+use crate::exec::{axis_words, given, move_feed, plane_words, target};
 use crate::machine::find;
 use crate::state::{MotionMode, State, plane_axes};
 use crate::{Canon, Sink, Source};
@@ -63,9 +63,7 @@ pub(crate) fn cancel(st: &mut State) -> Option<MotionMode> {
         st.cycle.initial = None;
         None
     } else {
-        let before = st.cycle.before;
-        st.cycle = CycleData::default();
-        before
+        std::mem::take(&mut st.cycle).before
     }
 }
 
@@ -82,7 +80,6 @@ pub(crate) fn run(
     block: &Block,
     words: &[Word],
     tenths: u32,
-    target: &dyn Fn(&State) -> DVec3,
     source: Source,
     sink: &mut dyn Sink,
 ) -> bool {
@@ -135,14 +132,17 @@ pub(crate) fn run(
     let Some(plan) = Plan::new(st, block, words, tenths) else {
         return false;
     };
+    // Each hole at the block's point in the plane (G91: from the hole before).
+    let plane = plane_words(st, &axis_words(words, b'X'));
+    let hole = |st: &State| target(st, &plane);
     let start = st.program_pos;
     // KT's L: L holes equally spaced from the start point to the programmed point.
-    let line = (st.dialect == Dialect::Kt).then(|| target(st) - start);
+    let line = (st.dialect == Dialect::Kt).then(|| hole(st) - start);
     let mut next = |st: &State, i: u32| match line {
         Some(step) => start + step * f64::from(i) / f64::from(repeats),
-        None => target(st),
+        None => hole(st),
     };
-    drill(st, block, &plan, repeats, &mut next, source, sink);
+    Drill::new(st, block, &plan, source, sink).holes(repeats, &mut next);
     true
 }
 
@@ -155,26 +155,24 @@ const MAX_PATTERN_HOLES: usize = 100_000;
 /// Syntec's hole patterns (§4.63), the cycle stored with K0 at each point. G134: K holes on a
 /// circle of radius I from angle J (negative K: clockwise); G135: K holes at spacing I along angle
 /// J; G136: K holes on radius I from angle J at pitch P (0.001° without a point); G137.1: P holes
-/// at spacing I times K rows at spacing J, each row back the way the last came (the least travel).
-/// `origin` is the block's point (G90/G91 applied) in the program frame.
-#[allow(clippy::too_many_arguments)]
+/// at spacing I times K rows at spacing J, each row back the way the last came (the least travel),
+/// all about the block's point (G90/G91 applied).
 pub(crate) fn pattern(
     st: &mut State,
     block: &Block,
     code: &Word,
     words: &[Word],
     tenths: u32,
-    origin: DVec3,
     source: Source,
     sink: &mut dyn Sink,
-) -> bool {
+) {
     let Some(MotionMode::Cycle(cycle)) = st.motion else {
         let message = "a hole pattern runs the stored canned cycle: give the cycle first (e.g. `G81 Z_ R_ F_ K0`)";
         return st.fail(code.span, "E-PATTERN-NO-CYCLE", message);
     };
     let (u, v) = plane_axes(st.plane);
     let n = 3 - u - v;
-    let mut origin = origin;
+    let mut origin = target(st, &plane_words(st, &axis_words(words, b'X')));
     origin[n] = st.program_pos[n];
     let length = |st: &State, letter: u8| find(words, letter).map(|w| st.length(w));
     let angle = |letter: u8| find(words, letter).map_or(0.0, |w| w.value);
@@ -213,7 +211,7 @@ pub(crate) fn pattern(
                 }
             };
             let (Some(r), Some(k)) = (r, count(st, b'K')) else {
-                return false;
+                return;
             };
             let (dr, da) = match tenths {
                 1340 => (0.0, 360.0 / k as f64),
@@ -226,7 +224,7 @@ pub(crate) fn pattern(
         }
         _ => {
             let (Some(nx), Some(ny)) = (count(st, b'P'), count(st, b'K')) else {
-                return false;
+                return;
             };
             let (nx, ny) = (nx.unsigned_abs() as usize, ny.unsigned_abs() as usize);
             if nx.saturating_mul(ny) > MAX_PATTERN_HOLES {
@@ -252,15 +250,14 @@ pub(crate) fn pattern(
         }
     };
     let Some(plan) = Plan::new(st, block, words, cycle) else {
-        return false;
+        return;
     };
     let Ok(count) = u32::try_from(points.len()) else {
-        return false;
+        return;
     };
     let mut next =
         |_: &State, i: u32| (points.get(i.saturating_sub(1) as usize).copied()).unwrap_or(origin);
-    drill(st, block, &plan, count, &mut next, source, sink);
-    true
+    Drill::new(st, block, &plan, source, sink).holes(count, &mut next);
 }
 
 /// GSK's slanted-hole cycles (§4.52): G83.1, G84.1, G85.1 into the end face along Z, G87.1–G89.1
@@ -287,9 +284,7 @@ fn slanted(
         .or_else(|| find(words, pos_letters.1).map(|w| (w, true)));
     let depth = find(words, depth_letters.0).or_else(|| find(words, depth_letters.1));
     let c_word = find(words, b'C').or_else(|| find(words, b'H'));
-    if let Some(w) = depth {
-        st.cycle.z = Some((st.length(w), true));
-    }
+    st.cycle.z = depth.map(|w| (st.length(w), true)).or(st.cycle.z);
     if let Some(w) = find(words, b'R') {
         st.cycle.r = Some((st.length(w), true));
     }
@@ -346,18 +341,10 @@ fn slanted(
     let mut along = DVec3::ZERO;
     along[drill_axis] = angle.to_radians().cos();
     along[assoc] = angle.to_radians().sin();
-    let initial = entry[drill_axis];
-    let peck = st
-        .cycle
-        .q
-        .filter(|q| *q > 0.0 && matches!(tenths, 831 | 871));
+    let peck = (st.cycle.q).filter(|q| *q > 0.0 && matches!(tenths, 831 | 871));
+    // Its moves are along the slant, not at levels of a drilling axis.
     let plan = Plan {
         tenths,
-        n: drill_axis,
-        r: initial,
-        bottom: initial,
-        initial,
-        peck,
         retract: st.setup.machine.peck_retract_mm.max(0.0),
         ..Plan::default()
     };
@@ -367,7 +354,7 @@ fn slanted(
             break;
         }
         let mut start = d.st.program_pos;
-        start[drill_axis] = initial;
+        start[drill_axis] = entry[drill_axis];
         if let Some((w, incremental)) = position {
             let v = d.st.length(w);
             start[assoc] = if incremental || !d.st.absolute {
@@ -382,17 +369,7 @@ fn slanted(
         d.rapid(start);
         d.rapid(r_point);
         match tenths {
-            841 | 881 => {
-                let dir = d.st.spindle_dir;
-                let forward = dir.unwrap_or(true);
-                d.feed_to(bottom_point);
-                d.spindle(None);
-                d.dwell();
-                d.spindle(Some(!forward));
-                d.feed_to(r_point);
-                d.spindle(None);
-                d.spindle(Some(forward));
-            }
+            841 | 881 => d.tap(bottom_point, r_point, d.st.spindle_dir.unwrap_or(true)),
             851 | 891 => {
                 d.feed_to(bottom_point);
                 d.dwell();
@@ -509,10 +486,10 @@ impl Plan {
         let per_minute = st.feed_mode == crate::state::FeedMode::PerMinute;
         let pitch = match (tenths, st.dialect) {
             // KT: F is the pitch in mm, or I the threads per inch.
-            (740 | 840, Dialect::Kt) => match find(words, b'I').filter(|i| i.value > 0.0) {
-                Some(i) => Some(25.4 / i.value),
-                None => Some(st.mm(st.feed_word)),
-            },
+            (740 | 840, Dialect::Kt) => {
+                let tpi = find(words, b'I').filter(|i| i.value > 0.0);
+                Some(tpi.map_or(st.mm(st.feed_word), |i| 25.4 / i.value))
+            }
             (740 | 840, Dialect::Syntec) if !st.block_has_feed => find(words, b'E')
                 .filter(|e| e.value > 0.0)
                 .map(|e| 25.4 / e.value),
@@ -584,73 +561,15 @@ fn linuxcnc_back(
     n: usize,
     bottom: f64,
 ) -> Option<(DVec3, f64)> {
-    let offset_letter = |i: usize| b"IJK"[i];
-    let mut offset = DVec3::ZERO;
-    for i in 0..3 {
-        if i != n
-            && let Some(w) = find(words, offset_letter(i))
-        {
-            offset[i] = st.length(w);
-        }
-    }
-    let Some(level) = find(words, offset_letter(n)) else {
-        let l = char::from(offset_letter(n));
+    let mut ijk = axis_words(words, b'I');
+    let Some(level) = ijk[n].take() else {
+        let l = char::from(b"IJK"[n]);
         let message = format!("G87 needs `{l}`, the level the back bore starts from");
         return st.fail(block.span, "E-WORD-MISSING", message);
     };
     let level = st.length(level);
+    let offset = given(st, &ijk, DVec3::ZERO);
     Some((offset, if st.absolute { level } else { bottom + level }))
-}
-
-/// Drills `count` holes, the i-th (from 1) at `next(st, i)` (program frame).
-fn drill(
-    st: &mut State,
-    block: &Block,
-    plan: &Plan,
-    count: u32,
-    next: &mut dyn FnMut(&State, u32) -> DVec3,
-    source: Source,
-    sink: &mut dyn Sink,
-) {
-    let linuxcnc = st.dialect == Dialect::LinuxCnc;
-    let n = plan.n;
-    let r = plan.r;
-    let mut current = st.program_pos[n];
-    let mut initial = plan.initial;
-    let mut d = Drill::new(st, block, plan, source, sink);
-    if linuxcnc && initial < r {
-        // rs274ngc: below the R level, straight up to it first.
-        d.rapid(d.level(d.st.program_pos, r));
-        initial = r;
-        current = r;
-    }
-    // G87 of the Fanuc family always returns to the initial level (G99 is ignored).
-    let clear = if d.st.return_initial || (plan.tenths == 870 && !linuxcnc) {
-        initial
-    } else {
-        r
-    };
-    for i in 1..=count {
-        if d.stops() {
-            break;
-        }
-        let hole = next(d.st, i);
-        if linuxcnc && !(i == 1 && current > r) {
-            // Later holes (and a first one from at or below R) move over at the clear level.
-            current = clear;
-        }
-        d.mark(d.level(hole, plan.r), d.level(hole, plan.bottom));
-        d.rapid(d.level(hole, current));
-        if plan.tenths == 870 && !linuxcnc {
-            d.back_bore(hole, current, clear);
-        } else {
-            if current != r && (!linuxcnc || current > r) {
-                d.rapid(d.level(hole, r));
-            }
-            d.hole(hole, clear);
-        }
-        current = clear;
-    }
 }
 
 /// Emits the moves of one hole.
@@ -682,6 +601,47 @@ impl<'a, 's> Drill<'a, 's> {
             sink,
             halted: false,
             stuck: false,
+        }
+    }
+
+    /// Drills `count` holes, the i-th (from 1) at `next(st, i)` (program frame).
+    fn holes(&mut self, count: u32, next: &mut dyn FnMut(&State, u32) -> DVec3) {
+        let linuxcnc = self.st.dialect == Dialect::LinuxCnc;
+        let plan = self.plan;
+        let r = plan.r;
+        let mut current = self.st.program_pos[plan.n];
+        let mut initial = plan.initial;
+        if linuxcnc && initial < r {
+            // rs274ngc: below the R level, straight up to it first.
+            self.rapid(self.level(self.st.program_pos, r));
+            (initial, current) = (r, r);
+        }
+        // G87 of the Fanuc family always returns to the initial level (G99 is ignored).
+        let clear = if self.st.return_initial || (plan.tenths == 870 && !linuxcnc) {
+            initial
+        } else {
+            r
+        };
+        for i in 1..=count {
+            if self.stops() {
+                break;
+            }
+            let hole = next(self.st, i);
+            if linuxcnc && !(i == 1 && current > r) {
+                // Later holes (and a first one from at or below R) move over at the clear level.
+                current = clear;
+            }
+            self.mark(self.level(hole, plan.r), self.level(hole, plan.bottom));
+            self.rapid(self.level(hole, current));
+            if plan.tenths == 870 && !linuxcnc {
+                self.back_bore(hole, current, clear);
+            } else {
+                if current != r && (!linuxcnc || current > r) {
+                    self.rapid(self.level(hole, r));
+                }
+                self.hole(hole, clear);
+            }
+            current = clear;
         }
     }
 
@@ -737,10 +697,8 @@ impl<'a, 's> Drill<'a, 's> {
 
     fn feed_to(&mut self, p: DVec3) {
         let length = self.st.position.distance(self.st.to_machine(p));
-        let feed = match self.plan.tap_feed {
-            Some(f) => f,
-            None => move_feed(self.st, self.block, length, None),
-        };
+        let feed =
+            (self.plan.tap_feed).unwrap_or_else(|| move_feed(self.st, self.block, length, None));
         self.go(p, false, Some(feed));
     }
 
@@ -780,15 +738,18 @@ impl<'a, 's> Drill<'a, 's> {
         }
     }
 
-    /// Taps to `depth` and back out to `out`, stopping and dwelling at each reversal.
-    fn tap(&mut self, hole: DVec3, depth: f64, out: f64, forward: bool) {
-        self.feed_to(self.level(hole, depth));
+    /// Taps to `down` and back out to `up`, stopping and dwelling at each reversal (GSK's slanted
+    /// G84.1/G88.1 at the bottom only).
+    fn tap(&mut self, down: DVec3, up: DVec3, forward: bool) {
+        self.feed_to(down);
         self.spindle(None);
         self.dwell();
         self.spindle(Some(!forward));
-        self.feed_to(self.level(hole, out));
+        self.feed_to(up);
         self.spindle(None);
-        self.dwell();
+        if self.plan.tenths.is_multiple_of(10) {
+            self.dwell();
+        }
         self.spindle(Some(forward));
     }
 
@@ -862,7 +823,7 @@ impl<'a, 's> Drill<'a, 's> {
                     let mut depth = r - q;
                     while depth > bottom + 1e-9 && !self.stops() {
                         let out = step_back.map_or(r, |d| (depth + d).min(r));
-                        self.tap(hole, depth, out, forward);
+                        self.tap(self.level(hole, depth), self.level(hole, out), forward);
                         let Some(deeper) = self.next_peck(depth, q, true) else {
                             break;
                         };
@@ -895,15 +856,14 @@ impl<'a, 's> Drill<'a, 's> {
                     self.spindle(None);
                     return self.spindle(Some(forward));
                 }
-                self.tap(hole, bottom, r, forward);
+                self.tap(self.level(hole, bottom), self.level(hole, r), forward);
                 if clear != r {
                     self.rapid(self.level(hole, clear));
                 }
             }
             760 => {
                 // Fine boring: bore, dwell, oriented stop, shift away, out at rapid, shift back.
-                let dir = self.st.spindle_dir;
-                self.bore_out_shifted(hole, bottom, clear, dir);
+                self.bore_out_shifted(hole, bottom, clear, self.st.spindle_dir);
             }
             860 => {
                 // Boring with spindle stop: out at rapid, the spindle restarted as it was.

@@ -23,10 +23,11 @@ use crate::{Sink, Source};
 use actions::{Action, Actions};
 
 pub(crate) use feeds::move_feed;
+pub(crate) use motion::target;
 pub(crate) use plain::{Shortcut, plain_block};
 
 /// The axis words of a block, in millimetres where given.
-type Axes<'w> = [Option<&'w Word>; 3];
+pub(crate) type Axes<'w> = [Option<&'w Word>; 3];
 
 /// What a block asks of the program's flow, carried out after it in order; the last decides.
 #[derive(Debug, Clone, PartialEq)]
@@ -140,8 +141,7 @@ fn modal_codes(
             Action::LengthComp(sign) if !tools::length_comp(st, w, words, sign) => return false,
             Action::StrokeLimit(on) => {
                 stroke::stroke_limit(st, w, words, on);
-                let zone = st.stroke_zone.filter(|_| st.stroke_check);
-                sink.stroke_zone(source, zone.as_ref());
+                sink.stroke_zone(source, st.stroke_zone.filter(|_| st.stroke_check).as_ref());
             }
             Action::CutterComp(t) if !tools::cutter_comp(st, w, words, t) => return false,
             Action::Motion(m) => motion::set_mode(st, m),
@@ -173,10 +173,7 @@ fn axis_codes(
             Action::Local => frames::local(st, axes),
             Action::SetPosition => frames::set_position(st, axes),
             Action::PresetZero => frames::preset_zero(st, words),
-            Action::Pattern(t) => {
-                let origin = motion::target(st, &plane_words(st, axes));
-                crate::cycles::pattern(st, block, w, words, t, origin, source, sink);
-            }
+            Action::Pattern(t) => crate::cycles::pattern(st, block, w, words, t, source, sink),
             Action::Measure(second) => {
                 references::measure(st, block, w, words, second, source, sink);
             }
@@ -205,8 +202,7 @@ fn axis_codes(
             }
             Action::DynamicLength => {
                 // The tool tip still follows the program; the offset is only recorded.
-                let z = axes[2].map_or(0.0, |z| st.length(z));
-                st.length_comp = Some((0, z));
+                st.length_comp = Some((0, axes[2].map_or(0.0, |z| st.length(z))));
                 st.length_plus = true;
             }
             // Its limits are the G22 block's words (set with the modes).
@@ -224,7 +220,7 @@ fn axis_codes(
 }
 
 /// The first plain words of the three letters from `first` (X, Y, Z or I, J, K), by axis.
-fn axis_words(words: &[Word], first: u8) -> Axes<'_> {
+pub(crate) fn axis_words(words: &[Word], first: u8) -> Axes<'_> {
     let mut axes: Axes<'_> = [None; 3];
     for w in words.iter().filter(|w| w.form == WordForm::Plain) {
         if let Some(i) = w.letter.checked_sub(first).filter(|i| *i < 3) {
@@ -235,13 +231,13 @@ fn axis_words(words: &[Word], first: u8) -> Axes<'_> {
 }
 
 /// `p` with each coordinate that `axes` gives replaced by its word's length (mm).
-fn given(st: &State, axes: &Axes<'_>, p: DVec3) -> DVec3 {
+pub(crate) fn given(st: &State, axes: &Axes<'_>, p: DVec3) -> DVec3 {
     let coordinate = |i: usize| axes[i].map_or(p[i], |w| st.length(w));
     DVec3::new(coordinate(0), coordinate(1), coordinate(2))
 }
 
 /// The in-plane words of `axes` (a hole's position: the normal word is its bottom).
-fn plane_words<'w>(st: &State, axes: &Axes<'w>) -> Axes<'w> {
+pub(crate) fn plane_words<'w>(st: &State, axes: &Axes<'w>) -> Axes<'w> {
     let (u, v) = plane_axes(st.plane);
     let mut plane: Axes<'w> = [None; 3];
     (plane[u], plane[v]) = (axes[u], axes[v]);

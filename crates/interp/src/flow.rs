@@ -143,13 +143,10 @@ impl Index {
         // The program (index into `starts`) that block `at` belongs to.
         let program = self.starts.partition_point(|&s| s <= at).saturating_sub(1);
         let program = u32::try_from(program).ok()?;
-        let first = self
-            .labels
-            .partition_point(|&(p, m, _)| (p, m) < (program, n));
-        self.labels
-            .get(first)
-            .filter(|&&(p, m, _)| p == program && m == n)
-            .map(|&(_, _, block)| block as usize)
+        let labels = &self.labels;
+        let (p, m, block) =
+            *labels.get(labels.partition_point(|&(p, m, _)| (p, m) < (program, n)))?;
+        ((p, m) == (program, n)).then_some(block as usize)
     }
 
     /// The lines of O-word `label`, in text order.
@@ -173,24 +170,19 @@ impl Index {
         searched: &mut u64,
     ) -> Option<(usize, &OWord)> {
         let lines = self.owords(label);
-        if forward {
+        let wanted = |line: &&(usize, OWord)| {
+            *searched += 1;
+            kinds(&line.1)
+        };
+        let found = if forward {
             let after = lines.get(lines.partition_point(|(b, _)| *b <= at)..)?;
-            first_of(after.iter(), kinds, searched)
+            after.iter().find(wanted)
         } else {
             let before = lines.get(..lines.partition_point(|(b, _)| *b < at))?;
-            first_of(before.iter().rev(), kinds, searched)
-        }
+            before.iter().rev().find(wanted)
+        };
+        found.map(|(b, k)| (*b, k))
     }
-}
-
-/// The first of `lines` that is one of `kinds`, counting the lines looked at in `searched`.
-fn first_of<'a>(
-    lines: impl Iterator<Item = &'a (usize, OWord)>,
-    kinds: fn(&OWord) -> bool,
-    searched: &mut u64,
-) -> Option<(usize, &'a OWord)> {
-    let mut lines = lines.inspect(|_| *searched += 1);
-    lines.find(|line| kinds(&line.1)).map(|(b, k)| (*b, k))
 }
 
 /// How many expression terms `block` evaluates at most (counted by `max_work`).

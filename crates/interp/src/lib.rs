@@ -18,7 +18,7 @@ mod states;
 pub use canon::{Arc, Axis, Canon, CanonRecorder, PlaneArc, Source, plane_length, plane_sweep};
 pub use machine::{Interpreter, Piece, Status, run};
 pub use setup::{CornerMode, Machine, Register, Setup, SetupError, ShiftDirection, Units};
-pub use states::{BlockState, States, StatesRun, run_with_states};
+pub use states::{BlockState, States, StatesRun};
 
 /// Receives the canonical events of a running program, in execution order.
 pub trait Sink {
@@ -28,8 +28,7 @@ pub trait Sink {
     /// A straight move to (`x`, `y`, `z`), rapid when `rapid`: emitting the event, with the numbers
     /// in registers for sinks that take moves this way.
     fn straight(&mut self, source: Source, rapid: bool, x: f64, y: f64, z: f64, feed: f64) {
-        let to = glam::DVec3::new(x, y, z);
-        self.emit(source, &Canon::line(rapid, to, feed));
+        self.emit(source, &Canon::line(rapid, glam::DVec3::new(x, y, z), feed));
     }
 
     /// Whether the sink holds all it may: the run then stops before the next block with a

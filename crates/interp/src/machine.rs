@@ -336,11 +336,6 @@ impl Interpreter {
         self.st.diagnostics.take()
     }
 
-    /// The tool-tip position in the machine frame.
-    pub fn position(&self) -> DVec3 {
-        self.st.position
-    }
-
     /// How many blocks have been executed.
     pub fn executed_blocks(&self) -> u64 {
         self.executed
@@ -491,7 +486,7 @@ impl Interpreter {
     /// Ends the run at one of its limits, naming it and the loop the run is in.
     fn limit_reached(&mut self, program: &Program, block: &Block, counted: &MotionCounter<'_>) {
         let machine = &self.st.setup.machine;
-        let (in_loop, loop_span) = self.in_loop(program);
+        let (in_loop, loop_span) = self.in_loop(program).unzip();
         let work = self.work(counted);
         let (blocks, moves) = (self.executed, counted.motions);
         let (runaway, after, why) = if blocks >= machine.max_blocks {
@@ -514,6 +509,7 @@ impl Interpreter {
         } else {
             ("E-MOTION-LIMIT", None)
         };
+        let in_loop = in_loop.unwrap_or_default();
         let message = format!("execution stopped after {after}{in_loop}: {why}");
         self.st.error(span.unwrap_or(block.span), code, message);
         self.status = Status::Finished;
@@ -525,16 +521,12 @@ impl Interpreter {
     }
 
     /// The loop the run is in, for a runaway's message, and the span of its jump back.
-    fn in_loop(&self, program: &Program) -> (String, Option<Span>) {
-        let Some((from, to)) = self.back_jump else {
-            return (String::new(), None);
-        };
-        let (Some(from), Some(to)) = (program.blocks.get(from), program.blocks.get(to)) else {
-            return (String::new(), None);
-        };
+    fn in_loop(&self, program: &Program) -> Option<(String, Span)> {
+        let (from, to) = self.back_jump?;
+        let (from, to) = (program.blocks.get(from)?, program.blocks.get(to)?);
         let (head, back) = (to.line + 1, from.line + 1);
         let words = format!(", in the loop from line {head} to the jump back at line {back}");
-        (words, Some(from.span))
+        Some((words, from.span))
     }
 
     /// Runs the plain motion blocks from the next one through the short path; how many ran.
@@ -630,13 +622,8 @@ impl Interpreter {
         sink: &mut dyn Sink,
     ) -> Flow {
         // Running into another `O` program's line ends the main program (it runs only when called).
-        if block.program().is_some()
-            && self.calls.is_empty()
-            && self
-                .index
-                .as_ref()
-                .is_some_and(|i| i.first_program.is_some_and(|first| first != at))
-        {
+        let first = self.index.as_ref().and_then(|i| i.first_program);
+        if block.program().is_some() && self.calls.is_empty() && first.is_some_and(|f| f != at) {
             let message = "the main program ends here, where the next program starts (it runs only when called)";
             self.st.note(block.span, "N-PROGRAM-END", message);
             return Flow::Stop;
@@ -815,10 +802,7 @@ impl Interpreter {
                 }
             }
             Statement::While { cond, .. } => {
-                let holds = match cond {
-                    Some(c) => self.condition(program, *c)?,
-                    None => true,
-                };
+                let holds = cond.map_or(Ok(true), |c| self.condition(program, c))?;
                 if holds {
                     return Ok(Flow::Next);
                 }
@@ -885,8 +869,7 @@ impl Interpreter {
             }
             OWord::EndSub(value) | OWord::Return(value) => {
                 if let Some(v) = value {
-                    let result = self.eval(program, *v)?;
-                    self.vars.set_named("_value", result);
+                    self.vars.set_named("_value", self.eval(program, *v)?);
                 }
                 match self.calls.last() {
                     Some(frame) if frame.kind == CallKind::OWord(key.clone()) => {
@@ -900,36 +883,26 @@ impl Interpreter {
                 }
             }
             OWord::Call(args) => {
-                let start = index
-                    .owords(&key)
-                    .iter()
-                    .find(|(_, k)| *k == OWord::Sub)
-                    .map(|(b, _)| *b)
-                    .ok_or_else(|| {
-                        let why = match &key {
-                            LabelKey::Name(name) => index.unlinked(&Missing::Name(name.to_string())),
-                            LabelKey::Number(_) => None,
-                        };
-                        let message = match (&key, why) {
-                            (LabelKey::Name(name), _) if !swarf_syntax::is_plain_file_name(name) => {
-                                format!(
-                                    "{shown}: a called subroutine is looked for only beside the program, so its name may not hold a folder, `..` or a root"
-                                )
-                            }
-                            (_, Some(why)) => {
-                                format!("no `{shown} sub` in this program: {why}")
-                            }
-                            _ => format!(
-                                "no `{shown} sub` in this program nor in a file beside it (name.ngc)"
-                            ),
-                        };
-                        Diagnostic::error(block.span, "E-OWORD", message)
-                    })?;
-                let mut values = Vec::with_capacity(args.len());
-                for (i, arg) in args.iter().enumerate().take(30) {
-                    let v = self.eval(program, *arg)?.unwrap_or(0.0);
-                    values.push((u8::try_from(i + 1).unwrap_or(30), v));
-                }
+                let sub = index.owords(&key).iter().find(|(_, k)| *k == OWord::Sub);
+                let Some(&(start, _)) = sub else {
+                    let message = match &key {
+                        LabelKey::Name(name) if !swarf_syntax::is_plain_file_name(name) => format!(
+                            "{shown}: a called subroutine is looked for only beside the program, so its name may not hold a folder, `..` or a root"
+                        ),
+                        LabelKey::Name(name)
+                            if let Some(why) = index.unlinked(&Missing::Name(name.to_string())) =>
+                        {
+                            format!("no `{shown} sub` in this program: {why}")
+                        }
+                        _ => format!(
+                            "no `{shown} sub` in this program nor in a file beside it (name.ngc)"
+                        ),
+                    };
+                    return Err(Diagnostic::error(block.span, "E-OWORD", message));
+                };
+                let values = (args.iter().zip(1..=30))
+                    .map(|(arg, i)| Ok((i, self.eval(program, *arg)?.unwrap_or(0.0))))
+                    .collect::<Result<Vec<_>, Diagnostic>>()?;
                 self.push_call(block, CallKind::OWord(key), at + 1, start + 1, 1)?;
                 self.vars.push_frame(&values);
                 Ok(Flow::Jump(start + 1))
@@ -1046,8 +1019,7 @@ impl Interpreter {
         if let Some(w) = l_word.filter(|w| w.value > MAX_COUNT) {
             self.st.diagnostics.push(count_range(w, "repeats"));
         }
-        let l = l_word.map(|w| w.value);
-        let (number, count) = match (p, l) {
+        let (number, count) = match (p, l_word.map(|w| w.value)) {
             (Some(p), Some(l)) => (p, l),
             // Fanuc: more than four digits in P are the repeat count then the program number.
             (Some(p), None) if p >= 10_000.0 && self.st.dialect != Dialect::LinuxCnc => {

@@ -81,20 +81,18 @@ pub(crate) fn offset_line(
 }
 
 /// An arc under G45–G48: the centre stays, the radius grows or shrinks by the offset, so the
-/// end moves along its radius. Returns the new end (program frame), or `None` (with COR-081)
-/// when the arc is not a 90° or 270° arc given by I/J/K.
-#[allow(clippy::too_many_arguments)]
+/// end moves along its radius. Returns the end (program frame), or `None` (with COR-081) when
+/// the arc is not a 90° or 270° arc given by I/J/K.
 pub(crate) fn offset_arc(
     st: &mut State,
     block: &Block,
-    words: &[Word],
     by_radius: bool,
     center: DVec3,
     end: DVec3,
     ccw: bool,
-) -> Option<Option<DVec3>> {
-    let Some((k, code)) = factor(st, block, words) else {
-        return Some(None);
+) -> Option<DVec3> {
+    let Some((k, code)) = factor(st, block, &block.words) else {
+        return Some(end);
     };
     let (u, v) = plane_axes(st.plane);
     let start = st.program_pos;
@@ -111,15 +109,14 @@ pub(crate) fn offset_arc(
     }
     let r = radius(st, block, code)?;
     let mut rel = end - center;
-    let axis = 3 - u - v;
-    rel[axis] = 0.0;
+    rel[3 - u - v] = 0.0;
     let length = rel.length();
     if length < 1e-12 {
-        return Some(None);
+        return Some(end);
     }
     let mut out = end;
     let grown = rel * ((length + k * r) / length);
     out[u] = center[u] + grown[u];
     out[v] = center[v] + grown[v];
-    Some(Some(out))
+    Some(out)
 }

@@ -362,11 +362,7 @@ impl Setup {
 
 /// Normalises a work offset name (`g54.1 p7` → `G54.1P7`); `None` for names no control has.
 pub(crate) fn canonical_work_offset(name: &str) -> Option<String> {
-    let compact: String = name
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect::<String>()
-        .to_ascii_uppercase();
+    let compact = name.replace(char::is_whitespace, "").to_ascii_uppercase();
     let ok = match compact.as_str() {
         "G54" | "G55" | "G56" | "G57" | "G58" | "G59" => true,
         s if s.starts_with("G54.1P") => s[6..].parse::<u32>().is_ok_and(|p| (1..=48).contains(&p)),

@@ -351,10 +351,7 @@ impl State {
 
     /// The active G codes, one per group, for a state view.
     pub fn active_codes(&self) -> Vec<String> {
-        let g = |n: u32| {
-            self.modal_code(n)
-                .map_or_else(String::new, |v| format!("G{v}"))
-        };
+        let g = |n: u32| (self.modal_code(n)).map_or_else(String::new, |v| format!("G{v}"));
         let motion = match self.motion {
             Some(MotionMode::Cycle(t)) if t % 10 != 0 => 80.0,
             _ => self.modal_code(4001).unwrap_or(80.0),
@@ -432,13 +429,9 @@ impl crate::macros::SystemVariables for State {
         let wcs_axis = |name: &str, i: u32| unit(self.setup.work_offset(name)[i as usize]);
         let syntec = self.dialect == Dialect::Syntec;
         match n {
-            1000 if syntec => Some(Some(match self.motion {
-                Some(MotionMode::Linear) => 1.0,
-                Some(MotionMode::Arc { ccw: false }) => 2.0,
-                Some(MotionMode::Arc { ccw: true }) => 3.0,
-                _ => 0.0,
-            })),
-            1004 if syntec => Some(Some(if self.absolute { 90.0 } else { 91.0 })),
+            // Syntec: the motion mode (0 unless G01–G03), and G90/G91.
+            1000 if syntec => Some(self.modal_code(4001).filter(|&g| g <= 3.0).or(Some(0.0))),
+            1004 if syntec => Some(self.modal_code(4003)),
             // Syntec: the G92 offset of each axis, and the G92.1 rotation.
             1901..=1916 if syntec => {
                 let i = (n - 1901) as usize;
@@ -489,12 +482,9 @@ impl crate::macros::SystemVariables for State {
                 r.length_wear = 0.0;
                 Ok(true)
             }
-            5221..=5343 if self.dialect != Dialect::LinuxCnc => {
+            5221..=5343 if self.dialect != Dialect::LinuxCnc && (n - 5221) % 20 < 3 => {
                 let k = (n - 5221) / 20;
                 let axis = ((n - 5221) % 20) as usize;
-                if axis >= 3 {
-                    return Ok(false);
-                }
                 let name = format!("G{}", 54 + k);
                 let mut o = self.setup.work_offset(&name);
                 o[axis] = mm;

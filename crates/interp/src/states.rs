@@ -54,12 +54,9 @@ impl States {
         }
         let (_, from) = self.checkpoints.iter().rev().find(|(n, _)| *n <= target)?;
         let mut interp = from.clone();
-        let mut discard = Discard;
-        while interp.executed_blocks() < target {
-            if interp.step(program, &mut discard, 1) == Status::Finished {
-                break;
-            }
-        }
+        while interp.executed_blocks() < target
+            && interp.step(program, &mut Discard, 1) != Status::Finished
+        {}
         Some(interp.block_state())
     }
 
@@ -92,20 +89,8 @@ impl Sink for Discard {
     fn emit(&mut self, _source: Source, _event: &Canon) {}
 }
 
-/// Runs a whole program like [`run`](crate::run) and also records the [`States`] to ask the
-/// state at any block.
-pub fn run_with_states(
-    program: &Program,
-    setup: Setup,
-    sink: &mut dyn Sink,
-) -> (Vec<Diagnostic>, States) {
-    let mut run = StatesRun::new(program, setup);
-    while run.step(program, sink, usize::MAX) == Status::Running {}
-    run.finish()
-}
-
-/// A run that records [`States`] in bounded steps, so an editor can spread a long program over
-/// several frames (what [`run_with_states`] does in one call).
+/// A run like [`run`](crate::run) that also records [`States`], in bounded steps, so an editor can
+/// spread a long program over several frames.
 #[derive(Debug, Clone)]
 pub struct StatesRun {
     interp: Interpreter,
@@ -136,9 +121,8 @@ impl StatesRun {
             }
             let executed = self.interp.executed_blocks();
             if executed.is_multiple_of(CHECKPOINT_EVERY) {
-                self.states
-                    .checkpoints
-                    .push((executed, self.interp.snapshot()));
+                let copy = self.interp.snapshot();
+                self.states.checkpoints.push((executed, copy));
             }
             if let Some(first) = self.states.first_run.get_mut(self.interp.next_block)
                 && *first == u32::MAX
@@ -155,10 +139,8 @@ impl StatesRun {
     /// keeping a copy of the interpreter before it: the state at a block of a piece is then a
     /// re-run of that piece alone ([`States::in_piece`]).
     pub fn run_piece(&mut self, piece: &Program, sink: &mut dyn Sink) -> crate::Piece {
-        let executed = self.interp.executed_blocks();
-        self.states
-            .checkpoints
-            .push((executed, self.interp.snapshot()));
+        let copy = (self.interp.executed_blocks(), self.interp.snapshot());
+        self.states.checkpoints.push(copy);
         self.reached += piece.blocks.len();
         self.interp.run_piece(piece, sink)
     }

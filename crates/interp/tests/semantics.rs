@@ -152,7 +152,7 @@ fn stepping_in_small_budgets_gives_the_same_stream() {
         assert!(steps < 100);
     }
     assert_eq!(rec, whole);
-    assert_eq!(interp.position(), DVec3::new(5.0, 0.0, 0.0));
+    assert_eq!(interp.block_state().machine, DVec3::new(5.0, 0.0, 0.0));
 }
 
 #[test]

@@ -5,8 +5,19 @@
 use wasm_bindgen_test::wasm_bindgen_test as test;
 
 use glam::DVec3;
-use swarf_interp::{CanonRecorder, Setup, run_with_states};
-use swarf_syntax::{Dialect, parse};
+use swarf_interp::{CanonRecorder, Setup, Sink, States, StatesRun, Status};
+use swarf_syntax::{Diagnostic, Dialect, Program, parse};
+
+/// Runs a whole program in one call, recording its [`States`].
+fn run_with_states(
+    program: &Program,
+    setup: Setup,
+    sink: &mut dyn Sink,
+) -> (Vec<Diagnostic>, States) {
+    let mut run = StatesRun::new(program, setup);
+    while run.step(program, sink, usize::MAX) == Status::Running {}
+    run.finish()
+}
 
 #[test]
 fn state_before_a_block_has_the_modes_position_and_tool() {
@@ -56,7 +67,6 @@ fn states_deep_into_a_long_run_come_from_the_nearest_copy() {
 
 #[test]
 fn a_run_in_small_steps_records_the_same_as_one_call() {
-    use swarf_interp::{StatesRun, Status};
     let mut text =
         String::from("G90 G21 G17\n#1=0\nWHILE[#1LT40]DO1\nG01 X#1 F100.\n#1=#1+1\nEND1\n");
     for i in 0..5000 {

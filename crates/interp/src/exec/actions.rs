@@ -16,7 +16,6 @@ pub(super) enum Action {
     Metric(bool),
     WorkOffset,
     Dwell,
-    ExactStop,
     PathMode(u32),
     FeedMode(FeedMode),
     SpindleMode(bool),
@@ -53,7 +52,7 @@ pub(super) enum Action {
     StrokeLimit(bool),
     /// LinuxCNC G90.1 (`true`) / G91.1: whether arc centres I/J/K are absolute.
     ArcCentres(bool),
-    /// A mode with nothing to draw (cancels, lathe diameter mode).
+    /// A code with nothing to draw (G09 exact stop, cancels, lathe diameter mode).
     Nothing,
 }
 
@@ -66,15 +65,14 @@ pub(super) fn action(dialect: Dialect, group: Group, tenths: u32) -> Option<Acti
     Some(match (group, tenths) {
         (Group::Motion, 0) => Action::Motion(Some(MotionMode::Rapid)),
         (Group::Motion, 10) => Action::Motion(Some(MotionMode::Linear)),
-        (Group::Motion, 20) => Action::Motion(Some(MotionMode::Arc { ccw: false })),
-        (Group::Motion, 30) => Action::Motion(Some(MotionMode::Arc { ccw: true })),
+        (Group::Motion, t @ (20 | 30)) => Action::Motion(Some(MotionMode::Arc { ccw: t == 30 })),
         (Group::Motion, 330) => Action::Motion(Some(MotionMode::Thread)),
         (Group::Motion | Group::Cycle, 800) => Action::Motion(None),
         (Group::Motion | Group::Cycle, t) if crate::cycles::runs(dialect, t) => {
             Action::Motion(Some(MotionMode::Cycle(t)))
         }
         (_, 40) => Action::Dwell,
-        (_, 90) if !linuxcnc => Action::ExactStop,
+        (_, 90) if !linuxcnc => Action::Nothing,
         (Group::Plane, 170) => Action::Plane(Axis::Z),
         (Group::Plane, 180) => Action::Plane(Axis::Y),
         (Group::Plane, 190) => Action::Plane(Axis::X),

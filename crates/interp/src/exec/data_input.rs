@@ -16,18 +16,15 @@ pub(super) fn data_input(st: &mut State, w: &Word, words: &[Word]) -> bool {
     let linuxcnc = st.dialect == Dialect::LinuxCnc;
     match l {
         Some(2 | 20) => {
-            let name = if l == Some(20) && !linuxcnc {
-                format!("G54.1P{p}")
-            } else {
-                match (st.dialect, p) {
-                    (_, 0) => st.wcs.clone(),
-                    (Dialect::LinuxCnc, 7..=9) => format!("G59.{}", p - 6),
-                    (_, 1..=6) => format!("G{}", 53 + p),
-                    _ => {
-                        let message = format!("G10 L2 P{p} is not a work coordinate system");
-                        st.error(w.span, "E-NUMBER-RANGE", message);
-                        return true;
-                    }
+            let name = match (st.dialect, p) {
+                _ if l == Some(20) && !linuxcnc => format!("G54.1P{p}"),
+                (_, 0) => st.wcs.clone(),
+                (Dialect::LinuxCnc, 7..=9) => format!("G59.{}", p - 6),
+                (_, 1..=6) => format!("G{}", 53 + p),
+                _ => {
+                    let message = format!("G10 L2 P{p} is not a work coordinate system");
+                    st.error(w.span, "E-NUMBER-RANGE", message);
+                    return true;
                 }
             };
             let mut offset = st.setup.work_offset(&name);

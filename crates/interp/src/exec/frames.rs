@@ -55,16 +55,14 @@ pub(super) fn rotation(st: &mut State, w: &Word, words: &[Word], on: bool) {
         st.rotation = None;
         return;
     }
-    let degrees = match find(words, b'R') {
-        Some(r) => match (st.absolute, st.rotation) {
-            (false, Some(prev)) => prev.degrees + st.angle(r),
-            _ => st.angle(r),
-        },
-        None if st.dialect == Dialect::Lnc => {
+    let degrees = match (find(words, b'R'), st.rotation) {
+        (Some(r), Some(prev)) if !st.absolute => prev.degrees + st.angle(r),
+        (Some(r), _) => st.angle(r),
+        (None, _) if st.dialect == Dialect::Lnc => {
             let message = "LNC alarms on G68 without the angle R: the rotation is not turned on";
             return st.fail(w.span, "E-WORD-MISSING", message);
         }
-        None => {
+        (None, _) => {
             let message =
                 "G68 without R rotates by 0° (the angle in the control's parameter is not known)";
             st.warning(w.span, "W-WORD-MISSING", message);
@@ -111,8 +109,7 @@ pub(super) fn mirror(st: &mut State, words: &[Word], on: bool) {
     let none = axes.iter().all(Option::is_none);
     for (i, w) in axes.iter().enumerate() {
         if let (true, Some(w)) = (on, w) {
-            st.mirror_center[i] = st.length(w);
-            st.mirror[i] = -1.0;
+            (st.mirror_center[i], st.mirror[i]) = (st.length(w), -1.0);
         } else if !on && (none || w.is_some()) {
             st.mirror[i] = 1.0;
         }
@@ -137,8 +134,7 @@ pub(super) fn set_position(st: &mut State, axes: &Axes<'_>) {
     }
     for (i, w) in axes.iter().enumerate() {
         if let Some(w) = w {
-            let wanted = st.length(w);
-            st.shift[i] += st.program_pos[i] - wanted;
+            st.shift[i] += st.program_pos[i] - st.length(w);
         }
     }
     st.resync();

@@ -30,6 +30,7 @@ pub(super) fn m_codes(
             30 | 40 | 50 => {
                 let clockwise = (code.tenths != 50).then_some(code.tenths == 30);
                 let rpm = clockwise.map_or(0.0, |_| st.spindle_rpm);
+                st.spindle_dir = clockwise;
                 Canon::Spindle { clockwise, rpm }
             }
             60 => Canon::ToolChange { tool: st.tool },
@@ -54,9 +55,6 @@ pub(super) fn m_codes(
                 continue;
             }
         };
-        if let Canon::Spindle { clockwise, .. } = event {
-            st.spindle_dir = clockwise;
-        }
         crate::corners::emit(st, sink, source, &event);
     }
     requests

@@ -4,13 +4,13 @@ use glam::{DVec2, DVec3};
 use swarf_syntax::{Block, Dialect, Quantity, Word, WordForm};
 
 use super::feeds::move_feed;
-use super::{Axes, MAX_COUNT, axis_words, count_range, plane_words};
+use super::{Axes, MAX_COUNT, axis_words, count_range};
 use crate::machine::find;
 use crate::state::{FeedMode, MotionMode, State, plane_axes};
 use crate::{Arc, Canon, PlaneArc, Sink, Source, plane_length};
 
 /// The program-frame end point of a move programmed with `axes` (G90/G91, polar).
-pub(super) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
+pub(crate) fn target(st: &State, axes: &Axes<'_>) -> DVec3 {
     let mut p = st.program_pos;
     let mut axes = *axes;
     if let Some(pole) = st.polar {
@@ -98,11 +98,7 @@ pub(super) fn motion(
             return arc(st, block, p, (offsets, radius, turns), ccw, source, sink);
         }
         MotionMode::Thread => Canon::line(false, to, thread_feed(st, block, words)),
-        MotionMode::Cycle(t) => {
-            let plane = plane_words(st, axes);
-            let hole = move |st: &State| target(st, &plane);
-            return crate::cycles::run(st, block, words, t, &hole, source, sink);
-        }
+        MotionMode::Cycle(t) => return crate::cycles::run(st, block, words, t, source, sink),
         MotionMode::Linear
             if st.dialect.rules().comma_words
                 && let Some((corner, span)) = corner_word(st, block) =>
@@ -283,23 +279,17 @@ pub(super) fn arc(
     }
     // G45–G48 on an arc: the centre stays, the end moves along its radius by the offset.
     let by_radius = radius.is_some() && offsets.iter().all(Option::is_none);
-    let p = match crate::position::offset_arc(st, block, &block.words, by_radius, center, p, ccw) {
-        Some(Some(q)) => q,
-        Some(None) => p,
-        None => return false,
+    let Some(p) = crate::position::offset_arc(st, block, by_radius, center, p, ccw) else {
+        return false;
     };
     let to = st.to_machine(p);
-    let mut machine_center = st.to_machine(center);
+    let spiral = turns_word.is_some();
+    let mut machine_center = unequal_scaling_center(st, from, p, center, ccw, spiral)
+        .unwrap_or_else(|| st.to_machine(center));
     let normal = 3 - u - v;
     // The centre lies in the start's plane.
     machine_center[normal] = st.position[normal];
-    let program_ccw = ccw;
     let ccw = ccw != st.reverses_arcs();
-    if let Some(c) = unequal_scaling_center(st, from, p, center, program_ccw, turns_word.is_some())
-    {
-        machine_center = c;
-        machine_center[normal] = st.position[normal];
-    }
     let from_machine = st.position;
     // Only a feed in inverse time needs the arc's length and radius.
     let feed_mm_per_min = if st.feed_mode == FeedMode::InverseTime {
@@ -350,10 +340,8 @@ fn unequal_scaling_center(
         c[v] = a[v] + offset.y * factor * s.factors[v].signum();
     } else {
         // The programmed arc's sweep decides between the short and the long way round.
-        let sweep = PlaneArc::new(from, to, center, st.plane, ccw, 0)
-            .sweep
-            .abs();
-        let long = sweep > std::f64::consts::PI;
+        let programmed = PlaneArc::new(from, to, center, st.plane, ccw, 0);
+        let long = programmed.sweep.abs() > std::f64::consts::PI;
         let ccw_scaled = ccw != st.reverses_arcs();
         let half = chord / 2.0;
         let h = (r * r - half * half).max(0.0).sqrt();

@@ -46,7 +46,7 @@ impl Shortcut {
             && st.feed_mode == FeedMode::PerMinute
             && !st.css
             && st.pending.is_none()
-            && st.comp.is_idle()
+            && st.comp.held.is_none()
             && st.cutter_comp == 400;
         Some(Shortcut {
             offsets: direct.then(|| st.base()),
@@ -160,22 +160,17 @@ pub(crate) fn plain_block(
 ) -> Option<bool> {
     let words = &block.words[..];
     let mut axes: Axes<'_> = [None; 3];
-    let PlainWords {
-        mode,
-        centre,
-        feed,
-        spindle,
-        least_increment,
-    } = PlainWords::of(st, short.arcs, words, &mut axes)?;
+    let plain = PlainWords::of(st, short.arcs, words, &mut axes)?;
+    let mode = plain.mode;
     if st.css {
-        spindle_speed(st, spindle, false);
-    } else if let Some(s) = spindle.filter(|s| s.value >= 0.0) {
+        spindle_speed(st, plain.spindle, false);
+    } else if let Some(s) = plain.spindle.filter(|s| s.value >= 0.0) {
         // What `spindle_speed` does at constant spindle speed.
         st.spindle_rpm = s.value;
     }
-    feed_word(st, feed);
+    feed_word(st, plain.feed);
     st.motion = Some(mode);
-    if least_increment {
+    if plain.least_increment {
         note_least_increment(st, LENGTH_LETTERS, words);
     }
     let rapid = mode == MotionMode::Rapid;
@@ -187,7 +182,7 @@ pub(crate) fn plain_block(
             Some(true)
         }
         // No end point and no centre (`G02 R5.`): only the mode is set.
-        _ if axes.iter().any(Option::is_some) || centre => {
+        _ if axes.iter().any(Option::is_some) || plain.centre => {
             motion(st, block, words, &axes, false, source, sink);
             Some(false)
         }

@@ -32,10 +32,8 @@ pub(super) fn reference(
         return;
     }
     let mid = target(st, axes);
-    for (i, w) in axes.iter().enumerate() {
-        if w.is_some() {
-            st.intermediate[i] = Some(mid[i]);
-        }
+    for i in (0..3).filter(|&i| axes[i].is_some()) {
+        st.intermediate[i] = Some(mid[i]);
     }
     let mid_machine = st.to_machine(mid);
     rapid_to(st, mid_machine, source, sink);

@@ -143,12 +143,10 @@ pub(super) fn stroke_limit(st: &mut State, w: &Word, words: &[Word], on: bool) {
         let lo = find(words, *minus).map(|x| st.length(x));
         given |= hi.is_some() || lo.is_some();
         match (hi, lo) {
-            (Some(a), Some(b)) if syntec => {
-                if (a - b).abs() > 1e-9 {
-                    min[i] = a.min(b);
-                    max[i] = a.max(b);
-                }
+            (Some(a), Some(b)) if syntec && (a - b).abs() > 1e-9 => {
+                (min[i], max[i]) = (a.min(b), a.max(b));
             }
+            (Some(_), Some(_)) if syntec => {}
             (None, None) => {}
             _ if syntec => {
                 let message = format!(
@@ -159,20 +157,15 @@ pub(super) fn stroke_limit(st: &mut State, w: &Word, words: &[Word], on: bool) {
                 st.stroke_check = false;
                 return;
             }
-            (hi, lo) => {
-                max[i] = hi.unwrap_or(max[i]);
-                min[i] = lo.unwrap_or(min[i]);
-            }
+            (hi, lo) => (max[i], min[i]) = (hi.unwrap_or(max[i]), lo.unwrap_or(min[i])),
         }
     }
-    // Without limits in the block the machine's parameters apply (not in the setup).
-    st.stroke_zone = given.then_some(StrokeZone {
+    // Without limits in the block the machine's parameters apply (not in the setup); Syntec's
+    // pairs all equal protect nothing.
+    let nothing = syntec && min == DVec3::NEG_INFINITY;
+    st.stroke_zone = (given && !nothing).then_some(StrokeZone {
         min,
         max,
         inside_forbidden: syntec,
     });
-    if syntec && (0..3).all(|i| min[i] == f64::NEG_INFINITY) {
-        // Every pair was equal: nothing is protected.
-        st.stroke_zone = None;
-    }
 }

@@ -170,8 +170,7 @@ pub(super) fn length_comp(st: &mut State, w: &Word, words: &[Word], sign: Option
         st.length_comp = None;
         return true;
     };
-    let h_word = find(words, b'H');
-    let h = match h_word {
+    let h = match find(words, b'H') {
         Some(h) => h.value.round() as u32,
         None if st.dialect == Dialect::LinuxCnc => st.spindle_tool,
         None => st.h_word,
