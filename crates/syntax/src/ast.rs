@@ -61,7 +61,7 @@ impl ExprId {
 }
 
 /// Declares an enum from one row a variant (the variant, its name, its documentation), with
-/// `ALL` (every variant, in order) and the function that names each.
+/// `ALL` (every variant, in order), the function that names each, and `Display` by that name.
 macro_rules! named_enum {
     (
         $(#[$meta:meta])* pub enum $enum:ident;
@@ -82,6 +82,12 @@ macro_rules! named_enum {
                 match self {
                     $($enum::$variant => $name,)*
                 }
+            }
+        }
+
+        impl std::fmt::Display for $enum {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.$fn())
             }
         }
     };

@@ -3,7 +3,6 @@
 mod registry;
 
 use std::borrow::Cow;
-use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
@@ -55,12 +54,6 @@ crate::ast::named_enum! {
     Note    "note"    "Information for the programmer; nothing is wrong.";
     Warning "warning" "The program runs, but probably not as intended.";
     Error   "error"   "The control would alarm or the block cannot be run.";
-}
-
-impl fmt::Display for Severity {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
 }
 
 /// One problem found in a program, located by a byte span.

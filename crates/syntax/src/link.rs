@@ -77,7 +77,7 @@ impl Missing {
     /// or `name.nc` for a name; none for a name that is not [a plain file
     /// name](is_plain_file_name). The CLI looks beside the caller, the editor among its tabs.
     pub fn file_names(&self) -> Vec<String> {
-        let stems: Vec<String> = match self {
+        let mut stems: Vec<String> = match self {
             Missing::Name(name) if !is_plain_file_name(name) => return Vec::new(),
             Missing::Number(n) => ["O", "o", ""]
                 .iter()
@@ -85,16 +85,10 @@ impl Missing {
                 .collect(),
             Missing::Name(name) => vec![name.clone()],
         };
-        let mut names: Vec<String> = Vec::with_capacity(stems.len() * CALLED_FILE_EXTENSIONS.len());
-        for stem in &stems {
-            for e in CALLED_FILE_EXTENSIONS {
-                let name = format!("{stem}{e}");
-                if !names.contains(&name) {
-                    names.push(name);
-                }
-            }
-        }
-        names
+        // `{n:04}` and `{n}` agree from 1000 on; the rest differ, and so do their names.
+        stems.dedup();
+        let name = |s: &String| CALLED_FILE_EXTENSIONS.map(|e| format!("{s}{e}"));
+        stems.iter().flat_map(name).collect()
     }
 }
 
@@ -258,11 +252,8 @@ impl Program {
                 && p.value.fract() == 0.0
             {
                 // Fanuc: more than four digits in P are the repeat count then the number.
-                let number = if p.value >= 10_000.0 && block.word(b'L').is_none() {
-                    p.value % 10_000.0
-                } else {
-                    p.value
-                };
+                let repeats = p.value >= 10_000.0 && block.word(b'L').is_none();
+                let number = if repeats { p.value % 10_000.0 } else { p.value };
                 called.push(Missing::Number(number as u32));
             }
             for s in block.statements() {

@@ -21,7 +21,6 @@ const KEYWORDS: [&str; 6] = ["IF", "GOTO", "WHILE", "DO", "END", "THEN"];
 /// Reads one line with the general reader into the program's blocks, expressions and
 /// diagnostics.
 pub(super) struct LineReader<'a> {
-    pub(super) dialect: Dialect,
     pub(super) rules: &'static Rules,
     pub(super) line: &'a str,
     pub(super) bytes: &'a [u8],
@@ -189,7 +188,7 @@ impl LineReader<'_> {
                 b'%' if at_start => {
                     // Tape start/end mark (the rest of the line belongs to it); Syntec's
                     // `%@MACRO` header marks a macro program.
-                    if self.dialect == Dialect::Syntec
+                    if self.program.dialect == Dialect::Syntec
                         && line[pos..].to_ascii_uppercase().starts_with("%@MACRO")
                     {
                         self.program.syntec_macro = true;
@@ -266,11 +265,8 @@ impl LineReader<'_> {
                     let stray = &line[pos..end];
                     let shown = excerpt(stray);
                     let shown = shown.escape_debug();
-                    let message = if stray.chars().count() == 1 {
-                        format!("unexpected character `{shown}`")
-                    } else {
-                        format!("unexpected characters `{shown}`")
-                    };
+                    let s = if stray.chars().count() == 1 { "" } else { "s" };
+                    let message = format!("unexpected character{s} `{shown}`");
                     self.error(&mut block, pos, end, "E-SYNTAX-CHAR", message);
                     pos = end;
                 }
@@ -439,7 +435,7 @@ impl LineReader<'_> {
             Err(Fail::new(pos, pos + 1, "E-COMMA-WORD", message))
         };
         if let (Ok((_, end)), false) = (&read, self.rules.comma_words) {
-            let dialect = self.dialect.label();
+            let dialect = self.program.dialect.label();
             let message = format!(
                 "{dialect} has no comma words (`,C` chamfer and `,R` corner rounding are LNC and Fanuc syntax)"
             );
@@ -464,7 +460,7 @@ impl LineReader<'_> {
             let (mut word, end) = self.word_from(pos, pos + digits + 1, letter)?;
             word.form = WordForm::Indexed(index);
             if !self.rules.indexed_words {
-                let (text, dialect) = (excerpt(&self.line[pos..end]), self.dialect.label());
+                let (text, dialect) = (excerpt(&self.line[pos..end]), self.program.dialect.label());
                 let message = format!(
                     "`{text}` is Syntec syntax (`F2=` retract feed, `S1=` spindle speed); {dialect} does not read it"
                 );
@@ -479,11 +475,8 @@ impl LineReader<'_> {
     fn word_from(&mut self, pos: usize, letter_at: usize, letter: u8) -> PResult<Word> {
         let value_start = self.skip_blanks(letter_at + 1);
         // An indexed word's `=` sits between the letter's digits and the value.
-        let value_start = if self.bytes.get(value_start) == Some(&b'=') {
-            self.skip_blanks(value_start + 1)
-        } else {
-            value_start
-        };
+        let equals = usize::from(self.bytes.get(value_start) == Some(&b'='));
+        let value_start = self.skip_blanks(value_start + equals);
         let rest = &self.line[value_start..];
         let sign_len = usize::from(rest.starts_with(['+', '-']));
         let after_sign = self.skip_blanks(value_start + sign_len);
@@ -514,7 +507,7 @@ impl LineReader<'_> {
         let value = with_sign(number.value, rest.starts_with('-'));
         let max = usize::from(self.rules.max_digits);
         if max > 0 && significant > max {
-            let (text, dialect) = (excerpt(&self.line[pos..end]), self.dialect.label());
+            let (text, dialect) = (excerpt(&self.line[pos..end]), self.program.dialect.label());
             let message =
                 format!("`{text}` has {significant} digits; {dialect} accepts at most {max}");
             return Err(Fail::new(pos, end, "E-NUMBER-RANGE", message));

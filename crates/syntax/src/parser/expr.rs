@@ -2,7 +2,7 @@
 //! expression arena of the program.
 
 use super::block::{Fail, LineReader, PResult};
-use super::number::unsigned;
+use super::number::scan_decimal;
 use crate::ast::{BinOp, Expr, ExprId, ExprNode, Func};
 use crate::excerpt;
 
@@ -109,10 +109,10 @@ impl LineReader<'_> {
             Some(b'#') => self.variable(start, depth),
             Some(b'[') => self.bracketed(start, depth),
             Some(c) if c.is_ascii_digit() || *c == b'.' => {
-                let Ok((rest, digits)) = unsigned(&self.line[start..]) else {
+                let Some(number) = scan_decimal(self.bytes, start) else {
                     return Err(Fail::new(start, start + 1, "E-EXPR", "expected a number"));
                 };
-                let end = self.line.len() - rest.len();
+                let (end, value) = (number.end, number.value);
                 // `1e3` is no number to a control: refused, not read as 1 and a word `E3`.
                 if matches!(self.bytes.get(end), Some(b'e' | b'E')) {
                     let sign = usize::from(matches!(self.bytes.get(end + 1), Some(b'+' | b'-')));
@@ -127,9 +127,9 @@ impl LineReader<'_> {
                         return Err(Fail::new(start, stop, "E-EXPR", message));
                     }
                 }
-                let value = digits.parse::<f64>().unwrap_or(f64::NAN);
                 if !value.is_finite() || value > 1e15 {
-                    let message = format!("the number `{}` is out of range", excerpt(digits));
+                    let digits = excerpt(&self.line[start..end]);
+                    let message = format!("the number `{digits}` is out of range");
                     return Err(Fail::new(start, end, "E-NUMBER-RANGE", message));
                 }
                 self.push(Expr::Num(value), start, end)
@@ -151,7 +151,7 @@ impl LineReader<'_> {
         let at = self.skip_blanks(start + 1);
         if self.bytes.get(at) == Some(&b'<') {
             if !self.rules.o_words {
-                let label = self.dialect.label();
+                let label = self.program.dialect.label();
                 let message = format!(
                     "named parameters `#<name>` are LinuxCNC syntax; {label} numbers its variables"
                 );
@@ -199,7 +199,7 @@ impl LineReader<'_> {
         if nesting <= max {
             return Ok(());
         }
-        let label = self.dialect.label();
+        let label = self.program.dialect.label();
         let message = format!("brackets nested {nesting} deep; {label} allows {max}");
         let end = self.block_end(start);
         Err(Fail::new(start, end, "E-EXPR-DEPTH", message))

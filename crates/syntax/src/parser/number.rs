@@ -1,22 +1,5 @@
 //! Decimal numbers as the parser reads them, in one pass over the bytes.
 
-use nom::branch::alt;
-use nom::character::complete::{char, digit0, digit1};
-use nom::combinator::opt;
-use nom::{IResult, Parser};
-
-/// Digits with an optional decimal point (`12`, `1.5`, `.5`, `3.`), no sign.
-pub(super) fn unsigned(input: &str) -> IResult<&str, &str> {
-    // The consumed slice is computed from the remainder: nom 8.0's `recognize` drops the
-    // trailing `digit0` of `1.5` (it runs the inner parsers in check mode).
-    let (rest, ()) = alt((
-        (digit1, opt(char('.')), digit0).map(|_| ()),
-        (char('.'), digit1).map(|_| ()),
-    ))
-    .parse(input)?;
-    Ok((rest, &input[..input.len() - rest.len()]))
-}
-
 /// A decimal number scanned from the text: `12`, `1.5`, `.5`, `3.` (no sign).
 pub(super) struct Decimal {
     /// Byte offset just after it.
@@ -98,16 +81,6 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
     use super::*;
-
-    #[test]
-    fn number_forms() {
-        assert_eq!(unsigned("12X"), Ok(("X", "12")));
-        assert_eq!(unsigned("1.5"), Ok(("", "1.5")));
-        assert_eq!(unsigned(".5"), Ok(("", ".5")));
-        assert_eq!(unsigned("3."), Ok(("", "3.")));
-        assert!(unsigned("X").is_err());
-        assert!(unsigned("-").is_err());
-    }
 
     #[test]
     fn fast_decimal_values_match_the_standard_parser() {

@@ -13,11 +13,7 @@ use crate::{Block, Diagnostic, Dialect, ExprNode, LineIndex, LineSource, Program
 pub struct ParseRun {
     program: Program,
     checker: crate::checks::Checker,
-    tape: Tape,
-    /// Byte offset of the next line.
-    offset: usize,
-    /// 0-based number of the next line.
-    line_no: usize,
+    at: ReadPoint,
     done: bool,
     /// Whether lines of plain words take the short reader (always, but in the tests that
     /// compare it with the general one).
@@ -39,10 +35,9 @@ struct Held {
     exprs: usize,
     diagnostics: usize,
     checked: usize,
-    /// Bytes of the blocks and of the expressions counted (dropped with them by
+    /// Bytes of the blocks and expressions counted (dropped with them by
     /// [`ParseRun::clear_blocks`]), and of everything else.
-    block_bytes: usize,
-    expr_bytes: usize,
+    piece_bytes: usize,
     other_bytes: usize,
     /// The byte offset from which the next count is made: a count every
     /// [`Held::COUNT_EVERY`] bytes of text costs little, and passes the bound by no more than
@@ -72,10 +67,10 @@ impl Held {
     fn count(&mut self, program: &Program, checker: &crate::checks::Checker) -> usize {
         self.table = program.lines.line_count().min(max_lines(self.max) + 1) * size_of::<u32>();
         let new_blocks = program.blocks.get(self.blocks..).unwrap_or_default();
-        self.block_bytes += new_blocks.iter().map(Block::held_bytes).sum::<usize>();
+        self.piece_bytes += new_blocks.iter().map(Block::held_bytes).sum::<usize>();
         self.blocks = program.blocks.len();
         let new_exprs = program.exprs.get(self.exprs..).unwrap_or_default();
-        self.expr_bytes += new_exprs.iter().map(ExprNode::held_bytes).sum::<usize>();
+        self.piece_bytes += new_exprs.iter().map(ExprNode::held_bytes).sum::<usize>();
         self.exprs = program.exprs.len();
         for (counted, diagnostics) in [
             (&mut self.diagnostics, program.diagnostics.as_slice()),
@@ -85,7 +80,7 @@ impl Held {
             self.other_bytes += new.iter().map(Diagnostic::held_bytes).sum::<usize>();
             *counted = diagnostics.len();
         }
-        self.block_bytes + self.expr_bytes + self.other_bytes + self.table
+        self.piece_bytes + self.other_bytes + self.table
     }
 
     /// Counts what was read up to `offset` where a count is due there (or `now`), and reports
@@ -120,12 +115,7 @@ impl ParseRun {
                 ..Program::default()
             },
             checker: crate::checks::Checker::new(dialect),
-            // A program that opens with a `%` line (the first line that is not blank) ends at
-            // the next `%` line: what follows the closing tape mark is not read (LinuxCNC
-            // ignores it; on the Fanuc family it is past the end of the tape).
-            tape: Tape::Before,
-            offset: 0,
-            line_no: 0,
+            at: ReadPoint::default(),
             done: false,
             plain_lines: true,
             held: Held::new(MAX_PARSED_BYTES),
@@ -135,20 +125,17 @@ impl ParseRun {
     /// Where the parse has read to: the next line, its byte offset and the tape marks met, so
     /// that [`ParseRun::resume`] reads the same lines again later without the ones before.
     pub fn read_point(&self) -> ReadPoint {
-        ReadPoint {
-            offset: self.offset,
-            line_no: self.line_no,
-            tape: self.tape,
-        }
+        self.at
     }
 
     /// Starts a parse at `at` (a [`ParseRun::read_point`] of a parse of the same text): the
     /// blocks read are those the first parse read there, with their lines and spans, but the
     /// program's line table counts from `at`, not from the text's first line.
     pub fn resume(at: ReadPoint, dialect: Dialect) -> Self {
-        let mut run = ParseRun::new(dialect);
-        (run.offset, run.line_no, run.tape) = (at.offset, at.line_no, at.tape);
-        run
+        ParseRun {
+            at,
+            ..ParseRun::new(dialect)
+        }
     }
 
     /// Lowers the most the parsed program may hold (bytes, see [`MAX_PARSED_BYTES`]) before
@@ -159,12 +146,12 @@ impl ParseRun {
 
     /// The bytes the parsed program holds (see [`MAX_PARSED_BYTES`]), as last counted.
     pub fn held_bytes(&self) -> usize {
-        self.held.block_bytes + self.held.expr_bytes + self.held.other_bytes + self.held.table
+        self.held.piece_bytes + self.held.other_bytes + self.held.table
     }
 
     /// Lines and bytes read so far.
     pub fn progress(&self) -> (usize, usize) {
-        (self.line_no, self.offset)
+        (self.at.line_no, self.at.offset)
     }
 
     /// Reads at most `lines` more lines of `text` (the same text at every step); whether the
@@ -177,21 +164,19 @@ impl ParseRun {
     /// the whole text is read.
     pub fn step_from(&mut self, source: &mut dyn LineSource, lines: usize) -> bool {
         let program = &mut self.program;
+        // The run's state, kept here while the lines are read (stored at the end).
+        let (mut offset, mut next, mut tape) = (self.at.offset, self.at.line_no, self.at.tape);
+        let mut done = self.done;
         // A text of more lines than a parse indexes is read up to that many.
         let most = max_lines(self.held.max);
-        let stop = self.line_no.saturating_add(lines).min(most);
+        let stop = next.saturating_add(lines).min(most);
         // Room for a block a line read in this step (a line is rarely under sixteen bytes),
         // reserved once: a run read in pieces reuses it.
         if program.blocks.capacity() == 0 {
-            let unread = source.len().saturating_sub(self.offset) / 16 + 1;
-            let room = unread.min(stop - self.line_no).min(self.held.most_blocks());
+            let unread = source.len().saturating_sub(offset) / 16 + 1;
+            let room = unread.min(stop - next).min(self.held.most_blocks());
             program.blocks.reserve_exact(room);
         }
-        // The run's state, kept here while the lines are read (stored at the end).
-        let mut next = self.line_no;
-        let mut offset = self.offset;
-        let mut tape = self.tape;
-        let mut done = self.done;
         let text_len = source.len();
         while !done && next < stop {
             // The text from the next line on, as far as the source holds it (whole lines): its
@@ -260,10 +245,7 @@ impl ParseRun {
             let rest = source.line(offset, source.len());
             program.lines.index_from(rest, offset, most + 1);
         }
-        self.line_no = next;
-        self.offset = offset;
-        self.tape = tape;
-        self.done = done;
+        (self.at.offset, self.at.line_no, self.at.tape, self.done) = (offset, next, tape, done);
         done
     }
 
@@ -279,10 +261,7 @@ impl ParseRun {
     pub fn clear_blocks(&mut self) {
         self.program.blocks.clear();
         self.program.exprs.clear();
-        self.held.blocks = 0;
-        self.held.block_bytes = 0;
-        self.held.exprs = 0;
-        self.held.expr_bytes = 0;
+        (self.held.blocks, self.held.exprs, self.held.piece_bytes) = (0, 0, 0);
     }
 
     /// The parsed program (the lines read so far, if the run is not done).
@@ -294,9 +273,11 @@ impl ParseRun {
 }
 
 /// Where a [`ParseRun`] has read to (see [`ParseRun::read_point`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ReadPoint {
+    /// Byte offset of the next line.
     offset: usize,
+    /// 0-based number of the next line.
     line_no: usize,
     tape: Tape,
 }
@@ -308,10 +289,13 @@ impl ReadPoint {
     }
 }
 
-/// Where the reader is with respect to `%` tape marks.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Where the reader is with respect to `%` tape marks. A program that opens with a `%` line
+/// (the first line that is not blank) ends at the next `%` line: what follows the closing tape
+/// mark is not read (LinuxCNC ignores it; on the Fanuc family it is past the end of the tape).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 enum Tape {
     /// Only blank lines so far.
+    #[default]
     Before,
     /// The program opened with a `%` line: the next one closes it.
     Open,
@@ -344,7 +328,6 @@ fn read_general_line(
     offset: usize,
     line_no: u32,
 ) -> (bool, bool) {
-    let dialect = program.dialect;
     if line.len() > MAX_LINE_BYTES {
         // A runaway line (a binary file, a generator gone wrong): read its start only.
         let (cut, len) = (line.floor_char_boundary(MAX_LINE_BYTES), line.len());
@@ -357,8 +340,7 @@ fn read_general_line(
         line = &line[..cut];
     }
     let mut reader = LineReader {
-        dialect,
-        rules: dialect.rules(),
+        rules: program.dialect.rules(),
         line,
         bytes: line.as_bytes(),
         base: offset,

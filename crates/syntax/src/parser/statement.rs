@@ -154,10 +154,8 @@ impl LineReader<'_> {
         if let Ok(label @ 1..=3) = rest[..n].parse::<u8>() {
             return Ok((label, start + n));
         }
-        let (message, end) = (
-            "`DO` and `END` take a loop number from 1 to 3",
-            (start + n).max(at),
-        );
+        let message = "`DO` and `END` take a loop number from 1 to 3";
+        let end = (start + n).max(at);
         Err(Fail::new(keyword, end, "E-LOOP-NUMBER", message))
     }
 
