@@ -126,9 +126,14 @@ fn text_response(status: u16, text: &str) -> Answer {
 /// (404) for anything outside it or with a `..` component.
 fn resolve(root: &Path, url: &str) -> Option<PathBuf> {
     let path = url.split(['?', '#']).next().unwrap_or_default();
-    let decoded = percent_decode(path)?;
+    let decoded = percent_encoding::percent_decode_str(path)
+        .decode_utf8()
+        .ok()?;
+    if decoded.contains(['\0', '\\']) {
+        return None;
+    }
     let mut file = root.to_path_buf();
-    for component in Path::new(&decoded).components() {
+    for component in Path::new(&*decoded).components() {
         match component {
             Component::Normal(part) => file.push(part),
             Component::RootDir | Component::CurDir => {}
@@ -139,25 +144,6 @@ fn resolve(root: &Path, url: &str) -> Option<PathBuf> {
         file.push("index.html");
     }
     inside(root, &file)
-}
-
-/// Decodes `%XX` escapes; `None` for malformed escapes, non-UTF-8 results, NUL or backslash.
-fn percent_decode(input: &str) -> Option<String> {
-    let bytes = input.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i] == b'%' {
-            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
-            out.push(u8::from_str_radix(hex, 16).ok()?);
-            i += 3;
-        } else {
-            out.push(bytes[i]);
-            i += 1;
-        }
-    }
-    let text = String::from_utf8(out).ok()?;
-    (!text.contains(['\0', '\\'])).then_some(text)
 }
 
 /// The MIME type for a file, from its extension.
