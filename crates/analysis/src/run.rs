@@ -290,7 +290,8 @@ struct Pieces {
 /// or calls is then read again whole, linked and run. Dropping it cancels the run.
 #[derive(Debug)]
 pub struct PendingAnalysis {
-    text: ProgramText,
+    /// The job (its text, dialect and setup; the other open files until they are linked).
+    job: Job,
     /// A line of a rope that straddles its chunks, joined for the parser (reused).
     joined: String,
     /// The parse, until the whole text is read.
@@ -301,17 +302,10 @@ pub struct PendingAnalysis {
     toolpath: Toolpath,
     /// The interpreter's run, once the text is read.
     run: Option<StatesRun>,
-    setup: Setup,
-    generation: u64,
-    dialect: Dialect,
     /// The other open files linked for the program's calls.
     linked: Vec<LinkedSource>,
-    /// The other open files to link the program's calls from once it is read.
-    others: Option<Vec<(String, ProgramText)>>,
     /// Whether calls were looked for among open files (rather than files beside the program).
     among_open_files: bool,
-    /// The level of detail the path is simplified at.
-    lod: Option<LodLevel>,
 }
 
 impl PendingAnalysis {
@@ -319,33 +313,20 @@ impl PendingAnalysis {
     /// yet). A file of `job.others` is copied only when the program calls into it, and a call
     /// found in none says so.
     pub fn start(job: Job) -> Self {
-        let Job {
-            generation,
-            text,
-            dialect,
-            setup,
-            others,
-            lod,
-        } = job;
-        let parse = ParseRun::new(dialect);
-        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &setup.machine);
+        let parse = ParseRun::new(job.dialect);
+        let mut toolpath = Toolpath::for_machine(DVec3::ZERO, &job.setup.machine);
         // About a move a line, of some 24 bytes.
-        toolpath.reserve(text.len() / 24);
+        toolpath.reserve(job.text.len() / 24);
         PendingAnalysis {
-            run: Some(StatesRun::new(parse.program(), setup.clone())),
-            text,
+            run: Some(StatesRun::new(parse.program(), job.setup.clone())),
             joined: String::new(),
             parse: Some(parse),
             pieces: Some(Pieces::default()),
             program: Program::default(),
             toolpath,
-            setup,
-            generation,
-            dialect,
             linked: Vec::new(),
-            among_open_files: others.is_some(),
-            others,
-            lod,
+            among_open_files: job.others.is_some(),
+            job,
         }
     }
 
@@ -365,7 +346,7 @@ impl PendingAnalysis {
             }
             let at = parse.read_point();
             let (before, _) = parse.progress();
-            let done = read_lines(&self.text, parse, &mut self.joined, lines);
+            let done = read_lines(&self.job.text, parse, &mut self.joined, lines);
             let (after, _) = parse.progress();
             let read = (after - before).div_ceil(PARSE_LINES_PER_BLOCK).max(1);
             budget = budget.saturating_sub(read);
@@ -407,23 +388,23 @@ impl PendingAnalysis {
 
     /// Starts reading the text again, whole, for a program found to jump, loop or call.
     fn read_whole(&mut self) {
-        self.parse = Some(ParseRun::new(self.dialect));
+        self.parse = Some(ParseRun::new(self.job.dialect));
         self.pieces = None;
         self.run = None;
-        self.toolpath = Toolpath::for_machine(DVec3::ZERO, &self.setup.machine);
+        self.toolpath = Toolpath::for_machine(DVec3::ZERO, &self.job.setup.machine);
     }
 
     /// Links the program's calls from the other open files (when there are any) and starts
     /// the interpreter's run.
     fn link_and_start(&mut self) {
-        if let Some(others) = self.others.take()
+        if let Some(others) = self.job.others.take()
             && !others.is_empty()
         {
-            self.linked =
-                link_open_files(&mut self.program, self.text.len(), self.dialect, &others);
+            let len = self.job.text.len();
+            self.linked = link_open_files(&mut self.program, len, self.job.dialect, &others);
         }
         self.toolpath.reserve(self.program.blocks.len());
-        self.run = Some(StatesRun::new(&self.program, self.setup.clone()));
+        self.run = Some(StatesRun::new(&self.program, self.job.setup.clone()));
     }
 
     /// How far the analysis has got.
@@ -431,7 +412,7 @@ impl PendingAnalysis {
         match (&self.parse, &self.run) {
             (Some(parse), _) => Progress::Reading {
                 read: parse.progress().1,
-                bytes: self.text.len(),
+                bytes: self.job.text.len(),
             },
             (None, run) => Progress::Running {
                 reached: run.as_ref().map_or(0, StatesRun::blocks_reached),
@@ -442,7 +423,7 @@ impl PendingAnalysis {
 
     /// The generation the results will carry.
     pub fn generation(&self) -> u64 {
-        self.generation
+        self.job.generation
     }
 
     /// Runs what is left, then locates the problems (the program's own, and those of the files
@@ -450,6 +431,7 @@ impl PendingAnalysis {
     /// program better: the results, and what is kept for questions about the program.
     pub fn finish(mut self) -> (Results, Kept) {
         while !self.step(usize::MAX) {}
+        let job = self.job;
         let mut diags = self.program.diagnostics.clone();
         let states = match self.run.take() {
             Some(run) => {
@@ -457,7 +439,7 @@ impl PendingAnalysis {
                 diags.extend(run_diags);
                 states
             }
-            None => StatesRun::new(&self.program, self.setup.clone()).finish().1,
+            None => StatesRun::new(&self.program, job.setup.clone()).finish().1,
         };
         diags.sort_by_key(|d| (d.span.start, d.span.end));
         // Diagnostics past the program's own text belong to the files linked after it.
@@ -471,7 +453,7 @@ impl PendingAnalysis {
                 }
             }
         }
-        let problems = locate(self.text.as_text(), &program.lines, &diags);
+        let problems = locate(job.text.as_text(), &program.lines, &diags);
         let mut elsewhere = Vec::new();
         for (i, (at, file)) in program.linked.iter().zip(&self.linked).enumerate() {
             let mut sweep = Sweep::default();
@@ -498,11 +480,11 @@ impl PendingAnalysis {
         };
         let mut sensitive = pieces.sensitive;
         sensitive.note(&program.blocks);
-        let hint = suggest(&self.text, program, &problems, &sensitive);
-        let mut plot = Plot::of(toolpath, &self.setup);
-        plot.lod = self.lod.map(|level| Lod::of(&plot.drawing.points, level));
+        let hint = suggest(&job.text, program, &problems, &sensitive);
+        let mut plot = Plot::of(toolpath, &job.setup);
+        plot.lod = job.lod.map(|level| Lod::of(&plot.drawing.points, level));
         let results = Results {
-            generation: self.generation,
+            generation: job.generation,
             plot,
             problems,
             elsewhere,
@@ -511,11 +493,11 @@ impl PendingAnalysis {
             hint,
         };
         let kept = Kept {
-            generation: self.generation,
+            generation: job.generation,
             program: self.program,
             states,
-            text: self.text,
-            setup: self.setup,
+            text: job.text,
+            setup: job.setup,
             toolpath: Arc::new(self.toolpath),
             points: Arc::clone(&results.plot.drawing.points),
             pieces: pieces.starts,

@@ -122,7 +122,7 @@ impl StockJob {
 
     /// Cuts one piece: the progress, or the finished cut (then nothing is due).
     pub(crate) fn step(&mut self, held: &Held) -> StockCut {
-        let cell = self.run.field().cell_mm();
+        let cell = self.run.simulation.field().cell_mm();
         let mut end = self.done;
         let mut cost = 0.0;
         while end < self.upto && cost < PIECE_CELLS {
@@ -131,13 +131,13 @@ impl StockJob {
             cost += 1.0 + from.distance(to) / cell;
             end += 1;
         }
-        self.run.step(&self.toolpath, end - self.done);
+        self.run.simulation.step(&self.toolpath, end - self.done);
         self.done = end;
         let finished = self.done >= self.upto;
         self.due = !finished;
         let whole = self.upto >= self.toolpath.len();
         let field = finished.then(|| {
-            let f = self.run.field();
+            let f = self.run.simulation.field();
             StockField {
                 heights: f.heights().to_vec(),
                 size: f.size(),
@@ -152,7 +152,9 @@ impl StockJob {
             } => Some((segment, cell_xy)),
             Finding::ShankCut { .. } => None,
         };
-        let rapids = self.run.findings().iter().filter_map(rapid).collect();
+        let rapids = (self.run.simulation.findings().iter())
+            .filter_map(rapid)
+            .collect();
         let located = |kept: &Kept| {
             let span = |line| swarf_stock::line_span(&kept.program.lines, line);
             locate_own(kept, self.run.diagnostics(span))

@@ -161,10 +161,7 @@ impl swarf_syntax::LineSource for RopeLines<'_> {
     }
 
     fn line(&mut self, start: usize, end: usize) -> &str {
-        if start >= end || end > self.rope.len_bytes() {
-            return "";
-        }
-        if !self.reach(start) {
+        if start >= end || end > self.rope.len_bytes() || !self.reach(start) {
             return "";
         }
         let from = start - self.chunk_start;
@@ -182,10 +179,7 @@ impl swarf_syntax::LineSource for RopeLines<'_> {
 
     fn rest(&mut self, start: usize) -> &str {
         // The chunk's whole lines from `start` on, or else the line that straddles chunks.
-        if start >= self.rope.len_bytes() {
-            return "";
-        }
-        if !self.reach(start) {
+        if start >= self.rope.len_bytes() || !self.reach(start) {
             return "";
         }
         let tail = self.chunk.get(start - self.chunk_start..).unwrap_or("");

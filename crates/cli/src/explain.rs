@@ -10,21 +10,46 @@ use swarf_syntax::{Code, DIAGNOSTICS, DiagnosticDef, Dialect};
 
 use crate::{EXIT_ERRORS, EXIT_OK, EXIT_USAGE};
 
+/// Arguments of `swarf explain`.
+#[derive(clap::Args, Debug)]
+pub(crate) struct ExplainArgs {
+    /// The code, address or diagnostic code; omit with --list, --table or --diagnostics.
+    what: Option<String>,
+    /// Only this dialect (default: every dialect that has it).
+    #[arg(long, value_parser = crate::parse_dialect)]
+    dialect: Option<Dialect>,
+    /// List every code of the dialect (fanuc unless --dialect is given).
+    #[arg(long)]
+    list: bool,
+    /// List every diagnostic code with its severity and meaning.
+    #[arg(long)]
+    diagnostics: bool,
+    /// Print the Markdown table of every code group per dialect (the README's feature table),
+    /// or with --diagnostics of every diagnostic code (docs/interpreter.md's).
+    #[arg(long)]
+    table: bool,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
 /// Explains `what` (a code such as `G83`, `g54.1`, `M98`, an address letter such as `Q`, or a
 /// diagnostic code such as `E-ARC-RADIUS`) for `dialect`, or for every dialect when it is
-/// `None`; `list` prints every code of the dialect.
-pub(crate) fn explain(
-    what: Option<&str>,
-    dialect: Option<Dialect>,
-    list: bool,
-    json: bool,
-    out: &mut dyn Write,
-    err: &mut dyn Write,
-) -> Result<i32> {
+/// `None`; `list` prints every code of the dialect, `diagnostics` every diagnostic code, and
+/// `table` the Markdown table of the codes or the diagnostic codes.
+pub(crate) fn explain(args: &ExplainArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32> {
+    let (dialect, list, json) = (args.dialect, args.list, args.json);
+    if args.diagnostics {
+        return diagnostics(args.table, json, out);
+    }
+    if args.table {
+        write!(out, "{}", codes::markdown_table())?;
+        return Ok(EXIT_OK);
+    }
     let (code, defs): (_, Vec<&CodeDef>) = if list {
         (None, codes::codes_of(dialect.unwrap_or_default()).collect())
     } else {
-        let Some(what) = what else {
+        let Some(what) = &args.what else {
             writeln!(
                 err,
                 "swarf explain: name a code (G83, M98), an address letter (Q) or a diagnostic code (E-ARC-RADIUS), or pass --list or --diagnostics"
@@ -100,7 +125,7 @@ fn diagnostic(code: &str, json: bool, out: &mut dyn Write, err: &mut dyn Write) 
 
 /// Lists every diagnostic code: as text, as JSON, or with `table` as the Markdown table of
 /// docs/interpreter.md.
-pub(crate) fn diagnostics(table: bool, json: bool, out: &mut dyn Write) -> Result<i32> {
+fn diagnostics(table: bool, json: bool, out: &mut dyn Write) -> Result<i32> {
     if table {
         writeln!(out, "| code | severity | meaning |\n|---|---|---|")?;
         for d in DIAGNOSTICS {

@@ -84,26 +84,7 @@ enum Command {
     Render(render::RenderArgs),
     /// Explain a G/M code (G83, G54.1, M98) or an address letter (Q) as each control reads it,
     /// or a diagnostic code (E-ARC-RADIUS).
-    Explain {
-        /// The code, address or diagnostic code; omit with --list, --table or --diagnostics.
-        what: Option<String>,
-        /// Only this dialect (default: every dialect that has it).
-        #[arg(long, value_parser = parse_dialect)]
-        dialect: Option<Dialect>,
-        /// List every code of the dialect (fanuc unless --dialect is given).
-        #[arg(long)]
-        list: bool,
-        /// List every diagnostic code with its severity and meaning.
-        #[arg(long)]
-        diagnostics: bool,
-        /// Print the Markdown table of every code group per dialect (the README's feature table),
-        /// or with --diagnostics of every diagnostic code (docs/interpreter.md's).
-        #[arg(long)]
-        table: bool,
-        /// Print JSON instead of text.
-        #[arg(long)]
-        json: bool,
-    },
+    Explain(explain::ExplainArgs),
 }
 
 /// What `--stock` does, in the help of each command that has it.
@@ -146,7 +127,7 @@ fn parse_args(
         })
 }
 
-fn parse_dialect(s: &str) -> Result<Dialect, String> {
+pub(crate) fn parse_dialect(s: &str) -> Result<Dialect, String> {
     s.parse::<Dialect>().map_err(|e| e.to_string())
 }
 
@@ -166,24 +147,7 @@ where
         Command::Canon { file, opts } => canon(&file, &opts, out, err),
         Command::Stats(args) => stats(&args, out, err),
         Command::Render(args) => render::render(&args, out, err),
-        Command::Explain {
-            what,
-            dialect,
-            list,
-            diagnostics,
-            table,
-            json,
-        } => {
-            if diagnostics {
-                explain::diagnostics(table, json, out)
-            } else if table {
-                write!(out, "{}", swarf_syntax::codes::markdown_table())
-                    .map(|()| EXIT_OK)
-                    .map_err(anyhow::Error::from)
-            } else {
-                explain::explain(what.as_deref(), dialect, list, json, out, err)
-            }
-        }
+        Command::Explain(args) => explain::explain(&args, out, err),
     };
     match result {
         Ok(code) => code,
@@ -326,7 +290,7 @@ fn cut_stock(
         return None;
     }
     let mut cut = StockRun::new(path, stock)?;
-    cut.step(path, usize::MAX);
+    cut.simulation.step(path, usize::MAX);
     let diags = cut.diagnostics(|line| loaded.line_span(line));
     Some((cut, diags))
 }
@@ -781,10 +745,10 @@ fn stats(args: &StatsArgs, out: &mut dyn Write, err: &mut dyn Write) -> anyhow::
     let mut cut_figures = None;
     if let Some((cut, more)) = cut_stock(&path, &stock, cut, &loaded) {
         diags = merged(diags, more);
-        let findings = cut.findings();
+        let (findings, field) = (cut.simulation.findings(), cut.simulation.field());
         let rapid = |f: &&Finding| matches!(f, Finding::RapidIntoStock { .. });
         let rapids = findings.iter().filter(rapid).count();
-        let (removed, shanks) = (cut.field().removed_volume(), findings.len() - rapids);
+        let (removed, shanks) = (field.removed_volume(), findings.len() - rapids);
         cut_figures = Some((removed, rapids, shanks));
     }
     let count = |s: Severity| diags.iter().filter(|d| d.severity == s).count();

@@ -11,7 +11,6 @@ use swarf_render::{
     Drawing, HeadlessGpu, OrbitCamera, Projection, StandardView, StockSurface, ViewParams,
     reference_points, view_bounds,
 };
-use swarf_stock::StockRun;
 use swarf_toolpath::Toolpath;
 
 /// Background of the image: the app's dark backplot (sRGB).
@@ -88,7 +87,10 @@ pub(crate) fn render(args: &RenderArgs, out: &mut dyn Write, err: &mut dyn Write
 
     // What the backplot draws, framed as its Fit frames it, with the stock.
     let drawing = Drawing::of(&path, setup.machine.travel_mm);
-    let field = cut.as_ref().filter(|_| args.stock).map(StockRun::field);
+    let field = cut
+        .as_ref()
+        .filter(|_| args.stock)
+        .map(|cut| cut.simulation.field());
     let surface = field.map(|field| StockSurface {
         heights: field.heights(),
         size: field.size(),

@@ -9,7 +9,7 @@ use swarf_interp::Setup;
 use swarf_syntax::{Diagnostic, LineIndex, Span};
 use swarf_toolpath::{SegmentKind, Toolpath};
 
-use crate::{Finding, HeightField, Simulation, Stock, StockError, Tool};
+use crate::{Finding, Simulation, Stock, StockError, Tool};
 
 /// The stock and tools a setup describes (`[stock]`, `[tools.N]`), checked, with the diameters
 /// of its offset registers for the tools it does not describe.
@@ -86,7 +86,9 @@ fn from_table<T: DeserializeOwned>(key: &str, table: &toml::Table) -> Result<T, 
 /// was assumed and what the cut finds as diagnostics.
 #[derive(Debug, Clone)]
 pub struct StockRun {
-    simulation: Simulation,
+    /// The cut: stepped through the toolpath given to [`StockRun::new`], with the stock as cut
+    /// so far and what it found.
+    pub simulation: Simulation,
     /// What was assumed: the 1-based line each note belongs at, its code and message.
     notes: Vec<(u32, &'static str, String)>,
 }
@@ -131,22 +133,6 @@ impl StockRun {
         Some(StockRun { simulation, notes })
     }
 
-    /// Cuts at most `max_segments` more segments of `toolpath` (the one given to
-    /// [`StockRun::new`]); true once every segment is cut.
-    pub fn step(&mut self, toolpath: &Toolpath, max_segments: usize) -> bool {
-        self.simulation.step(toolpath, max_segments)
-    }
-
-    /// The stock as cut so far.
-    pub fn field(&self) -> &HeightField {
-        self.simulation.field()
-    }
-
-    /// What the cut found so far, in segment order.
-    pub fn findings(&self) -> &[Finding] {
-        self.simulation.findings()
-    }
-
     /// The notes on what was assumed and the findings so far as diagnostics, each at
     /// `line_span` of its 1-based line (the toolpath's line numbers; 0 for none).
     pub fn diagnostics(&self, line_span: impl Fn(u32) -> Span) -> Vec<Diagnostic> {
@@ -158,7 +144,7 @@ impl StockRun {
             .notes
             .iter()
             .map(|(line, code, message)| Diagnostic::note(span(*line), code, message.clone()));
-        let findings = self.findings().iter().map(|finding| match *finding {
+        let findings = (self.simulation.findings().iter()).map(|finding| match *finding {
             Finding::RapidIntoStock {
                 line,
                 cell_xy: [x, y],

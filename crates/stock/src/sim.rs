@@ -174,9 +174,4 @@ impl Simulation {
     pub fn findings(&self) -> &[Finding] {
         &self.findings
     }
-
-    /// How many segments have been cut.
-    pub fn segments_done(&self) -> usize {
-        self.next
-    }
 }

@@ -36,7 +36,7 @@ fn cut(program: &str, toml: &str) -> Option<(StockRun, Vec<Found>)> {
     assert!(diags.is_empty(), "{diags:?}");
     let mut cut = StockRun::new(&path, &stock)?;
     let mut steps = 0;
-    while !cut.step(&path, 2) {
+    while !cut.simulation.step(&path, 2) {
         steps += 1;
     }
     assert!(steps > 1);
@@ -138,11 +138,11 @@ fn a_rapid_into_the_stock_is_a_warning_at_its_line_with_the_cell_it_meets() {
     // The slot (50 × 10 mm plus the round ends, 5 deep) and the rapid's 2 mm deep trench.
     let slot = 5.0 * (50.0 * 10.0 + std::f64::consts::PI * 25.0);
     assert!(
-        cut.field().removed_volume() > slot,
+        cut.simulation.field().removed_volume() > slot,
         "{}",
-        cut.field().removed_volume()
+        cut.simulation.field().removed_volume()
     );
-    assert_eq!(cut.findings().len(), 1);
+    assert_eq!(cut.simulation.findings().len(), 1);
 }
 
 #[test]
@@ -182,8 +182,8 @@ fn a_tool_without_its_table_is_cut_from_its_register_or_as_10_mm_with_a_note() {
         diags[0].2,
         "T1 has no `[tools.1]` in the setup: cut as a 10 mm flat end mill"
     );
-    assert_eq!(narrow.field().height_at(45.0, 28.5), Some(0.0));
-    assert_eq!(wide.field().height_at(45.0, 28.5), Some(-5.0));
+    assert_eq!(narrow.simulation.field().height_at(45.0, 28.5), Some(0.0));
+    assert_eq!(wide.simulation.field().height_at(45.0, 28.5), Some(-5.0));
 }
 
 #[test]
@@ -197,7 +197,7 @@ fn without_a_stock_a_box_around_the_feeds_is_assumed_with_a_note() {
         message.contains("X15.000..75.000 Y20.000..30.000 Z-10.000..5.000 mm"),
         "{message}"
     );
-    let stock = cut.field().stock();
+    let stock = cut.simulation.field().stock();
     assert_eq!(stock.min, [15.0, 20.0, -10.0]);
     assert_eq!(stock.max, [75.0, 30.0, 5.0]);
     // The rapid at Z-2 crosses the assumed box's corner beyond the slot.

@@ -6,46 +6,45 @@ use swarf_interp::{Arc, PlaneArc};
 /// Chord tolerance for arc tessellation, in millimetres.
 pub const CHORD_TOLERANCE_MM: f64 = 0.01;
 
-/// What timing an arc needs beyond its plane geometry: its tangents, for the corners at its ends.
-pub(crate) trait ArcDrawing {
-    /// The unit direction of motion at parameter `t` (`None` for a degenerate arc).
-    fn tangent(&self, from: DVec3, to: DVec3, t: f64) -> Option<DVec3>;
-    /// [`ArcDrawing::tangent`] at the start (`end` false) or the end, the angle's cosine and
-    /// sine read off that end's offset from the centre rather than worked out from the angle.
-    fn end_tangent(&self, from: DVec3, to: DVec3, end: bool) -> Option<DVec3>;
-    /// The unit direction of motion where the radius is `r` and the angle has cosine `cos`
-    /// and sine `sin`.
-    fn tangent_with(&self, from: DVec3, to: DVec3, r: f64, cos: f64, sin: f64) -> Option<DVec3>;
+/// The unit direction of motion along `arc` at parameter `t` (`None` for a degenerate arc).
+fn tangent(arc: &PlaneArc, from: DVec3, to: DVec3, t: f64) -> Option<DVec3> {
+    let a = arc.start_angle() + arc.sweep * t;
+    let r = arc.radius + (arc.end_radius - arc.radius) * t;
+    tangent_with(arc, from, to, r, a.cos(), a.sin())
 }
 
-impl ArcDrawing for PlaneArc {
-    fn tangent(&self, from: DVec3, to: DVec3, t: f64) -> Option<DVec3> {
-        let a = self.start_angle() + self.sweep * t;
-        let r = self.radius + (self.end_radius - self.radius) * t;
-        self.tangent_with(from, to, r, a.cos(), a.sin())
+/// [`tangent`] at the start (`end` false) or the end, for the corners at the arc's ends: the
+/// angle's cosine and sine read off that end's offset from the centre rather than worked out
+/// from the angle.
+pub(crate) fn end_tangent(arc: &PlaneArc, from: DVec3, to: DVec3, end: bool) -> Option<DVec3> {
+    let (r, (u, v)) = if end {
+        (arc.end_radius, arc.end_offset)
+    } else {
+        (arc.radius, arc.start_offset)
+    };
+    if r > 0.0 {
+        tangent_with(arc, from, to, r, u / r, v / r)
+    } else {
+        tangent(arc, from, to, f64::from(u8::from(end)))
     }
+}
 
-    fn end_tangent(&self, from: DVec3, to: DVec3, end: bool) -> Option<DVec3> {
-        let (r, (u, v)) = if end {
-            (self.end_radius, self.end_offset)
-        } else {
-            (self.radius, self.start_offset)
-        };
-        if r > 0.0 {
-            self.tangent_with(from, to, r, u / r, v / r)
-        } else {
-            self.tangent(from, to, f64::from(u8::from(end)))
-        }
-    }
-
-    fn tangent_with(&self, from: DVec3, to: DVec3, r: f64, cos: f64, sin: f64) -> Option<DVec3> {
-        let dr = self.end_radius - self.radius;
-        let mut d = DVec3::ZERO;
-        d[self.iu] = dr * cos - r * sin * self.sweep;
-        d[self.iv] = dr * sin + r * cos * self.sweep;
-        d[self.iw] = to[self.iw] - from[self.iw];
-        d.try_normalize()
-    }
+/// The unit direction of motion where the radius is `r` and the angle has cosine `cos` and
+/// sine `sin`.
+fn tangent_with(
+    arc: &PlaneArc,
+    from: DVec3,
+    to: DVec3,
+    r: f64,
+    cos: f64,
+    sin: f64,
+) -> Option<DVec3> {
+    let dr = arc.end_radius - arc.radius;
+    let mut d = DVec3::ZERO;
+    d[arc.iu] = dr * cos - r * sin * arc.sweep;
+    d[arc.iv] = dr * sin + r * cos * arc.sweep;
+    d[arc.iw] = to[arc.iw] - from[arc.iw];
+    d.try_normalize()
 }
 
 /// Points along `arc` after `from`, the last exactly `arc.to`, within [`CHORD_TOLERANCE_MM`].
@@ -67,12 +66,12 @@ mod tests {
         let from = DVec3::new(10.0, 0.0, 0.0);
         let to = DVec3::new(0.0, 10.0, 0.0);
         let ccw = PlaneArc::new(from, to, DVec3::ZERO, Axis::Z, true, 0);
-        let start = ccw.tangent(from, to, 0.0).unwrap();
-        let end = ccw.tangent(from, to, 1.0).unwrap();
+        let start = tangent(&ccw, from, to, 0.0).unwrap();
+        let end = tangent(&ccw, from, to, 1.0).unwrap();
         assert!(start.abs_diff_eq(DVec3::Y, 1e-12), "{start}");
         assert!(end.abs_diff_eq(-DVec3::X, 1e-12), "{end}");
         let cw = PlaneArc::new(from, to, DVec3::ZERO, Axis::Z, false, 0);
-        let start = cw.tangent(from, to, 0.0).unwrap();
+        let start = tangent(&cw, from, to, 0.0).unwrap();
         assert!(start.abs_diff_eq(-DVec3::Y, 1e-12), "{start}");
     }
 
@@ -111,7 +110,7 @@ mod tests {
                 arc.sweep
             );
             for (end, t) in [(false, 0.0), (true, 1.0)] {
-                let (quick, plain) = (arc.end_tangent(from, to, end), arc.tangent(from, to, t));
+                let (quick, plain) = (end_tangent(&arc, from, to, end), tangent(&arc, from, to, t));
                 match (quick, plain) {
                     (Some(q), Some(p)) => assert!(q.abs_diff_eq(p, 1e-9), "case {case}: {q} {p}"),
                     _ => assert_eq!(quick, plain, "case {case}"),

@@ -2,10 +2,10 @@
 
 use std::collections::HashSet;
 
-use glam::DVec3;
+use glam::{BVec3, DVec3};
 use swarf_interp::{Arc, Canon, Machine, Sink, Source, StrokeZone};
 
-use crate::arc::{ArcDrawing, CHORD_TOLERANCE_MM};
+use crate::arc::{CHORD_TOLERANCE_MM, end_tangent};
 use crate::kinematics::Kinematics;
 use crate::planner::{ChordJoin, Join, Note, Timer};
 use crate::timeline::{Dwell, Timeline, dwell_before};
@@ -25,23 +25,12 @@ pub enum SegmentKind {
 /// The twelve edges of the axis-aligned box between `min` and `max`, as (from, to) pairs: the
 /// outline drawn for a machine's travel or a stroke limit.
 pub fn box_edges(min: DVec3, max: DVec3) -> Vec<(DVec3, DVec3)> {
-    let corner = |i: usize| {
-        DVec3::new(
-            if i & 1 == 1 { max.x } else { min.x },
-            if i & 2 == 2 { max.y } else { min.y },
-            if i & 4 == 4 { max.z } else { min.z },
-        )
-    };
-    let mut edges = Vec::with_capacity(12);
-    for a in 0..8usize {
-        for axis in 0..3 {
-            let b = a | 1 << axis;
-            if b != a {
-                edges.push((corner(a), corner(b)));
-            }
-        }
-    }
-    edges
+    let corner = |i: usize| DVec3::select(BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0), max, min);
+    (0..8usize)
+        .flat_map(|a| (0..3).map(move |axis| (a, a | 1 << axis)))
+        .filter(|(a, b)| a != b)
+        .map(|(a, b)| (corner(a), corner(b)))
+        .collect()
 }
 
 /// An axis-aligned box in millimetres.
@@ -317,12 +306,6 @@ impl Toolpath {
         &self.programmed
     }
 
-    /// Whether the segments of `line` were compensated (their programmed motion differs from
-    /// the drawn one and is in [`Toolpath::programmed`]).
-    pub fn is_compensated_line(&self, line: u32) -> bool {
-        self.programmed.iter().any(|(l, _)| *l == line)
-    }
-
     /// Number of segments.
     pub fn len(&self) -> usize {
         self.segments
@@ -511,11 +494,6 @@ impl Toolpath {
         (self.lines.get(segment) == Some(&hole.line)).then_some(i)
     }
 
-    /// The first segment caused by source `line` (1-based), for jumping from code to path.
-    pub fn first_segment_of_line(&self, line: u32) -> Option<usize> {
-        self.lines.iter().position(|&l| l == line)
-    }
-
     /// Records a segment to `to` with `speed` (a straight move's feed in mm/min, an arc chord's
     /// cruise in mm/s) and, for an arc's chord, its join and exit (`chord`), then has the
     /// timer measure and time it.
@@ -573,16 +551,14 @@ impl Toolpath {
         for (k, p) in geometry.points(from, arc.to, count).enumerate() {
             let join = if k == 0 {
                 Join::Corner {
-                    entry: geometry.end_tangent(from, arc.to, false),
+                    entry: end_tangent(&geometry, from, arc.to, false),
                 }
             } else {
                 Join::Continue
             };
-            let exit = if k + 1 == count {
-                geometry.end_tangent(from, arc.to, true)
-            } else {
-                None
-            };
+            let exit = (k + 1 == count)
+                .then(|| end_tangent(&geometry, from, arc.to, true))
+                .flatten();
             self.push(
                 SegmentKind::Arc,
                 p,

@@ -77,16 +77,6 @@ impl Timeline {
         let i = self.end_times.partition_point(|&e| e < t);
         (!self.end_times.is_empty()).then(|| i.min(self.end_times.len() - 1))
     }
-
-    /// How far along segment `i` the tool is at time `t`, from 0 (its start, also while
-    /// dwelling before it) to 1 (its end). Linear in time, a good enough place for a marker.
-    pub fn fraction_at(&self, i: usize, t: f64) -> f64 {
-        match self.span(i) {
-            Some((start, end)) if end > start => ((t - start) / (end - start)).clamp(0.0, 1.0),
-            Some((_, end)) => f64::from(u8::from(t >= end)),
-            None => 1.0,
-        }
-    }
 }
 
 /// Seconds of dwell in `dwells` (in segment order) just before segment `i`.
