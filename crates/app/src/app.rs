@@ -23,7 +23,8 @@ pub struct SwarfApp {
     /// Files: dialogs, the open file, recent files and crash recovery.
     pub host: Host,
     ctx: egui::Context,
-    frames: u64,
+    /// Frames shown so far.
+    pub frames: u64,
     /// Hook called after each painted frame (the desktop screenshot mode uses it).
     after_frame: Option<FrameHook>,
     /// The window title last set.
@@ -72,9 +73,6 @@ impl SwarfApp {
             app.host.recent = files::restore_settings(storage, &mut app.workbench);
             app.workbench.set_tab_dialect(active, shown);
         }
-        #[cfg(target_arch = "wasm32")]
-        app.host.recover();
-        #[cfg(not(target_arch = "wasm32"))]
         app.host.recover(&mut app.workbench);
         app
     }
@@ -82,11 +80,6 @@ impl SwarfApp {
     /// Runs `hook` after every frame with the number of frames shown so far.
     pub fn set_after_frame(&mut self, hook: impl FnMut(&egui::Context, u64) + 'static) {
         self.after_frame = Some(Box::new(hook));
-    }
-
-    /// Frames shown so far.
-    pub fn frames(&self) -> u64 {
-        self.frames
     }
 
     /// Calls `done` once the analysis of the current text is finished and a frame showing it
@@ -188,6 +181,8 @@ impl eframe::App for SwarfApp {
         if let Some(file) = dropped {
             self.host.open_dropped(&mut self.workbench, &file);
         }
+        // Nothing arrives later on the desktop (dialogs answer at once).
+        #[cfg(target_arch = "wasm32")]
         self.host.poll(&mut self.workbench);
         self.wake_idle();
         // A finished analysis that has come is shown by this frame.

@@ -12,17 +12,13 @@ fn read_bounded(path: &Path) -> std::io::Result<Vec<u8>> {
     use std::io::Read as _;
     let file = std::fs::File::open(path)?;
     let refuse = |len: u64| files::too_large(len).map(std::io::Error::other);
-    if let Some(e) = refuse(file.metadata()?.len()) {
-        return Err(e);
-    }
+    refuse(file.metadata()?.len()).map_or(Ok(()), Err)?;
     let mut bytes = Vec::new();
     file.take(swarf_syntax::MAX_FILE_BYTES + 1)
         .read_to_end(&mut bytes)?;
     refuse(bytes.len() as u64).map_or(Ok(bytes), Err)
 }
 
-/// The recovery folder's index of the open tabs.
-const INDEX_FILE: &str = "index";
 /// The recovery folder inside the data folder.
 const RECOVERY_FOLDER: &str = "recovery";
 
@@ -34,8 +30,8 @@ pub const APP_ID: &str = "Swarf";
 pub struct Host {
     /// Recent files, newest first (full paths).
     pub recent: Vec<String>,
-    /// The data folder that holds the recovery folder (none when the platform has none).
-    data: Option<PathBuf>,
+    /// The folder of the recovery records, in the data folder (none when the platform has none).
+    recovery: Option<PathBuf>,
     /// When the recovery records are written or removed.
     clock: AutosaveClock,
     /// Which recovery records are written, and which tabs are not kept.
@@ -56,24 +52,19 @@ impl Host {
             .duration_since(std::time::UNIX_EPOCH)
             .map_or(0, |d| d.as_nanos());
         Host {
-            data: data.into(),
+            recovery: data.into().map(|d| d.join(RECOVERY_FOLDER)),
             book: RecoveryBook::new(&format!("{run:x}{:x}", std::process::id())),
             ..Host::default()
         }
     }
 
-    /// The folder of the recovery records.
-    pub fn recovery_folder(&self) -> Option<PathBuf> {
-        self.data.as_ref().map(|d| d.join(RECOVERY_FOLDER))
-    }
-
     /// Shows the tabs a previous run left with unsaved changes (the other files read again from
     /// disk); the status bar names the tabs recovered and any whose changes could not be read.
     pub fn recover(&mut self, wb: &mut Workbench) -> bool {
-        let Some(dir) = self.recovery_folder() else {
+        let Some(dir) = self.recovery.clone() else {
             return false;
         };
-        let stored = std::fs::read_to_string(dir.join(INDEX_FILE)).ok();
+        let stored = std::fs::read_to_string(dir.join(files::INDEX_KEY)).ok();
         let Some((index, record)) =
             stored.and_then(|r| RecoveryIndex::from_record(&r).map(|index| (index, r)))
         else {
@@ -81,21 +72,23 @@ impl Host {
         };
         let restored = index.restore(
             |key| std::fs::read_to_string(dir.join(record_file(key))).ok(),
-            read_program,
+            |path| {
+                let decoded = swarf_syntax::decode(&std::fs::read(path).ok()?);
+                Some((decoded.text, decoded.encoding))
+            },
         );
         // Records the index does not name are left over from a write never named.
         let named: Vec<String> = index.keys().map(record_file).collect();
         remove_records(&dir, |name| !named.iter().any(|n| n == name));
-        if restored.tabs.is_empty() {
-            files::report_lost(wb, &restored.lost);
-            return false;
+        let any = !restored.tabs.is_empty();
+        if any {
+            wb.restore_tabs(restored.tabs, restored.active);
+            let (tabs, _) = TabState::of(wb, true);
+            self.book.adopt(&tabs, &restored.records, &record);
+            self.clock.settled(wb.generation());
         }
-        wb.restore_tabs(restored.tabs, restored.active);
-        let (tabs, _) = TabState::of(wb, true);
-        self.book.adopt(&tabs, &restored.records, &record);
         files::report_lost(wb, &restored.lost);
-        self.clock.settled(wb.generation());
-        true
+        any
     }
 
     /// Opens the program file at `path`.
@@ -115,9 +108,6 @@ impl Host {
     pub fn open_dropped(&mut self, wb: &mut Workbench, file: &egui::DroppedFileHandle) {
         self.open_path(wb, file.path());
     }
-
-    /// Nothing arrives later on the desktop (dialogs answer at once).
-    pub fn poll(&mut self, _wb: &mut Workbench) {}
 
     /// Carries out the workbench's file requests; stops at one the user cancels.
     pub fn handle(&mut self, wb: &mut Workbench, ctx: &egui::Context) {
@@ -164,9 +154,8 @@ impl Host {
                     return false;
                 };
                 let result = read_bounded(&path)
-                    .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
                     .map_err(|e| e.to_string())
-                    .and_then(|text| wb.import_setup(&text));
+                    .and_then(|bytes| wb.import_setup(&String::from_utf8_lossy(&bytes)));
                 wb.set_message(match result {
                     Ok(()) => format!("Setup read from {}", path.display()),
                     Err(e) => format!("Cannot import {}: {e}", path.display()),
@@ -205,10 +194,8 @@ impl Host {
         if let Some(dir) = path.and_then(|p| Path::new(p).parent()) {
             dialog = dialog.set_directory(dir);
         }
-        match dialog.save_file() {
-            Some(path) => self.save_to(wb, &path),
-            None => false,
-        }
+        let path = dialog.save_file();
+        path.is_some_and(|path| self.save_to(wb, &path))
     }
 
     /// Writes the program to `path` in its encoding (atomically); false when it failed.
@@ -262,7 +249,7 @@ impl Host {
             return;
         }
         let (tabs, active) = TabState::of(wb, true);
-        let Some(dir) = self.recovery_folder() else {
+        let Some(dir) = self.recovery.clone() else {
             let failed = RecoveryBook::all_failed(&tabs, "no data folder");
             if let Some(message) = self.book.report(&failed, &tabs) {
                 wb.set_message(message);
@@ -280,33 +267,32 @@ impl Host {
                     .map_err(|e| e.to_string())
             })
             .collect();
-        let round = self.book.compose(&tabs, active, &writes, &results);
-        let mut failed = round.failed.clone();
+        let mut round = self.book.compose(&tabs, active, &writes, &results);
         let stored = !round.changed
-            || atomic_write(&dir.join(INDEX_FILE), round.record.as_bytes())
-                .map_err(|e| failed = RecoveryBook::all_failed(&tabs, &e.to_string()))
+            || atomic_write(&dir.join(files::INDEX_KEY), round.record.as_bytes())
+                .map_err(|e| round.failed = RecoveryBook::all_failed(&tabs, &e.to_string()))
                 .is_ok();
+        if let Some(message) = self.book.report(&round.failed, &tabs) {
+            wb.set_message(message);
+        }
         self.book.commit(round, stored);
         let stale = self.book.take_stale();
         let stale: Vec<String> = stale.iter().map(|k| record_file(k)).collect();
         remove_records(&dir, |name| stale.iter().any(|s| s == name));
-        if let Some(message) = self.book.report(&failed, &tabs) {
-            wb.set_message(message);
-        }
     }
 
     /// Empties the recovery folder: nothing is unsaved.
     fn clear_recovery(&mut self) {
         self.clock.restart();
         self.book.cleared();
-        if let Some(dir) = self.recovery_folder() {
-            let index = dir.join(INDEX_FILE);
+        if let Some(dir) = &self.recovery {
+            let index = dir.join(files::INDEX_KEY);
             if index.exists()
                 && let Err(e) = std::fs::remove_file(&index)
             {
                 log::warn!("cannot remove the recovery index {}: {e}", index.display());
             }
-            remove_records(&dir, |_| true);
+            remove_records(dir, |_| true);
         }
     }
 }
@@ -331,13 +317,6 @@ fn remove_records(dir: &Path, remove: impl Fn(&str) -> bool) {
             log::warn!("cannot remove the recovery record {name}: {e}");
         }
     }
-}
-
-/// A program file's text and encoding, when it can be read.
-fn read_program(path: &str) -> Option<(String, swarf_syntax::Encoding)> {
-    let bytes = std::fs::read(path).ok()?;
-    let decoded = swarf_syntax::decode(&bytes);
-    Some((decoded.text, decoded.encoding))
 }
 
 /// Environment variable naming a CJK font file to use for the Chinese interface languages.

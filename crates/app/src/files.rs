@@ -524,31 +524,35 @@ pub fn report_lost(wb: &mut Workbench, lost: &[String]) {
     wb.set_message(message.unwrap_or(line));
 }
 
-/// Each encoding's name in the recovery index.
-const ENCODINGS: [(Encoding, &str); 8] = [
-    (Encoding::Utf8, "utf8"),
-    (Encoding::Utf8Bom, "utf8bom"),
-    (Encoding::Gb18030, "gb18030"),
-    (Encoding::Big5, "big5"),
-    (Encoding::Utf16Le, "utf16le"),
-    (Encoding::Utf16Be, "utf16be"),
-    (Encoding::Utf32Le, "utf32le"),
-    (Encoding::Utf32Be, "utf32be"),
-];
-
-fn encoding_name(e: Encoding) -> &'static str {
-    let found = ENCODINGS.iter().find(|(x, _)| *x == e);
-    found.map_or("utf8", |(_, n)| *n)
+/// An encoding's name in the recovery index: its [`Encoding::name`] in lower case, letters and
+/// digits only (`utf8bom`, `gb18030`).
+fn encoding_name(e: Encoding) -> String {
+    let name = e.name().chars().filter(char::is_ascii_alphanumeric);
+    name.map(|c| c.to_ascii_lowercase()).collect()
 }
 
 fn encoding_of(name: &str) -> Option<Encoding> {
-    ENCODINGS.iter().find(|(_, n)| *n == name).map(|(e, _)| *e)
+    Encoding::ALL
+        .into_iter()
+        .find(|&e| encoding_name(e) == name)
 }
 
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
+
+    #[test]
+    fn encodings_keep_their_names_in_the_index() {
+        let names: Vec<String> = Encoding::ALL.into_iter().map(encoding_name).collect();
+        let kept = [
+            "utf8", "utf8bom", "gb18030", "big5", "utf16le", "utf16be", "utf32le", "utf32be",
+        ];
+        assert_eq!(names, kept);
+        for e in Encoding::ALL {
+            assert_eq!(encoding_of(&encoding_name(e)), Some(e));
+        }
+    }
 
     #[test]
     fn recent_files_are_newest_first_without_duplicates() {

@@ -238,6 +238,6 @@ impl SwarfApi {
 
     /// Frames painted so far (the page waits for the first one before it is ready).
     pub fn frames(&self) -> Result<f64, JsValue> {
-        self.with_app(|app| app.frames() as f64)
+        self.with_app(|app| app.frames as f64)
     }
 }

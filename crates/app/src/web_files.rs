@@ -28,19 +28,14 @@ pub const CJK_FONT_URL: &str = "./fonts/wqy-microhei.ttc";
 /// Element id of the hidden file input.
 const PICKER_ID: &str = "swarf-file-picker";
 
-/// What a picked file is for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Purpose {
-    Program,
-    Setup,
-}
-
 /// What the browser finished while the app waited: a file read, a save done or refused.
 enum Arrival {
     /// The CJK font fetched, or why it was not.
     Font(Result<Vec<u8>, String>),
-    /// A file read for `Purpose`, with its handle when it came from the File System Access API.
-    File(Purpose, String, Vec<u8>, Option<Handle>),
+    /// A program file read, with its handle when it came from the File System Access API.
+    File(String, Vec<u8>, Option<Handle>),
+    /// A setup file read.
+    Setup(String, Vec<u8>),
     /// A program `name` picked that is the file kept under the key (its tab's path).
     Reopened(String, Vec<u8>, String),
     /// The file `name` written (its handle to keep, if new) for the (tab, generation) then.
@@ -51,8 +46,8 @@ enum Arrival {
     Message(String),
     /// The recovery records read at the start (`None`: no index), or why they could not be.
     Recovered(Result<Option<StoredTabs>, String>),
-    /// A round of recovery writes ended.
-    Autosaved(Box<WrittenRound>),
+    /// A round of recovery writes ended, and whether its index is stored (or was already).
+    Autosaved(Box<Round>, bool),
 }
 
 /// A file's handle in the File System Access API.
@@ -60,15 +55,6 @@ type Handle = web_sys::FileSystemFileHandle;
 
 /// The recovery index as stored and read, and the texts of the records it names, by key.
 type StoredTabs = (String, RecoveryIndex, HashMap<String, String>);
-
-/// What a round of recovery writes did.
-struct WrittenRound {
-    round: Round,
-    /// Whether its index is stored (or was already).
-    stored: bool,
-    /// The tabs not kept, with why.
-    failed: Vec<(String, String)>,
-}
 
 /// The recovery database.
 type Db = web_sys::IdbDatabase;
@@ -133,7 +119,7 @@ impl Host {
 
     /// Starts reading the tabs this browser kept with unsaved changes; they replace the
     /// workbench's when they are in (see [`Host::poll`]), and nothing is written until then.
-    pub fn recover(&mut self) {
+    pub fn recover(&mut self, _wb: &mut Workbench) {
         self.busy = true;
         let db = self.db.clone();
         self.inbox
@@ -186,7 +172,7 @@ impl Host {
             match file.bytes_async().await {
                 Ok(bytes) => Some(match files::too_large(bytes.len() as u64) {
                     Some(why) => Arrival::Message(format!("Cannot open {name}: {why}")),
-                    None => Arrival::File(Purpose::Program, name, bytes, None),
+                    None => Arrival::File(name, bytes, None),
                 }),
                 Err(e) => {
                     log::warn!("cannot read {name}: {e}");
@@ -206,7 +192,7 @@ impl Host {
                     None => wb.cjk_font_failed("no context"),
                 },
                 Arrival::Font(Err(e)) => wb.cjk_font_failed(&e),
-                Arrival::File(Purpose::Program, name, bytes, handle) => {
+                Arrival::File(name, bytes, handle) => {
                     // The bytes become the text (a 256 MiB file is not held twice).
                     let decoded = swarf_syntax::decode_owned(bytes);
                     let key = handle.map(|h| self.keep_handle(&name, h));
@@ -217,7 +203,7 @@ impl Host {
                     let decoded = swarf_syntax::decode_owned(bytes);
                     wb.open_file(&name, decoded.text, decoded.encoding, Some(key));
                 }
-                Arrival::File(Purpose::Setup, name, bytes, _) => {
+                Arrival::Setup(name, bytes) => {
                     let text = String::from_utf8_lossy(&bytes);
                     match wb.import_setup(&text) {
                         Ok(()) => wb.set_message(format!("Setup read from {name}")),
@@ -227,8 +213,7 @@ impl Host {
                 Arrival::Saved(name, handle, (tab, generation)) => {
                     if wb.active_tab() == tab && wb.generation() == generation {
                         if let Some(handle) = handle {
-                            let key = self.keep_handle(&name, handle);
-                            wb.set_path(Some(key));
+                            wb.set_path(Some(self.keep_handle(&name, handle)));
                         }
                         wb.mark_saved(&name);
                         self.write_recovery(wb);
@@ -247,7 +232,7 @@ impl Host {
                 }
                 Arrival::Message(message) => wb.set_message(message),
                 Arrival::Recovered(result) => self.recovered(wb, result),
-                Arrival::Autosaved(written) => self.autosaved(wb, *written),
+                Arrival::Autosaved(round, stored) => self.autosaved(wb, *round, stored),
             }
         }
     }
@@ -326,7 +311,7 @@ impl Host {
         for request in wb.take_requests() {
             match request {
                 HostRequest::Open | HostRequest::OpenRecent(_) => self.pick_program(),
-                HostRequest::ImportSetup => self.pick(Purpose::Setup, ".toml"),
+                HostRequest::ImportSetup => self.pick(".toml", Arrival::Setup),
                 HostRequest::Save => self.save(wb),
                 HostRequest::SaveAs => self.save_as(wb),
                 HostRequest::ExportSetup => {
@@ -355,7 +340,9 @@ impl Host {
     pub fn pick_program(&self) {
         let extensions = files::PROGRAM_EXTENSIONS.map(|e| format!(".{e}"));
         let Some(picker) = window_function("showOpenFilePicker") else {
-            self.pick(Purpose::Program, &extensions.join(","));
+            self.pick(&extensions.join(","), |name, bytes| {
+                Arrival::File(name, bytes, None)
+            });
             return;
         };
         let extensions = js_sys::Array::from_iter(extensions.iter().map(JsValue::from));
@@ -387,12 +374,12 @@ impl Host {
                     return Some(Arrival::Reopened(name, bytes, key));
                 }
             }
-            Some(Arrival::File(Purpose::Program, name, bytes, Some(handle)))
+            Some(Arrival::File(name, bytes, Some(handle)))
         });
     }
 
-    /// Opens the browser's file picker; the chosen file arrives through [`Host::poll`].
-    fn pick(&self, purpose: Purpose, accept: &str) {
+    /// Opens the browser's file picker; the file chosen arrives as `arrival` in [`Host::poll`].
+    fn pick(&self, accept: &str, arrival: fn(String, Vec<u8>) -> Arrival) {
         let Some(doc) = web_sys::window().and_then(|w| w.document()) else {
             return;
         };
@@ -416,7 +403,7 @@ impl Host {
                 match JsFuture::from(file.array_buffer()).await {
                     Ok(buffer) => {
                         let bytes = js_sys::Uint8Array::new(&buffer).to_vec();
-                        Some(Arrival::File(purpose, name, bytes, None))
+                        Some(arrival(name, bytes))
                     }
                     Err(e) => {
                         log::warn!("cannot read {name}: {e:?}");
@@ -485,32 +472,27 @@ impl Host {
                 };
                 results.push(stored);
             }
-            let round = book.compose(&tabs, active, &writes, &results);
-            let mut failed = round.failed.clone();
+            let mut round = book.compose(&tabs, active, &writes, &results);
             let stored = !round.changed
                 || put(&opened, INDEX_KEY, &JsValue::from_str(&round.record))
                     .await
-                    .map_err(|e| failed = RecoveryBook::all_failed(&tabs, &e))
+                    .map_err(|e| round.failed = RecoveryBook::all_failed(&tabs, &e))
                     .is_ok();
-            Arrival::Autosaved(Box::new(WrittenRound {
-                round,
-                stored,
-                failed,
-            }))
+            Arrival::Autosaved(Box::new(round), stored)
         });
     }
 
     /// Ends a round of recovery writes: removes stale records, says which tabs are not kept.
-    fn autosaved(&mut self, wb: &mut Workbench, written: WrittenRound) {
+    fn autosaved(&mut self, wb: &mut Workbench, round: Round, stored: bool) {
         self.busy = false;
-        self.book.commit(written.round, written.stored);
+        let (tabs, _) = TabState::of(wb, false);
+        if let Some(message) = self.book.report(&round.failed, &tabs) {
+            wb.set_message(message);
+        }
+        self.book.commit(round, stored);
         let stale = self.book.take_stale();
         if !stale.is_empty() {
             self.remove(Some(stale));
-        }
-        let (tabs, _) = TabState::of(wb, false);
-        if let Some(message) = self.book.report(&written.failed, &tabs) {
-            wb.set_message(message);
         }
         self.catch_up(wb);
     }

@@ -172,15 +172,15 @@ impl Drop for WorkerAnalyst {
 impl Analyst for WorkerAnalyst {
     fn send(&mut self, request: Request) -> Option<Reply> {
         match &request {
-            Request::Analyse(job) => self.last_job = Some(job.as_ref().clone()),
+            Request::Analyse(job) => {
+                self.last_job = Some(job.as_ref().clone());
+                self.large = job.text.len() > HOLD_BYTES;
+            }
             Request::Lod { .. } => self.last_lod = Some(request.clone()),
             Request::StateAt { .. } | Request::Stock { .. } => {}
         }
         if let Some(inline) = &mut self.fallback {
             return inline.send(request);
-        }
-        if let Request::Analyse(job) = &request {
-            self.large = job.text.len() > HOLD_BYTES;
         }
         let mut held = self.held.borrow_mut();
         if self.large || !held.requests.is_empty() {
@@ -215,10 +215,7 @@ impl Analyst for WorkerAnalyst {
         }
         // Replies that came before a failure are taken first.
         let reply = self.inbox.borrow_mut().replies.pop_front();
-        let reply = match &mut self.fallback {
-            Some(inline) => reply.or_else(|| inline.try_reply()),
-            None => reply,
-        };
+        let reply = reply.or_else(|| self.fallback.as_mut()?.try_reply());
         if matches!(reply, Some(Reply::Lod { .. })) {
             self.last_lod = None;
         }
@@ -299,10 +296,8 @@ pub(crate) fn copy_chunks<'a>(
     let mut at = 0u32;
     while at < len {
         if rest.is_empty() {
-            match chunks.next() {
-                Some(chunk) => *rest = chunk,
-                None => break,
-            }
+            let Some(chunk) = chunks.next() else { break };
+            *rest = chunk;
         }
         let room = usize::try_from(len - at).unwrap_or(usize::MAX);
         let (head, tail) = rest.split_at(rest.len().min(room));

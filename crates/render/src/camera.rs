@@ -213,10 +213,8 @@ impl OrbitCamera {
         let (free_min, free_max) = (free_min.max(Vec2::ZERO), free_max.min(viewport_px));
         let free = (free_max - free_min).max(Vec2::ONE);
         // The frustum through the free part: its share of the viewport's field of view.
-        let tan_y = (self.fov() * 0.5).tan();
-        let tan_x = tan_y * free.x / viewport_px.y;
-        let tan_y = tan_y * free.y / viewport_px.y;
-        self.fit_tangents(min, max, tan_x, tan_y);
+        let tan = free * (self.fov() * 0.5).tan() / viewport_px.y;
+        self.fit_tangents(min, max, tan.x, tan.y);
         if !min.is_finite() || !max.is_finite() || min.cmpgt(max).any() {
             return;
         }
@@ -361,12 +359,13 @@ impl OrbitCamera {
         self.distance = after;
     }
 
-    /// Projection matrix for a viewport of the given aspect (width / height), NDC depth 0..1.
+    /// Combined view-projection matrix (right-handed, Z up, depth 0..1) for a viewport of the
+    /// given aspect (width / height), for wgpu.
     #[must_use]
-    pub fn projection_matrix(&self, aspect: f32) -> Mat4 {
+    pub fn view_proj(&self, aspect: f32) -> Mat4 {
         let aspect = sane_aspect(aspect);
         let distance = self.dist();
-        match self.projection {
+        let projection = match self.projection {
             Projection::Perspective => {
                 directx::perspective_infinite(self.fov(), aspect, distance * NEAR_FRACTION)
             }
@@ -378,14 +377,9 @@ impl OrbitCamera {
                 let d = 10.0 * (radius + distance) + 1.0;
                 directx::orthographic(-w, w, -h, h, distance - d, distance + d)
             }
-        }
-    }
-
-    /// Combined view-projection matrix (right-handed, Z up, depth 0..1) for wgpu.
-    #[must_use]
-    pub fn view_proj(&self, aspect: f32) -> Mat4 {
+        };
         let (_, up, back) = self.basis();
-        self.projection_matrix(aspect) * look_to_mat4(self.eye(), -back, up)
+        projection * look_to_mat4(self.eye(), -back, up)
     }
 }
 

@@ -56,20 +56,16 @@ impl Compositor {
     /// The bind group that samples `target`; rebuild it when the target is recreated.
     #[must_use]
     pub fn bind(&self, device: &wgpu::Device, target: &RenderTarget) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("swarf_composite_bind_group"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(target.color_view()),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-            ],
-        })
+        let resources = [
+            wgpu::BindingResource::TextureView(target.color_view()),
+            wgpu::BindingResource::Sampler(&self.sampler),
+        ];
+        gpu::bind_group(
+            device,
+            "swarf_composite_bind_group",
+            &self.layout,
+            resources,
+        )
     }
 
     /// Draws the bound target over the pass's current viewport (premultiplied "over").

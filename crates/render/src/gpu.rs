@@ -130,6 +130,24 @@ pub(crate) fn bind_group_layout(
     })
 }
 
+/// A bind group of `layout` with `resources` at bindings 0, 1, … in order.
+pub(crate) fn bind_group<'a>(
+    device: &Device,
+    label: &str,
+    layout: &BindGroupLayout,
+    resources: impl IntoIterator<Item = wgpu::BindingResource<'a>>,
+) -> wgpu::BindGroup {
+    let entries: Vec<_> = (0..)
+        .zip(resources)
+        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
 /// The binding of a uniform buffer of `size` bytes.
 pub(crate) fn uniform(size: u64) -> BindingType {
     BindingType::Buffer {

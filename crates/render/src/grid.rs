@@ -22,14 +22,10 @@ pub fn nice_step(raw: f32) -> f32 {
     }
     let raw = raw.clamp(1.0e-6, 1.0e30);
     let magnitude = 10f32.powf(raw.log10().floor());
-    for mantissa in [1.0, 2.0, 5.0, 10.0] {
-        let step = mantissa * magnitude;
-        // Tolerate rounding in powf/log10 (e.g. raw = 1000 giving 999.99994).
-        if step >= raw * (1.0 - 1.0e-5) {
-            return step;
-        }
-    }
-    10.0 * magnitude
+    let steps = [1.0, 2.0, 5.0, 10.0].map(|mantissa| mantissa * magnitude);
+    // Tolerate rounding in powf/log10 (e.g. raw = 1000 giving 999.99994).
+    let step = steps.into_iter().find(|&step| step >= raw * (1.0 - 1.0e-5));
+    step.unwrap_or(10.0 * magnitude)
 }
 
 /// Polylines (a pen-up point, then the end point) for a grid on the XY plane at z = 0

@@ -133,18 +133,10 @@ impl HeadlessGpu {
 
 /// A colour texture with a matching [`DEPTH_FORMAT`] depth buffer, one sample.
 pub struct RenderTarget {
-    /// Read back on native targets only.
-    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     color: wgpu::Texture,
     color_view: wgpu::TextureView,
     depth_view: wgpu::TextureView,
-    width: u32,
-    height: u32,
 }
-
-/// Bytes per pixel of the RGBA8 formats the targets use.
-#[cfg(not(target_arch = "wasm32"))]
-const BYTES_PER_PIXEL: u32 = 4;
 
 impl RenderTarget {
     /// A `width`×`height` target of `format` (an 8-bit RGBA format for [`Self::read_rgba8`]).
@@ -174,15 +166,13 @@ impl RenderTarget {
             color,
             color_view,
             depth_view,
-            width,
-            height,
         })
     }
 
     /// Width and height in pixels.
     #[must_use]
     pub fn size(&self) -> (u32, u32) {
-        (self.width, self.height)
+        (self.color.width(), self.color.height())
     }
 
     /// The colour texture's view (e.g. to composite it, see [`crate::Compositor`]).
@@ -258,11 +248,13 @@ impl RenderTarget {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
     ) -> Result<Vec<u8>, RenderError> {
-        let row =
-            (self.width * BYTES_PER_PIXEL).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        // Bytes per pixel of the RGBA8 formats the targets use.
+        const BYTES_PER_PIXEL: u32 = 4;
+        let (width, height) = self.size();
+        let row = (width * BYTES_PER_PIXEL).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let readback = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("swarf_readback"),
-            size: u64::from(row) * u64::from(self.height),
+            size: u64::from(row) * u64::from(height),
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -297,14 +289,11 @@ impl RenderTarget {
             self.color.format(),
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
         );
-        let width_bytes = (self.width * BYTES_PER_PIXEL) as usize;
-        let mut pixels = Vec::with_capacity(width_bytes * self.height as usize);
-        {
-            let data = readback.slice(..).get_mapped_range().map_err(failed)?;
-            for line in data.chunks_exact(row as usize) {
-                pixels.extend_from_slice(&line[..width_bytes]);
-            }
-        }
+        let width_bytes = (width * BYTES_PER_PIXEL) as usize;
+        let data = readback.slice(..).get_mapped_range().map_err(failed)?;
+        let lines = data.chunks_exact(row as usize).map(|l| &l[..width_bytes]);
+        let mut pixels = lines.collect::<Vec<_>>().concat();
+        drop(data);
         readback.unmap();
         if bgra {
             for p in pixels.chunks_exact_mut(4) {

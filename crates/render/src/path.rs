@@ -442,14 +442,11 @@ fn write_points(queue: &wgpu::Queue, texture: &wgpu::Texture, points: &[PathPoin
         let texels = part.len().min(width);
         queue.write_texture(
             wgpu::TexelCopyTextureInfo {
-                texture,
-                mip_level: 0,
                 origin: wgpu::Origin3d {
-                    x: 0,
                     y: u32::try_from(row).unwrap_or(u32::MAX),
-                    z: 0,
+                    ..wgpu::Origin3d::ZERO
                 },
-                aspect: wgpu::TextureAspect::All,
+                ..texture.as_image_copy()
             },
             bytemuck::cast_slice(part),
             wgpu::TexelCopyBufferLayout {
@@ -539,20 +536,12 @@ impl PointBatch {
                 let draw_buffer =
                     gpu::uniform_buffer(device, "swarf_draw_uniforms", DRAW_UNIFORMS_SIZE);
                 let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-                let draw_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("swarf_draw_bind_group"),
-                    layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: draw_buffer.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::TextureView(&view),
-                        },
-                    ],
-                });
+                let resources = [
+                    draw_buffer.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(&view),
+                ];
+                let draw_bind_group =
+                    gpu::bind_group(device, "swarf_draw_bind_group", layout, resources);
                 Chunk {
                     first,
                     texture,
@@ -645,20 +634,14 @@ impl PathRenderer {
     ) -> Self {
         let uniform_buffer = gpu::uniform_buffer(device, "swarf_path_uniforms", UNIFORMS_SIZE);
         // Zero-initialised: a zero matrix draws nothing until `prepare`.
-        let bind_group_layout = gpu::bind_group_layout(
+        let layout = gpu::bind_group_layout(
             device,
             "swarf_path_bind_group_layout",
             wgpu::ShaderStages::VERTEX_FRAGMENT,
             &[gpu::uniform(UNIFORMS_SIZE)],
         );
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("swarf_path_bind_group"),
-            layout: &bind_group_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: uniform_buffer.as_entire_binding(),
-            }],
-        });
+        let resources = [uniform_buffer.as_entire_binding()];
+        let bind_group = gpu::bind_group(device, "swarf_path_bind_group", &layout, resources);
         let draw_layout = gpu::bind_group_layout(
             device,
             "swarf_draw_bind_group_layout",
@@ -668,12 +651,7 @@ impl PathRenderer {
                 gpu::texture_2d(wgpu::TextureSampleType::Uint),
             ],
         );
-        let program = Program::new(
-            device,
-            "swarf_path",
-            PATH_WGSL,
-            &[&bind_group_layout, &draw_layout],
-        );
+        let program = Program::new(device, "swarf_path", PATH_WGSL, &[&layout, &draw_layout]);
         let targets = Targets {
             color: color_format,
             depth: depth_format,
@@ -682,7 +660,7 @@ impl PathRenderer {
         Self {
             lines: None,
             overlay: line_pipeline(device, &program, targets, "main"),
-            stock: StockPass::new(device, &bind_group_layout, targets),
+            stock: StockPass::new(device, &layout, targets),
             program,
             targets,
             uniform_buffer,
@@ -768,11 +746,7 @@ impl PathRenderer {
     /// segment once in each of its two passes.
     #[must_use]
     pub fn work(&self) -> u64 {
-        if self.lines.is_some() {
-            2 * self.path.segments()
-        } else {
-            0
-        }
+        self.lines.as_ref().map_or(0, |_| 2 * self.path.segments())
     }
 
     /// Records the draws (stock, path, then grid and axes) into `pass`; viewport and scissor

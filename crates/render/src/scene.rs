@@ -135,9 +135,7 @@ pub fn reference_points(
     marks: &[PathPoint],
 ) -> Vec<PathPoint> {
     let (min, max) = bounds.unwrap_or((Vec3::ONE, Vec3::ZERO));
-    let mut points = grid_points_at(zero, min, max);
-    points.extend_from_slice(marks);
-    points
+    [&grid_points_at(zero, min, max), marks].concat()
 }
 
 /// Line segments (machine coordinates) as `kind` marks.

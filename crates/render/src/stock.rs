@@ -120,8 +120,7 @@ impl StockPass {
             let depth = Some((true, wgpu::CompareFunction::LessEqual, bias));
             let groups = [&self.frame_layout, &self.layout];
             let program = Program::new(device, "swarf_stock", STOCK_WGSL, &groups);
-            let pipeline = program.pipeline(device, "main", self.targets, None, depth);
-            self.pipeline = Some(pipeline);
+            self.pipeline = Some(program.pipeline(device, "main", self.targets, None, depth));
         }
         let side = MAX_STOCK_CELLS.min(device.limits().max_texture_dimension_2d as usize);
         let step = s.size.0.max(s.size.1).div_ceil(side.max(1));
@@ -147,20 +146,12 @@ impl StockPass {
             let (size, format) = ([extent.width, extent.height], wgpu::TextureFormat::R32Float);
             let texture = gpu::texture(device, "swarf_stock_heights", size, format, usage);
             let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("swarf_stock_bind_group"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: self.uniforms.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&view),
-                    },
-                ],
-            });
+            let resources = [
+                self.uniforms.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&view),
+            ];
+            let bind_group =
+                gpu::bind_group(device, "swarf_stock_bind_group", &self.layout, resources);
             // Six vertices a quad over the cells and the two rings round them.
             let vertices = u32::try_from((nx + 3) * (ny + 3) * 6).unwrap_or(0);
             Mesh {
