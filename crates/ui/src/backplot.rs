@@ -3,6 +3,7 @@
 //! and draws with its own depth buffer into an offscreen target when anything visible changed;
 //! `paint` composites that target into egui's render pass, so the app needs no depth setting.
 
+use std::borrow::Cow;
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
 use std::sync::Arc;
@@ -87,15 +88,11 @@ impl SourceText {
     }
 
     /// The text of 1-based `line` without its line ending, if the text has that line.
-    pub fn line(&self, line: u32) -> Option<std::borrow::Cow<'_, str>> {
+    pub fn line(&self, line: u32) -> Option<Cow<'_, str>> {
         let index = usize::try_from(line).ok()?.checked_sub(1)?;
         let text = match &self.text {
             ProgramText::Flat(text) => text,
-            ProgramText::Rope(rope) => {
-                let slice = rope.get_line(index)?;
-                let end = crate::buffer::chars_before_ending(slice);
-                return Some(slice.slice(..end).into());
-            }
+            ProgramText::Rope(rope) => return crate::buffer::line_of(rope, index).map(Cow::from),
         };
         let starts = self.starts.get_or_init(|| {
             let mut starts = Vec::with_capacity(text.len() / 24 + 1);
@@ -249,17 +246,10 @@ pub struct HoverInfo {
     pub kind: Option<Kind>,
 }
 
-/// What a hover pick depended on, so it is not repeated while nothing changes.
-#[derive(Clone, Debug, PartialEq)]
-struct HoverKey {
-    generation: u64,
-    pointer: egui::Pos2,
-    rect: egui::Rect,
-    camera: OrbitCamera,
-    hidden_kinds: u32,
-    /// The stock drawn, by address (0: none).
-    stock: usize,
-}
+/// What a hover pick depended on, so it is not repeated while nothing changes: the scene's
+/// generation, the pointer, the view's rect and camera, the kinds hidden and the stock drawn (by
+/// address, 0: none).
+type HoverKey = (u64, (egui::Pos2, egui::Rect, OrbitCamera), u32, usize);
 
 /// State of one backplot view: camera, selection, playback and display options (by default
 /// the isometric view, fitting the first geometry shown).
@@ -280,12 +270,11 @@ pub struct Backplot {
     zoom_to_selection_pending: bool,
     /// The block whose segments are highlighted.
     selected_line: Option<u32>,
-    /// A line clicked in the view and not yet taken by [`Self::take_picked_line`].
+    /// A line clicked in the view, or playback moved to, not yet taken by
+    /// [`Self::take_picked_line`].
     picked_line: Option<u32>,
     /// The playback bar's state.
     playback: Playback,
-    /// A line playback moved to and not yet taken by [`Self::take_playback_line`].
-    playback_line: Option<u32>,
     /// Kinds not drawn (and not picked).
     hidden_kinds: u32,
     /// Colour by kind or by tool.
@@ -327,8 +316,7 @@ impl Backplot {
             compositor: Compositor::new(&render_state.device, render_state.target_format, 1),
             views: HashMap::new(),
         };
-        let mut renderer = render_state.renderer.write();
-        renderer.callback_resources.insert(resources);
+        (render_state.renderer.write().callback_resources).insert(resources);
         ctx.data_mut(|d| d.insert_temp(installed_key(), true));
     }
 
@@ -363,7 +351,8 @@ impl Backplot {
         &self.camera
     }
 
-    /// The 1-based source line clicked in the view since the last call (the editor goes there).
+    /// The 1-based source line clicked in the view, or playback moved to, since the last call
+    /// (the editor goes there).
     pub fn take_picked_line(&mut self) -> Option<u32> {
         self.picked_line.take()
     }
@@ -392,14 +381,8 @@ impl Backplot {
     pub fn playback_bar(&mut self, ui: &mut egui::Ui, scene: &Scene) {
         self.playback.ui(ui, scene);
         if let Some(line) = self.playback.take_line() {
-            self.selected_line = Some(line);
-            self.playback_line = Some(line);
+            (self.selected_line, self.picked_line) = (Some(line), Some(line));
         }
-    }
-
-    /// The 1-based source line playback moved to since the last call (the editor goes there).
-    pub fn take_playback_line(&mut self) -> Option<u32> {
-        self.playback_line.take()
     }
 
     /// Whether segments of `kind` are drawn.
@@ -490,8 +473,7 @@ impl Backplot {
         self.handle_picking(&response, rect, scene);
         self.last_rect = Some(rect);
         let selection = self.selection_runs(scene);
-        if self.zoom_to_selection_pending {
-            self.zoom_to_selection_pending = false;
+        if std::mem::take(&mut self.zoom_to_selection_pending) {
             let bounds = selection
                 .iter()
                 .filter_map(|run| segment_bounds(&scene.points, run.clone()))
@@ -781,15 +763,10 @@ impl Backplot {
             return;
         };
         let stock = self.drawn_stock(scene);
-        let key = HoverKey {
-            generation: scene.generation,
-            pointer,
-            rect,
-            camera: self.camera,
-            hidden_kinds: self.hidden(),
-            stock: stock.map_or(0, |s| Arc::as_ptr(&s) as usize),
-        };
-        if self.hover_key.as_ref() != Some(&key) {
+        let stock = stock.map_or(0, |s| Arc::as_ptr(&s) as usize);
+        let view = (pointer, rect, self.camera);
+        let key = (scene.generation, view, self.hidden(), stock);
+        if self.hover_key != Some(key) {
             self.hover = self.pick(scene, rect, pointer);
             self.stock_hover = self.stock_point(scene, rect, pointer);
             self.hover_key = Some(key);
@@ -1067,8 +1044,8 @@ struct GpuView {
 
 /// A picture drawn into its own target a piece a frame.
 struct Next {
-    target: RenderTarget,
-    bind_group: wgpu::BindGroup,
+    /// The target and the bind group that composites it.
+    target: (RenderTarget, wgpu::BindGroup),
     /// The work drawn so far (see [`PathRenderer::paint_part`]); `None`: nothing is being
     /// drawn, the target waits to be used.
     done: Option<u64>,
@@ -1198,11 +1175,7 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             // answers the hand that moves it.
             let piecewise = view.new_points && view.renderer.work() > FRAME_WORK;
             if piecewise && view.next.is_none() {
-                view.next = new_target().map(|(target, bind_group)| Next {
-                    target,
-                    bind_group,
-                    done: None,
-                });
+                view.next = new_target().map(|target| Next { target, done: None });
             }
             if let Some(next) = view.next.as_mut().filter(|_| piecewise) {
                 next.done = Some(0);
@@ -1221,15 +1194,13 @@ impl egui_wgpu::CallbackTrait for BackplotCallback {
             let work = view.renderer.work();
             let part = done..(done + FRAME_WORK).min(work);
             let clear = (done == 0).then_some(wgpu::Color::TRANSPARENT);
-            next.target
-                .draw_part(egui_encoder, clear, &view.renderer, part.clone());
+            (next.target.0).draw_part(egui_encoder, clear, &view.renderer, part.clone());
             next.done = Some(part.end);
             if part.end >= work {
                 // Complete: shown from now on; the picture it replaces takes its place.
                 next.done = None;
-                if let Some((target, bind_group)) = &mut view.target {
+                if let Some(target) = &mut view.target {
                     std::mem::swap(target, &mut next.target);
-                    std::mem::swap(bind_group, &mut next.bind_group);
                 }
             } else {
                 self.ctx.request_repaint();

@@ -9,11 +9,12 @@ use std::sync::Arc;
 
 use ropey::Rope;
 
-/// Characters of the rope line `slice` without its line ending (`\n`, `\r\n` or `\r`).
-pub(crate) fn chars_before_ending(slice: ropey::RopeSlice<'_>) -> usize {
+/// 0-based `line` of `rope` without its line ending (`\n`, `\r\n` or `\r`), if it has one.
+pub(crate) fn line_of(rope: &Rope, line: usize) -> Option<ropey::RopeSlice<'_>> {
+    let slice = rope.get_line(line)?;
     let n = slice.len_chars();
     let n = n - usize::from(n > 0 && slice.char(n - 1) == '\n');
-    n - usize::from(n > 0 && slice.char(n - 1) == '\r')
+    Some(slice.slice(..n - usize::from(n > 0 && slice.char(n - 1) == '\r')))
 }
 
 /// A rope holding the program text, with a flat copy made on demand.
@@ -121,20 +122,12 @@ impl Buffer {
 
     /// Characters of 0-based `line` without its line ending (`\n`, `\r\n`, `\r`).
     pub fn line_len_chars(&self, line: usize) -> usize {
-        if line >= self.len_lines() {
-            return 0;
-        }
-        chars_before_ending(self.rope.line(line))
+        line_of(&self.rope, line).map_or(0, |l| l.len_chars())
     }
 
     /// The text of 0-based `line` without its line ending (empty past the end).
     pub fn line_text(&self, line: usize) -> Cow<'_, str> {
-        if line >= self.len_lines() {
-            return Cow::Borrowed("");
-        }
-        let start = self.rope.line_to_char(line);
-        let end = start + self.line_len_chars(line);
-        self.rope.slice(start..end).into()
+        line_of(&self.rope, line).map_or(Cow::Borrowed(""), Cow::from)
     }
 
     /// The characters `chars` (clamped to the text) as a string.
@@ -144,32 +137,16 @@ impl Buffer {
         String::from(self.rope.slice(start..end))
     }
 
-    /// Inserts `text` at character `at` (clamped to the text).
-    pub fn insert(&mut self, at: usize, text: &str) {
-        if text.is_empty() {
-            return;
-        }
-        self.flat.take();
-        self.rope.insert(at.min(self.len_chars()), text);
-    }
-
-    /// Removes the characters `chars` (clamped to the text).
-    pub fn remove(&mut self, chars: Range<usize>) {
-        let end = chars.end.min(self.len_chars());
-        let start = chars.start.min(end);
-        if start == end {
-            return;
-        }
-        self.flat.take();
-        self.rope.remove(start..end);
-    }
-
-    /// Replaces the characters `chars` with `text`; the character after the inserted text.
+    /// Replaces the characters `chars` (clamped to the text) with `text`; the character after
+    /// the inserted text.
     pub fn replace(&mut self, chars: Range<usize>, text: &str) -> usize {
         let end = chars.end.min(self.len_chars());
         let start = chars.start.min(end);
-        self.remove(start..end);
-        self.insert(start, text);
+        if start < end || !text.is_empty() {
+            self.flat.take();
+            self.rope.remove(start..end);
+            self.rope.insert(start, text);
+        }
         start + text.chars().count()
     }
 }

@@ -103,23 +103,17 @@ pub fn byte_of_char(text: &str, chars: usize) -> usize {
 
 /// Converts sorted, non-overlapping byte ranges into character ranges in one pass over `text`.
 pub fn char_ranges(text: &str, bytes: &[Range<usize>]) -> Vec<Range<usize>> {
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut chars = 0;
-    let mut at = 0;
-    let advance = |to: usize, at: &mut usize, chars: &mut usize| {
+    let (mut at, mut chars) = (0, 0);
+    let mut advance = |to: usize| {
         let to = to.min(text.len());
-        if to > *at {
-            *chars += text.get(*at..to).map_or(0, |t| t.chars().count());
-            *at = to;
+        if to > at {
+            chars += text.get(at..to).map_or(0, |t| t.chars().count());
+            at = to;
         }
-        *chars
+        chars
     };
-    for r in bytes {
-        let start = advance(r.start, &mut at, &mut chars);
-        let end = advance(r.end, &mut at, &mut chars);
-        out.push(start..end);
-    }
-    out
+    let ranges = bytes.iter().map(|r| advance(r.start)..advance(r.end));
+    ranges.collect()
 }
 
 /// Converts a byte offset into a character index of `text` (clamped to its end).
@@ -195,27 +189,19 @@ fn comment_line(line: &str, semicolon: bool) -> String {
     let mut out = String::from(indent);
     let mut rest = rest;
     while !rest.is_empty() {
-        match rest.find('(') {
-            Some(0) => {
-                let end = rest.find(')').map_or(rest.len(), |j| j + 1);
-                out.push_str(&rest[..end]);
-                rest = &rest[end..];
-            }
-            found => {
-                let end = found.unwrap_or(rest.len());
-                let code = &rest[..end];
-                let trimmed = code.trim_end();
-                if trimmed.trim().is_empty() {
-                    out.push_str(code);
-                } else {
-                    out.push('(');
-                    out.push_str(trimmed);
-                    out.push(')');
-                    out.push_str(&code[trimmed.len()..]);
-                }
-                rest = &rest[end..];
-            }
+        // A comment, or the code up to the next one.
+        let end = match rest.find('(') {
+            Some(0) => rest.find(')').map_or(rest.len(), |j| j + 1),
+            found => found.unwrap_or(rest.len()),
+        };
+        let (piece, after) = rest.split_at(end);
+        let code = piece.trim_end();
+        if piece.starts_with('(') || code.trim().is_empty() {
+            out.push_str(piece);
+        } else {
+            out.push_str(&format!("({code}){}", &piece[code.len()..]));
         }
+        rest = after;
     }
     out.push_str(cr);
     out
@@ -322,19 +308,11 @@ pub fn renumber(text: &str, options: RenumberOptions, dialect: Dialect) -> Renum
 /// Where the block's words start on `line` (past indentation and `/`, `/1`–`/9`); `None`: none.
 fn block_start(line: &str, dialect: Dialect) -> Option<usize> {
     let bytes = line.as_bytes();
-    let mut i = 0;
-    let skip_space = |i: &mut usize| {
-        while bytes.get(*i).is_some_and(|b| *b == b' ' || *b == b'\t') {
-            *i += 1;
-        }
-    };
-    skip_space(&mut i);
+    let skip_space = |i: usize| i + bytes[i..].iter().take_while(|b| b" \t".contains(b)).count();
+    let mut i = skip_space(0);
     if bytes.get(i) == Some(&b'/') {
-        i += 1;
-        if bytes.get(i).is_some_and(u8::is_ascii_digit) {
-            i += 1;
-        }
-        skip_space(&mut i);
+        i += 1 + usize::from(bytes.get(i + 1).is_some_and(u8::is_ascii_digit));
+        i = skip_space(i);
     }
     let first = *bytes.get(i)?;
     let no_block = match first {

@@ -105,14 +105,8 @@ pub fn highlight(text: &str, dialect: Dialect, font: &FontId) -> LayoutJob {
                 }
             }
             _ => {
-                // Any other run of characters up to the next interesting one.
-                i += text[i..].chars().next().map_or(1, char::len_utf8);
-                while i < bytes.len()
-                    && !bytes[i].is_ascii_alphabetic()
-                    && !b"(;/#".contains(&bytes[i])
-                {
-                    i += text[i..].chars().next().map_or(1, char::len_utf8);
-                }
+                // Any other run up to the next interesting character (ASCII: a byte of its own).
+                i = run(i + 1, |b| !b.is_ascii_alphabetic() && !b"(;/#".contains(b));
                 palette::TEXT
             }
         };
@@ -132,8 +126,8 @@ pub struct EditorOutput {
     pub ends_line: bool,
     /// 1-based line of the cursor, when the editor has one.
     pub cursor_line: Option<u32>,
-    /// The selection in characters (start ≤ end), when the editor has one.
-    pub selection: Option<std::ops::Range<usize>>,
+    /// The selection in characters (start ≤ end).
+    pub selection: std::ops::Range<usize>,
 }
 
 /// Most find matches marked in the text at once.
@@ -163,7 +157,7 @@ pub fn hover_text(text: &str, dialect: Dialect, at: usize, problems: &[Problem])
         .filter(|p| p.chars.start <= at && at < p.chars.end.max(p.chars.start + 1))
         .map(|p| format!("{} [{}]: {}", p.severity.as_str(), p.code, p.message))
         .collect();
-    let byte = text.char_indices().nth(at).map_or(text.len(), |(b, _)| b);
+    let byte = commands::byte_of_char(text, at);
     let bytes = text.as_bytes();
     // Back to the word's letter: over the digits, point and sign of its value.
     let mut start = byte.min(bytes.len());

@@ -5,7 +5,7 @@
 use std::cell::Cell;
 use std::collections::HashMap;
 use std::fmt::Display;
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, LazyLock};
 
 /// An interface language.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -69,7 +69,7 @@ pub fn tr_in(lang: Lang, english: &'static str) -> &'static str {
     if lang == Lang::En {
         return english;
     }
-    let (hans, hant) = index().get(english).copied().unwrap_or((english, english));
+    let (hans, hant) = INDEX.get(english).copied().unwrap_or((english, english));
     if lang == Lang::ZhHans { hans } else { hant }
 }
 
@@ -90,10 +90,9 @@ pub fn trf(template: &'static str, args: &[&dyn Display]) -> String {
     out
 }
 
-fn index() -> &'static HashMap<&'static str, (&'static str, &'static str)> {
-    static INDEX: OnceLock<HashMap<&'static str, (&'static str, &'static str)>> = OnceLock::new();
-    INDEX.get_or_init(|| table().map(|(en, s, t)| (en, (s, t))).collect())
-}
+/// The table's Chinese forms by their English.
+static INDEX: LazyLock<HashMap<&str, (&str, &str)>> =
+    LazyLock::new(|| table().map(|(en, s, t)| (en, (s, t))).collect());
 
 /// The name egui knows the CJK font by.
 pub const CJK_FONT_NAME: &str = "swarf-cjk";
@@ -191,7 +190,7 @@ mod tests {
                     let key = &rest[..end];
                     looked_up += 1;
                     assert!(
-                        index().contains_key(key),
+                        INDEX.contains_key(key),
                         "`{key}` is looked up but has no translations"
                     );
                 }

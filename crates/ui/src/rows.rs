@@ -5,16 +5,15 @@
 //! never typed into the program).
 
 use std::ops::Range;
-use std::sync::Arc;
 
 use egui::text::CCursor;
-use egui::{Event, FontId, Galley, ImeEvent, Key, Pos2, Rect, Sense, Stroke, Ui};
+use egui::{Event, FontId, ImeEvent, Key, Pos2, Rect, Sense, Stroke, Ui};
 use swarf_syntax::Dialect;
 
 use crate::analysis::Problem;
 use crate::buffer::Buffer;
 use crate::commands::{self, Completion};
-use crate::completion::{Popup, PopupKey};
+use crate::completion::Popup;
 use crate::editor::{
     EditorOutput, HIGHLIGHTS_SHOWN, gutter_tooltip, highlight, hover_text, keep_keys, palette,
     severity_color, squiggle,
@@ -66,16 +65,6 @@ struct Preedit {
     active: Option<Range<usize>>,
 }
 
-/// What a key or clipboard event does to the text and the caret.
-enum Edit {
-    /// Replace the selection with this text.
-    Insert(String),
-    /// Delete the selection, or the character before the caret.
-    Backspace,
-    /// Delete the selection, or the character after the caret.
-    Delete,
-}
-
 impl CodeEditor {
     /// Selects the character range on the next frame, scrolls to it and takes the keyboard.
     pub fn jump_to(&mut self, chars: Range<usize>) {
@@ -102,14 +91,6 @@ impl CodeEditor {
     /// The selection as a sorted character range.
     pub fn selection(&self) -> Range<usize> {
         self.caret.min(self.anchor)..self.caret.max(self.anchor)
-    }
-
-    /// Selects `chars` (the caret at its end, both clamped to the text).
-    fn select(&mut self, text: &Buffer, chars: Range<usize>) {
-        let len = text.len_chars();
-        self.anchor = chars.start.min(len);
-        self.caret = chars.end.min(len);
-        self.column = None;
     }
 
     /// The completions on offer (code and meaning), while the list is open.
@@ -164,7 +145,7 @@ impl CodeEditor {
             }
             ImeEvent::Commit(committed) => {
                 self.preedit = None;
-                !committed.is_empty() && self.edit(text, Edit::Insert(committed))
+                !committed.is_empty() && self.edit(text, &committed, false)
             }
             ImeEvent::DeleteSurrounding {
                 before_chars,
@@ -177,20 +158,20 @@ impl CodeEditor {
                     return false;
                 }
                 (self.anchor, self.caret) = (from, to);
-                self.edit(text, Edit::Delete)
+                self.edit(text, "", true)
             }
             // The enable and disable notices (no longer sent) change nothing.
             _ => false,
         }
     }
 
-    /// Applies one edit at the selection; whether the text changed.
-    fn edit(&mut self, text: &mut Buffer, edit: Edit) -> bool {
+    /// Replaces the selection with `insert`; with neither, deletes the character after the
+    /// caret (`forward`) or before it. Whether the text changed.
+    fn edit(&mut self, text: &mut Buffer, insert: &str, forward: bool) -> bool {
         let sel = self.selection();
-        let range = match edit {
-            Edit::Insert(_) => sel,
-            _ if !sel.is_empty() => sel,
-            Edit::Backspace if sel.start > 0 => {
+        let range = match forward {
+            _ if !insert.is_empty() || !sel.is_empty() => sel,
+            false if sel.start > 0 => {
                 // A `\r\n` goes as one line ending.
                 let mut start = sel.start - 1;
                 if start > 0 && text.slice(start - 1..sel.start) == "\r\n" {
@@ -198,7 +179,7 @@ impl CodeEditor {
                 }
                 start..sel.start
             }
-            Edit::Delete if sel.end < text.len_chars() => {
+            true if sel.end < text.len_chars() => {
                 let mut end = sel.end + 1;
                 if text.slice(sel.end..end + 1) == "\r\n" {
                     end += 1;
@@ -207,13 +188,6 @@ impl CodeEditor {
             }
             _ => return false,
         };
-        let insert = match &edit {
-            Edit::Insert(s) => s.as_str(),
-            _ => "",
-        };
-        if range.is_empty() && insert.is_empty() {
-            return false;
-        }
         self.place(text.replace(range, insert));
         true
     }
@@ -259,19 +233,21 @@ impl CodeEditor {
                     ..
                 } = &event
                 && !modifiers.any()
+                && (matches!(key, Key::ArrowDown | Key::ArrowUp | Key::Tab | Key::Escape)
+                    || (*key == Key::Enter && popup.chosen))
             {
-                match popup.key(*key) {
-                    PopupKey::None => {}
-                    PopupKey::Handled => continue,
-                    PopupKey::Close => {
-                        self.popup = None;
-                        continue;
+                // Up and Down move through the list and Escape closes it; Tab takes the
+                // highlighted code, and so does Enter once an arrow key picked it.
+                let (n, selected) = (popup.items.len().max(1), popup.selected);
+                match key {
+                    Key::ArrowDown | Key::ArrowUp => {
+                        let step = if *key == Key::ArrowDown { 1 } else { n - 1 };
+                        (popup.selected, popup.chosen) = ((selected + step) % n, true);
                     }
-                    PopupKey::Accept(i) => {
-                        self.accept(text, i, output);
-                        continue;
-                    }
+                    Key::Escape => self.popup = None,
+                    _ => self.accept(text, selected, output),
                 }
+                continue;
             }
             if self.event(ui, text, event, rows_per_page, output) {
                 output.changed = true;
@@ -296,14 +272,14 @@ impl CodeEditor {
             // A lone line break comes as the Enter key too.
             Event::Text(t) if t == "\n" || t == "\r" => {}
             Event::Text(t) | Event::Paste(t) if !t.is_empty() => {
-                changed |= self.edit(text, Edit::Insert(t));
+                changed |= self.edit(text, &t, false);
             }
             Event::Copy | Event::Cut => {
                 let sel = self.selection();
                 if !sel.is_empty() {
                     ui.ctx().copy_text(text.slice(sel));
                     if matches!(event, Event::Cut) {
-                        changed |= self.edit(text, Edit::Delete);
+                        changed |= self.edit(text, "", true);
                     }
                 }
             }
@@ -327,28 +303,18 @@ impl CodeEditor {
                 };
                 match key {
                     Key::Enter => {
-                        changed |= self.edit(text, Edit::Insert("\n".to_string()));
+                        changed |= self.edit(text, "\n", false);
                         output.ends_line = true;
                     }
-                    Key::Tab if !modifiers.any() => {
-                        changed |= self.edit(text, Edit::Insert("\t".to_string()));
-                    }
+                    Key::Tab if !modifiers.any() => changed |= self.edit(text, "\t", false),
                     Key::Backspace | Key::Delete => {
                         let forward = key == Key::Delete;
                         if word && self.selection().is_empty() {
                             self.anchor = word_boundary(text, self.caret, forward);
                         }
-                        let edit = if forward {
-                            Edit::Delete
-                        } else {
-                            Edit::Backspace
-                        };
-                        changed |= self.edit(text, edit);
+                        changed |= self.edit(text, "", forward);
                     }
-                    Key::A if modifiers.command => {
-                        self.anchor = 0;
-                        self.caret = len;
-                    }
+                    Key::A if modifiers.command => (self.anchor, self.caret) = (0, len),
                     Key::ArrowLeft | Key::ArrowRight => {
                         let forward = key == Key::ArrowRight;
                         let sel = self.selection();
@@ -403,7 +369,10 @@ impl CodeEditor {
         let row_height = ui.ctx().fonts_mut(|f| f.row_height(&font)).max(1.0);
         let char_width = ui.ctx().fonts_mut(|f| f.glyph_width(&font, '0')).max(1.0);
         if let Some((range, focus)) = self.jump.take() {
-            self.select(text, range);
+            // Selected, the caret at its end (both clamped to the text).
+            let len = text.len_chars();
+            (self.anchor, self.caret) = (range.start.min(len), range.end.min(len));
+            self.column = None;
             self.popup = None;
             self.centre = true;
             if focus {
@@ -475,17 +444,13 @@ impl CodeEditor {
                 let last = ((viewport.max.y / row_height).ceil().max(0.0) as usize).min(lines);
                 first.min(last)..last
             };
-            let layout = |ui: &Ui, row: usize| -> (usize, usize, Arc<Galley>) {
-                let start = text.line_to_char(row);
-                let len = text.line_len_chars(row);
-                let job = highlight(&text.line_text(row), dialect, &font);
-                (start, len, ui.painter().layout_job(job))
-            };
             // The character under a point: its row, and the column from that row's layout.
             let char_at = |ui: &Ui, pos: Pos2| -> usize {
                 let row = ((pos.y - rect.top()) / row_height).floor().max(0.0) as usize;
                 let row = row.min(lines.saturating_sub(1));
-                let (start, len, galley) = layout(ui, row);
+                let (start, len) = (text.line_to_char(row), text.line_len_chars(row));
+                let job = highlight(&text.line_text(row), dialect, &font);
+                let galley = ui.painter().layout_job(job);
                 let cursor = galley.cursor_from_pos(egui::vec2(pos.x - text_left, 0.0));
                 start + cursor.index.0.min(len)
             };
@@ -537,7 +502,7 @@ impl CodeEditor {
                     let tip = if pos.x < text_left {
                         gutter_tooltip(problems, number)
                     } else {
-                        let (start, _, _) = layout(ui, row);
+                        let start = text.line_to_char(row);
                         let local: Vec<Problem> = problems_on_rows(problems, row..row + 1)
                             .iter()
                             .map(|p| Problem {
@@ -575,7 +540,7 @@ impl CodeEditor {
             });
         }
         output.cursor_line = u32::try_from(text.char_to_line(self.caret) + 1).ok();
-        output.selection = Some(self.selection());
+        output.selection = self.selection();
         self.had_focus = ui.memory(|m| m.has_focus(id));
         self.highlights = highlights;
         output
@@ -602,10 +567,9 @@ impl CodeEditor {
             self.popup_pos = r.left_bottom();
         }
         let at = self.popup_pos;
-        let Some(popup) = self.popup.as_mut() else {
-            return;
-        };
-        if let Some(i) = popup.show(ui.ctx(), id, at) {
+        if let Some(popup) = self.popup.as_mut()
+            && let Some(i) = popup.show(ui.ctx(), id, at)
+        {
             self.accept(text, i, output);
             ui.memory_mut(|m| m.request_focus(id));
         }
@@ -655,11 +619,14 @@ impl CodeEditor {
             let x_at = |col: usize| origin.x + galley.pos_from_cursor(CCursor::new(col)).left();
             // A column of the text: those after the caret sit past the composed text.
             let x_of = |col: usize| x_at(if col > caret_col { col + extra } else { col });
-            let span = |from: usize, to: usize, fill: egui::Color32| {
-                let a = x_of(from.clamp(start, start + len) - start);
-                let b = x_of(to.clamp(start, start + len) - start);
-                // A range running past the line's end takes the line ending too.
-                let b = if to > start + len { b + 6.0 } else { b };
+            // The part of a range on this row (past the line's end, the line ending too).
+            let span = |r: &Range<usize>, fill: egui::Color32| {
+                if r.start > start + len || r.end <= start {
+                    return;
+                }
+                let a = x_of(r.start.clamp(start, start + len) - start);
+                let b = x_of(r.end.clamp(start, start + len) - start);
+                let b = if r.end > start + len { b + 6.0 } else { b };
                 if b > a {
                     painter.rect_filled(band(a, b), 1.0, fill);
                 }
@@ -668,13 +635,9 @@ impl CodeEditor {
                 let line = band(rows.rect.left(), rows.rect.right());
                 painter.rect_filled(line, 0.0, ui.visuals().faint_bg_color);
             }
-            if selection.start <= start + len && selection.end > start {
-                span(selection.start, selection.end, sel_fill);
-            }
+            span(&selection, sel_fill);
             for m in &marks {
-                if m.start <= start + len && m.end > start {
-                    span(m.start, m.end, mark_fill);
-                }
+                span(m, mark_fill);
             }
             painter.galley(origin, galley.clone(), palette::TEXT);
             // The line number, coloured (and marked) by the line's worst diagnostic.

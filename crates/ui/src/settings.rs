@@ -106,6 +106,11 @@ fn xyz(ui: &mut egui::Ui, values: &mut [f64; 3], name: &str) -> bool {
     changed
 }
 
+/// A striped grid `id` of `columns` columns.
+fn table(id: &str, columns: usize) -> egui::Grid {
+    egui::Grid::new(id).num_columns(columns).striped(true)
+}
+
 /// A grid's row of column heads (looked up with `tr`).
 fn heads(ui: &mut egui::Ui, heads: &[&'static str]) {
     for head in heads {
@@ -122,34 +127,31 @@ fn remove_button(ui: &mut egui::Ui, name: &str) -> bool {
 
 fn registers_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     let mut remove = None;
-    egui::Grid::new("swarf-registers")
-        .num_columns(7)
-        .striped(true)
-        .show(ui, |ui| {
-            heads(ui, &["No.", "Length", "Length wear", "Radius", "Radius wear", "Tip (lathe)", ""]);
-            for (n, r) in &mut setup.registers {
-                ui.label(n.to_string());
-                let fields = [
-                    (&mut r.length, "length"),
-                    (&mut r.length_wear, "length wear"),
-                    (&mut r.radius, "radius"),
-                    (&mut r.radius_wear, "radius wear"),
-                ];
-                for (value, what) in fields {
-                    let response = ui.add(length(value));
-                    named(ui, response, &format!("Register {n} {what}"));
-                }
-                let drag = egui::DragValue::new(&mut r.orientation).range(0..=9);
-                let response = ui.add(drag).on_hover_text(tr(
-                    "Lathe tool tip direction 1-8 (LinuxCNC's Q): compensation in G18 reports the imaginary tip; 0 a mill, 9 the nose centre",
-                ));
-                named(ui, response, &format!("Register {n} tool orientation"));
-                if remove_button(ui, &format!("Remove register {n}")) {
-                    remove = Some(*n);
-                }
-                ui.end_row();
+    table("swarf-registers", 7).show(ui, |ui| {
+        heads(ui, &["No.", "Length", "Length wear", "Radius", "Radius wear", "Tip (lathe)", ""]);
+        for (n, r) in &mut setup.registers {
+            ui.label(n.to_string());
+            let fields = [
+                (&mut r.length, "length"),
+                (&mut r.length_wear, "length wear"),
+                (&mut r.radius, "radius"),
+                (&mut r.radius_wear, "radius wear"),
+            ];
+            for (value, what) in fields {
+                let response = ui.add(length(value));
+                named(ui, response, &format!("Register {n} {what}"));
             }
-        });
+            let drag = egui::DragValue::new(&mut r.orientation).range(0..=9);
+            let response = ui.add(drag).on_hover_text(tr(
+                "Lathe tool tip direction 1-8 (LinuxCNC's Q): compensation in G18 reports the imaginary tip; 0 a mill, 9 the nose centre",
+            ));
+            named(ui, response, &format!("Register {n} tool orientation"));
+            if remove_button(ui, &format!("Remove register {n}")) {
+                remove = Some(*n);
+            }
+            ui.end_row();
+        }
+    });
     if let Some(n) = remove {
         setup.registers.remove(&n);
     }
@@ -164,20 +166,17 @@ fn work_offsets_ui(ui: &mut egui::Ui, setup: &mut Setup, new_offset: &mut String
     let extended = extended.filter(|n| !STANDARD_OFFSETS.contains(&n.as_str()));
     let mut names = STANDARD_OFFSETS.map(String::from).to_vec();
     names.extend(extended);
-    egui::Grid::new("swarf-work-offsets")
-        .num_columns(4)
-        .striped(true)
-        .show(ui, |ui| {
-            heads(ui, &["", "X", "Y", "Z"]);
-            for name in names {
-                let mut v = setup.work_offset(&name).to_array();
-                ui.label(&name);
-                if xyz(ui, &mut v, &name) {
-                    setup.work_offsets.insert(name, DVec3::from_array(v));
-                }
-                ui.end_row();
+    table("swarf-work-offsets", 4).show(ui, |ui| {
+        heads(ui, &["", "X", "Y", "Z"]);
+        for name in names {
+            let mut v = setup.work_offset(&name).to_array();
+            ui.label(&name);
+            if xyz(ui, &mut v, &name) {
+                setup.work_offsets.insert(name, DVec3::from_array(v));
             }
-        });
+            ui.end_row();
+        }
+    });
     ui.horizontal(|ui| {
         let label = ui.label(tr("Add offset"));
         let field = egui::TextEdit::singleline(new_offset).desired_width(90.0);
@@ -406,86 +405,83 @@ fn tools_ui(ui: &mut egui::Ui, setup: &mut Setup) {
     ));
     let mut remove = None;
     let mut renumber = None;
-    egui::Grid::new("swarf-tools")
-        .num_columns(7)
-        .striped(true)
-        .show(ui, |ui| {
-            let (no, diameter, shape) = ("No.", "Diameter", "Shape");
-            let (corner, point, flute) = ("Corner radius", "Point angle (°)", "Flute length");
-            heads(ui, &[no, diameter, shape, corner, point, flute, ""]);
-            for (&n, tool) in &mut setup.tools {
-                let mut to = n;
-                let response = ui.add(egui::DragValue::new(&mut to));
-                if named(ui, response, &format!("Tool {n} number")).changed() {
-                    renumber = Some((n, to));
-                }
-                let diameter = Tool::default().diameter;
-                let name = format!("Tool {n} diameter");
-                table_value(ui, tool, "diameter", diameter, &name);
-                let shape = tool.get("shape").and_then(Value::as_str).unwrap_or("flat");
-                let shape = shape.to_string();
-                let mut chosen = shape.clone();
-                let shown = SHAPES.iter().find(|(s, _)| *s == shape);
-                let response = egui::ComboBox::from_id_salt(("swarf-tool-shape", n))
-                    .selected_text(shown.map_or(shape.as_str(), |(_, label)| tr(label)))
-                    .show_ui(ui, |ui| {
-                        for (s, label) in SHAPES {
-                            ui.selectable_value(&mut chosen, s.to_string(), tr(label));
-                        }
-                    })
-                    .response;
-                named(ui, response, &format!("Tool {n} shape"));
-                if chosen != shape {
-                    // Each shape's own keys: a bull nose needs its corner, a point its default.
-                    tool.remove("corner_radius");
-                    tool.remove("point_angle_deg");
-                    if chosen == "bull" {
-                        let d = tool.get("diameter").and_then(number).unwrap_or(diameter);
-                        tool.insert("corner_radius".to_string(), Value::Float(d / 4.0));
-                    }
-                    tool.insert("shape".to_string(), Value::String(chosen));
-                }
-                // The tool as the stock crate reads it, for the defaults it fills in.
-                let read = Value::Table(tool.clone()).try_into::<Tool>().ok();
-                let (corner, point) = match read.map(|t| t.shape) {
-                    Some(Shape::Bull { corner_radius }) => (Some(corner_radius), None),
-                    Some(Shape::Drill { point_angle_deg } | Shape::Chamfer { point_angle_deg }) => {
-                        (None, Some(point_angle_deg))
-                    }
-                    _ => (None, None),
-                };
-                for (key, shown, what) in [
-                    ("corner_radius", corner, "corner radius"),
-                    ("point_angle_deg", point, "point angle"),
-                ] {
-                    if let Some(shown) = shown {
-                        table_value(ui, tool, key, shown, &format!("Tool {n} {what}"));
-                    } else {
-                        ui.label("");
-                    }
-                }
-                ui.horizontal(|ui| {
-                    let had = tool.contains_key("flute_length");
-                    let mut given = had;
-                    let response = ui.checkbox(&mut given, "");
-                    named(ui, response, &format!("Tool {n} flute length given"));
-                    if given && !had {
-                        let d = tool.get("diameter").and_then(number).unwrap_or(diameter);
-                        tool.insert("flute_length".to_string(), Value::Float(3.0 * d));
-                    }
-                    if given {
-                        let name = format!("Tool {n} flute length");
-                        table_value(ui, tool, "flute_length", 0.0, &name);
-                    } else {
-                        tool.remove("flute_length");
-                    }
-                });
-                if remove_button(ui, &format!("Remove tool {n}")) {
-                    remove = Some(n);
-                }
-                ui.end_row();
+    table("swarf-tools", 7).show(ui, |ui| {
+        let (no, diameter, shape) = ("No.", "Diameter", "Shape");
+        let (corner, point, flute) = ("Corner radius", "Point angle (°)", "Flute length");
+        heads(ui, &[no, diameter, shape, corner, point, flute, ""]);
+        for (&n, tool) in &mut setup.tools {
+            let mut to = n;
+            let response = ui.add(egui::DragValue::new(&mut to));
+            if named(ui, response, &format!("Tool {n} number")).changed() {
+                renumber = Some((n, to));
             }
-        });
+            let diameter = Tool::default().diameter;
+            let name = format!("Tool {n} diameter");
+            table_value(ui, tool, "diameter", diameter, &name);
+            let shape = tool.get("shape").and_then(Value::as_str).unwrap_or("flat");
+            let shape = shape.to_string();
+            let mut chosen = shape.clone();
+            let shown = SHAPES.iter().find(|(s, _)| *s == shape);
+            let response = egui::ComboBox::from_id_salt(("swarf-tool-shape", n))
+                .selected_text(shown.map_or(shape.as_str(), |(_, label)| tr(label)))
+                .show_ui(ui, |ui| {
+                    for (s, label) in SHAPES {
+                        ui.selectable_value(&mut chosen, s.to_string(), tr(label));
+                    }
+                })
+                .response;
+            named(ui, response, &format!("Tool {n} shape"));
+            if chosen != shape {
+                // Each shape's own keys: a bull nose needs its corner, a point its default.
+                tool.remove("corner_radius");
+                tool.remove("point_angle_deg");
+                if chosen == "bull" {
+                    let d = tool.get("diameter").and_then(number).unwrap_or(diameter);
+                    tool.insert("corner_radius".to_string(), Value::Float(d / 4.0));
+                }
+                tool.insert("shape".to_string(), Value::String(chosen));
+            }
+            // The tool as the stock crate reads it, for the defaults it fills in.
+            let read = Value::Table(tool.clone()).try_into::<Tool>().ok();
+            let (corner, point) = match read.map(|t| t.shape) {
+                Some(Shape::Bull { corner_radius }) => (Some(corner_radius), None),
+                Some(Shape::Drill { point_angle_deg } | Shape::Chamfer { point_angle_deg }) => {
+                    (None, Some(point_angle_deg))
+                }
+                _ => (None, None),
+            };
+            for (key, shown, what) in [
+                ("corner_radius", corner, "corner radius"),
+                ("point_angle_deg", point, "point angle"),
+            ] {
+                if let Some(shown) = shown {
+                    table_value(ui, tool, key, shown, &format!("Tool {n} {what}"));
+                } else {
+                    ui.label("");
+                }
+            }
+            ui.horizontal(|ui| {
+                let had = tool.contains_key("flute_length");
+                let mut given = had;
+                let response = ui.checkbox(&mut given, "");
+                named(ui, response, &format!("Tool {n} flute length given"));
+                if given && !had {
+                    let d = tool.get("diameter").and_then(number).unwrap_or(diameter);
+                    tool.insert("flute_length".to_string(), Value::Float(3.0 * d));
+                }
+                if given {
+                    let name = format!("Tool {n} flute length");
+                    table_value(ui, tool, "flute_length", 0.0, &name);
+                } else {
+                    tool.remove("flute_length");
+                }
+            });
+            if remove_button(ui, &format!("Remove tool {n}")) {
+                remove = Some(n);
+            }
+            ui.end_row();
+        }
+    });
     if let Some(n) = remove {
         setup.tools.remove(&n);
     }

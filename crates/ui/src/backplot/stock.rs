@@ -38,14 +38,10 @@ impl Backplot {
         let want = (generation, upto);
         let cut = scene.stock.as_ref();
         let answered = |asked| cut.is_some_and(|c| (c.generation, c.upto) == asked);
-        if answered(want) || self.stock_asked == Some(want) {
-            return None;
-        }
-        if let Some(asked) = self.stock_asked
-            && asked.0 == want.0
-            && asked.1 < want.1
-            && !answered(asked)
-        {
+        let waits = |asked: (u64, usize)| {
+            asked == want || (asked.0 == want.0 && asked.1 < want.1 && !answered(asked))
+        };
+        if answered(want) || self.stock_asked.is_some_and(waits) {
             return None;
         }
         self.stock_asked = Some(want);

@@ -2,7 +2,7 @@
 
 use super::{HostRequest, Workbench};
 use crate::i18n::{tr, trf};
-use crate::settings::drag_row;
+use crate::settings::{drag_row, settings_ui};
 
 impl Workbench {
     /// The go-to-line, renumber, settings and unsaved-changes windows.
@@ -19,10 +19,8 @@ impl Workbench {
                         field.request_focus();
                     }
                     go = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-                    let button = ui.button(tr("Go"));
                     self.keep_rect(ui, "goto_field", &field);
-                    self.keep_rect(ui, "goto_button", &button);
-                    go |= button.clicked();
+                    go |= self.kept_button(ui, tr("Go"), "goto_button");
                 });
                 ui.label(format!("1 – {}", self.tab.text.line_count()));
             });
@@ -67,9 +65,7 @@ impl Workbench {
                 .default_height(600.0)
                 .vscroll(true)
                 .show(ctx, |ui| {
-                    let new_offset = &mut self.new_offset;
-                    request =
-                        crate::settings::settings_ui(ui, &mut dialect, &mut setup, new_offset);
+                    request = settings_ui(ui, &mut dialect, &mut setup, &mut self.new_offset);
                 });
             self.settings_open = open;
             if dialect != self.tab.dialect {

@@ -61,13 +61,12 @@ impl Workbench {
             text: self.tab.text.rope().clone(),
             selection: self.tab.selection.clone(),
         };
-        let Some(to) = step(&mut self.tab.history, current) else {
-            return;
-        };
-        self.tab.text = Buffer::from(to.text);
-        self.tab.shadow = self.tab.text.rope().clone();
-        self.select_chars(to.selection);
-        self.text_changed();
+        if let Some(to) = step(&mut self.tab.history, current) {
+            self.tab.text = Buffer::from(to.text);
+            self.tab.shadow = self.tab.text.rope().clone();
+            self.select_chars(to.selection);
+            self.text_changed();
+        }
     }
 
     /// Replaces the text as one undoable command and selects `selection` (characters).

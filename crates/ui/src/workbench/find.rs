@@ -9,9 +9,6 @@ use crate::commands::{self, FindOptions, Finder};
 use crate::editor::severity_color;
 use crate::i18n::{tr, trf};
 
-/// What a match count was computed for: (text generation, pattern, options).
-type MatchKey = (u64, String, FindOptions);
-
 /// Matches in characters, or why the pattern is invalid.
 type Matches = Result<Vec<Range<usize>>, String>;
 
@@ -25,8 +22,8 @@ pub(super) struct FindBar {
     options: FindOptions,
     /// Ask for focus on the find field next frame.
     focus: bool,
-    /// The matches in characters (or the pattern's error) for (generation, query, options).
-    pub(super) count: Option<(MatchKey, Matches)>,
+    /// The matches in characters (or the pattern's error) for (text generation, query, options).
+    pub(super) count: Option<((u64, String, FindOptions), Matches)>,
 }
 
 impl Workbench {
@@ -41,10 +38,8 @@ impl Workbench {
     }
 
     fn finder(&self) -> Option<Finder> {
-        if self.find.query.is_empty() {
-            return None;
-        }
-        Finder::new(&self.find.query, self.find.options).ok()
+        let query = Some(&self.find.query).filter(|q| !q.is_empty())?;
+        Finder::new(query, self.find.options).ok()
     }
 
     /// Selects the next match of the find field after the selection (wrapping).
@@ -59,15 +54,11 @@ impl Workbench {
 
     /// Selects the match after (`forward`) or before the selection, keyboard left where it is.
     fn find_step(&mut self, forward: bool) -> bool {
-        let Some(finder) = self.finder() else {
-            return false;
-        };
         let text = &self.tab.text;
-        let found = if forward {
-            finder.next(text, commands::byte_of_char(text, self.tab.selection.end))
-        } else {
-            finder.previous(text, commands::byte_of_char(text, self.tab.selection.start))
-        };
+        let found = self.finder().and_then(|finder| match forward {
+            true => finder.next(text, commands::byte_of_char(text, self.tab.selection.end)),
+            false => finder.previous(text, commands::byte_of_char(text, self.tab.selection.start)),
+        });
         let Some(bytes) = found else {
             return false;
         };
@@ -135,12 +126,8 @@ impl Workbench {
             close = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape));
             ui.checkbox(&mut self.find.options.regex, tr("Regex"));
             ui.checkbox(&mut self.find.options.match_case, tr("Match case"));
-            let previous_button = ui.button(tr("Previous"));
-            let next_button = ui.button(tr("Next"));
-            self.keep_rect(ui, "find_previous", &previous_button);
-            self.keep_rect(ui, "find_next", &next_button);
-            previous = previous_button.clicked();
-            next |= next_button.clicked();
+            previous = self.kept_button(ui, tr("Previous"), "find_previous");
+            next |= self.kept_button(ui, tr("Next"), "find_next");
             let key = (self.generation, self.find.query.clone(), self.find.options);
             if self.find.count.as_ref().map(|(k, _)| k) != Some(&key) {
                 let count = if self.find.query.is_empty() {
@@ -171,13 +158,9 @@ impl Workbench {
                 let label = ui.label(tr("Replace"));
                 let field = egui::TextEdit::singleline(&mut self.find.replacement);
                 let field = ui.add(field.desired_width(160.0)).labelled_by(label.id);
-                let one = ui.button(tr("Replace"));
-                let all = ui.button(tr("Replace all"));
                 self.keep_rect(ui, "replace_field", &field);
-                self.keep_rect(ui, "replace", &one);
-                self.keep_rect(ui, "replace_all", &all);
-                replace = one.clicked();
-                replace_all = all.clicked();
+                replace = self.kept_button(ui, tr("Replace"), "replace");
+                replace_all = self.kept_button(ui, tr("Replace all"), "replace_all");
             });
         }
         if close {

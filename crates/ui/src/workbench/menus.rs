@@ -51,9 +51,7 @@ impl Workbench {
                 self.set_dialect(dialect);
             }
             ui.separator();
-            let fit = ui.button(tr("Fit view"));
-            self.keep_rect(ui, "fit_view", &fit);
-            if fit.clicked() {
+            if self.kept_button(ui, tr("Fit view"), "fit_view") {
                 self.backplot.fit();
             }
         });

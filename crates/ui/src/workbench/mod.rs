@@ -18,6 +18,7 @@ use swarf_syntax::{Dialect, Encoding};
 use crate::analysis::Analysis;
 use crate::backplot::Backplot;
 use crate::commands::{self, RenumberOptions};
+use crate::examples::EXAMPLES;
 use crate::history::{EditKind, Snapshot};
 use crate::i18n::{Lang, tr, trf};
 use crate::rows::CodeEditor;
@@ -32,7 +33,7 @@ pub use panels::format_duration;
 pub use tabs::{Document, TabRecord};
 
 /// The example program the editor starts with.
-pub const EXAMPLE_PROGRAM: &str = include_str!("../../../../assets/examples/pocket.nc");
+pub const EXAMPLE_PROGRAM: &str = EXAMPLES[0].text;
 
 /// Width of the editor's panel until the user drags its divider, in points.
 const EDITOR_PANEL_WIDTH: f32 = 460.0;
@@ -135,13 +136,10 @@ impl Default for Workbench {
     /// The example program, named as its file in `assets/examples/`, its analysis waited for.
     fn default() -> Self {
         let mut wb = Workbench::new(EXAMPLE_PROGRAM.to_string());
-        wb.tab.document.name = EXAMPLE_NAME.to_string();
+        wb.tab.document.name = EXAMPLES[0].name.to_string();
         wb
     }
 }
-
-/// The example program's file name in `assets/examples/`.
-const EXAMPLE_NAME: &str = "pocket.nc";
 
 impl Workbench {
     /// A workbench showing `text`, read as Fanuc with a default setup, its analysis waited for.
@@ -158,7 +156,7 @@ impl Workbench {
     pub fn example(analyst: Box<dyn Analyst>) -> Self {
         let text = EXAMPLE_PROGRAM.to_string();
         let mut wb = Workbench::with_analyst(text, analyst, Arc::new(OnceLock::new()));
-        wb.tab.document.name = EXAMPLE_NAME.to_string();
+        wb.tab.document.name = EXAMPLES[0].name.to_string();
         wb.backplot.fit();
         wb
     }
@@ -346,6 +344,13 @@ impl Workbench {
         (self.widgets).insert(name.into(), widget.rect.intersect(ui.clip_rect()));
     }
 
+    /// A button kept as `name` ([`Self::keep_rect`]); whether it was clicked.
+    fn kept_button(&mut self, ui: &mut egui::Ui, text: &str, name: &'static str) -> bool {
+        let button = ui.button(text);
+        self.keep_rect(ui, name, &button);
+        button.clicked()
+    }
+
     /// Shows the workbench filling `ui`.
     pub fn ui(&mut self, ui: &mut egui::Ui) {
         self.now = ui.input(|i| i.time);
@@ -417,12 +422,10 @@ impl Workbench {
                     (self.tab.history).record(before, kind, out.ends_line, self.now);
                     self.text_changed();
                 }
-                if let Some(selection) = out.selection {
-                    if selection != self.tab.selection && !out.changed {
-                        self.tab.history.break_run();
-                    }
-                    self.tab.selection = selection;
+                if out.selection != self.tab.selection && !out.changed {
+                    self.tab.history.break_run();
                 }
+                self.tab.selection = out.selection;
                 self.tab.cursor_line = out.cursor_line.or(self.tab.cursor_line);
             });
         self.dialogs(ui.ctx());
@@ -454,8 +457,7 @@ impl Workbench {
                 self.keep_rect(ui, "backplot", &view);
                 self.loading_overlay(ui, view.rect);
                 // … and a click on a segment, or playback, moves the editor to its block.
-                let played = self.backplot.take_playback_line();
-                if let Some(line) = self.backplot.take_picked_line().or(played) {
+                if let Some(line) = self.backplot.take_picked_line() {
                     // A move of a subprogram in another tab is named, not jumped to.
                     match self.analysis.linked_line(line.saturating_sub(1)) {
                         Some((file, at)) => self.message = Some(trf("{}, line {}", &[&file, &at])),

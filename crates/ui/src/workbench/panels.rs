@@ -28,7 +28,6 @@ impl Workbench {
         let Some(((_, line), state)) = &self.state_cache else {
             return;
         };
-        let line = *line;
         let Some(s) = state else {
             ui.label(trf("Line {} does not run.", &[&line]));
             return;
@@ -92,24 +91,21 @@ impl Workbench {
             }
             ui.separator();
             ui.label(self.tab.document.encoding.name());
-            let progress = if let Some(Progress::Reading { read, bytes }) = self.pending {
-                let mb = |b: usize| format!("{:.1}", b as f64 / 1e6);
-                let text = trf("{} / {} MB read", &[&mb(read), &mb(bytes)]);
-                Some((tr("Analysing"), read as f32 / bytes.max(1) as f32, text))
-            } else if let Some((done, total)) = self.analysis_progress() {
-                let fraction = if total == 0 {
-                    1.0
-                } else {
-                    done as f32 / total as f32
-                };
-                let text = trf("{} / {} blocks", &[&done, &total]);
-                Some((tr("Analysing"), fraction, text))
-            } else {
-                None
-            };
-            if let Some((label, fraction, text)) = progress {
+            let progress = self.pending.map(|progress| match progress {
+                Progress::Reading { read, bytes } => {
+                    let mb = |b: usize| format!("{:.1}", b as f64 / 1e6);
+                    let text = trf("{} / {} MB read", &[&mb(read), &mb(bytes)]);
+                    (read as f32 / bytes.max(1) as f32, text)
+                }
+                Progress::Running { reached, blocks } => {
+                    let text = trf("{} / {} blocks", &[&reached, &blocks]);
+                    let fraction = reached as f32 / blocks as f32;
+                    (if blocks == 0 { 1.0 } else { fraction }, text)
+                }
+            });
+            if let Some((fraction, text)) = progress {
                 ui.separator();
-                ui.label(label);
+                ui.label(tr("Analysing"));
                 let bar = egui::ProgressBar::new(fraction).desired_width(180.0);
                 ui.add(bar.text(text));
             }
@@ -122,10 +118,7 @@ impl Workbench {
 
     /// "Reading… N %" over the empty view of a tab whose first analysis is still running.
     pub(super) fn loading_overlay(&self, ui: &mut egui::Ui, view: egui::Rect) {
-        if self.own_analysis {
-            return;
-        }
-        let Some(progress) = self.pending else {
+        let Some(progress) = self.pending.filter(|_| !self.own_analysis) else {
             return;
         };
         let percent = |done: usize, total: usize| {
@@ -149,21 +142,19 @@ impl Workbench {
         let Some(to) = self.suggested_dialect() else {
             return;
         };
-        let first = self.analysis.hint.as_ref().and_then(|h| h.first.clone());
-        let mut switch = false;
-        ui.horizontal(|ui| {
-            let text = match &first {
-                Some((what, line)) => trf(
-                    "This program looks like {} ({} on line {})",
-                    &[&to.label(), what, line],
-                ),
-                None => trf("This program looks like {}", &[&to.label()]),
-            };
+        let text = match self.analysis.hint.as_ref().and_then(|h| h.first.as_ref()) {
+            Some((what, line)) => trf(
+                "This program looks like {} ({} on line {})",
+                &[&to.label(), what, line],
+            ),
+            None => trf("This program looks like {}", &[&to.label()]),
+        };
+        let switch = ui.horizontal(|ui| {
             ui.colored_label(severity_color(Severity::Warning), text);
             let hint = trf("Read this tab's program as {}", &[&to.label()]);
-            switch = ui.button(tr("Switch")).on_hover_text(hint).clicked();
+            ui.button(tr("Switch")).on_hover_text(hint).clicked()
         });
-        if switch {
+        if switch.inner {
             self.set_tab_dialect(self.active, to);
         }
     }

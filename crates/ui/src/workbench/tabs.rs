@@ -132,20 +132,6 @@ impl Workbench {
         encoding: Encoding,
         path: Option<String>,
     ) {
-        // A built-in example saved as a file opens in its dialect, as from the menu.
-        let dialect = EXAMPLES.iter().find(|e| e.text == text).map(|e| e.dialect);
-        self.open_in(name, text, encoding, path, dialect);
-    }
-
-    /// Opens a file as [`Workbench::open_file`] does, in `dialect` when given.
-    fn open_in(
-        &mut self,
-        name: &str,
-        text: String,
-        encoding: Encoding,
-        path: Option<String>,
-        dialect: Option<Dialect>,
-    ) {
         let open_at = path.as_ref().and_then(|p| {
             (0..self.tabs.len()).find(|&i| self.tab_document(i).path.as_ref() == Some(p))
         });
@@ -161,8 +147,9 @@ impl Workbench {
             None if self.is_blank() => self.tab.dialect = self.default_dialect,
             None => self.push_tab(),
         }
-        if let Some(dialect) = dialect {
-            self.tab.dialect = dialect;
+        // A built-in example (from the menu, or saved as a file) opens in its dialect.
+        if let Some(example) = EXAMPLES.iter().find(|e| e.text == text) {
+            self.tab.dialect = example.dialect;
         }
         self.load(name, text, encoding);
         self.tab.document.path = path;
@@ -228,8 +215,7 @@ impl Workbench {
         let active = active.min(records.len() - 1);
         let unsaved = records.iter().filter(|r| r.dirty).map(|r| r.name.as_str());
         let message = recovered_message(&unsaved.collect::<Vec<_>>());
-        let mut tabs = Vec::with_capacity(records.len());
-        for r in records {
+        let tabs = records.into_iter().map(|r| {
             let dialect = r.dialect.unwrap_or(self.default_dialect);
             let mut tab = Tab::new(&r.name, r.text, r.encoding, dialect);
             tab.document.path = r.path;
@@ -237,9 +223,9 @@ impl Workbench {
                 tab.document.saved = Rope::new();
                 tab.document.dirty = true;
             }
-            tabs.push(tab);
-        }
-        self.tabs = tabs;
+            tab
+        });
+        self.tabs = tabs.collect();
         self.activate(active);
         self.message = message.or(self.message.take());
     }
@@ -419,8 +405,7 @@ impl Workbench {
         let Some(ex) = EXAMPLES.iter().find(|e| e.name == name) else {
             return false;
         };
-        let text = ex.text.to_string();
-        self.open_in(ex.name, text, Encoding::Utf8, None, Some(ex.dialect));
+        self.open_file(ex.name, ex.text.to_string(), Encoding::Utf8, None);
         true
     }
 
