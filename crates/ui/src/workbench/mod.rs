@@ -392,10 +392,7 @@ impl Workbench {
                     title
                 });
                 if self.find.open {
-                    // Scrolled sideways where it is wider than the panel, never widening it.
-                    egui::ScrollArea::horizontal()
-                        .id_salt("swarf-find-bar")
-                        .show(ui, |ui| self.find_bar(ui));
+                    sideways(ui, "swarf-find-bar", |ui| self.find_bar(ui));
                 }
                 let matches = match &self.find.count {
                     Some((_, Ok(m))) if self.find.open => m.as_slice(),
@@ -489,4 +486,14 @@ impl Workbench {
         self.tab.cursor_line = Some(line);
         self.synced_line = Some(line);
     }
+}
+
+/// A strip scrolled sideways where it is wider than the panel, never widening it; its bar
+/// takes room below the strip, since a floating bar covers the strip's buttons as the pointer
+/// comes near them.
+fn sideways(ui: &mut egui::Ui, id: &str, add: impl FnOnce(&mut egui::Ui)) {
+    ui.scope(|ui| {
+        ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
+        egui::ScrollArea::horizontal().id_salt(id).show(ui, add);
+    });
 }

@@ -414,30 +414,28 @@ impl Workbench {
         let mut switch = None;
         let mut close = None;
         let mut new = false;
-        egui::ScrollArea::horizontal()
-            .id_salt("swarf-tabs")
-            .show(ui, |ui| {
-                ui.horizontal(|ui| {
-                    for i in 0..self.tabs.len() {
-                        let doc = self.tab_document(i);
-                        let dirty = if doc.dirty { " *" } else { "" };
-                        let label = format!("{}{dirty}", doc.name);
-                        let hover = doc.path.clone().unwrap_or_else(|| doc.name.clone());
-                        let close_label = trf("Close {}", &[&doc.name]);
-                        let tab = ui.selectable_label(i == self.active, label);
-                        self.keep_rect(ui, format!("tab {}", i + 1), &tab);
-                        if tab.on_hover_text(hover).clicked() {
-                            switch = Some(i);
-                        }
-                        let name = format!("close_tab {}", i + 1);
-                        if self.small_button(ui, "×", &close_label, name) {
-                            close = Some(i);
-                        }
-                        ui.separator();
+        super::sideways(ui, "swarf-tabs", |ui| {
+            ui.horizontal(|ui| {
+                for i in 0..self.tabs.len() {
+                    let doc = self.tab_document(i);
+                    let dirty = if doc.dirty { " *" } else { "" };
+                    let label = format!("{}{dirty}", doc.name);
+                    let hover = doc.path.clone().unwrap_or_else(|| doc.name.clone());
+                    let close_label = trf("Close {}", &[&doc.name]);
+                    let tab = ui.selectable_label(i == self.active, label);
+                    self.keep_rect(ui, format!("tab {}", i + 1), &tab);
+                    if tab.on_hover_text(hover).clicked() {
+                        switch = Some(i);
                     }
-                    new = self.small_button(ui, "+", tr("New tab"), "new_tab".to_string());
-                });
+                    let name = format!("close_tab {}", i + 1);
+                    if self.small_button(ui, "×", &close_label, name) {
+                        close = Some(i);
+                    }
+                    ui.separator();
+                }
+                new = self.small_button(ui, "+", tr("New tab"), "new_tab".to_string());
             });
+        });
         if let Some(i) = switch {
             self.switch_tab(i);
         }
