@@ -264,6 +264,53 @@ test("open, select and selection", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(refused, "select(0) should throw a RangeError");
 });
 
+test("a call reaches the program of another tab as it is now, after edits in either tab", { timeout: TEST_TIMEOUT_MS }, async () => {
+  assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
+
+  const sub = (x) => `O1234\nG01 X${x}. Y0 F100\nM99\n`;
+  const main = "G90 G21\nG00 X0 Y0 Z5.\nM98 P1234\nM30\n";
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["O1234.nc", sub(50)]);
+  await page.evaluate(([name, text]) => window.swarf.open(name, text), ["main.nc", main]);
+  // 1-based, as the tab strip's widgets are named.
+  const subTab = await page.evaluate(() => window.swarf.tabs().tabs.findIndex((t) => t.name === "O1234.nc") + 1);
+  assert.equal(await page.evaluate(() => window.swarf.tabs().active + 1), subTab + 1, "main.nc is shown");
+  const farthest = async () => {
+    await session.idle();
+    return page.evaluate(() => window.swarf.stats().bounds?.max[0]);
+  };
+  assert.equal(await farthest(), 50, "the call should run the other tab's program");
+  // An edit of the calling program: the other tab's text, unchanged, is not sent to the worker
+  // again, and the call still reaches it.
+  await page.evaluate((text) => window.swarf.setText(text), main.replace("M30", "G00 X1.\nM30"));
+  assert.equal(await farthest(), 50, "the call should reach the other tab after an edit of its own");
+  // An edit in the called program's tab, seen from the calling one.
+  const showTab = async (n, text) => {
+    // The strip scrolled to its end by the wheel, as far as the tab's place stays put.
+    const strip = await page.evaluate(() => {
+      const shown = Array.from({ length: 99 }, (_, i) => window.swarf.widget(`tab ${i + 1}`));
+      return shown.find((r) => r !== null);
+    });
+    await page.mouse.move(strip.x + strip.width / 2, strip.y + strip.height / 2);
+    await page.mouse.wheel(1000, 0);
+    let [rect, before] = [null, undefined];
+    for (let i = 0; i < 50 && (rect === null || JSON.stringify(rect) !== JSON.stringify(before)); i++) {
+      before = rect;
+      await page.waitForTimeout(200);
+      rect = await page.evaluate((i) => window.swarf.widget(`tab ${i}`), n);
+    }
+    assert.ok(rect !== null, `tab ${n} should come in sight`);
+    const [x, y] = [rect.x + rect.width / 2, rect.y + rect.height / 2];
+    await page.mouse.move(x, y, { steps: 5 });
+    await page.waitForTimeout(100);
+    await page.mouse.click(x, y, { delay: 50 });
+    await session.eventually(() => window.swarf.getText(), null, (t) => t === text, `tab ${n} should be shown`);
+  };
+  await showTab(subTab, sub(50));
+  await page.evaluate((text) => window.swarf.setText(text), sub(70));
+  await showTab(subTab + 1, main.replace("M30", "G00 X1.\nM30"));
+  assert.equal(await farthest(), 70, "the call should run the other tab's program as edited");
+});
+
 test("a file dropped on the page opens, in its encoding", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
 

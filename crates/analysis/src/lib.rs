@@ -14,8 +14,8 @@ pub mod wire;
 
 pub use hint::DialectHint;
 pub use run::{
-    Job, Kept, LinkedProblem, Lod, LodLevel, PARSE_LINES_PER_BLOCK, PendingAnalysis, Plot, Problem,
-    Progress, Results, Stats, analyse,
+    Job, Kept, LinkedProblem, Lod, LodLevel, OpenFile, PARSE_LINES_PER_BLOCK, PendingAnalysis,
+    Plot, Problem, Progress, Results, Stats, analyse,
 };
 #[cfg(not(target_arch = "wasm32"))]
 pub use service::Thread;

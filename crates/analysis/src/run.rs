@@ -27,12 +27,23 @@ pub struct Job {
     pub dialect: Dialect,
     /// The machine it runs on.
     pub setup: Setup,
-    /// The other open files (name, text) whose programs its calls may reach, named as the CLI
-    /// looks for them beside a program; `None` when calls are not looked for among open files.
-    pub others: Option<Vec<(String, ProgramText)>>,
+    /// The other open files whose programs its calls may reach; `None` when calls are not
+    /// looked for among open files.
+    pub others: Option<Vec<OpenFile>>,
     /// The level of detail the results' path is simplified at too (the view's, when it keeps
     /// its zoom); `None`: not simplified (the UI asks with [`crate::Request::Lod`]).
     pub lod: Option<LodLevel>,
+}
+
+/// Another open file, whose program a job's calls may reach.
+#[derive(Debug, Clone)]
+pub struct OpenFile {
+    /// Its name, as the CLI looks for a called program's file beside the main one.
+    pub name: String,
+    /// Changes with every change of its text, so that the worker is sent only changed texts.
+    pub revision: u64,
+    /// Its text.
+    pub text: ProgramText,
 }
 
 /// A level of detail of the drawn path: log2 of the tolerance in world units, `None` for every
@@ -625,14 +636,14 @@ fn link_open_files(
     program: &mut Program,
     main_len: usize,
     dialect: Dialect,
-    others: &[(String, ProgramText)],
+    others: &[OpenFile],
 ) -> Vec<LinkedSource> {
     program.link_calls(main_len, dialect, MAX_LINKED, |missing| {
         let names = missing.file_names();
-        let (name, text) = names
+        let file = names
             .iter()
-            .find_map(|n| others.iter().find(|(name, _)| name == n))?;
-        Some((name.clone(), text.to_owned_string()))
+            .find_map(|n| others.iter().find(|f| f.name == *n))?;
+        Some((file.name.clone(), file.text.to_owned_string()))
     })
 }
 

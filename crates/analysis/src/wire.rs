@@ -8,7 +8,7 @@ use swarf_interp::Setup;
 use swarf_syntax::Dialect;
 use swarf_toolpath::Timeline;
 
-use crate::run::Job;
+use crate::run::{Job, OpenFile};
 use crate::service::{Reply, Request};
 use crate::text::ProgramText;
 
@@ -20,8 +20,9 @@ enum RequestHead {
         dialect: Dialect,
         /// The setup as TOML (one that TOML cannot hold, with a NaN, is read as the default).
         setup: String,
-        /// The other open files' names; their texts follow the program's, in order.
-        others: Option<Vec<String>>,
+        /// The other open files' names and revisions, and whether their texts follow the
+        /// program's, in order (a text the worker holds from the job before is not sent).
+        others: Option<Vec<(String, u64, bool)>>,
         lod: Option<crate::LodLevel>,
     },
     /// Any other request, whole.
@@ -29,29 +30,41 @@ enum RequestHead {
 }
 
 /// The head of `request` and the texts that go beside it (the program's, then the other
-/// files', in order).
-pub fn request_parts(request: &Request) -> (Vec<u8>, Vec<&ProgramText>) {
+/// files' that are not among the revisions `held` from the job sent before, which become
+/// this job's).
+pub fn request_parts<'a>(
+    request: &'a Request,
+    held: &mut Vec<u64>,
+) -> (Vec<u8>, Vec<&'a ProgramText>) {
     let (head, texts) = match request {
         Request::Analyse(job) => {
-            let others = job.others.as_ref();
+            let others = job.others.as_deref().unwrap_or_default();
+            let sent = |f: &OpenFile| !held.contains(&f.revision);
             let texts = std::iter::once(&job.text);
-            let texts = texts.chain(others.into_iter().flatten().map(|(_, text)| text));
+            let texts = texts.chain(others.iter().filter(|f| sent(f)).map(|f| &f.text));
             let head = RequestHead::Analyse {
                 generation: job.generation,
                 dialect: job.dialect,
                 setup: job.setup.to_toml().unwrap_or_default(),
-                others: others.map(|o| o.iter().map(|(name, _)| name.clone()).collect()),
+                others: (job.others.as_ref()).map(|o| {
+                    o.iter()
+                        .map(|f| (f.name.clone(), f.revision, sent(f)))
+                        .collect()
+                }),
                 lod: job.lod,
             };
-            (head, texts.collect())
+            let texts = texts.collect();
+            *held = others.iter().map(|f| f.revision).collect();
+            (head, texts)
         }
         other => (RequestHead::Other(other.clone()), vec![]),
     };
     (postcard::to_allocvec(&head).unwrap_or_default(), texts)
 }
 
-/// The request of a head and its texts ([`request_parts`]).
-pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
+/// The request of a head and its texts ([`request_parts`]); `held` are the other files of
+/// the job read before, and become this job's.
+pub fn request_from(head: &[u8], texts: Vec<String>, held: &mut Vec<OpenFile>) -> Option<Request> {
     Some(match whole(head)? {
         RequestHead::Analyse {
             generation,
@@ -62,11 +75,27 @@ pub fn request_from(head: &[u8], texts: Vec<String>) -> Option<Request> {
         } => {
             let mut texts = texts.into_iter().map(ProgramText::from);
             let text = texts.next()?;
-            let with_text = |n| Some((n, texts.next()?));
+            let mut file = |(name, revision, sent)| {
+                let text = match sent {
+                    true => texts.next()?,
+                    false => held.iter().find(|f| f.revision == revision)?.text.clone(),
+                };
+                Some(OpenFile {
+                    name,
+                    revision,
+                    text,
+                })
+            };
             let others = match others {
-                Some(names) => Some(names.into_iter().map(with_text).collect::<Option<_>>()?),
+                Some(files) => Some(
+                    files
+                        .into_iter()
+                        .map(&mut file)
+                        .collect::<Option<Vec<_>>>()?,
+                ),
                 None => None,
             };
+            *held = others.clone().unwrap_or_default();
             Request::Analyse(Box::new(Job {
                 generation,
                 text,
@@ -190,7 +219,7 @@ mod tests {
         reply_from(&head, &sizes, |i, bytes| bytes.copy_from_slice(arrays[i]))
     }
 
-    fn job(text: &str, others: Option<Vec<(String, ProgramText)>>) -> Job {
+    fn job(text: &str, others: Option<Vec<OpenFile>>) -> Job {
         let mut setup = Setup::default();
         setup.registers.insert(
             3,
@@ -212,10 +241,7 @@ mod tests {
     #[test]
     fn results_states_and_progress_read_back_equal() {
         let main = "G90 G21 G54 // Syntec\nG00 X0 Y0 Z5\nT3 M06\nG04 P500\nG01 Z-1 F100\nG02 X10 Y0 I5 J0\nG81 X5 Y5 Z-3 R1\nG80\nM98 P1234\nM98 P4321\nM30\n";
-        let sub = (
-            "O1234.nc".to_string(),
-            ProgramText::from("O1234\nG01 X$ F100\nM99\n".to_string()),
-        );
+        let sub = file("O1234.nc", 1, "O1234\nG01 X$ F100\nM99\n");
         let (results, kept) = analyse(job(main, Some(vec![sub])));
         assert!(results.problems.iter().any(|p| p.code == "E-SUBPROGRAM"));
         assert!(!results.elsewhere.is_empty());
@@ -272,25 +298,41 @@ mod tests {
             assert_eq!(again(&reply), Some(reply));
         }
         let request = Request::Analyse(Box::new(lod_job));
-        let (head, texts) = request_parts(&request);
+        let (head, texts) = request_parts(&request, &mut Vec::new());
         let texts = texts.iter().map(|t| t.to_owned_string()).collect();
-        let Some(Request::Analyse(back)) = request_from(&head, texts) else {
+        let Some(Request::Analyse(back)) = request_from(&head, texts, &mut Vec::new()) else {
             panic!("not read back");
         };
         assert_eq!(back.lod, Some(Some(-2)));
     }
 
+    fn file(name: &str, revision: u64, text: &str) -> OpenFile {
+        OpenFile {
+            name: name.to_string(),
+            revision,
+            text: ProgramText::from(text.to_string()),
+        }
+    }
+
+    /// `request` through its parts and back, with the revisions and files held on each side;
+    /// how many texts went beside the head.
+    fn sent(
+        request: &Request,
+        page: &mut Vec<u64>,
+        worker: &mut Vec<OpenFile>,
+    ) -> (Option<Request>, usize) {
+        let (head, texts) = request_parts(request, page);
+        let texts: Vec<String> = texts.iter().map(|t| t.to_owned_string()).collect();
+        let count = texts.len();
+        (request_from(&head, texts, worker), count)
+    }
+
     #[test]
     fn requests_read_back_with_their_texts() {
-        let others = vec![(
-            "a.nc".to_string(),
-            ProgramText::from("O1\nM99\n".to_string()),
-        )];
+        let others = vec![file("a.nc", 7, "O1\nM99\n")];
         let request = Request::Analyse(Box::new(job("G0 X1\n", Some(others))));
-        let (head, texts) = request_parts(&request);
-        let texts: Vec<String> = texts.iter().map(|t| t.to_owned_string()).collect();
-        let Some(Request::Analyse(back)) = request_from(&head, texts) else {
-            panic!("not read back");
+        let (Some(Request::Analyse(back)), 2) = sent(&request, &mut vec![], &mut vec![]) else {
+            panic!("not read back with both texts");
         };
         let Request::Analyse(sent) = request else {
             unreachable!()
@@ -300,19 +342,58 @@ mod tests {
         assert_eq!(back.setup, sent.setup);
         assert_eq!(back.text.to_owned_string(), "G0 X1\n");
         let others = back.others.unwrap();
-        assert_eq!(others[0].0, "a.nc");
-        assert_eq!(others[0].1.to_owned_string(), "O1\nM99\n");
-        let (head, _) = request_parts(&Request::StateAt {
-            generation: 4,
-            line: 2,
-        });
+        assert_eq!((others[0].name.as_str(), others[0].revision), ("a.nc", 7));
+        assert_eq!(others[0].text.to_owned_string(), "O1\nM99\n");
+        let (head, _) = request_parts(
+            &Request::StateAt {
+                generation: 4,
+                line: 2,
+            },
+            &mut vec![7],
+        );
         assert!(matches!(
-            request_from(&head, Vec::new()),
+            request_from(&head, Vec::new(), &mut Vec::new()),
             Some(Request::StateAt {
                 generation: 4,
                 line: 2
             })
         ));
+    }
+
+    #[test]
+    fn an_open_file_unchanged_since_the_job_before_is_not_sent_again() {
+        let (mut page, mut worker) = (Vec::new(), Vec::new());
+        let big = file("O1234.nc", 7, "O1234\nG1 X1 F100\nM99\n");
+        let first = job(
+            "M98 P1234\nM30\n",
+            Some(vec![big.clone(), file("b.nc", 8, "O3\nM99\n")]),
+        );
+        let (_, count) = sent(&Request::Analyse(Box::new(first)), &mut page, &mut worker);
+        assert_eq!((count, page.as_slice()), (3, &[7, 8][..]));
+        // A keystroke in the small tab: the other file is held, only the program goes.
+        let changed = file("b.nc", 9, "O3\nG0 X2\nM99\n");
+        let second = job("M98 P1234\nM30\n", Some(vec![big, changed]));
+        let (Some(Request::Analyse(back)), 2) =
+            sent(&Request::Analyse(Box::new(second)), &mut page, &mut worker)
+        else {
+            panic!("the unchanged file was sent again");
+        };
+        let others = back.others.as_ref().unwrap();
+        assert_eq!(others[0].text.to_owned_string(), "O1234\nG1 X1 F100\nM99\n");
+        assert_eq!(others[1].text.to_owned_string(), "O3\nG0 X2\nM99\n");
+        assert_eq!(page, [7, 9]);
+        let (results, _) = analyse(*back);
+        assert_eq!(results.linked.len(), 1);
+        // A job without open files leaves nothing held; a file the worker lost does not read.
+        let (_, count) = sent(
+            &Request::Analyse(Box::new(job("M30\n", None))),
+            &mut page,
+            &mut worker,
+        );
+        assert_eq!((count, page.len(), worker.len()), (1, 0, 0));
+        let again = job("M30\n", Some(vec![file("O1234.nc", 7, "O1234\nM99\n")]));
+        let (head, _) = request_parts(&Request::Analyse(Box::new(again)), &mut vec![7]);
+        assert!(request_from(&head, vec!["M30\n".to_string()], &mut worker).is_none());
     }
 
     #[test]
@@ -332,7 +413,7 @@ mod tests {
         odd[0] += 1;
         assert!(reply_from(&head, &odd, |_, _| {}).is_none());
         assert!(reply_from(&[7, 1, 2], &[], |_, _| {}).is_none());
-        assert!(request_from(&[0, 1], Vec::new()).is_none());
-        assert!(request_from(&[], Vec::new()).is_none());
+        assert!(request_from(&[0, 1], Vec::new(), &mut Vec::new()).is_none());
+        assert!(request_from(&[], Vec::new(), &mut Vec::new()).is_none());
     }
 }

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use proptest::prelude::*;
 use ropey::{Rope, RopeBuilder};
-use swarf_analysis::{Job, PendingAnalysis, ProgramText, RopeLines};
+use swarf_analysis::{Job, OpenFile, PendingAnalysis, ProgramText, RopeLines};
 use swarf_interp::Setup;
 use swarf_syntax::{Dialect, ParseRun, Program};
 
@@ -119,7 +119,7 @@ fn a_rope_edited_in_place_parses_as_its_text() {
 /// Analyses `text` opened beside `others`, 50 blocks' worth a step.
 fn analyse_in_steps(
     text: ProgramText,
-    others: Vec<(String, ProgramText)>,
+    others: Vec<OpenFile>,
 ) -> (swarf_analysis::Results, swarf_analysis::Kept) {
     let mut pending = PendingAnalysis::start(Job {
         generation: 3,
@@ -164,7 +164,11 @@ fn a_program_calling_another_tab_held_as_a_rope_links_it() {
     let run = |t: ProgramText| {
         analyse_in_steps(
             ProgramText::Rope(Rope::from_str(main)),
-            vec![("O2000.nc".to_string(), t)],
+            vec![OpenFile {
+                name: "O2000.nc".to_string(),
+                revision: 1,
+                text: t,
+            }],
         )
         .0
     };

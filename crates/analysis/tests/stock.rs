@@ -196,13 +196,16 @@ fn a_cut_and_its_request_read_back_from_bytes() {
             assert!(wire::reply_from(&head, &[size - 4], |_, _| {}).is_none());
         }
     }
-    let (head, texts) = wire::request_parts(&Request::Stock {
-        generation: 6,
-        upto: 12,
-    });
+    let (head, texts) = wire::request_parts(
+        &Request::Stock {
+            generation: 6,
+            upto: 12,
+        },
+        &mut Vec::new(),
+    );
     assert!(texts.is_empty());
     assert!(matches!(
-        wire::request_from(&head, Vec::new()),
+        wire::request_from(&head, Vec::new(), &mut Vec::new()),
         Some(Request::Stock {
             generation: 6,
             upto: 12

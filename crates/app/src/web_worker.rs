@@ -47,6 +47,8 @@ struct Held {
     scheduled: bool,
     /// Schedules the look after the next animation frame.
     on_frame: Option<js_sys::Function>,
+    /// The revisions of the other open files the worker holds from the last job posted.
+    files: Vec<u64>,
 }
 
 /// What the worker's events leave for the next frame.
@@ -202,7 +204,7 @@ impl Analyst for WorkerAnalyst {
             return None;
         }
         drop(held);
-        if let Err(error) = post(&self.worker, &request) {
+        if let Err(error) = post(&self.worker, &request, &self.held) {
             log::error!("the analysis worker takes no message ({error:?}); it goes on in the page");
             self.fail();
         }
@@ -253,7 +255,7 @@ fn look(
         if inbox.borrow().failed {
             return;
         }
-        if let Err(error) = post(worker, request) {
+        if let Err(error) = post(worker, request, held) {
             log::error!("the analysis worker takes no message ({error:?}); it goes on in the page");
             inbox.borrow_mut().failed = true;
             ctx.request_repaint();
@@ -269,9 +271,10 @@ fn request_frame(callback: Option<&js_sys::Function>) -> bool {
         .is_some_and(|(window, callback)| window.request_animation_frame(callback).is_ok())
 }
 
-/// Posts `request` to the worker, its texts as UTF-8 in buffers it takes over.
-fn post(worker: &web_sys::Worker, request: &Request) -> Result<(), JsValue> {
-    let (head, texts) = wire::request_parts(request);
+/// Posts `request` to the worker, its texts as UTF-8 in buffers it takes over (the other files'
+/// only where changed since the last job `held` records).
+fn post(worker: &web_sys::Worker, request: &Request, held: &RefCell<Held>) -> Result<(), JsValue> {
+    let (head, texts) = wire::request_parts(request, &mut held.borrow_mut().files);
     let message: Array = std::iter::once(Uint8Array::from(head.as_slice()).buffer())
         .chain(texts.into_iter().map(text_buffer))
         .collect();

@@ -7,7 +7,7 @@
 #[cfg(target_arch = "wasm32")]
 mod worker {
     use js_sys::{Array, ArrayBuffer, Uint8Array};
-    use swarf_analysis::{Reply, Service, wire};
+    use swarf_analysis::{OpenFile, Reply, Service, wire};
     use wasm_bindgen::JsCast as _;
     use wasm_bindgen::prelude::*;
 
@@ -16,6 +16,8 @@ mod worker {
     #[derive(Default)]
     pub struct Analysis {
         service: Service,
+        /// The other open files of the last job, which the page does not send again unchanged.
+        files: Vec<OpenFile>,
     }
 
     #[wasm_bindgen]
@@ -34,7 +36,7 @@ mod worker {
             let texts = (1..message.length())
                 .map(|i| String::from_utf8(bytes(&message.get(i))?).ok())
                 .collect::<Option<Vec<_>>>()?;
-            let request = wire::request_from(&head, texts)?;
+            let request = wire::request_from(&head, texts, &mut self.files)?;
             self.service.handle(request).map(|reply| parts(&reply))
         }
 

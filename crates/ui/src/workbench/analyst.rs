@@ -2,7 +2,7 @@
 
 use std::sync::{Arc, OnceLock};
 
-use swarf_analysis::{Analyst, Job, ProgramText, Progress, Reply, Request};
+use swarf_analysis::{Analyst, Job, OpenFile, ProgramText, Progress, Reply, Request};
 use swarf_syntax::Dialect;
 
 use super::Workbench;
@@ -67,7 +67,11 @@ impl Workbench {
         // The texts are shared, not copied: a keystroke costs no copy of them.
         let active = self.active;
         let others = self.tabs.iter().enumerate().filter(|(i, _)| *i != active);
-        let others = others.map(|(_, t)| (t.document.name.clone(), t.text.program_text()));
+        let others = others.map(|(_, t)| OpenFile {
+            name: t.document.name.clone(),
+            revision: t.document.revision,
+            text: t.text.program_text(),
+        });
         let text = self.tab.text.program_text();
         self.ask(Request::Analyse(Box::new(Job {
             generation: self.generation,
