@@ -23,28 +23,19 @@ mod native {
     /// Frames drawn before the screenshot is taken, so layout and the backplot have settled.
     const SCREENSHOT_AFTER_FRAMES: u64 = 8;
 
-    /// The file to open and the screenshot to save, from the command line.
-    fn parse_args() -> anyhow::Result<(Option<PathBuf>, Option<PathBuf>)> {
-        let (mut file, mut screenshot) = (None, None);
-        let mut it = std::env::args_os().skip(1);
-        while let Some(a) = it.next() {
-            match a.to_str() {
-                Some("--screenshot") => {
-                    screenshot = Some(it.next().context("--screenshot needs a file name")?.into());
-                }
-                Some("--help" | "-h") => {
-                    println!("usage: swarf-app [FILE] [--screenshot OUT.png]");
-                    std::process::exit(0);
-                }
-                Some(s) if s.starts_with("--") => bail!("unknown option {s}"),
-                _ => file = Some(a.into()),
-            }
-        }
-        Ok((file, screenshot))
+    /// Swarf's G-code editor and backplot in a window.
+    #[derive(clap::Parser)]
+    #[command(name = "swarf-app", version)]
+    struct Args {
+        /// A program to open, in a tab of its own.
+        file: Option<PathBuf>,
+        /// Renders a few frames, saves the window as this PNG and exits.
+        #[arg(long, value_name = "OUT.png")]
+        screenshot: Option<PathBuf>,
     }
 
     pub fn main() -> anyhow::Result<()> {
-        let (file, screenshot) = parse_args()?;
+        let Args { file, screenshot } = clap::Parser::parse();
         if let Some(p) = &file {
             std::fs::metadata(p).with_context(|| format!("cannot read {}", p.display()))?;
         }
