@@ -1,9 +1,6 @@
-//! Build tasks for Swarf, run as `cargo xtask <command>`.
-//!
-//! * `cargo xtask web [--dev] [--no-opt]` builds the web page into `target/web/`.
-//! * `cargo xtask serve [--port 8080] [--no-build] [--dir DIR] [--dev]` builds and serves it.
-//! * `cargo xtask test [--quick]` installs what the tests need and runs every test.
-//! * `cargo xtask wasm-tools` installs what the wasm32 tests need (the benchmark's last step).
+//! Build tasks, `cargo xtask <command>`: `web [--dev] [--no-opt]` builds the page into
+//! `target/web/`, `serve [--port 8080] [--no-build] [--dir DIR] [--dev]` serves it,
+//! `test [--quick]` runs every test, `wasm-tools` installs the wasm32 tests' tools.
 
 mod desktop;
 mod serve;

@@ -305,10 +305,8 @@ fn wasm_test_command(browser: bool) -> Command {
     cmd
 }
 
-/// `node --test tests/e2e/` under `xvfb-run -a`: the WebGL2 test runs headless Chromium, the
-/// WebGPU test needs a headed one (headless Chromium has no WebGPU canvas) and skips itself
-/// without a `DISPLAY`. `xvfb-run` exits with node's status and prints nothing of its own, so
-/// node's summary stays the last output.
+/// `node --test tests/e2e/` under `xvfb-run -a`: the WebGPU test needs headed Chromium (it skips
+/// without a `DISPLAY`); `xvfb-run` keeps node's status and prints nothing, so its summary is last.
 fn node_test_command() -> Command {
     let mut cmd = command("xvfb-run");
     // Xvfb is an X server: keep Chromium off any Wayland compositor of the caller.

@@ -84,11 +84,8 @@ impl Sensitive {
     }
 }
 
-/// The dialect `program` (of `text`, with its located `problems`) would read with strictly fewer
-/// errors, if any: the lines that may read differently (the head of the program, the lines with
-/// a problem, the `sensitive` ones with a code not every dialect has) are parsed again in every dialect and
-/// the one with the fewest errors, then the fewest unknown M codes, wins (the menu's order
-/// breaks ties).
+/// The dialect that would read `program` with strictly fewer errors, if any: the lines that may
+/// differ are parsed again in every dialect; fewest errors, then fewest unknown M codes, wins.
 pub fn suggest(
     text: &ProgramText,
     program: &Program,

@@ -1,9 +1,6 @@
-//! The editor's analysis of a program: parse (a rope in place), link the calls into the other
-//! open files, run, then locate the problems, prepare what the backplot draws and look for a
-//! dialect that reads the program better, and on request cuts the stock with the toolpath. It
-//! runs in pieces beside the UI, on a thread or in a web worker, as a [`Service`] the UI sends
-//! requests to and takes replies from; the program, its machine states and its toolpath stay on
-//! that side, which answers questions about them.
+//! The editor's analysis of a program: parse, link the calls, run, locate the problems, prepare
+//! the backplot, suggest a dialect and cut the stock. It runs in pieces beside the UI (a thread or
+//! web worker) as a [`Service`] that keeps the results and answers questions about them.
 
 mod hint;
 mod run;

@@ -216,10 +216,8 @@ struct PieceAt {
 }
 
 impl Kept {
-    /// The machine state just before the block on 1-based `line` first runs; `None` when no
-    /// block there runs. The blocks are in the order of their lines (those of linked files
-    /// after the program's own), so the block is found by halves, and the state is re-run from
-    /// the nearest one kept: the cost does not grow with the program.
+    /// The machine state just before the block on 1-based `line` first runs; `None` when no block
+    /// there runs. Re-run from the nearest kept state, so the cost does not grow with the program.
     pub fn state_at(&self, line: u32) -> Option<BlockState> {
         let row = line.checked_sub(1)?;
         let block_on = |blocks: &[swarf_syntax::Block]| {
@@ -294,11 +292,9 @@ struct Pieces {
     sensitive: Sensitive,
 }
 
-/// An analysis under way: the text is read and run by the interpreter, a bounded amount of each
-/// per [`step`](PendingAnalysis::step), so that whoever runs it can stop between pieces (a
-/// newer job replaces it) and answer other questions. A program that runs straight through is
-/// read and run a piece of lines at a time, its blocks dropped once run; one that jumps, loops
-/// or calls is then read again whole, linked and run. Dropping it cancels the run.
+/// An analysis under way, read and run a bounded amount per [`step`](PendingAnalysis::step) so the
+/// runner can stop between pieces. A straight-through program's blocks are dropped once run; one
+/// that jumps, loops or calls is read again whole. Dropping it cancels the run.
 #[derive(Debug)]
 pub struct PendingAnalysis {
     /// The job (its text, dialect and setup; the other open files until they are linked).
@@ -341,10 +337,8 @@ impl PendingAnalysis {
         }
     }
 
-    /// Reads lines, then executes blocks, for at most `budget` blocks' worth of work (a block
-    /// buys [`PARSE_LINES_PER_BLOCK`] lines; linking the calls, once the text is read, is not
-    /// counted); whether the run is over, so that [`finish`](PendingAnalysis::finish) only
-    /// wraps up.
+    /// Reads lines, then runs blocks, for at most `budget` blocks' worth of work (a block buys
+    /// [`PARSE_LINES_PER_BLOCK`] lines; linking is not counted); returns whether the run is over.
     pub fn step(&mut self, budget: usize) -> bool {
         let mut budget = budget;
         while let Some(parse) = &mut self.parse {

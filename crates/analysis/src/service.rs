@@ -226,10 +226,8 @@ impl Analyst for Inline {
     }
 }
 
-/// The analysis on a thread of its own: it takes the jobs between pieces, so a newer job
-/// replaces one under way at once, and calls a waker with every reply it sends (the UI
-/// repaints). A question about the finished analysis is answered at once, from what it keeps
-/// (a bounded re-run from the nearest machine state kept). The thread ends when this is dropped.
+/// The analysis on its own thread: a newer job replaces one under way between pieces, questions
+/// are answered from what it keeps, and a waker is called with every reply. Ends when dropped.
 #[cfg(not(target_arch = "wasm32"))]
 #[derive(Debug)]
 pub struct Thread {

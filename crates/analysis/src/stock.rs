@@ -1,7 +1,5 @@
-//! The stock cut out of a finished analysis' toolpath, beside the UI like the analysis: a
-//! bounded piece at a time, up to the segment the view asks for (the whole toolpath, or
-//! playback's position). A later segment asked for continues the cut; an earlier one, or
-//! another analysis, starts it again.
+//! The stock cut by a finished analysis' toolpath, in bounded pieces up to the segment the view
+//! asks for. A later segment continues the cut; an earlier one, or a new analysis, restarts it.
 
 use std::sync::Arc;
 

@@ -1,6 +1,5 @@
-//! Requests and replies as bytes, for a web worker: a short head (numbers, names, messages,
-//! in postcard) and beside it the large parts whole, each in a buffer of its own that is moved,
-//! not copied, between the page and the worker (the texts one way, the plot's arrays the other).
+//! Requests and replies as bytes for a web worker: a short postcard head, and the large parts
+//! (texts, plot arrays) in buffers of their own, moved, not copied, between page and worker.
 //! Reading checks every length: a message cut short or from elsewhere reads as `None`.
 
 use serde::{Deserialize, Serialize};

@@ -1,7 +1,5 @@
-//! Swarf desktop: the G-code editor and backplot in a native window.
-//!
-//! `swarf-app [FILE] [--screenshot OUT.png]` — with `--screenshot` the app renders a few frames,
-//! saves a PNG of the window and exits (used by the desktop smoke test).
+//! Swarf desktop: the G-code editor and backplot in a native window. `swarf-app [FILE]
+//! [--screenshot OUT.png]`; `--screenshot` saves a PNG of the window and exits (smoke test).
 
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> anyhow::Result<()> {

@@ -156,10 +156,8 @@ impl SwarfApi {
     }
 
     /// `{blocks, motions, bounds: {min, max} | null, estimated_secs, drawn_points, drawing,
-    /// wasm_bytes}`: the numbers the page shows now, those of the last finished analysis (see
-    /// [`SwarfApi::idle`]), the points of the path the backplot draws at its zoom's level of
-    /// detail, whether its picture is not complete yet, and the sizes of the page's and the
-    /// worker's wasm memories (`{page, worker}`, bytes).
+    /// wasm_bytes: {page, worker}}`: the last finished analysis's numbers ([`SwarfApi::idle`]), the
+    /// points drawn, whether the picture is incomplete, and the wasm memories in bytes.
     pub fn stats(&self) -> Result<JsValue, JsValue> {
         let (s, drawn, drawing) = self.with_app(|app| {
             let wb = &app.workbench;

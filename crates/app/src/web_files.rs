@@ -1,7 +1,5 @@
-//! Files on the web page: the File System Access API's pickers where the browser has them
-//! (Open keeps the file's handle, Save writes back to it), otherwise an `<input type=file>`
-//! picker and downloads for saving; dropped files; crash recovery in the browser's IndexedDB,
-//! a record per tab and an index of the tabs.
+//! Files on the web page: File System Access pickers where the browser has them (Save writes back
+//! to the opened file), else `<input type=file>` and downloads; drops; recovery in IndexedDB.
 
 use std::cell::RefCell;
 use std::collections::HashMap;

@@ -1,10 +1,6 @@
-//! The page's analysis in a web worker (`web/worker.js` running crates/worker), each reply asking
-//! for a frame; should the worker fail, the analysis goes on in the page's own frames.
-//!
-//! Requests about a large program wait for the first animation frame in which the page paints
-//! nothing: the worker's long runs then never share the processor with a frame being painted,
-//! which on a machine of two cores without a GPU (the browser rasterising on the processor)
-//! makes the frames painted meanwhile late.
+//! The page's analysis in a web worker (`web/worker.js` running crates/worker), or in the page's
+//! frames if it fails. Requests about a large program wait for a frame that paints nothing, so on
+//! two cores without a GPU the worker never makes painting late.
 
 use std::cell::RefCell;
 use std::collections::VecDeque;

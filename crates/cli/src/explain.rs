@@ -33,10 +33,8 @@ pub(crate) struct ExplainArgs {
     json: bool,
 }
 
-/// Explains `what` (a code such as `G83`, `g54.1`, `M98`, an address letter such as `Q`, or a
-/// diagnostic code such as `E-ARC-RADIUS`) for `dialect`, or for every dialect when it is
-/// `None`; `list` prints every code of the dialect, `diagnostics` every diagnostic code, and
-/// `table` the Markdown table of the codes or the diagnostic codes.
+/// Explains `what` (a code such as `G83`, an address such as `Q`, a diagnostic such as
+/// `E-ARC-RADIUS`) for `dialect` or all; `list`, `diagnostics` and `table` print lists or tables.
 pub(crate) fn explain(args: &ExplainArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32> {
     let (dialect, list, json) = (args.dialect, args.list, args.json);
     if args.diagnostics {

@@ -1,7 +1,5 @@
-//! The `swarf` command line: `check`, `canon` and `stats` over G-code files, and `explain`.
-//!
-//! Everything is in this library so it can be tested in-process; `main.rs` only forwards the
-//! process arguments and exit status.
+//! The `swarf` command line: `check`, `canon` and `stats` over G-code files, and `explain`. It is
+//! a library to be tested in-process; `main.rs` only forwards the arguments and exit status.
 
 mod explain;
 mod render;
@@ -173,10 +171,9 @@ struct Loaded {
 /// Most files linked to one program (a bound on runaway chains of calls).
 const MAX_LINKED: usize = 64;
 
-/// Links the programs the program calls and does not hold from files beside it, until nothing
-/// more can be found; returns the linked files' texts and warnings. A file found that cannot be
-/// read (a folder, unreadable, larger than `max` bytes) is named with the reason in the call's
-/// error; one that changed while it was read gets `W-FILE-CHANGED`.
+/// Links the programs `program` calls and lacks from files beside it; returns texts and warnings.
+/// A file that cannot be read (a folder, over `max` bytes) is named in the call's error; one that
+/// changed while read gets `W-FILE-CHANGED`.
 fn link_external(
     program: &mut Program,
     path: &Path,
@@ -330,10 +327,8 @@ fn merged(mut reading: Vec<Diagnostic>, run: Vec<Diagnostic>) -> Vec<Diagnostic>
 /// parsed blocks of a long program are never held all at once.
 const PIECE_LINES: usize = 2048;
 
-/// Parses and runs `source` piece by piece into `sink`, keeping none of the blocks it has run,
-/// for a program that runs straight through: the parsed program (without blocks), how many
-/// blocks it had and the run's diagnostics. `None` when the program needs all its blocks at
-/// once (it jumps, loops or calls); `sink` then has the first events of the run.
+/// Parses and runs a straight-through `source` into `sink` piece by piece, dropping blocks once
+/// run; `None` if it jumps, loops or calls (`sink` then has the run's first events).
 fn run_pieces(
     source: &mut dyn LineSource,
     dialect: Dialect,
@@ -372,10 +367,8 @@ enum Read {
     Whole(Loaded),
 }
 
-/// Runs a decoded program file into `sink` piece by piece when it runs straight through, so
-/// that its parsed blocks are never all held at once; otherwise parses it whole (with the
-/// programs it calls from files beside it) for the caller to run, `sink` having the first
-/// events of the run that was tried.
+/// Runs a decoded file into `sink` piece by piece if it runs straight through; else parses it
+/// whole, with its called files, for the caller to run (`sink` then has the first events).
 fn read_run(
     file: &Path,
     decoded: Decoded,
@@ -398,10 +391,8 @@ fn read_run(
     }
 }
 
-/// Runs a plain UTF-8 program file into `sink` piece by piece as it reads it ([`FileLines`]),
-/// holding neither its text nor its blocks whole, or parses it whole when it jumps, loops or
-/// calls; `None` where the file is not plain UTF-8 (or could not be read so), to be read whole
-/// and decoded (`sink` having the first events of the run).
+/// Runs a plain UTF-8 file into `sink` as it reads it ([`FileLines`]), or parses it whole if it
+/// jumps, loops or calls; `None` if it is not plain UTF-8 (`sink` then has the first events).
 fn stream_run(
     file: &Path,
     opts: &RunOptions,

@@ -152,11 +152,9 @@ const MAX_K_REPEATS: u32 = 9999;
 /// Most holes one pattern block may drill (a runaway guard: G137.1 allows 9999 × 9999).
 const MAX_PATTERN_HOLES: usize = 100_000;
 
-/// Syntec's hole patterns (§4.63), the cycle stored with K0 at each point. G134: K holes on a
-/// circle of radius I from angle J (negative K: clockwise); G135: K holes at spacing I along angle
-/// J; G136: K holes on radius I from angle J at pitch P (0.001° without a point); G137.1: P holes
-/// at spacing I times K rows at spacing J, each row back the way the last came (the least travel),
-/// all about the block's point (G90/G91 applied).
+/// Syntec's hole patterns (§4.63) about the block's point, the K0-stored cycle at each hole: G134
+/// K holes on a circle of radius I from angle J (K < 0: clockwise), G135 K at spacing I along angle
+/// J, G136 on radius I at pitch P (0.001° without a point), G137.1 a P × K grid at spacings I, J.
 pub(crate) fn pattern(
     st: &mut State,
     block: &Block,
@@ -260,11 +258,10 @@ pub(crate) fn pattern(
     Drill::new(st, block, &plan, source, sink).holes(count, &mut next);
 }
 
-/// GSK's slanted-hole cycles (§4.52): G83.1, G84.1, G85.1 into the end face along Z, G87.1–G89.1
-/// into the side along X, the tool leaning by E towards the associated axis (X, or Z for the side).
-/// The manual gives no geometry: R (from the initial plane) and the depth (from R) are read as
-/// distances along the tilted tool; the return is to the initial plane; Q pecks (0.001 mm without a
-/// point) go back to R (RTR = 1); the C-axis position is not drawn.
+/// GSK's slanted-hole cycles (§4.52): G83.1–G85.1 into the end face (Z), G87.1–G89.1 into the side
+/// (X), the tool tilted by E. The manual gives no geometry: R (from the initial plane) and the depth
+/// (from R) are read along the tool, the return is to the initial plane, Q pecks (0.001 mm without
+/// a point) go back to R, and the C-axis position is not drawn.
 fn slanted(
     st: &mut State,
     block: &Block,

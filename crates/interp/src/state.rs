@@ -1,7 +1,6 @@
-//! The machine's state between blocks: modal codes, positions, the coordinate chain and the system
-//! variables. A point goes from the program frame through mirror, scaling and rotation, then G52,
-//! G92 and the work offset to the machine frame; `program_pos` keeps the current point in the
-//! program frame, so G91 moves add up there, and a new frame applies from the next end point on.
+//! The machine's state between blocks: modal codes, positions, the coordinate chain (mirror,
+//! scaling, rotation, then G52, G92 and the work offset) and the system variables. G91 moves add
+//! up in the program frame (`program_pos`), so a new frame applies from the next end point on.
 
 use glam::{DVec2, DVec3};
 use swarf_syntax::{Diagnostic, Dialect, Quantity, Span, Word};

@@ -1,8 +1,5 @@
-//! Orbit camera for the backplot: Z-up, right-handed, wgpu depth range 0..1.
-//!
-//! The camera orbits a `target` point at `distance`, with `yaw` measured about +Z from +X and
-//! `pitch` the elevation above the XY plane. That is the CNC convention: Z is the spindle axis
-//! and points up on screen in every view except Top (which looks down −Z with +Y up on screen).
+//! Orbit camera for the backplot: Z-up, right-handed, wgpu depth range 0..1. It orbits `target` at
+//! `distance`, `yaw` about +Z from +X, `pitch` above XY; Top looks down −Z with +Y up.
 
 use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_to_mat4;
@@ -61,10 +58,8 @@ impl StandardView {
     }
 }
 
-/// An orbit camera (f32, Z up) producing wgpu-ready view-projection matrices.
-///
-/// All fields are public for easy persistence; every method sanitises them, so even
-/// out-of-range values never produce NaN matrices.
+/// An orbit camera (f32, Z up) producing wgpu-ready view-projection matrices. Fields are public for
+/// persistence; every method sanitises them, so no value gives NaN matrices.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OrbitCamera {
     /// Point orbited around and looked at.
@@ -179,20 +174,15 @@ impl OrbitCamera {
         (self.yaw, self.pitch) = view.angles();
     }
 
-    /// Frames the box `min..max` for a viewport of the given aspect (width / height) so that
-    /// it is fully visible with a margin, keeping the current view direction.
-    ///
-    /// Empty (`min > max`) or non-finite boxes reset to the default framing of the origin;
-    /// zero-size boxes (a single point, a line seen end-on) get a small non-zero framing.
+    /// Frames `min..max` with a margin for a viewport of `aspect` (width / height), keeping the
+    /// view direction; an empty or non-finite box frames the origin, a zero-size one a small area.
     pub fn fit_aspect(&mut self, min: Vec3, max: Vec3, aspect: f32) {
         let tan_y = (self.fov() * 0.5).tan();
         self.fit_tangents(min, max, tan_y * sane_aspect(aspect), tan_y);
     }
 
-    /// Frames the box `min..max` like [`Self::fit_aspect`], but inside the part `free_min..
-    /// free_max` (pixels from the top-left corner) of a viewport `viewport_px` wide and high,
-    /// e.g. below a row of buttons drawn over the view, keeping the view direction. An empty
-    /// or invalid part frames in the whole viewport.
+    /// Like [`Self::fit_aspect`], but framing in `free_min..free_max` (pixels from the top-left) of
+    /// the `viewport_px` viewport, e.g. below overlaid buttons; an invalid part means all of it.
     pub fn fit_in(
         &mut self,
         min: Vec3,

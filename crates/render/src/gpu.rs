@@ -49,10 +49,8 @@ impl Program {
         }
     }
 
-    /// A triangle-list pipeline of vertex `vs_main` and fragment `fs_{part}_linear_framebuffer`
-    /// on an sRGB target (which encodes itself), `fs_{part}_gamma_framebuffer` otherwise;
-    /// `depth` (whether it writes depth, the test and the bias) applies when the pass has a
-    /// depth buffer.
+    /// A triangle-list pipeline of `vs_main` and `fs_{part}_linear_framebuffer` on a self-encoding
+    /// sRGB target, else `fs_{part}_gamma_framebuffer`; `depth` applies if the pass has depth.
     pub fn pipeline(
         &self,
         device: &Device,

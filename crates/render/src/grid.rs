@@ -28,10 +28,8 @@ pub fn nice_step(raw: f32) -> f32 {
     step.unwrap_or(10.0 * magnitude)
 }
 
-/// Polylines (a pen-up point, then the end point) for a grid on the XY plane at z = 0
-/// covering `min..max` (and the origin), with a 1/2/5×10ⁿ step giving roughly ten cells
-/// across, then the X, Y and Z axes from the origin (kinds [`Kind::AxisX`], …). Invalid or
-/// empty bounds give a 100-unit grid at the origin.
+/// Polylines for a grid at z = 0 over `min..max` and the origin (1/2/5×10ⁿ step, about ten cells),
+/// then the axes ([`Kind::AxisX`], …); invalid or empty bounds give a 100-unit grid.
 #[must_use]
 pub fn grid_points(min: Vec3, max: Vec3) -> Vec<PathPoint> {
     let (lo, hi) = if min.is_finite() && max.is_finite() && min.cmple(max).all() {

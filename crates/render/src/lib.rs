@@ -1,10 +1,6 @@
-//! Swarf's wgpu renderer: anti-aliased segments with depth, the cut stock as a lit surface, an
-//! orbit camera, grid/axes geometry, CPU picking, offscreen targets and a compositor for egui.
-//!
-//! It knows nothing of egui: callers hand it [`PathPoint`]s (f32, relative to an origin they
-//! choose) and a view-projection from [`OrbitCamera`]; with the `toolpath` feature, [`Drawing`]
-//! makes those points from a toolpath. Everything works on WebGL2 (uniform buffers and textures
-//! read in the vertex stage; no storage buffers).
+//! Swarf's wgpu renderer, free of egui: anti-aliased segments with depth, the lit stock, an orbit
+//! camera, grid/axes, CPU picking and offscreen targets, drawing [`PathPoint`]s ([`Drawing`] with
+//! `toolpath`) seen by an [`OrbitCamera`]. It keeps to WebGL2: no storage buffers.
 
 mod camera;
 mod composite;

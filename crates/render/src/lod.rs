@@ -1,10 +1,6 @@
-//! Level of detail of the toolpath as drawn: runs of segments of one kind within a tolerance of
-//! a chord are drawn as that chord, so a dense path costs the GPU what the screen can show.
-//!
-//! The tolerance is [`LOD_TOLERANCE_PX`] at the view's largest scale over the path's bounds,
-//! rounded down to a power of two, so only a zoom by two or more simplifies again. Picking and
-//! segment numbers stay the full path's: [`PathLod::prepare`] keeps the points where highlight
-//! and playback begin or end, and renumbers the ranges.
+//! Level of detail: runs of one kind within a tolerance of a chord are drawn as it, the tolerance
+//! being [`LOD_TOLERANCE_PX`] in world units rounded down to a power of two, so it changes on a
+//! zoom by two. Picking and segment numbers stay the full path's ([`PathLod::prepare`]).
 
 use std::ops::Range;
 use std::sync::Arc;
@@ -17,10 +13,8 @@ use crate::path::{Kind, PathPoint, PathRenderer, ViewParams};
 /// Largest distance, in pixels, between the simplified path and the full path on screen.
 pub const LOD_TOLERANCE_PX: f32 = 0.5;
 
-/// The indices of the points kept when every run of segments that may be merged (the same
-/// kind, colour and flags, solid, no pen up between) is drawn as chords that stay within
-/// `tolerance` world units of the points they stand for. The first and last points are kept;
-/// a `tolerance` of zero (or not finite) keeps every point.
+/// Indices of the points kept when runs of one kind, colour and flags (solid, no pen up) become
+/// chords within `tolerance` world units; keeps the ends, or all if `tolerance` is 0 or not finite.
 #[must_use]
 pub fn simplify(points: &[PathPoint], tolerance: f32) -> Vec<u32> {
     let Some(last) = points.len().checked_sub(1) else {
@@ -228,10 +222,8 @@ impl PathLod {
         self.drawn.len().saturating_sub(1)
     }
 
-    /// Puts into `renderer` the path as `params` shows it, with the segments in `flagged`
-    /// highlighted (a block that ran several times), making the simplified path again only
-    /// when the zoom asks for another level and uploading only when what is drawn changed;
-    /// returns `params` with its highlight and playback renumbered for what the renderer holds.
+    /// Puts the path as `params` shows it, `flagged` highlighted, into `renderer` (simplified again
+    /// only at a new zoom level, uploaded only on change); returns `params` renumbered to match.
     pub fn prepare(
         &mut self,
         renderer: &mut PathRenderer,

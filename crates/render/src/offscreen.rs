@@ -1,7 +1,5 @@
-//! Offscreen rendering: a colour + depth target, a headless device (e.g. Mesa lavapipe with
-//! no display) and read-back to RGBA8, for `swarf render`, golden-image tests and benchmarks.
-//! The backplot widget also draws into a [`RenderTarget`] and composites it into egui's pass,
-//! which has no depth buffer.
+//! Offscreen colour + depth targets, a headless device and RGBA8 read-back for `swarf render` and
+//! tests; the backplot draws into a [`RenderTarget`] too, as egui's pass has no depth buffer.
 
 #[cfg(not(target_arch = "wasm32"))]
 use {
@@ -49,12 +47,9 @@ pub struct HeadlessGpu {
 }
 
 impl HeadlessGpu {
-    /// Opens the first adapter wgpu offers without a surface (backends from `WGPU_BACKEND`,
-    /// power preference from `WGPU_POWER_PREF`), with limits no higher than WebGL2's except
-    /// for sizes, which follow the adapter so huge paths fit.
-    ///
-    /// # Errors
-    /// [`RenderError::NoAdapter`] when there is none, [`RenderError::Device`] when it fails.
+    /// Opens the first surfaceless adapter (`WGPU_BACKEND`, `WGPU_POWER_PREF`) with WebGL2's limits
+    /// but the adapter's sizes, so huge paths fit; errors with [`RenderError::NoAdapter`] or
+    /// [`RenderError::Device`].
     pub async fn new() -> Result<Self, RenderError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
@@ -89,14 +84,9 @@ impl HeadlessGpu {
         })
     }
 
-    /// Draws `stock`, `path` (at the level of detail of the view, as the backplot does, see
-    /// [`crate::PathLod`]) and `grid` with `params` (its viewport is set to the image size)
-    /// into a new `width`×`height` RGBA8 image over an opaque `background` (sRGB bytes), and
-    /// returns its pixels, top row first.
-    ///
-    /// # Errors
-    /// [`RenderError::Size`] for an unsupported size, [`RenderError::Readback`] when the
-    /// copy back fails.
+    /// Draws `stock`, `path` (at the view's detail, see [`crate::PathLod`]) and `grid` into a new
+    /// `width`×`height` RGBA8 image over `background` (sRGB), top row first; errors with
+    /// [`RenderError::Size`] or [`RenderError::Readback`].
     #[cfg(not(target_arch = "wasm32"))]
     pub fn render_rgba8(
         &self,
@@ -139,9 +129,7 @@ pub struct RenderTarget {
 }
 
 impl RenderTarget {
-    /// A `width`×`height` target of `format` (an 8-bit RGBA format for [`Self::read_rgba8`]).
-    ///
-    /// # Errors
+    /// A `width`×`height` target of `format` (8-bit RGBA for [`Self::read_rgba8`]); errors with
     /// [`RenderError::Size`] when a side is zero or larger than the device allows.
     pub fn new(
         device: &wgpu::Device,
@@ -237,11 +225,8 @@ impl RenderTarget {
         renderer.paint_part(&mut pass, part);
     }
 
-    /// Copies the colour texture into tightly packed RGBA8 rows (top row first), waiting for
-    /// the GPU. BGRA targets are swizzled to RGBA.
-    ///
-    /// # Errors
-    /// [`RenderError::Readback`] when mapping the buffer fails or the device is lost.
+    /// Copies the colour texture into packed RGBA8 rows (top first, BGRA swizzled), waiting for the
+    /// GPU; [`RenderError::Readback`] when mapping fails or the device is lost.
     #[cfg(not(target_arch = "wasm32"))]
     pub fn read_rgba8(
         &self,

@@ -1,11 +1,6 @@
-//! Segment renderer: one 16-byte point per path vertex, one screen-space quad per segment,
-//! anti-aliased, depth-tested, coloured by kind.
-//!
-//! The points lie in a texture, one texel each; vertices `6i .. 6i + 6` draw the segment from
-//! point `i` to `i + 1` in one draw call without instancing (software rasterisers pay per
-//! instance). [`PathPoint::PEN_UP`] starts a new polyline, so many share one texture. A path
-//! longer than a texture holds is split over several sharing a point at each seam; each has a
-//! uniform (bind group 1) with its first segment's number and whether it is the toolpath.
+//! Segment renderer: 16-byte points in a texture, a screen-space quad (vertices `6i..6i + 6`) per
+//! segment, no instancing (software rasterisers pay per instance); [`PathPoint::PEN_UP`] starts a
+//! polyline. Long paths span textures sharing seam points, each with its first segment's number.
 
 use std::ops::Range;
 
@@ -386,10 +381,8 @@ const ROW_POINTS: u64 = 4096;
 /// Vertices of one segment's quad: two triangles (a list, so no segment joins the next).
 const QUAD_VERTICES: u32 = 6;
 
-/// Work of a picture one frame draws when it is drawn over several frames (see
-/// [`PathRenderer::paint_part`]): a path segment counts once in each of its two passes. A
-/// software rasteriser (what a browser on a PC without a usable GPU draws with) draws this
-/// many in a few milliseconds, so such a frame stays about as short as one drawing nothing.
+/// Work of one frame of a picture drawn over several ([`PathRenderer::paint_part`]): a software
+/// rasteriser draws this many segment passes in a few ms, so the frame stays short.
 pub const FRAME_WORK: u64 = 4096;
 
 /// One texture of a [`PointBatch`], holding `count` points of the stream, a row at a time.
@@ -598,11 +591,8 @@ fn line_pipeline(
     program.pipeline(device, part, targets, blend, depth)
 }
 
-/// Draws a toolpath and the grid/axes as anti-aliased segments.
-///
-/// The path's line cores write depth, then their edges do not, so an edge never hides a line
-/// behind it; the grid and axes follow depth-tested without writes, so the translucent grid
-/// never punches holes into the path yet hides behind it. Works on WebGPU and WebGL2 alike.
+/// Draws a toolpath and the grid/axes as anti-aliased segments: line cores write depth, edges do
+/// not; the translucent grid is depth-tested without writes, so it never punches holes in the path.
 pub struct PathRenderer {
     /// The path's cores, which write depth, then its anti-aliased edges, which do not: made
     /// with the first path, so that a view with none (the page's first frame) compiles only
@@ -733,10 +723,8 @@ impl PathRenderer {
             .sum()
     }
 
-    /// Writes the uniforms used by the next [`Self::paint`].
-    ///
-    /// There is one uniform buffer per renderer, so two views painted in the same frame share
-    /// the last parameters written; use one `PathRenderer` per simultaneously visible view.
+    /// Writes the uniforms for the next [`Self::paint`]. With one uniform buffer a renderer, each
+    /// view visible at once needs its own `PathRenderer`.
     pub fn prepare(&self, queue: &wgpu::Queue, params: &ViewParams) {
         let uniforms = Uniforms::new(params);
         queue.write_buffer(&self.uniform_buffer, 0, bytemuck::bytes_of(&uniforms));
@@ -755,10 +743,8 @@ impl PathRenderer {
         self.paint_part(pass, 0..self.work());
     }
 
-    /// Records the part `part` of [`Self::work`] of [`Self::paint`]: the stock with the part
-    /// starting at 0, the path's cores then its edges, the grid and axes with the part ending
-    /// at the end. Painting consecutive parts into the same target (its depth kept between
-    /// them) draws what one whole paint draws, a piece a frame.
+    /// Records `part` of [`Self::work`] of [`Self::paint`], stock first, grid last: consecutive
+    /// parts into one target (depth kept) draw one whole paint, a piece a frame.
     pub fn paint_part(&self, pass: &mut wgpu::RenderPass<'_>, part: Range<u64>) {
         let segments = self.path.segments();
         pass.set_bind_group(0, &self.bind_group, &[]);

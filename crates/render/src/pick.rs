@@ -35,12 +35,9 @@ impl Pick {
 /// Distances closer than this (pixels) count as a tie, broken by depth (the nearer wins).
 const TIE_PX: f32 = 0.25;
 
-/// The segment drawn nearest to `cursor_px`, within `radius_px` pixels.
-///
-/// `view_proj` is [`crate::OrbitCamera::view_proj`]'s; `viewport_px` and `cursor_px` (from the
-/// top-left, y down) share one unit, which distances come out in. Segments are clipped at the
-/// near plane; kinds in `hidden_kinds` (see [`crate::Kind::mask`]) are skipped; on (near) ties
-/// the segment nearer to the eye wins, then the later one.
+/// The segment drawn nearest to `cursor_px` within `radius_px` (the unit of `viewport_px`, y down),
+/// clipped at the near plane, `hidden_kinds` ([`crate::Kind::mask`]) skipped, ties to the nearer
+/// then the later; `view_proj` is [`crate::OrbitCamera::view_proj`]'s.
 #[must_use]
 pub fn pick_segment(
     points: &[PathPoint],
@@ -56,10 +53,9 @@ pub fn pick_segment(
     best
 }
 
-/// As [`pick_segment`], in time that follows what is drawn rather than the path's length: the
-/// chords between the points `kept` (ascending indices, as [`crate::simplify`] keeps them, each
-/// within `slack_px` on screen of the segments it stands for) are looked at first, then the
-/// segments of those that pass within `radius_px + slack_px`. The same segment is found.
+/// As [`pick_segment`], in time that follows what is drawn: the chords between `kept` points (see
+/// [`crate::simplify`], within `slack_px`) first, then segments of those within
+/// `radius_px + slack_px`.
 #[must_use]
 pub fn pick_kept_segment(
     points: &[PathPoint],

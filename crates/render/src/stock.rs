@@ -1,7 +1,5 @@
-//! The cut stock as a lit, shaded surface: its height field as an `R32Float` texture that the
-//! vertex stage reads to place a grid of quads (with walls down to the bottom at the edges), lit
-//! with normals from the heights. A texture read with `textureLoad` and two uniforms, so it works
-//! on WebGL2 as on WebGPU.
+//! The cut stock as a lit surface: the vertex stage reads its height field (an `R32Float` texture,
+//! `textureLoad`) to place a grid of quads with walls at the edges, so it works on WebGL2 too.
 
 use std::borrow::Cow;
 

@@ -309,12 +309,9 @@ struct Bull {
 }
 
 impl Bull {
-    /// Whether the end still falls at `s = dir·(u − sc)` over a cell `hh` from the line. So
-    /// measured the move descends: the end falls while the tool comes towards the cell
-    /// (`s ≤ 0`), and past it while the corner's angle `φ` under the cell (`sin φ = t =
-    /// (r − flat) / corner`) and the angle `ψ` between the move and the way to the cell (`cos ψ
-    /// = s / r`) keep `tan φ · cos ψ` below the slope `|m|`: squared and cleared of divisions,
-    /// `t²·(s² + m²r²) < m²r²`.
+    /// Whether the end still falls at `s = dir·(u − sc)` over a cell `hh` from the line (the move
+    /// descending): if `s ≤ 0` or `t²·(s² + m²r²) < m²r²`, with `t = (r − flat) / corner` the sine
+    /// of the corner's angle there (`tan φ · cos ψ < |m|` without divisions).
     #[inline(always)]
     fn falls(self, s: f32, hh: f32) -> bool {
         let r2 = hh + s * s;
@@ -456,11 +453,9 @@ impl HeightField {
         }
     }
 
-    /// The move from `from` to `to` in the grid's frame with `tool`'s profile for its slope,
-    /// cutting every cell it covers but, when it `continues` the last cut of the same tool
-    /// (which ended at `from`), those about its start that that cut left at the tool's shape.
-    /// `checked`: a check will be made on it. `None` for coordinates that are not numbers or a
-    /// tool outside its ranges.
+    /// The move `from`..`to` (grid frame) with `tool`, cutting all it covers but, if it `continues`
+    /// the tool's last cut, the start cells that cut left; `checked` if it will be checked. `None`
+    /// for coordinates that are not numbers or a tool out of range.
     pub(crate) fn plan(
         &self,
         from: DVec3,
@@ -662,11 +657,9 @@ struct Sweeper<'a, P> {
 }
 
 impl<P: Profile> Sweeper<'_, P> {
-    /// Cuts the cells whose centres lie at `sc` along the line and `hh` from it squared, at
-    /// `index` (as many as there are): with the search for their lowest points, or leaving
-    /// those that need one to be searched a group at a time. Where no cell stands high enough to
-    /// pass the check, cells are only cut; otherwise each is cut noting the depth the check is
-    /// about, and those that pass are ranked.
+    /// Cuts the cells at `index` (`sc` along the line, `hh` from it squared), searching their
+    /// lowest points now or by group later; with a cell high enough for the check, notes depths and
+    /// ranks passes.
     fn work<const N: usize>(
         &mut self,
         sc: &[f32; N],
@@ -791,14 +784,9 @@ impl Cut {
         ]
     }
 
-    /// Shares out the cells about the joint between this cut and `next`, the move after it
-    /// with the same tool (neither checked). Over the cells where this cut's tool is lowest at
-    /// its end, `next`, which starts there, comes at least as low, so this cut may leave them
-    /// to it; and `next` may leave to this one those where its tool is lowest at its start. No
-    /// cell may be left by both: whichever leaves a disc about the joint, the other cuts every
-    /// cell of it; and every cell this cut leaves past its end lies within `R·sin θ` (`θ` the
-    /// turn, under a right angle) behind the line across `next` at its start, so one of the two
-    /// reaches that far round the joint.
+    /// Shares the cells about the joint with `next` (same tool, neither checked): each may leave to
+    /// the other those where its tool is lowest at the joint, never both, as cells left past an end
+    /// lie within `R·sin θ` (`θ` the turn, under 90°) of the line across `next`'s start.
     pub(crate) fn join(&mut self, next: &mut Cut) {
         if self.checked || next.checked {
             return;
@@ -841,14 +829,9 @@ impl Cut {
         taper.max(self.disc[side]) + MARGIN
     }
 
-    /// Calls `each` with the runs of the cells it cuts on a grid of `cell` mm and `nx` × `ny`
-    /// cells: those whose centres lie within the tool's radius of the move, from `behind` its
-    /// start to `ahead` past its end (each a little more, see [`MARGIN`]) and beyond its wedges
-    /// within [`Cut::keep`] of its ends, but for those in its hole. The runs of a short move go
-    /// across its main direction, so that there are few of them. `each` is given the index of
-    /// a run's first cell, the step to the next, their number, and the along-coordinate and
-    /// offset from the line of its centre and their change from one cell to the next (the
-    /// offset's sign may be turned).
+    /// Calls `each(first, step, n, [sc, h, dsc, dh])` (`h` may be negated) for the runs of cells it
+    /// cuts: in its radius, `behind`..`ahead` and [`Cut::keep`] past its wedges ([`MARGIN`] more),
+    /// not its hole. A short move's runs go across it, so there are few.
     fn runs(
         &self,
         cell: f64,

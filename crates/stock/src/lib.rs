@@ -1,13 +1,6 @@
-//! Stock simulation: the block as a height field (a Z-map over its XY grid) cut by the tool's
-//! swept volume along every segment of a [`swarf_toolpath::Toolpath`], with a warning where a
-//! rapid plows into material or a feed buries the tool past its flutes.
-//!
-//! Everything is in the machine frame, in mm. Each cell keeps one height, at its centre: the
-//! lowest point any tool reached there, never below the stock's bottom.
-//!
-//! [`Simulation`] cuts a toolpath out of a [`Stock`] with [`Tool`]s by number, a bounded number
-//! of segments a step; [`StockSetup`] reads them from a [`swarf_interp::Setup`], and
-//! [`StockRun`] gives what the cut assumed and found as diagnostics at their lines.
+//! Stock simulation: a height field (mm, machine frame; each cell the lowest any tool reached) cut
+//! along a [`swarf_toolpath::Toolpath`] by [`Simulation`] with a [`Stock`] and [`Tool`]s, read by
+//! [`StockSetup`] from a [`swarf_interp::Setup`]; [`StockRun`] reports plowing and buried flutes.
 
 mod field;
 mod setup;

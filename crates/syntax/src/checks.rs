@@ -14,10 +14,8 @@ const ARC: &[u32] = &[20, 30];
 const COMP: &[u32] = &[400, 410, 420];
 const LENGTH: &[u32] = &[430, 440, 490];
 
-/// Same-block combinations the manuals forbid, one a row: the dialects, the G codes (in tenths)
-/// of which one may not share a block with one of the second list, and why. LNC's come from its
-/// priority tables (§6 of the reference, the cells recovered as "(2) alarm"); KT's from its G43
-/// rules; the start-up rule for cutter compensation is common to the Fanuc family.
+/// Same-block combinations the manuals forbid, one a row: the dialects, the G codes (tenths) of
+/// which one may not share a block with one of the second list, and why.
 #[rustfmt::skip]
 const FORBIDDEN: &[(DialectSet, &[u32], &[u32], &str)] = &[
     (DialectSet::FANUC_FAMILY, ARC, COMP, "cutter compensation starts and ends only in a G00/G01 block"),

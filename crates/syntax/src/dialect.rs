@@ -44,10 +44,8 @@ impl Dialect {
         &RULES[self as usize]
     }
 
-    /// Reads a literal word as the control does: `quantity` says what the address means in its
-    /// block, `calculator` is the calculator-type input setting (see [`Rules::calculator_input`])
-    /// and `inch` the active unit. Returns the value in ordinary units (mm or inch, degrees,
-    /// seconds) or, for [`Quantity::Raw`], unchanged.
+    /// Reads a literal word as the control does, given its `quantity`, the `calculator` setting
+    /// ([`Rules::calculator_input`]) and `inch`; in ordinary units, [`Quantity::Raw`] unchanged.
     pub fn read(self, word: &Word, quantity: Quantity, calculator: bool, inch: bool) -> f64 {
         let rules = self.rules();
         let v = word.value;

@@ -1,7 +1,5 @@
-//! G-code text: decoding, the fault-tolerant parser, dialects and diagnostics.
-//!
-//! Parsing never fails: every problem becomes a [`Diagnostic`] with a byte [`Span`], and the
-//! newline is the recovery point, so the rest of the program still parses.
+//! G-code text: decoding, the fault-tolerant parser, dialects and diagnostics. Parsing never
+//! fails: each problem is a [`Diagnostic`] with a byte [`Span`]; reading resumes at the newline.
 
 mod ast;
 mod checks;

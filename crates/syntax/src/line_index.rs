@@ -105,12 +105,9 @@ fn for_each_line_end(bytes: &[u8], found: impl FnMut(usize)) {
     }
 }
 
-/// Calls `found` with the offset of every byte of `bytes` that `marks` marks (the top bit of
-/// each marked byte of a word, given the byte after the word, 0 at the end), in order.
-///
-/// Sixteen bytes a turn, the last ones padded with zero bytes (which nothing marks), with the
-/// set bits of the masks walked: lines of G-code are about twenty bytes long, so a search that
-/// stops at each newline (`memchr`) spends more on starting again than on scanning.
+/// Calls `found` with the offset of every byte `marks` marks (top bit of each marked byte of a
+/// word, given the byte after it, 0 at the end), in order, sixteen bytes a turn: G-code lines are
+/// about twenty bytes, so stopping at each newline (`memchr`) costs more in restarts than scanning.
 #[inline(always)]
 fn for_each_marked(
     bytes: &[u8],

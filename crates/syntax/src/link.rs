@@ -1,7 +1,6 @@
 //! Programs from other files appended to a program, so its calls (`M98 P`, `M198 P`, `G65 P`,
-//! LinuxCNC `o<name> call`) reach programs kept in files of their own, as a control reaches the
-//! programs in its memory. A linked program's spans and lines are moved past everything before
-//! them (as if the texts followed each other); [`Program::linked`] tells whose they are.
+//! `o<name> call`) reach them as a control reaches its memory. Their spans and lines follow the
+//! caller's; [`Program::linked`] tells whose they are.
 
 use crate::ast::{Expr, ExprId, OLabel, OWord, Statement};
 use crate::{Dialect, LineIndex, MAX_PARSED_BYTES, ParseRun, Program, ProgramNumber, Span};
@@ -72,10 +71,8 @@ pub fn is_plain_file_name(name: &str) -> bool {
 }
 
 impl Missing {
-    /// The file names that may hold this called program, in the order they are tried:
-    /// `O1234`, `O1234.nc`, `1234.nc` … for a number, `name.ngc` (LinuxCNC's subroutine files)
-    /// or `name.nc` for a name; none for a name that is not [a plain file
-    /// name](is_plain_file_name). The CLI looks beside the caller, the editor among its tabs.
+    /// The file names that may hold this called program, in the order tried: `O1234`, `O1234.nc`,
+    /// `1234.nc` … for a number, `name.ngc` or `name.nc` for a [plain](is_plain_file_name) name.
     pub fn file_names(&self) -> Vec<String> {
         let mut stems: Vec<String> = match self {
             Missing::Name(name) if !is_plain_file_name(name) => return Vec::new(),
@@ -93,12 +90,9 @@ impl Missing {
 }
 
 impl Program {
-    /// Links the programs this program calls and does not hold, until nothing more is found or
-    /// `max` files are linked: `find` names the file (name, text) a missing call's program may
-    /// be in, or why the file it found cannot be linked. Each file is linked once, read as
-    /// `dialect`; `main_len` is this program's own text's length. The linked files hold at most
-    /// what this program leaves of [`MAX_PARSED_BYTES`]. A call whose file is refused, or not
-    /// looked for past `max` files, is in [`Program::unlinked`] with the reason.
+    /// Links the programs this program calls and lacks, each file once as `dialect`, at most `max`
+    /// and within what `main_len` leaves of [`MAX_PARSED_BYTES`]; `find` gives a call's file or why
+    /// not. A call left unlinked is in [`Program::unlinked`] with the reason.
     pub fn link_calls<L: Into<Lookup>>(
         &mut self,
         main_len: usize,
@@ -280,9 +274,8 @@ impl Program {
     }
 }
 
-/// Makes `sub` (the file `name`, found by its name for `O n`) program `O n`, as a control that
-/// loads it under that number runs it: a file without an `O` line gets an empty `O n` block
-/// first (a call runs the blocks after it); one that opens with another number is taken as
+/// Makes `sub` (file `name`, found for `O n`) program `O n`, as a control loading it under that
+/// number runs it: an empty `O n` block goes first if it has no `O` line; another number becomes
 /// `O n`, with a warning.
 fn number_by_file_name(sub: &mut Program, n: u32, name: &str) {
     let defines = |b: &crate::Block| b.program() == Some(&ProgramNumber::Number(n));

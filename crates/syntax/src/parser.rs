@@ -1,10 +1,6 @@
-//! The fault-tolerant block parser: each line is read on its own (the newline is the recovery
-//! point), by the dialect's [`Rules`](crate::Rules); a problem inside a line becomes a
-//! diagnostic, the offending characters are skipped, and reading goes on.
-//!
-//! [`ParseRun`] (`run.rs`) reads a text a bounded number of lines a step, each line with the
-//! short reader of plain CAM lines (`plain.rs`) or the general one (`block.rs`; `statement.rs`
-//! for O-words, macro keywords and assignments; `expr.rs`); `number.rs` scans both's numbers.
+//! The fault-tolerant parser: each line is read alone by the dialect's [`Rules`](crate::Rules),
+//! and a problem in it becomes a diagnostic whose characters are skipped. [`ParseRun`] (`run.rs`)
+//! reads lines in bounded steps, with `plain.rs` for plain CAM lines, else `block.rs`.
 
 mod block;
 mod expr;
@@ -29,10 +25,8 @@ fn is_blank(c: char) -> bool {
     c == ' ' || c == '\t'
 }
 
-/// The most a parsed program may hold, in bytes, estimated from the sizes of its parts: its
-/// line table (at most half of it), blocks, statements, expressions and diagnostics. A program
-/// held whole (the editor's, or one that jumps or calls) is read up to there, with
-/// `E-PROGRAM-SIZE`; one run piece by piece holds only its diagnostics and lines.
+/// The most a parsed program may hold, in bytes (estimated from its parts): one held whole stops
+/// there with `E-PROGRAM-SIZE`; one run piece by piece keeps only its diagnostics and lines.
 pub const MAX_PARSED_BYTES: usize = 256 << 20;
 
 /// The longest line read in full (1 MiB); the rest of a longer line is reported and skipped.

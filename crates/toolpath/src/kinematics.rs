@@ -58,12 +58,8 @@ impl Kinematics {
         1.0 / self.acceleration_mm_per_s2
     }
 
-    /// Seconds to run `length` mm with a trapezoidal velocity profile: from `entry` speed up
-    /// towards `cruise` and down to `exit` (mm/s) at this acceleration, given as `per_a`
-    /// ([`Kinematics::per_acceleration`]: one division for a run of moves rather than four a
-    /// move, as divisions take turns on one unit of the processor). A move too short to reach
-    /// `cruise` peaks where acceleration and deceleration meet. Zero for an empty move and for
-    /// a move without a feed (`cruise <= 0`).
+    /// Seconds for `length` mm on a trapezoid from `entry` up to `cruise` and down to `exit`
+    /// (mm/s), `per_a` from [`Kinematics::per_acceleration`]; zero if empty or `cruise <= 0`.
     #[inline]
     pub(crate) fn move_secs_per(
         &self,

@@ -83,10 +83,8 @@ impl Timer {
         }
     }
 
-    /// Takes in the newest segment `note`, after `dwell` seconds of dwell: its length, the
-    /// box and the distances grow by it, and the planner gets it with its cruise speed and
-    /// whether it joins the one before without stopping. A straight move's direction gives
-    /// its join and, for a rapid, its cruise speed; an arc's chord comes with its own (`chord`).
+    /// Takes in segment `note` after `dwell` seconds: adds to the length, box and distances, and
+    /// plans it with its cruise speed and join, from its direction or, for an arc's chord, `chord`.
     #[inline(always)]
     pub(crate) fn measure(&mut self, note: &Note, dwell: f64, chord: ChordJoin) {
         let Note {
@@ -203,10 +201,8 @@ impl Timer {
         }
     }
 
-    /// End times of the first `count` segments not settled yet, the tool stopping at the end
-    /// of the last: a backward pass from there gives the highest speed at each join from which
-    /// the tool can still stop in time, and each join runs at the lower of that and the
-    /// forward speed.
+    /// End times of the first `count` unsettled segments, stopping after the last: each join runs
+    /// at the lower of the forward speed and the backward pass's speed that can still stop.
     pub(crate) fn window_end_times(&self, count: usize) -> Vec<f64> {
         let mut times = Vec::with_capacity(count.min(self.window.len()));
         let start = self.settled_secs;
@@ -298,10 +294,8 @@ pub(crate) enum Join {
     Corner { entry: Option<DVec3> },
 }
 
-/// Appends to `out` the end times of the first `count` segments of `window`, the first
-/// starting at `start` seconds (see [`Toolpath::window_end_times`]). The join speeds are
-/// written where the times go and replaced by them in turn, so no other buffer is needed; a
-/// window of one segment is timed directly.
+/// Appends the end times of `window`'s first `count` segments from `start` seconds (see
+/// [`Toolpath::window_end_times`]), writing join speeds where the times go, so no other buffer.
 fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, out: &mut Vec<f64>) {
     let count = count.min(window.len());
     if let [p] = window {
@@ -331,10 +325,8 @@ fn window_end_times(window: &[Plan], k: Kinematics, start: f64, count: usize, ou
     out.truncate(base + count);
 }
 
-/// The end time of a window's only segment `p`, which starts at `start` seconds and ends at
-/// rest (what [`window_end_times`] gives for a window of one). A window of one starts at a
-/// stop (the window only restarts at one, and a partial settle leaves many segments), so its
-/// limit and entry speed are zero.
+/// The end time of a window's only segment `p`, from `start` seconds to rest (as
+/// [`window_end_times`]); a window of one starts at a stop, so its limit and entry speed are zero.
 #[inline]
 fn lone_end_time(p: &Plan, k: Kinematics, per_a: f64, start: f64) -> f64 {
     debug_assert!(

@@ -215,10 +215,8 @@ impl Toolpath {
         path
     }
 
-    /// An empty toolpath as [`Toolpath::for_machine`] makes it that keeps none of its segments,
-    /// only their measures: how many there are, their bounds, lengths and time, the tools,
-    /// holes, dwells, program zeros and zones (a summary that costs no memory a segment). Its
-    /// segment arrays ([`Toolpath::ends`], [`Toolpath::timeline`] and the like) stay empty.
+    /// A [`Toolpath::for_machine`] keeping only measures (counts, bounds, lengths, time, tools,
+    /// holes, dwells, zeros, zones), not [`Toolpath::ends`] or [`Toolpath::timeline`].
     pub fn measuring(start: DVec3, machine: &Machine) -> Self {
         let mut path = Toolpath::for_machine(start, machine);
         path.keeps_segments = false;
@@ -247,10 +245,8 @@ impl Toolpath {
         times.reserve_exact(total.saturating_sub(times.len()));
     }
 
-    /// Makes room for more segments when the arrays are full: twice as many, but not past the
-    /// most the path holds and a 64th more (the rest of the block that fills it, such as an
-    /// arc's chords), so that a path run to its limit holds little spare room; past that, a
-    /// little more at a time.
+    /// Grows full arrays twice over, but not past the path's most and a 64th (a block's remaining
+    /// chords), so a path at its limit has little spare room; past that, a little at a time.
     #[cold]
     fn grow(&mut self) {
         let len = self.ends.len();

@@ -1,7 +1,5 @@
-//! The 3D backplot widget: orbit/pan/zoom, standard views, picking and playback, painted by
-//! `swarf_render` through an `egui_wgpu` callback. `prepare` uploads the points ([`PathLod`])
-//! and draws with its own depth buffer into an offscreen target when anything visible changed;
-//! `paint` composites that target into egui's render pass, so the app needs no depth setting.
+//! The 3D backplot widget (orbit/pan/zoom, views, picking, playback) via an `egui_wgpu` callback:
+//! `prepare` draws with depth into an offscreen target on change, `paint` composites it into egui.
 
 use std::borrow::Cow;
 use std::collections::{BTreeMap, HashMap};

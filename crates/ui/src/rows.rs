@@ -1,8 +1,6 @@
-//! The editor of every program: a rope ([`Buffer`]) edited in place (caret and selection in
-//! characters); each frame lays out only the rows on screen, so a keystroke costs the same in a
-//! million-line program as in a short one. G/M code completion ([`Popup`]); input method text at
-//! the caret. Keys reach the text only after a frame with the focus (Enter in the find bar is
-//! never typed into the program).
+//! The program editor: a rope ([`Buffer`]) laying out only on-screen rows, so a keystroke costs the
+//! same at any length; completion ([`Popup`]), IME. Keys need a frame with the focus first (Enter
+//! in the find bar never types).
 
 use std::ops::Range;
 

@@ -1,8 +1,6 @@
-//! Swarf's analysis in the web page's worker. `web/worker.js` loads this module (built by
-//! `cargo xtask web` beside the app's, which stays free to draw) and hands it the page's
-//! messages: requests as `[head, ...texts]` in, replies as `[head, ...arrays]` out, every part
-//! an `ArrayBuffer` moved between the two (see `swarf_analysis::wire`). The analysis itself is
-//! the [`swarf_analysis::Service`] the desktop runs on a thread.
+//! The page's analysis off its drawing thread: `web/worker.js` passes `[head, ...texts]` requests
+//! and `[head, ...arrays]` replies (moved `ArrayBuffer`s, `swarf_analysis::wire`) to
+//! [`swarf_analysis::Service`].
 
 #[cfg(target_arch = "wasm32")]
 mod worker {

@@ -17,10 +17,8 @@ use crate::{Sink, Source};
 /// Plain blocks do not change any of it, so it holds until another kind of block runs.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Shortcut {
-    /// The program frame → machine frame offset ([`State::base`]) where a straight move needs
-    /// nothing more: the coordinate chain is the offsets alone (no polar coordinates, rotation,
-    /// scaling or mirror), the feed is per minute at constant spindle speed, and nothing is held
-    /// for a corner or for cutter compensation. `None`: straight moves take [`motion`].
+    /// The program → machine frame offset ([`State::base`]) where a straight move needs nothing
+    /// more (offsets only, feed per minute, nothing held); `None`: straight moves take [`motion`].
     offsets: Option<DVec3>,
     /// Whether G02 and G03 are the dialect's arcs.
     arcs: bool,
@@ -75,10 +73,8 @@ struct PlainWords<'w> {
 }
 
 impl<'w> PlainWords<'w> {
-    /// The block's words sorted out, its axis words into `axes` (filled in place: a copy of
-    /// them would cost more than the rest of the block), or `None` when it is not a plain
-    /// motion block from the current mode; arcs only where G02 and G03 are the dialect's arcs
-    /// (`arcs`).
+    /// The block's words sorted out, its axis words into `axes` (in place: a copy costs more than
+    /// the rest), or `None` unless a plain motion block of the current mode (arcs only if `arcs`).
     #[inline(always)]
     fn of(st: &State, arcs: bool, words: &'w [Word], axes: &mut Axes<'w>) -> Option<Self> {
         let mut code = None;
@@ -146,11 +142,8 @@ impl<'w> PlainWords<'w> {
     }
 }
 
-/// Runs a plain motion block (see [`PlainWords`]) without the general path's passes over the
-/// words for every kind of code: it takes the steps [`super::execute`] takes for such a block
-/// (the others find nothing to do in it) and gives the same events, diagnostics and state.
-/// `None`, having done nothing, for any other block; otherwise whether the block's move went
-/// straight to `sink` as one segment (the general steps may hold moves or make many segments).
+/// Runs a plain motion block ([`PlainWords`]) as [`super::execute`] would, minus its other passes;
+/// `None`, doing nothing, for other blocks, else whether the move went to `sink` as one segment.
 pub(crate) fn plain_block(
     st: &mut State,
     short: Shortcut,
@@ -190,10 +183,8 @@ pub(crate) fn plain_block(
     }
 }
 
-/// A plain straight move in the [`Shortcut`]'s offsets: the same events, diagnostics and state
-/// as [`motion`], without the steps the offsets make void (the transform chain reduces to adding
-/// them, and the move goes straight to the sink past the corner and compensation stages, which
-/// would pass it on).
+/// A plain straight move in the [`Shortcut`]'s offsets, as [`motion`] makes it: the transforms
+/// reduce to adding the offsets, and the corner and compensation stages would pass it on.
 #[inline(always)]
 fn direct_move(
     st: &mut State,

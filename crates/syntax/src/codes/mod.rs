@@ -1,8 +1,5 @@
-//! The code tables: every G and M code each dialect knows, as data.
-//!
-//! One table ([`table::CODES`]) lists each code once per distinct meaning, tagged with the set of
-//! dialects that read it that way. Parsing, the same-block checks, the interpreter, hover help and
-//! `swarf explain` all read this table, so a dialect difference is an entry, not an `if`.
+//! Every G and M code each dialect knows, as data: [`table::CODES`] lists a code once per meaning,
+//! tagged with its dialects, so a dialect difference is an entry, not an `if`.
 
 mod matrix;
 mod table;

@@ -1,13 +1,6 @@
-//! The code and address tables, from the G-code reference (`gcode-reference.md`, §2–§5 and §8)
-//! for KT, LNC, GSK and Syntec, and from the Fanuc 0i-M and LinuxCNC code lists.
-//!
-//! * One entry per meaning: dialects that agree on a code's meaning, group and words share an
-//!   entry, whose summary names their specifics; a dialect is in at most one entry of a code.
-//! * `words`: every address the code takes there; permissive where the manual gives no format
-//!   (list-only and mentioned codes), so a real block is not flagged for words it does not describe.
-//! * `required`: only words whose absence the manual (or the control) treats as an error.
-//! * One row an entry, in the columns its macro (`codes!`, `addresses!`) names; a set of
-//!   dialects is one name (`ALL`, `FANUC`), `[FANUC LNC]` for several, or `-` for none.
+//! The code and address tables, from `gcode-reference.md` (§2–§5, §8) and the Fanuc 0i-M and
+//! LinuxCNC code lists: one entry per meaning; `words` is permissive where a manual gives no
+//! format, `required` holds only words whose absence is an error.
 
 use super::{AddressDef, Code, CodeDef, DialectSet, Documented, Group, Modality};
 
@@ -43,10 +36,9 @@ const fn code(name: &str, tenths: u32) -> Code {
     }
 }
 
-/// [`CODES`] from one row a meaning, the [`CodeDef`] fields in this order: code (`G83.1`),
-/// dialects, group ([`Group`]), modality ([`Modality`]), power-on dialects, documented
-/// ([`Documented`]), whole (`whole` or `-`), section, name, format, words, required (`[]`,
-/// `["XP"]`) and summary.
+/// [`CODES`] from one row a meaning, the [`CodeDef`] fields in order: code (`G83.1`), dialects
+/// (`ALL`, `[FANUC LNC]`, `-`), [`Group`], [`Modality`], power-on dialects, [`Documented`], whole
+/// (`whole` or `-`), section, name, format, words, required (`[]`, `["XP"]`) and summary.
 macro_rules! codes {
     ($(
         $code:ident $(. $tenths:literal)?, $dialects:tt, $group:ident, $modality:ident,

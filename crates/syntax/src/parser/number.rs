@@ -12,11 +12,9 @@ pub(super) struct Decimal {
     pub(super) digits: usize,
 }
 
-/// Scans a decimal number at `pos` in one pass (the hot path of the parser: every word).
-///
-/// Up to 15 digits the mantissa and the power of ten are exact f64s, so one correctly rounded
-/// division gives the correctly rounded value (Clinger's fast path), and a whole number (a G or
-/// M code, most often) needs none; longer numbers go to the standard library.
+/// Scans a decimal number at `pos` in one pass (the parser's hot path: every word). Up to 15
+/// digits the mantissa and power of ten are exact f64s, so one division rounds correctly
+/// (Clinger's fast path) and a whole number needs none; longer numbers go to the standard library.
 #[inline(always)]
 pub(super) fn scan_decimal(bytes: &[u8], pos: usize) -> Option<Decimal> {
     // The digits as one integer, the point left out (wrapping: past 15 digits it is unused).

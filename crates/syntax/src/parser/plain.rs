@@ -5,15 +5,9 @@ use super::MAX_LINE_BYTES;
 use super::number::{Decimal, scan_decimal, scan_sign, with_sign};
 use crate::{Block, Program, Rules, Span, Word, WordForm};
 
-/// Reads a line of plain words (a letter, an optional sign, a decimal number of at most 15
-/// digits within the dialect's limit, blank-separated), optionally after a sequence number: the
-/// line CAM output is made of (`N20 G0 Z5.`, `G1 X5.12 Y0.00`). The block is pushed at the end
-/// of `blocks` and checked exactly as the general reader would make and check it.
-///
-/// `bytes` is the text from the line's start on; the line ends at `\n`, `\r\n`, a lone `\r` or
-/// the end (as [`LineIndex`](crate::LineIndex) ends lines). Returns whether the line gave a
-/// block and its length without its ending, or `None`, having read nothing, for any other line
-/// (or one over [`MAX_LINE_BYTES`]): the general reader reads it.
+/// Reads a line of plain words (`N20 G0 Z5.`, `G1 X5.12 Y0`: letter, optional sign, number of at
+/// most 15 digits), the lines CAM output makes, onto `blocks` as the general reader would check it.
+/// Returns whether it made a block and the line's length (no ending), or `None`, reading nothing.
 #[inline]
 fn read_plain_line(
     bytes: &[u8],
@@ -138,11 +132,9 @@ pub(super) struct PlainLines {
     pub(super) last: bool,
 }
 
-/// Reads the lines at the start of `bytes` (the text from byte `base` on, whole lines; the
-/// first is 0-based line `line_no`) with [`read_plain_line`] while they are plain, up to `most`
-/// lines, the one that ends at or past byte `until` and the end of `bytes`, and indexes them as
-/// it goes: the start of each line after one read goes to the program's line table. Not
-/// inlined: the loop over the lines, where the parse spends its time, is faster on its own.
+/// Reads plain lines from the start of `bytes` (from byte `base`, 0-based line `line_no`) with
+/// [`read_plain_line`], up to `most` lines or the one ending at or past `until`, indexing line
+/// starts as it goes. Not inlined: the line loop, where parsing spends its time, is faster alone.
 #[inline(never)]
 pub(super) fn read_plain_lines(
     bytes: &[u8],

@@ -254,10 +254,9 @@ impl ParseRun {
         &self.program
     }
 
-    /// Drops the blocks read so far and their expressions and keeps the rest (diagnostics,
-    /// lines), so that a reader that runs a long program piece by piece as it reads it keeps
-    /// none of the pieces it has run; the arrays' memory is reused for the next piece. A block
-    /// refers only to expressions of its own line, so those of the next piece count from 0.
+    /// Drops the blocks and expressions read so far (keeping diagnostics, lines and the memory) so
+    /// a reader run piece by piece keeps none it has run. A block refers only to its own line's
+    /// expressions, so the next piece's count from 0.
     pub fn clear_blocks(&mut self) {
         self.program.blocks.clear();
         self.program.exprs.clear();

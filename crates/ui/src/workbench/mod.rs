@@ -325,10 +325,9 @@ impl Workbench {
         self.editor.completions()
     }
 
-    /// The part in sight of where widget `name` was drawn in the last frame, in points: `editor`,
-    /// `backplot`, `fit_view`, `find_field`, `find_previous`, `find_next`, `find_close`,
-    /// `replace_field`, `replace`, `replace_all`, `goto_field`, `goto_button`, `problem_first`
-    /// (the problems list's first row), `tab N`, `close_tab N` (1-based) and `new_tab`.
+    /// Widget `name`'s last visible rect (points): `editor`, `backplot`, `fit_view`, `find_field`,
+    /// `find_previous`, `find_next`, `find_close`, `replace_field`, `replace`, `replace_all`,
+    /// `goto_field`, `goto_button`, `problem_first`, `tab N`, `close_tab N` (1-based), `new_tab`.
     pub fn widget_rect(&self, name: &str) -> Option<egui::Rect> {
         let rect = self.widgets.get(name).copied();
         rect.filter(egui::Rect::is_positive)
