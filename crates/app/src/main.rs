@@ -1,4 +1,4 @@
-//! Swarf desktop: the G-code editor and backplot in a native window. `swarf-app [FILE]
+//! Swarf desktop: the G-code editor and backplot in a native window. `swarf-app [FILE]...
 //! [--screenshot OUT.png]`; `--screenshot` saves a PNG of the window and exits (smoke test).
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -25,16 +25,16 @@ mod native {
     #[derive(clap::Parser)]
     #[command(name = "swarf-app", version)]
     struct Args {
-        /// A program to open, in a tab of its own.
-        file: Option<PathBuf>,
+        /// Programs to open, each in a tab of its own.
+        files: Vec<PathBuf>,
         /// Renders a few frames, saves the window as this PNG and exits.
         #[arg(long, value_name = "OUT.png")]
         screenshot: Option<PathBuf>,
     }
 
     pub fn main() -> anyhow::Result<()> {
-        let Args { file, screenshot } = clap::Parser::parse();
-        if let Some(p) = &file {
+        let Args { files, screenshot } = clap::Parser::parse();
+        for p in &files {
             std::fs::metadata(p).with_context(|| format!("cannot read {}", p.display()))?;
         }
         let ok = Arc::new(AtomicBool::new(screenshot.is_none()));
@@ -50,8 +50,8 @@ mod native {
             options,
             Box::new(move |cc| {
                 let mut app = SwarfApp::new(cc);
-                if let Some(path) = file {
-                    // Opens in a tab of its own beside what the last run left unsaved.
+                for path in files {
+                    // Each in a tab of its own beside what the last run left unsaved.
                     app.host.open_path(&mut app.workbench, &path);
                 }
                 if let Some(out) = screenshot {

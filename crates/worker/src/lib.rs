@@ -27,15 +27,17 @@ mod worker {
         }
 
         /// Takes a message of the page: the reply to post at once (a question's answer), or
-        /// `undefined` (a job, whose replies come from [`Analysis::step`], or a message that
-        /// does not read).
-        pub fn handle(&mut self, message: &Array) -> Option<Array> {
-            let head = bytes(&message.get(0))?;
+        /// `undefined` (a job, whose replies come from [`Analysis::step`]). One that does not
+        /// read throws, so the page analyses in its frames (this worker may lack texts it kept).
+        pub fn handle(&mut self, message: &Array) -> Result<Option<Array>, JsError> {
+            let head = bytes(&message.get(0));
             let texts = (1..message.length())
                 .map(|i| String::from_utf8(bytes(&message.get(i))?).ok())
-                .collect::<Option<Vec<_>>>()?;
-            let request = wire::request_from(&head, texts, &mut self.files)?;
-            self.service.handle(request).map(|reply| parts(&reply))
+                .collect::<Option<Vec<_>>>();
+            let request = head.zip(texts);
+            let request = request.and_then(|(h, t)| wire::request_from(&h, t, &mut self.files));
+            let request = request.ok_or_else(|| JsError::new("a message that does not read"))?;
+            Ok(self.service.handle(request).map(|reply| parts(&reply)))
         }
 
         /// Whether an analysis is under way (and [`Analysis::step`] has work).
