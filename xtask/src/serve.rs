@@ -123,9 +123,16 @@ fn text_response(status: u16, text: &str) -> Answer {
 }
 
 /// Maps a request URL to a regular file under `root` (a folder to its `index.html`), or `None`
-/// (404) for anything outside it or with a `..` component.
+/// (404) for anything outside it, with a `..` component, NUL, a backslash or a malformed escape.
 fn resolve(root: &Path, url: &str) -> Option<PathBuf> {
     let path = url.split(['?', '#']).next().unwrap_or_default();
+    let hex = |e: &str| {
+        e.get(..2)
+            .is_some_and(|h| h.bytes().all(|b| b.is_ascii_hexdigit()))
+    };
+    if !path.split('%').skip(1).all(hex) {
+        return None;
+    }
     let decoded = percent_encoding::percent_decode_str(path)
         .decode_utf8()
         .ok()?;
@@ -197,7 +204,10 @@ mod tests {
         assert_eq!(resolve(&root, "/%2e%2e/%2e%2e/etc/passwd"), None);
         assert_eq!(resolve(&root, "/%2E%2E%2Fetc%2Fpasswd"), None);
         assert_eq!(resolve(&root, "/..%5c..%5cetc"), None);
+        // A malformed escape is refused, even where a file has that name.
+        std::fs::write(root.join("bad%zz"), "x")?;
         assert_eq!(resolve(&root, "/bad%zz"), None);
+        assert_eq!(resolve(&root, "/bad%2"), None);
         std::fs::remove_dir_all(&root)
     }
 
