@@ -4,7 +4,7 @@
 
 use std::ops::Range;
 
-use egui::{Pos2, Rect};
+use egui::{Key, Pos2, Rect};
 use swarf_syntax::Dialect;
 
 use crate::buffer::Buffer;
@@ -21,13 +21,25 @@ pub(crate) struct Popup {
     /// The typed prefix, as the text held it when the list was made.
     prefix: String,
     /// An arrow key picked the highlighted item, so Enter takes it.
-    pub chosen: bool,
+    chosen: bool,
     /// The codes on offer.
     pub items: Vec<Completion>,
     /// The highlighted item.
     pub selected: usize,
     /// Where the list was drawn last frame.
     rect: Option<Rect>,
+}
+
+/// What a key does to the open popup.
+pub(crate) enum PopupKey {
+    /// Not the popup's key: the editor handles it.
+    None,
+    /// A move through the list.
+    Handled,
+    /// Take this item.
+    Accept(usize),
+    /// Close the list.
+    Close,
 }
 
 impl Popup {
@@ -48,6 +60,24 @@ impl Popup {
             selected: 0,
             rect: None,
         })
+    }
+
+    /// What `key` (pressed without modifiers) does: Up/Down move through the list, Tab takes
+    /// the highlighted code, Enter takes it once an arrow key picked it, Escape closes the list.
+    pub fn key(&mut self, key: Key) -> PopupKey {
+        let n = self.items.len().max(1);
+        match key {
+            Key::ArrowDown | Key::ArrowUp => {
+                let step = if key == Key::ArrowDown { 1 } else { n - 1 };
+                self.selected = (self.selected + step) % n;
+                self.chosen = true;
+                PopupKey::Handled
+            }
+            Key::Tab => PopupKey::Accept(self.selected),
+            Key::Enter if self.chosen => PopupKey::Accept(self.selected),
+            Key::Escape => PopupKey::Close,
+            _ => PopupKey::None,
+        }
     }
 
     /// Whether the pointer is over the list (which a click takes the focus to for a moment).

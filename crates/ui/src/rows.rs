@@ -11,7 +11,7 @@ use swarf_syntax::Dialect;
 use crate::analysis::Problem;
 use crate::buffer::Buffer;
 use crate::commands::{self, Completion};
-use crate::completion::Popup;
+use crate::completion::{Popup, PopupKey};
 use crate::editor::{
     EditorOutput, HIGHLIGHTS_SHOWN, gutter_tooltip, highlight, hover_text, keep_keys, palette,
     severity_color, squiggle,
@@ -61,6 +61,17 @@ struct Preedit {
     text: String,
     /// The characters of `text` the input method is working on (the caret sits at their end).
     active: Option<Range<usize>>,
+}
+
+/// What a key, input-method or clipboard event does to the text at the selection.
+#[derive(Clone, Copy)]
+enum Edit<'a> {
+    /// Replace the selection with this text.
+    Insert(&'a str),
+    /// Delete the selection, or the character before the caret.
+    Backspace,
+    /// Delete the selection, or the character after the caret.
+    Delete,
 }
 
 impl CodeEditor {
@@ -143,7 +154,7 @@ impl CodeEditor {
             }
             ImeEvent::Commit(committed) => {
                 self.preedit = None;
-                !committed.is_empty() && self.edit(text, &committed, false)
+                !committed.is_empty() && self.edit(text, Edit::Insert(&committed))
             }
             ImeEvent::DeleteSurrounding {
                 before_chars,
@@ -156,20 +167,20 @@ impl CodeEditor {
                     return false;
                 }
                 (self.anchor, self.caret) = (from, to);
-                self.edit(text, "", true)
+                self.edit(text, Edit::Delete)
             }
             // The enable and disable notices (no longer sent) change nothing.
             _ => false,
         }
     }
 
-    /// Replaces the selection with `insert`; with neither, deletes the character after the
-    /// caret (`forward`) or before it. Whether the text changed.
-    fn edit(&mut self, text: &mut Buffer, insert: &str, forward: bool) -> bool {
+    /// Applies one edit at the selection; whether the text changed.
+    fn edit(&mut self, text: &mut Buffer, edit: Edit) -> bool {
         let sel = self.selection();
-        let range = match forward {
-            _ if !insert.is_empty() || !sel.is_empty() => sel,
-            false if sel.start > 0 => {
+        let range = match edit {
+            Edit::Insert(_) => sel,
+            _ if !sel.is_empty() => sel,
+            Edit::Backspace if sel.start > 0 => {
                 // A `\r\n` goes as one line ending.
                 let mut start = sel.start - 1;
                 if start > 0 && text.slice(start - 1..sel.start) == "\r\n" {
@@ -177,7 +188,7 @@ impl CodeEditor {
                 }
                 start..sel.start
             }
-            true if sel.end < text.len_chars() => {
+            Edit::Delete if sel.end < text.len_chars() => {
                 let mut end = sel.end + 1;
                 if text.slice(sel.end..end + 1) == "\r\n" {
                     end += 1;
@@ -186,6 +197,13 @@ impl CodeEditor {
             }
             _ => return false,
         };
+        let insert = match edit {
+            Edit::Insert(s) => s,
+            Edit::Backspace | Edit::Delete => "",
+        };
+        if range.is_empty() && insert.is_empty() {
+            return false;
+        }
         self.place(text.replace(range, insert));
         true
     }
@@ -231,21 +249,19 @@ impl CodeEditor {
                     ..
                 } = &event
                 && !modifiers.any()
-                && (matches!(key, Key::ArrowDown | Key::ArrowUp | Key::Tab | Key::Escape)
-                    || (*key == Key::Enter && popup.chosen))
             {
-                // Up and Down move through the list and Escape closes it; Tab takes the
-                // highlighted code, and so does Enter once an arrow key picked it.
-                let (n, selected) = (popup.items.len().max(1), popup.selected);
-                match key {
-                    Key::ArrowDown | Key::ArrowUp => {
-                        let step = if *key == Key::ArrowDown { 1 } else { n - 1 };
-                        (popup.selected, popup.chosen) = ((selected + step) % n, true);
+                match popup.key(*key) {
+                    PopupKey::None => {}
+                    PopupKey::Handled => continue,
+                    PopupKey::Close => {
+                        self.popup = None;
+                        continue;
                     }
-                    Key::Escape => self.popup = None,
-                    _ => self.accept(text, selected, output),
+                    PopupKey::Accept(i) => {
+                        self.accept(text, i, output);
+                        continue;
+                    }
                 }
-                continue;
             }
             if self.event(ui, text, event, rows_per_page, output) {
                 output.changed = true;
@@ -270,14 +286,14 @@ impl CodeEditor {
             // A lone line break comes as the Enter key too.
             Event::Text(t) if t == "\n" || t == "\r" => {}
             Event::Text(t) | Event::Paste(t) if !t.is_empty() => {
-                changed |= self.edit(text, &t, false);
+                changed |= self.edit(text, Edit::Insert(&t));
             }
             Event::Copy | Event::Cut => {
                 let sel = self.selection();
                 if !sel.is_empty() {
                     ui.ctx().copy_text(text.slice(sel));
                     if matches!(event, Event::Cut) {
-                        changed |= self.edit(text, "", true);
+                        changed |= self.edit(text, Edit::Delete);
                     }
                 }
             }
@@ -301,16 +317,23 @@ impl CodeEditor {
                 };
                 match key {
                     Key::Enter => {
-                        changed |= self.edit(text, "\n", false);
+                        changed |= self.edit(text, Edit::Insert("\n"));
                         output.ends_line = true;
                     }
-                    Key::Tab if !modifiers.any() => changed |= self.edit(text, "\t", false),
+                    Key::Tab if !modifiers.any() => changed |= self.edit(text, Edit::Insert("\t")),
                     Key::Backspace | Key::Delete => {
                         let forward = key == Key::Delete;
                         if word && self.selection().is_empty() {
                             self.anchor = word_boundary(text, self.caret, forward);
                         }
-                        changed |= self.edit(text, "", forward);
+                        changed |= self.edit(
+                            text,
+                            if forward {
+                                Edit::Delete
+                            } else {
+                                Edit::Backspace
+                            },
+                        );
                     }
                     Key::A if modifiers.command => (self.anchor, self.caret) = (0, len),
                     Key::ArrowLeft | Key::ArrowRight => {
