@@ -32,7 +32,8 @@ const HOLD_BYTES: usize = 1 << 20;
 /// nothing (while the view is orbited or played back, say).
 const HOLD_FRAMES: u32 = 8;
 
-/// Requests held back for a frame in which the page paints nothing, in the order they were made.
+/// The page's side of its messages to the worker: requests held back for a frame in which the
+/// page paints nothing (in the order they were made), and the open files the worker keeps.
 #[derive(Default)]
 struct Held {
     requests: Vec<Request>,
