@@ -247,7 +247,7 @@ pub struct HoverInfo {
 /// What a hover pick depended on, so it is not repeated while nothing changes: the scene's
 /// generation, the pointer, the view's rect and camera, the kinds hidden and the stock drawn (by
 /// address, 0: none).
-type HoverKey = (u64, (egui::Pos2, egui::Rect, OrbitCamera), u32, usize);
+type HoverKey = (u64, egui::Pos2, egui::Rect, OrbitCamera, u32, usize);
 
 /// State of one backplot view: camera, selection, playback and display options (by default
 /// the isometric view, fitting the first geometry shown).
@@ -762,8 +762,8 @@ impl Backplot {
         };
         let stock = self.drawn_stock(scene);
         let stock = stock.map_or(0, |s| Arc::as_ptr(&s) as usize);
-        let view = (pointer, rect, self.camera);
-        let key = (scene.generation, view, self.hidden(), stock);
+        let (generation, camera, hidden) = (scene.generation, self.camera, self.hidden());
+        let key = (generation, pointer, rect, camera, hidden, stock);
         if self.hover_key != Some(key) {
             self.hover = self.pick(scene, rect, pointer);
             self.stock_hover = self.stock_point(scene, rect, pointer);
