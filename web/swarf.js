@@ -223,14 +223,28 @@ function dropSoftwareFiltering() {
   };
 }
 
+// wgpu draws each frame into a texture of its own and copies it onto the canvas, which egui's
+// panels cover opaque: the canvas's WebGL2 context needs neither alpha nor a depth buffer.
+// Without them the browser neither blends the canvas into the page nor clears a depth buffer
+// each frame, about a tenth of a frame drawn in software. (A WebGPU context is left as it is.)
+function opaqueCanvas(canvas) {
+  const getContext = canvas.getContext;
+  canvas.getContext = function (kind, options) {
+    const opaque = kind === "webgl2" ? { ...options, alpha: false, depth: false } : options;
+    return getContext.call(this, kind, opaque);
+  };
+}
+
 async function main() {
-  if (!document.getElementById(CANVAS_ID)) {
+  const canvas = document.getElementById(CANVAS_ID);
+  if (!canvas) {
     throw new Error(`the page has no <canvas id="${CANVAS_ID}">`);
   }
   if (typeof WebAssembly !== "object") {
     throw new Error("this browser does not support WebAssembly");
   }
   dropSoftwareFiltering();
+  opaqueCanvas(canvas);
   // A dynamic import, so that a missing or broken file is reported here (a static import
   // would keep this module from running at all).
   const bindings = await import("./swarf_app.js");
