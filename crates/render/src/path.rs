@@ -383,7 +383,7 @@ const QUAD_VERTICES: u32 = 6;
 
 /// Work of one frame of a picture drawn over several ([`PathRenderer::paint_part`]): a software
 /// rasteriser draws this many segment passes in a few ms, so the frame stays short.
-pub const FRAME_WORK: u64 = 4096;
+pub const FRAME_WORK: u64 = 2048;
 
 /// One texture of a [`PointBatch`], holding `count` points of the stream, a row at a time.
 struct Chunk {
