@@ -184,6 +184,8 @@ try {
   const encoding = wasmResponse.headers()["content-encoding"] ?? "identity";
   const onDisk = async (suffix) => (await stat(path.join(SITE, `swarf_app_bg.wasm${suffix}`))).size;
   const wasmSizes = [sent, await onDisk(".gz"), await onDisk("")].map((b) => (b / 1e6).toFixed(2));
+  // The service worker stores the page's files once, after the first load: measured after it.
+  await session.page.evaluate(() => navigator.serviceWorker?.ready);
   await recordFrames(session.page);
   const emptyGap = await emptyPageGap(session);
   const emptyMb = rendererMb(session);
