@@ -127,6 +127,14 @@ test("egui's shader reaches WebGL without its software texture filtering", { tim
   assert.deepEqual(reads, [], "a WebGL shader still reads predictable_texture_filtering");
 });
 
+test("the canvas's WebGL2 context is opaque and has no depth buffer", { timeout: TEST_TIMEOUT_MS }, async () => {
+  const attributes = await page.evaluate(() =>
+    document.getElementById("swarf-canvas").getContext("webgl2").getContextAttributes(),
+  );
+  assert.equal(attributes.alpha, false, "the canvas is blended into the page each frame");
+  assert.equal(attributes.depth, false, "the canvas keeps a depth buffer nothing draws into");
+});
+
 test("the backplot canvas is not blank", { timeout: TEST_TIMEOUT_MS }, async () => {
   assert.ok(exampleMotions > 0, "the page did not get ready (see the first test)");
   await session.assertCanvasNotBlank("screenshot.png");
