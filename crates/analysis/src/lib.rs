@@ -12,7 +12,7 @@ pub mod wire;
 pub use hint::DialectHint;
 pub use run::{
     Job, Kept, LinkedProblem, Lod, LodLevel, OpenFile, PARSE_LINES_PER_BLOCK, PendingAnalysis,
-    Plot, Problem, Progress, Results, Stats, analyse,
+    Plot, Problem, Progress, Results, Stats, analyse, block_starts,
 };
 #[cfg(not(target_arch = "wasm32"))]
 pub use service::Thread;

@@ -143,6 +143,14 @@ pub struct Plot {
     pub tool_radii: BTreeMap<u32, f32>,
     /// The path's points kept at the job's level of detail, if it asked for one.
     pub lod: Option<Lod>,
+    /// Number of blocks that move the tool ([`block_starts`]), which playback steps through.
+    pub block_count: usize,
+}
+
+/// The first segment of each block that moves the tool, given each segment's source line: a
+/// block's segments run one after another, so a block starts where the line changes.
+pub fn block_starts(lines: &[u32]) -> impl Iterator<Item = usize> + '_ {
+    (0..lines.len()).filter(|&i| i == 0 || lines[i] != lines[i - 1])
 }
 
 impl Plot {
@@ -160,6 +168,7 @@ impl Plot {
                 .map(|(&n, r)| (n, (r.radius + r.radius_wear) as f32))
                 .collect(),
             lod: None,
+            block_count: block_starts(path.lines()).count(),
         }
     }
 }

@@ -98,6 +98,7 @@ fn scene(plot: Plot, generation: u64) -> Scene {
     Scene {
         generation,
         lines: Arc::new(plot.lines),
+        block_count: Some(plot.block_count),
         feeds: Arc::new(plot.feeds),
         timeline: Arc::new(plot.timeline),
         tools: Arc::new(plot.tools),

@@ -117,6 +117,9 @@ pub struct Scene {
     pub points: Arc<Vec<PathPoint>>,
     /// 1-based source line of each segment.
     pub lines: Arc<Vec<u32>>,
+    /// Blocks that move the tool, as the analysis counted them (`None`: counted from `lines`
+    /// when playback first asks).
+    pub block_count: Option<usize>,
     /// Feed of each segment in mm/min (0 for rapids).
     pub feeds: Arc<Vec<f32>>,
     /// When each segment runs (one not covered takes a second, as in a scene built by hand).

@@ -166,7 +166,9 @@ impl Playback {
 
     /// Number of blocks of `scene` that move the tool.
     pub fn block_count(&mut self, scene: &Scene) -> usize {
-        self.blocks(scene).len()
+        scene
+            .block_count
+            .unwrap_or_else(|| self.blocks(scene).len())
     }
 
     /// The segment under way (or just finished), `None` while off.
@@ -334,8 +336,7 @@ impl Playback {
             return Arc::clone(blocks);
         }
         let lines = &scene.lines[..scene.lines.len().min(scene.segment_count())];
-        let starts = (0..lines.len()).filter(|&i| i == 0 || lines[i] != lines[i - 1]);
-        let blocks = Arc::new(starts.collect::<Vec<_>>());
+        let blocks = Arc::new(swarf_analysis::block_starts(lines).collect::<Vec<_>>());
         self.blocks = Some((scene.generation, Arc::clone(&blocks)));
         blocks
     }
@@ -400,6 +401,39 @@ mod tests {
         p.stop();
         p.step_back(&scene);
         assert_eq!(p.current_line(&scene), Some(3));
+    }
+
+    #[test]
+    fn the_analysis_block_count_is_shown_without_a_pass_over_the_lines() {
+        let scene = Scene {
+            block_count: Some(4),
+            ..scene()
+        };
+        let mut p = Playback::default();
+        assert_eq!(p.block_count(&scene), 4);
+        assert!(
+            p.blocks.is_none(),
+            "the block starts were listed to count them"
+        );
+        p.step_forward(&scene);
+        assert_eq!(p.current_block(&scene), Some(0));
+    }
+
+    #[test]
+    fn the_analysis_counts_the_blocks_playback_steps_through() {
+        let program = swarf_syntax::parse(
+            "G0 X0 Y0 Z5.\nG1 Z0 F100\nG2 X10. I5.\nG1 Y10.\nY10.\nG81 X20. R2. Z-5.\nX30.\nG80\n",
+            swarf_syntax::Dialect::Fanuc,
+        );
+        let mut path = swarf_toolpath::Toolpath::default();
+        swarf_interp::run(&program, swarf_interp::Setup::default(), &mut path);
+        let scene = crate::analysis::scene_of(&path, &swarf_interp::Setup::default(), 1);
+        let counted = Playback::default().blocks(&Scene {
+            block_count: None,
+            ..scene.clone()
+        });
+        assert_eq!(scene.block_count, Some(counted.len()));
+        assert!(counted.len() >= 6, "{counted:?}");
     }
 
     #[test]
